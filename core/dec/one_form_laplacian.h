@@ -1,0 +1,34 @@
+#pragma once
+// The 1-form Laplacian M = d1' *2 d1 + *1 d0 *0^-1 d0' *1 (Eq. 1), assembled as products, with the boundary
+// modifications of Sec. 4.2, and the bi-Laplacian of Sec. 6.3.
+#include <Eigen/Core>
+#include <vector>
+
+#include "dec/exterior_derivative.h"
+#include "dec/hodge_star.h"
+#include "mesh/surface_mesh.h"
+
+namespace tvf {
+
+struct OneFormOperators {
+  SparseMatrix d0, d1;
+  // Divergence operator D (|V| x |E|): d0' *1, plus the half boundary fluxes for free boundaries; for
+  // fixed-angle boundaries its boundary-vertex rows are empty. Right-hand sides of sources use it too.
+  SparseMatrix divergence;
+  // Fixed-angle rows c_ij cos(b) + f_ij sin(b) (one per boundary edge; empty for free boundaries).
+  SparseMatrix boundaryRows;
+};
+
+// angles: per-edge beta (NaN on interior edges), or empty for free boundaries.
+OneFormOperators buildOneFormOperators(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                       const MeshGeometry& geometry, const std::vector<double>& angles);
+
+// d1' *2 d1 + D' *0^-1 D.
+SparseMatrix oneFormLaplacian(const OneFormOperators& ops, const MeshGeometry& geometry);
+
+// M + gamma M P^-1 M with P the (strictly positive) Whitney 1-form mass diagonal: *1 may be zero or negative.
+SparseMatrix biLaplacian(const SparseMatrix& M, const MeshGeometry& geometry, double gamma);
+
+double meanDiagonal(const SparseMatrix& A);
+
+}  // namespace tvf

@@ -1,0 +1,232 @@
+#include "design/design_document.h"
+
+#include <cmath>
+
+namespace tvf {
+namespace {
+
+using nlohmann::json;
+
+const char* kindName(ConstraintKind k) {
+  switch (k) {
+    case ConstraintKind::Stroke: return "stroke";
+    case ConstraintKind::Vector: return "vector";
+    case ConstraintKind::Edge: return "edge";
+    case ConstraintKind::Source: return "source";
+    case ConstraintKind::Sink: return "sink";
+    case ConstraintKind::Vortex: return "vortex";
+  }
+  return "";
+}
+
+double number(const json& object, const char* key, double fallback, const std::string& where) {
+  if (!object.contains(key)) return fallback;
+  const json& v = object.at(key);
+  if (!v.is_number()) throw InputError(where + ": \"" + key + "\" must be a number");
+  return v.get<double>();
+}
+
+int32_t integer(const json& object, const char* key, const std::string& where) {
+  if (!object.contains(key) || !object.at(key).is_number_integer())
+    throw InputError(where + ": \"" + key + "\" must be an integer");
+  return object.at(key).get<int32_t>();
+}
+
+void numbers(const json& array, double* out, size_t n, const std::string& what) {
+  if (!array.is_array() || array.size() != n)
+    throw InputError(what + " must be a list of " + std::to_string(n) + " numbers");
+  for (size_t k = 0; k < n; ++k) {
+    if (!array[k].is_number()) throw InputError(what + " must be a list of " + std::to_string(n) + " numbers");
+    out[k] = array[k].get<double>();
+  }
+}
+
+ConstraintSpec constraintFromJson(const json& c, size_t index) {
+  const std::string where = "constraint " + std::to_string(index);
+  if (!c.is_object() || !c.contains("type") || !c["type"].is_string())
+    throw InputError(where + ": needs a \"type\"");
+  const std::string type = c["type"];
+  ConstraintSpec s;
+  s.strength = number(c, "strength", 1.0, where);
+  s.weight = number(c, "weight", 1.0, where);
+  if (type == "stroke") {
+    s.kind = ConstraintKind::Stroke;
+    if (!c.contains("points") || !c["points"].is_array()) throw InputError(where + ": a stroke needs \"points\"");
+    for (const json& p : c["points"]) {
+      SurfacePoint q{};
+      q.face = integer(p, "face", where + " point");
+      numbers(p.value("bary", json()), q.bary, 3, where + " point \"bary\"");
+      s.points.push_back(q);
+    }
+  } else if (type == "vector") {
+    s.kind = ConstraintKind::Vector;
+    s.element = integer(c, "face", where);
+    numbers(c.value("vector", json()), s.vector, 3, where + " \"vector\"");
+  } else if (type == "edge") {
+    s.kind = ConstraintKind::Edge;
+    double ij[2];
+    numbers(c.value("edge", json()), ij, 2, where + " \"edge\"");
+    s.edge[0] = static_cast<int32_t>(ij[0]);
+    s.edge[1] = static_cast<int32_t>(ij[1]);
+    s.value = number(c, "value", NAN, where);
+    if (!c.contains("value")) throw InputError(where + ": an edge constraint needs a \"value\"");
+  } else if (type == "source" || type == "sink") {
+    s.kind = type == "source" ? ConstraintKind::Source : ConstraintKind::Sink;
+    s.element = integer(c, "vertex", where);
+  } else if (type == "vortex") {
+    s.kind = ConstraintKind::Vortex;
+    s.element = integer(c, "face", where);
+  } else {
+    throw InputError(where + ": unknown type \"" + type + "\"");
+  }
+  return s;
+}
+
+json constraintToJson(const ConstraintSpec& s) {
+  json c{{"type", kindName(s.kind)}};
+  switch (s.kind) {
+    case ConstraintKind::Stroke: {
+      json points = json::array();
+      for (const auto& p : s.points) points.push_back({{"face", p.face}, {"bary", {p.bary[0], p.bary[1], p.bary[2]}}});
+      c["points"] = points;
+      c["strength"] = s.strength;
+      c["weight"] = s.weight;
+      break;
+    }
+    case ConstraintKind::Vector:
+      c["face"] = s.element;
+      c["vector"] = {s.vector[0], s.vector[1], s.vector[2]};
+      c["weight"] = s.weight;
+      break;
+    case ConstraintKind::Edge:
+      c["edge"] = {s.edge[0], s.edge[1]};
+      c["value"] = s.value;
+      c["weight"] = s.weight;
+      break;
+    case ConstraintKind::Source:
+    case ConstraintKind::Sink:
+      c["vertex"] = s.element;
+      c["strength"] = s.strength;
+      break;
+    case ConstraintKind::Vortex:
+      c["face"] = s.element;
+      c["strength"] = s.strength;
+      break;
+  }
+  return c;
+}
+
+json vec3List(const std::vector<double>& flat) {
+  json out = json::array();
+  for (size_t k = 0; k + 2 < flat.size(); k += 3) out.push_back({flat[k], flat[k + 1], flat[k + 2]});
+  return out;
+}
+
+}  // namespace
+
+BoundaryCondition boundaryFromJson(const json& v) {
+  if (v.is_null()) return BoundaryCondition::makeFree();
+  if (v.is_string()) {
+    const std::string name = v;
+    if (name == "free") return BoundaryCondition::makeFree();
+    if (name == "tangential") return BoundaryCondition::tangential();
+    if (name == "normal") return BoundaryCondition::normal();
+    throw InputError("boundary: unknown condition \"" + name + "\" (free, tangential, normal or {\"angle\": radians})");
+  }
+  if (!v.is_object() || !v.contains("angle") || !v["angle"].is_number())
+    throw InputError("boundary must be \"free\", \"tangential\", \"normal\" or {\"angle\": radians}");
+  BoundaryCondition bc = BoundaryCondition::fixedAngle(v["angle"].get<double>());
+  if (v.contains("perEdge")) {
+    if (!v["perEdge"].is_array()) throw InputError("boundary.perEdge must be a list of [i, j, angle]");
+    for (const json& e : v["perEdge"]) {
+      double ija[3];
+      numbers(e, ija, 3, "boundary.perEdge entry");
+      bc.perEdge.push_back({static_cast<int32_t>(ija[0]), static_cast<int32_t>(ija[1]), ija[2]});
+    }
+  }
+  return bc;
+}
+
+json boundaryToJson(const BoundaryCondition& bc) {
+  if (bc.free) return "free";
+  if (bc.perEdge.empty() && bc.angle == M_PI / 2) return "tangential";
+  if (bc.perEdge.empty() && bc.angle == 0) return "normal";
+  json out{{"angle", bc.angle}};
+  if (!bc.perEdge.empty()) {
+    json list = json::array();
+    for (const auto& e : bc.perEdge) list.push_back({e.i, e.j, e.angle});
+    out["perEdge"] = list;
+  }
+  return out;
+}
+
+void applyDesignDocument(Designer& designer, const json& doc) {
+  if (!doc.is_object()) throw InputError("a design must be a JSON object");
+  const BoundaryCondition bc = boundaryFromJson(doc.value("boundary", json()));
+  const double gamma = number(doc, "gamma", 0.0, "design");
+  std::vector<ConstraintSpec> specs;
+  if (doc.contains("constraints")) {
+    if (!doc["constraints"].is_array()) throw InputError("design: \"constraints\" must be a list");
+    for (size_t k = 0; k < doc["constraints"].size(); ++k) specs.push_back(constraintFromJson(doc["constraints"][k], k));
+  }
+  // Apply to a scratch copy of the settings first so a bad entry leaves the designer untouched.
+  const BoundaryCondition oldBc = designer.boundary();
+  const double oldGamma = designer.gamma();
+  const std::vector<ConstraintSpec> oldSpecs = designer.constraints();
+  const auto replace = [&](const BoundaryCondition& b, double g, const std::vector<ConstraintSpec>& list,
+                           bool annotate) {
+    designer.setBoundary(b);
+    designer.setGamma(g);
+    designer.clearConstraints();
+    for (size_t k = 0; k < list.size(); ++k) {
+      try {
+        designer.add(list[k]);
+      } catch (const InputError& e) {
+        if (!annotate) throw;
+        throw InputError("constraint " + std::to_string(k) + ": " + e.what());
+      }
+    }
+  };
+  try {
+    replace(bc, gamma, specs, true);
+  } catch (const InputError&) {
+    replace(oldBc, oldGamma, oldSpecs, false);
+    throw;
+  }
+}
+
+json designDocument(const Designer& designer) {
+  json constraints = json::array();
+  for (const auto& s : designer.constraints()) constraints.push_back(constraintToJson(s));
+  return {{"boundary", boundaryToJson(designer.boundary())}, {"gamma", designer.gamma()}, {"constraints", constraints}};
+}
+
+json statsJson(const DesignStats& s) {
+  return {{"analyzeMs", s.analyzeMs},
+          {"factorMs", s.factorMs},
+          {"updateMs", s.updateMs},
+          {"solveMs", s.solveMs},
+          {"reconstructMs", s.reconstructMs},
+          {"nnzPerRowM", s.nnzPerRowM},
+          {"nnzPerRowL", s.nnzPerRowL},
+          {"positiveAreaFallbackVertices", s.positiveAreaFallbackVertices},
+          {"kernelHandling", s.kernelHandling},
+          {"kernelShift", s.kernelShift},
+          {"factorKind", s.factorKind}};
+}
+
+json fieldDocument(const Designer& designer) {
+  json edges = json::array();
+  const auto& ev = designer.edgeVertices();
+  for (size_t k = 0; k + 1 < ev.size(); k += 2) edges.push_back({ev[k], ev[k + 1]});
+  json singularities = json::array();
+  for (const auto& s : designer.singularities()) singularities.push_back({{"vertex", s.vertex}, {"index", s.index}});
+  return {{"edges", edges},
+          {"oneForm", designer.oneForm()},
+          {"faceVectors", vec3List(designer.faceVectors())},
+          {"vertexVectors", vec3List(designer.vertexVectors())},
+          {"singularities", singularities},
+          {"stats", statsJson(designer.stats())}};
+}
+
+}  // namespace tvf

@@ -1,0 +1,21 @@
+#pragma once
+// The design file (docs/design-format.md) and the solved-field file, shared by the CLI and the page.
+#include <nlohmann/json.hpp>
+
+#include "design/designer.h"
+
+namespace tvf {
+
+// Replaces the designer's boundary, gamma and constraints with the document's. Throws InputError naming the
+// offending entry; on error the designer is left as it was.
+void applyDesignDocument(Designer& designer, const nlohmann::json& document);
+nlohmann::json designDocument(const Designer& designer);
+
+// edges, oneForm, faceVectors, vertexVectors, singularities, stats (after solve()).
+nlohmann::json fieldDocument(const Designer& designer);
+nlohmann::json statsJson(const DesignStats& stats);
+
+BoundaryCondition boundaryFromJson(const nlohmann::json& value);
+nlohmann::json boundaryToJson(const BoundaryCondition& bc);
+
+}  // namespace tvf

@@ -1,0 +1,413 @@
+#include "design/designer.h"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "constraints/edge_rows.h"
+#include "constraints/singular_sources.h"
+#include "dec/boundary_condition.h"
+#include "dec/one_form_laplacian.h"
+#include "design/mesh_info.h"
+#include "field/singularities.h"
+#include "field/whitney_reconstruction.h"
+#include "mesh/mesh_checks.h"
+#include "solver/factored_system.h"
+
+namespace tvf {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// The kernel of M (harmonic fields, and more with free boundaries) is made definite by a diagonal shift this
+// small relative to the mean diagonal; it is raised only if CHOLMOD still finds a non-positive pivot.
+constexpr double kInitialShift = 1e-10;
+constexpr double kMaxShift = 1e-4;
+// Fixed-angle boundary rows are enforced this strongly relative to the mean diagonal.
+constexpr double kBoundaryWeight = 1e4;
+
+bool isEdgeKind(ConstraintKind k) {
+  return k == ConstraintKind::Stroke || k == ConstraintKind::Vector || k == ConstraintKind::Edge;
+}
+
+void requireFinite(double x, const char* what) {
+  if (!std::isfinite(x)) throw InputError(std::string(what) + " must be a finite number");
+}
+
+}  // namespace
+
+BoundaryCondition BoundaryCondition::tangential() { return fixedAngle(M_PI / 2); }
+
+struct Designer::Impl {
+  SurfaceMesh mesh;
+  MeshTopology topology;
+  MeshGeometry geometry;
+  BoundaryCondition boundary;
+  double gamma = 0;
+  bool metis = false;
+
+  // Base system, rebuilt when the boundary condition or gamma change.
+  bool baseStale = true;
+  OneFormOperators ops;
+  SparseMatrix base;
+  double scale = 1;
+
+  FactoredSystem system;
+  bool factorStale = true;
+  double shift = kInitialShift;
+
+  struct Active {
+    ConstraintSpec spec;
+    std::vector<EdgeRow> rows;  // edge-type constraints, values for unit strength
+  };
+  std::map<int32_t, Active> active;
+  std::vector<ConstraintSpec> order;  // specs in insertion order, mirrors `active`
+  int32_t nextId = 1;
+
+  Eigen::VectorXd solution;
+  std::vector<double> oneForm, faceVectors, vertexVectors;
+  std::vector<Singularity> singularities;
+  DesignStats stats;
+
+  void rebuildBase() {
+    const auto start = Clock::now();
+    const std::vector<double> angles = boundaryEdgeAngles(topology, boundary);
+    ops = buildOneFormOperators(mesh, topology, geometry, angles);
+    base = oneFormLaplacian(ops, geometry);
+    if (gamma > 0) base = biLaplacian(base, geometry, gamma * geometry.totalArea);
+    scale = meanDiagonal(base);
+    if (ops.boundaryRows.rows() > 0) {
+      const SparseMatrix Zt = ops.boundaryRows.transpose();
+      base += (kBoundaryWeight * scale) * (Zt * ops.boundaryRows);
+    }
+    base.makeCompressed();
+    stats.nnzPerRowM = static_cast<double>(base.nonZeros()) / std::max<Eigen::Index>(1, base.rows());
+    baseStale = false;
+    factorStale = true;
+    stats.analyzeMs = msSince(start);  // overwritten by the factorization's own analysis below
+  }
+
+  // Weighted constraint rows sqrt(w) e_i as (row, weight) lists.
+  void weightedRows(const Active& a, double weight, std::vector<int32_t>& rows, std::vector<double>& w) const {
+    for (const EdgeRow& r : a.rows) {
+      rows.push_back(r.edge);
+      w.push_back(weight * scale);
+    }
+  }
+
+  SparseMatrix systemMatrix(double relativeShift) const {
+    std::vector<Eigen::Triplet<double, int>> diag;
+    for (int32_t e = 0; e < topology.numEdges; ++e) diag.emplace_back(e, e, relativeShift * scale);
+    for (const auto& [id, a] : active)
+      if (isEdgeKind(a.spec.kind))
+        for (const EdgeRow& r : a.rows) diag.emplace_back(r.edge, r.edge, a.spec.weight * scale);
+    SparseMatrix D(topology.numEdges, topology.numEdges);
+    D.setFromTriplets(diag.begin(), diag.end());
+    return base + D;
+  }
+
+  void factorNow() {
+    if (baseStale) rebuildBase();
+    int retries = 0;
+    for (shift = kInitialShift;; shift *= 100, ++retries) {
+      if (system.factor(systemMatrix(shift))) break;
+      if (shift * 100 > kMaxShift)
+        throw InputError("the system could not be factored even with a diagonal shift of " +
+                         std::to_string(shift) + " (is the mesh badly shaped?)");
+    }
+    const FactorTimings& t = system.timings();
+    stats.analyzeMs = t.analyzeMs;
+    stats.factorMs = t.factorMs + t.convertMs;
+    stats.nnzPerRowL = static_cast<double>(system.factorNonzeros()) / std::max(1, topology.numEdges);
+    stats.kernelShift = shift;
+    stats.kernelHandling = "diagonal shift of " + std::to_string(shift).substr(0, 8) +
+                           " x mean diagonal on every edge (the kernel of M: harmonic fields, plus " +
+                           "boundary modes); " + std::to_string(retries) + " retries";
+    stats.factorKind = system.description();
+    factorStale = false;
+  }
+
+  void applyUpdate(const std::vector<int32_t>& rows, const std::vector<double>& w, bool downdate) {
+    if (factorStale || rows.empty()) return;  // the next factorization includes the change
+    const auto start = Clock::now();
+    system.updateDiagonal(rows, w, downdate);
+    stats.updateMs = msSince(start);
+  }
+
+  Eigen::VectorXd rightHandSide() const {
+    SourceTargets targets = singularTargets(mesh, topology, geometry, specsOf(ConstraintKind::Source),
+                                            specsOf(ConstraintKind::Sink), specsOf(ConstraintKind::Vortex));
+    Eigen::VectorXd b = ops.d1.transpose() * (geometry.star2.asDiagonal() * targets.curl) +
+                        ops.divergence.transpose() * targets.divergence;
+    for (const auto& [id, a] : active)
+      if (isEdgeKind(a.spec.kind))
+        for (const EdgeRow& r : a.rows) b[r.edge] += a.spec.weight * scale * a.spec.strength * r.value;
+    return b;
+  }
+
+  std::vector<ConstraintSpec> specsOf(ConstraintKind kind) const {
+    std::vector<ConstraintSpec> out;
+    for (const auto& [id, a] : active)
+      if (a.spec.kind == kind) out.push_back(a.spec);
+    return out;
+  }
+
+  void validate(const ConstraintSpec& s) const {
+    const auto faceOk = [&](int32_t f) { return f >= 0 && f < topology.numFaces; };
+    const auto vertexOk = [&](int32_t v) { return v >= 0 && v < topology.numVertices && topology.vertexFaceCount[v] > 0; };
+    requireFinite(s.strength, "strength");
+    requireFinite(s.weight, "weight");
+    if (isEdgeKind(s.kind) && !(s.weight > 0)) throw InputError("a constraint's weight must be positive");
+    switch (s.kind) {
+      case ConstraintKind::Vector:
+        if (!faceOk(s.element)) throw InputError("vector constraint: face " + std::to_string(s.element) + " does not exist");
+        for (const double x : s.vector) requireFinite(x, "vector component");
+        break;
+      case ConstraintKind::Vortex:
+        if (!faceOk(s.element)) throw InputError("vortex: face " + std::to_string(s.element) + " does not exist");
+        break;
+      case ConstraintKind::Source:
+      case ConstraintKind::Sink:
+        if (!vertexOk(s.element))
+          throw InputError("source/sink: vertex " + std::to_string(s.element) + " does not exist or is unused");
+        break;
+      case ConstraintKind::Edge:
+        requireFinite(s.value, "edge value");
+        if (findEdge(topology, s.edge[0], s.edge[1]) < 0)
+          throw InputError("edge constraint: vertices " + std::to_string(s.edge[0]) + " and " +
+                           std::to_string(s.edge[1]) + " are not joined by an edge");
+        break;
+      case ConstraintKind::Stroke:
+        break;  // strokeRows validates its points
+    }
+  }
+
+  std::vector<EdgeRow> rowsFor(const ConstraintSpec& s) const {
+    switch (s.kind) {
+      case ConstraintKind::Stroke:
+        return strokeRows(mesh, topology, s.points);
+      case ConstraintKind::Vector: {
+        const Eigen::Vector3d u(s.vector[0], s.vector[1], s.vector[2]);
+        return vectorRows(mesh, topology, s.element, u);
+      }
+      case ConstraintKind::Edge: {
+        const int32_t e = findEdge(topology, s.edge[0], s.edge[1]);
+        return {{e, s.edge[0] < s.edge[1] ? s.value : -s.value}};
+      }
+      default:
+        return {};
+    }
+  }
+
+  int32_t add(ConstraintSpec spec) {
+    validate(spec);
+    Active a{spec, rowsFor(spec)};
+    a.spec.id = nextId++;
+    std::vector<int32_t> rows;
+    std::vector<double> w;
+    if (isEdgeKind(spec.kind)) weightedRows(a, spec.weight, rows, w);
+    active.emplace(a.spec.id, a);
+    order.push_back(a.spec);
+    applyUpdate(rows, w, false);
+    return a.spec.id;
+  }
+
+  Active& find(int32_t id) {
+    const auto it = active.find(id);
+    if (it == active.end()) throw InputError("no constraint with id " + std::to_string(id));
+    return it->second;
+  }
+
+  ConstraintSpec& orderEntry(int32_t id) {
+    for (auto& s : order)
+      if (s.id == id) return s;
+    throw InputError("no constraint with id " + std::to_string(id));
+  }
+};
+
+Designer::Designer(SurfaceMesh mesh) : impl_(std::make_unique<Impl>()) {
+  const MeshReport report = checkMesh(mesh);
+  if (!report.usable()) throw InputError(report.firstFatal());
+  impl_->mesh = std::move(mesh);
+  impl_->topology = *report.topology;
+  impl_->geometry = computeMeshGeometry(impl_->mesh, impl_->topology);
+  impl_->stats.positiveAreaFallbackVertices = impl_->geometry.positiveAreaFallbackVertices;
+}
+Designer::~Designer() = default;
+Designer::Designer(Designer&&) noexcept = default;
+Designer& Designer::operator=(Designer&&) noexcept = default;
+
+void Designer::setBoundary(const BoundaryCondition& bc) {
+  if (!bc.free) {
+    requireFinite(bc.angle, "boundary angle");
+    boundaryEdgeAngles(impl_->topology, bc);  // validates overrides before anything changes
+  }
+  impl_->boundary = bc;
+  impl_->baseStale = true;
+  impl_->factorStale = true;
+}
+
+void Designer::setGamma(double gamma) {
+  if (!std::isfinite(gamma) || gamma < 0) throw InputError("gamma must be a finite number >= 0");
+  impl_->gamma = gamma;
+  impl_->baseStale = true;
+  impl_->factorStale = true;
+}
+
+void Designer::setMetisOrdering(bool metis) {
+  impl_->metis = metis;
+  impl_->system = FactoredSystem(metis ? FillOrdering::Metis : FillOrdering::Amd);
+  impl_->factorStale = true;
+}
+
+void Designer::factor() { impl_->factorNow(); }
+
+int32_t Designer::add(const ConstraintSpec& spec) { return impl_->add(spec); }
+
+int32_t Designer::addStroke(const std::vector<SurfacePoint>& points, double strength, double weight) {
+  ConstraintSpec s;
+  s.kind = ConstraintKind::Stroke;
+  s.points = points;
+  s.strength = strength;
+  s.weight = weight;
+  return impl_->add(s);
+}
+
+int32_t Designer::addVector(int32_t face, const double vector[3], double weight) {
+  ConstraintSpec s;
+  s.kind = ConstraintKind::Vector;
+  s.element = face;
+  std::copy(vector, vector + 3, s.vector);
+  s.weight = weight;
+  return impl_->add(s);
+}
+
+int32_t Designer::addEdge(int32_t i, int32_t j, double value, double weight) {
+  ConstraintSpec s;
+  s.kind = ConstraintKind::Edge;
+  s.edge[0] = i;
+  s.edge[1] = j;
+  s.value = value;
+  s.weight = weight;
+  return impl_->add(s);
+}
+
+int32_t Designer::addSource(int32_t vertex, double strength) {
+  ConstraintSpec s;
+  s.kind = ConstraintKind::Source;
+  s.element = vertex;
+  s.strength = strength;
+  return impl_->add(s);
+}
+
+int32_t Designer::addSink(int32_t vertex, double strength) {
+  ConstraintSpec s;
+  s.kind = ConstraintKind::Sink;
+  s.element = vertex;
+  s.strength = strength;
+  return impl_->add(s);
+}
+
+int32_t Designer::addVortex(int32_t face, double strength) {
+  ConstraintSpec s;
+  s.kind = ConstraintKind::Vortex;
+  s.element = face;
+  s.strength = strength;
+  return impl_->add(s);
+}
+
+void Designer::remove(int32_t id) {
+  Impl& d = *impl_;
+  Impl::Active& a = d.find(id);
+  std::vector<int32_t> rows;
+  std::vector<double> w;
+  if (isEdgeKind(a.spec.kind)) d.weightedRows(a, a.spec.weight, rows, w);
+  d.applyUpdate(rows, w, true);
+  d.active.erase(id);
+  d.order.erase(std::remove_if(d.order.begin(), d.order.end(), [id](const ConstraintSpec& s) { return s.id == id; }),
+                d.order.end());
+}
+
+void Designer::setWeight(int32_t id, double weight) {
+  Impl& d = *impl_;
+  Impl::Active& a = d.find(id);
+  if (!isEdgeKind(a.spec.kind)) throw InputError("only strokes, vectors and edge constraints have a weight");
+  if (!std::isfinite(weight) || !(weight > 0)) throw InputError("a constraint's weight must be positive");
+  const double change = weight - a.spec.weight;
+  if (change == 0) return;
+  std::vector<int32_t> rows;
+  std::vector<double> w;
+  d.weightedRows(a, std::abs(change), rows, w);
+  d.applyUpdate(rows, w, change < 0);
+  a.spec.weight = weight;
+  d.orderEntry(id).weight = weight;
+}
+
+void Designer::setStrength(int32_t id, double strength) {
+  requireFinite(strength, "strength");
+  Impl::Active& a = impl_->find(id);
+  a.spec.strength = strength;  // enters only the right-hand side
+  impl_->orderEntry(id).strength = strength;
+}
+
+void Designer::clearConstraints() {
+  impl_->active.clear();
+  impl_->order.clear();
+  impl_->factorStale = true;  // one refactorization is cheaper than many downdates
+}
+
+void Designer::solve() {
+  Impl& d = *impl_;
+  if (d.baseStale || d.factorStale || !d.system.factored()) d.factorNow();
+  const Eigen::VectorXd b = d.rightHandSide();
+  auto start = Clock::now();
+  d.system.solve(b, d.solution);
+  d.stats.solveMs = msSince(start);
+  start = Clock::now();
+  d.oneForm.assign(d.solution.data(), d.solution.data() + d.solution.size());
+  tvf::faceVectors(d.mesh, d.topology, d.oneForm.data(), d.faceVectors);
+  tvf::vertexVectors(d.mesh, d.topology, d.geometry, d.oneForm.data(), d.vertexVectors);
+  d.singularities = findSingularities(d.mesh, d.topology, d.faceVectors);
+  d.stats.reconstructMs = msSince(start);
+}
+
+const std::vector<double>& Designer::oneForm() const { return impl_->oneForm; }
+const std::vector<double>& Designer::faceVectors() const { return impl_->faceVectors; }
+const std::vector<double>& Designer::vertexVectors() const { return impl_->vertexVectors; }
+const std::vector<Singularity>& Designer::singularities() const { return impl_->singularities; }
+const DesignStats& Designer::stats() const { return impl_->stats; }
+const std::vector<ConstraintSpec>& Designer::constraints() const { return impl_->order; }
+const BoundaryCondition& Designer::boundary() const { return impl_->boundary; }
+double Designer::gamma() const { return impl_->gamma; }
+const SurfaceMesh& Designer::mesh() const { return impl_->mesh; }
+const std::vector<int32_t>& Designer::edgeVertices() const { return impl_->topology.edgeVertices; }
+
+void Designer::assembleSystem(SparseMatrix& A, Eigen::VectorXd& b) {
+  Impl& d = *impl_;
+  if (d.baseStale) d.rebuildBase();
+  A = d.systemMatrix(d.factorStale ? kInitialShift : d.shift);
+  b = d.rightHandSide();
+}
+
+const SparseMatrix& Designer::baseMatrix() {
+  if (impl_->baseStale) impl_->rebuildBase();
+  return impl_->base;
+}
+
+double Designer::weightScale() {
+  if (impl_->baseStale) impl_->rebuildBase();
+  return impl_->scale;
+}
+
+Eigen::VectorXd Designer::textureFaceVectors() const {
+  std::vector<double> out;
+  tvf::textureFaceVectors(impl_->mesh, impl_->topology, impl_->oneForm.data(), out);
+  return Eigen::Map<Eigen::VectorXd>(out.data(), out.size());
+}
+
+std::string Designer::infoJson() const { return meshInfoJson(impl_->mesh).dump(); }
+
+}  // namespace tvf

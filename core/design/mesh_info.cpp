@@ -1,0 +1,41 @@
+#include "design/mesh_info.h"
+
+#include "mesh/mesh_checks.h"
+
+namespace tvf {
+
+nlohmann::json meshInfoJson(const SurfaceMesh& mesh) {
+  const MeshReport report = checkMesh(mesh);
+  nlohmann::json info;
+  info["vertices"] = mesh.numVertices();
+  info["faces"] = mesh.numFaces();
+  info["hasUVs"] = mesh.hasUVs();
+  nlohmann::json problems = nlohmann::json::array();
+  for (const auto& p : report.problems) problems.push_back(p.message);
+  info["problems"] = problems;
+  info["usable"] = report.usable();
+  if (!report.topology) return info;
+  const MeshTopology& t = *report.topology;
+  info["edges"] = t.numEdges;
+  info["components"] = t.components.size();
+  info["boundaryLoops"] = t.boundaryLoops.size();
+  info["eulerCharacteristic"] = t.eulerCharacteristic();
+  int32_t genus = 0, betti1 = 0;
+  nlohmann::json perComponent = nlohmann::json::array();
+  for (const auto& c : t.components) {
+    genus += c.genus;
+    betti1 += 2 * c.genus + std::max(0, c.boundaryLoops - 1);
+    perComponent.push_back({{"vertices", c.vertices},
+                            {"edges", c.edges},
+                            {"faces", c.faces},
+                            {"boundaryLoops", c.boundaryLoops},
+                            {"eulerCharacteristic", c.eulerCharacteristic},
+                            {"genus", c.genus}});
+  }
+  info["genus"] = genus;  // the sum over components; see perComponent when there are several
+  info["firstBettiNumber"] = betti1;
+  if (t.components.size() > 1) info["perComponent"] = perComponent;
+  return info;
+}
+
+}  // namespace tvf

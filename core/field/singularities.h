@@ -1,0 +1,17 @@
+#pragma once
+// Index of the per-face field around each interior vertex: the turning of the field across the one-ring
+// measured against discrete Levi-Civita transport (angles to shared edges), plus the angle defect.
+#include <vector>
+
+#include "design/designer.h"
+#include "mesh/mesh_topology.h"
+#include "mesh/surface_mesh.h"
+
+namespace tvf {
+
+// Nonzero indices only. Vertices on a boundary, and vertices where the field vanishes in an incident face,
+// have no index and are skipped.
+std::vector<Singularity> findSingularities(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                           const std::vector<double>& faceVectors);
+
+}  // namespace tvf

@@ -1,0 +1,30 @@
+#pragma once
+// Vector fields from 1-forms with Whitney elements (Eq. 4, 5), on the surface and in the texture domain.
+#include <Eigen/Core>
+#include <vector>
+
+#include "dec/hodge_star.h"
+#include "mesh/mesh_topology.h"
+#include "mesh/surface_mesh.h"
+
+namespace tvf {
+
+// The field at barycentric point `bary` of `face`: 2|t| u = (c_ki a_k - c_ij a_j) p_jk^perp + ... (Eq. 4).
+Eigen::Vector3d whitneyVector(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,
+                              int32_t face, const double bary[3]);
+
+// Eq. 4 with UV positions and UV area: the field pushed into the texture domain (needs mesh.cornerUVs).
+Eigen::Vector2d whitneyTextureVector(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,
+                                     int32_t face, const double bary[3]);
+
+// Per-face vectors at barycentres (3 per face).
+void faceVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,
+                 std::vector<double>& out);
+// Per-vertex vectors: the corner values of Eq. 4 averaged with mixed Voronoi corner areas (Eq. 5).
+void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& geometry,
+                   const double* oneForm, std::vector<double>& out);
+// Texture-domain vectors at barycentres (2 per face); empty when the mesh has no UVs.
+void textureFaceVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,
+                        std::vector<double>& out);
+
+}  // namespace tvf

@@ -1,0 +1,169 @@
+#include "mesh/mesh_topology.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace tvf {
+namespace {
+
+class UnionFind {
+ public:
+  explicit UnionFind(int32_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int32_t find(int32_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void unite(int32_t a, int32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<int32_t> parent_;
+};
+
+void buildEdges(const SurfaceMesh& mesh, MeshTopology& t) {
+  const int32_t nF = t.numFaces;
+  // Sort corner half-edges by their undirected key; equal keys are the same edge.
+  std::vector<std::pair<int64_t, int32_t>> keyed(3 * static_cast<size_t>(nF));
+  for (int32_t f = 0; f < nF; ++f)
+    for (int32_t c = 0; c < 3; ++c) {
+      const int64_t a = mesh.triangles[3 * f + c], b = mesh.triangles[3 * f + (c + 1) % 3];
+      keyed[3 * f + c] = {std::min(a, b) * int64_t(t.numVertices) + std::max(a, b), 3 * f + c};
+    }
+  std::sort(keyed.begin(), keyed.end());
+  t.faceEdges.assign(3 * nF, -1);
+  t.faceEdgeSigns.assign(3 * nF, 0);
+  for (size_t k = 0; k < keyed.size(); ++k) {
+    if (k == 0 || keyed[k].first != keyed[k - 1].first) {
+      const int64_t key = keyed[k].first;
+      t.edgeVertices.push_back(static_cast<int32_t>(key / t.numVertices));
+      t.edgeVertices.push_back(static_cast<int32_t>(key % t.numVertices));
+      t.edgeFaceCount.push_back(0);
+      t.edgeFaces.push_back(-1);
+      t.edgeFaces.push_back(-1);
+    }
+    const int32_t e = static_cast<int32_t>(t.edgeFaceCount.size()) - 1;
+    const int32_t corner = keyed[k].second, f = corner / 3, c = corner % 3;
+    t.faceEdges[corner] = e;
+    t.faceEdgeSigns[corner] = mesh.triangles[3 * f + c] < mesh.triangles[3 * f + (c + 1) % 3] ? 1 : -1;
+    if (t.edgeFaceCount[e] < 2) t.edgeFaces[2 * e + t.edgeFaceCount[e]] = f;
+    ++t.edgeFaceCount[e];
+  }
+  t.numEdges = static_cast<int32_t>(t.edgeFaceCount.size());
+}
+
+void markBoundary(const SurfaceMesh& mesh, MeshTopology& t) {
+  t.isBoundaryEdge.assign(t.numEdges, 0);
+  t.isBoundaryVertex.assign(t.numVertices, 0);
+  t.vertexFaceCount.assign(t.numVertices, 0);
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    if (t.edgeFaceCount[e] != 1) continue;
+    t.isBoundaryEdge[e] = 1;
+    t.isBoundaryVertex[t.edgeVertices[2 * e]] = 1;
+    t.isBoundaryVertex[t.edgeVertices[2 * e + 1]] = 1;
+  }
+  for (const int32_t v : mesh.triangles) ++t.vertexFaceCount[v];
+  t.vertexEdgeStart.assign(t.numVertices + 1, 0);
+  for (const int32_t v : t.edgeVertices) ++t.vertexEdgeStart[v + 1];
+  std::partial_sum(t.vertexEdgeStart.begin(), t.vertexEdgeStart.end(), t.vertexEdgeStart.begin());
+  t.vertexEdgeList.resize(t.edgeVertices.size());
+  std::vector<int32_t> fill(t.vertexEdgeStart.begin(), t.vertexEdgeStart.end() - 1);
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    t.vertexEdgeList[fill[t.edgeVertices[2 * e]]++] = e;
+    t.vertexEdgeList[fill[t.edgeVertices[2 * e + 1]]++] = e;
+  }
+}
+
+// Follows each boundary edge (in its face's direction) to the boundary edge leaving its head vertex.
+void traceBoundaryLoops(const SurfaceMesh& mesh, MeshTopology& t) {
+  std::vector<int32_t> outgoing(t.numVertices, -1), headOf(t.numEdges, -1);
+  std::vector<int32_t> outgoingCount(t.numVertices, 0);
+  for (int32_t f = 0; f < t.numFaces; ++f)
+    for (int32_t c = 0; c < 3; ++c) {
+      const int32_t e = t.edgeOf(f, c);
+      if (!t.isBoundaryEdge[e]) continue;
+      const int32_t tail = mesh.triangles[3 * f + c];
+      outgoing[tail] = e;
+      ++outgoingCount[tail];
+      headOf[e] = mesh.triangles[3 * f + (c + 1) % 3];
+    }
+  std::vector<uint8_t> visited(t.numEdges, 0);
+  for (int32_t start = 0; start < t.numEdges; ++start) {
+    if (!t.isBoundaryEdge[start] || visited[start]) continue;
+    std::vector<int32_t> loop;
+    int32_t e = start;
+    while (e >= 0 && !visited[e]) {
+      visited[e] = 1;
+      loop.push_back(e);
+      const int32_t head = headOf[e];
+      // A vertex with several outgoing boundary edges is non-manifold; the checks report it, we stop here.
+      e = outgoingCount[head] == 1 ? outgoing[head] : -1;
+    }
+    t.boundaryLoops.push_back(std::move(loop));
+  }
+}
+
+void labelComponents(const SurfaceMesh& mesh, MeshTopology& t) {
+  UnionFind faces(t.numFaces);
+  for (int32_t e = 0; e < t.numEdges; ++e)
+    if (t.edgeFaces[2 * e + 1] >= 0) faces.unite(t.edgeFaces[2 * e], t.edgeFaces[2 * e + 1]);
+  std::vector<int32_t> label(t.numFaces, -1);
+  t.faceComponent.assign(t.numFaces, -1);
+  int32_t count = 0;
+  for (int32_t f = 0; f < t.numFaces; ++f) {
+    const int32_t root = faces.find(f);
+    if (label[root] < 0) label[root] = count++;
+    t.faceComponent[f] = label[root];
+  }
+  t.components.assign(count, ComponentInfo{});
+  t.vertexComponent.assign(t.numVertices, -1);
+  for (int32_t f = 0; f < t.numFaces; ++f) {
+    ++t.components[t.faceComponent[f]].faces;
+    for (int32_t c = 0; c < 3; ++c) t.vertexComponent[mesh.triangles[3 * f + c]] = t.faceComponent[f];
+  }
+  for (int32_t v = 0; v < t.numVertices; ++v)
+    if (t.vertexComponent[v] >= 0) ++t.components[t.vertexComponent[v]].vertices;
+  t.edgeComponent.assign(t.numEdges, -1);
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    t.edgeComponent[e] = t.faceComponent[t.edgeFaces[2 * e]];
+    ++t.components[t.edgeComponent[e]].edges;
+  }
+  for (const auto& loop : t.boundaryLoops) ++t.components[t.edgeComponent[loop.front()]].boundaryLoops;
+  for (auto& c : t.components) {
+    c.eulerCharacteristic = c.vertices - c.edges + c.faces;
+    c.genus = (2 - c.eulerCharacteristic - c.boundaryLoops) / 2;
+  }
+}
+
+}  // namespace
+
+int32_t MeshTopology::eulerCharacteristic() const {
+  int32_t chi = 0;
+  for (const auto& c : components) chi += c.eulerCharacteristic;
+  return chi;
+}
+
+MeshTopology buildTopology(const SurfaceMesh& mesh) {
+  MeshTopology t;
+  t.numVertices = mesh.numVertices();
+  t.numFaces = mesh.numFaces();
+  buildEdges(mesh, t);
+  markBoundary(mesh, t);
+  traceBoundaryLoops(mesh, t);
+  labelComponents(mesh, t);
+  return t;
+}
+
+int32_t findEdge(const MeshTopology& t, int32_t a, int32_t b) {
+  if (a < 0 || b < 0 || a >= t.numVertices || b >= t.numVertices) return -1;
+  const int32_t lo = std::min(a, b), hi = std::max(a, b);
+  for (int32_t k = t.vertexEdgeStart[lo]; k < t.vertexEdgeStart[lo + 1]; ++k) {
+    const int32_t e = t.vertexEdgeList[k];
+    if (t.edgeVertices[2 * e + 1] == hi) return e;
+  }
+  return -1;
+}
+
+}  // namespace tvf

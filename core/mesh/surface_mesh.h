@@ -1,0 +1,29 @@
+#pragma once
+// A triangle soup as it comes from a file, before any topology is built.
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tvf {
+
+// Raised for input that cannot be used; the message names the problem and the first offending element.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct SurfaceMesh {
+  std::vector<double> positions;   // x, y, z per vertex
+  std::vector<int32_t> triangles;  // i, j, k per face, in the file's winding
+  // u, v per face corner (6 floats per face) when the source carries texture coordinates; else empty.
+  std::vector<float> cornerUVs;
+  // For glTF: the welded vertex of every source vertex (all primitives concatenated in load order); else empty.
+  std::vector<int32_t> sourceToWelded;
+
+  int32_t numVertices() const { return static_cast<int32_t>(positions.size() / 3); }
+  int32_t numFaces() const { return static_cast<int32_t>(triangles.size() / 3); }
+  bool hasUVs() const { return !cornerUVs.empty(); }
+};
+
+}  // namespace tvf

@@ -1,0 +1,43 @@
+#pragma once
+// A sparse SPD matrix factored once by CHOLMOD and then modified only by rank-1 updates/downdates of its
+// factor (cholmod_updown), as constraint rows with a single nonzero come and go.
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dec/exterior_derivative.h"
+
+namespace tvf {
+
+enum class FillOrdering { Amd, Metis };
+
+struct FactorTimings {
+  double analyzeMs = 0, factorMs = 0, convertMs = 0;
+};
+
+class FactoredSystem {
+ public:
+  explicit FactoredSystem(FillOrdering ordering = FillOrdering::Amd);
+  ~FactoredSystem();
+  FactoredSystem(FactoredSystem&&) noexcept;
+  FactoredSystem& operator=(FactoredSystem&&) noexcept;
+
+  // Analyzes and factors A (symmetric; only its upper triangle is read). Returns false if A is not
+  // numerically positive definite.
+  bool factor(const SparseMatrix& A);
+  // L L' +/- sum_k w_k e_{row_k} e_{row_k}' in one cholmod_updown call; weights must be positive.
+  void updateDiagonal(const std::vector<int32_t>& rows, const std::vector<double>& weights, bool downdate);
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
+  bool factored() const;
+  int64_t factorNonzeros() const;
+  const FactorTimings& timings() const;
+  std::string description() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tvf

@@ -1,0 +1,51 @@
+// End-to-end tests in Debian's Chromium (never a downloaded browser) with software WebGL (SwiftShader).
+// Software rendering is slow and the machine may be busy: one worker, generous time-outs.
+import { defineConfig } from '@playwright/test';
+
+const PORT = Number(process.env.TVF_TEST_PORT || 8191);
+
+export default defineConfig({
+  testDir: 'tests/e2e',
+  testMatch: '**/*.spec.mjs',
+  outputDir: 'test-results',
+  workers: 1,
+  fullyParallel: false,
+  retries: 0,
+  timeout: 180_000,
+  expect: { timeout: 30_000 },
+  reporter: [['list']],
+  use: {
+    baseURL: `http://127.0.0.1:${PORT}/`,
+    browserName: 'chromium',
+    headless: true,
+    viewport: { width: 1024, height: 720 },
+    actionTimeout: 30_000,
+    navigationTimeout: 60_000,
+    screenshot: 'only-on-failure',
+    trace: 'retain-on-failure',
+    launchOptions: {
+      executablePath: process.env.TVF_CHROMIUM || '/usr/bin/chromium',
+      args: [
+        '--disable-gpu',
+        '--disable-quic',
+        '--enable-unsafe-swiftshader',
+        '--use-angle=swiftshader',
+        '--no-first-run',
+        '--disable-background-networking',
+        '--disable-component-update',
+        '--disable-sync',
+      ],
+    },
+  },
+  webServer: {
+    // Rebuilding the web part is cheap (esbuild) and keeps `npx playwright test` from testing a stale bundle;
+    // the wasm core must already be built (npm run build:wasm).
+    command: 'node scripts/build-web.mjs && node scripts/serve.mjs',
+    url: `http://127.0.0.1:${PORT}/`,
+    env: { PORT: String(PORT) },
+    reuseExistingServer: false,
+    timeout: 120_000,
+    stdout: 'pipe',
+    stderr: 'pipe',
+  },
+});

@@ -1,0 +1,47 @@
+#!/usr/bin/env node
+// Builds the static site in dist/: the bundled page, public/ assets, the wasm core (when built) and the
+// default model. The core is copied, not bundled: it is an emscripten module that fetches its .wasm beside itself.
+import { copyFileSync, cpSync, existsSync, mkdirSync, rmSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import * as esbuild from 'esbuild';
+import { makeDefaultModel } from './make-default-model.mjs';
+
+const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
+const DIST = resolve(ROOT, 'dist');
+const t0 = performance.now();
+
+// Only the bundle and copied assets are cleared: a stale main.js must never survive a failed build.
+rmSync(resolve(DIST, 'main.js'), { force: true });
+rmSync(resolve(DIST, 'wasm'), { recursive: true, force: true });
+mkdirSync(DIST, { recursive: true });
+
+await esbuild.build({
+  entryPoints: [resolve(ROOT, 'web/main.js')],
+  outfile: resolve(DIST, 'main.js'),
+  bundle: true,
+  format: 'esm',
+  platform: 'browser',
+  target: 'es2022',
+  minify: true,
+  sourcemap: true,
+  legalComments: 'linked',
+  logLevel: 'warning',
+});
+
+cpSync(resolve(ROOT, 'public'), DIST, { recursive: true });
+
+const wasmDir = resolve(ROOT, 'build-wasm');
+const coreFiles = ['tvf_core.mjs', 'tvf_core.wasm'];
+if (coreFiles.every((f) => existsSync(resolve(wasmDir, f)))) {
+  mkdirSync(resolve(DIST, 'wasm'), { recursive: true });
+  for (const f of coreFiles) copyFileSync(resolve(wasmDir, f), resolve(DIST, 'wasm', f));
+} else {
+  console.warn('build-web: build-wasm/tvf_core.{mjs,wasm} not found; run `npm run build:wasm` (the page needs the core)');
+}
+
+const model = makeDefaultModel(resolve(DIST, 'models/bunny.glb'));
+console.log(
+  `build-web: dist/ ready in ${(performance.now() - t0).toFixed(0)} ms ` +
+    `(default model ${model.vertices} vertices, ${model.faces} faces)`,
+);

@@ -1,0 +1,91 @@
+#!/usr/bin/env node
+// Static server for dist/ on 127.0.0.1:$PORT (default 8173). Sends COOP/COEP so the page is
+// cross-origin isolated (SharedArrayBuffer for a threaded core) and the MIME types wasm streaming needs.
+// Usage: node scripts/serve.mjs [--root DIR]
+import { createServer } from 'node:http';
+import { createReadStream } from 'node:fs';
+import { stat } from 'node:fs/promises';
+import { dirname, extname, resolve, sep } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
+const argRoot = process.argv.indexOf('--root');
+const DIST = argRoot > 0 ? resolve(process.argv[argRoot + 1]) : resolve(ROOT, 'dist');
+const PORT = Number(process.env.PORT || 8173);
+const HOST = '127.0.0.1';
+
+const MIME = {
+  '.html': 'text/html; charset=utf-8',
+  '.js': 'text/javascript; charset=utf-8',
+  '.mjs': 'text/javascript; charset=utf-8',
+  '.css': 'text/css; charset=utf-8',
+  '.json': 'application/json; charset=utf-8',
+  '.map': 'application/json; charset=utf-8',
+  '.wasm': 'application/wasm',
+  '.glb': 'model/gltf-binary',
+  '.gltf': 'model/gltf+json',
+  '.bin': 'application/octet-stream',
+  '.obj': 'text/plain; charset=utf-8',
+  '.off': 'text/plain; charset=utf-8',
+  '.ply': 'application/octet-stream',
+  '.svg': 'image/svg+xml',
+  '.png': 'image/png',
+  '.ico': 'image/x-icon',
+  '.txt': 'text/plain; charset=utf-8',
+};
+
+const COMMON_HEADERS = {
+  'Cross-Origin-Opener-Policy': 'same-origin',
+  'Cross-Origin-Embedder-Policy': 'require-corp',
+  'Cross-Origin-Resource-Policy': 'same-origin',
+  'X-Content-Type-Options': 'nosniff',
+  // Rebuilds replace files in place; the browser must revalidate rather than run a stale core.
+  'Cache-Control': 'no-cache',
+};
+
+function send(res, code, text) {
+  res.writeHead(code, { ...COMMON_HEADERS, 'Content-Type': 'text/plain; charset=utf-8' });
+  res.end(text);
+}
+
+const server = createServer(async (req, res) => {
+  if (req.method !== 'GET' && req.method !== 'HEAD') return send(res, 405, 'method not allowed\n');
+  let pathname;
+  try {
+    pathname = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+  } catch {
+    return send(res, 400, 'bad request\n');
+  }
+  if (pathname.endsWith('/')) pathname += 'index.html';
+  const file = resolve(DIST, '.' + pathname);
+  if (file !== DIST && !file.startsWith(DIST + sep)) return send(res, 403, 'forbidden\n');
+  let st;
+  try {
+    st = await stat(file);
+  } catch {
+    return send(res, 404, `not found: ${pathname}\n`);
+  }
+  if (!st.isFile()) return send(res, 404, `not found: ${pathname}\n`);
+  res.writeHead(200, {
+    ...COMMON_HEADERS,
+    'Content-Type': MIME[extname(file).toLowerCase()] || 'application/octet-stream',
+    'Content-Length': st.size,
+    'Last-Modified': st.mtime.toUTCString(),
+  });
+  if (req.method === 'HEAD') return res.end();
+  createReadStream(file)
+    .on('error', () => res.destroy())
+    .pipe(res);
+});
+
+server.on('error', (err) => {
+  console.error(`serve: ${err.code === 'EADDRINUSE' ? `port ${PORT} is in use (set PORT)` : err.message}`);
+  process.exit(1);
+});
+
+server.listen(PORT, HOST, () => {
+  console.log(`serving ${DIST}`);
+  console.log(`http://${HOST}:${PORT}/`);
+});
+
+for (const sig of ['SIGINT', 'SIGTERM']) process.on(sig, () => server.close(() => process.exit(0)));

@@ -1,0 +1,111 @@
+// Shared helpers for the end-to-end tests. Geometry is done in the test process from copies the page hands
+// out through window.tvf, so the checks do not trust the page's own arithmetic.
+import { expect } from '@playwright/test';
+
+// Console errors and uncaught exceptions, collected from the moment the page is created.
+export function trackErrors(page) {
+  const errors = [];
+  page.on('console', (msg) => {
+    if (msg.type() === 'error') errors.push(`console: ${msg.text()}`);
+  });
+  page.on('pageerror', (err) => errors.push(`pageerror: ${err.message}`));
+  return errors;
+}
+
+export async function openDesigner(page) {
+  await page.goto('/');
+  await page.waitForFunction(() => window.tvf && window.tvf.ready, null, { timeout: 60_000 });
+  // Rejects (and fails the test with the page's message) when the core or the default model cannot load.
+  await page.evaluate(() => window.tvf.ready.then(() => true));
+}
+
+// Fraction of pixels in the central box of the WebGL canvas that differ from the background colour.
+export function centreCoverage(page, box = 0.3) {
+  return page.evaluate((box) => {
+    const src = document.querySelector('#viewport canvas');
+    const w = src.width, h = src.height;
+    const c = document.createElement('canvas');
+    c.width = w;
+    c.height = h;
+    const ctx = c.getContext('2d', { willReadFrequently: true });
+    ctx.drawImage(src, 0, 0);
+    const x0 = Math.floor(w * (0.5 - box / 2)), y0 = Math.floor(h * (0.5 - box / 2));
+    const data = ctx.getImageData(x0, y0, Math.floor(w * box), Math.floor(h * box)).data;
+    const bg = [0x1b, 0x1d, 0x21]; // the page's clear colour (viewer.js)
+    let differ = 0;
+    for (let i = 0; i < data.length; i += 4) {
+      if (Math.abs(data[i] - bg[0]) + Math.abs(data[i + 1] - bg[1]) + Math.abs(data[i + 2] - bg[2]) > 24) differ++;
+    }
+    return differ / (data.length / 4);
+  }, box);
+}
+
+export const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+export const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+export const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+export const norm = (a) => Math.hypot(a[0], a[1], a[2]);
+
+export function vertex(mesh, v) {
+  return [mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]];
+}
+
+export function faceCorners(mesh, f) {
+  return [0, 1, 2].map((k) => vertex(mesh, mesh.triangles[3 * f + k]));
+}
+
+export function faceNormal(mesh, f) {
+  const [a, b, c] = faceCorners(mesh, f);
+  const n = cross(sub(b, a), sub(c, a));
+  const l = norm(n);
+  return [n[0] / l, n[1] / l, n[2] / l];
+}
+
+export function surfacePoint(mesh, { face, bary }) {
+  const [a, b, c] = faceCorners(mesh, face);
+  return [0, 1, 2].map((k) => bary[0] * a[k] + bary[1] * b[k] + bary[2] * c[k]);
+}
+
+export function faceVector(vectors, f) {
+  return [vectors[3 * f], vectors[3 * f + 1], vectors[3 * f + 2]];
+}
+
+// Angle in degrees between two vectors after projecting both into the plane with unit normal n.
+export function angleInPlane(u, v, n) {
+  const pu = sub(u, n.map((x) => x * dot(u, n)));
+  const pv = sub(v, n.map((x) => x * dot(v, n)));
+  const c = dot(pu, pv) / (norm(pu) * norm(pv));
+  return (Math.acos(Math.min(1, Math.max(-1, c))) * 180) / Math.PI;
+}
+
+// Relative difference ‖a − b‖ / ‖b‖ of two flat arrays.
+export function relativeDifference(a, b) {
+  expect(a.length).toBe(b.length);
+  let d = 0, n = 0;
+  for (let i = 0; i < a.length; i++) {
+    d += (a[i] - b[i]) ** 2;
+    n += b[i] ** 2;
+  }
+  return Math.sqrt(d) / Math.sqrt(n);
+}
+
+// Two faces sharing an edge, near the top of the model (the ears on the bunny): a short API stroke
+// between their barycentres gives a non-trivial field far away from where the mouse strokes go.
+export function topFacePair(mesh) {
+  const nF = mesh.triangles.length / 3;
+  let top = 0, topY = -Infinity;
+  for (let f = 0; f < nF; f++) {
+    const y = faceCorners(mesh, f).reduce((s, p) => s + p[1], 0) / 3;
+    if (y > topY) (topY = y), (top = f);
+  }
+  const edgeKey = (i, j) => (i < j ? `${i},${j}` : `${j},${i}`);
+  const mine = new Set([0, 1, 2].map((k) => edgeKey(mesh.triangles[3 * top + k], mesh.triangles[3 * top + ((k + 1) % 3)])));
+  for (let f = 0; f < nF; f++) {
+    if (f === top) continue;
+    for (let k = 0; k < 3; k++) {
+      if (mine.has(edgeKey(mesh.triangles[3 * f + k], mesh.triangles[3 * f + ((k + 1) % 3)]))) return [top, f];
+    }
+  }
+  throw new Error('top face has no neighbour');
+}
+
+export const CENTRE = [1 / 3, 1 / 3, 1 / 3];

@@ -1,0 +1,27 @@
+#pragma once
+// Meshes made in code, with known topology and geometry, for the native tests.
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+
+namespace tvf::testing {
+
+// n x n squares of size `size` in the z = 0 plane, each split into two triangles; alternate diagonals when
+// `regular` is false so the mesh is not a regular valence-6 grid.
+SurfaceMesh flatGrid(int n, double size = 1.0, bool alternate = false);
+// Flat annulus with `rings` x `sectors` quads, radii r0 < r1.
+SurfaceMesh flatAnnulus(int rings, int sectors, double r0, double r1);
+// Torus of revolution, valence 6 everywhere.
+SurfaceMesh torus(int n, int m, double R, double r);
+// Subdivided icosahedron projected to the unit sphere.
+SurfaceMesh icosphere(int subdivisions);
+// Surface of a one-voxel-thick plate of width x depth cells with a hole at every listed cell, each unit face
+// split into k x k quads: genus = number of holes.
+SurfaceMesh holedPlate(int width, int depth, const std::vector<std::pair<int, int>>& holes, int k);
+// Concatenates meshes (several components).
+SurfaceMesh disjointUnion(const SurfaceMesh& a, const SurfaceMesh& b);
+// Moves every vertex by a deterministic pseudo-random offset of relative size `amount` in the mesh's own plane
+// (z kept) so triangles are irregular.
+void jitterPlanar(SurfaceMesh& mesh, double amount, unsigned seed);
+
+}  // namespace tvf::testing

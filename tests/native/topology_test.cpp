@@ -1,0 +1,116 @@
+// Topology and mesh checks.
+#include <gtest/gtest.h>
+
+#include "design/mesh_info.h"
+#include "mesh/mesh_checks.h"
+#include "test_meshes.h"
+
+using namespace tvf;
+using namespace tvf::testing;
+
+TEST(Topology, EulerCharacteristicGenusAndBoundaryLoops) {
+  struct Case {
+    SurfaceMesh mesh;
+    int chi, genus, loops, components;
+  };
+  const std::vector<Case> cases = {
+      {icosphere(1), 2, 0, 0, 1},
+      {torus(10, 6, 2, 0.7), 0, 1, 0, 1},
+      {holedPlate(7, 3, {{1, 1}, {3, 1}, {5, 1}}, 1), -4, 3, 0, 1},
+      {flatAnnulus(3, 12, 1, 2), 0, 0, 2, 1},
+      {flatGrid(4), 1, 0, 1, 1},
+      {disjointUnion(icosphere(0), flatGrid(3)), 3, 0, 1, 2},
+  };
+  for (const Case& c : cases) {
+    const MeshReport r = checkMesh(c.mesh);
+    ASSERT_TRUE(r.usable()) << r.firstFatal();
+    const MeshTopology& t = *r.topology;
+    EXPECT_EQ(t.eulerCharacteristic(), c.chi);
+    int genus = 0;
+    for (const auto& comp : t.components) genus += comp.genus;
+    EXPECT_EQ(genus, c.genus);
+    EXPECT_EQ(static_cast<int>(t.boundaryLoops.size()), c.loops);
+    EXPECT_EQ(static_cast<int>(t.components.size()), c.components);
+  }
+}
+
+TEST(Topology, EdgesAreCanonicallyOrientedAndSignsMatchFaces) {
+  const SurfaceMesh m = torus(6, 5, 2, 0.7);
+  const MeshTopology t = buildTopology(m);
+  EXPECT_EQ(t.numEdges, 3 * m.numFaces() / 2);
+  for (int e = 0; e < t.numEdges; ++e) EXPECT_LT(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1]);
+  for (int f = 0; f < t.numFaces; ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int e = t.edgeOf(f, c), a = m.triangles[3 * f + c], b = m.triangles[3 * f + (c + 1) % 3];
+      EXPECT_EQ(t.signOf(f, c), a == t.edgeVertices[2 * e] ? 1 : -1);
+      EXPECT_EQ(std::min(a, b), t.edgeVertices[2 * e]);
+    }
+}
+
+namespace {
+std::string firstFatal(const SurfaceMesh& m) { return checkMesh(m).firstFatal(); }
+}  // namespace
+
+TEST(MeshChecks, NamesTheFirstOffendingElement) {
+  SurfaceMesh m = flatGrid(2);
+  m.triangles[5] = 42;
+  EXPECT_NE(firstFatal(m).find("face 1 refers to vertex 42"), std::string::npos) << firstFatal(m);
+
+  m = flatGrid(2);
+  m.positions[3 * 4 + 1] = std::nan("");
+  EXPECT_NE(firstFatal(m).find("vertex 4 has a non-finite"), std::string::npos) << firstFatal(m);
+
+  m = flatGrid(2);
+  m.positions[3 * 1] = m.positions[0];  // vertex 1 onto vertex 0: face 0 collapses
+  m.positions[3 * 1 + 1] = m.positions[1];
+  EXPECT_NE(firstFatal(m).find("face 0 is degenerate"), std::string::npos) << firstFatal(m);
+
+  m = flatGrid(2);
+  m.triangles.insert(m.triangles.end(), {0, 1, 4});  // a third face on edge (0, 1)... and (1, 4), (0, 4)
+  EXPECT_NE(firstFatal(m).find("non-manifold"), std::string::npos) << firstFatal(m);
+
+  m = flatGrid(2);
+  std::swap(m.triangles[0], m.triangles[1]);  // flip face 0
+  EXPECT_NE(firstFatal(m).find("inconsistently oriented"), std::string::npos) << firstFatal(m);
+
+  m = disjointUnion(icosphere(0), icosphere(0));  // two spheres glued at one vertex: a bow-tie vertex
+  for (int32_t& v : m.triangles)
+    if (v == 12) v = 0;
+  EXPECT_NE(firstFatal(m).find("vertex 0 is non-manifold"), std::string::npos) << firstFatal(m);
+
+  EXPECT_NE(firstFatal(SurfaceMesh{}).find("no triangles"), std::string::npos);
+}
+
+TEST(MeshChecks, MoebiusStripIsNonOrientable) {
+  SurfaceMesh m;
+  const int n = 12;
+  for (int i = 0; i < n; ++i)
+    for (int s = -1; s <= 1; s += 2) {
+      const double a = 2 * M_PI * i / n, w = 0.3 * s;
+      m.positions.insert(m.positions.end(), {(2 + w * std::cos(a / 2)) * std::cos(a),
+                                             (2 + w * std::cos(a / 2)) * std::sin(a), w * std::sin(a / 2)});
+    }
+  for (int i = 0; i < n; ++i) {
+    const int a0 = 2 * i, a1 = 2 * i + 1;
+    int b0 = 2 * ((i + 1) % n), b1 = b0 + 1;
+    if (i == n - 1) std::swap(b0, b1);  // the half twist
+    m.triangles.insert(m.triangles.end(), {a0, b0, b1, a0, b1, a1});
+  }
+  EXPECT_NE(firstFatal(m).find("non-orientable"), std::string::npos) << firstFatal(m);
+}
+
+TEST(MeshInfo, ReportsCountsAndProblems) {
+  const nlohmann::json info = meshInfoJson(disjointUnion(torus(8, 6, 2, 0.7), flatAnnulus(2, 10, 1, 2)));
+  EXPECT_EQ(info["components"], 2);
+  EXPECT_EQ(info["genus"], 1);
+  EXPECT_EQ(info["boundaryLoops"], 2);
+  EXPECT_EQ(info["firstBettiNumber"], 3);
+  EXPECT_TRUE(info["problems"].empty());
+  EXPECT_EQ(info["perComponent"].size(), 2u);
+  SurfaceMesh unused = flatGrid(2);
+  unused.positions.insert(unused.positions.end(), {5, 5, 5});
+  const nlohmann::json withNote = meshInfoJson(unused);
+  EXPECT_TRUE(withNote["usable"].get<bool>());
+  ASSERT_EQ(withNote["problems"].size(), 1u);
+  EXPECT_NE(withNote["problems"][0].get<std::string>().find("not used"), std::string::npos);
+}

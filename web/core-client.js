@@ -1,0 +1,166 @@
+// Thin wrapper over the embind Designer of the wasm core (dist/wasm/tvf_core.mjs).
+// The core reports failures as strings (or -1 plus lastError()); this wrapper turns them into Errors so the
+// page has one error path. Views the core returns point into wasm memory and die at the next mutating call
+// or memory growth, so everything handed out is a copy.
+
+export class CoreError extends Error {
+  constructor(message) {
+    super(message);
+    this.name = 'CoreError';
+  }
+}
+
+// A C++ exception or a wasm trap escaping embind arrives as a number or a RuntimeError, neither readable.
+function describe(err) {
+  if (err instanceof Error) return err.message || String(err);
+  if (typeof err === 'number') return 'internal error in the core (uncaught C++ exception)';
+  return String(err);
+}
+
+function guard(what, fn) {
+  try {
+    return fn();
+  } catch (err) {
+    throw new CoreError(`${what}: ${describe(err)}`);
+  }
+}
+
+function check(what, result) {
+  if (typeof result === 'string' && result !== '') throw new CoreError(`${what}: ${result}`);
+  return result;
+}
+
+export async function loadCore(baseUrl) {
+  const moduleUrl = new URL('wasm/tvf_core.mjs', baseUrl).href;
+  let factory;
+  try {
+    // A computed specifier keeps the bundler from trying to inline the emscripten module.
+    factory = (await import(moduleUrl)).default;
+  } catch (err) {
+    throw new CoreError(
+      `could not load the field-design core from ${moduleUrl} (${describe(err)}); ` +
+        'build it with `npm run build:wasm && npm run build:web`',
+    );
+  }
+  const Module = await factory({ locateFile: (path) => new URL(path, moduleUrl).href });
+  return new CoreClient(Module);
+}
+
+export class CoreClient {
+  constructor(Module) {
+    this.Module = Module;
+    this.designer = new Module.Designer();
+    this.hasMesh = false;
+  }
+
+  // bytes: Uint8Array; format: 'glb' | 'gltf' | 'obj' | 'off' | 'ply' | '' (sniff). On failure the core
+  // keeps its previous mesh and this throws with the core's message.
+  loadMesh(bytes, format) {
+    check('load', guard('load', () => this.designer.loadMesh(bytes, format)));
+    this.hasMesh = true;
+  }
+
+  info() {
+    return JSON.parse(guard('info', () => this.designer.infoJson()));
+  }
+
+  setBoundary(bc) {
+    // 'free' | 'tangential' | 'normal' | {angle}: the core takes the JSON value, quotes included.
+    const json = JSON.stringify(bc);
+    check('boundary', guard('boundary', () => this.designer.setBoundaryJson(json)));
+  }
+
+  setGamma(gamma) {
+    // setGamma returns nothing, or an error string in a stricter build.
+    check('gamma', guard('gamma', () => this.designer.setGamma(gamma)));
+  }
+
+  factor() {
+    check('factor', guard('factor', () => this.designer.factor()));
+  }
+
+  solve() {
+    check('solve', guard('solve', () => this.designer.solve()));
+  }
+
+  #id(what, id) {
+    if (typeof id !== 'number' || id < 0) {
+      const msg = guard(what, () => this.designer.lastError()) || 'rejected by the core';
+      throw new CoreError(`${what}: ${msg}`);
+    }
+    return id;
+  }
+
+  // points: [{face, bary: [a, b, c]}, ...] in the core's welded face order.
+  addStroke(points, strength, weight) {
+    const flat = new Float64Array(points.length * 4);
+    points.forEach((p, k) => {
+      flat[4 * k] = p.face;
+      flat[4 * k + 1] = p.bary[0];
+      flat[4 * k + 2] = p.bary[1];
+      flat[4 * k + 3] = p.bary[2];
+    });
+    return this.#id('stroke', guard('stroke', () => this.designer.addStroke(flat, strength, weight)));
+  }
+
+  addVector(face, [x, y, z], weight) {
+    return this.#id('vector', guard('vector', () => this.designer.addVector(face, x, y, z, weight)));
+  }
+
+  addSource(vertex, strength) {
+    return this.#id('source', guard('source', () => this.designer.addSource(vertex, strength)));
+  }
+
+  addSink(vertex, strength) {
+    return this.#id('sink', guard('sink', () => this.designer.addSink(vertex, strength)));
+  }
+
+  addVortex(face, strength) {
+    return this.#id('vortex', guard('vortex', () => this.designer.addVortex(face, strength)));
+  }
+
+  remove(id) {
+    const ok = guard('remove', () => this.designer.remove(id));
+    if (!ok) throw new CoreError(`remove: ${this.#lastError() || `no constraint with id ${id}`}`);
+  }
+
+  setWeight(id, weight) {
+    const ok = guard('weight', () => this.designer.setWeight(id, weight));
+    if (!ok) throw new CoreError(`weight: ${this.#lastError() || `cannot reweight constraint ${id}`}`);
+  }
+
+  #lastError() {
+    try {
+      return this.designer.lastError();
+    } catch {
+      return '';
+    }
+  }
+
+  mesh() {
+    return guard('mesh', () => ({
+      positions: Float64Array.from(this.designer.positions()),
+      triangles: Int32Array.from(this.designer.triangles()),
+    }));
+  }
+
+  faceVectors() {
+    return guard('faceVectors', () => Float64Array.from(this.designer.faceVectors()));
+  }
+
+  stats() {
+    return JSON.parse(guard('stats', () => this.designer.statsJson()));
+  }
+
+  singularities() {
+    return JSON.parse(guard('singularities', () => this.designer.singularitiesJson()));
+  }
+
+  designJson() {
+    return guard('design', () => this.designer.designJson());
+  }
+
+  applyDesignJson(json) {
+    check('design', guard('design', () => this.designer.applyDesignJson(json)));
+  }
+}

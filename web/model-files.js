@@ -1,0 +1,93 @@
+// Turns the things a user or script can hand us (URL, File, ArrayBuffer) into one byte array and a format
+// name for the core. The core reads a single buffer, so a .gltf's external buffers are inlined here as
+// data: URIs when we can get at them (same-origin URL, or files dropped together), and refused otherwise.
+
+export const FORMATS = ['glb', 'gltf', 'obj', 'off', 'ply'];
+export const ACCEPT = FORMATS.map((f) => `.${f}`).join(',');
+
+export function formatOf(name) {
+  if (!name) return '';
+  const m = /\.([a-z0-9]+)$/i.exec(name.split(/[?#]/)[0]);
+  if (!m) return '';
+  const ext = m[1].toLowerCase();
+  if (!FORMATS.includes(ext)) {
+    throw new Error(`${name}: unsupported file type .${ext} (use .glb, .gltf, .obj, .off or .ply)`);
+  }
+  return ext;
+}
+
+function baseName(path) {
+  return decodeURIComponent(path.split(/[?#]/)[0].split('/').pop() || path);
+}
+
+function toBase64(bytes) {
+  let s = '';
+  const CHUNK = 0x8000; // String.fromCharCode's argument count is limited
+  for (let i = 0; i < bytes.length; i += CHUNK) s += String.fromCharCode(...bytes.subarray(i, i + CHUNK));
+  return btoa(s);
+}
+
+// Rewrites external buffer URIs of a .gltf as data: URIs. fetchBuffer(uri) → Uint8Array, or null when the
+// buffer cannot be had. A file that does not parse as JSON is passed through for the core to diagnose.
+async function inlineGltfBuffers(bytes, name, fetchBuffer) {
+  let gltf;
+  try {
+    gltf = JSON.parse(new TextDecoder().decode(bytes));
+  } catch {
+    return bytes;
+  }
+  const external = (gltf.buffers || []).filter((b) => b && typeof b.uri === 'string' && !b.uri.startsWith('data:'));
+  if (!external.length) return bytes;
+  for (const buf of external) {
+    const data = await fetchBuffer(buf.uri);
+    if (!data) {
+      throw new Error(
+        `${name} refers to the external buffer "${buf.uri}", which a single .gltf file cannot bring along. ` +
+          'Load a .glb instead, a .gltf with embedded (data: URI) buffers, or drop the .gltf together with its .bin files.',
+      );
+    }
+    buf.uri = `data:application/octet-stream;base64,${toBase64(data)}`;
+  }
+  return new TextEncoder().encode(JSON.stringify(gltf));
+}
+
+// src: URL string | URL | ArrayBuffer | ArrayBufferView | Blob/File. opts: {name, format, companions: File[]}.
+// Returns {bytes: Uint8Array, format, name}.
+export async function readModel(src, opts = {}) {
+  let bytes, name = opts.name || '', fetchBuffer = async () => null;
+  if (typeof src === 'string' || src instanceof URL) {
+    const url = new URL(src, document.baseURI);
+    name ||= baseName(url.pathname);
+    let res;
+    try {
+      res = await fetch(url);
+    } catch (err) {
+      throw new Error(`could not fetch ${url.href}: ${err.message}`);
+    }
+    if (!res.ok) throw new Error(`could not fetch ${url.href}: HTTP ${res.status} ${res.statusText}`.trim());
+    bytes = new Uint8Array(await res.arrayBuffer());
+    fetchBuffer = async (uri) => {
+      const r = await fetch(new URL(uri, url)).catch(() => null);
+      return r && r.ok ? new Uint8Array(await r.arrayBuffer()) : null;
+    };
+  } else if (typeof Blob !== 'undefined' && src instanceof Blob) {
+    name ||= src.name || '';
+    bytes = new Uint8Array(await src.arrayBuffer());
+    const companions = opts.companions || [];
+    fetchBuffer = async (uri) => {
+      const want = baseName(uri);
+      const file = companions.find((f) => f.name === want);
+      return file ? new Uint8Array(await file.arrayBuffer()) : null;
+    };
+  } else if (src instanceof ArrayBuffer) {
+    bytes = new Uint8Array(src);
+  } else if (ArrayBuffer.isView(src)) {
+    bytes = new Uint8Array(src.buffer, src.byteOffset, src.byteLength);
+  } else {
+    throw new Error('loadModel expects a URL, a File/Blob, an ArrayBuffer or a typed array');
+  }
+  const format = opts.format ?? formatOf(name);
+  if (!bytes.length) throw new Error(`${name || 'the model'} is empty`);
+  if (format === 'gltf') bytes = await inlineGltfBuffers(bytes, name || 'the glTF file', fetchBuffer);
+  return { bytes, format, name: name || 'model' };
+}
