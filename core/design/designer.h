@@ -105,8 +105,8 @@ class Designer {
   const std::vector<ConstraintSpec>& constraints() const;  // in the order they were added
   const BoundaryCondition& boundary() const;
   double gamma() const;
-  // The factored matrix (base + shift + constraint rows) and right-hand side of the current design, for
-  // checking the update path against an independent solve.
+  // The system the design means (base + constraint rows, without the kernel shift) and its right-hand side,
+  // for checking the update path against an independent solve.
   void assembleSystem(Eigen::SparseMatrix<double, Eigen::ColMajor, int>& A, Eigen::VectorXd& b);
   // The plain boundary-modified Laplacian (or bi-Laplacian) without shift or constraints.
   const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& baseMatrix();

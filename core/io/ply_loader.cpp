@@ -180,13 +180,14 @@ void assignRoles(PlyHeader& header, const std::string& name) {
   }
   if (!vertices) fail(name, "no vertex element");
   checkVertexCount(vertices->count, name);
-  for (const auto& [axis, role] :
-       {std::pair{"x", Role::X}, std::pair{"y", Role::Y}, std::pair{"z", Role::Z}}) {
+  const std::pair<const char*, Role> axes[] = {{"x", Role::X}, {"y", Role::Y}, {"z", Role::Z}};
+  for (const auto& axis : axes) {
     auto it = std::find_if(vertices->properties.begin(), vertices->properties.end(),
-                           [&](const PlyProperty& p) { return p.name == axis && !p.isList; });
-    if (it == vertices->properties.end())
-      fail(name, std::string("vertex element has no '") + axis + "' property");
-    it->role = role;
+                           [&](const PlyProperty& p) { return p.name == axis.first && !p.isList; });
+    if (it == vertices->properties.end()) {
+      fail(name, std::string("vertex element has no '") + axis.first + "' property");
+    }
+    it->role = axis.second;
   }
   if (!faces || faces->count == 0) fail(name, "no faces");
   auto list = std::find_if(faces->properties.begin(), faces->properties.end(), [](const PlyProperty& p) {
