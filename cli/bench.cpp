@@ -6,6 +6,8 @@
 
 #include "design/designer.h"
 #include "io/mesh_io.h"
+#include "mesh/mesh_geometry.h"
+#include "mesh/mesh_topology.h"
 
 namespace tvf {
 namespace {
@@ -23,27 +25,31 @@ double timeMs(const std::function<void()>& f) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Barycentres of a strip of adjacent faces: a stroke that crosses about `crossings` edges.
+// Barycentres of a strip of adjacent faces heading away from the start: a stroke crossing ~`crossings` edges.
 std::vector<SurfacePoint> stripStroke(const SurfaceMesh& mesh, int32_t start, int crossings) {
-  std::vector<SurfacePoint> points;
-  std::vector<int32_t> faces{start};
-  // Neighbours through shared vertex pairs; a small local search is enough for a benchmark path.
-  std::vector<int32_t> visited{start};
+  const MeshTopology t = buildTopology(mesh);
+  const auto centre = [&](int32_t f) {
+    Eigen::Vector3d p[3];
+    facePositions(mesh, f, p);
+    return Eigen::Vector3d((p[0] + p[1] + p[2]) / 3);
+  };
+  const Eigen::Vector3d origin = centre(start);
+  std::vector<SurfacePoint> points{{start, {1.0 / 3, 1.0 / 3, 1.0 / 3}}};
   int32_t f = start;
   for (int step = 0; step < crossings; ++step) {
     int32_t next = -1;
-    for (int32_t g = std::max(0, f - 64); g < std::min(mesh.numFaces(), f + 64) && next < 0; ++g) {
-      if (std::find(visited.begin(), visited.end(), g) != visited.end()) continue;
-      int shared = 0;
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) shared += mesh.triangles[3 * f + a] == mesh.triangles[3 * g + b];
-      if (shared == 2) next = g;
+    double farthest = -1;
+    for (int c = 0; c < 3; ++c) {
+      const int32_t e = t.edgeOf(f, c);
+      const int32_t g = t.edgeFaces[2 * e] == f ? t.edgeFaces[2 * e + 1] : t.edgeFaces[2 * e];
+      if (g < 0) continue;
+      const double d = (centre(g) - origin).norm();
+      if (d > farthest) farthest = d, next = g;
     }
     if (next < 0) break;
-    visited.push_back(next);
+    points.push_back({next, {1.0 / 3, 1.0 / 3, 1.0 / 3}});
     f = next;
   }
-  for (const int32_t g : visited) points.push_back({g, {1.0 / 3, 1.0 / 3, 1.0 / 3}});
   return points;
 }
 
@@ -65,12 +71,10 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma, b
     solve.push_back(designer.stats().solveMs);
     reconstruct.push_back(designer.stats().reconstructMs);
     const int32_t face = (r * 7919 + 13) % nF;
-    const double u[3] = {1, 0, 0};
     const int32_t i = designer.mesh().triangles[3 * face], j = designer.mesh().triangles[3 * face + 1];
     const int32_t id = designer.addEdge(i, j, 0.1, 1.0);
     update.push_back(designer.stats().updateMs);
     designer.remove(id);
-    (void)u;
     const auto points = stripStroke(designer.mesh(), (r * 104729 + 7) % nF, 50);
     stroke.push_back(timeMs([&] {
       designer.addStroke(points, 1.0, 1.0);

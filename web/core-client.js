@@ -53,6 +53,17 @@ export class CoreClient {
     this.hasMesh = false;
   }
 
+  // V8 first runs wasm on its baseline tier (2-3x slower); the core's warmUp() exercises the factor/update/solve
+  // paths on a small sphere so the user's first real factorization runs optimized code. Returns ms, or -1.
+  warmUp(levels = 3, rounds = 2) {
+    if (typeof this.Module.warmUp !== 'function') return -1;
+    try {
+      return this.Module.warmUp(levels, rounds);
+    } catch {
+      return -1; // an optimization only: never fail start-up over it
+    }
+  }
+
   // bytes: Uint8Array; format: 'glb' | 'gltf' | 'obj' | 'off' | 'ply' | '' (sniff). On failure the core
   // keeps its previous mesh and this throws with the core's message.
   loadMesh(bytes, format) {

@@ -209,6 +209,9 @@ async function start() {
 
   state.ui.setBusy('Loading core…');
   state.core = await loadCore(BASE);
+  const t0 = performance.now();
+  const warm = state.core.warmUp(Number(new URLSearchParams(location.search).get('warmup') ?? 3));
+  window.__tvfWarm = [warm, performance.now() - t0];
   await loadModel(new URL(DEFAULT_MODEL, BASE).href);
 }
 

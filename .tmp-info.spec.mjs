@@ -1,0 +1,20 @@
+import { test } from '@playwright/test';
+import { openDesigner } from './tests/e2e/helpers.mjs';
+test('info', async ({ page }) => {
+  page.on('console', m => console.log('console', m.type(), m.text()));
+  await openDesigner(page);
+  console.log(JSON.stringify(await page.evaluate(() => window.tvf.info())));
+  console.log(JSON.stringify(await page.evaluate(() => window.tvf.stats())));
+  console.log(JSON.stringify(await page.evaluate(() => window.tvf.singularities()).then(s => s.length)));
+  for (const bytes of [[1,2,3], [0x67,0x6c,0x54,0x46,2,0,0,0,99,0,0,0]]) console.log(await page.evaluate((b) => window.tvf.loadModel(new Uint8Array(b), {name: 'x.glb'}).then(()=>'ok', e => e.message), bytes));
+  console.log(await page.evaluate(() => window.tvf.loadModel('nope.obj').then(()=>'ok', e => e.message)));
+  console.log(await page.evaluate(() => window.tvf.loadModel(new TextEncoder().encode('v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n'), {name:'bad.obj'}).then(()=>'ok', e => e.message)));
+  console.log(await page.evaluate(() => window.tvf.loadModel(new TextEncoder().encode('v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n'), {name:'quad.obj'}).then((i)=>JSON.stringify(i), e => e.message)));
+  console.log(JSON.stringify(await page.evaluate(() => window.tvf.stats())));
+  console.log(await page.evaluate(() => window.tvf.setBoundary('tangential').then(()=>'ok', e => e.message)));
+  console.log(await page.evaluate(() => window.tvf.setGamma(0.5).then(()=>'ok', e => e.message)));
+  console.log(await page.evaluate(() => window.tvf.remove(99).then(()=>'ok', e => e.message)));
+  console.log(await page.evaluate(() => window.tvf.addStroke([{face: 0, bary:[1,0,0]},{face: 5, bary:[0,1,0]}]).then((x)=>'ok '+x, e => e.message)));
+  console.log(await page.evaluate(() => window.tvf.addStroke([{face: 0, bary:[0.3,0.3,0.4]},{face: 1, bary:[0.3,0.3,0.4]}]).then((x)=>'ok '+x, e => e.message)));
+  console.log(await page.evaluate(() => window.tvf.Module?.warmUp ? 1 : 0));
+});

@@ -1,0 +1,125 @@
+// The tvf command line, run as a user would: exit codes, messages on stderr, JSON keys on stdout.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "test_meshes.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exitCode;
+  std::string out, err;
+};
+
+CliRun runTvf(const std::string& args) {
+  const fs::path errFile = fs::temp_directory_path() / "tvf_cli_stderr.txt";
+  const std::string command = std::string(TVF_CLI_PATH) + " " + args + " 2>" + errFile.string();
+  CliRun r{-1, "", ""};
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer{};
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(errFile);
+  r.err.assign(std::istreambuf_iterator<char>(in), {});
+  return r;
+}
+
+fs::path writeOff(const std::string& name, const tvf::SurfaceMesh& m) {
+  const fs::path path = fs::temp_directory_path() / name;
+  std::ofstream out(path);
+  out << "OFF\n" << m.numVertices() << " " << m.numFaces() << " 0\n";
+  out.precision(17);
+  for (int v = 0; v < m.numVertices(); ++v)
+    out << m.positions[3 * v] << " " << m.positions[3 * v + 1] << " " << m.positions[3 * v + 2] << "\n";
+  for (int f = 0; f < m.numFaces(); ++f)
+    out << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2] << "\n";
+  return path;
+}
+
+fs::path writeText(const std::string& name, const std::string& text) {
+  const fs::path path = fs::temp_directory_path() / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+}  // namespace
+
+TEST(Cli, InfoReportsTopology) {
+  const CliRun r = runTvf("info " + writeOff("cli_torus.off", tvf::testing::torus(12, 8, 2, 0.7)).string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto info = nlohmann::json::parse(r.out);
+  for (const char* key : {"vertices", "edges", "faces", "components", "boundaryLoops", "eulerCharacteristic", "genus", "problems"})
+    EXPECT_TRUE(info.contains(key)) << key;
+  EXPECT_EQ(info["genus"], 1);
+  EXPECT_EQ(info["edges"], 288);
+  EXPECT_TRUE(info["problems"].empty());
+}
+
+TEST(Cli, InfoListsProblemsOfAnUnusableMesh) {
+  tvf::SurfaceMesh m = tvf::testing::flatGrid(2);
+  std::swap(m.triangles[0], m.triangles[1]);
+  const CliRun r = runTvf("info " + writeOff("cli_flipped.off", m).string());
+  ASSERT_EQ(r.exitCode, 0);
+  EXPECT_NE(nlohmann::json::parse(r.out)["problems"].dump().find("inconsistently oriented"), std::string::npos);
+  const CliRun d = runTvf("design " + writeOff("cli_flipped.off", m).string() + " " +
+                       writeText("cli_empty_design.json", "{}").string());
+  EXPECT_EQ(d.exitCode, 2);
+  EXPECT_NE(d.err.find("inconsistently oriented"), std::string::npos) << d.err;
+}
+
+TEST(Cli, DesignWritesTheFieldDocument) {
+  const fs::path mesh = writeOff("cli_sphere.off", tvf::testing::icosphere(2));
+  const fs::path design = writeText("cli_design.json", R"({"boundary": "free", "gamma": 0, "constraints": [
+      {"type": "source", "vertex": 0, "strength": 1}, {"type": "sink", "vertex": 3, "strength": 1}]})");
+  const fs::path out = fs::temp_directory_path() / "cli_field.json";
+  const CliRun r = runTvf("design " + mesh.string() + " " + design.string() + " -o " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream in(out);
+  const auto field = nlohmann::json::parse(in);
+  EXPECT_EQ(field["edges"].size(), field["oneForm"].size());
+  EXPECT_EQ(field["faceVectors"].size(), 320u);
+  EXPECT_EQ(field["vertexVectors"].size(), 162u);
+  EXPECT_EQ(field["faceVectors"][0].size(), 3u);
+  ASSERT_EQ(field["singularities"].size(), 2u);
+  EXPECT_EQ(field["singularities"][0]["index"], 1.0);
+  for (const char* key : {"factorMs", "solveMs", "nnzPerRowM", "nnzPerRowL", "kernelHandling", "positiveAreaFallbackVertices"})
+    EXPECT_TRUE(field["stats"].contains(key)) << key;
+}
+
+TEST(Cli, BadInputExitsTwoWithAReason) {
+  EXPECT_EQ(runTvf("info /nonexistent/mesh.off").exitCode, 2);
+  EXPECT_NE(runTvf("info /nonexistent/mesh.off").err.find("mesh.off"), std::string::npos);
+  EXPECT_EQ(runTvf("info " + writeText("cli_garbage.glb", "not a glb at all").string()).exitCode, 2);
+  EXPECT_EQ(runTvf("info " + writeText("cli_nofaces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n").string()).exitCode, 2);
+  const fs::path mesh = writeOff("cli_sphere.off", tvf::testing::icosphere(1));
+  const CliRun badJson = runTvf("design " + mesh.string() + " " + writeText("cli_bad.json", "{ nope").string());
+  EXPECT_EQ(badJson.exitCode, 2);
+  EXPECT_NE(badJson.err.find("not valid JSON"), std::string::npos) << badJson.err;
+  const CliRun badFace = runTvf("design " + mesh.string() + " " +
+                             writeText("cli_badface.json", R"({"constraints": [{"type": "vortex", "face": 9999}]})").string());
+  EXPECT_EQ(badFace.exitCode, 2);
+  EXPECT_NE(badFace.err.find("face 9999"), std::string::npos) << badFace.err;
+  EXPECT_EQ(runTvf("frobnicate x").exitCode, 2);
+}
+
+TEST(Cli, BenchPrintsTheTableKeys) {
+  const fs::path mesh = writeOff("cli_bench.off", tvf::testing::torus(40, 20, 2, 0.7));
+  const CliRun r = runTvf("bench " + mesh.string() + " --repeat 2 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto b = nlohmann::json::parse(r.out);
+  for (const char* key : {"edges", "nnzPerRowM", "nnzPerRowL", "analyzeMs", "factorMs", "solveMs", "updateMs",
+                          "strokeUpdateSolveMs", "reconstructMs"})
+    EXPECT_TRUE(b.contains(key)) << key;
+  EXPECT_EQ(b["edges"], 2400);
+  EXPECT_GT(b["strokeUpdateSolveMs"].get<double>(), 0.0);
+}

@@ -1,0 +1,337 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+//
+// embind bindings of the field-design core: the `Designer` class the page (web/core-client.js) drives.
+//
+// Conventions (the front end relies on them):
+// * Nothing throws into JS. Calls that can fail return '' on success or the error message (string results),
+//   -1 plus lastError() (constraint ids), or false plus lastError() (remove/setWeight/setStrength).
+// * Array read-outs are typed_memory_view()s into wasm memory, not copies: they are valid until the next
+//   mutating call (load, solve, ...) or memory growth; copy them (TypedArray.from / slice) to keep them.
+// * loadMesh replaces the designer only when the new mesh loads and can be designed on; on error the previous
+//   mesh, constraints and field stay as they were.
+//
+// Besides the class, the module exports warmUp(): a small factor/update/solve cycle on a generated sphere that
+// lets V8 tier the hot functions up (Liftoff -> TurboFan) before the first large factorization; see
+// wasm/bench.mjs for the measured effect.
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "design/design_document.h"
+#include "design/designer.h"
+#include "design/mesh_info.h"
+#include "io/mesh_io.h"
+
+namespace {
+
+using emscripten::val;
+
+// Wraps a call: runs `f`, turns any exception into its message. Returns true on success.
+template <typename F>
+bool attempt(std::string& error, F&& f) {
+  try {
+    f();
+    error.clear();
+    return true;
+  } catch (const std::bad_alloc&) {
+    error = "out of memory";
+  } catch (const std::exception& e) {
+    error = e.what();
+    if (error.empty()) error = "unknown error in the core";
+  } catch (...) {
+    error = "unknown error in the core";
+  }
+  return false;
+}
+
+bool parseFormat(std::string name, const uint8_t* data, std::size_t size, tvf::MeshFormat& out) {
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (!name.empty() && name[0] == '.') name.erase(0, 1);
+  if (name.empty()) {
+    out = tvf::formatFromBytes(data, size);
+    return true;
+  }
+  static const std::map<std::string, tvf::MeshFormat> kFormats = {
+      {"glb", tvf::MeshFormat::Glb}, {"gltf", tvf::MeshFormat::Gltf}, {"obj", tvf::MeshFormat::Obj},
+      {"off", tvf::MeshFormat::Off}, {"ply", tvf::MeshFormat::Ply}};
+  const auto it = kFormats.find(name);
+  if (it == kFormats.end()) return false;
+  out = it->second;
+  return true;
+}
+
+// A JS number that must be an int32 index (face, vertex, id); embind would silently truncate 1.5 or NaN.
+int32_t toIndex(double x, const char* what) {
+  if (!std::isfinite(x) || x != std::floor(x) || x < -2147483648.0 || x > 2147483647.0)
+    throw tvf::InputError(std::string(what) + " must be an integer (got " +
+                          (std::isfinite(x) ? std::to_string(x) : std::string("a non-finite number")) + ")");
+  return static_cast<int32_t>(x);
+}
+
+template <typename T>
+val view(const std::vector<T>& v) {
+  return val(emscripten::typed_memory_view(v.size(), v.data()));
+}
+
+class DesignerBinding {
+ public:
+  // format: 'glb' | 'gltf' | 'obj' | 'off' | 'ply' | '' (sniffed from the bytes).
+  std::string loadMesh(const val& bytes, const std::string& format) {
+    std::string error;
+    attempt(error, [&] {
+      if (bytes.isNull() || bytes.isUndefined()) throw tvf::InputError("no mesh data");
+      const std::vector<uint8_t> data = emscripten::convertJSArrayToNumberVector<uint8_t>(bytes);
+      if (data.empty()) throw tvf::InputError("the mesh file is empty");
+      tvf::MeshFormat f;
+      if (!parseFormat(format, data.data(), data.size(), f))
+        throw tvf::InputError("unknown mesh format '" + format + "' (expected glb, gltf, obj, off, ply or '')");
+      auto next = std::make_unique<tvf::Designer>(tvf::loadMeshFromMemory(data.data(), data.size(), f));
+      designer_ = std::move(next);  // only now: a failed load keeps the previous designer
+    });
+    lastError_ = error;
+    return error;
+  }
+
+  std::string infoJson() const {
+    std::string out, error;
+    if (!attempt(error, [&] { out = designer_ ? designer_->infoJson() : tvf::meshInfoJson(tvf::SurfaceMesh{}).dump(); }))
+      return "null";
+    return out;
+  }
+
+  std::string setBoundaryJson(const std::string& text) {
+    return run([&] { need().setBoundary(tvf::boundaryFromJson(nlohmann::json::parse(text))); });
+  }
+  std::string setGamma(double gamma) { return run([&] { need().setGamma(gamma); }); }
+  std::string setMetisOrdering(bool metis) { return run([&] { need().setMetisOrdering(metis); }); }
+  std::string factor() { return run([&] { need().factor(); }); }
+  std::string solve() { return run([&] { need().solve(); }); }
+
+  // flat: [face, a, b, c, face, a, b, c, ...] (face indices as numbers).
+  int addStroke(const val& flat, double strength, double weight) {
+    return add([&] {
+      const std::vector<double> v = emscripten::convertJSArrayToNumberVector<double>(flat);
+      if (v.size() % 4 != 0) throw tvf::InputError("stroke: expected 4 numbers per point (face, a, b, c)");
+      std::vector<tvf::SurfacePoint> points(v.size() / 4);
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        points[k].face = toIndex(v[4 * k], "stroke point face");
+        for (int c = 0; c < 3; ++c) points[k].bary[c] = v[4 * k + 1 + c];
+      }
+      return need().addStroke(points, strength, weight);
+    });
+  }
+  int addVector(double face, double x, double y, double z, double weight) {
+    return add([&] {
+      const double u[3] = {x, y, z};
+      return need().addVector(toIndex(face, "face"), u, weight);
+    });
+  }
+  int addEdge(double i, double j, double value, double weight) {
+    return add([&] { return need().addEdge(toIndex(i, "vertex i"), toIndex(j, "vertex j"), value, weight); });
+  }
+  int addSource(double v, double strength) {
+    return add([&] { return need().addSource(toIndex(v, "vertex"), strength); });
+  }
+  int addSink(double v, double strength) {
+    return add([&] { return need().addSink(toIndex(v, "vertex"), strength); });
+  }
+  int addVortex(double f, double strength) {
+    return add([&] { return need().addVortex(toIndex(f, "face"), strength); });
+  }
+
+  bool remove(double id) { return ok([&] { need().remove(toIndex(id, "id")); }); }
+  bool setWeight(double id, double w) { return ok([&] { need().setWeight(toIndex(id, "id"), w); }); }
+  bool setStrength(double id, double s) { return ok([&] { need().setStrength(toIndex(id, "id"), s); }); }
+  bool clearConstraints() { return ok([&] { need().clearConstraints(); }); }
+  std::string lastError() const { return lastError_; }
+  bool hasMesh() const { return designer_ != nullptr; }
+
+  // Views into wasm memory (no copies).
+  val positions() const { return designer_ ? view(designer_->mesh().positions) : view(emptyD_); }
+  val triangles() const { return designer_ ? view(designer_->mesh().triangles) : view(emptyI_); }
+  val edges() const { return designer_ ? view(designer_->edgeVertices()) : view(emptyI_); }
+  val oneForm() const { return designer_ ? view(designer_->oneForm()) : view(emptyD_); }
+  val faceVectors() const { return designer_ ? view(designer_->faceVectors()) : view(emptyD_); }
+  val vertexVectors() const { return designer_ ? view(designer_->vertexVectors()) : view(emptyD_); }
+  val cornerUVs() const { return designer_ ? view(designer_->mesh().cornerUVs) : view(emptyF_); }
+
+  std::string singularitiesJson() const {
+    return json([&] {
+      nlohmann::json out = nlohmann::json::array();
+      if (designer_)
+        for (const tvf::Singularity& s : designer_->singularities())
+          out.push_back({{"vertex", s.vertex}, {"index", s.index}});
+      return out;
+    });
+  }
+  std::string statsJson() const {
+    return json([&] { return tvf::statsJson(designer_ ? designer_->stats() : tvf::DesignStats{}); });
+  }
+  std::string designJson() const {
+    return json([&] { return designer_ ? tvf::designDocument(*designer_) : nlohmann::json(); });
+  }
+  std::string fieldJson() const {
+    return json([&] { return designer_ ? tvf::fieldDocument(*designer_) : nlohmann::json(); });
+  }
+  std::string applyDesignJson(const std::string& text) {
+    return run([&] { tvf::applyDesignDocument(need(), nlohmann::json::parse(text)); });
+  }
+
+ private:
+  tvf::Designer& need() const {
+    if (!designer_) throw tvf::InputError("no mesh loaded");
+    return *designer_;
+  }
+  template <typename F>
+  std::string run(F&& f) {
+    std::string error;
+    attempt(error, std::forward<F>(f));
+    lastError_ = error;
+    return error;
+  }
+  template <typename F>
+  bool ok(F&& f) {
+    return attempt(lastError_, std::forward<F>(f));
+  }
+  template <typename F>
+  int add(F&& f) {
+    int32_t id = -1;
+    if (!attempt(lastError_, [&] { id = f(); })) return -1;
+    return id;
+  }
+  template <typename F>
+  std::string json(F&& f) const {
+    std::string out, error;
+    if (!attempt(error, [&] { out = f().dump(); })) {
+      lastError_ = error;
+      return "null";
+    }
+    return out;
+  }
+
+  std::unique_ptr<tvf::Designer> designer_;
+  mutable std::string lastError_;
+  std::vector<double> emptyD_;
+  std::vector<int32_t> emptyI_;
+  std::vector<float> emptyF_;
+};
+
+// ------------------------------------------------------------------------------------------ warm-up
+// An icosphere with `levels` 1-to-4 subdivisions (levels = 4: 2562 vertices, 7680 edges).
+tvf::SurfaceMesh icosphere(int levels) {
+  tvf::SurfaceMesh m;
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  m.positions = {-1, t, 0, 1, t, 0, -1, -t, 0, 1, -t, 0, 0, -1, t, 0, 1, t,
+                 0, -1, -t, 0, 1, -t, t, 0, -1, t, 0, 1, -t, 0, -1, -t, 0, 1};
+  m.triangles = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
+                 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<int32_t, int32_t>, int32_t> mid;
+    const auto midpoint = [&](int32_t a, int32_t b) {
+      const auto key = std::minmax(a, b);
+      const auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      const int32_t v = m.numVertices();
+      for (int c = 0; c < 3; ++c) m.positions.push_back(0.5 * (m.positions[3 * a + c] + m.positions[3 * b + c]));
+      mid.emplace(key, v);
+      return v;
+    };
+    std::vector<int32_t> next;
+    next.reserve(4 * m.triangles.size());
+    for (std::size_t f = 0; f < m.triangles.size(); f += 3) {
+      const int32_t a = m.triangles[f], b = m.triangles[f + 1], c = m.triangles[f + 2];
+      const int32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+    }
+    m.triangles = std::move(next);
+  }
+  for (int32_t v = 0; v < m.numVertices(); ++v) {
+    double* p = &m.positions[3 * v];
+    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    for (int c = 0; c < 3; ++c) p[c] /= r;
+  }
+  return m;
+}
+
+// Runs the calls a design session makes (factor, solve with sources, edge/stroke updates and downdates,
+// read-outs) `rounds` times on an icosphere, so that V8 compiles their hot functions with its optimizing tier
+// before the user's first large factorization. Returns the milliseconds spent, or -1 on failure.
+double warmUp(int levels, int rounds) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string error;
+  const bool ok = attempt(error, [&] {
+    tvf::Designer d(icosphere(std::max(0, std::min(levels, 6))));
+    const tvf::SurfaceMesh& m = d.mesh();
+    for (int r = 0; r < std::max(1, rounds); ++r) {
+      d.clearConstraints();
+      d.factor();
+      d.addSource(m.triangles[0], 1.0);
+      d.addSink(m.triangles[3 * (m.numFaces() / 2)], 1.0);
+      d.solve();
+      const int32_t e = d.addEdge(m.triangles[3], m.triangles[4], 0.1, 1.0);
+      d.remove(e);
+      std::vector<tvf::SurfacePoint> points;
+      for (int32_t f = 0; f < std::min<int32_t>(m.numFaces(), 16); ++f) points.push_back({f, {0.2, 0.3, 0.5}});
+      const int32_t s = d.addStroke(points, 1.0, 1.0);
+      d.setWeight(s, 2.0);
+      d.solve();
+      d.remove(s);
+    }
+  });
+  if (!ok) return -1;
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(tvf_core) {
+  using emscripten::class_;
+  using emscripten::function;
+  class_<DesignerBinding>("Designer")
+      .constructor<>()
+      .function("loadMesh", &DesignerBinding::loadMesh)
+      .function("infoJson", &DesignerBinding::infoJson)
+      .function("setBoundaryJson", &DesignerBinding::setBoundaryJson)
+      .function("setGamma", &DesignerBinding::setGamma)
+      .function("setMetisOrdering", &DesignerBinding::setMetisOrdering)
+      .function("factor", &DesignerBinding::factor)
+      .function("solve", &DesignerBinding::solve)
+      .function("addStroke", &DesignerBinding::addStroke)
+      .function("addVector", &DesignerBinding::addVector)
+      .function("addEdge", &DesignerBinding::addEdge)
+      .function("addSource", &DesignerBinding::addSource)
+      .function("addSink", &DesignerBinding::addSink)
+      .function("addVortex", &DesignerBinding::addVortex)
+      .function("remove", &DesignerBinding::remove)
+      .function("setWeight", &DesignerBinding::setWeight)
+      .function("setStrength", &DesignerBinding::setStrength)
+      .function("clearConstraints", &DesignerBinding::clearConstraints)
+      .function("lastError", &DesignerBinding::lastError)
+      .function("hasMesh", &DesignerBinding::hasMesh)
+      .function("positions", &DesignerBinding::positions)
+      .function("triangles", &DesignerBinding::triangles)
+      .function("edges", &DesignerBinding::edges)
+      .function("oneForm", &DesignerBinding::oneForm)
+      .function("faceVectors", &DesignerBinding::faceVectors)
+      .function("vertexVectors", &DesignerBinding::vertexVectors)
+      .function("cornerUVs", &DesignerBinding::cornerUVs)
+      .function("singularitiesJson", &DesignerBinding::singularitiesJson)
+      .function("statsJson", &DesignerBinding::statsJson)
+      .function("designJson", &DesignerBinding::designJson)
+      .function("applyDesignJson", &DesignerBinding::applyDesignJson)
+      .function("fieldJson", &DesignerBinding::fieldJson);
+  function("warmUp", &warmUp);
+}

@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// --pre-js of tvf_core.mjs. Emscripten 3.1.6's node support assumes CommonJS (`require`, `__dirname`), which an
+// ES6 module (EXPORT_ES6, needed here because package.json has "type": "module") does not have, and it would
+// try to fetch() the .wasm by a file:// URL, which node's fetch rejects. Under node only, this supplies both
+// from the module's URL and reads the .wasm synchronously into Module.wasmBinary unless the caller passed
+// wasmBinary or instantiateWasm. Browsers and workers never enter the branch. (`_scriptDir` is the
+// import.meta.url that the MODULARIZE wrapper captures; import.meta itself would break 3.1.6's terser pass.)
+var require, __dirname;
+if (typeof process == 'object' && typeof process.versions == 'object' && typeof process.versions.node == 'string') {
+  __dirname = decodeURIComponent(new URL('.', _scriptDir).pathname).replace(/\/$/, '');
+  if (typeof process.getBuiltinModule == 'function') {
+    // node >= 20.16 / 22.3
+    require = process.getBuiltinModule('module').createRequire(_scriptDir);
+  } else {
+    require = function (name) {
+      throw new Error('tvf_core: this node has no process.getBuiltinModule, so the module cannot load "' + name +
+                      '" itself; pass {wasmBinary: fs.readFileSync(<path of tvf_core.wasm>)} to createTvfCore()');
+    };
+  }
+  if (!Module['wasmBinary'] && !Module['instantiateWasm'] && typeof process.getBuiltinModule == 'function') {
+    var wasmPath = Module['locateFile'] ? Module['locateFile']('tvf_core.wasm', __dirname + '/') :
+                                          new URL('tvf_core.wasm', _scriptDir).href;
+    if (/^file:/.test(wasmPath)) wasmPath = require('url').fileURLToPath(wasmPath);
+    if (!/^[a-z][a-z0-9+.-]*:/i.test(wasmPath) || /^[a-z]:[\\/]/i.test(wasmPath))  // a path, not an http(s) URL
+      Module['wasmBinary'] = require('fs').readFileSync(wasmPath);
+  }
+}

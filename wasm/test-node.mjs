@@ -1,0 +1,219 @@
+#!/usr/bin/env node
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Smoke test of the wasm core under node: node wasm/test-node.mjs [path/to/tvf_core.mjs]
+// Loads build-wasm/tvf_core.mjs (build it with `npm run build:wasm`), designs on an icosphere made here, and
+// checks the binding's contract (error strings instead of exceptions, ids, views, JSON read-outs, a stroke
+// whose removal restores the field). Prints "N passed, M failed"; exits 1 on any failure.
+import { readFileSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
+const modulePath = resolve(process.argv[2] ?? resolve(ROOT, 'build-wasm/tvf_core.mjs'));
+
+let passed = 0;
+let failed = 0;
+function check(name, condition, detail = '') {
+  if (condition) {
+    passed++;
+    console.log(`ok   ${name}`);
+  } else {
+    failed++;
+    console.log(`FAIL ${name}${detail ? `: ${detail}` : ''}`);
+  }
+}
+function finish() {
+  console.log(`${passed} passed, ${failed} failed`);
+  process.exit(failed ? 1 : 0);
+}
+
+// ------------------------------------------------------------------ an icosphere as an OFF string
+function icosphere(levels) {
+  const t = (1 + Math.sqrt(5)) / 2;
+  let p = [[-1, t, 0], [1, t, 0], [-1, -t, 0], [1, -t, 0], [0, -1, t], [0, 1, t],
+    [0, -1, -t], [0, 1, -t], [t, 0, -1], [t, 0, 1], [-t, 0, -1], [-t, 0, 1]];
+  let f = [[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2],
+    [10, 7, 6], [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5], [2, 4, 11],
+    [6, 2, 10], [8, 6, 7], [9, 8, 1]];
+  for (let l = 0; l < levels; ++l) {
+    const mid = new Map();
+    const m = (a, b) => {
+      const key = a < b ? `${a},${b}` : `${b},${a}`;
+      if (!mid.has(key)) {
+        mid.set(key, p.length);
+        p.push(p[a].map((x, c) => 0.5 * (x + p[b][c])));
+      }
+      return mid.get(key);
+    };
+    f = f.flatMap(([a, b, c]) => {
+      const ab = m(a, b), bc = m(b, c), ca = m(c, a);
+      return [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]];
+    });
+  }
+  p = p.map((v) => v.map((x) => x / Math.hypot(...v)));
+  return `OFF\n# icosphere, ${levels} subdivisions\n${p.length} ${f.length} 0\n` +
+    p.map((v) => v.join(' ')).join('\n') + '\n' + f.map((t3) => `3 ${t3.join(' ')}`).join('\n') + '\n';
+}
+
+// A strip of adjacent faces (barycentres) starting at `start`, crossing up to `crossings` edges.
+function faceStrip(triangles, start, crossings) {
+  const edgeFaces = new Map();
+  const key = (a, b) => (a < b ? `${a},${b}` : `${b},${a}`);
+  for (let g = 0; g < triangles.length / 3; ++g)
+    for (let k = 0; k < 3; ++k) {
+      const e = key(triangles[3 * g + k], triangles[3 * g + ((k + 1) % 3)]);
+      if (!edgeFaces.has(e)) edgeFaces.set(e, []);
+      edgeFaces.get(e).push(g);
+    }
+  const visited = [start];
+  const seen = new Set(visited);
+  let f = start;
+  for (let s = 0; s < crossings; ++s) {
+    let next = -1;
+    for (let k = 0; k < 3 && next < 0; ++k)
+      for (const g of edgeFaces.get(key(triangles[3 * f + k], triangles[3 * f + ((k + 1) % 3)])))
+        if (!seen.has(g)) { next = g; break; }
+    if (next < 0) break;
+    visited.push(next);
+    seen.add(next);
+    f = next;
+  }
+  const flat = new Float64Array(4 * visited.length);
+  visited.forEach((g, k) => flat.set([g, 1 / 3, 1 / 3, 1 / 3], 4 * k));
+  return flat;
+}
+
+function maxAbsDiff(a, b) {
+  let m = 0;
+  for (let i = 0; i < a.length; ++i) m = Math.max(m, Math.abs(a[i] - b[i]));
+  return m;
+}
+function maxAbs(a) {
+  return a.reduce((m, x) => Math.max(m, Math.abs(x)), 0);
+}
+
+// ------------------------------------------------------------------ load the module
+let createTvfCore;
+try {
+  createTvfCore = (await import(pathToFileURL(modulePath).href)).default;
+} catch (err) {
+  check(`import ${modulePath}`, false, `${err.message} (run npm run build:wasm first)`);
+  finish();
+}
+let Module;
+try {
+  Module = await createTvfCore();
+  check('module instantiates by itself under node', true);
+} catch (err) {
+  // Fallback that works on any node: hand the binary over.
+  check('module instantiates by itself under node', false, String(err));
+  Module = await createTvfCore({ wasmBinary: readFileSync(modulePath.replace(/\.mjs$/, '.wasm')) });
+}
+check('module instantiates with wasmBinary', !!(await createTvfCore({
+  wasmBinary: readFileSync(modulePath.replace(/\.mjs$/, '.wasm')),
+})).Designer);
+
+const warm = Module.warmUp(3, 1);
+check('warmUp runs', warm > 0, `returned ${warm}`);
+
+const d = new Module.Designer();
+check('no mesh: solve reports an error string', d.solve() === 'no mesh loaded', d.solve());
+check('no mesh: addSource gives -1 and lastError', d.addSource(0, 1) === -1 && d.lastError() === 'no mesh loaded');
+check('no mesh: empty views', d.positions().length === 0 && d.triangles().length === 0);
+check('no mesh: infoJson is an unusable report', JSON.parse(d.infoJson()).usable === false);
+
+const bad = d.loadMesh(new TextEncoder().encode('OFF\n3 1 0\n0 0 0\n1 0 0\n'), 'off');
+check('truncated OFF: error string', typeof bad === 'string' && bad.length > 0, bad);
+check('unknown format: error string', d.loadMesh(new Uint8Array([1, 2]), 'stl').includes('unknown mesh format'));
+
+const levels = 3;
+const off = icosphere(levels);
+const loaded = d.loadMesh(new TextEncoder().encode(off), 'off');
+check('loadMesh(off) succeeds', loaded === '', loaded);
+const info = JSON.parse(d.infoJson());
+const nV = 10 * 4 ** levels + 2, nF = 20 * 4 ** levels, nE = 30 * 4 ** levels;
+check('infoJson counts', info.vertices === nV && info.faces === nF && info.edges === nE && info.genus === 0,
+  JSON.stringify(info));
+check('positions view', d.positions() instanceof Float64Array && d.positions().length === 3 * nV);
+check('triangles view', d.triangles() instanceof Int32Array && d.triangles().length === 3 * nF);
+check('edges view', d.edges() instanceof Int32Array && d.edges().length === 2 * nE);
+check('cornerUVs view (empty for OFF)', d.cornerUVs() instanceof Float32Array && d.cornerUVs().length === 0);
+
+// A failed load keeps the current mesh.
+const keep = d.loadMesh(new TextEncoder().encode('OFF\n1 1 0\n0 0 0\n3 0 0 0\n'), '');
+check('failed load keeps the previous mesh', keep !== '' && d.positions().length === 3 * nV, keep);
+
+// Source at vertex 0, sink at the antipodal vertex.
+const pos = Float64Array.from(d.positions());
+let far = 0, best = Infinity;
+for (let v = 0; v < nV; ++v) {
+  const dot = pos[0] * pos[3 * v] + pos[1] * pos[3 * v + 1] + pos[2] * pos[3 * v + 2];
+  if (dot < best) { best = dot; far = v; }
+}
+check('setBoundaryJson("free")', d.setBoundaryJson('"free"') === '');
+check('setBoundaryJson(bogus) reports', d.setBoundaryJson('"bogus"') !== '');
+check('setBoundaryJson(invalid JSON) reports', d.setBoundaryJson('{') !== '');
+check('setGamma(-1) reports', d.setGamma(-1) !== '');
+check('setGamma(0)', d.setGamma(0) === '');
+check('factor', d.factor() === '');
+const src = d.addSource(0, 1);
+const snk = d.addSink(far, 1);
+check('addSource/addSink ids', src > 0 && snk > 0 && snk !== src, `${src} ${snk}`);
+check('solve', d.solve() === '');
+const sing = JSON.parse(d.singularitiesJson());
+const at = (v) => sing.find((s) => s.vertex === v);
+check('two singularities, at the source and the sink, index +1 each',
+  sing.length === 2 && at(0) && at(far) && Math.abs(at(0).index - 1) < 1e-9 && Math.abs(at(far).index - 1) < 1e-9,
+  JSON.stringify(sing));
+check('oneForm view', d.oneForm() instanceof Float64Array && d.oneForm().length === nE && maxAbs(d.oneForm()) > 0);
+check('faceVectors view', d.faceVectors().length === 3 * nF);
+check('vertexVectors view', d.vertexVectors().length === 3 * nV);
+const stats = JSON.parse(d.statsJson());
+check('statsJson', typeof stats === 'object' && stats !== null && Object.keys(stats).length > 0, d.statsJson());
+const field = JSON.parse(d.fieldJson());
+check('fieldJson', field && Array.isArray(field.oneForm) && field.oneForm.length === nE);
+
+// A stroke changes the field; removing it (a downdate) restores it.
+const before = Float64Array.from(d.oneForm());
+const strip = faceStrip(d.triangles(), 5, 20);
+const stroke = d.addStroke(strip, 2.0, 1.0);
+check('addStroke id', stroke > 0, d.lastError());
+check('solve with stroke', d.solve() === '');
+const withStroke = Float64Array.from(d.oneForm());
+check('stroke changes the field', maxAbsDiff(withStroke, before) > 1e-3 * maxAbs(before));
+check('setWeight', d.setWeight(stroke, 3.0) === true, d.lastError());
+check('setStrength', d.setStrength(stroke, 1.5) === true, d.lastError());
+check('remove(stroke)', d.remove(stroke) === true, d.lastError());
+check('solve after removal', d.solve() === '');
+const diff = maxAbsDiff(d.oneForm(), before);
+check('removing the stroke restores the field', diff <= 1e-8 * maxAbs(before), `max diff ${diff}`);
+check('singularities back to two', JSON.parse(d.singularitiesJson()).length === 2);
+
+// Error paths: -1 / false plus lastError, never a throw.
+check('addSource(bad vertex) = -1', d.addSource(nV + 5, 1) === -1 && d.lastError().includes('vertex'), d.lastError());
+check('addVector(bad face) = -1', d.addVector(-1, 1, 0, 0, 1) === -1 && d.lastError() !== '');
+check('addVortex(1.5) = -1', d.addVortex(1.5, 1) === -1 && d.lastError().includes('integer'), d.lastError());
+check('addEdge(non-edge) = -1', d.addEdge(0, far, 1, 1) === -1 && d.lastError() !== '');
+check('addStroke(bad length) = -1', d.addStroke(new Float64Array(3), 1, 1) === -1 && d.lastError() !== '');
+check('addStroke(bad face) = -1', d.addStroke(new Float64Array([nF, 0.3, 0.3, 0.4, 0, 0.3, 0.3, 0.4]), 1, 1) === -1);
+check('remove(unknown) = false', d.remove(9999) === false && d.lastError().includes('9999'), d.lastError());
+check('setWeight on a source = false', d.setWeight(src, 2) === false && d.lastError() !== '');
+check('applyDesignJson(invalid) reports', d.applyDesignJson('{') !== '');
+
+// The other constraint kinds, and a design round trip.
+const tri = d.triangles();
+const vec = d.addVector(7, 1, 0, 0, 1);
+const edge = d.addEdge(tri[0], tri[1], 0.2, 1);
+const vort = d.addVortex(11, 0.5);
+check('addVector/addEdge/addVortex ids', vec > 0 && edge > 0 && vort > 0, d.lastError());
+check('solve with all kinds', d.solve() === '');
+const design = d.designJson();
+const solved = Float64Array.from(d.oneForm());
+const d2 = new Module.Designer();
+check('second designer loads (format sniffed)', d2.loadMesh(new TextEncoder().encode(off), '') === '');
+check('applyDesignJson round trip', d2.applyDesignJson(design) === '' && d2.solve() === '', d2.lastError());
+check('replayed design gives the same field', maxAbsDiff(d2.oneForm(), solved) <= 1e-8 * maxAbs(solved));
+check('designJson is JSON', (() => { try { JSON.parse(design); return true; } catch { return false; } })());
+d2.delete();
+d.delete();
+finish();
