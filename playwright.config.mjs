@@ -5,7 +5,7 @@ import { defineConfig } from '@playwright/test';
 const PORT = Number(process.env.TVF_TEST_PORT || 8191);
 
 export default defineConfig({
-  testDir: '.',
+  testDir: 'tests/e2e',
   testMatch: '**/*.spec.mjs',
   outputDir: 'test-results',
   workers: 1,

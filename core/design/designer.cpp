@@ -59,6 +59,7 @@ struct Designer::Impl {
   FactoredSystem system;
   bool factorStale = true;
   double shift = kInitialShift;
+  bool shiftEverywhere = false;
 
   struct Active {
     ConstraintSpec spec;
@@ -71,7 +72,10 @@ struct Designer::Impl {
   Eigen::VectorXd solution;
   std::vector<double> oneForm, faceVectors, vertexVectors;
   std::vector<Singularity> singularities;
+  bool derivedStale = false;
   DesignStats stats;
+
+  void deriveIfStale();
 
   void rebuildBase() {
     const auto start = Clock::now();
@@ -99,9 +103,16 @@ struct Designer::Impl {
     }
   }
 
-  SparseMatrix systemMatrix(double relativeShift) const {
+  // Closed genus-0 components have no kernel; every other component (handles, boundary loops, and the extra
+  // modes of free boundaries) gets the shift.
+  bool componentHasKernel(int32_t c) const {
+    return topology.components[c].genus > 0 || topology.components[c].boundaryLoops > 0;
+  }
+
+  SparseMatrix systemMatrix(double relativeShift, bool everywhere) const {
     std::vector<Eigen::Triplet<double, int>> diag;
-    for (int32_t e = 0; e < topology.numEdges; ++e) diag.emplace_back(e, e, relativeShift * scale);
+    for (int32_t e = 0; e < topology.numEdges; ++e)
+      if (everywhere || componentHasKernel(topology.edgeComponent[e])) diag.emplace_back(e, e, relativeShift * scale);
     for (const auto& [id, a] : active)
       if (isEdgeKind(a.spec.kind))
         for (const EdgeRow& r : a.rows) diag.emplace_back(r.edge, r.edge, a.spec.weight * scale);
@@ -113,22 +124,32 @@ struct Designer::Impl {
   void factorNow() {
     if (baseStale) rebuildBase();
     int retries = 0;
-    for (shift = kInitialShift;; shift *= 100, ++retries) {
-      if (system.factor(systemMatrix(shift))) break;
-      if (shift * 100 > kMaxShift)
+    bool anyKernel = false;
+    for (int32_t c = 0; c < static_cast<int32_t>(topology.components.size()); ++c) anyKernel |= componentHasKernel(c);
+    shiftEverywhere = false;
+    shift = anyKernel ? kInitialShift : 0.0;
+    while (!system.factor(systemMatrix(shift, shiftEverywhere))) {
+      // Numerically singular despite the topology (e.g. a near-kernel on a badly shaped closed mesh).
+      ++retries;
+      shift = shiftEverywhere ? shift * 100 : kInitialShift;
+      shiftEverywhere = true;
+      if (shift > kMaxShift)
         throw InputError("the system could not be factored even with a diagonal shift of " +
-                         std::to_string(shift) + " (is the mesh badly shaped?)");
+                         std::to_string(shift / 100) + " (is the mesh badly shaped?)");
     }
     const FactorTimings& t = system.timings();
     stats.analyzeMs = t.analyzeMs;
     stats.factorMs = t.factorMs + t.convertMs;
     stats.nnzPerRowL = static_cast<double>(system.factorNonzeros()) / std::max(1, topology.numEdges);
     stats.kernelShift = shift;
-    char text[200];
-    std::snprintf(text, sizeof text,
-                  "diagonal shift %.0e x mean diagonal on every edge, then one step of iterative refinement "
-                  "against the unshifted matrix; %d retries",
-                  shift, retries);
+    char text[240];
+    if (shift == 0)
+      std::snprintf(text, sizeof text, "none needed: every component is closed and of genus 0");
+    else
+      std::snprintf(text, sizeof text,
+                    "diagonal shift %.0e x mean diagonal on the edges of %s, then one step of iterative "
+                    "refinement against the unshifted matrix; %d retries",
+                    shift, shiftEverywhere ? "every component" : "components with handles or boundary", retries);
     stats.kernelHandling = text;
     stats.factorKind = system.description();
     factorStale = false;
@@ -383,20 +404,33 @@ void Designer::solve() {
   const Eigen::VectorXd b = d.rightHandSide();
   auto start = Clock::now();
   d.system.solve(b, d.solution);
-  d.refineAgainstUnshiftedSystem(b);
+  if (d.shift > 0) d.refineAgainstUnshiftedSystem(b);
   d.stats.solveMs = msSince(start);
   start = Clock::now();
   d.oneForm.assign(d.solution.data(), d.solution.data() + d.solution.size());
   tvf::faceVectors(d.mesh, d.topology, d.oneForm.data(), d.faceVectors);
-  tvf::vertexVectors(d.mesh, d.topology, d.geometry, d.oneForm.data(), d.vertexVectors);
-  d.singularities = findSingularities(d.mesh, d.topology, d.faceVectors);
   d.stats.reconstructMs = msSince(start);
+  d.derivedStale = true;
+}
+
+// Vertex vectors and singularities are derived on first read: the interactive loop needs only face vectors.
+void Designer::Impl::deriveIfStale() {
+  if (!derivedStale) return;
+  tvf::vertexVectors(mesh, topology, geometry, oneForm.data(), vertexVectors);
+  singularities = findSingularities(mesh, topology, faceVectors);
+  derivedStale = false;
 }
 
 const std::vector<double>& Designer::oneForm() const { return impl_->oneForm; }
 const std::vector<double>& Designer::faceVectors() const { return impl_->faceVectors; }
-const std::vector<double>& Designer::vertexVectors() const { return impl_->vertexVectors; }
-const std::vector<Singularity>& Designer::singularities() const { return impl_->singularities; }
+const std::vector<double>& Designer::vertexVectors() const {
+  impl_->deriveIfStale();
+  return impl_->vertexVectors;
+}
+const std::vector<Singularity>& Designer::singularities() const {
+  impl_->deriveIfStale();
+  return impl_->singularities;
+}
 const DesignStats& Designer::stats() const { return impl_->stats; }
 const std::vector<ConstraintSpec>& Designer::constraints() const { return impl_->order; }
 const BoundaryCondition& Designer::boundary() const { return impl_->boundary; }
@@ -407,7 +441,7 @@ const std::vector<int32_t>& Designer::edgeVertices() const { return impl_->topol
 void Designer::assembleSystem(SparseMatrix& A, Eigen::VectorXd& b) {
   Impl& d = *impl_;
   if (d.baseStale) d.rebuildBase();
-  A = d.systemMatrix(0.0);
+  A = d.systemMatrix(0.0, false);
   b = d.rightHandSide();
 }
 

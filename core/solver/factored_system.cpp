@@ -83,7 +83,11 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
   const bool ok = s.common->status == CHOLMOD_OK && s.factor->minor == s.factor->n;
   // Updates need the simplicial LDL' form; converting once here keeps every later edit a pure update.
   start = std::chrono::steady_clock::now();
-  if (ok) cholmod_change_factor(CHOLMOD_REAL, 0, 0, 1, 1, s.factor.get(), s.common.get());
+  if (ok) {
+    cholmod_change_factor(CHOLMOD_REAL, 0, 0, 1, 1, s.factor.get(), s.common.get());
+    // Relaxed supernodes carry explicit zeros; dropping them makes every later solve and update cheaper.
+    if (s.wasSupernodal) cholmod_resymbol(&view, nullptr, 0, 1, s.factor.get(), s.common.get());
+  }
   s.timings.convertMs = msSince(start);
   const int* perm = static_cast<const int*>(s.factor->Perm);
   s.inversePerm.resize(s.n);

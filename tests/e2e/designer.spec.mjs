@@ -1,5 +1,6 @@
 // The page end to end against the real wasm core: default model, a stroke drawn with the real mouse,
 // deleting it through the UI, and a broken file that must leave the current model usable.
+import { writeFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 import {
   CENTRE,
@@ -126,7 +127,7 @@ test.describe.serial('a stroke drawn with the mouse', () => {
       expect(norm(u), `field in face ${run.face}`).toBeGreaterThan(0);
       checked.push({ face: run.face, angle: angleInPlane(u, sub(after, before), n) });
     }
-    testInfo.attach('stroke-angles.json', { body: JSON.stringify(checked, null, 1), contentType: 'application/json' });
+    writeFileSync(testInfo.outputPath('stroke-angles.json'), JSON.stringify(checked, null, 1));
     expect(checked.length, 'faces crossed by the stroke').toBeGreaterThanOrEqual(4);
     const worst = Math.max(...checked.map((c) => c.angle));
     expect(worst, `worst angle to the stroke (deg): ${JSON.stringify(checked)}`).toBeLessThan(5);

@@ -1,0 +1,275 @@
+#!/usr/bin/env node
+// SPDX-License-Identifier: GPL-2.0-or-later
+// npm run bench:wasm [-- [options] [MESH ...]]     the ladder: native vs wasm side by side
+// npm run bench:wasm -- --json MESH                one JSON object {edges, native: {...}, wasm: {...}}
+//
+// The wasm core (build-wasm/tvf_core.mjs, `npm run build:wasm`) is driven through the same embind Designer
+// the page uses, with the same sequence as `tvf bench` (cli/bench.cpp): per repeat, clear + factor, a source +
+// solve, one single-edge addEdge (a rank-1 update) then its removal, and a ~50-edge stroke (barycentres of a
+// strip of adjacent faces) + solve. Keys match `tvf bench --json`: analyzeMs, factorMs, solveMs, updateMs and
+// reconstructMs are the core's own timings (DesignStats, so wasm and native measure the same code), and
+// strokeUpdateSolveMs is wall time around addStroke + solve in both. The wasm object adds the JS-side wall time
+// of the calls (factorCallMs = d.factor() incl. assembly and analysis, solveCallMs = d.solve() incl. the
+// right-hand side and reconstruction, updateCallMs = d.addEdge()), and the FIRST factorization of a freshly
+// instantiated module, which V8 runs with its baseline compiler (Liftoff) and no on-stack replacement:
+//   firstFactorMs         first d.factor() after Module.warmUp() (what the page should do at start-up)
+//   firstFactorNoWarmUpMs first d.factor() in a fresh process without warm-up (measured in a child process)
+//   warmUpMs              the warm-up's own time
+// Warm numbers are medians over the repeats that follow the first factorization. Every mesh is measured in
+// fresh node processes, since V8 shares tiered-up code between instances of the same module in one process.
+//
+// Options: --repeat N (5), --big-repeat N (2, for the 1.25M-edge mesh), --no-big, --tvf PATH (build/tvf),
+//   --native FILE (reuse bench-data/bench-native.json-style results instead of running tvf), --no-native,
+//   --no-warmup, --warmup LEVELS,ROUNDS (icosphere subdivisions and rounds; default 4,3), --settle MS (wait
+//   after the warm-up so background compilation can finish; default 0), --node-flags "FLAGS" (for the child
+//   processes, e.g. "--no-liftoff" to compare V8 tiering strategies), --module PATH (tvf_core.mjs).
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+import {
+  ROOT, ensureMeshes, fmt, meshName, meshPath, nativeTable, parseArgs, repeatFor, runNative,
+} from '../scripts/bench.mjs';
+
+const SELF = fileURLToPath(import.meta.url);
+const median = (v) => {
+  const s = [...v].sort((a, b) => a - b);
+  return s.length === 0 ? NaN : s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
+};
+
+// Barycentres of a strip of edge-adjacent faces from `start`: a stroke crossing about `crossings` edges.
+function faceStrip(triangles, start, crossings) {
+  const nF = triangles.length / 3;
+  // edge -> faces via a sorted list of (min, max, face) keys: no per-edge allocation on 1M-edge meshes
+  const keys = new Float64Array(3 * nF);
+  const faces = new Int32Array(3 * nF);
+  let n = 0;
+  const V = 2 ** 26; // > vertex count
+  const key = (a, b) => (a < b ? a * V + b : b * V + a);
+  for (let g = 0; g < nF; ++g)
+    for (let k = 0; k < 3; ++k) {
+      keys[n] = key(triangles[3 * g + k], triangles[3 * g + ((k + 1) % 3)]);
+      faces[n++] = g;
+    }
+  const order = Int32Array.from({ length: n }, (_, i) => i).sort((i, j) => keys[i] - keys[j]);
+  const sortedKeys = Float64Array.from(order, (i) => keys[i]);
+  const lower = (x) => {
+    let lo = 0, hi = n;
+    while (lo < hi) {
+      const mid = (lo + hi) >> 1;
+      if (sortedKeys[mid] < x) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo;
+  };
+  const seen = new Set([start]);
+  const visited = [start];
+  let f = start;
+  for (let s = 0; s < crossings; ++s) {
+    let next = -1;
+    for (let k = 0; k < 3 && next < 0; ++k) {
+      const e = key(triangles[3 * f + k], triangles[3 * f + ((k + 1) % 3)]);
+      for (let p = lower(e); p < n && sortedKeys[p] === e && next < 0; ++p)
+        if (!seen.has(faces[order[p]])) next = faces[order[p]];
+    }
+    if (next < 0) break;
+    seen.add(next);
+    visited.push(next);
+    f = next;
+  }
+  const flat = new Float64Array(4 * visited.length);
+  visited.forEach((g, k) => flat.set([g, 1 / 3, 1 / 3, 1 / 3], 4 * k));
+  return flat;
+}
+
+function fail(what, message) {
+  throw new Error(`${what}: ${message}`);
+}
+const ok = (what, r) => {
+  if (typeof r === 'string' && r !== '') fail(what, r);
+  return r;
+};
+
+// In this process: instantiate, optionally warm up, load, first factor, then `repeat` warm repeats.
+async function measureWasm(mesh, opts) {
+  const modulePath = resolve(opts.module ?? resolve(ROOT, 'build-wasm/tvf_core.mjs'));
+  if (!existsSync(modulePath)) fail('wasm', `${modulePath} not found; run npm run build:wasm`);
+  const createTvfCore = (await import(pathToFileURL(modulePath).href)).default;
+  let t = performance.now();
+  const Module = await createTvfCore();
+  const instantiateMs = performance.now() - t;
+  let warmUpMs;
+  if (opts.warmup !== false) {
+    const [levels, rounds] = String(opts.warmup).split(',').map(Number);
+    t = performance.now();
+    const w = Module.warmUp(levels, rounds);
+    warmUpMs = performance.now() - t;
+    if (w < 0) fail('warmUp', 'failed');
+    if (opts.settle > 0) await new Promise((r) => setTimeout(r, opts.settle));
+  }
+  const bytes = readFileSync(mesh);
+  const d = new Module.Designer();
+  t = performance.now();
+  ok('load', d.loadMesh(bytes, ''));
+  const loadMs = performance.now() - t;
+  t = performance.now();
+  ok('factor', d.factor());
+  const firstFactorMs = performance.now() - t;
+  const firstStats = JSON.parse(d.statsJson());
+  const result = {
+    edges: d.edges().length / 2, instantiateMs, warmUpMs, loadMs, firstFactorMs,
+    firstFactorStats: { analyzeMs: firstStats.analyzeMs, factorMs: firstStats.factorMs },
+  };
+  if (opts.firstOnly) return result;
+
+  const tri = Int32Array.from(d.triangles());
+  const nF = tri.length / 3;
+  const s = { analyze: [], factor: [], solve: [], update: [], stroke: [], reconstruct: [],
+    factorCall: [], solveCall: [], updateCall: [] };
+  let stats;
+  for (let r = 0; r < opts.repeat; ++r) {
+    ok('clear', d.clearConstraints() ? '' : d.lastError());
+    t = performance.now();
+    ok('factor', d.factor());
+    s.factorCall.push(performance.now() - t);
+    stats = JSON.parse(d.statsJson());
+    s.analyze.push(stats.analyzeMs);
+    s.factor.push(stats.factorMs);
+    if (d.addSource(tri[0], 1) < 0) fail('source', d.lastError());
+    t = performance.now();
+    ok('solve', d.solve());
+    s.solveCall.push(performance.now() - t);
+    stats = JSON.parse(d.statsJson());
+    s.solve.push(stats.solveMs);
+    s.reconstruct.push(stats.reconstructMs);
+    const face = (r * 7919 + 13) % nF;
+    t = performance.now();
+    const id = d.addEdge(tri[3 * face], tri[3 * face + 1], 0.1, 1.0);
+    s.updateCall.push(performance.now() - t);
+    if (id < 0) fail('edge', d.lastError());
+    s.update.push(JSON.parse(d.statsJson()).updateMs);
+    if (!d.remove(id)) fail('remove', d.lastError());
+    const strip = faceStrip(tri, (r * 104729 + 7) % nF, 50);
+    t = performance.now();
+    if (d.addStroke(strip, 1.0, 1.0) < 0) fail('stroke', d.lastError());
+    ok('solve', d.solve());
+    s.stroke.push(performance.now() - t);
+  }
+  stats = JSON.parse(d.statsJson());
+  d.delete();
+  return {
+    ...result,
+    nnzPerRowM: stats.nnzPerRowM, nnzPerRowL: stats.nnzPerRowL,
+    analyzeMs: median(s.analyze), factorMs: median(s.factor), solveMs: median(s.solve), updateMs: median(s.update),
+    strokeUpdateSolveMs: median(s.stroke), reconstructMs: median(s.reconstruct),
+    factorCallMs: median(s.factorCall), solveCallMs: median(s.solveCall), updateCallMs: median(s.updateCall),
+    repeat: opts.repeat, warmUp: opts.warmup === false ? 'none' : String(opts.warmup), settleMs: opts.settle,
+    factorKind: stats.factorKind,
+  };
+}
+
+function child(args, opts) {
+  const flags = opts['node-flags'] ? String(opts['node-flags']).split(/\s+/).filter(Boolean) : [];
+  const out = execFileSync(process.execPath, [...flags, SELF, ...args], {
+    encoding: 'utf8', maxBuffer: 1 << 24, stdio: ['ignore', 'pipe', 'inherit'],
+  });
+  return JSON.parse(out.trim().split('\n').pop());
+}
+
+function commonArgs(opts) {
+  const a = ['--repeat', String(opts.repeat), '--big-repeat', String(opts.bigRepeat), '--tvf', opts.tvf,
+    '--settle', String(opts.settle)];
+  if (opts.module) a.push('--module', opts.module);
+  if (opts.warmup === false) a.push('--no-warmup');
+  else a.push('--warmup', String(opts.warmup));
+  if (opts.native) a.push('--native', opts.native);
+  if (opts['no-native']) a.push('--no-native');
+  return a;
+}
+
+function nativeFor(mesh, opts) {
+  if (opts['no-native']) return null;
+  if (opts.native) {
+    const saved = JSON.parse(readFileSync(opts.native, 'utf8')).results ?? [];
+    const hit = saved.find((r) => resolve(r.mesh ?? '') === mesh || r.name === meshName(mesh));
+    if (hit) return hit;
+  }
+  return runNative(opts.tvf, mesh, repeatFor(opts, mesh));
+}
+
+async function main() {
+  const argv = process.argv.slice(2);
+  const opts = parseArgs(argv, {
+    json: false, 'first-factor-only': false, 'no-warmup': false, warmup: '4,3', settle: '0', native: '',
+    'no-native': false, 'node-flags': '', module: '',
+  });
+  opts.warmup = opts['no-warmup'] ? false : opts.warmup;
+  opts.settle = Number(opts.settle);
+  opts.module = opts.module || undefined;
+
+  if (opts['first-factor-only']) {
+    // Child: one cold first factorization.
+    const r = await measureWasm(opts.meshes[0], { ...opts, firstOnly: true });
+    console.log(JSON.stringify(r));
+    return;
+  }
+  if (opts.json) {
+    if (opts.meshes.length !== 1) fail('--json', 'give exactly one mesh');
+    const mesh = opts.meshes[0];
+    ensureMeshes([mesh]);
+    opts.repeat = repeatFor(opts, mesh);
+    const wasm = await measureWasm(mesh, opts);
+    if (opts.warmup !== false) {
+      const cold = child(['--first-factor-only', '--no-warmup', mesh, ...(opts.module ? ['--module', opts.module] : [])], opts);
+      wasm.firstFactorNoWarmUpMs = cold.firstFactorMs;
+    }
+    const native = nativeFor(mesh, opts);
+    console.log(JSON.stringify({ mesh, edges: wasm.edges, native, wasm }, null, 2));
+    return;
+  }
+
+  // The ladder: one child process per mesh.
+  ensureMeshes(opts.meshes);
+  if (!opts.native && !opts['no-native'] && !existsSync(opts.tvf))
+    fail('native', `${opts.tvf} not found; build it (cmake -S . -B build && cmake --build build -j2) or pass --no-native`);
+  const rows = [];
+  for (const mesh of opts.meshes) {
+    const name = meshName(mesh);
+    process.stderr.write(`bench:wasm: ${name} ... `);
+    try {
+      const r = child(['--json', mesh, ...commonArgs(opts)], opts);
+      rows.push({ name, ...r });
+      process.stderr.write(`${r.edges} edges, wasm factor ${fmt(r.wasm.factorMs)} ms, first ${fmt(r.wasm.firstFactorMs)} ms\n`);
+    } catch (err) {
+      rows.push({ name, mesh, error: String(err.message).split('\n')[0] });
+      process.stderr.write(`FAILED\n`);
+    }
+  }
+  const ratio = (w, n) => (w > 0 && n > 0 ? `${(w / n).toFixed(2)}×` : '–');
+  const lines = [
+    '| mesh | E | factor native | factor wasm | ratio | solve native | solve wasm | ratio | update native | update wasm | ratio | stroke+solve native / wasm | first factor wasm: cold / after warm-up (warm-up) |',
+    '|' + ' --- |'.repeat(13),
+  ];
+  for (const r of rows) {
+    if (r.error) {
+      lines.push(`| ${r.name} | – | ${r.error} |`);
+      continue;
+    }
+    const n = r.native ?? {}, w = r.wasm;
+    lines.push(`| ${r.name} | ${r.edges.toLocaleString('en-US')} | ${fmt(n.factorMs)} | ${fmt(w.factorMs)} | ${ratio(w.factorMs, n.factorMs)} | ` +
+      `${fmt(n.solveMs, 2)} | ${fmt(w.solveMs, 2)} | ${ratio(w.solveMs, n.solveMs)} | ` +
+      `${fmt(n.updateMs, 2)} | ${fmt(w.updateMs, 2)} | ${ratio(w.updateMs, n.updateMs)} | ` +
+      `${fmt(n.strokeUpdateSolveMs)} / ${fmt(w.strokeUpdateSolveMs)} | ` +
+      `${fmt(w.firstFactorNoWarmUpMs)} / ${fmt(w.firstFactorMs)} (${fmt(w.warmUpMs)}) |`);
+  }
+  console.log(lines.join('\n'));
+  console.log('\nwasm, full table (times in ms; factor/solve/update as timed by the core, as in `tvf bench`):\n');
+  console.log(nativeTable(rows.filter((r) => !r.error).map((r) => ({ name: r.name, ...r.wasm }))));
+  mkdirSync(resolve(ROOT, 'bench-data'), { recursive: true });
+  const out = resolve(ROOT, 'bench-data/bench-wasm.json');
+  writeFileSync(out, JSON.stringify({ date: new Date().toISOString(), node: process.version, results: rows }, null, 2) + '\n');
+  console.error(`bench:wasm: wrote ${out}`);
+  if (rows.some((r) => r.error)) process.exit(1);
+}
+
+await main();
