@@ -17,16 +17,21 @@ function describe(err) {
   return String(err);
 }
 
+// "what: message", unless the core already named the operation itself.
+function prefixed(what, message) {
+  return message.startsWith(`${what}:`) ? message : `${what}: ${message}`;
+}
+
 function guard(what, fn) {
   try {
     return fn();
   } catch (err) {
-    throw new CoreError(`${what}: ${describe(err)}`);
+    throw new CoreError(prefixed(what, describe(err)));
   }
 }
 
 function check(what, result) {
-  if (typeof result === 'string' && result !== '') throw new CoreError(`${what}: ${result}`);
+  if (typeof result === 'string' && result !== '') throw new CoreError(prefixed(what, result));
   return result;
 }
 
@@ -97,7 +102,7 @@ export class CoreClient {
   #id(what, id) {
     if (typeof id !== 'number' || id < 0) {
       const msg = guard(what, () => this.designer.lastError()) || 'rejected by the core';
-      throw new CoreError(`${what}: ${msg}`);
+      throw new CoreError(prefixed(what, msg));
     }
     return id;
   }
@@ -132,12 +137,12 @@ export class CoreClient {
 
   remove(id) {
     const ok = guard('remove', () => this.designer.remove(id));
-    if (!ok) throw new CoreError(`remove: ${this.#lastError() || `no constraint with id ${id}`}`);
+    if (!ok) throw new CoreError(prefixed('remove', this.#lastError() || `no constraint with id ${id}`));
   }
 
   setWeight(id, weight) {
     const ok = guard('weight', () => this.designer.setWeight(id, weight));
-    if (!ok) throw new CoreError(`weight: ${this.#lastError() || `cannot reweight constraint ${id}`}`);
+    if (!ok) throw new CoreError(prefixed('weight', this.#lastError() || `cannot reweight constraint ${id}`));
   }
 
   #lastError() {

@@ -19,6 +19,9 @@ const state = {
   modelName: '',
   info: null,
   constraints: new Map(), // id → {id, type, points, strength, weight}
+  // Kept by the page, not only the core: a newly loaded mesh gets a fresh core designer with defaults, and
+  // the toolbar still shows the user's choice.
+  settings: { boundary: 'free', gamma: 0 },
 };
 
 // Core calls are synchronous, but loads await file reads: one queue keeps every mutation whole and ordered.
@@ -68,6 +71,7 @@ async function loadModel(src, opts) {
     state.modelName = model.name;
     state.info = state.core.info();
     try {
+      applySettings();
       state.core.factor();
       state.core.solve();
     } finally {
@@ -79,6 +83,18 @@ async function loadModel(src, opts) {
     refreshField();
     return state.info;
   });
+}
+
+function applySettings() {
+  const { boundary, gamma } = state.settings;
+  try {
+    if (boundary !== 'free') state.core.setBoundary(boundary);
+    if (gamma !== 0) state.core.setGamma(gamma);
+  } catch (err) {
+    state.settings = { boundary: 'free', gamma: 0 };
+    state.ui.setSettings(state.settings);
+    throw err;
+  }
 }
 
 function validatePoints(points) {
@@ -143,7 +159,11 @@ function setWeight(id, weight) {
 function refactor(change) {
   return exclusive(async () => {
     requireReady();
-    change();
+    try {
+      change();
+    } finally {
+      state.ui.setSettings(state.settings); // shows what the core holds, also after a refusal
+    }
     state.ui.setBusy('Factoring…');
     await nextPaint();
     try {
@@ -176,15 +196,25 @@ const tvf = {
   addStroke,
   remove,
   setWeight,
-  setBoundary: (bc) => refactor(() => state.core.setBoundary(bc)),
-  setGamma: (g) => refactor(() => state.core.setGamma(g)),
+  setBoundary: (bc) =>
+    refactor(() => {
+      state.core.setBoundary(bc);
+      state.settings.boundary = copy(bc);
+    }),
+  setGamma: (gamma) =>
+    refactor(() => {
+      if (!(Number.isFinite(gamma) && gamma >= 0)) throw new Error(`gamma must be a number ≥ 0 (got ${gamma})`);
+      state.core.setGamma(gamma);
+      state.settings.gamma = gamma;
+    }),
+  settings: () => copy(state.settings),
   faceVectors: () => (requireReady(), state.core.faceVectors()),
   stats: () => (requireReady(), state.core.stats()),
   mesh: () => (requireReady(), state.core.mesh()),
   constraints: () => [...state.constraints.values()].map(copy),
   singularities: () => (requireReady(), state.core.singularities()),
-  projectToScreen: (xyz) => state.viewer.projectToScreen(Array.from(xyz)),
-  pick: (clientX, clientY) => state.viewer.pick(clientX, clientY),
+  projectToScreen: (xyz) => (requireReady(), state.viewer.projectToScreen(Array.from(xyz))),
+  pick: (clientX, clientY) => (requireReady(), state.viewer.pick(clientX, clientY)),
 };
 window.tvf = tvf;
 

@@ -76,11 +76,7 @@ export function bindUi({ accept, onOpen, onTool, onRemove, onBoundary, onGamma, 
   });
 
   $('#boundary').addEventListener('change', (e) => onBoundary(e.target.value));
-  $('#gamma').addEventListener('change', (e) => {
-    const g = Number(e.target.value);
-    if (Number.isFinite(g) && g >= 0) onGamma(g);
-    else showError('γ must be a number ≥ 0');
-  });
+  $('#gamma').addEventListener('change', (e) => onGamma(Number(e.target.value)));
   $('#show-arrows').addEventListener('change', (e) => onArrows(e.target.checked));
 
   banner.querySelector('.dismiss').addEventListener('click', () => (banner.hidden = true));
@@ -159,10 +155,16 @@ export function bindUi({ accept, onOpen, onTool, onRemove, onBoundary, onGamma, 
     }, 2500);
   }
 
+  function setSettings({ boundary, gamma }) {
+    // {angle} has no preset entry; the disabled "angle" option shows that one is set.
+    $('#boundary').value = typeof boundary === 'string' ? boundary : 'angle';
+    $('#gamma').value = String(gamma);
+  }
+
   function strokeOptions() {
     const s = Number(strength.value);
     return { strength: Number.isFinite(s) && s > 0 ? s : 1, weight: Number(weight.value) };
   }
 
-  return { showError, setConstraints, setStatus, setBusy, flash, strokeOptions };
+  return { showError, setConstraints, setStatus, setBusy, setSettings, flash, strokeOptions };
 }

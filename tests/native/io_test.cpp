@@ -314,11 +314,13 @@ TEST(MeshIoGltf, SparseAccessor) {
 TEST(MeshIoGltf, DegenerateFacesAreKept) {
   GltfBuilder b;
   const int positions = b.view(bytesOf<float>({0, 0, 0, 0, 0, 0, 1, 0, 0}));
+  const int indices = b.view(bytesOf<uint32_t>({2, 1, 0}));
   b.accessor(positions, kFloat, 3, "VEC3");
-  b.setMeshes(R"([{"primitives":[{"attributes":{"POSITION":0}}]}])");
+  b.accessor(indices, kUInt, 3, "SCALAR");
+  b.setMeshes(R"([{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}])");
   const SurfaceMesh mesh = loadText(b.embeddedJson(), MeshFormat::Gltf);
   EXPECT_EQ(mesh.numVertices(), 2);
-  EXPECT_EQ(mesh.triangles, (std::vector<int32_t>{0, 0, 1}));
+  EXPECT_EQ(mesh.triangles, (std::vector<int32_t>{1, 0, 0}));
   EXPECT_EQ(mesh.sourceToWelded, (std::vector<int32_t>{0, 0, 1}));
 }
 
