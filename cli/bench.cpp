@@ -59,7 +59,7 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma, b
   Designer designer(loadMesh(meshPath));
   designer.setGamma(gamma);
   designer.setMetisOrdering(metis);
-  std::vector<double> analyze, factor, solve, update, stroke, reconstruct;
+  std::vector<double> analyze, factor, solve, update, stroke, strokeUpdate, reconstruct;
   const int32_t nF = designer.mesh().numFaces();
   for (int r = 0; r < repeat; ++r) {
     designer.clearConstraints();
@@ -86,6 +86,7 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma, b
       designer.solve();
     });
     stroke.push_back(total - designer.stats().reconstructMs);
+    strokeUpdate.push_back(designer.stats().updateMs);
   }
   const auto& ev = designer.edgeVertices();
   return {{"mesh", meshPath},
@@ -97,6 +98,7 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma, b
           {"solveMs", median(solve)},
           {"updateMs", median(update)},
           {"strokeUpdateSolveMs", median(stroke)},
+          {"strokeUpdateMs", median(strokeUpdate)},
           {"reconstructMs", median(reconstruct)},
           {"repeat", repeat},
           {"gamma", gamma},
