@@ -5,13 +5,15 @@
 //
 // The wasm core (build-wasm/tvf_core.mjs, `npm run build:wasm`) is driven through the same embind Designer
 // the page uses, with the same sequence as `tvf bench` (cli/bench.cpp): per repeat, clear + factor, a source +
-// solve, one single-edge addEdge (a rank-1 update) then its removal, and a ~50-edge stroke (barycentres of a
-// strip of adjacent faces) + solve. Keys match `tvf bench --json`: analyzeMs, factorMs, solveMs, updateMs and
-// reconstructMs are the core's own timings (DesignStats, so wasm and native measure the same code), and
-// strokeUpdateSolveMs is wall time around addStroke + solve in both. The wasm object adds the JS-side wall time
-// of the calls (factorCallMs = d.factor() incl. assembly and analysis, solveCallMs = d.solve() incl. the
-// right-hand side and reconstruction, updateCallMs = d.addEdge()), and the FIRST factorization of a freshly
-// instantiated module, which V8 runs with its baseline compiler (Liftoff) and no on-stack replacement:
+// solve, a second solve + vertexVectors() (reconstruction), one single-edge addEdge (a rank-1 update) and its
+// removal, and a ~50-edge stroke (barycentres of a strip of faces heading away from its start) + solve. Keys
+// match `tvf bench --json`: analyzeMs, factorMs, solveMs, updateMs, strokeUpdateMs are the core's own timings
+// (DesignStats, so wasm and native time the same code); reconstructMs and strokeUpdateSolveMs are wall times
+// less the core's solve/reconstruct times, as in cli/bench.cpp. The wasm object adds the JS-side wall time of
+// the calls (factorCallMs = d.factor() incl. assembly and analysis, solveCallMs = d.solve() incl. the
+// right-hand side and face vectors, updateCallMs = d.addEdge()), and the FIRST factorization (d.factor() wall
+// time) of a freshly instantiated module, which V8 runs in its baseline tier (Liftoff) with no on-stack
+// replacement into optimized code:
 //   firstFactorMs         first d.factor() after Module.warmUp() (what the page should do at start-up)
 //   firstFactorNoWarmUpMs first d.factor() in a fresh process without warm-up (measured in a child process)
 //   warmUpMs              the warm-up's own time
@@ -20,8 +22,8 @@
 //
 // Options: --repeat N (5), --big-repeat N (2, for the 1.25M-edge mesh), --no-big, --tvf PATH (build/tvf),
 //   --native FILE (reuse bench-data/bench-native.json-style results instead of running tvf), --no-native,
-//   --no-warmup, --warmup LEVELS,ROUNDS (icosphere subdivisions and rounds; default 4,3), --settle MS (wait
-//   after the warm-up so background compilation can finish; default 0), --node-flags "FLAGS" (for the child
+//   --no-warmup, --warmup LEVELS,ROUNDS (icosphere subdivisions and rounds; default 3,1), --settle MS (wait
+//   after the warm-up so background compilation can finish; default 100), --node-flags "FLAGS" (for the child
 //   processes, e.g. "--no-liftoff" to compare V8 tiering strategies), --module PATH (tvf_core.mjs).
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
@@ -37,48 +39,50 @@ const median = (v) => {
   return s.length === 0 ? NaN : s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
 };
 
-// Barycentres of a strip of edge-adjacent faces from `start`: a stroke crossing about `crossings` edges.
-function faceStrip(triangles, start, crossings) {
+// For each face corner k, the face across edge (k, k+1), or -1 on a boundary (sorted edge keys: no per-edge
+// allocation on 1M-edge meshes).
+function faceNeighbours(triangles) {
   const nF = triangles.length / 3;
-  // edge -> faces via a sorted list of (min, max, face) keys: no per-edge allocation on 1M-edge meshes
-  const keys = new Float64Array(3 * nF);
-  const faces = new Int32Array(3 * nF);
-  let n = 0;
   const V = 2 ** 26; // > vertex count
-  const key = (a, b) => (a < b ? a * V + b : b * V + a);
+  const keys = new Float64Array(3 * nF);
   for (let g = 0; g < nF; ++g)
     for (let k = 0; k < 3; ++k) {
-      keys[n] = key(triangles[3 * g + k], triangles[3 * g + ((k + 1) % 3)]);
-      faces[n++] = g;
+      const a = triangles[3 * g + k], b = triangles[3 * g + ((k + 1) % 3)];
+      keys[3 * g + k] = a < b ? a * V + b : b * V + a;
     }
-  const order = Int32Array.from({ length: n }, (_, i) => i).sort((i, j) => keys[i] - keys[j]);
-  const sortedKeys = Float64Array.from(order, (i) => keys[i]);
-  const lower = (x) => {
-    let lo = 0, hi = n;
-    while (lo < hi) {
-      const mid = (lo + hi) >> 1;
-      if (sortedKeys[mid] < x) lo = mid + 1;
-      else hi = mid;
+  const order = Int32Array.from({ length: 3 * nF }, (_, i) => i).sort((i, j) => keys[i] - keys[j]);
+  const nb = new Int32Array(3 * nF).fill(-1);
+  for (let p = 0; p + 1 < order.length; ++p)
+    if (keys[order[p]] === keys[order[p + 1]]) {
+      nb[order[p]] = Math.floor(order[p + 1] / 3);
+      nb[order[p + 1]] = Math.floor(order[p] / 3);
     }
-    return lo;
-  };
-  const seen = new Set([start]);
-  const visited = [start];
+  return nb;
+}
+
+// Barycentres of a strip of adjacent faces heading away from the start: a stroke crossing ~`crossings` edges
+// (the same walk as stripStroke in cli/bench.cpp).
+function faceStrip(positions, triangles, nb, start, crossings) {
+  const centre = (f) => [0, 1, 2].map((c) =>
+    (positions[3 * triangles[3 * f] + c] + positions[3 * triangles[3 * f + 1] + c] +
+      positions[3 * triangles[3 * f + 2] + c]) / 3);
+  const origin = centre(start);
+  const points = [start];
   let f = start;
-  for (let s = 0; s < crossings; ++s) {
-    let next = -1;
-    for (let k = 0; k < 3 && next < 0; ++k) {
-      const e = key(triangles[3 * f + k], triangles[3 * f + ((k + 1) % 3)]);
-      for (let p = lower(e); p < n && sortedKeys[p] === e && next < 0; ++p)
-        if (!seen.has(faces[order[p]])) next = faces[order[p]];
+  for (let step = 0; step < crossings; ++step) {
+    let next = -1, farthest = -1;
+    for (let c = 0; c < 3; ++c) {
+      const g = nb[3 * f + c];
+      if (g < 0) continue;
+      const d = Math.hypot(...centre(g).map((x, i) => x - origin[i]));
+      if (d > farthest) { farthest = d; next = g; }
     }
     if (next < 0) break;
-    seen.add(next);
-    visited.push(next);
+    points.push(next);
     f = next;
   }
-  const flat = new Float64Array(4 * visited.length);
-  visited.forEach((g, k) => flat.set([g, 1 / 3, 1 / 3, 1 / 3], 4 * k));
+  const flat = new Float64Array(4 * points.length);
+  points.forEach((g, k) => flat.set([g, 1 / 3, 1 / 3, 1 / 3], 4 * k));
   return flat;
 }
 
@@ -123,37 +127,48 @@ async function measureWasm(mesh, opts) {
   if (opts.firstOnly) return result;
 
   const tri = Int32Array.from(d.triangles());
+  const pos = Float64Array.from(d.positions());
+  const nb = faceNeighbours(tri);
   const nF = tri.length / 3;
-  const s = { analyze: [], factor: [], solve: [], update: [], stroke: [], reconstruct: [],
+  const s = { analyze: [], factor: [], solve: [], update: [], stroke: [], strokeUpdate: [], reconstruct: [],
     factorCall: [], solveCall: [], updateCall: [] };
   let stats;
+  const statsNow = () => JSON.parse(d.statsJson());
   for (let r = 0; r < opts.repeat; ++r) {
     ok('clear', d.clearConstraints() ? '' : d.lastError());
     t = performance.now();
     ok('factor', d.factor());
     s.factorCall.push(performance.now() - t);
-    stats = JSON.parse(d.statsJson());
+    stats = statsNow();
     s.analyze.push(stats.analyzeMs);
     s.factor.push(stats.factorMs);
     if (d.addSource(tri[0], 1) < 0) fail('source', d.lastError());
     t = performance.now();
     ok('solve', d.solve());
     s.solveCall.push(performance.now() - t);
-    stats = JSON.parse(d.statsJson());
-    s.solve.push(stats.solveMs);
-    s.reconstruct.push(stats.reconstructMs);
+    s.solve.push(statsNow().solveMs);
+    // As in tvf bench: a second solve plus the (lazily derived) vertex vectors, less the solve itself.
+    t = performance.now();
+    ok('solve', d.solve());
+    d.vertexVectors();
+    const both = performance.now() - t;
+    s.reconstruct.push(both - statsNow().solveMs);
     const face = (r * 7919 + 13) % nF;
     t = performance.now();
     const id = d.addEdge(tri[3 * face], tri[3 * face + 1], 0.1, 1.0);
     s.updateCall.push(performance.now() - t);
     if (id < 0) fail('edge', d.lastError());
-    s.update.push(JSON.parse(d.statsJson()).updateMs);
+    s.update.push(statsNow().updateMs);
     if (!d.remove(id)) fail('remove', d.lastError());
-    const strip = faceStrip(tri, (r * 104729 + 7) % nF, 50);
+    const strip = faceStrip(pos, tri, nb, (r * 104729 + 7) % nF, 50);
+    // Mouse-up to new one-form: the rank-k update and the solve (reconstruction reported on its own).
     t = performance.now();
     if (d.addStroke(strip, 1.0, 1.0) < 0) fail('stroke', d.lastError());
     ok('solve', d.solve());
-    s.stroke.push(performance.now() - t);
+    const total = performance.now() - t;
+    stats = statsNow();
+    s.stroke.push(total - stats.reconstructMs);
+    s.strokeUpdate.push(stats.updateMs);
   }
   stats = JSON.parse(d.statsJson());
   d.delete();
@@ -161,7 +176,7 @@ async function measureWasm(mesh, opts) {
     ...result,
     nnzPerRowM: stats.nnzPerRowM, nnzPerRowL: stats.nnzPerRowL,
     analyzeMs: median(s.analyze), factorMs: median(s.factor), solveMs: median(s.solve), updateMs: median(s.update),
-    strokeUpdateSolveMs: median(s.stroke), reconstructMs: median(s.reconstruct),
+    strokeUpdateSolveMs: median(s.stroke), strokeUpdateMs: median(s.strokeUpdate), reconstructMs: median(s.reconstruct),
     factorCallMs: median(s.factorCall), solveCallMs: median(s.solveCall), updateCallMs: median(s.updateCall),
     repeat: opts.repeat, warmUp: opts.warmup === false ? 'none' : String(opts.warmup), settleMs: opts.settle,
     factorKind: stats.factorKind,
@@ -173,7 +188,7 @@ function child(args, opts) {
   const out = execFileSync(process.execPath, [...flags, SELF, ...args], {
     encoding: 'utf8', maxBuffer: 1 << 24, stdio: ['ignore', 'pipe', 'inherit'],
   });
-  return JSON.parse(out.trim().split('\n').pop());
+  return JSON.parse(out);
 }
 
 function commonArgs(opts) {
@@ -200,7 +215,7 @@ function nativeFor(mesh, opts) {
 async function main() {
   const argv = process.argv.slice(2);
   const opts = parseArgs(argv, {
-    json: false, 'first-factor-only': false, 'no-warmup': false, warmup: '4,3', settle: '0', native: '',
+    json: false, 'first-factor-only': false, 'no-warmup': false, warmup: '3,1', settle: '100', native: '',
     'no-native': false, 'node-flags': '', module: '',
   });
   opts.warmup = opts['no-warmup'] ? false : opts.warmup;

@@ -93,7 +93,10 @@ class DesignerBinding {
     std::string error;
     attempt(error, [&] {
       if (bytes.isNull() || bytes.isUndefined()) throw tvf::InputError("no mesh data");
-      const std::vector<uint8_t> data = emscripten::convertJSArrayToNumberVector<uint8_t>(bytes);
+      // A Uint8Array (or any array-like); an ArrayBuffer is viewed as bytes.
+      const bool buffer = bytes.instanceof(val::global("ArrayBuffer"));
+      const std::vector<uint8_t> data =
+          emscripten::convertJSArrayToNumberVector<uint8_t>(buffer ? val::global("Uint8Array").new_(bytes) : bytes);
       if (data.empty()) throw tvf::InputError("the mesh file is empty");
       tvf::MeshFormat f;
       if (!parseFormat(format, data.data(), data.size(), f))
@@ -116,7 +119,13 @@ class DesignerBinding {
     return run([&] { need().setBoundary(tvf::boundaryFromJson(nlohmann::json::parse(text))); });
   }
   std::string setGamma(double gamma) { return run([&] { need().setGamma(gamma); }); }
-  std::string setMetisOrdering(bool metis) { return run([&] { need().setMetisOrdering(metis); }); }
+  // The wasm CHOLMOD is built with -DNPARTITION (no METIS): only AMD is available.
+  std::string setMetisOrdering(bool metis) {
+    return run([&] {
+      if (metis) throw tvf::InputError("METIS ordering is not built into the wasm core (AMD only)");
+      need().setMetisOrdering(false);
+    });
+  }
   std::string factor() { return run([&] { need().factor(); }); }
   std::string solve() { return run([&] { need().solve(); }); }
 
@@ -151,6 +160,10 @@ class DesignerBinding {
   int addVortex(double f, double strength) {
     return add([&] { return need().addVortex(toIndex(f, "face"), strength); });
   }
+  // One constraint object of the design format, re-added exactly as saved (undo of a delete, redo).
+  int addConstraintJson(const std::string& text) {
+    return add([&] { return need().add(tvf::constraintFromJson(nlohmann::json::parse(text))); });
+  }
 
   bool remove(double id) { return ok([&] { need().remove(toIndex(id, "id")); }); }
   bool setWeight(double id, double w) { return ok([&] { need().setWeight(toIndex(id, "id"), w); }); }
@@ -174,6 +187,15 @@ class DesignerBinding {
       if (designer_)
         for (const tvf::Singularity& s : designer_->singularities())
           out.push_back({{"vertex", s.vertex}, {"index", s.index}});
+      return out;
+    });
+  }
+  // The ids of the current constraints, in the order designJson() lists them: [id, ...].
+  std::string constraintIdsJson() const {
+    return json([&] {
+      nlohmann::json out = nlohmann::json::array();
+      if (designer_)
+        for (const tvf::ConstraintSpec& c : designer_->constraints()) out.push_back(c.id);
       return out;
     });
   }
@@ -330,8 +352,10 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("cornerUVs", &DesignerBinding::cornerUVs)
       .function("singularitiesJson", &DesignerBinding::singularitiesJson)
       .function("statsJson", &DesignerBinding::statsJson)
+      .function("constraintIdsJson", &DesignerBinding::constraintIdsJson)
       .function("designJson", &DesignerBinding::designJson)
       .function("applyDesignJson", &DesignerBinding::applyDesignJson)
+      .function("addConstraintJson", &DesignerBinding::addConstraintJson)
       .function("fieldJson", &DesignerBinding::fieldJson);
   function("warmUp", &warmUp);
 }

@@ -42,6 +42,13 @@ command -v cmake >/dev/null || die "cmake not found"
 
 start=$(date +%s.%N)
 
+# Several sessions may run this at once (npm run build, tests): one build at a time in build-wasm/.
+mkdir -p "$OUT"
+if command -v flock >/dev/null; then
+  exec 9>"$OUT/.build.lock"
+  flock 9
+fi
+
 # 1. CHOLMOD for wasm (instant when cached).
 CHOLMOD_WASM=$("$ROOT/wasm/build-cholmod.sh" | tail -1)
 [ -f "$CHOLMOD_WASM/lib/libcholmod_wasm.a" ] || die "build-cholmod.sh gave no archive in $CHOLMOD_WASM"

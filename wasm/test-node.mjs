@@ -207,10 +207,13 @@ const edge = d.addEdge(tri[0], tri[1], 0.2, 1);
 const vort = d.addVortex(11, 0.5);
 check('addVector/addEdge/addVortex ids', vec > 0 && edge > 0 && vort > 0, d.lastError());
 check('solve with all kinds', d.solve() === '');
+check('constraintIdsJson in design order', JSON.stringify(JSON.parse(d.constraintIdsJson())) ===
+  JSON.stringify([src, snk, vec, edge, vort]), d.constraintIdsJson());
 const design = d.designJson();
 const solved = Float64Array.from(d.oneForm());
 const d2 = new Module.Designer();
-check('second designer loads (format sniffed)', d2.loadMesh(new TextEncoder().encode(off), '') === '');
+check('second designer loads (format sniffed, ArrayBuffer)', d2.loadMesh(new TextEncoder().encode(off).buffer, '') === '');
+check('setMetisOrdering(true) reports (no METIS in wasm)', d2.setMetisOrdering(true) !== '');
 check('applyDesignJson round trip', d2.applyDesignJson(design) === '' && d2.solve() === '', d2.lastError());
 check('replayed design gives the same field', maxAbsDiff(d2.oneForm(), solved) <= 1e-8 * maxAbs(solved));
 check('designJson is JSON', (() => { try { JSON.parse(design); return true; } catch { return false; } })());

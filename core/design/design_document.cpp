@@ -41,6 +41,14 @@ void numbers(const json& array, double* out, size_t n, const std::string& what) 
   }
 }
 
+json vec3List(const std::vector<double>& flat) {
+  json out = json::array();
+  for (size_t k = 0; k + 2 < flat.size(); k += 3) out.push_back({flat[k], flat[k + 1], flat[k + 2]});
+  return out;
+}
+
+}  // namespace
+
 ConstraintSpec constraintFromJson(const json& c, size_t index) {
   const std::string where = "constraint " + std::to_string(index);
   if (!c.is_object() || !c.contains("type") || !c["type"].is_string())
@@ -115,14 +123,6 @@ json constraintToJson(const ConstraintSpec& s) {
   }
   return c;
 }
-
-json vec3List(const std::vector<double>& flat) {
-  json out = json::array();
-  for (size_t k = 0; k + 2 < flat.size(); k += 3) out.push_back({flat[k], flat[k + 1], flat[k + 2]});
-  return out;
-}
-
-}  // namespace
 
 BoundaryCondition boundaryFromJson(const json& v) {
   if (v.is_null()) return BoundaryCondition::makeFree();

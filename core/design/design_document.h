@@ -15,6 +15,10 @@ nlohmann::json designDocument(const Designer& designer);
 nlohmann::json fieldDocument(const Designer& designer);
 nlohmann::json statsJson(const DesignStats& stats);
 
+// One constraint in the design format; `index` only labels error messages.
+ConstraintSpec constraintFromJson(const nlohmann::json& constraint, size_t index = 0);
+nlohmann::json constraintToJson(const ConstraintSpec& spec);
+
 BoundaryCondition boundaryFromJson(const nlohmann::json& value);
 nlohmann::json boundaryToJson(const BoundaryCondition& bc);
 
