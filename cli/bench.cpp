@@ -70,9 +70,10 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma, b
     designer.solve();
     solve.push_back(designer.stats().solveMs);
     reconstruct.push_back(timeMs([&] {
-      designer.solve();
-      designer.vertexVectors();
-    }) - designer.stats().solveMs);
+                            designer.solve();
+                            designer.vertexVectors();
+                          }) -
+                          designer.stats().solveMs);
     const int32_t face = (r * 7919 + 13) % nF;
     const int32_t i = designer.mesh().triangles[3 * face], j = designer.mesh().triangles[3 * face + 1];
     const int32_t id = designer.addEdge(i, j, 0.1, 1.0);

@@ -64,11 +64,12 @@ void printBenchTable(const nlohmann::json& r) {
   std::cout << std::fixed << std::setprecision(2);
   std::cout << "| mesh | E | nnz/row M | nnz/row L | analyze ms | factor ms | solve ms | update ms | "
                "50-edge stroke+solve ms | reconstruct ms |\n|---|---|---|---|---|---|---|---|---|---|\n";
-  std::cout << "| " << r["mesh"].get<std::string>() << " | " << r["edges"] << " | " << r["nnzPerRowM"].get<double>()
-            << " | " << r["nnzPerRowL"].get<double>() << " | " << r["analyzeMs"].get<double>() << " | "
-            << r["factorMs"].get<double>() << " | " << r["solveMs"].get<double>() << " | "
-            << std::setprecision(3) << r["updateMs"].get<double>() << " | " << std::setprecision(2)
-            << r["strokeUpdateSolveMs"].get<double>() << " | " << r["reconstructMs"].get<double>() << " |\n";
+  std::cout << "| " << r["mesh"].get<std::string>() << " | " << r["edges"] << " | "
+            << r["nnzPerRowM"].get<double>() << " | " << r["nnzPerRowL"].get<double>() << " | "
+            << r["analyzeMs"].get<double>() << " | " << r["factorMs"].get<double>() << " | "
+            << r["solveMs"].get<double>() << " | " << std::setprecision(3) << r["updateMs"].get<double>()
+            << " | " << std::setprecision(2) << r["strokeUpdateSolveMs"].get<double>() << " | "
+            << r["reconstructMs"].get<double>() << " |\n";
 }
 
 int bench(int argc, char** argv) {

@@ -86,7 +86,8 @@ void validatePoint(const MeshTopology& t, const SurfacePoint& p, size_t index) {
                      ", which does not exist");
   for (const double b : p.bary)
     if (!std::isfinite(b) || b < -1e-6 || b > 1 + 1e-6)
-      throw InputError("stroke point " + std::to_string(index) + " has barycentric coordinates outside [0, 1]");
+      throw InputError("stroke point " + std::to_string(index) +
+                       " has barycentric coordinates outside [0, 1]");
 }
 
 SurfacePoint normalized(const SurfacePoint& p) {
@@ -128,7 +129,8 @@ std::vector<EdgeRow> strokeRows(const SurfaceMesh& mesh, const MeshTopology& t,
   std::vector<EdgeRow> rows;
   for (size_t k = 0; k + 1 < points.size(); ++k) walkSegment(mesh, t, points[k], points[k + 1], rows);
   if (!rows.empty()) return rows;
-  const Eigen::Vector3d chord = surfacePointPosition(mesh, points.back()) - surfacePointPosition(mesh, points.front());
+  const Eigen::Vector3d chord =
+      surfacePointPosition(mesh, points.back()) - surfacePointPosition(mesh, points.front());
   const Eigen::Vector3d tangent = projectToFace(mesh, points.front().face, chord);
   if (!(tangent.norm() > 0)) throw InputError("the stroke has zero length");
   return vectorRows(mesh, t, points.front().face, tangent.normalized());

@@ -21,7 +21,8 @@ std::vector<EdgeRow> vectorRows(const SurfaceMesh& mesh, const MeshTopology& top
                                 const Eigen::Vector3d& u);
 
 // Walks the surface between consecutive points and emits c_e = t . p_e for every crossed edge, t the unit
-// tangent of the walk where it crosses. A stroke that stays inside one face becomes a vector constraint there.
+// tangent of the walk where it crosses. A stroke that stays inside one face becomes a vector constraint
+// there.
 std::vector<EdgeRow> strokeRows(const SurfaceMesh& mesh, const MeshTopology& topology,
                                 const std::vector<SurfacePoint>& points);
 

@@ -3,7 +3,8 @@
 namespace tvf {
 
 SourceTargets singularTargets(const SurfaceMesh&, const MeshTopology& t, const MeshGeometry& g,
-                              const std::vector<ConstraintSpec>& sources, const std::vector<ConstraintSpec>& sinks,
+                              const std::vector<ConstraintSpec>& sources,
+                              const std::vector<ConstraintSpec>& sinks,
                               const std::vector<ConstraintSpec>& vortices) {
   SourceTargets out{Eigen::VectorXd::Zero(t.numVertices), Eigen::VectorXd::Zero(t.numFaces)};
   for (const auto& s : sources) out.divergence[s.element] -= s.strength / g.star0[s.element];

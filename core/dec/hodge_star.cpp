@@ -48,7 +48,8 @@ MeshGeometry computeMeshGeometry(const SurfaceMesh& mesh, const MeshTopology& t)
       g.star1[t.edgeOf(f, c)] += 0.5 * cot[b];
       const int32_t v = mesh.triangles[3 * f + c];
       circumcentric[v] += ((p[a] - p[c]).squaredNorm() * cot[b] + (p[b] - p[c]).squaredNorm() * cot[a]) / 8;
-      // Whitney mass of edge (c, a): (|p_ab|^2 + |p_bc|^2 - p_ab . p_bc) / (24 |t|), with b the opposite corner.
+      // Whitney mass of edge (c, a): (|p_ab|^2 + |p_bc|^2 - p_ab . p_bc) / (24 |t|), with b the opposite
+      // corner.
       const Eigen::Vector3d u = p[b] - p[a], w = p[c] - p[b];
       g.whitneyMass1[t.edgeOf(f, c)] += (u.squaredNorm() + w.squaredNorm() - u.dot(w)) / (24 * area);
     }
@@ -68,7 +69,9 @@ MeshGeometry computeMeshGeometry(const SurfaceMesh& mesh, const MeshTopology& t)
   }
   double lengthSum = 0;
   for (int32_t e = 0; e < t.numEdges; ++e)
-    lengthSum += (vertexPosition(mesh, t.edgeVertices[2 * e + 1]) - vertexPosition(mesh, t.edgeVertices[2 * e])).norm();
+    lengthSum +=
+        (vertexPosition(mesh, t.edgeVertices[2 * e + 1]) - vertexPosition(mesh, t.edgeVertices[2 * e]))
+            .norm();
   g.meanEdgeLength = lengthSum / std::max(1, t.numEdges);
   return g;
 }

@@ -9,13 +9,13 @@
 namespace tvf {
 
 struct MeshGeometry {
-  std::vector<double> faceArea;     // |t|
-  std::vector<double> cornerCot;    // 3 per face: cot of the angle at corner c (opposite edge c+1)
-  std::vector<double> cornerArea;   // 3 per face: mixed Voronoi area of the face's corner (always > 0)
-  Eigen::VectorXd star0;            // dual vertex area, strictly positive
-  Eigen::VectorXd star1;            // (cot a + cot b)/2; may be zero or negative on obtuse meshes
-  Eigen::VectorXd star2;            // 1/|t|
-  Eigen::VectorXd whitneyMass1;     // diagonal of the Whitney 1-form mass matrix, strictly positive
+  std::vector<double> faceArea;    // |t|
+  std::vector<double> cornerCot;   // 3 per face: cot of the angle at corner c (opposite edge c+1)
+  std::vector<double> cornerArea;  // 3 per face: mixed Voronoi area of the face's corner (always > 0)
+  Eigen::VectorXd star0;           // dual vertex area, strictly positive
+  Eigen::VectorXd star1;           // (cot a + cot b)/2; may be zero or negative on obtuse meshes
+  Eigen::VectorXd star2;           // 1/|t|
+  Eigen::VectorXd whitneyMass1;    // diagonal of the Whitney 1-form mass matrix, strictly positive
   int32_t positiveAreaFallbackVertices = 0;  // vertices whose circumcentric area was not positive
   double totalArea = 0, meanEdgeLength = 0;
 };

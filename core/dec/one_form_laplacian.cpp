@@ -57,7 +57,8 @@ SparseMatrix fixedAngleRows(const MeshTopology& t, const MeshGeometry& g, const 
       const double beta = angles[e];
       const FluxStencil flux = boundaryFlux(t, g, f, c);
       entries.emplace_back(row, e, std::cos(beta) * t.signOf(f, c));
-      for (int k = 0; k < 2; ++k) entries.emplace_back(row, flux.edge[k], std::sin(beta) * flux.coefficient[k]);
+      for (int k = 0; k < 2; ++k)
+        entries.emplace_back(row, flux.edge[k], std::sin(beta) * flux.coefficient[k]);
       ++row;
     }
   SparseMatrix Z(row, t.numEdges);
@@ -96,7 +97,9 @@ SparseMatrix biLaplacian(const SparseMatrix& M, const MeshGeometry& g, double ga
   return result;
 }
 
-double meanDiagonal(const SparseMatrix& A) { return A.rows() > 0 ? A.diagonal().sum() / A.rows() : 1.0; }
+double meanDiagonal(const SparseMatrix& A) {
+  return A.rows() > 0 ? A.diagonal().sum() / A.rows() : 1.0;
+}
 
 std::vector<double> boundaryEdgeAngles(const MeshTopology& t, const BoundaryCondition& bc) {
   if (bc.free) return {};

@@ -9,12 +9,18 @@ using nlohmann::json;
 
 const char* kindName(ConstraintKind k) {
   switch (k) {
-    case ConstraintKind::Stroke: return "stroke";
-    case ConstraintKind::Vector: return "vector";
-    case ConstraintKind::Edge: return "edge";
-    case ConstraintKind::Source: return "source";
-    case ConstraintKind::Sink: return "sink";
-    case ConstraintKind::Vortex: return "vortex";
+    case ConstraintKind::Stroke:
+      return "stroke";
+    case ConstraintKind::Vector:
+      return "vector";
+    case ConstraintKind::Edge:
+      return "edge";
+    case ConstraintKind::Source:
+      return "source";
+    case ConstraintKind::Sink:
+      return "sink";
+    case ConstraintKind::Vortex:
+      return "vortex";
   }
   return "";
 }
@@ -36,7 +42,8 @@ void numbers(const json& array, double* out, size_t n, const std::string& what) 
   if (!array.is_array() || array.size() != n)
     throw InputError(what + " must be a list of " + std::to_string(n) + " numbers");
   for (size_t k = 0; k < n; ++k) {
-    if (!array[k].is_number()) throw InputError(what + " must be a list of " + std::to_string(n) + " numbers");
+    if (!array[k].is_number())
+      throw InputError(what + " must be a list of " + std::to_string(n) + " numbers");
     out[k] = array[k].get<double>();
   }
 }
@@ -59,7 +66,8 @@ ConstraintSpec constraintFromJson(const json& c, size_t index) {
   s.weight = number(c, "weight", 1.0, where);
   if (type == "stroke") {
     s.kind = ConstraintKind::Stroke;
-    if (!c.contains("points") || !c["points"].is_array()) throw InputError(where + ": a stroke needs \"points\"");
+    if (!c.contains("points") || !c["points"].is_array())
+      throw InputError(where + ": a stroke needs \"points\"");
     for (const json& p : c["points"]) {
       SurfacePoint q{};
       q.face = integer(p, "face", where + " point");
@@ -95,7 +103,8 @@ json constraintToJson(const ConstraintSpec& s) {
   switch (s.kind) {
     case ConstraintKind::Stroke: {
       json points = json::array();
-      for (const auto& p : s.points) points.push_back({{"face", p.face}, {"bary", {p.bary[0], p.bary[1], p.bary[2]}}});
+      for (const auto& p : s.points)
+        points.push_back({{"face", p.face}, {"bary", {p.bary[0], p.bary[1], p.bary[2]}}});
       c["points"] = points;
       c["strength"] = s.strength;
       c["weight"] = s.weight;
@@ -131,7 +140,8 @@ BoundaryCondition boundaryFromJson(const json& v) {
     if (name == "free") return BoundaryCondition::makeFree();
     if (name == "tangential") return BoundaryCondition::tangential();
     if (name == "normal") return BoundaryCondition::normal();
-    throw InputError("boundary: unknown condition \"" + name + "\" (free, tangential, normal or {\"angle\": radians})");
+    throw InputError("boundary: unknown condition \"" + name +
+                     "\" (free, tangential, normal or {\"angle\": radians})");
   }
   if (!v.is_object() || !v.contains("angle") || !v["angle"].is_number())
     throw InputError("boundary must be \"free\", \"tangential\", \"normal\" or {\"angle\": radians}");
@@ -167,7 +177,8 @@ void applyDesignDocument(Designer& designer, const json& doc) {
   std::vector<ConstraintSpec> specs;
   if (doc.contains("constraints")) {
     if (!doc["constraints"].is_array()) throw InputError("design: \"constraints\" must be a list");
-    for (size_t k = 0; k < doc["constraints"].size(); ++k) specs.push_back(constraintFromJson(doc["constraints"][k], k));
+    for (size_t k = 0; k < doc["constraints"].size(); ++k)
+      specs.push_back(constraintFromJson(doc["constraints"][k], k));
   }
   // Apply to a scratch copy of the settings first so a bad entry leaves the designer untouched.
   const BoundaryCondition oldBc = designer.boundary();
@@ -198,7 +209,9 @@ void applyDesignDocument(Designer& designer, const json& doc) {
 json designDocument(const Designer& designer) {
   json constraints = json::array();
   for (const auto& s : designer.constraints()) constraints.push_back(constraintToJson(s));
-  return {{"boundary", boundaryToJson(designer.boundary())}, {"gamma", designer.gamma()}, {"constraints", constraints}};
+  return {{"boundary", boundaryToJson(designer.boundary())},
+          {"gamma", designer.gamma()},
+          {"constraints", constraints}};
 }
 
 json statsJson(const DesignStats& s) {
@@ -220,7 +233,8 @@ json fieldDocument(const Designer& designer) {
   const auto& ev = designer.edgeVertices();
   for (size_t k = 0; k + 1 < ev.size(); k += 2) edges.push_back({ev[k], ev[k + 1]});
   json singularities = json::array();
-  for (const auto& s : designer.singularities()) singularities.push_back({{"vertex", s.vertex}, {"index", s.index}});
+  for (const auto& s : designer.singularities())
+    singularities.push_back({{"vertex", s.vertex}, {"index", s.index}});
   return {{"edges", edges},
           {"oneForm", designer.oneForm()},
           {"faceVectors", vec3List(designer.faceVectors())},

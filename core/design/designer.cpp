@@ -40,7 +40,9 @@ void requireFinite(double x, const char* what) {
 
 }  // namespace
 
-BoundaryCondition BoundaryCondition::tangential() { return fixedAngle(M_PI / 2); }
+BoundaryCondition BoundaryCondition::tangential() {
+  return fixedAngle(M_PI / 2);
+}
 
 struct Designer::Impl {
   SurfaceMesh mesh;
@@ -96,7 +98,8 @@ struct Designer::Impl {
   }
 
   // Weighted constraint rows sqrt(w) e_i as (row, weight) lists.
-  void weightedRows(const Active& a, double weight, std::vector<int32_t>& rows, std::vector<double>& w) const {
+  void weightedRows(const Active& a, double weight, std::vector<int32_t>& rows,
+                    std::vector<double>& w) const {
     for (const EdgeRow& r : a.rows) {
       rows.push_back(r.edge);
       w.push_back(weight * scale);
@@ -112,7 +115,8 @@ struct Designer::Impl {
   SparseMatrix systemMatrix(double relativeShift, bool everywhere) const {
     std::vector<Eigen::Triplet<double, int>> diag;
     for (int32_t e = 0; e < topology.numEdges; ++e)
-      if (everywhere || componentHasKernel(topology.edgeComponent[e])) diag.emplace_back(e, e, relativeShift * scale);
+      if (everywhere || componentHasKernel(topology.edgeComponent[e]))
+        diag.emplace_back(e, e, relativeShift * scale);
     for (const auto& [id, a] : active)
       if (isEdgeKind(a.spec.kind))
         for (const EdgeRow& r : a.rows) diag.emplace_back(r.edge, r.edge, a.spec.weight * scale);
@@ -125,7 +129,8 @@ struct Designer::Impl {
     if (baseStale) rebuildBase();
     int retries = 0;
     bool anyKernel = false;
-    for (int32_t c = 0; c < static_cast<int32_t>(topology.components.size()); ++c) anyKernel |= componentHasKernel(c);
+    for (int32_t c = 0; c < static_cast<int32_t>(topology.components.size()); ++c)
+      anyKernel |= componentHasKernel(c);
     shiftEverywhere = false;
     shift = anyKernel ? kInitialShift : 0.0;
     while (!system.factor(systemMatrix(shift, shiftEverywhere))) {
@@ -149,7 +154,8 @@ struct Designer::Impl {
       std::snprintf(text, sizeof text,
                     "diagonal shift %.0e x mean diagonal on the edges of %s, then one step of iterative "
                     "refinement against the unshifted matrix; %d retries",
-                    shift, shiftEverywhere ? "every component" : "components with handles or boundary", retries);
+                    shift, shiftEverywhere ? "every component" : "components with handles or boundary",
+                    retries);
     stats.kernelHandling = text;
     stats.factorKind = system.description();
     factorStale = false;
@@ -196,22 +202,27 @@ struct Designer::Impl {
 
   void validate(const ConstraintSpec& s) const {
     const auto faceOk = [&](int32_t f) { return f >= 0 && f < topology.numFaces; };
-    const auto vertexOk = [&](int32_t v) { return v >= 0 && v < topology.numVertices && topology.vertexFaceCount[v] > 0; };
+    const auto vertexOk = [&](int32_t v) {
+      return v >= 0 && v < topology.numVertices && topology.vertexFaceCount[v] > 0;
+    };
     requireFinite(s.strength, "strength");
     requireFinite(s.weight, "weight");
     if (isEdgeKind(s.kind) && !(s.weight > 0)) throw InputError("a constraint's weight must be positive");
     switch (s.kind) {
       case ConstraintKind::Vector:
-        if (!faceOk(s.element)) throw InputError("vector constraint: face " + std::to_string(s.element) + " does not exist");
+        if (!faceOk(s.element))
+          throw InputError("vector constraint: face " + std::to_string(s.element) + " does not exist");
         for (const double x : s.vector) requireFinite(x, "vector component");
         break;
       case ConstraintKind::Vortex:
-        if (!faceOk(s.element)) throw InputError("vortex: face " + std::to_string(s.element) + " does not exist");
+        if (!faceOk(s.element))
+          throw InputError("vortex: face " + std::to_string(s.element) + " does not exist");
         break;
       case ConstraintKind::Source:
       case ConstraintKind::Sink:
         if (!vertexOk(s.element))
-          throw InputError("source/sink: vertex " + std::to_string(s.element) + " does not exist or is unused");
+          throw InputError("source/sink: vertex " + std::to_string(s.element) +
+                           " does not exist or is unused");
         break;
       case ConstraintKind::Edge:
         requireFinite(s.value, "edge value");
@@ -302,9 +313,13 @@ void Designer::setMetisOrdering(bool metis) {
   impl_->factorStale = true;
 }
 
-void Designer::factor() { impl_->factorNow(); }
+void Designer::factor() {
+  impl_->factorNow();
+}
 
-int32_t Designer::add(const ConstraintSpec& spec) { return impl_->add(spec); }
+int32_t Designer::add(const ConstraintSpec& spec) {
+  return impl_->add(spec);
+}
 
 int32_t Designer::addStroke(const std::vector<SurfacePoint>& points, double strength, double weight) {
   ConstraintSpec s;
@@ -366,8 +381,9 @@ void Designer::remove(int32_t id) {
   if (isEdgeKind(a.spec.kind)) d.weightedRows(a, a.spec.weight, rows, w);
   d.applyUpdate(rows, w, true);
   d.active.erase(id);
-  d.order.erase(std::remove_if(d.order.begin(), d.order.end(), [id](const ConstraintSpec& s) { return s.id == id; }),
-                d.order.end());
+  d.order.erase(
+      std::remove_if(d.order.begin(), d.order.end(), [id](const ConstraintSpec& s) { return s.id == id; }),
+      d.order.end());
 }
 
 void Designer::setWeight(int32_t id, double weight) {
@@ -421,8 +437,12 @@ void Designer::Impl::deriveIfStale() {
   derivedStale = false;
 }
 
-const std::vector<double>& Designer::oneForm() const { return impl_->oneForm; }
-const std::vector<double>& Designer::faceVectors() const { return impl_->faceVectors; }
+const std::vector<double>& Designer::oneForm() const {
+  return impl_->oneForm;
+}
+const std::vector<double>& Designer::faceVectors() const {
+  return impl_->faceVectors;
+}
 const std::vector<double>& Designer::vertexVectors() const {
   impl_->deriveIfStale();
   return impl_->vertexVectors;
@@ -431,12 +451,24 @@ const std::vector<Singularity>& Designer::singularities() const {
   impl_->deriveIfStale();
   return impl_->singularities;
 }
-const DesignStats& Designer::stats() const { return impl_->stats; }
-const std::vector<ConstraintSpec>& Designer::constraints() const { return impl_->order; }
-const BoundaryCondition& Designer::boundary() const { return impl_->boundary; }
-double Designer::gamma() const { return impl_->gamma; }
-const SurfaceMesh& Designer::mesh() const { return impl_->mesh; }
-const std::vector<int32_t>& Designer::edgeVertices() const { return impl_->topology.edgeVertices; }
+const DesignStats& Designer::stats() const {
+  return impl_->stats;
+}
+const std::vector<ConstraintSpec>& Designer::constraints() const {
+  return impl_->order;
+}
+const BoundaryCondition& Designer::boundary() const {
+  return impl_->boundary;
+}
+double Designer::gamma() const {
+  return impl_->gamma;
+}
+const SurfaceMesh& Designer::mesh() const {
+  return impl_->mesh;
+}
+const std::vector<int32_t>& Designer::edgeVertices() const {
+  return impl_->topology.edgeVertices;
+}
 
 void Designer::assembleSystem(SparseMatrix& A, Eigen::VectorXd& b) {
   Impl& d = *impl_;
@@ -461,6 +493,8 @@ Eigen::VectorXd Designer::textureFaceVectors() const {
   return Eigen::Map<Eigen::VectorXd>(out.data(), out.size());
 }
 
-std::string Designer::infoJson() const { return meshInfoJson(impl_->mesh).dump(); }
+std::string Designer::infoJson() const {
+  return meshInfoJson(impl_->mesh).dump();
+}
 
 }  // namespace tvf

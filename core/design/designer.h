@@ -61,12 +61,13 @@ struct DesignStats {
   std::string kernelHandling;  // how the kernel of M was made definite
   double kernelShift = 0;      // the relative diagonal shift that made the factorization succeed
   std::vector<std::string> warnings;
-  std::string factorKind;      // e.g. "supernodal LL' (AMD)"
+  std::string factorKind;  // e.g. "supernodal LL' (AMD)"
 };
 
 class Designer {
  public:
-  // Builds topology and checks the mesh; throws InputError naming the first problem if it cannot be designed on.
+  // Builds topology and checks the mesh; throws InputError naming the first problem if it cannot be designed
+  // on.
   explicit Designer(SurfaceMesh mesh);
   ~Designer();
   Designer(Designer&&) noexcept;

@@ -14,11 +14,11 @@ struct HodgeDecomposition {
   Eigen::VectorXd coexact;   // delta b: divergence-free
   Eigen::VectorXd harmonic;  // the rest
   Eigen::VectorXd potential0, potential2;
-  Eigen::VectorXd metric;    // the 1-form inner product used (diagonal)
+  Eigen::VectorXd metric;  // the 1-form inner product used (diagonal)
   std::string metricName;
 };
 
-HodgeDecomposition hodgeDecompose(const SparseMatrix& d0, const SparseMatrix& d1, const MeshGeometry& geometry,
-                                  const Eigen::VectorXd& oneForm);
+HodgeDecomposition hodgeDecompose(const SparseMatrix& d0, const SparseMatrix& d1,
+                                  const MeshGeometry& geometry, const Eigen::VectorXd& oneForm);
 
 }  // namespace tvf

@@ -9,7 +9,9 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-double wrapAngle(double a) { return a - kTwoPi * std::floor((a + M_PI) / kTwoPi); }
+double wrapAngle(double a) {
+  return a - kTwoPi * std::floor((a + M_PI) / kTwoPi);
+}
 
 // Angle from direction `edge` to `u`, measured counter-clockwise about the face normal n.
 double angleFromEdge(const Eigen::Vector3d& edge, const Eigen::Vector3d& u, const Eigen::Vector3d& n) {
@@ -43,16 +45,19 @@ std::vector<Singularity> findSingularities(const SurfaceMesh& mesh, const MeshTo
     for (int32_t step = 0; step < valence && defined; ++step) {
       const int c = cornerOf(mesh, f, v);
       const int32_t b = mesh.triangles[3 * f + (c + 2) % 3];
-      const int32_t shared = t.edgeOf(f, (c + 2) % 3);  // edge (b -> v): leads to the next face counter-clockwise
+      const int32_t shared =
+          t.edgeOf(f, (c + 2) % 3);  // edge (b -> v): leads to the next face counter-clockwise
       const int32_t g = t.edgeFaces[2 * shared] == f ? t.edgeFaces[2 * shared + 1] : t.edgeFaces[2 * shared];
       const Eigen::Vector3d uf = Eigen::Map<const Eigen::Vector3d>(&faceVectors[3 * f]);
       const Eigen::Vector3d ug = Eigen::Map<const Eigen::Vector3d>(&faceVectors[3 * g]);
       if (uf.norm() <= tiny || ug.norm() <= tiny) defined = false;
       const Eigen::Vector3d edge = vertexPosition(mesh, b) - vertexPosition(mesh, v);
-      turning += wrapAngle(angleFromEdge(edge, ug, faceNormal(mesh, g)) - angleFromEdge(edge, uf, faceNormal(mesh, f)));
+      turning += wrapAngle(angleFromEdge(edge, ug, faceNormal(mesh, g)) -
+                           angleFromEdge(edge, uf, faceNormal(mesh, f)));
       Eigen::Vector3d p[3];
       facePositions(mesh, f, p);
-      angleSum += std::acos(std::clamp((p[(c + 1) % 3] - p[c]).normalized().dot((p[(c + 2) % 3] - p[c]).normalized()), -1.0, 1.0));
+      angleSum += std::acos(std::clamp(
+          (p[(c + 1) % 3] - p[c]).normalized().dot((p[(c + 2) % 3] - p[c]).normalized()), -1.0, 1.0));
       f = g;
     }
     if (!defined) continue;

@@ -20,8 +20,8 @@ void whitneyWeights(const double c[3], const double a[3], double w[3]) {
 
 }  // namespace
 
-Eigen::Vector3d whitneyVector(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm, int32_t f,
-                              const double bary[3]) {
+Eigen::Vector3d whitneyVector(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,
+                              int32_t f, const double bary[3]) {
   Eigen::Vector3d p[3];
   facePositions(mesh, f, p);
   const Eigen::Vector3d cross = (p[1] - p[0]).cross(p[2] - p[0]);
@@ -50,7 +50,8 @@ Eigen::Vector2d whitneyTextureVector(const SurfaceMesh& mesh, const MeshTopology
   return (w[0] * perp(q[2] - q[1]) + w[1] * perp(q[0] - q[2]) + w[2] * perp(q[1] - q[0])) / twiceArea;
 }
 
-void faceVectors(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm, std::vector<double>& out) {
+void faceVectors(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,
+                 std::vector<double>& out) {
   const double centre[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
   out.resize(3 * static_cast<size_t>(t.numFaces));
   for (int32_t f = 0; f < t.numFaces; ++f) {
@@ -59,8 +60,8 @@ void faceVectors(const SurfaceMesh& mesh, const MeshTopology& t, const double* o
   }
 }
 
-void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g, const double* oneForm,
-                   std::vector<double>& out) {
+void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                   const double* oneForm, std::vector<double>& out) {
   out.assign(3 * static_cast<size_t>(t.numVertices), 0.0);
   std::vector<double> weight(t.numVertices, 0.0);
   for (int32_t f = 0; f < t.numFaces; ++f)

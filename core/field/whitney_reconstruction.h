@@ -14,8 +14,8 @@ Eigen::Vector3d whitneyVector(const SurfaceMesh& mesh, const MeshTopology& topol
                               int32_t face, const double bary[3]);
 
 // Eq. 4 with UV positions and UV area: the field pushed into the texture domain (needs mesh.cornerUVs).
-Eigen::Vector2d whitneyTextureVector(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,
-                                     int32_t face, const double bary[3]);
+Eigen::Vector2d whitneyTextureVector(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                     const double* oneForm, int32_t face, const double bary[3]);
 
 // Per-face vectors at barycentres (3 per face).
 void faceVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,

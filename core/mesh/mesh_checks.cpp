@@ -33,7 +33,8 @@ void checkFinitePositions(const SurfaceMesh& mesh, std::vector<MeshProblem>& out
   for (int32_t v = 0; v < mesh.numVertices(); ++v)
     for (int32_t k = 0; k < 3; ++k)
       if (!std::isfinite(mesh.positions[3 * v + k])) {
-        out.push_back({"vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or infinity)", true});
+        out.push_back(
+            {"vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or infinity)", true});
         return;
       }
 }
@@ -129,7 +130,8 @@ void checkManifoldVertices(const SurfaceMesh& mesh, const MeshTopology& t, std::
   for (const int32_t v : mesh.triangles) ++start[v + 1];
   std::partial_sum(start.begin(), start.end(), start.begin());
   std::vector<int32_t> corners(mesh.triangles.size()), fill(start.begin(), start.end() - 1);
-  for (int32_t k = 0; k < static_cast<int32_t>(mesh.triangles.size()); ++k) corners[fill[mesh.triangles[k]]++] = k;
+  for (int32_t k = 0; k < static_cast<int32_t>(mesh.triangles.size()); ++k)
+    corners[fill[mesh.triangles[k]]++] = k;
   std::vector<int32_t> fan;
   for (int32_t v = 0; v < t.numVertices; ++v) {
     const int32_t n = start[v + 1] - start[v];
@@ -152,8 +154,8 @@ void checkManifoldVertices(const SurfaceMesh& mesh, const MeshTopology& t, std::
     int32_t fans = 0;
     for (int32_t a = 0; a < n; ++a) fans += root(a) == a;
     if (fans > 1) {
-      out.push_back({"vertex " + std::to_string(v) + " is non-manifold: its faces form " + std::to_string(fans) +
-                         " separate fans",
+      out.push_back({"vertex " + std::to_string(v) + " is non-manifold: its faces form " +
+                         std::to_string(fans) + " separate fans",
                      true});
       return;
     }
@@ -165,14 +167,17 @@ void noteUnusedVertices(const MeshTopology& t, std::vector<MeshProblem>& out) {
   for (int32_t v = 0; v < t.numVertices; ++v)
     if (t.vertexFaceCount[v] == 0 && count++ == 0) first = v;
   if (count > 0)
-    out.push_back({std::to_string(count) + " vertices are not used by any face and are ignored (first: vertex " +
+    out.push_back({std::to_string(count) +
+                       " vertices are not used by any face and are ignored (first: vertex " +
                        std::to_string(first) + ")",
                    false});
 }
 
 }  // namespace
 
-bool MeshReport::usable() const { return firstFatal().empty(); }
+bool MeshReport::usable() const {
+  return firstFatal().empty();
+}
 
 std::string MeshReport::firstFatal() const {
   for (const auto& p : problems)

@@ -28,6 +28,8 @@ inline double faceArea(const SurfaceMesh& mesh, int32_t f) {
 }
 
 // cot of the angle between u and v.
-inline double cotan(const Eigen::Vector3d& u, const Eigen::Vector3d& v) { return u.dot(v) / u.cross(v).norm(); }
+inline double cotan(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  return u.dot(v) / u.cross(v).norm();
+}
 
 }  // namespace tvf

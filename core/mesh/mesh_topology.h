@@ -1,6 +1,6 @@
 #pragma once
-// Combinatorics of a triangle mesh: canonically oriented edges, signed face-edge incidence, boundary loops and
-// connected components. Built only from indices that are known to be in range (see mesh_checks).
+// Combinatorics of a triangle mesh: canonically oriented edges, signed face-edge incidence, boundary loops
+// and connected components. Built only from indices that are known to be in range (see mesh_checks).
 #include <cstdint>
 #include <vector>
 
@@ -25,7 +25,7 @@ struct MeshTopology {
   std::vector<int32_t> edgeFaces;
   std::vector<int32_t> edgeFaceCount;
   std::vector<uint8_t> isBoundaryEdge, isBoundaryVertex;
-  std::vector<int32_t> vertexFaceCount;  // 0 for vertices no face uses
+  std::vector<int32_t> vertexFaceCount;                  // 0 for vertices no face uses
   std::vector<int32_t> vertexEdgeStart, vertexEdgeList;  // CSR: edges incident to each vertex
   // Each loop is its boundary edges in walking order (following the faces' orientation).
   std::vector<std::vector<int32_t>> boundaryLoops;

@@ -18,7 +18,8 @@ struct SurfaceMesh {
   std::vector<int32_t> triangles;  // i, j, k per face, in the file's winding
   // u, v per face corner (6 floats per face) when the source carries texture coordinates; else empty.
   std::vector<float> cornerUVs;
-  // For glTF: the welded vertex of every source vertex (all primitives concatenated in load order); else empty.
+  // For glTF: the welded vertex of every source vertex (all primitives concatenated in load order); else
+  // empty.
   std::vector<int32_t> sourceToWelded;
 
   int32_t numVertices() const { return static_cast<int32_t>(positions.size() / 3); }

@@ -101,7 +101,8 @@ void FactoredSystem::updateDiagonal(const std::vector<int32_t>& rows, const std:
   if (rows.empty()) return;
   const int k = static_cast<int>(rows.size());
   // One column per row: sqrt(w) e_row. Columns must be sorted and packed; each has one entry.
-  CholmodSparsePtr C(cholmod_allocate_sparse(s.n, k, k, 1, 1, 0, CHOLMOD_REAL, s.common.get()), {s.common.get()});
+  CholmodSparsePtr C(cholmod_allocate_sparse(s.n, k, k, 1, 1, 0, CHOLMOD_REAL, s.common.get()),
+                     {s.common.get()});
   if (!C) throw std::runtime_error("CHOLMOD could not allocate an update");
   int* p = static_cast<int*>(C->p);
   int* i = static_cast<int*>(C->i);
@@ -128,13 +129,16 @@ void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   rhs.xtype = CHOLMOD_REAL;
   rhs.dtype = CHOLMOD_DOUBLE;
   cholmod_dense* out = s.solution.release();
-  cholmod_solve2(CHOLMOD_A, s.factor.get(), &rhs, nullptr, &out, nullptr, &s.ySolve, &s.eSolve, s.common.get());
+  cholmod_solve2(CHOLMOD_A, s.factor.get(), &rhs, nullptr, &out, nullptr, &s.ySolve, &s.eSolve,
+                 s.common.get());
   s.solution.reset(out);
   if (!out) throw std::runtime_error("CHOLMOD solve failed");
   x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(out->x), b.size());
 }
 
-bool FactoredSystem::factored() const { return impl_->factor != nullptr; }
+bool FactoredSystem::factored() const {
+  return impl_->factor != nullptr;
+}
 
 int64_t FactoredSystem::factorNonzeros() const {
   const cholmod_factor* L = impl_->factor.get();
@@ -146,10 +150,13 @@ int64_t FactoredSystem::factorNonzeros() const {
   return nnz;
 }
 
-const FactorTimings& FactoredSystem::timings() const { return impl_->timings; }
+const FactorTimings& FactoredSystem::timings() const {
+  return impl_->timings;
+}
 
 std::string FactoredSystem::description() const {
-  return std::string(impl_->wasSupernodal ? "supernodal LL'" : "simplicial LDL'") + " factor, kept as simplicial LDL' for updates (" +
+  return std::string(impl_->wasSupernodal ? "supernodal LL'" : "simplicial LDL'") +
+         " factor, kept as simplicial LDL' for updates (" +
          (impl_->ordering == FillOrdering::Metis ? "METIS" : "AMD") + " ordering)";
 }
 

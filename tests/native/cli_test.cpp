@@ -42,7 +42,8 @@ fs::path writeOff(const std::string& name, const tvf::SurfaceMesh& m) {
   for (int v = 0; v < m.numVertices(); ++v)
     out << m.positions[3 * v] << " " << m.positions[3 * v + 1] << " " << m.positions[3 * v + 2] << "\n";
   for (int f = 0; f < m.numFaces(); ++f)
-    out << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2] << "\n";
+    out << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2]
+        << "\n";
   return path;
 }
 
@@ -58,7 +59,8 @@ TEST(Cli, InfoReportsTopology) {
   const CliRun r = runTvf("info " + writeOff("cli_torus.off", tvf::testing::torus(12, 8, 2, 0.7)).string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto info = nlohmann::json::parse(r.out);
-  for (const char* key : {"vertices", "edges", "faces", "components", "boundaryLoops", "eulerCharacteristic", "genus", "problems"})
+  for (const char* key : {"vertices", "edges", "faces", "components", "boundaryLoops", "eulerCharacteristic",
+                          "genus", "problems"})
     EXPECT_TRUE(info.contains(key)) << key;
   EXPECT_EQ(info["genus"], 1);
   EXPECT_EQ(info["edges"], 288);
@@ -70,9 +72,10 @@ TEST(Cli, InfoListsProblemsOfAnUnusableMesh) {
   std::swap(m.triangles[0], m.triangles[1]);
   const CliRun r = runTvf("info " + writeOff("cli_flipped.off", m).string());
   ASSERT_EQ(r.exitCode, 0);
-  EXPECT_NE(nlohmann::json::parse(r.out)["problems"].dump().find("inconsistently oriented"), std::string::npos);
+  EXPECT_NE(nlohmann::json::parse(r.out)["problems"].dump().find("inconsistently oriented"),
+            std::string::npos);
   const CliRun d = runTvf("design " + writeOff("cli_flipped.off", m).string() + " " +
-                       writeText("cli_empty_design.json", "{}").string());
+                          writeText("cli_empty_design.json", "{}").string());
   EXPECT_EQ(d.exitCode, 2);
   EXPECT_NE(d.err.find("inconsistently oriented"), std::string::npos) << d.err;
 }
@@ -92,7 +95,8 @@ TEST(Cli, DesignWritesTheFieldDocument) {
   EXPECT_EQ(field["faceVectors"][0].size(), 3u);
   ASSERT_EQ(field["singularities"].size(), 2u);
   EXPECT_EQ(field["singularities"][0]["index"], 1.0);
-  for (const char* key : {"factorMs", "solveMs", "nnzPerRowM", "nnzPerRowL", "kernelHandling", "positiveAreaFallbackVertices"})
+  for (const char* key :
+       {"factorMs", "solveMs", "nnzPerRowM", "nnzPerRowL", "kernelHandling", "positiveAreaFallbackVertices"})
     EXPECT_TRUE(field["stats"].contains(key)) << key;
 }
 
@@ -100,13 +104,17 @@ TEST(Cli, BadInputExitsTwoWithAReason) {
   EXPECT_EQ(runTvf("info /nonexistent/mesh.off").exitCode, 2);
   EXPECT_NE(runTvf("info /nonexistent/mesh.off").err.find("mesh.off"), std::string::npos);
   EXPECT_EQ(runTvf("info " + writeText("cli_garbage.glb", "not a glb at all").string()).exitCode, 2);
-  EXPECT_EQ(runTvf("info " + writeText("cli_nofaces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n").string()).exitCode, 2);
+  EXPECT_EQ(
+      runTvf("info " + writeText("cli_nofaces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n").string()).exitCode,
+      2);
   const fs::path mesh = writeOff("cli_sphere.off", tvf::testing::icosphere(1));
-  const CliRun badJson = runTvf("design " + mesh.string() + " " + writeText("cli_bad.json", "{ nope").string());
+  const CliRun badJson =
+      runTvf("design " + mesh.string() + " " + writeText("cli_bad.json", "{ nope").string());
   EXPECT_EQ(badJson.exitCode, 2);
   EXPECT_NE(badJson.err.find("not valid JSON"), std::string::npos) << badJson.err;
-  const CliRun badFace = runTvf("design " + mesh.string() + " " +
-                             writeText("cli_badface.json", R"({"constraints": [{"type": "vortex", "face": 9999}]})").string());
+  const CliRun badFace = runTvf(
+      "design " + mesh.string() + " " +
+      writeText("cli_badface.json", R"({"constraints": [{"type": "vortex", "face": 9999}]})").string());
   EXPECT_EQ(badFace.exitCode, 2);
   EXPECT_NE(badFace.err.find("face 9999"), std::string::npos) << badFace.err;
   EXPECT_EQ(runTvf("frobnicate x").exitCode, 2);

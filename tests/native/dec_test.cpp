@@ -60,7 +60,8 @@ int countNearZeroEigenvalues(const SparseMatrix& M, double& minEigenvalue) {
 }  // namespace
 
 TEST(ExteriorDerivative, D1TimesD0IsExactlyZero) {
-  for (const SurfaceMesh& m : {torus(12, 8, 2, 0.7), holedPlate(5, 3, {{1, 1}, {3, 1}}, 2), flatGrid(6, 1, true)}) {
+  for (const SurfaceMesh& m :
+       {torus(12, 8, 2, 0.7), holedPlate(5, 3, {{1, 1}, {3, 1}}, 2), flatGrid(6, 1, true)}) {
     const Built b = build(m);
     const SparseMatrix product = exteriorDerivative1(b.topology) * exteriorDerivative0(b.topology);
     EXPECT_EQ(SparseMatrix(product.pruned(0.0)).nonZeros(), 0);

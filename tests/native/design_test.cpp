@@ -31,11 +31,14 @@ Eigen::Vector3d centroid(const SurfaceMesh& m, int f) {
 
 double maxRelativeError(const Designer& d, const Eigen::Vector3d& u) {
   double worst = 0;
-  for (int f = 0; f < d.mesh().numFaces(); ++f) worst = std::max(worst, (faceVector(d, f) - u).norm() / u.norm());
+  for (int f = 0; f < d.mesh().numFaces(); ++f)
+    worst = std::max(worst, (faceVector(d, f) - u).norm() / u.norm());
   return worst;
 }
 
-Eigen::VectorXd asVector(const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()); }
+Eigen::VectorXd asVector(const std::vector<double>& v) {
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size());
+}
 
 double relativeDifference(const std::vector<double>& a, const std::vector<double>& b) {
   return (asVector(a) - asVector(b)).norm() / std::max(1e-300, asVector(b).norm());
@@ -43,8 +46,8 @@ double relativeDifference(const std::vector<double>& a, const std::vector<double
 
 // A stroke across a flat mesh along direction u through point `through`, as surface points picked the way the
 // page does (face + barycentric), sampled densely.
-std::vector<SurfacePoint> straightStroke(const SurfaceMesh& m, const Eigen::Vector3d& from, const Eigen::Vector3d& to,
-                                         int samples) {
+std::vector<SurfacePoint> straightStroke(const SurfaceMesh& m, const Eigen::Vector3d& from,
+                                         const Eigen::Vector3d& to, int samples) {
   std::vector<SurfacePoint> points;
   for (int s = 0; s <= samples; ++s) {
     const Eigen::Vector3d x = from + (to - from) * double(s) / samples;
@@ -53,7 +56,8 @@ std::vector<SurfacePoint> straightStroke(const SurfaceMesh& m, const Eigen::Vect
       facePositions(m, f, p);
       const Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]);
       double b[3];
-      for (int k = 0; k < 3; ++k) b[k] = (p[(k + 2) % 3] - p[(k + 1) % 3]).cross(x - p[(k + 1) % 3]).dot(n) / n.squaredNorm();
+      for (int k = 0; k < 3; ++k)
+        b[k] = (p[(k + 2) % 3] - p[(k + 1) % 3]).cross(x - p[(k + 1) % 3]).dot(n) / n.squaredNorm();
       if (b[0] >= -1e-12 && b[1] >= -1e-12 && b[2] >= -1e-12) {
         points.push_back({f, {b[0], b[1], b[2]}});
         break;
@@ -73,7 +77,8 @@ SurfacePoint surfacePointNear(const SurfaceMesh& m, const Eigen::Vector3d& x) {
     if (s <= 0) continue;
     const Eigen::Vector3d y = s * x;
     double b[3];
-    for (int k = 0; k < 3; ++k) b[k] = (p[(k + 2) % 3] - p[(k + 1) % 3]).cross(y - p[(k + 1) % 3]).dot(n) / n.squaredNorm();
+    for (int k = 0; k < 3; ++k)
+      b[k] = (p[(k + 2) % 3] - p[(k + 1) % 3]).cross(y - p[(k + 1) % 3]).dot(n) / n.squaredNorm();
     if (b[0] >= -1e-12 && b[1] >= -1e-12 && b[2] >= -1e-12) return {f, {b[0], b[1], b[2]}};
   }
   return {0, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
@@ -107,7 +112,8 @@ TEST(Reconstruction, TextureDomainVersionIsTheOneFormsDualInUVSpace) {
   J << 0.5, 0.2, -0.1, 0.7;
   for (int f = 0; f < m.numFaces(); ++f)
     for (int c = 0; c < 3; ++c) {
-      const Eigen::Vector2d p(m.positions[3 * m.triangles[3 * f + c]], m.positions[3 * m.triangles[3 * f + c] + 1]);
+      const Eigen::Vector2d p(m.positions[3 * m.triangles[3 * f + c]],
+                              m.positions[3 * m.triangles[3 * f + c] + 1]);
       const Eigen::Vector2d q = J * p;
       m.cornerUVs.push_back(float(q.x()));
       m.cornerUVs.push_back(float(q.y()));
@@ -119,7 +125,8 @@ TEST(Reconstruction, TextureDomainVersionIsTheOneFormsDualInUVSpace) {
     c[e] = u.dot(vertexPosition(m, t.edgeVertices[2 * e + 1]) - vertexPosition(m, t.edgeVertices[2 * e]));
   const Eigen::Vector2d expected = J.inverse().transpose() * u.head<2>();
   const double centre[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
-  for (int f = 0; f < t.numFaces; ++f) EXPECT_LT((whitneyTextureVector(m, t, c.data(), f, centre) - expected).norm(), 1e-6);
+  for (int f = 0; f < t.numFaces; ++f)
+    EXPECT_LT((whitneyTextureVector(m, t, c.data(), f, centre) - expected).norm(), 1e-6);
 }
 
 TEST(Design, VectorConstraintsFromAConstantFieldReproduceItEverywhere) {
@@ -168,9 +175,8 @@ TEST(Design, SingularityIndicesSumToTheEulerCharacteristic) {
     SurfaceMesh mesh;
     int chi;
   };
-  const std::vector<Case> cases = {{icosphere(3), 2},
-                                   {torus(32, 16, 2, 0.7), 0},
-                                   {holedPlate(7, 3, {{1, 1}, {3, 1}, {5, 1}}, 3), -4}};
+  const std::vector<Case> cases = {
+      {icosphere(3), 2}, {torus(32, 16, 2, 0.7), 0}, {holedPlate(7, 3, {{1, 1}, {3, 1}, {5, 1}}, 3), -4}};
   for (const Case& c : cases) {
     Designer d(c.mesh);
     const int nF = c.mesh.numFaces();
@@ -326,8 +332,9 @@ TEST(Design, ConstraintsOnlyAffectTheirOwnComponent) {
 }
 
 TEST(Design, FactoringNeverFailsWithoutConstraints) {
-  for (const SurfaceMesh& m : {icosphere(2), torus(12, 8, 2, 0.7), holedPlate(7, 3, {{1, 1}, {3, 1}, {5, 1}}, 2),
-                               flatAnnulus(3, 16, 1, 2), disjointUnion(flatGrid(4), torus(8, 6, 2, 0.7))})
+  for (const SurfaceMesh& m :
+       {icosphere(2), torus(12, 8, 2, 0.7), holedPlate(7, 3, {{1, 1}, {3, 1}, {5, 1}}, 2),
+        flatAnnulus(3, 16, 1, 2), disjointUnion(flatGrid(4), torus(8, 6, 2, 0.7))})
     for (const BoundaryCondition& bc :
          {BoundaryCondition::makeFree(), BoundaryCondition::tangential(), BoundaryCondition::normal()}) {
       Designer d(m);
@@ -431,15 +438,19 @@ TEST(Hodge, PartsAreOrthogonalAndHaveTheRightCurlAndDivergence) {
   const SparseMatrix d0 = exteriorDerivative0(t), d1 = exteriorDerivative1(t);
   const Eigen::VectorXd c = asVector(d.oneForm());
   const HodgeDecomposition h = hodgeDecompose(d0, d1, g, c);
-  const auto inner = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return a.dot(h.metric.asDiagonal() * b); };
+  const auto inner = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    return a.dot(h.metric.asDiagonal() * b);
+  };
   const double n2 = inner(c, c);
   EXPECT_LT(std::abs(inner(h.exact, h.coexact)) / n2, 1e-9);
   EXPECT_LT(std::abs(inner(h.exact, h.harmonic)) / n2, 1e-9);
   EXPECT_LT(std::abs(inner(h.coexact, h.harmonic)) / n2, 1e-9);
-  EXPECT_LT((d1 * h.exact).norm(), 1e-12 * c.norm());                                   // curl-free
-  EXPECT_LT((d0.transpose() * (h.metric.asDiagonal() * h.coexact)).norm(), 1e-9 * c.norm());  // divergence-free
+  EXPECT_LT((d1 * h.exact).norm(), 1e-12 * c.norm());  // curl-free
+  EXPECT_LT((d0.transpose() * (h.metric.asDiagonal() * h.coexact)).norm(),
+            1e-9 * c.norm());  // divergence-free
   EXPECT_LT((d1 * h.harmonic).norm(), 1e-9 * c.norm());
-  EXPECT_GT(inner(h.harmonic, h.harmonic) / n2, 1e-4);  // a torus has harmonic fields and the vector asks for one
+  EXPECT_GT(inner(h.harmonic, h.harmonic) / n2,
+            1e-4);  // a torus has harmonic fields and the vector asks for one
 }
 
 TEST(Design, KernelShiftHasNegligibleEffect) {
@@ -448,8 +459,10 @@ TEST(Design, KernelShiftHasNegligibleEffect) {
     SurfaceMesh mesh;
     bool constrained;
   };
-  const std::vector<Case> cases = {{torus(14, 8, 2, 0.7), false}, {torus(14, 8, 2, 0.7), true},
-                                   {flatAnnulus(3, 16, 1, 2), false}, {flatGrid(8, 1, true), true}};
+  const std::vector<Case> cases = {{torus(14, 8, 2, 0.7), false},
+                                   {torus(14, 8, 2, 0.7), true},
+                                   {flatAnnulus(3, 16, 1, 2), false},
+                                   {flatGrid(8, 1, true), true}};
   for (const Case& c : cases) {
     Designer d(c.mesh);
     d.addSource(0, 1.0);

@@ -20,8 +20,8 @@ SurfaceMesh icosphere(int subdivisions);
 SurfaceMesh holedPlate(int width, int depth, const std::vector<std::pair<int, int>>& holes, int k);
 // Concatenates meshes (several components).
 SurfaceMesh disjointUnion(const SurfaceMesh& a, const SurfaceMesh& b);
-// Moves every vertex by a deterministic pseudo-random offset of relative size `amount` in the mesh's own plane
-// (z kept) so triangles are irregular.
+// Moves every vertex by a deterministic pseudo-random offset of relative size `amount` in the mesh's own
+// plane (z kept) so triangles are irregular.
 void jitterPlanar(SurfaceMesh& mesh, double amount, unsigned seed);
 
 }  // namespace tvf::testing

@@ -48,7 +48,9 @@ TEST(Topology, EdgesAreCanonicallyOrientedAndSignsMatchFaces) {
 }
 
 namespace {
-std::string firstFatal(const SurfaceMesh& m) { return checkMesh(m).firstFatal(); }
+std::string firstFatal(const SurfaceMesh& m) {
+  return checkMesh(m).firstFatal();
+}
 }  // namespace
 
 TEST(MeshChecks, NamesTheFirstOffendingElement) {
