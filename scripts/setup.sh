@@ -8,7 +8,8 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 DEB_PACKAGES=(build-essential cmake libeigen3-dev libsuitesparse-dev libtinygltf-dev nlohmann-json3-dev
-  libgtest-dev emscripten chromium dpkg-dev)
+  libgtest-dev libopenblas0 emscripten chromium dpkg-dev)
+# libopenblas0: CHOLMOD's supernodal factorization runs 2-3x faster on it than on the reference BLAS.
 
 missing=()
 for pkg in "${DEB_PACKAGES[@]}"; do
