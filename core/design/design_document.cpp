@@ -225,7 +225,8 @@ json statsJson(const DesignStats& s) {
           {"positiveAreaFallbackVertices", s.positiveAreaFallbackVertices},
           {"kernelHandling", s.kernelHandling},
           {"kernelShift", s.kernelShift},
-          {"factorKind", s.factorKind}};
+          {"factorKind", s.factorKind},
+          {"warnings", s.warnings}};
 }
 
 json fieldDocument(const Designer& designer) {

@@ -193,6 +193,20 @@ struct Designer::Impl {
     return b;
   }
 
+  // Under a fixed-angle boundary, boundary vertices take no part in the divergence term: a source or sink
+  // there has no effect, which the user should hear about rather than guess.
+  std::vector<std::string> designWarnings() const {
+    std::vector<std::string> out;
+    if (boundary.free) return out;
+    for (const auto& [id, a] : active)
+      if ((a.spec.kind == ConstraintKind::Source || a.spec.kind == ConstraintKind::Sink) &&
+          topology.isBoundaryVertex[a.spec.element])
+        out.push_back("constraint " + std::to_string(id) + ": a source or sink on boundary vertex " +
+                      std::to_string(a.spec.element) +
+                      " has no effect under a fixed-angle boundary condition");
+    return out;
+  }
+
   std::vector<ConstraintSpec> specsOf(ConstraintKind kind) const {
     std::vector<ConstraintSpec> out;
     for (const auto& [id, a] : active)
@@ -418,6 +432,7 @@ void Designer::solve() {
   Impl& d = *impl_;
   if (d.baseStale || d.factorStale || !d.system.factored()) d.factorNow();
   const Eigen::VectorXd b = d.rightHandSide();
+  d.stats.warnings = d.designWarnings();
   auto start = Clock::now();
   d.system.solve(b, d.solution);
   if (d.shift > 0) d.refineAgainstUnshiftedSystem(b);

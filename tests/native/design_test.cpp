@@ -488,3 +488,38 @@ TEST(Design, KernelShiftHasNegligibleEffect) {
     EXPECT_EQ(d.stats().kernelShift, 1e-9);
   }
 }
+
+TEST(Design, HighGenusSolutionsAgreeAcrossOrderingsAndTheUpdatePath) {
+  // Many handles, thousands of kernel-adjacent edges: two correct solvers must agree, not just have small
+  // residuals.
+  const SurfaceMesh m = holedPlate(9, 5, {{1, 1}, {3, 1}, {5, 1}, {7, 1}, {1, 3}, {3, 3}, {5, 3}, {7, 3}}, 2);
+  const auto design = [&](Designer& d) {
+    d.addSource(0, 1.0);
+    d.addVortex(m.numFaces() / 2, 1.0);
+    const double u[3] = {1, 1, 0};
+    d.addVector(m.numFaces() / 3, u, 10.0);
+  };
+  Designer amd(m), metis(m), incremental(m);
+  metis.setMetisOrdering(true);
+  design(amd);
+  design(metis);
+  amd.solve();
+  metis.solve();
+  incremental.factor();
+  design(incremental);
+  incremental.solve();
+  EXPECT_LT(relativeDifference(metis.oneForm(), amd.oneForm()), 1e-8);
+  EXPECT_LT(relativeDifference(incremental.oneForm(), amd.oneForm()), 1e-8);
+  double sum = 0;
+  for (const auto& s : amd.singularities()) sum += s.index;
+  EXPECT_EQ(sum, 2 - 2 * 8);
+}
+
+TEST(Design, SourcesOnAFixedAngleBoundaryAreReported) {
+  Designer d(flatGrid(4));
+  d.setBoundary(BoundaryCondition::normal());
+  d.addSource(0, 1.0);  // a corner: on the boundary
+  d.solve();
+  ASSERT_EQ(d.stats().warnings.size(), 1u);
+  EXPECT_NE(d.stats().warnings[0].find("boundary vertex 0"), std::string::npos);
+}
