@@ -12,13 +12,14 @@ const DIST = resolve(ROOT, 'dist');
 const t0 = performance.now();
 
 // Only the bundle and copied assets are cleared: a stale main.js must never survive a failed build.
-rmSync(resolve(DIST, 'main.js'), { force: true });
+for (const f of ['main.js', 'core-worker.js']) rmSync(resolve(DIST, f), { force: true });
 rmSync(resolve(DIST, 'wasm'), { recursive: true, force: true });
 mkdirSync(DIST, { recursive: true });
 
+// The core runs in a module worker: a second entry point, loaded by the page as dist/core-worker.js.
 await esbuild.build({
-  entryPoints: [resolve(ROOT, 'web/main.js')],
-  outfile: resolve(DIST, 'main.js'),
+  entryPoints: { main: resolve(ROOT, 'web/main.js'), 'core-worker': resolve(ROOT, 'web/core-worker.js') },
+  outdir: DIST,
   bundle: true,
   format: 'esm',
   platform: 'browser',

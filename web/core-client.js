@@ -135,6 +135,34 @@ export class CoreClient {
     return this.#id('vortex', guard('vortex', () => this.designer.addVortex(face, strength)));
   }
 
+  addEdge([i, j], value, weight) {
+    return this.#id('edge', guard('edge', () => this.designer.addEdge(i, j, value, weight)));
+  }
+
+  // One constraint in the design format (docs/design-format.md), with the format's defaults.
+  add(spec) {
+    const strength = spec.strength ?? 1;
+    const weight = spec.weight ?? 1;
+    switch (spec.type) {
+      case 'stroke': return this.addStroke(spec.points, strength, weight);
+      case 'vector': return this.addVector(spec.face, spec.vector, weight);
+      case 'edge': return this.addEdge(spec.edge, spec.value, weight);
+      case 'source': return this.addSource(spec.vertex, strength);
+      case 'sink': return this.addSink(spec.vertex, strength);
+      case 'vortex': return this.addVortex(spec.face, strength);
+      default: throw new CoreError(`constraint: unknown type "${spec.type}"`);
+    }
+  }
+
+  // Re-adds a constraint exactly as the core saved it (undo of a delete, redo of an add). The core's own
+  // addConstraintJson parses it with the design-file code; builds without it go through the typed calls,
+  // which store the same spec.
+  addConstraintJson(spec) {
+    if (typeof this.designer.addConstraintJson !== 'function') return this.add(spec);
+    const json = JSON.stringify(spec);
+    return this.#id('constraint', guard('constraint', () => this.designer.addConstraintJson(json)));
+  }
+
   remove(id) {
     const ok = guard('remove', () => this.designer.remove(id));
     if (!ok) throw new CoreError(prefixed('remove', this.#lastError() || `no constraint with id ${id}`));
@@ -143,6 +171,11 @@ export class CoreClient {
   setWeight(id, weight) {
     const ok = guard('weight', () => this.designer.setWeight(id, weight));
     if (!ok) throw new CoreError(prefixed('weight', this.#lastError() || `cannot reweight constraint ${id}`));
+  }
+
+  setStrength(id, strength) {
+    const ok = guard('strength', () => this.designer.setStrength(id, strength));
+    if (!ok) throw new CoreError(prefixed('strength', this.#lastError() || `cannot change the strength of ${id}`));
   }
 
   #lastError() {
@@ -162,6 +195,22 @@ export class CoreClient {
 
   faceVectors() {
     return guard('faceVectors', () => Float64Array.from(this.designer.faceVectors()));
+  }
+
+  vertexVectors() {
+    return guard('vertexVectors', () => Float64Array.from(this.designer.vertexVectors()));
+  }
+
+  oneForm() {
+    return guard('oneForm', () => Float64Array.from(this.designer.oneForm()));
+  }
+
+  edges() {
+    return guard('edges', () => Int32Array.from(this.designer.edges()));
+  }
+
+  fieldJson() {
+    return guard('field', () => this.designer.fieldJson());
   }
 
   stats() {

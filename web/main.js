@@ -1,11 +1,23 @@
-// Page entry: ties the wasm core, the three.js view, the stroke tool and the toolbar together, and exposes
-// the same operations as window.tvf (docs/js-api.md) for tests and embedding pages.
-import { loadCore } from './core-client.js';
+// Page entry: ties the core worker, the three.js view, the tools and the panels together, and exposes the
+// same operations as window.tvf (docs/js-api.md) for tests and embedding pages.
+//
+// The core runs in a module worker (core-worker.js); every edit is one request that ends with a solve and a
+// snapshot (field arrays, singularities, stats, the design), which the page keeps so that reads stay
+// synchronous. Constraints carry page ids ("uids") that survive a delete and its undo, although the core
+// hands out a fresh id when it re-adds the constraint.
+import { CoreProxy } from './core-proxy.js';
+import { baseName, downloadJson, loadAutosave, modelKey, readJsonFile, saveAutosave } from './documents.js';
+import { History, describe as describeEntry } from './history.js';
 import { ACCEPT, readModel } from './model-files.js';
-import { StrokeTool } from './stroke-tool.js';
-import { Viewer } from './viewer.js';
+import { traceStreamlines } from './streamlines.js';
+import { Surface } from './surface.js';
+import { ToolController } from './tools.js';
 import { bindUi } from './ui.js';
+import { Viewer, arrowDensityFor } from './viewer.js';
+import { setupSynthesis } from './synthesis/index.js'; // texture synthesis: window.tvf additions + "Texture" panel
 
+// An arrow per face stops being readable (and software rendering stops being quick) beyond this many.
+const MAX_DEFAULT_ARROWS = 20_000;
 // Weight 1e4 keeps strokes within ~0.4% of the drawn direction (paper, Sec. 6.1) while the rank-1 updates
 // stay well conditioned.
 export const DEFAULT_WEIGHT = 1e4;
@@ -13,18 +25,32 @@ const DEFAULT_MODEL = 'models/bunny.glb';
 const BASE = new URL('./', import.meta.url);
 
 const state = {
-  core: null,
+  proxy: null,
   viewer: null,
   ui: null,
+  tools: null,
+  history: null,
   modelName: '',
+  modelKey: '',
   info: null,
-  constraints: new Map(), // id → {id, type, points, strength, weight}
-  // Kept by the page, not only the core: a newly loaded mesh gets a fresh core designer with defaults, and
-  // the toolbar still shows the user's choice.
-  settings: { boundary: 'free', gamma: 0 },
+  surface: null,
+  field: null, // {faceVectors, vertexVectors, oneForm, singularities, stats} of the last completed change
+  design: { boundary: 'free', gamma: 0, constraints: [] }, // the core's document, verbatim
+  specByCore: new Map(), // core id → spec (design format)
+  coreOrder: [], // core ids in the core's order (that of design.constraints)
+  constraints: new Map(), // uid → core id
+  nextUid: 1,
+  selected: null,
+  views: null,
+  densityAuto: false, // the arrow density was lowered for a large mesh, not chosen by the user
+  fieldVersion: 0,
+  streamlineCache: null, // {version, spacing, surface, lines}
+  arrowsAhead: false, // the arrows already show the field of the edit in flight (worker's early message)
+  earlyFrame: null, // resolves when those arrows were on screen
+  perf: {},
 };
 
-// Core calls are synchronous, but loads await file reads: one queue keeps every mutation whole and ordered.
+// Every mutation runs alone and in call order: the worker's state and the page's copies move together.
 let queue = Promise.resolve();
 function exclusive(fn) {
   const run = queue.then(fn);
@@ -33,23 +59,194 @@ function exclusive(fn) {
 }
 
 function requireReady() {
-  if (!state.core || !state.info) throw new Error('tvf is not ready yet; await tvf.ready first');
+  if (!state.proxy || !state.info || !state.field) throw new Error('tvf is not ready yet; await tvf.ready first');
 }
 
-// Lets the status text paint before a long synchronous call; rAF alone would stall in a hidden tab.
-function nextPaint() {
-  return new Promise((resolve) => {
-    const t = setTimeout(resolve, 50);
-    requestAnimationFrame(() => setTimeout(() => (clearTimeout(t), resolve()), 0));
+const PROGRESS_LABELS = {
+  loadMesh: 'Loading and factoring…',
+  setBoundary: 'Refactoring…',
+  setGamma: 'Refactoring…',
+  applyDesign: 'Applying the design…',
+  fieldJson: 'Exporting…',
+};
+
+// One request to the worker; the snapshot it returns (also with a failure) becomes the page's state.
+async function call(op, args = [], transfer = []) {
+  const end = state.ui.startProgress(PROGRESS_LABELS[op] ?? 'Updating…');
+  const t0 = performance.now();
+  const renders0 = state.viewer.renderCount;
+  let earlyFrame = null;
+  // The new arrows go on screen as soon as the worker has solved; reads (tvf.faceVectors() ...) still show the
+  // previous change until the whole snapshot is in.
+  const onEarly = ({ faceVectors }) => {
+    if (!state.surface || faceVectors.length !== 3 * state.surface.nF) return;
+    state.viewer.arrows.setField(faceVectors);
+    state.arrowsAhead = true;
+    // Queued, not drawn now: when the rest of the snapshot follows within a frame, one render shows both.
+    earlyFrame = state.viewer.nextRenderShown();
+    state.viewer.requestRender();
+  };
+  try {
+    const reply = await state.proxy.call(op, args, transfer, onEarly);
+    const t1 = performance.now();
+    // Frames the page drew while the worker computed: the page never waits for the core.
+    state.perf.lastOp = {
+      op,
+      workerMs: reply.workerMs,
+      workerParts: reply.timing,
+      roundTripMs: t1 - t0,
+      sentAt: t0,
+      receivedAt: t1,
+      framesDrawnMeanwhile: state.viewer.renderCount - renders0,
+    };
+    state.earlyFrame = earlyFrame;
+    if (reply.snapshot) applySnapshot(reply.snapshot);
+    return reply;
+  } catch (err) {
+    state.arrowsAhead = false; // whatever was drawn early, the next refresh draws what the core holds
+    if (err.reply?.snapshot) applySnapshot(err.reply.snapshot);
+    throw err;
+  } finally {
+    end();
+  }
+}
+
+function applySnapshot(snap) {
+  const { faceVectors, vertexVectors, oneForm, singularities, stats, design, ids } = snap;
+  state.field = { faceVectors, vertexVectors, oneForm, singularities, stats };
+  state.fieldVersion++;
+  state.design = design;
+  state.specByCore = new Map(ids.map((id, k) => [id, design.constraints[k]]));
+  state.coreOrder = ids;
+  for (const [uid, coreId] of state.constraints) if (!state.specByCore.has(coreId)) state.constraints.delete(uid);
+  if (state.selected != null && !state.constraints.has(state.selected)) state.selected = null;
+}
+
+// Core constraints no page id points at (a loaded design, an autosave) get fresh ids in the core's order.
+function adoptUnmapped() {
+  const mapped = new Set(state.constraints.values());
+  for (const coreId of state.coreOrder ?? []) if (!mapped.has(coreId)) state.constraints.set(state.nextUid++, coreId);
+}
+
+// After a document replaced the core's list: give its constraints the page ids `uids` (same order).
+function mapDocument(uids) {
+  state.constraints.clear();
+  const ids = state.coreOrder ?? [];
+  if (uids && uids.length === ids.length) uids.forEach((uid, k) => state.constraints.set(uid, ids[k]));
+  adoptUnmapped();
+}
+
+function uidsInCoreOrder() {
+  const byCore = new Map([...state.constraints].map(([uid, coreId]) => [coreId, uid]));
+  return (state.coreOrder ?? []).map((id) => byCore.get(id));
+}
+
+function coreIdOf(uid) {
+  const coreId = state.constraints.get(Number(uid));
+  if (coreId === undefined) throw new Error(`no constraint with id ${uid}`);
+  return coreId;
+}
+
+function specOf(uid) {
+  return state.specByCore.get(coreIdOf(uid));
+}
+
+function constraintList() {
+  return [...state.constraints.keys()].sort((a, b) => a - b).map((uid) => ({ id: uid, ...structuredClone(specOf(uid)) }));
+}
+
+function settings() {
+  return { boundary: state.design.boundary ?? 'free', gamma: state.design.gamma ?? 0 };
+}
+
+// ------------------------------------------------------------------------------------------ drawing
+
+function streamlineSpacing() {
+  return state.surface.radius * (0.01 + 0.008 * (state.views?.streamlineSpacing ?? 5));
+}
+
+// Traced lazily and cached per field version and spacing: the view and tvf.streamlines() share them.
+function currentStreamlines() {
+  const spacing = streamlineSpacing();
+  const c = state.streamlineCache;
+  if (c && c.version === state.fieldVersion && c.spacing === spacing && c.surface === state.surface) return c.lines;
+  const t0 = performance.now();
+  const lines = traceStreamlines(state.surface, state.field.vertexVectors, { spacing, lift: 0.03 * state.surface.meanEdge });
+  state.perf.streamlinesMs = performance.now() - t0;
+  state.streamlineCache = { version: state.fieldVersion, spacing, surface: state.surface, lines };
+  return lines;
+}
+
+let streamlineTimer = 0;
+function scheduleStreamlines() {
+  clearTimeout(streamlineTimer);
+  if (!state.views.streamlines) {
+    state.viewer.streamlines.setLines([]);
+    return;
+  }
+  // After the frame that shows the arrows: tracing takes tens of ms and must not delay that frame.
+  streamlineTimer = setTimeout(() => {
+    state.viewer.streamlines.setLines(currentStreamlines());
+    state.viewer.requestRender();
+  }, 0);
+}
+
+// Pushes the current field, constraints and settings to the view and the panels; draws synchronously.
+function refresh() {
+  const { viewer, ui, field, views } = state;
+  const t0 = performance.now();
+  // Drawn already from the worker's early message: the same numbers.
+  if (!state.arrowsAhead) viewer.arrows.setField(field.faceVectors);
+  state.arrowsAhead = false;
+  const max = viewer.setVertexField(field.vertexVectors);
+  ui.setLegend(views.colorMap ? max : null);
+  viewer.singularities.setSingularities(field.singularities);
+  viewer.handles.setConstraints([...state.constraints.keys()].map((uid) => ({ uid, spec: specOf(uid) })));
+  viewer.handles.setSelected(state.selected);
+  ui.setConstraints(constraintList(), state.selected);
+  ui.setSettings(settings());
+  ui.setStatus({ name: state.modelName, info: state.info, stats: field.stats });
+  refreshHistory();
+  const t1 = performance.now();
+  viewer.renderNow();
+  state.perf.refresh = { updateViewsMs: t1 - t0, renderMs: performance.now() - t1 };
+  scheduleStreamlines();
+  state.synthesis?.fieldChanged(); // texture synthesis: resynthesize when the field changed (no-op otherwise)
+}
+
+function refreshHistory() {
+  const h = state.history;
+  state.ui.setHistory({
+    canUndo: !!h.peekUndo(),
+    canRedo: !!h.peekRedo(),
+    undoLabel: describeEntry(h.peekUndo()),
+    redoLabel: describeEntry(h.peekRedo()),
   });
 }
 
-function refreshField() {
-  state.viewer.setField(state.core.faceVectors());
-  state.ui.setStatus(state);
+function applyViews(views) {
+  state.views = { ...state.views, ...views };
+  const v = state.views, viewer = state.viewer;
+  viewer.arrows.setOptions({ visible: v.arrows, density: v.arrowDensity, scaled: v.arrowsScaled });
+  viewer.setColorMap(v.colorMap);
+  viewer.singularities.setVisible(v.singularities);
+  if (state.field) {
+    state.ui.setLegend(v.colorMap ? viewer.vertexFieldMax : null);
+    scheduleStreamlines();
+  }
+  viewer.requestRender();
 }
 
-async function loadModel(src, opts) {
+// After every completed edit: redraw, and keep the autosave in step with the core.
+function afterEdit() {
+  adoptUnmapped();
+  refresh();
+  saveAutosave(state.modelKey, state.design);
+}
+
+// ------------------------------------------------------------------------------------------ models
+
+async function loadModel(src, opts = {}) {
   return exclusive(async () => {
     let model;
     try {
@@ -57,44 +254,67 @@ async function loadModel(src, opts) {
     } catch (err) {
       throw new Error(`Could not load model: ${err.message}`);
     }
-    state.ui.setBusy(`Loading ${model.name}…`);
-    await nextPaint();
+    const key = modelKey(model.name, model.bytes);
+    const saved = opts.restore === false ? null : loadAutosave(key);
+    const bytes = model.bytes.slice(); // its own buffer, transferred to the worker
+    let reply;
     try {
-      state.core.loadMesh(model.bytes, model.format);
+      reply = await call('loadMesh', [bytes, model.format, settings(), saved?.design ?? null], [bytes.buffer]);
     } catch (err) {
-      // The core kept its previous mesh; the view still shows it, so nothing else to undo.
-      state.ui.setBusy(null);
-      state.ui.setStatus(state);
+      // The core kept its previous mesh and everything on it.
+      if (state.info) refresh();
       throw new Error(`Could not load ${model.name}: ${err.message.replace(/^load: /, '')}`);
     }
-    state.constraints.clear();
+    const tApply = performance.now();
+    const { info, settingsError, restoreError } = reply.value;
+    const { positions, triangles, edges } = reply.mesh;
+    state.surface = new Surface(positions, triangles, edges);
+    state.info = info;
     state.modelName = model.name;
-    state.info = state.core.info();
-    try {
-      applySettings();
-      state.core.factor();
-      state.core.solve();
-    } finally {
-      const { positions, triangles } = state.core.mesh();
-      state.viewer.setMesh(positions, triangles);
-      state.ui.setConstraints([...state.constraints.values()]);
-      state.ui.setBusy(null);
+    state.modelKey = key;
+    state.selected = null;
+    state.streamlineCache = null;
+    mapDocument(null);
+    state.history.clear();
+    state.viewer.setMesh(state.surface);
+    // Texture synthesis: the model's UVs (6 per face, or none) and a fresh atlas for the new mesh.
+    state.cornerUVs = reply.mesh.cornerUVs?.length ? reply.mesh.cornerUVs : null;
+    state.meshSerial = (state.meshSerial ?? 0) + 1;
+    state.synthesis?.modelChanged();
+    state.ui.setHasBoundary(info.boundaryLoops > 0);
+    // On a large mesh "one arrow per face" becomes a sparser default; a density the user chose stays.
+    if (state.densityAuto || state.views.arrowDensity === 10) {
+      const level = state.surface.nF > MAX_DEFAULT_ARROWS ? arrowDensityFor(state.surface, MAX_DEFAULT_ARROWS) : 10;
+      state.densityAuto = level !== 10;
+      if (level !== state.views.arrowDensity) {
+        state.ui.setViews({ arrowDensity: level });
+        applyViews(state.ui.views());
+      }
     }
-    refreshField();
-    return state.info;
+    refresh();
+    // Main-thread cost of taking a new mesh on (adjacency, BVH, buffers, first draw): the one pause left.
+    state.perf.meshSetupMs = performance.now() - tApply;
+    if (restoreError) state.ui.flash(`The autosaved design could not be restored: ${restoreError}`, 6000);
+    else if (saved?.design && state.constraints.size) {
+      state.ui.flash(`Restored the autosaved design (${state.constraints.size} constraints).`);
+    }
+    if (settingsError) state.ui.showError(`The boundary/γ settings did not apply to ${model.name}: ${settingsError}`);
+    return structuredClone(info);
   });
 }
 
-function applySettings() {
-  const { boundary, gamma } = state.settings;
-  try {
-    if (boundary !== 'free') state.core.setBoundary(boundary);
-    if (gamma !== 0) state.core.setGamma(gamma);
-  } catch (err) {
-    state.settings = { boundary: 'free', gamma: 0 };
-    state.ui.setSettings(state.settings);
-    throw err;
-  }
+// ------------------------------------------------------------------------------------------ edits
+
+function finite(x, what) {
+  const v = Number(x);
+  if (!Number.isFinite(v)) throw new Error(`${what} must be a finite number (got ${x})`);
+  return v;
+}
+
+function index(x, what, count) {
+  const v = Number(x);
+  if (!Number.isInteger(v) || v < 0 || v >= count) throw new Error(`${what} ${x} is out of range (0…${count - 1})`);
+  return v;
 }
 
 function validatePoints(points) {
@@ -109,110 +329,357 @@ function validatePoints(points) {
   });
 }
 
-function addStroke(points, { strength = 1, weight = DEFAULT_WEIGHT } = {}) {
-  return exclusive(() => {
-    requireReady();
-    const pts = validatePoints(points);
-    const id = state.core.addStroke(pts, strength, weight);
-    state.constraints.set(id, { id, type: 'stroke', points: pts, strength, weight });
-    try {
-      state.core.solve();
-    } finally {
-      state.ui.setConstraints([...state.constraints.values()]);
-      refreshField();
-    }
-    return id;
-  });
+function vec3(v, what) {
+  const a = Array.from(v ?? [], Number);
+  if (a.length !== 3 || !a.every(Number.isFinite)) throw new Error(`${what} must be 3 finite numbers`);
+  return a;
 }
 
-function remove(id) {
-  return exclusive(() => {
-    requireReady();
-    state.core.remove(id);
-    state.constraints.delete(id);
-    try {
-      state.core.solve();
-    } finally {
-      state.ui.setConstraints([...state.constraints.values()]);
-      refreshField();
-    }
-    return true;
-  });
-}
-
-function setWeight(id, weight) {
-  return exclusive(() => {
-    requireReady();
-    state.core.setWeight(id, weight);
-    const c = state.constraints.get(id);
-    if (c) c.weight = weight;
-    try {
-      state.core.solve();
-    } finally {
-      state.ui.setConstraints([...state.constraints.values()]);
-      refreshField();
-    }
-    return true;
-  });
-}
-
-function refactor(change) {
+// Adds one constraint (design-format spec) and records it; resolves with its page id.
+function addConstraint(makeSpec) {
   return exclusive(async () => {
     requireReady();
-    try {
-      change();
-    } finally {
-      state.ui.setSettings(state.settings); // shows what the core holds, also after a refusal
-    }
-    state.ui.setBusy('Factoring…');
-    await nextPaint();
-    try {
-      state.core.factor();
-      state.core.solve();
-    } finally {
-      state.ui.setBusy(null);
-    }
-    refreshField();
+    const spec = makeSpec();
+    const reply = await call('add', [spec]);
+    const uid = state.nextUid++;
+    state.constraints.set(uid, reply.value);
+    state.history.push({ kind: 'add', uid, spec: structuredClone(specOf(uid)) });
+    afterEdit();
+    return uid;
   });
 }
 
-// Surfaces any failure of a UI-started action in the banner; the API variants reject instead.
+const faceIndex = (f) => index(f, 'face', state.info.faces);
+const vertexIndex = (v) => index(v, 'vertex', state.info.vertices);
+
+const addStroke = (points, { strength = 1, weight = DEFAULT_WEIGHT } = {}) =>
+  addConstraint(() => ({
+    type: 'stroke',
+    points: validatePoints(points),
+    strength: finite(strength, 'strength'),
+    weight: finite(weight, 'weight'),
+  }));
+const addVector = (face, vector, { weight = DEFAULT_WEIGHT } = {}) =>
+  addConstraint(() => ({ type: 'vector', face: faceIndex(face), vector: vec3(vector, 'vector'), weight: finite(weight, 'weight') }));
+const addEdge = (edge, value, { weight = DEFAULT_WEIGHT } = {}) =>
+  addConstraint(() => {
+    const [i, j] = Array.from(edge ?? [], Number);
+    return { type: 'edge', edge: [vertexIndex(i), vertexIndex(j)], value: finite(value, 'value'), weight: finite(weight, 'weight') };
+  });
+const addPoint = (type, vertex, strength) =>
+  addConstraint(() => ({ type, vertex: vertexIndex(vertex), strength: finite(strength, 'strength') }));
+const addSource = (vertex, { strength = 1 } = {}) => addPoint('source', vertex, strength);
+const addSink = (vertex, { strength = 1 } = {}) => addPoint('sink', vertex, strength);
+const addVortex = (face, { strength = 1 } = {}) =>
+  addConstraint(() => ({ type: 'vortex', face: faceIndex(face), strength: finite(strength, 'strength') }));
+
+function remove(uid) {
+  return exclusive(async () => {
+    requireReady();
+    const spec = structuredClone(specOf(uid));
+    await call('remove', [coreIdOf(uid)]);
+    state.constraints.delete(Number(uid));
+    state.history.push({ kind: 'remove', uid: Number(uid), spec });
+    afterEdit();
+    return true;
+  });
+}
+
+// Weight and strength changes are recorded with the value they replace.
+function setParameter(kind, uid, value) {
+  return exclusive(async () => {
+    requireReady();
+    const v = finite(value, kind);
+    const from = specOf(uid)[kind];
+    if (from === undefined) throw new Error(`a ${specOf(uid).type} has no ${kind}`);
+    await call(kind === 'weight' ? 'setWeight' : 'setStrength', [coreIdOf(uid), v]);
+    if (from !== v) state.history.push({ kind, uid: Number(uid), from, to: v });
+    afterEdit();
+    return true;
+  });
+}
+
+function normaliseBoundary(bc) {
+  if (typeof bc === 'string') return bc;
+  if (bc && typeof bc === 'object') return structuredClone(bc);
+  throw new Error(`boundary must be 'free', 'tangential', 'normal' or {angle} (got ${JSON.stringify(bc)})`);
+}
+
+function setBoundary(bc) {
+  return exclusive(async () => {
+    requireReady();
+    const to = normaliseBoundary(bc);
+    const from = structuredClone(settings().boundary);
+    try {
+      await call('setBoundary', [to]);
+    } finally {
+      state.ui.setSettings(settings()); // shows what the core holds, also after a refusal
+    }
+    state.history.push({ kind: 'boundary', from, to: structuredClone(settings().boundary) });
+    afterEdit();
+  });
+}
+
+function setGamma(gamma) {
+  return exclusive(async () => {
+    requireReady();
+    if (!(Number.isFinite(gamma) && gamma >= 0)) {
+      state.ui.setSettings(settings());
+      throw new Error(`gamma must be a number ≥ 0 (got ${gamma})`);
+    }
+    const from = settings().gamma;
+    try {
+      await call('setGamma', [gamma]);
+    } finally {
+      state.ui.setSettings(settings());
+    }
+    state.history.push({ kind: 'gamma', from, to: gamma });
+    afterEdit();
+  });
+}
+
+// Replaces the whole design (boundary, γ, constraints) with a document, as `tvf design` would read it.
+function replaceDesign(design, label) {
+  return exclusive(async () => {
+    requireReady();
+    if (!design || typeof design !== 'object' || Array.isArray(design)) throw new Error('a design must be a JSON object');
+    const before = { design: structuredClone(state.design), uids: uidsInCoreOrder() };
+    try {
+      await call('applyDesign', [design]);
+    } catch (err) {
+      mapDocument(before.uids); // the core put the previous design back, under fresh core ids
+      refresh();
+      throw err;
+    }
+    mapDocument(null);
+    state.selected = null;
+    const after = { design: structuredClone(state.design), uids: uidsInCoreOrder() };
+    state.history.push({ kind: 'design', label, before, after });
+    afterEdit();
+  });
+}
+
+const loadDesign = (design) => replaceDesign(design, 'load design');
+const clearConstraints = () => replaceDesign({ ...settings(), constraints: [] }, 'clear');
+
+// ------------------------------------------------------------------------------------------ undo / redo
+
+// Applies one history entry forwards (redo) or backwards (undo) as the inverse factor update.
+async function replay(entry, forward) {
+  switch (entry.kind) {
+    case 'add':
+    case 'remove': {
+      const present = (entry.kind === 'add') === forward;
+      if (present) {
+        const reply = await call('readd', [entry.spec]);
+        state.constraints.set(entry.uid, reply.value);
+      } else {
+        await call('remove', [coreIdOf(entry.uid)]);
+        state.constraints.delete(entry.uid);
+      }
+      return;
+    }
+    case 'weight':
+      return void (await call('setWeight', [coreIdOf(entry.uid), forward ? entry.to : entry.from]));
+    case 'strength':
+      return void (await call('setStrength', [coreIdOf(entry.uid), forward ? entry.to : entry.from]));
+    case 'boundary':
+      return void (await call('setBoundary', [forward ? entry.to : entry.from]));
+    case 'gamma':
+      return void (await call('setGamma', [forward ? entry.to : entry.from]));
+    case 'design': {
+      const target = forward ? entry.after : entry.before;
+      const other = forward ? entry.before : entry.after;
+      try {
+        await call('applyDesign', [target.design]);
+      } catch (err) {
+        mapDocument(other.uids);
+        throw err;
+      }
+      mapDocument(target.uids);
+      return;
+    }
+    default:
+      throw new Error(`cannot replay ${entry.kind}`);
+  }
+}
+
+function step(forward) {
+  return exclusive(async () => {
+    requireReady();
+    const h = state.history;
+    const entry = forward ? h.peekRedo() : h.peekUndo();
+    if (!entry) return false;
+    try {
+      await replay(entry, forward);
+    } finally {
+      if (state.selected != null && !state.constraints.has(state.selected)) state.selected = null;
+    }
+    if (forward) h.didRedo();
+    else h.didUndo();
+    afterEdit();
+    return true;
+  });
+}
+
+// ------------------------------------------------------------------------------------------ exports
+
+function exportField() {
+  return exclusive(async () => {
+    requireReady();
+    return (await call('fieldJson')).value;
+  });
+}
+
+function saveDesignFile() {
+  requireReady();
+  downloadJson(`${baseName(state.modelName)}.design.json`, JSON.stringify(state.design, null, 1));
+}
+
+async function exportFieldFile() {
+  const text = await exportField();
+  downloadJson(`${baseName(state.modelName)}.field.json`, text);
+}
+
+// ------------------------------------------------------------------------------------------ UI wiring
+
+// Surfaces any failure of a UI-started action in the banner; the API variants reject instead. The panels
+// are redrawn from the state so an input the core refused shows the value in force again.
 function report(promise) {
   return promise.catch((err) => {
     state.ui.showError(err.message);
-    state.ui.setStatus(state);
+    if (state.field && state.surface) refresh();
   });
 }
 
-function copy(obj) {
-  return JSON.parse(JSON.stringify(obj));
+// Time from a user action to the frame that shows its result (reported through tvf.perf()).
+async function timed(name, t0, promise) {
+  const result = await promise;
+  // refresh() has drawn synchronously; the next animation frame puts it on screen.
+  const shown = await new Promise((resolve) => requestAnimationFrame(() => resolve(performance.now())));
+  const op = state.perf.lastOp ?? {};
+  const arrowsShown = await state.earlyFrame;
+  state.perf[name] = {
+    arrowsOnScreenMs: arrowsShown ? arrowsShown - t0 : undefined,
+    toFrameMs: shown - t0,
+    workerMs: op.workerMs,
+    workerParts: op.workerParts,
+    roundTripMs: op.roundTripMs,
+    refresh: state.perf.refresh,
+  };
+  return result;
 }
+
+function select(uid) {
+  state.selected = uid != null && state.constraints.has(Number(uid)) ? Number(uid) : null;
+  state.viewer.handles.setSelected(state.selected);
+  state.ui.setConstraints(constraintList(), state.selected);
+  state.viewer.requestRender();
+}
+
+function toolActions() {
+  const { ui, viewer } = state;
+  return {
+    flash: (text, ms) => ui.flash(text, ms),
+    onStroke: (points) => {
+      const t0 = performance.now();
+      const { strength, weight } = ui.toolOptions();
+      report(timed('stroke', t0, addStroke(points, { strength, weight }))).finally(() => {
+        if (!state.tools.tools.stroke.drawing) viewer.clearStroke();
+      });
+    },
+    onVector: (face, vector) => {
+      const t0 = performance.now();
+      report(timed('vector', t0, addVector(face, vector, { weight: ui.toolOptions().weight })));
+    },
+    onPlace: (kind, hit) => {
+      const t0 = performance.now();
+      const { strength, orientation } = ui.toolOptions();
+      const op =
+        kind === 'vortex'
+          ? addVortex(hit.face, { strength: orientation === 'cw' ? -strength : strength })
+          : addPoint(kind, state.surface.nearestCorner(hit.face, hit.point), strength);
+      report(timed(kind, t0, op));
+    },
+    onSelect: select,
+  };
+}
+
+function uiActions() {
+  return {
+    accept: ACCEPT,
+    onOpen: (file, companions) => report(loadModel(file, { companions })),
+    onLoadDesign: (file) => report(readJsonFile(file).then((design) => loadDesign(design))),
+    onSaveDesign: () => {
+      try {
+        saveDesignFile();
+      } catch (err) {
+        state.ui.showError(err.message);
+      }
+    },
+    onExportField: () => report(exportFieldFile()),
+    onTool: (tool) => state.tools?.setTool(tool),
+    onUndo: () => report(timed('undo', performance.now(), step(false))),
+    onRedo: () => report(timed('redo', performance.now(), step(true))),
+    onBoundary: (bc) => report(setBoundary(bc)),
+    onGamma: (g) => report(setGamma(g)),
+    onViews: (views) => {
+      if (views.arrowDensity !== state.views.arrowDensity) state.densityAuto = false;
+      applyViews(views);
+    },
+    onSelect: select,
+    onRemove: (uid) => report(timed('delete', performance.now(), remove(uid))),
+    onEditWeight: (uid, w) => report(setParameter('weight', uid, w)),
+    onEditStrength: (uid, s) => report(setParameter('strength', uid, s)),
+    onClear: () => state.constraints.size && report(clearConstraints()),
+  };
+}
+
+// ------------------------------------------------------------------------------------------ window.tvf
+
+const read = (fn) => () => (requireReady(), fn());
 
 const tvf = {
   ready: null,
   DEFAULT_WEIGHT,
   loadModel: (src, opts) => loadModel(src, opts),
-  info: () => (requireReady(), copy(state.info)),
+  info: read(() => structuredClone(state.info)),
+  mesh: read(() => ({ positions: state.surface.positions.slice(), triangles: state.surface.triangles.slice() })),
+  edges: read(() => state.surface.edges.slice()),
   addStroke,
-  remove,
-  setWeight,
-  setBoundary: (bc) =>
-    refactor(() => {
-      state.core.setBoundary(bc);
-      state.settings.boundary = copy(bc);
-    }),
-  setGamma: (gamma) =>
-    refactor(() => {
-      if (!(Number.isFinite(gamma) && gamma >= 0)) throw new Error(`gamma must be a number ≥ 0 (got ${gamma})`);
-      state.core.setGamma(gamma);
-      state.settings.gamma = gamma;
-    }),
-  settings: () => copy(state.settings),
-  faceVectors: () => (requireReady(), state.core.faceVectors()),
-  stats: () => (requireReady(), state.core.stats()),
-  mesh: () => (requireReady(), state.core.mesh()),
-  constraints: () => [...state.constraints.values()].map(copy),
-  singularities: () => (requireReady(), state.core.singularities()),
+  addVector,
+  addEdge,
+  addSource,
+  addSink,
+  addVortex,
+  remove: (id) => remove(id),
+  setWeight: (id, w) => setParameter('weight', id, w),
+  setStrength: (id, s) => setParameter('strength', id, s),
+  constraints: () => constraintList(),
+  setBoundary,
+  setGamma,
+  settings: () => structuredClone(settings()),
+  undo: () => step(false),
+  redo: () => step(true),
+  history: () => state.history.labels(),
+  saveDesign: read(() => structuredClone(state.design)),
+  loadDesign,
+  exportField: () => exportField().then((text) => JSON.parse(text)),
+  faceVectors: read(() => state.field.faceVectors.slice()),
+  vertexVectors: read(() => state.field.vertexVectors.slice()),
+  oneForm: read(() => state.field.oneForm.slice()),
+  singularities: read(() => structuredClone(state.field.singularities)),
+  stats: read(() => structuredClone(state.field.stats)),
+  select: (id) => select(id),
+  selected: () => state.selected,
+  views: () => ({ ...state.views }),
+  setViews: (views) => {
+    state.ui.setViews(views);
+    applyViews(state.ui.views());
+    return { ...state.views };
+  },
+  streamlines: read(() => currentStreamlines().map((l) => Array.from(l))),
+  perf: () => structuredClone(state.perf),
   projectToScreen: (xyz) => (requireReady(), state.viewer.projectToScreen(Array.from(xyz))),
   pick: (clientX, clientY) => (requireReady(), state.viewer.pick(clientX, clientY)),
 };
@@ -221,33 +688,34 @@ window.tvf = tvf;
 async function start() {
   const container = document.getElementById('viewport');
   state.viewer = new Viewer(container);
-  state.ui = bindUi({
-    accept: ACCEPT,
-    onOpen: (file, companions) => report(loadModel(file, { companions })),
-    onTool: (tool) => strokeTool.setActive(tool === 'stroke'),
-    onRemove: (id) => report(remove(id)),
-    onBoundary: (bc) => report(tvf.setBoundary(bc)),
-    onGamma: (g) => report(tvf.setGamma(g)),
-    onArrows: (visible) => state.viewer.setArrowsVisible(visible),
+  state.history = new History(() => state.ui && refreshHistory());
+  state.ui = bindUi(uiActions());
+  state.tools = new ToolController(state.viewer, container, toolActions());
+  state.views = state.ui.views();
+  applyViews(state.views);
+  // ---- texture synthesis (web/synthesis/, docs/texture-synthesis.md): begin
+  state.synthesis = setupSynthesis(tvf, {
+    baseUrl: BASE,
+    viewer: state.viewer,
+    panel: document.getElementById('side-panel'),
+    onError: (err) => state.ui.showError(err?.message || String(err)),
+    getModel: () =>
+      state.surface && state.field
+        ? { key: `${state.modelKey}#${state.meshSerial}`, name: state.modelName, positions: state.surface.positions, triangles: state.surface.triangles, cornerUVs: state.cornerUVs, vertexVectors: state.field.vertexVectors, fieldVersion: state.fieldVersion }
+        : null,
   });
-  const strokeTool = new StrokeTool(
-    state.viewer,
-    container,
-    (points) => report(addStroke(points, state.ui.strokeOptions())),
-    () => state.ui.flash('Stroke too short: drag across the surface.'),
-  );
+  // ---- texture synthesis: end
 
-  state.ui.setBusy('Loading core…');
-  state.core = await loadCore(BASE);
+  state.proxy = new CoreProxy(new URL('core-worker.js', BASE));
+  await state.proxy.call('init');
   await loadModel(new URL(DEFAULT_MODEL, BASE).href);
   // After the first frame, not before: on the small default model warming up costs more than it saves
   // (measured: ~0.3 s to save ~35 ms), but the next, larger model the user opens gets optimized code.
-  setTimeout(() => exclusive(() => state.core.warmUp(3, 2)), 0);
+  setTimeout(() => exclusive(() => state.proxy.call('warmUp', [3, 2])).catch(() => {}), 0);
 }
 
 tvf.ready = start().catch((err) => {
   const message = err?.message || String(err);
-  state.ui?.setBusy(null);
   state.ui?.showError(message);
   throw new Error(message);
 });

@@ -1,56 +1,43 @@
 // Drawing strokes on the surface with the mouse (or pen/touch). Samples are {face, bary} in the core's face
-// order. Pointer events are taken in the capture phase on the viewport so OrbitControls never sees a press
-// that starts a stroke; a press off the model still orbits.
+// order. The ToolController (tools.js) hands this tool a press that landed on the model; the live polyline is
+// drawn on the surface while dragging and becomes edge constraints on release.
 
 const MAX_PIXEL_STEP = 1.5; // fast drags are re-sampled so consecutive samples stay close on the surface
 const MIN_SAMPLE_GAP = 0.2; // × mean edge length, within one face
 
 export class StrokeTool {
-  constructor(viewer, eventTarget, onStroke, onTooShort) {
+  constructor(viewer, { onStroke, onTooShort }) {
     this.viewer = viewer;
     this.onStroke = onStroke;
     this.onTooShort = onTooShort;
-    this.active = false;
-    this.drawing = null; // {pointerId, samples, lastX, lastY}
-    eventTarget.addEventListener('pointerdown', (e) => this.#down(e), { capture: true });
-    eventTarget.addEventListener('pointermove', (e) => this.#move(e), { capture: true });
-    eventTarget.addEventListener('pointerup', (e) => this.#up(e, true), { capture: true });
-    eventTarget.addEventListener('pointercancel', (e) => this.#up(e, false), { capture: true });
+    this.drawing = null; // {samples, lastX, lastY}
   }
 
-  setActive(active) {
-    this.active = active;
-    this.viewer.canvas.classList.toggle('tool-stroke', active);
-    if (!active && this.drawing) this.#finish(false);
+  // A press on the model starts a stroke; elsewhere it is left to orbit.
+  claims(e) {
+    return this.viewer.pick(e.clientX, e.clientY);
   }
 
-  #down(e) {
-    if (!this.active || this.drawing || e.button !== 0 || e.target !== this.viewer.canvas) return;
-    const hit = this.viewer.pick(e.clientX, e.clientY);
-    if (!hit) return;
-    e.stopPropagation();
-    e.preventDefault();
-    this.viewer.controls.enabled = false;
-    this.viewer.canvas.setPointerCapture?.(e.pointerId);
-    this.drawing = { pointerId: e.pointerId, samples: [], lastX: e.clientX, lastY: e.clientY };
+  down(e, hit) {
+    this.viewer.clearStroke(); // the previous stroke's line may still wait for its field
+    this.drawing = { samples: [], lastX: e.clientX, lastY: e.clientY };
     this.#addSample(hit);
   }
 
-  #move(e) {
-    const d = this.drawing;
-    if (!d || e.pointerId !== d.pointerId) return;
-    e.stopPropagation();
+  move(e) {
+    if (!this.drawing) return;
     const events = e.getCoalescedEvents?.() ?? [];
     for (const ev of events.length ? events : [e]) this.#trace(ev.clientX, ev.clientY);
   }
 
-  #up(e, commit) {
-    const d = this.drawing;
-    if (!d || e.pointerId !== d.pointerId) return;
-    e.stopPropagation();
-    if (commit) this.#trace(e.clientX, e.clientY);
-    this.viewer.canvas.releasePointerCapture?.(e.pointerId);
-    this.#finish(commit);
+  up(e) {
+    if (!this.drawing) return;
+    this.#trace(e.clientX, e.clientY);
+    this.#finish(true, e);
+  }
+
+  cancel() {
+    if (this.drawing) this.#finish(false);
   }
 
   // Walks the screen segment from the last pointer position in small steps so no face is skipped.
@@ -77,14 +64,16 @@ export class StrokeTool {
     this.viewer.strokeAdd(hit);
   }
 
-  #finish(commit) {
+  #finish(commit, e) {
     const samples = this.drawing.samples;
     this.drawing = null;
-    this.viewer.controls.enabled = true;
-    this.viewer.clearStroke();
-    if (!commit) return;
+    // The live polyline stays until the new field is drawn, so the stroke never blinks out in between.
+    if (!commit) return this.viewer.clearStroke();
     const points = samples.map(({ face, bary }) => ({ face, bary: [...bary] }));
-    if (points.length >= 2) this.onStroke(points);
-    else this.onTooShort?.();
+    if (points.length >= 2) this.onStroke(points, e);
+    else {
+      this.viewer.clearStroke();
+      this.onTooShort?.();
+    }
   }
 }

@@ -109,3 +109,74 @@ export function topFacePair(mesh) {
 }
 
 export const CENTRE = [1 / 3, 1 / 3, 1 / 3];
+
+// ---- the studio's tests (studio.spec.mjs)
+
+// Mesh copies plus the core's edge list, as plain arrays.
+export async function readMesh(page) {
+  return page.evaluate(() => {
+    const m = window.tvf.mesh();
+    return { positions: Array.from(m.positions), triangles: Array.from(m.triangles), edges: Array.from(window.tvf.edges()) };
+  });
+}
+
+export function centroid(mesh, f) {
+  const [a, b, c] = faceCorners(mesh, f);
+  return [0, 1, 2].map((k) => (a[k] + b[k] + c[k]) / 3);
+}
+
+// Faces that share vertex v.
+export function facesAround(mesh, v) {
+  const out = [];
+  for (let f = 0; f < mesh.triangles.length / 3; f++) {
+    if (mesh.triangles[3 * f] === v || mesh.triangles[3 * f + 1] === v || mesh.triangles[3 * f + 2] === v) out.push(f);
+  }
+  return out;
+}
+
+// Corner of face f nearest to a 3D point (what the source/sink tools snap to).
+export function nearestCorner(mesh, f, p) {
+  let best = -1, bestD = Infinity;
+  for (let k = 0; k < 3; k++) {
+    const v = mesh.triangles[3 * f + k];
+    const d = norm(sub(vertex(mesh, v), p));
+    if (d < bestD) (bestD = d), (best = v);
+  }
+  return best;
+}
+
+// Value of the 1-form on the directed edge i → j (the core stores lower → higher).
+export function edgeValue(mesh, oneForm, index, i, j) {
+  const e = index.get(i < j ? `${i},${j}` : `${j},${i}`);
+  if (e === undefined) throw new Error(`no edge ${i}-${j}`);
+  return i < j ? oneForm[e] : -oneForm[e];
+}
+
+export function edgeIndex(mesh) {
+  const index = new Map();
+  for (let e = 0; e < mesh.edges.length / 2; e++) index.set(`${mesh.edges[2 * e]},${mesh.edges[2 * e + 1]}`, e);
+  return index;
+}
+
+// Boundary edges as [i, j, k]: the face ijk holds the directed edge i → j, which no other face shares.
+export function boundaryEdges(mesh) {
+  const count = new Map();
+  const T = mesh.triangles;
+  const key = (i, j) => (i < j ? `${i},${j}` : `${j},${i}`);
+  for (let t = 0; t < T.length; t += 3) for (let k = 0; k < 3; k++) {
+    const kk = key(T[t + k], T[t + ((k + 1) % 3)]);
+    count.set(kk, (count.get(kk) ?? 0) + 1);
+  }
+  const out = [];
+  for (let t = 0; t < T.length; t += 3) for (let k = 0; k < 3; k++) {
+    const i = T[t + k], j = T[t + ((k + 1) % 3)], l = T[t + ((k + 2) % 3)];
+    if (count.get(key(i, j)) === 1) out.push([i, j, l]);
+  }
+  return out;
+}
+
+export function cornerAngle(mesh, at, a, b) {
+  const p = vertex(mesh, at);
+  const u = sub(vertex(mesh, a), p), w = sub(vertex(mesh, b), p);
+  return Math.acos(Math.min(1, Math.max(-1, dot(u, w) / (norm(u) * norm(w)))));
+}

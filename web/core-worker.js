@@ -1,0 +1,231 @@
+// Module worker that owns the wasm core, so factorizations never block the page. The page (core-proxy.js)
+// sends one request at a time: {seq, op, args}; every mutating op ends with a solve and replies with a
+// snapshot of everything the page reads synchronously (field arrays are transferred, not copied).
+import { CoreError, loadCore } from './core-client.js';
+
+const BASE = new URL('./', import.meta.url);
+let core = null;
+// Core ids in the core's constraint order (the order of designJson().constraints). The core hands out ids
+// only through add calls, so the worker can mirror them; see #reloadIds for documents.
+let ids = [];
+
+function requireMesh() {
+  if (!core?.hasMesh) throw new CoreError('no mesh loaded');
+}
+
+// timing (optional) receives where the time goes: vertex vectors and singularities are derived by the core
+// on first read, the design document is serialised.
+function snapshot(timing = {}) {
+  let t = performance.now();
+  const lap = (key) => {
+    const now = performance.now();
+    timing[key] = now - t;
+    t = now;
+  };
+  const faceVectors = core.faceVectors();
+  const oneForm = core.oneForm();
+  lap('copyMs');
+  const vertexVectors = core.vertexVectors();
+  const singularities = core.singularities();
+  lap('deriveMs');
+  const design = JSON.parse(core.designJson());
+  lap('designMs');
+  return {
+    faceVectors,
+    vertexVectors,
+    oneForm,
+    singularities,
+    stats: core.stats(),
+    design,
+    ids: ids.slice(),
+    transfer: [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer],
+  };
+}
+
+// After applyDesignJson the core's list is whatever it last re-added (the document, or on failure the
+// previous design), with consecutive fresh ids. A zero-strength source probes the next id; it touches only
+// the right-hand side and is removed at once, so the factor is unchanged.
+function reloadIds(probeVertex) {
+  const n = JSON.parse(core.designJson()).constraints.length;
+  if (typeof core.designer.constraintIdsJson === 'function') {
+    ids = JSON.parse(core.designer.constraintIdsJson());
+    return;
+  }
+  if (!n) {
+    ids = [];
+    return;
+  }
+  const probe = core.addSource(probeVertex, 0);
+  core.remove(probe);
+  ids = Array.from({ length: n }, (_, k) => probe - n + k);
+}
+
+function refactorAndSolve() {
+  core.factor();
+  core.solve();
+}
+
+let probeVertex = 0;
+
+function applyDesign(design) {
+  try {
+    core.applyDesignJson(JSON.stringify(design));
+  } finally {
+    reloadIds(probeVertex);
+  }
+}
+
+const ops = {
+  async init() {
+    core = await loadCore(BASE);
+    return { crossOriginIsolated: self.crossOriginIsolated === true };
+  },
+
+  warmUp(levels, rounds) {
+    return core.warmUp(levels, rounds);
+  },
+
+  // settings: {boundary, gamma} carried over from the previous model; design: an autosaved document to
+  // restore (its failure is reported, not fatal: the mesh still loads with the settings).
+  loadMesh(bytes, format, settings, design) {
+    core.loadMesh(bytes, format);
+    ids = [];
+    const info = core.info();
+    const mesh = core.mesh();
+    const edges = core.edges();
+    probeVertex = mesh.triangles.length ? mesh.triangles[0] : 0;
+    let settingsError = null, restoreError = null;
+    try {
+      if (settings.boundary !== 'free') core.setBoundary(settings.boundary);
+      if (settings.gamma !== 0) core.setGamma(settings.gamma);
+    } catch (err) {
+      settingsError = err.message;
+      core.setBoundary('free');
+      core.setGamma(0);
+    }
+    if (design) {
+      try {
+        applyDesign(design);
+      } catch (err) {
+        restoreError = err.message;
+      }
+    }
+    refactorAndSolve();
+    // Texture synthesis (web/synthesis/) needs the model's per-corner UVs (6 per face; empty without TEXCOORD_0).
+    const cornerUVs = Float32Array.from(core.designer.cornerUVs());
+    return {
+      value: { info, settingsError, restoreError },
+      mesh: { positions: mesh.positions, triangles: mesh.triangles, edges, cornerUVs },
+      transfer: [mesh.positions.buffer, mesh.triangles.buffer, edges.buffer, cornerUVs.buffer],
+    };
+  },
+
+  add(spec) {
+    const id = core.add(spec);
+    ids.push(id);
+    return id;
+  },
+
+  readd(spec) {
+    const id = core.addConstraintJson(spec);
+    ids.push(id);
+    return id;
+  },
+
+  remove(id) {
+    core.remove(id);
+    ids = ids.filter((x) => x !== id);
+    return true;
+  },
+
+  setWeight(id, w) {
+    core.setWeight(id, w);
+    return true;
+  },
+
+  setStrength(id, s) {
+    core.setStrength(id, s);
+    return true;
+  },
+
+  setBoundary(bc) {
+    core.setBoundary(bc);
+    core.factor();
+    return true;
+  },
+
+  setGamma(g) {
+    core.setGamma(g);
+    core.factor();
+    return true;
+  },
+
+  applyDesign(design) {
+    applyDesign(design);
+    core.factor();
+    return true;
+  },
+
+  fieldJson() {
+    return core.fieldJson();
+  },
+};
+
+const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh']);
+// Ops after which the field may have changed: they solve and send a snapshot back.
+const MUTATING = new Set([
+  'loadMesh',
+  'add',
+  'readd',
+  'remove',
+  'setWeight',
+  'setStrength',
+  'setBoundary',
+  'setGamma',
+  'applyDesign',
+]);
+
+self.onmessage = async ({ data: { seq, op, args } }) => {
+  const t0 = performance.now();
+  const timing = {};
+  let reply, transfer = [];
+  try {
+    if (!ops[op]) throw new CoreError(`unknown operation ${op}`);
+    if (!NO_MESH_NEEDED.has(op)) requireMesh();
+    const out = await ops[op](...args);
+    const t1 = performance.now();
+    timing.opMs = t1 - t0;
+    if (MUTATING.has(op) && op !== 'loadMesh') {
+      core.solve();
+      // The arrows need only the face vectors: send them at once, before the derived read-outs.
+      const early = core.faceVectors();
+      self.postMessage({ seq, early: { faceVectors: early } }, [early.buffer]);
+    }
+    timing.solveMs = performance.now() - t1;
+    const snap = MUTATING.has(op) ? snapshot(timing) : null;
+    if (op === 'loadMesh') {
+      reply = { ok: true, value: out.value, mesh: out.mesh, snapshot: snap };
+      transfer = [...out.transfer, ...snap.transfer];
+    } else {
+      reply = { ok: true, value: out, snapshot: snap };
+      if (snap) transfer = snap.transfer;
+    }
+  } catch (err) {
+    reply = { ok: false, error: err?.message || String(err) };
+    // The page mirrors the core: after a failed edit it must still see what the core now holds.
+    if (MUTATING.has(op) && core?.hasMesh) {
+      try {
+        core.solve();
+        reply.snapshot = snapshot();
+        transfer = reply.snapshot.transfer;
+      } catch {
+        // no field to show; the page keeps its previous copies
+      }
+    }
+  }
+  if (reply.snapshot) delete reply.snapshot.transfer;
+  reply.seq = seq;
+  reply.workerMs = performance.now() - t0;
+  reply.timing = timing;
+  self.postMessage(reply, transfer);
+};

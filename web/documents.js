@@ -1,0 +1,65 @@
+// Designs as documents: downloads (design, field), reading a design file, and the autosave in localStorage.
+// Autosaves are keyed by the model's name, size and a content hash, so a different file that happens to
+// share a name never receives a design whose indices mean nothing on it.
+
+const AUTOSAVE_PREFIX = 'tvf.autosave.v1:';
+
+// FNV-1a over the bytes: fast (a few ms per MB) and plenty to tell models apart.
+function fnv1a(bytes) {
+  let h = 0x811c9dc5;
+  for (let i = 0; i < bytes.length; i++) h = Math.imul(h ^ bytes[i], 0x01000193);
+  return (h >>> 0).toString(16).padStart(8, '0');
+}
+
+export function modelKey(name, bytes) {
+  return `${name}|${bytes.length}|${fnv1a(bytes)}`;
+}
+
+function isEmptyDesign(design) {
+  return !design.constraints?.length && (design.boundary ?? 'free') === 'free' && !design.gamma;
+}
+
+export function loadAutosave(key) {
+  try {
+    const text = localStorage.getItem(AUTOSAVE_PREFIX + key);
+    return text ? JSON.parse(text) : null;
+  } catch {
+    return null; // storage disabled or a corrupt entry: start without it
+  }
+}
+
+export function saveAutosave(key, design) {
+  try {
+    if (isEmptyDesign(design)) localStorage.removeItem(AUTOSAVE_PREFIX + key);
+    else localStorage.setItem(AUTOSAVE_PREFIX + key, JSON.stringify({ savedAt: new Date().toISOString(), design }));
+    return true;
+  } catch {
+    return false; // quota or privacy mode: autosave is a convenience, never an error
+  }
+}
+
+export function baseName(name) {
+  return (name || 'model').replace(/\.[a-z0-9]+$/i, '');
+}
+
+// text: a JSON string or an object.
+export function downloadJson(filename, text) {
+  const blob = new Blob([typeof text === 'string' ? text : JSON.stringify(text, null, 1)], { type: 'application/json' });
+  const url = URL.createObjectURL(blob);
+  const a = document.createElement('a');
+  a.href = url;
+  a.download = filename;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+export async function readJsonFile(file) {
+  const text = await file.text();
+  try {
+    return JSON.parse(text);
+  } catch (err) {
+    throw new Error(`${file.name} is not valid JSON (${err.message})`);
+  }
+}

@@ -1,0 +1,210 @@
+// Constraint handles drawn on the surface — stroke ribbons, vector arrows, and markers for sources (red),
+// sinks (green) and vortices (blue) — plus the live preview arrow of the vector tool. Handles are picked in
+// screen space (nearest anchor within a few pixels that is not hidden behind the surface).
+import { BufferAttribute, BufferGeometry, DoubleSide, Group, Matrix4, Mesh, MeshBasicMaterial, Vector3 } from 'three';
+import { arrowGeometry, discTexture, fixSpriteScales, markerSprite } from './field-views.js';
+
+const COLORS = { stroke: 0xff7a1a, vector: 0xfbbf24, selected: 0xffffff, preview: 0xfde68a };
+const MARKERS = {
+  source: { fill: '#ef4444', text: '+' },
+  sink: { fill: '#22c55e', text: '\u2212' },
+  vortex: { fill: '#3b82f6', text: null }, // ↺ or ↻ by the sign of the strength
+};
+const LIFT = 0.12; // × mean edge length
+const PICK_PX = 12;
+
+export class HandlesView {
+  constructor(scene) {
+    this.group = new Group();
+    this.markers = new Group();
+    scene.add(this.group, this.markers);
+    this.items = new Map(); // uid → {spec, object, anchors: [[x,y,z], ...]}
+    this.selected = null;
+    this.preview = null;
+    this.scene = scene;
+  }
+
+  setSurface(surface) {
+    this.surface = surface;
+    this.setConstraints([]);
+    this.hidePreview();
+  }
+
+  // list: [{uid, spec}] with spec in the design format.
+  setConstraints(list) {
+    for (const item of this.items.values()) this.#disposeItem(item);
+    this.items.clear();
+    for (const { uid, spec } of list) {
+      const item = this.#build(spec);
+      if (!item) continue;
+      item.object.userData.uid = uid;
+      this.items.set(uid, item);
+    }
+    this.#paintSelection();
+  }
+
+  setSelected(uid) {
+    this.selected = uid;
+    this.#paintSelection();
+  }
+
+  #build(spec) {
+    const s = this.surface;
+    const lift = LIFT * s.meanEdge;
+    const liftedOn = (face, p) => {
+      const n = s.normal(face);
+      return [p[0] + lift * n[0], p[1] + lift * n[1], p[2] + lift * n[2]];
+    };
+    switch (spec.type) {
+      case 'stroke': {
+        const pts = spec.points.map((q) => liftedOn(q.face, s.pointFromBary(q.face, q.bary)));
+        const normals = spec.points.map((q) => s.normal(q.face));
+        const mesh = new Mesh(ribbon(pts, normals, 0.3 * s.meanEdge), basic(COLORS.stroke));
+        mesh.renderOrder = 2;
+        this.group.add(mesh);
+        return { spec, object: mesh, anchors: pts };
+      }
+      case 'vector': {
+        const n = s.normal(spec.face);
+        const c = liftedOn(spec.face, s.centroid(spec.face));
+        const v = projectOut(spec.vector, n);
+        const l = Math.hypot(...v);
+        const len = 3 * s.meanEdge;
+        const mesh = new Mesh(arrowGeometry({ shaftW: 0.07, headW: 0.22, headL: 0.35, centred: false }), basic(COLORS.vector));
+        if (l > 0) {
+          const x = new Vector3(...v).multiplyScalar(len / l), z = new Vector3(...n), y = new Vector3().crossVectors(z, x);
+          mesh.applyMatrix4(new Matrix4().makeBasis(x, y, z).setPosition(...c));
+        }
+        mesh.renderOrder = 2;
+        this.group.add(mesh);
+        const tip = l > 0 ? c.map((x, k) => x + (v[k] * len) / l) : c;
+        return { spec, object: mesh, anchors: [c, tip, c.map((x, k) => (x + tip[k]) / 2)] };
+      }
+      case 'edge': {
+        const [i, j] = spec.edge;
+        const pts = [s.vertex(i), s.vertex(j)];
+        const nrm = [0, 1].map((k) => [...s.vertexNormals.subarray(3 * spec.edge[k], 3 * spec.edge[k] + 3)]);
+        const lifted = pts.map((p, k) => p.map((x, c) => x + lift * nrm[k][c]));
+        const mesh = new Mesh(ribbon(lifted, nrm, 0.3 * s.meanEdge), basic(COLORS.stroke));
+        this.group.add(mesh);
+        return { spec, object: mesh, anchors: lifted };
+      }
+      case 'source':
+      case 'sink':
+      case 'vortex': {
+        const onVertex = spec.type !== 'vortex';
+        const p = onVertex ? s.vertex(spec.vertex) : s.centroid(spec.face);
+        const n = onVertex ? [...s.vertexNormals.subarray(3 * spec.vertex, 3 * spec.vertex + 3)] : s.normal(spec.face);
+        const at = p.map((x, k) => x + 4 * lift * n[k]);
+        const sprite = markerSprite(markerTexture(spec, false), 22);
+        sprite.position.set(...at);
+        this.markers.add(sprite);
+        return { spec, object: sprite, anchors: [at], marker: true };
+      }
+      default:
+        return null;
+    }
+  }
+
+  #paintSelection() {
+    for (const [uid, item] of this.items) {
+      const on = uid === this.selected;
+      if (item.marker) {
+        item.object.material.map = markerTexture(item.spec, on);
+        item.object.material.needsUpdate = true;
+        item.object.userData.px = on ? 28 : 22;
+      } else {
+        item.object.material.color.set(on ? COLORS.selected : COLORS[item.spec.type] ?? COLORS.stroke);
+      }
+    }
+  }
+
+  #disposeItem(item) {
+    item.object.parent?.remove(item.object);
+    item.object.geometry?.dispose();
+    item.object.material.dispose();
+  }
+
+  updateScale(camera, renderer) {
+    fixSpriteScales(this.markers, camera, renderer);
+  }
+
+  // The handle under a client pixel: nearest anchor within PICK_PX on screen that the surface does not hide.
+  pickAt(viewer, clientX, clientY) {
+    const candidates = [];
+    for (const [uid, item] of this.items) {
+      let best = Infinity, bestAnchor = null;
+      for (const a of item.anchors) {
+        const q = viewer.projectToScreen(a);
+        const d = Math.hypot(q.x - clientX, q.y - clientY);
+        if (d < best) (best = d), (bestAnchor = a);
+      }
+      if (best <= PICK_PX) candidates.push({ uid, d: best, anchor: bestAnchor, marker: !!item.marker });
+    }
+    candidates.sort((a, b) => a.d - b.d);
+    for (const c of candidates.slice(0, 6)) {
+      // Markers float above the surface: check the point beneath them instead.
+      if (viewer.isVisible(c.anchor, c.marker ? 6 : 2)) return c.uid;
+    }
+    return null;
+  }
+
+  // Vector tool preview: an arrow from `from` to `to` in the plane with normal n.
+  showPreview(from, to, n) {
+    const s = this.surface;
+    const v = projectOut([to[0] - from[0], to[1] - from[1], to[2] - from[2]], n);
+    const l = Math.hypot(...v);
+    if (!this.preview) {
+      this.preview = new Mesh(arrowGeometry({ shaftW: 0.06, headW: 0.2, headL: 0.3, centred: false }), basic(COLORS.preview));
+      this.preview.renderOrder = 4;
+      this.preview.matrixAutoUpdate = false;
+      this.scene.add(this.preview);
+    }
+    this.preview.visible = l > 0;
+    if (!(l > 0)) return;
+    const lift = 2 * LIFT * s.meanEdge;
+    const x = new Vector3(...v), z = new Vector3(...n), y = new Vector3().crossVectors(z, x).normalize().multiplyScalar(2.5 * s.meanEdge);
+    this.preview.matrix.makeBasis(x, y, z).setPosition(from[0] + lift * n[0], from[1] + lift * n[1], from[2] + lift * n[2]);
+  }
+
+  hidePreview() {
+    if (this.preview) this.preview.visible = false;
+  }
+}
+
+function basic(color) {
+  return new MeshBasicMaterial({ color, side: DoubleSide });
+}
+
+function projectOut(v, n) {
+  const d = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+  return [v[0] - d * n[0], v[1] - d * n[1], v[2] - d * n[2]];
+}
+
+function markerTexture(spec, selected) {
+  const m = MARKERS[spec.type];
+  const text = m.text ?? (spec.strength >= 0 ? '\u21ba' : '\u21bb');
+  return discTexture(`${spec.type}:${text}:${selected}`, m.fill, text, { ring: selected, textColor: '#ffffff' });
+}
+
+// A flat band of width w along a polyline, in the local tangent plane (normal per point).
+function ribbon(points, normals, w) {
+  const n = points.length;
+  const pos = new Float32Array(6 * n);
+  for (let k = 0; k < n; k++) {
+    const a = points[Math.max(0, k - 1)], b = points[Math.min(n - 1, k + 1)];
+    const t = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    const nr = normals[k];
+    let side = [nr[1] * t[2] - nr[2] * t[1], nr[2] * t[0] - nr[0] * t[2], nr[0] * t[1] - nr[1] * t[0]];
+    const l = Math.hypot(...side) || 1;
+    side = side.map((x) => (x / l) * (w / 2));
+    const p = points[k];
+    pos.set([p[0] - side[0], p[1] - side[1], p[2] - side[2], p[0] + side[0], p[1] + side[1], p[2] + side[2]], 6 * k);
+  }
+  const index = [];
+  for (let k = 0; k + 1 < n; k++) index.push(2 * k, 2 * k + 1, 2 * k + 2, 2 * k + 1, 2 * k + 3, 2 * k + 2);
+  const g = new BufferGeometry();
+  g.setAttribute('position', new BufferAttribute(pos, 3));
+  g.setIndex(index);
+  return g;
+}

@@ -1,0 +1,263 @@
+// Main-thread geometry and topology of the core's welded mesh, for drawing and for tracing on the surface.
+// Face f here is face f of the core; local edge k of a face runs from corner k to corner k+1.
+
+export class Surface {
+  // positions: Float64Array (3 per vertex), triangles: Int32Array (3 per face), edges: Int32Array (2 per edge,
+  // the core's canonical order, lower index first).
+  constructor(positions, triangles, edges) {
+    this.positions = positions;
+    this.triangles = triangles;
+    this.edges = edges;
+    this.nV = positions.length / 3;
+    this.nF = triangles.length / 3;
+    this.#geometry();
+    this.#adjacency();
+  }
+
+  #geometry() {
+    const P = this.positions, T = this.triangles, nF = this.nF;
+    this.normals = new Float64Array(3 * nF);
+    this.centres = new Float64Array(3 * nF);
+    this.areas = new Float64Array(nF);
+    // Per-face 2D frame: origin at corner 0, x along edge 0→1, y = n × x; corners in that frame.
+    this.frames = new Float64Array(6 * nF); // e1 (3), e2 (3)
+    this.corners2d = new Float64Array(6 * nF); // (0,0), (bx,0), (cx,cy)
+    let edgeSum = 0;
+    const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    for (let v = 0; v < this.nV; v++) {
+      for (let k = 0; k < 3; k++) {
+        lo[k] = Math.min(lo[k], P[3 * v + k]);
+        hi[k] = Math.max(hi[k], P[3 * v + k]);
+      }
+    }
+    for (let f = 0; f < nF; f++) {
+      const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
+      const u = [P[b] - P[a], P[b + 1] - P[a + 1], P[b + 2] - P[a + 2]];
+      const w = [P[c] - P[a], P[c + 1] - P[a + 1], P[c + 2] - P[a + 2]];
+      const lu = Math.hypot(...u);
+      edgeSum += lu + Math.hypot(...w) + Math.hypot(P[c] - P[b], P[c + 1] - P[b + 1], P[c + 2] - P[b + 2]);
+      let n = cross(u, w);
+      const ln = Math.hypot(...n);
+      this.areas[f] = ln / 2;
+      n = ln > 0 ? n.map((x) => x / ln) : [0, 0, 1];
+      this.normals.set(n, 3 * f);
+      for (let k = 0; k < 3; k++) this.centres[3 * f + k] = (P[a + k] + P[b + k] + P[c + k]) / 3;
+      const e1 = lu > 0 ? u.map((x) => x / lu) : [1, 0, 0];
+      const e2 = cross(n, e1);
+      this.frames.set([...e1, ...e2], 6 * f);
+      this.corners2d.set([0, 0, lu, 0, dot(w, e1), dot(w, e2)], 6 * f);
+    }
+    this.meanEdge = nF ? edgeSum / (3 * nF) : 1;
+    this.centre = lo.map((x, k) => (x + hi[k]) / 2);
+    this.radius = Math.max(1e-12, Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2);
+  }
+
+  #adjacency() {
+    const T = this.triangles, nF = this.nF, nV = this.nV;
+    // neighbour[3f+k] = 3g+kk for the face g across local edge k (its local edge kk), or -1 on the boundary.
+    this.neighbour = new Int32Array(3 * nF).fill(-1);
+    const open = new Map();
+    for (let f = 0; f < nF; f++) {
+      for (let k = 0; k < 3; k++) {
+        const i = T[3 * f + k], j = T[3 * f + ((k + 1) % 3)];
+        const key = i < j ? i * nV + j : j * nV + i;
+        const other = open.get(key);
+        if (other === undefined) open.set(key, 3 * f + k);
+        else {
+          this.neighbour[3 * f + k] = other;
+          this.neighbour[other] = 3 * f + k;
+          open.delete(key);
+        }
+      }
+    }
+    // Faces around each vertex (CSR), for one-ring queries.
+    const count = new Int32Array(nV + 1);
+    for (let t = 0; t < T.length; t++) count[T[t] + 1]++;
+    for (let v = 0; v < nV; v++) count[v + 1] += count[v];
+    this.vertexFaceStart = count;
+    this.vertexFaces = new Int32Array(T.length);
+    const fill = count.slice(0, nV);
+    for (let t = 0; t < T.length; t++) this.vertexFaces[fill[T[t]]++] = Math.floor(t / 3);
+    // Vertex normals (area weighted), for lifting markers off the surface.
+    this.vertexNormals = new Float64Array(3 * nV);
+    for (let f = 0; f < nF; f++) {
+      for (let k = 0; k < 3; k++) {
+        const v = T[3 * f + k];
+        for (let c = 0; c < 3; c++) this.vertexNormals[3 * v + c] += this.areas[f] * this.normals[3 * f + c];
+      }
+    }
+    for (let v = 0; v < nV; v++) {
+      const n = this.vertexNormals.subarray(3 * v, 3 * v + 3);
+      const l = Math.hypot(n[0], n[1], n[2]) || 1;
+      for (let c = 0; c < 3; c++) n[c] /= l;
+    }
+  }
+
+  vertex(v) {
+    const P = this.positions;
+    return [P[3 * v], P[3 * v + 1], P[3 * v + 2]];
+  }
+
+  normal(f) {
+    return [this.normals[3 * f], this.normals[3 * f + 1], this.normals[3 * f + 2]];
+  }
+
+  centroid(f) {
+    return [this.centres[3 * f], this.centres[3 * f + 1], this.centres[3 * f + 2]];
+  }
+
+  facesAround(v) {
+    return this.vertexFaces.subarray(this.vertexFaceStart[v], this.vertexFaceStart[v + 1]);
+  }
+
+  pointFromBary(f, [u, v, w]) {
+    const P = this.positions, T = this.triangles;
+    const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
+    return [0, 1, 2].map((k) => u * P[a + k] + v * P[b + k] + w * P[c + k]);
+  }
+
+  // 3D point → 2D in face f's frame (no projection check: the caller knows the point is in the plane).
+  to2d(f, p) {
+    const a = this.vertex(this.triangles[3 * f]);
+    const F = this.frames;
+    const d = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
+    return [d[0] * F[6 * f] + d[1] * F[6 * f + 1] + d[2] * F[6 * f + 2], d[0] * F[6 * f + 3] + d[1] * F[6 * f + 4] + d[2] * F[6 * f + 5]];
+  }
+
+  to3d(f, [x, y]) {
+    const a = this.vertex(this.triangles[3 * f]);
+    const F = this.frames;
+    return [0, 1, 2].map((k) => a[k] + x * F[6 * f + k] + y * F[6 * f + 3 + k]);
+  }
+
+  // 3D vector → 2D components in face f's frame (drops the normal part).
+  vec2d(f, v) {
+    const F = this.frames;
+    return [v[0] * F[6 * f] + v[1] * F[6 * f + 1] + v[2] * F[6 * f + 2], v[0] * F[6 * f + 3] + v[1] * F[6 * f + 4] + v[2] * F[6 * f + 5]];
+  }
+
+  vec3d(f, [x, y]) {
+    const F = this.frames;
+    return [0, 1, 2].map((k) => x * F[6 * f + k] + y * F[6 * f + 3 + k]);
+  }
+
+  // Barycentric coordinates of a 2D point in face f's frame (any point of the plane; may be negative).
+  bary2d(f, [x, y]) {
+    const C = this.corners2d, o = 6 * f;
+    const bx = C[o + 2], cx = C[o + 4], cy = C[o + 5];
+    // Corner 0 at the origin, corner 1 on the x axis: solve p = v·B + w·C directly.
+    const w = cy !== 0 ? y / cy : 0;
+    const v = bx !== 0 ? (x - w * cx) / bx : 0;
+    return [1 - v - w, v, w];
+  }
+
+  // Barycentric coordinates of a 3D point (projected into face f's plane), clamped into the face.
+  baryOf(f, p) {
+    const b = this.bary2d(f, this.to2d(f, p)).map((x) => Math.max(0, x));
+    const s = b[0] + b[1] + b[2] || 1;
+    return b.map((x) => x / s);
+  }
+
+  // Corner of face f nearest to the 3D point p.
+  nearestCorner(f, p) {
+    let best = -1, bestD = Infinity;
+    for (let k = 0; k < 3; k++) {
+      const v = this.triangles[3 * f + k];
+      const q = this.vertex(v);
+      const d = Math.hypot(q[0] - p[0], q[1] - p[1], q[2] - p[2]);
+      if (d < bestD) (bestD = d), (best = v);
+    }
+    return best;
+  }
+
+  // Walks straight along the surface from 2D point p of face f in direction dir (2D, unit), for `length`,
+  // unfolding the direction across edges. Returns {face, p, dir, hitBoundary, travelled}.
+  walk(f, p, dir, length, maxCrossings = 64) {
+    let face = f, pos = p, d = dir, left = length;
+    for (let n = 0; n < maxCrossings; n++) {
+      const exit = this.exitOf(face, pos, [d[0] * left, d[1] * left]);
+      if (!exit) return { face, p: [pos[0] + d[0] * left, pos[1] + d[1] * left], dir: d, hitBoundary: false, travelled: length };
+      const q = [pos[0] + d[0] * left * exit.t, pos[1] + d[1] * left * exit.t];
+      left *= 1 - exit.t;
+      const next = this.cross(face, exit.edge, q, d);
+      if (!next) return { face, p: q, dir: d, hitBoundary: true, travelled: length - left };
+      ({ face, p: pos, dir: d } = next);
+    }
+    return { face, p: pos, dir: d, hitBoundary: true, travelled: length - left };
+  }
+
+  // Where the 2D segment p → p + step leaves face f: {t ∈ [0, 1), edge k} or null if it stays inside.
+  exitOf(f, p, step) {
+    const b0 = this.bary2d(f, p);
+    const b1 = this.bary2d(f, [p[0] + step[0], p[1] + step[1]]);
+    let tMin = 1, edge = -1;
+    for (let k = 0; k < 3; k++) {
+      const db = b1[k] - b0[k];
+      if (b1[k] < 0 && db < 0) {
+        // Barycentric k vanishes on the edge opposite corner k, which is local edge k+1.
+        const t = Math.max(0, b0[k] / -db);
+        if (t < tMin) (tMin = t), (edge = (k + 1) % 3);
+      }
+    }
+    return edge < 0 ? null : { t: tMin, edge };
+  }
+
+  // Carries a point on local edge k of face f, and a 2D direction, into the neighbouring face by unfolding
+  // about the shared edge. Returns {face, p, dir} or null on a boundary edge.
+  cross(f, k, p, dir) {
+    const nb = this.neighbour[3 * f + k];
+    if (nb < 0) return null;
+    const g = Math.floor(nb / 3);
+    const [c, s, tx, ty] = this.#unfolding(f, k);
+    const dg = [c * dir[0] - s * dir[1], s * dir[0] + c * dir[1]];
+    const l = Math.hypot(dg[0], dg[1]) || 1;
+    dg[0] /= l;
+    dg[1] /= l;
+    // Nudge off the shared edge into g so the next exit test does not see the point as already outside.
+    const eps = 1e-9 * this.meanEdge;
+    const q = [c * p[0] - s * p[1] + tx + dg[0] * eps, s * p[0] + c * p[1] + ty + dg[1] * eps];
+    return { face: g, p: q, dir: dg };
+  }
+
+  // Unfolding across local edge k of face f is a rigid motion from f's 2D frame to the neighbour's, fixed by
+  // the shared edge (its ends i, j have coordinates in both frames): rotation (c, s), then shift (tx, ty).
+  // Cached per half-edge: streamlines cross edges constantly.
+  #unfolding(f, k) {
+    this.unfold ??= new Float64Array(12 * this.nF).fill(NaN);
+    const o = 12 * f + 4 * k;
+    if (!Number.isNaN(this.unfold[o])) return this.unfold.subarray(o, o + 4);
+    const g = Math.floor(this.neighbour[3 * f + k] / 3);
+    const T = this.triangles;
+    const i = this.vertex(T[3 * f + k]), j = this.vertex(T[3 * f + ((k + 1) % 3)]);
+    const [ifx, ify] = this.to2d(f, i), [jfx, jfy] = this.to2d(f, j);
+    const [igx, igy] = this.to2d(g, i), [jgx, jgy] = this.to2d(g, j);
+    const ef = [jfx - ifx, jfy - ify], eg = [jgx - igx, jgy - igy];
+    const l2 = ef[0] * ef[0] + ef[1] * ef[1] || 1;
+    const c = (ef[0] * eg[0] + ef[1] * eg[1]) / l2;
+    const s = (ef[0] * eg[1] - ef[1] * eg[0]) / l2;
+    const tx = igx - (c * ifx - s * ify), ty = igy - (s * ifx + c * ify);
+    this.unfold.set([c, s, tx, ty], o);
+    return this.unfold.subarray(o, o + 4);
+  }
+}
+
+export function dot(a, b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+export function cross(a, b) {
+  return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+}
+
+// A deterministic permutation of 0..n-1 (a fixed-seed shuffle): seeds and arrow samples taken in this order
+// spread over the whole model instead of sweeping it in face order.
+export function scrambled(n) {
+  const order = Int32Array.from({ length: n }, (_, i) => i);
+  let s = 0x9e3779b9;
+  for (let i = n - 1; i > 0; i--) {
+    s = (Math.imul(s, 1664525) + 1013904223) >>> 0;
+    const j = s % (i + 1);
+    [order[i], order[j]] = [order[j], order[i]];
+  }
+  return order;
+}

@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Exemplars for synthesis: the procedural ones of the core (stripes, scales, weave) and user images, analysed
+// by the wasm core's ExemplarAnalysis (core/texture/) and cached per exemplar, as the flat tables the GPU
+// synthesizer uploads.
+//
+// The analysis runs in an instance of the core module of its own on the page's thread (the design core lives
+// in its worker): ~0.1-0.5 s for a 128^2 exemplar, once per exemplar.
+
+export const USER_EXEMPLAR_SIZE = 128;
+export const PROCEDURAL_SIZE = 64;
+
+export async function loadAnalysisModule(baseUrl) {
+  const moduleUrl = new URL('wasm/tvf_core.mjs', baseUrl).href;
+  let factory;
+  try {
+    factory = (await import(/* @vite-ignore */ moduleUrl)).default;
+  } catch (err) {
+    throw new Error(`could not load the core for exemplar analysis from ${moduleUrl} (${err?.message || err})`);
+  }
+  const Module = await factory({ locateFile: (path) => new URL(path, moduleUrl).href });
+  if (typeof Module.ExemplarAnalysis !== 'function')
+    throw new Error('this build of the core has no ExemplarAnalysis; rebuild it (npm run build:wasm)');
+  return Module;
+}
+
+// Copies everything out of wasm memory (the views die at the next call).
+function tablesOf(analysis, key, sourceLabel) {
+  const size = analysis.size();
+  const levels = [];
+  for (let s = 0; s < analysis.numLevels(); s++) {
+    levels.push({
+      colour: Float32Array.from(analysis.colour(s)),
+      appearance: Float32Array.from(analysis.appearance(s)),
+      neighbourhood: Float32Array.from(analysis.neighbourhood(s)),
+      candidates: Float32Array.from(analysis.candidates(s)),
+      projection: Float32Array.from(analysis.projection(s)),
+      projectionOffset: Float32Array.from(analysis.projectionOffset(s)),
+    });
+  }
+  return { key, source: sourceLabel, size, levels, rgba8: Uint8Array.from(analysis.rgba8()), stats: JSON.parse(analysis.statsJson()) };
+}
+
+export class ExemplarLibrary {
+  constructor(Module, { capacity = 6 } = {}) {
+    this.Module = Module;
+    this.cache = new Map(); // key -> tables, most recently used last
+    this.capacity = capacity;
+  }
+
+  names() {
+    return JSON.parse(this.Module.proceduralExemplarNames());
+  }
+
+  #cached(key, make) {
+    if (this.cache.has(key)) {
+      const t = this.cache.get(key);
+      this.cache.delete(key);
+      this.cache.set(key, t);
+      return { tables: t, cached: true };
+    }
+    const tables = make();
+    this.cache.set(key, tables);
+    while (this.cache.size > this.capacity) this.cache.delete(this.cache.keys().next().value);
+    return { tables, cached: false };
+  }
+
+  #analyze(run, key, label) {
+    const a = new this.Module.ExemplarAnalysis();
+    try {
+      const err = run(a);
+      if (err) throw new Error(`exemplar analysis: ${err}`);
+      return tablesOf(a, key, label);
+    } finally {
+      a.delete();
+    }
+  }
+
+  procedural(name, size = PROCEDURAL_SIZE, seed = 1) {
+    const key = `procedural:${name}:${size}:${seed}`;
+    return this.#cached(key, () => this.#analyze((a) => a.analyzeProcedural(name, size, seed), key, name));
+  }
+
+  // rgba: Uint8Array of size*size*4.
+  image(rgba, size, label = 'image') {
+    const key = `image:${size}:${contentHash(rgba)}`;
+    return this.#cached(key, () => this.#analyze((a) => a.analyzeRGBA8(rgba, size), key, label));
+  }
+}
+
+// FNV-1a over the bytes (sampled for large images): the cache key of user images.
+export function contentHash(bytes) {
+  let h = 0x811c9dc5;
+  const step = Math.max(1, Math.floor(bytes.length / 65536));
+  for (let i = 0; i < bytes.length; i += step) {
+    h ^= bytes[i];
+    h = Math.imul(h, 0x01000193);
+  }
+  return `${bytes.length}:${(h >>> 0).toString(16)}`;
+}
+
+function canvas2d(size) {
+  const c = typeof OffscreenCanvas !== 'undefined' ? new OffscreenCanvas(size, size) : Object.assign(document.createElement('canvas'), { width: size, height: size });
+  return c.getContext('2d', { willReadFrequently: true });
+}
+
+// Any image source (URL string/URL, Blob/File, ImageData, ImageBitmap, HTMLImageElement/Canvas) as RGBA8 of
+// size x size: the central square, resampled by the browser's smooth scaling. Returns {rgba, size, label}.
+export async function imageToRGBA8(source, size = USER_EXEMPLAR_SIZE) {
+  let bitmap, label = 'image';
+  if (typeof source === 'string' || source instanceof URL) {
+    const url = String(source);
+    label = url.split('/').pop() || url;
+    const res = await fetch(url);
+    if (!res.ok) throw new Error(`could not fetch the exemplar ${url}: HTTP ${res.status}`);
+    bitmap = await createImageBitmap(await res.blob());
+  } else if (typeof Blob !== 'undefined' && source instanceof Blob) {
+    label = source.name || 'image';
+    try {
+      bitmap = await createImageBitmap(source);
+    } catch {
+      throw new Error(`could not decode ${label} as an image (PNG or JPEG expected)`);
+    }
+  } else if (typeof ImageData !== 'undefined' && source instanceof ImageData) {
+    bitmap = await createImageBitmap(source);
+    label = 'ImageData';
+  } else if (source && typeof source === 'object' && 'width' in source && 'height' in source) {
+    bitmap = source;
+  } else {
+    throw new Error('setExemplar: expected a procedural name, a URL, a Blob/File, or ImageData');
+  }
+  const side = Math.min(bitmap.width, bitmap.height);
+  if (!(side >= 4)) throw new Error(`the exemplar image is too small (${bitmap.width}x${bitmap.height})`);
+  const ctx = canvas2d(size);
+  ctx.imageSmoothingEnabled = true;
+  ctx.imageSmoothingQuality = 'high';
+  ctx.drawImage(bitmap, (bitmap.width - side) / 2, (bitmap.height - side) / 2, side, side, 0, 0, size, size);
+  const rgba = new Uint8Array(ctx.getImageData(0, 0, size, size).data.buffer);
+  return { rgba, size, label };
+}

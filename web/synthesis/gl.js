@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Small raw-WebGL2 helpers for the synthesizer: programs, float textures and render targets, full-screen passes.
+// Every texture here is read with texelFetch (integer texel addresses), so all use NEAREST filtering and need only
+// EXT_color_buffer_float to be rendered into.
+
+export class GLError extends Error {
+  constructor(message) {
+    super(message);
+    this.name = 'GLError';
+  }
+}
+
+// A WebGL2 context of our own (synthesis never touches three.js's GL state) with float render targets.
+export function createContext() {
+  const canvas =
+    typeof OffscreenCanvas !== 'undefined' ? new OffscreenCanvas(1, 1) : Object.assign(document.createElement('canvas'), { width: 1, height: 1 });
+  const gl = canvas.getContext('webgl2', { antialias: false, depth: false, stencil: false, alpha: true, premultipliedAlpha: false, preserveDrawingBuffer: false });
+  if (!gl) throw new GLError('texture synthesis needs WebGL2, which this browser does not provide');
+  if (!gl.getExtension('EXT_color_buffer_float')) throw new GLError('texture synthesis needs float render targets (EXT_color_buffer_float)');
+  return gl;
+}
+
+function compile(gl, type, source, label) {
+  const shader = gl.createShader(type);
+  gl.shaderSource(shader, source);
+  gl.compileShader(shader);
+  if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS)) {
+    const log = gl.getShaderInfoLog(shader);
+    gl.deleteShader(shader);
+    throw new GLError(`${label}: shader compile failed: ${log}`);
+  }
+  return shader;
+}
+
+// A linked program with its uniform locations looked up lazily.
+export class Program {
+  constructor(gl, vertexSource, fragmentSource, label) {
+    this.gl = gl;
+    this.label = label;
+    const vs = compile(gl, gl.VERTEX_SHADER, vertexSource, label);
+    const fs = compile(gl, gl.FRAGMENT_SHADER, fragmentSource, label);
+    const p = gl.createProgram();
+    gl.attachShader(p, vs);
+    gl.attachShader(p, fs);
+    gl.linkProgram(p);
+    gl.deleteShader(vs);
+    gl.deleteShader(fs);
+    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) throw new GLError(`${label}: link failed: ${gl.getProgramInfoLog(p)}`);
+    this.program = p;
+    this.locations = new Map();
+  }
+
+  loc(name) {
+    if (!this.locations.has(name)) this.locations.set(name, this.gl.getUniformLocation(this.program, name));
+    return this.locations.get(name);
+  }
+
+  use() {
+    this.gl.useProgram(this.program);
+    this.unit = 0;
+    return this;
+  }
+
+  // Binds a texture to the next free unit and points the sampler uniform at it.
+  texture(name, tex) {
+    const gl = this.gl;
+    const unit = this.unit++;
+    gl.activeTexture(gl.TEXTURE0 + unit);
+    gl.bindTexture(gl.TEXTURE_2D, tex.texture ?? tex);
+    gl.uniform1i(this.loc(name), unit);
+    return this;
+  }
+
+  int(name, v) {
+    this.gl.uniform1i(this.loc(name), v);
+    return this;
+  }
+  float(name, v) {
+    this.gl.uniform1f(this.loc(name), v);
+    return this;
+  }
+  vec2(name, x, y) {
+    this.gl.uniform2f(this.loc(name), x, y);
+    return this;
+  }
+  ivec2(name, x, y) {
+    this.gl.uniform2i(this.loc(name), x, y);
+    return this;
+  }
+  vec4v(name, arr) {
+    this.gl.uniform4fv(this.loc(name), arr);
+    return this;
+  }
+  mat4v(name, arr) {
+    this.gl.uniformMatrix4fv(this.loc(name), false, arr);
+    return this;
+  }
+
+  dispose() {
+    this.gl.deleteProgram(this.program);
+  }
+}
+
+// An RGBA32F texture (optionally a render target) of width x height.
+export class FloatTarget {
+  constructor(gl, width, height, data = null, { target = true } = {}) {
+    this.gl = gl;
+    this.width = width;
+    this.height = height;
+    this.texture = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, this.texture);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, data);
+    for (const [k, v] of [
+      [gl.TEXTURE_MIN_FILTER, gl.NEAREST],
+      [gl.TEXTURE_MAG_FILTER, gl.NEAREST],
+      [gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE],
+      [gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE],
+    ])
+      gl.texParameteri(gl.TEXTURE_2D, k, v);
+    this.framebuffer = null;
+    if (target) {
+      this.framebuffer = gl.createFramebuffer();
+      gl.bindFramebuffer(gl.FRAMEBUFFER, this.framebuffer);
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, this.texture, 0);
+      const status = gl.checkFramebufferStatus(gl.FRAMEBUFFER);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+      if (status !== gl.FRAMEBUFFER_COMPLETE) throw new GLError(`RGBA32F render target ${width}x${height} is incomplete (0x${status.toString(16)})`);
+    }
+  }
+
+  bindAsTarget() {
+    const gl = this.gl;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.framebuffer);
+    gl.viewport(0, 0, this.width, this.height);
+  }
+
+  read(out = new Float32Array(4 * this.width * this.height)) {
+    const gl = this.gl;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.framebuffer);
+    gl.readPixels(0, 0, this.width, this.height, gl.RGBA, gl.FLOAT, out);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    return out;
+  }
+
+  dispose() {
+    this.gl.deleteTexture(this.texture);
+    if (this.framebuffer) this.gl.deleteFramebuffer(this.framebuffer);
+  }
+}
+
+// An RGBA8 render target (the resolved colour image, read back as bytes).
+export class ByteTarget {
+  constructor(gl, width, height) {
+    this.gl = gl;
+    this.width = width;
+    this.height = height;
+    this.texture = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, this.texture);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA8, width, height, 0, gl.RGBA, gl.UNSIGNED_BYTE, null);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    this.framebuffer = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.framebuffer);
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, this.texture, 0);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  }
+  bindAsTarget() {
+    const gl = this.gl;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.framebuffer);
+    gl.viewport(0, 0, this.width, this.height);
+  }
+  read(out = new Uint8Array(4 * this.width * this.height)) {
+    const gl = this.gl;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.framebuffer);
+    gl.readPixels(0, 0, this.width, this.height, gl.RGBA, gl.UNSIGNED_BYTE, out);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    return out;
+  }
+  dispose() {
+    this.gl.deleteTexture(this.texture);
+    this.gl.deleteFramebuffer(this.framebuffer);
+  }
+}
+
+// One triangle covering the viewport; the vertex shader derives positions from gl_VertexID.
+export const FULLSCREEN_VS = `#version 300 es
+void main() {
+  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}`;
+
+export function drawFullscreen(gl, vao) {
+  gl.bindVertexArray(vao);
+  gl.drawArrays(gl.TRIANGLES, 0, 3);
+  gl.bindVertexArray(null);
+}
+
+// Waits for the GPU: a 1x1 readPixels from the current framebuffer (gl.finish() does not wait in Chromium).
+export function sync(gl, target) {
+  const px = new Float32Array(4);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
+  gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.FLOAT, px);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  return px;
+}

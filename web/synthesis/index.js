@@ -1,0 +1,309 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Field-guided texture synthesis on the page: exemplar analysis (wasm), GPU synthesis in the model's texture
+// atlas (synthesizer.js), the textured model in the view (render.js), exports, and the window.tvf additions
+// (docs/js-api.md, "Texture synthesis"). The page hands in a small adapter; see installSynthesis().
+import { chooseAtlas } from './atlas.js';
+import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8, loadAnalysisModule } from './exemplar.js';
+import { encodeGlb } from './glb.js';
+import { mountSynthesisPanel } from './panel.js';
+import { TexturedModel } from './render.js';
+import { DEFAULTS, Synthesizer } from './synthesizer.js';
+
+export const DEFAULT_RESOLUTION = 256;
+const MAX_RESOLUTION = 2048;
+const OPTION_KEYS = ['featureScale', 'magnitudeExponent', 'jitter', 'finestJitter', 'passes', 'kappa', 'seed', 'gutter', 'seams', 'timing'];
+
+// RGBA8 (row 0 = bottom, as read from WebGL) to a PNG Blob, rows flipped so that v = 1 is the image's top row
+// (the glTF convention: UV (u, v) shows pixel (u W, (1 - v) H)).
+async function rgbaToPngBlob(pixels, width, height) {
+  const flipped = new Uint8ClampedArray(pixels.length);
+  const row = 4 * width;
+  for (let y = 0; y < height; y++) flipped.set(pixels.subarray((height - 1 - y) * row, (height - y) * row), y * row);
+  const image = new ImageData(flipped, width, height);
+  if (typeof OffscreenCanvas !== 'undefined') {
+    const c = new OffscreenCanvas(width, height);
+    c.getContext('2d').putImageData(image, 0, 0);
+    return c.convertToBlob({ type: 'image/png' });
+  }
+  const c = Object.assign(document.createElement('canvas'), { width, height });
+  c.getContext('2d').putImageData(image, 0, 0);
+  return new Promise((resolve) => c.toBlob(resolve, 'image/png'));
+}
+
+export class SynthesisController {
+  // baseUrl: where wasm/tvf_core.mjs lives. viewer: the page's Viewer (scene, surfaceMesh, requestRender).
+  // getModel(): {key, name, positions, triangles, cornerUVs | null, vertexVectors} of the current model and field.
+  constructor({ baseUrl, viewer, getModel, onChange = () => {}, onError = () => {} }) {
+    this.baseUrl = baseUrl;
+    this.viewer = viewer;
+    this.getModel = getModel;
+    this.onChange = onChange;
+    this.onError = onError;
+    this.module = null;
+    this.library = null;
+    this.synth = null;
+    this.render = null;
+    this.exemplar = null; // {tables, label, analysisMs, cached}
+    this.atlas = null; // {key, resolution, cornerUVs, source, reason, stats}
+    this.options = { ...DEFAULTS, resolution: DEFAULT_RESOLUTION };
+    this.active = false; // a texture is shown and follows field changes
+    this.stats = null;
+    this.queue = Promise.resolve();
+    this.pendingField = false;
+  }
+
+  #exclusive(fn) {
+    const run = this.queue.then(fn);
+    this.queue = run.catch(() => {});
+    return run;
+  }
+
+  async #ensureModule() {
+    if (!this.module) {
+      this.module = await loadAnalysisModule(this.baseUrl);
+      this.library = new ExemplarLibrary(this.module);
+    }
+  }
+
+  #ensureSynth() {
+    if (!this.synth) this.synth = new Synthesizer();
+    return this.synth;
+  }
+
+  proceduralNames() {
+    return ['stripes', 'scales', 'weave'];
+  }
+
+  // src: a procedural name ('stripes' | 'scales' | 'weave'), {procedural, size, seed}, a URL (string or URL),
+  // a Blob/File (PNG or JPEG), ImageData or an ImageBitmap. Options: {size} for images (power of two, default 128).
+  setExemplar(src, { size } = {}) {
+    return this.#exclusive(async () => {
+      await this.#ensureModule();
+      const t0 = performance.now();
+      let result, label;
+      const spec = typeof src === 'string' && this.proceduralNames().includes(src) ? { procedural: src } : src;
+      if (spec && typeof spec === 'object' && typeof spec.procedural === 'string') {
+        const n = spec.size ?? PROCEDURAL_SIZE;
+        result = this.library.procedural(spec.procedural, n, spec.seed ?? 1);
+        label = spec.procedural;
+      } else {
+        const n = size ?? USER_EXEMPLAR_SIZE;
+        if (!Number.isInteger(n) || n < 16 || n > 256 || (n & (n - 1))) throw new Error(`exemplar size must be a power of two in [16, 256] (got ${n})`);
+        const img = await imageToRGBA8(spec, n);
+        result = this.library.image(img.rgba, img.size, img.label);
+        label = img.label;
+      }
+      this.exemplar = { tables: result.tables, label, cached: result.cached, analysisMs: performance.now() - t0 };
+      this.#ensureSynth().setExemplar(result.tables);
+      this.onChange();
+      if (this.active) await this.#run();
+      return this.exemplarInfo();
+    });
+  }
+
+  exemplarInfo() {
+    if (!this.exemplar) return null;
+    const { tables, label, cached, analysisMs } = this.exemplar;
+    return { label, size: tables.size, levels: tables.levels.length, cached, analysisMs, analysis: tables.stats };
+  }
+
+  // The atlas for the current model at `resolution` (cached per model and resolution).
+  #atlasFor(model, resolution) {
+    const gutter = this.options.gutter ?? DEFAULTS.gutter;
+    if (this.atlas && this.atlas.key === model.key && this.atlas.resolution === resolution && this.atlas.gutter === gutter) return this.atlas;
+    const chosen = chooseAtlas(model, { resolution, gutter: gutter + 1 });
+    this.atlas = { key: model.key, resolution, gutter, ...chosen };
+    this.#ensureSynth().setAtlas({ resolution, positions: model.positions, triangles: model.triangles, cornerUVs: this.atlas.cornerUVs });
+    if (!this.render) this.render = new TexturedModel(this.viewer);
+    this.render.setGeometry(model.positions, model.triangles, this.atlas.cornerUVs);
+    return this.atlas;
+  }
+
+  // Synthesizes for the current field and shows the result; later field changes resynthesize with the same
+  // options until clearTexture(). Options: resolution (power of two, default 256) and the synthesizer's
+  // (featureScale, magnitudeExponent, jitter, passes, kappa, seed, gutter, timing).
+  synthesize(options = {}) {
+    return this.#exclusive(async () => {
+      if (options.resolution !== undefined) {
+        const r = options.resolution;
+        if (!Number.isInteger(r) || r < 16 || r > MAX_RESOLUTION || (r & (r - 1))) throw new Error(`resolution must be a power of two in [16, ${MAX_RESOLUTION}] (got ${r})`);
+      }
+      for (const k of Object.keys(options)) {
+        if (k !== 'resolution' && !OPTION_KEYS.includes(k)) throw new Error(`unknown synthesis option '${k}'`);
+      }
+      if (options.featureScale !== undefined && !(options.featureScale > 0)) throw new Error('featureScale must be > 0');
+      this.options = { ...this.options, ...options };
+      if (!this.exemplar) {
+        await this.#ensureModule();
+        const r = this.library.procedural('stripes', PROCEDURAL_SIZE, 1);
+        this.exemplar = { tables: r.tables, label: 'stripes', cached: r.cached, analysisMs: 0 };
+        this.#ensureSynth().setExemplar(r.tables);
+      }
+      this.active = true;
+      return this.#run();
+    });
+  }
+
+  async #run() {
+    const model = this.getModel();
+    if (!model) throw new Error('no model loaded');
+    const t0 = performance.now();
+    const atlas = this.#atlasFor(model, this.options.resolution);
+    const tAtlas = performance.now() - t0;
+    const synthOptions = {};
+    for (const k of OPTION_KEYS) if (this.options[k] !== undefined) synthOptions[k] = this.options[k];
+    const s = this.synth.synthesize(model.vertexVectors, synthOptions);
+    const t1 = performance.now();
+    const coords = this.synth.readCoordinates();
+    const jacobian = this.synth.readJacobian();
+    this.render.setTexture({ resolution: atlas.resolution, coords, jacobian, exemplar: this.exemplar.tables.rgba8, exemplarSize: this.exemplar.tables.size });
+    this.viewer.requestRender?.();
+    this.stats = {
+      ...s,
+      exemplar: this.exemplarInfo(),
+      atlas: { source: atlas.source, reason: atlas.reason, resolution: atlas.resolution, ...atlas.stats, ms: tAtlas },
+      readbackMs: performance.now() - t1,
+      fieldVersion: model.fieldVersion,
+    };
+    this.lastFieldVersion = model.fieldVersion;
+    this.onChange();
+    return structuredClone(this.stats);
+  }
+
+  // The field changed: resynthesize (coalescing bursts of changes into one run) while a texture is shown.
+  fieldChanged() {
+    if (!this.active || this.pendingField) return;
+    const model = this.getModel();
+    if (model && this.atlas && model.fieldVersion !== undefined && model.fieldVersion === this.lastFieldVersion) return;
+    this.pendingField = true;
+    setTimeout(() => {
+      this.pendingField = false;
+      this.#exclusive(() => (this.active ? this.#run() : null)).catch((err) => this.onError(err));
+    }, 0);
+  }
+
+  // A new model: the atlas and the textured mesh belong to the old one.
+  modelChanged() {
+    this.atlas = null;
+    this.render?.dispose();
+    this.render = null;
+    this.stats = null;
+    this.lastFieldVersion = undefined;
+    if (this.active) this.fieldChanged();
+  }
+
+  // Resolves (with the latest stats) once no synthesis is queued or pending.
+  async whenIdle() {
+    for (;;) {
+      await this.queue;
+      if (!this.pendingField) return this.synthesisStats();
+      await new Promise((r) => setTimeout(r, 5));
+    }
+  }
+
+  clearTexture() {
+    return this.#exclusive(() => {
+      this.active = false;
+      this.render?.setVisible(false);
+      this.onChange();
+    });
+  }
+
+  setTextureVisible(visible) {
+    this.render?.setVisible(!!visible);
+  }
+
+  synthesisStats() {
+    return this.stats ? structuredClone(this.stats) : null;
+  }
+
+  #requireResult() {
+    if (!this.stats || !this.synth?.result) throw new Error('nothing synthesized yet: call synthesize() first');
+  }
+
+  // The synthesized texture as a PNG Blob: the exemplar's colours over the atlas, `magnification` pixels per
+  // atlas texel (bilinear exemplar reads inside each texel).
+  exportTexturePNG({ magnification = 1 } = {}) {
+    return this.#exclusive(async () => {
+      this.#requireResult();
+      if (![1, 2, 4].includes(magnification)) throw new Error('magnification must be 1, 2 or 4');
+      const { width, height, pixels } = this.synth.readColour({ magnification, nearest: false });
+      return rgbaToPngBlob(pixels, width, height);
+    });
+  }
+
+  // The model with the atlas UVs and the synthesized texture embedded (binary glTF), as a Blob.
+  exportGLB({ magnification = 2 } = {}) {
+    return this.#exclusive(async () => {
+      this.#requireResult();
+      const model = this.getModel();
+      const { width, height, pixels } = this.synth.readColour({ magnification, nearest: false });
+      const png = new Uint8Array(await (await rgbaToPngBlob(pixels, width, height)).arrayBuffer());
+      const nF = model.triangles.length / 3;
+      const positions = new Float32Array(9 * nF), uvs = new Float32Array(6 * nF), indices = new Uint32Array(3 * nF);
+      const uv = this.atlas.cornerUVs;
+      for (let f = 0; f < nF; f++)
+        for (let k = 0; k < 3; k++) {
+          const v = model.triangles[3 * f + k];
+          for (let c = 0; c < 3; c++) positions[9 * f + 3 * k + c] = model.positions[3 * v + c];
+          uvs[6 * f + 2 * k] = uv[6 * f + 2 * k];
+          uvs[6 * f + 2 * k + 1] = 1 - uv[6 * f + 2 * k + 1]; // glTF: v down the image
+          indices[3 * f + k] = 3 * f + k;
+        }
+      const glb = encodeGlb({ positions, uvs, indices, png, name: model.name || 'model', generator: 'tangent-field-designer texture synthesis' });
+      return new Blob([glb], { type: 'model/gltf-binary' });
+    });
+  }
+
+  // For tests and tools: the raw result (copies). coords/jacobian: RGBA32F per atlas texel; colour: RGBA8
+  // (nearest exemplar pixel); exemplar: RGBA8; rows start at v = 0.
+  readback() {
+    return this.#exclusive(async () => {
+      this.#requireResult();
+      const r = this.atlas.resolution;
+      return {
+        resolution: r,
+        coords: this.synth.readCoordinates(),
+        jacobian: this.synth.readJacobian(),
+        colour: this.synth.readColour({ nearest: true }).pixels,
+        exemplar: this.exemplar.tables.rgba8.slice(),
+        exemplarSize: this.exemplar.tables.size,
+        cornerUVs: this.atlas.cornerUVs.slice(),
+      };
+    });
+  }
+
+  // Milliseconds of one plain full-screen pass at size^2 on the synthesis context (the bench's unit).
+  plainPassMs(size, repeats) {
+    return this.#ensureSynth().plainPassMs(size, repeats);
+  }
+}
+
+// Adds the texture-synthesis calls to window.tvf (docs/js-api.md). `deps` as for SynthesisController.
+export function installSynthesis(tvf, deps) {
+  const c = new SynthesisController(deps);
+  Object.assign(tvf, {
+    setExemplar: (src, opts) => c.setExemplar(src, opts),
+    synthesize: (opts) => c.synthesize(opts),
+    exportTexturePNG: (opts) => c.exportTexturePNG(opts),
+    exportGLB: (opts) => c.exportGLB(opts),
+    synthesisStats: () => c.synthesisStats(),
+    clearTexture: () => c.clearTexture(),
+    exemplarInfo: () => c.exemplarInfo(),
+    synthesisReadback: () => c.readback(),
+    synthesisIdle: () => c.whenIdle(),
+  });
+  return c;
+}
+
+// Everything the page needs in one call: window.tvf additions, plus the "Texture" panel in `panel` (an element,
+// e.g. the side panel) when given. Returns the controller (fieldChanged(), modelChanged()).
+export function setupSynthesis(tvf, { panel = null, ...deps }) {
+  const controller = installSynthesis(tvf, deps);
+  if (panel) {
+    const view = mountSynthesisPanel(controller, panel, { onError: deps.onError, modelName: () => (deps.getModel()?.name ?? 'model').replace(/\.[^.]*$/, '') });
+    const notify = controller.onChange;
+    controller.onChange = () => (notify(), view.refresh());
+  }
+  return controller;
+}

@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The "Texture" section of the side panel: exemplar picker (procedural ones or a PNG/JPEG of the user's), feature
+// scale, atlas resolution, magnitude-driven scale, synthesize / off, PNG and GLB export, and a status line with
+// the last synthesis times. Built here (no markup in index.html) and appended to the given container.
+
+function el(tag, attrs = {}, ...children) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) {
+    if (k === 'class') e.className = v;
+    else if (k === 'text') e.textContent = v;
+    else e.setAttribute(k, v);
+  }
+  e.append(...children);
+  return e;
+}
+
+function download(blob, name) {
+  const url = URL.createObjectURL(blob);
+  const a = el('a', { href: url, download: name });
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+const fmt = (ms) => (ms < 10 ? ms.toFixed(1) : ms.toFixed(0));
+
+export function mountSynthesisPanel(controller, container, { onError = (e) => console.error(e), modelName = () => 'model' } = {}) {
+  const exemplar = el('select', { id: 'tex-exemplar', title: 'The exemplar the texture is synthesized from' });
+  for (const name of controller.proceduralNames()) exemplar.append(el('option', { value: name, text: name }));
+  exemplar.append(el('option', { value: 'image', text: 'Image…' }));
+  const file = el('input', { id: 'tex-file', type: 'file', accept: 'image/png,image/jpeg', hidden: '' });
+  const preview = el('canvas', { id: 'tex-preview', width: '48', height: '48', title: 'Current exemplar' });
+  preview.style.cssText = 'width:48px;height:48px;image-rendering:pixelated;border:1px solid #555;vertical-align:middle';
+  const scale = el('input', { id: 'tex-scale', type: 'range', min: '-1', max: '3', step: '0.25', value: '1' });
+  const resolution = el('select', { id: 'tex-resolution', title: 'Atlas resolution (texels per side)' });
+  for (const r of [256, 512, 1024]) resolution.append(el('option', { value: String(r), text: String(r) }));
+  resolution.value = '512';
+  const byMagnitude = el('input', { id: 'tex-magnitude', type: 'checkbox' });
+  const go = el('button', { id: 'tex-synthesize', type: 'button', text: 'Synthesize', title: 'Synthesize the texture along the field; it follows every later field change' });
+  const off = el('button', { id: 'tex-off', type: 'button', text: 'Off', title: 'Back to the plain surface' });
+  const png = el('button', { id: 'tex-png', type: 'button', text: 'PNG', title: 'Download the synthesized atlas texture' });
+  const glb = el('button', { id: 'tex-glb', type: 'button', text: 'GLB', title: 'Download the model with the texture (binary glTF)' });
+  const status = el('p', { id: 'tex-status', class: 'note', text: 'No texture yet.' });
+
+  const section = el(
+    'details',
+    { id: 'texture-panel', open: '' },
+    el('summary', { text: 'Texture' }),
+    el('label', { title: 'Exemplar' }, 'Exemplar ', exemplar, ' ', preview),
+    file,
+    el('label', { title: 'Texture feature size on the surface (log2; 0 = one exemplar pixel per atlas texel)' }, 'Scale ', scale),
+    el('label', {}, 'Atlas ', resolution),
+    el('label', { class: 'check', title: 'Larger features where the field is stronger (paper, Sec. 6.3)' }, byMagnitude, ' scale by magnitude'),
+    el('div', { class: 'buttons' }, go, ' ', off, ' ', png, ' ', glb),
+    status,
+  );
+  container.append(section);
+
+  const options = () => ({
+    resolution: Number(resolution.value),
+    featureScale: 2 ** Number(scale.value),
+    magnitudeExponent: byMagnitude.checked ? 1 : 0,
+  });
+
+  function showPreview() {
+    const info = controller.exemplar?.tables;
+    if (!info) return;
+    const ctx = preview.getContext('2d');
+    const img = new ImageData(new Uint8ClampedArray(info.rgba8), info.size, info.size);
+    const c = Object.assign(document.createElement('canvas'), { width: info.size, height: info.size });
+    c.getContext('2d').putImageData(img, 0, 0);
+    ctx.imageSmoothingEnabled = true;
+    ctx.drawImage(c, 0, 0, 48, 48);
+  }
+
+  function showStats() {
+    const s = controller.synthesisStats();
+    if (!s) {
+      status.textContent = controller.active ? 'Synthesizing…' : 'No texture yet.';
+      return;
+    }
+    const levels = s.levels.map((l) => `${l.size}²:${fmt(l.ms)}`).join(' ');
+    status.textContent = `${s.exemplar?.label ?? ''} · ${s.resolution}² ${s.atlas.source} atlas · ${fmt(s.totalMs)} ms (${levels})`;
+    status.title = `atlas: ${s.atlas.reason}\nanalysis: ${fmt(s.exemplar?.analysisMs ?? 0)} ms${s.exemplar?.cached ? ' (cached)' : ''}`;
+  }
+
+  const busy = (on) => {
+    for (const b of [go, png, glb]) b.disabled = on;
+    if (on) status.textContent = 'Synthesizing…';
+  };
+  const run = async (fn) => {
+    busy(true);
+    try {
+      await fn();
+    } catch (err) {
+      onError(err);
+    } finally {
+      busy(false);
+      showStats();
+      showPreview();
+    }
+  };
+
+  exemplar.addEventListener('change', () => {
+    if (exemplar.value === 'image') return file.click();
+    run(() => controller.setExemplar(exemplar.value));
+  });
+  file.addEventListener('change', () => {
+    const f = file.files?.[0];
+    file.value = '';
+    if (f) run(() => controller.setExemplar(f));
+  });
+  go.addEventListener('click', () => run(() => controller.synthesize(options())));
+  off.addEventListener('click', () => run(() => controller.clearTexture()));
+  for (const input of [scale, resolution, byMagnitude]) {
+    input.addEventListener('change', () => {
+      if (controller.active) run(() => controller.synthesize(options()));
+    });
+  }
+  png.addEventListener('click', () => run(async () => download(await controller.exportTexturePNG({ magnification: 2 }), `${modelName()}-texture.png`)));
+  glb.addEventListener('click', () => run(async () => download(await controller.exportGLB(), `${modelName()}-textured.glb`)));
+
+  return { refresh: () => (showStats(), showPreview()) };
+}

@@ -1,0 +1,168 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The synthesized texture on the model in the page's three.js view: the model drawn with per-corner atlas UVs and
+// a MeshStandardMaterial whose base colour is the exemplar at the synthesized coordinates. Per fragment: the atlas
+// texel's coordinate S, continued inside the texel with its Jacobian J (LH06 "magnification"), and the exemplar
+// read with textureGrad, whose derivatives are J times the screen derivatives of the atlas position: the
+// filter footprint (mip level and anisotropy) follows the Jacobian, not the discontinuous coordinate S (a
+// plain texture() would see huge derivatives at patch seams and blur them).
+import {
+  BufferAttribute,
+  BufferGeometry,
+  DataTexture,
+  DoubleSide,
+  FloatType,
+  LinearFilter,
+  LinearMipmapLinearFilter,
+  Mesh,
+  MeshStandardMaterial,
+  NearestFilter,
+  RepeatWrapping,
+  RGBAFormat,
+  SRGBColorSpace,
+  UnsignedByteType,
+} from 'three';
+
+const FRAGMENT_PARS = `
+uniform highp sampler2D uSynthCoord;
+uniform highp sampler2D uSynthJac;
+uniform sampler2D uExemplarMap;
+uniform float uAtlasSize;
+uniform float uExemplarSize;
+`;
+
+const FRAGMENT_MAP = `
+{
+  vec2 atlasPos = vUv * uAtlasSize;
+  ivec2 tp = clamp(ivec2(floor(atlasPos)), ivec2(0), ivec2(int(uAtlasSize) - 1));
+  vec4 s = texelFetch(uSynthCoord, tp, 0);
+  vec4 jv = texelFetch(uSynthJac, tp, 0);
+  mat2 J = mat2(jv.xy, jv.zw);
+  vec2 c = s.xy + J * (atlasPos - vec2(tp) - 0.5);
+  vec2 gx = J * dFdx(atlasPos) / uExemplarSize;
+  vec2 gy = J * dFdy(atlasPos) / uExemplarSize;
+  vec4 texel = textureGrad(uExemplarMap, c / uExemplarSize, gx, gy);
+  diffuseColor.rgb *= texel.rgb;
+}
+`;
+
+export class TexturedModel {
+  constructor(viewer) {
+    this.viewer = viewer;
+    this.mesh = null;
+    this.textures = null;
+    this.hiddenMaterial = null;
+    this.visible = true;
+  }
+
+  // positions (3 per vertex), triangles (3 per face), cornerUVs (6 per face): a non-indexed geometry with the
+  // welded mesh's smooth vertex normals.
+  setGeometry(positions, triangles, cornerUVs) {
+    this.#disposeMesh();
+    const nF = triangles.length / 3;
+    const nV = positions.length / 3;
+    const vn = new Float64Array(3 * nV);
+    for (let f = 0; f < nF; f++) {
+      const [a, b, c] = [0, 1, 2].map((k) => 3 * triangles[3 * f + k]);
+      const u = [0, 1, 2].map((k) => positions[b + k] - positions[a + k]);
+      const w = [0, 1, 2].map((k) => positions[c + k] - positions[a + k]);
+      const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+      for (const v of [a, b, c]) for (let k = 0; k < 3; k++) vn[v + k] += n[k];
+    }
+    const pos = new Float32Array(9 * nF), nor = new Float32Array(9 * nF), uv = new Float32Array(6 * nF);
+    for (let f = 0; f < nF; f++)
+      for (let k = 0; k < 3; k++) {
+        const v = 3 * triangles[3 * f + k];
+        const l = Math.hypot(vn[v], vn[v + 1], vn[v + 2]) || 1;
+        for (let c = 0; c < 3; c++) {
+          pos[9 * f + 3 * k + c] = positions[v + c];
+          nor[9 * f + 3 * k + c] = vn[v + c] / l;
+        }
+        uv[6 * f + 2 * k] = cornerUVs[6 * f + 2 * k];
+        uv[6 * f + 2 * k + 1] = cornerUVs[6 * f + 2 * k + 1];
+      }
+    const geom = new BufferGeometry();
+    geom.setAttribute('position', new BufferAttribute(pos, 3));
+    geom.setAttribute('normal', new BufferAttribute(nor, 3));
+    geom.setAttribute('uv', new BufferAttribute(uv, 2));
+    geom.computeBoundingSphere();
+    const material = new MeshStandardMaterial({ color: 0xffffff, roughness: 0.7, metalness: 0.0, side: DoubleSide });
+    material.defines = { USE_UV: '' };
+    this.uniforms = {
+      uSynthCoord: { value: null },
+      uSynthJac: { value: null },
+      uExemplarMap: { value: null },
+      uAtlasSize: { value: 1 },
+      uExemplarSize: { value: 1 },
+    };
+    material.onBeforeCompile = (shader) => {
+      Object.assign(shader.uniforms, this.uniforms);
+      shader.fragmentShader = shader.fragmentShader
+        .replace('#include <common>', `#include <common>\n${FRAGMENT_PARS}`)
+        .replace('#include <map_fragment>', `#include <map_fragment>\n${FRAGMENT_MAP}`);
+    };
+    material.customProgramCacheKey = () => 'tvf-synthesized-texture';
+    this.mesh = new Mesh(geom, material);
+    this.mesh.name = 'synthesized texture';
+    this.mesh.visible = false; // until the first texture arrives
+    this.viewer.scene.add(this.mesh);
+  }
+
+  // coords, jacobian: Float32Array RGBA of resolution^2 (row 0 = v 0); exemplar: RGBA8 of exemplarSize^2.
+  setTexture({ resolution, coords, jacobian, exemplar, exemplarSize }) {
+    if (!this.mesh) return;
+    this.#disposeTextures();
+    const floatTex = (data) => {
+      const t = new DataTexture(data, resolution, resolution, RGBAFormat, FloatType);
+      t.minFilter = t.magFilter = NearestFilter;
+      t.generateMipmaps = false;
+      t.needsUpdate = true;
+      return t;
+    };
+    const ex = new DataTexture(exemplar, exemplarSize, exemplarSize, RGBAFormat, UnsignedByteType);
+    ex.colorSpace = SRGBColorSpace;
+    ex.wrapS = ex.wrapT = RepeatWrapping;
+    ex.magFilter = LinearFilter;
+    ex.minFilter = LinearMipmapLinearFilter;
+    ex.generateMipmaps = true;
+    ex.anisotropy = 4;
+    ex.needsUpdate = true;
+    this.textures = { coord: floatTex(coords), jac: floatTex(jacobian), ex };
+    this.uniforms.uSynthCoord.value = this.textures.coord;
+    this.uniforms.uSynthJac.value = this.textures.jac;
+    this.uniforms.uExemplarMap.value = ex;
+    this.uniforms.uAtlasSize.value = resolution;
+    this.uniforms.uExemplarSize.value = exemplarSize;
+    this.setVisible(this.visible);
+  }
+
+  // Shows the textured model in place of the viewer's own surface (which stays in the scene for picking).
+  setVisible(visible) {
+    this.visible = visible;
+    const on = visible && !!this.mesh && !!this.textures;
+    if (this.mesh) this.mesh.visible = on;
+    const surface = this.viewer.surfaceMesh;
+    if (surface) surface.material.visible = !on;
+    this.viewer.requestRender?.();
+  }
+
+  #disposeTextures() {
+    if (!this.textures) return;
+    for (const t of Object.values(this.textures)) t.dispose();
+    this.textures = null;
+  }
+
+  #disposeMesh() {
+    this.#disposeTextures();
+    if (!this.mesh) return;
+    this.viewer.scene.remove(this.mesh);
+    this.mesh.geometry.dispose();
+    this.mesh.material.dispose();
+    this.mesh = null;
+  }
+
+  dispose() {
+    const surface = this.viewer.surfaceMesh;
+    if (surface) surface.material.visible = true;
+    this.#disposeMesh();
+  }
+}

@@ -1,0 +1,281 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// GLSL ES 3.00 sources of the synthesis passes (Lefebvre & Hoppe 2005 "Parallel controllable texture synthesis",
+// anisometric variant, with the appearance space and k-coherence of Lefebvre & Hoppe 2006).
+//
+// Conventions shared by all passes:
+// * Synthesis state S (RGBA32F, per atlas texel of the current level; during a level split into four
+//   parity-class quarters, see below): xy = exemplar coordinate in exemplar pixels, continuous (pixel i spans
+//   [i, i+1)), wrapped to [0, m); w = 1 inside the atlas charts (and their gutter), 0 elsewhere.
+// * Jacobian J (RGBA32F, per atlas texel of the level): the 2x2 map from atlas-texel offsets to exemplar-pixel
+//   offsets, stored column-major (J e_x, J e_y) = (x, y, z, w); all zero outside the charts.
+// * Exemplar tables (RGBA32F, m x m, read with texelFetch and `& (m - 1)` wrapping): appearance vectors (8 numbers
+//   in two textures), reduced neighbourhood vectors (two textures), k-coherence candidates (two (x, y) pairs).
+
+const HEADER = `#version 300 es
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+`;
+
+const HASH = `
+// pcg3d (Jarzynski & Olano 2020): a stateless hash of (texel, level, seed).
+uvec3 pcg3d(uvec3 v) {
+  v = v * 1664525u + 1013904223u;
+  v.x += v.y * v.z; v.y += v.z * v.x; v.z += v.x * v.y;
+  v ^= v >> 16u;
+  v.x += v.y * v.z; v.y += v.z * v.x; v.z += v.x * v.y;
+  return v;
+}
+vec2 hash2(ivec2 p, int level, int seed) {
+  uvec3 h = pcg3d(uvec3(uint(p.x), uint(p.y), uint(level * 7919 + seed)));
+  return vec2(h.xy >> 8u) * (1.0 / 16777216.0);
+}
+`;
+
+// ---------------------------------------------------------------------------------------------- Jacobian raster
+// The atlas triangles drawn in texture space. Per corner: its UV, the per-vertex field (3D), and per face (flat):
+// G1 = dX/du, G2 = dX/dv (surface displacement per unit of u and v) and the unit normal. At each texel the field,
+// projected into the face plane, gives the orthonormal frame (e1 along the field, e2 = n x e1) that the exemplar's
+// (x, y) axes map to; an atlas displacement du then moves the exemplar coordinate by ([e1; e2] G du) / rho, so the
+// texture has unit physical scale on the surface whatever the atlas's (even anisotropic) distortion is.
+export const JACOBIAN_VS = `#version 300 es
+in vec2 aUV;
+in vec3 aField;
+in vec3 aG1;
+in vec3 aG2;
+in vec3 aNormal;
+out vec3 vField;
+flat out vec3 vG1;
+flat out vec3 vG2;
+flat out vec3 vNormal;
+void main() {
+  vField = aField;
+  vG1 = aG1;
+  vG2 = aG2;
+  vNormal = aNormal;
+  gl_Position = vec4(aUV * 2.0 - 1.0, 0.0, 1.0);
+}`;
+
+export const JACOBIAN_FS = `${HEADER}
+in vec3 vField;
+flat in vec3 vG1;
+flat in vec3 vG2;
+flat in vec3 vNormal;
+uniform float uInvRho;        // exemplar pixels per surface length unit
+uniform float uTexel;         // UV units per atlas texel (1 / resolution)
+uniform float uMagRef;        // reference field magnitude (magnitude scale 1)
+uniform float uMagExponent;   // features scale with (|field| / ref)^exponent; 0 = direction only
+out vec4 outJ;
+void main() {
+  vec3 n = vNormal;
+  vec3 v = vField - n * dot(vField, n);
+  float mag = length(v);
+  // A vanishing field (singularities, no constraints yet) keeps the exemplar's x-axis along the chart's u-axis.
+  vec3 e1 = mag > 1e-12 ? v / mag : normalize(vG1 - n * dot(vG1, n));
+  vec3 e2 = cross(n, e1);
+  float scale = 1.0;
+  if (uMagExponent != 0.0) scale = clamp(pow(max(mag, 1e-12) / uMagRef, uMagExponent), 0.125, 8.0);
+  float k = uInvRho * uTexel / scale;
+  // Column-major: (J e_u, J e_v).
+  outJ = k * vec4(dot(e1, vG1), dot(e2, vG1), dot(e1, vG2), dot(e2, vG2));
+}`;
+
+// Gutter: a texel outside every chart takes the mean Jacobian of its chart neighbours (one ring per pass), so
+// synthesis (and filtering when rendering) can read a little past the chart boundary.
+export const DILATE_FS = `${HEADER}
+uniform sampler2D uJac;
+uniform ivec2 uSize;
+out vec4 outJ;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 j = texelFetch(uJac, p, 0);
+  if (j != vec4(0.0)) { outJ = j; return; }
+  vec4 sum = vec4(0.0);
+  float count = 0.0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 q = p + ivec2(dx, dy);
+      if (q.x < 0 || q.y < 0 || q.x >= uSize.x || q.y >= uSize.y) continue;
+      vec4 jq = texelFetch(uJac, q, 0);
+      if (jq != vec4(0.0)) { sum += jq; count += 1.0; }
+    }
+  outJ = count > 0.0 ? sum / count : vec4(0.0);
+}`;
+
+// One level coarser: texels twice as large, so J doubles; the mean over the valid children.
+export const JACOBIAN_DOWN_FS = `${HEADER}
+uniform sampler2D uJac;   // the finer level
+out vec4 outJ;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 sum = vec4(0.0);
+  float count = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    vec4 j = texelFetch(uJac, 2 * p + ivec2(k & 1, k >> 1), 0);
+    if (j != vec4(0.0)) { sum += j; count += 1.0; }
+  }
+  outJ = count > 0.0 ? 2.0 * sum / count : vec4(0.0);
+}`;
+
+// ---------------------------------------------------------------------------------------------- synthesis
+// The state of a level lives in four quarter-size textures, one per parity class c = (x mod 2) + 2 (y mod 2):
+// texel p is texel p >> 1 of quarter (p.x & 1) + 2 (p.y & 1). A correction sub-pass then shades exactly the texels
+// it changes (one full quarter) instead of one texel in every 2x2 quad — GPUs, SwiftShader included, shade whole
+// quads, so the interleaved layout would cost four times as much.
+const QUARTERS = `
+uniform sampler2D uS0;
+uniform sampler2D uS1;
+uniform sampler2D uS2;
+uniform sampler2D uS3;
+vec4 fetchS(ivec2 p) {
+  ivec2 h = p >> 1;
+  int c = (p.x & 1) + 2 * (p.y & 1);
+  if (c == 0) return texelFetch(uS0, h, 0);
+  if (c == 1) return texelFetch(uS1, h, 0);
+  if (c == 2) return texelFetch(uS2, h, 0);
+  return texelFetch(uS3, h, 0);
+}
+`;
+
+// Coarsest level (no parent) or upsampling from the parent level, then jitter (LH05 Sec. 3.2, 3.3, 5), for the
+// texels of one parity class (uClass = their offset in their 2x2 block):
+//   S_l[p] = S_{l-1}[p / 2] + J_l(p) (p mod 2 - 1/2) + round(J_l(p) r_l (2 H(p) - 1)),
+// H a hash in [0, 1)^2, r_l the level's randomness in level texels. The jitter is rounded to whole exemplar
+// pixels so that every patch keeps the sub-pixel phase its coordinates got from the coarsest level: continuations
+// of a neighbour's patch are then exactly continuous, not just to within a fraction of a pixel.
+export const UPSAMPLE_FS = `${HEADER}${HASH}
+uniform sampler2D uParent;  // the parent level's state, unpacked (one texel per parent texel)
+uniform sampler2D uJac;
+uniform int uCoarsest;
+uniform ivec2 uClass;
+uniform float uJitter;
+uniform int uLevel;
+uniform int uSeed;
+uniform float uM;
+out vec4 outS;
+void main() {
+  ivec2 p = 2 * ivec2(gl_FragCoord.xy) + uClass;
+  vec4 jv = texelFetch(uJac, p, 0);
+  if (jv == vec4(0.0)) { outS = vec4(0.0); return; }
+  mat2 J = mat2(jv.xy, jv.zw);
+  vec4 parent = uCoarsest == 1 ? vec4(0.0) : texelFetch(uParent, p >> 1, 0);
+  // No parent texel (coarsest level, or a chart that only appears at this resolution): the coherent tiling.
+  vec2 s = parent.w == 0.0 ? J * (vec2(p) + 0.5) : parent.xy + J * (vec2(uClass) - 0.5);
+  s += round(J * (uJitter * (2.0 * hash2(p, uLevel, uSeed) - 1.0)));
+  outS = vec4(s - uM * floor(s / uM), 0.0, 1.0);
+}`;
+
+// One correction sub-pass (LH05 Sec. 3.4 with anisometric neighbourhoods, Sec. 5) over the texels of parity class
+// uClass. For exemplar-space neighbour offset d_k = h * o_k the neighbourhood reads texel q = p + round(J^-1 d_k) and
+// corrects its coordinate by the residual: c_k = S[q] + d_k - J (q - p). The 8 appearance vectors at c_k,
+// projected with the exemplar's neighbourhood PCA (y = sum_k B_k^T a_k - offset), are compared with the
+// precomputed reduced neighbourhood of every candidate: from each neighbour q its coherent continuation
+// S[q] - J (q - p) and its two k-coherence candidates moved the same way, plus the texel's current coordinate.
+// A q in the gutter next to a seam stands for the surface across the seam: its state is read from the texel
+// the seam indirection names (seams.js), so both sides of a seam synthesize one continuous texture.
+// The best (squared distance; uKappa penalises the non-coherent ones) wins.
+export const CORRECT_FS = `${HEADER}${QUARTERS}
+uniform sampler2D uJac;
+uniform sampler2D uIndir;   // seam indirection: gutter texel -> the texel across the seam (xy), z = 1 if any
+uniform int uSeams;
+uniform sampler2D uApp0;
+uniform sampler2D uApp1;
+uniform sampler2D uNbr0;
+uniform sampler2D uNbr1;
+uniform sampler2D uCand;
+uniform mat4 uProj[32];
+uniform vec4 uProjOff[2];
+uniform ivec2 uSize;
+uniform ivec2 uClass;
+uniform int uMask;
+uniform float uM;
+uniform float uH;
+uniform float uKappa;
+out vec4 outS;
+
+const ivec2 OFFSETS[8] = ivec2[8](ivec2(-1, -1), ivec2(0, -1), ivec2(1, -1), ivec2(-1, 0),
+                                  ivec2(1, 0), ivec2(-1, 1), ivec2(0, 1), ivec2(1, 1));
+
+float score(vec2 c, vec4 y0, vec4 y1) {
+  ivec2 t = ivec2(floor(c)) & uMask;
+  vec4 a = texelFetch(uNbr0, t, 0) - y0;
+  vec4 b = texelFetch(uNbr1, t, 0) - y1;
+  return dot(a, a) + dot(b, b);
+}
+
+void main() {
+  ivec2 p = 2 * ivec2(gl_FragCoord.xy) + uClass;
+  vec4 self = fetchS(p);
+  if (self.w == 0.0) { outS = self; return; }
+  vec4 jv = texelFetch(uJac, p, 0);
+  mat2 J = mat2(jv.xy, jv.zw);
+  mat2 Ji = inverse(J);
+  vec4 y0 = -uProjOff[0];
+  vec4 y1 = -uProjOff[1];
+  vec2 cands[24];
+  for (int k = 0; k < 8; ++k) {
+    vec2 d = uH * vec2(OFFSETS[k]);
+    ivec2 q = clamp(p + ivec2(round(Ji * d)), ivec2(0), uSize - 1);
+    vec4 ind = uSeams == 1 ? texelFetch(uIndir, q, 0) : vec4(0.0);
+    vec4 sq = fetchS(ind.z > 0.5 ? ivec2(ind.xy) : q);
+    if (sq.w == 0.0) { q = p; sq = self; }
+    vec2 back = J * vec2(q - p);
+    vec2 c = sq.xy + d - back;
+    ivec2 t = ivec2(floor(c)) & uMask;
+    vec4 a0 = texelFetch(uApp0, t, 0);
+    vec4 a1 = texelFetch(uApp1, t, 0);
+    y0 += uProj[4 * k] * a0 + uProj[4 * k + 1] * a1;
+    y1 += uProj[4 * k + 2] * a0 + uProj[4 * k + 3] * a1;
+    vec4 kc = texelFetch(uCand, ivec2(floor(sq.xy)) & uMask, 0);
+    vec2 f = fract(sq.xy) - back;
+    cands[3 * k] = sq.xy - back;
+    cands[3 * k + 1] = kc.xy + f;
+    cands[3 * k + 2] = kc.zw + f;
+  }
+  vec2 best = self.xy;
+  float bestScore = score(self.xy, y0, y1);
+  for (int i = 0; i < 24; ++i) {
+    float s = score(cands[i], y0, y1);
+    if (i % 3 != 0) s *= 1.0 + uKappa;
+    if (s < bestScore) { bestScore = s; best = cands[i]; }
+  }
+  outS = vec4(best - uM * floor(best / uM), 0.0, 1.0);
+}`;
+
+// The four quarters back into one texture (one texel per atlas texel of the level).
+export const UNPACK_FS = `${HEADER}${QUARTERS}
+out vec4 outS;
+void main() {
+  outS = fetchS(ivec2(gl_FragCoord.xy));
+}`;
+
+// The exemplar's colours at the synthesized coordinates, uMag output pixels per atlas texel: inside texel p the
+// coordinate continues with the texel's Jacobian (LH06 "magnification"), so patches stay seamless between texels.
+// uNearest = 1 reads the exemplar pixel itself (exact colours, for measurements); 0 filters bilinearly.
+export const RESOLVE_FS = `${HEADER}
+uniform sampler2D uCoord;
+uniform sampler2D uJac;
+uniform sampler2D uExemplar;   // RGBA8, repeat, linear
+uniform float uMag;
+uniform float uM;
+uniform int uMask;
+uniform int uNearest;
+out vec4 outColour;
+void main() {
+  vec2 x = gl_FragCoord.xy / uMag;
+  ivec2 p = ivec2(floor(x));
+  vec4 s = texelFetch(uCoord, p, 0);
+  if (s.w == 0.0) { outColour = vec4(0.0); return; }
+  vec4 jv = texelFetch(uJac, p, 0);
+  vec2 c = s.xy + mat2(jv.xy, jv.zw) * (x - vec2(p) - 0.5);
+  outColour = uNearest == 1 ? texelFetch(uExemplar, ivec2(floor(c)) & uMask, 0) : texture(uExemplar, c / uM);
+  outColour.a = 1.0;
+}`;
+
+// A plain full-screen pass (one fetch per texel), the unit that synthesis times are reported in.
+export const COPY_FS = `${HEADER}
+uniform sampler2D uSource;
+out vec4 outValue;
+void main() {
+  outValue = texelFetch(uSource, ivec2(gl_FragCoord.xy), 0) + vec4(1e-7);
+}`;
