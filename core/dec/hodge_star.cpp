@@ -1,5 +1,7 @@
 #include "dec/hodge_star.h"
 
+#include <cmath>
+
 #include "mesh/mesh_geometry.h"
 
 namespace tvf {
@@ -31,17 +33,25 @@ MeshGeometry computeMeshGeometry(const SurfaceMesh& mesh, const MeshTopology& t)
   g.star1 = Eigen::VectorXd::Zero(t.numEdges);
   g.star2.resize(nF);
   g.whitneyMass1 = Eigen::VectorXd::Zero(t.numEdges);
+  g.faceNormal.resize(3 * nF);
+  g.angleDefect.assign(t.numVertices, 2 * M_PI);
   Eigen::VectorXd circumcentric = Eigen::VectorXd::Zero(t.numVertices);
   Eigen::VectorXd mixed = Eigen::VectorXd::Zero(t.numVertices);
   for (int32_t f = 0; f < nF; ++f) {
     Eigen::Vector3d p[3];
     facePositions(mesh, f, p);
-    const double area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
+    const Eigen::Vector3d cross = (p[1] - p[0]).cross(p[2] - p[0]);
+    const double area = 0.5 * cross.norm();
     g.faceArea[f] = area;
+    for (int k = 0; k < 3; ++k) g.faceNormal[3 * f + k] = cross[k] / (2 * area);
     g.star2[f] = 1.0 / area;
     g.totalArea += area;
     double* cot = &g.cornerCot[3 * f];
-    for (int c = 0; c < 3; ++c) cot[c] = cotan(p[(c + 1) % 3] - p[c], p[(c + 2) % 3] - p[c]);
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d u = p[(c + 1) % 3] - p[c], v = p[(c + 2) % 3] - p[c];
+      cot[c] = cotan(u, v);
+      g.angleDefect[mesh.triangles[3 * f + c]] -= std::atan2(u.cross(v).norm(), u.dot(v));
+    }
     for (int c = 0; c < 3; ++c) {
       const int a = (c + 1) % 3, b = (c + 2) % 3;
       // Edge c joins corners c and a and is opposite corner b.

@@ -16,6 +16,9 @@ struct MeshGeometry {
   Eigen::VectorXd star1;           // (cot a + cot b)/2; may be zero or negative on obtuse meshes
   Eigen::VectorXd star2;           // 1/|t|
   Eigen::VectorXd whitneyMass1;    // diagonal of the Whitney 1-form mass matrix, strictly positive
+  std::vector<double> faceNormal;  // 3 per face, unit
+  std::vector<double>
+      angleDefect;  // 2 pi - sum of corner angles, per vertex (meaningful on interior vertices)
   int32_t positiveAreaFallbackVertices = 0;  // vertices whose circumcentric area was not positive
   double totalArea = 0, meanEdgeLength = 0;
 };

@@ -448,7 +448,7 @@ void Designer::solve() {
 void Designer::Impl::deriveIfStale() {
   if (!derivedStale) return;
   tvf::vertexVectors(mesh, topology, geometry, oneForm.data(), vertexVectors);
-  singularities = findSingularities(mesh, topology, faceVectors);
+  singularities = findSingularities(mesh, topology, geometry, faceVectors);
   derivedStale = false;
 }
 

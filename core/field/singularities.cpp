@@ -1,6 +1,7 @@
 #include "field/singularities.h"
 
 #include <cmath>
+#include <complex>
 
 #include "mesh/mesh_geometry.h"
 
@@ -9,25 +10,23 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-double wrapAngle(double a) {
-  return a - kTwoPi * std::floor((a + M_PI) / kTwoPi);
-}
-
-// Angle from direction `edge` to `u`, measured counter-clockwise about the face normal n.
-double angleFromEdge(const Eigen::Vector3d& edge, const Eigen::Vector3d& u, const Eigen::Vector3d& n) {
-  return std::atan2(edge.cross(u).dot(n), edge.dot(u));
-}
-
 int cornerOf(const SurfaceMesh& mesh, int32_t f, int32_t v) {
   for (int c = 0; c < 3; ++c)
     if (mesh.triangles[3 * f + c] == v) return c;
   return -1;
 }
 
+// u as a complex number in the frame of `edge` (real axis) in the face with normal n: transport across the
+// edge by unfolding keeps this number, so the jump between two faces is the argument of their ratio.
+std::complex<double> inEdgeFrame(const Eigen::Vector3d& edge, const Eigen::Vector3d& u, const double* n) {
+  const Eigen::Vector3d normal(n[0], n[1], n[2]);
+  return {edge.dot(u), edge.cross(u).dot(normal)};
+}
+
 }  // namespace
 
 std::vector<Singularity> findSingularities(const SurfaceMesh& mesh, const MeshTopology& t,
-                                           const std::vector<double>& faceVectors) {
+                                           const MeshGeometry& g, const std::vector<double>& faceVectors) {
   double maxNorm = 0;
   for (int32_t f = 0; f < t.numFaces; ++f)
     maxNorm = std::max(maxNorm, Eigen::Map<const Eigen::Vector3d>(&faceVectors[3 * f]).norm());
@@ -36,32 +35,28 @@ std::vector<Singularity> findSingularities(const SurfaceMesh& mesh, const MeshTo
   for (int32_t f = 0; f < t.numFaces; ++f)
     for (int c = 0; c < 3; ++c) startFace[mesh.triangles[3 * f + c]] = f;
   std::vector<Singularity> result;
+  if (maxNorm == 0) return result;
   for (int32_t v = 0; v < t.numVertices; ++v) {
-    if (t.isBoundaryVertex[v] || startFace[v] < 0 || maxNorm == 0) continue;
-    double turning = 0, angleSum = 0;
+    if (t.isBoundaryVertex[v] || startFace[v] < 0) continue;
+    double turning = 0;
     bool defined = true;
     int32_t f = startFace[v];
-    const int32_t valence = t.vertexFaceCount[v];
-    for (int32_t step = 0; step < valence && defined; ++step) {
+    const Eigen::Vector3d pv = vertexPosition(mesh, v);
+    for (int32_t step = 0; step < t.vertexFaceCount[v] && defined; ++step) {
       const int c = cornerOf(mesh, f, v);
-      const int32_t b = mesh.triangles[3 * f + (c + 2) % 3];
-      const int32_t shared =
-          t.edgeOf(f, (c + 2) % 3);  // edge (b -> v): leads to the next face counter-clockwise
-      const int32_t g = t.edgeFaces[2 * shared] == f ? t.edgeFaces[2 * shared + 1] : t.edgeFaces[2 * shared];
-      const Eigen::Vector3d uf = Eigen::Map<const Eigen::Vector3d>(&faceVectors[3 * f]);
-      const Eigen::Vector3d ug = Eigen::Map<const Eigen::Vector3d>(&faceVectors[3 * g]);
+      // Edge (b -> v) of f leads to the next face counter-clockwise around v.
+      const int32_t shared = t.edgeOf(f, (c + 2) % 3);
+      const int32_t next =
+          t.edgeFaces[2 * shared] == f ? t.edgeFaces[2 * shared + 1] : t.edgeFaces[2 * shared];
+      const Eigen::Map<const Eigen::Vector3d> uf(&faceVectors[3 * f]), ug(&faceVectors[3 * next]);
       if (uf.norm() <= tiny || ug.norm() <= tiny) defined = false;
-      const Eigen::Vector3d edge = vertexPosition(mesh, b) - vertexPosition(mesh, v);
-      turning += wrapAngle(angleFromEdge(edge, ug, faceNormal(mesh, g)) -
-                           angleFromEdge(edge, uf, faceNormal(mesh, f)));
-      Eigen::Vector3d p[3];
-      facePositions(mesh, f, p);
-      angleSum += std::acos(std::clamp(
-          (p[(c + 1) % 3] - p[c]).normalized().dot((p[(c + 2) % 3] - p[c]).normalized()), -1.0, 1.0));
-      f = g;
+      const Eigen::Vector3d edge = vertexPosition(mesh, mesh.triangles[3 * f + (c + 2) % 3]) - pv;
+      turning += std::arg(inEdgeFrame(edge, ug, &g.faceNormal[3 * next]) *
+                          std::conj(inEdgeFrame(edge, uf, &g.faceNormal[3 * f])));
+      f = next;
     }
     if (!defined) continue;
-    const double index = std::round((turning + kTwoPi - angleSum) / kTwoPi);
+    const double index = std::round((turning + g.angleDefect[v]) / kTwoPi);
     if (index != 0) result.push_back({v, index});
   }
   return result;

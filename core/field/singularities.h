@@ -3,6 +3,7 @@
 // measured against discrete Levi-Civita transport (angles to shared edges), plus the angle defect.
 #include <vector>
 
+#include "dec/hodge_star.h"
 #include "design/designer.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
@@ -12,6 +13,6 @@ namespace tvf {
 // Nonzero indices only. Vertices on a boundary, and vertices where the field vanishes in an incident face,
 // have no index and are skipped.
 std::vector<Singularity> findSingularities(const SurfaceMesh& mesh, const MeshTopology& topology,
-                                           const std::vector<double>& faceVectors);
+                                           const MeshGeometry& geometry, const std::vector<double>& faceVectors);
 
 }  // namespace tvf

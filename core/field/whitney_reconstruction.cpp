@@ -64,16 +64,24 @@ void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeo
                    const double* oneForm, std::vector<double>& out) {
   out.assign(3 * static_cast<size_t>(t.numVertices), 0.0);
   std::vector<double> weight(t.numVertices, 0.0);
-  for (int32_t f = 0; f < t.numFaces; ++f)
-    for (int c = 0; c < 3; ++c) {
-      double corner[3] = {0, 0, 0};
-      corner[c] = 1;
-      const Eigen::Vector3d u = whitneyVector(mesh, t, oneForm, f, corner);
-      const int32_t v = mesh.triangles[3 * f + c];
-      const double area = g.cornerArea[3 * f + c];
-      for (int k = 0; k < 3; ++k) out[3 * v + k] += area * u[k];
+  for (int32_t f = 0; f < t.numFaces; ++f) {
+    Eigen::Vector3d p[3];
+    facePositions(mesh, f, p);
+    const Eigen::Map<const Eigen::Vector3d> n(&g.faceNormal[3 * f]);
+    // At corner i Eq. 4 reduces to (c_ij p_ki^perp - c_ki p_ij^perp) / 2|t| (the summand of Eq. 5).
+    const Eigen::Vector3d perp[3] = {n.cross(p[1] - p[0]), n.cross(p[2] - p[1]), n.cross(p[0] - p[2])};
+    double c[3];
+    faceCoefficients(t, oneForm, f, c);
+    const double scale = 1 / (2 * g.faceArea[f]);
+    for (int k = 0; k < 3; ++k) {
+      // Corner k: its outgoing edge is k (k -> k+1), its incoming edge k+2 (k+2 -> k).
+      const Eigen::Vector3d u = scale * (c[k] * perp[(k + 2) % 3] - c[(k + 2) % 3] * perp[k]);
+      const int32_t v = mesh.triangles[3 * f + k];
+      const double area = g.cornerArea[3 * f + k];
+      for (int d = 0; d < 3; ++d) out[3 * v + d] += area * u[d];
       weight[v] += area;
     }
+  }
   for (int32_t v = 0; v < t.numVertices; ++v)
     if (weight[v] > 0)
       for (int k = 0; k < 3; ++k) out[3 * v + k] /= weight[v];
