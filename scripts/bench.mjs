@@ -35,8 +35,9 @@ export function ensureMeshes(paths) {
   if (missing.length) throw new Error(`missing meshes: ${missing.join(', ')}`);
 }
 
-export function runNative(tvf, mesh, repeat) {
-  const out = execFileSync(tvf, ['bench', mesh, '--json', '--repeat', String(repeat)], {
+// `extra`: e.g. ['--amd'] to match the browser build's ordering (the CLI defaults to METIS).
+export function runNative(tvf, mesh, repeat, extra = []) {
+  const out = execFileSync(tvf, ['bench', mesh, '--json', '--repeat', String(repeat), ...extra], {
     encoding: 'utf8',
     maxBuffer: 1 << 24,
     stdio: ['ignore', 'pipe', 'pipe'],
