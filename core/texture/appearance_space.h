@@ -1,7 +1,7 @@
 #pragma once
 // Appearance space (Lefebvre & Hoppe 2006, Sec. 4): every exemplar pixel of a Gaussian-stack level is described by
-// its 5x5 colour neighbourhood (75 numbers, taps max(1, h_s / 2) pixels apart on the torus, h_s = 2^s, mildly
-// Gaussian-weighted towards the centre; level s is blurred to sigma ~ 0.58 h_s, so half-spacing taps sample it
+// its 5x5 colour neighbourhood (75 numbers, taps max(1, h_s / 2) pixels apart on the torus, h_s = 2^s,
+// Gaussian-weighted towards the centre with sigma = 1 tap; level s is blurred to sigma ~ 0.58 h_s, so half-spacing taps sample it
 // without aliasing and the 5x5 footprint, 2.5 h_s, still spans the synthesis neighbourhood's spacing), reduced by PCA to a few dimensions (8 by default). The basis comes from the 75x75 covariance
 // (Eigen's SelfAdjointEigenSolver), with a fixed sign per eigenvector (its largest entry positive) so that the
 // result does not depend on summation order.
@@ -48,7 +48,7 @@ struct AppearanceLevel {
 
 struct AppearanceOptions {
   int dims = 8;
-  double tapSigma = 2.0;  // Gaussian weight of the 5x5 taps, in taps (0 = unweighted)
+  double tapSigma = 1.0;  // Gaussian weight of the 5x5 taps, in taps (0 = unweighted)
   int covarianceSubsample = 1;  // estimate covariances from one pixel in this many (see covarianceSubset)
 };
 

@@ -17,7 +17,7 @@ struct AnalysisOptions {
   int appearanceDims = 8;     // PCA of the 5x5 colour neighbourhoods (the GPU layout needs 8)
   int neighbourhoodDims = 8;  // PCA of the 8-neighbour appearance neighbourhoods (the GPU layout needs 8)
   int k = 2;                  // k-coherence candidates per pixel
-  double tapSigma = 2.0;      // Gaussian weight of the 5x5 taps (in taps)
+  double tapSigma = 1.0;      // Gaussian weight of the 5x5 taps (in taps)
   int covarianceSubsample = 4;  // covariances from one pixel in 4 (covarianceSubset; 4k samples at 128^2)
   int exclusionRadius = -1;   // near-self exclusion for k-coherence; -1: min(max(2, h_s / 2), max(2, size / 8))
 };

@@ -5,7 +5,10 @@
 // neighbourhood energy and colour histograms against a random-coordinates baseline.
 import { writeFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
+import bunny from 'bunny';
+import { checkAtlasUVs, generateAtlas, rasterCoverage } from '../../web/synthesis/atlas.js';
 import { flatSquareGlb } from '../../web/synthesis/glb.js';
+import { seamIndirection } from '../../web/synthesis/seams.js';
 import { openDesigner, trackErrors } from './helpers.mjs';
 import {
   colourAt,
@@ -13,6 +16,9 @@ import {
   coordinateCoherence,
   encodePng,
   exemplarImage,
+  fieldAlignment,
+  seamJumps,
+  stripePeriods,
   histogramDistance,
   neighbourhoodEnergy,
   orientationError,
@@ -39,8 +45,27 @@ function faceAt(mesh, x, y) {
 async function readback(page) {
   return page.evaluate(async () => {
     const r = await window.tvf.synthesisReadback();
-    return { ...r, coords: Array.from(r.coords), jacobian: Array.from(r.jacobian), colour: Array.from(r.colour), exemplar: Array.from(r.exemplar), cornerUVs: [] };
+    return { ...r, coords: Array.from(r.coords), jacobian: Array.from(r.jacobian), colour: Array.from(r.colour), exemplar: Array.from(r.exemplar), cornerUVs: Array.from(r.cornerUVs) };
   });
+}
+
+// The face whose centroid is nearest to (x, y) (flat square).
+function faceNear(mesh, x, y) {
+  const P = mesh.positions, T = mesh.triangles;
+  let best = -1, bd = Infinity;
+  for (let f = 0; f < T.length / 3; f++) {
+    const cx = (P[3 * T[3 * f]] + P[3 * T[3 * f + 1]] + P[3 * T[3 * f + 2]]) / 3;
+    const cy = (P[3 * T[3 * f] + 1] + P[3 * T[3 * f + 1] + 1] + P[3 * T[3 * f + 2] + 1]) / 3;
+    const d = Math.hypot(cx - x, cy - y);
+    if (d < bd) (bd = d), (best = f);
+  }
+  return best;
+}
+
+function pngSize(bytes) {
+  const b = Buffer.from(bytes);
+  expect(b.subarray(0, 8).toString('hex')).toBe('89504e470d0a1a0a');
+  return { width: b.readUInt32BE(16), height: b.readUInt32BE(20) };
 }
 
 test.describe.serial('texture synthesis on a flat square', () => {
@@ -122,7 +147,227 @@ test.describe.serial('texture synthesis on a flat square', () => {
     });
   }
 
+  test('magnitude-driven scale: larger features where the field is stronger', async ({}, testInfo) => {
+    // Two vector constraints along +x, weak on the left and strong on the right: the magnitude grows with x.
+    const design = {
+      boundary: 'free',
+      gamma: 0,
+      constraints: [
+        { type: 'vector', face: faceNear(mesh, 0.1, 0.5), vector: [0.5, 0, 0], weight: 1e4 },
+        { type: 'vector', face: faceNear(mesh, 0.9, 0.5), vector: [2, 0, 0], weight: 1e4 },
+      ],
+    };
+    await page.evaluate((d) => window.tvf.loadDesign(d), design);
+    const field = await page.evaluate(() => ({ vv: Array.from(window.tvf.vertexVectors()), pos: Array.from(window.tvf.mesh().positions) }));
+    const mags = [0, 0, 0, 0], counts = [0, 0, 0, 0];
+    for (let v = 0; v < field.pos.length / 3; v++) {
+      const q = Math.min(3, Math.floor(4 * field.pos[3 * v]));
+      mags[q] += Math.hypot(field.vv[3 * v], field.vv[3 * v + 1], field.vv[3 * v + 2]);
+      counts[q]++;
+    }
+    const magnitude = mags.map((m, q) => m / counts[q]);
+    const periods = {};
+    for (const exponent of [0, 1]) {
+      await page.evaluate((o) => window.tvf.synthesize(o), { resolution: RESOLUTION, featureScale: 1, magnitudeExponent: exponent });
+      const r = await readback(page);
+      const image = exemplarImage(Float32Array.from(r.coords), Uint8Array.from(r.exemplar), r.exemplarSize);
+      periods[exponent] = stripePeriods(image, r.resolution, r.resolution, 4);
+      writeFileSync(testInfo.outputPath(`magnitude-exponent-${exponent}.png`), encodePng(image, r.resolution, r.resolution));
+    }
+    const report = { magnitudeByQuarter: magnitude.map((m) => +m.toFixed(3)), periodsExponent0: periods[0].map((p) => +p.toFixed(2)), periodsExponent1: periods[1].map((p) => +p.toFixed(2)) };
+    console.log(JSON.stringify(report));
+    writeFileSync(testInfo.outputPath('magnitude-report.json'), JSON.stringify(report, null, 1));
+    for (let q = 1; q < 4; q++) expect(magnitude[q], 'the designed magnitude grows with x').toBeGreaterThan(magnitude[q - 1]);
+    for (let q = 1; q < 4; q++) expect(periods[1][q], `stripe period, quarter ${q} vs ${q - 1}`).toBeGreaterThan(periods[1][q - 1]);
+    expect(periods[1][3] / periods[1][0], 'period ratio across the square').toBeGreaterThan(1.5);
+    expect(Math.max(...periods[0]) / Math.min(...periods[0]), 'direction only: one scale everywhere').toBeLessThan(1.3);
+  });
+
+  test('exports: the atlas texture as PNG, the textured model as GLB that loads back with its UVs', async ({}, testInfo) => {
+    const out = await page.evaluate(async () => {
+      const png = await window.tvf.exportTexturePNG({ magnification: 2 });
+      const glb = await window.tvf.exportGLB();
+      return { png: Array.from(new Uint8Array(await png.arrayBuffer())), pngType: png.type, glb: Array.from(new Uint8Array(await glb.arrayBuffer())), glbType: glb.type };
+    });
+    expect(out.pngType).toBe('image/png');
+    expect(pngSize(out.png)).toEqual({ width: 2 * RESOLUTION, height: 2 * RESOLUTION });
+    expect(out.glbType).toBe('model/gltf-binary');
+    writeFileSync(testInfo.outputPath('texture.png'), Buffer.from(out.png));
+    writeFileSync(testInfo.outputPath('textured.glb'), Buffer.from(out.glb));
+    const glb = Buffer.from(out.glb);
+    expect(glb.readUInt32LE(0)).toBe(0x46546c67);
+    const json = JSON.parse(glb.subarray(20, 20 + glb.readUInt32LE(12)).toString('utf8'));
+    const prim = json.meshes[0].primitives[0];
+    expect(prim.attributes).toHaveProperty('TEXCOORD_0');
+    expect(json.images[0].mimeType).toBe('image/png');
+    expect(json.materials[0].pbrMetallicRoughness.baseColorTexture.index).toBe(0);
+    expect(json.accessors[prim.indices].count).toBe(mesh.triangles.length);
+    // Loaded back, its UVs are a valid atlas: synthesis runs in them instead of generating one.
+    await page.evaluate((bytes) => window.tvf.loadModel(new Uint8Array(bytes), { name: 'textured.glb' }), out.glb);
+    const info = await page.evaluate(() => window.tvf.info());
+    expect(info.faces).toBe(mesh.triangles.length / 3);
+    const stats = await page.evaluate(() => window.tvf.synthesize({ resolution: 64 }));
+    expect(stats.atlas.source).toBe('TEXCOORD_0');
+  });
+
+  test('user image exemplar (PNG blob), and a readable error for a non-image', async () => {
+    const r = await page.evaluate(async () => {
+      // The weave pattern drawn on a canvas, as a PNG file a user would pick.
+      const c = document.createElement('canvas');
+      c.width = c.height = 96;
+      const g = c.getContext('2d');
+      for (let y = 0; y < 96; y += 8) for (let x = 0; x < 96; x += 8) {
+        g.fillStyle = ((x + y) / 8) % 2 ? '#7a4a2a' : '#e0c090';
+        g.fillRect(x, y, 8, 8);
+      }
+      const blob = await new Promise((res) => c.toBlob(res, 'image/png'));
+      const info = await window.tvf.setExemplar(new File([blob], 'checker.png', { type: 'image/png' }), { size: 64 });
+      let error = null;
+      try {
+        await window.tvf.setExemplar(new File([new Uint8Array([1, 2, 3])], 'broken.png', { type: 'image/png' }));
+      } catch (err) {
+        error = err.message;
+      }
+      const stats = await window.tvf.synthesize({ resolution: 64 });
+      return { info, error, label: stats.exemplar.label };
+    });
+    expect(r.info).toMatchObject({ label: 'checker.png', size: 64 });
+    expect(r.info.analysisMs).toBeGreaterThan(0);
+    expect(r.error).toMatch(/broken\.png/);
+    expect(r.label).toBe('checker.png');
+  });
+
   test('no console errors', () => {
     expect(errors).toEqual([]);
+  });
+});
+
+test.describe.serial('texture synthesis on a curved model (the default bunny, generated atlas)', () => {
+  let page, errors;
+
+  test.beforeAll(async ({ browser }) => {
+    page = await browser.newPage();
+    errors = trackErrors(page);
+    await openDesigner(page);
+  });
+
+  test.afterAll(async () => {
+    await page?.close();
+  });
+
+  test('stripes follow a stroke-designed field within 10°; seams continue across charts', async ({}, testInfo) => {
+    // A stroke across the body, sampled from the surface under a horizontal screen line.
+    const points = await page.evaluate(() => {
+      const rect = document.querySelector('#view').getBoundingClientRect();
+      const pts = [];
+      for (let k = 0; k <= 20; k++) {
+        const h = window.tvf.pick(rect.left + rect.width * (0.38 + 0.012 * k), rect.top + rect.height * 0.55);
+        if (h) pts.push({ face: h.face, bary: h.bary });
+      }
+      return pts;
+    });
+    expect(points.length).toBeGreaterThan(10);
+    await page.evaluate((pts) => window.tvf.addStroke(pts), points);
+    await page.evaluate(() => window.tvf.setExemplar('stripes'));
+    const base = await page.evaluate(() => {
+      const m = window.tvf.mesh();
+      return { positions: Array.from(m.positions), triangles: Array.from(m.triangles), vv: Array.from(window.tvf.vertexVectors()) };
+    });
+    const results = {};
+    for (const seams of [false, true]) {
+      const stats = await page.evaluate((o) => window.tvf.synthesize(o), { resolution: RESOLUTION, featureScale: 0.5, seams });
+      expect(stats.atlas.source).toBe('generated');
+      const r = await readback(page);
+      const R = r.resolution, m = r.exemplarSize;
+      const coords = Float32Array.from(r.coords), jac = Float32Array.from(r.jacobian), ex = Uint8Array.from(r.exemplar), uv = Float32Array.from(r.cornerUVs);
+      const jumps = seamJumps(coords, jac, R, ex, m, base.triangles, uv);
+      const image = exemplarImage(coords, ex, m);
+      const windows = fieldAlignment(image, R, jumps.covered, base.positions, base.triangles, uv, base.vv, { win: 16, step: 8 });
+      const errs = windows.map((w) => w.errorDegrees).sort((a, b) => a - b);
+      results[seams ? 'seams' : 'noSeams'] = {
+        totalMs: Math.round(stats.totalMs),
+        charts: stats.atlas.charts,
+        seamEdges: jumps.seamEdges,
+        seamJump: +jumps.seam.toFixed(1),
+        localVariation: +jumps.local.toFixed(1),
+        windows: errs.length,
+        meanErrorDegrees: +(errs.reduce((a, b) => a + b, 0) / errs.length).toFixed(2),
+        medianErrorDegrees: +errs[errs.length >> 1].toFixed(2),
+      };
+      writeFileSync(testInfo.outputPath(`bunny-atlas-${seams ? 'seams' : 'no-seams'}.png`), encodePng(image, R, R));
+      await page.evaluate(() => window.tvf.setViews({ arrows: false }));
+      await page.screenshot({ path: testInfo.outputPath(`bunny-${seams ? 'seams' : 'no-seams'}.png`) });
+    }
+    console.log(JSON.stringify(results));
+    writeFileSync(testInfo.outputPath('bunny-report.json'), JSON.stringify(results, null, 1));
+    const { seams, noSeams } = results;
+    expect(seams.windows, 'windows inside charts with clear stripes').toBeGreaterThanOrEqual(10);
+    expect(seams.meanErrorDegrees, 'stripes vs field on the surface (mean over windows)').toBeLessThan(10);
+    expect(seams.medianErrorDegrees).toBeLessThan(10);
+    // Following the seam indirection makes the two sides of a seam one texture: the colour jump across seams
+    // drops to the order of the colour change between neighbouring texels.
+    expect(seams.seamJump, 'colour jump across seams, with vs. without indirection').toBeLessThan(0.5 * noSeams.seamJump);
+    expect(seams.seamJump).toBeLessThan(2 * seams.localVariation);
+  });
+
+  test('no console errors', () => {
+    expect(errors).toEqual([]);
+  });
+});
+
+// The atlas logic on its own (no page): when TEXCOORD_0 is used, and what the generated atlas guarantees.
+test.describe('atlas choice and generation (node)', () => {
+  const grid = (n) => {
+    const positions = [], triangles = [], uv = [];
+    for (let j = 0; j <= n; j++) for (let i = 0; i <= n; i++) positions.push(i / n, j / n, 0);
+    for (let j = 0; j < n; j++)
+      for (let i = 0; i < n; i++) {
+        const a = j * (n + 1) + i;
+        for (const t of [[a, a + 1, a + n + 2], [a, a + n + 2, a + n + 1]]) {
+          triangles.push(...t);
+          for (const v of t) uv.push(positions[3 * v], positions[3 * v + 1]);
+        }
+      }
+    return { positions: Float64Array.from(positions), triangles: Int32Array.from(triangles), uv: Float32Array.from(uv) };
+  };
+
+  test('TEXCOORD_0 is used only when it is a non-overlapping atlas inside [0, 1]', () => {
+    const g = grid(8);
+    expect(checkAtlasUVs(g.positions, g.triangles, g.uv).ok).toBe(true);
+    expect(checkAtlasUVs(g.positions, g.triangles, null).reason).toMatch(/no TEXCOORD_0/);
+    const tiled = g.uv.map((x) => 4 * x); // a repeating texture layout
+    expect(checkAtlasUVs(g.positions, g.triangles, tiled).reason).toMatch(/outside \[0, 1\]/);
+    // Every quad on the same half square (a mirrored/stacked layout): each texel is claimed by 64 quads.
+    const stacked = Float32Array.from({ length: g.uv.length }, (_, i) => 0.5 * [0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1][i % 12]);
+    const r = checkAtlasUVs(g.positions, g.triangles, stacked);
+    expect(r.ok).toBe(false);
+    expect(r.reason).toMatch(/overlap/);
+  });
+
+  test('the generated atlas of the bunny: no overlaps, inside the square, seams indirected into charts', () => {
+    const positions = Float64Array.from(bunny.positions.flat());
+    const triangles = Int32Array.from(bunny.cells.flat());
+    const { cornerUVs, stats } = generateAtlas(positions, triangles, { resolution: 512, gutter: 3 });
+    expect(stats.charts).toBeGreaterThan(5);
+    expect(cornerUVs.every((x) => x >= 0 && x <= 1)).toBe(true);
+    const check = checkAtlasUVs(positions, triangles, cornerUVs, { resolution: 512 });
+    expect(check.ok).toBe(true);
+    expect(check.stats.overlap).toBe(0);
+    expect(check.stats.coverage).toBeGreaterThan(0.25);
+    const seams = seamIndirection(positions, triangles, cornerUVs, 256);
+    expect(seams.seamEdges).toBeGreaterThan(100);
+    const covered = rasterCoverage(cornerUVs, 256);
+    let into = 0;
+    for (let t = 0; t < 256 * 256; t++) {
+      if (!seams.map[4 * t + 2]) continue;
+      expect(covered[t], 'only texels outside every triangle are redirected').toBe(0);
+      const x = seams.map[4 * t], y = seams.map[4 * t + 1];
+      // The target, or a texel next to it, lies inside a chart.
+      let hit = false;
+      for (let dy = -1; dy <= 1 && !hit; dy++) for (let dx = -1; dx <= 1; dx++) if (covered[Math.min(255, Math.max(0, y + dy)) * 256 + Math.min(255, Math.max(0, x + dx))]) hit = true;
+      into += hit;
+    }
+    expect(into).toBeGreaterThan(0.98 * seams.redirected);
+    console.log(JSON.stringify({ charts: stats.charts, coverage: +check.stats.coverage.toFixed(3), seamEdges: seams.seamEdges, redirected: seams.redirected }));
   });
 });

@@ -1,6 +1,7 @@
 // The tvf command line, run as a user would: exit codes, messages on stderr, JSON keys on stdout.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -20,7 +21,10 @@ struct CliRun {
 };
 
 CliRun runTvf(const std::string& args) {
-  const fs::path errFile = fs::temp_directory_path() / "tvf_cli_stderr.txt";
+  // ctest runs tests in parallel processes: each call gets its own stderr file.
+  static int calls = 0;
+  const fs::path errFile =
+      fs::temp_directory_path() / ("tvf_cli_stderr_" + std::to_string(getpid()) + "_" + std::to_string(calls++) + ".txt");
   const std::string command = std::string(TVF_CLI_PATH) + " " + args + " 2>" + errFile.string();
   CliRun r{-1, "", ""};
   FILE* pipe = popen(command.c_str(), "r");
@@ -31,11 +35,12 @@ CliRun runTvf(const std::string& args) {
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   std::ifstream in(errFile);
   r.err.assign(std::istreambuf_iterator<char>(in), {});
+  fs::remove(errFile);
   return r;
 }
 
 fs::path writeOff(const std::string& name, const tvf::SurfaceMesh& m) {
-  const fs::path path = fs::temp_directory_path() / name;
+  const fs::path path = fs::temp_directory_path() / (std::to_string(getpid()) + "_" + name);
   std::ofstream out(path);
   out << "OFF\n" << m.numVertices() << " " << m.numFaces() << " 0\n";
   out.precision(17);
@@ -48,7 +53,7 @@ fs::path writeOff(const std::string& name, const tvf::SurfaceMesh& m) {
 }
 
 fs::path writeText(const std::string& name, const std::string& text) {
-  const fs::path path = fs::temp_directory_path() / name;
+  const fs::path path = fs::temp_directory_path() / (std::to_string(getpid()) + "_" + name);
   std::ofstream(path) << text;
   return path;
 }
@@ -84,7 +89,7 @@ TEST(Cli, DesignWritesTheFieldDocument) {
   const fs::path mesh = writeOff("cli_sphere.off", tvf::testing::icosphere(2));
   const fs::path design = writeText("cli_design.json", R"({"boundary": "free", "gamma": 0, "constraints": [
       {"type": "source", "vertex": 0, "strength": 1}, {"type": "sink", "vertex": 3, "strength": 1}]})");
-  const fs::path out = fs::temp_directory_path() / "cli_field.json";
+  const fs::path out = fs::temp_directory_path() / (std::to_string(getpid()) + "_cli_field.json");
   const CliRun r = runTvf("design " + mesh.string() + " " + design.string() + " -o " + out.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::ifstream in(out);

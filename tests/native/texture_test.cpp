@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <numeric>
 #include <random>
 
@@ -259,13 +261,127 @@ TEST(TextureGpuTables, BlockProjectionReproducesTheNeighbourhoodVectors) {
   }
 }
 
-TEST(TextureAnalysis, Timing128) {
+TEST(TextureAnalysis, A128ExemplarHasEightLevelsAndReportsItsTimings) {
   const ExemplarImage ex = makeProceduralExemplar("scales", 128);
   const ExemplarAnalysis an = analyzeExemplar(ex);
   const AnalysisTimings& t = an.timings;
   std::printf("[ timing ] 128^2 exemplar, %d levels: stack %.1f ms, appearance %.1f ms, neighbourhood %.1f ms, "
               "k-coherence %.1f ms, total %.1f ms\n",
               an.numLevels(), t.stackMs, t.appearanceMs, t.neighbourhoodMs, t.kCoherenceMs, t.totalMs);
-  EXPECT_EQ(an.numLevels(), 8);
-  EXPECT_LT(t.totalMs, 20000);  // a sanity bound only; the budget (1 s in wasm) is measured, not asserted
+  EXPECT_EQ(an.numLevels(), 8);  // timings are reported above, never asserted
+}
+
+TEST(TextureAnalysis, FlatTinyAndInvalidExemplars) {
+  // A constant colour: every level flat, PCA degenerate but defined, candidates still excluded from near-self.
+  ExemplarImage flat;
+  flat.size = 16;
+  flat.rgb.assign(3 * 16 * 16, 0.5f);
+  const ExemplarAnalysis a = analyzeExemplar(flat);
+  ASSERT_EQ(a.numLevels(), 5);
+  for (const AnalysisLevel& L : a.levels) {
+    EXPECT_DOUBLE_EQ(L.appearance.basis.varianceKept, 1.0);
+    for (int u = 0; u < 256; ++u)
+      for (int j = 0; j < L.candidates.k; ++j)
+        EXPECT_GT(toroidalChebyshev(L.candidates.candidates[u * L.candidates.k + j], u, 16), L.candidates.radius);
+    EXPECT_TRUE(L.appearance.vectors.allFinite());
+    EXPECT_TRUE(L.neighbourhood.vectors.allFinite());
+  }
+  // The smallest procedural size analyses, and the GPU tables have the documented sizes.
+  const ExemplarAnalysis tiny = analyzeExemplar(makeProceduralExemplar("weave", 16));
+  const GpuLevelTables g = gpuTables(tiny, 0);
+  EXPECT_EQ(g.colour.size(), 4u * 256);
+  EXPECT_EQ(g.appearance.size(), 8u * 256);
+  EXPECT_EQ(g.neighbourhood.size(), 8u * 256);
+  EXPECT_EQ(g.candidates.size(), 4u * 256);
+  EXPECT_EQ(g.projection.size(), 512u);
+  EXPECT_EQ(g.projectionOffset.size(), 8u);
+  EXPECT_THROW(gpuTables(tiny, tiny.numLevels()), InputError);
+  // Not square / not a power of two.
+  ExemplarImage bad;
+  bad.size = 12;
+  bad.rgb.assign(3 * 144, 0.f);
+  EXPECT_THROW(analyzeExemplar(bad), InputError);
+  AnalysisOptions four;
+  four.appearanceDims = 4;
+  EXPECT_THROW(gpuTables(analyzeExemplar(flat, four), 0), InputError);
+}
+
+// Real patterns (GIMP's tiling .pat files from Debian's gimp-data, converted by scripts/fetch-exemplars.sh into
+// bench-data/exemplars/, never committed): skipped unless that folder exists (or TVF_EXEMPLAR_DIR names one).
+namespace {
+
+bool readPpm(const std::string& path, ExemplarImage& out) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return false;
+  int w = 0, h = 0, maxval = 0;
+  const bool header = std::fscanf(f, "P6 %d %d %d", &w, &h, &maxval) == 3 && std::fgetc(f) != EOF;
+  std::vector<uint8_t> rgb(header && w > 0 && h > 0 ? 3 * static_cast<size_t>(w) * h : 0);
+  const bool ok = header && maxval == 255 && w == h && !rgb.empty() && std::fread(rgb.data(), 1, rgb.size(), f) == rgb.size();
+  std::fclose(f);
+  if (!ok) return false;
+  std::vector<uint8_t> rgba(4 * static_cast<size_t>(w) * h, 255);
+  for (size_t p = 0; p < static_cast<size_t>(w) * h; ++p)
+    for (int c = 0; c < 3; ++c) rgba[4 * p + c] = rgb[3 * p + c];
+  out = exemplarFromRGBA8(rgba.data(), w, h);
+  return true;
+}
+
+}  // namespace
+
+TEST(TextureExemplars, RealPatternsFromGimpData) {
+  const char* env = std::getenv("TVF_EXEMPLAR_DIR");
+  const std::filesystem::path dir = env ? std::filesystem::path(env)
+                                        : std::filesystem::path(TVF_TEST_DATA_DIR) / ".." / ".." / ".." / "bench-data" / "exemplars";
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no " << dir << " (run scripts/fetch-exemplars.sh)";
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".ppm") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) GTEST_SKIP() << "no .ppm in " << dir;
+  int patterns = 0, kept90 = 0, candidatesClose = 0, levels = 0;
+  std::vector<double> level0;
+  std::mt19937 rng(3);
+  for (const auto& path : files) {
+    ExemplarImage ex;
+    if (!readPpm(path.string(), ex)) continue;
+    if (ex.size > 64) {  // 64^2 keeps the test quick: box-filter down by whole factors
+      const int f = ex.size / 64;
+      ExemplarImage small;
+      small.size = 64;
+      small.rgb.assign(3 * 64 * 64, 0.f);
+      for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+          for (int j = 0; j < f; ++j)
+            for (int i = 0; i < f; ++i)
+              for (int c = 0; c < 3; ++c) small.at(x, y)[c] += ex.at(x * f + i, y * f + j)[c] / (f * f);
+      ex = small;
+    }
+    const ExemplarAnalysis an = analyzeExemplar(ex);
+    const int m = an.size(), n = m * m;
+    std::uniform_int_distribution<int> any(0, n - 1);
+    std::printf("[ real ] %-14s %3d^2  variance kept by level:", path.stem().string().c_str(), m);
+    for (int s = 0; s < an.numLevels() && an.levels[s].appearance.spacing * 16 <= m; ++s) {
+      const AnalysisLevel& L = an.levels[s];
+      double cand = 0, rnd = 0;
+      for (int u = 0; u < n; u += 7)
+        for (int j = 0; j < L.candidates.k; ++j) {
+          cand += distance(L.appearance.vectors, u, L.candidates.candidates[u * L.candidates.k + j]);
+          rnd += distance(L.appearance.vectors, u, any(rng));
+        }
+      std::printf(" %.3f (cand/rand %.2f)", L.appearance.basis.varianceKept, cand / rnd);
+      if (s == 0) level0.push_back(L.appearance.basis.varianceKept);
+      kept90 += L.appearance.basis.varianceKept >= 0.9;
+      candidatesClose += cand / rnd < 0.5;
+      ++levels;
+    }
+    std::printf("\n");
+    ++patterns;
+  }
+  ASSERT_GT(patterns, 0);
+  std::sort(level0.begin(), level0.end());
+  std::printf("[ real ] %d patterns, %d levels: %d keep >= 90%% in 8 dims, median level 0 %.3f; candidates nearer than "
+              "half the random distance on %d levels\n",
+              patterns, levels, kept90, level0[level0.size() / 2], candidatesClose);
+  EXPECT_GE(kept90, 0.8 * levels);
+  EXPECT_GE(candidatesClose, 0.9 * levels);
 }

@@ -3,6 +3,7 @@
 // atlas (synthesizer.js), the textured model in the view (render.js), exports, and the window.tvf additions
 // (docs/js-api.md, "Texture synthesis"). The page hands in a small adapter; see installSynthesis().
 import { chooseAtlas } from './atlas.js';
+import { formatBench, runSynthesisBench } from './bench.js';
 import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8, loadAnalysisModule } from './exemplar.js';
 import { encodeGlb } from './glb.js';
 import { mountSynthesisPanel } from './panel.js';
@@ -273,6 +274,14 @@ export class SynthesisController {
     });
   }
 
+  // The synthesis benchmark (bench.js) on a synthesizer of its own.
+  bench(options = {}) {
+    return this.#exclusive(async () => {
+      await this.#ensureModule();
+      return runSynthesisBench(this.library, options);
+    });
+  }
+
   // Milliseconds of one plain full-screen pass at size^2 on the synthesis context (the bench's unit).
   plainPassMs(size, repeats) {
     return this.#ensureSynth().plainPassMs(size, repeats);
@@ -292,14 +301,40 @@ export function installSynthesis(tvf, deps) {
     exemplarInfo: () => c.exemplarInfo(),
     synthesisReadback: () => c.readback(),
     synthesisIdle: () => c.whenIdle(),
+    synthesisBench: (opts) => c.bench(opts),
   });
   return c;
+}
+
+// ?bench=1[&sizes=256,512]: once the page is ready, runs the benchmark, shows it over the view and leaves the
+// result in window.tvfBench (scripts/bench-web.mjs reads it from there).
+function scheduleBench(tvf, controller) {
+  const params = new URLSearchParams(globalThis.location?.search ?? '');
+  if (params.get('bench') !== '1') return;
+  const sizes = (params.get('sizes') || '256,512,1024').split(',').map(Number).filter((n) => n > 0);
+  // A microtask: tvf.ready is assigned once the page's start-up code returns.
+  Promise.resolve()
+    .then(() => tvf.ready)
+    .then(() => controller.bench({ sizes }))
+    .then((result) => {
+      window.tvfBench = result;
+      const pre = document.createElement('pre');
+      pre.id = 'synthesis-bench';
+      pre.style.cssText = 'position:absolute;left:220px;bottom:40px;z-index:10;background:#000c;color:#dfe;padding:8px;font:12px monospace;white-space:pre-wrap;max-width:70vw';
+      pre.textContent = formatBench(result);
+      document.getElementById('viewport')?.append(pre);
+      console.log(pre.textContent);
+    })
+    .catch((err) => {
+      window.tvfBench = { error: err?.message || String(err) };
+    });
 }
 
 // Everything the page needs in one call: window.tvf additions, plus the "Texture" panel in `panel` (an element,
 // e.g. the side panel) when given. Returns the controller (fieldChanged(), modelChanged()).
 export function setupSynthesis(tvf, { panel = null, ...deps }) {
   const controller = installSynthesis(tvf, deps);
+  scheduleBench(tvf, controller);
   if (panel) {
     const view = mountSynthesisPanel(controller, panel, { onError: deps.onError, modelName: () => (deps.getModel()?.name ?? 'model').replace(/\.[^.]*$/, '') });
     const notify = controller.onChange;

@@ -31,7 +31,7 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
   exemplar.append(el('option', { value: 'image', text: 'Image…' }));
   const file = el('input', { id: 'tex-file', type: 'file', accept: 'image/png,image/jpeg', hidden: '' });
   const preview = el('canvas', { id: 'tex-preview', width: '48', height: '48', title: 'Current exemplar' });
-  preview.style.cssText = 'width:48px;height:48px;image-rendering:pixelated;border:1px solid #555;vertical-align:middle';
+  preview.style.cssText = 'width:48px;height:48px;border:1px solid #555;display:block;margin:2px 0 4px';
   const scale = el('input', { id: 'tex-scale', type: 'range', min: '-1', max: '3', step: '0.25', value: '1' });
   const resolution = el('select', { id: 'tex-resolution', title: 'Atlas resolution (texels per side)' });
   for (const r of [256, 512, 1024]) resolution.append(el('option', { value: String(r), text: String(r) }));
@@ -47,7 +47,8 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
     'details',
     { id: 'texture-panel', open: '' },
     el('summary', { text: 'Texture' }),
-    el('label', { title: 'Exemplar' }, 'Exemplar ', exemplar, ' ', preview),
+    el('label', { title: 'Exemplar' }, 'Exemplar ', exemplar),
+    preview,
     file,
     el('label', { title: 'Texture feature size on the surface (log2; 0 = one exemplar pixel per atlas texel)' }, 'Scale ', scale),
     el('label', {}, 'Atlas ', resolution),
@@ -66,6 +67,19 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
   function showPreview() {
     const info = controller.exemplar?.tables;
     if (!info) return;
+    // The picker shows the exemplar in use, also when it was set through the API.
+    const label = controller.exemplar.label;
+    if (controller.proceduralNames().includes(label)) exemplar.value = label;
+    else {
+      let custom = exemplar.querySelector('option[data-custom]');
+      if (!custom) {
+        custom = el('option', { 'data-custom': '' });
+        exemplar.insertBefore(custom, exemplar.lastChild);
+      }
+      custom.value = 'custom';
+      custom.textContent = label;
+      exemplar.value = 'custom';
+    }
     const ctx = preview.getContext('2d');
     const img = new ImageData(new Uint8ClampedArray(info.rgba8), info.size, info.size);
     const c = Object.assign(document.createElement('canvas'), { width: info.size, height: info.size });
@@ -80,6 +94,11 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
       status.textContent = controller.active ? 'Synthesizing…' : 'No texture yet.';
       return;
     }
+    // The controls show the options in use, also when they were set through the API.
+    if ([256, 512, 1024].includes(s.resolution)) resolution.value = String(s.resolution);
+    const log2Scale = Math.log2(s.featureScale);
+    if (log2Scale >= Number(scale.min) && log2Scale <= Number(scale.max)) scale.value = String(log2Scale);
+    byMagnitude.checked = s.magnitudeExponent > 0;
     const levels = s.levels.map((l) => `${l.size}²:${fmt(l.ms)}`).join(' ');
     status.textContent = `${s.exemplar?.label ?? ''} · ${s.resolution}² ${s.atlas.source} atlas · ${fmt(s.totalMs)} ms (${levels})`;
     status.title = `atlas: ${s.atlas.reason}\nanalysis: ${fmt(s.exemplar?.analysisMs ?? 0)} ms${s.exemplar?.cached ? ' (cached)' : ''}`;
@@ -104,6 +123,7 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
 
   exemplar.addEventListener('change', () => {
     if (exemplar.value === 'image') return file.click();
+    if (exemplar.value === 'custom') return;
     run(() => controller.setExemplar(exemplar.value));
   });
   file.addEventListener('change', () => {

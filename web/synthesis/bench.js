@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Synthesis benchmark (page: ?bench=1, or `npm run bench:web`): a flat unit square with a constant field at 30°
+// synthesized at 256², 512² and 1024² from a 64² exemplar; per level and total milliseconds (GPU waited for
+// after each level), and the ratio of the total to one plain full-screen pass of the same size — the number that
+// carries over between machines, since this machine may render in software (SwiftShader).
+
+import { Synthesizer } from './synthesizer.js';
+
+// A flat square grid like flatSquareGlb's, straight as arrays (the bench needs no core).
+function flatSquare(n = 16) {
+  const positions = [], triangles = [], cornerUVs = [];
+  for (let j = 0; j <= n; j++) for (let i = 0; i <= n; i++) positions.push(i / n, j / n, 0);
+  const uv = (v) => [positions[3 * v], positions[3 * v + 1]];
+  for (let j = 0; j < n; j++)
+    for (let i = 0; i < n; i++) {
+      const a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      for (const t of (i + j) % 2 === 0 ? [[a, b, d], [a, d, c]] : [[a, b, c], [b, d, c]]) {
+        triangles.push(...t);
+        for (const v of t) cornerUVs.push(...uv(v));
+      }
+    }
+  return { positions: Float64Array.from(positions), triangles: Int32Array.from(triangles), cornerUVs: Float32Array.from(cornerUVs) };
+}
+
+// library: an ExemplarLibrary (exemplar.js). Returns {device, exemplar, runs: [{size, levels, totalMs, plainMs,
+// ratio, ...}]}; `repeats` measured runs per size after one warm-up run (shader compilation), best one reported.
+export function runSynthesisBench(library, { sizes = [256, 512, 1024], exemplar = 'scales', repeats = 2, featureScale = 1 } = {}) {
+  const { tables } = library.procedural(exemplar, 64, 1);
+  const synth = new Synthesizer();
+  const gl = synth.gl;
+  const dbg = gl.getExtension('WEBGL_debug_renderer_info');
+  const device = dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
+  synth.setExemplar(tables);
+  const sq = flatSquare(16);
+  const t = Math.PI / 6;
+  const vv = new Float64Array(sq.positions.length);
+  for (let v = 0; v < vv.length; v += 3) (vv[v] = Math.cos(t)), (vv[v + 1] = Math.sin(t));
+  const runs = [];
+  try {
+    for (const size of sizes) {
+      synth.setAtlas({ resolution: size, ...sq });
+      synth.synthesize(vv, { featureScale }); // warm-up: compiles the shaders for this size
+      let best = null;
+      for (let r = 0; r < repeats; r++) {
+        const s = synth.synthesize(vv, { featureScale, timing: 'levels' });
+        if (!best || s.totalMs < best.totalMs) best = s;
+      }
+      const total = synth.synthesize(vv, { featureScale, timing: 'total' });
+      const plainMs = synth.plainPassMs(size, 10);
+      runs.push({
+        size,
+        levels: best.levels.map((l) => ({ size: l.size, stackLevel: l.stackLevel, ms: +l.ms.toFixed(2) })),
+        totalMs: +best.totalMs.toFixed(1),
+        totalNoLevelSyncMs: +total.totalMs.toFixed(1),
+        jacobianMs: +best.jacobianMs.toFixed(1),
+        plainPassMs: +plainMs.toFixed(3),
+        ratioToPlainPass: +(best.totalMs / plainMs).toFixed(0),
+      });
+    }
+  } finally {
+    synth.dispose();
+  }
+  return { device, exemplar: `${exemplar} 64²`, passes: 2, subpasses: 4, analysis: tables.stats.timings, runs };
+}
+
+// The bench as a text table.
+export function formatBench(result) {
+  const lines = [`texture synthesis bench on ${result.device}; exemplar ${result.exemplar}, analysis ${result.analysis.totalMs.toFixed(0)} ms (wasm)`];
+  for (const r of result.runs) {
+    lines.push(
+      `${r.size}²: total ${r.totalMs} ms (${r.totalNoLevelSyncMs} ms without per-level waits), plain pass ${r.plainPassMs} ms, ratio ${r.ratioToPlainPass}; levels ` +
+        r.levels.map((l) => `${l.size}²:${l.ms}`).join(' '),
+    );
+  }
+  return lines.join('\n');
+}
+
