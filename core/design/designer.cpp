@@ -61,7 +61,6 @@ struct Designer::Impl {
   MeshGeometry geometry;
   BoundaryCondition boundary;
   double gamma = 0;
-  bool metis = false;
 
   // Base system, rebuilt when the boundary condition or gamma change.
   bool baseStale = true;
@@ -78,8 +77,7 @@ struct Designer::Impl {
     ConstraintSpec spec;
     std::vector<EdgeRow> rows;  // edge-type constraints, values for unit strength
   };
-  std::map<int32_t, Active> active;
-  std::vector<ConstraintSpec> order;  // specs in insertion order, mirrors `active`
+  std::map<int32_t, Active> active;  // ids only grow, so map order is insertion order
   int32_t nextId = 1;
 
   Eigen::VectorXd solution;
@@ -91,7 +89,6 @@ struct Designer::Impl {
   void deriveIfStale();
 
   void rebuildBase() {
-    const auto start = Clock::now();
     const std::vector<double> angles = boundaryEdgeAngles(topology, boundary);
     ops = buildOneFormOperators(mesh, topology, geometry, angles);
     base = oneFormLaplacian(ops, geometry);
@@ -105,7 +102,6 @@ struct Designer::Impl {
     stats.nnzPerRowM = static_cast<double>(base.nonZeros()) / std::max<Eigen::Index>(1, base.rows());
     baseStale = false;
     factorStale = true;
-    stats.analyzeMs = msSince(start);  // overwritten by the factorization's own analysis below
   }
 
   // Weighted constraint rows sqrt(w) e_i as (row, weight) lists.
@@ -285,7 +281,6 @@ struct Designer::Impl {
     std::vector<double> w;
     if (isEdgeKind(spec.kind)) weightedRows(a, spec.weight, rows, w);
     active.emplace(a.spec.id, a);
-    order.push_back(a.spec);
     applyUpdate(rows, w, false);
     return a.spec.id;
   }
@@ -294,12 +289,6 @@ struct Designer::Impl {
     const auto it = active.find(id);
     if (it == active.end()) throw InputError("no constraint with id " + std::to_string(id));
     return it->second;
-  }
-
-  ConstraintSpec& orderEntry(int32_t id) {
-    for (auto& s : order)
-      if (s.id == id) return s;
-    throw InputError("no constraint with id " + std::to_string(id));
   }
 };
 
@@ -335,7 +324,6 @@ void Designer::setGamma(double gamma) {
 }
 
 void Designer::setMetisOrdering(bool metis) {
-  impl_->metis = metis;
   impl_->system = FactoredSystem(metis ? FillOrdering::Metis : FillOrdering::Amd);
   impl_->factorStale = true;
 }
@@ -408,9 +396,6 @@ void Designer::remove(int32_t id) {
   if (isEdgeKind(a.spec.kind)) d.weightedRows(a, a.spec.weight, rows, w);
   d.applyUpdate(rows, w, true);
   d.active.erase(id);
-  d.order.erase(
-      std::remove_if(d.order.begin(), d.order.end(), [id](const ConstraintSpec& s) { return s.id == id; }),
-      d.order.end());
 }
 
 void Designer::setWeight(int32_t id, double weight) {
@@ -425,14 +410,12 @@ void Designer::setWeight(int32_t id, double weight) {
   d.weightedRows(a, std::abs(change), rows, w);
   d.applyUpdate(rows, w, change < 0);
   a.spec.weight = weight;
-  d.orderEntry(id).weight = weight;
 }
 
 void Designer::setStrength(int32_t id, double strength) {
   requireFinite(strength, "strength");
   Impl::Active& a = impl_->find(id);
   a.spec.strength = strength;  // enters only the right-hand side
-  impl_->orderEntry(id).strength = strength;
 }
 
 void Designer::clearConstraints() {
@@ -443,7 +426,6 @@ void Designer::clearConstraints() {
     if (isEdgeKind(a.spec.kind)) d.weightedRows(a, a.spec.weight, rows, w);
   d.applyUpdate(rows, w, true);  // one multi-column downdate: the base matrix has not changed
   d.active.clear();
-  d.order.clear();
 }
 
 void Designer::solve() {
@@ -487,8 +469,10 @@ const std::vector<Singularity>& Designer::singularities() const {
 const DesignStats& Designer::stats() const {
   return impl_->stats;
 }
-const std::vector<ConstraintSpec>& Designer::constraints() const {
-  return impl_->order;
+std::vector<ConstraintSpec> Designer::constraints() const {
+  std::vector<ConstraintSpec> specs;
+  for (const auto& [id, a] : impl_->active) specs.push_back(a.spec);
+  return specs;
 }
 const BoundaryCondition& Designer::boundary() const {
   return impl_->boundary;

@@ -103,7 +103,7 @@ class Designer {
   const std::vector<Singularity>& singularities() const;
   const DesignStats& stats() const;
 
-  const std::vector<ConstraintSpec>& constraints() const;  // in the order they were added
+  std::vector<ConstraintSpec> constraints() const;  // in the order they were added
   const BoundaryCondition& boundary() const;
   double gamma() const;
   // The system the design means (base + constraint rows, without the kernel shift) and its right-hand side,
