@@ -2,7 +2,7 @@
 
 namespace tvf {
 
-SourceTargets singularTargets(const SurfaceMesh&, const MeshTopology& t, const MeshGeometry& g,
+SourceTargets singularTargets(const MeshTopology& t, const MeshGeometry& g,
                               const std::vector<ConstraintSpec>& sources,
                               const std::vector<ConstraintSpec>& sinks,
                               const std::vector<ConstraintSpec>& vortices) {

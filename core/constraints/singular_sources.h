@@ -15,8 +15,8 @@ struct SourceTargets {
   Eigen::VectorXd curl;        // r_t: circulation around the face, + with its orientation
 };
 
-SourceTargets singularTargets(const SurfaceMesh& mesh, const MeshTopology& topology,
-                              const MeshGeometry& geometry, const std::vector<ConstraintSpec>& sources,
+SourceTargets singularTargets(const MeshTopology& topology, const MeshGeometry& geometry,
+                              const std::vector<ConstraintSpec>& sources,
                               const std::vector<ConstraintSpec>& sinks,
                               const std::vector<ConstraintSpec>& vortices);
 

@@ -84,8 +84,8 @@ ConstraintSpec constraintFromJson(const json& c, size_t index) {
     numbers(c.value("edge", json()), ij, 2, where + " \"edge\"");
     s.edge[0] = static_cast<int32_t>(ij[0]);
     s.edge[1] = static_cast<int32_t>(ij[1]);
-    s.value = number(c, "value", NAN, where);
     if (!c.contains("value")) throw InputError(where + ": an edge constraint needs a \"value\"");
+    s.value = number(c, "value", 0.0, where);
   } else if (type == "source" || type == "sink") {
     s.kind = type == "source" ? ConstraintKind::Source : ConstraintKind::Sink;
     s.element = integer(c, "vertex", where);

@@ -180,7 +180,7 @@ struct Designer::Impl {
   // iterative refinement against the unshifted matrix cuts that to O(shift^2) for one more solve; kernel
   // components the design leaves free stay at the minimum-norm choice.
   void refineAgainstUnshiftedSystem(const Eigen::VectorXd& b) {
-    Eigen::VectorXd residual = b - base.selfadjointView<Eigen::Upper>() * solution;
+    Eigen::VectorXd residual = b - base * solution;
     for (const auto& [id, a] : active)
       if (isEdgeKind(a.spec.kind))
         for (const EdgeRow& r : a.rows) residual[r.edge] -= a.spec.weight * scale * solution[r.edge];
@@ -190,7 +190,7 @@ struct Designer::Impl {
   }
 
   Eigen::VectorXd rightHandSide() const {
-    SourceTargets targets = singularTargets(mesh, topology, geometry, specsOf(ConstraintKind::Source),
+    SourceTargets targets = singularTargets(topology, geometry, specsOf(ConstraintKind::Source),
                                             specsOf(ConstraintKind::Sink), specsOf(ConstraintKind::Vortex));
     Eigen::VectorXd b = ops.d1.transpose() * (geometry.star2.asDiagonal() * targets.curl) +
                         ops.divergence.transpose() * targets.divergence;

@@ -21,12 +21,6 @@ inline Eigen::Vector3d faceNormal(const SurfaceMesh& mesh, int32_t f) {
   return (p[1] - p[0]).cross(p[2] - p[0]).normalized();
 }
 
-inline double faceArea(const SurfaceMesh& mesh, int32_t f) {
-  Eigen::Vector3d p[3];
-  facePositions(mesh, f, p);
-  return 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
-}
-
 // cot of the angle between u and v.
 inline double cotan(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
   return u.dot(v) / u.cross(v).norm();
