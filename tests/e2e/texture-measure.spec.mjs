@@ -160,6 +160,6 @@ test.describe.serial('exported GLB at the default settings', () => {
   });
 });
 
-// Measured 6.46° / 0.857 / 1.08 (calibration floor of the measure at 512²: 4.6° / 0.88 / 1.06); the issue asks for
+// Measured 6.46–6.72° / 0.85–0.857 / 1.00 (calibration floor of the measure at 512²: 4.6° / 0.88 / 1.06); the issue asks for
 // 6° / 0.85 / 1.3 — the mean misses it by half a degree (docs/texture-synthesis.md).
-const BUNNY_LIMITS = { mean: 7.5, share: 0.8, seam: 1.3 };
+const BUNNY_LIMITS = { mean: 7.5, share: 0.8, seam: 1.2 };
