@@ -1,6 +1,7 @@
 #include "design/design_document.h"
 
 #include <cmath>
+#include <cstdio>
 
 namespace tvf {
 namespace {
@@ -32,10 +33,21 @@ double number(const json& object, const char* key, double fallback, const std::s
   return v.get<double>();
 }
 
+// An element index as a JSON number: whole and within int32, checked on the double so that 1e12 is reported
+// as 1e12 rather than wrapped.
+int32_t elementIndex(double x, const std::string& what) {
+  if (!std::isfinite(x) || x != std::floor(x) || x < -2147483648.0 || x > 2147483647.0) {
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", x);
+    throw InputError(what + " must be an integer index (got " + text + ")");
+  }
+  return static_cast<int32_t>(x);
+}
+
 int32_t integer(const json& object, const char* key, const std::string& where) {
-  if (!object.contains(key) || !object.at(key).is_number_integer())
+  if (!object.is_object() || !object.contains(key) || !object.at(key).is_number())
     throw InputError(where + ": \"" + key + "\" must be an integer");
-  return object.at(key).get<int32_t>();
+  return elementIndex(object.at(key).get<double>(), where + ": \"" + key + "\"");
 }
 
 void numbers(const json& array, double* out, size_t n, const std::string& what) {
@@ -71,6 +83,7 @@ ConstraintSpec constraintFromJson(const json& c, size_t index) {
     for (const json& p : c["points"]) {
       SurfacePoint q{};
       q.face = integer(p, "face", where + " point");
+      if (!p.is_object()) throw InputError(where + ": a stroke point must be {\"face\", \"bary\"}");
       numbers(p.value("bary", json()), q.bary, 3, where + " point \"bary\"");
       s.points.push_back(q);
     }
@@ -82,8 +95,8 @@ ConstraintSpec constraintFromJson(const json& c, size_t index) {
     s.kind = ConstraintKind::Edge;
     double ij[2];
     numbers(c.value("edge", json()), ij, 2, where + " \"edge\"");
-    s.edge[0] = static_cast<int32_t>(ij[0]);
-    s.edge[1] = static_cast<int32_t>(ij[1]);
+    s.edge[0] = elementIndex(ij[0], where + " \"edge\" vertex");
+    s.edge[1] = elementIndex(ij[1], where + " \"edge\" vertex");
     if (!c.contains("value")) throw InputError(where + ": an edge constraint needs a \"value\"");
     s.value = number(c, "value", 0.0, where);
   } else if (type == "source" || type == "sink") {
@@ -151,7 +164,8 @@ BoundaryCondition boundaryFromJson(const json& v) {
     for (const json& e : v["perEdge"]) {
       double ija[3];
       numbers(e, ija, 3, "boundary.perEdge entry");
-      bc.perEdge.push_back({static_cast<int32_t>(ija[0]), static_cast<int32_t>(ija[1]), ija[2]});
+      bc.perEdge.push_back(
+          {elementIndex(ija[0], "boundary.perEdge vertex"), elementIndex(ija[1], "boundary.perEdge vertex"), ija[2]});
     }
   }
   return bc;
