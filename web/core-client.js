@@ -30,6 +30,24 @@ function guard(what, fn) {
   }
 }
 
+// Embind turns null into 0 and a missing number into NaN before the core can see it: arguments are checked
+// here, in the core's words, before they cross.
+function requireNumber(what, x) {
+  if (typeof x !== 'number') {
+    const got = x === null ? 'null' : x === undefined ? 'nothing' : typeof x;
+    throw new CoreError(`${what} must be a number (got ${got})`);
+  }
+  return x;
+}
+
+function requirePoint(k, p) {
+  if (p === null || typeof p !== 'object') throw new CoreError(`stroke: point ${k} must be {face, bary}`);
+  requireNumber(`stroke: point ${k} face`, p.face);
+  if (!Array.isArray(p.bary) && !ArrayBuffer.isView(p.bary)) throw new CoreError(`stroke: point ${k} bary must be 3 numbers`);
+  if (p.bary.length !== 3) throw new CoreError(`stroke: point ${k} bary must be 3 numbers`);
+  for (const b of p.bary) requireNumber(`stroke: point ${k} bary`, b);
+}
+
 function check(what, result) {
   if (typeof result === 'string' && result !== '') throw new CoreError(prefixed(what, result));
   return result;
@@ -76,6 +94,27 @@ export class CoreClient {
     this.hasMesh = true;
   }
 
+  // The whole model change at once (mesh, settings {boundary, gamma}, an autosaved design or null), factored
+  // and solved before it replaces the current model; on any failure the current model stays as it was.
+  // Returns {settingsError, restoreError} (null or the reason that part was dropped).
+  loadModel(bytes, format, settings = null, design = null) {
+    const settingsJson = settings ? JSON.stringify(settings) : '';
+    const designJson = design ? JSON.stringify(design) : '';
+    const out = JSON.parse(guard('load', () => this.designer.loadModel(bytes, format, settingsJson, designJson)));
+    if (!out.ok) throw new CoreError(prefixed('load', out.error));
+    this.hasMesh = true;
+    return { settingsError: out.settingsError, restoreError: out.restoreError };
+  }
+
+  // bytes: a fixed limit for the factor's memory; 0: what is left of the wasm address space (default).
+  setFactorMemoryLimit(bytes) {
+    check('memory limit', guard('memory limit', () => this.designer.setFactorMemoryLimit(bytes)));
+  }
+
+  gamma() {
+    return guard('gamma', () => this.designer.gamma());
+  }
+
   info() {
     return JSON.parse(guard('info', () => this.designer.infoJson()));
   }
@@ -87,6 +126,7 @@ export class CoreClient {
   }
 
   setGamma(gamma) {
+    requireNumber('gamma', gamma);
     // setGamma returns nothing, or an error string in a stricter build.
     check('gamma', guard('gamma', () => this.designer.setGamma(gamma)));
   }
@@ -109,6 +149,10 @@ export class CoreClient {
 
   // points: [{face, bary: [a, b, c]}, ...] in the core's welded face order.
   addStroke(points, strength, weight) {
+    if (!Array.isArray(points)) throw new CoreError('stroke: points must be a list');
+    points.forEach((p, k) => requirePoint(k, p));
+    requireNumber('stroke: strength', strength);
+    requireNumber('stroke: weight', weight);
     const flat = new Float64Array(points.length * 4);
     points.forEach((p, k) => {
       flat[4 * k] = p.face;
@@ -119,30 +163,49 @@ export class CoreClient {
     return this.#id('stroke', guard('stroke', () => this.designer.addStroke(flat, strength, weight)));
   }
 
-  addVector(face, [x, y, z], weight) {
+  addVector(face, vector, weight) {
+    requireNumber('vector: face', face);
+    if (!Array.isArray(vector) && !ArrayBuffer.isView(vector)) throw new CoreError('vector: the vector must be 3 numbers');
+    if (vector.length !== 3) throw new CoreError('vector: the vector must be 3 numbers');
+    const [x, y, z] = vector;
+    [x, y, z].forEach((c) => requireNumber('vector: component', c));
+    requireNumber('vector: weight', weight);
     return this.#id('vector', guard('vector', () => this.designer.addVector(face, x, y, z, weight)));
   }
 
   addSource(vertex, strength) {
+    requireNumber('source: vertex', vertex);
+    requireNumber('source: strength', strength);
     return this.#id('source', guard('source', () => this.designer.addSource(vertex, strength)));
   }
 
   addSink(vertex, strength) {
+    requireNumber('sink: vertex', vertex);
+    requireNumber('sink: strength', strength);
     return this.#id('sink', guard('sink', () => this.designer.addSink(vertex, strength)));
   }
 
   addVortex(face, strength) {
+    requireNumber('vortex: face', face);
+    requireNumber('vortex: strength', strength);
     return this.#id('vortex', guard('vortex', () => this.designer.addVortex(face, strength)));
   }
 
-  addEdge([i, j], value, weight) {
+  addEdge(edge, value, weight) {
+    if (!Array.isArray(edge) || edge.length !== 2) throw new CoreError('edge: the edge must be [i, j]');
+    const [i, j] = edge;
+    requireNumber('edge: vertex i', i);
+    requireNumber('edge: vertex j', j);
+    requireNumber('edge: value', value);
+    requireNumber('edge: weight', weight);
     return this.#id('edge', guard('edge', () => this.designer.addEdge(i, j, value, weight)));
   }
 
   // One constraint in the design format (docs/design-format.md), with the format's defaults.
   add(spec) {
-    const strength = spec.strength ?? 1;
-    const weight = spec.weight ?? 1;
+    // The format's defaults fill in absent fields only: an explicit null is an error, not a 1.
+    const strength = spec.strength === undefined ? 1 : spec.strength;
+    const weight = spec.weight === undefined ? 1 : spec.weight;
     switch (spec.type) {
       case 'stroke': return this.addStroke(spec.points, strength, weight);
       case 'vector': return this.addVector(spec.face, spec.vector, weight);
@@ -164,16 +227,21 @@ export class CoreClient {
   }
 
   remove(id) {
+    requireNumber('remove: id', id);
     const ok = guard('remove', () => this.designer.remove(id));
     if (!ok) throw new CoreError(prefixed('remove', this.#lastError() || `no constraint with id ${id}`));
   }
 
   setWeight(id, weight) {
+    requireNumber('weight: id', id);
+    requireNumber('weight', weight);
     const ok = guard('weight', () => this.designer.setWeight(id, weight));
     if (!ok) throw new CoreError(prefixed('weight', this.#lastError() || `cannot reweight constraint ${id}`));
   }
 
   setStrength(id, strength) {
+    requireNumber('strength: id', id);
+    requireNumber('strength', strength);
     const ok = guard('strength', () => this.designer.setStrength(id, strength));
     if (!ok) throw new CoreError(prefixed('strength', this.#lastError() || `cannot change the strength of ${id}`));
   }

@@ -60,12 +60,18 @@ function reloadIds(probeVertex) {
   ids = Array.from({ length: n }, (_, k) => probe - n + k);
 }
 
-function refactorAndSolve() {
-  core.factor();
-  core.solve();
-}
-
 let probeVertex = 0;
+// How to take back the edit in flight when the solve after it fails (a factor that does not fit, a field that
+// is not finite): the core then holds exactly what it held before the request. Set by each mutating op.
+let undoEdit = null;
+
+// The current design's entry for a core id, or the whole document.
+function currentDesign() {
+  return JSON.parse(core.designJson());
+}
+function currentSpec(id) {
+  return currentDesign().constraints[ids.indexOf(id)];
+}
 
 function applyDesign(design) {
   try {
@@ -87,30 +93,16 @@ const ops = {
 
   // settings: {boundary, gamma} carried over from the previous model; design: an autosaved document to
   // restore (its failure is reported, not fatal: the mesh still loads with the settings).
+  // One transaction in the core: the new mesh is read, checked, configured, factored and solved aside and
+  // replaces the current model only when all of that succeeded. A failure leaves the core, the ids here and
+  // the page on the previous model.
   loadMesh(bytes, format, settings, design) {
-    core.loadMesh(bytes, format);
-    ids = [];
+    const { settingsError, restoreError } = core.loadModel(bytes, format, settings, design);
     const info = core.info();
     const mesh = core.mesh();
     const edges = core.edges();
     probeVertex = mesh.triangles.length ? mesh.triangles[0] : 0;
-    let settingsError = null, restoreError = null;
-    try {
-      if (settings.boundary !== 'free') core.setBoundary(settings.boundary);
-      if (settings.gamma !== 0) core.setGamma(settings.gamma);
-    } catch (err) {
-      settingsError = err.message;
-      core.setBoundary('free');
-      core.setGamma(0);
-    }
-    if (design) {
-      try {
-        applyDesign(design);
-      } catch (err) {
-        restoreError = err.message;
-      }
-    }
-    refactorAndSolve();
+    reloadIds(probeVertex);
     // Texture synthesis (web/synthesis/) needs the model's per-corner UVs (6 per face; empty without TEXCOORD_0).
     const cornerUVs = Float32Array.from(core.designer.cornerUVs());
     return {
@@ -123,12 +115,14 @@ const ops = {
   add(spec) {
     const id = core.add(spec);
     ids.push(id);
+    undoEdit = () => ops.remove(id);
     return id;
   },
 
   readd(spec) {
     const id = core.addConstraintJson(spec);
     ids.push(id);
+    undoEdit = () => ops.remove(id);
     return id;
   },
 
@@ -139,28 +133,38 @@ const ops = {
   },
 
   setWeight(id, w) {
+    const before = currentSpec(id)?.weight;
     core.setWeight(id, w);
+    if (before !== undefined) undoEdit = () => core.setWeight(id, before);
     return true;
   },
 
   setStrength(id, s) {
+    const before = currentSpec(id)?.strength;
     core.setStrength(id, s);
+    if (before !== undefined) undoEdit = () => core.setStrength(id, before);
     return true;
   },
 
   setBoundary(bc) {
+    const before = currentDesign().boundary;
+    undoEdit = () => core.setBoundary(before);
     core.setBoundary(bc);
     core.factor();
     return true;
   },
 
   setGamma(g) {
+    const before = core.gamma();
+    undoEdit = () => core.setGamma(before);
     core.setGamma(g);
     core.factor();
     return true;
   },
 
   applyDesign(design) {
+    const before = currentDesign();
+    undoEdit = () => applyDesign(before);
     applyDesign(design);
     core.factor();
     return true;
@@ -189,6 +193,7 @@ self.onmessage = async ({ data: { seq, op, args } }) => {
   const t0 = performance.now();
   const timing = {};
   let reply, transfer = [];
+  undoEdit = null;
   try {
     if (!ops[op]) throw new CoreError(`unknown operation ${op}`);
     if (!NO_MESH_NEEDED.has(op)) requireMesh();
@@ -212,6 +217,14 @@ self.onmessage = async ({ data: { seq, op, args } }) => {
     }
   } catch (err) {
     reply = { ok: false, error: err?.message || String(err) };
+    // An edit whose factor or solve failed is taken back, so the core never keeps a state it cannot solve.
+    if (undoEdit) {
+      try {
+        undoEdit();
+      } catch {
+        // the snapshot below shows whatever the core holds
+      }
+    }
     // The page mirrors the core: after a failed edit it must still see what the core now holds.
     if (MUTATING.has(op) && core?.hasMesh) {
       try {
