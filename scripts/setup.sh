@@ -8,8 +8,9 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 DEB_PACKAGES=(build-essential cmake libeigen3-dev libsuitesparse-dev libtinygltf-dev nlohmann-json3-dev
-  libgtest-dev libopenblas0 emscripten chromium dpkg-dev)
+  libgtest-dev libopenblas0 emscripten chromium dpkg-dev clang libclang-rt-14-dev)
 # libopenblas0: CHOLMOD's supernodal factorization runs 2-3x faster on it than on the reference BLAS.
+# clang + libclang-rt-14-dev: libFuzzer (libclang_rt.fuzzer-x86_64.a) and its sanitizers, for scripts/fuzz.sh.
 
 missing=()
 for pkg in "${DEB_PACKAGES[@]}"; do
