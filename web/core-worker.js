@@ -84,6 +84,15 @@ function applyDesign(design) {
 const ops = {
   async init() {
     core = await loadCore(BASE);
+    // Held for the worker's whole life: the page notices its release the moment this worker ends.
+    if (self.name && self.navigator?.locks) {
+      self.navigator.locks
+        .request(self.name, () => {
+          self.postMessage({ locked: true });
+          return new Promise(() => {});
+        })
+        .catch(() => {});
+    }
     return { crossOriginIsolated: self.crossOriginIsolated === true };
   },
 
@@ -173,9 +182,16 @@ const ops = {
   fieldJson() {
     return core.fieldJson();
   },
+
+  // 0: the wasm address space left (default); a number: a fixed limit (tests scale it down instead of
+  // building a multi-million-edge mesh).
+  setFactorMemoryLimit(bytes) {
+    core.setFactorMemoryLimit(bytes);
+    return true;
+  },
 };
 
-const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh']);
+const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'setFactorMemoryLimit']);
 // Ops after which the field may have changed: they solve and send a snapshot back.
 const MUTATING = new Set([
   'loadMesh',
@@ -189,7 +205,16 @@ const MUTATING = new Set([
   'applyDesign',
 ]);
 
-self.onmessage = async ({ data: { seq, op, args } }) => {
+// A wasm trap or an abort (out of memory, an assertion) leaves the instance unusable: the page must replace
+// this worker rather than send it more work.
+function isFatal(err) {
+  const text = `${err?.name ?? ''} ${err?.message ?? err}`;
+  return err instanceof WebAssembly.RuntimeError || /RuntimeError|Aborted\(|unreachable|memory access out of bounds|table index is out of bounds/.test(text);
+}
+
+self.onmessage = async ({ data }) => {
+  if (data.ping) return void self.postMessage({ pong: true });
+  const { seq, op, args } = data;
   const t0 = performance.now();
   const timing = {};
   let reply, transfer = [];
@@ -216,9 +241,9 @@ self.onmessage = async ({ data: { seq, op, args } }) => {
       if (snap) transfer = snap.transfer;
     }
   } catch (err) {
-    reply = { ok: false, error: err?.message || String(err) };
+    reply = { ok: false, error: err?.message || String(err), fatal: isFatal(err) };
     // An edit whose factor or solve failed is taken back, so the core never keeps a state it cannot solve.
-    if (undoEdit) {
+    if (undoEdit && !reply.fatal) {
       try {
         undoEdit();
       } catch {
@@ -226,7 +251,7 @@ self.onmessage = async ({ data: { seq, op, args } }) => {
       }
     }
     // The page mirrors the core: after a failed edit it must still see what the core now holds.
-    if (MUTATING.has(op) && core?.hasMesh) {
+    if (MUTATING.has(op) && core?.hasMesh && !reply.fatal) {
       try {
         core.solve();
         reply.snapshot = snapshot();

@@ -32,6 +32,8 @@ const state = {
   history: null,
   modelName: '',
   modelKey: '',
+  modelSource: null, // {bytes, format}: what a restarted core reloads
+  loadsPending: 0, // model loads asked for and not finished: tool input meanwhile is refused
   info: null,
   surface: null,
   field: null, // {faceVectors, vertexVectors, oneForm, singularities, stats} of the last completed change
@@ -247,6 +249,7 @@ function afterEdit() {
 // ------------------------------------------------------------------------------------------ models
 
 async function loadModel(src, opts = {}) {
+  state.loadsPending++;
   return exclusive(async () => {
     let model;
     try {
@@ -257,6 +260,7 @@ async function loadModel(src, opts = {}) {
     const key = modelKey(model.name, model.bytes);
     const saved = opts.restore === false ? null : loadAutosave(key);
     const bytes = model.bytes.slice(); // its own buffer, transferred to the worker
+    const source = { bytes: model.bytes, format: model.format };
     let reply;
     try {
       reply = await call('loadMesh', [bytes, model.format, settings(), saved?.design ?? null], [bytes.buffer]);
@@ -272,6 +276,7 @@ async function loadModel(src, opts = {}) {
     state.info = info;
     state.modelName = model.name;
     state.modelKey = key;
+    state.modelSource = source;
     state.selected = null;
     state.streamlineCache = null;
     mapDocument(null);
@@ -300,19 +305,56 @@ async function loadModel(src, opts = {}) {
     }
     if (settingsError) state.ui.showError(`The boundary/γ settings did not apply to ${model.name}: ${settingsError}`);
     return structuredClone(info);
-  });
+  }).finally(() => state.loadsPending--);
+}
+
+// ------------------------------------------------------------------------------------------ supervision
+// The proxy replaced a dead, trapped or cancelled worker: the current model and design go to the new one,
+// the page's constraint ids are mapped onto the new core ids (history stays valid), and the user is told.
+async function reviveCore({ kind, detail, call: send }) {
+  const t0 = performance.now();
+  if (!state.modelSource) return;
+  const uids = uidsInCoreOrder();
+  const bytes = state.modelSource.bytes.slice();
+  const reply = await send('loadMesh', [bytes, state.modelSource.format, settings(), state.design], [bytes.buffer]);
+  state.arrowsAhead = false;
+  applySnapshot(reply.snapshot);
+  mapDocument(uids);
+  refresh();
+  state.perf.lastRestart = { kind, detail, restoreMs: performance.now() - t0, constraints: state.constraints.size };
+  state.ui.flash(
+    kind === 'cancelled'
+      ? 'Cancelled. The design is as it was before.'
+      : `The core stopped (${detail}) and was restarted; your model and design are back.`,
+    6000,
+  );
+}
+
+// Tool input is bound to the model it was made on: while a load is pending it is refused, and an edit that
+// reaches the core after the model changed is dropped rather than applied to the new model.
+function boundToModel(flash) {
+  if (state.loadsPending > 0) {
+    flash('A model is loading: the edit was not applied.', 3000);
+    return null;
+  }
+  return state.meshSerial;
 }
 
 // ------------------------------------------------------------------------------------------ edits
 
+// Number(null), Number('') and Number(false) are 0: a missing value must not become face 0 or weight 0.
+function numeric(x) {
+  return x === null || x === undefined || x === '' || typeof x === 'boolean' ? NaN : Number(x);
+}
+
 function finite(x, what) {
-  const v = Number(x);
+  const v = numeric(x);
   if (!Number.isFinite(v)) throw new Error(`${what} must be a finite number (got ${x})`);
   return v;
 }
 
 function index(x, what, count) {
-  const v = Number(x);
+  const v = numeric(x);
   if (!Number.isInteger(v) || v < 0 || v >= count) throw new Error(`${what} ${x} is out of range (0…${count - 1})`);
   return v;
 }
@@ -321,8 +363,8 @@ function validatePoints(points) {
   if (!Array.isArray(points) || points.length < 2) throw new Error('a stroke needs at least 2 points');
   const nF = state.info.faces;
   return points.map((p, k) => {
-    const face = Number(p?.face);
-    const bary = Array.from(p?.bary ?? [], Number);
+    const face = numeric(p?.face);
+    const bary = Array.from(p?.bary ?? [], numeric);
     if (!Number.isInteger(face) || face < 0 || face >= nF) throw new Error(`stroke point ${k}: face ${p?.face} out of range`);
     if (bary.length !== 3 || !bary.every(Number.isFinite)) throw new Error(`stroke point ${k}: bary must be 3 finite numbers`);
     return { face, bary };
@@ -330,15 +372,17 @@ function validatePoints(points) {
 }
 
 function vec3(v, what) {
-  const a = Array.from(v ?? [], Number);
+  const a = Array.from(v ?? [], numeric);
   if (a.length !== 3 || !a.every(Number.isFinite)) throw new Error(`${what} must be 3 finite numbers`);
   return a;
 }
 
 // Adds one constraint (design-format spec) and records it; resolves with its page id.
-function addConstraint(makeSpec) {
+function addConstraint(makeSpec, meshSerial = undefined) {
   return exclusive(async () => {
     requireReady();
+    if (meshSerial !== undefined && meshSerial !== state.meshSerial)
+      throw new Error('the model changed before this edit reached the core; it was not applied');
     const spec = makeSpec();
     const reply = await call('add', [spec]);
     const uid = state.nextUid++;
@@ -352,26 +396,26 @@ function addConstraint(makeSpec) {
 const faceIndex = (f) => index(f, 'face', state.info.faces);
 const vertexIndex = (v) => index(v, 'vertex', state.info.vertices);
 
-const addStroke = (points, { strength = 1, weight = DEFAULT_WEIGHT } = {}) =>
+const addStroke = (points, { strength = 1, weight = DEFAULT_WEIGHT, meshSerial } = {}) =>
   addConstraint(() => ({
     type: 'stroke',
     points: validatePoints(points),
     strength: finite(strength, 'strength'),
     weight: finite(weight, 'weight'),
-  }));
-const addVector = (face, vector, { weight = DEFAULT_WEIGHT } = {}) =>
-  addConstraint(() => ({ type: 'vector', face: faceIndex(face), vector: vec3(vector, 'vector'), weight: finite(weight, 'weight') }));
+  }), meshSerial);
+const addVector = (face, vector, { weight = DEFAULT_WEIGHT, meshSerial } = {}) =>
+  addConstraint(() => ({ type: 'vector', face: faceIndex(face), vector: vec3(vector, 'vector'), weight: finite(weight, 'weight') }), meshSerial);
 const addEdge = (edge, value, { weight = DEFAULT_WEIGHT } = {}) =>
   addConstraint(() => {
-    const [i, j] = Array.from(edge ?? [], Number);
+    const [i, j] = Array.from(edge ?? [], numeric);
     return { type: 'edge', edge: [vertexIndex(i), vertexIndex(j)], value: finite(value, 'value'), weight: finite(weight, 'weight') };
   });
-const addPoint = (type, vertex, strength) =>
-  addConstraint(() => ({ type, vertex: vertexIndex(vertex), strength: finite(strength, 'strength') }));
+const addPoint = (type, vertex, strength, meshSerial) =>
+  addConstraint(() => ({ type, vertex: vertexIndex(vertex), strength: finite(strength, 'strength') }), meshSerial);
 const addSource = (vertex, { strength = 1 } = {}) => addPoint('source', vertex, strength);
 const addSink = (vertex, { strength = 1 } = {}) => addPoint('sink', vertex, strength);
-const addVortex = (face, { strength = 1 } = {}) =>
-  addConstraint(() => ({ type: 'vortex', face: faceIndex(face), strength: finite(strength, 'strength') }));
+const addVortex = (face, { strength = 1, meshSerial } = {}) =>
+  addConstraint(() => ({ type: 'vortex', face: faceIndex(face), strength: finite(strength, 'strength') }), meshSerial);
 
 function remove(uid) {
   return exclusive(async () => {
@@ -583,22 +627,28 @@ function toolActions() {
     flash: (text, ms) => ui.flash(text, ms),
     onStroke: (points) => {
       const t0 = performance.now();
+      const meshSerial = boundToModel(ui.flash);
+      if (meshSerial === null) return void viewer.clearStroke();
       const { strength, weight } = ui.toolOptions();
-      report(timed('stroke', t0, addStroke(points, { strength, weight }))).finally(() => {
+      report(timed('stroke', t0, addStroke(points, { strength, weight, meshSerial }))).finally(() => {
         if (!state.tools.tools.stroke.drawing) viewer.clearStroke();
       });
     },
     onVector: (face, vector) => {
       const t0 = performance.now();
-      report(timed('vector', t0, addVector(face, vector, { weight: ui.toolOptions().weight })));
+      const meshSerial = boundToModel(ui.flash);
+      if (meshSerial === null) return;
+      report(timed('vector', t0, addVector(face, vector, { weight: ui.toolOptions().weight, meshSerial })));
     },
     onPlace: (kind, hit) => {
       const t0 = performance.now();
+      const meshSerial = boundToModel(ui.flash);
+      if (meshSerial === null) return;
       const { strength, orientation } = ui.toolOptions();
       const op =
         kind === 'vortex'
-          ? addVortex(hit.face, { strength: orientation === 'cw' ? -strength : strength })
-          : addPoint(kind, state.surface.nearestCorner(hit.face, hit.point), strength);
+          ? addVortex(hit.face, { strength: orientation === 'cw' ? -strength : strength, meshSerial })
+          : addPoint(kind, state.surface.nearestCorner(hit.face, hit.point), strength, meshSerial);
       report(timed(kind, t0, op));
     },
     onSelect: select,
@@ -632,6 +682,7 @@ function uiActions() {
     onEditWeight: (uid, w) => report(setParameter('weight', uid, w)),
     onEditStrength: (uid, s) => report(setParameter('strength', uid, s)),
     onClear: () => state.constraints.size && report(clearConstraints()),
+    onCancel: () => state.proxy?.cancel(),
   };
 }
 
@@ -681,6 +732,15 @@ const tvf = {
   streamlines: read(() => currentStreamlines().map((l) => Array.from(l))),
   perf: () => structuredClone(state.perf),
   projectToScreen: (xyz) => (requireReady(), state.viewer.projectToScreen(Array.from(xyz))),
+  // Stops the operation in flight (a huge stroke, a factorization): the core is replaced and the design as it
+  // was before that operation comes back. Resolves true when something was cancelled.
+  cancel: () => Promise.resolve(state.proxy?.cancel() ?? false),
+  supervision: () => ({ restarts: state.proxy?.restarts ?? 0, lastFailure: structuredClone(state.proxy?.lastFailure ?? null) }),
+  // What a crash of the core's worker does, on purpose (tests, demonstrations).
+  debug: {
+    terminateCore: () => state.proxy?.terminateForTest(),
+    setFactorMemoryLimit: (bytes) => exclusive(() => state.proxy.call('setFactorMemoryLimit', [bytes])).then(() => true),
+  },
   pick: (clientX, clientY) => (requireReady(), state.viewer.pick(clientX, clientY)),
 };
 window.tvf = tvf;
@@ -706,7 +766,10 @@ async function start() {
   });
   // ---- texture synthesis: end
 
-  state.proxy = new CoreProxy(new URL('core-worker.js', BASE));
+  state.proxy = new CoreProxy(new URL('core-worker.js', BASE), {
+    onRestart: reviveCore,
+    onStatus: (text) => state.ui.flash(text, 4000),
+  });
   await state.proxy.call('init');
   await loadModel(new URL(DEFAULT_MODEL, BASE).href);
   // After the first frame, not before: on the small default model warming up costs more than it saves

@@ -33,6 +33,11 @@ export function bindUi(actions) {
   const viewport = $('#viewport');
   const dropOverlay = $('#drop-overlay');
   const progress = $('#progress');
+  // Cancel stops the operation in flight by replacing the core (core-proxy.js); Escape does the same while busy.
+  progress.querySelector('.cancel')?.addEventListener('click', () => actions.onCancel?.());
+  window.addEventListener('keydown', (e) => {
+    if (e.key === 'Escape' && !progress.hidden) actions.onCancel?.();
+  });
   const strength = $('#strength');
   const weight = $('#weight');
   let flashTimer = 0, flashText = null;
