@@ -316,16 +316,21 @@ check('face 1e12 in a constraint document is named unwrapped',
 check('after all refusals the field is finite and the design unchanged', t.solve() === '' && finiteField(t) &&
   JSON.parse(t.designJson()).constraints.length === 1 && tri2.length > 0);
 
-// The page's client refuses what embind would silently turn into 0 (null) or NaN (undefined).
+// The page's client: constraints go in as design-format JSON, where null or a missing number is refused by the
+// core's parser (never read as 0); the remaining typed calls check their numbers before embind converts them.
 const { CoreClient } = await import(pathToFileURL(resolve(ROOT, 'web/core-client.js')).href);
 const client = new CoreClient(Module);
 client.loadModel(ico(1), 'off');
 const refused = (f) => { try { f(); return ''; } catch (err) { return err.message; } };
-check('client: null face is refused', /face must be a number \(got null\)/.test(refused(() => client.addVector(null, [1, 0, 0], 1))));
-check('client: null stroke bary is refused', /bary/.test(refused(() => client.addStroke([{ face: 0, bary: null }, { face: 1, bary: [0.3, 0.3, 0.4] }], 1, 1))));
-check('client: null stroke face is refused', /face must be a number/.test(refused(() => client.addStroke([{ face: null, bary: [1, 0, 0] }, { face: 1, bary: [0.3, 0.3, 0.4] }], 1, 1))));
-check('client: null strength is refused', /strength must be a number/.test(refused(() => client.add({ type: 'source', vertex: 0, strength: null }))));
-check('client: addEdge([3, 3]) is refused', /two different vertices/.test(refused(() => client.addEdge([3, 3], 1, 1))));
+check('client: null face is refused', /face/.test(refused(() => client.addConstraintJson({ type: 'vector', face: null, vector: [1, 0, 0] }))));
+check('client: null stroke bary is refused', /bary/.test(refused(() => client.addConstraintJson({ type: 'stroke',
+  points: [{ face: 0, bary: null }, { face: 1, bary: [0.3, 0.3, 0.4] }] }))));
+check('client: null stroke face is refused', /face/.test(refused(() => client.addConstraintJson({ type: 'stroke',
+  points: [{ face: null, bary: [1, 0, 0] }, { face: 1, bary: [0.3, 0.3, 0.4] }] }))));
+check('client: null strength is refused', /strength/.test(refused(() => client.addConstraintJson({ type: 'source', vertex: 0, strength: null }))));
+check('client: edge [3, 3] is refused', /two different vertices/.test(refused(() => client.addConstraintJson({ type: 'edge', edge: [3, 3], value: 1 }))));
+check('client: setWeight(null) is refused', /weight must be a number \(got null\)/.test(refused(() => client.setWeight(1, null))));
+check('client: setGamma(undefined) is refused', /gamma must be a number/.test(refused(() => client.setGamma(undefined))));
 check('client: a failed loadModel keeps the model', /load:/.test(refused(() => client.loadModel(new TextEncoder().encode(hugeTet), 'off'))) &&
   client.oneForm().length === 30 * 4);
 t.delete();

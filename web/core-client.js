@@ -40,13 +40,6 @@ function requireNumber(what, x) {
   return x;
 }
 
-function requirePoint(k, p) {
-  if (p === null || typeof p !== 'object') throw new CoreError(`stroke: point ${k} must be {face, bary}`);
-  requireNumber(`stroke: point ${k} face`, p.face);
-  if (!Array.isArray(p.bary) && !ArrayBuffer.isView(p.bary)) throw new CoreError(`stroke: point ${k} bary must be 3 numbers`);
-  if (p.bary.length !== 3) throw new CoreError(`stroke: point ${k} bary must be 3 numbers`);
-  for (const b of p.bary) requireNumber(`stroke: point ${k} bary`, b);
-}
 
 function check(what, result) {
   if (typeof result === 'string' && result !== '') throw new CoreError(prefixed(what, result));
@@ -79,7 +72,6 @@ export class CoreClient {
   // V8 first runs wasm on its baseline tier (2-3x slower); the core's warmUp() exercises the factor/update/solve
   // paths on a small sphere so the user's first real factorization runs optimized code. Returns ms, or -1.
   warmUp(levels = 3, rounds = 2) {
-    if (typeof this.Module.warmUp !== 'function') return -1;
     try {
       return this.Module.warmUp(levels, rounds);
     } catch {
@@ -147,83 +139,16 @@ export class CoreClient {
     return id;
   }
 
-  // points: [{face, bary: [a, b, c]}, ...] in the core's welded face order.
-  addStroke(points, strength, weight) {
-    if (!Array.isArray(points)) throw new CoreError('stroke: points must be a list');
-    points.forEach((p, k) => requirePoint(k, p));
-    requireNumber('stroke: strength', strength);
-    requireNumber('stroke: weight', weight);
-    const flat = new Float64Array(points.length * 4);
-    points.forEach((p, k) => {
-      flat[4 * k] = p.face;
-      flat[4 * k + 1] = p.bary[0];
-      flat[4 * k + 2] = p.bary[1];
-      flat[4 * k + 3] = p.bary[2];
-    });
-    return this.#id('stroke', guard('stroke', () => this.designer.addStroke(flat, strength, weight)));
-  }
-
-  addVector(face, vector, weight) {
-    requireNumber('vector: face', face);
-    if (!Array.isArray(vector) && !ArrayBuffer.isView(vector)) throw new CoreError('vector: the vector must be 3 numbers');
-    if (vector.length !== 3) throw new CoreError('vector: the vector must be 3 numbers');
-    const [x, y, z] = vector;
-    [x, y, z].forEach((c) => requireNumber('vector: component', c));
-    requireNumber('vector: weight', weight);
-    return this.#id('vector', guard('vector', () => this.designer.addVector(face, x, y, z, weight)));
-  }
-
-  addSource(vertex, strength) {
-    requireNumber('source: vertex', vertex);
-    requireNumber('source: strength', strength);
-    return this.#id('source', guard('source', () => this.designer.addSource(vertex, strength)));
-  }
-
-  addSink(vertex, strength) {
-    requireNumber('sink: vertex', vertex);
-    requireNumber('sink: strength', strength);
-    return this.#id('sink', guard('sink', () => this.designer.addSink(vertex, strength)));
-  }
-
-  addVortex(face, strength) {
-    requireNumber('vortex: face', face);
-    requireNumber('vortex: strength', strength);
-    return this.#id('vortex', guard('vortex', () => this.designer.addVortex(face, strength)));
-  }
-
-  addEdge(edge, value, weight) {
-    if (!Array.isArray(edge) || edge.length !== 2) throw new CoreError('edge: the edge must be [i, j]');
-    const [i, j] = edge;
-    requireNumber('edge: vertex i', i);
-    requireNumber('edge: vertex j', j);
-    requireNumber('edge: value', value);
-    requireNumber('edge: weight', weight);
-    return this.#id('edge', guard('edge', () => this.designer.addEdge(i, j, value, weight)));
-  }
-
-  // One constraint in the design format (docs/design-format.md), with the format's defaults.
-  add(spec) {
-    // The format's defaults fill in absent fields only: an explicit null is an error, not a 1.
-    const strength = spec.strength === undefined ? 1 : spec.strength;
-    const weight = spec.weight === undefined ? 1 : spec.weight;
-    switch (spec.type) {
-      case 'stroke': return this.addStroke(spec.points, strength, weight);
-      case 'vector': return this.addVector(spec.face, spec.vector, weight);
-      case 'edge': return this.addEdge(spec.edge, spec.value, weight);
-      case 'source': return this.addSource(spec.vertex, strength);
-      case 'sink': return this.addSink(spec.vertex, strength);
-      case 'vortex': return this.addVortex(spec.face, strength);
-      default: throw new CoreError(`constraint: unknown type "${spec.type}"`);
-    }
-  }
-
-  // Re-adds a constraint exactly as the core saved it (undo of a delete, redo of an add). The core's own
-  // addConstraintJson parses it with the design-file code; builds without it go through the typed calls,
-  // which store the same spec.
+  // One constraint in the design format (docs/design-format.md): the only way constraints enter the core,
+  // parsed by the same code as design files (new ones, and exact re-adds for undo).
   addConstraintJson(spec) {
-    if (typeof this.designer.addConstraintJson !== 'function') return this.add(spec);
     const json = JSON.stringify(spec);
     return this.#id('constraint', guard('constraint', () => this.designer.addConstraintJson(json)));
+  }
+
+  // Core ids in the order of designJson().constraints.
+  constraintIds() {
+    return JSON.parse(guard('constraints', () => this.designer.constraintIdsJson()));
   }
 
   remove(id) {

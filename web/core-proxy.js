@@ -1,6 +1,6 @@
 // Page side of the core worker (core-worker.js): request/reply over postMessage, and supervision of the worker.
-// The page serialises its mutations itself, so replies come back in request order; each carries the worker's
-// timing.
+// The session serialises its mutations itself (session.js), so replies come back in request order; each carries
+// the worker's timing. One proxy (one worker at a time) per element; terminate() ends it for good.
 //
 // Supervision: a worker that dies or can no longer be trusted is replaced, never waited on forever.
 // * death, even in the middle of a long factorization: the worker holds a Web Lock for its whole life; the
@@ -11,25 +11,65 @@
 // * a worker that is alive but silent: when no call is in flight it must answer a heartbeat within
 //   `silentMs` (a call in flight is the user's to cancel: cancel()).
 // Then every pending call rejects with a readable CoreError, a fresh worker starts, and `onRestart(reason)`
-// (supplied by the page) reloads the current model and replays the current design before new calls go out.
+// (supplied by the session) reloads the current model and replays the current design before new calls go out.
 import { CoreError } from './core-client.js';
 
-let workerSerial = 0; // distinguishes the lock names of workers on one page (and of several elements)
+// A module worker from another origin (a CDN) cannot be started directly; its source can, from a blob: URL
+// (CSP: worker-src blob:). The worker is told the asset base, so its own URL does not matter.
+async function workerUrl(assetBase) {
+  const url = new URL('core-worker.js', assetBase);
+  if (url.origin === globalThis.location?.origin) return { href: url.href, revoke: () => {} };
+  const res = await fetch(url);
+  if (!res.ok) throw new CoreError(`could not fetch the core worker ${url.href}: HTTP ${res.status}`);
+  const href = URL.createObjectURL(new Blob([await res.text()], { type: 'text/javascript' }));
+  return { href, revoke: () => URL.revokeObjectURL(href) };
+}
 
 export class CoreProxy {
-  // options: {onRestart(reason) → Promise, onStatus(text), heartbeatMs, silentMs}
-  constructor(workerUrl, options = {}) {
-    this.workerUrl = workerUrl;
+  // assetBase: URL of the folder holding core-worker.js and wasm/.
+  // options: {onRestart({kind, detail, call}) → Promise, onStatus(text), heartbeatMs, silentMs}
+  static async start(assetBase, options = {}) {
+    const proxy = new CoreProxy(options);
+    proxy.assetBase = assetBase;
+    await proxy.#open();
+    return proxy;
+  }
+
+  constructor(options = {}) {
+    this.worker = null;
+    this.pending = new Map();
+    this.seq = 0;
+    this.failure = null; // set by terminate(): the proxy is done for good
     this.onRestart = options.onRestart ?? null;
     this.onStatus = options.onStatus ?? (() => {});
     this.heartbeatMs = options.heartbeatMs ?? 2000;
     this.silentMs = options.silentMs ?? 10_000;
-    this.pending = new Map();
-    this.seq = 0;
     this.restarts = 0;
     this.lastFailure = null;
     this.ready = Promise.resolve();
-    this.#spawn();
+  }
+
+  async #open() {
+    const { href, revoke } = await workerUrl(this.assetBase);
+    if (this.failure) return revoke(); // terminated while the source was fetched
+    const lockName = `tvf-core-${Date.now().toString(36)}-${Math.random().toString(36).slice(2)}`;
+    const worker = new Worker(href, { type: 'module', name: lockName });
+    this.worker = worker;
+    this.lastPong = performance.now();
+    const mine = () => this.worker === worker;
+    worker.onmessage = ({ data }) => {
+      revoke();
+      if (mine()) this.#receive(data, worker, lockName);
+    };
+    // A worker that fails to start (bad URL, syntax error) or throws outside a request reports here.
+    worker.onerror = (event) => {
+      event.preventDefault?.();
+      if (mine()) this.#fail('error', event.message || 'the worker could not start');
+    };
+    worker.onmessageerror = () => mine() && this.#fail('error', 'the worker sent an unreadable message');
+    clearInterval(this.heartbeat);
+    this.heartbeat = setInterval(() => mine() && this.#beat(), this.heartbeatMs);
+    await this.#send('init', [new URL('./', this.assetBase).href]);
   }
 
   // Resolves with the whole reply ({value, snapshot?, mesh?, workerMs}); rejects with the core's message.
@@ -41,11 +81,11 @@ export class CoreProxy {
   }
 
   #send(op, args = [], transfer = [], onEarly = null) {
+    if (this.failure) return Promise.reject(this.failure);
     if (!this.worker) return Promise.reject(new CoreError(`${op}: the core is restarting`));
     const seq = ++this.seq;
-    const generation = this.generation;
     return new Promise((resolve, reject) => {
-      this.pending.set(seq, { resolve, reject, onEarly, op, generation });
+      this.pending.set(seq, { resolve, reject, onEarly, op });
       try {
         this.worker.postMessage({ seq, op, args }, transfer);
       } catch (err) {
@@ -58,36 +98,27 @@ export class CoreProxy {
   // Stops whatever the worker is doing (a huge stroke, a factorization) by replacing it: the pending calls
   // reject with "cancelled", and the model and the design as they were before the cancelled call come back.
   cancel() {
-    if (!this.pending.size) return false;
+    if (!this.pending.size || this.failure) return false;
     this.#fail('cancelled', 'cancelled by the user');
     return true;
   }
 
-  // For tests: what a real crash does, without one.
+  // Ends the worker (and with it the core's memory) for good; pending calls reject.
+  terminate() {
+    clearInterval(this.heartbeat);
+    this.failure ??= new CoreError('the designer was disposed');
+    this.worker?.terminate();
+    this.worker = null;
+    for (const p of this.pending.values()) p.reject(this.failure);
+    this.pending.clear();
+  }
+
+  // For tests: what a crash of the worker does, without one.
   terminateForTest() {
     this.worker?.terminate();
   }
 
-  #spawn() {
-    this.generation = ++workerSerial;
-    const lockName = `tvf-core-${this.generation}-${Math.random().toString(36).slice(2)}`;
-    this.lockName = lockName;
-    const worker = new Worker(this.workerUrl, { type: 'module', name: lockName });
-    this.worker = worker;
-    this.lastPong = performance.now();
-    const mine = () => this.worker === worker;
-    worker.onmessage = ({ data }) => mine() && this.#receive(data);
-    // A worker that fails to start (bad URL, syntax error) or throws outside a request reports here.
-    worker.onerror = (event) => {
-      event.preventDefault?.();
-      if (mine()) this.#fail('error', event.message || 'the worker could not start');
-    };
-    worker.onmessageerror = () => mine() && this.#fail('error', 'the worker sent an unreadable message');
-    clearInterval(this.heartbeat);
-    this.heartbeat = setInterval(() => mine() && this.#beat(), this.heartbeatMs);
-  }
-
-  // Called by the page after init: from now on the worker's end is noticed at once.
+  // From the worker's init on, its end is noticed at once.
   #watchLock(worker, lockName) {
     if (!globalThis.navigator?.locks) return;
     navigator.locks
@@ -98,9 +129,8 @@ export class CoreProxy {
   }
 
   #beat() {
-    if (this.failing) return;
-    const busy = [...this.pending.values()].some((p) => p.op !== 'ping');
-    if (busy) {
+    if (this.failing || this.failure) return;
+    if (this.pending.size) {
       this.lastPong = performance.now(); // a long call is not silence
       return;
     }
@@ -109,23 +139,17 @@ export class CoreProxy {
       return;
     }
     try {
-      this.worker.postMessage({ ping: true });
+      this.worker?.postMessage({ ping: true });
     } catch {
       this.#fail('ended', 'the core worker cannot be reached');
     }
   }
 
-  #receive(reply) {
-    if (reply.pong) {
-      this.lastPong = performance.now();
-      return;
-    }
-    if (reply.locked) {
-      this.#watchLock(this.worker, this.lockName);
-      return;
-    }
-    const p = this.pending.get(reply.seq);
+  #receive(reply, worker, lockName) {
     this.lastPong = performance.now();
+    if (reply.pong) return;
+    if (reply.locked) return void this.#watchLock(worker, lockName);
+    const p = this.pending.get(reply.seq);
     if (!p) return;
     if (reply.early) return void p.onEarly?.(reply.early);
     this.pending.delete(reply.seq);
@@ -141,7 +165,7 @@ export class CoreProxy {
   }
 
   #fail(kind, detail) {
-    if (this.failing) return;
+    if (this.failing || this.failure) return;
     this.failing = true;
     this.lastFailure = { kind, detail, at: Date.now() };
     const worker = this.worker;
@@ -167,11 +191,13 @@ export class CoreProxy {
   }
 
   async #restart(kind, detail) {
-    this.#spawn();
-    this.failing = false;
+    try {
+      await this.#open();
+    } finally {
+      this.failing = false;
+    }
     this.restarts++;
-    await this.#send('init');
-    // The page's replay goes straight to the new worker; everyone else waits for it to finish.
+    // The session's replay goes straight to the new worker; everyone else waits for it to finish.
     const call = (op, args, transfer, onEarly) => this.#send(op, args, transfer, onEarly);
     if (this.onRestart) await this.onRestart({ kind, detail, call });
   }

@@ -1,13 +1,11 @@
 // Module worker that owns the wasm core, so factorizations never block the page. The page (core-proxy.js)
 // sends one request at a time: {seq, op, args}; every mutating op ends with a solve and replies with a
 // snapshot of everything the page reads synchronously (field arrays are transferred, not copied).
+//
+// One worker per <tangent-field-designer> element: its globals are that element's core and nothing else.
 import { CoreError, loadCore } from './core-client.js';
 
-const BASE = new URL('./', import.meta.url);
 let core = null;
-// Core ids in the core's constraint order (the order of designJson().constraints). The core hands out ids
-// only through add calls, so the worker can mirror them; see #reloadIds for documents.
-let ids = [];
 
 function requireMesh() {
   if (!core?.hasMesh) throw new CoreError('no mesh loaded');
@@ -37,53 +35,28 @@ function snapshot(timing = {}) {
     singularities,
     stats: core.stats(),
     design,
-    ids: ids.slice(),
+    ids: core.constraintIds(), // in the order of design.constraints
     transfer: [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer],
   };
 }
 
-// After applyDesignJson the core's list is whatever it last re-added (the document, or on failure the
-// previous design), with consecutive fresh ids. A zero-strength source probes the next id; it touches only
-// the right-hand side and is removed at once, so the factor is unchanged.
-function reloadIds(probeVertex) {
-  const n = JSON.parse(core.designJson()).constraints.length;
-  if (typeof core.designer.constraintIdsJson === 'function') {
-    ids = JSON.parse(core.designer.constraintIdsJson());
-    return;
-  }
-  if (!n) {
-    ids = [];
-    return;
-  }
-  const probe = core.addSource(probeVertex, 0);
-  core.remove(probe);
-  ids = Array.from({ length: n }, (_, k) => probe - n + k);
-}
-
-let probeVertex = 0;
 // How to take back the edit in flight when the solve after it fails (a factor that does not fit, a field that
 // is not finite): the core then holds exactly what it held before the request. Set by each mutating op.
 let undoEdit = null;
 
-// The current design's entry for a core id, or the whole document.
+// The current design, and the entry of one core id in it.
 function currentDesign() {
   return JSON.parse(core.designJson());
 }
 function currentSpec(id) {
-  return currentDesign().constraints[ids.indexOf(id)];
-}
-
-function applyDesign(design) {
-  try {
-    core.applyDesignJson(JSON.stringify(design));
-  } finally {
-    reloadIds(probeVertex);
-  }
+  return currentDesign().constraints[core.constraintIds().indexOf(id)];
 }
 
 const ops = {
-  async init() {
-    core = await loadCore(BASE);
+  // assetBase: the folder holding wasm/tvf_core.mjs (the element's asset base; the worker may run from a
+  // blob: URL, where its own import.meta.url names nothing useful).
+  async init(assetBase) {
+    core = await loadCore(assetBase);
     // Held for the worker's whole life: the page notices its release the moment this worker ends.
     if (self.name && self.navigator?.locks) {
       self.navigator.locks
@@ -103,15 +76,13 @@ const ops = {
   // settings: {boundary, gamma} carried over from the previous model; design: an autosaved document to
   // restore (its failure is reported, not fatal: the mesh still loads with the settings).
   // One transaction in the core: the new mesh is read, checked, configured, factored and solved aside and
-  // replaces the current model only when all of that succeeded. A failure leaves the core, the ids here and
-  // the page on the previous model.
+  // replaces the current model only when all of that succeeded; a failure leaves the core and the page on the
+  // previous model.
   loadMesh(bytes, format, settings, design) {
     const { settingsError, restoreError } = core.loadModel(bytes, format, settings, design);
     const info = core.info();
     const mesh = core.mesh();
     const edges = core.edges();
-    probeVertex = mesh.triangles.length ? mesh.triangles[0] : 0;
-    reloadIds(probeVertex);
     // Texture synthesis (web/synthesis/) needs the model's per-corner UVs (6 per face; empty without TEXCOORD_0).
     const cornerUVs = Float32Array.from(core.designer.cornerUVs());
     return {
@@ -121,23 +92,16 @@ const ops = {
     };
   },
 
+  // One constraint in the design format: new ones and re-added ones (undo of a delete) alike go through the
+  // core's own design-file parser.
   add(spec) {
-    const id = core.add(spec);
-    ids.push(id);
-    undoEdit = () => ops.remove(id);
-    return id;
-  },
-
-  readd(spec) {
     const id = core.addConstraintJson(spec);
-    ids.push(id);
-    undoEdit = () => ops.remove(id);
+    undoEdit = () => core.remove(id);
     return id;
   },
 
   remove(id) {
     core.remove(id);
-    ids = ids.filter((x) => x !== id);
     return true;
   },
 
@@ -173,8 +137,8 @@ const ops = {
 
   applyDesign(design) {
     const before = currentDesign();
-    undoEdit = () => applyDesign(before);
-    applyDesign(design);
+    undoEdit = () => core.applyDesignJson(JSON.stringify(before));
+    core.applyDesignJson(JSON.stringify(design));
     core.factor();
     return true;
   },
@@ -196,7 +160,6 @@ const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'setFactorMemoryLi
 const MUTATING = new Set([
   'loadMesh',
   'add',
-  'readd',
   'remove',
   'setWeight',
   'setStrength',
@@ -209,7 +172,8 @@ const MUTATING = new Set([
 // this worker rather than send it more work.
 function isFatal(err) {
   const text = `${err?.name ?? ''} ${err?.message ?? err}`;
-  return err instanceof WebAssembly.RuntimeError || /RuntimeError|Aborted\(|unreachable|memory access out of bounds|table index is out of bounds/.test(text);
+  return err instanceof WebAssembly.RuntimeError ||
+    /RuntimeError|Aborted\(|unreachable|memory access out of bounds|table index is out of bounds/.test(text);
 }
 
 self.onmessage = async ({ data }) => {

@@ -95,10 +95,10 @@ test.describe.serial('nothing a user does or loads loses their work', () => {
   });
 
   test('a mesh whose factor cannot fit is refused before factoring, naming the size', async () => {
-    await evaluate(() => window.tvf.debug.setFactorMemoryLimit(1e6));
+    await evaluate(() => window.tvf.debugSetFactorMemoryLimit(1e6));
     const before = await oneForm();
     const message = await loadText(icosphereOff(4), 'big.off');
-    await evaluate(() => window.tvf.debug.setFactorMemoryLimit(0));
+    await evaluate(() => window.tvf.debugSetFactorMemoryLimit(0));
     expect(message).toMatch(/too large.*needs about [0-9.]+ GB.*more than the 0\.00 GB available/);
     expect(relativeDifference(await oneForm(), before)).toBe(0);
     expect(await strokeWorks()).toBeGreaterThan(0);
@@ -158,7 +158,7 @@ test.describe.serial('nothing a user does or loads loses their work', () => {
       const p = window.tvf.addVortex(40).then(() => '', (err) => err.message);
       // The worker dies while the call is in flight.
       await new Promise((r) => setTimeout(r, 0));
-      window.tvf.debug.terminateCore();
+      window.tvf.debugTerminateCore();
       return p;
     });
     expect(pending).toMatch(/the core stopped/);
