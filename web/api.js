@@ -50,6 +50,11 @@ export const api = {
   projectToScreen: read((s, xyz) => s.viewer.projectToScreen(Array.from(xyz))),
   pick: read((s, clientX, clientY) => s.viewer.pick(clientX, clientY)),
 
+  // Autosave versions (IndexedDB, docs/js-api.md): newest first; restore one as an undoable design change.
+  autosaveVersions: (s) => s.autosaveVersions(),
+  restoreAutosave: (s, id) => s.restoreAutosave(id),
+  autosaveIdle: (s) => s.autosaveIdle().then(() => true),
+
   // Supervision (docs/js-api.md): stop the operation in flight; how often the core was replaced and why.
   cancel: (s) => Promise.resolve(s.cancel()),
   supervision: (s) => s.supervision(),

@@ -1,4 +1,5 @@
-// Designs as documents: downloads (design, field), reading a design file, and the autosave in localStorage.
+// Designs as documents: downloads (design, field), reading a design file, and the autosave's quick copy in
+// localStorage (the durable, versioned autosave is autosave-store.js, in IndexedDB).
 // Autosaves are keyed by the model's name, size and a content hash, so a different file that happens to
 // share a name never receives a design whose indices mean nothing on it.
 
@@ -34,10 +35,10 @@ export function loadAutosave(store, key) {
   }
 }
 
-export function saveAutosave(store, key, design) {
+export function saveAutosave(store, key, design, savedAt = new Date().toISOString()) {
   try {
     if (isEmptyDesign(design)) localStorage.removeItem(storageKey(store, key));
-    else localStorage.setItem(storageKey(store, key), JSON.stringify({ savedAt: new Date().toISOString(), design }));
+    else localStorage.setItem(storageKey(store, key), JSON.stringify({ savedAt, design }));
     return true;
   } catch {
     return false; // quota or privacy mode: autosave is a convenience, never an error

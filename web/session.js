@@ -8,7 +8,8 @@
 // synchronous.
 import { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting } from './commands.js';
 import { CoreProxy } from './core-proxy.js';
-import { baseName, downloadJson, loadAutosave, modelKey, readJsonFile, saveAutosave } from './documents.js';
+import { AutosaveStore } from './autosave-store.js';
+import { baseName, downloadJson, modelKey, readJsonFile } from './documents.js';
 import { History } from './history.js';
 import { ACCEPT, readModel } from './model-files.js';
 import { traceStreamlines } from './streamlines.js';
@@ -45,6 +46,9 @@ export class Session {
     this.root = root;
     this.assetBase = assetBase;
     this.autosave = autosave;
+    this.autosaveStore = null; // made on first use, for the current autosave name
+    this.autosaveChain = Promise.resolve(); // saves run one after the other, in edit order
+    this.autosaveError = null; // the last save's failure, shown until a save succeeds
     this.readonly = false;
     this.proxy = null;
     this.modelName = '';
@@ -126,6 +130,7 @@ export class Session {
     this.disposed = true;
     clearTimeout(this.streamlineTimer);
     this.proxy?.terminate();
+    this.autosaveStore?.close();
     this.synthesis.dispose();
     this.tools.dispose();
     this.ui.dispose();
@@ -361,8 +366,70 @@ export class Session {
   #afterEdit() {
     this.adoptUnmapped();
     this.refresh();
-    if (this.autosave != null) saveAutosave(this.autosave, this.modelKey, this.design);
+    this.#autosaveNow();
     this.#emitChanges();
+  }
+
+  // ------------------------------------------------------------------------------------------ autosave
+
+  #store() {
+    if (this.autosave == null) return null;
+    if (this.autosaveStore?.name !== this.autosave) {
+      this.autosaveStore?.close();
+      this.autosaveStore = new AutosaveStore(this.autosave, { onOtherTab: (key) => this.#otherTab(key) });
+    }
+    return this.autosaveStore;
+  }
+
+  // A non-finite field is never saved (the core refuses to make one; this is the last guard). A failed save
+  // is shown, and stays shown until a save succeeds, so nobody believes unsaved work is safe.
+  #autosaveNow() {
+    const store = this.#store();
+    if (!store || !this.modelKey) return;
+    const finite = this.field.oneForm.every(Number.isFinite) && this.field.faceVectors.every(Number.isFinite);
+    if (!finite) {
+      this.ui.showError('The field is not finite; this state was not autosaved.');
+      return;
+    }
+    const key = this.modelKey, design = structuredClone(this.design);
+    this.autosaveChain = this.autosaveChain.then(() =>
+      store.save(key, design).then(
+        () => {
+          this.perf.lastAutosave = { savedAt: Date.now(), constraints: design.constraints.length };
+          if (this.autosaveError) this.ui.flash('Autosave works again; the design is saved.', 4000);
+          this.autosaveError = null;
+        },
+        (err) => {
+          this.autosaveError = err.message || String(err);
+          this.fail('autosave', new Error(`Autosave failed (${this.autosaveError}): the latest edits are not saved in this browser; use Save to download the design.`));
+        },
+      ),
+    );
+  }
+
+  #otherTab(key) {
+    if (key !== this.modelKey || this.otherTabNoticed === key) return;
+    this.otherTabNoticed = key;
+    this.ui.flash('This model is being edited in another tab too: both designs are kept as autosave versions.', 8000);
+    this.emit('autosaveconflict', { model: this.modelName });
+  }
+
+  // Resolves when every autosave asked for so far has been written (or has failed and been reported).
+  autosaveIdle() {
+    return this.autosaveChain;
+  }
+
+  async autosaveVersions() {
+    const store = this.#store();
+    if (!store || !this.modelKey) return [];
+    return store.versions(this.modelKey);
+  }
+
+  // Replaces the design with an autosaved version (undoable like loading a design).
+  async restoreAutosave(id) {
+    const record = await this.#store()?.version(id);
+    if (!record || !record.key.endsWith(`|${this.modelKey}`)) throw new Error(`no autosaved version ${id} of this model`);
+    return this.replaceDesign(record.design, 'restore autosave');
   }
 
   // ------------------------------------------------------------------------------------------ models
@@ -379,7 +446,8 @@ export class Session {
         throw this.fail('model', new Error(`Could not load model: ${err.message}`));
       }
       const key = modelKey(model.name, model.bytes);
-      const saved = opts.restore === false || this.autosave == null ? null : loadAutosave(this.autosave, key);
+      const store = opts.restore === false ? null : this.#store();
+      const saved = store ? await store.load(key) : null;
       const bytes = model.bytes.slice(); // its own buffer, transferred to the worker
       const source = { bytes: model.bytes, format: model.format };
       let reply;

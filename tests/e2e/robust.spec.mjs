@@ -219,3 +219,84 @@ test.describe.serial('nothing a user does or loads loses their work', () => {
     expect(errors).toEqual([]);
   });
 });
+
+test.describe.serial('autosave survives a full localStorage and a second tab', () => {
+  let page, other, errors;
+  const designOf = (p) => p.evaluate(() => window.tvf.saveDesign());
+
+  test.beforeAll(async ({ browser }) => {
+    const context = await browser.newContext();
+    page = await context.newPage();
+    errors = trackErrors(page);
+    await openDesigner(page);
+  });
+  test.afterAll(async () => {
+    await page?.evaluate(() => localStorage.clear()).catch(() => {});
+    await page?.context().close();
+  });
+
+  test('with localStorage full, a reload restores every edit', async () => {
+    await page.evaluate((d) => window.tvf.loadDesign(d), EMPTY);
+    const filled = await page.evaluate(() => {
+      // Fill localStorage to the quota, as another app on the origin could.
+      const chunk = 'x'.repeat(256 * 1024);
+      let n = 0;
+      try {
+        for (; n < 1000; n++) localStorage.setItem(`filler-${n}`, chunk);
+      } catch {
+        return n;
+      }
+      return -1;
+    });
+    expect(filled).toBeGreaterThan(0);
+    await page.evaluate(() => window.tvf.addSource(7));
+    await page.evaluate(() => window.tvf.addVector(30, [1, 0.2, 0], { weight: 100 }));
+    await page.evaluate(() => window.tvf.setGamma(0.02));
+    await page.evaluate(() => window.tvf.addVortex(40, { strength: -0.5 }));
+    await page.evaluate(() => window.tvf.autosaveIdle());
+    const design = await designOf(page);
+    await page.reload();
+    await page.evaluate(() => window.tvf.ready);
+    expect(await designOf(page)).toEqual(design);
+    const versions = await page.evaluate(() => window.tvf.autosaveVersions());
+    expect(versions.length).toBeGreaterThan(1);
+    expect(versions[0].constraints).toBe(3);
+    await page.evaluate(() => {
+      for (const k of Object.keys(localStorage)) if (k.startsWith('filler-')) localStorage.removeItem(k);
+    });
+  });
+
+  test('two tabs on one model both keep their designs', async () => {
+    await page.evaluate((d) => window.tvf.loadDesign(d), EMPTY);
+    await page.evaluate(() => window.tvf.addSource(7));
+    await page.evaluate(() => window.tvf.autosaveIdle());
+    other = await page.context().newPage();
+    await openDesigner(other);
+    expect((await designOf(other)).constraints).toHaveLength(1); // the second tab starts from the autosave
+    await other.evaluate(() => window.tvf.addVortex(40));
+    await other.evaluate(() => window.tvf.autosaveIdle());
+    const designB = await designOf(other);
+    await page.evaluate(() => window.tvf.addSink(9));
+    await page.evaluate(() => window.tvf.autosaveIdle());
+    const designA = await designOf(page);
+    expect(designA).not.toEqual(designB);
+    // Each tab was told of the other.
+    await expect(page.locator('tangent-field-designer')).toContainText(/another tab/);
+    // A reload brings the newest back, and the other tab's design is a version away.
+    await page.reload();
+    await page.evaluate(() => window.tvf.ready);
+    expect(await designOf(page)).toEqual(designA);
+    const versions = await page.evaluate(() => window.tvf.autosaveVersions());
+    const tabs = new Set(versions.map((v) => v.tab));
+    expect(tabs.size).toBeGreaterThanOrEqual(2);
+    const fromB = versions.find((v) => v.constraints === 2 && !v.mine && v.tab !== versions[0].tab);
+    expect(fromB).toBeTruthy();
+    await page.evaluate((id) => window.tvf.restoreAutosave(id), fromB.id);
+    expect(await designOf(page)).toEqual(designB);
+    await other.close();
+  });
+
+  test('no console errors', () => {
+    expect(errors).toEqual([]);
+  });
+});
