@@ -37,6 +37,12 @@ export class Viewer {
   constructor(container) {
     this.container = container;
     this.renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    // three.js rebuilds its GL state when a lost context comes back, but draws nothing until asked: without
+    // this the canvas stays blank until the next interaction.
+    this.renderer.domElement.addEventListener('webglcontextrestored', () => {
+      this._renderQueued = false;
+      this.requestRender();
+    });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
     this.renderer.outputColorSpace = SRGBColorSpace;
     this.renderer.setClearColor(BACKGROUND, 1);
