@@ -164,8 +164,8 @@ BoundaryCondition boundaryFromJson(const json& v) {
     for (const json& e : v["perEdge"]) {
       double ija[3];
       numbers(e, ija, 3, "boundary.perEdge entry");
-      bc.perEdge.push_back(
-          {elementIndex(ija[0], "boundary.perEdge vertex"), elementIndex(ija[1], "boundary.perEdge vertex"), ija[2]});
+      bc.perEdge.push_back({elementIndex(ija[0], "boundary.perEdge vertex"),
+                            elementIndex(ija[1], "boundary.perEdge vertex"), ija[2]});
     }
   }
   return bc;

@@ -1,10 +1,11 @@
 #include "design/designer.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <unistd.h>
 
 #include "constraints/edge_rows.h"
 #include "constraints/singular_sources.h"
@@ -68,8 +69,8 @@ std::string number(double x) {
 void requireMagnitude(double x, const char* what) {
   requireFinite(x, what);
   if (std::abs(x) > kMaxMagnitude)
-    throw InputError(std::string(what) + " " + number(x) + " is out of range (|x| <= " + number(kMaxMagnitude) +
-                     ")");
+    throw InputError(std::string(what) + " " + number(x) +
+                     " is out of range (|x| <= " + number(kMaxMagnitude) + ")");
 }
 
 void requireWeight(double w) {
@@ -403,7 +404,8 @@ void Designer::setBoundary(const BoundaryCondition& bc) {
 
 void Designer::setGamma(double gamma) {
   if (!std::isfinite(gamma) || gamma < 0 || gamma > kMaxGamma)
-    throw InputError("gamma must be a number from 0 to " + number(kMaxGamma) + " (got " + number(gamma) + ")");
+    throw InputError("gamma must be a number from 0 to " + number(kMaxGamma) + " (got " + number(gamma) +
+                     ")");
   if (gamma == impl_->gamma) return;
   impl_->gamma = gamma;
   impl_->baseStale = true;
@@ -539,15 +541,17 @@ void Designer::solve() {
   d.checkedSolve(b, x);
   d.stats.solveMs = msSince(start);
   if (!allFinite(x))
-    throw InputError("the field is not finite (the system is too badly conditioned for these constraints); "
-                     "the previous field is kept");
+    throw InputError(
+        "the field is not finite (the system is too badly conditioned for these constraints); "
+        "the previous field is kept");
   start = Clock::now();
   std::vector<double> faceVectors;
   tvf::faceVectors(d.mesh, d.topology, x.data(), faceVectors);
   for (const double v : faceVectors)
     if (!std::isfinite(v))
-      throw InputError("the field's vectors are not finite (magnitudes beyond double range on this mesh); "
-                       "the previous field is kept");
+      throw InputError(
+          "the field's vectors are not finite (magnitudes beyond double range on this mesh); "
+          "the previous field is kept");
   d.solution = std::move(x);
   d.oneForm.assign(d.solution.data(), d.solution.data() + d.solution.size());
   d.faceVectors = std::move(faceVectors);

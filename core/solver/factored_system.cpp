@@ -15,8 +15,8 @@ double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Peak memory of factor() from the symbolic analysis: the supernodal values (xsize doubles) live together with
-// the simplicial LDL' they are converted into (lnz values + row indices), plus CHOLMOD's O(n) workspace.
+// Peak memory of factor() from the symbolic analysis: the supernodal values (xsize doubles) live together
+// with the simplicial LDL' they are converted into (lnz values + row indices), plus CHOLMOD's O(n) workspace.
 double peakFactorBytes(const cholmod_factor& L, double lnz) {
   const double n = static_cast<double>(L.n);
   const double supernodal = L.is_super ? 8.0 * static_cast<double>(L.xsize) : 0.0;
@@ -98,8 +98,8 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
   if (s.memoryLimit > 0 && s.estimatedBytes > s.memoryLimit) {
     s.factor.reset();
     throw InputError("the mesh is too large to design on here: factoring its " + std::to_string(s.n) +
-                     "-edge system needs about " + gigabytes(s.estimatedBytes) + " of memory, more than the " +
-                     gigabytes(s.memoryLimit) + " available");
+                     "-edge system needs about " + gigabytes(s.estimatedBytes) +
+                     " of memory, more than the " + gigabytes(s.memoryLimit) + " available");
   }
   start = std::chrono::steady_clock::now();
   cholmod_factorize(&view, s.factor.get(), s.common.get());

@@ -1,8 +1,8 @@
 // libFuzzer harness for one mesh loader (TVF_FUZZ_FORMAT picks glTF, GLB, OFF, OBJ or PLY at compile time):
 // the bytes are parsed, and a mesh that parses is checked and, when usable and small, turned into a designer
-// whose geometry and factor are built, so that whatever a loader lets through also meets the rest of the core.
-// Refusals (InputError, or any std::exception naming the problem) are the expected outcome for most inputs; a
-// crash, a sanitizer report, a leak or a hang is a finding.
+// whose geometry and factor are built, so that whatever a loader lets through also meets the rest of the
+// core. Refusals (InputError, or any std::exception naming the problem) are the expected outcome for most
+// inputs; a crash, a sanitizer report, a leak or a hang is a finding.
 #include <cstddef>
 #include <cstdint>
 #include <exception>

@@ -1,6 +1,6 @@
 // Numerically safe edits and refused extremes (issue: nothing a user does may lose their work or wedge the
-// core). Each defect is first reproduced on the raw mechanism, then the designer's answer is checked against a
-// fresh factorization of the same design.
+// core). Each defect is first reproduced on the raw mechanism, then the designer's answer is checked against
+// a fresh factorization of the same design.
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>
@@ -184,8 +184,9 @@ TEST(Robust, LargeIndicesInADesignAreReportedUnwrapped) {
     EXPECT_EQ(message.find("-727379968"), std::string::npos) << message;
   }
   const std::string nullFace = messageOf([&] {
-    applyDesignDocument(d, nlohmann::json::parse(
-                               R"({"constraints":[{"type":"stroke","points":[{"face":null,"bary":null}]}]})"));
+    applyDesignDocument(
+        d,
+        nlohmann::json::parse(R"({"constraints":[{"type":"stroke","points":[{"face":null,"bary":null}]}]})"));
   });
   EXPECT_NE(nullFace.find("face"), std::string::npos) << nullFace;
   EXPECT_TRUE(d.constraints().empty());
