@@ -61,6 +61,8 @@ export const api = {
   // What a crash of the core's worker does, on purpose (tests, demonstrations); a memory limit for the factor
   // (0: the wasm address space left) so tests need no multi-million-edge mesh.
   debugTerminateCore: (s) => s.proxy?.terminateForTest(),
+  debugHangCore: (s, ms) => s.proxy?.hangForTest(ms),
+  debugTrapCore: (s) => s.exclusive(() => s.proxy.call('trapForTest')),
   debugSetFactorMemoryLimit: (s, bytes) => s.exclusive(() => s.proxy.call('setFactorMemoryLimit', [bytes])).then(() => true),
 };
 

@@ -113,9 +113,13 @@ export class CoreProxy {
     this.pending.clear();
   }
 
-  // For tests: what a crash of the worker does, without one.
+  // For tests: what a crash of the worker does, without one; a worker that stops answering for `ms`.
   terminateForTest() {
     this.worker?.terminate();
+  }
+
+  hangForTest(ms) {
+    this.worker?.postMessage({ hangForTest: ms });
   }
 
   // From the worker's init on, its end is noticed at once.

@@ -147,6 +147,12 @@ const ops = {
     return core.fieldJson();
   },
 
+  // For the supervision tests: what a wasm trap (unreachable, an out-of-bounds access, an abort) looks like
+  // to the worker; the core itself has none to offer on purpose.
+  trapForTest() {
+    throw new WebAssembly.RuntimeError('unreachable executed (test)');
+  },
+
   // 0: the wasm address space left (default); a number: a fixed limit (tests scale it down instead of
   // building a multi-million-edge mesh).
   setFactorMemoryLimit(bytes) {
@@ -155,7 +161,7 @@ const ops = {
   },
 };
 
-const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'setFactorMemoryLimit']);
+const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'setFactorMemoryLimit', 'trapForTest']);
 // Ops after which the field may have changed: they solve and send a snapshot back.
 const MUTATING = new Set([
   'loadMesh',
@@ -178,6 +184,13 @@ function isFatal(err) {
 
 self.onmessage = async ({ data }) => {
   if (data.ping) return void self.postMessage({ pong: true });
+  // For the supervision tests: a worker that stops answering without a call in flight (an infinite loop in
+  // a timer, a deadlock), for `ms` milliseconds.
+  if (data.hangForTest) {
+    const end = performance.now() + data.hangForTest;
+    while (performance.now() < end);
+    return;
+  }
   const { seq, op, args } = data;
   const t0 = performance.now();
   const timing = {};

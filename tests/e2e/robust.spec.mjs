@@ -172,6 +172,22 @@ test.describe.serial('nothing a user does or loads loses their work', () => {
     test.info().annotations.push({ type: 'restore after a worker death', description: `${restart.restoreMs.toFixed(0)} ms` });
   });
 
+  test('a trapped core (wasm RuntimeError) and a silent worker are replaced too', async () => {
+    const design = await evaluate(() => window.tvf.saveDesign());
+    const before = await oneForm();
+    const restarts = await evaluate(() => window.tvf.supervision().restarts);
+    const trap = await evaluate(() => window.tvf.debugTrapCore().then(() => '', (err) => err.message));
+    expect(trap).toMatch(/unreachable/);
+    await page.waitForFunction((n) => window.tvf.supervision().restarts > n && window.tvf.perf().lastRestart?.kind === 'trap', restarts, { timeout: 30_000 });
+    expect(await evaluate(() => window.tvf.saveDesign())).toEqual(design);
+    expect(relativeDifference(await oneForm(), before)).toBeLessThan(1e-12);
+    // Alive but silent with nothing in flight: the heartbeat (10 s) gives up on it.
+    await evaluate(() => window.tvf.debugHangCore(30_000));
+    await page.waitForFunction((n) => window.tvf.supervision().restarts > n + 1 && window.tvf.perf().lastRestart?.kind === 'silent', restarts, { timeout: 40_000 });
+    expect(await evaluate(() => window.tvf.saveDesign())).toEqual(design);
+    expect(await strokeWorks()).toBeGreaterThan(0);
+  });
+
   test('a 20,000-point stroke can be cancelled and leaves the design as it was', async () => {
     await evaluate((d) => window.tvf.loadDesign(d), EMPTY);
     await evaluate(() => window.tvf.addSource(7));
