@@ -169,7 +169,7 @@ test.describe.serial('nothing a user does or loads loses their work', () => {
     expect(relativeDifference(await oneForm(), before)).toBeLessThan(1e-12);
     expect(await strokeWorks()).toBeGreaterThan(0);
     await expect(page.locator('body')).toContainText(/restarted/);
-    test.info().annotations.push({ type: 'restore after a worker death', description: `${restart.restoreMs.toFixed(0)} ms` });
+    console.log(`restore after a worker death: ${restart.restoreMs.toFixed(0)} ms (${restart.constraints} constraints)`);
   });
 
   test('a trapped core (wasm RuntimeError) and a silent worker are replaced too', async () => {
@@ -211,6 +211,7 @@ test.describe.serial('nothing a user does or loads loses their work', () => {
     await page.waitForFunction((n) => window.tvf.supervision().restarts > n, restarts, { timeout: 30_000 });
     await evaluate(() => window.tvf.constraints()); // settled
     await page.waitForFunction(() => window.tvf.perf().lastRestart?.kind === 'cancelled');
+    console.log(`cancel of a 20,000-point stroke: design back ${(await evaluate(() => window.tvf.perf().lastRestart?.restoreMs ?? -1)).toFixed(0)} ms after the restart began`);
     expect(await evaluate(() => window.tvf.constraints().length)).toBe(1);
     expect(relativeDifference(await oneForm(), before)).toBeLessThan(1e-12);
   });
