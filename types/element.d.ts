@@ -136,7 +136,9 @@ export declare class TangentFieldDesigner extends HTMLElement {
   addSource(vertex: number, options?: { strength?: number }): Promise<number>;
   addSink(vertex: number, options?: { strength?: number }): Promise<number>;
   addVortex(face: number, options?: { strength?: number }): Promise<number>;
+  /** With an id: removes that constraint. Without: the DOM's ChildNode.remove() (and so dispose()). */
   remove(id: number): Promise<true>;
+  remove(): void;
   setWeight(id: number, weight: number): Promise<true>;
   setStrength(id: number, strength: number): Promise<true>;
   constraints(): Constraint[];

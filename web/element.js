@@ -275,6 +275,13 @@ export class TangentFieldDesigner extends Base {
     this.toggleAttribute('readonly', !!on);
   }
 
+  // remove(id) removes a constraint (the documented API); remove() with no argument is still the DOM's
+  // ChildNode.remove(), which takes the element out of the page (and so disposes it).
+  remove(...args) {
+    if (args.length === 0) return super.remove();
+    return api.remove(this.#require(), ...args);
+  }
+
   #require() {
     if (!this.#session) throw new Error('the designer is not in a document (or was disposed)');
     return this.#session;
@@ -295,6 +302,7 @@ export class TangentFieldDesigner extends Base {
     }
     // The public API (api.js) and the texture calls, as methods of every element.
     for (const [name, fn] of Object.entries(api)) {
+      if (name === 'remove') continue; // a method of its own, above
       Object.defineProperty(this.prototype, name, {
         value(...args) {
           return fn(this.#require(), ...args);

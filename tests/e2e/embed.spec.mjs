@@ -85,7 +85,7 @@ test('the package imports in node without a DOM', () => {
   for (const spec of ['tangent-field-designer', 'tangent-field-designer/element']) {
     const out = execFileSync(
       process.execPath,
-      ['--input-type=module', '-e', `const m = await import('${spec}'); console.log(typeof m.TangentFieldDesigner, typeof m.define, m.define() === m.TangentFieldDesigner);`],
+      ['--input-type=module', '-e', `const m = await import('${spec}'); console.log([typeof m.TangentFieldDesigner, typeof m.define, m.define() === m.TangentFieldDesigner].join(' '));`],
       { cwd: SITE, encoding: 'utf8' },
     );
     expect(out.trim()).toBe('function function true');
