@@ -113,7 +113,9 @@ export declare class TangentFieldDesigner extends HTMLElement {
   boundary: string | null;
   gamma: number;
   tool: Tool | null;
-  views: string | null;
+  /** Reading gives the views() method (js-api.md); assigning a string sets the `views` attribute. */
+  get views(): () => Views;
+  set views(value: string | null);
   controls: Controls | null;
   readonly: boolean;
   autosave: string | null;
@@ -162,7 +164,6 @@ export declare class TangentFieldDesigner extends HTMLElement {
 
   select(id: number | null): void;
   selected(): number | null;
-  views(): Views;
   setViews(views: Partial<Views>): Views;
   streamlines(): number[][];
   perf(): Record<string, unknown>;

@@ -289,6 +289,7 @@ export class TangentFieldDesigner extends Base {
 
   static {
     for (const [prop, attr] of Object.entries(STRING_ATTRIBUTES)) {
+      if (prop === 'views') continue; // also the views() method, below
       Object.defineProperty(this.prototype, prop, {
         get() {
           return this.getAttribute(attr);
@@ -303,6 +304,7 @@ export class TangentFieldDesigner extends Base {
     // The public API (api.js) and the texture calls, as methods of every element.
     for (const [name, fn] of Object.entries(api)) {
       if (name === 'remove') continue; // a method of its own, above
+      if (name === 'views') continue;
       Object.defineProperty(this.prototype, name, {
         value(...args) {
           return fn(this.#require(), ...args);
@@ -311,6 +313,21 @@ export class TangentFieldDesigner extends Base {
         configurable: true,
       });
     }
+    // `views` is both the attribute's property and the views() method of js-api.md: reading it gives the
+    // method, assigning a string sets the attribute.
+    Object.defineProperty(this.prototype, 'views', {
+      get() {
+        const element = this;
+        return function views() {
+          return api.views(element.#require());
+        };
+      },
+      set(value) {
+        if (value == null) this.removeAttribute('views');
+        else this.setAttribute('views', String(value));
+      },
+      configurable: true,
+    });
     for (const name of TEXTURE_METHODS) {
       Object.defineProperty(this.prototype, name, {
         value(...args) {

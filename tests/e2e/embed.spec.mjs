@@ -56,6 +56,8 @@ test.beforeAll(async () => {
   mkdirSync(resolve(SITE, 'models'), { recursive: true });
   cpSync(resolve(ROOT, 'dist/models/bunny.glb'), resolve(SITE, 'models/bunny.glb'));
   writeFileSync(resolve(SITE, 'models/ico.off'), icosphereOff());
+  mkdirSync(resolve(SITE, 'designs'), { recursive: true });
+  writeFileSync(resolve(SITE, 'designs/two-sources.json'), JSON.stringify({ boundary: 'free', gamma: 0, constraints: [{ type: 'source', vertex: 0, strength: 1 }, { type: 'sink', vertex: 3, strength: 1 }] }));
   writeFileSync(resolve(SITE, 'models/broken.glb'), Buffer.from('glTF this is not a binary glTF at all'));
   // The bundled consumer app: its code and ours in one file; our worker and wasm copied as the docs say.
   await esbuild.build({
@@ -230,5 +232,57 @@ test('twenty create/remove cycles leave no worker and no WebGL context behind', 
   expect(await page.evaluate(() => window.__cycles.keep('models/ico.off'))).toBe(320);
   expect(page.workers().length).toBe(1);
   expect(contextWarnings).toEqual([]);
+  expect(errors).toEqual([]);
+});
+
+test('attributes drive the element and are reflected; an embedded element autosaves only when asked', async ({ page }) => {
+  const errors = trackErrors(page);
+  await page.goto(`${ORIGIN}/attributes.html`);
+  await page.evaluate(() => document.getElementById('d').ready);
+  const state = () =>
+    page.evaluate(() => {
+      const el = document.getElementById('d');
+      const stroke = el.shadowRoot.querySelector('[data-tool="stroke"]');
+      return {
+        settings: el.settings(),
+        constraints: el.constraints().map((c) => c.type),
+        views: el.views(),
+        props: { gamma: el.gamma, readonly: el.readonly, tool: el.tool, controls: el.controls },
+        strokeButtonShown: getComputedStyle(stroke).display !== 'none',
+        storage: Object.keys(localStorage).filter((k) => k.startsWith('tvf.')),
+      };
+    });
+  let s = await state();
+  expect(s.settings).toEqual({ boundary: 'free', gamma: 0.25 });
+  expect(s.constraints).toEqual(['source', 'sink']); // designs/two-sources.json
+  expect(s.views).toMatchObject({ arrows: true, singularities: true, streamlines: false, colorMap: false });
+  expect(s.props).toMatchObject({ gamma: 0.25, readonly: true, controls: 'minimal' });
+  expect(s.strokeButtonShown).toBe(false); // readonly: no editing tools
+  // readonly keeps the tools on orbit/select (the source attribute asked for an edit tool).
+  expect(await page.evaluate(() => document.getElementById('d').shadowRoot.querySelector('[data-tool="orbit"]').getAttribute('aria-pressed'))).toBe('true');
+
+  // Properties write the attributes, and the element follows.
+  await page.evaluate(() => {
+    const el = document.getElementById('d');
+    el.readonly = false;
+    el.gamma = 0.5;
+    el.tool = 'stroke';
+  });
+  expect(await page.evaluate(() => ['readonly', 'gamma', 'tool'].map((a) => document.getElementById('d').getAttribute(a)))).toEqual([null, '0.5', 'stroke']);
+  await expect.poll(async () => (await state()).settings.gamma).toBe(0.5);
+  s = await state();
+  expect(s.strokeButtonShown).toBe(true);
+  expect(await page.evaluate(() => document.getElementById('d').shadowRoot.querySelector('[data-tool="stroke"]').getAttribute('aria-pressed'))).toBe('true');
+  expect(await page.evaluate(() => document.getElementById('d').history().undo)).toEqual(['γ']);
+
+  // Edits without the autosave attribute leave localStorage alone; with it, they are stored under its key.
+  await page.evaluate(() => document.getElementById('d').addVortex(3));
+  expect((await state()).storage).toEqual([]);
+  await page.evaluate(() => (document.getElementById('d').autosave = 'notes'));
+  await page.evaluate(() => document.getElementById('d').addVortex(4));
+  const keys = (await state()).storage;
+  expect(keys).toHaveLength(1);
+  expect(keys[0]).toMatch(/^tvf\.autosave\.v1:notes\|ico\.off\|/);
+  expect((await record(page)).events.filter((e) => e.type === 'error')).toEqual([]);
   expect(errors).toEqual([]);
 });
