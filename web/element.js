@@ -251,7 +251,13 @@ export class TangentFieldDesigner extends Base {
       const url = new URL(href, document.baseURI);
       const res = await fetch(url);
       if (!res.ok) throw new Error(`could not fetch ${url.href}: HTTP ${res.status}`);
-      await s.replaceDesign(await res.json(), 'load design');
+      const design = await res.json();
+      // The boundary and gamma attributes, when given, win over the document's own settings.
+      if (design && typeof design === 'object') {
+        if (this.hasAttribute('boundary')) design.boundary = parseBoundary(this.getAttribute('boundary'));
+        if (this.hasAttribute('gamma')) design.gamma = Number(this.getAttribute('gamma'));
+      }
+      await s.replaceDesign(design, 'load design');
     } catch (err) {
       throw s.fail('design', new Error(`Could not load the design: ${err.message}`));
     }

@@ -273,7 +273,7 @@ test('attributes drive the element and are reflected; an embedded element autosa
   s = await state();
   expect(s.strokeButtonShown).toBe(true);
   expect(await page.evaluate(() => document.getElementById('d').shadowRoot.querySelector('[data-tool="stroke"]').getAttribute('aria-pressed'))).toBe('true');
-  expect(await page.evaluate(() => document.getElementById('d').history().undo)).toEqual(['γ']);
+  expect(await page.evaluate(() => document.getElementById('d').history().undo)).toEqual(['load design', 'γ']);
 
   // Edits without the autosave attribute leave localStorage alone; with it, they are stored under its key.
   await page.evaluate(() => document.getElementById('d').addVortex(3));
