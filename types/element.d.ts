@@ -153,7 +153,8 @@ export declare class TangentFieldDesigner extends HTMLElement {
   history(): { undo: string[]; redo: string[] };
 
   saveDesign(): Design;
-  loadDesign(design: Design): Promise<void>;
+  loadDesign(design: Design, options?: { ignoreFingerprint?: boolean }): Promise<void>;
+  hasUnsavedEdits(): boolean;
   exportField(): Promise<Record<string, unknown>>;
 
   faceVectors(): Float64Array;

@@ -32,8 +32,10 @@ export const api = {
   history: (s) => s.history.labels(),
 
   saveDesign: read((s) => structuredClone(s.design)),
-  loadDesign: (s, design) =>
-    s.replaceDesign(design, 'load design').catch((err) => {
+  hasUnsavedEdits: (s) => s.hasUnsavedEdits(),
+  // options.ignoreFingerprint: apply a design saved for another mesh anyway.
+  loadDesign: (s, design, options) =>
+    s.replaceDesign(design, 'load design', options).catch((err) => {
       throw s.fail('design', err);
     }),
   exportField: (s) => s.exportField().then((text) => JSON.parse(text)),

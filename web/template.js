@@ -46,6 +46,7 @@ export const TEMPLATE = `<div class="root" part="root">
 
   <div id="error-banner" part="error" role="alert" hidden>
     <span class="message"></span>
+    <button type="button" class="action" hidden></button>
     <button type="button" class="dismiss" aria-label="Dismiss error">×</button>
   </div>
 
@@ -99,6 +100,10 @@ export const TEMPLATE = `<div class="root" part="root">
         <button id="sel-delete" type="button" class="edit" title="Delete the selected constraint (Delete)">Delete</button>
       </section>
     </aside>
+    <div id="confirm" part="confirm" role="alertdialog" aria-modal="true" aria-labelledby="confirm-message" hidden>
+      <p id="confirm-message"></p>
+      <div class="buttons"><button id="confirm-cancel" type="button">Cancel</button> <button id="confirm-ok" type="button" class="primary"></button></div>
+    </div>
     <div id="drop-overlay" hidden>Drop a mesh to load it, or a design (.json)</div>
   </div>
 

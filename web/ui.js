@@ -30,6 +30,8 @@ export function bindUi(root, host, actions) {
   const designInput = $('#design-input');
   const banner = $('#error-banner');
   const bannerMsg = banner.querySelector('.message');
+  const bannerAction = banner.querySelector('.action');
+  let bannerRun = null;
   const status = $('#status');
   const list = $('#constraint-list');
   const emptyNote = $('#constraints-empty');
@@ -146,6 +148,31 @@ export function bindUi(root, host, actions) {
     target.addEventListener('keydown', pageKey);
   }
 
+  // ---- numbers: a value outside its box's range is shown invalid and never silently replaced
+  // Range and parse only: a step is a spinner increment, not a rule (0.15 is a fine strength).
+  const invalid = (input) => {
+    const v = input.validity;
+    return v.badInput || v.rangeUnderflow || v.rangeOverflow || input.value.trim() === '' || !Number.isFinite(Number(input.value));
+  };
+  for (const input of $$('input[type="number"]')) {
+    input.addEventListener('input', () => input.setAttribute('aria-invalid', String(invalid(input))));
+  }
+  // The number in `input`, or an Error naming the box and the value when it is not a valid one.
+  function checkedNumber(input, what) {
+    const bad = invalid(input);
+    input.setAttribute('aria-invalid', String(bad));
+    if (!bad) return Number(input.value);
+    const range = input.min !== '' ? ` (at least ${input.min})` : '';
+    throw new Error(`${what} must be a number${range}; the box shows "${input.value}"`);
+  }
+  const guarded = (fn) => (e) => {
+    try {
+      fn(e);
+    } catch (err) {
+      showError(err.message);
+    }
+  };
+
   // ---- field settings
   const boundarySelect = $('#boundary');
   const angleInput = $('#boundary-angle');
@@ -158,8 +185,8 @@ export function bindUi(root, host, actions) {
     $('#boundary-angle-row').hidden = boundarySelect.value !== 'angle';
     actions.onBoundary(boundaryChoice());
   });
-  angleInput.addEventListener('change', () => actions.onBoundary(boundaryChoice()));
-  $('#gamma').addEventListener('change', (e) => actions.onGamma(Number(e.target.value)));
+  angleInput.addEventListener('change', guarded(() => (checkedNumber(angleInput, 'The boundary angle'), actions.onBoundary(boundaryChoice()))));
+  $('#gamma').addEventListener('change', guarded((e) => actions.onGamma(checkedNumber(e.target, 'Smoothness γ'))));
 
   // ---- views
   const viewInputs = ['show-arrows', 'arrow-density', 'arrow-scaled', 'show-streamlines', 'streamline-spacing'];
@@ -188,7 +215,12 @@ export function bindUi(root, host, actions) {
   }
 
   // ---- constraints list and selection editor
-  banner.querySelector('.dismiss').addEventListener('click', () => (banner.hidden = true));
+  banner.querySelector('.dismiss').addEventListener('click', () => clearError());
+  bannerAction.addEventListener('click', () => {
+    const run = bannerRun;
+    clearError();
+    run?.();
+  });
   list.addEventListener('click', (e) => {
     const li = e.target.closest('[data-constraint-id]');
     if (!li) return;
@@ -198,8 +230,8 @@ export function bindUi(root, host, actions) {
   });
   $('#clear-all').addEventListener('click', () => actions.onClear());
   $('#sel-delete').addEventListener('click', () => selectedUid != null && actions.onRemove(selectedUid));
-  $('#sel-weight').addEventListener('change', (e) => selectedUid != null && actions.onEditWeight(selectedUid, Number(e.target.value)));
-  $('#sel-strength').addEventListener('change', (e) => selectedUid != null && actions.onEditStrength(selectedUid, Number(e.target.value)));
+  $('#sel-weight').addEventListener('change', guarded((e) => selectedUid != null && actions.onEditWeight(selectedUid, checkedNumber(e.target, 'The weight'))));
+  $('#sel-strength').addEventListener('change', guarded((e) => selectedUid != null && actions.onEditStrength(selectedUid, checkedNumber(e.target, 'The strength'))));
 
   function describe(c) {
     switch (c.type) {
@@ -255,10 +287,44 @@ export function bindUi(root, host, actions) {
   }
 
   // ---- banner, status, progress
-  function showError(message) {
+  // action: {label, run} — a button next to the message (e.g. apply a design made for another mesh anyway).
+  function showError(message, action = null) {
     bannerMsg.textContent = message;
+    bannerAction.hidden = !action;
+    bannerAction.textContent = action?.label ?? '';
+    bannerRun = action?.run ?? null;
     banner.hidden = false;
   }
+
+  // After the next success: an error that no longer describes the state must not stay up.
+  function clearError() {
+    banner.hidden = true;
+    bannerRun = null;
+  }
+
+  // An in-element question (no window.confirm: it would block every designer on the page). Resolves true
+  // when the user chose `ok`, false on Cancel or Escape.
+  let confirmDone = null;
+  const confirmBox = $('#confirm');
+  function confirmChoice(message, ok) {
+    confirmDone?.(false);
+    $('#confirm-message').textContent = message;
+    $('#confirm-ok').textContent = ok;
+    confirmBox.hidden = false;
+    $('#confirm-ok').focus();
+    return new Promise((resolve) => {
+      confirmDone = (yes) => {
+        confirmDone = null;
+        confirmBox.hidden = true;
+        resolve(yes);
+      };
+    });
+  }
+  $('#confirm-ok').addEventListener('click', () => confirmDone?.(true));
+  $('#confirm-cancel').addEventListener('click', () => confirmDone?.(false));
+  confirmBox.addEventListener('keydown', (e) => {
+    if (e.key === 'Escape') e.stopPropagation(), confirmDone?.(false);
+  });
 
   function renderStatus() {
     status.textContent = flashText ?? statusText;
@@ -338,13 +404,14 @@ export function bindUi(root, host, actions) {
     if (max != null) $('#legend-max').textContent = `≥ ${fmtNum(max)}`;
   }
 
+  // Throws (naming the box and what it shows) when the strength is not a valid number: never coerced.
   function toolOptions() {
-    const s = Number(strength.value);
-    return {
-      strength: Number.isFinite(s) && s > 0 ? s : 1,
-      weight: Number(weight.value),
-      orientation,
-    };
+    const s = checkedNumber(strength, 'The strength');
+    if (!(s > 0)) {
+      strength.setAttribute('aria-invalid', 'true');
+      throw new Error(`The strength must be above 0; the box shows "${strength.value}"`);
+    }
+    return { strength: s, weight: Number(weight.value), orientation };
   }
 
   function dispose() {
@@ -358,6 +425,8 @@ export function bindUi(root, host, actions) {
     dispose,
     listenTo,
     showError,
+    clearError,
+    confirm: confirmChoice,
     setConstraints,
     setStatus,
     startProgress,
