@@ -16,6 +16,7 @@ import { boundarySpec, gammaSpec, pointSpec, strokeSpec, vectorSpec } from './sp
 import { Surface } from './surface.js';
 import { setupSynthesis } from './synthesis/index.js';
 import { ToolController } from './tools.js';
+import { setPivotAt } from './camera.js';
 import { bindUi } from './ui.js';
 import { Viewer, arrowDensityFor } from './viewer.js';
 
@@ -79,6 +80,8 @@ export class Session {
     this.history = new History(() => this.ui && this.refreshHistory());
     this.ui = bindUi(root, host, this.#uiActions());
     this.tools = new ToolController(this, container, this.#toolActions());
+    // Double-click (double-tap) on the model: orbit around that point from now on.
+    this.viewer.canvas.addEventListener('dblclick', (e) => setPivotAt(this.viewer, e.clientX, e.clientY));
     this.views = this.ui.views();
     this.applyViews(this.views);
     // Texture synthesis (web/synthesis/, docs/texture-synthesis.md): its calls go onto the element.
@@ -659,6 +662,9 @@ export class Session {
         this.applyViews(views);
       },
       onSelect: (uid) => this.select(uid),
+      onFrame: (view) => this.viewer.frame(view),
+      // The first-run hint is remembered with the autosave (the app page), shown every time elsewhere.
+      hintKey: this.autosave != null ? 'tvf-hint-seen' : null,
       onRemove: editable((uid) => this.#edit('delete', this.remove(uid))),
       onEditWeight: editable((uid, w) => this.#report(this.setParameter('weight', uid, w))),
       onEditStrength: editable((uid, s) => this.#report(this.setParameter('strength', uid, s))),

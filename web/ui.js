@@ -2,8 +2,11 @@
 // target, progress indicator and status line. The markup is the element's (template.js, in its shadow root);
 // this module binds it, reports user intent through the callbacks it is given, and renders the state it is
 // handed. Keyboard shortcuts act while the focus is inside the element (or, on the app page, anywhere).
+import { VIEW_PRESETS } from './camera.js';
+import { bindHelp } from './help.js';
 
 const TOOL_KEYS = { o: 'orbit', e: 'select', s: 'stroke', v: 'vector', r: 'source', g: 'sink', b: 'vortex' };
+const PRESET_KEYS = { 1: 'front', 3: 'side', 7: 'top' };
 const SWATCH = { stroke: '#ff7a1a', vector: '#fbbf24', edge: '#ff7a1a', source: '#ef4444', sink: '#22c55e', vortex: '#3b82f6' };
 const PROGRESS_DELAY_MS = 200; // shorter operations show no indicator at all
 
@@ -111,6 +114,15 @@ export function bindUi(root, host, actions) {
     for (const b of $$('[data-orientation]')) b.setAttribute('aria-pressed', String(b.dataset.orientation === o));
   }
 
+  // ---- camera and help
+  $('#frame-button').addEventListener('click', () => actions.onFrame('home'));
+  for (const btn of $$('[data-view]')) {
+    if (VIEW_PRESETS[btn.dataset.view]) btn.addEventListener('click', () => actions.onFrame(btn.dataset.view));
+  }
+  const help = bindHelp($('#help'), $('#hint'), actions.hintKey ?? null);
+  $('#help-button').addEventListener('click', () => help.toggle());
+  viewport.addEventListener('pointerdown', () => help.dismissHint(), { capture: true });
+
   // ---- undo / redo
   $('#undo').addEventListener('click', () => actions.onUndo());
   $('#redo').addEventListener('click', () => actions.onRedo());
@@ -130,10 +142,18 @@ export function bindUi(root, host, actions) {
       actions.onSaveDesign();
       return;
     }
+    if (e.key === 'F1' || ((e.key === '?' || key === 'h') && !isTyping(e.target) && !mod && !e.altKey)) {
+      e.preventDefault();
+      help.toggle();
+      return;
+    }
     if (isTyping(e.target) || mod || e.altKey) return;
-    if (TOOL_KEYS[key]) setTool(TOOL_KEYS[key]);
+    if (key === 'escape' && help.isOpen) help.close();
+    else if (TOOL_KEYS[key]) setTool(TOOL_KEYS[key]);
     else if (key === 'escape') selectedUid != null ? actions.onSelect(null) : setTool('orbit');
-    else if (key === 'f') setOrientation(orientation === 'ccw' ? 'cw' : 'ccw');
+    else if (key === 'f' || e.key === 'Home') e.preventDefault(), actions.onFrame('home');
+    else if (PRESET_KEYS[e.key]) actions.onFrame(PRESET_KEYS[e.key]);
+    else if (key === 'x') setOrientation(orientation === 'ccw' ? 'cw' : 'ccw');
     else if ((key === 'delete' || key === 'backspace') && selectedUid != null) {
       e.preventDefault();
       actions.onRemove(selectedUid);
@@ -235,11 +255,11 @@ export function bindUi(root, host, actions) {
 
   function describe(c) {
     switch (c.type) {
-      case 'stroke': return `${c.points.length} pts · s ${fmtNum(c.strength)} · w ${fmtNum(c.weight)}`;
-      case 'vector': return `face ${c.face} · |v| ${fmtNum(Math.hypot(...c.vector))} · w ${fmtNum(c.weight)}`;
-      case 'edge': return `${c.edge[0]}→${c.edge[1]} = ${fmtNum(c.value)} · w ${fmtNum(c.weight)}`;
+      case 'stroke': return `${c.points.length} points · strength ${fmtNum(c.strength)} · weight ${fmtNum(c.weight)}`;
+      case 'vector': return `face ${c.face} · size ${fmtNum(Math.hypot(...c.vector))} · weight ${fmtNum(c.weight)}`;
+      case 'edge': return `${c.edge[0]}→${c.edge[1]} = ${fmtNum(c.value)} · weight ${fmtNum(c.weight)}`;
       case 'source':
-      case 'sink': return `vertex ${c.vertex} · s ${fmtNum(c.strength)}`;
+      case 'sink': return `vertex ${c.vertex} · strength ${fmtNum(c.strength)}`;
       case 'vortex': return `face ${c.face} · ${c.strength >= 0 ? 'CCW' : 'CW'} ${fmtNum(Math.abs(c.strength))}`;
       default: return '';
     }
@@ -426,6 +446,7 @@ export function bindUi(root, host, actions) {
     listenTo,
     showError,
     clearError,
+    help,
     confirm: confirmChoice,
     setConstraints,
     setStatus,

@@ -57,7 +57,13 @@ test.describe.serial('design files and inputs', () => {
   async function loadDesignFile(name, design) {
     const path = join(dir, name);
     writeFileSync(path, typeof design === 'string' ? design : JSON.stringify(design));
+    const unsaved = await evaluate(() => window.tvf.hasUnsavedEdits());
     await page.locator('#design-input').setInputFiles(path);
+    // Over unsaved edits the page asks first; going ahead is the explicit choice.
+    if (unsaved) {
+      await expect(page.getByRole('alertdialog')).toContainText('unsaved edits');
+      await page.getByRole('button', { name: 'Loading a design anyway' }).click();
+    }
   }
 
   test.beforeAll(async ({ browser }) => {
