@@ -17,11 +17,13 @@ constexpr int kUsageError = 2;
 int usage() {
   std::cerr << "usage:\n"
                "  tvf info MESH\n"
-               "  tvf design MESH DESIGN.json [-o FIELD.json]\n"
+               "  tvf design MESH DESIGN.json [-o FIELD.json] [--ignore-fingerprint]\n"
                "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis] [--json]\n"
                "Fill-reducing ordering: METIS by default (less fill, faster solves and updates, slower\n"
                "analysis); --amd for AMD, which the browser build uses.\n"
-               "MESH: .gltf, .glb, .off, .obj or .ply\n";
+               "MESH: .gltf, .glb, .off, .obj or .ply\n"
+               "A design saved for another mesh (its \"mesh\" fingerprint differs) is refused unless\n"
+               "--ignore-fingerprint is given.\n";
   return kUsageError;
 }
 
@@ -45,10 +47,18 @@ int info(const std::string& path) {
   return 0;
 }
 
-int design(const std::string& meshPath, const std::string& designPath, const std::string& outPath) {
+int design(const std::string& meshPath, const std::string& designPath, const std::string& outPath,
+           bool checkFingerprint) {
   tvf::Designer designer(tvf::loadMesh(meshPath));
   designer.setMetisOrdering(true);
-  tvf::applyDesignDocument(designer, readJsonFile(designPath));
+  try {
+    tvf::applyDesignDocument(designer, readJsonFile(designPath), checkFingerprint);
+  } catch (const tvf::InputError& e) {
+    const std::string why = e.what();
+    throw tvf::InputError(designPath + ": " + why +
+                          (why.find("another mesh") != std::string::npos ? " (--ignore-fingerprint applies it anyway)"
+                                                                          : ""));
+  }
   designer.solve();
   const std::string text = tvf::fieldDocument(designer).dump();
   if (outPath.empty()) {
@@ -58,6 +68,20 @@ int design(const std::string& meshPath, const std::string& designPath, const std
     if (!(out << text << "\n")) throw tvf::InputError("cannot write " + outPath);
   }
   return 0;
+}
+
+int designCommand(int argc, char** argv) {
+  std::string out;
+  bool checkFingerprint = true;
+  for (int k = 4; k < argc; ++k) {
+    if (std::strcmp(argv[k], "-o") == 0 && k + 1 < argc)
+      out = argv[++k];
+    else if (std::strcmp(argv[k], "--ignore-fingerprint") == 0)
+      checkFingerprint = false;
+    else
+      return usage();
+  }
+  return design(argv[2], argv[3], out, checkFingerprint);
 }
 
 void printBenchTable(const nlohmann::json& r) {
@@ -107,8 +131,7 @@ int main(int argc, char** argv) {
   const std::string command = argv[1];
   try {
     if (command == "info" && argc == 3) return info(argv[2]);
-    if (command == "design" && (argc == 4 || (argc == 6 && std::strcmp(argv[4], "-o") == 0)))
-      return design(argv[2], argv[3], argc == 6 ? argv[5] : "");
+    if (command == "design" && argc >= 4) return designCommand(argc, argv);
     if (command == "bench") return bench(argc, argv);
     return usage();
   } catch (const tvf::InputError& e) {

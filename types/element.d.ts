@@ -153,7 +153,11 @@ export declare class TangentFieldDesigner extends HTMLElement {
   history(): { undo: string[]; redo: string[] };
 
   saveDesign(): Design;
-  loadDesign(design: Design): Promise<void>;
+  loadDesign(design: Design, options?: { ignoreFingerprint?: boolean }): Promise<void>;
+  hasUnsavedEdits(): boolean;
+  frame(view?: 'home' | 'front' | 'back' | 'side' | 'top'): boolean;
+  camera(): { position: number[]; target: number[]; fov: number };
+  setCamera(state: { position?: number[]; target?: number[] }): void;
   exportField(): Promise<Record<string, unknown>>;
 
   faceVectors(): Float64Array;

@@ -1,6 +1,7 @@
 // The designer's public JavaScript API (docs/js-api.md, docs/embedding.md): every method of a
 // <tangent-field-designer> element, as functions of its session. The element installs them on its prototype;
 // the app page's window.tvf is its element, so the same functions serve both.
+import { cameraState, setCameraState } from './camera.js';
 import { DEFAULT_WEIGHT } from './session.js';
 import { edgeSpec, pointSpec, strokeSpec, vectorSpec } from './specs.js';
 
@@ -32,8 +33,13 @@ export const api = {
   history: (s) => s.history.labels(),
 
   saveDesign: read((s) => structuredClone(s.design)),
-  loadDesign: (s, design) =>
-    s.replaceDesign(design, 'load design').catch((err) => {
+  frame: read((s, view = 'home') => s.viewer.frame(view)),
+  camera: (s) => cameraState(s.viewer),
+  setCamera: (s, state) => setCameraState(s.viewer, state),
+  hasUnsavedEdits: (s) => s.hasUnsavedEdits(),
+  // options.ignoreFingerprint: apply a design saved for another mesh anyway.
+  loadDesign: (s, design, options) =>
+    s.replaceDesign(design, 'load design', options).catch((err) => {
       throw s.fail('design', err);
     }),
   exportField: (s) => s.exportField().then((text) => JSON.parse(text)),

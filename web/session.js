@@ -17,6 +17,7 @@ import { boundarySpec, gammaSpec, pointSpec, strokeSpec, vectorSpec } from './sp
 import { Surface } from './surface.js';
 import { setupSynthesis } from './synthesis/index.js';
 import { ToolController } from './tools.js';
+import { setPivotAt } from './camera.js';
 import { bindUi } from './ui.js';
 import { Viewer, arrowDensityFor } from './viewer.js';
 
@@ -77,6 +78,7 @@ export class Session {
     // Every mutation runs alone and in call order: the worker's state and the session's copies move together.
     this.queue = Promise.resolve();
     this.lastConstraintsJson = '[]';
+    this.savedDesignJson = null; // the design as last saved, loaded or found with the model (unsaved edits differ)
 
     const $ = (sel) => root.querySelector(sel);
     const container = $('#viewport');
@@ -84,6 +86,8 @@ export class Session {
     this.history = new History(() => this.ui && this.refreshHistory());
     this.ui = bindUi(root, host, this.#uiActions());
     this.tools = new ToolController(this, container, this.#toolActions());
+    // Double-click (double-tap) on the model: orbit around that point from now on.
+    this.viewer.canvas.addEventListener('dblclick', (e) => setPivotAt(this.viewer, e.clientX, e.clientY));
     this.views = this.ui.views();
     this.applyViews(this.views);
     // Texture synthesis (web/synthesis/, docs/texture-synthesis.md): its calls go onto the element.
@@ -365,6 +369,7 @@ export class Session {
   // After every completed change: redraw, keep the autosave (when on) in step with the core, tell listeners.
   #afterEdit() {
     this.adoptUnmapped();
+    this.ui.clearError();
     this.refresh();
     this.#autosaveNow();
     this.#emitChanges();
@@ -459,6 +464,7 @@ export class Session {
         throw this.fail('model', new Error(`Could not load ${model.name}: ${err.message.replace(/^load: /, '')}`));
       }
       const tApply = performance.now();
+      this.ui.clearError();
       const { info, settingsError, restoreError } = reply.value;
       const { positions, triangles, edges } = reply.mesh;
       this.surface = new Surface(positions, triangles, edges);
@@ -468,7 +474,10 @@ export class Session {
       this.modelSource = source;
       this.selected = null;
       this.streamlineCache = null;
+      this.constraints.clear();
+      this.nextUid = 1; // constraint numbers restart with every model
       this.mapDocument(null);
+      this.markSaved();
       this.history.clear();
       this.viewer.setMesh(this.surface);
       // Texture synthesis: the model's UVs (6 per face, or none) and a fresh atlas for the new mesh.
@@ -584,11 +593,66 @@ export class Session {
     return this.run(() => new SetSetting(this, kind, kind === 'boundary' ? boundarySpec(value) : gammaSpec(value)));
   }
 
-  replaceDesign(design, label) {
+  // ignoreFingerprint: apply a design saved for another mesh anyway (its indices taken as they are).
+  replaceDesign(design, label, { ignoreFingerprint = false } = {}) {
     return this.run(() => {
       if (!design || typeof design !== 'object' || Array.isArray(design)) throw new Error('a design must be a JSON object');
+      if (ignoreFingerprint) {
+        design = { ...design };
+        delete design.mesh;
+      }
       return new ReplaceDesign(this, design, label);
     });
+  }
+
+  // ------------------------------------------------------------------------------------------ unsaved edits
+
+  #designKey() {
+    const { boundary, gamma, constraints } = this.design;
+    return JSON.stringify({ boundary, gamma, constraints });
+  }
+
+  markSaved() {
+    this.savedDesignJson = this.#designKey();
+  }
+
+  // Edits since the design was last saved, loaded or opened with its model (undoing back to it counts as none).
+  hasUnsavedEdits() {
+    return !!this.field && this.savedDesignJson !== this.#designKey();
+  }
+
+  // Asks before a UI action would discard unsaved edits; true to go ahead.
+  async #mayDiscard(what) {
+    if (!this.hasUnsavedEdits()) return true;
+    const n = this.constraints.size;
+    return this.ui.confirm(
+      `${what} replaces the current design (${n} constraint${n === 1 ? '' : 's'}), which has unsaved edits. Save it first with Save (Ctrl+S), or go ahead.`,
+      `${what} anyway`,
+    );
+  }
+
+  // A design file picked or dropped by the user: refused with the reason (the design untouched); a design
+  // for another mesh can be applied after an explicit choice, undoably.
+  async #loadDesignFile(file) {
+    let design;
+    try {
+      design = await readJsonFile(file);
+    } catch (err) {
+      throw this.fail('design', new Error(`Could not load ${file.name}: ${err.message}`));
+    }
+    const apply = (ignoreFingerprint) =>
+      this.replaceDesign(design, 'load design', { ignoreFingerprint }).then(() => {
+        this.markSaved();
+        this.ui.flash(`Loaded ${file.name} (${this.constraints.size} constraints). Undo (Ctrl+Z) brings the previous design back.`, 5000);
+      });
+    try {
+      await apply(false);
+    } catch (err) {
+      const message = `Could not load ${file.name}: ${err.message}`;
+      this.emit('error', { code: 'design', message });
+      if (!/another mesh/.test(err.message)) return this.ui.showError(message);
+      this.ui.showError(message, { label: 'Apply anyway', run: () => this.#report(apply(true)) });
+    }
   }
 
   step(forward) {
@@ -646,6 +710,16 @@ export class Session {
     return this.#report(this.#timed(name, performance.now(), promise));
   }
 
+  // The tool options, or null (with the reason in the banner) when a box holds an invalid number.
+  #toolOptions() {
+    try {
+      return this.ui.toolOptions();
+    } catch (err) {
+      this.ui.showError(err.message);
+      return null;
+    }
+  }
+
   // The mouse tools' results, as constraints (never in readonly mode: the tools stay on orbit/select).
   #toolActions() {
     return {
@@ -653,7 +727,9 @@ export class Session {
       onStroke: (points) => {
         const serial = this.#boundToModel();
         if (serial === null) return void this.viewer.clearStroke();
-        const { strength, weight } = this.ui.toolOptions();
+        const options = this.#toolOptions();
+        if (!options) return this.viewer.clearStroke();
+        const { strength, weight } = options;
         this.#edit('stroke', this.addConstraint(() => strokeSpec(this, points, { strength, weight }), serial)).finally(() => {
           if (!this.tools.tools.stroke.drawing) this.viewer.clearStroke();
         });
@@ -661,12 +737,15 @@ export class Session {
       onVector: (face, vector) => {
         const serial = this.#boundToModel();
         if (serial === null) return;
-        this.#edit('vector', this.addConstraint(() => vectorSpec(this, face, vector, { weight: this.ui.toolOptions().weight }), serial));
+        const options = this.#toolOptions();
+        if (options) this.#edit('vector', this.addConstraint(() => vectorSpec(this, face, vector, { weight: options.weight }), serial));
       },
       onPlace: (kind, hit) => {
         const serial = this.#boundToModel();
         if (serial === null) return;
-        const { strength, orientation } = this.ui.toolOptions();
+        const options = this.#toolOptions();
+        if (!options) return;
+        const { strength, orientation } = options;
         const spec =
           kind === 'vortex'
             ? () => pointSpec(this, 'vortex', hit.face, orientation === 'cw' ? -strength : strength)
@@ -681,16 +760,19 @@ export class Session {
     const editable = (fn) => (...args) => (this.readonly ? undefined : fn(...args));
     return {
       accept: ACCEPT,
-      onOpen: (file, companions) => this.#report(this.loadModel(file, { companions })),
-      onLoadDesign: editable((file) =>
-        this.#report(readJsonFile(file).then((design) => this.replaceDesign(design, 'load design')).catch((err) => {
-          throw this.fail('design', err);
-        })),
-      ),
+      onOpen: async (file, companions) => {
+        if (await this.#mayDiscard('Opening a model')) this.#report(this.loadModel(file, { companions }));
+      },
+      onLoadDesign: editable(async (file) => {
+        if (await this.#mayDiscard('Loading a design')) this.#report(this.#loadDesignFile(file));
+      }),
       onSaveDesign: () => {
         try {
           this.requireReady();
-          downloadJson(`${baseName(this.modelName)}.design.json`, JSON.stringify(this.design, null, 1));
+          const name = `${baseName(this.modelName)}.design.json`;
+          downloadJson(name, JSON.stringify(this.design, null, 1));
+          this.markSaved();
+          this.ui.flash(`Saved ${name} (${this.constraints.size} constraint${this.constraints.size === 1 ? '' : 's'}).`, 4000);
         } catch (err) {
           this.ui.showError(err.message);
         }
@@ -709,6 +791,9 @@ export class Session {
         this.applyViews(views);
       },
       onSelect: (uid) => this.select(uid),
+      onFrame: (view) => this.viewer.frame(view),
+      // The first-run hint is remembered with the autosave (the app page), shown every time elsewhere.
+      hintKey: this.autosave != null ? 'tvf-hint-seen' : null,
       onRemove: editable((uid) => this.#edit('delete', this.remove(uid))),
       onEditWeight: editable((uid, w) => this.#report(this.setParameter('weight', uid, w))),
       onEditStrength: editable((uid, s) => this.#report(this.setParameter('strength', uid, s))),

@@ -21,31 +21,35 @@ export const TEMPLATE = `<div class="root" part="root">
       <button type="button" class="edit" data-tool="vector" aria-pressed="false" title="Drag on a triangle: the field's direction and magnitude there (V)">Vector</button>
       <button type="button" class="edit" data-tool="source" aria-pressed="false" title="Click: a source at the nearest vertex (R)">Source</button>
       <button type="button" class="edit" data-tool="sink" aria-pressed="false" title="Click: a sink at the nearest vertex (G)">Sink</button>
-      <button type="button" class="edit" data-tool="vortex" aria-pressed="false" title="Click: a vortex in the triangle (B; F flips its turning)">Vortex</button>
+      <button type="button" class="edit" data-tool="vortex" aria-pressed="false" title="Click: a vortex in the triangle — the field turns around it (B; X flips its turning)">Vortex</button>
     </div>
     <span class="tool-options edit">
-      <label data-for="stroke source sink vortex" title="Stroke: field magnitude along it. Source/sink: total flux. Vortex: circulation">Strength
+      <label data-for="stroke source sink vortex" title="How strong the field is: along a stroke its size; for a source or sink the total flow out or in; for a vortex how fast it turns (above 0)">Strength
         <input id="strength" type="number" value="1" min="0" step="0.1">
       </label>
-      <label data-for="stroke vector" title="How strictly the field follows the stroke or vector">Weight
+      <label data-for="stroke vector" title="How strictly the field follows the stroke or vector: loosely (weight 1e2), closely (1e4) or exactly (1e6)">Follow
         <select id="weight">
-          <option value="100">1e2</option>
-          <option value="10000" selected>1e4</option>
-          <option value="1000000">1e6</option>
+          <option value="100">loosely</option>
+          <option value="10000" selected>closely</option>
+          <option value="1000000">exactly</option>
         </select>
       </label>
       <span class="segmented" data-for="vortex" role="group" aria-label="Vortex orientation">
-        <button type="button" data-orientation="ccw" aria-pressed="true" title="Counter-clockwise about the surface normal (F flips)">↺ CCW</button>
-        <button type="button" data-orientation="cw" aria-pressed="false" title="Clockwise about the surface normal (F flips)">↻ CW</button>
+        <button type="button" data-orientation="ccw" aria-pressed="true" title="Counter-clockwise about the surface normal (X flips)">↺ CCW</button>
+        <button type="button" data-orientation="cw" aria-pressed="false" title="Clockwise about the surface normal (X flips)">↻ CW</button>
       </span>
     </span>
     <span class="sep edit" aria-hidden="true"></span>
     <button id="undo" type="button" class="edit" title="Undo (Ctrl+Z)" aria-label="Undo" disabled>↶</button>
     <button id="redo" type="button" class="edit" title="Redo (Ctrl+Shift+Z)" aria-label="Redo" disabled>↷</button>
+    <span class="sep" aria-hidden="true"></span>
+    <button id="frame-button" type="button" title="Frame the model: bring all of it back into view (F or Home)">Frame</button>
+    <button id="help-button" type="button" title="Help: every tool, shortcut and gesture (? , H or F1)" aria-label="Help">?</button>
   </header>
 
   <div id="error-banner" part="error" role="alert" hidden>
     <span class="message"></span>
+    <button type="button" class="action" hidden></button>
     <button type="button" class="dismiss" aria-label="Dismiss error">×</button>
   </div>
 
@@ -55,7 +59,7 @@ export const TEMPLATE = `<div class="root" part="root">
       <details class="edit" open>
         <summary>Field</summary>
         <div id="boundary-row" hidden>
-          <label title="Boundary condition on the mesh's boundary loops">Boundary
+          <label title="How the field meets the open edges of the mesh: free, along them (tangential), across them (normal) or at a fixed angle">Boundary
             <select id="boundary">
               <option value="free" selected>free</option>
               <option value="tangential">tangential</option>
@@ -63,14 +67,14 @@ export const TEMPLATE = `<div class="root" part="root">
               <option value="angle">fixed angle</option>
             </select>
           </label>
-          <label id="boundary-angle-row" hidden title="Angle from the boundary edge towards the interior">β°
+          <label id="boundary-angle-row" hidden title="Angle from the boundary edge towards the interior, in degrees">Angle β°
             <input id="boundary-angle" type="number" value="45" step="5">
           </label>
         </div>
-        <label title="Bi-Laplacian smoothness (0 = the plain 1-form Laplacian)">γ
+        <label title="How gently the field's size fades away from what you drew: 0 = quickly (plain Laplacian), larger = more gently (bi-Laplacian term γ)">Smoothness γ
           <input id="gamma" type="number" value="0" min="0" step="0.1">
         </label>
-        <p class="note">Changing γ<span id="boundary-note" hidden> or the boundary</span> refactors the system.</p>
+        <p class="note">Changing smoothness<span id="boundary-note" hidden> or the boundary</span> rebuilds the solver: a moment on large models.</p>
       </details>
       <details open>
         <summary>Views</summary>
@@ -99,6 +103,23 @@ export const TEMPLATE = `<div class="root" part="root">
         <button id="sel-delete" type="button" class="edit" title="Delete the selected constraint (Delete)">Delete</button>
       </section>
     </aside>
+    <div id="confirm" part="confirm" role="alertdialog" aria-modal="true" aria-labelledby="confirm-message" hidden>
+      <p id="confirm-message"></p>
+      <div class="buttons"><button id="confirm-cancel" type="button">Cancel</button> <button id="confirm-ok" type="button" class="primary"></button></div>
+    </div>
+    <div id="view-presets" part="view-presets" role="group" aria-label="View">
+      <button type="button" data-view="front" title="Front view (1)">Front</button>
+      <button type="button" data-view="side" title="Side view (3)">Side</button>
+      <button type="button" data-view="top" title="Top view (7)">Top</button>
+    </div>
+    <div id="hint" part="hint" hidden>
+      <span>Drag to turn the model · double-click to orbit around a point · pick <b>Stroke</b> and drag across the surface to steer the field · <b>?</b> for help</span>
+      <button type="button" class="close" aria-label="Dismiss the hint">×</button>
+    </div>
+    <div id="help" part="help" role="dialog" aria-label="Help" hidden>
+      <div class="help-head"><h2>Help</h2><button type="button" class="close" aria-label="Close help">×</button></div>
+      <div class="help-body"></div>
+    </div>
     <div id="drop-overlay" hidden>Drop a mesh to load it, or a design (.json)</div>
   </div>
 

@@ -2,8 +2,11 @@
 // target, progress indicator and status line. The markup is the element's (template.js, in its shadow root);
 // this module binds it, reports user intent through the callbacks it is given, and renders the state it is
 // handed. Keyboard shortcuts act while the focus is inside the element (or, on the app page, anywhere).
+import { VIEW_PRESETS } from './camera.js';
+import { bindHelp } from './help.js';
 
 const TOOL_KEYS = { o: 'orbit', e: 'select', s: 'stroke', v: 'vector', r: 'source', g: 'sink', b: 'vortex' };
+const PRESET_KEYS = { 1: 'front', 3: 'side', 7: 'top' };
 const SWATCH = { stroke: '#ff7a1a', vector: '#fbbf24', edge: '#ff7a1a', source: '#ef4444', sink: '#22c55e', vortex: '#3b82f6' };
 const PROGRESS_DELAY_MS = 200; // shorter operations show no indicator at all
 
@@ -30,6 +33,8 @@ export function bindUi(root, host, actions) {
   const designInput = $('#design-input');
   const banner = $('#error-banner');
   const bannerMsg = banner.querySelector('.message');
+  const bannerAction = banner.querySelector('.action');
+  let bannerRun = null;
   const status = $('#status');
   const list = $('#constraint-list');
   const emptyNote = $('#constraints-empty');
@@ -111,6 +116,15 @@ export function bindUi(root, host, actions) {
     for (const b of $$('[data-orientation]')) b.setAttribute('aria-pressed', String(b.dataset.orientation === o));
   }
 
+  // ---- camera and help
+  $('#frame-button').addEventListener('click', () => actions.onFrame('home'));
+  for (const btn of $$('[data-view]')) {
+    if (VIEW_PRESETS[btn.dataset.view]) btn.addEventListener('click', () => actions.onFrame(btn.dataset.view));
+  }
+  const help = bindHelp($('#help'), $('#hint'), actions.hintKey ?? null);
+  $('#help-button').addEventListener('click', () => help.toggle());
+  viewport.addEventListener('pointerdown', () => help.dismissHint(), { capture: true });
+
   // ---- undo / redo
   $('#undo').addEventListener('click', () => actions.onUndo());
   $('#redo').addEventListener('click', () => actions.onRedo());
@@ -130,11 +144,19 @@ export function bindUi(root, host, actions) {
       actions.onSaveDesign();
       return;
     }
+    if (e.key === 'F1' || ((e.key === '?' || key === 'h') && !isTyping(e.target) && !mod && !e.altKey)) {
+      e.preventDefault();
+      help.toggle();
+      return;
+    }
     if (isTyping(e.target) || mod || e.altKey) return;
-    if (TOOL_KEYS[key]) setTool(TOOL_KEYS[key]);
+    if (key === 'escape' && help.isOpen) help.close();
+    else if (TOOL_KEYS[key]) setTool(TOOL_KEYS[key]);
     else if (key === 'escape' && !progress.hidden) actions.onCancel?.();
     else if (key === 'escape') selectedUid != null ? actions.onSelect(null) : setTool('orbit');
-    else if (key === 'f') setOrientation(orientation === 'ccw' ? 'cw' : 'ccw');
+    else if (key === 'f' || e.key === 'Home') e.preventDefault(), actions.onFrame('home');
+    else if (PRESET_KEYS[e.key]) actions.onFrame(PRESET_KEYS[e.key]);
+    else if (key === 'x') setOrientation(orientation === 'ccw' ? 'cw' : 'ccw');
     else if ((key === 'delete' || key === 'backspace') && selectedUid != null) {
       e.preventDefault();
       actions.onRemove(selectedUid);
@@ -149,6 +171,31 @@ export function bindUi(root, host, actions) {
     target.addEventListener('keydown', pageKey);
   }
 
+  // ---- numbers: a value outside its box's range is shown invalid and never silently replaced
+  // Range and parse only: a step is a spinner increment, not a rule (0.15 is a fine strength).
+  const invalid = (input) => {
+    const v = input.validity;
+    return v.badInput || v.rangeUnderflow || v.rangeOverflow || input.value.trim() === '' || !Number.isFinite(Number(input.value));
+  };
+  for (const input of $$('input[type="number"]')) {
+    input.addEventListener('input', () => input.setAttribute('aria-invalid', String(invalid(input))));
+  }
+  // The number in `input`, or an Error naming the box and the value when it is not a valid one.
+  function checkedNumber(input, what) {
+    const bad = invalid(input);
+    input.setAttribute('aria-invalid', String(bad));
+    if (!bad) return Number(input.value);
+    const range = input.min !== '' ? ` (at least ${input.min})` : '';
+    throw new Error(`${what} must be a number${range}; the box shows "${input.value}"`);
+  }
+  const guarded = (fn) => (e) => {
+    try {
+      fn(e);
+    } catch (err) {
+      showError(err.message);
+    }
+  };
+
   // ---- field settings
   const boundarySelect = $('#boundary');
   const angleInput = $('#boundary-angle');
@@ -161,8 +208,8 @@ export function bindUi(root, host, actions) {
     $('#boundary-angle-row').hidden = boundarySelect.value !== 'angle';
     actions.onBoundary(boundaryChoice());
   });
-  angleInput.addEventListener('change', () => actions.onBoundary(boundaryChoice()));
-  $('#gamma').addEventListener('change', (e) => actions.onGamma(Number(e.target.value)));
+  angleInput.addEventListener('change', guarded(() => (checkedNumber(angleInput, 'The boundary angle'), actions.onBoundary(boundaryChoice()))));
+  $('#gamma').addEventListener('change', guarded((e) => actions.onGamma(checkedNumber(e.target, 'Smoothness γ'))));
 
   // ---- views
   const viewInputs = ['show-arrows', 'arrow-density', 'arrow-scaled', 'show-streamlines', 'streamline-spacing'];
@@ -191,7 +238,12 @@ export function bindUi(root, host, actions) {
   }
 
   // ---- constraints list and selection editor
-  banner.querySelector('.dismiss').addEventListener('click', () => (banner.hidden = true));
+  banner.querySelector('.dismiss').addEventListener('click', () => clearError());
+  bannerAction.addEventListener('click', () => {
+    const run = bannerRun;
+    clearError();
+    run?.();
+  });
   list.addEventListener('click', (e) => {
     const li = e.target.closest('[data-constraint-id]');
     if (!li) return;
@@ -201,16 +253,16 @@ export function bindUi(root, host, actions) {
   });
   $('#clear-all').addEventListener('click', () => actions.onClear());
   $('#sel-delete').addEventListener('click', () => selectedUid != null && actions.onRemove(selectedUid));
-  $('#sel-weight').addEventListener('change', (e) => selectedUid != null && actions.onEditWeight(selectedUid, Number(e.target.value)));
-  $('#sel-strength').addEventListener('change', (e) => selectedUid != null && actions.onEditStrength(selectedUid, Number(e.target.value)));
+  $('#sel-weight').addEventListener('change', guarded((e) => selectedUid != null && actions.onEditWeight(selectedUid, checkedNumber(e.target, 'The weight'))));
+  $('#sel-strength').addEventListener('change', guarded((e) => selectedUid != null && actions.onEditStrength(selectedUid, checkedNumber(e.target, 'The strength'))));
 
   function describe(c) {
     switch (c.type) {
-      case 'stroke': return `${c.points.length} pts · s ${fmtNum(c.strength)} · w ${fmtNum(c.weight)}`;
-      case 'vector': return `face ${c.face} · |v| ${fmtNum(Math.hypot(...c.vector))} · w ${fmtNum(c.weight)}`;
-      case 'edge': return `${c.edge[0]}→${c.edge[1]} = ${fmtNum(c.value)} · w ${fmtNum(c.weight)}`;
+      case 'stroke': return `${c.points.length} points · strength ${fmtNum(c.strength)} · weight ${fmtNum(c.weight)}`;
+      case 'vector': return `face ${c.face} · size ${fmtNum(Math.hypot(...c.vector))} · weight ${fmtNum(c.weight)}`;
+      case 'edge': return `${c.edge[0]}→${c.edge[1]} = ${fmtNum(c.value)} · weight ${fmtNum(c.weight)}`;
       case 'source':
-      case 'sink': return `vertex ${c.vertex} · s ${fmtNum(c.strength)}`;
+      case 'sink': return `vertex ${c.vertex} · strength ${fmtNum(c.strength)}`;
       case 'vortex': return `face ${c.face} · ${c.strength >= 0 ? 'CCW' : 'CW'} ${fmtNum(Math.abs(c.strength))}`;
       default: return '';
     }
@@ -258,10 +310,44 @@ export function bindUi(root, host, actions) {
   }
 
   // ---- banner, status, progress
-  function showError(message) {
+  // action: {label, run} — a button next to the message (e.g. apply a design made for another mesh anyway).
+  function showError(message, action = null) {
     bannerMsg.textContent = message;
+    bannerAction.hidden = !action;
+    bannerAction.textContent = action?.label ?? '';
+    bannerRun = action?.run ?? null;
     banner.hidden = false;
   }
+
+  // After the next success: an error that no longer describes the state must not stay up.
+  function clearError() {
+    banner.hidden = true;
+    bannerRun = null;
+  }
+
+  // An in-element question (no window.confirm: it would block every designer on the page). Resolves true
+  // when the user chose `ok`, false on Cancel or Escape.
+  let confirmDone = null;
+  const confirmBox = $('#confirm');
+  function confirmChoice(message, ok) {
+    confirmDone?.(false);
+    $('#confirm-message').textContent = message;
+    $('#confirm-ok').textContent = ok;
+    confirmBox.hidden = false;
+    $('#confirm-ok').focus();
+    return new Promise((resolve) => {
+      confirmDone = (yes) => {
+        confirmDone = null;
+        confirmBox.hidden = true;
+        resolve(yes);
+      };
+    });
+  }
+  $('#confirm-ok').addEventListener('click', () => confirmDone?.(true));
+  $('#confirm-cancel').addEventListener('click', () => confirmDone?.(false));
+  confirmBox.addEventListener('keydown', (e) => {
+    if (e.key === 'Escape') e.stopPropagation(), confirmDone?.(false);
+  });
 
   function renderStatus() {
     status.textContent = flashText ?? statusText;
@@ -341,13 +427,14 @@ export function bindUi(root, host, actions) {
     if (max != null) $('#legend-max').textContent = `≥ ${fmtNum(max)}`;
   }
 
+  // Throws (naming the box and what it shows) when the strength is not a valid number: never coerced.
   function toolOptions() {
-    const s = Number(strength.value);
-    return {
-      strength: Number.isFinite(s) && s > 0 ? s : 1,
-      weight: Number(weight.value),
-      orientation,
-    };
+    const s = checkedNumber(strength, 'The strength');
+    if (!(s > 0)) {
+      strength.setAttribute('aria-invalid', 'true');
+      throw new Error(`The strength must be above 0; the box shows "${strength.value}"`);
+    }
+    return { strength: s, weight: Number(weight.value), orientation };
   }
 
   function dispose() {
@@ -361,6 +448,9 @@ export function bindUi(root, host, actions) {
     dispose,
     listenTo,
     showError,
+    clearError,
+    help,
+    confirm: confirmChoice,
     setConstraints,
     setStatus,
     startProgress,

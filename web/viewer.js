@@ -28,6 +28,7 @@ import { ArrowsView, LabelTextures, SingularitiesView, StreamlinesView, arrowDen
 
 export { arrowDensityFor };
 import { HandlesView } from './handles.js';
+import { frameModel } from './camera.js';
 
 const BACKGROUND = 0x1b1d21;
 const SURFACE_GREY = 0xb9bec8;
@@ -192,19 +193,9 @@ export class Viewer {
     this.surfaceMesh = null;
   }
 
-  // Puts the whole model in view from a fixed, slightly raised front-right direction.
-  frame() {
-    const s = this.surfaceMesh.geometry.boundingSphere;
-    const r = Math.max(s.radius, 1e-9);
-    const dist = (r / Math.sin((this.camera.fov * Math.PI) / 360)) * 1.05;
-    const dir = new Vector3(0.35, 0.25, 1).normalize();
-    this.camera.position.copy(s.center).addScaledVector(dir, dist);
-    this.camera.near = dist / 100;
-    this.camera.far = dist * 10;
-    this.camera.up.set(0, 1, 0);
-    this.camera.updateProjectionMatrix();
-    this.controls.target.copy(s.center);
-    this.controls.update();
+  // Puts the whole model in view (camera.js): on load, Frame/Home/F, and the view presets.
+  frame(preset = 'home') {
+    return frameModel(this, preset);
   }
 
   // Magnitude colour map from per-vertex vectors. The ramp tops out at the 98th percentile, not the maximum:
