@@ -157,7 +157,8 @@ int exportCommand(int argc, char** argv) {
           tvf::loadGltfSource(bytes.data(), bytes.size(), format == tvf::MeshFormat::Glb,
                               parent.empty() ? "." : parent, meshPath));
     }
-    writeBytes(glbPath, tvf::exportFieldGlb(designer, source.get(), uvs, options));
+    writeBytes(glbPath, tvf::exportFieldGlb(mesh, source.get(), uvs, designer.oneForm(),
+                                             tvf::designDocument(designer), options));
   }
   return 0;
 }

@@ -1,6 +1,7 @@
 #include "design/field_export.h"
 
-#include "design/design_document.h"
+#include "dec/hodge_star.h"
+#include "field/whitney_reconstruction.h"
 #include "field/field_tangents.h"
 #include "io/gltf_writer.h"
 #include "io/png_writer.h"
@@ -33,24 +34,28 @@ std::vector<uint8_t> exportFlowMapPng(const SurfaceMesh& mesh, const std::vector
                        options.bits);
 }
 
-std::vector<uint8_t> exportFieldGlb(const Designer& designer, const GltfSource* source,
-                                    const std::vector<float>& cornerUVs, const FieldExportOptions& options,
+std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const GltfSource* source,
+                                    const std::vector<float>& cornerUVs, const std::vector<double>& oneForm,
+                                    const nlohmann::json& design, const FieldExportOptions& options,
                                     const std::vector<uint8_t>& baseColorPng) {
-  const SurfaceMesh& mesh = designer.mesh();
+  const MeshTopology topology = buildTopology(mesh);
+  if (oneForm.size() != static_cast<std::size_t>(topology.numEdges)) {
+    throw InputError("one-form has " + std::to_string(oneForm.size()) + " values, the mesh has " +
+                     std::to_string(topology.numEdges) + " edges");
+  }
   FieldGlbContent content;
   content.mesh = &mesh;
   content.source = source;
   content.cornerUVs = source ? std::vector<float>{} : cornerUVs;
-  content.vertexField = designer.vertexVectors();
+  vertexVectors(mesh, topology, computeMeshGeometry(mesh, topology), oneForm.data(), content.vertexField);
   content.vertexNormal = vertexNormals(mesh);
   content.vertexTangent = fieldTangents(mesh, content.vertexNormal, content.vertexField);
   if (source && sourceHasNormalMappedMaterial(*source)) {
     if (cornerUVs.empty()) {
       throw InputError("the model has a normal map but no usable texture coordinates for anisotropyTexture");
     }
-    const MeshTopology topology = buildTopology(mesh);
-    const FlowField frame = rasterizeFlowField(mesh, topology, cornerUVs.data(), designer.oneForm().data(),
-                                               options.size, options.gutterTexels, FlowFrame::UvTangent);
+    const FlowField frame = rasterizeFlowField(mesh, topology, cornerUVs.data(), oneForm.data(), options.size,
+                                               options.gutterTexels, FlowFrame::UvTangent);
     content.anisotropyPng =
         encodePngRgba(encodeFlowMap(frame, FlowMapConvention::Gltf, 8), options.size, options.size, 8);
   }
@@ -58,10 +63,8 @@ std::vector<uint8_t> exportFieldGlb(const Designer& designer, const GltfSource* 
   glb.anisotropyStrength = options.anisotropyStrength;
   glb.anisotropyRotation = options.anisotropyRotation;
   glb.baseColorPng = baseColorPng;
-  if (options.embedFlowMap && !cornerUVs.empty()) {
-    glb.flowMapPng = exportFlowMapPng(mesh, cornerUVs, designer.oneForm(), options);
-  }
-  if (options.embedDesign) glb.design = designDocument(designer);
+  if (options.embedFlowMap && !cornerUVs.empty()) glb.flowMapPng = exportFlowMapPng(mesh, cornerUVs, oneForm, options);
+  if (options.embedDesign) glb.design = design;
   return writeFieldGlb(content, glb);
 }
 

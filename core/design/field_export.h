@@ -4,7 +4,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "design/designer.h"
+#include <nlohmann/json.hpp>
+
+#include "mesh/surface_mesh.h"
 #include "field/flow_map.h"
 #include "io/gltf_source.h"
 
@@ -28,10 +30,12 @@ std::vector<float> exportAtlasUVs(const SurfaceMesh& mesh);
 std::vector<uint8_t> exportFlowMapPng(const SurfaceMesh& mesh, const std::vector<float>& cornerUVs,
                                       const std::vector<double>& oneForm, const FieldExportOptions& options);
 
-// designer must be solved. source: the glTF the mesh was loaded from (kept as it was), or null. cornerUVs:
-// the atlas for the flow map and (for non-glTF sources) TEXCOORD_0; may be empty (then no flow map).
-std::vector<uint8_t> exportFieldGlb(const Designer& designer, const GltfSource* source,
-                                    const std::vector<float>& cornerUVs, const FieldExportOptions& options,
+// source: the glTF the mesh was loaded from (kept as it was), or null. cornerUVs: the atlas for the flow
+// map and (for non-glTF sources) TEXCOORD_0; may be empty (then no flow map). oneForm: per edge, canonical
+// orientation. design: stored in extras when not null (and options.embedDesign).
+std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const GltfSource* source,
+                                    const std::vector<float>& cornerUVs, const std::vector<double>& oneForm,
+                                    const nlohmann::json& design, const FieldExportOptions& options,
                                     const std::vector<uint8_t>& baseColorPng = {});
 
 }  // namespace tvf
