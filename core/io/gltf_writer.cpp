@@ -194,7 +194,9 @@ void addPrimitiveAttributes(const FieldGlbContent& content, const GltfPrimitiveI
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r) linear(r, c) = instance.transform[4 * c + r];
   const Eigen::Matrix3d toLocal = linear.inverse();
-  std::vector<float> tangents, field;
+  // Normals transform with the inverse transpose.
+  const Eigen::Matrix3d normalToLocal = linear.transpose();
+  std::vector<float> tangents, field, normals;
   for (uint32_t s = 0; s < instance.vertexCount; ++s) {
     const int32_t v = content.mesh->sourceToWelded.at(firstSource + s);
     const Eigen::Vector3d t = (toLocal * at(content.vertexTangent, v)).normalized();
@@ -202,8 +204,14 @@ void addPrimitiveAttributes(const FieldGlbContent& content, const GltfPrimitiveI
     for (int d = 0; d < 3; ++d) tangents.push_back(static_cast<float>(t[d]));
     tangents.push_back(1.0f);
     for (int d = 0; d < 3; ++d) field.push_back(static_cast<float>(u[d]));
+    const Eigen::Vector3d n = (normalToLocal * at(content.vertexNormal, v)).normalized();
+    for (int d = 0; d < 3; ++d) normals.push_back(static_cast<float>(n[d]));
   }
   json& attributes = primitive["attributes"];
+  // Without NORMAL a viewer must shade flat and ignore TANGENT (glTF 2.0, 3.7.2.1), losing the field.
+  if (!keepTangents && !attributes.contains("NORMAL")) {
+    attributes["NORMAL"] = builder.addFloatAccessor(normals, 3, "VEC3", false);
+  }
   if (!keepTangents) attributes["TANGENT"] = builder.addFloatAccessor(tangents, 4, "VEC4", false);
   attributes["_FIELD"] = builder.addFloatAccessor(field, 3, "VEC3", false);
 }
@@ -302,7 +310,7 @@ void checkContent(const FieldGlbContent& content) {
   if (content.vertexField.size() != n || content.vertexTangent.size() != n) {
     throw InputError("GLB export: field and tangents need 3 values per vertex");
   }
-  if (!content.source && content.vertexNormal.size() != n) throw InputError("GLB export: normals missing");
+  if (content.vertexNormal.size() != n) throw InputError("GLB export: normals missing");
   if (!content.source && !content.cornerUVs.empty() &&
       content.cornerUVs.size() != 6 * static_cast<std::size_t>(content.mesh->numFaces())) {
     throw InputError("GLB export: expected 6 UV values per face");
