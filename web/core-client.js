@@ -61,7 +61,6 @@ export class CoreClient {
   // V8 first runs wasm on its baseline tier (2-3x slower); the core's warmUp() exercises the factor/update/solve
   // paths on a small sphere so the user's first real factorization runs optimized code. Returns ms, or -1.
   warmUp(levels = 3, rounds = 2) {
-    if (typeof this.Module.warmUp !== 'function') return -1;
     try {
       return this.Module.warmUp(levels, rounds);
     } catch {
@@ -107,60 +106,16 @@ export class CoreClient {
     return id;
   }
 
-  // points: [{face, bary: [a, b, c]}, ...] in the core's welded face order.
-  addStroke(points, strength, weight) {
-    const flat = new Float64Array(points.length * 4);
-    points.forEach((p, k) => {
-      flat[4 * k] = p.face;
-      flat[4 * k + 1] = p.bary[0];
-      flat[4 * k + 2] = p.bary[1];
-      flat[4 * k + 3] = p.bary[2];
-    });
-    return this.#id('stroke', guard('stroke', () => this.designer.addStroke(flat, strength, weight)));
-  }
-
-  addVector(face, [x, y, z], weight) {
-    return this.#id('vector', guard('vector', () => this.designer.addVector(face, x, y, z, weight)));
-  }
-
-  addSource(vertex, strength) {
-    return this.#id('source', guard('source', () => this.designer.addSource(vertex, strength)));
-  }
-
-  addSink(vertex, strength) {
-    return this.#id('sink', guard('sink', () => this.designer.addSink(vertex, strength)));
-  }
-
-  addVortex(face, strength) {
-    return this.#id('vortex', guard('vortex', () => this.designer.addVortex(face, strength)));
-  }
-
-  addEdge([i, j], value, weight) {
-    return this.#id('edge', guard('edge', () => this.designer.addEdge(i, j, value, weight)));
-  }
-
-  // One constraint in the design format (docs/design-format.md), with the format's defaults.
-  add(spec) {
-    const strength = spec.strength ?? 1;
-    const weight = spec.weight ?? 1;
-    switch (spec.type) {
-      case 'stroke': return this.addStroke(spec.points, strength, weight);
-      case 'vector': return this.addVector(spec.face, spec.vector, weight);
-      case 'edge': return this.addEdge(spec.edge, spec.value, weight);
-      case 'source': return this.addSource(spec.vertex, strength);
-      case 'sink': return this.addSink(spec.vertex, strength);
-      case 'vortex': return this.addVortex(spec.face, strength);
-      default: throw new CoreError(`constraint: unknown type "${spec.type}"`);
-    }
-  }
-
-  // Re-adds a constraint exactly as the core saved it (undo of a delete, redo of an add). The core's own
-  // addConstraintJson parses it with the design-file code; builds without it go through the typed calls,
-  // which store the same spec.
+  // One constraint in the design format (docs/design-format.md): the only way constraints enter the core,
+  // parsed by the same code as design files (new ones, and exact re-adds for undo).
   addConstraintJson(spec) {
-    if (typeof this.designer.addConstraintJson !== 'function') return this.add(spec);
     const json = JSON.stringify(spec);
     return this.#id('constraint', guard('constraint', () => this.designer.addConstraintJson(json)));
+  }
+
+  // Core ids in the order of designJson().constraints.
+  constraintIds() {
+    return JSON.parse(guard('constraints', () => this.designer.constraintIdsJson()));
   }
 
   remove(id) {

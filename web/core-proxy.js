@@ -1,19 +1,49 @@
-// Page side of the core worker (core-worker.js): request/reply over postMessage. The page serialises its
-// mutations itself (main.js), so replies come back in request order; each carries the worker's timing.
+// Page side of the core worker (core-worker.js): request/reply over postMessage. The session serialises its
+// mutations itself (session.js), so replies come back in request order; each carries the worker's timing.
+// One proxy (one worker) per element; terminate() ends it.
 import { CoreError } from './core-client.js';
 
+// A module worker from another origin (a CDN) cannot be started directly; its source can, from a blob: URL
+// (CSP: worker-src blob:). The worker is told the asset base, so its own URL does not matter.
+async function workerUrl(assetBase) {
+  const url = new URL('core-worker.js', assetBase);
+  if (url.origin === globalThis.location?.origin) return { href: url.href, revoke: () => {} };
+  const res = await fetch(url);
+  if (!res.ok) throw new CoreError(`could not fetch the core worker ${url.href}: HTTP ${res.status}`);
+  const href = URL.createObjectURL(new Blob([await res.text()], { type: 'text/javascript' }));
+  return { href, revoke: () => URL.revokeObjectURL(href) };
+}
+
 export class CoreProxy {
-  constructor(workerUrl) {
-    this.worker = new Worker(workerUrl, { type: 'module', name: 'tvf-core' });
+  // assetBase: URL of the folder holding core-worker.js and wasm/.
+  static async start(assetBase) {
+    const proxy = new CoreProxy();
+    await proxy.#open(assetBase);
+    return proxy;
+  }
+
+  constructor() {
+    this.worker = null;
     this.pending = new Map();
     this.seq = 0;
-    this.worker.onmessage = ({ data }) => this.#settle(data);
+    this.failure = null;
+  }
+
+  async #open(assetBase) {
+    const { href, revoke } = await workerUrl(assetBase);
+    if (this.failure) return revoke(); // terminated while the source was fetched
+    this.worker = new Worker(href, { type: 'module', name: 'tvf-core' });
+    this.worker.onmessage = ({ data }) => {
+      revoke();
+      this.#settle(data);
+    };
     // A worker that fails to start (bad URL, syntax error) reports here, not through messages.
     this.worker.onerror = (event) => {
       event.preventDefault?.();
       this.#failAll(new CoreError(`the core worker failed: ${event.message || 'could not start it'}`));
     };
     this.worker.onmessageerror = () => this.#failAll(new CoreError('the core worker sent an unreadable message'));
+    await this.call('init', [new URL('./', assetBase).href]);
   }
 
   // Resolves with the whole reply ({value, snapshot?, mesh?, workerMs}); rejects with the core's message.
@@ -26,6 +56,13 @@ export class CoreProxy {
       this.pending.set(seq, { resolve, reject, onEarly });
       this.worker.postMessage({ seq, op, args }, transfer);
     });
+  }
+
+  // Ends the worker (and with it the core's memory); pending calls reject.
+  terminate() {
+    this.worker?.terminate();
+    this.worker = null;
+    this.#failAll(new CoreError('the designer was disposed'));
   }
 
   #settle(reply) {
@@ -44,6 +81,6 @@ export class CoreProxy {
   #failAll(err) {
     for (const p of this.pending.values()) p.reject(err);
     this.pending.clear();
-    this.failure = err;
+    this.failure ??= err;
   }
 }

@@ -1,13 +1,11 @@
 // Module worker that owns the wasm core, so factorizations never block the page. The page (core-proxy.js)
 // sends one request at a time: {seq, op, args}; every mutating op ends with a solve and replies with a
 // snapshot of everything the page reads synchronously (field arrays are transferred, not copied).
+//
+// One worker per <tangent-field-designer> element: its globals are that element's core and nothing else.
 import { CoreError, loadCore } from './core-client.js';
 
-const BASE = new URL('./', import.meta.url);
 let core = null;
-// Core ids in the core's constraint order (the order of designJson().constraints). The core hands out ids
-// only through add calls, so the worker can mirror them; see #reloadIds for documents.
-let ids = [];
 
 function requireMesh() {
   if (!core?.hasMesh) throw new CoreError('no mesh loaded');
@@ -37,27 +35,9 @@ function snapshot(timing = {}) {
     singularities,
     stats: core.stats(),
     design,
-    ids: ids.slice(),
+    ids: core.constraintIds(), // in the order of design.constraints
     transfer: [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer],
   };
-}
-
-// After applyDesignJson the core's list is whatever it last re-added (the document, or on failure the
-// previous design), with consecutive fresh ids. A zero-strength source probes the next id; it touches only
-// the right-hand side and is removed at once, so the factor is unchanged.
-function reloadIds(probeVertex) {
-  const n = JSON.parse(core.designJson()).constraints.length;
-  if (typeof core.designer.constraintIdsJson === 'function') {
-    ids = JSON.parse(core.designer.constraintIdsJson());
-    return;
-  }
-  if (!n) {
-    ids = [];
-    return;
-  }
-  const probe = core.addSource(probeVertex, 0);
-  core.remove(probe);
-  ids = Array.from({ length: n }, (_, k) => probe - n + k);
 }
 
 function refactorAndSolve() {
@@ -65,19 +45,11 @@ function refactorAndSolve() {
   core.solve();
 }
 
-let probeVertex = 0;
-
-function applyDesign(design) {
-  try {
-    core.applyDesignJson(JSON.stringify(design));
-  } finally {
-    reloadIds(probeVertex);
-  }
-}
-
 const ops = {
-  async init() {
-    core = await loadCore(BASE);
+  // assetBase: the folder holding wasm/tvf_core.mjs (the element's asset base; the worker may run from a
+  // blob: URL, where its own import.meta.url names nothing useful).
+  async init(assetBase) {
+    core = await loadCore(assetBase);
     return { crossOriginIsolated: self.crossOriginIsolated === true };
   },
 
@@ -89,11 +61,9 @@ const ops = {
   // restore (its failure is reported, not fatal: the mesh still loads with the settings).
   loadMesh(bytes, format, settings, design) {
     core.loadMesh(bytes, format);
-    ids = [];
     const info = core.info();
     const mesh = core.mesh();
     const edges = core.edges();
-    probeVertex = mesh.triangles.length ? mesh.triangles[0] : 0;
     let settingsError = null, restoreError = null;
     try {
       if (settings.boundary !== 'free') core.setBoundary(settings.boundary);
@@ -105,7 +75,7 @@ const ops = {
     }
     if (design) {
       try {
-        applyDesign(design);
+        core.applyDesignJson(JSON.stringify(design));
       } catch (err) {
         restoreError = err.message;
       }
@@ -120,21 +90,14 @@ const ops = {
     };
   },
 
+  // One constraint in the design format: new ones and re-added ones (undo of a delete) alike go through the
+  // core's own design-file parser.
   add(spec) {
-    const id = core.add(spec);
-    ids.push(id);
-    return id;
-  },
-
-  readd(spec) {
-    const id = core.addConstraintJson(spec);
-    ids.push(id);
-    return id;
+    return core.addConstraintJson(spec);
   },
 
   remove(id) {
     core.remove(id);
-    ids = ids.filter((x) => x !== id);
     return true;
   },
 
@@ -161,7 +124,7 @@ const ops = {
   },
 
   applyDesign(design) {
-    applyDesign(design);
+    core.applyDesignJson(JSON.stringify(design));
     core.factor();
     return true;
   },
@@ -176,7 +139,6 @@ const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh']);
 const MUTATING = new Set([
   'loadMesh',
   'add',
-  'readd',
   'remove',
   'setWeight',
   'setStrength',

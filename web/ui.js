@@ -1,8 +1,7 @@
-// DOM side of the page: toolbar, side panels, constraint list and selection editor, error banner, drop
-// target, progress indicator and status line. The markup is static in index.html; this module binds it,
-// reports user intent through the callbacks it is given, and renders the state it is handed.
-
-const $ = (sel) => document.querySelector(sel);
+// DOM side of one designer: toolbar, side panels, constraint list and selection editor, error banner, drop
+// target, progress indicator and status line. The markup is the element's (template.js, in its shadow root);
+// this module binds it, reports user intent through the callbacks it is given, and renders the state it is
+// handed. Keyboard shortcuts act while the focus is inside the element (or, on the app page, anywhere).
 
 const TOOL_KEYS = { o: 'orbit', e: 'select', s: 'stroke', v: 'vector', r: 'source', g: 'sink', b: 'vortex' };
 const SWATCH = { stroke: '#ff7a1a', vector: '#fbbf24', edge: '#ff7a1a', source: '#ef4444', sink: '#22c55e', vortex: '#3b82f6' };
@@ -22,7 +21,11 @@ function isTyping(target) {
   return target instanceof HTMLInputElement || target instanceof HTMLSelectElement || target instanceof HTMLTextAreaElement;
 }
 
-export function bindUi(actions) {
+// root: the shadow root; host: the element (keyboard events reach it from inside the shadow tree).
+export function bindUi(root, host, actions) {
+  const $ = (sel) => root.querySelector(sel);
+  const $$ = (sel) => root.querySelectorAll(sel);
+  const focused = () => root.activeElement;
   const fileInput = $('#file-input');
   const designInput = $('#design-input');
   const banner = $('#error-banner');
@@ -92,25 +95,25 @@ export function bindUi(actions) {
   });
 
   // ---- tools and their options
-  for (const btn of document.querySelectorAll('[data-tool]')) btn.addEventListener('click', () => setTool(btn.dataset.tool));
+  for (const btn of $$('[data-tool]')) btn.addEventListener('click', () => setTool(btn.dataset.tool));
   function setTool(tool) {
-    for (const b of document.querySelectorAll('[data-tool]')) b.setAttribute('aria-pressed', String(b.dataset.tool === tool));
-    for (const el of document.querySelectorAll('.tool-options [data-for]')) el.hidden = !el.dataset.for.split(' ').includes(tool);
+    for (const b of $$('[data-tool]')) b.setAttribute('aria-pressed', String(b.dataset.tool === tool));
+    for (const el of $$('.tool-options [data-for]')) el.hidden = !el.dataset.for.split(' ').includes(tool);
     actions.onTool(tool);
   }
-  for (const btn of document.querySelectorAll('[data-orientation]')) {
+  for (const btn of $$('[data-orientation]')) {
     btn.addEventListener('click', () => setOrientation(btn.dataset.orientation));
   }
   function setOrientation(o) {
     orientation = o;
-    for (const b of document.querySelectorAll('[data-orientation]')) b.setAttribute('aria-pressed', String(b.dataset.orientation === o));
+    for (const b of $$('[data-orientation]')) b.setAttribute('aria-pressed', String(b.dataset.orientation === o));
   }
 
   // ---- undo / redo
   $('#undo').addEventListener('click', () => actions.onUndo());
   $('#redo').addEventListener('click', () => actions.onRedo());
 
-  window.addEventListener('keydown', (e) => {
+  const onKey = (e) => {
     const mod = e.ctrlKey || e.metaKey;
     const key = e.key.toLowerCase();
     if (mod && !e.altKey && (key === 'z' || key === 'y')) {
@@ -133,7 +136,15 @@ export function bindUi(actions) {
       e.preventDefault();
       actions.onRemove(selectedUid);
     }
-  });
+  };
+  // Keys typed inside the element; the app page also forwards the rest of the page's (listenTo(window)).
+  host.addEventListener('keydown', onKey);
+  const pageKey = (e) => e.composedPath().includes(host) || onKey(e);
+  let pageTarget = null;
+  function listenTo(target) {
+    pageTarget = target;
+    target.addEventListener('keydown', pageKey);
+  }
 
   // ---- field settings
   const boundarySelect = $('#boundary');
@@ -239,8 +250,8 @@ export function bindUi(actions) {
     $('#sel-weight-row').hidden = !hasWeight;
     $('#sel-strength-row').hidden = !hasStrength;
     // Never overwrite a number the user is typing.
-    if (hasWeight && document.activeElement !== $('#sel-weight')) $('#sel-weight').value = String(sel.weight);
-    if (hasStrength && document.activeElement !== $('#sel-strength')) $('#sel-strength').value = String(sel.strength);
+    if (hasWeight && focused() !== $('#sel-weight')) $('#sel-weight').value = String(sel.weight);
+    if (hasStrength && focused() !== $('#sel-strength')) $('#sel-strength').value = String(sel.strength);
   }
 
   // ---- banner, status, progress
@@ -289,7 +300,7 @@ export function bindUi(actions) {
     let ticker = 0;
     const show = setTimeout(() => {
       progress.hidden = false;
-      document.body.classList.add('busy');
+      host.classList.add('busy');
       const update = () => (progress.querySelector('.label').textContent = `${label} ${((performance.now() - t0) / 1000).toFixed(1)} s`);
       update();
       ticker = setInterval(update, 100);
@@ -298,7 +309,7 @@ export function bindUi(actions) {
       clearTimeout(show);
       clearInterval(ticker);
       progress.hidden = true;
-      document.body.classList.remove('busy');
+      host.classList.remove('busy');
     };
   }
 
@@ -306,8 +317,8 @@ export function bindUi(actions) {
     const isAngle = typeof boundary !== 'string';
     boundarySelect.value = isAngle ? 'angle' : boundary;
     $('#boundary-angle-row').hidden = !isAngle;
-    if (isAngle && document.activeElement !== angleInput) angleInput.value = String(+((boundary.angle * 180) / Math.PI).toFixed(6));
-    if (document.activeElement !== $('#gamma')) $('#gamma').value = String(gamma);
+    if (isAngle && focused() !== angleInput) angleInput.value = String(+((boundary.angle * 180) / Math.PI).toFixed(6));
+    if (focused() !== $('#gamma')) $('#gamma').value = String(gamma);
   }
 
   function setHasBoundary(has) {
@@ -336,8 +347,16 @@ export function bindUi(actions) {
     };
   }
 
+  function dispose() {
+    clearTimeout(flashTimer);
+    host.removeEventListener('keydown', onKey);
+    pageTarget?.removeEventListener('keydown', pageKey);
+  }
+
   setTool('orbit');
   return {
+    dispose,
+    listenTo,
     showError,
     setConstraints,
     setStatus,
@@ -351,7 +370,5 @@ export function bindUi(actions) {
     flash,
     toolOptions,
     setTool,
-    // Kept for callers of the previous page: the stroke's options.
-    strokeOptions: () => ({ strength: toolOptions().strength, weight: toolOptions().weight }),
   };
 }

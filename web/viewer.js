@@ -24,7 +24,7 @@ import {
 } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { MeshBVH, acceleratedRaycast } from 'three-mesh-bvh';
-import { ArrowsView, SingularitiesView, StreamlinesView, arrowDensityFor, rampColor } from './field-views.js';
+import { ArrowsView, LabelTextures, SingularitiesView, StreamlinesView, arrowDensityFor, rampColor } from './field-views.js';
 
 export { arrowDensityFor };
 import { HandlesView } from './handles.js';
@@ -42,6 +42,7 @@ export class Viewer {
     this.renderer.setClearColor(BACKGROUND, 1);
     this.canvas = this.renderer.domElement;
     this.canvas.id = 'view';
+    this.canvas.setAttribute('part', 'canvas');
     this.canvas.tabIndex = 0;
     container.prepend(this.canvas);
 
@@ -69,16 +70,37 @@ export class Viewer {
     this.colorMapOn = false;
     this.arrows = new ArrowsView(this.scene);
     this.streamlines = new StreamlinesView(this.scene);
-    this.singularities = new SingularitiesView(this.scene);
-    this.handles = new HandlesView(this.scene);
+    this.labels = new LabelTextures();
+    this.singularities = new SingularitiesView(this.scene, this.labels);
+    this.handles = new HandlesView(this.scene, this.labels);
     this.afterRender = []; // callbacks (time) → void, run once after the next render
     this.renderCount = 0; // frames drawn, for measuring responsiveness while the worker is busy
 
     this._renderQueued = false;
-    new ResizeObserver(() => this.resize()).observe(container);
+    this.disposed = false;
+    this.resizeObserver = new ResizeObserver(() => this.resize());
+    this.resizeObserver.observe(container);
     this.resize();
   }
 
+  // Frees the GPU side now rather than at garbage collection: browsers cap live WebGL contexts per page
+  // (about 16 in Chromium), so an element that leaves the page must give its context back at once.
+  dispose() {
+    if (this.disposed) return;
+    this.disposed = true;
+    this.resizeObserver.disconnect();
+    this.controls.dispose();
+    this.clearStroke();
+    this.#disposeMesh();
+    this.scene.traverse((o) => {
+      o.geometry?.dispose();
+      for (const m of [o.material].flat()) m?.dispose();
+    });
+    this.labels.dispose();
+    this.renderer.dispose();
+    this.renderer.forceContextLoss();
+    this.canvas.remove();
+  }
   get meanEdge() {
     return this.surface?.meanEdge ?? 1;
   }
@@ -93,7 +115,7 @@ export class Viewer {
   }
 
   requestRender() {
-    if (this._renderQueued) return;
+    if (this._renderQueued || this.disposed) return;
     this._renderQueued = true;
     requestAnimationFrame(() => {
       this._renderQueued = false;
@@ -102,6 +124,7 @@ export class Viewer {
   }
 
   renderNow() {
+    if (this.disposed) return;
     this.singularities.updateScale(this.camera, this.renderer);
     this.handles.updateScale(this.camera, this.renderer);
     this.renderer.render(this.scene, this.camera);

@@ -1,0 +1,66 @@
+// The designer's public JavaScript API (docs/js-api.md, docs/embedding.md): every method of a
+// <tangent-field-designer> element, as functions of its session. The element installs them on its prototype;
+// the app page's window.tvf is its element, so the same functions serve both.
+import { DEFAULT_WEIGHT } from './session.js';
+import { edgeSpec, pointSpec, strokeSpec, vectorSpec } from './specs.js';
+
+// Synchronous reads: copies of what the session holds after the last completed change.
+const read = (fn) => (s, ...args) => (s.requireReady(), fn(s, ...args));
+
+export const api = {
+  loadModel: (s, src, opts) => s.loadModel(src, opts),
+  info: read((s) => structuredClone(s.info)),
+  mesh: read((s) => ({ positions: s.surface.positions.slice(), triangles: s.surface.triangles.slice() })),
+  edges: read((s) => s.surface.edges.slice()),
+
+  addStroke: (s, points, { strength = 1, weight = DEFAULT_WEIGHT } = {}) => s.addConstraint(() => strokeSpec(s, points, { strength, weight })),
+  addVector: (s, face, vector, { weight = DEFAULT_WEIGHT } = {}) => s.addConstraint(() => vectorSpec(s, face, vector, { weight })),
+  addEdge: (s, edge, value, { weight = DEFAULT_WEIGHT } = {}) => s.addConstraint(() => edgeSpec(s, edge, value, { weight })),
+  addSource: (s, vertex, { strength = 1 } = {}) => s.addConstraint(() => pointSpec(s, 'source', vertex, strength)),
+  addSink: (s, vertex, { strength = 1 } = {}) => s.addConstraint(() => pointSpec(s, 'sink', vertex, strength)),
+  addVortex: (s, face, { strength = 1 } = {}) => s.addConstraint(() => pointSpec(s, 'vortex', face, strength)),
+  remove: (s, id) => s.remove(id),
+  setWeight: (s, id, w) => s.setParameter('weight', id, w),
+  setStrength: (s, id, v) => s.setParameter('strength', id, v),
+  constraints: (s) => s.constraintList(),
+  setBoundary: (s, bc) => s.setSetting('boundary', bc),
+  setGamma: (s, gamma) => s.setSetting('gamma', gamma),
+  settings: (s) => structuredClone(s.settings()),
+
+  undo: (s) => s.step(false),
+  redo: (s) => s.step(true),
+  history: (s) => s.history.labels(),
+
+  saveDesign: read((s) => structuredClone(s.design)),
+  loadDesign: (s, design) => s.replaceDesign(design, 'load design'),
+  exportField: (s) => s.exportField().then((text) => JSON.parse(text)),
+
+  faceVectors: read((s) => s.field.faceVectors.slice()),
+  vertexVectors: read((s) => s.field.vertexVectors.slice()),
+  oneForm: read((s) => s.field.oneForm.slice()),
+  singularities: read((s) => structuredClone(s.field.singularities)),
+  stats: read((s) => structuredClone(s.field.stats)),
+
+  select: (s, id) => s.select(id),
+  selected: (s) => s.selected,
+  views: (s) => ({ ...s.views }),
+  setViews: (s, views) => s.setViews(views),
+  streamlines: read((s) => s.currentStreamlines().map((l) => Array.from(l))),
+  perf: (s) => structuredClone(s.perf),
+  projectToScreen: read((s, xyz) => s.viewer.projectToScreen(Array.from(xyz))),
+  pick: read((s, clientX, clientY) => s.viewer.pick(clientX, clientY)),
+};
+
+// The texture-synthesis calls (web/synthesis/index.js installs them on the session's synthesis controller).
+export const TEXTURE_METHODS = [
+  'setExemplar',
+  'synthesize',
+  'exportTexturePNG',
+  'exportGLB',
+  'synthesisStats',
+  'clearTexture',
+  'exemplarInfo',
+  'synthesisReadback',
+  'synthesisIdle',
+  'synthesisBench',
+];

@@ -1,0 +1,589 @@
+// One designer instance's state and behaviour: its core worker, the page's copies of what the core holds
+// (mesh, field, design) and the page↔core constraint id mapping, the history of edits, the view, the tools
+// and the panels. A <tangent-field-designer> element owns one Session; nothing here is shared between
+// elements.
+//
+// The core runs in a module worker (core-worker.js); every edit is one request that ends with a solve and a
+// snapshot (field arrays, singularities, stats, the design), which the session keeps so that reads stay
+// synchronous.
+import { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting } from './commands.js';
+import { CoreProxy } from './core-proxy.js';
+import { baseName, downloadJson, loadAutosave, modelKey, readJsonFile, saveAutosave } from './documents.js';
+import { History } from './history.js';
+import { ACCEPT, readModel } from './model-files.js';
+import { traceStreamlines } from './streamlines.js';
+import { boundarySpec, gammaSpec, pointSpec, strokeSpec, vectorSpec } from './specs.js';
+import { Surface } from './surface.js';
+import { setupSynthesis } from './synthesis/index.js';
+import { ToolController } from './tools.js';
+import { bindUi } from './ui.js';
+import { Viewer, arrowDensityFor } from './viewer.js';
+
+// An arrow per face stops being readable (and software rendering stops being quick) beyond this many.
+const MAX_DEFAULT_ARROWS = 20_000;
+// Weight 1e4 keeps strokes within ~0.4% of the drawn direction (paper, Sec. 6.1) while the rank-1 updates
+// stay well conditioned.
+export const DEFAULT_WEIGHT = 1e4;
+
+const PROGRESS_LABELS = {
+  loadMesh: 'Loading and factoring…',
+  setBoundary: 'Refactoring…',
+  setGamma: 'Refactoring…',
+  applyDesign: 'Applying the design…',
+  fieldJson: 'Exporting…',
+};
+
+export class Session {
+  // host: the element (events are dispatched on it); root: its shadow root (markup already in place);
+  // assetBase: URL of the folder with core-worker.js and wasm/; autosave: storage key or null (off);
+  // bench: run the synthesis benchmark when the page asks for it (the app page only); onTool(name): the user
+  // picked a tool.
+  constructor({ host, root, assetBase, autosave = null, bench = false, onTool = () => {} }) {
+    this.host = host;
+    this.onTool = onTool;
+    this.textureView = false; // the `texture` view is on: synthesize after every model load
+    this.root = root;
+    this.assetBase = assetBase;
+    this.autosave = autosave;
+    this.readonly = false;
+    this.proxy = null;
+    this.modelName = '';
+    this.modelKey = '';
+    this.info = null;
+    this.surface = null;
+    this.field = null; // {faceVectors, vertexVectors, oneForm, singularities, stats} of the last completed change
+    this.design = { boundary: 'free', gamma: 0, constraints: [] }; // the core's document, verbatim
+    this.specByCore = new Map(); // core id → spec (design format)
+    this.coreOrder = []; // core ids in the core's order (that of design.constraints)
+    this.constraints = new Map(); // uid → core id
+    this.nextUid = 1;
+    this.selected = null;
+    this.densityAuto = false; // the arrow density was lowered for a large mesh, not chosen by the user
+    this.fieldVersion = 0;
+    this.streamlineCache = null; // {version, spacing, surface, lines}
+    this.streamlineTimer = 0;
+    this.arrowsAhead = false; // the arrows already show the field of the edit in flight (worker's early message)
+    this.earlyFrame = null; // resolves when those arrows were on screen
+    this.perf = {};
+    this.meshSerial = 0;
+    this.cornerUVs = null;
+    this.disposed = false;
+    // Every mutation runs alone and in call order: the worker's state and the session's copies move together.
+    this.queue = Promise.resolve();
+    this.lastConstraintsJson = '[]';
+
+    const $ = (sel) => root.querySelector(sel);
+    const container = $('#viewport');
+    this.viewer = new Viewer(container);
+    this.history = new History(() => this.ui && this.refreshHistory());
+    this.ui = bindUi(root, host, this.#uiActions());
+    this.tools = new ToolController(this, container, this.#toolActions());
+    this.views = this.ui.views();
+    this.applyViews(this.views);
+    // Texture synthesis (web/synthesis/, docs/texture-synthesis.md): its calls go onto the element.
+    this.textureApi = {};
+    this.synthesis = setupSynthesis(this.textureApi, {
+      baseUrl: assetBase,
+      viewer: this.viewer,
+      panel: $('#side-panel'),
+      bench: bench ? host : null,
+      onError: (err) => this.fail('texture', err),
+      getModel: () =>
+        this.surface && this.field
+          ? {
+              key: `${this.modelKey}#${this.meshSerial}`,
+              name: this.modelName,
+              positions: this.surface.positions,
+              triangles: this.surface.triangles,
+              cornerUVs: this.cornerUVs,
+              vertexVectors: this.field.vertexVectors,
+              fieldVersion: this.fieldVersion,
+            }
+          : null,
+    });
+  }
+
+  // Starts the worker and the core. Rejects (and fires `error`, code 'core') when either fails.
+  async start() {
+    try {
+      const proxy = await CoreProxy.start(this.assetBase);
+      if (this.disposed) return proxy.terminate();
+      this.proxy = proxy;
+    } catch (err) {
+      this.fail('core', err);
+      throw err;
+    }
+  }
+
+  // Ends the worker and frees the WebGL contexts; the element is dead afterwards.
+  dispose() {
+    if (this.disposed) return;
+    this.disposed = true;
+    clearTimeout(this.streamlineTimer);
+    this.proxy?.terminate();
+    this.synthesis.dispose();
+    this.tools.dispose();
+    this.ui.dispose();
+    this.viewer.dispose();
+  }
+
+  // ------------------------------------------------------------------------------------------ events
+
+  emit(type, detail) {
+    if (this.disposed) return;
+    this.host.dispatchEvent(new CustomEvent(type, { detail, bubbles: true, composed: true }));
+  }
+
+  // A failure the user did not ask to handle (a model, design, texture or core start): `error` event and
+  // the banner. Returns the Error.
+  fail(code, err) {
+    const error = err instanceof Error ? err : new Error(String(err));
+    this.emit('error', { code, message: error.message });
+    this.ui.showError(error.message);
+    return error;
+  }
+
+  #emitChanges() {
+    this.emit('fieldchange', { version: this.fieldVersion, stats: structuredClone(this.field.stats) });
+    const constraints = this.constraintList();
+    const json = JSON.stringify(constraints);
+    if (json !== this.lastConstraintsJson) {
+      this.lastConstraintsJson = json;
+      this.emit('constraintschange', { constraints });
+    }
+  }
+
+  // ------------------------------------------------------------------------------------------ core calls
+
+  exclusive(fn) {
+    const run = this.queue.then(fn);
+    this.queue = run.catch(() => {});
+    return run;
+  }
+
+  requireReady() {
+    if (this.disposed) throw new Error('the designer was disposed');
+    if (!this.proxy || !this.info || !this.field) throw new Error('the designer is not ready yet; await its ready promise first');
+  }
+
+  // One request to the worker; the snapshot it returns (also with a failure) becomes the session's state.
+  async call(op, args = [], transfer = []) {
+    if (!this.proxy) throw new Error(this.disposed ? 'the designer was disposed' : 'the core is not running');
+    const phase = PROGRESS_LABELS[op] ?? 'Updating…';
+    const end = this.ui.startProgress(phase);
+    this.emit('progress', { phase: op, fraction: 0 });
+    const t0 = performance.now();
+    const renders0 = this.viewer.renderCount;
+    let earlyFrame = null;
+    // The new arrows go on screen as soon as the worker has solved; reads (faceVectors() ...) still show the
+    // previous change until the whole snapshot is in.
+    const onEarly = ({ faceVectors }) => {
+      if (!this.surface || faceVectors.length !== 3 * this.surface.nF) return;
+      this.viewer.arrows.setField(faceVectors);
+      this.arrowsAhead = true;
+      // Queued, not drawn now: when the rest of the snapshot follows within a frame, one render shows both.
+      earlyFrame = this.viewer.nextRenderShown();
+      this.viewer.requestRender();
+    };
+    try {
+      const reply = await this.proxy.call(op, args, transfer, onEarly);
+      const t1 = performance.now();
+      // Frames the page drew while the worker computed: the page never waits for the core.
+      this.perf.lastOp = {
+        op,
+        workerMs: reply.workerMs,
+        workerParts: reply.timing,
+        roundTripMs: t1 - t0,
+        sentAt: t0,
+        receivedAt: t1,
+        framesDrawnMeanwhile: this.viewer.renderCount - renders0,
+      };
+      this.earlyFrame = earlyFrame;
+      if (reply.snapshot) this.#applySnapshot(reply.snapshot);
+      return reply;
+    } catch (err) {
+      this.arrowsAhead = false; // whatever was drawn early, the next refresh draws what the core holds
+      if (err.reply?.snapshot) this.#applySnapshot(err.reply.snapshot);
+      throw err;
+    } finally {
+      end();
+      this.emit('progress', { phase: op, fraction: 1 });
+    }
+  }
+
+  #applySnapshot(snap) {
+    const { faceVectors, vertexVectors, oneForm, singularities, stats, design, ids } = snap;
+    this.field = { faceVectors, vertexVectors, oneForm, singularities, stats };
+    this.fieldVersion++;
+    this.design = design;
+    this.specByCore = new Map(ids.map((id, k) => [id, design.constraints[k]]));
+    this.coreOrder = ids;
+    for (const [uid, coreId] of this.constraints) if (!this.specByCore.has(coreId)) this.constraints.delete(uid);
+    if (this.selected != null && !this.constraints.has(this.selected)) this.selected = null;
+  }
+
+  // ------------------------------------------------------------------------------------------ id mapping
+
+  // Core constraints no page id points at (a loaded design, an autosave) get fresh ids in the core's order.
+  adoptUnmapped() {
+    const mapped = new Set(this.constraints.values());
+    for (const coreId of this.coreOrder) if (!mapped.has(coreId)) this.constraints.set(this.nextUid++, coreId);
+  }
+
+  // After a document replaced the core's list: give its constraints the page ids `uids` (same order).
+  mapDocument(uids) {
+    this.constraints.clear();
+    const ids = this.coreOrder;
+    if (uids && uids.length === ids.length) uids.forEach((uid, k) => this.constraints.set(uid, ids[k]));
+    this.adoptUnmapped();
+  }
+
+  uidsInCoreOrder() {
+    const byCore = new Map([...this.constraints].map(([uid, coreId]) => [coreId, uid]));
+    return this.coreOrder.map((id) => byCore.get(id));
+  }
+
+  coreIdOf(uid) {
+    const coreId = this.constraints.get(Number(uid));
+    if (coreId === undefined) throw new Error(`no constraint with id ${uid}`);
+    return coreId;
+  }
+
+  specOf(uid) {
+    return this.specByCore.get(this.coreIdOf(uid));
+  }
+
+  constraintList() {
+    return [...this.constraints.keys()].sort((a, b) => a - b).map((uid) => ({ id: uid, ...structuredClone(this.specOf(uid)) }));
+  }
+
+  settings() {
+    return { boundary: this.design.boundary ?? 'free', gamma: this.design.gamma ?? 0 };
+  }
+
+  // ------------------------------------------------------------------------------------------ drawing
+
+  #streamlineSpacing() {
+    return this.surface.radius * (0.01 + 0.008 * (this.views?.streamlineSpacing ?? 5));
+  }
+
+  // Traced lazily and cached per field version and spacing: the view and streamlines() share them.
+  currentStreamlines() {
+    const spacing = this.#streamlineSpacing();
+    const c = this.streamlineCache;
+    if (c && c.version === this.fieldVersion && c.spacing === spacing && c.surface === this.surface) return c.lines;
+    const t0 = performance.now();
+    const lines = traceStreamlines(this.surface, this.field.vertexVectors, { spacing, lift: 0.03 * this.surface.meanEdge });
+    this.perf.streamlinesMs = performance.now() - t0;
+    this.streamlineCache = { version: this.fieldVersion, spacing, surface: this.surface, lines };
+    return lines;
+  }
+
+  #scheduleStreamlines() {
+    clearTimeout(this.streamlineTimer);
+    if (!this.views.streamlines) {
+      this.viewer.streamlines.setLines([]);
+      return;
+    }
+    // After the frame that shows the arrows: tracing takes tens of ms and must not delay that frame.
+    this.streamlineTimer = setTimeout(() => {
+      if (this.disposed || !this.field) return;
+      this.viewer.streamlines.setLines(this.currentStreamlines());
+      this.viewer.requestRender();
+    }, 0);
+  }
+
+  // Pushes the current field, constraints and settings to the view and the panels; draws synchronously.
+  refresh() {
+    const { viewer, ui, field, views } = this;
+    const t0 = performance.now();
+    // Drawn already from the worker's early message: the same numbers.
+    if (!this.arrowsAhead) viewer.arrows.setField(field.faceVectors);
+    this.arrowsAhead = false;
+    const max = viewer.setVertexField(field.vertexVectors);
+    ui.setLegend(views.colorMap ? max : null);
+    viewer.singularities.setSingularities(field.singularities);
+    viewer.handles.setConstraints([...this.constraints.keys()].map((uid) => ({ uid, spec: this.specOf(uid) })));
+    viewer.handles.setSelected(this.selected);
+    ui.setConstraints(this.constraintList(), this.selected);
+    ui.setSettings(this.settings());
+    ui.setStatus({ name: this.modelName, info: this.info, stats: field.stats });
+    this.refreshHistory();
+    const t1 = performance.now();
+    viewer.renderNow();
+    this.perf.refresh = { updateViewsMs: t1 - t0, renderMs: performance.now() - t1 };
+    this.#scheduleStreamlines();
+    this.synthesis.fieldChanged(); // texture synthesis: resynthesize when the field changed (no-op otherwise)
+  }
+
+  refreshHistory() {
+    const h = this.history;
+    this.ui.setHistory({
+      canUndo: !!h.peekUndo(),
+      canRedo: !!h.peekRedo(),
+      undoLabel: h.peekUndo()?.label ?? '',
+      redoLabel: h.peekRedo()?.label ?? '',
+    });
+  }
+
+  applyViews(views) {
+    this.views = { ...this.views, ...views };
+    const v = this.views, viewer = this.viewer;
+    viewer.arrows.setOptions({ visible: v.arrows, density: v.arrowDensity, scaled: v.arrowsScaled });
+    viewer.setColorMap(v.colorMap);
+    viewer.singularities.setVisible(v.singularities);
+    if (this.field) {
+      this.ui.setLegend(v.colorMap ? viewer.vertexFieldMax : null);
+      this.#scheduleStreamlines();
+    }
+    viewer.requestRender();
+  }
+
+  setViews(views) {
+    this.ui.setViews(views);
+    this.applyViews(this.ui.views());
+    return { ...this.views };
+  }
+
+  select(uid) {
+    this.selected = uid != null && this.constraints.has(Number(uid)) ? Number(uid) : null;
+    this.viewer.handles.setSelected(this.selected);
+    this.ui.setConstraints(this.constraintList(), this.selected);
+    this.viewer.requestRender();
+  }
+
+  // After every completed change: redraw, keep the autosave (when on) in step with the core, tell listeners.
+  #afterEdit() {
+    this.adoptUnmapped();
+    this.refresh();
+    if (this.autosave != null) saveAutosave(this.autosave, this.modelKey, this.design);
+    this.#emitChanges();
+  }
+
+  // ------------------------------------------------------------------------------------------ models
+
+  // opts: {name, format, companions, restore}. The autosaved design is restored only when autosave is on.
+  loadModel(src, opts = {}) {
+    return this.exclusive(async () => {
+      if (!this.proxy) throw new Error(this.disposed ? 'the designer was disposed' : 'the core is not running');
+      let model;
+      try {
+        model = await readModel(src, opts);
+      } catch (err) {
+        throw this.fail('model', new Error(`Could not load model: ${err.message}`));
+      }
+      const key = modelKey(model.name, model.bytes);
+      const saved = opts.restore === false || this.autosave == null ? null : loadAutosave(this.autosave, key);
+      const bytes = model.bytes.slice(); // its own buffer, transferred to the worker
+      let reply;
+      try {
+        reply = await this.call('loadMesh', [bytes, model.format, this.settings(), saved?.design ?? null], [bytes.buffer]);
+      } catch (err) {
+        // The core kept its previous mesh and everything on it.
+        if (this.info) this.refresh();
+        throw this.fail('model', new Error(`Could not load ${model.name}: ${err.message.replace(/^load: /, '')}`));
+      }
+      const tApply = performance.now();
+      const { info, settingsError, restoreError } = reply.value;
+      const { positions, triangles, edges } = reply.mesh;
+      this.surface = new Surface(positions, triangles, edges);
+      this.info = info;
+      this.modelName = model.name;
+      this.modelKey = key;
+      this.selected = null;
+      this.streamlineCache = null;
+      this.mapDocument(null);
+      this.history.clear();
+      this.viewer.setMesh(this.surface);
+      // Texture synthesis: the model's UVs (6 per face, or none) and a fresh atlas for the new mesh.
+      this.cornerUVs = reply.mesh.cornerUVs?.length ? reply.mesh.cornerUVs : null;
+      this.meshSerial++;
+      this.synthesis.modelChanged();
+      this.ui.setHasBoundary(info.boundaryLoops > 0);
+      // On a large mesh "one arrow per face" becomes a sparser default; a density the user chose stays.
+      if (this.densityAuto || this.views.arrowDensity === 10) {
+        const level = this.surface.nF > MAX_DEFAULT_ARROWS ? arrowDensityFor(this.surface, MAX_DEFAULT_ARROWS) : 10;
+        this.densityAuto = level !== 10;
+        if (level !== this.views.arrowDensity) this.setViews({ arrowDensity: level });
+      }
+      this.refresh();
+      // Main-thread cost of taking a new mesh on (adjacency, BVH, buffers, first draw): the one pause left.
+      this.perf.meshSetupMs = performance.now() - tApply;
+      if (restoreError) this.ui.flash(`The autosaved design could not be restored: ${restoreError}`, 6000);
+      else if (saved?.design && this.constraints.size) {
+        this.ui.flash(`Restored the autosaved design (${this.constraints.size} constraints).`);
+      }
+      if (settingsError) this.ui.showError(`The boundary/γ settings did not apply to ${model.name}: ${settingsError}`);
+      this.emit('load', { info: structuredClone(info) });
+      this.#emitChanges();
+      if (!this.warmedUp) {
+        this.warmedUp = true;
+        // After the first frame, not before: on the small default model warming up costs more than it saves
+        // (measured: ~0.3 s to save ~35 ms), but the next, larger model the user opens gets optimized code.
+        setTimeout(() => this.exclusive(() => this.proxy?.call('warmUp', [3, 2])).catch(() => {}), 0);
+      }
+      return structuredClone(info);
+    });
+  }
+
+  // ------------------------------------------------------------------------------------------ edits
+
+  // Runs the command made by makeCommand() (inside the queue, once the session is ready) and records it.
+  run(makeCommand) {
+    return this.exclusive(async () => {
+      this.requireReady();
+      const command = makeCommand();
+      try {
+        await this.history.execute(command, this);
+      } catch (err) {
+        this.ui.setSettings(this.settings()); // shows what the core holds, also after a refusal
+        throw err;
+      }
+      this.#afterEdit();
+      return command.result;
+    });
+  }
+
+  addConstraint(makeSpec) {
+    return this.run(() => new AddConstraint(makeSpec()));
+  }
+
+  remove(uid) {
+    return this.run(() => new RemoveConstraint(this, uid));
+  }
+
+  setParameter(kind, uid, value) {
+    return this.run(() => new SetParameter(this, kind, uid, value));
+  }
+
+  // kind: 'boundary' | 'gamma'.
+  setSetting(kind, value) {
+    return this.run(() => new SetSetting(this, kind, kind === 'boundary' ? boundarySpec(value) : gammaSpec(value)));
+  }
+
+  replaceDesign(design, label) {
+    return this.run(() => {
+      if (!design || typeof design !== 'object' || Array.isArray(design)) throw new Error('a design must be a JSON object');
+      return new ReplaceDesign(this, design, label);
+    });
+  }
+
+  step(forward) {
+    return this.exclusive(async () => {
+      this.requireReady();
+      let done;
+      try {
+        done = forward ? await this.history.redo(this) : await this.history.undo(this);
+      } finally {
+        if (this.selected != null && !this.constraints.has(this.selected)) this.selected = null;
+      }
+      if (done) this.#afterEdit();
+      return done;
+    });
+  }
+
+  exportField() {
+    return this.exclusive(async () => {
+      this.requireReady();
+      return (await this.call('fieldJson')).value;
+    });
+  }
+
+  // ------------------------------------------------------------------------------------------ UI wiring
+
+  // Surfaces any failure of a UI-started action in the banner; the API variants reject instead. The panels
+  // are redrawn from the state so an input the core refused shows the value in force again.
+  #report(promise) {
+    return promise.catch((err) => {
+      if (this.disposed) return;
+      this.ui.showError(err.message);
+      if (this.field && this.surface) this.refresh();
+    });
+  }
+
+  // Time from a user action to the frame that shows its result (reported through perf()).
+  async #timed(name, t0, promise) {
+    const result = await promise;
+    // refresh() has drawn synchronously; the next animation frame puts it on screen.
+    const shown = await new Promise((resolve) => requestAnimationFrame(() => resolve(performance.now())));
+    const op = this.perf.lastOp ?? {};
+    const arrowsShown = await this.earlyFrame;
+    this.perf[name] = {
+      arrowsOnScreenMs: arrowsShown ? arrowsShown - t0 : undefined,
+      toFrameMs: shown - t0,
+      workerMs: op.workerMs,
+      workerParts: op.workerParts,
+      roundTripMs: op.roundTripMs,
+      refresh: this.perf.refresh,
+    };
+    return result;
+  }
+
+  #edit(name, promise) {
+    return this.#report(this.#timed(name, performance.now(), promise));
+  }
+
+  // The mouse tools' results, as constraints (never in readonly mode: the tools stay on orbit/select).
+  #toolActions() {
+    return {
+      flash: (text, ms) => this.ui.flash(text, ms),
+      onStroke: (points) => {
+        const { strength, weight } = this.ui.toolOptions();
+        this.#edit('stroke', this.addConstraint(() => strokeSpec(this, points, { strength, weight }))).finally(() => {
+          if (!this.tools.tools.stroke.drawing) this.viewer.clearStroke();
+        });
+      },
+      onVector: (face, vector) => {
+        this.#edit('vector', this.addConstraint(() => vectorSpec(this, face, vector, { weight: this.ui.toolOptions().weight })));
+      },
+      onPlace: (kind, hit) => {
+        const { strength, orientation } = this.ui.toolOptions();
+        const spec =
+          kind === 'vortex'
+            ? () => pointSpec(this, 'vortex', hit.face, orientation === 'cw' ? -strength : strength)
+            : () => pointSpec(this, kind, this.surface.nearestCorner(hit.face, hit.point), strength);
+        this.#edit(kind, this.addConstraint(spec));
+      },
+      onSelect: (uid) => this.select(uid),
+    };
+  }
+
+  #uiActions() {
+    const editable = (fn) => (...args) => (this.readonly ? undefined : fn(...args));
+    return {
+      accept: ACCEPT,
+      onOpen: (file, companions) => this.#report(this.loadModel(file, { companions })),
+      onLoadDesign: editable((file) =>
+        this.#report(readJsonFile(file).then((design) => this.replaceDesign(design, 'load design')).catch((err) => {
+          throw this.fail('design', err);
+        })),
+      ),
+      onSaveDesign: () => {
+        try {
+          this.requireReady();
+          downloadJson(`${baseName(this.modelName)}.design.json`, JSON.stringify(this.design, null, 1));
+        } catch (err) {
+          this.ui.showError(err.message);
+        }
+      },
+      onExportField: () => this.#report(this.exportField().then((text) => downloadJson(`${baseName(this.modelName)}.field.json`, text))),
+      onTool: (tool) => {
+        this.tools?.setTool(tool); // bindUi selects orbit before the tools exist
+        this.onTool(tool);
+      },
+      onUndo: editable(() => this.#edit('undo', this.step(false))),
+      onRedo: editable(() => this.#edit('redo', this.step(true))),
+      onBoundary: editable((bc) => this.#report(this.setSetting('boundary', bc))),
+      onGamma: editable((g) => this.#report(this.setSetting('gamma', g))),
+      onViews: (views) => {
+        if (views.arrowDensity !== this.views.arrowDensity) this.densityAuto = false;
+        this.applyViews(views);
+      },
+      onSelect: (uid) => this.select(uid),
+      onRemove: editable((uid) => this.#edit('delete', this.remove(uid))),
+      onEditWeight: editable((uid, w) => this.#report(this.setParameter('weight', uid, w))),
+      onEditStrength: editable((uid, s) => this.#report(this.setParameter('strength', uid, s))),
+      onClear: editable(() => this.constraints.size && this.#report(this.replaceDesign({ ...this.settings(), constraints: [] }, 'clear'))),
+    };
+  }
+}
