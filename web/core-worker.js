@@ -4,8 +4,10 @@
 //
 // One worker per <tangent-field-designer> element: its globals are that element's core and nothing else.
 import { CoreError, loadCore } from './core-client.js';
+import { CoreExport } from './export/core-export.js';
 
 let core = null;
+let coreExport = null;
 
 function requireMesh() {
   if (!core?.hasMesh) throw new CoreError('no mesh loaded');
@@ -50,6 +52,7 @@ const ops = {
   // blob: URL, where its own import.meta.url names nothing useful).
   async init(assetBase) {
     core = await loadCore(assetBase);
+    coreExport = new CoreExport(core.Module);
     return { crossOriginIsolated: self.crossOriginIsolated === true };
   },
 
@@ -61,6 +64,10 @@ const ops = {
   // restore (its failure is reported, not fatal: the mesh still loads with the settings).
   loadMesh(bytes, format, settings, design) {
     core.loadMesh(bytes, format);
+    coreExport.modelLoaded(bytes, format);
+    // A GLB exported with its design (docs/export.md) reopens with it, unless an autosave is newer.
+    const embedded = design ? null : coreExport.embeddedDesign(bytes);
+    design ??= embedded;
     const info = core.info();
     const mesh = core.mesh();
     const edges = core.edges();
@@ -84,7 +91,7 @@ const ops = {
     // Texture synthesis (web/synthesis/) needs the model's per-corner UVs (6 per face; empty without TEXCOORD_0).
     const cornerUVs = Float32Array.from(core.designer.cornerUVs());
     return {
-      value: { info, settingsError, restoreError },
+      value: { info, settingsError, restoreError, embeddedDesign: embedded != null },
       mesh: { positions: mesh.positions, triangles: mesh.triangles, edges, cornerUVs },
       transfer: [mesh.positions.buffer, mesh.triangles.buffer, edges.buffer, cornerUVs.buffer],
     };
@@ -131,6 +138,19 @@ const ops = {
 
   fieldJson() {
     return core.fieldJson();
+  },
+
+  // Exports of the current field (docs/export.md): the same bytes as `tvf export` for this model file.
+  exportAtlasError() {
+    return coreExport.atlasError();
+  },
+
+  exportFlowMap(options) {
+    return coreExport.flowMapPng(core.oneForm(), options);
+  },
+
+  exportGlb(options, baseColorPng) {
+    return coreExport.glb(core.oneForm(), JSON.parse(core.designJson()), options, baseColorPng);
   },
 };
 
