@@ -158,7 +158,7 @@ int exportCommand(int argc, char** argv) {
                               parent.empty() ? "." : parent, meshPath));
     }
     writeBytes(glbPath, tvf::exportFieldGlb(mesh, source.get(), uvs, designer.oneForm(),
-                                             tvf::designDocument(designer), options));
+                                            tvf::designDocument(designer), options));
   }
   return 0;
 }

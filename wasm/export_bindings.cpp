@@ -30,8 +30,9 @@ namespace {
 using emscripten::val;
 
 std::vector<uint8_t> bytesOf(const val& array) {
-  const bool buffer = array.instanceof(val::global("ArrayBuffer"));
-  return emscripten::convertJSArrayToNumberVector<uint8_t>(buffer ? val::global("Uint8Array").new_(array) : array);
+  const bool buffer = array.instanceof (val::global("ArrayBuffer"));
+  return emscripten::convertJSArrayToNumberVector<uint8_t>(buffer ? val::global("Uint8Array").new_(array)
+                                                                  : array);
 }
 
 val toUint8Array(const std::vector<uint8_t>& bytes) {
@@ -80,16 +81,19 @@ class FieldExporterBinding {
 
   val flowMapPng(const val& oneForm, const std::string& options) {
     return produce([&] {
-      return tvf::exportFlowMapPng(need(), tvf::exportAtlasUVs(need()), numbers(oneForm), optionsFrom(options));
+      return tvf::exportFlowMapPng(need(), tvf::exportAtlasUVs(need()), numbers(oneForm),
+                                   optionsFrom(options));
     });
   }
 
-  val glb(const val& oneForm, const std::string& design, const std::string& options, const val& baseColorPng) {
+  val glb(const val& oneForm, const std::string& design, const std::string& options,
+          const val& baseColorPng) {
     return produce([&] {
       std::vector<float> uvs;
       if (need().hasUVs() && atlasError().empty()) uvs = tvf::exportAtlasUVs(need());
-      const std::vector<uint8_t> baseColor =
-          baseColorPng.isNull() || baseColorPng.isUndefined() ? std::vector<uint8_t>{} : bytesOf(baseColorPng);
+      const std::vector<uint8_t> baseColor = baseColorPng.isNull() || baseColorPng.isUndefined()
+                                                 ? std::vector<uint8_t>{}
+                                                 : bytesOf(baseColorPng);
       return tvf::exportFieldGlb(need(), source_.get(), uvs, numbers(oneForm),
                                  design.empty() ? nlohmann::json() : nlohmann::json::parse(design),
                                  optionsFrom(options), baseColor);

@@ -1,8 +1,8 @@
 #include "design/field_export.h"
 
 #include "dec/hodge_star.h"
-#include "field/whitney_reconstruction.h"
 #include "field/field_tangents.h"
+#include "field/whitney_reconstruction.h"
 #include "io/gltf_writer.h"
 #include "io/png_writer.h"
 #include "mesh/mesh_topology.h"
@@ -63,7 +63,8 @@ std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const GltfSource* s
   glb.anisotropyStrength = options.anisotropyStrength;
   glb.anisotropyRotation = options.anisotropyRotation;
   glb.baseColorPng = baseColorPng;
-  if (options.embedFlowMap && !cornerUVs.empty()) glb.flowMapPng = exportFlowMapPng(mesh, cornerUVs, oneForm, options);
+  if (options.embedFlowMap && !cornerUVs.empty())
+    glb.flowMapPng = exportFlowMapPng(mesh, cornerUVs, oneForm, options);
   if (options.embedDesign) glb.design = design;
   return writeFieldGlb(content, glb);
 }

@@ -2,13 +2,12 @@
 // What `tvf export` and the page's export buttons produce, computed once here for both: the flow map PNG
 // and the GLB with the field (docs/export.md).
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "mesh/surface_mesh.h"
 #include "field/flow_map.h"
 #include "io/gltf_source.h"
+#include "mesh/surface_mesh.h"
 
 namespace tvf {
 

@@ -110,13 +110,28 @@ test('the page flow map points along the stroke in both conventions', async ({ p
 test('material preview pictures', async ({ page }) => {
   test.skip(!process.env.TVF_DOC_PICTURES, 'set TVF_DOC_PICTURES=1 to write docs/images/material-preview-*.png');
   await openDesigner(page);
-  const info = await page.evaluate(() => window.tvf.info());
-  // A source and a sink far apart on the default model: a field that sweeps across the whole surface.
-  await page.evaluate((nV) => window.tvf.loadDesign({ constraints: [{ type: 'source', vertex: 0, strength: 1 }, { type: 'sink', vertex: nV - 1, strength: 1 }] }), info.vertices);
+  // A source at the lowest and a sink at the highest vertex of the default model: a field that sweeps over
+  // the whole surface, so the highlights wrap around it.
+  const [low, high] = await page.evaluate(() => {
+    const { positions } = window.tvf.mesh();
+    let lo = 0, hi = 0;
+    for (let v = 0; v < positions.length / 3; v++) {
+      if (positions[3 * v + 1] < positions[3 * lo + 1]) lo = v;
+      if (positions[3 * v + 1] > positions[3 * hi + 1]) hi = v;
+    }
+    return [lo, hi];
+  });
+  await page.evaluate(([lo, hi]) => window.tvf.loadDesign({ constraints: [{ type: 'source', vertex: lo, strength: 1 }, { type: 'sink', vertex: hi, strength: 1 }] }), [low, high]);
   await page.evaluate(() => window.tvf.setViews({ arrows: false }));
+  // The picture is of the model: panels and handles out of the way.
+  await page.evaluate(() => {
+    const style = document.createElement('style');
+    style.textContent = '#side-panel, #constraints-panel { display: none !important; }';
+    window.tvf.shadowRoot.append(style);
+  });
   mkdirSync('docs/images', { recursive: true });
   for (const preset of ['brushed metal', 'satin']) {
     await page.evaluate((p) => window.tvf.materialPreview(p), preset);
-    await page.locator('#viewport canvas').screenshot({ path: `docs/images/material-preview-${preset.replace(' ', '-')}.png` });
+    await page.locator('#view').screenshot({ path: `docs/images/material-preview-${preset.replace(' ', '-')}.png` });
   }
 });

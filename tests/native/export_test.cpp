@@ -235,7 +235,7 @@ std::vector<float> accessorFloats(const Glb& glb, int index) {
 
 // A height-field patch as a GLB: positions in the node's local frame (scaled by 2, translated), own UVs, a
 // material with a base colour, split vertices along no seam (one primitive, indexed).
-std::vector<uint8_t> curvedPatchGlb() {
+std::vector<uint8_t> curvedPatchGlb(bool normalMapped = false) {
   std::vector<float> positions, uvs;
   std::vector<uint32_t> indices;
   for (int j = 0; j <= kGrid; ++j)
@@ -287,6 +287,18 @@ std::vector<uint8_t> curvedPatchGlb() {
         {{"buffer", 0}, {"byteOffset", t}, {"byteLength", uvs.size() * 4}, {"target", 34962}},
         {{"buffer", 0}, {"byteOffset", x}, {"byteLength", indices.size() * 4}, {"target", 34963}}}},
       {"buffers", {{{"byteLength", bin.size()}}}}};
+  if (normalMapped) {
+    // A flat 1x1 normal map: enough to make the material normal-mapped.
+    const std::vector<uint8_t> png = tvf::encodePngRgba({128, 128, 255, 255}, 1, 1, 8);
+    bin.resize((bin.size() + 3) / 4 * 4, 0);
+    const size_t offset = put(png.data(), png.size());
+    doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", png.size()}});
+    doc["images"] = {{{"bufferView", 3}, {"mimeType", "image/png"}}};
+    doc["textures"] = {{{"source", 0}}};
+    doc["materials"][0]["normalTexture"] = {{"index", 0}};
+    bin.resize((bin.size() + 3) / 4 * 4, 0);
+    doc["buffers"][0]["byteLength"] = bin.size();
+  }
   std::string text = doc.dump();
   text.resize((text.size() + 3) / 4 * 4, ' ');
   std::vector<uint8_t> out;
@@ -503,6 +515,45 @@ TEST_F(CurvedPatchExport, BadRequestsAreRefusedWithAReason) {
   const std::vector<uint8_t> bytes = readBytes(dir_ / "tri.glb");
   const SurfaceMesh back = tvf::loadMeshFromMemory(bytes.data(), bytes.size(), tvf::MeshFormat::Glb);
   EXPECT_EQ(back.numFaces(), 1);
+}
+
+TEST_F(CurvedPatchExport, NormalMappedMaterialsGetTheDirectionInAnisotropyTexture) {
+  const std::vector<uint8_t> source = curvedPatchGlb(true);
+  std::ofstream(dir_ / "mapped.glb", std::ios::binary)
+      .write(reinterpret_cast<const char*>(source.data()), static_cast<std::streamsize>(source.size()));
+  ASSERT_EQ(runCli(path("mapped.glb") + " " + path("design.json") + " --glb " + path("mapped.out.glb") + " --size 256"),
+            0);
+  const Glb out = parseGlb(readBytes(dir_ / "mapped.out.glb"));
+  const json& primitive = out.doc["meshes"][0]["primitives"][0];
+  EXPECT_FALSE(primitive["attributes"].contains("TANGENT"));  // the normal map's frame stays the viewer's
+  const json& anisotropy = out.doc["materials"][0]["extensions"]["KHR_materials_anisotropy"];
+  ASSERT_TRUE(anisotropy.contains("anisotropyTexture"));
+  const json& image = out.doc["images"][out.doc["textures"][anisotropy["anisotropyTexture"]["index"].get<int>()]["source"].get<int>()];
+  const json& view = out.doc["bufferViews"][image["bufferView"].get<int>()];
+  const auto begin = out.bin.begin() + view["byteOffset"].get<long>();
+  const Image map = decodePng(std::vector<uint8_t>(begin, begin + view["byteLength"].get<long>()));
+  // Expected: the stroke direction in the face's orthonormal UV frame (T along dp/du, B = N x T), the frame
+  // KHR_materials_anisotropy measures directions in when tangents follow the UVs (MikkTSpace).
+  double worst = 0;
+  for (size_t k = 0; k + 1 < stroke_.size(); ++k) {
+    const int f = stroke_[k].face;
+    Eigen::Vector3d p[3];
+    tvf::facePositions(mesh_, f, p);
+    const Eigen::Vector3d n = tvf::faceNormal(mesh_, f);
+    // dp/du: the 3D vector whose UV image is (1, 0).
+    Eigen::Matrix2d D;
+    const float* uv = &mesh_.cornerUVs[6 * f];
+    D << uv[2] - uv[0], uv[4] - uv[0], uv[3] - uv[1], uv[5] - uv[1];
+    const Eigen::Vector2d ab = D.inverse() * Eigen::Vector2d(1, 0);
+    const Eigen::Vector3d T = (ab.x() * (p[1] - p[0]) + ab.y() * (p[2] - p[0])).normalized(), B = n.cross(T);
+    const Eigen::Vector3d along = strokeTangent(k);
+    const Eigen::Vector2d q = uvAt(mesh_.cornerUVs, stroke_[k]);
+    const int x = int(q.x() * 256), y = int(q.y() * 256);
+    const Eigen::Vector2d decoded(map.at(x, y, 0) / 127.5 - 1, map.at(x, y, 1) / 127.5 - 1);
+    worst = std::max(worst, degreesBetween(decoded, Eigen::Vector2d(along.dot(T), along.dot(B))));
+  }
+  EXPECT_LT(worst, 2.0);
+  std::cout << "[ measured ] anisotropyTexture worst deviation from the stroke: " << worst << " deg\n";
 }
 
 }  // namespace

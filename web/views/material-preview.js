@@ -8,8 +8,9 @@ import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
 // Base-material looks; the anisotropy strength and rotation come from the export options.
 export const MATERIAL_PRESETS = {
-  'brushed metal': { color: 0xc9ccd1, metalness: 1.0, roughness: 0.32 },
-  satin: { color: 0x8c2342, metalness: 0.0, roughness: 0.42, sheen: 0.6, sheenRoughness: 0.35, sheenColor: 0xffc3d3 },
+  // Anisotropic highlights read best at medium roughness: too smooth and there is nothing to stretch.
+  'brushed metal': { color: 0x8d9299, metalness: 1.0, roughness: 0.45, envMapIntensity: 0.5 },
+  satin: { color: 0x6e1530, metalness: 0.0, roughness: 0.55, sheen: 0.8, sheenRoughness: 0.3, sheenColor: 0xff9fbf, envMapIntensity: 0.7 },
 };
 
 export class MaterialPreview {
@@ -79,7 +80,7 @@ export class MaterialPreview {
         m.sheenColor?.setHex(look.sheenColor ?? 0);
       }
       m.envMap = envMap;
-      m.envMapIntensity = 1.0;
+      m.envMapIntensity = look.envMapIntensity;
       m.needsUpdate = true;
     });
   }
