@@ -3,7 +3,7 @@
 // are the solved field projected into the tangent plane (1e-6), reopening the GLB restores the design
 // (one-form 1e-9), and the flow map decoded by the browser points along the stroke (2 deg) in both
 // conventions. TVF_DOC_PICTURES=1 also writes the material-preview pictures in docs/images/.
-import { mkdirSync } from 'node:fs';
+import { mkdirSync, readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 import validator from 'gltf-validator';
 import { diagonalStrokeDesign, patchGlb } from '../node/export-fixtures.mjs';
@@ -105,6 +105,20 @@ test('the page flow map points along the stroke in both conventions', async ({ p
     console.log(`page flow map (${convention}): worst deviation from the stroke ${worst.toFixed(2)} deg`);
     expect(worst).toBeLessThan(2);
   }
+  // The Export panel's buttons download the same files.
+  await page.locator('#export-panel summary').click();
+  await page.locator('#export-size').selectOption('256');
+  await page.locator('#export-bits').selectOption('16');
+  const [pngDownload] = await Promise.all([page.waitForEvent('download'), page.locator('#export-flowmap').click()]);
+  expect(pngDownload.suggestedFilename()).toBe('patch.flow-gltf-256.png');
+  const png = readFileSync(await pngDownload.path());
+  expect(png.subarray(1, 4).toString()).toBe('PNG');
+  expect(png.readUInt32BE(16)).toBe(256); // IHDR width
+  expect(png[24]).toBe(16); // bit depth
+  const [glbDownload] = await Promise.all([page.waitForEvent('download'), page.locator('#export-glb').click()]);
+  expect(glbDownload.suggestedFilename()).toBe('patch.field.glb');
+  const report = await validator.validateBytes(new Uint8Array(readFileSync(await glbDownload.path())), { uri: 'download.glb' });
+  expect(report.issues.numErrors).toBe(0);
 });
 
 test('material preview pictures', async ({ page }) => {
