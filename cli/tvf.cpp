@@ -25,6 +25,7 @@ int usage() {
                "  tvf design MESH DESIGN.json [-o FIELD.json]\n"
                "  tvf export MESH DESIGN.json [--glb OUT.glb] [--flowmap OUT.png] [--size N]\n"
                "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
+               "             [--no-embed-flowmap]\n"
                "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis] [--json]\n"
                "Fill-reducing ordering: METIS by default (less fill, faster solves and updates, slower\n"
                "analysis); --amd for AMD, which the browser build uses.\n"
@@ -107,6 +108,10 @@ int exportCommand(int argc, char** argv) {
   tvf::FieldExportOptions options;
   for (int k = 4; k < argc; ++k) {
     const std::string a = argv[k];
+    if (a == "--no-embed-flowmap") {
+      options.embedFlowMap = false;
+      continue;
+    }
     if (k + 1 >= argc) return usage();
     const char* value = argv[++k];
     if (a == "--glb") {
@@ -136,29 +141,26 @@ int exportCommand(int argc, char** argv) {
   tvf::applyDesignDocument(designer, readDesign(designPath));
   designer.solve();
   const tvf::SurfaceMesh& mesh = designer.mesh();
-  std::vector<float> uvs;
+  const tvf::ExportAtlas atlas =
+      tvf::exportAtlasFor(mesh, options, !flowMapPath.empty() || (!glbPath.empty() && options.embedFlowMap));
+  if (atlas.generated) {
+    std::cerr << "tvf: " << meshPath << ": " << atlas.reason << "; using a generated atlas"
+              << (glbPath.empty() ? "" : " (the GLB is rebuilt on it; --no-embed-flowmap keeps the model's layout)")
+              << "\n";
+  }
   if (!flowMapPath.empty()) {
-    uvs = tvf::exportAtlasUVs(mesh);  // a flow map needs an atlas: say why there is none
-    writeBytes(flowMapPath, tvf::exportFlowMapPng(mesh, uvs, designer.oneForm(), options));
+    writeBytes(flowMapPath, tvf::exportFlowMapPng(mesh, atlas.cornerUVs, designer.oneForm(), options));
   }
   if (!glbPath.empty()) {
-    if (uvs.empty() && mesh.hasUVs()) {
-      try {
-        uvs = tvf::exportAtlasUVs(mesh);
-      } catch (const tvf::InputError& e) {
-        std::cerr << "tvf: no flow map in the GLB: " << e.what() << "\n";
-      }
-    }
     std::unique_ptr<tvf::GltfSource> source;
     if (format == tvf::MeshFormat::Gltf || format == tvf::MeshFormat::Glb) {
       const std::vector<uint8_t> bytes = readBytes(meshPath);
       const std::string parent = std::filesystem::path(meshPath).parent_path().string();
-      source = std::make_unique<tvf::GltfSource>(
-          tvf::loadGltfSource(bytes.data(), bytes.size(), format == tvf::MeshFormat::Glb,
-                              parent.empty() ? "." : parent, meshPath));
+      source = std::make_unique<tvf::GltfSource>(tvf::loadGltfSource(
+          bytes.data(), bytes.size(), format == tvf::MeshFormat::Glb, parent.empty() ? "." : parent, meshPath));
     }
-    writeBytes(glbPath, tvf::exportFieldGlb(mesh, source.get(), uvs, designer.oneForm(),
-                                            tvf::designDocument(designer), options));
+    writeBytes(glbPath, tvf::exportFieldGlb(mesh, source.get(), atlas, designer.oneForm(),
+                                             tvf::designDocument(designer), options));
   }
   return 0;
 }

@@ -6,7 +6,8 @@
 //
 //   const x = new Module.FieldExporter();
 //   x.load(uint8Array, 'glb')                 // '' or an error message; keeps a glTF document for re-export
-//   x.atlasError()                            // '' when the model's own UVs can index a flow map
+//   x.atlasNote()                             // '' when the model's own UVs are the atlas, else why not
+//                                             // (then exports generate one: texture/texture_atlas.h)
 //   x.flowMapPng(oneForm, optionsJson)        // Uint8Array (a copy) or null
 //   x.glb(oneForm, designJson, optionsJson, baseColorPng)   // Uint8Array or null; designJson may be ''
 //   x.lastError(), x.delete()
@@ -73,30 +74,36 @@ class FieldExporterBinding {
     });
   }
 
-  std::string atlasError() {
-    std::string error;
-    attempt(error, [&] { tvf::exportAtlasUVs(need()); });
-    return error;
+  // '' when the model's own UVs serve as the flow map's atlas, else why not (then one is generated).
+  std::string atlasNote() {
+    std::string note;
+    attempt(lastError_, [&] {
+      note = need().hasUVs() ? tvf::exportAtlasFor(need(), {}, false).cornerUVs.empty()
+                                   ? "its TEXCOORD_0 is not a one-to-one atlas"
+                                   : ""
+                             : "it has no texture coordinates (TEXCOORD_0)";
+    });
+    return note;
   }
 
   val flowMapPng(const val& oneForm, const std::string& options) {
     return produce([&] {
-      return tvf::exportFlowMapPng(need(), tvf::exportAtlasUVs(need()), numbers(oneForm),
-                                   optionsFrom(options));
+      const tvf::FieldExportOptions o = optionsFrom(options);
+      return tvf::exportFlowMapPng(need(), tvf::exportAtlasFor(need(), o, true).cornerUVs, numbers(oneForm), o);
     });
   }
 
   val glb(const val& oneForm, const std::string& design, const std::string& options,
           const val& baseColorPng) {
     return produce([&] {
-      std::vector<float> uvs;
-      if (need().hasUVs() && atlasError().empty()) uvs = tvf::exportAtlasUVs(need());
+      const tvf::FieldExportOptions o = optionsFrom(options);
       const std::vector<uint8_t> baseColor = baseColorPng.isNull() || baseColorPng.isUndefined()
                                                  ? std::vector<uint8_t>{}
                                                  : bytesOf(baseColorPng);
-      return tvf::exportFieldGlb(need(), source_.get(), uvs, numbers(oneForm),
-                                 design.empty() ? nlohmann::json() : nlohmann::json::parse(design),
-                                 optionsFrom(options), baseColor);
+      return tvf::exportFieldGlb(need(), source_.get(), tvf::exportAtlasFor(need(), o, o.embedFlowMap),
+                                 numbers(oneForm),
+                                 design.empty() ? nlohmann::json() : nlohmann::json::parse(design), o,
+                                 baseColor);
     });
   }
 
@@ -159,7 +166,7 @@ EMSCRIPTEN_BINDINGS(tvf_export) {
   emscripten::class_<FieldExporterBinding>("FieldExporter")
       .constructor<>()
       .function("load", &FieldExporterBinding::load)
-      .function("atlasError", &FieldExporterBinding::atlasError)
+      .function("atlasNote", &FieldExporterBinding::atlasNote)
       .function("flowMapPng", &FieldExporterBinding::flowMapPng)
       .function("glb", &FieldExporterBinding::glb)
       .function("lastError", &FieldExporterBinding::lastError);

@@ -32,7 +32,10 @@ export const api = {
   history: (s) => s.history.labels(),
 
   saveDesign: read((s) => structuredClone(s.design)),
-  loadDesign: (s, design) => s.replaceDesign(design, 'load design'),
+  loadDesign: (s, design) =>
+    s.replaceDesign(design, 'load design').catch((err) => {
+      throw s.fail('design', err);
+    }),
   exportField: (s) => s.exportField().then((text) => JSON.parse(text)),
   // docs/export.md: Uint8Arrays with the same bytes as `tvf export` for this model file and field.
   exportFlowMap: (s, options) => s.exports.exportFlowMap(options),

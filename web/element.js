@@ -251,7 +251,13 @@ export class TangentFieldDesigner extends Base {
       const url = new URL(href, document.baseURI);
       const res = await fetch(url);
       if (!res.ok) throw new Error(`could not fetch ${url.href}: HTTP ${res.status}`);
-      await s.replaceDesign(await res.json(), 'load design');
+      const design = await res.json();
+      // The boundary and gamma attributes, when given, win over the document's own settings.
+      if (design && typeof design === 'object') {
+        if (this.hasAttribute('boundary')) design.boundary = parseBoundary(this.getAttribute('boundary'));
+        if (this.hasAttribute('gamma')) design.gamma = Number(this.getAttribute('gamma'));
+      }
+      await s.replaceDesign(design, 'load design');
     } catch (err) {
       throw s.fail('design', new Error(`Could not load the design: ${err.message}`));
     }
@@ -275,6 +281,13 @@ export class TangentFieldDesigner extends Base {
     this.toggleAttribute('readonly', !!on);
   }
 
+  // remove(id) removes a constraint (the documented API); remove() with no argument is still the DOM's
+  // ChildNode.remove(), which takes the element out of the page (and so disposes it).
+  remove(...args) {
+    if (args.length === 0) return super.remove();
+    return api.remove(this.#require(), ...args);
+  }
+
   #require() {
     if (!this.#session) throw new Error('the designer is not in a document (or was disposed)');
     return this.#session;
@@ -282,6 +295,7 @@ export class TangentFieldDesigner extends Base {
 
   static {
     for (const [prop, attr] of Object.entries(STRING_ATTRIBUTES)) {
+      if (prop === 'views') continue; // also the views() method, below
       Object.defineProperty(this.prototype, prop, {
         get() {
           return this.getAttribute(attr);
@@ -295,6 +309,8 @@ export class TangentFieldDesigner extends Base {
     }
     // The public API (api.js) and the texture calls, as methods of every element.
     for (const [name, fn] of Object.entries(api)) {
+      if (name === 'remove') continue; // a method of its own, above
+      if (name === 'views') continue;
       Object.defineProperty(this.prototype, name, {
         value(...args) {
           return fn(this.#require(), ...args);
@@ -303,6 +319,21 @@ export class TangentFieldDesigner extends Base {
         configurable: true,
       });
     }
+    // `views` is both the attribute's property and the views() method of js-api.md: reading it gives the
+    // method, assigning a string sets the attribute.
+    Object.defineProperty(this.prototype, 'views', {
+      get() {
+        const element = this;
+        return function views() {
+          return api.views(element.#require());
+        };
+      },
+      set(value) {
+        if (value == null) this.removeAttribute('views');
+        else this.setAttribute('views', String(value));
+      },
+      configurable: true,
+    });
     for (const name of TEXTURE_METHODS) {
       Object.defineProperty(this.prototype, name, {
         value(...args) {

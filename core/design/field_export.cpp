@@ -1,28 +1,49 @@
 #include "design/field_export.h"
 
+#include <algorithm>
+
 #include "dec/hodge_star.h"
 #include "field/field_tangents.h"
 #include "field/whitney_reconstruction.h"
 #include "io/gltf_writer.h"
 #include "io/png_writer.h"
 #include "mesh/mesh_topology.h"
+#include "texture/texture_atlas.h"
 
 namespace tvf {
 
-std::vector<float> exportAtlasUVs(const SurfaceMesh& mesh) {
-  if (!mesh.hasUVs()) {
-    // The atlas generator for UV-less models lives with texture synthesis and is not part of the core yet.
-    throw InputError(
-        "the model has no texture coordinates (TEXCOORD_0), so it has no atlas for a flow map; "
-        "export a model with its own UVs");
+ExportAtlas exportAtlas(const SurfaceMesh& mesh, const FieldExportOptions& options) {
+  ExportAtlas atlas;
+  if (mesh.hasUVs()) {
+    // The overlap test rasterizes at this resolution; beyond 1024 it costs more than it tells.
+    const AtlasCheck check = checkAtlasUVs(mesh.cornerUVs, mesh.numFaces(), std::clamp(options.size, 16, 1024));
+    if (check.usable) {
+      atlas.cornerUVs = mesh.cornerUVs;
+      return atlas;
+    }
+    atlas.reason = "its TEXCOORD_0 is not a one-to-one atlas: " + check.reason;
+  } else {
+    atlas.reason = "it has no texture coordinates (TEXCOORD_0)";
   }
-  checkAtlasUVs(mesh.cornerUVs, mesh.numFaces());
-  return mesh.cornerUVs;
+  const TextureAtlas generated =
+      generateAtlas(mesh, std::clamp(options.size, 16, 8192), std::clamp(options.gutterTexels, 0, 16));
+  atlas.cornerUVs = generated.cornerUVs;
+  atlas.generated = true;
+  return atlas;
+}
+
+ExportAtlas exportAtlasFor(const SurfaceMesh& mesh, const FieldExportOptions& options, bool flowMap) {
+  if (flowMap) return exportAtlas(mesh, options);
+  ExportAtlas none;
+  if (!mesh.hasUVs()) return none;
+  const AtlasCheck check = checkAtlasUVs(mesh.cornerUVs, mesh.numFaces(), std::clamp(options.size, 16, 1024));
+  if (check.usable) none.cornerUVs = mesh.cornerUVs;
+  return none;
 }
 
 std::vector<uint8_t> exportFlowMapPng(const SurfaceMesh& mesh, const std::vector<float>& cornerUVs,
                                       const std::vector<double>& oneForm, const FieldExportOptions& options) {
-  checkAtlasUVs(cornerUVs, mesh.numFaces());
+  requireUnitSquareUVs(cornerUVs, mesh.numFaces());
   const MeshTopology topology = buildTopology(mesh);
   if (oneForm.size() != static_cast<std::size_t>(topology.numEdges)) {
     throw InputError("one-form has " + std::to_string(oneForm.size()) + " values, the mesh has " +
@@ -34,8 +55,8 @@ std::vector<uint8_t> exportFlowMapPng(const SurfaceMesh& mesh, const std::vector
                        options.bits);
 }
 
-std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const GltfSource* source,
-                                    const std::vector<float>& cornerUVs, const std::vector<double>& oneForm,
+std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const GltfSource* source, const ExportAtlas& atlas,
+                                    const std::vector<double>& oneForm,
                                     const nlohmann::json& design, const FieldExportOptions& options,
                                     const std::vector<uint8_t>& baseColorPng) {
   const MeshTopology topology = buildTopology(mesh);
@@ -43,6 +64,9 @@ std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const GltfSource* s
     throw InputError("one-form has " + std::to_string(oneForm.size()) + " values, the mesh has " +
                      std::to_string(topology.numEdges) + " edges");
   }
+  const std::vector<float>& cornerUVs = atlas.cornerUVs;
+  // A generated atlas cuts the surface where the source's vertices do not: only a new layout can hold it.
+  if (atlas.generated) source = nullptr;
   FieldGlbContent content;
   content.mesh = &mesh;
   content.source = source;

@@ -127,14 +127,14 @@ FlowMapConvention flowMapConventionFromName(const std::string& name) {
   throw InputError("unknown flow map convention \"" + name + "\" (expected gltf or opengl)");
 }
 
-void checkAtlasUVs(const std::vector<float>& cornerUVs, int32_t numFaces) {
+void requireUnitSquareUVs(const std::vector<float>& cornerUVs, int32_t numFaces) {
   if (cornerUVs.empty()) throw InputError("the mesh has no texture coordinates (TEXCOORD_0) for a flow map");
   if (cornerUVs.size() != static_cast<std::size_t>(numFaces) * 6) {
     throw InputError("texture coordinates: expected 6 per face, got " + std::to_string(cornerUVs.size()));
   }
   for (std::size_t i = 0; i < cornerUVs.size(); ++i) {
     const float t = cornerUVs[i];
-    if (!std::isfinite(t) || t < 0.0f || t > 1.0f) {
+    if (!std::isfinite(t) || t < -1e-4f || t > 1.0f + 1e-4f) {
       throw InputError("texture coordinates of face " + std::to_string(i / 6) +
                        " lie outside the unit square (a tiling UV layout, not an atlas)");
     }

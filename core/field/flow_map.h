@@ -47,7 +47,8 @@ FlowField rasterizeFlowField(const SurfaceMesh& mesh, const MeshTopology& topolo
 // texels are (0.5, 0.5, 0, 0): no flow.
 std::vector<uint16_t> encodeFlowMap(const FlowField& field, FlowMapConvention convention, int bits);
 
-// Throws InputError when the UVs cannot index a flow map: missing, not finite, or outside [0,1]^2.
-void checkAtlasUVs(const std::vector<float>& cornerUVs, int32_t numFaces);
+// Throws InputError when the UVs cannot index a flow map at all: missing, not 6 per face, not finite, or
+// outside [0,1]^2 (with the 1e-4 slack of texture/texture_atlas.h's checkAtlasUVs, which judges the rest).
+void requireUnitSquareUVs(const std::vector<float>& cornerUVs, int32_t numFaces);
 
 }  // namespace tvf

@@ -58,7 +58,7 @@ test.describe.serial('the design studio', () => {
   // The surface point under the canvas centre + (dx, dy), with its client coordinates.
   const hitNearCentre = (dx, dy) =>
     evaluate(([dx, dy]) => {
-      const r = document.querySelector('#viewport canvas').getBoundingClientRect();
+      const r = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
       const x = r.left + r.width / 2 + dx, y = r.top + r.height / 2 + dy;
       const hit = window.tvf.pick(x, y);
       return hit && { ...hit, x, y };
@@ -88,7 +88,7 @@ test.describe.serial('the design studio', () => {
     const baseline = await faceField(); // the empty design: zero
     // A diagonal screen line across the body on which every point hits the model.
     const line = await evaluate(() => {
-      const r = document.querySelector('#viewport canvas').getBoundingClientRect();
+      const r = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
       const cx = r.left + r.width / 2, cy = r.top + r.height / 2, n = 24;
       for (const dy of [40, 60, 20, 80]) {
         const a = [cx - 70, cy + dy - 30], b = [cx + 70, cy + dy + 30];
@@ -408,7 +408,7 @@ test.describe.serial('the design studio', () => {
     const shot = (name) => page.screenshot({ path: testInfo.outputPath(`view-${name}.png`) });
     const pixels = () =>
       evaluate(() => {
-        const src = document.querySelector('#viewport canvas');
+        const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
         const c = document.createElement('canvas');
         c.width = src.width;
         c.height = src.height;
@@ -546,7 +546,7 @@ test.describe.serial('the design studio', () => {
     // When the progress indicator shows (it does for operations longer than 200 ms).
     await evaluate(() => {
       window.__progressShown = [];
-      const el = document.querySelector('#progress');
+      const el = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#progress');
       new MutationObserver(() => !el.hidden && window.__progressShown.push(performance.now())).observe(el, { attributes: true });
     });
     await page.setInputFiles('#file-input', source.path ?? source);

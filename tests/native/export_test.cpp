@@ -506,15 +506,51 @@ TEST_F(CurvedPatchExport, BadRequestsAreRefusedWithAReason) {
   EXPECT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --flowmap " + path("f.png") +
                    " --convention dx"),
             2);
-  // A model without UVs has no atlas for a flow map (yet): refused, but its GLB exports.
+  // A design that does not fit the model is refused.
   std::ofstream(dir_ / "tri.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-  std::ofstream(dir_ / "empty.json")
-      << "{\"constraints\": [{\"type\": \"vector\", \"face\": 0, \"vector\": [1, 0, 0]}]}";
-  EXPECT_EQ(runCli(path("tri.off") + " " + path("empty.json") + " --flowmap " + path("f.png")), 2);
-  EXPECT_EQ(runCli(path("tri.off") + " " + path("empty.json") + " --glb " + path("tri.glb")), 0);
-  const std::vector<uint8_t> bytes = readBytes(dir_ / "tri.glb");
-  const SurfaceMesh back = tvf::loadMeshFromMemory(bytes.data(), bytes.size(), tvf::MeshFormat::Glb);
-  EXPECT_EQ(back.numFaces(), 1);
+  EXPECT_EQ(runCli(path("tri.off") + " " + path("design.json") + " --glb " + path("tri.glb")), 2);
+}
+
+// Without UVs the exports use the core's generated atlas, and the GLB carries it as TEXCOORD_0: the flow map
+// read through those UVs still follows the stroke.
+TEST_F(CurvedPatchExport, AModelWithoutUVsGetsAGeneratedAtlas) {
+  {
+    std::ofstream off(dir_ / "patch.off");
+    off.precision(17);
+    off << "OFF\n" << mesh_.numVertices() << " " << mesh_.numFaces() << " 0\n";
+    for (int v = 0; v < mesh_.numVertices(); ++v)
+      off << mesh_.positions[3 * v] << " " << mesh_.positions[3 * v + 1] << " " << mesh_.positions[3 * v + 2] << "\n";
+    for (int f = 0; f < mesh_.numFaces(); ++f)
+      off << "3 " << mesh_.triangles[3 * f] << " " << mesh_.triangles[3 * f + 1] << " " << mesh_.triangles[3 * f + 2] << "\n";
+  }
+  ASSERT_EQ(runCli(path("patch.off") + " " + path("design.json") + " --glb " + path("g.glb") + " --flowmap " +
+                   path("g.png") + " --size 256"),
+            0);
+  const Glb glb = parseGlb(readBytes(dir_ / "g.glb"));
+  const json& primitive = glb.doc["meshes"][0]["primitives"][0];
+  const std::vector<float> texcoords = accessorFloats(glb, primitive["attributes"]["TEXCOORD_0"].get<int>());
+  const json& ia = glb.doc["accessors"][primitive["indices"].get<int>()];
+  std::vector<uint32_t> indices(ia["count"].get<size_t>());
+  std::memcpy(indices.data(), glb.bin.data() + glb.doc["bufferViews"][ia["bufferView"].get<int>()]["byteOffset"].get<size_t>(),
+              indices.size() * 4);
+  ASSERT_EQ(indices.size(), mesh_.triangles.size());
+  std::vector<float> uvs;
+  for (uint32_t i : indices) uvs.insert(uvs.end(), {texcoords[2 * i], texcoords[2 * i + 1]});
+  const Image image = decodePng(readBytes(dir_ / "g.png"));
+  double worst = 0;
+  for (size_t k = 0; k + 1 < stroke_.size(); ++k) {
+    const Eigen::Vector2d expected = toUV(mesh_, uvs, stroke_[k].face, strokeTangent(k));
+    const Eigen::Vector2d q = uvAt(uvs, stroke_[k]);
+    const int x = int(q.x() * 256), y = int(q.y() * 256);
+    ASSERT_EQ(image.at(x, y, 3), 255);
+    const Eigen::Vector2d decoded(image.at(x, y, 0) / 127.5 - 1, image.at(x, y, 1) / 127.5 - 1);
+    worst = std::max(worst, degreesBetween(decoded, expected));
+  }
+  EXPECT_LT(worst, 2.0);
+  std::cout << "[ measured ] generated atlas: flow map worst deviation from the stroke: " << worst << " deg\n";
+  // Without the flow map the GLB keeps the model's layout: no atlas, no TEXCOORD_0.
+  ASSERT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("plain.glb") + " --no-embed-flowmap"), 0);
+  EXPECT_FALSE(parseGlb(readBytes(dir_ / "plain.glb")).doc["extras"][tvf::kGlbExtrasKey].contains("flowMapTexture"));
 }
 
 TEST_F(CurvedPatchExport, NormalMappedMaterialsGetTheDirectionInAnisotropyTexture) {

@@ -68,7 +68,7 @@ try {
   const oneForm = JSON.parse(readFileSync(join(dir, 'field.json'), 'utf8')).oneForm;
   const exporter = new core.FieldExporter();
   check('wasm: load the patch', exporter.load(files['patch.glb'], 'glb') === '', exporter.lastError());
-  check('wasm: own UVs are an atlas', exporter.atlasError() === '');
+  check('wasm: own UVs are the atlas', exporter.atlasNote() === '');
   for (const [convention, bits] of [['gltf', 8], ['opengl', 16]]) {
     const png = join(dir, `flow-${convention}-${bits}.png`);
     run('export', join(dir, 'patch.glb'), join(dir, 'design.json'), '--flowmap', png, '--size', '96',
@@ -84,10 +84,16 @@ try {
   check('wasm GLB has the CLI\'s bytes', wasmGlb && Buffer.compare(Buffer.from(wasmGlb), cliGlb) === 0,
     exporter.lastError());
   await validate('wasm FieldExporter patch.glb', wasmGlb);
+  // Without UVs: the core's generated atlas, the same in the CLI and in wasm.
   const offExporter = new core.FieldExporter();
   offExporter.load(new TextEncoder().encode(files['patch.off']), 'off');
-  check('wasm: a model without UVs has no atlas, with a reason', /no texture coordinates/.test(offExporter.atlasError()));
-  check('wasm: its flow map is refused', offExporter.flowMapPng(oneForm, '') === null && offExporter.lastError() !== '');
+  check('wasm: a model without UVs says why it gets a generated atlas', /no texture coordinates/.test(offExporter.atlasNote()));
+  run('export', join(dir, 'patch.off'), join(dir, 'design.json'), '--flowmap', join(dir, 'off.png'), '--size', '128');
+  const offPng = offExporter.flowMapPng(oneForm, JSON.stringify({ size: 128 }));
+  check('wasm flow map on a generated atlas has the CLI\'s bytes',
+    offPng && Buffer.compare(Buffer.from(offPng), readFileSync(join(dir, 'off.png'))) === 0, offExporter.lastError());
+  const offGlb = offExporter.glb(oneForm, '', JSON.stringify({ size: 128 }), null);
+  await validate('wasm FieldExporter patch.off (generated atlas)', offGlb);
   exporter.delete();
   offExporter.delete();
 } finally {

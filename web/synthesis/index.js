@@ -109,10 +109,11 @@ export class SynthesisController {
   }
 
   // The atlas for the current model at `resolution` (cached per model and resolution).
-  #atlasFor(model, resolution) {
+  async #atlasFor(model, resolution) {
     const gutter = this.options.gutter ?? DEFAULTS.gutter;
     if (this.atlas && this.atlas.key === model.key && this.atlas.resolution === resolution && this.atlas.gutter === gutter) return this.atlas;
-    const chosen = chooseAtlas(model, { resolution, gutter: gutter + 1 });
+    await this.#ensureModule();
+    const chosen = chooseAtlas(this.module, model, { resolution, gutter });
     this.atlas = { key: model.key, resolution, gutter, ...chosen };
     this.#ensureSynth().setAtlas({ resolution, positions: model.positions, triangles: model.triangles, cornerUVs: this.atlas.cornerUVs });
     if (!this.render) this.render = new TexturedModel(this.viewer);
@@ -149,7 +150,7 @@ export class SynthesisController {
     const model = this.getModel();
     if (!model) throw new Error('no model loaded');
     const t0 = performance.now();
-    const atlas = this.#atlasFor(model, this.options.resolution);
+    const atlas = await this.#atlasFor(model, this.options.resolution);
     const tAtlas = performance.now() - t0;
     const synthOptions = {};
     for (const k of OPTION_KEYS) if (this.options[k] !== undefined) synthOptions[k] = this.options[k];
