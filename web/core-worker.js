@@ -141,8 +141,8 @@ const ops = {
   },
 
   // Exports of the current field (docs/export.md): the same bytes as `tvf export` for this model file.
-  exportAtlasError() {
-    return coreExport.atlasError();
+  exportAtlasNote() {
+    return coreExport.atlasNote();
   },
 
   exportFlowMap(options) {

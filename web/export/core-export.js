@@ -36,9 +36,9 @@ export class CoreExport {
     return this.exporter;
   }
 
-  // '' when the model's own UVs can index a flow map, else the reason.
-  atlasError() {
-    return this.#loaded().atlasError();
+  // '' when the model's own UVs are the flow map's atlas, else why not (then one is generated).
+  atlasNote() {
+    return this.#loaded().atlasNote();
   }
 
   flowMapPng(oneForm, options) {
