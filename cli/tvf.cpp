@@ -145,7 +145,9 @@ int exportCommand(int argc, char** argv) {
       tvf::exportAtlasFor(mesh, options, !flowMapPath.empty() || (!glbPath.empty() && options.embedFlowMap));
   if (atlas.generated) {
     std::cerr << "tvf: " << meshPath << ": " << atlas.reason << "; using a generated atlas"
-              << (glbPath.empty() ? "" : " (the GLB is rebuilt on it; --no-embed-flowmap keeps the model's layout)")
+              << (glbPath.empty()
+                      ? ""
+                      : " (the GLB is rebuilt on it; --no-embed-flowmap keeps the model's layout)")
               << "\n";
   }
   if (!flowMapPath.empty()) {
@@ -156,11 +158,12 @@ int exportCommand(int argc, char** argv) {
     if (format == tvf::MeshFormat::Gltf || format == tvf::MeshFormat::Glb) {
       const std::vector<uint8_t> bytes = readBytes(meshPath);
       const std::string parent = std::filesystem::path(meshPath).parent_path().string();
-      source = std::make_unique<tvf::GltfSource>(tvf::loadGltfSource(
-          bytes.data(), bytes.size(), format == tvf::MeshFormat::Glb, parent.empty() ? "." : parent, meshPath));
+      source = std::make_unique<tvf::GltfSource>(
+          tvf::loadGltfSource(bytes.data(), bytes.size(), format == tvf::MeshFormat::Glb,
+                              parent.empty() ? "." : parent, meshPath));
     }
     writeBytes(glbPath, tvf::exportFieldGlb(mesh, source.get(), atlas, designer.oneForm(),
-                                             tvf::designDocument(designer), options));
+                                            tvf::designDocument(designer), options));
   }
   return 0;
 }

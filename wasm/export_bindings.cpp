@@ -89,7 +89,8 @@ class FieldExporterBinding {
   val flowMapPng(const val& oneForm, const std::string& options) {
     return produce([&] {
       const tvf::FieldExportOptions o = optionsFrom(options);
-      return tvf::exportFlowMapPng(need(), tvf::exportAtlasFor(need(), o, true).cornerUVs, numbers(oneForm), o);
+      return tvf::exportFlowMapPng(need(), tvf::exportAtlasFor(need(), o, true).cornerUVs, numbers(oneForm),
+                                   o);
     });
   }
 
@@ -100,10 +101,9 @@ class FieldExporterBinding {
       const std::vector<uint8_t> baseColor = baseColorPng.isNull() || baseColorPng.isUndefined()
                                                  ? std::vector<uint8_t>{}
                                                  : bytesOf(baseColorPng);
-      return tvf::exportFieldGlb(need(), source_.get(), tvf::exportAtlasFor(need(), o, o.embedFlowMap),
-                                 numbers(oneForm),
-                                 design.empty() ? nlohmann::json() : nlohmann::json::parse(design), o,
-                                 baseColor);
+      return tvf::exportFieldGlb(
+          need(), source_.get(), tvf::exportAtlasFor(need(), o, o.embedFlowMap), numbers(oneForm),
+          design.empty() ? nlohmann::json() : nlohmann::json::parse(design), o, baseColor);
     });
   }
 

@@ -16,7 +16,8 @@ ExportAtlas exportAtlas(const SurfaceMesh& mesh, const FieldExportOptions& optio
   ExportAtlas atlas;
   if (mesh.hasUVs()) {
     // The overlap test rasterizes at this resolution; beyond 1024 it costs more than it tells.
-    const AtlasCheck check = checkAtlasUVs(mesh.cornerUVs, mesh.numFaces(), std::clamp(options.size, 16, 1024));
+    const AtlasCheck check =
+        checkAtlasUVs(mesh.cornerUVs, mesh.numFaces(), std::clamp(options.size, 16, 1024));
     if (check.usable) {
       atlas.cornerUVs = mesh.cornerUVs;
       return atlas;
@@ -55,8 +56,8 @@ std::vector<uint8_t> exportFlowMapPng(const SurfaceMesh& mesh, const std::vector
                        options.bits);
 }
 
-std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const GltfSource* source, const ExportAtlas& atlas,
-                                    const std::vector<double>& oneForm,
+std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const GltfSource* source,
+                                    const ExportAtlas& atlas, const std::vector<double>& oneForm,
                                     const nlohmann::json& design, const FieldExportOptions& options,
                                     const std::vector<uint8_t>& baseColorPng) {
   const MeshTopology topology = buildTopology(mesh);

@@ -519,9 +519,11 @@ TEST_F(CurvedPatchExport, AModelWithoutUVsGetsAGeneratedAtlas) {
     off.precision(17);
     off << "OFF\n" << mesh_.numVertices() << " " << mesh_.numFaces() << " 0\n";
     for (int v = 0; v < mesh_.numVertices(); ++v)
-      off << mesh_.positions[3 * v] << " " << mesh_.positions[3 * v + 1] << " " << mesh_.positions[3 * v + 2] << "\n";
+      off << mesh_.positions[3 * v] << " " << mesh_.positions[3 * v + 1] << " " << mesh_.positions[3 * v + 2]
+          << "\n";
     for (int f = 0; f < mesh_.numFaces(); ++f)
-      off << "3 " << mesh_.triangles[3 * f] << " " << mesh_.triangles[3 * f + 1] << " " << mesh_.triangles[3 * f + 2] << "\n";
+      off << "3 " << mesh_.triangles[3 * f] << " " << mesh_.triangles[3 * f + 1] << " "
+          << mesh_.triangles[3 * f + 2] << "\n";
   }
   ASSERT_EQ(runCli(path("patch.off") + " " + path("design.json") + " --glb " + path("g.glb") + " --flowmap " +
                    path("g.png") + " --size 256"),
@@ -531,8 +533,10 @@ TEST_F(CurvedPatchExport, AModelWithoutUVsGetsAGeneratedAtlas) {
   const std::vector<float> texcoords = accessorFloats(glb, primitive["attributes"]["TEXCOORD_0"].get<int>());
   const json& ia = glb.doc["accessors"][primitive["indices"].get<int>()];
   std::vector<uint32_t> indices(ia["count"].get<size_t>());
-  std::memcpy(indices.data(), glb.bin.data() + glb.doc["bufferViews"][ia["bufferView"].get<int>()]["byteOffset"].get<size_t>(),
-              indices.size() * 4);
+  std::memcpy(
+      indices.data(),
+      glb.bin.data() + glb.doc["bufferViews"][ia["bufferView"].get<int>()]["byteOffset"].get<size_t>(),
+      indices.size() * 4);
   ASSERT_EQ(indices.size(), mesh_.triangles.size());
   std::vector<float> uvs;
   for (uint32_t i : indices) uvs.insert(uvs.end(), {texcoords[2 * i], texcoords[2 * i + 1]});
@@ -547,24 +551,31 @@ TEST_F(CurvedPatchExport, AModelWithoutUVsGetsAGeneratedAtlas) {
     worst = std::max(worst, degreesBetween(decoded, expected));
   }
   EXPECT_LT(worst, 2.0);
-  std::cout << "[ measured ] generated atlas: flow map worst deviation from the stroke: " << worst << " deg\n";
+  std::cout << "[ measured ] generated atlas: flow map worst deviation from the stroke: " << worst
+            << " deg\n";
   // Without the flow map the GLB keeps the model's layout: no atlas, no TEXCOORD_0.
-  ASSERT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("plain.glb") + " --no-embed-flowmap"), 0);
-  EXPECT_FALSE(parseGlb(readBytes(dir_ / "plain.glb")).doc["extras"][tvf::kGlbExtrasKey].contains("flowMapTexture"));
+  ASSERT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("plain.glb") +
+                   " --no-embed-flowmap"),
+            0);
+  EXPECT_FALSE(
+      parseGlb(readBytes(dir_ / "plain.glb")).doc["extras"][tvf::kGlbExtrasKey].contains("flowMapTexture"));
 }
 
 TEST_F(CurvedPatchExport, NormalMappedMaterialsGetTheDirectionInAnisotropyTexture) {
   const std::vector<uint8_t> source = curvedPatchGlb(true);
   std::ofstream(dir_ / "mapped.glb", std::ios::binary)
       .write(reinterpret_cast<const char*>(source.data()), static_cast<std::streamsize>(source.size()));
-  ASSERT_EQ(runCli(path("mapped.glb") + " " + path("design.json") + " --glb " + path("mapped.out.glb") + " --size 256"),
+  ASSERT_EQ(runCli(path("mapped.glb") + " " + path("design.json") + " --glb " + path("mapped.out.glb") +
+                   " --size 256"),
             0);
   const Glb out = parseGlb(readBytes(dir_ / "mapped.out.glb"));
   const json& primitive = out.doc["meshes"][0]["primitives"][0];
   EXPECT_FALSE(primitive["attributes"].contains("TANGENT"));  // the normal map's frame stays the viewer's
   const json& anisotropy = out.doc["materials"][0]["extensions"]["KHR_materials_anisotropy"];
   ASSERT_TRUE(anisotropy.contains("anisotropyTexture"));
-  const json& image = out.doc["images"][out.doc["textures"][anisotropy["anisotropyTexture"]["index"].get<int>()]["source"].get<int>()];
+  const json& image =
+      out.doc["images"]
+             [out.doc["textures"][anisotropy["anisotropyTexture"]["index"].get<int>()]["source"].get<int>()];
   const json& view = out.doc["bufferViews"][image["bufferView"].get<int>()];
   const auto begin = out.bin.begin() + view["byteOffset"].get<long>();
   const Image map = decodePng(std::vector<uint8_t>(begin, begin + view["byteLength"].get<long>()));
