@@ -1,13 +1,18 @@
 // tvf: the field-design core from the command line (info, design, bench).
+#include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "cli/bench.h"
 #include "design/design_document.h"
+#include "design/field_export.h"
 #include "design/mesh_info.h"
+#include "io/gltf_writer.h"
 #include "io/mesh_io.h"
 
 namespace {
@@ -18,6 +23,9 @@ int usage() {
   std::cerr << "usage:\n"
                "  tvf info MESH\n"
                "  tvf design MESH DESIGN.json [-o FIELD.json] [--ignore-fingerprint]\n"
+               "  tvf export MESH DESIGN.json [--glb OUT.glb] [--flowmap OUT.png] [--size N]\n"
+               "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
+               "             [--no-embed-flowmap]\n"
                "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis] [--json]\n"
                "Fill-reducing ordering: METIS by default (less fill, faster solves and updates, slower\n"
                "analysis); --amd for AMD, which the browser build uses.\n"
@@ -84,6 +92,106 @@ int designCommand(int argc, char** argv) {
   return design(argv[2], argv[3], out, checkFingerprint);
 }
 
+std::vector<uint8_t> readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw tvf::InputError("cannot open " + path);
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+void writeBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size())))
+    throw tvf::InputError("cannot write " + path);
+}
+
+// DESIGN.json, or a GLB/glTF this tool exported (its embedded design).
+nlohmann::json readDesign(const std::string& path) {
+  const tvf::MeshFormat format =
+      path.size() > 5 && (path.substr(path.size() - 4) == ".glb" || path.substr(path.size() - 5) == ".gltf")
+          ? tvf::MeshFormat::Glb
+          : tvf::MeshFormat::Off;
+  if (format != tvf::MeshFormat::Glb) return readJsonFile(path);
+  const std::vector<uint8_t> bytes = readBytes(path);
+  nlohmann::json design = tvf::readEmbeddedDesign(bytes.data(), bytes.size());
+  if (design.is_null()) throw tvf::InputError(path + " holds no design (not exported by tvf or the page)");
+  return design;
+}
+
+double numberArgument(const std::string& flag, const char* text) {
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  if (end == text || *end != 0 || !std::isfinite(value))
+    throw tvf::InputError(flag + " needs a number, got \"" + std::string(text) + "\"");
+  return value;
+}
+
+int exportCommand(int argc, char** argv) {
+  if (argc < 4) return usage();
+  const std::string meshPath = argv[2], designPath = argv[3];
+  std::string glbPath, flowMapPath;
+  tvf::FieldExportOptions options;
+  for (int k = 4; k < argc; ++k) {
+    const std::string a = argv[k];
+    if (a == "--no-embed-flowmap") {
+      options.embedFlowMap = false;
+      continue;
+    }
+    if (k + 1 >= argc) return usage();
+    const char* value = argv[++k];
+    if (a == "--glb") {
+      glbPath = value;
+    } else if (a == "--flowmap") {
+      flowMapPath = value;
+    } else if (a == "--size") {
+      options.size = static_cast<int>(numberArgument(a, value));
+    } else if (a == "--convention") {
+      options.convention = tvf::flowMapConventionFromName(value);
+    } else if (a == "--bits") {
+      options.bits = static_cast<int>(numberArgument(a, value));
+      if (options.bits != 8 && options.bits != 16) throw tvf::InputError("--bits must be 8 or 16");
+    } else if (a == "--strength") {
+      options.anisotropyStrength = numberArgument(a, value);
+    } else if (a == "--rotation") {
+      options.anisotropyRotation = numberArgument(a, value);
+    } else {
+      return usage();
+    }
+  }
+  if (glbPath.empty() && flowMapPath.empty())
+    throw tvf::InputError("nothing to export: give --glb and/or --flowmap");
+  const tvf::MeshFormat format = tvf::formatFromPath(meshPath);
+  tvf::Designer designer(tvf::loadMesh(meshPath));
+  designer.setMetisOrdering(true);
+  tvf::applyDesignDocument(designer, readDesign(designPath));
+  designer.solve();
+  const tvf::SurfaceMesh& mesh = designer.mesh();
+  const tvf::ExportAtlas atlas =
+      tvf::exportAtlasFor(mesh, options, !flowMapPath.empty() || (!glbPath.empty() && options.embedFlowMap));
+  if (atlas.generated) {
+    std::cerr << "tvf: " << meshPath << ": " << atlas.reason << "; using a generated atlas"
+              << (glbPath.empty()
+                      ? ""
+                      : " (the GLB is rebuilt on it; --no-embed-flowmap keeps the model's layout)")
+              << "\n";
+  }
+  if (!flowMapPath.empty()) {
+    writeBytes(flowMapPath, tvf::exportFlowMapPng(mesh, atlas.cornerUVs, designer.oneForm(), options));
+  }
+  if (!glbPath.empty()) {
+    std::unique_ptr<tvf::GltfSource> source;
+    if (format == tvf::MeshFormat::Gltf || format == tvf::MeshFormat::Glb) {
+      const std::vector<uint8_t> bytes = readBytes(meshPath);
+      const std::string parent = std::filesystem::path(meshPath).parent_path().string();
+      source = std::make_unique<tvf::GltfSource>(
+          tvf::loadGltfSource(bytes.data(), bytes.size(), format == tvf::MeshFormat::Glb,
+                              parent.empty() ? "." : parent, meshPath));
+    }
+    writeBytes(glbPath, tvf::exportFieldGlb(mesh, source.get(), atlas, designer.oneForm(),
+                                            tvf::designDocument(designer), options));
+  }
+  return 0;
+}
+
 void printBenchTable(const nlohmann::json& r) {
   std::cout << std::fixed << std::setprecision(2);
   std::cout << "| mesh | E | nnz/row M | nnz/row L | analyze ms | factor ms | solve ms | update ms | "
@@ -133,6 +241,7 @@ int main(int argc, char** argv) {
     if (command == "info" && argc == 3) return info(argv[2]);
     if (command == "design" && argc >= 4) return designCommand(argc, argv);
     if (command == "bench") return bench(argc, argv);
+    if (command == "export") return exportCommand(argc, argv);
     return usage();
   } catch (const tvf::InputError& e) {
     std::cerr << "tvf: " << e.what() << "\n";

@@ -7,6 +7,17 @@ export interface SurfacePoint {
   bary: [number, number, number];
 }
 
+/** Flow map and GLB export options (docs/export.md). */
+export interface ExportOptions {
+  size: number;
+  convention: 'gltf' | 'opengl';
+  bits: 8 | 16;
+  strength: number;
+  rotation: number;
+  embedFlowMap?: boolean;
+  embedDesign?: boolean;
+}
+
 export type Boundary = 'free' | 'tangential' | 'normal' | { angle: number };
 export type Tool = 'orbit' | 'select' | 'stroke' | 'vector' | 'source' | 'sink' | 'vortex';
 export type Controls = 'full' | 'minimal' | 'none';
@@ -159,6 +170,13 @@ export declare class TangentFieldDesigner extends HTMLElement {
   camera(): { position: number[]; target: number[]; fov: number };
   setCamera(state: { position?: number[]; target?: number[] }): void;
   exportField(): Promise<Record<string, unknown>>;
+  /** docs/export.md: the same bytes as `tvf export` for this model file and field. */
+  exportFlowMap(options?: Partial<ExportOptions>): Promise<Uint8Array>;
+  exportGlb(options?: Partial<ExportOptions>): Promise<Uint8Array>;
+  exportOptions(): ExportOptions;
+  setExportOptions(options: Partial<ExportOptions>): void;
+  materialPreview(preset: 'brushed metal' | 'satin' | null): Promise<void>;
+  materialPreviewInfo(): Promise<Record<string, unknown> | null>;
 
   faceVectors(): Float64Array;
   vertexVectors(): Float64Array;

@@ -43,6 +43,13 @@ export const api = {
       throw s.fail('design', err);
     }),
   exportField: (s) => s.exportField().then((text) => JSON.parse(text)),
+  // docs/export.md: Uint8Arrays with the same bytes as `tvf export` for this model file and field.
+  exportFlowMap: (s, options) => s.exports.exportFlowMap(options),
+  exportGlb: (s, options) => s.exports.exportGlb(options),
+  exportOptions: (s) => s.exports.exportOptions(),
+  setExportOptions: (s, options) => s.exports.setExportOptions(options),
+  materialPreview: (s, preset) => s.exports.materialPreview(preset),
+  materialPreviewInfo: (s) => s.exports.materialPreviewInfo(),
 
   faceVectors: read((s) => s.field.faceVectors.slice()),
   vertexVectors: read((s) => s.field.vertexVectors.slice()),

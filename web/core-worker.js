@@ -4,8 +4,10 @@
 //
 // One worker per <tangent-field-designer> element: its globals are that element's core and nothing else.
 import { CoreError, loadCore } from './core-client.js';
+import { CoreExport } from './export/core-export.js';
 
 let core = null;
+let coreExport = null;
 
 function requireMesh() {
   if (!core?.hasMesh) throw new CoreError('no mesh loaded');
@@ -66,6 +68,7 @@ const ops = {
         })
         .catch(() => {});
     }
+    coreExport = new CoreExport(core.Module);
     return { crossOriginIsolated: self.crossOriginIsolated === true };
   },
 
@@ -79,14 +82,17 @@ const ops = {
   // replaces the current model only when all of that succeeded; a failure leaves the core and the page on the
   // previous model.
   loadMesh(bytes, format, settings, design) {
-    const { settingsError, restoreError } = core.loadModel(bytes, format, settings, design);
+    // A GLB exported with its design (docs/export.md) reopens with it, unless an autosave is newer.
+    const embedded = design ? null : coreExport.embeddedDesign(bytes);
+    const { settingsError, restoreError } = core.loadModel(bytes, format, settings, design ?? embedded);
+    coreExport.modelLoaded(bytes, format);
     const info = core.info();
     const mesh = core.mesh();
     const edges = core.edges();
     // Texture synthesis (web/synthesis/) needs the model's per-corner UVs (6 per face; empty without TEXCOORD_0).
     const cornerUVs = Float32Array.from(core.designer.cornerUVs());
     return {
-      value: { info, settingsError, restoreError },
+      value: { info, settingsError, restoreError, embeddedDesign: embedded != null },
       mesh: { positions: mesh.positions, triangles: mesh.triangles, edges, cornerUVs },
       transfer: [mesh.positions.buffer, mesh.triangles.buffer, edges.buffer, cornerUVs.buffer],
     };
@@ -158,6 +164,19 @@ const ops = {
   setFactorMemoryLimit(bytes) {
     core.setFactorMemoryLimit(bytes);
     return true;
+  },
+
+  // Exports of the current field (docs/export.md): the same bytes as `tvf export` for this model file.
+  exportAtlasNote() {
+    return coreExport.atlasNote();
+  },
+
+  exportFlowMap(options) {
+    return coreExport.flowMapPng(core.oneForm(), options);
+  },
+
+  exportGlb(options, baseColorPng) {
+    return coreExport.glb(core.oneForm(), JSON.parse(core.designJson()), options, baseColorPng);
   },
 };
 

@@ -10,6 +10,7 @@ import { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSettin
 import { CoreProxy } from './core-proxy.js';
 import { AutosaveStore } from './autosave-store.js';
 import { baseName, downloadJson, modelKey, readJsonFile } from './documents.js';
+import { setupExport } from './export/index.js';
 import { History } from './history.js';
 import { ACCEPT, readModel } from './model-files.js';
 import { traceStreamlines } from './streamlines.js';
@@ -33,6 +34,8 @@ const PROGRESS_LABELS = {
   setGamma: 'Refactoring…',
   applyDesign: 'Applying the design…',
   fieldJson: 'Exporting…',
+  exportFlowMap: 'Exporting the flow map…',
+  exportGlb: 'Exporting the GLB…',
 };
 
 export class Session {
@@ -111,6 +114,18 @@ export class Session {
             }
           : null,
     });
+    // Flow map / GLB exports and the material preview (web/export/, docs/export.md).
+    this.exports = setupExport({
+      viewer: this.viewer,
+      panel: $('#side-panel'),
+      call: (op, args) =>
+        this.exclusive(async () => {
+          this.requireReady();
+          return (await this.call(op, args)).value;
+        }),
+      modelName: () => baseName(this.modelName),
+      onError: (err) => !this.disposed && this.ui.showError(err.message),
+    });
   }
 
   // Starts the worker and the core. Rejects (and fires `error`, code 'core') when either fails.
@@ -136,6 +151,7 @@ export class Session {
     this.proxy?.terminate();
     this.autosaveStore?.close();
     this.synthesis.dispose();
+    this.exports.dispose();
     this.tools.dispose();
     this.ui.dispose();
     this.viewer.dispose();
@@ -373,6 +389,7 @@ export class Session {
     this.refresh();
     this.#autosaveNow();
     this.#emitChanges();
+    this.exports.fieldChanged();
   }
 
   // ------------------------------------------------------------------------------------------ autosave
@@ -465,7 +482,7 @@ export class Session {
       }
       const tApply = performance.now();
       this.ui.clearError();
-      const { info, settingsError, restoreError } = reply.value;
+      const { info, settingsError, restoreError, embeddedDesign } = reply.value;
       const { positions, triangles, edges } = reply.mesh;
       this.surface = new Surface(positions, triangles, edges);
       this.info = info;
@@ -494,13 +511,15 @@ export class Session {
       this.refresh();
       // Main-thread cost of taking a new mesh on (adjacency, BVH, buffers, first draw): the one pause left.
       this.perf.meshSetupMs = performance.now() - tApply;
-      if (restoreError) this.ui.flash(`The autosaved design could not be restored: ${restoreError}`, 6000);
-      else if (saved?.design && this.constraints.size) {
-        this.ui.flash(`Restored the autosaved design (${this.constraints.size} constraints).`);
+      const restored = saved?.design ? 'autosaved' : 'embedded';
+      if (restoreError) this.ui.flash(`The ${restored} design could not be restored: ${restoreError}`, 6000);
+      else if ((saved?.design || embeddedDesign) && this.constraints.size) {
+        this.ui.flash(`Restored the ${restored} design (${this.constraints.size} constraints).`);
       }
       if (settingsError) this.ui.showError(`The boundary/γ settings did not apply to ${model.name}: ${settingsError}`);
       this.emit('load', { info: structuredClone(info) });
       this.#emitChanges();
+      this.exports.fieldChanged();
       if (!this.warmedUp) {
         this.warmedUp = true;
         // After the first frame, not before: on the small default model warming up costs more than it saves
