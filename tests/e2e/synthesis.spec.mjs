@@ -259,7 +259,7 @@ test.describe.serial('texture synthesis on a curved model (the default bunny, ge
   test('stripes follow a stroke-designed field within 10°; seams continue across charts', async ({}, testInfo) => {
     // A stroke across the body, sampled from the surface under a horizontal screen line.
     const points = await page.evaluate(() => {
-      const rect = document.querySelector('#view').getBoundingClientRect();
+      const rect = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
       const pts = [];
       for (let k = 0; k <= 20; k++) {
         const h = window.tvf.pick(rect.left + rect.width * (0.38 + 0.012 * k), rect.top + rect.height * 0.55);

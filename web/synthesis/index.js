@@ -390,6 +390,15 @@ export class SynthesisController {
     });
   }
 
+  // The element left the page: free the synthesis WebGL context and the textured mesh now.
+  dispose() {
+    this.active = false;
+    this.render?.dispose();
+    this.render = null;
+    this.synth?.dispose();
+    this.synth = null;
+  }
+
   // Milliseconds of one plain full-screen pass at size^2 on the synthesis context (the bench's unit).
   plainPassMs(size, repeats) {
     return this.#ensureSynth().plainPassMs(size, repeats);
@@ -416,9 +425,9 @@ export function installSynthesis(tvf, deps) {
   return c;
 }
 
-// ?bench=1[&sizes=256,512]: once the page is ready, runs the benchmark, shows it over the view and leaves the
-// result in window.tvfBench (scripts/bench-web.mjs reads it from there).
-function scheduleBench(tvf, controller) {
+// ?bench=1[&sizes=256,512] on the app page: once it is ready, runs the benchmark, shows it over the view and
+// leaves the result in window.tvfBench (scripts/bench-web.mjs reads it from there).
+function scheduleBench(tvf, controller, viewport) {
   const params = new URLSearchParams(globalThis.location?.search ?? '');
   if (params.get('bench') !== '1') return;
   const sizes = (params.get('sizes') || '256,512,1024').split(',').map(Number).filter((n) => n > 0);
@@ -432,7 +441,7 @@ function scheduleBench(tvf, controller) {
       pre.id = 'synthesis-bench';
       pre.style.cssText = 'position:absolute;left:220px;bottom:40px;z-index:10;background:#000c;color:#dfe;padding:8px;font:12px monospace;white-space:pre-wrap;max-width:70vw';
       pre.textContent = formatBench(result);
-      document.getElementById('viewport')?.append(pre);
+      viewport?.append(pre);
       console.log(pre.textContent);
     })
     .catch((err) => {
@@ -440,11 +449,12 @@ function scheduleBench(tvf, controller) {
     });
 }
 
-// Everything the page needs in one call: window.tvf additions, plus the "Texture" panel in `panel` (an element,
-// e.g. the side panel) when given. Returns the controller (fieldChanged(), modelChanged()).
-export function setupSynthesis(tvf, { panel = null, ...deps }) {
-  const controller = installSynthesis(tvf, deps);
-  scheduleBench(tvf, controller);
+// Everything a designer needs in one call: the texture calls added to `api` (the element forwards its texture
+// methods there), plus the "Texture" panel in `panel` (e.g. the side panel) when given, and the benchmark when
+// `bench` (the app page; `ready` is the element). Returns the controller (fieldChanged(), modelChanged(), dispose()).
+export function setupSynthesis(api, { panel = null, bench = null, ...deps }) {
+  const controller = installSynthesis(api, deps);
+  if (bench) scheduleBench(bench, controller, panel?.parentElement);
   if (panel) {
     const view = mountSynthesisPanel(controller, panel, { onError: deps.onError, modelName: () => (deps.getModel()?.name ?? 'model').replace(/\.[^.]*$/, '') });
     const notify = controller.onChange;
