@@ -196,6 +196,10 @@ export declare class TangentFieldDesigner extends HTMLElement {
   synthesize(options?: SynthesisOptions): Promise<Record<string, unknown>>;
   synthesisStats(): Record<string, unknown> | null;
   synthesisIdle(): Promise<Record<string, unknown> | null>;
+  /** Progress of the synthesis in flight, or null when none runs. */
+  synthesisProgress(): { fraction: number; preview: boolean } | null;
+  /** Resynthesize after every field change (on by default). */
+  setTextureAutoUpdate(on: boolean): void;
   clearTexture(): Promise<void>;
   exemplarInfo(): Record<string, unknown> | null;
   exportTexturePNG(options?: { magnification?: 1 | 2 | 4 }): Promise<Blob>;

@@ -93,5 +93,7 @@ export const TEXTURE_METHODS = [
   'exemplarInfo',
   'synthesisReadback',
   'synthesisIdle',
+  'synthesisProgress',
+  'setTextureAutoUpdate',
   'synthesisBench',
 ];
