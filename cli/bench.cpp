@@ -58,12 +58,15 @@ std::vector<SurfacePoint> stripStroke(const SurfaceMesh& mesh, const MeshTopolog
 nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma, bool metis) {
   Designer designer(loadMesh(meshPath));
   designer.setGamma(gamma);
-  designer.setMetisOrdering(metis);
-  std::vector<double> analyze, factor, solve, update, stroke, strokeUpdate, reconstruct;
+  std::vector<double> analyze, factor, solve, update, stroke, strokeUpdate, strokeRows, strokeRhs,
+      strokeSolve, reconstruct;
   const int32_t nF = designer.mesh().numFaces();
+  int strokeEdges = 0;  // edges the benchmark stroke crosses (one per step between adjacent faces)
   const MeshTopology topology = buildTopology(designer.mesh());  // for the benchmark's stroke paths only
   for (int r = 0; r < repeat; ++r) {
     designer.clearConstraints();
+    // A fresh factored system: the designer would otherwise reuse the first repeat's ordering.
+    designer.setMetisOrdering(metis);
     designer.factor();
     analyze.push_back(designer.stats().analyzeMs);
     factor.push_back(designer.stats().factorMs);
@@ -88,7 +91,11 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma, b
       designer.solve();
     });
     stroke.push_back(total - designer.stats().reconstructMs);
+    strokeEdges = static_cast<int>(points.size()) - 1;
     strokeUpdate.push_back(designer.stats().updateMs);
+    strokeRows.push_back(designer.stats().rowsMs);
+    strokeRhs.push_back(designer.stats().rhsMs);
+    strokeSolve.push_back(designer.stats().solveMs);
   }
   const auto& ev = designer.edgeVertices();
   return {{"mesh", meshPath},
@@ -101,6 +108,10 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma, b
           {"updateMs", median(update)},
           {"strokeUpdateSolveMs", median(stroke)},
           {"strokeUpdateMs", median(strokeUpdate)},
+          {"strokeRowsMs", median(strokeRows)},
+          {"strokeRhsMs", median(strokeRhs)},
+          {"strokeSolveMs", median(strokeSolve)},
+          {"strokeEdges", strokeEdges},
           {"reconstructMs", median(reconstruct)},
           {"repeat", repeat},
           {"gamma", gamma},

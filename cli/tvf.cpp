@@ -19,8 +19,8 @@ int usage() {
                "  tvf info MESH\n"
                "  tvf design MESH DESIGN.json [-o FIELD.json]\n"
                "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis] [--json]\n"
-               "Fill-reducing ordering: METIS by default (less fill, faster solves and updates, slower\n"
-               "analysis); --amd for AMD, which the browser build uses.\n"
+               "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
+               "updates, slower analysis), as in the browser build; --amd for AMD.\n"
                "MESH: .gltf, .glb, .off, .obj or .ply\n";
   return kUsageError;
 }

@@ -151,6 +151,7 @@ struct Designer::Impl {
     }
     const FactorTimings& t = system.timings();
     stats.analyzeMs = t.analyzeMs;
+    stats.analysisReused = t.analysisReused;
     stats.factorMs = t.factorMs + t.convertMs;
     stats.nnzPerRowL = static_cast<double>(system.factorNonzeros()) / std::max(1, topology.numEdges);
     stats.kernelShift = shift;
@@ -275,7 +276,9 @@ struct Designer::Impl {
 
   int32_t add(ConstraintSpec spec) {
     validate(spec);
+    const auto start = Clock::now();
     Active a{spec, rowsFor(spec)};
+    stats.rowsMs = msSince(start);
     a.spec.id = nextId++;
     std::vector<int32_t> rows;
     std::vector<double> w;
@@ -431,9 +434,11 @@ void Designer::clearConstraints() {
 void Designer::solve() {
   Impl& d = *impl_;
   if (d.baseStale || d.factorStale || !d.system.factored()) d.factorNow();
-  const Eigen::VectorXd b = d.rightHandSide();
-  d.stats.warnings = d.designWarnings();
   auto start = Clock::now();
+  const Eigen::VectorXd b = d.rightHandSide();
+  d.stats.rhsMs = msSince(start);
+  d.stats.warnings = d.designWarnings();
+  start = Clock::now();
   d.system.solve(b, d.solution);
   if (d.shift > 0) d.refineAgainstUnshiftedSystem(b);
   d.stats.solveMs = msSince(start);

@@ -14,18 +14,23 @@ enum class FillOrdering { Amd, Metis };
 
 struct FactorTimings {
   double analyzeMs = 0, factorMs = 0, convertMs = 0;
+  // The last factor() reused the previous symbolic analysis (same sparsity pattern): no ordering was
+  // computed.
+  bool analysisReused = false;
 };
 
 class FactoredSystem {
  public:
-  explicit FactoredSystem(FillOrdering ordering = FillOrdering::Amd);
+  explicit FactoredSystem(FillOrdering ordering = FillOrdering::Metis);
   ~FactoredSystem();
   FactoredSystem(FactoredSystem&&) noexcept;
   FactoredSystem& operator=(FactoredSystem&&) noexcept;
 
   // Analyzes and factors A (symmetric; only its upper triangle is read). Returns false if A is not
-  // numerically positive definite.
+  // numerically positive definite. The fill-reducing ordering and symbolic analysis are computed once and
+  // reused while A keeps the sparsity pattern of the matrix they were computed for.
   bool factor(const SparseMatrix& A);
+  int analyses() const;  // symbolic analyses computed so far (orderings), for checking the reuse
   // L L' +/- sum_k w_k e_{row_k} e_{row_k}' in one cholmod_updown call; weights must be positive.
   void updateDiagonal(const std::vector<int32_t>& rows, const std::vector<double>& weights, bool downdate);
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
