@@ -18,9 +18,10 @@ int usage() {
   std::cerr << "usage:\n"
                "  tvf info MESH\n"
                "  tvf design MESH DESIGN.json [-o FIELD.json]\n"
-               "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis] [--json]\n"
+               "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
                "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
-               "updates, slower analysis), as in the browser build; --amd for AMD.\n"
+               "updates, slower analysis), as in the browser build; --amd for AMD; --compare for both,\n"
+               "interleaved repeat by repeat in one process (JSON only).\n"
                "MESH: .gltf, .glb, .off, .obj or .ply\n";
   return kUsageError;
 }
@@ -75,7 +76,8 @@ void printBenchTable(const nlohmann::json& r) {
 int bench(int argc, char** argv) {
   int repeat = 5;
   double gamma = 0;
-  bool json = false, metis = true;
+  bool json = false;
+  std::vector<bool> orderings{true};
   for (int k = 3; k < argc; ++k) {
     const std::string a = argv[k];
     if (a == "--repeat" && k + 1 < argc) {
@@ -85,14 +87,17 @@ int bench(int argc, char** argv) {
     } else if (a == "--json") {
       json = true;
     } else if (a == "--metis") {
-      metis = true;
+      orderings = {true};
     } else if (a == "--amd") {
-      metis = false;
+      orderings = {false};
+    } else if (a == "--compare") {
+      orderings = {true, false};
+      json = true;
     } else {
       return usage();
     }
   }
-  const nlohmann::json r = tvf::runBench(argv[2], repeat, gamma, metis);
+  const nlohmann::json r = tvf::runBench(argv[2], repeat, gamma, orderings);
   if (json)
     std::cout << r.dump() << "\n";
   else
