@@ -15,7 +15,8 @@
 //     applyMs       the page taking the snapshot and redrawing (refreshMs of it: updating the views; renderMs:
 //                   the synchronous three.js render), up to the promise resolving
 //     pageMs        tvf.addStroke() call to its promise resolving with the new field drawn
-//   and ratios workerOverUpdateSolve = workerMs / (updateMs + solveMs), pageOverUpdateSolve likewise.
+//     pageNoRenderMs  pageMs less renderMs (with software GL the render is rasterization on the CPU)
+//   and ratios workerOverUpdateSolve = workerMs / (updateMs + solveMs), page*OverUpdateSolve likewise.
 //   Writes bench-data/web-stroke-bench.json.
 //
 // node scripts/bench-web.mjs [--sizes 256,512,1024] [--port 8194]
@@ -129,6 +130,8 @@ async function strokeBench(page, meshPath) {
     refreshMs: pick((r) => r.refresh?.updateViewsMs),
     renderMs: pick((r) => r.refresh?.renderMs),
     pageMs: pick((r) => r.pageMs),
+    // JS time only: with software GL (SwiftShader here) the synchronous render is the rasterizer's time.
+    pageNoRenderMs: pick((r) => r.pageMs - (r.refresh?.renderMs ?? 0)),
   };
   const updateSolve = m.updateMs + m.solveMs;
   const result = {
@@ -142,6 +145,7 @@ async function strokeBench(page, meshPath) {
     ratios: {
       workerOverUpdateSolve: Number((m.workerMs / updateSolve).toFixed(2)),
       pageOverUpdateSolve: Number((m.pageMs / updateSolve).toFixed(2)),
+      pageNoRenderOverUpdateSolve: Number((m.pageNoRenderMs / updateSolve).toFixed(2)),
     },
   };
   console.log(process.argv.includes('--json') ? JSON.stringify(result, null, 2) : result);
