@@ -294,6 +294,7 @@ async function main() {
     if (opts.warmup !== false) {
       const cold = child(['--first-factor-only', '--no-warmup', mesh, ...(opts.module ? ['--module', opts.module] : [])], opts);
       wasm.firstFactorNoWarmUpMs = cold.firstFactorMs;
+      for (const o of ['metis', 'amd']) if (wasm[o]) wasm[o].firstFactorNoWarmUpMs = cold.firstFactorMs;
     }
     ensureNativeCli(opts);
     const native = nativeFor(mesh, opts);

@@ -63,7 +63,6 @@ struct FactoredSystem::Impl {
   CholmodFactorPtr symbolic{nullptr, {common.get()}};
   std::vector<int> symbolicP, symbolicI;
   double symbolicLnz = 0, symbolicFl = 0;
-  int analyses = 0;
   std::vector<int> updateOrder;  // update columns by position in L (see updateDiagonal)
 
   explicit Impl(FillOrdering o) : ordering(o) {
@@ -85,7 +84,6 @@ struct FactoredSystem::Impl {
     if (!timings.analysisReused) {
       symbolic.reset(cholmod_analyze(&A, common.get()));
       if (!symbolic) return nullptr;
-      ++analyses;
       symbolicLnz = common->lnz;
       symbolicFl = common->fl;
       const int* Ap = static_cast<const int*>(A.p);
@@ -198,10 +196,6 @@ void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   s.solution.reset(out);
   if (!out) throw std::runtime_error("CHOLMOD solve failed");
   x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(out->x), b.size());
-}
-
-int FactoredSystem::analyses() const {
-  return impl_->analyses;
 }
 
 bool FactoredSystem::factored() const {

@@ -30,7 +30,6 @@ class FactoredSystem {
   // numerically positive definite. The fill-reducing ordering and symbolic analysis are computed once and
   // reused while A keeps the sparsity pattern of the matrix they were computed for.
   bool factor(const SparseMatrix& A);
-  int analyses() const;  // symbolic analyses computed so far (orderings), for checking the reuse
   // L L' +/- sum_k w_k e_{row_k} e_{row_k}' in one cholmod_updown call; weights must be positive.
   void updateDiagonal(const std::vector<int32_t>& rows, const std::vector<double>& weights, bool downdate);
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
