@@ -289,6 +289,7 @@ async function main() {
     if (opts.meshes.length !== 1) fail('--json', 'give exactly one mesh');
     const mesh = opts.meshes[0];
     ensureMeshes([mesh]);
+    ensureNativeCli(opts);
     opts.repeat = repeatFor(opts, mesh);
     const wasm = await measureWasm(mesh, opts);
     if (opts.warmup !== false) {
@@ -296,7 +297,6 @@ async function main() {
       wasm.firstFactorNoWarmUpMs = cold.firstFactorMs;
       for (const o of ['metis', 'amd']) if (wasm[o]) wasm[o].firstFactorNoWarmUpMs = cold.firstFactorMs;
     }
-    ensureNativeCli(opts);
     const native = nativeFor(mesh, opts);
     const out = { mesh, edges: wasm.edges, native, wasm };
     if (opts.compare) out.ratios = ratios(native, wasm);
