@@ -3,6 +3,8 @@
 import { defineConfig } from '@playwright/test';
 
 const PORT = Number(process.env.TVF_TEST_PORT || 8191);
+// Embedding tests (tests/e2e/embed.spec.mjs): a plain static host (no COOP/COEP) with a strict CSP.
+const EMBED_PORT = Number(process.env.TVF_EMBED_PORT || PORT + 100);
 
 export default defineConfig({
   testDir: 'tests/e2e',
@@ -37,15 +39,26 @@ export default defineConfig({
       ],
     },
   },
-  webServer: {
-    // Rebuilding the web part is cheap (esbuild) and keeps `npx playwright test` from testing a stale bundle;
-    // the wasm core must already be built (npm run build:wasm).
-    command: 'node scripts/build-web.mjs && node scripts/serve.mjs',
-    url: `http://127.0.0.1:${PORT}/`,
-    env: { PORT: String(PORT) },
-    reuseExistingServer: false,
-    timeout: 120_000,
-    stdout: 'pipe',
-    stderr: 'pipe',
-  },
+  webServer: [
+    {
+      // Rebuilding the web part is cheap (esbuild) and keeps `npx playwright test` from testing a stale bundle;
+      // the wasm core must already be built (npm run build:wasm).
+      command: 'node scripts/build-web.mjs && node scripts/serve.mjs',
+      url: `http://127.0.0.1:${PORT}/`,
+      env: { PORT: String(PORT) },
+      reuseExistingServer: false,
+      timeout: 120_000,
+      stdout: 'pipe',
+      stderr: 'pipe',
+    },
+    {
+      command: 'mkdir -p .cache/embed-site && touch .cache/embed-site/index.html && node scripts/serve.mjs --root .cache/embed-site --plain --csp',
+      url: `http://127.0.0.1:${EMBED_PORT}/index.html`,
+      env: { PORT: String(EMBED_PORT) },
+      reuseExistingServer: false,
+      timeout: 60_000,
+      stdout: 'pipe',
+      stderr: 'pipe',
+    },
+  ],
 });

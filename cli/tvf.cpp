@@ -1,13 +1,18 @@
 // tvf: the field-design core from the command line (info, design, bench).
+#include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "cli/bench.h"
 #include "design/design_document.h"
+#include "design/field_export.h"
 #include "design/mesh_info.h"
+#include "io/gltf_writer.h"
 #include "io/mesh_io.h"
 
 namespace {
@@ -17,12 +22,17 @@ constexpr int kUsageError = 2;
 int usage() {
   std::cerr << "usage:\n"
                "  tvf info MESH\n"
-               "  tvf design MESH DESIGN.json [-o FIELD.json]\n"
+               "  tvf design MESH DESIGN.json [-o FIELD.json] [--ignore-fingerprint]\n"
+               "  tvf export MESH DESIGN.json [--glb OUT.glb] [--flowmap OUT.png] [--size N]\n"
+               "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
+               "             [--no-embed-flowmap]\n"
                "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
                "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
                "updates, slower analysis), as in the browser build; --amd for AMD; --compare for both,\n"
                "interleaved repeat by repeat in one process (JSON only).\n"
-               "MESH: .gltf, .glb, .off, .obj or .ply\n";
+               "MESH: .gltf, .glb, .off, .obj or .ply\n"
+               "A design saved for another mesh (its \"mesh\" fingerprint differs) is refused unless\n"
+               "--ignore-fingerprint is given.\n";
   return kUsageError;
 }
 
@@ -46,10 +56,18 @@ int info(const std::string& path) {
   return 0;
 }
 
-int design(const std::string& meshPath, const std::string& designPath, const std::string& outPath) {
+int design(const std::string& meshPath, const std::string& designPath, const std::string& outPath,
+           bool checkFingerprint) {
   tvf::Designer designer(tvf::loadMesh(meshPath));
   designer.setMetisOrdering(true);
-  tvf::applyDesignDocument(designer, readJsonFile(designPath));
+  try {
+    tvf::applyDesignDocument(designer, readJsonFile(designPath), checkFingerprint);
+  } catch (const tvf::InputError& e) {
+    const std::string why = e.what();
+    throw tvf::InputError(designPath + ": " + why +
+                          (why.find("another mesh") != std::string::npos ? " (--ignore-fingerprint applies it anyway)"
+                                                                          : ""));
+  }
   designer.solve();
   const std::string text = tvf::fieldDocument(designer).dump();
   if (outPath.empty()) {
@@ -57,6 +75,120 @@ int design(const std::string& meshPath, const std::string& designPath, const std
   } else {
     std::ofstream out(outPath);
     if (!(out << text << "\n")) throw tvf::InputError("cannot write " + outPath);
+  }
+  return 0;
+}
+
+int designCommand(int argc, char** argv) {
+  std::string out;
+  bool checkFingerprint = true;
+  for (int k = 4; k < argc; ++k) {
+    if (std::strcmp(argv[k], "-o") == 0 && k + 1 < argc)
+      out = argv[++k];
+    else if (std::strcmp(argv[k], "--ignore-fingerprint") == 0)
+      checkFingerprint = false;
+    else
+      return usage();
+  }
+  return design(argv[2], argv[3], out, checkFingerprint);
+}
+
+std::vector<uint8_t> readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw tvf::InputError("cannot open " + path);
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+void writeBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size())))
+    throw tvf::InputError("cannot write " + path);
+}
+
+// DESIGN.json, or a GLB/glTF this tool exported (its embedded design).
+nlohmann::json readDesign(const std::string& path) {
+  const tvf::MeshFormat format =
+      path.size() > 5 && (path.substr(path.size() - 4) == ".glb" || path.substr(path.size() - 5) == ".gltf")
+          ? tvf::MeshFormat::Glb
+          : tvf::MeshFormat::Off;
+  if (format != tvf::MeshFormat::Glb) return readJsonFile(path);
+  const std::vector<uint8_t> bytes = readBytes(path);
+  nlohmann::json design = tvf::readEmbeddedDesign(bytes.data(), bytes.size());
+  if (design.is_null()) throw tvf::InputError(path + " holds no design (not exported by tvf or the page)");
+  return design;
+}
+
+double numberArgument(const std::string& flag, const char* text) {
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  if (end == text || *end != 0 || !std::isfinite(value))
+    throw tvf::InputError(flag + " needs a number, got \"" + std::string(text) + "\"");
+  return value;
+}
+
+int exportCommand(int argc, char** argv) {
+  if (argc < 4) return usage();
+  const std::string meshPath = argv[2], designPath = argv[3];
+  std::string glbPath, flowMapPath;
+  tvf::FieldExportOptions options;
+  for (int k = 4; k < argc; ++k) {
+    const std::string a = argv[k];
+    if (a == "--no-embed-flowmap") {
+      options.embedFlowMap = false;
+      continue;
+    }
+    if (k + 1 >= argc) return usage();
+    const char* value = argv[++k];
+    if (a == "--glb") {
+      glbPath = value;
+    } else if (a == "--flowmap") {
+      flowMapPath = value;
+    } else if (a == "--size") {
+      options.size = static_cast<int>(numberArgument(a, value));
+    } else if (a == "--convention") {
+      options.convention = tvf::flowMapConventionFromName(value);
+    } else if (a == "--bits") {
+      options.bits = static_cast<int>(numberArgument(a, value));
+      if (options.bits != 8 && options.bits != 16) throw tvf::InputError("--bits must be 8 or 16");
+    } else if (a == "--strength") {
+      options.anisotropyStrength = numberArgument(a, value);
+    } else if (a == "--rotation") {
+      options.anisotropyRotation = numberArgument(a, value);
+    } else {
+      return usage();
+    }
+  }
+  if (glbPath.empty() && flowMapPath.empty())
+    throw tvf::InputError("nothing to export: give --glb and/or --flowmap");
+  const tvf::MeshFormat format = tvf::formatFromPath(meshPath);
+  tvf::Designer designer(tvf::loadMesh(meshPath));
+  designer.setMetisOrdering(true);
+  tvf::applyDesignDocument(designer, readDesign(designPath));
+  designer.solve();
+  const tvf::SurfaceMesh& mesh = designer.mesh();
+  const tvf::ExportAtlas atlas =
+      tvf::exportAtlasFor(mesh, options, !flowMapPath.empty() || (!glbPath.empty() && options.embedFlowMap));
+  if (atlas.generated) {
+    std::cerr << "tvf: " << meshPath << ": " << atlas.reason << "; using a generated atlas"
+              << (glbPath.empty()
+                      ? ""
+                      : " (the GLB is rebuilt on it; --no-embed-flowmap keeps the model's layout)")
+              << "\n";
+  }
+  if (!flowMapPath.empty()) {
+    writeBytes(flowMapPath, tvf::exportFlowMapPng(mesh, atlas.cornerUVs, designer.oneForm(), options));
+  }
+  if (!glbPath.empty()) {
+    std::unique_ptr<tvf::GltfSource> source;
+    if (format == tvf::MeshFormat::Gltf || format == tvf::MeshFormat::Glb) {
+      const std::vector<uint8_t> bytes = readBytes(meshPath);
+      const std::string parent = std::filesystem::path(meshPath).parent_path().string();
+      source = std::make_unique<tvf::GltfSource>(
+          tvf::loadGltfSource(bytes.data(), bytes.size(), format == tvf::MeshFormat::Glb,
+                              parent.empty() ? "." : parent, meshPath));
+    }
+    writeBytes(glbPath, tvf::exportFieldGlb(mesh, source.get(), atlas, designer.oneForm(),
+                                            tvf::designDocument(designer), options));
   }
   return 0;
 }
@@ -112,9 +244,9 @@ int main(int argc, char** argv) {
   const std::string command = argv[1];
   try {
     if (command == "info" && argc == 3) return info(argv[2]);
-    if (command == "design" && (argc == 4 || (argc == 6 && std::strcmp(argv[4], "-o") == 0)))
-      return design(argv[2], argv[3], argc == 6 ? argv[5] : "");
+    if (command == "design" && argc >= 4) return designCommand(argc, argv);
     if (command == "bench") return bench(argc, argv);
+    if (command == "export") return exportCommand(argc, argv);
     return usage();
   } catch (const tvf::InputError& e) {
     std::cerr << "tvf: " << e.what() << "\n";

@@ -27,6 +27,7 @@ await esbuild.build({
   minify: true,
   sourcemap: true,
   legalComments: 'linked',
+  loader: { '.css': 'text' }, // the element's stylesheet, adopted by its shadow root
   logLevel: 'warning',
 });
 

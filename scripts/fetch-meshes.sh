@@ -5,8 +5,11 @@
 # shipped inside /usr/share/doc/libcgal-dev/data.tar.gz), plus a ~1.25M-edge mesh made by two rounds of
 # 1-to-4 midpoint subdivision of armadillo.off (scripts/subdivide-off.mjs).
 #
-# Usage: scripts/fetch-meshes.sh        # idempotent: does nothing when every mesh is already there
+# Usage: scripts/fetch-meshes.sh             # idempotent: does nothing when every mesh is already there
+#        scripts/fetch-meshes.sh --fuzz-seeds # only the fuzzing seeds (see below), nothing else
 # Output: bench-data/meshes/*.off (bench-data/ is git-ignored: never commit meshes)
+#         bench-data/fuzz-seeds/{gltf,glb,off,obj,ply}/: seed corpora for scripts/fuzz.sh, from Debian's
+#         `assimp-testmodels` (assimp's own test files, good and deliberately broken) and CGAL's small OFF meshes
 # Needs: apt-get (download only; no root needed, nothing is installed), dpkg-deb, tar, node.
 # The meshes keep their own licences (CGAL's data folder; see /usr/share/doc/libcgal-dev/copyright).
 
@@ -22,6 +25,59 @@ BIG=armadillo-sub2   # armadillo subdivided twice: 1,248,000 edges
 
 log() { printf '[fetch-meshes] %s\n' "$*" >&2; }
 die() { printf '[fetch-meshes] ERROR: %s\n' "$*" >&2; exit 1; }
+
+# Seeds for the libFuzzer harnesses: every file of the five formats up to 256 KB (larger ones only slow the
+# fuzzer down), one folder per format. assimp's glTF samples with external buffers or textures are kept too:
+# the loader must refuse them cleanly.
+fuzz_seeds() {
+  local SEEDS=$DATA/fuzz-seeds
+  if [ -f "$SEEDS/.done" ]; then return 0; fi
+  command -v apt-get >/dev/null || die "apt-get not found (the seeds come from Debian packages)"
+  mkdir -p "$DATA/assimp" "$SEEDS"/{gltf,glb,off,obj,ply}
+  local deb
+  deb=$(ls "$DATA"/assimp/assimp-testmodels_*.deb 2>/dev/null | head -1 || true)
+  if [ -z "$deb" ]; then
+    log "downloading assimp-testmodels (~21 MB) into bench-data/assimp"
+    (cd "$DATA/assimp" && apt-get download assimp-testmodels >&2) ||
+      die "apt-get download assimp-testmodels failed (run 'apt-get update' first?)"
+    deb=$(ls "$DATA"/assimp/assimp-testmodels_*.deb | head -1)
+  fi
+  rm -rf "$DATA/assimp/x"
+  dpkg-deb -x "$deb" "$DATA/assimp/x"
+  local f ext n=0
+  while IFS= read -r -d '' f; do
+    ext=${f##*.}
+    ext=${ext,,}
+    [ "$(stat -c %s "$f")" -le 262144 ] || continue
+    cp "$f" "$SEEDS/$ext/assimp-$(echo "$f" | md5sum | cut -c1-12).$ext"
+    n=$((n + 1))
+  done < <(find "$DATA/assimp/x" -type f \( -iname '*.gltf' -o -iname '*.glb' -o -iname '*.off' -o -iname '*.obj' \
+    -o -iname '*.ply' \) -print0)
+  rm -rf "$DATA/assimp/x"
+  # CGAL's small OFF meshes: every data/meshes/*.off of libcgal-demo under the size limit.
+  mkdir -p "$DATA/cgal"
+  deb=$(ls "$DATA"/cgal/libcgal-demo_*.deb 2>/dev/null | head -1 || true)
+  if [ -z "$deb" ]; then
+    log "downloading libcgal-demo (~24 MB) into bench-data/cgal"
+    (cd "$DATA/cgal" && apt-get download libcgal-demo >&2) || die "apt-get download libcgal-demo failed"
+    deb=$(ls "$DATA"/cgal/libcgal-demo_*.deb | head -1)
+  fi
+  rm -rf "$DATA/cgal/x" "$DATA/cgal/seeds"
+  dpkg-deb -x "$deb" "$DATA/cgal/x"
+  mkdir -p "$DATA/cgal/seeds"
+  tar -xzf "$(find "$DATA/cgal/x" -name data.tar.gz | head -1)" -C "$DATA/cgal/seeds" --wildcards 'data/meshes/*.off'
+  for f in "$DATA"/cgal/seeds/data/meshes/*.off; do
+    [ "$(stat -c %s "$f")" -le 262144 ] && cp "$f" "$SEEDS/off/cgal-$(basename "$f")"
+  done
+  rm -rf "$DATA/cgal/x" "$DATA/cgal/seeds"
+  touch "$SEEDS/.done"
+  log "fuzz seeds: $n files from assimp-testmodels, $(ls "$SEEDS"/off/cgal-* 2>/dev/null | wc -l) from CGAL"
+}
+
+if [ "${1:-}" = "--fuzz-seeds" ]; then
+  fuzz_seeds
+  exit 0
+fi
 
 missing=()
 for n in "${NAMES[@]}"; do [ -s "$MESHES/$n.off" ] || missing+=("$n"); done

@@ -1,7 +1,9 @@
 #!/usr/bin/env node
 // Static server for dist/ on 127.0.0.1:$PORT (default 8173). Sends COOP/COEP so the page is
 // cross-origin isolated (SharedArrayBuffer for a threaded core) and the MIME types wasm streaming needs.
-// Usage: node scripts/serve.mjs [--root DIR]
+// --plain leaves COOP/COEP/CORP out (a plain static host); --csp sends the strict Content-Security-Policy an
+// embedding page may have (docs/embedding.md).
+// Usage: node scripts/serve.mjs [--root DIR] [--plain] [--csp]
 import { createServer } from 'node:http';
 import { createReadStream } from 'node:fs';
 import { stat } from 'node:fs/promises';
@@ -34,10 +36,19 @@ const MIME = {
   '.txt': 'text/plain; charset=utf-8',
 };
 
-const COMMON_HEADERS = {
+const STRICT_CSP =
+  "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; worker-src 'self' blob:; style-src 'self'; " +
+  "img-src 'self' blob: data:; connect-src 'self'; object-src 'none'; base-uri 'self'";
+
+const ISOLATION_HEADERS = {
   'Cross-Origin-Opener-Policy': 'same-origin',
   'Cross-Origin-Embedder-Policy': 'require-corp',
   'Cross-Origin-Resource-Policy': 'same-origin',
+};
+
+const COMMON_HEADERS = {
+  ...(process.argv.includes('--plain') ? {} : ISOLATION_HEADERS),
+  ...(process.argv.includes('--csp') ? { 'Content-Security-Policy': STRICT_CSP } : {}),
   'X-Content-Type-Options': 'nosniff',
   // Rebuilds replace files in place; the browser must revalidate rather than run a stale core.
   'Cache-Control': 'no-cache',

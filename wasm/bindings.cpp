@@ -7,13 +7,19 @@
 //   -1 plus lastError() (constraint ids), or false plus lastError() (remove/setWeight/setStrength).
 // * Array read-outs are typed_memory_view()s into wasm memory, not copies: they are valid until the next
 //   mutating call (load, solve, ...) or memory growth; copy them (TypedArray.from / slice) to keep them.
-// * loadMesh replaces the designer only when the new mesh loads and can be designed on; on error the previous
-//   mesh, constraints and field stay as they were.
+// * Loads are transactional: loadModel (and loadMesh) parse, check, configure, factor and solve the new model
+//   in a Designer of its own and replace the current one only when every step succeeded; on any error (a
+//   broken file, a mesh that cannot be factored, a factor that would not fit in memory) the previous mesh,
+//   constraints and field stay as they were, fully usable.
+// * Before each factorization the designer is told how much memory is left in the 4 GB address space, so an
+//   oversized factor is refused from CHOLMOD's symbolic analysis instead of failing half-way (or trapping).
 //
 // Besides the class, the module exports warmUp(): a small factor/update/solve cycle on a generated sphere that
 // lets V8 tier the hot functions up (Liftoff -> TurboFan) before the first large factorization; see
 // wasm/bench.mjs for the measured effect.
 #include <emscripten/bind.h>
+#include <emscripten/heap.h>
+#include <malloc.h>
 #include <emscripten/val.h>
 
 #include <algorithm>
@@ -21,6 +27,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <exception>
 #include <map>
 #include <memory>
@@ -74,11 +81,24 @@ bool parseFormat(std::string name, const uint8_t* data, std::size_t size, tvf::M
 }
 
 // A JS number that must be an int32 index (face, vertex, id); embind would silently truncate 1.5 or NaN.
+// The number is printed as JS would (1e12 as 1000000000000), never after narrowing.
 int32_t toIndex(double x, const char* what) {
-  if (!std::isfinite(x) || x != std::floor(x) || x < -2147483648.0 || x > 2147483647.0)
-    throw tvf::InputError(std::string(what) + " must be an integer (got " +
-                          (std::isfinite(x) ? std::to_string(x) : std::string("a non-finite number")) + ")");
+  if (!std::isfinite(x) || x != std::floor(x) || x < -2147483648.0 || x > 2147483647.0) {
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", x);
+    throw tvf::InputError(std::string(what) + " must be an integer index (got " +
+                          (std::isfinite(x) ? std::string(text) : std::string("a non-finite number")) + ")");
+  }
   return static_cast<int32_t>(x);
+}
+
+// What the next factorization may use: the address space left above what is allocated now, less a margin
+// for the solve's vectors and the read-outs.
+double availableHeapBytes() {
+  constexpr double kMargin = 64.0 * 1024 * 1024;
+  const double heapMax = static_cast<double>(emscripten_get_heap_max());
+  const double inUse = static_cast<double>(mallinfo().uordblks);
+  return std::max(1.0, heapMax - inUse - kMargin);
 }
 
 template <typename T>
@@ -91,21 +111,38 @@ class DesignerBinding {
   // format: 'glb' | 'gltf' | 'obj' | 'off' | 'ply' | '' (sniffed from the bytes).
   std::string loadMesh(const val& bytes, const std::string& format) {
     std::string error;
-    attempt(error, [&] {
-      if (bytes.isNull() || bytes.isUndefined()) throw tvf::InputError("no mesh data");
-      // A Uint8Array (or any array-like); an ArrayBuffer is viewed as bytes.
-      const bool buffer = bytes.instanceof(val::global("ArrayBuffer"));
-      const std::vector<uint8_t> data =
-          emscripten::convertJSArrayToNumberVector<uint8_t>(buffer ? val::global("Uint8Array").new_(bytes) : bytes);
-      if (data.empty()) throw tvf::InputError("the mesh file is empty");
-      tvf::MeshFormat f;
-      if (!parseFormat(format, data.data(), data.size(), f))
-        throw tvf::InputError("unknown mesh format '" + format + "' (expected glb, gltf, obj, off, ply or '')");
-      auto next = std::make_unique<tvf::Designer>(tvf::loadMeshFromMemory(data.data(), data.size(), f));
-      designer_ = std::move(next);  // only now: a failed load keeps the previous designer
-    });
+    attempt(error, [&] { designer_ = prepareModel(bytes, format, "", "", nullptr, nullptr); });
     lastError_ = error;
     return error;
+  }
+
+  // The whole model change as one transaction: mesh, then settings (JSON {"boundary", "gamma"}; '' for the
+  // defaults), then an autosaved design (JSON document; '' for none), then factor and solve. Settings or a
+  // design the new mesh cannot take are dropped and reported (settingsError, restoreError) without failing
+  // the load; a mesh that cannot be read, checked, factored or solved fails it. Returns JSON:
+  // {"ok": true, "settingsError": string|null, "restoreError": string|null} or {"ok": false, "error": string}.
+  std::string loadModel(const val& bytes, const std::string& format, const std::string& settings,
+                        const std::string& design) {
+    std::string error, settingsError, restoreError;
+    const bool ok = attempt(error, [&] {
+      designer_ = prepareModel(bytes, format, settings, design, &settingsError, &restoreError);
+    });
+    lastError_ = error;
+    const auto orNull = [](const std::string& s) { return s.empty() ? nlohmann::json() : nlohmann::json(s); };
+    nlohmann::json out = ok ? nlohmann::json{{"ok", true},
+                                             {"settingsError", orNull(settingsError)},
+                                             {"restoreError", orNull(restoreError)}}
+                            : nlohmann::json{{"ok", false}, {"error", error}};
+    return out.dump();
+  }
+
+  // bytes <= 0: the address space left in wasm memory (the default); otherwise a fixed limit, for tests.
+  std::string setFactorMemoryLimit(double bytes) {
+    return run([&] {
+      if (!std::isfinite(bytes)) throw tvf::InputError("the factor memory limit must be a finite number");
+      memoryLimit_ = std::max(0.0, bytes);
+      if (designer_) fitMemory(*designer_);
+    });
   }
 
   std::string infoJson() const {
@@ -119,10 +156,21 @@ class DesignerBinding {
     return run([&] { need().setBoundary(tvf::boundaryFromJson(nlohmann::json::parse(text))); });
   }
   std::string setGamma(double gamma) { return run([&] { need().setGamma(gamma); }); }
+  double gamma() const { return designer_ ? designer_->gamma() : 0.0; }
   // METIS nested dissection (the default) or AMD; the next factorization orders again.
   std::string setMetisOrdering(bool metis) { return run([&] { need().setMetisOrdering(metis); }); }
-  std::string factor() { return run([&] { need().factor(); }); }
-  std::string solve() { return run([&] { need().solve(); }); }
+  std::string factor() {
+    return run([&] {
+      fitMemory(need());
+      need().factor();
+    });
+  }
+  std::string solve() {
+    return run([&] {
+      fitMemory(need());
+      need().solve();
+    });
+  }
 
   // flat: [face, a, b, c, face, a, b, c, ...] (face indices as numbers).
   int addStroke(const val& flat, double strength, double weight) {
@@ -212,6 +260,60 @@ class DesignerBinding {
     if (!designer_) throw tvf::InputError("no mesh loaded");
     return *designer_;
   }
+
+  void fitMemory(tvf::Designer& d) const { d.setFactorMemoryLimit(memoryLimit_ > 0 ? memoryLimit_ : availableHeapBytes()); }
+
+  // Builds the next model aside; the current one is untouched until the caller assigns the result.
+  std::unique_ptr<tvf::Designer> prepareModel(const val& bytes, const std::string& format,
+                                              const std::string& settings, const std::string& design,
+                                              std::string* settingsError, std::string* restoreError) const {
+    if (bytes.isNull() || bytes.isUndefined()) throw tvf::InputError("no mesh data");
+    // A Uint8Array (or any array-like); an ArrayBuffer is viewed as bytes.
+    const bool buffer = bytes.instanceof(val::global("ArrayBuffer"));
+    std::vector<uint8_t> data =
+        emscripten::convertJSArrayToNumberVector<uint8_t>(buffer ? val::global("Uint8Array").new_(bytes) : bytes);
+    if (data.empty()) throw tvf::InputError("the mesh file is empty");
+    tvf::MeshFormat f;
+    if (!parseFormat(format, data.data(), data.size(), f))
+      throw tvf::InputError("unknown mesh format '" + format + "' (expected glb, gltf, obj, off, ply or '')");
+    tvf::SurfaceMesh mesh = tvf::loadMeshFromMemory(data.data(), data.size(), f);
+    std::vector<uint8_t>().swap(data);  // the file's bytes are not needed during the factorization
+    auto next = std::make_unique<tvf::Designer>(std::move(mesh));
+    if (!settings.empty()) {
+      std::string error;
+      if (!attempt(error, [&] {
+            const nlohmann::json s = nlohmann::json::parse(settings);
+            if (!s.is_object()) throw tvf::InputError("settings must be a JSON object");
+            next->setBoundary(tvf::boundaryFromJson(s.value("boundary", nlohmann::json())));
+            const nlohmann::json g = s.value("gamma", nlohmann::json(0.0));
+            if (!g.is_number()) throw tvf::InputError("gamma must be a number");
+            next->setGamma(g.get<double>());
+          })) {
+        if (settingsError) *settingsError = error;
+        next->setBoundary(tvf::BoundaryCondition::makeFree());
+        next->setGamma(0);
+      }
+    }
+    bool restored = false;
+    if (!design.empty()) {
+      std::string error;
+      restored = attempt(error, [&] { tvf::applyDesignDocument(*next, nlohmann::json::parse(design)); });
+      if (!restored && restoreError) *restoreError = error;
+    }
+    fitMemory(*next);
+    std::string error;
+    if (!attempt(error, [&] { next->solve(); })) {
+      // A restored design the mesh cannot take (a field that is not finite, a gamma whose factor does not fit)
+      // is dropped and reported; a mesh that cannot be factored even without it fails the load.
+      if (!restored) throw tvf::InputError(error);
+      if (restoreError) *restoreError = error;
+      next->clearConstraints();
+      next->setBoundary(tvf::BoundaryCondition::makeFree());
+      next->setGamma(0);
+      next->solve();
+    }
+    return next;
+  }
   template <typename F>
   std::string run(F&& f) {
     std::string error;
@@ -240,6 +342,7 @@ class DesignerBinding {
   }
 
   std::unique_ptr<tvf::Designer> designer_;
+  double memoryLimit_ = 0;  // 0: what is left of the wasm address space
   mutable std::string lastError_;
   std::vector<double> emptyD_;
   std::vector<int32_t> emptyI_;
@@ -320,6 +423,9 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
   class_<DesignerBinding>("Designer")
       .constructor<>()
       .function("loadMesh", &DesignerBinding::loadMesh)
+      .function("loadModel", &DesignerBinding::loadModel)
+      .function("setFactorMemoryLimit", &DesignerBinding::setFactorMemoryLimit)
+      .function("gamma", &DesignerBinding::gamma)
       .function("infoJson", &DesignerBinding::infoJson)
       .function("setBoundaryJson", &DesignerBinding::setBoundaryJson)
       .function("setGamma", &DesignerBinding::setGamma)

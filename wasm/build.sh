@@ -39,6 +39,7 @@ command -v cmake >/dev/null || die "cmake not found"
 [ -f /usr/include/eigen3/Eigen/Core ] || die "Eigen not found in /usr/include/eigen3 (apt-get install libeigen3-dev)"
 [ -f /usr/include/nlohmann/json.hpp ] || die "nlohmann/json.hpp not found (apt-get install nlohmann-json3-dev)"
 [ -f /usr/include/tiny_gltf.h ] || die "tiny_gltf.h not found (apt-get install libtinygltf-dev)"
+[ -f /usr/include/stb/stb_image_write.h ] || die "stb_image_write.h not found (apt-get install libstb-dev)"
 
 start=$(date +%s.%N)
 
@@ -58,6 +59,7 @@ INC=$OUT/include
 mkdir -p "$INC"
 ln -sfn /usr/include/nlohmann "$INC/nlohmann"
 ln -sfn /usr/include/tiny_gltf.h "$INC/tiny_gltf.h"
+ln -sfn /usr/include/stb "$INC/stb"  # stb_image_write for flow maps (libstb-dev)
 
 # 3. Configure once (reconfigure only when the CHOLMOD folder changed or the cache is missing).
 want="$CHOLMOD_WASM"

@@ -254,4 +254,118 @@ d.delete();
   const diff = maxAbsDiff(fields[true], fields[false]) / maxAbs(fields[false]);
   check('METIS and AMD give the same field (1e-9)', diff <= 1e-9, `relative max difference ${diff}`);
 }
+// ------------------------------------------------------------------ transactional loads, safe updates
+// The model is replaced only when read, checked, factored and solved; any failure leaves the previous one
+// fully working (finite field, a stroke can be added).
+const t = new Module.Designer();
+const ico = (l) => new TextEncoder().encode(icosphere(l));
+const finiteField = (des) => des.oneForm().length > 0 && des.oneForm().every(Number.isFinite) &&
+  des.faceVectors().every(Number.isFinite);
+const strokeWorks = (des) => {
+  const id = des.addStroke(faceStrip(des.triangles(), 3, 12), 1.0, 1.0);
+  const ok = id > 0 && des.solve() === '' && finiteField(des);
+  if (id > 0) des.remove(id);
+  return ok && des.solve() === '';
+};
+let r = JSON.parse(t.loadModel(ico(2), 'off', '', ''));
+check('loadModel(icosphere) succeeds', r.ok === true, JSON.stringify(r));
+check('loadModel solved the new model', finiteField(t) && t.oneForm().length === 30 * 16);
+const src2 = t.addSource(0, 1);
+check('a source on the loaded model', src2 > 0 && t.solve() === '', t.lastError());
+const beforeLoads = Float64Array.from(t.oneForm());
+
+// A tetrahedron scaled by 1e100: it parses and passes the mesh checks, but cannot be factored.
+const hugeTet = 'OFF\n4 4 0\n0 0 0\n1e100 0 0\n0 1e100 0\n0 0 1e100\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n';
+r = JSON.parse(t.loadModel(new TextEncoder().encode(hugeTet), 'off', '', ''));
+check('tetrahedron scaled by 1e100 is refused', r.ok === false && r.error.length > 0, JSON.stringify(r));
+check('... the previous model is still loaded', t.oneForm().length === 30 * 16 &&
+  JSON.parse(t.designJson()).constraints.length === 1);
+check('... its field is finite and unchanged', t.solve() === '' && maxAbsDiff(t.oneForm(), beforeLoads) === 0);
+check('... and a stroke works on it', strokeWorks(t), t.lastError());
+// The same through the old entry point.
+check('loadMesh of the tetrahedron is refused too', t.loadMesh(new TextEncoder().encode(hugeTet), 'off') !== '' &&
+  t.oneForm().length === 30 * 16 && strokeWorks(t));
+
+// A mesh whose factor does not fit: the limit is scaled down through the explicit option instead of building
+// a 5M-edge mesh; the refusal comes from the symbolic analysis and names the size.
+check('setFactorMemoryLimit(2e5)', t.setFactorMemoryLimit(2e5) === '');
+r = JSON.parse(t.loadModel(ico(4), 'off', '', ''));
+check('a mesh whose factor exceeds the limit is refused', r.ok === false && /too large/.test(r.error) &&
+  /GB/.test(r.error), JSON.stringify(r));
+check('... the previous model keeps working', t.oneForm().length === 30 * 16 && strokeWorks(t), t.lastError());
+check('setFactorMemoryLimit(0) (the address space left)', t.setFactorMemoryLimit(0) === '');
+r = JSON.parse(t.loadModel(ico(4), 'off', JSON.stringify({ boundary: 'free', gamma: 0.5 }),
+  JSON.stringify({ gamma: 0.01, constraints: [{ type: 'source', vertex: 0, strength: 1 }] })));
+check('with the limit back, the larger mesh loads with settings and design', r.ok === true &&
+  t.oneForm().length === 30 * 256 && t.gamma() === 0.01 && JSON.parse(t.designJson()).constraints.length === 1,
+  JSON.stringify(r));
+r = JSON.parse(t.loadModel(ico(2), 'off', JSON.stringify({ gamma: 1e300 }),
+  JSON.stringify({ constraints: [{ type: 'source', vertex: 99999, strength: 1 }] })));
+check('bad settings and design are dropped and reported, the mesh loads', r.ok === true && /gamma/.test(r.settingsError) &&
+  /99999/.test(r.restoreError) && t.gamma() === 0 && finiteField(t), JSON.stringify(r));
+
+// Numeric ranges: extreme values are refused, the largest accepted ones undo exactly.
+const fresh = (des) => {
+  const f = new Module.Designer();
+  f.loadModel(ico(2), 'off', '', des.designJson());
+  const x = Float64Array.from(f.oneForm());
+  f.delete();
+  return x;
+};
+const relDiff = (a, b) => {
+  let num = 0, den = 0;
+  for (let i = 0; i < a.length; ++i) { num += (a[i] - b[i]) ** 2; den += b[i] ** 2; }
+  return Math.sqrt(num / Math.max(den, 1e-300));
+};
+t.addSource(0, 1);
+t.solve();
+const stripT = faceStrip(t.triangles(), 3, 12);
+check('stroke weight 1e20 is refused', t.addStroke(stripT, 1, 1e20) === -1 && /weight/.test(t.lastError()), t.lastError());
+const heavy = t.addStroke(stripT, 1, 1e8);
+check('stroke weight 1e8 (the largest) is accepted', heavy > 0 && t.solve() === '', t.lastError());
+t.remove(heavy);
+check('undo of it leaves a finite field', t.solve() === '' && finiteField(t));
+let rd = relDiff(t.oneForm(), fresh(t));
+check('... equal to a fresh solve within 1e-9', rd < 1e-9, `relative difference ${rd}`);
+check('vector weight 1e16 is refused', t.addVector(5, 1, 0, 0, 1e16) === -1, t.lastError());
+const heavyVec = t.addVector(5, 1, 0, 0, 1e8);
+t.solve();
+t.remove(heavyVec);
+t.solve();
+rd = relDiff(t.oneForm(), fresh(t));
+check('undo of a vector with weight 1e8 equals a fresh solve within 1e-9', finiteField(t) && rd < 1e-9, `${rd}`);
+check('gamma 1e300 is refused', t.setGamma(1e300) !== '' && t.gamma() === 0);
+check('vector [1e308, 1e308, 0] is refused', t.addVector(5, 1e308, 1e308, 0, 1) === -1 && /out of range/.test(t.lastError()));
+check('source strength 1e308 is refused', t.addSource(3, 1e308) === -1 && /out of range/.test(t.lastError()));
+check('setStrength 1e308 is refused', t.setStrength(JSON.parse(t.constraintIdsJson())[0], 1e308) === false);
+const tri2 = t.triangles();
+check('addEdge(3, 3) is refused', t.addEdge(3, 3, 1, 1) === -1 && /two different vertices/.test(t.lastError()), t.lastError());
+check('a stroke point with bary [0, 0, 0] is refused',
+  t.addStroke(new Float64Array([0, 0, 0, 0, 1, 0.3, 0.3, 0.4]), 1, 1) === -1 && /sum to/.test(t.lastError()), t.lastError());
+check('face 1e12 is named unwrapped', t.addVector(1e12, 1, 0, 0, 1) === -1 &&
+  t.lastError().includes('1000000000000') && !t.lastError().includes('-727379968'), t.lastError());
+check('face 1e12 in a constraint document is named unwrapped',
+  t.addConstraintJson(JSON.stringify({ type: 'vortex', face: 1e12, strength: 1 })) === -1 &&
+  t.lastError().includes('1000000000000'), t.lastError());
+check('after all refusals the field is finite and the design unchanged', t.solve() === '' && finiteField(t) &&
+  JSON.parse(t.designJson()).constraints.length === 1 && tri2.length > 0);
+
+// The page's client: constraints go in as design-format JSON, where null or a missing number is refused by the
+// core's parser (never read as 0); the remaining typed calls check their numbers before embind converts them.
+const { CoreClient } = await import(pathToFileURL(resolve(ROOT, 'web/core-client.js')).href);
+const client = new CoreClient(Module);
+client.loadModel(ico(1), 'off');
+const refused = (f) => { try { f(); return ''; } catch (err) { return err.message; } };
+check('client: null face is refused', /face/.test(refused(() => client.addConstraintJson({ type: 'vector', face: null, vector: [1, 0, 0] }))));
+check('client: null stroke bary is refused', /bary/.test(refused(() => client.addConstraintJson({ type: 'stroke',
+  points: [{ face: 0, bary: null }, { face: 1, bary: [0.3, 0.3, 0.4] }] }))));
+check('client: null stroke face is refused', /face/.test(refused(() => client.addConstraintJson({ type: 'stroke',
+  points: [{ face: null, bary: [1, 0, 0] }, { face: 1, bary: [0.3, 0.3, 0.4] }] }))));
+check('client: null strength is refused', /strength/.test(refused(() => client.addConstraintJson({ type: 'source', vertex: 0, strength: null }))));
+check('client: edge [3, 3] is refused', /two different vertices/.test(refused(() => client.addConstraintJson({ type: 'edge', edge: [3, 3], value: 1 }))));
+check('client: setWeight(null) is refused', /weight must be a number \(got null\)/.test(refused(() => client.setWeight(1, null))));
+check('client: setGamma(undefined) is refused', /gamma must be a number/.test(refused(() => client.setGamma(undefined))));
+check('client: a failed loadModel keeps the model', /load:/.test(refused(() => client.loadModel(new TextEncoder().encode(hugeTet), 'off'))) &&
+  client.oneForm().length === 30 * 4);
+t.delete();
 finish();

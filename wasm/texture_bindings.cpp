@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 //
 // embind bindings of the exemplar analysis for texture synthesis (core/texture/), used by web/synthesis/.
-// Same conventions as bindings.cpp: nothing throws into JS (calls that can fail return '' or the error message),
-// and array read-outs are typed_memory_view()s into wasm memory, valid until the next analyze call on the same
-// object or memory growth — copy them before doing anything else with the module.
+// Same conventions as bindings.cpp: nothing throws into JS (calls that can fail return '' or the error
+// message), and array read-outs are typed_memory_view()s into wasm memory, valid until the next analyze call
+// on the same object or memory growth — copy them before doing anything else with the module.
 //
 //   const a = new Module.ExemplarAnalysis();
 //   a.analyzeProcedural('stripes', 64, 1)      // or a.analyzeRGBA8(uint8Array, size): '' or an error message
@@ -12,18 +12,24 @@
 //   a.colour(s), a.appearance(s), a.neighbourhood(s), a.candidates(s), a.projection(s), a.projectionOffset(s)
 //   a.delete()
 // Module.proceduralExemplarNames() returns a JSON array of names.
+//
+//   const t = new Module.TextureAtlasBuilder();
+//   t.generate(positions, triangles, resolution, gutter)   // '' or an error message
+//   (core/texture/texture_atlas) t.cornerUVs()    // Float32Array view, 6 per face; t.faceCharts():
+//   Int32Array view; t.statsJson() t.check(cornerUVs, numFaces, resolution)               // JSON {usable,
+//   reason, coverage, overlap, ...} t.delete()
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
 #include <exception>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "mesh/surface_mesh.h"
 #include "texture/exemplar_analysis.h"
 #include "texture/procedural_exemplars.h"
+#include "texture/texture_atlas.h"
 
 namespace {
 
@@ -114,7 +120,71 @@ class ExemplarAnalysisBinding {
   std::vector<float> empty_;
 };
 
-std::string proceduralExemplarNamesJson() { return nlohmann::json(tvf::proceduralExemplarNames()).dump(); }
+class TextureAtlasBinding {
+ public:
+  // positions: 3 numbers per vertex; triangles: 3 indices per face (any array-like of numbers).
+  std::string generate(const val& positions, const val& triangles, int resolution, int gutter) {
+    try {
+      tvf::SurfaceMesh mesh;
+      mesh.positions = emscripten::convertJSArrayToNumberVector<double>(positions);
+      mesh.triangles = emscripten::convertJSArrayToNumberVector<int32_t>(triangles);
+      atlas_ = tvf::generateAtlas(mesh, resolution, gutter);
+      return "";
+    } catch (const std::bad_alloc&) {
+      return "out of memory";
+    } catch (const std::exception& e) {
+      return e.what()[0] ? e.what() : "unknown error in the core";
+    }
+  }
+  val cornerUVs() const {
+    return val(emscripten::typed_memory_view(atlas_.cornerUVs.size(), atlas_.cornerUVs.data()));
+  }
+  val faceCharts() const {
+    return val(emscripten::typed_memory_view(atlas_.faceChart.size(), atlas_.faceChart.data()));
+  }
+  // {resolution, gutter, charts, splits, packAttempts, ms, chartMs, coverage, overlap, flippedFaces,
+  //  degenerateFaces, densityP05, densityP95, densityMin, densityMax, texelsPerUnitLength, stretchL2}
+  std::string statsJson() const {
+    const tvf::AtlasMeasures& m = atlas_.measures;
+    return nlohmann::json{{"resolution", atlas_.resolution},
+                          {"gutter", atlas_.gutter},
+                          {"charts", atlas_.numCharts},
+                          {"splits", atlas_.splits},
+                          {"packAttempts", atlas_.packAttempts},
+                          {"ms", atlas_.milliseconds},
+                          {"chartMs", atlas_.chartMilliseconds},
+                          {"coverage", m.coverage},
+                          {"overlap", m.overlap},
+                          {"flippedFaces", m.flippedFaces},
+                          {"degenerateFaces", m.degenerateFaces},
+                          {"densityP05", m.densityP05},
+                          {"densityP95", m.densityP95},
+                          {"densityMin", m.densityMin},
+                          {"densityMax", m.densityMax},
+                          {"texelsPerUnitLength", m.texelsPerUnitLength},
+                          {"stretchL2", m.stretchL2}}
+        .dump();
+  }
+  std::string check(const val& cornerUVs, int numFaces, int resolution) const {
+    try {
+      const std::vector<float> uv = emscripten::convertJSArrayToNumberVector<float>(cornerUVs);
+      const tvf::AtlasCheck c = tvf::checkAtlasUVs(uv, numFaces, resolution);
+      return nlohmann::json{{"usable", c.usable},      {"reason", c.reason},   {"coverage", c.coverage},
+                            {"overlap", c.overlap},    {"outside", c.outside}, {"degenerate", c.degenerate},
+                            {"nonFinite", c.nonFinite}}
+          .dump();
+    } catch (const std::exception& e) {
+      return nlohmann::json{{"usable", false}, {"reason", e.what()}}.dump();
+    }
+  }
+
+ private:
+  tvf::TextureAtlas atlas_;
+};
+
+std::string proceduralExemplarNamesJson() {
+  return nlohmann::json(tvf::proceduralExemplarNames()).dump();
+}
 
 }  // namespace
 
@@ -134,4 +204,11 @@ EMSCRIPTEN_BINDINGS(tvf_texture) {
       .function("projectionOffset", &ExemplarAnalysisBinding::projectionOffset)
       .function("statsJson", &ExemplarAnalysisBinding::statsJson);
   emscripten::function("proceduralExemplarNames", &proceduralExemplarNamesJson);
+  emscripten::class_<TextureAtlasBinding>("TextureAtlasBuilder")
+      .constructor<>()
+      .function("generate", &TextureAtlasBinding::generate)
+      .function("cornerUVs", &TextureAtlasBinding::cornerUVs)
+      .function("faceCharts", &TextureAtlasBinding::faceCharts)
+      .function("statsJson", &TextureAtlasBinding::statsJson)
+      .function("check", &TextureAtlasBinding::check);
 }

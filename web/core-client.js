@@ -30,6 +30,17 @@ function guard(what, fn) {
   }
 }
 
+// Embind turns null into 0 and a missing number into NaN before the core can see it: arguments are checked
+// here, in the core's words, before they cross.
+function requireNumber(what, x) {
+  if (typeof x !== 'number') {
+    const got = x === null ? 'null' : x === undefined ? 'nothing' : typeof x;
+    throw new CoreError(`${what} must be a number (got ${got})`);
+  }
+  return x;
+}
+
+
 function check(what, result) {
   if (typeof result === 'string' && result !== '') throw new CoreError(prefixed(what, result));
   return result;
@@ -61,7 +72,6 @@ export class CoreClient {
   // V8 first runs wasm on its baseline tier (2-3x slower); the core's warmUp() exercises the factor/update/solve
   // paths on a small sphere so the user's first real factorization runs optimized code. Returns ms, or -1.
   warmUp(levels = 3, rounds = 2) {
-    if (typeof this.Module.warmUp !== 'function') return -1;
     try {
       return this.Module.warmUp(levels, rounds);
     } catch {
@@ -76,6 +86,27 @@ export class CoreClient {
     this.hasMesh = true;
   }
 
+  // The whole model change at once (mesh, settings {boundary, gamma}, an autosaved design or null), factored
+  // and solved before it replaces the current model; on any failure the current model stays as it was.
+  // Returns {settingsError, restoreError} (null or the reason that part was dropped).
+  loadModel(bytes, format, settings = null, design = null) {
+    const settingsJson = settings ? JSON.stringify(settings) : '';
+    const designJson = design ? JSON.stringify(design) : '';
+    const out = JSON.parse(guard('load', () => this.designer.loadModel(bytes, format, settingsJson, designJson)));
+    if (!out.ok) throw new CoreError(prefixed('load', out.error));
+    this.hasMesh = true;
+    return { settingsError: out.settingsError, restoreError: out.restoreError };
+  }
+
+  // bytes: a fixed limit for the factor's memory; 0: what is left of the wasm address space (default).
+  setFactorMemoryLimit(bytes) {
+    check('memory limit', guard('memory limit', () => this.designer.setFactorMemoryLimit(bytes)));
+  }
+
+  gamma() {
+    return guard('gamma', () => this.designer.gamma());
+  }
+
   info() {
     return JSON.parse(guard('info', () => this.designer.infoJson()));
   }
@@ -87,6 +118,7 @@ export class CoreClient {
   }
 
   setGamma(gamma) {
+    requireNumber('gamma', gamma);
     // setGamma returns nothing, or an error string in a stricter build.
     check('gamma', guard('gamma', () => this.designer.setGamma(gamma)));
   }
@@ -107,73 +139,34 @@ export class CoreClient {
     return id;
   }
 
-  // points: [{face, bary: [a, b, c]}, ...] in the core's welded face order.
-  addStroke(points, strength, weight) {
-    const flat = new Float64Array(points.length * 4);
-    points.forEach((p, k) => {
-      flat[4 * k] = p.face;
-      flat[4 * k + 1] = p.bary[0];
-      flat[4 * k + 2] = p.bary[1];
-      flat[4 * k + 3] = p.bary[2];
-    });
-    return this.#id('stroke', guard('stroke', () => this.designer.addStroke(flat, strength, weight)));
-  }
-
-  addVector(face, [x, y, z], weight) {
-    return this.#id('vector', guard('vector', () => this.designer.addVector(face, x, y, z, weight)));
-  }
-
-  addSource(vertex, strength) {
-    return this.#id('source', guard('source', () => this.designer.addSource(vertex, strength)));
-  }
-
-  addSink(vertex, strength) {
-    return this.#id('sink', guard('sink', () => this.designer.addSink(vertex, strength)));
-  }
-
-  addVortex(face, strength) {
-    return this.#id('vortex', guard('vortex', () => this.designer.addVortex(face, strength)));
-  }
-
-  addEdge([i, j], value, weight) {
-    return this.#id('edge', guard('edge', () => this.designer.addEdge(i, j, value, weight)));
-  }
-
-  // One constraint in the design format (docs/design-format.md), with the format's defaults.
-  add(spec) {
-    const strength = spec.strength ?? 1;
-    const weight = spec.weight ?? 1;
-    switch (spec.type) {
-      case 'stroke': return this.addStroke(spec.points, strength, weight);
-      case 'vector': return this.addVector(spec.face, spec.vector, weight);
-      case 'edge': return this.addEdge(spec.edge, spec.value, weight);
-      case 'source': return this.addSource(spec.vertex, strength);
-      case 'sink': return this.addSink(spec.vertex, strength);
-      case 'vortex': return this.addVortex(spec.face, strength);
-      default: throw new CoreError(`constraint: unknown type "${spec.type}"`);
-    }
-  }
-
-  // Re-adds a constraint exactly as the core saved it (undo of a delete, redo of an add). The core's own
-  // addConstraintJson parses it with the design-file code; builds without it go through the typed calls,
-  // which store the same spec.
+  // One constraint in the design format (docs/design-format.md): the only way constraints enter the core,
+  // parsed by the same code as design files (new ones, and exact re-adds for undo).
   addConstraintJson(spec) {
-    if (typeof this.designer.addConstraintJson !== 'function') return this.add(spec);
     const json = JSON.stringify(spec);
     return this.#id('constraint', guard('constraint', () => this.designer.addConstraintJson(json)));
   }
 
+  // Core ids in the order of designJson().constraints.
+  constraintIds() {
+    return JSON.parse(guard('constraints', () => this.designer.constraintIdsJson()));
+  }
+
   remove(id) {
+    requireNumber('remove: id', id);
     const ok = guard('remove', () => this.designer.remove(id));
     if (!ok) throw new CoreError(prefixed('remove', this.#lastError() || `no constraint with id ${id}`));
   }
 
   setWeight(id, weight) {
+    requireNumber('weight: id', id);
+    requireNumber('weight', weight);
     const ok = guard('weight', () => this.designer.setWeight(id, weight));
     if (!ok) throw new CoreError(prefixed('weight', this.#lastError() || `cannot reweight constraint ${id}`));
   }
 
   setStrength(id, strength) {
+    requireNumber('strength: id', id);
+    requireNumber('strength', strength);
     const ok = guard('strength', () => this.designer.setStrength(id, strength));
     if (!ok) throw new CoreError(prefixed('strength', this.#lastError() || `cannot change the strength of ${id}`));
   }

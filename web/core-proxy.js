@@ -1,34 +1,158 @@
-// Page side of the core worker (core-worker.js): request/reply over postMessage. The page serialises its
-// mutations itself (main.js), so replies come back in request order; each carries the worker's timing.
+// Page side of the core worker (core-worker.js): request/reply over postMessage, and supervision of the worker.
+// The session serialises its mutations itself (session.js), so replies come back in request order; each carries
+// the worker's timing. One proxy (one worker at a time) per element; terminate() ends it for good.
+//
+// Supervision: a worker that dies or can no longer be trusted is replaced, never waited on forever.
+// * death, even in the middle of a long factorization: the worker holds a Web Lock for its whole life; the
+//   lock is released when the worker ends (terminate, close, crash), which this side is waiting for;
+// * an uncaught error in the worker (error event) or an unreadable message;
+// * a wasm trap or an out-of-memory abort inside the core: the worker replies with `fatal`, since the wasm
+//   instance is unusable afterwards;
+// * a worker that is alive but silent: when no call is in flight it must answer a heartbeat within
+//   `silentMs` (a call in flight is the user's to cancel: cancel()).
+// Then every pending call rejects with a readable CoreError, a fresh worker starts, and `onRestart(reason)`
+// (supplied by the session) reloads the current model and replays the current design before new calls go out.
 import { CoreError } from './core-client.js';
 
+// A module worker from another origin (a CDN) cannot be started directly; its source can, from a blob: URL
+// (CSP: worker-src blob:). The worker is told the asset base, so its own URL does not matter.
+async function workerUrl(assetBase) {
+  const url = new URL('core-worker.js', assetBase);
+  if (url.origin === globalThis.location?.origin) return { href: url.href, revoke: () => {} };
+  const res = await fetch(url);
+  if (!res.ok) throw new CoreError(`could not fetch the core worker ${url.href}: HTTP ${res.status}`);
+  const href = URL.createObjectURL(new Blob([await res.text()], { type: 'text/javascript' }));
+  return { href, revoke: () => URL.revokeObjectURL(href) };
+}
+
 export class CoreProxy {
-  constructor(workerUrl) {
-    this.worker = new Worker(workerUrl, { type: 'module', name: 'tvf-core' });
+  // assetBase: URL of the folder holding core-worker.js and wasm/.
+  // options: {onRestart({kind, detail, call}) → Promise, onStatus(text), heartbeatMs, silentMs}
+  static async start(assetBase, options = {}) {
+    const proxy = new CoreProxy(options);
+    proxy.assetBase = assetBase;
+    await proxy.#open();
+    return proxy;
+  }
+
+  constructor(options = {}) {
+    this.worker = null;
     this.pending = new Map();
     this.seq = 0;
-    this.worker.onmessage = ({ data }) => this.#settle(data);
-    // A worker that fails to start (bad URL, syntax error) reports here, not through messages.
-    this.worker.onerror = (event) => {
-      event.preventDefault?.();
-      this.#failAll(new CoreError(`the core worker failed: ${event.message || 'could not start it'}`));
+    this.failure = null; // set by terminate(): the proxy is done for good
+    this.onRestart = options.onRestart ?? null;
+    this.onStatus = options.onStatus ?? (() => {});
+    this.heartbeatMs = options.heartbeatMs ?? 2000;
+    this.silentMs = options.silentMs ?? 10_000;
+    this.restarts = 0;
+    this.lastFailure = null;
+    this.ready = Promise.resolve();
+  }
+
+  async #open() {
+    const { href, revoke } = await workerUrl(this.assetBase);
+    if (this.failure) return revoke(); // terminated while the source was fetched
+    const lockName = `tvf-core-${Date.now().toString(36)}-${Math.random().toString(36).slice(2)}`;
+    const worker = new Worker(href, { type: 'module', name: lockName });
+    this.worker = worker;
+    this.lastPong = performance.now();
+    const mine = () => this.worker === worker;
+    worker.onmessage = ({ data }) => {
+      revoke();
+      if (mine()) this.#receive(data, worker, lockName);
     };
-    this.worker.onmessageerror = () => this.#failAll(new CoreError('the core worker sent an unreadable message'));
+    // A worker that fails to start (bad URL, syntax error) or throws outside a request reports here.
+    worker.onerror = (event) => {
+      event.preventDefault?.();
+      if (mine()) this.#fail('error', event.message || 'the worker could not start');
+    };
+    worker.onmessageerror = () => mine() && this.#fail('error', 'the worker sent an unreadable message');
+    clearInterval(this.heartbeat);
+    this.heartbeat = setInterval(() => mine() && this.#beat(), this.heartbeatMs);
+    await this.#send('init', [new URL('./', this.assetBase).href]);
   }
 
   // Resolves with the whole reply ({value, snapshot?, mesh?, workerMs}); rejects with the core's message.
   // A rejection may still carry the state the core is left in: err.reply.snapshot. onEarly receives the new
   // face vectors of an edit as soon as the solve is done, before the rest of the snapshot.
-  call(op, args = [], transfer = [], onEarly = null) {
+  async call(op, args = [], transfer = [], onEarly = null) {
+    await this.ready; // a restart in progress finishes (model and design back) first
+    return this.#send(op, args, transfer, onEarly);
+  }
+
+  #send(op, args = [], transfer = [], onEarly = null) {
     if (this.failure) return Promise.reject(this.failure);
+    if (!this.worker) return Promise.reject(new CoreError(`${op}: the core is restarting`));
     const seq = ++this.seq;
     return new Promise((resolve, reject) => {
-      this.pending.set(seq, { resolve, reject, onEarly });
-      this.worker.postMessage({ seq, op, args }, transfer);
+      this.pending.set(seq, { resolve, reject, onEarly, op });
+      try {
+        this.worker.postMessage({ seq, op, args }, transfer);
+      } catch (err) {
+        this.pending.delete(seq);
+        reject(new CoreError(`could not send ${op} to the core: ${err.message}`));
+      }
     });
   }
 
-  #settle(reply) {
+  // Stops whatever the worker is doing (a huge stroke, a factorization) by replacing it: the pending calls
+  // reject with "cancelled", and the model and the design as they were before the cancelled call come back.
+  cancel() {
+    if (!this.pending.size || this.failure) return false;
+    this.#fail('cancelled', 'cancelled by the user');
+    return true;
+  }
+
+  // Ends the worker (and with it the core's memory) for good; pending calls reject.
+  terminate() {
+    clearInterval(this.heartbeat);
+    this.failure ??= new CoreError('the designer was disposed');
+    this.worker?.terminate();
+    this.worker = null;
+    for (const p of this.pending.values()) p.reject(this.failure);
+    this.pending.clear();
+  }
+
+  // For tests: what a crash of the worker does, without one; a worker that stops answering for `ms`.
+  terminateForTest() {
+    this.worker?.terminate();
+  }
+
+  hangForTest(ms) {
+    this.worker?.postMessage({ hangForTest: ms });
+  }
+
+  // From the worker's init on, its end is noticed at once.
+  #watchLock(worker, lockName) {
+    if (!globalThis.navigator?.locks) return;
+    navigator.locks
+      .request(lockName, () => {
+        if (this.worker === worker && !this.failing) this.#fail('ended', 'the core worker ended unexpectedly');
+      })
+      .catch(() => {});
+  }
+
+  #beat() {
+    if (this.failing || this.failure) return;
+    if (this.pending.size) {
+      this.lastPong = performance.now(); // a long call is not silence
+      return;
+    }
+    if (performance.now() - this.lastPong > this.silentMs) {
+      this.#fail('silent', `the core did not answer for ${Math.round(this.silentMs / 1000)} s`);
+      return;
+    }
+    try {
+      this.worker?.postMessage({ ping: true });
+    } catch {
+      this.#fail('ended', 'the core worker cannot be reached');
+    }
+  }
+
+  #receive(reply, worker, lockName) {
+    this.lastPong = performance.now();
+    if (reply.pong) return;
+    if (reply.locked) return void this.#watchLock(worker, lockName);
     const p = this.pending.get(reply.seq);
     if (!p) return;
     if (reply.early) return void p.onEarly?.(reply.early);
@@ -37,13 +161,48 @@ export class CoreProxy {
     else {
       const err = new CoreError(reply.error);
       err.reply = reply;
+      err.fatal = !!reply.fatal;
       p.reject(err);
     }
+    // A trap leaves the wasm instance unusable: this reply was the last one it may give.
+    if (reply.fatal) this.#fail('trap', reply.error);
   }
 
-  #failAll(err) {
-    for (const p of this.pending.values()) p.reject(err);
+  #fail(kind, detail) {
+    if (this.failing || this.failure) return;
+    this.failing = true;
+    this.lastFailure = { kind, detail, at: Date.now() };
+    const worker = this.worker;
+    this.worker = null;
+    try {
+      worker?.terminate();
+    } catch {
+      // already gone
+    }
+    const message =
+      kind === 'cancelled'
+        ? 'cancelled: the operation was stopped; the model and design are back as they were before it'
+        : `the core stopped (${detail}); it is being restarted with the current model and design`;
+    for (const p of this.pending.values()) {
+      const err = new CoreError(message);
+      err.restart = kind;
+      p.reject(err);
+    }
     this.pending.clear();
-    this.failure = err;
+    this.onStatus(kind === 'cancelled' ? 'Cancelled; restoring the design…' : `The core stopped (${detail}); restarting…`);
+    this.ready = this.#restart(kind, detail);
+    this.ready.catch(() => {});
+  }
+
+  async #restart(kind, detail) {
+    try {
+      await this.#open();
+    } finally {
+      this.failing = false;
+    }
+    this.restarts++;
+    // The session's replay goes straight to the new worker; everyone else waits for it to finish.
+    const call = (op, args, transfer, onEarly) => this.#send(op, args, transfer, onEarly);
+    if (this.onRestart) await this.onRestart({ kind, detail, call });
   }
 }

@@ -1,4 +1,5 @@
-// Designs as documents: downloads (design, field), reading a design file, and the autosave in localStorage.
+// Designs as documents: downloads (design, field), reading a design file, and the autosave's quick copy in
+// localStorage (the durable, versioned autosave is autosave-store.js, in IndexedDB).
 // Autosaves are keyed by the model's name, size and a content hash, so a different file that happens to
 // share a name never receives a design whose indices mean nothing on it.
 
@@ -19,19 +20,25 @@ function isEmptyDesign(design) {
   return !design.constraints?.length && (design.boundary ?? 'free') === 'free' && !design.gamma;
 }
 
-export function loadAutosave(key) {
+// store: the autosave attribute's value ('' on the app page), so that several designers on one origin can keep
+// separate autosaves; key: modelKey().
+function storageKey(store, key) {
+  return `${AUTOSAVE_PREFIX}${store ? `${store}|` : ''}${key}`;
+}
+
+export function loadAutosave(store, key) {
   try {
-    const text = localStorage.getItem(AUTOSAVE_PREFIX + key);
+    const text = localStorage.getItem(storageKey(store, key));
     return text ? JSON.parse(text) : null;
   } catch {
     return null; // storage disabled or a corrupt entry: start without it
   }
 }
 
-export function saveAutosave(key, design) {
+export function saveAutosave(store, key, design, savedAt = new Date().toISOString()) {
   try {
-    if (isEmptyDesign(design)) localStorage.removeItem(AUTOSAVE_PREFIX + key);
-    else localStorage.setItem(AUTOSAVE_PREFIX + key, JSON.stringify({ savedAt: new Date().toISOString(), design }));
+    if (isEmptyDesign(design)) localStorage.removeItem(storageKey(store, key));
+    else localStorage.setItem(storageKey(store, key), JSON.stringify({ savedAt, design }));
     return true;
   } catch {
     return false; // quota or privacy mode: autosave is a convenience, never an error

@@ -237,11 +237,26 @@ export class StreamlinesView {
 
 // Markers with the index written on them, as sprites: always facing the viewer, hidden behind the surface.
 const MARKER_PX = 20;
-const labelTextures = new Map();
 
-function discTexture(key, fill, text, { ring = false, textColor = '#111827' } = {}) {
-  const cached = labelTextures.get(key);
-  if (cached) return cached;
+// Disc textures with a label, cached per viewer (textures belong to one renderer; dispose() frees them).
+export class LabelTextures {
+  constructor() {
+    this.cache = new Map();
+  }
+
+  get(key, fill, text, options) {
+    let tex = this.cache.get(key);
+    if (!tex) this.cache.set(key, (tex = discTexture(fill, text, options)));
+    return tex;
+  }
+
+  dispose() {
+    for (const tex of this.cache.values()) tex.dispose();
+    this.cache.clear();
+  }
+}
+
+function discTexture(fill, text, { ring = false, textColor = '#111827' } = {}) {
   const size = 64;
   const c = document.createElement('canvas');
   c.width = c.height = size;
@@ -260,7 +275,6 @@ function discTexture(key, fill, text, { ring = false, textColor = '#111827' } = 
   g.fillText(text, size / 2, size / 2 + 2);
   const tex = new CanvasTexture(c);
   tex.colorSpace = SRGBColorSpace;
-  labelTextures.set(key, tex);
   return tex;
 }
 
@@ -285,7 +299,8 @@ function indexLabel(index) {
 }
 
 export class SingularitiesView {
-  constructor(scene) {
+  constructor(scene, labels) {
+    this.labels = labels;
     this.group = new Group();
     this.group.visible = false;
     scene.add(this.group);
@@ -320,7 +335,7 @@ export class SingularitiesView {
     for (const { vertex, index } of list.slice(0, 400)) {
       const label = indexLabel(index);
       const fill = index > 0 ? '#facc15' : '#c084fc';
-      const sprite = markerSprite(discTexture(`sing:${label}`, fill, label));
+      const sprite = markerSprite(this.labels.get(`sing:${label}`, fill, label));
       const p = s.vertex(vertex), n = s.vertexNormals;
       sprite.position.set(p[0] + lift * n[3 * vertex], p[1] + lift * n[3 * vertex + 1], p[2] + lift * n[3 * vertex + 2]);
       sprite.userData.vertex = vertex;
@@ -333,4 +348,3 @@ export class SingularitiesView {
   }
 }
 
-export { discTexture };

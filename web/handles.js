@@ -2,7 +2,7 @@
 // sinks (green) and vortices (blue) — plus the live preview arrow of the vector tool. Handles are picked in
 // screen space (nearest anchor within a few pixels that is not hidden behind the surface).
 import { BufferAttribute, BufferGeometry, DoubleSide, Group, Matrix4, Mesh, MeshBasicMaterial, Vector3 } from 'three';
-import { arrowGeometry, discTexture, fixSpriteScales, markerSprite } from './field-views.js';
+import { arrowGeometry, fixSpriteScales, markerSprite } from './field-views.js';
 
 const COLORS = { stroke: 0xff7a1a, vector: 0xfbbf24, selected: 0xffffff, preview: 0xfde68a };
 const MARKERS = {
@@ -14,7 +14,8 @@ const LIFT = 0.12; // × mean edge length
 const PICK_PX = 12;
 
 export class HandlesView {
-  constructor(scene) {
+  constructor(scene, labels) {
+    this.labels = labels;
     this.group = new Group();
     this.markers = new Group();
     scene.add(this.group, this.markers);
@@ -96,7 +97,7 @@ export class HandlesView {
         const p = onVertex ? s.vertex(spec.vertex) : s.centroid(spec.face);
         const n = onVertex ? [...s.vertexNormals.subarray(3 * spec.vertex, 3 * spec.vertex + 3)] : s.normal(spec.face);
         const at = p.map((x, k) => x + 4 * lift * n[k]);
-        const sprite = markerSprite(markerTexture(spec, false), 22);
+        const sprite = markerSprite(markerTexture(this.labels, spec, false), 22);
         sprite.position.set(...at);
         this.markers.add(sprite);
         return { spec, object: sprite, anchors: [at], marker: true };
@@ -110,7 +111,7 @@ export class HandlesView {
     for (const [uid, item] of this.items) {
       const on = uid === this.selected;
       if (item.marker) {
-        item.object.material.map = markerTexture(item.spec, on);
+        item.object.material.map = markerTexture(this.labels, item.spec, on);
         item.object.material.needsUpdate = true;
         item.object.userData.px = on ? 28 : 22;
       } else {
@@ -181,10 +182,10 @@ function projectOut(v, n) {
   return [v[0] - d * n[0], v[1] - d * n[1], v[2] - d * n[2]];
 }
 
-function markerTexture(spec, selected) {
+function markerTexture(labels, spec, selected) {
   const m = MARKERS[spec.type];
   const text = m.text ?? (spec.strength >= 0 ? '\u21ba' : '\u21bb');
-  return discTexture(`${spec.type}:${text}:${selected}`, m.fill, text, { ring: selected, textColor: '#ffffff' });
+  return labels.get(`${spec.type}:${text}:${selected}`, m.fill, text, { ring: selected, textColor: '#ffffff' });
 }
 
 // A flat band of width w along a polyline, in the local tangent plane (normal per point).

@@ -1,9 +1,5 @@
-// Undo/redo stacks of design edits. An entry is plain data describing the change in terms of the page's
-// constraint ids (which survive a delete and re-add); main.js turns it into the inverse factor update.
-//
-// Entry kinds: {kind: 'add' | 'remove', uid, spec}, {kind: 'weight' | 'strength', uid, from, to},
-// {kind: 'boundary' | 'gamma', from, to}, {kind: 'design', label, before, after} with before/after =
-// {design, uids} (a whole document, e.g. Load or Clear).
+// Undo/redo stacks of command objects (commands.js): execute() applies a command and records it, undo()
+// reverts the newest, redo() applies it again. A command that fails stays where it was.
 
 const LIMIT = 500;
 
@@ -14,11 +10,32 @@ export class History {
     this.onChange = onChange;
   }
 
-  push(entry) {
-    this.undoStack.push(entry);
+  // Applies the command; records it unless it changed nothing (command.changes === false).
+  async execute(command, session) {
+    await command.apply(session);
+    if (command.changes === false) return;
+    this.undoStack.push(command);
     if (this.undoStack.length > LIMIT) this.undoStack.shift();
     this.redoStack.length = 0;
     this.onChange();
+  }
+
+  async undo(session) {
+    const command = this.peekUndo();
+    if (!command) return false;
+    await command.revert(session);
+    this.redoStack.push(this.undoStack.pop());
+    this.onChange();
+    return true;
+  }
+
+  async redo(session) {
+    const command = this.peekRedo();
+    if (!command) return false;
+    await command.apply(session);
+    this.undoStack.push(this.redoStack.pop());
+    this.onChange();
+    return true;
   }
 
   clear() {
@@ -35,32 +52,7 @@ export class History {
     return this.redoStack[this.redoStack.length - 1] ?? null;
   }
 
-  // Called once the inverse (or the redo) has been applied to the core.
-  didUndo() {
-    this.redoStack.push(this.undoStack.pop());
-    this.onChange();
-  }
-
-  didRedo() {
-    this.undoStack.push(this.redoStack.pop());
-    this.onChange();
-  }
-
   labels() {
-    return { undo: this.undoStack.map(describe), redo: this.redoStack.map(describe).reverse() };
-  }
-}
-
-export function describe(entry) {
-  if (!entry) return '';
-  switch (entry.kind) {
-    case 'add': return `add ${entry.spec.type} #${entry.uid}`;
-    case 'remove': return `delete ${entry.spec.type} #${entry.uid}`;
-    case 'weight': return `weight of #${entry.uid}`;
-    case 'strength': return `strength of #${entry.uid}`;
-    case 'boundary': return 'boundary condition';
-    case 'gamma': return 'γ';
-    case 'design': return entry.label;
-    default: return entry.kind;
+    return { undo: this.undoStack.map((c) => c.label), redo: this.redoStack.map((c) => c.label).reverse() };
   }
 }

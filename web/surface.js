@@ -1,5 +1,7 @@
 // Main-thread geometry and topology of the core's welded mesh, for drawing and for tracing on the surface.
-// Face f here is face f of the core; local edge k of a face runs from corner k to corner k+1.
+// Face f here is face f of the core; local edge k of a face runs from corner k to corner k+1. Normals, areas
+// and the edge→face maps come from mesh-geometry.js.
+import { faceGeometry, halfEdgeNeighbours, vertexFaceMap, vertexNormals } from './mesh-geometry.js';
 
 export class Surface {
   // positions: Float64Array (3 per vertex), triangles: Int32Array (3 per face), edges: Int32Array (2 per edge,
@@ -16,9 +18,7 @@ export class Surface {
 
   #geometry() {
     const P = this.positions, T = this.triangles, nF = this.nF;
-    this.normals = new Float64Array(3 * nF);
-    this.centres = new Float64Array(3 * nF);
-    this.areas = new Float64Array(nF);
+    ({ normals: this.normals, areas: this.areas, centres: this.centres } = faceGeometry(P, T));
     // Per-face 2D frame: origin at corner 0, x along edge 0→1, y = n × x; corners in that frame.
     this.frames = new Float64Array(6 * nF); // e1 (3), e2 (3)
     this.corners2d = new Float64Array(6 * nF); // (0,0), (bx,0), (cx,cy)
@@ -36,12 +36,7 @@ export class Surface {
       const w = [P[c] - P[a], P[c + 1] - P[a + 1], P[c + 2] - P[a + 2]];
       const lu = Math.hypot(...u);
       edgeSum += lu + Math.hypot(...w) + Math.hypot(P[c] - P[b], P[c + 1] - P[b + 1], P[c + 2] - P[b + 2]);
-      let n = cross(u, w);
-      const ln = Math.hypot(...n);
-      this.areas[f] = ln / 2;
-      n = ln > 0 ? n.map((x) => x / ln) : [0, 0, 1];
-      this.normals.set(n, 3 * f);
-      for (let k = 0; k < 3; k++) this.centres[3 * f + k] = (P[a + k] + P[b + k] + P[c + k]) / 3;
+      const n = this.normal(f);
       const e1 = lu > 0 ? u.map((x) => x / lu) : [1, 0, 0];
       const e2 = cross(n, e1);
       this.frames.set([...e1, ...e2], 6 * f);
@@ -53,44 +48,10 @@ export class Surface {
   }
 
   #adjacency() {
-    const T = this.triangles, nF = this.nF, nV = this.nV;
-    // neighbour[3f+k] = 3g+kk for the face g across local edge k (its local edge kk), or -1 on the boundary.
-    this.neighbour = new Int32Array(3 * nF).fill(-1);
-    const open = new Map();
-    for (let f = 0; f < nF; f++) {
-      for (let k = 0; k < 3; k++) {
-        const i = T[3 * f + k], j = T[3 * f + ((k + 1) % 3)];
-        const key = i < j ? i * nV + j : j * nV + i;
-        const other = open.get(key);
-        if (other === undefined) open.set(key, 3 * f + k);
-        else {
-          this.neighbour[3 * f + k] = other;
-          this.neighbour[other] = 3 * f + k;
-          open.delete(key);
-        }
-      }
-    }
-    // Faces around each vertex (CSR), for one-ring queries.
-    const count = new Int32Array(nV + 1);
-    for (let t = 0; t < T.length; t++) count[T[t] + 1]++;
-    for (let v = 0; v < nV; v++) count[v + 1] += count[v];
-    this.vertexFaceStart = count;
-    this.vertexFaces = new Int32Array(T.length);
-    const fill = count.slice(0, nV);
-    for (let t = 0; t < T.length; t++) this.vertexFaces[fill[T[t]]++] = Math.floor(t / 3);
-    // Vertex normals (area weighted), for lifting markers off the surface.
-    this.vertexNormals = new Float64Array(3 * nV);
-    for (let f = 0; f < nF; f++) {
-      for (let k = 0; k < 3; k++) {
-        const v = T[3 * f + k];
-        for (let c = 0; c < 3; c++) this.vertexNormals[3 * v + c] += this.areas[f] * this.normals[3 * f + c];
-      }
-    }
-    for (let v = 0; v < nV; v++) {
-      const n = this.vertexNormals.subarray(3 * v, 3 * v + 3);
-      const l = Math.hypot(n[0], n[1], n[2]) || 1;
-      for (let c = 0; c < 3; c++) n[c] /= l;
-    }
+    this.neighbour = halfEdgeNeighbours(this.triangles, this.nV);
+    ({ start: this.vertexFaceStart, faces: this.vertexFaces } = vertexFaceMap(this.triangles, this.nV));
+    // For lifting markers off the surface.
+    this.vertexNormals = vertexNormals(this.triangles, this.nV, this.normals, this.areas);
   }
 
   vertex(v) {

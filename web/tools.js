@@ -8,9 +8,12 @@ const CLICK_SLOP_PX = 6; // a press that moves less than this is a click
 export const TOOLS = ['orbit', 'select', 'stroke', 'vector', 'source', 'sink', 'vortex'];
 
 export class ToolController {
-  // actions: {onStroke(points, event), onVector(face, vector3, event), onPlace(kind, hit, event),
-  //           onSelect(uid | null), flash(text)}
-  constructor(viewer, target, actions) {
+  // session: the designer these tools edit (its viewer picks and draws); target: the element that receives
+  // the pointer events. actions: {onStroke(points, event), onVector(face, vector3, event),
+  // onPlace(kind, hit, event), onSelect(uid | null), flash(text)}
+  constructor(session, target, actions) {
+    const viewer = session.viewer;
+    this.session = session;
     this.viewer = viewer;
     this.actions = actions;
     this.tool = 'orbit';
@@ -27,14 +30,22 @@ export class ToolController {
       vortex: new PlaceTool('vortex', viewer, actions),
       select: new SelectTool(viewer, actions),
     };
-    target.addEventListener('pointerdown', (e) => this.#down(e), { capture: true });
-    target.addEventListener('pointermove', (e) => this.#move(e), { capture: true });
-    target.addEventListener('pointerup', (e) => this.#up(e), { capture: true });
-    target.addEventListener('pointercancel', (e) => this.#cancel(e), { capture: true });
+    this.listening = new AbortController();
+    const options = { capture: true, signal: this.listening.signal };
+    target.addEventListener('pointerdown', (e) => this.#down(e), options);
+    target.addEventListener('pointermove', (e) => this.#move(e), options);
+    target.addEventListener('pointerup', (e) => this.#up(e), options);
+    target.addEventListener('pointercancel', (e) => this.#cancel(e), options);
   }
 
+  dispose() {
+    this.listening.abort();
+  }
+
+  // In readonly mode only orbit and select are available.
   setTool(name) {
     if (!TOOLS.includes(name)) return;
+    if (this.session.readonly && name !== 'orbit' && name !== 'select') name = 'orbit';
     if (this.active) this.#release(this.active.pointerId, () => this.active.handler.cancel());
     this.tool = name;
     this.viewer.canvas.dataset.tool = name;

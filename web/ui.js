@@ -1,10 +1,12 @@
-// DOM side of the page: toolbar, side panels, constraint list and selection editor, error banner, drop
-// target, progress indicator and status line. The markup is static in index.html; this module binds it,
-// reports user intent through the callbacks it is given, and renders the state it is handed.
-
-const $ = (sel) => document.querySelector(sel);
+// DOM side of one designer: toolbar, side panels, constraint list and selection editor, error banner, drop
+// target, progress indicator and status line. The markup is the element's (template.js, in its shadow root);
+// this module binds it, reports user intent through the callbacks it is given, and renders the state it is
+// handed. Keyboard shortcuts act while the focus is inside the element (or, on the app page, anywhere).
+import { VIEW_PRESETS } from './camera.js';
+import { bindHelp } from './help.js';
 
 const TOOL_KEYS = { o: 'orbit', e: 'select', s: 'stroke', v: 'vector', r: 'source', g: 'sink', b: 'vortex' };
+const PRESET_KEYS = { 1: 'front', 3: 'side', 7: 'top' };
 const SWATCH = { stroke: '#ff7a1a', vector: '#fbbf24', edge: '#ff7a1a', source: '#ef4444', sink: '#22c55e', vortex: '#3b82f6' };
 const PROGRESS_DELAY_MS = 200; // shorter operations show no indicator at all
 
@@ -22,17 +24,25 @@ function isTyping(target) {
   return target instanceof HTMLInputElement || target instanceof HTMLSelectElement || target instanceof HTMLTextAreaElement;
 }
 
-export function bindUi(actions) {
+// root: the shadow root; host: the element (keyboard events reach it from inside the shadow tree).
+export function bindUi(root, host, actions) {
+  const $ = (sel) => root.querySelector(sel);
+  const $$ = (sel) => root.querySelectorAll(sel);
+  const focused = () => root.activeElement;
   const fileInput = $('#file-input');
   const designInput = $('#design-input');
   const banner = $('#error-banner');
   const bannerMsg = banner.querySelector('.message');
+  const bannerAction = banner.querySelector('.action');
+  let bannerRun = null;
   const status = $('#status');
   const list = $('#constraint-list');
   const emptyNote = $('#constraints-empty');
   const viewport = $('#viewport');
   const dropOverlay = $('#drop-overlay');
   const progress = $('#progress');
+  // Cancel stops the operation in flight by replacing the core (core-proxy.js); Escape does the same while busy.
+  progress.querySelector('.cancel')?.addEventListener('click', () => actions.onCancel?.());
   const strength = $('#strength');
   const weight = $('#weight');
   let flashTimer = 0, flashText = null;
@@ -92,25 +102,34 @@ export function bindUi(actions) {
   });
 
   // ---- tools and their options
-  for (const btn of document.querySelectorAll('[data-tool]')) btn.addEventListener('click', () => setTool(btn.dataset.tool));
+  for (const btn of $$('[data-tool]')) btn.addEventListener('click', () => setTool(btn.dataset.tool));
   function setTool(tool) {
-    for (const b of document.querySelectorAll('[data-tool]')) b.setAttribute('aria-pressed', String(b.dataset.tool === tool));
-    for (const el of document.querySelectorAll('.tool-options [data-for]')) el.hidden = !el.dataset.for.split(' ').includes(tool);
+    for (const b of $$('[data-tool]')) b.setAttribute('aria-pressed', String(b.dataset.tool === tool));
+    for (const el of $$('.tool-options [data-for]')) el.hidden = !el.dataset.for.split(' ').includes(tool);
     actions.onTool(tool);
   }
-  for (const btn of document.querySelectorAll('[data-orientation]')) {
+  for (const btn of $$('[data-orientation]')) {
     btn.addEventListener('click', () => setOrientation(btn.dataset.orientation));
   }
   function setOrientation(o) {
     orientation = o;
-    for (const b of document.querySelectorAll('[data-orientation]')) b.setAttribute('aria-pressed', String(b.dataset.orientation === o));
+    for (const b of $$('[data-orientation]')) b.setAttribute('aria-pressed', String(b.dataset.orientation === o));
   }
+
+  // ---- camera and help
+  $('#frame-button').addEventListener('click', () => actions.onFrame('home'));
+  for (const btn of $$('[data-view]')) {
+    if (VIEW_PRESETS[btn.dataset.view]) btn.addEventListener('click', () => actions.onFrame(btn.dataset.view));
+  }
+  const help = bindHelp($('#help'), $('#hint'), actions.hintKey ?? null);
+  $('#help-button').addEventListener('click', () => help.toggle());
+  viewport.addEventListener('pointerdown', () => help.dismissHint(), { capture: true });
 
   // ---- undo / redo
   $('#undo').addEventListener('click', () => actions.onUndo());
   $('#redo').addEventListener('click', () => actions.onRedo());
 
-  window.addEventListener('keydown', (e) => {
+  const onKey = (e) => {
     const mod = e.ctrlKey || e.metaKey;
     const key = e.key.toLowerCase();
     if (mod && !e.altKey && (key === 'z' || key === 'y')) {
@@ -125,15 +144,57 @@ export function bindUi(actions) {
       actions.onSaveDesign();
       return;
     }
+    if (e.key === 'F1' || ((e.key === '?' || key === 'h') && !isTyping(e.target) && !mod && !e.altKey)) {
+      e.preventDefault();
+      help.toggle();
+      return;
+    }
     if (isTyping(e.target) || mod || e.altKey) return;
-    if (TOOL_KEYS[key]) setTool(TOOL_KEYS[key]);
+    if (key === 'escape' && help.isOpen) help.close();
+    else if (TOOL_KEYS[key]) setTool(TOOL_KEYS[key]);
+    else if (key === 'escape' && !progress.hidden) actions.onCancel?.();
     else if (key === 'escape') selectedUid != null ? actions.onSelect(null) : setTool('orbit');
-    else if (key === 'f') setOrientation(orientation === 'ccw' ? 'cw' : 'ccw');
+    else if (key === 'f' || e.key === 'Home') e.preventDefault(), actions.onFrame('home');
+    else if (PRESET_KEYS[e.key]) actions.onFrame(PRESET_KEYS[e.key]);
+    else if (key === 'x') setOrientation(orientation === 'ccw' ? 'cw' : 'ccw');
     else if ((key === 'delete' || key === 'backspace') && selectedUid != null) {
       e.preventDefault();
       actions.onRemove(selectedUid);
     }
-  });
+  };
+  // Keys typed inside the element; the app page also forwards the rest of the page's (listenTo(window)).
+  host.addEventListener('keydown', onKey);
+  const pageKey = (e) => e.composedPath().includes(host) || onKey(e);
+  let pageTarget = null;
+  function listenTo(target) {
+    pageTarget = target;
+    target.addEventListener('keydown', pageKey);
+  }
+
+  // ---- numbers: a value outside its box's range is shown invalid and never silently replaced
+  // Range and parse only: a step is a spinner increment, not a rule (0.15 is a fine strength).
+  const invalid = (input) => {
+    const v = input.validity;
+    return v.badInput || v.rangeUnderflow || v.rangeOverflow || input.value.trim() === '' || !Number.isFinite(Number(input.value));
+  };
+  for (const input of $$('input[type="number"]')) {
+    input.addEventListener('input', () => input.setAttribute('aria-invalid', String(invalid(input))));
+  }
+  // The number in `input`, or an Error naming the box and the value when it is not a valid one.
+  function checkedNumber(input, what) {
+    const bad = invalid(input);
+    input.setAttribute('aria-invalid', String(bad));
+    if (!bad) return Number(input.value);
+    const range = input.min !== '' ? ` (at least ${input.min})` : '';
+    throw new Error(`${what} must be a number${range}; the box shows "${input.value}"`);
+  }
+  const guarded = (fn) => (e) => {
+    try {
+      fn(e);
+    } catch (err) {
+      showError(err.message);
+    }
+  };
 
   // ---- field settings
   const boundarySelect = $('#boundary');
@@ -147,8 +208,8 @@ export function bindUi(actions) {
     $('#boundary-angle-row').hidden = boundarySelect.value !== 'angle';
     actions.onBoundary(boundaryChoice());
   });
-  angleInput.addEventListener('change', () => actions.onBoundary(boundaryChoice()));
-  $('#gamma').addEventListener('change', (e) => actions.onGamma(Number(e.target.value)));
+  angleInput.addEventListener('change', guarded(() => (checkedNumber(angleInput, 'The boundary angle'), actions.onBoundary(boundaryChoice()))));
+  $('#gamma').addEventListener('change', guarded((e) => actions.onGamma(checkedNumber(e.target, 'Smoothness γ'))));
 
   // ---- views
   const viewInputs = ['show-arrows', 'arrow-density', 'arrow-scaled', 'show-streamlines', 'streamline-spacing'];
@@ -177,7 +238,12 @@ export function bindUi(actions) {
   }
 
   // ---- constraints list and selection editor
-  banner.querySelector('.dismiss').addEventListener('click', () => (banner.hidden = true));
+  banner.querySelector('.dismiss').addEventListener('click', () => clearError());
+  bannerAction.addEventListener('click', () => {
+    const run = bannerRun;
+    clearError();
+    run?.();
+  });
   list.addEventListener('click', (e) => {
     const li = e.target.closest('[data-constraint-id]');
     if (!li) return;
@@ -187,16 +253,16 @@ export function bindUi(actions) {
   });
   $('#clear-all').addEventListener('click', () => actions.onClear());
   $('#sel-delete').addEventListener('click', () => selectedUid != null && actions.onRemove(selectedUid));
-  $('#sel-weight').addEventListener('change', (e) => selectedUid != null && actions.onEditWeight(selectedUid, Number(e.target.value)));
-  $('#sel-strength').addEventListener('change', (e) => selectedUid != null && actions.onEditStrength(selectedUid, Number(e.target.value)));
+  $('#sel-weight').addEventListener('change', guarded((e) => selectedUid != null && actions.onEditWeight(selectedUid, checkedNumber(e.target, 'The weight'))));
+  $('#sel-strength').addEventListener('change', guarded((e) => selectedUid != null && actions.onEditStrength(selectedUid, checkedNumber(e.target, 'The strength'))));
 
   function describe(c) {
     switch (c.type) {
-      case 'stroke': return `${c.points.length} pts · s ${fmtNum(c.strength)} · w ${fmtNum(c.weight)}`;
-      case 'vector': return `face ${c.face} · |v| ${fmtNum(Math.hypot(...c.vector))} · w ${fmtNum(c.weight)}`;
-      case 'edge': return `${c.edge[0]}→${c.edge[1]} = ${fmtNum(c.value)} · w ${fmtNum(c.weight)}`;
+      case 'stroke': return `${c.points.length} points · strength ${fmtNum(c.strength)} · weight ${fmtNum(c.weight)}`;
+      case 'vector': return `face ${c.face} · size ${fmtNum(Math.hypot(...c.vector))} · weight ${fmtNum(c.weight)}`;
+      case 'edge': return `${c.edge[0]}→${c.edge[1]} = ${fmtNum(c.value)} · weight ${fmtNum(c.weight)}`;
       case 'source':
-      case 'sink': return `vertex ${c.vertex} · s ${fmtNum(c.strength)}`;
+      case 'sink': return `vertex ${c.vertex} · strength ${fmtNum(c.strength)}`;
       case 'vortex': return `face ${c.face} · ${c.strength >= 0 ? 'CCW' : 'CW'} ${fmtNum(Math.abs(c.strength))}`;
       default: return '';
     }
@@ -239,15 +305,49 @@ export function bindUi(actions) {
     $('#sel-weight-row').hidden = !hasWeight;
     $('#sel-strength-row').hidden = !hasStrength;
     // Never overwrite a number the user is typing.
-    if (hasWeight && document.activeElement !== $('#sel-weight')) $('#sel-weight').value = String(sel.weight);
-    if (hasStrength && document.activeElement !== $('#sel-strength')) $('#sel-strength').value = String(sel.strength);
+    if (hasWeight && focused() !== $('#sel-weight')) $('#sel-weight').value = String(sel.weight);
+    if (hasStrength && focused() !== $('#sel-strength')) $('#sel-strength').value = String(sel.strength);
   }
 
   // ---- banner, status, progress
-  function showError(message) {
+  // action: {label, run} — a button next to the message (e.g. apply a design made for another mesh anyway).
+  function showError(message, action = null) {
     bannerMsg.textContent = message;
+    bannerAction.hidden = !action;
+    bannerAction.textContent = action?.label ?? '';
+    bannerRun = action?.run ?? null;
     banner.hidden = false;
   }
+
+  // After the next success: an error that no longer describes the state must not stay up.
+  function clearError() {
+    banner.hidden = true;
+    bannerRun = null;
+  }
+
+  // An in-element question (no window.confirm: it would block every designer on the page). Resolves true
+  // when the user chose `ok`, false on Cancel or Escape.
+  let confirmDone = null;
+  const confirmBox = $('#confirm');
+  function confirmChoice(message, ok) {
+    confirmDone?.(false);
+    $('#confirm-message').textContent = message;
+    $('#confirm-ok').textContent = ok;
+    confirmBox.hidden = false;
+    $('#confirm-ok').focus();
+    return new Promise((resolve) => {
+      confirmDone = (yes) => {
+        confirmDone = null;
+        confirmBox.hidden = true;
+        resolve(yes);
+      };
+    });
+  }
+  $('#confirm-ok').addEventListener('click', () => confirmDone?.(true));
+  $('#confirm-cancel').addEventListener('click', () => confirmDone?.(false));
+  confirmBox.addEventListener('keydown', (e) => {
+    if (e.key === 'Escape') e.stopPropagation(), confirmDone?.(false);
+  });
 
   function renderStatus() {
     status.textContent = flashText ?? statusText;
@@ -289,7 +389,7 @@ export function bindUi(actions) {
     let ticker = 0;
     const show = setTimeout(() => {
       progress.hidden = false;
-      document.body.classList.add('busy');
+      host.classList.add('busy');
       const update = () => (progress.querySelector('.label').textContent = `${label} ${((performance.now() - t0) / 1000).toFixed(1)} s`);
       update();
       ticker = setInterval(update, 100);
@@ -298,7 +398,7 @@ export function bindUi(actions) {
       clearTimeout(show);
       clearInterval(ticker);
       progress.hidden = true;
-      document.body.classList.remove('busy');
+      host.classList.remove('busy');
     };
   }
 
@@ -306,8 +406,8 @@ export function bindUi(actions) {
     const isAngle = typeof boundary !== 'string';
     boundarySelect.value = isAngle ? 'angle' : boundary;
     $('#boundary-angle-row').hidden = !isAngle;
-    if (isAngle && document.activeElement !== angleInput) angleInput.value = String(+((boundary.angle * 180) / Math.PI).toFixed(6));
-    if (document.activeElement !== $('#gamma')) $('#gamma').value = String(gamma);
+    if (isAngle && focused() !== angleInput) angleInput.value = String(+((boundary.angle * 180) / Math.PI).toFixed(6));
+    if (focused() !== $('#gamma')) $('#gamma').value = String(gamma);
   }
 
   function setHasBoundary(has) {
@@ -327,18 +427,30 @@ export function bindUi(actions) {
     if (max != null) $('#legend-max').textContent = `≥ ${fmtNum(max)}`;
   }
 
+  // Throws (naming the box and what it shows) when the strength is not a valid number: never coerced.
   function toolOptions() {
-    const s = Number(strength.value);
-    return {
-      strength: Number.isFinite(s) && s > 0 ? s : 1,
-      weight: Number(weight.value),
-      orientation,
-    };
+    const s = checkedNumber(strength, 'The strength');
+    if (!(s > 0)) {
+      strength.setAttribute('aria-invalid', 'true');
+      throw new Error(`The strength must be above 0; the box shows "${strength.value}"`);
+    }
+    return { strength: s, weight: Number(weight.value), orientation };
+  }
+
+  function dispose() {
+    clearTimeout(flashTimer);
+    host.removeEventListener('keydown', onKey);
+    pageTarget?.removeEventListener('keydown', pageKey);
   }
 
   setTool('orbit');
   return {
+    dispose,
+    listenTo,
     showError,
+    clearError,
+    help,
+    confirm: confirmChoice,
     setConstraints,
     setStatus,
     startProgress,
@@ -351,7 +463,5 @@ export function bindUi(actions) {
     flash,
     toolOptions,
     setTool,
-    // Kept for callers of the previous page: the stroke's options.
-    strokeOptions: () => ({ strength: toolOptions().strength, weight: toolOptions().weight }),
   };
 }

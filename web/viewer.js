@@ -24,10 +24,11 @@ import {
 } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { MeshBVH, acceleratedRaycast } from 'three-mesh-bvh';
-import { ArrowsView, SingularitiesView, StreamlinesView, arrowDensityFor, rampColor } from './field-views.js';
+import { ArrowsView, LabelTextures, SingularitiesView, StreamlinesView, arrowDensityFor, rampColor } from './field-views.js';
 
 export { arrowDensityFor };
 import { HandlesView } from './handles.js';
+import { frameModel } from './camera.js';
 
 const BACKGROUND = 0x1b1d21;
 const SURFACE_GREY = 0xb9bec8;
@@ -37,11 +38,18 @@ export class Viewer {
   constructor(container) {
     this.container = container;
     this.renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    // three.js rebuilds its GL state when a lost context comes back, but draws nothing until asked: without
+    // this the canvas stays blank until the next interaction.
+    this.renderer.domElement.addEventListener('webglcontextrestored', () => {
+      this._renderQueued = false;
+      this.requestRender();
+    });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
     this.renderer.outputColorSpace = SRGBColorSpace;
     this.renderer.setClearColor(BACKGROUND, 1);
     this.canvas = this.renderer.domElement;
     this.canvas.id = 'view';
+    this.canvas.setAttribute('part', 'canvas');
     this.canvas.tabIndex = 0;
     container.prepend(this.canvas);
 
@@ -69,16 +77,37 @@ export class Viewer {
     this.colorMapOn = false;
     this.arrows = new ArrowsView(this.scene);
     this.streamlines = new StreamlinesView(this.scene);
-    this.singularities = new SingularitiesView(this.scene);
-    this.handles = new HandlesView(this.scene);
+    this.labels = new LabelTextures();
+    this.singularities = new SingularitiesView(this.scene, this.labels);
+    this.handles = new HandlesView(this.scene, this.labels);
     this.afterRender = []; // callbacks (time) → void, run once after the next render
     this.renderCount = 0; // frames drawn, for measuring responsiveness while the worker is busy
 
     this._renderQueued = false;
-    new ResizeObserver(() => this.resize()).observe(container);
+    this.disposed = false;
+    this.resizeObserver = new ResizeObserver(() => this.resize());
+    this.resizeObserver.observe(container);
     this.resize();
   }
 
+  // Frees the GPU side now rather than at garbage collection: browsers cap live WebGL contexts per page
+  // (about 16 in Chromium), so an element that leaves the page must give its context back at once.
+  dispose() {
+    if (this.disposed) return;
+    this.disposed = true;
+    this.resizeObserver.disconnect();
+    this.controls.dispose();
+    this.clearStroke();
+    this.#disposeMesh();
+    this.scene.traverse((o) => {
+      o.geometry?.dispose();
+      for (const m of [o.material].flat()) m?.dispose();
+    });
+    this.labels.dispose();
+    this.renderer.dispose();
+    this.renderer.forceContextLoss();
+    this.canvas.remove();
+  }
   get meanEdge() {
     return this.surface?.meanEdge ?? 1;
   }
@@ -93,7 +122,7 @@ export class Viewer {
   }
 
   requestRender() {
-    if (this._renderQueued) return;
+    if (this._renderQueued || this.disposed) return;
     this._renderQueued = true;
     requestAnimationFrame(() => {
       this._renderQueued = false;
@@ -102,6 +131,7 @@ export class Viewer {
   }
 
   renderNow() {
+    if (this.disposed) return;
     this.singularities.updateScale(this.camera, this.renderer);
     this.handles.updateScale(this.camera, this.renderer);
     this.renderer.render(this.scene, this.camera);
@@ -163,19 +193,9 @@ export class Viewer {
     this.surfaceMesh = null;
   }
 
-  // Puts the whole model in view from a fixed, slightly raised front-right direction.
-  frame() {
-    const s = this.surfaceMesh.geometry.boundingSphere;
-    const r = Math.max(s.radius, 1e-9);
-    const dist = (r / Math.sin((this.camera.fov * Math.PI) / 360)) * 1.05;
-    const dir = new Vector3(0.35, 0.25, 1).normalize();
-    this.camera.position.copy(s.center).addScaledVector(dir, dist);
-    this.camera.near = dist / 100;
-    this.camera.far = dist * 10;
-    this.camera.up.set(0, 1, 0);
-    this.camera.updateProjectionMatrix();
-    this.controls.target.copy(s.center);
-    this.controls.update();
+  // Puts the whole model in view (camera.js): on load, Frame/Home/F, and the view presets.
+  frame(preset = 'home') {
+    return frameModel(this, preset);
   }
 
   // Magnitude colour map from per-vertex vectors. The ramp tops out at the 98th percentile, not the maximum:

@@ -88,6 +88,11 @@ void validatePoint(const MeshTopology& t, const SurfacePoint& p, size_t index) {
     if (!std::isfinite(b) || b < -1e-6 || b > 1 + 1e-6)
       throw InputError("stroke point " + std::to_string(index) +
                        " has barycentric coordinates outside [0, 1]");
+  // Barycentric coordinates sum to one; [0, 0, 0] or a badly scaled triple names no point at all.
+  const double sum = p.bary[0] + p.bary[1] + p.bary[2];
+  if (std::abs(sum - 1) > 1e-2)
+    throw InputError("stroke point " + std::to_string(index) + " has barycentric coordinates that sum to " +
+                     std::to_string(sum) + " instead of 1");
 }
 
 SurfacePoint normalized(const SurfacePoint& p) {

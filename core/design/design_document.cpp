@@ -1,6 +1,9 @@
 #include "design/design_document.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <set>
 
 namespace tvf {
 namespace {
@@ -32,10 +35,21 @@ double number(const json& object, const char* key, double fallback, const std::s
   return v.get<double>();
 }
 
+// An element index as a JSON number: whole and within int32, checked on the double so that 1e12 is reported
+// as 1e12 rather than wrapped.
+int32_t elementIndex(double x, const std::string& what) {
+  if (!std::isfinite(x) || x != std::floor(x) || x < -2147483648.0 || x > 2147483647.0) {
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", x);
+    throw InputError(what + " must be an integer index (got " + text + ")");
+  }
+  return static_cast<int32_t>(x);
+}
+
 int32_t integer(const json& object, const char* key, const std::string& where) {
-  if (!object.contains(key) || !object.at(key).is_number_integer())
+  if (!object.is_object() || !object.contains(key) || !object.at(key).is_number())
     throw InputError(where + ": \"" + key + "\" must be an integer");
-  return object.at(key).get<int32_t>();
+  return elementIndex(object.at(key).get<double>(), where + ": \"" + key + "\"");
 }
 
 void numbers(const json& array, double* out, size_t n, const std::string& what) {
@@ -54,7 +68,62 @@ json vec3List(const std::vector<double>& flat) {
   return out;
 }
 
+// FNV-1a over 32-bit words (not bytes): a fingerprint of a 100k-face mesh stays well under a millisecond.
+struct Fnv1a64 {
+  uint64_t h = 0xcbf29ce484222325ull;
+  void word(uint32_t w) {
+    h ^= w;
+    h *= 0x100000001b3ull;
+  }
+};
+
+std::string describeFingerprint(const json& f) {
+  return std::to_string(f.value("vertices", 0)) + " vertices, " + std::to_string(f.value("faces", 0)) +
+         " faces, hash " + f.value("hash", std::string("?"));
+}
+
+void checkSchema(const json& doc) {
+  static const std::set<std::string> known{"schema", "mesh", "boundary", "gamma", "constraints"};
+  if (doc.contains("schema")) {
+    const json& s = doc["schema"];
+    if (!s.is_string() || s.get<std::string>() != kDesignSchema)
+      throw InputError("unknown design schema " + s.dump() + " (this version reads \"" + kDesignSchema + "\")");
+  }
+  for (const auto& item : doc.items())
+    if (!known.count(item.key()))
+      throw InputError("not a design file: unknown key \"" + item.key() +
+                       "\" (a design has schema, mesh, boundary, gamma and constraints)");
+  if (!doc.contains("constraints")) throw InputError("not a design file: it has no \"constraints\" list");
+}
+
+void checkFingerprint(const SurfaceMesh& mesh, const json& doc) {
+  if (!doc.contains("mesh")) return;  // older files carry none: indices are still range-checked
+  const json& saved = doc["mesh"];
+  if (!saved.is_object() || !saved.contains("hash") || !saved["hash"].is_string() ||
+      !saved.value("vertices", json()).is_number_integer() || !saved.value("faces", json()).is_number_integer())
+    throw InputError("design: \"mesh\" must be {\"vertices\", \"faces\", \"hash\"}");
+  const json current = meshFingerprint(mesh);
+  if (saved["vertices"] != current["vertices"] || saved["faces"] != current["faces"] ||
+      saved["hash"] != current["hash"])
+    throw InputError("this design was made for another mesh (" + describeFingerprint(saved) +
+                     "); the open mesh has " + describeFingerprint(current));
+}
+
 }  // namespace
+
+json meshFingerprint(const SurfaceMesh& mesh) {
+  Fnv1a64 h;
+  for (const double x : mesh.positions) {
+    const float f = static_cast<float>(x);
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    h.word(bits);
+  }
+  for (const int32_t v : mesh.triangles) h.word(static_cast<uint32_t>(v));
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.h));
+  return {{"vertices", mesh.numVertices()}, {"faces", mesh.numFaces()}, {"hash", hex}};
+}
 
 ConstraintSpec constraintFromJson(const json& c, size_t index) {
   const std::string where = "constraint " + std::to_string(index);
@@ -71,6 +140,7 @@ ConstraintSpec constraintFromJson(const json& c, size_t index) {
     for (const json& p : c["points"]) {
       SurfacePoint q{};
       q.face = integer(p, "face", where + " point");
+      if (!p.is_object()) throw InputError(where + ": a stroke point must be {\"face\", \"bary\"}");
       numbers(p.value("bary", json()), q.bary, 3, where + " point \"bary\"");
       s.points.push_back(q);
     }
@@ -82,8 +152,8 @@ ConstraintSpec constraintFromJson(const json& c, size_t index) {
     s.kind = ConstraintKind::Edge;
     double ij[2];
     numbers(c.value("edge", json()), ij, 2, where + " \"edge\"");
-    s.edge[0] = static_cast<int32_t>(ij[0]);
-    s.edge[1] = static_cast<int32_t>(ij[1]);
+    s.edge[0] = elementIndex(ij[0], where + " \"edge\" vertex");
+    s.edge[1] = elementIndex(ij[1], where + " \"edge\" vertex");
     if (!c.contains("value")) throw InputError(where + ": an edge constraint needs a \"value\"");
     s.value = number(c, "value", 0.0, where);
   } else if (type == "source" || type == "sink") {
@@ -151,7 +221,8 @@ BoundaryCondition boundaryFromJson(const json& v) {
     for (const json& e : v["perEdge"]) {
       double ija[3];
       numbers(e, ija, 3, "boundary.perEdge entry");
-      bc.perEdge.push_back({static_cast<int32_t>(ija[0]), static_cast<int32_t>(ija[1]), ija[2]});
+      bc.perEdge.push_back({elementIndex(ija[0], "boundary.perEdge vertex"),
+                            elementIndex(ija[1], "boundary.perEdge vertex"), ija[2]});
     }
   }
   return bc;
@@ -170,8 +241,10 @@ json boundaryToJson(const BoundaryCondition& bc) {
   return out;
 }
 
-void applyDesignDocument(Designer& designer, const json& doc) {
+void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) {
   if (!doc.is_object()) throw InputError("a design must be a JSON object");
+  checkSchema(doc);
+  if (fingerprint) checkFingerprint(designer.mesh(), doc);
   const BoundaryCondition bc = boundaryFromJson(doc.value("boundary", json()));
   const double gamma = number(doc, "gamma", 0.0, "design");
   std::vector<ConstraintSpec> specs;
@@ -209,7 +282,9 @@ void applyDesignDocument(Designer& designer, const json& doc) {
 json designDocument(const Designer& designer) {
   json constraints = json::array();
   for (const auto& s : designer.constraints()) constraints.push_back(constraintToJson(s));
-  return {{"boundary", boundaryToJson(designer.boundary())},
+  return {{"schema", kDesignSchema},
+          {"mesh", meshFingerprint(designer.mesh())},
+          {"boundary", boundaryToJson(designer.boundary())},
           {"gamma", designer.gamma()},
           {"constraints", constraints}};
 }

@@ -1,5 +1,7 @@
 #include "design/designer.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -29,6 +31,15 @@ constexpr double kInitialShift = 1e-9;
 constexpr double kMaxShift = 1e-4;
 // Fixed-angle boundary rows are enforced this strongly relative to the mean diagonal.
 constexpr double kBoundaryWeight = 1e4;
+// A downdate that removes weight w (relative to the mean diagonal) leaves round-off of about eps * w in the
+// pivots it passes through: removing a 1e20 weight leaves nothing of the original pivot (all NaN), removing
+// 1e8 leaves 1e-8. The weights taken out by downdates since the last factorization are summed; a downdate
+// that would push the sum past this budget refactors instead, which keeps the factor within ~1e-12 of a
+// fresh one.
+constexpr double kDowndateBudget = 1e4;
+// Backward error of a solve with an updated factor beyond which the factor is considered spoilt (a fresh
+// LDL' gives ~1e-15).
+constexpr double kUpdatedResidualTolerance = 1e-10;
 
 bool isEdgeKind(ConstraintKind k) {
   return k == ConstraintKind::Stroke || k == ConstraintKind::Vector || k == ConstraintKind::Edge;
@@ -47,6 +58,34 @@ bool sameBoundary(const BoundaryCondition& a, const BoundaryCondition& b) {
 
 void requireFinite(double x, const char* what) {
   if (!std::isfinite(x)) throw InputError(std::string(what) + " must be a finite number");
+}
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
+void requireMagnitude(double x, const char* what) {
+  requireFinite(x, what);
+  if (std::abs(x) > kMaxMagnitude)
+    throw InputError(std::string(what) + " " + number(x) +
+                     " is out of range (|x| <= " + number(kMaxMagnitude) + ")");
+}
+
+void requireWeight(double w) {
+  if (!std::isfinite(w) || !(w >= kMinWeight && w <= kMaxWeight))
+    throw InputError("a constraint's weight must be a number from " + number(kMinWeight) + " to " +
+                     number(kMaxWeight) + " (got " + number(w) + ")");
+}
+
+double physicalMemoryBytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+  return pages > 0 && pageSize > 0 ? static_cast<double>(pages) * static_cast<double>(pageSize) : 0.0;
+}
+
+bool allFinite(const Eigen::VectorXd& x) {
+  return x.allFinite();
 }
 
 }  // namespace
@@ -70,6 +109,10 @@ struct Designer::Impl {
 
   FactoredSystem system;
   bool factorStale = true;
+  double memoryLimit = 0;           // 0: physical memory
+  double downdateLoad = 0;          // relative weight removed by downdates since the last factorization
+  bool updatedSinceFactor = false;  // the factor is no longer the one CHOLMOD computed from scratch
+  int32_t precisionRefactors = 0;
   double shift = kInitialShift;
   bool shiftEverywhere = false;
 
@@ -140,6 +183,7 @@ struct Designer::Impl {
       anyKernel |= componentHasKernel(c);
     shiftEverywhere = false;
     shift = anyKernel ? kInitialShift : 0.0;
+    system.setMemoryLimit(memoryLimit > 0 ? memoryLimit : physicalMemoryBytes());
     while (!system.factor(systemMatrix(shift, shiftEverywhere))) {
       // Numerically singular despite the topology (e.g. a near-kernel on a badly shaped closed mesh).
       ++retries;
@@ -167,10 +211,22 @@ struct Designer::Impl {
     stats.kernelHandling = text;
     stats.factorKind = system.description();
     factorStale = false;
+    downdateLoad = 0;
+    updatedSinceFactor = false;
   }
 
   void applyUpdate(const std::vector<int32_t>& rows, const std::vector<double>& w, bool downdate) {
     if (factorStale || rows.empty()) return;  // the next factorization includes the change
+    if (downdate) {
+      double largest = 0;
+      for (const double wk : w) largest = std::max(largest, wk / scale);
+      if (downdateLoad + largest > kDowndateBudget) {
+        factorStale = true;  // refactor at the next solve instead of downdating away the precision
+        return;
+      }
+      downdateLoad += largest;
+    }
+    updatedSinceFactor = true;
     const auto start = Clock::now();
     system.updateDiagonal(rows, w, downdate);
     stats.updateMs = msSince(start);
@@ -180,14 +236,42 @@ struct Designer::Impl {
   // constraints pin down (a constant field on a free-boundary patch lies in the kernel of M). One step of
   // iterative refinement against the unshifted matrix cuts that to O(shift^2) for one more solve; kernel
   // components the design leaves free stay at the minimum-norm choice.
-  void refineAgainstUnshiftedSystem(const Eigen::VectorXd& b) {
-    Eigen::VectorXd residual = b - base * solution;
+  void refineAgainstUnshiftedSystem(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+    Eigen::VectorXd residual = b - base * x;
     for (const auto& [id, a] : active)
       if (isEdgeKind(a.spec.kind))
-        for (const EdgeRow& r : a.rows) residual[r.edge] -= a.spec.weight * scale * solution[r.edge];
+        for (const EdgeRow& r : a.rows) residual[r.edge] -= a.spec.weight * scale * x[r.edge];
     Eigen::VectorXd correction;
     system.solve(residual, correction);
-    solution += correction;
+    x += correction;
+  }
+
+  // The matrix the factor holds (base + shift + constraint rows) times x.
+  Eigen::VectorXd factoredProduct(const Eigen::VectorXd& x) const {
+    Eigen::VectorXd y = base * x;
+    if (shift > 0)
+      for (int32_t e = 0; e < topology.numEdges; ++e)
+        if (shiftEverywhere || componentHasKernel(topology.edgeComponent[e])) y[e] += shift * scale * x[e];
+    for (const auto& [id, a] : active)
+      if (isEdgeKind(a.spec.kind))
+        for (const EdgeRow& r : a.rows) y[r.edge] += a.spec.weight * scale * x[r.edge];
+    return y;
+  }
+
+  // Solves with the current factor (plus the refinement step); an updated factor whose solution is not
+  // finite or whose backward error is beyond round-off is replaced by a fresh factorization, once.
+  void checkedSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+    system.solve(b, x);
+    if (updatedSinceFactor) {
+      const Eigen::VectorXd y = factoredProduct(x);
+      const double residual = (b - y).norm(), size = b.norm() + y.norm();
+      if (!allFinite(x) || !std::isfinite(residual) || residual > kUpdatedResidualTolerance * size) {
+        ++precisionRefactors;
+        factorNow();
+        system.solve(b, x);
+      }
+    }
+    if (shift > 0 && allFinite(x)) refineAgainstUnshiftedSystem(b, x);
   }
 
   Eigen::VectorXd rightHandSide() const {
@@ -227,14 +311,14 @@ struct Designer::Impl {
     const auto vertexOk = [&](int32_t v) {
       return v >= 0 && v < topology.numVertices && topology.vertexFaceCount[v] > 0;
     };
-    requireFinite(s.strength, "strength");
+    requireMagnitude(s.strength, "strength");
     requireFinite(s.weight, "weight");
-    if (isEdgeKind(s.kind) && !(s.weight > 0)) throw InputError("a constraint's weight must be positive");
+    if (isEdgeKind(s.kind)) requireWeight(s.weight);
     switch (s.kind) {
       case ConstraintKind::Vector:
         if (!faceOk(s.element))
           throw InputError("vector constraint: face " + std::to_string(s.element) + " does not exist");
-        for (const double x : s.vector) requireFinite(x, "vector component");
+        for (const double x : s.vector) requireMagnitude(x, "vector component");
         break;
       case ConstraintKind::Vortex:
         if (!faceOk(s.element))
@@ -247,7 +331,10 @@ struct Designer::Impl {
                            " does not exist or is unused");
         break;
       case ConstraintKind::Edge:
-        requireFinite(s.value, "edge value");
+        requireMagnitude(s.value, "edge value");
+        if (s.edge[0] == s.edge[1])
+          throw InputError("edge constraint: an edge needs two different vertices (got " +
+                           std::to_string(s.edge[0]) + " twice)");
         if (findEdge(topology, s.edge[0], s.edge[1]) < 0)
           throw InputError("edge constraint: vertices " + std::to_string(s.edge[0]) + " and " +
                            std::to_string(s.edge[1]) + " are not joined by an edge");
@@ -319,11 +406,26 @@ void Designer::setBoundary(const BoundaryCondition& bc) {
 }
 
 void Designer::setGamma(double gamma) {
-  if (!std::isfinite(gamma) || gamma < 0) throw InputError("gamma must be a finite number >= 0");
+  if (!std::isfinite(gamma) || gamma < 0 || gamma > kMaxGamma)
+    throw InputError("gamma must be a number from 0 to " + number(kMaxGamma) + " (got " + number(gamma) +
+                     ")");
   if (gamma == impl_->gamma) return;
   impl_->gamma = gamma;
   impl_->baseStale = true;
   impl_->factorStale = true;
+}
+
+void Designer::setFactorMemoryLimit(double bytes) {
+  if (!std::isfinite(bytes) || bytes < 0) throw InputError("the factor memory limit must be a number >= 0");
+  impl_->memoryLimit = bytes;
+}
+
+double Designer::factorMemoryLimit() const {
+  return impl_->memoryLimit;
+}
+
+int32_t Designer::precisionRefactors() const {
+  return impl_->precisionRefactors;
 }
 
 void Designer::setMetisOrdering(bool metis) {
@@ -405,7 +507,7 @@ void Designer::setWeight(int32_t id, double weight) {
   Impl& d = *impl_;
   Impl::Active& a = d.find(id);
   if (!isEdgeKind(a.spec.kind)) throw InputError("only strokes, vectors and edge constraints have a weight");
-  if (!std::isfinite(weight) || !(weight > 0)) throw InputError("a constraint's weight must be positive");
+  requireWeight(weight);
   const double change = weight - a.spec.weight;
   if (change == 0) return;
   std::vector<int32_t> rows;
@@ -416,7 +518,7 @@ void Designer::setWeight(int32_t id, double weight) {
 }
 
 void Designer::setStrength(int32_t id, double strength) {
-  requireFinite(strength, "strength");
+  requireMagnitude(strength, "strength");
   Impl::Active& a = impl_->find(id);
   a.spec.strength = strength;  // enters only the right-hand side
 }
@@ -437,14 +539,27 @@ void Designer::solve() {
   auto start = Clock::now();
   const Eigen::VectorXd b = d.rightHandSide();
   d.stats.rhsMs = msSince(start);
+  if (!allFinite(b)) throw InputError("the constraints give a right-hand side that is not finite");
   d.stats.warnings = d.designWarnings();
   start = Clock::now();
-  d.system.solve(b, d.solution);
-  if (d.shift > 0) d.refineAgainstUnshiftedSystem(b);
+  Eigen::VectorXd x;
+  d.checkedSolve(b, x);
   d.stats.solveMs = msSince(start);
+  if (!allFinite(x))
+    throw InputError(
+        "the field is not finite (the system is too badly conditioned for these constraints); "
+        "the previous field is kept");
   start = Clock::now();
+  std::vector<double> faceVectors;
+  tvf::faceVectors(d.mesh, d.topology, x.data(), faceVectors);
+  for (const double v : faceVectors)
+    if (!std::isfinite(v))
+      throw InputError(
+          "the field's vectors are not finite (magnitudes beyond double range on this mesh); "
+          "the previous field is kept");
+  d.solution = std::move(x);
   d.oneForm.assign(d.solution.data(), d.solution.data() + d.solution.size());
-  tvf::faceVectors(d.mesh, d.topology, d.oneForm.data(), d.faceVectors);
+  d.faceVectors = std::move(faceVectors);
   d.stats.reconstructMs = msSince(start);
   d.derivedStale = true;
 }

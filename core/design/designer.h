@@ -34,6 +34,17 @@ struct BoundaryCondition {
   static BoundaryCondition normal() { return fixedAngle(0.0); }
 };
 
+// Ranges every numeric input is checked against, in the core so that the CLI, the wasm bindings and design
+// files share one check (documented in docs/design-format.md, "Numeric ranges"). Weights are relative to the
+// mean diagonal of the system matrix: a constraint 1e8 times stiffer than the surface is already exact to
+// about 1e-8, and adding then removing it again is undone by the factor to round-off (see kDowndateBudget in
+// designer.cpp). Magnitudes (strengths, vector components, edge values) bound the field well inside double
+// range on any mesh whose coordinates stay below 1e100.
+constexpr double kMinWeight = 1e-8;
+constexpr double kMaxWeight = 1e8;
+constexpr double kMaxMagnitude = 1e12;
+constexpr double kMaxGamma = 1e6;
+
 enum class ConstraintKind { Stroke, Vector, Edge, Source, Sink, Vortex };
 
 // What the user asked for, kept verbatim so a design can be saved and replayed exactly.
@@ -80,6 +91,11 @@ class Designer {
   void setBoundary(const BoundaryCondition& bc);
   void setGamma(double gamma);
   void setMetisOrdering(bool metis);  // METIS nested dissection by default; false: AMD
+  // The most memory a factorization may take, in bytes; estimated from CHOLMOD's symbolic analysis before the
+  // numeric factorization, which is refused (InputError naming both sizes) when it would need more. 0: the
+  // machine's physical memory (the default). The wasm bindings pass what is left of the 4 GB address space.
+  void setFactorMemoryLimit(double bytes);
+  double factorMemoryLimit() const;
   void factor();
 
   // Each returns a stable id (> 0). Throws InputError for an impossible constraint (bad face, NaN, ...).
@@ -96,8 +112,12 @@ class Designer {
   // Re-adds a constraint from its spec (ignoring spec.id); returns the new id.
   int32_t add(const ConstraintSpec& spec);
 
-  // Solves (factoring first if needed) and reconstructs all read-outs.
+  // Solves (factoring first if needed) and reconstructs all read-outs. After updates it checks the solution
+  // (finite, small residual) and refactors once if the updated factor lost precision; a field that is still
+  // not finite is refused with an InputError and the previous read-outs stay as they were.
   void solve();
+  // How many times solve() found the updated factor wanting and refactored (for tests and stats).
+  int32_t precisionRefactors() const;
 
   // Read-outs; pointers stay valid until the next solve/load. Flat arrays.
   const std::vector<double>& oneForm() const;        // per edge, canonical orientation

@@ -18,6 +18,7 @@
 #include <limits>
 #include <numeric>
 
+#include "io/gltf_source.h"
 #include "io/loaders.h"
 
 namespace tvf::io_detail {
@@ -714,3 +715,35 @@ SurfaceMesh loadGltf(const uint8_t* data, std::size_t size, bool binary, const s
 }
 
 }  // namespace tvf::io_detail
+
+namespace tvf {
+
+GltfSource loadGltfSource(const uint8_t* data, std::size_t size, bool binary, const std::string& baseDir,
+                          const std::string& name) {
+  using namespace io_detail;
+  const tinygltf::Model model = parseModel(data, size, binary, baseDir, name);
+  GltfSource source;
+  uint32_t glbLength = 0;
+  const std::string_view json = binary ? checkGlbContainer(data, size, name, glbLength)
+                                       : std::string_view(reinterpret_cast<const char*>(data), size);
+  source.document = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
+  if (source.document.is_discarded() || !source.document.is_object()) fail(name, "invalid glTF JSON");
+  for (const tinygltf::Buffer& buffer : model.buffers) source.buffers.emplace_back(buffer.data);
+  // The same walk as collectGeometry: instances in scene order, surface primitives only.
+  for (const MeshInstance& instance : sceneInstances(model, name)) {
+    const auto& primitives = model.meshes[instance.mesh].primitives;
+    for (std::size_t p = 0; p < primitives.size(); ++p) {
+      if (primitives[p].mode < TINYGLTF_MODE_TRIANGLES) continue;
+      const int position = primitives[p].attributes.at("POSITION");
+      GltfPrimitiveInstance entry;
+      entry.mesh = instance.mesh;
+      entry.primitive = static_cast<int>(p);
+      entry.vertexCount = static_cast<uint32_t>(model.accessors.at(position).count);
+      entry.transform = instance.transform;
+      source.primitives.push_back(entry);
+    }
+  }
+  return source;
+}
+
+}  // namespace tvf

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 
+#include "mesh/surface_mesh.h"
 #include "solver/cholmod_handles.h"
 
 namespace tvf {
@@ -44,6 +46,20 @@ bool samePattern(const cholmod_sparse& A, const std::vector<int>& p, const std::
          i.size() == static_cast<size_t>(Ap[A.ncol]) && std::equal(i.begin(), i.end(), Ai);
 }
 
+// Peak memory of factor() from the symbolic analysis: the supernodal values (xsize doubles) live together
+// with the simplicial LDL' they are converted into (lnz values + row indices), plus CHOLMOD's O(n) workspace.
+double peakFactorBytes(const cholmod_factor& L, double lnz) {
+  const double n = static_cast<double>(L.n);
+  const double supernodal = L.is_super ? 8.0 * static_cast<double>(L.xsize) : 0.0;
+  return supernodal + 12.0 * (lnz + n) + 80.0 * n;
+}
+
+std::string gigabytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f GB", bytes / 1e9);
+  return text;
+}
+
 }  // namespace
 
 struct FactoredSystem::Impl {
@@ -64,6 +80,7 @@ struct FactoredSystem::Impl {
   std::vector<int> symbolicP, symbolicI;
   double symbolicLnz = 0, symbolicFl = 0;
   std::vector<int> updateOrder;  // update columns by position in L (see updateDiagonal)
+  double memoryLimit = 0, estimatedBytes = 0;
 
   explicit Impl(FillOrdering o) : ordering(o) {
     chooseOrdering(*common.get(), o);
@@ -131,9 +148,21 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
   s.n = static_cast<int>(A.rows());
   s.timings.analyzeMs = msSince(start);
   s.wasSupernodal = s.factor->is_super;
+  s.estimatedBytes = peakFactorBytes(*s.factor, s.common->lnz);
+  if (s.memoryLimit > 0 && s.estimatedBytes > s.memoryLimit) {
+    s.factor.reset();
+    throw InputError("the mesh is too large to design on here: factoring its " + std::to_string(s.n) +
+                     "-edge system needs about " + gigabytes(s.estimatedBytes) +
+                     " of memory, more than the " + gigabytes(s.memoryLimit) + " available");
+  }
   start = std::chrono::steady_clock::now();
   cholmod_factorize(&view, s.factor.get(), s.common.get());
   s.timings.factorMs = msSince(start);
+  if (s.common->status == CHOLMOD_OUT_OF_MEMORY) {
+    s.factor.reset();
+    throw InputError("out of memory while factoring the " + std::to_string(s.n) + "-edge system (estimated " +
+                     gigabytes(s.estimatedBytes) + ")");
+  }
   const bool ok = s.common->status == CHOLMOD_OK && s.factor->minor == s.factor->n;
   // Updates need the simplicial LDL' form; converting once here keeps every later edit a pure update.
   start = std::chrono::steady_clock::now();
@@ -196,6 +225,14 @@ void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   s.solution.reset(out);
   if (!out) throw std::runtime_error("CHOLMOD solve failed");
   x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(out->x), b.size());
+}
+
+void FactoredSystem::setMemoryLimit(double bytes) {
+  impl_->memoryLimit = bytes;
+}
+
+double FactoredSystem::estimatedBytes() const {
+  return impl_->estimatedBytes;
 }
 
 bool FactoredSystem::factored() const {

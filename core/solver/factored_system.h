@@ -29,7 +29,11 @@ class FactoredSystem {
   // Analyzes and factors A (symmetric; only its upper triangle is read). Returns false if A is not
   // numerically positive definite. The fill-reducing ordering and symbolic analysis are computed once and
   // reused while A keeps the sparsity pattern of the matrix they were computed for.
+  // Throws InputError, before the numeric factorization, when the symbolic
+  // analysis says the factor would need more than the memory limit.
   bool factor(const SparseMatrix& A);
+  void setMemoryLimit(double bytes);  // 0: no limit
+  double estimatedBytes() const;      // the last analysis' estimate of the factor's peak memory
   // L L' +/- sum_k w_k e_{row_k} e_{row_k}' in one cholmod_updown call; weights must be positive.
   void updateDiagonal(const std::vector<int32_t>& rows, const std::vector<double>& weights, bool downdate);
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);

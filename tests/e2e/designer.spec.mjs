@@ -71,7 +71,7 @@ test.describe.serial('a stroke drawn with the mouse', () => {
   test('follows the stroke direction in the faces under it', async ({}, testInfo) => {
     // A horizontal screen line across the body on which every point hits the model.
     const line = await page.evaluate(() => {
-      const r = document.querySelector('#viewport canvas').getBoundingClientRect();
+      const r = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
       const cx = r.left + r.width / 2, cy = r.top + r.height / 2, half = 80, n = 32;
       for (const dy of [40, 20, 60, 0, 80, -20, 100]) {
         const hits = [];

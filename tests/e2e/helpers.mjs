@@ -22,7 +22,7 @@ export async function openDesigner(page) {
 // Fraction of pixels in the central box of the WebGL canvas that differ from the background colour.
 export function centreCoverage(page, box = 0.3) {
   return page.evaluate((box) => {
-    const src = document.querySelector('#viewport canvas');
+    const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
     const w = src.width, h = src.height;
     const c = document.createElement('canvas');
     c.width = w;

@@ -58,7 +58,7 @@ test.describe.serial('the design studio', () => {
   // The surface point under the canvas centre + (dx, dy), with its client coordinates.
   const hitNearCentre = (dx, dy) =>
     evaluate(([dx, dy]) => {
-      const r = document.querySelector('#viewport canvas').getBoundingClientRect();
+      const r = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
       const x = r.left + r.width / 2 + dx, y = r.top + r.height / 2 + dy;
       const hit = window.tvf.pick(x, y);
       return hit && { ...hit, x, y };
@@ -88,7 +88,7 @@ test.describe.serial('the design studio', () => {
     const baseline = await faceField(); // the empty design: zero
     // A diagonal screen line across the body on which every point hits the model.
     const line = await evaluate(() => {
-      const r = document.querySelector('#viewport canvas').getBoundingClientRect();
+      const r = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
       const cx = r.left + r.width / 2, cy = r.top + r.height / 2, n = 24;
       for (const dy of [40, 60, 20, 80]) {
         const a = [cx - 70, cy + dy - 30], b = [cx + 70, cy + dy + 30];
@@ -374,7 +374,8 @@ test.describe.serial('the design studio', () => {
     const cli2 = JSON.parse(readFileSync(fieldPath, 'utf8'));
     await page.setInputFiles('#design-input', cliDesign);
     await expect(listItems()).toHaveCount(6);
-    expect(await evaluate(() => window.tvf.saveDesign())).toEqual(design);
+    // Saved again, it carries the schema and the fingerprint of the same mesh.
+    expect(await evaluate(() => window.tvf.saveDesign())).toEqual({ schema: 'tvf-design/1', mesh: saved.mesh, ...design });
     measurements.cliVsPage = relativeDifference(await oneForm(), cli2.oneForm);
     expect(measurements.cliVsPage, 'CLI vs page one-form').toBeLessThan(1e-9);
     expect(await evaluate(() => window.tvf.singularities())).toEqual(cli2.singularities);
@@ -383,7 +384,7 @@ test.describe.serial('the design studio', () => {
     expect(await evaluate(() => window.tvf.saveDesign())).toEqual(saved);
     expect(relativeDifference(await oneForm(), pageForm)).toBeLessThan(1e-9);
     await evaluate(() => window.tvf.redo());
-    expect(await evaluate(() => window.tvf.saveDesign())).toEqual(design);
+    expect(await evaluate(() => window.tvf.saveDesign())).toEqual({ schema: 'tvf-design/1', mesh: saved.mesh, ...design });
   });
 
   test('a reload restores the design from autosave', async () => {
@@ -408,7 +409,7 @@ test.describe.serial('the design studio', () => {
     const shot = (name) => page.screenshot({ path: testInfo.outputPath(`view-${name}.png`) });
     const pixels = () =>
       evaluate(() => {
-        const src = document.querySelector('#viewport canvas');
+        const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
         const c = document.createElement('canvas');
         c.width = src.width;
         c.height = src.height;
@@ -546,7 +547,7 @@ test.describe.serial('the design studio', () => {
     // When the progress indicator shows (it does for operations longer than 200 ms).
     await evaluate(() => {
       window.__progressShown = [];
-      const el = document.querySelector('#progress');
+      const el = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#progress');
       new MutationObserver(() => !el.hidden && window.__progressShown.push(performance.now())).observe(el, { attributes: true });
     });
     await page.setInputFiles('#file-input', source.path ?? source);

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "design/design_document.h"
 #include "test_meshes.h"
 
 namespace {
@@ -151,4 +152,24 @@ TEST(Cli, BenchCompareReportsBothOrderings) {
     for (const char* key : {"analyzeMs", "strokeUpdateMs", "strokeRowsMs", "strokeRhsMs", "strokeSolveMs"})
       EXPECT_TRUE(b[ordering].contains(key)) << ordering << " " << key;
   }
+}
+
+TEST(Cli, DesignForAnotherMeshIsRefusedUnlessOverridden) {
+  const fs::path sphere = writeOff("cli_fp_sphere.off", tvf::testing::icosphere(2));
+  const fs::path torus = writeOff("cli_fp_torus.off", tvf::testing::torus(12, 8, 2, 0.7));
+  // A design saved against the sphere: what `tvf design` reads back from its own fingerprint.
+  tvf::Designer d(tvf::testing::icosphere(2));
+  d.addVortex(3, 1.0);
+  const fs::path design = writeText("cli_fp_design.json", tvf::designDocument(d).dump());
+  EXPECT_EQ(runTvf("design " + sphere.string() + " " + design.string()).exitCode, 0);
+  const CliRun refused = runTvf("design " + torus.string() + " " + design.string());
+  EXPECT_EQ(refused.exitCode, 2);
+  EXPECT_TRUE(refused.out.empty());
+  EXPECT_NE(refused.err.find("another mesh"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--ignore-fingerprint"), std::string::npos) << refused.err;
+  const CliRun forced = runTvf("design " + torus.string() + " " + design.string() + " --ignore-fingerprint");
+  EXPECT_EQ(forced.exitCode, 0) << forced.err;
+  const CliRun malformed = runTvf("design " + sphere.string() + " " + writeText("cli_foo.json", R"({"foo": 1})").string());
+  EXPECT_EQ(malformed.exitCode, 2);
+  EXPECT_NE(malformed.err.find("unknown key \"foo\""), std::string::npos) << malformed.err;
 }

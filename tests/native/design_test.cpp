@@ -421,7 +421,7 @@ TEST(DesignDocument, BadEntriesAreNamedAndLeaveTheDesignUntouched) {
   expectError(R"({"constraints": [{"type": "source", "vertex": 1}, {"type": "vortex", "face": 999}]})",
               "constraint 1");
   expectError(R"({"constraints": [{"type": "swirl"}]})", "unknown type");
-  expectError(R"({"boundary": "sideways"})", "unknown condition");
+  expectError(R"({"boundary": "sideways", "constraints": []})", "unknown condition");
   expectError(R"({"constraints": [{"type": "vector", "face": 1, "vector": [1, 2]}]})", "3 numbers");
 }
 

@@ -10,9 +10,33 @@ import { mountSynthesisPanel } from './panel.js';
 import { TexturedModel } from './render.js';
 import { DEFAULTS, Synthesizer } from './synthesizer.js';
 
-export const DEFAULT_RESOLUTION = 256;
 const MAX_RESOLUTION = 2048;
 const OPTION_KEYS = ['featureScale', 'magnitudeExponent', 'jitter', 'finestJitter', 'passes', 'kappa', 'seed', 'gutter', 'seams', 'timing'];
+const CONTROLLER_KEYS = ['resolution', 'autoUpdate', 'interleave'];
+// Field changes closer together than this count as quick edits: the texture follows them with a preview (one
+// level short of the finest, a quarter of the work) and is synthesized in full once they stop for this long.
+const QUICK_EDIT_MS = 400;
+// The default exemplar tile spans this share of sqrt(surface area): ~6 tiles across the model, so the first
+// synthesis on any model looks like the exemplar laid on it, at a scale that is neither blotchy nor noise.
+const TILES_ACROSS = 6;
+
+// The atlas resolution a model gets by default: enough texels per face for the Jacobian to vary smoothly and for
+// a stripe period to span ≥ 12 texels at the default feature size (≈ 16 texels per face at ~60 % coverage),
+// between 256² and 1024².
+export function defaultResolution(numFaces) {
+  const want = Math.sqrt((numFaces * 16) / 0.6);
+  let r = 256;
+  while (r < want && r < 1024) r *= 2;
+  return r;
+}
+
+// The feature scale (exemplar pixels per atlas texel, inverted) that makes one exemplar tile span
+// sqrt(area) / TILES_ACROSS on the surface: tile length m * featureScale * texelLength, with
+// texelLength = sqrt(area / coverage) / R.
+export function defaultFeatureScale(resolution, coverage, exemplarSize) {
+  const fs = (resolution * Math.sqrt(Math.max(coverage, 0.05))) / (TILES_ACROSS * exemplarSize);
+  return Math.min(8, Math.max(0.5, fs));
+}
 
 // RGBA8 (row 0 = bottom, as read from WebGL) to a PNG Blob, rows flipped so that v = 1 is the image's top row
 // (the glTF convention: UV (u, v) shows pixel (u W, (1 - v) H)).
@@ -46,7 +70,14 @@ export class SynthesisController {
     this.render = null;
     this.exemplar = null; // {tables, label, analysisMs, cached}
     this.atlas = null; // {key, resolution, cornerUVs, source, reason, stats}
-    this.options = { ...DEFAULTS, resolution: DEFAULT_RESOLUTION };
+    // resolution / featureScale 'auto': chosen from the model and the exemplar (defaultResolution,
+    // defaultFeatureScale). autoUpdate: resynthesize on field changes. interleave: yield to the page between draws.
+    this.options = { ...DEFAULTS, resolution: 'auto', featureScale: 'auto', autoUpdate: true, interleave: true };
+    this.progress = null; // {fraction, preview} while a synthesis runs
+    this.stale = false; // the field changed since the texture was made (autoUpdate off)
+    this.runToken = 0;
+    this.lastFieldChange = -Infinity;
+    this.settleTimer = null;
     this.active = false; // a texture is shown and follows field changes
     this.stats = null;
     this.queue = Promise.resolve();
@@ -109,10 +140,11 @@ export class SynthesisController {
   }
 
   // The atlas for the current model at `resolution` (cached per model and resolution).
-  #atlasFor(model, resolution) {
+  async #atlasFor(model, resolution) {
     const gutter = this.options.gutter ?? DEFAULTS.gutter;
     if (this.atlas && this.atlas.key === model.key && this.atlas.resolution === resolution && this.atlas.gutter === gutter) return this.atlas;
-    const chosen = chooseAtlas(model, { resolution, gutter: gutter + 1 });
+    await this.#ensureModule();
+    const chosen = chooseAtlas(this.module, model, { resolution, gutter });
     this.atlas = { key: model.key, resolution, gutter, ...chosen };
     this.#ensureSynth().setAtlas({ resolution, positions: model.positions, triangles: model.triangles, cornerUVs: this.atlas.cornerUVs });
     if (!this.render) this.render = new TexturedModel(this.viewer);
@@ -125,14 +157,14 @@ export class SynthesisController {
   // (featureScale, magnitudeExponent, jitter, passes, kappa, seed, gutter, timing).
   synthesize(options = {}) {
     return this.#exclusive(async () => {
-      if (options.resolution !== undefined) {
+      if (options.resolution !== undefined && options.resolution !== 'auto') {
         const r = options.resolution;
-        if (!Number.isInteger(r) || r < 16 || r > MAX_RESOLUTION || (r & (r - 1))) throw new Error(`resolution must be a power of two in [16, ${MAX_RESOLUTION}] (got ${r})`);
+        if (!Number.isInteger(r) || r < 16 || r > MAX_RESOLUTION || (r & (r - 1))) throw new Error(`resolution must be 'auto' or a power of two in [16, ${MAX_RESOLUTION}] (got ${r})`);
       }
       for (const k of Object.keys(options)) {
-        if (k !== 'resolution' && !OPTION_KEYS.includes(k)) throw new Error(`unknown synthesis option '${k}'`);
+        if (!CONTROLLER_KEYS.includes(k) && !OPTION_KEYS.includes(k)) throw new Error(`unknown synthesis option '${k}'`);
       }
-      if (options.featureScale !== undefined && !(options.featureScale > 0)) throw new Error('featureScale must be > 0');
+      if (options.featureScale !== undefined && options.featureScale !== 'auto' && !(options.featureScale > 0)) throw new Error("featureScale must be 'auto' or > 0");
       this.options = { ...this.options, ...options };
       if (!this.exemplar) {
         await this.#ensureModule();
@@ -145,25 +177,51 @@ export class SynthesisController {
     });
   }
 
-  async #run() {
+  // One synthesis for the current model and field. preview: stop one level short of the finest (quick edits).
+  async #run({ preview = false } = {}) {
     const model = this.getModel();
     if (!model) throw new Error('no model loaded');
+    const token = ++this.runToken;
     const t0 = performance.now();
-    const atlas = this.#atlasFor(model, this.options.resolution);
+    const resolution = this.options.resolution === 'auto' ? defaultResolution(model.triangles.length / 3) : this.options.resolution;
+    const atlas = await this.#atlasFor(model, resolution);
     const tAtlas = performance.now() - t0;
     const synthOptions = {};
     for (const k of OPTION_KEYS) if (this.options[k] !== undefined) synthOptions[k] = this.options[k];
-    const s = this.synth.synthesize(model.vertexVectors, synthOptions);
+    const coverage = atlas.stats.coverage ?? atlas.stats.check?.coverage ?? 0.5;
+    if (synthOptions.featureScale === 'auto') synthOptions.featureScale = defaultFeatureScale(atlas.resolution, coverage, this.exemplar.tables.size);
+    if (preview) synthOptions.finestLevel = 1;
+    let s;
+    if (this.options.interleave) {
+      let shown = -1;
+      this.progress = { fraction: 0, preview };
+      this.onChange();
+      s = await this.synth.synthesizeInterleaved(model.vertexVectors, { ...synthOptions, timing: 'total' }, {
+        cancelled: () => token !== this.runToken,
+        onProgress: (f) => {
+          this.progress = { fraction: f, preview };
+          if (Math.floor(100 * f) !== shown) (shown = Math.floor(100 * f)), this.onChange();
+        },
+      });
+      this.progress = null;
+      if (!s) return this.synthesisStats(); // superseded by a newer field change
+    } else {
+      s = this.synth.synthesize(model.vertexVectors, synthOptions);
+    }
     const t1 = performance.now();
     const coords = this.synth.readCoordinates();
     const jacobian = this.synth.readJacobian();
-    this.render.setTexture({ resolution: atlas.resolution, coords, jacobian, exemplar: this.exemplar.tables.rgba8, exemplarSize: this.exemplar.tables.size });
+    this.render.setTexture({ resolution: s.resolution, coords, jacobian, exemplar: this.exemplar.tables.rgba8, exemplarSize: this.exemplar.tables.size });
     this.viewer.requestRender?.();
+    this.stale = false;
     this.stats = {
       ...s,
+      autoFeatureScale: this.options.featureScale === 'auto',
+      autoResolution: this.options.resolution === 'auto',
       exemplar: this.exemplarInfo(),
       atlas: { source: atlas.source, reason: atlas.reason, resolution: atlas.resolution, ...atlas.stats, ms: tAtlas },
       readbackMs: performance.now() - t1,
+      wallMs: performance.now() - t0,
       fieldVersion: model.fieldVersion,
     };
     this.lastFieldVersion = model.fieldVersion;
@@ -171,16 +229,52 @@ export class SynthesisController {
     return structuredClone(this.stats);
   }
 
-  // The field changed: resynthesize (coalescing bursts of changes into one run) while a texture is shown.
-  fieldChanged() {
-    if (!this.active || this.pendingField) return;
+  // The field changed: resynthesize while a texture is shown (autoUpdate), coalescing bursts of changes into
+  // one run and cancelling a run the change makes stale. Changes that come quickly (or with interactive: true,
+  // e.g. while a stroke is dragged) get a preview, and a full synthesis once they stop.
+  fieldChanged({ interactive = false } = {}) {
+    if (!this.active) return;
     const model = this.getModel();
     if (model && this.atlas && model.fieldVersion !== undefined && model.fieldVersion === this.lastFieldVersion) return;
+    if (!this.options.autoUpdate) {
+      this.stale = true;
+      this.onChange();
+      return;
+    }
+    const now = performance.now();
+    const quick = interactive || now - this.lastFieldChange < QUICK_EDIT_MS;
+    this.lastFieldChange = now;
+    this.runToken++; // cancels a run in progress
+    clearTimeout(this.settleTimer);
+    this.settleTimer = null;
+    if (quick) {
+      this.settleTimer = setTimeout(() => {
+        this.settleTimer = null;
+        this.#schedule(false);
+      }, QUICK_EDIT_MS);
+    }
+    this.#schedule(quick && this.stats !== null);
+  }
+
+  #schedule(preview) {
+    if (this.pendingField) {
+      this.pendingPreview &&= preview;
+      return;
+    }
     this.pendingField = true;
+    this.pendingPreview = preview;
     setTimeout(() => {
       this.pendingField = false;
-      this.#exclusive(() => (this.active ? this.#run() : null)).catch((err) => this.onError(err));
+      const p = this.pendingPreview;
+      this.#exclusive(() => (this.active ? this.#run({ preview: p }) : null)).catch((err) => this.onError(err));
     }, 0);
+  }
+
+  // Sets autoUpdate (and brings the texture up to date when switched on).
+  setAutoUpdate(on) {
+    this.options.autoUpdate = !!on;
+    if (on && this.stale) this.fieldChanged();
+    this.onChange();
   }
 
   // A new model: the atlas and the textured mesh belong to the old one.
@@ -197,7 +291,7 @@ export class SynthesisController {
   async whenIdle() {
     for (;;) {
       await this.queue;
-      if (!this.pendingField) return this.synthesisStats();
+      if (!this.pendingField && !this.settleTimer) return this.synthesisStats();
       await new Promise((r) => setTimeout(r, 5));
     }
   }
@@ -222,22 +316,36 @@ export class SynthesisController {
     if (!this.stats || !this.synth?.result) throw new Error('nothing synthesized yet: call synthesize() first');
   }
 
-  // The synthesized texture as a PNG Blob: the exemplar's colours over the atlas, `magnification` pixels per
-  // atlas texel (bilinear exemplar reads inside each texel).
-  exportTexturePNG({ magnification = 1 } = {}) {
+  // Output pixels per atlas texel for an export: {resolution} (output size, a power of two in [16, 8192]) or
+  // {magnification} (1..8).
+  #exportMagnification({ magnification, resolution }, fallback) {
+    if (resolution !== undefined) {
+      if (!Number.isInteger(resolution) || resolution < 16 || resolution > 8192 || (resolution & (resolution - 1))) throw new Error(`export resolution must be a power of two in [16, 8192] (got ${resolution})`);
+      return resolution / this.stats.resolution;
+    }
+    const m = magnification ?? fallback;
+    if (!(m >= 1 && m <= 8)) throw new Error(`magnification must be in [1, 8] (got ${m})`);
+    return m;
+  }
+
+  // The synthesized texture as a PNG Blob, rendered as the page renders it (magnification: the four nearest
+  // texels' patches blended) at {resolution} pixels per side or {magnification} pixels per atlas texel.
+  exportTexturePNG(options = {}) {
     return this.#exclusive(async () => {
       this.#requireResult();
-      if (![1, 2, 4].includes(magnification)) throw new Error('magnification must be 1, 2 or 4');
+      const magnification = this.#exportMagnification(options, 1);
       const { width, height, pixels } = this.synth.readColour({ magnification, nearest: false });
       return rgbaToPngBlob(pixels, width, height);
     });
   }
 
-  // The model with the atlas UVs and the synthesized texture embedded (binary glTF), as a Blob.
-  exportGLB({ magnification = 2 } = {}) {
+  // The model with the atlas UVs and the synthesized texture embedded (binary glTF), as a Blob; the image at
+  // {resolution} or {magnification} (default 2 pixels per atlas texel), rendered as exportTexturePNG.
+  exportGLB(options = {}) {
     return this.#exclusive(async () => {
       this.#requireResult();
       const model = this.getModel();
+      const magnification = this.#exportMagnification(options, 2);
       const { width, height, pixels } = this.synth.readColour({ magnification, nearest: false });
       const png = new Uint8Array(await (await rgbaToPngBlob(pixels, width, height)).arrayBuffer());
       const nF = model.triangles.length / 3;
@@ -261,7 +369,7 @@ export class SynthesisController {
   readback() {
     return this.#exclusive(async () => {
       this.#requireResult();
-      const r = this.atlas.resolution;
+      const r = this.stats.resolution;
       return {
         resolution: r,
         coords: this.synth.readCoordinates(),
@@ -280,6 +388,15 @@ export class SynthesisController {
       await this.#ensureModule();
       return runSynthesisBench(this.library, options);
     });
+  }
+
+  // The element left the page: free the synthesis WebGL context and the textured mesh now.
+  dispose() {
+    this.active = false;
+    this.render?.dispose();
+    this.render = null;
+    this.synth?.dispose();
+    this.synth = null;
   }
 
   // Milliseconds of one plain full-screen pass at size^2 on the synthesis context (the bench's unit).
@@ -301,14 +418,16 @@ export function installSynthesis(tvf, deps) {
     exemplarInfo: () => c.exemplarInfo(),
     synthesisReadback: () => c.readback(),
     synthesisIdle: () => c.whenIdle(),
+    synthesisProgress: () => (c.progress ? { ...c.progress } : null),
+    setTextureAutoUpdate: (on) => c.setAutoUpdate(on),
     synthesisBench: (opts) => c.bench(opts),
   });
   return c;
 }
 
-// ?bench=1[&sizes=256,512]: once the page is ready, runs the benchmark, shows it over the view and leaves the
-// result in window.tvfBench (scripts/bench-web.mjs reads it from there).
-function scheduleBench(tvf, controller) {
+// ?bench=1[&sizes=256,512] on the app page: once it is ready, runs the benchmark, shows it over the view and
+// leaves the result in window.tvfBench (scripts/bench-web.mjs reads it from there).
+function scheduleBench(tvf, controller, viewport) {
   const params = new URLSearchParams(globalThis.location?.search ?? '');
   if (params.get('bench') !== '1') return;
   const sizes = (params.get('sizes') || '256,512,1024').split(',').map(Number).filter((n) => n > 0);
@@ -322,7 +441,7 @@ function scheduleBench(tvf, controller) {
       pre.id = 'synthesis-bench';
       pre.style.cssText = 'position:absolute;left:220px;bottom:40px;z-index:10;background:#000c;color:#dfe;padding:8px;font:12px monospace;white-space:pre-wrap;max-width:70vw';
       pre.textContent = formatBench(result);
-      document.getElementById('viewport')?.append(pre);
+      viewport?.append(pre);
       console.log(pre.textContent);
     })
     .catch((err) => {
@@ -330,11 +449,12 @@ function scheduleBench(tvf, controller) {
     });
 }
 
-// Everything the page needs in one call: window.tvf additions, plus the "Texture" panel in `panel` (an element,
-// e.g. the side panel) when given. Returns the controller (fieldChanged(), modelChanged()).
-export function setupSynthesis(tvf, { panel = null, ...deps }) {
-  const controller = installSynthesis(tvf, deps);
-  scheduleBench(tvf, controller);
+// Everything a designer needs in one call: the texture calls added to `api` (the element forwards its texture
+// methods there), plus the "Texture" panel in `panel` (e.g. the side panel) when given, and the benchmark when
+// `bench` (the app page; `ready` is the element). Returns the controller (fieldChanged(), modelChanged(), dispose()).
+export function setupSynthesis(api, { panel = null, bench = null, ...deps }) {
+  const controller = installSynthesis(api, deps);
+  if (bench) scheduleBench(bench, controller, panel?.parentElement);
   if (panel) {
     const view = mountSynthesisPanel(controller, panel, { onError: deps.onError, modelName: () => (deps.getModel()?.name ?? 'model').replace(/\.[^.]*$/, '') });
     const notify = controller.onChange;

@@ -34,8 +34,13 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
   preview.style.cssText = 'width:48px;height:48px;border:1px solid #555;display:block;margin:2px 0 4px';
   const scale = el('input', { id: 'tex-scale', type: 'range', min: '-1', max: '3', step: '0.25', value: '1' });
   const resolution = el('select', { id: 'tex-resolution', title: 'Atlas resolution (texels per side)' });
+  resolution.append(el('option', { value: 'auto', text: 'auto' }));
   for (const r of [256, 512, 1024]) resolution.append(el('option', { value: String(r), text: String(r) }));
-  resolution.value = '512';
+  resolution.value = 'auto';
+  const autoScale = el('input', { id: 'tex-scale-auto', type: 'checkbox', checked: '' });
+  const autoUpdate = el('input', { id: 'tex-auto-update', type: 'checkbox', checked: '' });
+  const progress = el('progress', { id: 'tex-progress', max: '1', value: '0', hidden: '' });
+  progress.style.cssText = 'width:100%;height:6px';
   const byMagnitude = el('input', { id: 'tex-magnitude', type: 'checkbox' });
   const go = el('button', { id: 'tex-synthesize', type: 'button', text: 'Synthesize', title: 'Synthesize the texture along the field; it follows every later field change' });
   const off = el('button', { id: 'tex-off', type: 'button', text: 'Off', title: 'Back to the plain surface' });
@@ -51,16 +56,19 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
     preview,
     file,
     el('label', { title: 'Texture feature size on the surface (log2; 0 = one exemplar pixel per atlas texel)' }, 'Scale ', scale),
+    el('label', { class: 'check', title: 'Feature size chosen from the model and the exemplar' }, autoScale, ' auto scale'),
     el('label', {}, 'Atlas ', resolution),
     el('label', { class: 'check', title: 'Larger features where the field is stronger (paper, Sec. 6.3)' }, byMagnitude, ' scale by magnitude'),
+    el('label', { class: 'check', title: 'Resynthesize after every field change (a quick preview while edits come fast)' }, autoUpdate, ' update texture automatically'),
     el('div', { class: 'buttons' }, go, ' ', off, ' ', png, ' ', glb),
+    progress,
     status,
   );
   container.append(section);
 
   const options = () => ({
-    resolution: Number(resolution.value),
-    featureScale: 2 ** Number(scale.value),
+    resolution: resolution.value === 'auto' ? 'auto' : Number(resolution.value),
+    featureScale: autoScale.checked ? 'auto' : 2 ** Number(scale.value),
     magnitudeExponent: byMagnitude.checked ? 1 : 0,
   });
 
@@ -89,18 +97,26 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
   }
 
   function showStats() {
+    const p = controller.progress;
+    progress.hidden = !p;
+    if (p) {
+      progress.value = p.fraction;
+      status.textContent = `${p.preview ? 'Preview' : 'Synthesizing'}… ${Math.round(100 * p.fraction)}%`;
+      return;
+    }
     const s = controller.synthesisStats();
     if (!s) {
       status.textContent = controller.active ? 'Synthesizing…' : 'No texture yet.';
       return;
     }
     // The controls show the options in use, also when they were set through the API.
-    if ([256, 512, 1024].includes(s.resolution)) resolution.value = String(s.resolution);
+    if (!s.autoResolution && [256, 512, 1024].includes(s.atlas.resolution)) resolution.value = String(s.atlas.resolution);
+    autoScale.checked = !!s.autoFeatureScale;
     const log2Scale = Math.log2(s.featureScale);
     if (log2Scale >= Number(scale.min) && log2Scale <= Number(scale.max)) scale.value = String(log2Scale);
     byMagnitude.checked = s.magnitudeExponent > 0;
     const levels = s.levels.map((l) => `${l.size}²:${fmt(l.ms)}`).join(' ');
-    status.textContent = `${s.exemplar?.label ?? ''} · ${s.resolution}² ${s.atlas.source} atlas · ${fmt(s.totalMs)} ms (${levels})`;
+    status.textContent = `${s.exemplar?.label ?? ''} · ${s.atlas.resolution}² ${s.atlas.source} atlas · ${fmt(s.totalMs)} ms (${levels})${s.preview ? ' · preview' : ''}${controller.stale ? ' · field changed' : ''}`;
     status.title = `atlas: ${s.atlas.reason}\nanalysis: ${fmt(s.exemplar?.analysisMs ?? 0)} ms${s.exemplar?.cached ? ' (cached)' : ''}`;
   }
 
@@ -133,7 +149,9 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
   });
   go.addEventListener('click', () => run(() => controller.synthesize(options())));
   off.addEventListener('click', () => run(() => controller.clearTexture()));
-  for (const input of [scale, resolution, byMagnitude]) {
+  scale.addEventListener('input', () => (autoScale.checked = false));
+  autoUpdate.addEventListener('change', () => controller.setAutoUpdate(autoUpdate.checked));
+  for (const input of [scale, autoScale, resolution, byMagnitude]) {
     input.addEventListener('change', () => {
       if (controller.active) run(() => controller.synthesize(options()));
     });

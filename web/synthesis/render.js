@@ -1,10 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The synthesized texture on the model in the page's three.js view: the model drawn with per-corner atlas UVs and
-// a MeshStandardMaterial whose base colour is the exemplar at the synthesized coordinates. Per fragment: the atlas
-// texel's coordinate S, continued inside the texel with its Jacobian J (LH06 "magnification"), and the exemplar
-// read with textureGrad, whose derivatives are J times the screen derivatives of the atlas position: the
-// filter footprint (mip level and anisotropy) follows the Jacobian, not the discontinuous coordinate S (a
-// plain texture() would see huge derivatives at patch seams and blur them).
+// a MeshStandardMaterial whose base colour is the exemplar at the synthesized coordinates, magnified per pixel
+// (shaders.js MAGNIFY_GLSL: the four nearest texels' coordinates, each continued with its Jacobian, blended),
+// the same function the PNG/GLB export renders with.
 import {
   BufferAttribute,
   BufferGeometry,
@@ -21,27 +19,26 @@ import {
   SRGBColorSpace,
   UnsignedByteType,
 } from 'three';
+import { MAGNIFY_GLSL } from './shaders.js';
 
 const FRAGMENT_PARS = `
 uniform highp sampler2D uSynthCoord;
 uniform highp sampler2D uSynthJac;
-uniform sampler2D uExemplarMap;
+uniform highp sampler2D uExemplarMap;
 uniform float uAtlasSize;
 uniform float uExemplarSize;
+${MAGNIFY_GLSL}
 `;
 
+// Per fragment the magnification of shaders.js (four texels' patches blended), read with textureGrad whose
+// derivatives are each texel's J times the screen derivatives of the atlas position: the filter footprint (mip
+// level and anisotropy) follows the Jacobian, not the coordinate, which jumps at patch seams.
 const FRAGMENT_MAP = `
 {
   vec2 atlasPos = vUv * uAtlasSize;
-  ivec2 tp = clamp(ivec2(floor(atlasPos)), ivec2(0), ivec2(int(uAtlasSize) - 1));
-  vec4 s = texelFetch(uSynthCoord, tp, 0);
-  vec4 jv = texelFetch(uSynthJac, tp, 0);
-  mat2 J = mat2(jv.xy, jv.zw);
-  vec2 c = s.xy + J * (atlasPos - vec2(tp) - 0.5);
-  vec2 gx = J * dFdx(atlasPos) / uExemplarSize;
-  vec2 gy = J * dFdy(atlasPos) / uExemplarSize;
-  vec4 texel = textureGrad(uExemplarMap, c / uExemplarSize, gx, gy);
-  diffuseColor.rgb *= texel.rgb;
+  float found;
+  vec3 texel = magnifiedColour(uSynthCoord, uSynthJac, uExemplarMap, atlasPos, uExemplarSize, dFdx(atlasPos), dFdy(atlasPos), found);
+  diffuseColor.rgb *= texel;
 }
 `;
 

@@ -72,7 +72,32 @@ export function seamIndirection(positions, triangles, cornerUVs, resolution) {
     // Both directions: g unfolded into f's chart, and f into g's.
     for (const [from, to] of [[f, g], [g, f]]) redirected += unfold(from, to);
   }
+  if (seamEdges) redirected += fillFirstRing();
   return { map: out, redirected, seamEdges };
+
+  // Gutter texels touching a chart that the unfolded faces missed (slivers across a seam cover few texels)
+  // borrow the target of a redirected neighbour (within ~1 texel of the right one): the magnified rendering blends
+  // these texels into the chart's edge, where the chart's own gutter synthesis would show as a seam.
+  function fillFirstRing() {
+    const add = [];
+    const at = (x, y) => (x < 0 || y < 0 || x >= R || y >= R ? -1 : y * R + x);
+    for (let y = 0; y < R; y++)
+      for (let x = 0; x < R; x++) {
+        const t = y * R + x;
+        if (covered[t] || out[4 * t + 2]) continue;
+        let touchesChart = false, from = -1;
+        for (let dy = -1; dy <= 1; dy++)
+          for (let dx = -1; dx <= 1; dx++) {
+            const n = at(x + dx, y + dy);
+            if (n < 0 || n === t) continue;
+            if (covered[n]) touchesChart = true;
+            else if (out[4 * n + 2] && (from < 0 || Math.abs(dx) + Math.abs(dy) === 1)) from = n;
+          }
+        if (touchesChart && from >= 0) add.push([t, from]);
+      }
+    for (const [t, n] of add) out.set([out[4 * n], out[4 * n + 1], 1, 0], 4 * t);
+    return add.length;
+  }
 
   // Rasterizes face `to` unfolded about the shared edge into face `from`'s UV chart, over uncovered texels.
   function unfold(from, to) {

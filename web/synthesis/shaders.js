@@ -249,9 +249,39 @@ void main() {
   outS = fetchS(ivec2(gl_FragCoord.xy));
 }`;
 
-// The exemplar's colours at the synthesized coordinates, uMag output pixels per atlas texel: inside texel p the
-// coordinate continues with the texel's Jacobian (LH06 "magnification"), so patches stay seamless between texels.
-// uNearest = 1 reads the exemplar pixel itself (exact colours, for measurements); 0 filters bilinearly.
+// Magnification (LH06 Sec. 5): the colour at atlas position x (in texels) blends the four nearest texels'
+// patches with bilinear weights; texel t's patch continues its coordinate with its Jacobian,
+// c_t = S[t] + J(t) (x - t - 1/2). Where neighbouring texels are coherent all four predict the same c, and
+// where they are not (patch seams) the blend fades over one texel instead of stepping at the texel's edge.
+// Texels outside the charts and their gutters (w = 0) do not take part. The page's renderer (render.js)
+// shades with the same function.
+export const MAGNIFY_GLSL = `
+vec3 magnifiedColour(sampler2D coordTex, sampler2D jacTex, sampler2D exemplarTex, vec2 x, float m,
+                     vec2 dxdx, vec2 dxdy, out float found) {
+  ivec2 size = textureSize(coordTex, 0);
+  vec2 f = x - 0.5;
+  ivec2 p0 = ivec2(floor(f));
+  vec2 w = f - vec2(p0);
+  vec4 acc = vec4(0.0);
+  for (int k = 0; k < 4; ++k) {
+    ivec2 o = ivec2(k & 1, k >> 1);
+    ivec2 t = p0 + o;
+    if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, size))) continue;
+    vec4 s = texelFetch(coordTex, t, 0);
+    if (s.w == 0.0) continue;
+    float wt = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y) + 1e-6;
+    vec4 jv = texelFetch(jacTex, t, 0);
+    mat2 J = mat2(jv.xy, jv.zw);
+    vec2 c = s.xy + J * (x - vec2(t) - 0.5);
+    acc += wt * vec4(textureGrad(exemplarTex, c / m, J * dxdx / m, J * dxdy / m).rgb, 1.0);
+  }
+  found = acc.w;
+  return acc.w > 0.0 ? acc.rgb / acc.w : vec3(0.0);
+}
+`;
+
+// The exemplar's colours at the synthesized coordinates, uMag output pixels per atlas texel, magnified as
+// above. uNearest = 1 instead reads the exemplar pixel of texel p's own patch (exact colours, for measurements).
 export const RESOLVE_FS = `${HEADER}
 uniform sampler2D uCoord;
 uniform sampler2D uJac;
@@ -261,15 +291,39 @@ uniform float uM;
 uniform int uMask;
 uniform int uNearest;
 out vec4 outColour;
+${MAGNIFY_GLSL}
 void main() {
   vec2 x = gl_FragCoord.xy / uMag;
-  ivec2 p = ivec2(floor(x));
-  vec4 s = texelFetch(uCoord, p, 0);
-  if (s.w == 0.0) { outColour = vec4(0.0); return; }
-  vec4 jv = texelFetch(uJac, p, 0);
-  vec2 c = s.xy + mat2(jv.xy, jv.zw) * (x - vec2(p) - 0.5);
-  outColour = uNearest == 1 ? texelFetch(uExemplar, ivec2(floor(c)) & uMask, 0) : texture(uExemplar, c / uM);
-  outColour.a = 1.0;
+  if (uNearest == 1) {
+    ivec2 p = ivec2(floor(x));
+    vec4 s = texelFetch(uCoord, p, 0);
+    if (s.w == 0.0) { outColour = vec4(0.0); return; }
+    vec4 jv = texelFetch(uJac, p, 0);
+    vec2 c = s.xy + mat2(jv.xy, jv.zw) * (x - vec2(p) - 0.5);
+    outColour = vec4(texelFetch(uExemplar, ivec2(floor(c)) & uMask, 0).rgb, 1.0);
+    return;
+  }
+  float found;
+  vec3 colour = magnifiedColour(uCoord, uJac, uExemplar, x, uM, vec2(1.0 / uMag, 0.0), vec2(0.0, 1.0 / uMag), found);
+  outColour = found > 0.0 ? vec4(colour, 1.0) : vec4(0.0);
+}`;
+
+// Seam resolve (LH06 Sec. 6.2, for rendering): a gutter texel next to a seam takes the coordinate of the texel
+// across the seam that holds the same surface point, so the magnification blend at a chart's edge continues the
+// neighbouring chart's texture instead of this chart's own gutter synthesis.
+export const SEAM_RESOLVE_FS = `${HEADER}
+uniform sampler2D uCoord;
+uniform sampler2D uIndir;
+out vec4 outS;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 ind = texelFetch(uIndir, p, 0);
+  vec4 own = texelFetch(uCoord, p, 0);
+  if (ind.z > 0.5) {
+    vec4 across = texelFetch(uCoord, ivec2(ind.xy), 0);
+    if (across.w != 0.0) own = across;
+  }
+  outS = own;
 }`;
 
 // A plain full-screen pass (one fetch per texel), the unit that synthesis times are reported in.

@@ -31,6 +31,7 @@ import {
   JACOBIAN_FS,
   JACOBIAN_VS,
   RESOLVE_FS,
+  SEAM_RESOLVE_FS,
   UNPACK_FS,
   UPSAMPLE_FS,
 } from './shaders.js';
@@ -48,6 +49,9 @@ export const DEFAULTS = Object.freeze({
   timing: 'levels', // 'levels': wait for the GPU after each level (per-level times); 'total': only at the end
 });
 
+const defaultNextFrame = () =>
+  new Promise((resolve) => (typeof requestAnimationFrame === 'function' ? requestAnimationFrame(() => resolve()) : setTimeout(resolve, 0)));
+
 const isPow2 = (n) => Number.isInteger(n) && n > 0 && (n & (n - 1)) === 0;
 
 export class Synthesizer {
@@ -63,6 +67,7 @@ export class Synthesizer {
       unpack: new Program(gl, FULLSCREEN_VS, UNPACK_FS, 'unpack'),
       resolve: new Program(gl, FULLSCREEN_VS, RESOLVE_FS, 'resolve'),
       copy: new Program(gl, FULLSCREEN_VS, COPY_FS, 'copy'),
+      seamResolve: new Program(gl, FULLSCREEN_VS, SEAM_RESOLVE_FS, 'seam-resolve'),
     };
     this.exemplar = null;
     this.atlas = null;
@@ -215,6 +220,36 @@ export class Synthesizer {
   // Runs the whole pyramid for the per-vertex field `vertexVectors` (3 per vertex, the core's vertexVectors).
   // Returns {levels: [{size, stackLevel, spacing, ms}], jacobianMs, totalMs, ...}.
   synthesize(vertexVectors, options = {}) {
+    const steps = this.#steps(vertexVectors, options);
+    for (let r = steps.next(); ; r = steps.next()) if (r.done) return r.value;
+  }
+
+  // The same, yielding to the page between draws so that the view keeps rendering and input keeps working
+  // while the GPU (software rendering: seconds) works through the pyramid: after each group of draws estimated
+  // at about `budgetTexels` texel-shadings, the GL queue is flushed and the next frame awaited. onProgress(f) gets
+  // the share done (0..1); when cancelled() turns true the run stops and resolves to null (the previous result
+  // stays). Options as synthesize(), plus `finestLevel` (0, or 1 for a quarter-cost preview that stops one level
+  // short: the result then lives at half the atlas resolution, see resultLevel).
+  async synthesizeInterleaved(vertexVectors, options = {}, { onProgress = () => {}, cancelled = () => false, budgetTexels = 1 << 15, nextFrame = defaultNextFrame } = {}) {
+    const steps = this.#steps(vertexVectors, options);
+    let pending = 0;
+    for (let r = steps.next(); ; r = steps.next()) {
+      if (r.done) return r.value;
+      pending += r.value.texels;
+      onProgress(r.value.progress);
+      if (pending >= budgetTexels) {
+        pending = 0;
+        this.gl.flush();
+        await nextFrame();
+        if (cancelled()) {
+          this.gl.bindFramebuffer(this.gl.FRAMEBUFFER, null);
+          return null;
+        }
+      }
+    }
+  }
+
+  *#steps(vertexVectors, options) {
     if (!this.exemplar) throw new GLError('no exemplar set');
     if (!this.atlas) throw new GLError('no atlas set');
     const o = { ...DEFAULTS, ...options };
@@ -224,7 +259,15 @@ export class Synthesizer {
     const m = this.exemplar.size;
     const stackTop = this.exemplar.levels.length - 1;
 
+    const finestLevel = Math.min(o.finestLevel ?? 0, this.levels.length - 1);
     this.#rasterJacobian(vertexVectors, o);
+    let done = 0;
+    const work = (texels) => ({ texels, progress: Math.min(1, (done += texels) / total) });
+    // Total shading work: the Jacobian and per level 4 upsample quarters, 4 x passes correction quarters
+    // (weighted x8: they read ~90 texels each) and the unpack.
+    let total = resolution * resolution * (1 + o.gutter);
+    for (let k = finestLevel; k < this.levels.length; k++) total += this.levels[k].size ** 2 * (2 + 8 * o.passes);
+    yield work(resolution * resolution * (1 + o.gutter));
     if (o.timing === 'levels') sync(gl, this.levels[0].jac);
     const tJac = performance.now();
 
@@ -238,7 +281,8 @@ export class Synthesizer {
       if (Math.round(Math.log2(sigma0 * 2 ** coarsest)) >= stackTop - 1) break;
     }
     const plan = [];
-    for (let k = coarsest; k >= 0; k--) {
+    coarsest = Math.max(coarsest, finestLevel);
+    for (let k = coarsest; k >= finestLevel; k--) {
       const s = Math.min(stackTop, Math.max(0, Math.round(Math.log2(sigma0 * 2 ** k))));
       plan.push({ k, stackLevel: s, spacing: 2 ** s });
     }
@@ -250,7 +294,7 @@ export class Synthesizer {
     const levelStats = [];
     let parent = null;
     let tLevel = performance.now();
-    plan.forEach((step, i) => {
+    for (const [i, step] of plan.entries()) {
       const L = this.levels[step.k];
       const E = this.exemplar.levels[step.stackLevel];
       const half = L.size / 2;
@@ -269,6 +313,7 @@ export class Synthesizer {
           .float('uM', m);
         drawFullscreen(gl, this.vao);
       }
+      yield work(L.size * L.size);
       // Correction: passes x 4 sub-passes, one parity class each, in LH05's order (0,0), (1,1), (1,0), (0,1).
       const prog = this.programs.correct;
       for (let pass = 0; pass < o.passes; pass++) {
@@ -298,6 +343,7 @@ export class Synthesizer {
             .float('uKappa', o.kappa);
           drawFullscreen(gl, this.vao);
           [L.quarters[c], L.spare] = [L.spare, L.quarters[c]];
+          yield work(2 * L.size * L.size);
         }
       }
       L.result.bindAsTarget();
@@ -309,17 +355,30 @@ export class Synthesizer {
         .texture('uS3', L.quarters[3]);
       drawFullscreen(gl, this.vao);
       parent = L.result;
+      if (step.k === finestLevel && o.seams) {
+        // Gutter texels next to seams take the coordinates across the seam (for the magnified rendering).
+        L.spare2 ??= new FloatTarget(gl, L.size, L.size);
+        L.spare2.bindAsTarget();
+        this.programs.seamResolve.use().texture('uCoord', L.result).texture('uIndir', L.indirection);
+        drawFullscreen(gl, this.vao);
+        [L.result, L.spare2] = [L.spare2, L.result];
+        parent = L.result;
+      }
+      yield work(L.size * L.size);
       if (o.timing === 'levels') sync(gl, L.result);
       const now = performance.now();
       levelStats.push({ size: L.size, stackLevel: step.stackLevel, spacing: step.spacing, jitter: jitterOf(i, step.k), ms: now - tLevel });
       tLevel = now;
-    });
+    }
     if (o.timing !== 'levels') sync(gl, parent);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     const t1 = performance.now();
-    this.result = this.levels[0].result;
+    this.result = this.levels[finestLevel].result;
+    this.resultLevel = finestLevel;
     this.lastStats = {
-      resolution,
+      resolution: this.levels[finestLevel].size,
+      atlasResolution: resolution,
+      preview: finestLevel > 0,
       exemplarSize: m,
       featureScale: o.featureScale,
       magnitudeExponent: o.magnitudeExponent,
@@ -395,22 +454,25 @@ export class Synthesizer {
     return this.result.read();
   }
 
-  readJacobian(level = 0) {
+  readJacobian(level = this.resultLevel ?? 0) {
     return this.levels[level].jac.read();
   }
 
   // The exemplar's colours at the synthesized coordinates: RGBA8, (resolution * magnification)^2, row 0 = v 0.
+  // magnification: output pixels per atlas texel (any positive number; the output is resolution * magnification
+  // rounded). The same magnification as the page's renderer unless nearest.
   readColour({ magnification = 1, nearest = true } = {}) {
     const gl = this.gl;
-    const size = this.atlas.resolution * magnification;
+    const level = this.levels[this.resultLevel ?? 0];
+    const size = Math.round(level.size * magnification);
     const target = new ByteTarget(gl, size, size);
     target.bindAsTarget();
     this.programs.resolve
       .use()
       .texture('uCoord', this.result)
-      .texture('uJac', this.levels[0].jac)
+      .texture('uJac', level.jac)
       .texture('uExemplar', this.exemplar.rgba)
-      .float('uMag', magnification)
+      .float('uMag', size / level.size)
       .float('uM', this.exemplar.size)
       .int('uMask', this.exemplar.size - 1)
       .int('uNearest', nearest ? 1 : 0);
@@ -458,7 +520,7 @@ export class Synthesizer {
     const gl = this.gl;
     gl.deleteBuffer(this.atlas.buffer);
     gl.deleteVertexArray(this.atlas.vao);
-    for (const L of this.levels) for (const t of [L.jac, L.result, L.spare, L.indirection, ...L.quarters]) t.dispose();
+    for (const L of this.levels) for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, ...L.quarters]) t?.dispose();
     this.jacScratch?.dispose();
     this.levels = [];
     this.atlas = null;

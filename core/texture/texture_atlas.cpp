@@ -1,0 +1,853 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "texture/texture_atlas.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <queue>
+#include <utility>
+
+namespace tvf {
+namespace {
+
+using Vec3 = std::array<double, 3>;
+using Vec2 = std::array<double, 2>;
+
+// Normal cone of a chart: a face joins while its normal is within ~66 degrees of the chart's mean normal.
+// LSCM flattens such a patch with little area distortion; wider cones leave more charts to split.
+constexpr double kConeCos = 0.0;
+// ... and the length of the area-weighted mean normal must stay above this share of the chart's area.
+constexpr double kMinMeanNormal = 0.75;
+// A chart is split when, inside it, the area-weighted 95th / 5th percentile of the texel density exceeds
+// this.
+constexpr double kMaxDensityRatio = 1.8;
+// Grid on which a chart's self-overlap is checked (its longer side).
+constexpr int kOverlapGrid = 128;
+// Chart positions are searched on a grid of at most this many blocks per side.
+constexpr int kPackGrid = 256;
+
+Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+double norm(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
+
+Vec3 vertex(const SurfaceMesh& mesh, int32_t v) {
+  return {mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]};
+}
+
+struct FaceGeometry {
+  std::vector<Vec3> normals, centroids;
+  std::vector<double> areas;
+};
+
+FaceGeometry faceGeometry(const SurfaceMesh& mesh) {
+  const int32_t nF = mesh.numFaces();
+  FaceGeometry g;
+  g.normals.resize(nF);
+  g.centroids.resize(nF);
+  g.areas.resize(nF);
+  for (int32_t f = 0; f < nF; ++f) {
+    const Vec3 a = vertex(mesh, mesh.triangles[3 * f]), b = vertex(mesh, mesh.triangles[3 * f + 1]),
+               c = vertex(mesh, mesh.triangles[3 * f + 2]);
+    const Vec3 n = cross(sub(b, a), sub(c, a));
+    const double l = norm(n);
+    g.areas[f] = l / 2;
+    g.normals[f] = l > 0 ? Vec3{n[0] / l, n[1] / l, n[2] / l} : Vec3{0, 0, 0};
+    for (int k = 0; k < 3; ++k) g.centroids[f][k] = (a[k] + b[k] + c[k]) / 3;
+  }
+  return g;
+}
+
+// The face across each corner's edge (corner k: edge v_k -> v_k+1), or -1 at a boundary or non-manifold edge.
+std::vector<int32_t> faceAdjacency(const SurfaceMesh& mesh) {
+  const int32_t nF = mesh.numFaces();
+  std::vector<std::pair<uint64_t, int32_t>> halfEdges;
+  halfEdges.reserve(3 * static_cast<size_t>(nF));
+  for (int32_t f = 0; f < nF; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t a = static_cast<uint32_t>(mesh.triangles[3 * f + k]);
+      const uint64_t b = static_cast<uint32_t>(mesh.triangles[3 * f + (k + 1) % 3]);
+      halfEdges.push_back({std::min(a, b) << 32 | std::max(a, b), 3 * f + k});
+    }
+  std::sort(halfEdges.begin(), halfEdges.end());
+  std::vector<int32_t> adj(3 * static_cast<size_t>(nF), -1);
+  for (size_t i = 0; i < halfEdges.size();) {
+    size_t j = i;
+    while (j < halfEdges.size() && halfEdges[j].first == halfEdges[i].first) ++j;
+    if (j - i == 2) {
+      adj[halfEdges[i].second] = halfEdges[i + 1].second / 3;
+      adj[halfEdges[i + 1].second] = halfEdges[i].second / 3;
+    }
+    i = j;
+  }
+  return adj;
+}
+
+// A face with two or three neighbours in one other chart moves there: growth in distance order leaves ragged
+// borders on meshes of long thin triangles, and single faces cut off between two charts. Charts are then
+// split into connected pieces.
+void smoothChartBorders(const std::vector<int32_t>& adj, std::vector<int32_t>& chartOf,
+                        std::vector<std::vector<int32_t>>& charts) {
+  const int32_t nF = static_cast<int32_t>(chartOf.size());
+  for (int pass = 0; pass < 3; ++pass)
+    for (int32_t f = 0; f < nF; ++f) {
+      if (chartOf[f] < 0) continue;
+      int32_t n[3];
+      for (int k = 0; k < 3; ++k) n[k] = adj[3 * f + k] >= 0 ? chartOf[adj[3 * f + k]] : -1;
+      for (int k = 0; k < 3; ++k)
+        if (n[k] >= 0 && n[k] != chartOf[f] && (n[k] == n[(k + 1) % 3] || n[k] == n[(k + 2) % 3])) {
+          chartOf[f] = n[k];
+          break;
+        }
+    }
+  std::vector<uint8_t> seen(nF, 0);
+  std::vector<std::vector<int32_t>> pieces;
+  for (int32_t f = 0; f < nF; ++f) {
+    if (chartOf[f] < 0 || seen[f]) continue;
+    std::vector<int32_t> piece{f};
+    seen[f] = 1;
+    for (size_t h = 0; h < piece.size(); ++h)
+      for (int k = 0; k < 3; ++k) {
+        const int32_t o = adj[3 * piece[h] + k];
+        if (o >= 0 && !seen[o] && chartOf[o] == chartOf[f]) seen[o] = 1, piece.push_back(o);
+      }
+    pieces.push_back(std::move(piece));
+  }
+  charts = std::move(pieces);
+}
+
+// Charts grown from seeds (largest faces first) in order of centroid distance from the seed, taking a face
+// while its normal stays within the cone around the chart's area-weighted mean normal.
+std::vector<std::vector<int32_t>> growCharts(const FaceGeometry& g, const std::vector<int32_t>& adj) {
+  const int32_t nF = static_cast<int32_t>(g.areas.size());
+  std::vector<int32_t> chartOf(nF, -1), order;
+  for (int32_t f = 0; f < nF; ++f)
+    if (g.areas[f] > 0) order.push_back(f);
+  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return g.areas[a] > g.areas[b]; });
+  std::vector<std::vector<int32_t>> charts;
+  using Item = std::pair<double, int32_t>;
+  for (int32_t seed : order) {
+    if (chartOf[seed] >= 0) continue;
+    const int32_t id = static_cast<int32_t>(charts.size());
+    std::vector<int32_t> members;
+    Vec3 sum{0, 0, 0};
+    double area = 0;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> front;
+    front.push({0.0, seed});
+    while (!front.empty()) {
+      const auto [d, f] = front.top();
+      front.pop();
+      if (chartOf[f] >= 0) continue;
+      if (!members.empty()) {
+        const double l = norm(sum);
+        if (dot(g.normals[f], {sum[0] / l, sum[1] / l, sum[2] / l}) < kConeCos) continue;
+        // The normals must not spread so far that their mean shrinks (a band around a tube would close).
+        Vec3 next = sum;
+        for (int k = 0; k < 3; ++k) next[k] += g.normals[f][k] * g.areas[f];
+        if (norm(next) < kMinMeanNormal * (area + g.areas[f])) continue;
+      }
+      chartOf[f] = id;
+      members.push_back(f);
+      area += g.areas[f];
+      for (int k = 0; k < 3; ++k) sum[k] += g.normals[f][k] * g.areas[f];
+      for (int k = 0; k < 3; ++k) {
+        const int32_t h = adj[3 * f + k];
+        if (h >= 0 && chartOf[h] < 0 && g.areas[h] > 0)
+          front.push({d + norm(sub(g.centroids[h], g.centroids[f])), h});
+      }
+    }
+    charts.push_back(std::move(members));
+  }
+  smoothChartBorders(adj, chartOf, charts);
+  return charts;
+}
+
+// A chart's faces with their flattened corners (6 per face, same order as `faces`).
+struct Chart {
+  std::vector<int32_t> faces;
+  std::vector<double> uv;
+  double surfaceArea = 0;
+};
+
+double signedArea2(const double* t) {
+  return (t[2] - t[0]) * (t[5] - t[1]) - (t[4] - t[0]) * (t[3] - t[1]);
+}
+
+// Least-squares conformal map of the faces (Levy et al. 2002) with two far-apart vertices pinned. In each
+// face's own orthonormal frame the map's gradients must satisfy grad v = rot90(grad u) (Cauchy-Riemann,
+// orientation preserving); each face contributes those two residuals weighted by sqrt(area). Returns false if
+// the solve fails.
+bool lscm(const SurfaceMesh& mesh, const FaceGeometry& g, Chart& chart) {
+  std::vector<int32_t> local(mesh.numVertices(), -1), verts;
+  for (int32_t f : chart.faces)
+    for (int k = 0; k < 3; ++k) {
+      const int32_t v = mesh.triangles[3 * f + k];
+      if (local[v] < 0) local[v] = static_cast<int32_t>(verts.size()), verts.push_back(v);
+    }
+  const int32_t n = static_cast<int32_t>(verts.size());
+  Vec3 centre{0, 0, 0};
+  for (int32_t v : verts)
+    for (int k = 0; k < 3; ++k) centre[k] += mesh.positions[3 * v + k] / n;
+  auto farthestFrom = [&](const Vec3& p) {
+    int32_t best = 0;
+    double bestD = -1;
+    for (int32_t i = 0; i < n; ++i) {
+      const double d = norm(sub(vertex(mesh, verts[i]), p));
+      if (d > bestD) bestD = d, best = i;
+    }
+    return best;
+  };
+  const int32_t pinA = farthestFrom(centre);
+  const int32_t pinB = farthestFrom(vertex(mesh, verts[pinA]));
+  const double span = norm(sub(vertex(mesh, verts[pinA]), vertex(mesh, verts[pinB])));
+  if (pinA == pinB || !(span > 0)) return false;
+  // Unknowns: u of every free vertex, then v; pinned values move to the right-hand side.
+  std::vector<int32_t> column(n, -1);
+  int32_t nFree = 0;
+  for (int32_t i = 0; i < n; ++i)
+    if (i != pinA && i != pinB) column[i] = nFree++;
+  const std::array<Vec2, 2> pinned = {Vec2{0, 0}, Vec2{span, 0}};
+  auto pinIndex = [&](int32_t i) { return i == pinA ? 0 : 1; };
+
+  const int32_t rows = 2 * static_cast<int32_t>(chart.faces.size());
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd constant = Eigen::VectorXd::Zero(rows);
+  int32_t row = 0;
+  for (int32_t f : chart.faces) {
+    const Vec3 p0 = vertex(mesh, mesh.triangles[3 * f]), p1 = vertex(mesh, mesh.triangles[3 * f + 1]),
+               p2 = vertex(mesh, mesh.triangles[3 * f + 2]);
+    const Vec3 e1 = sub(p1, p0);
+    const double l1 = norm(e1);
+    const Vec3 x = {e1[0] / l1, e1[1] / l1, e1[2] / l1};
+    const Vec3 y = cross(g.normals[f], x);
+    const std::array<Vec2, 3> q = {Vec2{0, 0}, Vec2{l1, 0}, Vec2{dot(sub(p2, p0), x), dot(sub(p2, p0), y)}};
+    const double w = 1.0 / (2.0 * std::sqrt(g.areas[f]));
+    for (int j = 0; j < 3; ++j) {
+      // Edge opposite corner j, counter-clockwise: grad u = sum_j u_j rot90(e_j) / 2A.
+      const Vec2& a = q[(j + 1) % 3];
+      const Vec2& b = q[(j + 2) % 3];
+      const double ex = b[0] - a[0], ey = b[1] - a[1];
+      const int32_t i = local[mesh.triangles[3 * f + j]];
+      // rot90(grad u) - grad v = (-sum u_j e_j - sum v_j rot90(e_j)) / 2A, rot90(e) = (-ey, ex).
+      const double cu[2] = {-ex * w, -ey * w};
+      const double cv[2] = {ey * w, -ex * w};
+      for (int r = 0; r < 2; ++r) {
+        if (column[i] >= 0) {
+          triplets.emplace_back(row + r, column[i], cu[r]);
+          triplets.emplace_back(row + r, nFree + column[i], cv[r]);
+        } else {
+          const Vec2& pv = pinned[pinIndex(i)];
+          constant[row + r] += cu[r] * pv[0] + cv[r] * pv[1];
+        }
+      }
+    }
+    row += 2;
+  }
+  chart.uv.assign(6 * chart.faces.size(), 0.0);
+  std::vector<Vec2> uvOf(n);
+  uvOf[pinA] = pinned[0];
+  uvOf[pinB] = pinned[1];
+  if (nFree > 0) {
+    Eigen::SparseMatrix<double> A(rows, 2 * nFree);
+    A.setFromTriplets(triplets.begin(), triplets.end());
+    const Eigen::SparseMatrix<double> AtA = (A.transpose() * A).pruned();
+    const Eigen::VectorXd rhs = -(A.transpose() * constant);
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(AtA);
+    if (solver.info() != Eigen::Success) return false;
+    const Eigen::VectorXd x = solver.solve(rhs);
+    if (solver.info() != Eigen::Success || !x.allFinite()) return false;
+    for (int32_t i = 0; i < n; ++i)
+      if (column[i] >= 0) uvOf[i] = {x[column[i]], x[nFree + column[i]]};
+  }
+  for (size_t j = 0; j < chart.faces.size(); ++j)
+    for (int k = 0; k < 3; ++k) {
+      const Vec2& p = uvOf[local[mesh.triangles[3 * chart.faces[j] + k]]];
+      chart.uv[6 * j + 2 * k] = p[0];
+      chart.uv[6 * j + 2 * k + 1] = p[1];
+    }
+  return true;
+}
+
+// Area-weighted quantile of values.
+double weightedQuantile(std::vector<std::pair<double, double>> valueWeight, double q) {
+  if (valueWeight.empty()) return 0;
+  std::sort(valueWeight.begin(), valueWeight.end());
+  double total = 0;
+  for (const auto& [v, w] : valueWeight) total += w;
+  double acc = 0;
+  for (const auto& [v, w] : valueWeight) {
+    acc += w;
+    if (acc >= q * total) return v;
+  }
+  return valueWeight.back().first;
+}
+
+bool selfOverlaps(const Chart& chart) {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (size_t i = 0; i < chart.uv.size(); i += 2) {
+    x0 = std::min(x0, chart.uv[i]), x1 = std::max(x1, chart.uv[i]);
+    y0 = std::min(y0, chart.uv[i + 1]), y1 = std::max(y1, chart.uv[i + 1]);
+  }
+  const double size = std::max(x1 - x0, y1 - y0);
+  if (!(size > 0)) return true;
+  std::vector<float> scaled(chart.uv.size());
+  for (size_t i = 0; i < chart.uv.size(); i += 2) {
+    scaled[i] = static_cast<float>((chart.uv[i] - x0) / size * 0.98 + 0.01);
+    scaled[i + 1] = static_cast<float>((chart.uv[i + 1] - y0) / size * 0.98 + 0.01);
+  }
+  const std::vector<uint16_t> count = rasterCoverage(scaled, kOverlapGrid);
+  size_t covered = 0, twice = 0;
+  for (uint16_t c : count) covered += c > 0, twice += c > 1;
+  return twice > 0;
+}
+
+// Why a flattened chart cannot be used as it is; empty when it can.
+bool chartAcceptable(const Chart& chart, const FaceGeometry& g) {
+  std::vector<std::pair<double, double>> density;
+  double uvArea = 0;
+  for (size_t j = 0; j < chart.faces.size(); ++j) {
+    const double a = signedArea2(&chart.uv[6 * j]) / 2;
+    if (!(a > 0)) return false;  // flipped or degenerate
+    uvArea += a;
+    density.push_back({std::sqrt(a / g.areas[chart.faces[j]]), g.areas[chart.faces[j]]});
+  }
+  if (chart.faces.size() == 1) return true;
+  const double p05 = weightedQuantile(density, 0.05), p95 = weightedQuantile(density, 0.95);
+  if (!(p95 <= kMaxDensityRatio * p05)) return false;
+  return !selfOverlaps(chart);
+}
+
+// Splits faces in two at the median of their centroids along the longest axis of their spread, then into
+// connected pieces.
+std::vector<std::vector<int32_t>> splitFaces(const std::vector<int32_t>& faces, const FaceGeometry& g,
+                                             const std::vector<int32_t>& adj, std::vector<int32_t>& mark) {
+  Vec3 mean{0, 0, 0};
+  for (int32_t f : faces)
+    for (int k = 0; k < 3; ++k) mean[k] += g.centroids[f][k] / faces.size();
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (int32_t f : faces) {
+    const Vec3 d = sub(g.centroids[f], mean);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) cov(a, b) += d[a] * d[b];
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Eigen::Vector3d axis = eig.eigenvectors().col(2);
+  std::vector<std::pair<double, int32_t>> keyed;
+  for (int32_t f : faces)
+    keyed.push_back({axis.dot(Eigen::Vector3d(g.centroids[f][0], g.centroids[f][1], g.centroids[f][2])), f});
+  std::sort(keyed.begin(), keyed.end());
+  const size_t half = keyed.size() / 2;
+  // mark: 1 + half index for faces of this chart, 0 elsewhere (restored before returning).
+  for (size_t i = 0; i < keyed.size(); ++i) mark[keyed[i].second] = i < half ? 1 : 2;
+  std::vector<std::vector<int32_t>> pieces;
+  for (const auto& kf : keyed) {
+    const int32_t seed = kf.second;
+    if (mark[seed] <= 0) continue;
+    const int32_t side = mark[seed];
+    std::vector<int32_t> piece{seed};
+    mark[seed] = -side;
+    for (size_t h = 0; h < piece.size(); ++h)
+      for (int k = 0; k < 3; ++k) {
+        const int32_t o = adj[3 * piece[h] + k];
+        if (o >= 0 && mark[o] == side) mark[o] = -side, piece.push_back(o);
+      }
+    pieces.push_back(std::move(piece));
+  }
+  for (int32_t f : faces) mark[f] = 0;
+  return pieces;
+}
+
+// Convex hull of points (x, y pairs), counter-clockwise (Andrew's monotone chain).
+std::vector<Vec2> convexHull(const std::vector<double>& xy) {
+  std::vector<Vec2> p;
+  for (size_t i = 0; i + 1 < xy.size(); i += 2) p.push_back({xy[i], xy[i + 1]});
+  std::sort(p.begin(), p.end());
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return p;
+  auto turn = [](const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  };
+  std::vector<Vec2> h(2 * p.size());
+  size_t k = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && turn(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && turn(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+// The rotation angle that makes the chart's bounding rectangle smallest (one hull edge is always on it).
+double minimumRectangleAngle(const std::vector<double>& xy) {
+  const std::vector<Vec2> hull = convexHull(xy);
+  double bestArea = 1e300, bestAngle = 0;
+  for (size_t i = 0; i < hull.size(); ++i) {
+    const Vec2& a = hull[i];
+    const Vec2& b = hull[(i + 1) % hull.size()];
+    const double angle = std::atan2(b[1] - a[1], b[0] - a[0]);
+    const double c = std::cos(angle), s = std::sin(angle);
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (const Vec2& p : hull) {
+      const double x = c * p[0] + s * p[1], y = -s * p[0] + c * p[1];
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+    if ((x1 - x0) * (y1 - y0) < bestArea) bestArea = (x1 - x0) * (y1 - y0), bestAngle = angle;
+  }
+  return bestAngle;
+}
+
+// Rotates the chart to its smallest bounding rectangle, moves its corner to the origin, and scales it to
+// surface length units (UV area = surface area).
+void normalizeChart(Chart& chart, const FaceGeometry& g) {
+  double uvArea = 0;
+  chart.surfaceArea = 0;
+  for (size_t j = 0; j < chart.faces.size(); ++j) {
+    uvArea += signedArea2(&chart.uv[6 * j]) / 2;
+    chart.surfaceArea += g.areas[chart.faces[j]];
+  }
+  const double s = uvArea > 0 ? std::sqrt(chart.surfaceArea / uvArea) : 1.0;
+  const double angle = minimumRectangleAngle(chart.uv);
+  const double c = std::cos(angle), sn = std::sin(angle);
+  const size_t m = chart.uv.size() / 2;
+  double x0 = 1e300, y0 = 1e300;
+  for (size_t i = 0; i < m; ++i) {
+    const double x = chart.uv[2 * i], y = chart.uv[2 * i + 1];
+    chart.uv[2 * i] = s * (c * x + sn * y);
+    chart.uv[2 * i + 1] = s * (-sn * x + c * y);
+    x0 = std::min(x0, chart.uv[2 * i]), y0 = std::min(y0, chart.uv[2 * i + 1]);
+  }
+  for (size_t i = 0; i < m; ++i) chart.uv[2 * i] -= x0, chart.uv[2 * i + 1] -= y0;
+}
+
+// Flat charts covering every face of positive area: grown, flattened, split until acceptable.
+std::vector<Chart> makeCharts(const SurfaceMesh& mesh, const FaceGeometry& g, int& splits) {
+  const std::vector<int32_t> adj = faceAdjacency(mesh);
+  std::vector<std::vector<int32_t>> pending = growCharts(g, adj);
+  std::vector<int32_t> mark(mesh.numFaces(), 0);
+  std::vector<Chart> charts;
+  splits = 0;
+  while (!pending.empty()) {
+    Chart chart;
+    chart.faces = std::move(pending.back());
+    pending.pop_back();
+    if (lscm(mesh, g, chart) && chartAcceptable(chart, g)) {
+      normalizeChart(chart, g);
+      charts.push_back(std::move(chart));
+      continue;
+    }
+    if (chart.faces.size() == 1) {
+      // A single face whose map failed (a sliver): its own shape in its plane.
+      const int32_t f = chart.faces[0];
+      const Vec3 p0 = vertex(mesh, mesh.triangles[3 * f]), p1 = vertex(mesh, mesh.triangles[3 * f + 1]),
+                 p2 = vertex(mesh, mesh.triangles[3 * f + 2]);
+      const Vec3 e = sub(p1, p0);
+      const double l = norm(e);
+      const Vec3 x = {e[0] / l, e[1] / l, e[2] / l}, y = cross(g.normals[f], x);
+      chart.uv = {0, 0, l, 0, dot(sub(p2, p0), x), dot(sub(p2, p0), y)};
+      normalizeChart(chart, g);
+      charts.push_back(std::move(chart));
+      continue;
+    }
+    ++splits;
+    for (auto& piece : splitFaces(chart.faces, g, adj, mark)) pending.push_back(std::move(piece));
+  }
+  std::stable_sort(charts.begin(), charts.end(),
+                   [](const Chart& a, const Chart& b) { return a.surfaceArea > b.surfaceArea; });
+  return charts;
+}
+
+// ---- Packing
+// -------------------------------------------------------------------------------------------------
+
+// A texel bitmap, rows of 64-bit words; bit x of row y is texel (x, y).
+struct Bitmap {
+  int width = 0, height = 0, words = 0;
+  std::vector<uint64_t> bits;
+  Bitmap(int w, int h) : width(w), height(h), words((w + 63) / 64), bits(static_cast<size_t>(words) * h, 0) {}
+  bool get(int x, int y) const { return bits[static_cast<size_t>(y) * words + (x >> 6)] >> (x & 63) & 1u; }
+  void set(int x, int y) { bits[static_cast<size_t>(y) * words + (x >> 6)] |= uint64_t{1} << (x & 63); }
+  // 64 texels of row y starting at x (zeros past the end).
+  uint64_t window(int x, int y) const {
+    const uint64_t* row = &bits[static_cast<size_t>(y) * words];
+    const int i = x >> 6, off = x & 63;
+    uint64_t w = i < words ? row[i] >> off : 0;
+    if (off && i + 1 < words) w |= row[i + 1] << (64 - off);
+    return w;
+  }
+};
+
+double pointTriangleDistance2(double px, double py, const double* t) {
+  auto side = [&](int a, int b) {
+    return (t[2 * b] - t[2 * a]) * (py - t[2 * a + 1]) - (t[2 * b + 1] - t[2 * a + 1]) * (px - t[2 * a]);
+  };
+  const double s0 = side(0, 1), s1 = side(1, 2), s2 = side(2, 0);
+  if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) return 0;
+  double best = 1e300;
+  for (int k = 0; k < 3; ++k) {
+    const double ax = t[2 * k], ay = t[2 * k + 1], bx = t[2 * ((k + 1) % 3)], by = t[2 * ((k + 1) % 3) + 1];
+    const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+    const double s = l2 > 0 ? std::clamp(((px - ax) * dx + (py - ay) * dy) / l2, 0.0, 1.0) : 0.0;
+    const double ex = ax + s * dx - px, ey = ay + s * dy - py;
+    best = std::min(best, ex * ex + ey * ey);
+  }
+  return best;
+}
+
+// A chart laid out in texels at one density and rotation: corner positions (texels, from the bitmap's origin)
+// and the bitmap of every texel its triangles touch, dilated by the gutter.
+struct ChartShape {
+  std::vector<double> texel;  // 6 per face
+  Bitmap mask{0, 0};
+};
+
+ChartShape chartShape(const Chart& chart, double density, int rotation, int gutter) {
+  ChartShape s;
+  s.texel.resize(chart.uv.size());
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (size_t i = 0; i < chart.uv.size(); i += 2) {
+    double x = chart.uv[i] * density, y = chart.uv[i + 1] * density;
+    for (int r = 0; r < rotation; ++r) std::tie(x, y) = std::make_pair(-y, x);
+    s.texel[i] = x, s.texel[i + 1] = y;
+    x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+  }
+  const double margin = gutter + 1.0;
+  for (size_t i = 0; i < s.texel.size(); i += 2) s.texel[i] += margin - x0, s.texel[i + 1] += margin - y0;
+  const int w = static_cast<int>(std::ceil(x1 - x0 + 2 * margin)) + 1;
+  const int h = static_cast<int>(std::ceil(y1 - y0 + 2 * margin)) + 1;
+  Bitmap touched(w, h);
+  // A texel is touched when its square meets a triangle; its centre is then within half a diagonal.
+  constexpr double kReach2 = 0.5 + 1e-9;
+  for (size_t j = 0; j < s.texel.size(); j += 6) {
+    const double* t = &s.texel[j];
+    const int tx0 = std::max(0, static_cast<int>(std::floor(std::min({t[0], t[2], t[4]}))) - 1);
+    const int tx1 = std::min(w - 1, static_cast<int>(std::floor(std::max({t[0], t[2], t[4]}))) + 1);
+    const int ty0 = std::max(0, static_cast<int>(std::floor(std::min({t[1], t[3], t[5]}))) - 1);
+    const int ty1 = std::min(h - 1, static_cast<int>(std::floor(std::max({t[1], t[3], t[5]}))) + 1);
+    for (int y = ty0; y <= ty1; ++y)
+      for (int x = tx0; x <= tx1; ++x)
+        if (!touched.get(x, y) && pointTriangleDistance2(x + 0.5, y + 0.5, t) <= kReach2) touched.set(x, y);
+  }
+  // Square dilation by the gutter: rows, then columns.
+  Bitmap rows(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (touched.get(x, y))
+        for (int d = std::max(0, x - gutter); d <= std::min(w - 1, x + gutter); ++d) rows.set(d, y);
+  s.mask = Bitmap(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (rows.get(x, y))
+        for (int d = std::max(0, y - gutter); d <= std::min(h - 1, y + gutter); ++d) s.mask.set(x, d);
+  return s;
+}
+
+bool fits(const Bitmap& atlas, const Bitmap& mask, int ox, int oy) {
+  for (int y = 0; y < mask.height; ++y)
+    for (int k = 0; k < mask.words; ++k) {
+      const uint64_t m = mask.bits[static_cast<size_t>(y) * mask.words + k];
+      if (m && (atlas.window(ox + 64 * k, oy + y) & m)) return false;
+    }
+  return true;
+}
+
+void stamp(Bitmap& atlas, const Bitmap& mask, int ox, int oy) {
+  for (int y = 0; y < mask.height; ++y)
+    for (int x = 0; x < mask.width; ++x)
+      if (mask.get(x, y)) atlas.set(ox + x, oy + y);
+}
+
+struct Placement {
+  int rotation = 0, x = 0, y = 0;
+};
+
+// The mask on a grid of b x b texel blocks (a block is taken when any of its texels is).
+Bitmap coarsen(const Bitmap& mask, int b) {
+  Bitmap out((mask.width + b - 1) / b, (mask.height + b - 1) / b);
+  for (int y = 0; y < mask.height; ++y)
+    for (int x = 0; x < mask.width; ++x)
+      if (mask.get(x, y)) out.set(x / b, y / b);
+  return out;
+}
+
+// First fit (lowest row, then column) of each chart, largest first, trying 4 rotations and keeping the one
+// whose top edge ends lowest. Positions are searched on a grid of `block` texels (the search costs the square
+// of the grid size). Returns false when a chart does not fit.
+bool pack(const std::vector<Chart>& charts, double density, int resolution, int gutter, int block,
+          std::vector<Placement>& placements, std::vector<ChartShape>& shapes, double& used) {
+  const int grid = resolution / block;
+  Bitmap atlas(grid, grid);
+  placements.assign(charts.size(), {});
+  shapes.assign(charts.size(), {});
+  for (size_t c = 0; c < charts.size(); ++c) {
+    int bestTop = 1 << 30;
+    Bitmap bestMask(0, 0);
+    for (int rot = 0; rot < 4; ++rot) {
+      ChartShape shape = chartShape(charts[c], density, rot, gutter);
+      if (shape.mask.width > resolution || shape.mask.height > resolution) continue;
+      Bitmap m = coarsen(shape.mask, block);
+      bool placed = false;
+      for (int y = 0; y + m.height <= grid && !placed && y + m.height < bestTop; ++y)
+        for (int x = 0; x + m.width <= grid; ++x)
+          if (fits(atlas, m, x, y)) {
+            placements[c] = {rot, x * block, y * block};
+            bestTop = y + m.height;
+            shapes[c] = std::move(shape);
+            bestMask = std::move(m);
+            placed = true;
+            break;
+          }
+    }
+    if (bestTop == (1 << 30)) return false;
+    stamp(atlas, bestMask, placements[c].x / block, placements[c].y / block);
+  }
+  size_t taken = 0;
+  for (uint64_t w : atlas.bits) taken += __builtin_popcountll(w);
+  used = static_cast<double>(taken) / (static_cast<double>(grid) * grid);
+  return true;
+}
+
+void checkInput(const SurfaceMesh& mesh) {
+  if (mesh.numFaces() == 0) throw InputError("atlas: the mesh has no faces");
+  if (mesh.positions.size() % 3 || mesh.triangles.size() % 3)
+    throw InputError("atlas: positions and triangles must come in threes");
+  const int32_t nV = mesh.numVertices();
+  for (size_t i = 0; i < mesh.triangles.size(); ++i)
+    if (mesh.triangles[i] < 0 || mesh.triangles[i] >= nV)
+      throw InputError("atlas: face " + std::to_string(i / 3) + " refers to vertex " +
+                       std::to_string(mesh.triangles[i]) + " (the mesh has " + std::to_string(nV) + ")");
+  for (double p : mesh.positions)
+    if (!std::isfinite(p)) throw InputError("atlas: the mesh has a non-finite vertex coordinate");
+}
+
+}  // namespace
+
+std::vector<uint16_t> rasterCoverage(const std::vector<float>& cornerUVs, int n) {
+  std::vector<uint16_t> count(static_cast<size_t>(n) * n, 0);
+  // Edge function of p against a -> b, ties broken by the top-left rule so shared edges count once.
+  auto inside = [](double ax, double ay, double bx, double by, double px, double py) {
+    const double e = (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+    if (e != 0) return e > 0;
+    const double dy = by - ay, dx = bx - ax;
+    return dy < 0 || (dy == 0 && dx > 0);
+  };
+  for (size_t f = 0; f + 6 <= cornerUVs.size(); f += 6) {
+    double ax = cornerUVs[f] * n, ay = cornerUVs[f + 1] * n, bx = cornerUVs[f + 2] * n,
+           by = cornerUVs[f + 3] * n, cx = cornerUVs[f + 4] * n, cy = cornerUVs[f + 5] * n;
+    const double area = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
+    if (!(std::abs(area) > 1e-12)) continue;
+    if (area < 0) std::swap(bx, cx), std::swap(by, cy);
+    const int x0 = std::max(0, static_cast<int>(std::floor(std::min({ax, bx, cx}) - 0.5)));
+    const int x1 = std::min(n - 1, static_cast<int>(std::ceil(std::max({ax, bx, cx}) - 0.5)));
+    const int y0 = std::max(0, static_cast<int>(std::floor(std::min({ay, by, cy}) - 0.5)));
+    const int y1 = std::min(n - 1, static_cast<int>(std::ceil(std::max({ay, by, cy}) - 0.5)));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const double px = x + 0.5, py = y + 0.5;
+        if (inside(ax, ay, bx, by, px, py) && inside(bx, by, cx, cy, px, py) &&
+            inside(cx, cy, ax, ay, px, py)) {
+          uint16_t& c = count[static_cast<size_t>(y) * n + x];
+          if (c < 65535) ++c;
+        }
+      }
+  }
+  return count;
+}
+
+AtlasMeasures measureAtlas(const SurfaceMesh& mesh, const std::vector<float>& cornerUVs,
+                           const std::vector<int32_t>& faceChart, int resolution) {
+  AtlasMeasures m;
+  m.resolution = resolution;
+  const std::vector<uint16_t> count = rasterCoverage(cornerUVs, resolution);
+  size_t covered = 0, twice = 0;
+  for (uint16_t c : count) covered += c > 0, twice += c > 1;
+  m.coverage = static_cast<double>(covered) / count.size();
+  m.overlap = covered ? static_cast<double>(twice) / covered : 0;
+  const FaceGeometry g = faceGeometry(mesh);
+  const int32_t nF = mesh.numFaces();
+  // Majority orientation per chart (or over everything).
+  std::vector<double> orientation;
+  std::vector<double> uvArea(nF);
+  for (int32_t f = 0; f < nF; ++f) {
+    double t[6];
+    for (int k = 0; k < 6; ++k) t[k] = static_cast<double>(cornerUVs[6 * f + k]) * resolution;
+    uvArea[f] = signedArea2(t) / 2;
+    const size_t c = faceChart.empty() ? 0 : static_cast<size_t>(std::max(0, faceChart[f]));
+    if (orientation.size() <= c) orientation.resize(c + 1, 0);
+    orientation[c] += uvArea[f];
+  }
+  std::vector<std::pair<double, double>> density;
+  for (int32_t f = 0; f < nF; ++f)
+    if (g.areas[f] > 0) density.push_back({std::sqrt(std::abs(uvArea[f]) / g.areas[f]), g.areas[f]});
+  const double median = weightedQuantile(density, 0.5);
+  m.texelsPerUnitLength = median;
+  if (!(median > 0)) return m;
+  m.densityP05 = weightedQuantile(density, 0.05) / median;
+  m.densityP95 = weightedQuantile(density, 0.95) / median;
+  m.densityMin = 1e300, m.densityMax = 0;
+  double stretch2 = 0, area = 0;
+  for (int32_t f = 0; f < nF; ++f) {
+    if (!(g.areas[f] > 0)) continue;
+    const double d = std::sqrt(std::abs(uvArea[f]) / g.areas[f]) / median;
+    if (d < 1e-3) {
+      ++m.degenerateFaces;
+      continue;
+    }
+    const size_t c = faceChart.empty() ? 0 : static_cast<size_t>(std::max(0, faceChart[f]));
+    if (uvArea[f] * orientation[c] < 0) ++m.flippedFaces;
+    m.densityMin = std::min(m.densityMin, d), m.densityMax = std::max(m.densityMax, d);
+    // Sander's L2 stretch of the texture-to-surface map, texel lengths over the median density.
+    const Vec3 p0 = vertex(mesh, mesh.triangles[3 * f]), p1 = vertex(mesh, mesh.triangles[3 * f + 1]),
+               p2 = vertex(mesh, mesh.triangles[3 * f + 2]);
+    double s[6];
+    for (int k = 0; k < 6; ++k) s[k] = static_cast<double>(cornerUVs[6 * f + k]) * resolution / median;
+    const double A2 = signedArea2(s);
+    Vec3 Ss, St;
+    for (int k = 0; k < 3; ++k) {
+      Ss[k] = (p0[k] * (s[3] - s[5]) + p1[k] * (s[5] - s[1]) + p2[k] * (s[1] - s[3])) / A2;
+      St[k] = (p0[k] * (s[4] - s[2]) + p1[k] * (s[0] - s[4]) + p2[k] * (s[2] - s[0])) / A2;
+    }
+    stretch2 += g.areas[f] * (dot(Ss, Ss) + dot(St, St)) / 2;
+    area += g.areas[f];
+  }
+  m.stretchL2 = area > 0 ? std::sqrt(stretch2 / area) : 0;
+  if (m.densityMax == 0) m.densityMin = 0;
+  return m;
+}
+
+TextureAtlas generateAtlas(const SurfaceMesh& mesh, int resolution, int gutterTexels) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (resolution < 16 || resolution > 8192)
+    throw InputError("atlas: resolution must be in [16, 8192] (got " + std::to_string(resolution) + ")");
+  if (gutterTexels < 0 || gutterTexels > 16)
+    throw InputError("atlas: gutter must be in [0, 16] texels (got " + std::to_string(gutterTexels) + ")");
+  checkInput(mesh);
+  const FaceGeometry g = faceGeometry(mesh);
+  TextureAtlas atlas;
+  atlas.resolution = resolution;
+  atlas.gutter = gutterTexels;
+  const std::vector<Chart> charts = makeCharts(mesh, g, atlas.splits);
+  atlas.chartMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (charts.empty()) throw InputError("atlas: every face of the mesh has zero area");
+  atlas.numCharts = static_cast<int>(charts.size());
+
+  // The densest packing that fits: from the area bound down by 7% steps, then up again by bisection.
+  double surfaceArea = 0;
+  for (const Chart& c : charts) surfaceArea += c.surfaceArea;
+  double fail = resolution / std::sqrt(surfaceArea);  // 100% of the square: never fits with gutters
+  double ok = 0, density = 0.85 * fail;
+  std::vector<Placement> placements, best;
+  const int block = std::max(1, resolution / kPackGrid);
+  double used = 0;
+  std::vector<ChartShape> shapes, bestShapes;
+  while (ok == 0) {
+    ++atlas.packAttempts;
+    if (pack(charts, density, resolution, gutterTexels, block, placements, shapes, used)) {
+      atlas.used = used;
+      ok = density, best = placements, bestShapes = std::move(shapes);
+    } else {
+      fail = density;
+      density *= 0.93;
+    }
+    if (density < 1e-12 * fail) throw InputError("atlas: the charts do not fit the resolution");
+  }
+  for (int it = 0; it < 4 && fail / ok > 1.01; ++it) {
+    density = std::sqrt(ok * fail);
+    ++atlas.packAttempts;
+    if (pack(charts, density, resolution, gutterTexels, block, placements, shapes, used))
+      ok = density, best = placements, bestShapes = std::move(shapes), atlas.used = used;
+    else
+      fail = density;
+  }
+
+  const int32_t nF = mesh.numFaces();
+  atlas.cornerUVs.assign(6 * static_cast<size_t>(nF), 0.0f);
+  atlas.faceChart.assign(nF, -1);
+  for (size_t c = 0; c < charts.size(); ++c) {
+    const ChartShape& s = bestShapes[c];
+    for (size_t j = 0; j < charts[c].faces.size(); ++j) {
+      const int32_t f = charts[c].faces[j];
+      atlas.faceChart[f] = static_cast<int32_t>(c);
+      for (int k = 0; k < 3; ++k) {
+        atlas.cornerUVs[6 * f + 2 * k] =
+            static_cast<float>((s.texel[6 * j + 2 * k] + best[c].x) / resolution);
+        atlas.cornerUVs[6 * f + 2 * k + 1] =
+            static_cast<float>((s.texel[6 * j + 2 * k + 1] + best[c].y) / resolution);
+      }
+    }
+  }
+  atlas.measures = measureAtlas(mesh, atlas.cornerUVs, atlas.faceChart, resolution);
+  atlas.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return atlas;
+}
+
+AtlasCheck checkAtlasUVs(const std::vector<float>& cornerUVs, int32_t numFaces, int resolution) {
+  AtlasCheck out;
+  if (numFaces <= 0 || cornerUVs.size() != 6 * static_cast<size_t>(numFaces)) {
+    out.reason = "the model has no TEXCOORD_0";
+    return out;
+  }
+  constexpr double eps = 1e-4;
+  for (int32_t f = 0; f < numFaces; ++f) {
+    const float* u = &cornerUVs[6 * static_cast<size_t>(f)];
+    if (!std::all_of(u, u + 6, [](float x) { return std::isfinite(x); })) {
+      ++out.nonFinite;
+      continue;
+    }
+    if (std::any_of(u, u + 6, [](float x) { return x < -eps || x > 1 + eps; })) ++out.outside;
+    double t[6];
+    for (int k = 0; k < 6; ++k) t[k] = u[k];
+    if (!(std::abs(signedArea2(t) / 2) * resolution * resolution > 1e-6)) ++out.degenerate;
+  }
+  if (out.nonFinite) {
+    out.reason = std::to_string(out.nonFinite) + " faces have non-finite UVs";
+    return out;
+  }
+  if (out.outside) {
+    out.reason =
+        std::to_string(out.outside) + " faces have UVs outside [0, 1] (a tiling layout, not an atlas)";
+    return out;
+  }
+  if (out.degenerate > 0.01 * numFaces) {
+    out.reason = std::to_string(out.degenerate) + " faces have (near-)zero UV area";
+    return out;
+  }
+  const std::vector<uint16_t> count = rasterCoverage(cornerUVs, resolution);
+  size_t covered = 0, twice = 0;
+  for (uint16_t c : count) covered += c > 0, twice += c > 1;
+  out.coverage = static_cast<double>(covered) / count.size();
+  out.overlap = covered ? static_cast<double>(twice) / covered : 0;
+  if (!covered) {
+    out.reason = "the UV triangles cover no texel";
+    return out;
+  }
+  if (twice > 0.005 * covered) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f", 100.0 * out.overlap);
+    out.reason = std::string("UV triangles overlap on ") + buf + "% of the covered texels";
+    return out;
+  }
+  out.usable = true;
+  out.reason = "TEXCOORD_0 is a valid non-overlapping atlas";
+  return out;
+}
+
+}  // namespace tvf

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+#
+# fuzz.sh: builds the libFuzzer harnesses (tests/fuzz, clang + ASan + UBSan, in build-fuzz/) and runs each for
+# its share of the time: the glTF, GLB, OFF, OBJ and PLY loaders and the design-JSON parser.
+#
+# Usage: scripts/fuzz.sh [--seconds N] [target ...]
+#   --seconds N   total fuzzing time, split evenly over the targets (default 60)
+#   target        gltf glb off obj ply design (default: all)
+# Seeds: tests/fuzz/seeds/<target>/ (small files of our own), tests/native/data/, and bench-data/fuzz-seeds/
+# (assimp's test models and CGAL's small meshes, fetched by scripts/fetch-meshes.sh --fuzz-seeds; without
+# network the run goes on with the other seeds). The growing corpus lives in build-fuzz/corpus/<target>/.
+# Findings: libFuzzer writes the input to build-fuzz/findings/<target>/ and the script exits 1; turn each
+# into a regression test in tests/native (see io_test.cpp / robust_test.cpp) before fixing it.
+# Prints one line per target: executions, corpus size, findings.
+
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
+BUILD=$ROOT/build-fuzz
+SECONDS_TOTAL=60
+TARGETS=()
+
+log() { printf '[fuzz] %s\n' "$*" >&2; }
+die() { printf '[fuzz] ERROR: %s\n' "$*" >&2; exit 2; }
+
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --seconds) SECONDS_TOTAL=${2:?--seconds needs a number}; shift 2 ;;
+    -h|--help) sed -n '4,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -n 's/^# \{0,1\}//p' >&2; exit 0 ;;
+    gltf|glb|off|obj|ply|design) TARGETS+=("$1"); shift ;;
+    *) die "unknown argument: $1 (try --help)" ;;
+  esac
+done
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(gltf glb off obj ply design)
+
+command -v clang++ >/dev/null || die "clang++ not found (apt-get install clang libclang-rt-14-dev, or npm run setup)"
+
+# Seeds from Debian's assimp-testmodels and CGAL's data; a machine without network still fuzzes from ours.
+bash "$ROOT/scripts/fetch-meshes.sh" --fuzz-seeds >/dev/null 2>&1 || log "no assimp/CGAL seeds (offline?); using the project's own"
+
+if [ ! -f "$BUILD/CMakeCache.txt" ]; then
+  launcher=()
+  command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  CC=clang CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTVF_FUZZ=ON \
+    -DTVF_BUILD_TESTS=OFF -DTVF_BUILD_CLI=OFF "${launcher[@]}" >/dev/null
+fi
+targets=()
+for t in "${TARGETS[@]}"; do targets+=("fuzz_$t"); done
+cmake --build "$BUILD" -j2 --target "${targets[@]}" >/dev/null
+
+per=$((SECONDS_TOTAL / ${#TARGETS[@]}))
+[ "$per" -ge 1 ] || per=1
+status=0
+for t in "${TARGETS[@]}"; do
+  corpus=$BUILD/corpus/$t
+  findings=$BUILD/findings/$t
+  mkdir -p "$corpus" "$findings"
+  seeds=("$ROOT/tests/fuzz/seeds/$t")
+  case "$t" in
+    off) seeds+=("$ROOT/bench-data/fuzz-seeds/off") ;;
+    obj) seeds+=("$ROOT/bench-data/fuzz-seeds/obj") ;;
+    ply) seeds+=("$ROOT/bench-data/fuzz-seeds/ply") ;;
+    gltf) seeds+=("$ROOT/bench-data/fuzz-seeds/gltf") ;;
+    glb) seeds+=("$ROOT/bench-data/fuzz-seeds/glb" "$ROOT/bench-data/fuzz-seeds/gltf") ;;
+  esac
+  existing=()
+  for s in "${seeds[@]}"; do [ -d "$s" ] && existing+=("$s"); done
+  if [ "$t" = off ] || [ "$t" = obj ]; then existing+=("$ROOT/tests/native/data"); fi
+  logfile=$BUILD/fuzz-$t.log
+  # -timeout: one input taking longer than 10 s is a hang (a finding); -rss_limit_mb bounds a runaway parse.
+  if ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+    "$BUILD/tests/fuzz/fuzz_$t" -max_total_time="$per" -timeout=10 -rss_limit_mb=2048 -max_len=262144 \
+    -artifact_prefix="$findings/" -print_final_stats=1 "$corpus" "${existing[@]}" >"$logfile" 2>&1; then
+    result=ok
+  else
+    result="FINDING (see $logfile and $findings/)"
+    status=1
+  fi
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$logfile" | grep -o '[0-9]*$' || echo '?')
+  printf '[fuzz] %-6s %ss  %s executions  corpus %s files  %s\n' "$t" "$per" "$runs" \
+    "$(ls "$corpus" | wc -l)" "$result"
+done
+exit $status

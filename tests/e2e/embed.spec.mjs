@@ -1,0 +1,288 @@
+// <tangent-field-designer> embedded in other people's pages, from the tarball `npm pack` makes, installed
+// into a scratch project and served by a plain static server (no COOP/COEP) that sends a strict CSP
+// (scripts/serve.mjs --plain --csp). Checks independence of two elements, hostile host CSS, CSP, a bundled
+// consumer app, node imports, and that removed elements leave no worker and no WebGL context behind.
+import { execFileSync } from 'node:child_process';
+import { cpSync, mkdirSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { expect, test } from '@playwright/test';
+import * as esbuild from 'esbuild';
+import { faceVector, relativeDifference, trackErrors } from './helpers.mjs';
+
+const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
+const FIXTURES = resolve(ROOT, 'tests/e2e/embed');
+const SITE = resolve(ROOT, '.cache/embed-site'); // served by the second web server (playwright.config.mjs)
+const PACK = resolve(ROOT, '.cache/embed-pack');
+const PORT = Number(process.env.TVF_EMBED_PORT || Number(process.env.TVF_TEST_PORT || 8191) + 100);
+const ORIGIN = `http://127.0.0.1:${PORT}`;
+
+// An icosphere (2 subdivisions, 320 faces) as OFF: a second, different model.
+function icosphereOff() {
+  const t = (1 + Math.sqrt(5)) / 2;
+  let V = [[-1, t, 0], [1, t, 0], [-1, -t, 0], [1, -t, 0], [0, -1, t], [0, 1, t], [0, -1, -t], [0, 1, -t], [t, 0, -1], [t, 0, 1], [-t, 0, -1], [-t, 0, 1]];
+  let F = [[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
+    [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1]];
+  for (let level = 0; level < 2; level++) {
+    const mid = new Map();
+    const m = (i, j) => {
+      const key = i < j ? `${i},${j}` : `${j},${i}`;
+      if (!mid.has(key)) mid.set(key, V.push(V[i].map((x, k) => (x + V[j][k]) / 2)) - 1);
+      return mid.get(key);
+    };
+    F = F.flatMap(([a, b, c]) => {
+      const [ab, bc, ca] = [m(a, b), m(b, c), m(c, a)];
+      return [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]];
+    });
+  }
+  V = V.map((p) => p.map((x) => x / Math.hypot(...p)));
+  return `OFF\n${V.length} ${F.length} 0\n${V.map((p) => p.join(' ')).join('\n')}\n${F.map((f) => `3 ${f.join(' ')}`).join('\n')}\n`;
+}
+
+test.describe.configure({ mode: 'serial' });
+
+test.beforeAll(async () => {
+  test.setTimeout(600_000);
+  // The package as a user gets it: npm pack (prepack builds lib/), installed into a scratch project.
+  rmSync(PACK, { recursive: true, force: true });
+  mkdirSync(PACK, { recursive: true });
+  execFileSync('npm', ['pack', '--pack-destination', PACK], { cwd: ROOT, stdio: 'pipe' });
+  const tarball = resolve(PACK, readdirSync(PACK).find((f) => f.endsWith('.tgz')));
+  for (const f of readdirSync(SITE, { withFileTypes: true })) rmSync(resolve(SITE, f.name), { recursive: true, force: true });
+  writeFileSync(resolve(SITE, 'package.json'), JSON.stringify({ name: 'scratch', private: true, type: 'module' }));
+  execFileSync('npm', ['install', '--offline', '--no-audit', '--no-fund', tarball], { cwd: SITE, stdio: 'pipe' });
+  writeFileSync(resolve(SITE, 'index.html'), '<!doctype html><title>embed tests</title>');
+  cpSync(FIXTURES, SITE, { recursive: true });
+  mkdirSync(resolve(SITE, 'models'), { recursive: true });
+  cpSync(resolve(ROOT, 'dist/models/bunny.glb'), resolve(SITE, 'models/bunny.glb'));
+  writeFileSync(resolve(SITE, 'models/ico.off'), icosphereOff());
+  mkdirSync(resolve(SITE, 'designs'), { recursive: true });
+  writeFileSync(resolve(SITE, 'designs/two-sources.json'), JSON.stringify({ boundary: 'free', gamma: 0, constraints: [{ type: 'source', vertex: 0, strength: 1 }, { type: 'sink', vertex: 3, strength: 1 }] }));
+  writeFileSync(resolve(SITE, 'models/broken.glb'), Buffer.from('glTF this is not a binary glTF at all'));
+  // The bundled consumer app: its code and ours in one file; our worker and wasm copied as the docs say.
+  await esbuild.build({
+    entryPoints: [resolve(SITE, 'app-src.js')],
+    outfile: resolve(SITE, 'app/app.js'),
+    bundle: true,
+    format: 'esm',
+    absWorkingDir: SITE,
+    logLevel: 'error',
+  });
+  cpSync(resolve(SITE, 'node_modules/tangent-field-designer/lib'), resolve(SITE, 'app/tangent-field-designer'), { recursive: true });
+});
+
+// Requests that left the server's origin, and CSP violations the page reported.
+function watchRequests(page) {
+  const foreign = [];
+  page.on('request', (r) => {
+    const url = r.url();
+    if (!url.startsWith(ORIGIN) && !url.startsWith('blob:') && !url.startsWith('data:')) foreign.push(url);
+  });
+  return foreign;
+}
+
+const record = (page) => page.evaluate(() => ({ events: window.__record.events.map(({ type, id }) => ({ type, id })), violations: window.__record.violations }));
+
+test('the package imports in node without a DOM', () => {
+  for (const spec of ['tangent-field-designer', 'tangent-field-designer/element']) {
+    const out = execFileSync(
+      process.execPath,
+      ['--input-type=module', '-e', `const m = await import('${spec}'); console.log([typeof m.TangentFieldDesigner, typeof m.define, m.define() === m.TangentFieldDesigner].join(' '));`],
+      { cwd: SITE, encoding: 'utf8' },
+    );
+    expect(out.trim()).toBe('function function true');
+  }
+});
+
+test('two designers on one page under a strict CSP: independent fields, events, errors and styles', async ({ page }) => {
+  const errors = trackErrors(page);
+  const foreign = watchRequests(page);
+  const response = await page.goto(`${ORIGIN}/two.html`);
+  // The page is served as a plain static host would, with the strict policy.
+  const headers = response.headers();
+  expect(headers['content-security-policy']).toContain("script-src 'self' 'wasm-unsafe-eval'");
+  expect(headers['cross-origin-embedder-policy']).toBeUndefined();
+  expect(await page.evaluate(() => window.crossOriginIsolated)).toBe(false);
+
+  await page.evaluate(() => Promise.all([document.getElementById('a').ready, document.getElementById('b').ready]));
+  const faces = await page.evaluate(() => ['a', 'b'].map((id) => document.getElementById(id).info().faces));
+  expect(faces).toEqual([3674, 320]);
+  expect(await page.evaluate(() => typeof window.tvf)).toBe('undefined');
+  expect((await record(page)).events.filter((e) => e.type === 'load')).toEqual([
+    expect.objectContaining({ type: 'load' }),
+    expect.objectContaining({ type: 'load' }),
+  ]);
+  expect(new Set((await record(page)).events.filter((e) => e.type === 'load').map((e) => e.id))).toEqual(new Set(['a', 'b']));
+
+  // Hostile host CSS reaches neither the canvas nor the controls.
+  const look = await page.evaluate(() => {
+    const root = document.getElementById('a').shadowRoot;
+    const canvas = root.querySelector('canvas'), button = root.querySelector('[data-tool="stroke"]');
+    const cs = (el) => getComputedStyle(el);
+    const r = canvas.getBoundingClientRect();
+    return {
+      canvas: [cs(canvas).display, cs(canvas).visibility, cs(canvas).opacity, Math.round(r.width) > 200, Math.round(r.height) > 150],
+      button: [cs(button).display, cs(button).fontSize, cs(button).color, cs(button).backgroundColor],
+      panel: cs(root.querySelector('.toolbar')).visibility,
+    };
+  });
+  expect(look.canvas).toEqual(['block', 'visible', '1', true, true]);
+  expect(look.button[0]).not.toBe('none');
+  expect(look.button[1]).toBe('13px');
+  expect(look.button[2]).not.toBe('rgb(255, 0, 0)');
+  expect(look.button[3]).not.toBe('rgb(255, 0, 0)');
+  expect(look.panel).toBe('visible');
+  // The model is drawn: the canvas centre differs from the background colour.
+  const drawn = await page.evaluate(() => {
+    const src = document.getElementById('a').shadowRoot.querySelector('canvas');
+    const c = document.createElement('canvas');
+    c.width = src.width;
+    c.height = src.height;
+    const g = c.getContext('2d');
+    g.drawImage(src, 0, 0);
+    const d = g.getImageData(src.width / 2 - 20, src.height / 2 - 20, 40, 40).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 0x1b) + Math.abs(d[i + 1] - 0x1d) + Math.abs(d[i + 2] - 0x21) > 24) n++;
+    return n / (d.length / 4);
+  });
+  expect(drawn).toBeGreaterThan(0.5);
+
+  // A mouse stroke across the middle of a: only a's field and constraints change, events only on a.
+  const before = await page.evaluate(() => ({ a: Array.from(document.getElementById('a').faceVectors()), b: Array.from(document.getElementById('b').faceVectors()) }));
+  const eventsBefore = (await record(page)).events.length;
+  await page.evaluate(() => (document.getElementById('a').tool = 'stroke'));
+  const box = await page.locator('#a').boundingBox();
+  const y = box.y + box.height * 0.6;
+  const [x0, x1] = [box.x + box.width * 0.42, box.x + box.width * 0.58];
+  expect(await page.evaluate(([x, y]) => document.getElementById('a').pick(x, y) !== null, [x0, y])).toBe(true);
+  await page.mouse.move(x0, y);
+  await page.mouse.down();
+  await page.mouse.move(x1, y, { steps: 25 });
+  await page.mouse.up();
+  await expect.poll(() => page.evaluate(() => document.getElementById('a').constraints().length)).toBe(1);
+  await page.evaluate(() => document.getElementById('a').ready);
+  const after = await page.evaluate(() => ({ a: Array.from(document.getElementById('a').faceVectors()), b: Array.from(document.getElementById('b').faceVectors()), bc: document.getElementById('b').constraints().length }));
+  expect(relativeDifference(after.a, before.a)).toBeGreaterThan(1e-3);
+  expect(after.b).toEqual(before.b);
+  expect(after.bc).toBe(0);
+  const [stroke] = await page.evaluate(() => document.getElementById('a').constraints());
+  expect(stroke.type).toBe('stroke');
+  expect(faceVector(after.a, stroke.points[0].face).some((x) => x !== 0)).toBe(true);
+  await expect.poll(async () => (await record(page)).events.slice(eventsBefore).filter((e) => e.type === 'fieldchange').length).toBeGreaterThan(0);
+  const strokeEvents = (await record(page)).events.slice(eventsBefore);
+  expect(strokeEvents.map((e) => e.type)).toEqual(expect.arrayContaining(['fieldchange', 'constraintschange']));
+  expect(strokeEvents.every((e) => e.id === 'a')).toBe(true);
+
+  // A broken src on b: `error` on b, b keeps its model and field, a hears nothing.
+  const mark = (await record(page)).events.length;
+  await page.evaluate(() => (document.getElementById('b').src = 'models/broken.glb'));
+  await expect.poll(async () => (await record(page)).events.slice(mark).filter((e) => e.type === 'error').length).toBe(1);
+  const failure = await page.evaluate((mark) => window.__record.events.slice(mark).find((e) => e.type === 'error'), mark);
+  expect(failure.id).toBe('b');
+  expect(failure.detail.code).toBe('model');
+  expect(failure.detail.message).toContain('broken.glb');
+  expect(await page.evaluate(() => document.getElementById('b').info().faces)).toBe(320);
+  expect(await page.evaluate(() => Array.from(document.getElementById('b').faceVectors()))).toEqual(before.b);
+  expect((await record(page)).events.slice(mark).every((e) => e.id === 'b')).toBe(true);
+  // b still edits after the failure.
+  await page.evaluate(() => document.getElementById('b').addSource(0));
+  expect(await page.evaluate(() => document.getElementById('b').constraints().length)).toBe(1);
+
+  expect((await record(page)).violations).toEqual([]);
+  expect(foreign).toEqual([]);
+  expect(errors).toEqual([]);
+});
+
+test('an esbuild-bundled consumer app, with assetBase set as the docs say', async ({ page }) => {
+  const errors = trackErrors(page);
+  const foreign = watchRequests(page);
+  const requests = [];
+  page.on('request', (r) => requests.push(new URL(r.url()).pathname));
+  await page.goto(`${ORIGIN}/app/index.html`);
+  const faces = await page.evaluate(() => document.getElementById('bundled').ready.then(() => document.getElementById('bundled').info().faces));
+  expect(faces).toBe(320);
+  // The worker and the core came from the folder assetBase names, not from next to the bundle.
+  expect(requests).toContain('/app/tangent-field-designer/core-worker.js');
+  expect(requests).toContain('/app/tangent-field-designer/wasm/tvf_core.wasm');
+  await page.evaluate(() => document.getElementById('bundled').addVortex(5));
+  expect(await page.evaluate(() => document.getElementById('bundled').constraints()[0].type)).toBe('vortex');
+  expect((await record(page)).violations).toEqual([]);
+  expect(foreign).toEqual([]);
+  expect(errors).toEqual([]);
+});
+
+test('twenty create/remove cycles leave no worker and no WebGL context behind', async ({ page }) => {
+  const errors = trackErrors(page);
+  const contextWarnings = [];
+  page.on('console', (m) => /WebGL contexts|context lost/i.test(m.text()) && contextWarnings.push(m.text()));
+  await page.goto(`${ORIGIN}/cycles.html`);
+  await page.waitForFunction(() => window.__cycles);
+  // The measurement sees a live designer's worker and context.
+  expect(await page.evaluate(() => window.__cycles.keep('models/ico.off'))).toBe(320);
+  expect(page.workers().length).toBe(1);
+  await page.evaluate(() => window.__cycles.state.live.pop().remove());
+  await expect.poll(() => page.workers().length).toBe(0);
+
+  const result = await page.evaluate(() => window.__cycles.run(20, 'models/ico.off'));
+  expect(result.created).toBe(21);
+  // Every removed element gave its WebGL context back at once (21 = the probe above and the 20 cycles).
+  expect(result.contextsLost).toBe(21);
+  await expect.poll(() => page.workers().length).toBe(0);
+  // Past Chromium's cap of 16 live contexts a leak would have cost an old context; a new designer works.
+  expect(await page.evaluate(() => window.__cycles.keep('models/ico.off'))).toBe(320);
+  expect(page.workers().length).toBe(1);
+  expect(contextWarnings).toEqual([]);
+  expect(errors).toEqual([]);
+});
+
+test('attributes drive the element and are reflected; an embedded element autosaves only when asked', async ({ page }) => {
+  const errors = trackErrors(page);
+  await page.goto(`${ORIGIN}/attributes.html`);
+  await page.evaluate(() => document.getElementById('d').ready);
+  const state = () =>
+    page.evaluate(() => {
+      const el = document.getElementById('d');
+      const stroke = el.shadowRoot.querySelector('[data-tool="stroke"]');
+      return {
+        settings: el.settings(),
+        constraints: el.constraints().map((c) => c.type),
+        views: el.views(),
+        props: { gamma: el.gamma, readonly: el.readonly, tool: el.tool, controls: el.controls },
+        strokeButtonShown: getComputedStyle(stroke).display !== 'none',
+        storage: Object.keys(localStorage).filter((k) => k.startsWith('tvf.')),
+      };
+    });
+  let s = await state();
+  expect(s.settings).toEqual({ boundary: 'free', gamma: 0.25 });
+  expect(s.constraints).toEqual(['source', 'sink']); // designs/two-sources.json
+  expect(s.views).toMatchObject({ arrows: true, singularities: true, streamlines: false, colorMap: false });
+  expect(s.props).toMatchObject({ gamma: 0.25, readonly: true, controls: 'minimal' });
+  expect(s.strokeButtonShown).toBe(false); // readonly: no editing tools
+  // readonly keeps the tools on orbit/select (the source attribute asked for an edit tool).
+  expect(await page.evaluate(() => document.getElementById('d').shadowRoot.querySelector('[data-tool="orbit"]').getAttribute('aria-pressed'))).toBe('true');
+
+  // Properties write the attributes, and the element follows.
+  await page.evaluate(() => {
+    const el = document.getElementById('d');
+    el.readonly = false;
+    el.gamma = 0.5;
+    el.tool = 'stroke';
+  });
+  expect(await page.evaluate(() => ['readonly', 'gamma', 'tool'].map((a) => document.getElementById('d').getAttribute(a)))).toEqual([null, '0.5', 'stroke']);
+  await expect.poll(async () => (await state()).settings.gamma).toBe(0.5);
+  s = await state();
+  expect(s.strokeButtonShown).toBe(true);
+  expect(await page.evaluate(() => document.getElementById('d').shadowRoot.querySelector('[data-tool="stroke"]').getAttribute('aria-pressed'))).toBe('true');
+  expect(await page.evaluate(() => document.getElementById('d').history().undo)).toEqual(['load design', 'γ']);
+
+  // Edits without the autosave attribute leave localStorage alone; with it, they are stored under its key.
+  await page.evaluate(() => document.getElementById('d').addVortex(3));
+  expect((await state()).storage).toEqual([]);
+  await page.evaluate(() => (document.getElementById('d').autosave = 'notes'));
+  await page.evaluate(() => document.getElementById('d').addVortex(4));
+  const keys = (await state()).storage;
+  expect(keys).toHaveLength(1);
+  expect(keys[0]).toMatch(/^tvf\.autosave\.v1:notes\|ico\.off\|/);
+  expect((await record(page)).events.filter((e) => e.type === 'error')).toEqual([]);
+  expect(errors).toEqual([]);
+});

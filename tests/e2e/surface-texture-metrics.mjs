@@ -1,0 +1,252 @@
+// Measures of a textured model as any glTF viewer shows it (shared/design texture-quality.md): from a GLB's own
+// TEXCOORD_0 and embedded PNG (image row 0 = v 0), stripe direction on the surface against the field, and the
+// colour jump across chart seams against the jump across interior edges.
+import { inflateSync } from 'node:zlib';
+
+// RGBA8 pixels of a PNG (8-bit RGB/RGBA, non-interlaced).
+export function decodePng(bytes) {
+  const b = Buffer.from(bytes);
+  let off = 8, width = 0, height = 0, colourType = 0;
+  const idat = [];
+  while (off < b.length) {
+    const len = b.readUInt32BE(off), type = b.toString('latin1', off + 4, off + 8);
+    const data = b.subarray(off + 8, off + 8 + len);
+    if (type === 'IHDR') (width = data.readUInt32BE(0)), (height = data.readUInt32BE(4)), (colourType = data[9]);
+    if (type === 'IDAT') idat.push(data);
+    off += 12 + len;
+  }
+  const channels = colourType === 6 ? 4 : 3;
+  const raw = inflateSync(Buffer.concat(idat));
+  const stride = width * channels;
+  const out = new Uint8Array(width * height * 4);
+  const prev = new Uint8Array(stride), cur = new Uint8Array(stride);
+  for (let y = 0; y < height; y++) {
+    const filter = raw[y * (stride + 1)];
+    const line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
+    for (let i = 0; i < stride; i++) {
+      const a = i >= channels ? cur[i - channels] : 0, up = prev[i], c = i >= channels ? prev[i - channels] : 0;
+      let v = line[i];
+      if (filter === 1) v += a;
+      else if (filter === 2) v += up;
+      else if (filter === 3) v += (a + up) >> 1;
+      else if (filter === 4) {
+        const p = a + up - c, pa = Math.abs(p - a), pb = Math.abs(p - up), pc = Math.abs(p - c);
+        v += pa <= pb && pa <= pc ? a : pb <= pc ? up : c;
+      }
+      cur[i] = v & 255;
+    }
+    for (let x = 0; x < width; x++) for (let k = 0; k < 4; k++) out[4 * (y * width + x) + k] = k < channels ? cur[x * channels + k] : 255;
+    prev.set(cur);
+  }
+  return { width, height, pixels: out };
+}
+
+// {positions (3 per vertex), uvs (2 per vertex), indices, image} of the first primitive of a GLB.
+export function readGlb(bytes) {
+  const b = Buffer.from(bytes);
+  if (b.readUInt32LE(0) !== 0x46546c67) throw new Error('not a GLB');
+  const jsonLen = b.readUInt32LE(12);
+  const json = JSON.parse(b.toString('utf8', 20, 20 + jsonLen));
+  const binStart = 20 + jsonLen + 8;
+  const view = (i) => {
+    const v = json.bufferViews[i];
+    return b.subarray(binStart + (v.byteOffset ?? 0), binStart + (v.byteOffset ?? 0) + v.byteLength);
+  };
+  const accessor = (i) => {
+    const a = json.accessors[i];
+    const raw = view(a.bufferView);
+    const n = a.count * { SCALAR: 1, VEC2: 2, VEC3: 3 }[a.type];
+    const T = { 5126: Float32Array, 5125: Uint32Array, 5123: Uint16Array }[a.componentType];
+    return new T(raw.buffer.slice(raw.byteOffset + (a.byteOffset ?? 0), raw.byteOffset + (a.byteOffset ?? 0) + n * T.BYTES_PER_ELEMENT));
+  };
+  const prim = json.meshes[0].primitives[0];
+  const material = json.materials[prim.material];
+  const texture = json.textures[material.pbrMetallicRoughness.baseColorTexture.index];
+  const image = decodePng(view(json.images[texture.source].bufferView));
+  return { positions: accessor(prim.attributes.POSITION), uvs: accessor(prim.attributes.TEXCOORD_0), indices: accessor(prim.indices), image };
+}
+
+const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const norm = (a) => Math.hypot(a[0], a[1], a[2]);
+
+// Per face of the GLB (non-indexed or indexed): 3D corners, pixel-space corners (u W, v H), normal, area.
+function faces({ positions, uvs, indices, image }) {
+  const W = image.width, H = image.height;
+  const out = [];
+  for (let f = 0; f < indices.length / 3; f++) {
+    const idx = [0, 1, 2].map((k) => indices[3 * f + k]);
+    const P = idx.map((i) => [positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]]);
+    const Q = idx.map((i) => [uvs[2 * i] * W, uvs[2 * i + 1] * H]);
+    const n = cross(sub(P[1], P[0]), sub(P[2], P[0]));
+    const l = norm(n);
+    out.push({ P, Q, n: l > 0 ? n.map((x) => x / l) : [0, 0, 0], area: l / 2, centroid: [0, 1, 2].map((c) => (P[0][c] + P[1][c] + P[2][c]) / 3) });
+  }
+  return out;
+}
+
+function luminance(image) {
+  const { width: W, height: H, pixels } = image;
+  const L = new Float32Array(W * H);
+  const alpha = new Uint8Array(W * H);
+  for (let i = 0; i < W * H; i++) {
+    L[i] = 0.299 * pixels[4 * i] + 0.587 * pixels[4 * i + 1] + 0.114 * pixels[4 * i + 2];
+    alpha[i] = pixels[4 * i + 3] > 0 && pixels[4 * i] + pixels[4 * i + 1] + pixels[4 * i + 2] > 0 ? 1 : 0;
+  }
+  return { L, alpha };
+}
+
+// Pixel centres inside face f's pixel-space triangle, with the face's pixel -> surface map A = E T^-1 (3x2).
+function facePixels(face, W, H, visit) {
+  const [q0, q1, q2] = face.Q;
+  const t = [q1[0] - q0[0], q2[0] - q0[0], q1[1] - q0[1], q2[1] - q0[1]];
+  const det = t[0] * t[3] - t[1] * t[2];
+  if (!(Math.abs(det) > 1e-12)) return;
+  const ti = [t[3] / det, -t[1] / det, -t[2] / det, t[0] / det];
+  const e1 = sub(face.P[1], face.P[0]), e2 = sub(face.P[2], face.P[0]);
+  const A = [0, 1].map((c) => [0, 1, 2].map((k) => e1[k] * ti[c] + e2[k] * ti[2 + c])); // columns
+  const x0 = Math.max(0, Math.floor(Math.min(q0[0], q1[0], q2[0]))), x1 = Math.min(W - 1, Math.ceil(Math.max(q0[0], q1[0], q2[0])));
+  const y0 = Math.max(0, Math.floor(Math.min(q0[1], q1[1], q2[1]))), y1 = Math.min(H - 1, Math.ceil(Math.max(q0[1], q1[1], q2[1])));
+  for (let y = y0; y <= y1; y++)
+    for (let x = x0; x <= x1; x++) {
+      const dx = x + 0.5 - q0[0], dy = y + 0.5 - q0[1];
+      const l1 = ti[0] * dx + ti[1] * dy, l2 = ti[2] * dx + ti[3] * dy;
+      if (l1 < 0 || l2 < 0 || l1 + l2 > 1) continue;
+      visit(x, y, A);
+    }
+}
+
+// Stripe direction vs the field per face (texture-quality.md): every pixel's luminance gradient (central
+// differences, only where all 4 neighbours are textured) carried to the surface, g = A (A^T A)^-1 g_px,
+// accumulated as g g^T per face, summed over faces within 2 periods (Gaussian, sigma = period, by centroid
+// distance: across chart seams), the dominant direction projected into the face's plane; stripe direction =
+// n x that. fieldPerFace: 3 per face. Returns area-weighted mean error (degrees, mod 180) and share within 10°.
+export function stripeAlignment(glb, fieldPerFace, period) {
+  const { width: W, height: H } = glb.image;
+  const { L, alpha } = luminance(glb.image);
+  const F = faces(glb);
+  const tensors = new Float64Array(6 * F.length);
+  F.forEach((face, f) => {
+    facePixels(face, W, H, (x, y, A) => {
+      if (x < 1 || y < 1 || x >= W - 1 || y >= H - 1) return;
+      const i = y * W + x;
+      if (!alpha[i - 1] || !alpha[i + 1] || !alpha[i - W] || !alpha[i + W]) return;
+      const gx = (L[i + 1] - L[i - 1]) / 2, gy = (L[i + W] - L[i - W]) / 2;
+      // (A^T A)^-1 g_px, then A times it.
+      const a = dot(A[0], A[0]), b = dot(A[0], A[1]), c = dot(A[1], A[1]), d = a * c - b * b;
+      if (!(d > 0)) return;
+      const s = (c * gx - b * gy) / d, t = (-b * gx + a * gy) / d;
+      const g = [0, 1, 2].map((k) => A[0][k] * s + A[1][k] * t);
+      const T = tensors.subarray(6 * f, 6 * f + 6);
+      T[0] += g[0] * g[0], T[1] += g[0] * g[1], T[2] += g[0] * g[2], T[3] += g[1] * g[1], T[4] += g[1] * g[2], T[5] += g[2] * g[2];
+    });
+  });
+  // Spatial hash of centroids at cell size 2 periods.
+  const cell = 2 * period;
+  const grid = new Map();
+  const key = (p) => p.map((x) => Math.floor(x / cell)).join(',');
+  F.forEach((face, f) => {
+    const k = key(face.centroid);
+    if (!grid.has(k)) grid.set(k, []);
+    grid.get(k).push(f);
+  });
+  let sumW = 0, sumErr = 0, within = 0, measured = 0;
+  const errors = new Float64Array(F.length).fill(NaN);
+  F.forEach((face, f) => {
+    const v = fieldPerFace.slice(3 * f, 3 * f + 3);
+    if (!(face.area > 0) || !(norm(v) > 1e-9)) return;
+    const S = new Float64Array(6);
+    const c = face.centroid.map((x) => Math.floor(x / cell));
+    for (let dx = -1; dx <= 1; dx++)
+      for (let dy = -1; dy <= 1; dy++)
+        for (let dz = -1; dz <= 1; dz++)
+          for (const g of grid.get(`${c[0] + dx},${c[1] + dy},${c[2] + dz}`) ?? []) {
+            const d = norm(sub(F[g].centroid, face.centroid));
+            if (d > cell) continue;
+            const w = Math.exp(-(d * d) / (2 * period * period));
+            for (let k = 0; k < 6; k++) S[k] += w * tensors[6 * g + k];
+          }
+    // In-plane basis and the 2x2 tensor.
+    const n = face.n;
+    const b1 = (() => {
+      const e = sub(face.P[1], face.P[0]);
+      const l = norm(e);
+      return e.map((x) => x / l);
+    })();
+    const b2 = cross(n, b1);
+    const Tv = (u, w) => u[0] * (S[0] * w[0] + S[1] * w[1] + S[2] * w[2]) + u[1] * (S[1] * w[0] + S[3] * w[1] + S[4] * w[2]) + u[2] * (S[2] * w[0] + S[4] * w[1] + S[5] * w[2]);
+    const m11 = Tv(b1, b1), m12 = Tv(b1, b2), m22 = Tv(b2, b2);
+    if (!(m11 + m22 > 0)) return;
+    const gradAngle = 0.5 * Math.atan2(2 * m12, m11 - m22); // dominant gradient direction in (b1, b2)
+    const stripeAngle = gradAngle + Math.PI / 2;
+    const fieldAngle = Math.atan2(dot(v, b2), dot(v, b1));
+    let err = Math.abs(stripeAngle - fieldAngle) % Math.PI;
+    if (err > Math.PI / 2) err = Math.PI - err;
+    const deg = (err * 180) / Math.PI;
+    errors[f] = deg;
+    sumW += face.area;
+    sumErr += face.area * deg;
+    if (deg <= 10) within += face.area;
+    measured++;
+  });
+  return { meanDegrees: sumErr / sumW, shareWithin10: within / sumW, faces: measured, errors };
+}
+
+// Colour jump across seam edges (the two faces' UVs differ at the edge) against interior edges: colours sampled
+// (bilinear) 1.5 pixels into each face at 3 points along the edge. triangles: the mesh's own vertex indices (the
+// GLB is unwelded), 3 per face in the GLB's face order.
+export function seamJumpRatio(glb, triangles) {
+  const { width: W, height: H, pixels } = glb.image;
+  const F = faces(glb);
+  const sample = (x, y) => {
+    const x0 = Math.floor(x - 0.5), y0 = Math.floor(y - 0.5), fx = x - 0.5 - x0, fy = y - 0.5 - y0;
+    const at = (xx, yy, k) => pixels[4 * (Math.min(H - 1, Math.max(0, yy)) * W + Math.min(W - 1, Math.max(0, xx))) + k];
+    return [0, 1, 2].map((k) => (1 - fy) * ((1 - fx) * at(x0, y0, k) + fx * at(x0 + 1, y0, k)) + fy * ((1 - fx) * at(x0, y0 + 1, k) + fx * at(x0 + 1, y0 + 1, k)));
+  };
+  const edges = new Map();
+  for (let f = 0; f < triangles.length / 3; f++)
+    for (let k = 0; k < 3; k++) {
+      const a = triangles[3 * f + k], b = triangles[3 * f + ((k + 1) % 3)];
+      const key = a < b ? `${a},${b}` : `${b},${a}`;
+      if (!edges.has(key)) edges.set(key, []);
+      edges.get(key).push({ f, ka: a < b ? k : (k + 1) % 3, kb: a < b ? (k + 1) % 3 : k });
+    }
+  // The point on the edge at t, moved 1.5 px towards the face's third corner.
+  const inside = (face, ka, kb, t) => {
+    const A = face.Q[ka], B = face.Q[kb], C = face.Q[3 - ka - kb];
+    const p = [A[0] + t * (B[0] - A[0]), A[1] + t * (B[1] - A[1])];
+    const e = [B[0] - A[0], B[1] - A[1]];
+    let nrm = [-e[1], e[0]];
+    if ((C[0] - A[0]) * nrm[0] + (C[1] - A[1]) * nrm[1] < 0) nrm = [e[1], -e[0]];
+    const l = Math.hypot(nrm[0], nrm[1]) || 1;
+    return [p[0] + (1.5 * nrm[0]) / l, p[1] + (1.5 * nrm[1]) / l];
+  };
+  let seam = 0, nSeam = 0, interior = 0, nInterior = 0, seamEdges = 0;
+  for (const list of edges.values()) {
+    if (list.length !== 2) continue;
+    const [e0, e1] = list;
+    const f0 = F[e0.f], f1 = F[e1.f];
+    const same = (p, q) => Math.abs(p[0] - q[0]) < 1e-3 && Math.abs(p[1] - q[1]) < 1e-3;
+    const isSeam = !(same(f0.Q[e0.ka], f1.Q[e1.ka]) && same(f0.Q[e0.kb], f1.Q[e1.kb]));
+    seamEdges += isSeam;
+    for (const t of [0.25, 0.5, 0.75]) {
+      const c0 = sample(...inside(f0, e0.ka, e0.kb, t)), c1 = sample(...inside(f1, e1.ka, e1.kb, t));
+      const j = Math.abs(c0[0] - c1[0]) + Math.abs(c0[1] - c1[1]) + Math.abs(c0[2] - c1[2]);
+      if (isSeam) (seam += j), nSeam++;
+      else (interior += j), nInterior++;
+    }
+  }
+  return { seamJump: seam / nSeam, interiorJump: interior / nInterior, ratio: seam / nSeam / (interior / nInterior), seamEdges };
+}
+
+// Surface length per pixel of the GLB's image at the atlas's mean density.
+export function pixelLength(glb) {
+  let a3 = 0, a2 = 0;
+  for (const face of faces(glb)) {
+    a3 += face.area;
+    const [q0, q1, q2] = face.Q;
+    a2 += Math.abs((q1[0] - q0[0]) * (q2[1] - q0[1]) - (q2[0] - q0[0]) * (q1[1] - q0[1])) / 2;
+  }
+  return Math.sqrt(a3 / a2);
+}

@@ -1,0 +1,192 @@
+// Texture quality and page behaviour during synthesis (issue: sharp, seamless, never freezing the page), on the
+// small flat square with TEXCOORD_0 = (x, y) and small atlases (software WebGL):
+// - magnification: the exported texture at 8 pixels per atlas texel has no texel-sized steps — colour jumps
+//   across texel boundaries are no larger than inside texels (a texture made per texel would jump there);
+// - the page keeps producing frames and handling input while a texture is synthesized, with progress shown;
+//   the same synthesis run without interleaving produces no frames at all (the truth the count is read against);
+// - "update texture automatically" off: field changes leave the texture as it is (marked stale) until it is on.
+import { expect, test } from '@playwright/test';
+import { inflateSync } from 'node:zlib';
+import { flatSquareGlb } from '../../web/synthesis/glb.js';
+import { openDesigner, trackErrors } from './helpers.mjs';
+
+// RGBA8 pixels of a PNG (8-bit RGB or RGBA, non-interlaced: what the page writes).
+function decodePng(bytes) {
+  const b = Buffer.from(bytes);
+  let off = 8, width = 0, height = 0, colourType = 0;
+  const idat = [];
+  while (off < b.length) {
+    const len = b.readUInt32BE(off), type = b.toString('latin1', off + 4, off + 8);
+    const data = b.subarray(off + 8, off + 8 + len);
+    if (type === 'IHDR') (width = data.readUInt32BE(0)), (height = data.readUInt32BE(4)), (colourType = data[9]);
+    if (type === 'IDAT') idat.push(data);
+    off += 12 + len;
+  }
+  const channels = colourType === 6 ? 4 : 3;
+  const raw = inflateSync(Buffer.concat(idat));
+  const stride = width * channels;
+  const out = new Uint8Array(width * height * 4);
+  const prev = new Uint8Array(stride), cur = new Uint8Array(stride);
+  for (let y = 0; y < height; y++) {
+    const filter = raw[y * (stride + 1)];
+    const line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
+    for (let i = 0; i < stride; i++) {
+      const a = i >= channels ? cur[i - channels] : 0, up = prev[i], c = i >= channels ? prev[i - channels] : 0;
+      let v = line[i];
+      if (filter === 1) v += a;
+      else if (filter === 2) v += up;
+      else if (filter === 3) v += (a + up) >> 1;
+      else if (filter === 4) {
+        const p = a + up - c, pa = Math.abs(p - a), pb = Math.abs(p - up), pc = Math.abs(p - c);
+        v += pa <= pb && pa <= pc ? a : pb <= pc ? up : c;
+      }
+      cur[i] = v & 255;
+    }
+    for (let x = 0; x < width; x++)
+      for (let k = 0; k < 4; k++) out[4 * (y * width + x) + k] = k < channels ? cur[x * channels + k] : 255;
+    prev.set(cur);
+  }
+  return { width, height, pixels: out };
+}
+
+// Colour jumps between horizontally and vertically adjacent pixels, split by whether the pair straddles an
+// atlas texel boundary (every `mag` pixels) or lies inside one texel: the share of large jumps (> `big`, sum of
+// RGB differences) in each set. A texture shaded per texel steps at patch seams, which lie on texel
+// boundaries only; a continuous one has no reason to jump more often there than anywhere else.
+function texelStepStatistics({ width, height, pixels }, mag, big = 60) {
+  let across = 0, nAcross = 0, inside = 0, nInside = 0;
+  const jump = (i, j) => Math.abs(pixels[i] - pixels[j]) + Math.abs(pixels[i + 1] - pixels[j + 1]) + Math.abs(pixels[i + 2] - pixels[j + 2]);
+  for (let y = 0; y < height - 1; y++)
+    for (let x = 0; x < width - 1; x++) {
+      const i = 4 * (y * width + x);
+      for (const [j, boundary] of [
+        [i + 4, (x + 1) % mag === 0],
+        [i + 4 * width, (y + 1) % mag === 0],
+      ]) {
+        const large = jump(i, j) > big ? 1 : 0;
+        if (boundary) (across += large), nAcross++;
+        else (inside += large), nInside++;
+      }
+    }
+  return { across: across / nAcross, inside: inside / nInside };
+}
+
+test.describe.serial('texture quality and responsiveness (flat square)', () => {
+  let page, errors, face;
+
+  test.beforeAll(async ({ browser }) => {
+    page = await browser.newPage();
+    errors = trackErrors(page);
+    await openDesigner(page);
+    await page.evaluate((bytes) => window.tvf.loadModel(new Uint8Array(bytes), { name: 'flat-square.glb' }), Array.from(flatSquareGlb(8)));
+    face = 0;
+    await page.evaluate(() => window.tvf.setExemplar('stripes'));
+  });
+
+  test.afterAll(async () => {
+    await page?.close();
+  });
+
+  const design = (deg) => {
+    const t = (deg * Math.PI) / 180;
+    return { boundary: 'free', gamma: 0, constraints: [{ type: 'vector', face, vector: [Math.cos(t), Math.sin(t), 0], weight: 1e4 }] };
+  };
+
+  test('8 pixels per atlas texel: no texel-sized steps (magnification blends the neighbouring patches)', async ({}, testInfo) => {
+    await page.evaluate((d) => window.tvf.loadDesign(d), design(30));
+    // A small atlas and a small feature scale: many patch seams per texel row, where per-texel shading steps.
+    const stats = await page.evaluate(() => window.tvf.synthesize({ resolution: 64, featureScale: 0.5 }));
+    expect(stats.resolution).toBe(64);
+    const bytes = await page.evaluate(async () => Array.from(new Uint8Array(await (await window.tvf.exportTexturePNG({ magnification: 8 })).arrayBuffer())));
+    const image = decodePng(bytes);
+    expect(image.width).toBe(512);
+    const s = texelStepStatistics(image, 8);
+    // The same coordinates shaded per texel (each pixel from its own texel's patch only, as before): steps.
+    const perTexel = await page.evaluate(async () => {
+      const r = await window.tvf.synthesisReadback();
+      return { coords: Array.from(r.coords), jacobian: Array.from(r.jacobian), exemplar: Array.from(r.exemplar), m: r.exemplarSize, R: r.resolution };
+    });
+    const { coords, jacobian, exemplar, m, R } = perTexel;
+    const mag = 8, W = R * mag;
+    const px = new Uint8Array(W * W * 4);
+    const bilinear = (cx, cy, k) => {
+      const x0 = Math.floor(cx - 0.5), y0 = Math.floor(cy - 0.5), fx = cx - 0.5 - x0, fy = cy - 0.5 - y0;
+      const at = (x, y) => exemplar[4 * ((((y % m) + m) % m) * m + (((x % m) + m) % m)) + k];
+      return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) + fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+    };
+    for (let y = 0; y < W; y++)
+      for (let x = 0; x < W; x++) {
+        const X = (x + 0.5) / mag, Y = (y + 0.5) / mag, tx = Math.floor(X), ty = Math.floor(Y), t = 4 * (ty * R + tx);
+        const dx = X - tx - 0.5, dy = Y - ty - 0.5;
+        const cx = coords[t] + jacobian[t] * dx + jacobian[t + 2] * dy, cy = coords[t + 1] + jacobian[t + 1] * dx + jacobian[t + 3] * dy;
+        for (let k = 0; k < 3; k++) px[4 * (y * W + x) + k] = Math.round(bilinear(cx, cy, k));
+      }
+    const old = texelStepStatistics({ width: W, height: W, pixels: px }, mag);
+    console.log(JSON.stringify({ largeJumpShare: { magnified: s, perTexel: old } }));
+    testInfo.attach('zoomed.png', { body: Buffer.from(bytes), contentType: 'image/png' });
+    expect(old.across, 'per-texel shading does step at texel boundaries (the test can see steps)').toBeGreaterThan(Math.max(3 * old.inside, 1e-3));
+    // Magnified: large jumps at texel boundaries no more often than 1 in 10^4 pairs (or twice the rate inside).
+    expect(s.across, 'magnified: no texel-sized steps').toBeLessThan(Math.max(2 * s.inside, 1e-4));
+    expect(s.across).toBeLessThan(old.across / 20);
+  });
+
+  test('the page keeps rendering and handling input while a texture is synthesized, with progress', async () => {
+    // Blocking run first (interleave off): the frame count over the run is the baseline.
+    const count = (interleave) =>
+      page.evaluate(async (interleave) => {
+        let frames = 0, running = true;
+        const tick = () => {
+          frames++;
+          if (running) requestAnimationFrame(tick);
+        };
+        requestAnimationFrame(tick);
+        await new Promise((r) => requestAnimationFrame(() => r()));
+        frames = 0;
+        await window.tvf.synthesize({ resolution: 256, featureScale: 1, interleave, seed: interleave ? 2 : 3 });
+        running = false;
+        return frames;
+      }, interleave);
+    const blocking = await count(false);
+    const interleaved = await count(true);
+    console.log(JSON.stringify({ framesBlocking: blocking, framesInterleaved: interleaved }));
+    expect(blocking).toBeLessThanOrEqual(2);
+    expect(interleaved).toBeGreaterThan(10);
+
+    // Input while synthesizing: a click on a probe button is handled while the synthesis still runs (the probe
+    // records the progress at that moment), and the panel's progress bar shows and advances meanwhile.
+    await page.evaluate(() => {
+      const b = Object.assign(document.createElement('button'), { id: 'probe', textContent: 'probe' });
+      b.style.cssText = 'position:fixed;left:0;top:0;z-index:99';
+      b.addEventListener('click', () => (window.__probe = { progress: window.tvf.synthesisProgress(), bar: document.getElementById('tex-progress').value }));
+      document.body.append(b);
+      window.__synth = window.tvf.synthesize({ resolution: 512, seed: 4 });
+    });
+    await page.waitForFunction(() => (window.tvf.synthesisProgress()?.fraction ?? 0) > 0.02 && !document.getElementById('tex-progress').hidden);
+    await page.click('#probe');
+    const probe = await page.evaluate(() => window.__probe);
+    expect(probe.progress, 'the click was handled while the synthesis was still running').not.toBeNull();
+    expect(probe.bar).toBeGreaterThan(0.02);
+    const done = await page.evaluate(() => window.__synth);
+    expect(done.resolution).toBe(512);
+    expect(await page.locator('#tex-progress').evaluate((e) => e.hidden)).toBe(true);
+    console.log(JSON.stringify({ probeProgress: probe.progress.fraction }));
+  });
+
+  test('"update texture automatically" off: field changes leave the texture until switched back on', async () => {
+    await page.evaluate((d) => window.tvf.loadDesign(d), design(0));
+    const first = await page.evaluate(() => window.tvf.synthesize({ resolution: 64, featureScale: 1 }));
+    await page.locator('#tex-auto-update').uncheck();
+    await page.evaluate((d) => window.tvf.loadDesign(d), design(90));
+    const still = await page.evaluate(() => window.tvf.synthesisIdle());
+    expect(still.fieldVersion).toBe(first.fieldVersion);
+    await expect(page.locator('#tex-status')).toContainText('field changed');
+    await page.locator('#tex-auto-update').check();
+    const after = await page.evaluate(() => window.tvf.synthesisIdle());
+    expect(after.fieldVersion).not.toBe(first.fieldVersion);
+    expect(after.preview).toBe(false);
+  });
+
+  test('no console errors', () => {
+    expect(errors).toEqual([]);
+  });
+});

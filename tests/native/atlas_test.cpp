@@ -1,0 +1,239 @@
+// The texture atlas (core/texture/texture_atlas): generated charts checked with a rasterizer of the test's
+// own (flips, overlaps, gutters between charts, texel density, coverage) and the usable-TEXCOORD_0 decision.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "test_meshes.h"
+#include "texture/texture_atlas.h"
+
+using namespace tvf;
+using namespace tvf::testing;
+
+namespace {
+
+double uvArea(const std::vector<float>& uv, int32_t f) {
+  const float* t = &uv[6 * static_cast<size_t>(f)];
+  return 0.5 *
+         ((double(t[2]) - t[0]) * (double(t[5]) - t[1]) - (double(t[4]) - t[0]) * (double(t[3]) - t[1]));
+}
+
+double surfaceArea(const SurfaceMesh& m, int32_t f) {
+  double p[3][3];
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 3; ++c) p[k][c] = m.positions[3 * m.triangles[3 * f + k] + c];
+  const double a[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+  const double b[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+  const double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+// Per texel centre of an n x n grid: the chart of the face strictly containing it (barycentric coordinates
+// all above eps), -1 if none, -2 if faces of two charts or two faces' interiors contain it.
+struct Raster {
+  std::vector<int32_t> chart;
+  int overlaps = 0;
+};
+
+Raster rasterize(const TextureAtlas& atlas, int n) {
+  Raster r{std::vector<int32_t>(static_cast<size_t>(n) * n, -1), 0};
+  std::vector<int32_t> face(r.chart.size(), -1);
+  const int32_t nF = static_cast<int32_t>(atlas.faceChart.size());
+  for (int32_t f = 0; f < nF; ++f) {
+    if (atlas.faceChart[f] < 0) continue;
+    const float* t = &atlas.cornerUVs[6 * static_cast<size_t>(f)];
+    const double ax = t[0] * n, ay = t[1] * n, bx = t[2] * n, by = t[3] * n, cx = t[4] * n, cy = t[5] * n;
+    const double det = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
+    if (det == 0) continue;
+    const int x0 = std::max(0, int(std::floor(std::min({ax, bx, cx})))),
+              x1 = std::min(n - 1, int(std::ceil(std::max({ax, bx, cx}))));
+    const int y0 = std::max(0, int(std::floor(std::min({ay, by, cy})))),
+              y1 = std::min(n - 1, int(std::ceil(std::max({ay, by, cy}))));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const double px = x + 0.5, py = y + 0.5;
+        const double l1 = ((px - ax) * (cy - ay) - (cx - ax) * (py - ay)) / det;
+        const double l2 = ((bx - ax) * (py - ay) - (px - ax) * (by - ay)) / det;
+        const double l0 = 1 - l1 - l2;
+        constexpr double eps = 1e-6;
+        if (l0 <= eps || l1 <= eps || l2 <= eps) continue;
+        const size_t k = static_cast<size_t>(y) * n + x;
+        if (face[k] >= 0) {
+          ++r.overlaps;
+          r.chart[k] = -2;
+        } else {
+          face[k] = f;
+          r.chart[k] = atlas.faceChart[f];
+        }
+      }
+  }
+  return r;
+}
+
+// Every texel of one chart is more than 2 * gutter texels (Chebyshev) from every texel of another chart.
+int gutterViolations(const Raster& r, int n, int gutter) {
+  int bad = 0;
+  const int reach = 2 * gutter;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const int32_t c = r.chart[static_cast<size_t>(y) * n + x];
+      if (c < 0) continue;
+      for (int dy = -reach; dy <= reach; ++dy)
+        for (int dx = -reach; dx <= reach; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx < 0 || yy < 0 || xx >= n || yy >= n) continue;
+          const int32_t o = r.chart[static_cast<size_t>(yy) * n + xx];
+          if (o >= 0 && o != c) ++bad;
+        }
+    }
+  return bad;
+}
+
+// Area-weighted quantile of the per-face texel density sqrt(UV area / surface area), over the median.
+std::vector<double> densityQuantiles(const SurfaceMesh& m, const TextureAtlas& atlas,
+                                     std::vector<double> qs) {
+  std::vector<std::pair<double, double>> d;
+  double total = 0;
+  for (int32_t f = 0; f < m.numFaces(); ++f) {
+    const double a = surfaceArea(m, f);
+    d.push_back({std::sqrt(std::abs(uvArea(atlas.cornerUVs, f)) / a), a});
+    total += a;
+  }
+  std::sort(d.begin(), d.end());
+  auto at = [&](double q) {
+    double acc = 0;
+    for (const auto& [v, w] : d)
+      if ((acc += w) >= q * total) return v;
+    return d.back().first;
+  };
+  const double median = at(0.5);
+  for (double& q : qs) q = at(q) / median;
+  return qs;
+}
+
+void expectValidAtlas(const SurfaceMesh& mesh, const TextureAtlas& atlas, double minCoverage) {
+  const int n = atlas.resolution;
+  ASSERT_EQ(atlas.cornerUVs.size(), 6u * mesh.numFaces());
+  ASSERT_EQ(atlas.faceChart.size(), size_t(mesh.numFaces()));
+  for (float u : atlas.cornerUVs) {
+    ASSERT_GE(u, 0.0f);
+    ASSERT_LE(u, 1.0f);
+  }
+  // Flip-free: every face keeps the orientation of its surface winding.
+  int flipped = 0;
+  for (int32_t f = 0; f < mesh.numFaces(); ++f) {
+    ASSERT_GE(atlas.faceChart[f], 0) << "face " << f;
+    flipped += !(uvArea(atlas.cornerUVs, f) > 0);
+  }
+  EXPECT_EQ(flipped, 0);
+  const Raster r = rasterize(atlas, n);
+  EXPECT_EQ(r.overlaps, 0);
+  EXPECT_EQ(gutterViolations(r, n, atlas.gutter), 0);
+  size_t covered = 0;
+  for (int32_t c : r.chart) covered += c >= 0;
+  const double coverage = double(covered) / r.chart.size();
+  EXPECT_GE(coverage, minCoverage);
+  EXPECT_NEAR(coverage, atlas.measures.coverage, 0.01);
+  const std::vector<double> q = densityQuantiles(mesh, atlas, {0.05, 0.95});
+  EXPECT_GT(q[0], 0.7);
+  EXPECT_LT(q[1], 1.4);
+  EXPECT_EQ(atlas.measures.flippedFaces, 0);
+  EXPECT_EQ(atlas.measures.overlap, 0.0);
+  std::printf(
+      "atlas: %d charts, coverage %.3f, used %.3f, density p05 %.2f p95 %.2f, L2 stretch %.3f, %.0f ms\n",
+      atlas.numCharts, coverage, atlas.used, q[0], q[1], atlas.measures.stretchL2, atlas.milliseconds);
+}
+
+}  // namespace
+
+TEST(TextureAtlas, FlatSquareIsOneSimilarChartFillingTheSquare) {
+  SurfaceMesh grid = flatGrid(16, 1.0, true);
+  jitterPlanar(grid, 0.2 / 16, 7);  // a fifth of a cell: no folds
+  const TextureAtlas atlas = generateAtlas(grid, 128, 2);
+  EXPECT_EQ(atlas.numCharts, 1);
+  expectValidAtlas(grid, atlas, 0.75);
+  // A conformal map of a planar chart is a similarity: no stretch, one density.
+  EXPECT_NEAR(atlas.measures.stretchL2, 1.0, 1e-3);
+  EXPECT_NEAR(atlas.measures.densityMin, 1.0, 1e-3);
+  EXPECT_NEAR(atlas.measures.densityMax, 1.0, 1e-3);
+}
+
+TEST(TextureAtlas, CylinderIsFlattenedWithoutStretch) {
+  // A 108-degree piece of a cylinder is developable: LSCM maps it isometrically up to scale, as one chart.
+  SurfaceMesh c = flatGrid(24, 1.0, true);
+  for (int32_t v = 0; v < c.numVertices(); ++v) {
+    const double x = c.positions[3 * v], y = c.positions[3 * v + 1];
+    c.positions[3 * v] = std::cos(0.6 * M_PI * x);
+    c.positions[3 * v + 1] = 2 * y;
+    c.positions[3 * v + 2] = std::sin(0.6 * M_PI * x);
+  }
+  const TextureAtlas atlas = generateAtlas(c, 256, 2);
+  EXPECT_EQ(atlas.numCharts, 1);
+  expectValidAtlas(c, atlas, 0.5);
+  EXPECT_LT(atlas.measures.stretchL2, 1.01);
+}
+
+TEST(TextureAtlas, SphereAndTorusChartsAreFlipFreeDisjointAndEvenlyDense) {
+  for (const SurfaceMesh& mesh : {icosphere(3), torus(64, 24, 2.0, 0.7)}) {
+    const TextureAtlas atlas = generateAtlas(mesh, 256, 2);
+    SCOPED_TRACE(atlas.numCharts);
+    expectValidAtlas(mesh, atlas, 0.45);
+    EXPECT_LT(atlas.measures.stretchL2, 1.15);
+  }
+}
+
+TEST(TextureAtlas, SeveralComponentsAndGutters) {
+  const SurfaceMesh two = disjointUnion(icosphere(2), torus(32, 12, 2.0, 0.7));
+  for (int gutter : {0, 1, 3}) {
+    const TextureAtlas atlas = generateAtlas(two, 256, gutter);
+    SCOPED_TRACE(gutter);
+    expectValidAtlas(two, atlas, 0.4);
+  }
+}
+
+TEST(TextureAtlas, BadInputIsReported) {
+  const SurfaceMesh grid = flatGrid(4);
+  EXPECT_THROW(generateAtlas(grid, 8, 2), InputError);
+  EXPECT_THROW(generateAtlas(grid, 256, -1), InputError);
+  SurfaceMesh bad = grid;
+  bad.triangles[5] = 1000;
+  EXPECT_THROW(generateAtlas(bad, 256, 2), InputError);
+  EXPECT_THROW(generateAtlas(SurfaceMesh{}, 256, 2), InputError);
+}
+
+TEST(TextureAtlas, UsableTexcoordDecision) {
+  const SurfaceMesh grid = flatGrid(8);
+  std::vector<float> uv(6 * grid.numFaces());
+  for (int32_t f = 0; f < grid.numFaces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      uv[6 * f + 2 * k] = float(grid.positions[3 * grid.triangles[3 * f + k]]);
+      uv[6 * f + 2 * k + 1] = float(grid.positions[3 * grid.triangles[3 * f + k] + 1]);
+    }
+  const AtlasCheck ok = checkAtlasUVs(uv, grid.numFaces());
+  EXPECT_TRUE(ok.usable) << ok.reason;
+  EXPECT_NEAR(ok.coverage, 1.0, 1e-9);
+
+  std::vector<float> tiling = uv;
+  for (float& x : tiling) x *= 2;
+  EXPECT_FALSE(checkAtlasUVs(tiling, grid.numFaces()).usable);
+  EXPECT_NE(checkAtlasUVs(tiling, grid.numFaces()).reason.find("outside"), std::string::npos);
+
+  // Two halves of the surface stacked on the same texels (mirrored islands).
+  std::vector<float> stacked = uv;
+  for (size_t i = 0; i < stacked.size(); i += 2) stacked[i] = std::min(stacked[i], 1.0f - stacked[i]);
+  const AtlasCheck st = checkAtlasUVs(stacked, grid.numFaces());
+  EXPECT_FALSE(st.usable);
+  EXPECT_NE(st.reason.find("overlap"), std::string::npos);
+
+  std::vector<float> nan = uv;
+  nan[3] = std::nanf("");
+  EXPECT_FALSE(checkAtlasUVs(nan, grid.numFaces()).usable);
+  EXPECT_FALSE(checkAtlasUVs({}, grid.numFaces()).usable);
+
+  // A generated atlas passes its own check.
+  const TextureAtlas gen = generateAtlas(icosphere(2), 256, 2);
+  EXPECT_TRUE(checkAtlasUVs(gen.cornerUVs, icosphere(2).numFaces(), 256).usable);
+}

@@ -1,0 +1,144 @@
+// Durable autosave: designs kept in IndexedDB (no 5 MB localStorage cap), the last few versions per model and
+// per tab, so that a full localStorage never loses an edit and two tabs editing one model both keep their
+// designs. A BroadcastChannel tells the other tabs of the same origin when a model's design was saved, so each
+// tab can say that another one is editing the same model. One store per element (its autosave name).
+//
+// Records: {id, key, tab, savedAt, design}; key = element's autosave name + the model key (documents.js).
+import { loadAutosave as loadMirror, saveAutosave as saveMirror } from './documents.js';
+
+const DB_NAME = 'tvf-autosave';
+const STORE = 'versions';
+const CHANNEL = 'tvf-autosave';
+export const VERSIONS_KEPT = 5; // per model and tab
+
+function request(req) {
+  return new Promise((resolve, reject) => {
+    req.onsuccess = () => resolve(req.result);
+    req.onerror = () => reject(req.error ?? new Error('IndexedDB request failed'));
+  });
+}
+
+function done(tx) {
+  return new Promise((resolve, reject) => {
+    tx.oncomplete = () => resolve();
+    tx.onabort = tx.onerror = () => reject(tx.error ?? new Error('IndexedDB transaction failed'));
+  });
+}
+
+function isEmptyDesign(design) {
+  return !design.constraints?.length && (design.boundary ?? 'free') === 'free' && !design.gamma;
+}
+
+// A design whose numbers are all finite (JSON would turn NaN and Infinity into null and lose them).
+export function finiteDesign(design) {
+  let ok = true;
+  JSON.stringify(design, (k, v) => {
+    if (typeof v === 'number' && !Number.isFinite(v)) ok = false;
+    return v;
+  });
+  return ok;
+}
+
+export class AutosaveStore {
+  // name: the element's autosave attribute ('' on the app page); onOtherTab(key): another tab saved a design
+  // of the same model.
+  constructor(name, { onOtherTab = () => {} } = {}) {
+    this.name = name ?? '';
+    this.tab = `${Date.now().toString(36)}-${Math.random().toString(36).slice(2, 8)}`;
+    this.onOtherTab = onOtherTab;
+    this.db = null;
+    this.channel = typeof BroadcastChannel === 'function' ? new BroadcastChannel(CHANNEL) : null;
+    if (this.channel)
+      this.channel.onmessage = ({ data }) => {
+        if (data?.store === this.name && data.tab !== this.tab) this.onOtherTab(data.key);
+      };
+  }
+
+  close() {
+    this.channel?.close();
+    this.db?.close();
+  }
+
+  async #open() {
+    if (this.db) return this.db;
+    if (!globalThis.indexedDB) throw new Error('IndexedDB is not available in this browser');
+    const open = indexedDB.open(DB_NAME, 1);
+    open.onupgradeneeded = () => {
+      const store = open.result.createObjectStore(STORE, { keyPath: 'id', autoIncrement: true });
+      store.createIndex('byKey', 'key');
+    };
+    this.db = await request(open);
+    this.db.onversionchange = () => {
+      this.db.close();
+      this.db = null;
+    };
+    return this.db;
+  }
+
+  #key(modelKey) {
+    return `${this.name}|${modelKey}`;
+  }
+
+  // Every version of a model, newest first: [{id, tab, savedAt, constraints, mine}].
+  async versions(modelKey) {
+    const records = await this.#records(modelKey);
+    return records.map((r) => ({
+      id: r.id,
+      savedAt: r.savedAt,
+      tab: r.tab,
+      mine: r.tab === this.tab,
+      constraints: r.design.constraints?.length ?? 0,
+    }));
+  }
+
+  async #records(modelKey) {
+    const db = await this.#open();
+    const tx = db.transaction(STORE, 'readonly');
+    const all = await request(tx.objectStore(STORE).index('byKey').getAll(this.#key(modelKey)));
+    return all.sort((a, b) => b.id - a.id);
+  }
+
+  async version(id) {
+    const db = await this.#open();
+    const record = await request(db.transaction(STORE, 'readonly').objectStore(STORE).get(Number(id)));
+    return record ?? null;
+  }
+
+  // The newest version ({design, savedAt, tab}) or null: the newer of IndexedDB's latest and the localStorage
+  // mirror (written synchronously, so an edit made just before a reload is there even if the asynchronous
+  // IndexedDB write was cut short; also what earlier builds saved).
+  async load(modelKey) {
+    let latest = null;
+    try {
+      [latest] = await this.#records(modelKey);
+    } catch {
+      // no IndexedDB: what localStorage holds is all there is
+    }
+    const mirror = loadMirror(this.name, modelKey);
+    if (!latest) return mirror;
+    return mirror && mirror.savedAt > latest.savedAt ? mirror : latest;
+  }
+
+  // Appends a version and trims this tab's versions of the model to VERSIONS_KEPT; the other tabs' versions
+  // are never touched. Rejects (with the browser's reason) when the design could not be stored.
+  async save(modelKey, design) {
+    if (!finiteDesign(design)) throw new Error('the design holds non-finite numbers and was not saved');
+    const savedAt = new Date().toISOString();
+    // The quick copy: fails quietly when localStorage is full (IndexedDB below is the durable one).
+    saveMirror(this.name, modelKey, design, savedAt);
+    const db = await this.#open();
+    const key = this.#key(modelKey);
+    const tx = db.transaction(STORE, 'readwrite');
+    const store = tx.objectStore(STORE);
+    const mine = (await request(store.index('byKey').getAll(key))).filter((r) => r.tab === this.tab);
+    const latest = mine.sort((a, b) => b.id - a.id)[0];
+    // An empty design is saved too once there was a non-empty one (a cleared design must stay cleared).
+    if (!(isEmptyDesign(design) && !latest)) {
+      store.add({ key, tab: this.tab, savedAt, design: structuredClone(design) });
+      for (const old of mine.slice(VERSIONS_KEPT - 1)) store.delete(old.id);
+    }
+    await done(tx);
+    this.channel?.postMessage({ store: this.name, key: modelKey, tab: this.tab });
+    return true;
+  }
+}

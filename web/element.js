@@ -1,0 +1,360 @@
+// <tangent-field-designer>: the designer as a custom element (docs/embedding.md). Each element owns one
+// Session (its core worker, canvas, state, history and texture) in an open shadow root; attributes are
+// reflected to properties, the API of docs/js-api.md is on the element, and events fire on the element whose
+// field or constraints changed.
+//
+// Importing this module has no side effects and touches no DOM globals at the top level, so it loads in node
+// and during server-side rendering; define() registers the element.
+import { TEXTURE_METHODS, api } from './api.js';
+import css from './element.css';
+import { DEFAULT_WEIGHT, Session } from './session.js';
+import { TEMPLATE } from './template.js';
+import { TOOLS } from './tools.js';
+
+export const TAG_NAME = 'tangent-field-designer';
+const VIEW_NAMES = ['arrows', 'streamlines', 'magnitude', 'singularities', 'texture'];
+const DEFAULT_VIEWS = 'arrows';
+// Reflected string attributes: property name → attribute name.
+const STRING_ATTRIBUTES = {
+  src: 'src',
+  design: 'design',
+  boundary: 'boundary',
+  tool: 'tool',
+  views: 'views',
+  controls: 'controls',
+  autosave: 'autosave',
+  exemplar: 'exemplar',
+  assetBase: 'asset-base',
+};
+// Tells the element it is the app page's designer (index.html): the page's keyboard shortcuts and the
+// ?bench=1 benchmark. Not for embedding pages.
+export const APP_PAGE = Symbol('tangent-field-designer app page');
+
+// In node (no DOM) the class still has to be definable: extend an empty class there.
+const Base = globalThis.HTMLElement ?? class {};
+
+function parseBoundary(text) {
+  const t = String(text).trim();
+  if (['free', 'tangential', 'normal'].includes(t)) return t;
+  const angle = Number(t);
+  if (t !== '' && Number.isFinite(angle)) return { angle };
+  throw new Error(`boundary must be free, tangential, normal or an angle in radians (got "${text}")`);
+}
+
+function parseViews(text) {
+  const names = String(text).split(/\s+/).filter(Boolean);
+  const unknown = names.filter((n) => !VIEW_NAMES.includes(n));
+  if (unknown.length) throw new Error(`unknown view "${unknown[0]}" (views: ${VIEW_NAMES.join(' ')})`);
+  return new Set(names);
+}
+
+export class TangentFieldDesigner extends Base {
+  // Folder (URL string) holding the package's entry module, core-worker.js and wasm/; null = next to this
+  // module (import.meta.url). Set it before the first element connects when the module was bundled.
+  static assetBase = null;
+  static DEFAULT_WEIGHT = DEFAULT_WEIGHT;
+
+  static get observedAttributes() {
+    return [...Object.values(STRING_ATTRIBUTES), 'gamma', 'readonly'];
+  }
+
+  #session = null;
+  #ready;
+  #settle = null; // {resolve, reject} of #ready while the first start-up is under way
+  #connecting = false;
+  #appPage = false;
+
+  constructor() {
+    super();
+    const root = this.attachShadow({ mode: 'open' });
+    const sheet = new CSSStyleSheet();
+    sheet.replaceSync(css);
+    root.adoptedStyleSheets = [sheet];
+    this.#resetReady();
+  }
+
+  get DEFAULT_WEIGHT() {
+    return DEFAULT_WEIGHT;
+  }
+
+  // Resolves when the core is up and, with `src`, that model is loaded and factored (and `design` applied).
+  // Rejects with the reason otherwise; the element also fires `error`.
+  get ready() {
+    return this.#ready;
+  }
+
+  #resetReady() {
+    this.#ready = new Promise((resolve, reject) => (this.#settle = { resolve, reject }));
+    this.#ready.catch(() => {}); // the `error` event reports it; no "uncaught" duplicate in the console
+  }
+
+  [APP_PAGE]() {
+    this.#appPage = true;
+  }
+
+  // ------------------------------------------------------------------------------------------ lifecycle
+
+  connectedCallback() {
+    if (this.#session || this.#connecting) return; // moved within the document: keep everything
+    this.#connecting = true;
+    // A microtask later: attributes set right after insertion, and the app page's marker, are in place.
+    queueMicrotask(() => {
+      this.#connecting = false;
+      if (this.isConnected && !this.#session) this.#start();
+    });
+  }
+
+  disconnectedCallback() {
+    // A move (remove + insert in the same task) keeps the session; a removal ends it.
+    queueMicrotask(() => {
+      if (!this.isConnected) this.dispose();
+    });
+  }
+
+  // Ends the worker, frees the WebGL contexts and clears the shadow root. Inserting the element again starts
+  // a fresh designer.
+  dispose() {
+    const session = this.#session;
+    if (!session) return;
+    this.#session = null;
+    session.dispose();
+    this.#settle?.reject(new Error('the designer was disposed'));
+    this.#resetReady();
+  }
+
+  #assetBase() {
+    const base = this.getAttribute('asset-base') ?? TangentFieldDesigner.assetBase ?? new URL('./', import.meta.url).href;
+    const url = new URL(base, document.baseURI);
+    if (!url.pathname.endsWith('/')) url.pathname += '/';
+    return url;
+  }
+
+  #start() {
+    const root = this.shadowRoot;
+    root.innerHTML = TEMPLATE;
+    const session = new Session({
+      host: this,
+      root,
+      assetBase: this.#assetBase(),
+      autosave: this.getAttribute('autosave'),
+      bench: this.#appPage,
+      onTool: (tool) => {
+        if (this.getAttribute('tool') !== tool && (tool !== 'orbit' || this.hasAttribute('tool'))) this.setAttribute('tool', tool);
+      },
+    });
+    this.#session = session;
+    if (this.#appPage) session.ui.listenTo(window);
+    session.readonly = this.hasAttribute('readonly');
+    this.#applyAttribute('tool');
+    this.#applyAttribute('views');
+    this.#applyAttribute('boundary');
+    this.#applyAttribute('gamma');
+    const settle = this.#settle;
+    const started = session.exclusive(() => session.start());
+    const src = this.getAttribute('src');
+    const loaded = started.then(() => (src ? this.#loadSrc(session, src) : null));
+    loaded.then(
+      () => settle.resolve(),
+      (err) => settle.reject(err),
+    );
+    this.#settle = null;
+  }
+
+  // ------------------------------------------------------------------------------------------ attributes
+
+  attributeChangedCallback(name, oldValue, value) {
+    if (oldValue === value || !this.#session) return;
+    this.#applyAttribute(name === 'asset-base' ? 'assetBase' : name);
+  }
+
+  // Applies the current value of one attribute (by property name) to the running session.
+  #applyAttribute(prop) {
+    const s = this.#session;
+    const attr = STRING_ATTRIBUTES[prop] ?? prop;
+    const value = this.getAttribute(attr);
+    try {
+      switch (prop) {
+        case 'src':
+          if (value) {
+            const loaded = this.#loadSrc(s, value);
+            loaded.catch(() => {}); // reported by the `error` event
+            this.#ready = loaded;
+          }
+          break;
+        case 'design':
+          if (value && s.info) this.#loadDesignUrl(s, value).catch(() => {});
+          break;
+        case 'boundary':
+        case 'gamma':
+          this.#applySetting(s, prop, value);
+          break;
+        case 'tool':
+          if (!TOOLS.includes(value ?? 'orbit')) throw new Error(`unknown tool "${value}" (tools: ${TOOLS.join(' ')})`);
+          s.ui.setTool(value ?? 'orbit');
+          break;
+        case 'views':
+          this.#applyViews(s, parseViews(value ?? DEFAULT_VIEWS));
+          break;
+        case 'readonly':
+          s.readonly = value !== null;
+          if (s.readonly && !['orbit', 'select'].includes(s.tools.tool)) s.ui.setTool('orbit');
+          break;
+        case 'autosave':
+          s.autosave = value;
+          break;
+        case 'exemplar':
+          if (value && s.textureView && s.info) s.textureApi.setExemplar(value).catch((err) => s.fail('texture', err));
+          break;
+        default: // controls: CSS only; asset-base: read at the next start
+      }
+    } catch (err) {
+      s.fail('attribute', err);
+    }
+  }
+
+  #applySetting(s, kind, value) {
+    if (value === null) return;
+    const setting = kind === 'boundary' ? parseBoundary(value) : Number(value);
+    if (kind === 'gamma' && !(setting >= 0)) throw new Error(`gamma must be a number ≥ 0 (got "${value}")`);
+    // Before the first model, the setting waits in the session's design and goes in with the mesh.
+    if (!s.info) return void (s.design = { ...s.design, [kind]: setting });
+    s.setSetting(kind, setting).catch((err) => s.fail('setting', err));
+  }
+
+  #applyViews(s, on) {
+    s.setViews({ arrows: on.has('arrows'), streamlines: on.has('streamlines'), colorMap: on.has('magnitude'), singularities: on.has('singularities') });
+    const texture = on.has('texture');
+    if (texture === s.textureView) return;
+    s.textureView = texture;
+    if (texture && !s.info) return; // synthesized once the model is loaded (#loadSrc)
+    const run = texture ? this.#synthesize(s) : s.textureApi.clearTexture();
+    run.catch((err) => s.fail('texture', err));
+  }
+
+  // The texture view: the `exemplar` attribute's exemplar (the default one without it) along the field.
+  async #synthesize(s) {
+    const exemplar = this.getAttribute('exemplar');
+    if (exemplar) await s.textureApi.setExemplar(exemplar);
+    return s.textureApi.synthesize();
+  }
+
+  // Loads `src` (restoring the autosave only when the element asked for one), then `design`.
+  async #loadSrc(s, src) {
+    await s.loadModel(src);
+    const design = this.getAttribute('design');
+    if (design && this.#session === s) await this.#loadDesignUrl(s, design);
+    if (s.textureView && this.#session === s) this.#synthesize(s).catch((err) => s.fail('texture', err));
+  }
+
+  async #loadDesignUrl(s, href) {
+    try {
+      const url = new URL(href, document.baseURI);
+      const res = await fetch(url);
+      if (!res.ok) throw new Error(`could not fetch ${url.href}: HTTP ${res.status}`);
+      const design = await res.json();
+      // The boundary and gamma attributes, when given, win over the document's own settings.
+      if (design && typeof design === 'object') {
+        if (this.hasAttribute('boundary')) design.boundary = parseBoundary(this.getAttribute('boundary'));
+        if (this.hasAttribute('gamma')) design.gamma = Number(this.getAttribute('gamma'));
+      }
+      await s.replaceDesign(design, 'load design');
+    } catch (err) {
+      throw s.fail('design', new Error(`Could not load the design: ${err.message}`));
+    }
+  }
+
+  // ------------------------------------------------------------------------------------------ properties
+
+  get gamma() {
+    return Number(this.getAttribute('gamma') ?? 0);
+  }
+
+  set gamma(value) {
+    this.setAttribute('gamma', String(value));
+  }
+
+  get readonly() {
+    return this.hasAttribute('readonly');
+  }
+
+  set readonly(on) {
+    this.toggleAttribute('readonly', !!on);
+  }
+
+  // remove(id) removes a constraint (the documented API); remove() with no argument is still the DOM's
+  // ChildNode.remove(), which takes the element out of the page (and so disposes it).
+  remove(...args) {
+    if (args.length === 0) return super.remove();
+    return api.remove(this.#require(), ...args);
+  }
+
+  #require() {
+    if (!this.#session) throw new Error('the designer is not in a document (or was disposed)');
+    return this.#session;
+  }
+
+  static {
+    for (const [prop, attr] of Object.entries(STRING_ATTRIBUTES)) {
+      if (prop === 'views') continue; // also the views() method, below
+      Object.defineProperty(this.prototype, prop, {
+        get() {
+          return this.getAttribute(attr);
+        },
+        set(value) {
+          if (value == null) this.removeAttribute(attr);
+          else this.setAttribute(attr, String(value));
+        },
+        configurable: true,
+      });
+    }
+    // The public API (api.js) and the texture calls, as methods of every element.
+    for (const [name, fn] of Object.entries(api)) {
+      if (name === 'remove') continue; // a method of its own, above
+      if (name === 'views') continue;
+      Object.defineProperty(this.prototype, name, {
+        value(...args) {
+          return fn(this.#require(), ...args);
+        },
+        writable: true,
+        configurable: true,
+      });
+    }
+    // `views` is both the attribute's property and the views() method of js-api.md: reading it gives the
+    // method, assigning a string sets the attribute.
+    Object.defineProperty(this.prototype, 'views', {
+      get() {
+        const element = this;
+        return function views() {
+          return api.views(element.#require());
+        };
+      },
+      set(value) {
+        if (value == null) this.removeAttribute('views');
+        else this.setAttribute('views', String(value));
+      },
+      configurable: true,
+    });
+    for (const name of TEXTURE_METHODS) {
+      Object.defineProperty(this.prototype, name, {
+        value(...args) {
+          return this.#require().textureApi[name](...args);
+        },
+        writable: true,
+        configurable: true,
+      });
+    }
+  }
+}
+
+// Registers the element under tagName (default tangent-field-designer) unless that name is taken; returns
+// the constructor registered under it. A second name gets a subclass (a constructor registers only once).
+export function define(tagName = TAG_NAME) {
+  const registry = globalThis.customElements;
+  if (!registry) return TangentFieldDesigner; // node, server-side rendering
+  const existing = registry.get(tagName);
+  if (existing) return existing;
+  const taken = registry.getName?.(TangentFieldDesigner);
+  const ctor = taken ? class extends TangentFieldDesigner {} : TangentFieldDesigner;
+  registry.define(tagName, ctor);
+  return ctor;
+}

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The "Export" section of the side panel: flow map size / convention / bits, anisotropy strength and
+// rotation, the Flow map and GLB downloads, and the material preview with its presets. Built here and
+// appended to the given container; `actions` receives what the user chose.
+
+function el(tag, attrs = {}, ...children) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) {
+    if (k === 'text') e.textContent = v;
+    else e.setAttribute(k, v);
+  }
+  e.append(...children);
+  return e;
+}
+
+function select(id, title, values, value) {
+  const s = el('select', { id, title });
+  for (const [v, text] of values) s.append(el('option', { value: String(v), text }));
+  s.value = String(value);
+  return s;
+}
+
+export function mountExportPanel(container, { options, presets, onOptions, onFlowMap, onGlb, onPreview }) {
+  const size = select('export-size', 'Flow map texels per side', [256, 512, 1024, 2048, 4096].map((n) => [n, String(n)]), options.size);
+  const convention = select(
+    'export-convention',
+    'gltf: G = 0.5 + 0.5·dv (three.js, Babylon.js, Unreal through glTF). opengl: G = 0.5 − 0.5·dv (Unity, Blender, Godot flip v on import)',
+    [['gltf', 'glTF'], ['opengl', 'OpenGL (v flipped)']],
+    options.convention,
+  );
+  const bits = select('export-bits', 'Bits per channel', [[8, '8-bit'], [16, '16-bit']], options.bits);
+  const strength = el('input', { id: 'export-strength', type: 'number', min: '0', max: '1', step: '0.05', value: String(options.strength) });
+  const rotation = el('input', { id: 'export-rotation', type: 'number', step: '15', value: String((options.rotation * 180) / Math.PI) });
+  const flowMap = el('button', { id: 'export-flowmap', type: 'button', text: 'Flow map', title: 'Download the flow map PNG (the field in the model\'s UV square)' });
+  const glb = el('button', { id: 'export-glb', type: 'button', text: 'GLB', title: 'Download the model with the field: TANGENT along it, _FIELD, KHR_materials_anisotropy, flow map and design inside' });
+  const preview = select('export-preview', 'Show the exported material (physical, anisotropic along the field) under a studio environment',
+    [['', 'off'], ...presets.map((p) => [p, p])], '');
+
+  const section = el(
+    'details',
+    { id: 'export-panel' },
+    el('summary', { text: 'Export' }),
+    el('label', {}, 'Size ', size),
+    el('label', {}, 'Convention ', convention),
+    el('label', {}, 'Bits ', bits),
+    el('label', { title: 'KHR_materials_anisotropy strength (0..1)' }, 'Anisotropy ', strength),
+    el('label', { title: 'Rotation of the highlights from the field direction, degrees' }, 'Rotation° ', rotation),
+    el('div', { class: 'buttons' }, flowMap, ' ', glb),
+    el('label', {}, 'Material preview ', preview),
+  );
+  container.append(section);
+
+  const listeners = [
+    [size, 'change', () => onOptions({ size: Number(size.value) })],
+    [convention, 'change', () => onOptions({ convention: convention.value })],
+    [bits, 'change', () => onOptions({ bits: Number(bits.value) })],
+    [strength, 'change', () => onOptions({ strength: Math.min(1, Math.max(0, Number(strength.value) || 0)) })],
+    [rotation, 'change', () => onOptions({ rotation: ((Number(rotation.value) || 0) * Math.PI) / 180 })],
+    [flowMap, 'click', () => onFlowMap()],
+    [glb, 'click', () => onGlb()],
+    [preview, 'change', () => onPreview(preview.value || null)],
+  ];
+  for (const [target, type, fn] of listeners) target.addEventListener(type, fn);
+
+  return {
+    setOptions(o) {
+      size.value = String(o.size);
+      convention.value = o.convention;
+      bits.value = String(o.bits);
+      strength.value = String(o.strength);
+      rotation.value = String((o.rotation * 180) / Math.PI);
+    },
+    setPreview(preset) {
+      preview.value = preset ?? '';
+    },
+    dispose() {
+      for (const [target, type, fn] of listeners) target.removeEventListener(type, fn);
+      section.remove();
+    },
+  };
+}

@@ -1,0 +1,69 @@
+// Per-face geometry and the edge→face maps of a triangle mesh, in one place for the views, the tools and the
+// texture synthesis. Flat typed arrays, face f = triangles[3f..3f+2]; local edge k of a face runs from corner
+// k to corner k+1.
+
+// Unit normals (3 per face; [0, 0, 1] for a degenerate face), areas and centroids.
+export function faceGeometry(positions, triangles) {
+  const P = positions, T = triangles, nF = T.length / 3;
+  const normals = new Float64Array(3 * nF), areas = new Float64Array(nF), centres = new Float64Array(3 * nF);
+  for (let f = 0; f < nF; f++) {
+    const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
+    const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
+    const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
+    const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
+    const l = Math.hypot(nx, ny, nz);
+    areas[f] = l / 2;
+    if (l > 0) normals.set([nx / l, ny / l, nz / l], 3 * f);
+    else normals[3 * f + 2] = 1;
+    for (let k = 0; k < 3; k++) centres[3 * f + k] = (P[a + k] + P[b + k] + P[c + k]) / 3;
+  }
+  return { normals, areas, centres };
+}
+
+// Edge → face map as half-edge pairing: neighbour[3f+k] = 3g+kk when local edge k of face f is local edge kk
+// of face g, -1 on a boundary (or a non-manifold edge's third face).
+export function halfEdgeNeighbours(triangles, nV) {
+  const T = triangles, nF = T.length / 3;
+  const neighbour = new Int32Array(3 * nF).fill(-1);
+  const open = new Map();
+  for (let f = 0; f < nF; f++) {
+    for (let k = 0; k < 3; k++) {
+      const i = T[3 * f + k], j = T[3 * f + ((k + 1) % 3)];
+      const key = i < j ? i * nV + j : j * nV + i;
+      const other = open.get(key);
+      if (other === undefined) open.set(key, 3 * f + k);
+      else {
+        neighbour[3 * f + k] = other;
+        neighbour[other] = 3 * f + k;
+        open.delete(key);
+      }
+    }
+  }
+  return neighbour;
+}
+
+// Faces around each vertex (CSR: faces of v are vertexFaces[start[v] .. start[v+1]]).
+export function vertexFaceMap(triangles, nV) {
+  const T = triangles;
+  const start = new Int32Array(nV + 1);
+  for (let t = 0; t < T.length; t++) start[T[t] + 1]++;
+  for (let v = 0; v < nV; v++) start[v + 1] += start[v];
+  const faces = new Int32Array(T.length);
+  const fill = start.slice(0, nV);
+  for (let t = 0; t < T.length; t++) faces[fill[T[t]]++] = Math.floor(t / 3);
+  return { start, faces };
+}
+
+// Area-weighted unit vertex normals.
+export function vertexNormals(triangles, nV, normals, areas) {
+  const out = new Float64Array(3 * nV);
+  for (let t = 0; t < triangles.length; t++) {
+    const f = Math.floor(t / 3), v = triangles[t];
+    for (let c = 0; c < 3; c++) out[3 * v + c] += areas[f] * normals[3 * f + c];
+  }
+  for (let v = 0; v < nV; v++) {
+    const l = Math.hypot(out[3 * v], out[3 * v + 1], out[3 * v + 2]) || 1;
+    for (let c = 0; c < 3; c++) out[3 * v + c] /= l;
+  }
+  return out;
+}
