@@ -55,57 +55,96 @@ std::vector<SurfacePoint> stripStroke(const SurfaceMesh& mesh, const MeshTopolog
 
 }  // namespace
 
-nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma, bool metis) {
-  Designer designer(loadMesh(meshPath));
-  designer.setGamma(gamma);
-  designer.setMetisOrdering(metis);
-  std::vector<double> analyze, factor, solve, update, stroke, strokeUpdate, reconstruct;
+namespace {
+
+// Timings of one ordering over the repeats.
+struct Samples {
+  std::vector<double> analyze, factor, solve, update, stroke, strokeUpdate, strokeRows, strokeRhs,
+      strokeSolve, reconstruct;
+  double nnzPerRowM = 0, nnzPerRowL = 0;
+  int strokeEdges = 0;  // edges the benchmark stroke crosses (one per step between adjacent faces)
+  std::string factorKind;
+};
+
+void runRepeat(Designer& designer, const MeshTopology& topology, int r, bool metis, Samples& s) {
   const int32_t nF = designer.mesh().numFaces();
-  const MeshTopology topology = buildTopology(designer.mesh());  // for the benchmark's stroke paths only
-  for (int r = 0; r < repeat; ++r) {
-    designer.clearConstraints();
-    designer.factor();
-    analyze.push_back(designer.stats().analyzeMs);
-    factor.push_back(designer.stats().factorMs);
-    designer.addSource(designer.mesh().triangles[0], 1.0);
-    designer.solve();
-    solve.push_back(designer.stats().solveMs);
-    reconstruct.push_back(timeMs([&] {
+  designer.clearConstraints();
+  // A fresh factored system: the designer would otherwise reuse the previous repeat's ordering.
+  designer.setMetisOrdering(metis);
+  designer.factor();
+  s.analyze.push_back(designer.stats().analyzeMs);
+  s.factor.push_back(designer.stats().factorMs);
+  designer.addSource(designer.mesh().triangles[0], 1.0);
+  designer.solve();
+  s.solve.push_back(designer.stats().solveMs);
+  s.reconstruct.push_back(timeMs([&] {
                             designer.solve();
                             designer.vertexVectors();
                           }) -
                           designer.stats().solveMs);
-    const int32_t face = (r * 7919 + 13) % nF;
-    const int32_t i = designer.mesh().triangles[3 * face], j = designer.mesh().triangles[3 * face + 1];
-    const int32_t id = designer.addEdge(i, j, 0.1, 1.0);
-    update.push_back(designer.stats().updateMs);
-    designer.remove(id);
-    const auto points = stripStroke(designer.mesh(), topology, (r * 104729 + 7) % nF, 50);
-    // Mouse-up to new one-form: the surface walk, the rank-k update and the solve (reconstruction is
-    // reported on its own).
-    const double total = timeMs([&] {
-      designer.addStroke(points, 1.0, 1.0);
-      designer.solve();
-    });
-    stroke.push_back(total - designer.stats().reconstructMs);
-    strokeUpdate.push_back(designer.stats().updateMs);
-  }
-  const auto& ev = designer.edgeVertices();
-  return {{"mesh", meshPath},
-          {"edges", ev.size() / 2},
-          {"nnzPerRowM", designer.stats().nnzPerRowM},
-          {"nnzPerRowL", designer.stats().nnzPerRowL},
-          {"analyzeMs", median(analyze)},
-          {"factorMs", median(factor)},
-          {"solveMs", median(solve)},
-          {"updateMs", median(update)},
-          {"strokeUpdateSolveMs", median(stroke)},
-          {"strokeUpdateMs", median(strokeUpdate)},
-          {"reconstructMs", median(reconstruct)},
-          {"repeat", repeat},
-          {"gamma", gamma},
+  const int32_t face = (r * 7919 + 13) % nF;
+  const int32_t i = designer.mesh().triangles[3 * face], j = designer.mesh().triangles[3 * face + 1];
+  const int32_t id = designer.addEdge(i, j, 0.1, 1.0);
+  s.update.push_back(designer.stats().updateMs);
+  designer.remove(id);
+  const auto points = stripStroke(designer.mesh(), topology, (r * 104729 + 7) % nF, 50);
+  // Mouse-up to new one-form: the surface walk, the rank-k update, the right-hand side and the solve
+  // (reconstruction is reported on its own).
+  const double total = timeMs([&] {
+    designer.addStroke(points, 1.0, 1.0);
+    designer.solve();
+  });
+  s.stroke.push_back(total - designer.stats().reconstructMs);
+  s.strokeEdges = static_cast<int>(points.size()) - 1;
+  s.strokeUpdate.push_back(designer.stats().updateMs);
+  s.strokeRows.push_back(designer.stats().rowsMs);
+  s.strokeRhs.push_back(designer.stats().rhsMs);
+  s.strokeSolve.push_back(designer.stats().solveMs);
+  s.nnzPerRowM = designer.stats().nnzPerRowM;
+  s.nnzPerRowL = designer.stats().nnzPerRowL;
+  s.factorKind = designer.stats().factorKind;
+}
+
+nlohmann::json summary(const Samples& s, bool metis) {
+  return {{"nnzPerRowM", s.nnzPerRowM},
+          {"nnzPerRowL", s.nnzPerRowL},
+          {"analyzeMs", median(s.analyze)},
+          {"factorMs", median(s.factor)},
+          {"solveMs", median(s.solve)},
+          {"updateMs", median(s.update)},
+          {"strokeUpdateSolveMs", median(s.stroke)},
+          {"strokeUpdateMs", median(s.strokeUpdate)},
+          {"strokeRowsMs", median(s.strokeRows)},
+          {"strokeRhsMs", median(s.strokeRhs)},
+          {"strokeSolveMs", median(s.strokeSolve)},
+          {"strokeEdges", s.strokeEdges},
+          {"reconstructMs", median(s.reconstruct)},
           {"ordering", metis ? "metis" : "amd"},
-          {"factorKind", designer.stats().factorKind}};
+          {"factorKind", s.factorKind}};
+}
+
+}  // namespace
+
+nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
+                        const std::vector<bool>& orderings) {
+  Designer designer(loadMesh(meshPath));
+  designer.setGamma(gamma);
+  const MeshTopology topology = buildTopology(designer.mesh());  // for the benchmark's stroke paths only
+  std::vector<Samples> samples(orderings.size());
+  // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
+  for (int r = 0; r < repeat; ++r)
+    for (size_t o = 0; o < orderings.size(); ++o) runRepeat(designer, topology, r, orderings[o], samples[o]);
+  nlohmann::json out = {{"mesh", meshPath},
+                        {"edges", designer.edgeVertices().size() / 2},
+                        {"repeat", repeat},
+                        {"gamma", gamma}};
+  if (orderings.size() == 1) {
+    out.update(summary(samples[0], orderings[0]));
+    return out;
+  }
+  for (size_t o = 0; o < orderings.size(); ++o)
+    out[orderings[o] ? "metis" : "amd"] = summary(samples[o], orderings[o]);
+  return out;
 }
 
 }  // namespace tvf

@@ -1,8 +1,12 @@
 #pragma once
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace tvf {
-// Median timings of the interactive pipeline on one mesh (Sec. 6.1's table).
-nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma, bool metis);
+// Median timings of the interactive pipeline on one mesh (Sec. 6.1's table), per fill-reducing ordering
+// (true: METIS nested dissection, false: AMD). One ordering: a flat object; several: one object per ordering
+// under "metis" / "amd", measured interleaved in this process.
+nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
+                        const std::vector<bool>& orderings);
 }  // namespace tvf

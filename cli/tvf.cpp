@@ -26,9 +26,10 @@ int usage() {
                "  tvf export MESH DESIGN.json [--glb OUT.glb] [--flowmap OUT.png] [--size N]\n"
                "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
                "             [--no-embed-flowmap]\n"
-               "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis] [--json]\n"
-               "Fill-reducing ordering: METIS by default (less fill, faster solves and updates, slower\n"
-               "analysis); --amd for AMD, which the browser build uses.\n"
+               "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
+               "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
+               "updates, slower analysis), as in the browser build; --amd for AMD; --compare for both,\n"
+               "interleaved repeat by repeat in one process (JSON only).\n"
                "MESH: .gltf, .glb, .off, .obj or .ply\n"
                "A design saved for another mesh (its \"mesh\" fingerprint differs) is refused unless\n"
                "--ignore-fingerprint is given.\n";
@@ -207,7 +208,8 @@ void printBenchTable(const nlohmann::json& r) {
 int bench(int argc, char** argv) {
   int repeat = 5;
   double gamma = 0;
-  bool json = false, metis = true;
+  bool json = false;
+  std::vector<bool> orderings{true};
   for (int k = 3; k < argc; ++k) {
     const std::string a = argv[k];
     if (a == "--repeat" && k + 1 < argc) {
@@ -217,14 +219,17 @@ int bench(int argc, char** argv) {
     } else if (a == "--json") {
       json = true;
     } else if (a == "--metis") {
-      metis = true;
+      orderings = {true};
     } else if (a == "--amd") {
-      metis = false;
+      orderings = {false};
+    } else if (a == "--compare") {
+      orderings = {true, false};
+      json = true;
     } else {
       return usage();
     }
   }
-  const nlohmann::json r = tvf::runBench(argv[2], repeat, gamma, metis);
+  const nlohmann::json r = tvf::runBench(argv[2], repeat, gamma, orderings);
   if (json)
     std::cout << r.dump() << "\n";
   else

@@ -1,12 +1,31 @@
 #!/usr/bin/env node
-// Texture-synthesis benchmark in Debian's Chromium (never a downloaded browser): serves dist/ (build it first:
-// npm run build:wasm && npm run build:web), opens /?bench=1, and prints per-level and total times for 256², 512²
-// and 1024² atlases with the ratio to a plain full-screen pass of the same size (web/synthesis/bench.js).
-// Writes bench-data/synthesis-bench.json.
-// Usage: node scripts/bench-web.mjs [--sizes 256,512,1024] [--port 8194]
+// Benchmarks of the real page in Debian's Chromium (never a downloaded browser), served from dist/ (build it
+// first: npm run build:wasm && npm run build:web).
+//
+// node scripts/bench-web.mjs --json --stroke MESH [--strokes N] [--crossings N] [--port P]
+//   Edit latency: loads MESH (a path; served to the page under /bench-mesh/) through tvf.loadModel, then draws
+//   N strokes (default 15) of ~50 crossed edges each through tvf.addStroke, each on a strip of faces elsewhere
+//   on the mesh. Prints one JSON object {mesh, edges, strokes, loadMs, median: {...}, ratios} whose medians are
+//     updateMs, solveMs, rhsMs, rowsMs   the core's own timings of the edit (DesignStats)
+//     workerMs      all worker-side time of the edit (message in to reply out)
+//     workerOpMs, workerSolveMs, copyMs, deriveMs, designMs   where the worker's time goes: the add itself
+//                   (walk + update), the solve + early face vectors, copying the field out of the wasm heap,
+//                   vertex vectors + singularities, the design document
+//     messageMs     round trip less workerMs (structured clone, transfer, event-loop waits)
+//     applyMs       the page taking the snapshot and redrawing (refreshMs of it: updating the views; renderMs:
+//                   the synchronous three.js render), up to the promise resolving
+//     pageMs        tvf.addStroke() call to its promise resolving with the new field drawn
+//     pageNoRenderMs  pageMs less renderMs (with software GL the render is rasterization on the CPU)
+//   and ratios workerOverUpdateSolve = workerMs / (updateMs + solveMs), page*OverUpdateSolve likewise.
+//   Writes bench-data/web-stroke-bench.json.
+//
+// node scripts/bench-web.mjs [--sizes 256,512,1024] [--port 8194]
+//   Texture synthesis: opens /?bench=1 and prints per-level and total times for 256², 512² and 1024² atlases
+//   with the ratio to a plain full-screen pass of the same size (web/synthesis/bench.js).
+//   Writes bench-data/synthesis-bench.json.
 import { spawn } from 'node:child_process';
-import { mkdirSync, writeFileSync } from 'node:fs';
-import { dirname, resolve } from 'node:path';
+import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
+import { basename, dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from '@playwright/test';
 
@@ -17,6 +36,122 @@ const arg = (name, fallback) => {
 };
 const sizes = arg('--sizes', '256,512,1024');
 const port = Number(arg('--port', process.env.PORT || 8194));
+const strokeMesh = arg('--stroke', null);
+
+function die(message) {
+  console.error(`bench:web: ${message}`);
+  process.exit(1);
+}
+if (!existsSync(resolve(ROOT, 'dist/index.html'))) die('dist/ not found; run npm run build:wasm && npm run build:web');
+if (strokeMesh !== null && !existsSync(resolve(strokeMesh))) die(`mesh ${strokeMesh} not found (meshes: scripts/fetch-meshes.sh)`);
+
+const median = (v) => {
+  const s = v.filter(Number.isFinite).sort((a, b) => a - b);
+  return s.length === 0 ? null : s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
+};
+
+// In the page: strokes of `crossings` edges through the barycentres of strips of adjacent faces, each strip
+// heading away from its start (the walk of cli/bench.cpp), starts spread over the mesh.
+function strokesInPage({ count, crossings }) {
+  const { positions, triangles } = window.tvf.mesh();
+  const nF = triangles.length / 3;
+  const edgeFaces = new Map();
+  const key = (a, b) => (a < b ? a * 4294967296 + b : b * 4294967296 + a);
+  for (let g = 0; g < nF; ++g)
+    for (let k = 0; k < 3; ++k) {
+      const e = key(triangles[3 * g + k], triangles[3 * g + ((k + 1) % 3)]);
+      const list = edgeFaces.get(e);
+      if (list) list.push(g);
+      else edgeFaces.set(e, [g]);
+    }
+  const centre = (f) => [0, 1, 2].map((c) => (positions[3 * triangles[3 * f] + c] + positions[3 * triangles[3 * f + 1] + c] +
+    positions[3 * triangles[3 * f + 2] + c]) / 3);
+  const strokes = [];
+  for (let s = 0; s < count; ++s) {
+    const start = (s * 104729 + 7) % nF;
+    const origin = centre(start);
+    const faces = [start];
+    let f = start;
+    for (let step = 0; step < crossings; ++step) {
+      let next = -1, farthest = -1;
+      for (let k = 0; k < 3; ++k)
+        for (const g of edgeFaces.get(key(triangles[3 * f + k], triangles[3 * f + ((k + 1) % 3)]))) {
+          if (g === f) continue;
+          const d = Math.hypot(...centre(g).map((x, i) => x - origin[i]));
+          if (d > farthest) { farthest = d; next = g; }
+        }
+      if (next < 0) break;
+      faces.push(next);
+      f = next;
+    }
+    strokes.push(faces.map((face) => ({ face, bary: [1 / 3, 1 / 3, 1 / 3] })));
+  }
+  return strokes;
+}
+
+async function strokeBench(page, meshPath) {
+  const count = Number(arg('--strokes', 15));
+  const crossings = Number(arg('--crossings', 50));
+  const name = basename(meshPath);
+  await page.route(`**/bench-mesh/${name}`, (route) => route.fulfill({ path: resolve(meshPath) }));
+  await page.goto(`http://127.0.0.1:${port}/`);
+  await page.evaluate(() => window.tvf.ready);
+  const load = await page.evaluate(async (url) => {
+    const t0 = performance.now();
+    const info = await window.tvf.loadModel(url, { restore: false });
+    return { info, loadMs: performance.now() - t0 };
+  }, `/bench-mesh/${name}`);
+  const strokes = await page.evaluate(strokesInPage, { count, crossings });
+  const runs = [];
+  for (const points of strokes) {
+    runs.push(await page.evaluate(async (pts) => {
+      const t0 = performance.now();
+      await window.tvf.addStroke(pts);
+      const pageMs = performance.now() - t0;
+      const { lastOp, refresh } = window.tvf.perf();
+      const stats = window.tvf.stats();
+      return { pageMs, lastOp, refresh, stats };
+    }, points));
+  }
+  const pick = (f) => median(runs.map(f));
+  const m = {
+    updateMs: pick((r) => r.stats.updateMs),
+    solveMs: pick((r) => r.stats.solveMs),
+    rhsMs: pick((r) => r.stats.rhsMs),
+    rowsMs: pick((r) => r.stats.rowsMs),
+    workerMs: pick((r) => r.lastOp.workerMs),
+    workerOpMs: pick((r) => r.lastOp.workerParts?.opMs),
+    workerSolveMs: pick((r) => r.lastOp.workerParts?.solveMs),
+    copyMs: pick((r) => r.lastOp.workerParts?.copyMs),
+    deriveMs: pick((r) => r.lastOp.workerParts?.deriveMs),
+    designMs: pick((r) => r.lastOp.workerParts?.designMs),
+    messageMs: pick((r) => r.lastOp.roundTripMs - r.lastOp.workerMs),
+    applyMs: pick((r) => r.pageMs - r.lastOp.roundTripMs),
+    refreshMs: pick((r) => r.refresh?.updateViewsMs),
+    renderMs: pick((r) => r.refresh?.renderMs),
+    pageMs: pick((r) => r.pageMs),
+    // JS time only: with software GL (SwiftShader here) the synchronous render is the rasterizer's time.
+    pageNoRenderMs: pick((r) => r.pageMs - (r.refresh?.renderMs ?? 0)),
+  };
+  const updateSolve = m.updateMs + m.solveMs;
+  const result = {
+    mesh: meshPath,
+    edges: load.info.edges,
+    strokes: runs.length,
+    crossings,
+    loadMs: load.loadMs,
+    factorKind: runs.at(-1)?.stats.factorKind,
+    median: m,
+    ratios: {
+      workerOverUpdateSolve: Number((m.workerMs / updateSolve).toFixed(2)),
+      pageOverUpdateSolve: Number((m.pageMs / updateSolve).toFixed(2)),
+      pageNoRenderOverUpdateSolve: Number((m.pageNoRenderMs / updateSolve).toFixed(2)),
+    },
+  };
+  console.log(process.argv.includes('--json') ? JSON.stringify(result, null, 2) : result);
+  mkdirSync(resolve(ROOT, 'bench-data'), { recursive: true });
+  writeFileSync(resolve(ROOT, 'bench-data/web-stroke-bench.json'), JSON.stringify({ date: new Date().toISOString(), ...result }, null, 1));
+}
 
 const server = spawn(process.execPath, [resolve(ROOT, 'scripts/serve.mjs')], { env: { ...process.env, PORT: String(port) }, stdio: ['ignore', 'pipe', 'inherit'] });
 await new Promise((ok, fail) => {
@@ -29,17 +164,25 @@ const browser = await chromium.launch({
 });
 try {
   const page = await browser.newPage({ viewport: { width: 1024, height: 720 } });
-  await page.goto(`http://127.0.0.1:${port}/?bench=1&sizes=${sizes}`);
-  const handle = await page.waitForFunction(() => window.tvfBench, null, { timeout: 600_000 });
-  const result = await handle.jsonValue();
-  if (result.error) throw new Error(result.error);
-  for (const r of result.runs) {
-    console.log(`${r.size}²: total ${r.totalMs} ms (${r.totalNoLevelSyncMs} ms without per-level waits); plain pass ${r.plainPassMs} ms; ratio ${r.ratioToPlainPass}`);
-    console.log(`   levels: ${r.levels.map((l) => `${l.size}²(s${l.stackLevel}) ${l.ms}`).join(', ')}`);
+  if (strokeMesh !== null) {
+    page.setDefaultTimeout(600_000);
+    await strokeBench(page, strokeMesh);
+  } else {
+    await page.goto(`http://127.0.0.1:${port}/?bench=1&sizes=${sizes}`);
+    const handle = await page.waitForFunction(() => window.tvfBench, null, { timeout: 600_000 });
+    const result = await handle.jsonValue();
+    if (result.error) throw new Error(result.error);
+    for (const r of result.runs) {
+      console.log(`${r.size}²: total ${r.totalMs} ms (${r.totalNoLevelSyncMs} ms without per-level waits); plain pass ${r.plainPassMs} ms; ratio ${r.ratioToPlainPass}`);
+      console.log(`   levels: ${r.levels.map((l) => `${l.size}²(s${l.stackLevel}) ${l.ms}`).join(', ')}`);
   }
   console.log(`device: ${result.device}; exemplar ${result.exemplar}; analysis ${result.analysis.totalMs.toFixed(0)} ms`);
   mkdirSync(resolve(ROOT, 'bench-data'), { recursive: true });
   writeFileSync(resolve(ROOT, 'bench-data/synthesis-bench.json'), JSON.stringify({ date: new Date().toISOString(), ...result }, null, 1));
+  }
+} catch (err) {
+  console.error(`bench:web: ${err.message.split('\n')[0]}`);
+  process.exitCode = 1;
 } finally {
   await browser.close();
   server.kill();

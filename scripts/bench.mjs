@@ -1,11 +1,13 @@
 #!/usr/bin/env node
 // SPDX-License-Identifier: GPL-2.0-or-later
-// npm run bench [-- [--tvf build/tvf] [--repeat N] [--big-repeat N] [--no-big] [MESH.off ...]]
+// npm run bench [-- [--tvf build/tvf] [--repeat N] [--big-repeat N] [--no-big] [--amd | --compare] [MESH.off ...]]
 //
 // Runs the native `tvf bench MESH --json --repeat N` over the mesh ladder (~15k to ~133k edges, real meshes
 // from Debian's libcgal-demo, fetched by scripts/fetch-meshes.sh) plus a 1.25M-edge subdivided armadillo,
 // prints a markdown table (Sec. 6.1 style: times in ms, medians over the repeats) and writes
 // bench-data/bench-native.json. Build the binary first: cmake -S . -B build && cmake --build build -j2.
+// METIS nested dissection by default; --amd for AMD; --compare for both (interleaved in one process per mesh,
+// one table row per mesh and ordering).
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
@@ -35,7 +37,7 @@ export function ensureMeshes(paths) {
   if (missing.length) throw new Error(`missing meshes: ${missing.join(', ')}`);
 }
 
-// `extra`: e.g. ['--amd'] to match the browser build's ordering (the CLI defaults to METIS).
+// `extra`: ['--amd'] for AMD, ['--compare'] for both orderings (the CLI defaults to METIS, as the page does).
 export function runNative(tvf, mesh, repeat, extra = []) {
   const out = execFileSync(tvf, ['bench', mesh, '--json', '--repeat', String(repeat), ...extra], {
     encoding: 'utf8',
@@ -85,7 +87,8 @@ export function parseArgs(argv, extraFlags = {}) {
 export const repeatFor = (opts, mesh) => (meshName(mesh) === BIG ? opts.bigRepeat : opts.repeat);
 
 async function main() {
-  const opts = parseArgs(process.argv.slice(2));
+  const opts = parseArgs(process.argv.slice(2), { amd: false, compare: false });
+  const extra = opts.compare ? ['--compare'] : opts.amd ? ['--amd'] : [];
   if (!existsSync(opts.tvf)) {
     console.error(`bench: ${opts.tvf} not found; build it: cmake -S . -B build && cmake --build build -j2`);
     process.exit(1);
@@ -96,9 +99,10 @@ async function main() {
     const name = meshName(mesh);
     process.stderr.write(`bench: ${name} ... `);
     try {
-      const r = runNative(opts.tvf, mesh, repeatFor(opts, mesh));
-      rows.push({ name, ...r });
-      process.stderr.write(`${r.edges} edges, factor ${fmt(r.factorMs)} ms\n`);
+      const r = runNative(opts.tvf, mesh, repeatFor(opts, mesh), extra);
+      if (r.metis) for (const o of ['metis', 'amd']) rows.push({ name: `${name} (${o === 'metis' ? 'METIS' : 'AMD'})`, mesh, edges: r.edges, ...r[o] });
+      else rows.push({ name, ...r });
+      process.stderr.write(`${r.edges} edges, factor ${fmt((r.metis ?? r).factorMs)} ms\n`);
     } catch (err) {
       const msg = (err.stderr?.toString() || err.message).trim().split('\n').pop();
       rows.push({ name, mesh, error: msg });

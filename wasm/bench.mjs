@@ -20,6 +20,10 @@
 // Warm numbers are medians over the repeats that follow the first factorization. Every mesh is measured in
 // fresh node processes, since V8 shares tiered-up code between instances of the same module in one process.
 //
+// Ordering: METIS nested dissection by default, as in the page and `tvf bench`; --amd for AMD; --compare for
+// both, interleaved repeat by repeat in one process (wasm) and in one `tvf bench --compare` run (native), with
+// the ratios the acceptance criteria name (METIS/AMD analysis and stroke + solve, wasm/native stroke + solve).
+// The native CLI is built (cmake, -j2) when build/tvf is missing.
 // Options: --repeat N (5), --big-repeat N (2, for the 1.25M-edge mesh), --no-big, --tvf PATH (build/tvf),
 //   --native FILE (reuse bench-data/bench-native.json-style results instead of running tvf), --no-native,
 //   --no-warmup, --warmup LEVELS,ROUNDS (icosphere subdivisions and rounds; default 3,1), --settle MS (wait
@@ -130,57 +134,107 @@ async function measureWasm(mesh, opts) {
   const pos = Float64Array.from(d.positions());
   const nb = faceNeighbours(tri);
   const nF = tri.length / 3;
-  const s = { analyze: [], factor: [], solve: [], update: [], stroke: [], strokeUpdate: [], reconstruct: [],
-    factorCall: [], solveCall: [], updateCall: [] };
-  let stats;
+  const orderings = opts.compare ? [true, false] : [!opts.amd];
+  const samples = orderings.map(() => ({ analyze: [], factor: [], solve: [], update: [], stroke: [], strokeUpdate: [],
+    strokeRows: [], strokeRhs: [], strokeSolve: [], reconstruct: [], factorCall: [], solveCall: [], updateCall: [] }));
+  const last = [];
   const statsNow = () => JSON.parse(d.statsJson());
-  for (let r = 0; r < opts.repeat; ++r) {
-    ok('clear', d.clearConstraints() ? '' : d.lastError());
-    t = performance.now();
-    ok('factor', d.factor());
-    s.factorCall.push(performance.now() - t);
-    stats = statsNow();
-    s.analyze.push(stats.analyzeMs);
-    s.factor.push(stats.factorMs);
-    if (d.addSource(tri[0], 1) < 0) fail('source', d.lastError());
-    t = performance.now();
-    ok('solve', d.solve());
-    s.solveCall.push(performance.now() - t);
-    s.solve.push(statsNow().solveMs);
-    // As in tvf bench: a second solve plus the (lazily derived) vertex vectors, less the solve itself.
-    t = performance.now();
-    ok('solve', d.solve());
-    d.vertexVectors();
-    const both = performance.now() - t;
-    s.reconstruct.push(both - statsNow().solveMs);
-    const face = (r * 7919 + 13) % nF;
-    t = performance.now();
-    const id = d.addEdge(tri[3 * face], tri[3 * face + 1], 0.1, 1.0);
-    s.updateCall.push(performance.now() - t);
-    if (id < 0) fail('edge', d.lastError());
-    s.update.push(statsNow().updateMs);
-    if (!d.remove(id)) fail('remove', d.lastError());
-    const strip = faceStrip(pos, tri, nb, (r * 104729 + 7) % nF, 50);
-    // Mouse-up to new one-form: the rank-k update and the solve (reconstruction reported on its own).
-    t = performance.now();
-    if (d.addStroke(strip, 1.0, 1.0) < 0) fail('stroke', d.lastError());
-    ok('solve', d.solve());
-    const total = performance.now() - t;
-    stats = statsNow();
-    s.stroke.push(total - stats.reconstructMs);
-    s.strokeUpdate.push(stats.updateMs);
-  }
-  stats = JSON.parse(d.statsJson());
+  // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
+  for (let r = 0; r < opts.repeat; ++r)
+    orderings.forEach((metis, o) => {
+      const s = samples[o];
+      ok('clear', d.clearConstraints() ? '' : d.lastError());
+      // A fresh factored system each repeat: the core reuses an ordering while the pattern is unchanged.
+      ok('ordering', d.setMetisOrdering(metis));
+      t = performance.now();
+      ok('factor', d.factor());
+      s.factorCall.push(performance.now() - t);
+      let stats = statsNow();
+      s.analyze.push(stats.analyzeMs);
+      s.factor.push(stats.factorMs);
+      if (d.addSource(tri[0], 1) < 0) fail('source', d.lastError());
+      t = performance.now();
+      ok('solve', d.solve());
+      s.solveCall.push(performance.now() - t);
+      s.solve.push(statsNow().solveMs);
+      // As in tvf bench: a second solve plus the (lazily derived) vertex vectors, less the solve itself.
+      t = performance.now();
+      ok('solve', d.solve());
+      d.vertexVectors();
+      const both = performance.now() - t;
+      s.reconstruct.push(both - statsNow().solveMs);
+      const face = (r * 7919 + 13) % nF;
+      t = performance.now();
+      const id = d.addEdge(tri[3 * face], tri[3 * face + 1], 0.1, 1.0);
+      s.updateCall.push(performance.now() - t);
+      if (id < 0) fail('edge', d.lastError());
+      s.update.push(statsNow().updateMs);
+      if (!d.remove(id)) fail('remove', d.lastError());
+      const strip = faceStrip(pos, tri, nb, (r * 104729 + 7) % nF, 50);
+      // Mouse-up to new one-form: the walk, the rank-k update, the right-hand side and the solve
+      // (reconstruction reported on its own).
+      t = performance.now();
+      if (d.addStroke(strip, 1.0, 1.0) < 0) fail('stroke', d.lastError());
+      ok('solve', d.solve());
+      const total = performance.now() - t;
+      stats = statsNow();
+      s.stroke.push(total - stats.reconstructMs);
+      s.strokeUpdate.push(stats.updateMs);
+      s.strokeRows.push(stats.rowsMs);
+      s.strokeRhs.push(stats.rhsMs);
+      s.strokeSolve.push(stats.solveMs);
+      s.strokeEdges = strip.length / 4 - 1;
+      last[o] = stats;
+    });
   d.delete();
-  return {
+  const summary = (s, stats, metis) => ({
     ...result,
     nnzPerRowM: stats.nnzPerRowM, nnzPerRowL: stats.nnzPerRowL,
     analyzeMs: median(s.analyze), factorMs: median(s.factor), solveMs: median(s.solve), updateMs: median(s.update),
-    strokeUpdateSolveMs: median(s.stroke), strokeUpdateMs: median(s.strokeUpdate), reconstructMs: median(s.reconstruct),
+    strokeUpdateSolveMs: median(s.stroke), strokeUpdateMs: median(s.strokeUpdate), strokeRowsMs: median(s.strokeRows),
+    strokeRhsMs: median(s.strokeRhs), strokeSolveMs: median(s.strokeSolve), strokeEdges: s.strokeEdges,
+    reconstructMs: median(s.reconstruct),
     factorCallMs: median(s.factorCall), solveCallMs: median(s.solveCall), updateCallMs: median(s.updateCall),
     repeat: opts.repeat, warmUp: opts.warmup === false ? 'none' : String(opts.warmup), settleMs: opts.settle,
-    factorKind: stats.factorKind,
+    ordering: metis ? 'metis' : 'amd', factorKind: stats.factorKind,
+    // The wasm heap after the factorization and edits (it only grows): what this mesh needs in the browser.
+    heapBytes: Module.HEAPU8.length,
+  });
+  if (!opts.compare) return summary(samples[0], last[0], orderings[0]);
+  return { ...result, metis: summary(samples[0], last[0], true), amd: summary(samples[1], last[1], false) };
+}
+
+// METIS/AMD and wasm/native ratios of one run (--compare), as the acceptance criteria state them.
+function ratios(native, wasm) {
+  const q = (a, b) => (a > 0 && b > 0 ? Number((a / b).toFixed(3)) : null);
+  const out = {
+    wasmAnalyzeMetisOverAmd: q(wasm.metis.analyzeMs, wasm.amd.analyzeMs),
+    wasmStrokeSolveMetisOverAmd: q(wasm.metis.strokeUpdateSolveMs, wasm.amd.strokeUpdateSolveMs),
   };
+  if (native?.metis) {
+    Object.assign(out, {
+      nativeAnalyzeMetisOverAmd: q(native.metis.analyzeMs, native.amd.analyzeMs),
+      nativeStrokeSolveMetisOverAmd: q(native.metis.strokeUpdateSolveMs, native.amd.strokeUpdateSolveMs),
+      nativeStrokeUpdateOverSolveMetis: q(native.metis.strokeUpdateMs, native.metis.strokeSolveMs),
+      wasmOverNativeStrokeSolveMetis: q(wasm.metis.strokeUpdateSolveMs, native.metis.strokeUpdateSolveMs),
+      wasmOverNativeStrokeSolveAmd: q(wasm.amd.strokeUpdateSolveMs, native.amd.strokeUpdateSolveMs),
+    });
+  }
+  return out;
+}
+
+// The native CLI the comparison needs: built here (cmake, -j2) when the default build/tvf is missing.
+function ensureNativeCli(opts) {
+  if (opts['no-native'] || opts.native || existsSync(opts.tvf)) return;
+  if (opts.tvf !== resolve(ROOT, 'build/tvf'))
+    fail('native', `${opts.tvf} not found (build it, or pass --no-native)`);
+  console.error('bench:wasm: build/tvf not found; building it (cmake -S . -B build && cmake --build build --target tvf -j2)');
+  try {
+    execFileSync('cmake', ['-S', ROOT, '-B', resolve(ROOT, 'build'), '-DCMAKE_BUILD_TYPE=Release'], { stdio: ['ignore', 'ignore', 'inherit'] });
+    execFileSync('cmake', ['--build', resolve(ROOT, 'build'), '--target', 'tvf', '-j2'], { stdio: ['ignore', 'ignore', 'inherit'] });
+  } catch {
+    fail('native', 'building build/tvf failed (see above); run `npm run setup` for the Debian packages, or pass --no-native');
+  }
 }
 
 function child(args, opts) {
@@ -194,6 +248,8 @@ function child(args, opts) {
 function commonArgs(opts) {
   const a = ['--repeat', String(opts.repeat), '--big-repeat', String(opts.bigRepeat), '--tvf', opts.tvf,
     '--settle', String(opts.settle)];
+  if (opts.amd) a.push('--amd');
+  if (opts.compare) a.push('--compare');
   if (opts.module) a.push('--module', opts.module);
   if (opts.warmup === false) a.push('--no-warmup');
   else a.push('--warmup', String(opts.warmup));
@@ -209,15 +265,15 @@ function nativeFor(mesh, opts) {
     const hit = saved.find((r) => resolve(r.mesh ?? '') === mesh || r.name === meshName(mesh));
     if (hit) return hit;
   }
-  // The wasm CHOLMOD has no METIS: compare like with like.
-  return runNative(opts.tvf, mesh, repeatFor(opts, mesh), ['--amd']);
+  // Like with like: the same ordering(s) as the wasm side.
+  return runNative(opts.tvf, mesh, repeatFor(opts, mesh), opts.compare ? ['--compare'] : opts.amd ? ['--amd'] : []);
 }
 
 async function main() {
   const argv = process.argv.slice(2);
   const opts = parseArgs(argv, {
     json: false, 'first-factor-only': false, 'no-warmup': false, warmup: '3,1', settle: '100', native: '',
-    'no-native': false, 'node-flags': '', module: '',
+    'no-native': false, 'node-flags': '', module: '', amd: false, compare: false,
   });
   opts.warmup = opts['no-warmup'] ? false : opts.warmup;
   opts.settle = Number(opts.settle);
@@ -233,21 +289,24 @@ async function main() {
     if (opts.meshes.length !== 1) fail('--json', 'give exactly one mesh');
     const mesh = opts.meshes[0];
     ensureMeshes([mesh]);
+    ensureNativeCli(opts);
     opts.repeat = repeatFor(opts, mesh);
     const wasm = await measureWasm(mesh, opts);
     if (opts.warmup !== false) {
       const cold = child(['--first-factor-only', '--no-warmup', mesh, ...(opts.module ? ['--module', opts.module] : [])], opts);
       wasm.firstFactorNoWarmUpMs = cold.firstFactorMs;
+      for (const o of ['metis', 'amd']) if (wasm[o]) wasm[o].firstFactorNoWarmUpMs = cold.firstFactorMs;
     }
     const native = nativeFor(mesh, opts);
-    console.log(JSON.stringify({ mesh, edges: wasm.edges, native, wasm }, null, 2));
+    const out = { mesh, edges: wasm.edges, native, wasm };
+    if (opts.compare) out.ratios = ratios(native, wasm);
+    console.log(JSON.stringify(out, null, 2));
     return;
   }
 
   // The ladder: one child process per mesh.
   ensureMeshes(opts.meshes);
-  if (!opts.native && !opts['no-native'] && !existsSync(opts.tvf))
-    fail('native', `${opts.tvf} not found; build it (cmake -S . -B build && cmake --build build -j2) or pass --no-native`);
+  ensureNativeCli(opts);
   const rows = [];
   for (const mesh of opts.meshes) {
     const name = meshName(mesh);
@@ -255,18 +314,23 @@ async function main() {
     try {
       const r = child(['--json', mesh, ...commonArgs(opts)], opts);
       rows.push({ name, ...r });
-      process.stderr.write(`${r.edges} edges, wasm factor ${fmt(r.wasm.factorMs)} ms, first ${fmt(r.wasm.firstFactorMs)} ms\n`);
+      const w = r.wasm.metis ?? r.wasm;
+      process.stderr.write(`${r.edges} edges, wasm factor ${fmt(w.factorMs)} ms, first ${fmt(r.wasm.firstFactorMs)} ms\n`);
     } catch (err) {
       rows.push({ name, mesh, error: String(err.message).split('\n')[0] });
       process.stderr.write(`FAILED\n`);
     }
   }
   const ratio = (w, n) => (w > 0 && n > 0 ? `${(w / n).toFixed(2)}×` : '–');
+  // --compare: one table row per mesh and ordering, and the ratios of the run.
+  const flat = rows.flatMap((r) => r.error || !r.wasm.metis ? [r] : ['metis', 'amd'].map((o) => ({
+    ...r, name: `${r.name} (${o === 'metis' ? 'METIS' : 'AMD'})`, native: r.native?.[o], wasm: r.wasm[o],
+  })));
   const lines = [
     '| mesh | E | factor native | factor wasm | ratio | solve native | solve wasm | ratio | update native | update wasm | ratio | stroke+solve native / wasm | first factor wasm: cold / after warm-up (warm-up) |',
     '|' + ' --- |'.repeat(13),
   ];
-  for (const r of rows) {
+  for (const r of flat) {
     if (r.error) {
       lines.push(`| ${r.name} | – | ${r.error} |`);
       continue;
@@ -280,7 +344,13 @@ async function main() {
   }
   console.log(lines.join('\n'));
   console.log('\nwasm, full table (times in ms; factor/solve/update as timed by the core, as in `tvf bench`):\n');
-  console.log(nativeTable(rows.filter((r) => !r.error).map((r) => ({ name: r.name, ...r.wasm }))));
+  console.log(nativeTable(flat.filter((r) => !r.error).map((r) => ({ name: r.name, ...r.wasm }))));
+  const withRatios = rows.filter((r) => r.ratios);
+  if (withRatios.length) {
+    const keys = Object.keys(withRatios[0].ratios);
+    console.log(`\nratios of one run (medians):\n\n| mesh | ${keys.join(' | ')} |\n|${' --- |'.repeat(keys.length + 1)}`);
+    for (const r of withRatios) console.log(`| ${r.name} | ${keys.map((k) => fmt(r.ratios[k], 2)).join(' | ')} |`);
+  }
   mkdirSync(resolve(ROOT, 'bench-data'), { recursive: true });
   const out = resolve(ROOT, 'bench-data/bench-wasm.json');
   writeFileSync(out, JSON.stringify({ date: new Date().toISOString(), node: process.version, results: rows }, null, 2) + '\n');
@@ -288,4 +358,10 @@ async function main() {
   if (rows.some((r) => r.error)) process.exit(1);
 }
 
-await main();
+try {
+  await main();
+} catch (err) {
+  // A missing build or mesh is a message, not a stack trace.
+  console.error(`bench:wasm: ${err.message}`);
+  process.exit(1);
+}

@@ -157,13 +157,8 @@ class DesignerBinding {
   }
   std::string setGamma(double gamma) { return run([&] { need().setGamma(gamma); }); }
   double gamma() const { return designer_ ? designer_->gamma() : 0.0; }
-  // The wasm CHOLMOD is built with -DNPARTITION (no METIS): only AMD is available.
-  std::string setMetisOrdering(bool metis) {
-    return run([&] {
-      if (metis) throw tvf::InputError("METIS ordering is not built into the wasm core (AMD only)");
-      need().setMetisOrdering(false);
-    });
-  }
+  // METIS nested dissection (the default) or AMD; the next factorization orders again.
+  std::string setMetisOrdering(bool metis) { return run([&] { need().setMetisOrdering(metis); }); }
   std::string factor() {
     return run([&] {
       fitMemory(need());

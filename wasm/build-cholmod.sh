@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-2.0-or-later
 #
-# build-cholmod.sh: build CHOLMOD (SuiteSparse) + a BLAS/LAPACK (Eigen's C++ one) as ONE static
+# build-cholmod.sh: build CHOLMOD (SuiteSparse) with METIS + a BLAS/LAPACK (Eigen's C++ one) as ONE static
 # WebAssembly archive with Debian's emscripten, from Debian's own source packages.
 #
 # Usage:
@@ -12,10 +12,11 @@
 # The last line on stdout is the absolute path of the output folder; all progress goes to stderr.
 #
 # Output (ignored: build-wasm/ matches build-*/ in .gitignore):
-#   build-wasm/cholmod/suitesparse-<deb version>_eigen3-<deb version>_r<recipe>/
-#     include/   cholmod.h, cholmod_*.h, SuiteSparse_config.h, amd.h, camd.h, colamd.h, ccolamd.h
-#                (cholmod_config.h and cholmod_blas.h are patched copies, see below)
+#   build-wasm/cholmod/suitesparse-<deb version>_eigen3-<deb version>_metis-<deb version>_r<recipe>/
+#     include/   cholmod.h, cholmod_*.h, SuiteSparse_config.h, amd.h, camd.h, colamd.h, ccolamd.h, metis.h
+#                (cholmod_blas.h is a patched copy, see below)
 #     lib/libcholmod_wasm.a   SuiteSparse_config + AMD + CAMD + COLAMD + CCOLAMD + CHOLMOD (int32 API, cholmod_*)
+#                             + METIS 5.1 with its GKlib (idx_t 32-bit, as Debian's libmetis5)
 #                             + Eigen BLAS (double, complex double, xerbla) + Eigen LAPACK potrf/potrs (d, z)
 #     versions   the source package versions and flags used
 #     stamp      written last; its presence (with the current recipe number) means "complete"
@@ -25,17 +26,19 @@
 # no extra runtime: the Eigen objects are C++ but em++/emcc links libc++ as needed, link with em++ to be safe).
 #
 # Notes / caveats:
-# * Sources: `apt-get source --download-only` + `dpkg-source -x` of Debian's `suitesparse` and `eigen3` source
-#   packages (bookworm: 1:5.12.0+dfsg-2 and 3.4.0-4), through a PRIVATE deb-src list derived at run time from the
+# * Sources: `apt-get source --download-only` + `dpkg-source -x` of Debian's `suitesparse`, `metis` and `eigen3`
+#   source packages (bookworm: 1:5.12.0+dfsg-2, 5.1.0.dfsg-7 and 3.4.0-4), through a PRIVATE deb-src list derived at run time from the
 #   machine's /etc/apt/sources.list.d/debian.sources (Types: deb -> deb-src) or /etc/apt/sources.list (deb -> deb-src).
 #   apt runs with Dir::Etc::SourceList=/dev/null, Dir::Etc::SourceParts, Dir::State::Lists and Dir::Cache all
 #   pointing into build-wasm/cholmod-work/apt, so the system's apt state is untouched. If the update fails with
 #   the security stanza, it is retried with the non-security stanzas only.
-# * Flags: C with emcc -O3 -DNDEBUG -DNPARTITION -msimd128; AMD/CAMD with -DDINT (int variants only, like the
+# * Flags: C with emcc -O3 -DNDEBUG -msimd128; AMD/CAMD with -DDINT (int variants only, like the
 #   Makefiles' amd_i_*.o); CHOLMOD modules Core, Check, Cholesky, MatrixOps, Modify, Supernodal, Partition
-#   (cholmod_*.c, never t_*.c). With -DNPARTITION, cholmod_metis.c / cholmod_nesdis.c compile to nothing; the rest
-#   of Partition (cholmod_camd/ccolamd/csymamd: constrained orderings) is real code, which is what CAMD and CCOLAMD
-#   are for. Only the int32 API (cholmod_*) is built, no cholmod_l_*.
+#   (cholmod_*.c, never t_*.c), Partition with METIS (cholmod_metis.c: METIS_NodeND; cholmod_nesdis.c: CHOLMOD's
+#   own nested dissection over METIS_ComputeVertexSeparator, with CAMD/CCOLAMD for the constrained orderings).
+#   METIS: GKlib/*.c and libmetis/*.c with the flags of METIS's own CMake build on Linux (-DLINUX
+#   -D_FILE_OFFSET_BITS=64 -std=c99 -fno-strict-aliasing -DNDEBUG -DNDEBUG2). Only the int32 API (cholmod_*) is
+#   built, no cholmod_l_*.
 # * BLAS/LAPACK: Eigen's blas/{double,complex_double,xerbla}.cpp; for LAPACK only lapack/cholesky.cpp (dpotrf_,
 #   zpotrf_, dpotrs_, zpotrs_) is compiled, through two tiny generated wrappers that set SCALAR like
 #   lapack/{double,complex_double}.cpp do: CHOLMOD needs no other LAPACK routine, and lu/svd/eigenvalues would
@@ -43,8 +46,7 @@
 #   the end by `llvm-nm`-style inspection of the archive).
 # * PATCH: the build uses a copy of CHOLMOD/Include in the work tree, with cholmod_blas.h's BLAS/LAPACK prototypes
 #   changed from `void` to `int` (Eigen's return int; in wasm the mismatch links with only a warning and then
-#   traps with "unreachable" at run time). The installed include/cholmod_config.h additionally defines NPARTITION
-#   (as the library was built) so consumers need no -D flag. Nothing else is patched.
+#   traps with "unreachable" at run time). Nothing else is patched.
 # * Link consumers with -Wl,--fatal-warnings so any future signature mismatch fails the link instead of trapping.
 # * Debian's emscripten 3.1.6 has a frozen cache (no ports); node links at -O1+ need NODE_PATH=/usr/share/nodejs.
 # * The output folder name carries a RECIPE number: bump it when flags/sources in this script change.
@@ -53,7 +55,7 @@
 
 set -euo pipefail
 
-RECIPE=1
+RECIPE=2
 SMOKE=0
 REFRESH=0
 for arg in "$@"; do
@@ -177,15 +179,17 @@ src_version() {  # candidate source version of package $1 (epoch stripped, as in
 }
 SS_VER=$(src_version suitesparse)
 EIG_VER=$(src_version eigen3)
-if [ -z "$SS_VER" ] || [ -z "$EIG_VER" ]; then
+METIS_VER=$(src_version metis)
+if [ -z "$SS_VER" ] || [ -z "$EIG_VER" ] || [ -z "$METIS_VER" ]; then
   log "source versions not resolvable from the cached lists; refreshing"
   apt_update
-  SS_VER=$(src_version suitesparse); EIG_VER=$(src_version eigen3)
-  [ -n "$SS_VER" ] && [ -n "$EIG_VER" ] || die "apt-get source cannot find suitesparse/eigen3 in the deb-src index"
+  SS_VER=$(src_version suitesparse); EIG_VER=$(src_version eigen3); METIS_VER=$(src_version metis)
+  [ -n "$SS_VER" ] && [ -n "$EIG_VER" ] && [ -n "$METIS_VER" ] ||
+    die "apt-get source cannot find suitesparse/eigen3/metis in the deb-src index"
 fi
-KEY=suitesparse-${SS_VER}_eigen3-${EIG_VER}_r${RECIPE}
+KEY=suitesparse-${SS_VER}_eigen3-${EIG_VER}_metis-${METIS_VER}_r${RECIPE}
 OUT=$TOP/$KEY
-log "suitesparse $SS_VER, eigen3 $EIG_VER -> $OUT"
+log "suitesparse $SS_VER, eigen3 $EIG_VER, metis $METIS_VER -> $OUT"
 if stamp_ok "$OUT"; then printf '%s\n' "$KEY" > "$TOP/current"; finish "$OUT"; fi
 
 # ---------------------------------------------------------------- download + extract
@@ -209,6 +213,7 @@ fetch_extract() {  # $1 = package, $2 = version; prints the extracted tree
 }
 SS=$(fetch_extract suitesparse "$SS_VER")
 EIG=$(fetch_extract eigen3 "$EIG_VER")
+METIS=$(fetch_extract metis "$METIS_VER")
 log "sources ready ($(elapsed))"
 
 # ---------------------------------------------------------------- build tree: patched include copy + objects
@@ -219,16 +224,15 @@ GEN=$BLD/gen
 mkdir -p "$OBJ" "$GEN"
 rm -rf "$INC"; mkdir -p "$INC"
 cp "$SS"/CHOLMOD/Include/*.h "$SS"/SuiteSparse_config/SuiteSparse_config.h \
-   "$SS"/AMD/Include/amd.h "$SS"/CAMD/Include/camd.h "$SS"/COLAMD/Include/colamd.h "$SS"/CCOLAMD/Include/ccolamd.h "$INC"/
+   "$SS"/AMD/Include/amd.h "$SS"/CAMD/Include/camd.h "$SS"/COLAMD/Include/colamd.h "$SS"/CCOLAMD/Include/ccolamd.h \
+   "$METIS"/include/metis.h "$INC"/
+# METIS's idx_t must be CHOLMOD's Int (32-bit) for cholmod_metis.c to pass its arrays through without copies
+grep -q '^#define IDXTYPEWIDTH 32' "$INC/metis.h" || die "metis.h does not define a 32-bit idx_t"
 # PATCH 1: BLAS/LAPACK prototypes return int (Eigen's do)
 sed -E -i 's/^void([[:space:]]+)(BLAS_|LAPACK_)/int\1\2/' "$INC/cholmod_blas.h"
 nvoid=$(grep -cE '^void[[:space:]]+(BLAS_|LAPACK_)' "$INC/cholmod_blas.h" || true)
 nint=$(grep -cE '^int[[:space:]]+(BLAS_|LAPACK_)' "$INC/cholmod_blas.h" || true)
 [ "$nvoid" = 0 ] && [ "$nint" -ge 12 ] || die "cholmod_blas.h patch did not apply as expected (void=$nvoid int=$nint)"
-# PATCH 2 (installed headers only matter, harmless for the build): record the NPARTITION configuration
-awk '{print} /^#define CHOLMOD_CONFIG_H/ && !done {print "\n/* build-cholmod.sh: this library was built with -DNPARTITION (no METIS) */\n#ifndef NPARTITION\n#define NPARTITION\n#endif"; done=1}' \
-  "$INC/cholmod_config.h" > "$INC/cholmod_config.h.new" && mv "$INC/cholmod_config.h.new" "$INC/cholmod_config.h"
-grep -q 'define NPARTITION$' "$INC/cholmod_config.h" || die "cholmod_config.h patch did not apply"
 
 # LAPACK subset: only the Cholesky routines, set up exactly like lapack/double.cpp and lapack/complex_double.cpp
 printf '#define SCALAR        double\n#define SCALAR_SUFFIX d\n#define SCALAR_SUFFIX_UP "D"\n#define ISCOMPLEX     0\n#include "%s/lapack/cholesky.cpp"\n' \
@@ -236,7 +240,9 @@ printf '#define SCALAR        double\n#define SCALAR_SUFFIX d\n#define SCALAR_SU
 printf '#define SCALAR        std::complex<double>\n#define SCALAR_SUFFIX z\n#define SCALAR_SUFFIX_UP "Z"\n#define REAL_SCALAR_SUFFIX d\n#define ISCOMPLEX     1\n#include "%s/lapack/cholesky.cpp"\n' \
   "$EIG" > "$GEN/lapack_cholesky_z.cpp"
 
-CFLAGS="-O3 -DNDEBUG -DNPARTITION -msimd128"
+CFLAGS="-O3 -DNDEBUG -msimd128"
+# METIS's own CMake flags on Linux (GKlibSystem.cmake), without OpenMP
+METISFLAGS="-O3 -msimd128 -DLINUX -D_FILE_OFFSET_BITS=64 -std=c99 -fno-strict-aliasing -DNDEBUG -DNDEBUG2 -I$METIS/include -I$METIS/GKlib -I$METIS/libmetis"
 CXXFLAGS="-O3 -DNDEBUG -msimd128"
 EIGFLAGS="-I$EIG"   # <Eigen/...> from the extracted eigen3 source, never the system's
 IFLAGS="-I$INC -I$SS/AMD/Include -I$SS/CAMD/Include -I$SS/COLAMD/Include -I$SS/CCOLAMD/Include -I$SS/SuiteSparse_config"
@@ -263,18 +269,24 @@ done
 add emcc - "$SS/COLAMD/Source/colamd.c" colamd
 add emcc - "$SS/CCOLAMD/Source/ccolamd.c" ccolamd
 add emcc - "$SS/SuiteSparse_config/SuiteSparse_config.c" SuiteSparse_config
+for f in "$METIS"/GKlib/*.c; do add metis - "$f" "gklib_$(basename "$f" .c)"; done
+for f in "$METIS"/libmetis/*.c; do add metis - "$f" "metis_$(basename "$f" .c)"; done
 
 compile_one() {  # cc extra src obj
   local cc=$1 extra=$2 src=$3 obj=$4 flags
   [ -f "$obj" ] && return 0              # resumable: objects are only ever renamed into place when complete
   [ "$extra" = - ] && extra=
-  if [ "$cc" = em++ ]; then flags="$CXXFLAGS $EIGFLAGS"; else flags="$CFLAGS $IFLAGS"; fi
+  case "$cc" in
+    em++) flags="$CXXFLAGS $EIGFLAGS" ;;
+    metis) cc=emcc; flags=$METISFLAGS ;;
+    *) flags="$CFLAGS $IFLAGS" ;;
+  esac
   # shellcheck disable=SC2086
   "$cc" $flags ${extra//,/ } -c "$src" -o "$obj.tmp.$$" || { rm -f "$obj.tmp.$$"; echo "FAILED: $src" >&2; return 255; }
   mv "$obj.tmp.$$" "$obj"
 }
 export -f compile_one
-export CFLAGS CXXFLAGS IFLAGS EIGFLAGS
+export CFLAGS CXXFLAGS IFLAGS EIGFLAGS METISFLAGS
 njobs=$(wc -l < "$JOBLIST")
 log "compiling $njobs sources with $JOBS jobs ($CFLAGS; C++: $CXXFLAGS)"
 xargs -P "$JOBS" -L 1 bash -c 'compile_one "$@"' _ < "$JOBLIST" >&2 || die "compilation failed"
@@ -301,10 +313,12 @@ fi
 {
   echo "suitesparse $SS_VER"
   echo "eigen3 $EIG_VER"
+  echo "metis $METIS_VER"
+  echo "METISFLAGS $METISFLAGS"
   echo "emcc $(emcc --version | head -n1)"
   echo "CFLAGS $CFLAGS"
   echo "CXXFLAGS $CXXFLAGS"
-  echo "patches: cholmod_blas.h void->int BLAS/LAPACK prototypes; cholmod_config.h defines NPARTITION"
+  echo "patches: cholmod_blas.h void->int BLAS/LAPACK prototypes"
   echo "lapack: Eigen lapack/cholesky.cpp only (d, z)"
 } > "$STAGE/versions"
 printf 'recipe=%s\nbuilt %s in %s\n' "$RECIPE" "$(date -u +%Y-%m-%dT%H:%M:%SZ)" "$(elapsed)" > "$STAGE/stamp.tmp"

@@ -195,6 +195,7 @@ struct Designer::Impl {
     }
     const FactorTimings& t = system.timings();
     stats.analyzeMs = t.analyzeMs;
+    stats.analysisReused = t.analysisReused;
     stats.factorMs = t.factorMs + t.convertMs;
     stats.nnzPerRowL = static_cast<double>(system.factorNonzeros()) / std::max(1, topology.numEdges);
     stats.kernelShift = shift;
@@ -362,7 +363,9 @@ struct Designer::Impl {
 
   int32_t add(ConstraintSpec spec) {
     validate(spec);
+    const auto start = Clock::now();
     Active a{spec, rowsFor(spec)};
+    stats.rowsMs = msSince(start);
     a.spec.id = nextId++;
     std::vector<int32_t> rows;
     std::vector<double> w;
@@ -533,10 +536,12 @@ void Designer::clearConstraints() {
 void Designer::solve() {
   Impl& d = *impl_;
   if (d.baseStale || d.factorStale || !d.system.factored()) d.factorNow();
+  auto start = Clock::now();
   const Eigen::VectorXd b = d.rightHandSide();
+  d.stats.rhsMs = msSince(start);
   if (!allFinite(b)) throw InputError("the constraints give a right-hand side that is not finite");
   d.stats.warnings = d.designWarnings();
-  auto start = Clock::now();
+  start = Clock::now();
   Eigen::VectorXd x;
   d.checkedSolve(b, x);
   d.stats.solveMs = msSince(start);

@@ -67,6 +67,9 @@ struct Singularity {
 
 struct DesignStats {
   double analyzeMs = 0, factorMs = 0, updateMs = 0, solveMs = 0, reconstructMs = 0;
+  double rowsMs = 0;            // the last added constraint's rows (a stroke's surface walk)
+  double rhsMs = 0;             // the last solve's right-hand side
+  bool analysisReused = false;  // the last factorization reused the ordering (unchanged sparsity pattern)
   double nnzPerRowM = 0, nnzPerRowL = 0;
   int32_t positiveAreaFallbackVertices = 0;
   std::string kernelHandling;  // how the kernel of M was made definite
@@ -87,7 +90,7 @@ class Designer {
   // Base-matrix changes: these mark the factor stale; the next solve (or factor()) refactors.
   void setBoundary(const BoundaryCondition& bc);
   void setGamma(double gamma);
-  void setMetisOrdering(bool metis);  // AMD by default: much faster analysis, somewhat more fill
+  void setMetisOrdering(bool metis);  // METIS nested dissection by default; false: AMD
   // The most memory a factorization may take, in bytes; estimated from CHOLMOD's symbolic analysis before the
   // numeric factorization, which is refused (InputError naming both sizes) when it would need more. 0: the
   // machine's physical memory (the default). The wasm bindings pass what is left of the 4 GB address space.

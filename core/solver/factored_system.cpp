@@ -1,8 +1,10 @@
 #include "solver/factored_system.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <stdexcept>
 
 #include "mesh/surface_mesh.h"
@@ -13,6 +15,35 @@ namespace {
 
 double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Exactly one ordering: CHOLMOD's default (nmethods = 0) tries AMD, then METIS when AMD's fill looks high,
+// and keeps the better; an interactive session pays for one.
+void chooseOrdering(cholmod_common& c, FillOrdering ordering) {
+  c.nmethods = 1;
+  c.postorder = 1;  // the weighted postorder the supernodal analysis computes anyway, folded into Perm
+  if (ordering == FillOrdering::Amd) {
+    c.method[0].ordering = CHOLMOD_AMD;
+    return;
+  }
+  c.method[0].ordering = CHOLMOD_NESDIS;
+  // Nested dissection by METIS's vertex separators down to subgraphs of this size, then one constrained
+  // minimum-degree ordering (CAMD) of the whole matrix that keeps the separators last (CHOLMOD's method 5).
+  // On bunny00 METIS_NodeND on the whole graph costs 5-7x AMD's analysis, and NESDIS to CHOLMOD's default 200
+  // more; stopping the recursion here keeps most of the fill reduction for a fraction of the time (README).
+  c.method[0].nd_small = 20000;
+  c.method[0].nd_camd = 1;
+  // CHOLMOD probes METIS's memory with a trial allocation of 2 x (10 nnz + 50 n) words first; in wasm that
+  // grows the heap for good (~140 MB on bunny00, ~1.5 GB at 1.25M edges), and METIS 5 reports running out of
+  // memory itself (CHOLMOD then falls back to AMD).
+  c.metis_memory = 0;
+}
+
+bool samePattern(const cholmod_sparse& A, const std::vector<int>& p, const std::vector<int>& i) {
+  const int* Ap = static_cast<const int*>(A.p);
+  const int* Ai = static_cast<const int*>(A.i);
+  return p.size() == A.ncol + 1 && std::equal(p.begin(), p.end(), Ap) &&
+         i.size() == static_cast<size_t>(Ap[A.ncol]) && std::equal(i.begin(), i.end(), Ai);
 }
 
 // Peak memory of factor() from the symbolic analysis: the supernodal values (xsize doubles) live together
@@ -43,12 +74,16 @@ struct FactoredSystem::Impl {
   std::vector<int> inversePerm;
   bool wasSupernodal = false;
   int n = 0;
+  // The symbolic analysis (ordering, elimination tree, supernodes) of the last factored matrix and that
+  // matrix's pattern: a boundary or gamma change that keeps the pattern is refactored without ordering again.
+  CholmodFactorPtr symbolic{nullptr, {common.get()}};
+  std::vector<int> symbolicP, symbolicI;
+  double symbolicLnz = 0, symbolicFl = 0;
+  std::vector<int> updateOrder;  // update columns by position in L (see updateDiagonal)
   double memoryLimit = 0, estimatedBytes = 0;
 
   explicit Impl(FillOrdering o) : ordering(o) {
-    common->nmethods = 1;
-    common->method[0].ordering = o == FillOrdering::Metis ? CHOLMOD_METIS : CHOLMOD_AMD;
-    common->postorder = 1;
+    chooseOrdering(*common.get(), o);
     common->supernodal = CHOLMOD_AUTO;
     common->final_asis = 1;
     common->print = 0;
@@ -57,6 +92,25 @@ struct FactoredSystem::Impl {
   ~Impl() {
     cholmod_free_dense(&ySolve, common.get());
     cholmod_free_dense(&eSolve, common.get());
+  }
+
+  // A fresh copy of the symbolic factor of A: the saved one when A's pattern is unchanged, else a new
+  // analysis.
+  cholmod_factor* analyzeOrReuse(cholmod_sparse& A) {
+    timings.analysisReused = symbolic && samePattern(A, symbolicP, symbolicI);
+    if (!timings.analysisReused) {
+      symbolic.reset(cholmod_analyze(&A, common.get()));
+      if (!symbolic) return nullptr;
+      symbolicLnz = common->lnz;
+      symbolicFl = common->fl;
+      const int* Ap = static_cast<const int*>(A.p);
+      symbolicP.assign(Ap, Ap + A.ncol + 1);
+      symbolicI.assign(static_cast<const int*>(A.i), static_cast<const int*>(A.i) + Ap[A.ncol]);
+    }
+    // What cholmod_analyze reports, as if it had run.
+    common->lnz = symbolicLnz;
+    common->fl = symbolicFl;
+    return cholmod_copy_factor(symbolic.get(), common.get());
   }
 
   // A view of the upper triangle of A as CHOLMOD's packed, sorted, symmetric-upper sparse matrix.
@@ -89,7 +143,7 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
   upper.makeCompressed();
   cholmod_sparse view = Impl::upperView(upper);
   auto start = std::chrono::steady_clock::now();
-  s.factor.reset(cholmod_analyze(&view, s.common.get()));
+  s.factor.reset(s.analyzeOrReuse(view));
   if (!s.factor) throw std::runtime_error("CHOLMOD analysis failed (out of memory?)");
   s.n = static_cast<int>(A.rows());
   s.timings.analyzeMs = msSince(start);
@@ -136,11 +190,19 @@ void FactoredSystem::updateDiagonal(const std::vector<int32_t>& rows, const std:
   int* p = static_cast<int*>(C->p);
   int* i = static_cast<int*>(C->i);
   double* x = static_cast<double*>(C->x);
-  // L factors P A P', so each column sqrt(w) e_row enters at the permuted position of its row.
+  // L factors P A P', so each column sqrt(w) e_row enters at the permuted position of its row. Columns go in
+  // the order of those positions: cholmod_updown takes them a few at a time (Common->maxrank), and columns
+  // close in the postordered elimination tree share most of their path to the root, which each group walks
+  // once.
+  std::vector<int>& order = s.updateOrder;
+  order.resize(k);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return s.inversePerm[rows[a]] < s.inversePerm[rows[b]]; });
   for (int c = 0; c < k; ++c) {
     p[c] = c;
-    i[c] = s.inversePerm[rows[c]];
-    x[c] = std::sqrt(weights[c]);
+    i[c] = s.inversePerm[rows[order[c]]];
+    x[c] = std::sqrt(weights[order[c]]);
   }
   p[k] = k;
   if (!cholmod_updown(downdate ? 0 : 1, C.get(), s.factor.get(), s.common.get()))
@@ -194,7 +256,7 @@ const FactorTimings& FactoredSystem::timings() const {
 std::string FactoredSystem::description() const {
   return std::string(impl_->wasSupernodal ? "supernodal LL'" : "simplicial LDL'") +
          " factor, kept as simplicial LDL' for updates (" +
-         (impl_->ordering == FillOrdering::Metis ? "METIS" : "AMD") + " ordering)";
+         (impl_->ordering == FillOrdering::Metis ? "METIS nested dissection" : "AMD") + " ordering)";
 }
 
 }  // namespace tvf

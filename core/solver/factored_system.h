@@ -14,17 +14,22 @@ enum class FillOrdering { Amd, Metis };
 
 struct FactorTimings {
   double analyzeMs = 0, factorMs = 0, convertMs = 0;
+  // The last factor() reused the previous symbolic analysis (same sparsity pattern): no ordering was
+  // computed.
+  bool analysisReused = false;
 };
 
 class FactoredSystem {
  public:
-  explicit FactoredSystem(FillOrdering ordering = FillOrdering::Amd);
+  explicit FactoredSystem(FillOrdering ordering = FillOrdering::Metis);
   ~FactoredSystem();
   FactoredSystem(FactoredSystem&&) noexcept;
   FactoredSystem& operator=(FactoredSystem&&) noexcept;
 
   // Analyzes and factors A (symmetric; only its upper triangle is read). Returns false if A is not
-  // numerically positive definite. Throws InputError, before the numeric factorization, when the symbolic
+  // numerically positive definite. The fill-reducing ordering and symbolic analysis are computed once and
+  // reused while A keeps the sparsity pattern of the matrix they were computed for.
+  // Throws InputError, before the numeric factorization, when the symbolic
   // analysis says the factor would need more than the memory limit.
   bool factor(const SparseMatrix& A);
   void setMemoryLimit(double bytes);  // 0: no limit

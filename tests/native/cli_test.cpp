@@ -24,8 +24,8 @@ struct CliRun {
 CliRun runTvf(const std::string& args) {
   // ctest runs tests in parallel processes: each call gets its own stderr file.
   static int calls = 0;
-  const fs::path errFile =
-      fs::temp_directory_path() / ("tvf_cli_stderr_" + std::to_string(getpid()) + "_" + std::to_string(calls++) + ".txt");
+  const fs::path errFile = fs::temp_directory_path() / ("tvf_cli_stderr_" + std::to_string(getpid()) + "_" +
+                                                        std::to_string(calls++) + ".txt");
   const std::string command = std::string(TVF_CLI_PATH) + " " + args + " 2>" + errFile.string();
   CliRun r{-1, "", ""};
   FILE* pipe = popen(command.c_str(), "r");
@@ -136,6 +136,22 @@ TEST(Cli, BenchPrintsTheTableKeys) {
     EXPECT_TRUE(b.contains(key)) << key;
   EXPECT_EQ(b["edges"], 2400);
   EXPECT_GT(b["strokeUpdateSolveMs"].get<double>(), 0.0);
+  EXPECT_EQ(b["ordering"], "metis");  // the default, as in the browser build
+}
+
+TEST(Cli, BenchCompareReportsBothOrderings) {
+  const fs::path mesh = writeOff("cli_bench_compare.off", tvf::testing::torus(40, 20, 2, 0.7));
+  const CliRun r = runTvf("bench " + mesh.string() + " --repeat 1 --compare");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto b = nlohmann::json::parse(r.out);
+  EXPECT_EQ(b["edges"], 2400);
+  for (const char* ordering : {"metis", "amd"}) {
+    ASSERT_TRUE(b.contains(ordering)) << ordering;
+    EXPECT_EQ(b[ordering]["ordering"], ordering);
+    EXPECT_EQ(b[ordering]["strokeEdges"], 50);
+    for (const char* key : {"analyzeMs", "strokeUpdateMs", "strokeRowsMs", "strokeRhsMs", "strokeSolveMs"})
+      EXPECT_TRUE(b[ordering].contains(key)) << ordering << " " << key;
+  }
 }
 
 TEST(Cli, DesignForAnotherMeshIsRefusedUnlessOverridden) {
