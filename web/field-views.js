@@ -46,7 +46,7 @@ export function arrowGeometry({ shaftW = 0.05, headW = 0.2, headL = 0.38, centre
 // Arrow spacing on screen (pixels) for density level 1..10. Level 6, the default, puts about 1.5 thousand
 // arrows on a model framed in a 1024 × 720 view, whatever its resolution.
 export function arrowSpacingPx(level) {
-  return 44 * 0.82 ** (Math.min(Math.max(level, 1), 10) - 1);
+  return 33 * 0.82 ** (Math.min(Math.max(level, 1), 10) - 1);
 }
 export const DEFAULT_ARROW_DENSITY = 6;
 const ARROW_LENGTH = 0.8; // × the spacing: neighbours never touch

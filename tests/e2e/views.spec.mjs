@@ -160,6 +160,8 @@ test.describe.serial('field views', () => {
     await expect(page.locator('#legend')).toBeVisible();
 
     await page.setInputFiles('#file-input', { name: 'bunny-x16.off', mimeType: 'text/plain', buffer: Buffer.from(subdividedOff(bunny, 2)) });
+    // The stroke is an unsaved edit: opening a model asks first.
+    await page.locator('#confirm-ok').click();
     await expect.poll(() => evaluate(() => window.tvf.info().faces), { timeout: 240_000 }).toBe(16 * (bunny.triangles.length / 3));
     await addStroke();
     await settle();
@@ -178,8 +180,9 @@ test.describe.serial('field views', () => {
     expect(median(large.lengths) / median(small.lengths)).toBeGreaterThan(0.85);
     expect(median(large.lengths) / median(small.lengths)).toBeLessThan(1.18);
 
-    // Zoom in 3×: the view shows a third of the model's width; resampled, it still shows about as many
-    // arrows, as long on screen as before.
+    // Zoom in 3×: the view shows a third of the model's width. Resampled, the arrows keep their spacing and
+    // length on screen; the model now fills the whole view, so more of them are visible (not 1/9 as many, as
+    // without resampling, nor 9 times as many, as with the default view's samples made finer).
     await evaluate(() => {
       const { target, position } = window.tvf.camera();
       window.tvf.setCamera({ target, position: position.map((x, k) => target[k] + (x - target[k]) / 3) });
@@ -189,7 +192,7 @@ test.describe.serial('field views', () => {
     await page.screenshot({ path: resolve(OUT, 'arrows-zoomed.png') });
     console.log(`zoomed 3×: ${zoomed.visible} visible of ${zoomed.drawn}, median length ${median(zoomed.lengths).toFixed(1)} px`);
     expect(zoomed.visible).toBeGreaterThan(0.6 * large.visible);
-    expect(zoomed.visible).toBeLessThan(2.5 * large.visible);
+    expect(zoomed.visible).toBeLessThan(4 * large.visible);
     expect(median(zoomed.lengths) / median(large.lengths)).toBeGreaterThan(0.8);
     expect(median(zoomed.lengths) / median(large.lengths)).toBeLessThan(1.25);
   });
