@@ -190,6 +190,11 @@ export declare class TangentFieldDesigner extends HTMLElement {
   streamlines(): number[][];
   perf(): Record<string, unknown>;
   projectToScreen(xyz: [number, number, number]): { x: number; y: number };
+  screenshot(options?: { width?: number; height?: number; transparent?: boolean }): Promise<Blob>;
+  arrowInstances(): { anchors: number[]; vectors: number[] };
+  streamlineCues(): { tip: number[]; back: number[] }[];
+  strokeCues(): { uid: number; cues: { tip: number[]; back: number[] }[] }[];
+  singularityMarkers(): { vertex: number; corners: number[] }[];
   pick(clientX: number, clientY: number): { face: number; bary: [number, number, number]; point: [number, number, number] } | null;
 
   setExemplar(source: string | URL | Blob | ImageData | ImageBitmap | { procedural: string; size?: number; seed?: number }, options?: { size?: number }): Promise<Record<string, unknown>>;

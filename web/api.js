@@ -2,6 +2,7 @@
 // <tangent-field-designer> element, as functions of its session. The element installs them on its prototype;
 // the app page's window.tvf is its element, so the same functions serve both.
 import { cameraState, setCameraState } from './camera.js';
+import { captureScreenshot } from './screenshot.js';
 import { DEFAULT_WEIGHT } from './session.js';
 import { edgeSpec, pointSpec, strokeSpec, vectorSpec } from './specs.js';
 
@@ -35,6 +36,8 @@ export const api = {
   saveDesign: read((s) => structuredClone(s.design)),
   frame: read((s, view = 'home') => s.viewer.frame(view)),
   camera: (s) => cameraState(s.viewer),
+  // A PNG Blob of the view at {width, height} pixels (default: the canvas), {transparent} background.
+  screenshot: (s, options) => (s.requireReady(), captureScreenshot(s.viewer, options)),
   setCamera: (s, state) => setCameraState(s.viewer, state),
   hasUnsavedEdits: (s) => s.hasUnsavedEdits(),
   // options.ignoreFingerprint: apply a design saved for another mesh anyway.
@@ -62,6 +65,15 @@ export const api = {
   views: (s) => ({ ...s.views }),
   setViews: (s, views) => s.setViews(views),
   streamlines: read((s) => s.currentStreamlines().map((l) => Array.from(l))),
+  // The arrows as drawn (the instances on the GPU): anchor and vector (model units) of each.
+  // The direction cues drawn on the streamlines: each chevron's tip and the middle of its back.
+  streamlineCues: read((s) => s.viewer.streamlines.cues.map(({ tip, back }) => ({ tip, back }))),
+  strokeCues: read((s) => s.viewer.handles.cues()),
+  singularityMarkers: read((s) => s.viewer.singularities.drawn()),
+  arrowInstances: read((s) => {
+    const { anchors, vectors } = s.viewer.arrows.drawn();
+    return { anchors: Array.from(anchors), vectors: Array.from(vectors) };
+  }),
   perf: (s) => structuredClone(s.perf),
   projectToScreen: read((s, xyz) => s.viewer.projectToScreen(Array.from(xyz))),
   pick: read((s, clientX, clientY) => s.viewer.pick(clientX, clientY)),

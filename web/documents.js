@@ -51,7 +51,10 @@ export function baseName(name) {
 
 // text: a JSON string or an object.
 export function downloadJson(filename, text) {
-  const blob = new Blob([typeof text === 'string' ? text : JSON.stringify(text, null, 1)], { type: 'application/json' });
+  downloadBlob(filename, new Blob([typeof text === 'string' ? text : JSON.stringify(text, null, 1)], { type: 'application/json' }));
+}
+
+export function downloadBlob(filename, blob) {
   const url = URL.createObjectURL(blob);
   const a = document.createElement('a');
   a.href = url;

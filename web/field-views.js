@@ -5,6 +5,7 @@ import {
   BufferAttribute,
   BufferGeometry,
   CanvasTexture,
+  CircleGeometry,
   Color,
   DoubleSide,
   DynamicDrawUsage,
@@ -13,23 +14,20 @@ import {
   LineBasicMaterial,
   LineSegments,
   Matrix4,
+  Mesh,
   MeshBasicMaterial,
   SRGBColorSpace,
   Sprite,
   SpriteMaterial,
   Vector3,
 } from 'three';
-import { scrambled } from './surface.js';
+import { POISSON_PACKING, sampleSurface, worldPerPixel } from './arrow-sampling.js';
+import { viridis } from './colormap.js';
 
 const ARROW_LIFT = 0.02; // × mean edge length, keeps arrows above the surface they lie on
 
-// Magnitude colour ramp (blue → cyan → yellow → red): readable on the grey surface at both ends.
-const RAMP = [0x2563eb, 0x06b6d4, 0xfacc15, 0xef4444].map((c) => new Color(c));
-export function rampColor(t, out) {
-  const s = Math.min(Math.max(t, 0), 1) * (RAMP.length - 1);
-  const i = Math.min(Math.floor(s), RAMP.length - 2);
-  return out.copy(RAMP[i]).lerp(RAMP[i + 1], s - i);
-}
+// Magnitude colours (arrows and the surface map) use viridis (colormap.js); the name stays for callers.
+export const rampColor = viridis;
 
 // A flat arrow in the xy-plane, unit length along +x, centred on the origin so it sits on its anchor.
 export function arrowGeometry({ shaftW = 0.05, headW = 0.2, headL = 0.38, centred = true } = {}) {
@@ -45,44 +43,38 @@ export function arrowGeometry({ shaftW = 0.05, headW = 0.2, headL = 0.38, centre
   return g;
 }
 
-// Arrow spacing for density level 1..10 (10 = one arrow per face), as a fraction of the model's radius.
-function arrowSpacing(level, radius) {
-  return level >= 10 ? 0 : radius * 0.15 * ((10 - level) / 9) ** 1.5;
+// Arrow spacing on screen (pixels) for density level 1..10. Level 6, the default, puts about 1.5 thousand
+// arrows on a model framed in a 1024 × 720 view, whatever its resolution.
+export function arrowSpacingPx(level) {
+  return 33 * 0.82 ** (Math.min(Math.max(level, 1), 10) - 1);
 }
-
-// The densest level that puts at most `count` arrows on the surface. Greedy Poisson-disk sampling covers a
-// surface of area A with about 0.7 A / r² points at spacing r.
-export function arrowDensityFor(surface, count) {
-  let area = 0;
-  for (let f = 0; f < surface.nF; f++) area += surface.areas[f];
-  if (surface.nF <= count) return 10;
-  for (let level = 9; level > 1; level--) {
-    const r = arrowSpacing(level, surface.radius);
-    if ((0.7 * area) / (r * r) <= count) return level;
-  }
-  return 1;
-}
+export const DEFAULT_ARROW_DENSITY = 6;
+const ARROW_LENGTH = 0.8; // × the spacing: neighbours never touch
+// Resample when the scale on screen has changed by more than this factor (zooming), not on every frame.
+const RESAMPLE_RATIO = 1.25;
+// Beyond this many samples over the whole surface (zoomed far in), sample only the faces near the view.
+const MAX_SAMPLES = 12_000;
 
 export class ArrowsView {
   constructor(scene) {
     this.scene = scene;
     this.mesh = null;
-    this.options = { visible: true, density: 10, scaled: false };
+    this.options = { visible: true, density: DEFAULT_ARROW_DENSITY, scaled: false };
     this.neutral = false;
-    this.vectors = null;
-    this.faces = null; // faces that carry an arrow at the current density
+    this.faceVectors = null;
+    this.vertexVectors = null;
+    this.samples = null; // {faces, bary, points} at the current spacing
+    this.sampledAt = null; // {wpp, position, direction, local} of the view the samples were made for
+    this.wpp = 0; // model units per pixel at the pivot, for the current view
+    this.top = 0; // magnitude at the top of the colour map
   }
 
   setSurface(surface) {
     this.#dispose();
     this.surface = surface;
-    this.vectors = null;
-    this.faces = null;
-    this.mesh = new InstancedMesh(
-      arrowGeometry(),
-      new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide }),
-      Math.max(surface.nF, 1),
-    );
+    this.faceVectors = this.vertexVectors = null;
+    this.samples = this.sampledAt = null;
+    this.mesh = new InstancedMesh(arrowGeometry(), new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide }), 1);
     this.mesh.instanceMatrix.setUsage(DynamicDrawUsage);
     this.mesh.frustumCulled = false;
     this.mesh.count = 0;
@@ -101,7 +93,7 @@ export class ArrowsView {
   setOptions(options) {
     const densityChanged = options.density !== undefined && options.density !== this.options.density;
     Object.assign(this.options, options);
-    if (densityChanged) this.faces = null;
+    if (densityChanged) this.samples = null;
     this.#rebuild();
   }
 
@@ -110,98 +102,175 @@ export class ArrowsView {
     this.#rebuild();
   }
 
-  setField(faceVectors) {
-    this.vectors = faceVectors;
+  // faceVectors: 3 per face; vertexVectors (optional): 3 per vertex, interpolated inside each face so the
+  // arrows turn smoothly rather than in steps at face edges.
+  setField(faceVectors, vertexVectors = null) {
+    this.faceVectors = faceVectors;
+    this.vertexVectors = vertexVectors && this.surface && vertexVectors.length === 3 * this.surface.nV ? vertexVectors : null;
     this.#rebuild();
   }
 
-  // Greedy Poisson-disk sample of face centres in a scrambled order: even coverage at any density.
-  #selectFaces() {
-    const s = this.surface;
-    const r = arrowSpacing(this.options.density, s.radius);
-    if (r <= 0) return Int32Array.from({ length: s.nF }, (_, f) => f);
-    const cells = new Map();
-    const key = (x, y, z) => `${x},${y},${z}`;
-    const chosen = [];
-    const C = s.centres;
-    for (const f of scrambled(s.nF)) {
-      const x = C[3 * f], y = C[3 * f + 1], z = C[3 * f + 2];
-      const ix = Math.floor(x / r), iy = Math.floor(y / r), iz = Math.floor(z / r);
-      let free = true;
-      for (let dx = -1; dx <= 1 && free; dx++)
-        for (let dy = -1; dy <= 1 && free; dy++)
-          for (let dz = -1; dz <= 1 && free; dz++)
-            for (const g of cells.get(key(ix + dx, iy + dy, iz + dz)) ?? []) {
-              if (Math.hypot(C[3 * g] - x, C[3 * g + 1] - y, C[3 * g + 2] - z) < r) {
-                free = false;
-                break;
-              }
-            }
-      if (!free) continue;
-      chosen.push(f);
-      const k = key(ix, iy, iz);
-      if (!cells.has(k)) cells.set(k, []);
-      cells.get(k).push(f);
+  // Called before each render: keeps the spacing and the length constant in pixels. A small zoom only
+  // rescales the arrows; one that changes the scale by RESAMPLE_RATIO (or moves a local sample set out of
+  // view) resamples.
+  updateView(camera, pivot, heightPx) {
+    if (!this.mesh || !this.surface) return false;
+    this.camera = camera;
+    const wpp = worldPerPixel(camera, pivot, heightPx);
+    if (!(wpp > 0)) return false;
+    const prev = this.wpp;
+    this.wpp = wpp;
+    const at = this.sampledAt;
+    if (!at) return this.#resample(camera, heightPx);
+    const ratio = wpp / at.wpp;
+    let stale = ratio > RESAMPLE_RATIO || ratio < 1 / RESAMPLE_RATIO;
+    if (!stale && at.local) {
+      const moved = camera.position.distanceTo(at.position) > 0.25 * wpp * heightPx;
+      const turned = camera.getWorldDirection(new Vector3()).dot(at.direction) < Math.cos((10 * Math.PI) / 180);
+      stale = moved || turned;
     }
-    return Int32Array.from(chosen);
+    if (stale) return this.#resample(camera, heightPx);
+    if (Math.abs(wpp / prev - 1) > 0.01) this.#rebuild();
+    return false;
   }
 
-  #rebuild() {
+  #resample(camera, heightPx) {
+    this.samples = null;
+    this.#rebuild(camera, heightPx);
+    return true;
+  }
+
+  #sample(camera, heightPx) {
+    const s = this.surface;
+    const spacing = arrowSpacingPx(this.options.density) * this.wpp;
+    let area = 0;
+    for (let f = 0; f < s.nF; f++) area += s.areas[f];
+    let faces = null;
+    if ((POISSON_PACKING * area) / (spacing * spacing) > MAX_SAMPLES && camera) faces = facesNearView(s, camera);
+    this.samples = sampleSurface(s, spacing, { faces, maxSamples: MAX_SAMPLES });
+    this.sampledAt = {
+      wpp: this.wpp,
+      local: !!faces,
+      position: camera ? camera.position.clone() : new Vector3(),
+      direction: camera ? camera.getWorldDirection(new Vector3()) : new Vector3(0, 0, -1),
+      heightPx,
+    };
+  }
+
+  #rebuild(camera = this.camera, heightPx = this.sampledAt?.heightPx) {
     if (!this.mesh) return;
-    const V = this.vectors;
-    if (!V || !this.options.visible) {
+    const F = this.faceVectors;
+    if (!F || !this.options.visible || !(this.wpp > 0)) {
       this.mesh.visible = false;
       return;
     }
-    this.faces ??= this.#selectFaces();
-    const s = this.surface;
+    if (!this.samples) this.#sample(camera, heightPx);
+    const s = this.surface, V = this.vertexVectors, T = s.triangles;
+    const { faces, bary, points } = this.samples;
+    const n = faces.length;
+    if (this.mesh.instanceMatrix.count < n) this.#grow(n);
     // Colours and scaled lengths top out at the 98th percentile of the magnitudes (as the colour map does):
-    // the spike at a source or vortex would otherwise leave every other arrow at the bottom of the ramp.
-    const mags = new Float64Array(s.nF);
-    for (let f = 0; f < s.nF; f++) {
-      const m = Math.hypot(V[3 * f], V[3 * f + 1], V[3 * f + 2]);
-      mags[f] = Number.isFinite(m) ? m : 0;
+    // the spike at a source or vortex would otherwise leave every other arrow at the bottom of the map.
+    const src = V ?? F;
+    const m = src.length / 3;
+    const mags = new Float64Array(m);
+    for (let i = 0; i < m; i++) {
+      const v = Math.hypot(src[3 * i], src[3 * i + 1], src[3 * i + 2]);
+      mags[i] = Number.isFinite(v) ? v : 0;
     }
     const sorted = mags.slice().sort();
-    const max = sorted[s.nF - 1] ?? 0;
-    const top = sorted[Math.min(s.nF - 1, Math.floor(0.98 * s.nF))] || max;
-    const spacing = arrowSpacing(this.options.density, s.radius);
-    const len = Math.max(0.6 * s.meanEdge, 0.8 * spacing);
+    const max = sorted[m - 1] ?? 0;
+    const top = sorted[Math.min(m - 1, Math.floor(0.98 * m))] || max;
+    this.top = top;
+    const len = ARROW_LENGTH * arrowSpacingPx(this.options.density) * this.wpp;
     const lift = ARROW_LIFT * s.meanEdge;
     const m4 = new Matrix4();
     const x = new Vector3(), y = new Vector3(), z = new Vector3(), color = new Color(0xf4f4f5);
-    // Faces whose vector is negligible next to the largest get no arrow rather than a noisy direction.
+    // Samples whose vector is negligible next to the largest get no arrow rather than a noisy direction.
     const floor = max * 1e-6;
-    let n = 0;
-    for (const f of this.faces) {
+    let k = 0;
+    for (let i = 0; i < n; i++) {
+      const f = faces[i];
       z.set(s.normals[3 * f], s.normals[3 * f + 1], s.normals[3 * f + 2]);
-      x.set(V[3 * f], V[3 * f + 1], V[3 * f + 2]);
-      x.addScaledVector(z, -x.dot(z)); // in the face plane, whatever rounding the core left
+      if (V) {
+        x.set(0, 0, 0);
+        for (let c = 0; c < 3; c++) {
+          const v = T[3 * f + c], b = bary[3 * i + c];
+          x.x += b * V[3 * v];
+          x.y += b * V[3 * v + 1];
+          x.z += b * V[3 * v + 2];
+        }
+      } else x.set(F[3 * f], F[3 * f + 1], F[3 * f + 2]);
+      x.addScaledVector(z, -x.dot(z)); // in the face plane
       const mag = x.length();
       if (!(mag > floor)) continue;
       const l = this.options.scaled ? len * Math.min(1, mag / top) : len;
       x.multiplyScalar(l / mag);
       y.crossVectors(z, x);
       m4.makeBasis(x, y, z);
-      m4.setPosition(s.centres[3 * f] + lift * z.x, s.centres[3 * f + 1] + lift * z.y, s.centres[3 * f + 2] + lift * z.z);
-      this.mesh.setMatrixAt(n, m4);
+      m4.setPosition(points[3 * i] + lift * z.x, points[3 * i + 1] + lift * z.y, points[3 * i + 2] + lift * z.z);
+      this.mesh.setMatrixAt(k, m4);
       if (!this.neutral) rampColor(mag / top, color);
-      this.mesh.setColorAt(n, color);
-      n++;
+      this.mesh.setColorAt(k, color);
+      k++;
     }
-    this.mesh.count = n;
+    this.mesh.count = k;
     this.mesh.instanceMatrix.needsUpdate = true;
     if (this.mesh.instanceColor) this.mesh.instanceColor.needsUpdate = true;
-    this.mesh.visible = n > 0;
+    this.mesh.visible = k > 0;
     this.max = max;
   }
+
+  // InstancedMesh buffers have a fixed size: a larger sample set needs a new mesh (same geometry and material).
+  #grow(n) {
+    const old = this.mesh;
+    this.scene.remove(old);
+    this.mesh = new InstancedMesh(old.geometry, old.material, Math.ceil(n * 1.25));
+    this.mesh.instanceMatrix.setUsage(DynamicDrawUsage);
+    this.mesh.frustumCulled = false;
+    this.mesh.count = 0;
+    this.scene.add(this.mesh);
+    old.dispose();
+  }
+
+  // The arrows as drawn: for each instance its anchor and its vector (length and direction, model units).
+  drawn() {
+    const n = this.mesh?.visible ? this.mesh.count : 0;
+    const M = this.mesh?.instanceMatrix.array;
+    const anchors = new Float64Array(3 * n), vectors = new Float64Array(3 * n);
+    for (let i = 0; i < n; i++) {
+      for (let c = 0; c < 3; c++) {
+        anchors[3 * i + c] = M[16 * i + 12 + c];
+        vectors[3 * i + c] = M[16 * i + c];
+      }
+    }
+    return { anchors, vectors };
+  }
 }
+
+// Faces whose centre projects within twice the view (and in front of the camera): where arrows can be seen
+// now or after a small orbit.
+function facesNearView(s, camera) {
+  const v = new Vector3(), out = [];
+  for (let f = 0; f < s.nF; f++) {
+    v.set(s.centres[3 * f], s.centres[3 * f + 1], s.centres[3 * f + 2]).project(camera);
+    if (Math.abs(v.x) <= 2 && Math.abs(v.y) <= 2 && v.z <= 1 && v.z >= -1) out.push(f);
+  }
+  return Int32Array.from(out);
+}
+
+// Streamlines run along the field (the tracer orders each line's points that way), so each carries chevrons
+// pointing downstream: a "V" lying on the surface every CUE_EVERY points.
+const CUE_EVERY = 6; // points between chevrons (the tracer takes about 4 per streamline spacing)
+const CUE_SIZE = 1.6; // chevron length, × the line's step
 
 export class StreamlinesView {
   constructor(scene) {
     this.scene = scene;
     this.lines = null;
     this.polylines = [];
+    this.cues = []; // {tip, back} per chevron, model units
+    this.normalAt = null; // (x, y, z) → unit surface normal near that point, set by the viewer
   }
 
   setSurface() {
@@ -211,13 +280,21 @@ export class StreamlinesView {
   // polylines: Float32Array per line (x, y, z per point).
   setLines(polylines) {
     this.polylines = polylines;
-    let segments = 0;
+    this.cues = this.normalAt ? polylines.flatMap((l) => chevrons(l, this.normalAt)) : [];
+    let segments = 2 * this.cues.length;
     for (const l of polylines) segments += Math.max(0, l.length / 3 - 1);
     const pos = new Float32Array(6 * segments);
     let o = 0;
     for (const l of polylines) {
       for (let k = 0; k + 3 < l.length; k += 3) {
         pos.set(l.subarray(k, k + 6), o);
+        o += 6;
+      }
+    }
+    for (const { tip, wings } of this.cues) {
+      for (const w of wings) {
+        pos.set(w, o);
+        pos.set(tip, o + 3);
         o += 6;
       }
     }
@@ -233,6 +310,27 @@ export class StreamlinesView {
     this.lines.geometry = g;
     this.lines.visible = segments > 0;
   }
+}
+
+function chevrons(line, normalAt) {
+  const out = [];
+  const n = line.length / 3;
+  const at = (k) => [line[3 * k], line[3 * k + 1], line[3 * k + 2]];
+  for (let k = CUE_EVERY / 2; k + 1 < n; k += CUE_EVERY) {
+    const tip = at(k + 1), prev = at(k);
+    const t = [tip[0] - prev[0], tip[1] - prev[1], tip[2] - prev[2]];
+    const step = Math.hypot(...t);
+    if (!(step > 0)) continue;
+    const size = CUE_SIZE * step;
+    const u = t.map((x) => x / step);
+    const nrm = normalAt(tip[0], tip[1], tip[2]);
+    // Across the line, in the surface: n × t.
+    const side = [nrm[1] * u[2] - nrm[2] * u[1], nrm[2] * u[0] - nrm[0] * u[2], nrm[0] * u[1] - nrm[1] * u[0]];
+    const back = tip.map((x, c) => x - size * u[c]);
+    const wings = [1, -1].map((sgn) => back.map((x, c) => x + sgn * 0.55 * size * side[c]));
+    out.push({ tip, back, wings });
+  }
+  return out;
 }
 
 // Markers with the index written on them, as sprites: always facing the viewer, hidden behind the surface.
@@ -298,6 +396,13 @@ function indexLabel(index) {
   return r > 0 ? `+${r}` : r < 0 ? `\u2212${-r}` : '0';
 }
 
+// Singularity markers lie on the surface: a labelled disc in the tangent plane at the vertex, lifted by a
+// hair and drawn with a negative polygon offset so it wins against the surface it lies on but against nothing
+// above it. Handles float above the surface, so one at the same vertex always shows over the marker. The disc
+// keeps a constant size in pixels and turns about the normal so its label reads upright.
+const SINGULARITY_PX = 22;
+const SINGULARITY_LIFT = 0.01; // × mean edge length
+
 export class SingularitiesView {
   constructor(scene, labels) {
     this.labels = labels;
@@ -305,6 +410,7 @@ export class SingularitiesView {
     this.group.visible = false;
     scene.add(this.group);
     this.list = [];
+    this.disc = new CircleGeometry(0.5, 32);
   }
 
   setSurface(surface) {
@@ -325,26 +431,59 @@ export class SingularitiesView {
   }
 
   #build() {
-    for (const s of this.group.children) s.material.dispose();
+    for (const m of this.group.children) m.material.dispose();
     this.group.clear();
     const s = this.surface, list = this.list;
     if (!s || !this.group.visible) return;
-    const lift = 0.6 * s.meanEdge;
+    const lift = SINGULARITY_LIFT * s.meanEdge;
     // A field that has not settled (or is zero) can report a singularity at almost every vertex; drawing
-    // thousands of sprites would only hide the model.
+    // thousands of markers would only hide the model.
     for (const { vertex, index } of list.slice(0, 400)) {
       const label = indexLabel(index);
       const fill = index > 0 ? '#facc15' : '#c084fc';
-      const sprite = markerSprite(this.labels.get(`sing:${label}`, fill, label));
+      const material = new MeshBasicMaterial({
+        map: this.labels.get(`sing:${label}`, fill, label),
+        transparent: true,
+        side: DoubleSide,
+        polygonOffset: true,
+        polygonOffsetFactor: -2,
+        polygonOffsetUnits: -2,
+      });
+      const marker = new Mesh(this.disc, material);
       const p = s.vertex(vertex), n = s.vertexNormals;
-      sprite.position.set(p[0] + lift * n[3 * vertex], p[1] + lift * n[3 * vertex + 1], p[2] + lift * n[3 * vertex + 2]);
-      sprite.userData.vertex = vertex;
-      this.group.add(sprite);
+      const normal = new Vector3(n[3 * vertex], n[3 * vertex + 1], n[3 * vertex + 2]).normalize();
+      marker.position.set(p[0], p[1], p[2]).addScaledVector(normal, lift);
+      marker.userData = { vertex, normal };
+      marker.renderOrder = 1;
+      this.group.add(marker);
     }
   }
 
   updateScale(camera, renderer) {
-    if (this.group.visible) fixSpriteScales(this.group, camera, renderer);
+    if (!this.group.visible || !this.group.children.length) return;
+    const h = renderer.domElement.clientHeight || renderer.domElement.height || 1;
+    const right = new Vector3().setFromMatrixColumn(camera.matrixWorld, 0);
+    const x = new Vector3(), y = new Vector3(), basis = new Matrix4();
+    for (const m of this.group.children) {
+      const { normal } = m.userData;
+      // The screen's right, laid into the tangent plane (or any tangent when the normal faces sideways).
+      x.copy(right).addScaledVector(normal, -right.dot(normal));
+      if (x.lengthSq() < 1e-8) x.set(1, 0, 0).addScaledVector(normal, -normal.x);
+      x.normalize();
+      y.crossVectors(normal, x);
+      m.quaternion.setFromRotationMatrix(basis.makeBasis(x, y, normal));
+      m.scale.setScalar(SINGULARITY_PX * worldPerPixel(camera, m.position, h));
+    }
+  }
+
+  // Each marker's vertex and the corners of its disc as drawn (world coordinates), for checking it lies on
+  // the surface.
+  drawn() {
+    return this.group.children.map((m) => {
+      m.updateMatrixWorld();
+      const P = m.geometry.getAttribute('position'), v = new Vector3(), corners = [];
+      for (let i = 0; i < P.count; i++) corners.push(...v.fromBufferAttribute(P, i).applyMatrix4(m.matrixWorld).toArray());
+      return { vertex: m.userData.vertex, corners };
+    });
   }
 }
-

@@ -4,7 +4,7 @@
 import { BufferAttribute, BufferGeometry, DoubleSide, Group, Matrix4, Mesh, MeshBasicMaterial, Vector3 } from 'three';
 import { arrowGeometry, fixSpriteScales, markerSprite } from './field-views.js';
 
-const COLORS = { stroke: 0xff7a1a, vector: 0xfbbf24, selected: 0xffffff, preview: 0xfde68a };
+const COLORS = { stroke: 0xff7a1a, vector: 0xfbbf24, selected: 0xffffff, preview: 0xfde68a, chevron: 0x431407 };
 const MARKERS = {
   source: { fill: '#ef4444', text: '+' },
   sink: { fill: '#22c55e', text: '\u2212' },
@@ -60,10 +60,18 @@ export class HandlesView {
       case 'stroke': {
         const pts = spec.points.map((q) => liftedOn(q.face, s.pointFromBary(q.face, q.bary)));
         const normals = spec.points.map((q) => s.normal(q.face));
-        const mesh = new Mesh(ribbon(pts, normals, 0.3 * s.meanEdge), basic(COLORS.stroke));
+        const width = 0.3 * s.meanEdge;
+        const mesh = new Mesh(ribbon(pts, normals, width), basic(COLORS.stroke));
         mesh.renderOrder = 2;
+        // Chevrons along the ribbon, in the stroke's direction (the direction it asks of the field).
+        const cues = ribbonChevrons(pts, normals, width, 0.05 * s.meanEdge);
+        if (cues.list.length) {
+          const marks = new Mesh(cues.geometry, basic(COLORS.chevron));
+          marks.renderOrder = 3;
+          mesh.add(marks);
+        }
         this.group.add(mesh);
-        return { spec, object: mesh, anchors: pts };
+        return { spec, object: mesh, anchors: pts, cues: cues.list };
       }
       case 'vector': {
         const n = s.normal(spec.face);
@@ -122,8 +130,19 @@ export class HandlesView {
 
   #disposeItem(item) {
     item.object.parent?.remove(item.object);
+    for (const child of item.object.children) {
+      child.geometry?.dispose();
+      child.material?.dispose();
+    }
     item.object.geometry?.dispose();
     item.object.material.dispose();
+  }
+
+  // Direction cues on the stroke ribbons: uid → [{tip, back}].
+  cues() {
+    const out = [];
+    for (const [uid, item] of this.items) if (item.cues) out.push({ uid, cues: item.cues.map(({ tip, back }) => ({ tip, back })) });
+    return out;
   }
 
   updateScale(camera, renderer) {
@@ -208,4 +227,36 @@ function ribbon(points, normals, w) {
   g.setAttribute('position', new BufferAttribute(pos, 3));
   g.setIndex(index);
   return g;
+}
+
+// Filled chevrons (arrowheads) inside a ribbon of width w, about every 3 w of its length and at least one,
+// lifted by `lift` over it along the local normal. Returns the geometry and each chevron's tip and back.
+function ribbonChevrons(points, normals, w, lift) {
+  const n = points.length;
+  const cum = [0];
+  for (let k = 1; k < n; k++) cum.push(cum[k - 1] + Math.hypot(...points[k].map((x, c) => x - points[k - 1][c])));
+  const L = cum[n - 1];
+  const list = [], pos = [];
+  if (!(L > 0)) return { list, geometry: new BufferGeometry() };
+  const count = Math.max(1, Math.floor(L / (3 * w)));
+  const h = Math.min(0.9 * w, (0.8 * L) / count); // chevron length along the stroke
+  let k = 1;
+  for (let i = 0; i < count; i++) {
+    const at = ((i + 0.5) * L) / count;
+    while (k < n - 1 && cum[k] < at) k++;
+    const a = points[k - 1], b = points[k], f = (at - cum[k - 1]) / (cum[k] - cum[k - 1] || 1);
+    const t0 = b.map((x, c) => x - a[c]);
+    const tl = Math.hypot(...t0) || 1;
+    const t = t0.map((x) => x / tl);
+    const nr = normals[k];
+    const side = [nr[1] * t[2] - nr[2] * t[1], nr[2] * t[0] - nr[0] * t[2], nr[0] * t[1] - nr[1] * t[0]];
+    const centre = a.map((x, c) => x + f * t0[c] + lift * nr[c]);
+    const tip = centre.map((x, c) => x + 0.5 * h * t[c]);
+    const back = centre.map((x, c) => x - 0.5 * h * t[c]);
+    pos.push(...tip, ...back.map((x, c) => x + 0.4 * w * side[c]), ...back.map((x, c) => x - 0.4 * w * side[c]));
+    list.push({ tip, back });
+  }
+  const g = new BufferGeometry();
+  g.setAttribute('position', new BufferAttribute(new Float32Array(pos), 3));
+  return { list, geometry: g };
 }

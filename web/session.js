@@ -9,8 +9,9 @@
 import { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting } from './commands.js';
 import { CoreProxy } from './core-proxy.js';
 import { AutosaveStore } from './autosave-store.js';
-import { baseName, downloadJson, modelKey, readJsonFile } from './documents.js';
+import { baseName, downloadBlob, downloadJson, modelKey, readJsonFile } from './documents.js';
 import { setupExport } from './export/index.js';
+import { captureScreenshot } from './screenshot.js';
 import { History } from './history.js';
 import { ACCEPT, readModel } from './model-files.js';
 import { traceStreamlines } from './streamlines.js';
@@ -20,10 +21,8 @@ import { setupSynthesis } from './synthesis/index.js';
 import { ToolController } from './tools.js';
 import { setPivotAt } from './camera.js';
 import { bindUi } from './ui.js';
-import { Viewer, arrowDensityFor } from './viewer.js';
+import { Viewer } from './viewer.js';
 
-// An arrow per face stops being readable (and software rendering stops being quick) beyond this many.
-const MAX_DEFAULT_ARROWS = 20_000;
 // Weight 1e4 keeps strokes within ~0.4% of the drawn direction (paper, Sec. 6.1) while the rank-1 updates
 // stay well conditioned.
 export const DEFAULT_WEIGHT = 1e4;
@@ -68,7 +67,6 @@ export class Session {
     this.constraints = new Map(); // uid → core id
     this.nextUid = 1;
     this.selected = null;
-    this.densityAuto = false; // the arrow density was lowered for a large mesh, not chosen by the user
     this.fieldVersion = 0;
     this.streamlineCache = null; // {version, spacing, surface, lines}
     this.streamlineTimer = 0;
@@ -328,10 +326,11 @@ export class Session {
     const { viewer, ui, field, views } = this;
     const t0 = performance.now();
     // Drawn already from the worker's early message: the same numbers.
-    if (!this.arrowsAhead) viewer.arrows.setField(field.faceVectors);
+    // The early arrows were face-constant; the full snapshot adds the vertex vectors they interpolate.
+    viewer.arrows.setField(field.faceVectors, field.vertexVectors);
     this.arrowsAhead = false;
     const max = viewer.setVertexField(field.vertexVectors);
-    ui.setLegend(views.colorMap ? max : null);
+    ui.setLegend(this.#legendShown() ? max : null);
     viewer.singularities.setSingularities(field.singularities);
     viewer.handles.setConstraints([...this.constraints.keys()].map((uid) => ({ uid, spec: this.specOf(uid) })));
     viewer.handles.setSelected(this.selected);
@@ -363,10 +362,15 @@ export class Session {
     viewer.setColorMap(v.colorMap);
     viewer.singularities.setVisible(v.singularities);
     if (this.field) {
-      this.ui.setLegend(v.colorMap ? viewer.vertexFieldMax : null);
+      this.ui.setLegend(this.#legendShown() ? viewer.vertexFieldMax : null);
       this.#scheduleStreamlines();
     }
     viewer.requestRender();
+  }
+
+  // Arrows and the surface map share one magnitude scale (viridis, top at the 98th percentile): one legend.
+  #legendShown() {
+    return this.views.colorMap || this.views.arrows;
   }
 
   setViews(views) {
@@ -502,12 +506,6 @@ export class Session {
       this.meshSerial++;
       this.synthesis.modelChanged();
       this.ui.setHasBoundary(info.boundaryLoops > 0);
-      // On a large mesh "one arrow per face" becomes a sparser default; a density the user chose stays.
-      if (this.densityAuto || this.views.arrowDensity === 10) {
-        const level = this.surface.nF > MAX_DEFAULT_ARROWS ? arrowDensityFor(this.surface, MAX_DEFAULT_ARROWS) : 10;
-        this.densityAuto = level !== 10;
-        if (level !== this.views.arrowDensity) this.setViews({ arrowDensity: level });
-      }
       this.refresh();
       // Main-thread cost of taking a new mesh on (adjacency, BVH, buffers, first draw): the one pause left.
       this.perf.meshSetupMs = performance.now() - tApply;
@@ -806,11 +804,15 @@ export class Session {
       onBoundary: editable((bc) => this.#report(this.setSetting('boundary', bc))),
       onGamma: editable((g) => this.#report(this.setSetting('gamma', g))),
       onViews: (views) => {
-        if (views.arrowDensity !== this.views.arrowDensity) this.densityAuto = false;
         this.applyViews(views);
       },
       onSelect: (uid) => this.select(uid),
       onFrame: (view) => this.viewer.frame(view),
+      onScreenshot: () => {
+        const c = this.viewer.canvas;
+        const size = { width: Math.min(8192, 2 * c.clientWidth), height: Math.min(8192, 2 * c.clientHeight) };
+        this.#report(captureScreenshot(this.viewer, size).then((blob) => downloadBlob(`${baseName(this.modelName)}.png`, blob)));
+      },
       // The first-run hint is remembered with the autosave (the app page), shown every time elsewhere.
       hintKey: this.autosave != null ? 'tvf-hint-seen' : null,
       onRemove: editable((uid) => this.#edit('delete', this.remove(uid))),

@@ -44,6 +44,7 @@ export const TEMPLATE = `<div class="root" part="root">
     <button id="redo" type="button" class="edit" title="Redo (Ctrl+Shift+Z)" aria-label="Redo" disabled>↷</button>
     <span class="sep" aria-hidden="true"></span>
     <button id="frame-button" type="button" title="Frame the model: bring all of it back into view (F or Home)">Frame</button>
+    <button id="screenshot-button" type="button" title="Save a PNG picture of the view (twice the view's size)">Picture</button>
     <button id="help-button" type="button" title="Help: every tool, shortcut and gesture (? , H or F1)" aria-label="Help">?</button>
   </header>
 
@@ -80,7 +81,7 @@ export const TEMPLATE = `<div class="root" part="root">
         <summary>Views</summary>
         <label class="check"><input id="show-arrows" type="checkbox" checked> Arrows</label>
         <div class="sub">
-          <label title="Arrow density (10 = one per face)">Density <input id="arrow-density" type="range" min="1" max="10" step="1" value="10"></label>
+          <label title="Arrow density: spacing on screen, the same at any mesh resolution and zoom">Density <input id="arrow-density" type="range" min="1" max="10" step="1" value="6"></label>
           <label class="check" title="Arrow length proportional to the magnitude"><input id="arrow-scaled" type="checkbox"> by magnitude</label>
         </div>
         <label class="check"><input id="show-streamlines" type="checkbox"> Streamlines</label>
@@ -88,7 +89,7 @@ export const TEMPLATE = `<div class="root" part="root">
           <label title="Distance between streamlines">Spacing <input id="streamline-spacing" type="range" min="1" max="10" step="1" value="5"></label>
         </div>
         <label class="check"><input id="show-colormap" type="checkbox"> Magnitude colours</label>
-        <div id="legend" hidden><span>0</span><span class="ramp"></span><span id="legend-max"></span></div>
+        <div id="legend" hidden title="Magnitude (arrow and surface colours, viridis)"><span>0</span><span class="ramp"></span><span id="legend-max"></span></div>
         <label class="check"><input id="show-singularities" type="checkbox"> Singularities</label>
       </details>
     </aside>

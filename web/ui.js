@@ -118,6 +118,7 @@ export function bindUi(root, host, actions) {
 
   // ---- camera and help
   $('#frame-button').addEventListener('click', () => actions.onFrame('home'));
+  $('#screenshot-button').addEventListener('click', () => actions.onScreenshot());
   for (const btn of $$('[data-view]')) {
     if (VIEW_PRESETS[btn.dataset.view]) btn.addEventListener('click', () => actions.onFrame(btn.dataset.view));
   }

@@ -24,9 +24,7 @@ import {
 } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { MeshBVH, acceleratedRaycast } from 'three-mesh-bvh';
-import { ArrowsView, LabelTextures, SingularitiesView, StreamlinesView, arrowDensityFor, rampColor } from './field-views.js';
-
-export { arrowDensityFor };
+import { ArrowsView, LabelTextures, SingularitiesView, StreamlinesView, rampColor } from './field-views.js';
 import { HandlesView } from './handles.js';
 import { frameModel } from './camera.js';
 
@@ -37,7 +35,7 @@ const STROKE_LIFT = 0.15; // × mean edge length
 export class Viewer {
   constructor(container) {
     this.container = container;
-    this.renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true, alpha: true });
     // three.js rebuilds its GL state when a lost context comes back, but draws nothing until asked: without
     // this the canvas stays blank until the next interaction.
     this.renderer.domElement.addEventListener('webglcontextrestored', () => {
@@ -132,6 +130,7 @@ export class Viewer {
 
   renderNow() {
     if (this.disposed) return;
+    this.arrows.updateView(this.camera, this.controls.target, this.canvas.clientHeight || this.canvas.height);
     this.singularities.updateScale(this.camera, this.renderer);
     this.handles.updateScale(this.camera, this.renderer);
     this.renderer.render(this.scene, this.camera);
@@ -180,6 +179,7 @@ export class Viewer {
     this.scene.add(this.surfaceMesh);
     this.#applyColorMapMaterial();
     for (const view of [this.arrows, this.streamlines, this.singularities, this.handles]) view.setSurface(surface);
+    this.streamlines.normalAt = (x, y, z) => this.#normalNear(x, y, z);
     this.frame();
     this.renderNow();
   }
@@ -191,6 +191,12 @@ export class Viewer {
     this.surfaceMesh.geometry.dispose();
     this.surfaceMesh.material.dispose();
     this.surfaceMesh = null;
+  }
+
+  // The normal of the face closest to a point (for direction cues drawn in the surface).
+  #normalNear(x, y, z) {
+    const hit = this.surfaceMesh?.geometry.boundsTree.closestPointToPoint(new Vector3(x, y, z));
+    return hit ? this.surface.normal(hit.faceIndex) : [0, 0, 1];
   }
 
   // Puts the whole model in view (camera.js): on load, Frame/Home/F, and the view presets.
