@@ -690,28 +690,3 @@ function nearestFace(mesh, p) {
   return best;
 }
 
-// 1-to-4 midpoint subdivision (same surface, 4× the faces), as OFF text.
-function subdividedOff(mesh, levels) {
-  let P = mesh.positions.slice(), T = mesh.triangles.slice();
-  for (let l = 0; l < levels; l++) {
-    const mid = new Map(), nT = [];
-    const m = (a, b) => {
-      const k = a < b ? `${a},${b}` : `${b},${a}`;
-      if (!mid.has(k)) {
-        mid.set(k, P.length / 3);
-        for (let c = 0; c < 3; c++) P.push((P[3 * a + c] + P[3 * b + c]) / 2);
-      }
-      return mid.get(k);
-    };
-    for (let t = 0; t < T.length; t += 3) {
-      const [a, b, c] = [T[t], T[t + 1], T[t + 2]];
-      const ab = m(a, b), bc = m(b, c), ca = m(c, a);
-      nT.push(a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca);
-    }
-    T = nT;
-  }
-  const lines = [`OFF`, `${P.length / 3} ${T.length / 3} 0`];
-  for (let v = 0; v < P.length; v += 3) lines.push(`${P[v]} ${P[v + 1]} ${P[v + 2]}`);
-  for (let t = 0; t < T.length; t += 3) lines.push(`3 ${T[t]} ${T[t + 1]} ${T[t + 2]}`);
-  return lines.join('\n') + '\n';
-}

@@ -6,48 +6,10 @@
 //   the same synthesis run without interleaving produces no frames at all (the truth the count is read against);
 // - "update texture automatically" off: field changes leave the texture as it is (marked stale) until it is on.
 import { expect, test } from '@playwright/test';
-import { inflateSync } from 'node:zlib';
 import { flatSquareGlb } from '../../web/synthesis/glb.js';
 import { openDesigner, trackErrors } from './helpers.mjs';
+import { decodePng } from './surface-texture-metrics.mjs';
 
-// RGBA8 pixels of a PNG (8-bit RGB or RGBA, non-interlaced: what the page writes).
-function decodePng(bytes) {
-  const b = Buffer.from(bytes);
-  let off = 8, width = 0, height = 0, colourType = 0;
-  const idat = [];
-  while (off < b.length) {
-    const len = b.readUInt32BE(off), type = b.toString('latin1', off + 4, off + 8);
-    const data = b.subarray(off + 8, off + 8 + len);
-    if (type === 'IHDR') (width = data.readUInt32BE(0)), (height = data.readUInt32BE(4)), (colourType = data[9]);
-    if (type === 'IDAT') idat.push(data);
-    off += 12 + len;
-  }
-  const channels = colourType === 6 ? 4 : 3;
-  const raw = inflateSync(Buffer.concat(idat));
-  const stride = width * channels;
-  const out = new Uint8Array(width * height * 4);
-  const prev = new Uint8Array(stride), cur = new Uint8Array(stride);
-  for (let y = 0; y < height; y++) {
-    const filter = raw[y * (stride + 1)];
-    const line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
-    for (let i = 0; i < stride; i++) {
-      const a = i >= channels ? cur[i - channels] : 0, up = prev[i], c = i >= channels ? prev[i - channels] : 0;
-      let v = line[i];
-      if (filter === 1) v += a;
-      else if (filter === 2) v += up;
-      else if (filter === 3) v += (a + up) >> 1;
-      else if (filter === 4) {
-        const p = a + up - c, pa = Math.abs(p - a), pb = Math.abs(p - up), pc = Math.abs(p - c);
-        v += pa <= pb && pa <= pc ? a : pb <= pc ? up : c;
-      }
-      cur[i] = v & 255;
-    }
-    for (let x = 0; x < width; x++)
-      for (let k = 0; k < 4; k++) out[4 * (y * width + x) + k] = k < channels ? cur[x * channels + k] : 255;
-    prev.set(cur);
-  }
-  return { width, height, pixels: out };
-}
 
 // Colour jumps between horizontally and vertically adjacent pixels, split by whether the pair straddles an
 // atlas texel boundary (every `mag` pixels) or lies inside one texel: the share of large jumps (> `big`, sum of
