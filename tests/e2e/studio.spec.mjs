@@ -30,6 +30,7 @@ import {
   relativeDifference,
   sub,
   surfacePoint,
+  subdividedOff,
   topFacePair,
   trackErrors,
   vertex,
