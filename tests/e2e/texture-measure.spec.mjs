@@ -84,7 +84,7 @@ async function measureModel(page, testInfo, { name, bytes }) {
   if (bytes) await page.evaluate(([b, n]) => window.tvf.loadModel(new Uint8Array(b), { name: n }), [bytes, name]);
   await page.evaluate(() => window.tvf.setViews({ arrows: false }));
   const points = await page.evaluate(() => {
-    const rect = document.querySelector('#view').getBoundingClientRect();
+    const rect = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
     const pts = [];
     for (let k = 0; k <= 30; k++) {
       const h = window.tvf.pick(rect.left + rect.width * (0.3 + 0.013 * k), rect.top + rect.height * 0.5);

@@ -119,11 +119,11 @@ test.describe.serial('texture quality and responsiveness (flat square)', () => {
     await page.evaluate(() => {
       const b = Object.assign(document.createElement('button'), { id: 'probe', textContent: 'probe' });
       b.style.cssText = 'position:fixed;left:0;top:0;z-index:99';
-      b.addEventListener('click', () => (window.__probe = { progress: window.tvf.synthesisProgress(), bar: document.getElementById('tex-progress').value }));
+      b.addEventListener('click', () => (window.__probe = { progress: window.tvf.synthesisProgress(), bar: document.querySelector('tangent-field-designer').shadowRoot.getElementById('tex-progress').value }));
       document.body.append(b);
       window.__synth = window.tvf.synthesize({ resolution: 512, seed: 4 });
     });
-    await page.waitForFunction(() => (window.tvf.synthesisProgress()?.fraction ?? 0) > 0.02 && !document.getElementById('tex-progress').hidden);
+    await page.waitForFunction(() => (window.tvf.synthesisProgress()?.fraction ?? 0) > 0.02 && !document.querySelector('tangent-field-designer').shadowRoot.getElementById('tex-progress').hidden);
     await page.click('#probe');
     const probe = await page.evaluate(() => window.__probe);
     expect(probe.progress, 'the click was handled while the synthesis was still running').not.toBeNull();
