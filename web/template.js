@@ -5,6 +5,7 @@
 export const TEMPLATE = `<div class="root" part="root">
   <header class="toolbar" part="toolbar" role="toolbar" aria-label="Design tools">
     <span class="brand" part="brand">Tangent-field designer</span>
+    <button id="panels-toggle" type="button" part="panels-toggle" aria-expanded="false" aria-controls="side-panel constraints-panel" title="Show or hide the settings and constraint panels (on small screens they are drawers)">☰ Panels</button>
     <div class="group" role="group" aria-label="Files">
       <button id="open-button" type="button" class="edit" title="Open a mesh (.glb, .gltf, .obj, .off, .ply) — or drop one on the view">Open…</button>
       <input id="file-input" type="file" hidden>

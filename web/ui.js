@@ -52,6 +52,14 @@ export function bindUi(root, host, actions) {
 
   // ---- files
   fileInput.accept = actions.accept;
+  // Small screens: the panels are drawers (a bottom sheet on phones) that this button opens and closes
+  // (element.css decides, by the element's own size, whether they are drawers at all).
+  const panelsToggle = $('#panels-toggle');
+  panelsToggle.addEventListener('click', () => {
+    const open = panelsToggle.getAttribute('aria-expanded') !== 'true';
+    panelsToggle.setAttribute('aria-expanded', String(open));
+    $('.root').toggleAttribute('data-panels-open', open);
+  });
   $('#open-button').addEventListener('click', () => fileInput.click());
   fileInput.addEventListener('change', () => {
     const files = [...fileInput.files];

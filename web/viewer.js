@@ -26,7 +26,7 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { MeshBVH, acceleratedRaycast } from 'three-mesh-bvh';
 import { ArrowsView, LabelTextures, SingularitiesView, StreamlinesView, rampColor } from './field-views.js';
 import { HandlesView } from './handles.js';
-import { frameModel } from './camera.js';
+import { frameModel, refitToAspect } from './camera.js';
 
 const BACKGROUND = 0x1b1d21;
 const SURFACE_GREY = 0xb9bec8;
@@ -114,8 +114,11 @@ export class Viewer {
     const w = Math.max(1, this.container.clientWidth);
     const h = Math.max(1, this.container.clientHeight);
     this.renderer.setSize(w, h, false);
+    const oldAspect = this.camera.aspect;
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    // A rotated phone or a closed drawer changes the aspect: keep the model's fit to the narrower field of view.
+    if (oldAspect !== this.camera.aspect) refitToAspect(this, oldAspect);
     this.renderNow();
   }
 
