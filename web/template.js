@@ -89,6 +89,7 @@ export const TEMPLATE = `<div class="root" part="root">
         <div class="sub">
           <label title="Distance between streamlines">Spacing <input id="streamline-spacing" type="range" min="1" max="10" step="1" value="5"></label>
         </div>
+        <label class="check" title="Flow texture: white noise smeared along the field (line integral convolution), drawn on the GPU"><input id="show-lic" type="checkbox"> Flow texture</label>
         <label class="check"><input id="show-colormap" type="checkbox"> Magnitude colours</label>
         <div id="legend" hidden title="Magnitude (arrow and surface colours, viridis)"><span>0</span><span class="ramp"></span><span id="legend-max"></span></div>
         <label class="check"><input id="show-singularities" type="checkbox"> Singularities</label>
