@@ -148,6 +148,10 @@ test.describe.serial('flow-texture view', () => {
     await expect.poll(() => evaluate(() => window.tvf.views().lic)).toBe(true);
     await settle();
     // Arrows in front of the surface stay visible through the flow texture (it is depth-tested).
-    await page.locator('#view').screenshot({ path: resolve(OUT, 'lic-bunny.png') });
+    const png = await evaluate(async () => {
+      const blob = await window.tvf.screenshot({ width: 640, height: 480 });
+      return Array.from(new Uint8Array(await blob.arrayBuffer()));
+    });
+    writeFileSync(resolve(OUT, 'lic-bunny.png'), Buffer.from(png));
   });
 });
