@@ -155,3 +155,28 @@ test.describe.serial('flow-texture view', () => {
     writeFileSync(resolve(OUT, 'lic-bunny.png'), Buffer.from(png));
   });
 });
+
+// Issue 10, item 9: the texture status belongs to the current model. After a texture on the bunny, opening
+// another model must not leave the bunny's atlas numbers in the status line.
+test('the texture status is cleared when another model loads', async ({ page }) => {
+  const errors = trackErrors(page);
+  await openDesigner(page);
+  await page.evaluate(() => window.tvf.setTextureAutoUpdate(false));
+  await page.evaluate(() => window.tvf.synthesize({ resolution: 64 }));
+  const status = page.locator('#tex-status');
+  await expect(status).toContainText('atlas');
+  const bunnyStatus = await status.textContent();
+  await page.evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'square.off', restore: false }), squareOff(6));
+  await expect(status).not.toHaveText(bunnyStatus);
+  await expect(status).toHaveText('No texture for this model yet: Synthesize makes one.');
+  // Synthesizing again gives the square's own numbers.
+  await page.evaluate(() => window.tvf.synthesize({ resolution: 64 }));
+  await expect(status).toContainText('atlas');
+  // With the texture turned off, the last numbers stay until another model loads.
+  await page.evaluate(() => window.tvf.clearTexture());
+  const squareStatus = await status.textContent();
+  expect(squareStatus).toContain('atlas');
+  await page.evaluate(() => window.tvf.loadModel('models/bunny.glb', { restore: false }));
+  await expect(status).toHaveText('No texture yet.');
+  expect(errors).toEqual([]);
+});
