@@ -56,6 +56,8 @@ export interface Views {
   arrowsScaled: boolean;
   streamlines: boolean;
   streamlineSpacing: number;
+  /** Flow texture: line integral convolution of white noise along the field (screen space, GPU). */
+  lic: boolean;
   colorMap: boolean;
   singularities: boolean;
 }

@@ -41,6 +41,22 @@ export function frameModel(viewer, preset = 'home') {
   return true;
 }
 
+// After the view's aspect changed from `oldAspect`, moves the camera along its view direction so that whatever
+// filled the narrower field of view before fills it again: a framed model stays framed (e.g. on a phone turned
+// from portrait to landscape), and a zoomed-in view keeps its zoom.
+export function refitToAspect(viewer, oldAspect) {
+  const { camera, controls } = viewer;
+  if (!viewer.surfaceMesh || !(oldAspect > 0)) return;
+  const vHalf = (camera.fov * Math.PI) / 360;
+  const narrow = (aspect) => Math.min(vHalf, Math.atan(Math.tan(vHalf) * aspect));
+  const scale = Math.sin(narrow(oldAspect)) / Math.sin(narrow(camera.aspect));
+  if (Math.abs(scale - 1) < 1e-6) return;
+  const offset = camera.position.clone().sub(controls.target).multiplyScalar(scale);
+  camera.position.copy(controls.target).add(offset);
+  camera.updateProjectionMatrix();
+  controls.update();
+}
+
 // Makes the surface point under (clientX, clientY) the orbit pivot, keeping the view direction; returns the
 // point or null (off the model: nothing changes).
 export function setPivotAt(viewer, clientX, clientY) {

@@ -12,7 +12,7 @@ import { TEMPLATE } from './template.js';
 import { TOOLS } from './tools.js';
 
 export const TAG_NAME = 'tangent-field-designer';
-const VIEW_NAMES = ['arrows', 'streamlines', 'magnitude', 'singularities', 'texture'];
+const VIEW_NAMES = ['arrows', 'streamlines', 'lic', 'magnitude', 'singularities', 'texture'];
 const DEFAULT_VIEWS = 'arrows';
 // Reflected string attributes: property name → attribute name.
 const STRING_ATTRIBUTES = {
@@ -222,7 +222,7 @@ export class TangentFieldDesigner extends Base {
   }
 
   #applyViews(s, on) {
-    s.setViews({ arrows: on.has('arrows'), streamlines: on.has('streamlines'), colorMap: on.has('magnitude'), singularities: on.has('singularities') });
+    s.setViews({ arrows: on.has('arrows'), streamlines: on.has('streamlines'), lic: on.has('lic'), colorMap: on.has('magnitude'), singularities: on.has('singularities') });
     const texture = on.has('texture');
     if (texture === s.textureView) return;
     s.textureView = texture;

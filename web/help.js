@@ -27,6 +27,7 @@ export const HELP_GESTURES = [
   ['Wheel, pinch', 'Zoom'],
   ['Double-click / double-tap on the model', 'Orbit around that point'],
   ['Drop a file on the view', 'Open a mesh (.glb, .gltf, .obj, .off, .ply) or load a design (.json)'],
+  ['☰ Panels (small screens)', 'Open or close the settings and constraint drawers (a bottom sheet on phones)'],
 ];
 
 function table(caption, rows) {

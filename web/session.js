@@ -361,6 +361,7 @@ export class Session {
     viewer.arrows.setOptions({ visible: v.arrows, density: v.arrowDensity, scaled: v.arrowsScaled });
     viewer.setColorMap(v.colorMap);
     viewer.singularities.setVisible(v.singularities);
+    viewer.lic.setVisible(v.lic);
     if (this.field) {
       this.ui.setLegend(this.#legendShown() ? viewer.vertexFieldMax : null);
       this.#scheduleStreamlines();

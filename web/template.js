@@ -5,6 +5,7 @@
 export const TEMPLATE = `<div class="root" part="root">
   <header class="toolbar" part="toolbar" role="toolbar" aria-label="Design tools">
     <span class="brand" part="brand">Tangent-field designer</span>
+    <button id="panels-toggle" type="button" part="panels-toggle" aria-expanded="false" aria-controls="side-panel constraints-panel" title="Show or hide the settings and constraint panels (on small screens they are drawers)">☰ Panels</button>
     <div class="group" role="group" aria-label="Files">
       <button id="open-button" type="button" class="edit" title="Open a mesh (.glb, .gltf, .obj, .off, .ply) — or drop one on the view">Open…</button>
       <input id="file-input" type="file" hidden>
@@ -88,6 +89,7 @@ export const TEMPLATE = `<div class="root" part="root">
         <div class="sub">
           <label title="Distance between streamlines">Spacing <input id="streamline-spacing" type="range" min="1" max="10" step="1" value="5"></label>
         </div>
+        <label class="check" title="Flow texture: white noise smeared along the field (line integral convolution), drawn on the GPU"><input id="show-lic" type="checkbox"> Flow texture</label>
         <label class="check"><input id="show-colormap" type="checkbox"> Magnitude colours</label>
         <div id="legend" hidden title="Magnitude (arrow and surface colours, viridis)"><span>0</span><span class="ramp"></span><span id="legend-max"></span></div>
         <label class="check"><input id="show-singularities" type="checkbox"> Singularities</label>

@@ -52,6 +52,14 @@ export function bindUi(root, host, actions) {
 
   // ---- files
   fileInput.accept = actions.accept;
+  // Small screens: the panels are drawers (a bottom sheet on phones) that this button opens and closes
+  // (element.css decides, by the element's own size, whether they are drawers at all).
+  const panelsToggle = $('#panels-toggle');
+  panelsToggle.addEventListener('click', () => {
+    const open = panelsToggle.getAttribute('aria-expanded') !== 'true';
+    panelsToggle.setAttribute('aria-expanded', String(open));
+    $('.root').toggleAttribute('data-panels-open', open);
+  });
   $('#open-button').addEventListener('click', () => fileInput.click());
   fileInput.addEventListener('change', () => {
     const files = [...fileInput.files];
@@ -214,7 +222,7 @@ export function bindUi(root, host, actions) {
 
   // ---- views
   const viewInputs = ['show-arrows', 'arrow-density', 'arrow-scaled', 'show-streamlines', 'streamline-spacing'];
-  for (const id of [...viewInputs, 'show-colormap', 'show-singularities']) {
+  for (const id of [...viewInputs, 'show-lic', 'show-colormap', 'show-singularities']) {
     $(`#${id}`).addEventListener('input', () => actions.onViews(views()));
   }
   function views() {
@@ -224,6 +232,7 @@ export function bindUi(root, host, actions) {
       arrowsScaled: $('#arrow-scaled').checked,
       streamlines: $('#show-streamlines').checked,
       streamlineSpacing: Number($('#streamline-spacing').value),
+      lic: $('#show-lic').checked,
       colorMap: $('#show-colormap').checked,
       singularities: $('#show-singularities').checked,
     };
@@ -234,6 +243,7 @@ export function bindUi(root, host, actions) {
     if ('arrowsScaled' in v) $('#arrow-scaled').checked = v.arrowsScaled;
     if ('streamlines' in v) $('#show-streamlines').checked = v.streamlines;
     if ('streamlineSpacing' in v) $('#streamline-spacing').value = String(v.streamlineSpacing);
+    if ('lic' in v) $('#show-lic').checked = !!v.lic;
     if ('colorMap' in v) $('#show-colormap').checked = v.colorMap;
     if ('singularities' in v) $('#show-singularities').checked = v.singularities;
   }

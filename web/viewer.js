@@ -26,7 +26,8 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { MeshBVH, acceleratedRaycast } from 'three-mesh-bvh';
 import { ArrowsView, LabelTextures, SingularitiesView, StreamlinesView, rampColor } from './field-views.js';
 import { HandlesView } from './handles.js';
-import { frameModel } from './camera.js';
+import { LicView } from './lic.js';
+import { frameModel, refitToAspect } from './camera.js';
 
 const BACKGROUND = 0x1b1d21;
 const SURFACE_GREY = 0xb9bec8;
@@ -78,6 +79,7 @@ export class Viewer {
     this.labels = new LabelTextures();
     this.singularities = new SingularitiesView(this.scene, this.labels);
     this.handles = new HandlesView(this.scene, this.labels);
+    this.lic = new LicView();
     this.afterRender = []; // callbacks (time) → void, run once after the next render
     this.renderCount = 0; // frames drawn, for measuring responsiveness while the worker is busy
 
@@ -102,6 +104,7 @@ export class Viewer {
       for (const m of [o.material].flat()) m?.dispose();
     });
     this.labels.dispose();
+    this.lic.dispose();
     this.renderer.dispose();
     this.renderer.forceContextLoss();
     this.canvas.remove();
@@ -114,8 +117,11 @@ export class Viewer {
     const w = Math.max(1, this.container.clientWidth);
     const h = Math.max(1, this.container.clientHeight);
     this.renderer.setSize(w, h, false);
+    const oldAspect = this.camera.aspect;
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    // A rotated phone or a closed drawer changes the aspect: keep the model's fit to the narrower field of view.
+    if (oldAspect !== this.camera.aspect) refitToAspect(this, oldAspect);
     this.renderNow();
   }
 
@@ -134,6 +140,7 @@ export class Viewer {
     this.singularities.updateScale(this.camera, this.renderer);
     this.handles.updateScale(this.camera, this.renderer);
     this.renderer.render(this.scene, this.camera);
+    this.lic.render(this.renderer, this.camera);
     this.renderCount++;
     if (this.afterRender.length) {
       const done = this.afterRender.splice(0);
@@ -180,6 +187,7 @@ export class Viewer {
     this.#applyColorMapMaterial();
     for (const view of [this.arrows, this.streamlines, this.singularities, this.handles]) view.setSurface(surface);
     this.streamlines.normalAt = (x, y, z) => this.#normalNear(x, y, z);
+    this.lic.setSurface(geom, surface.meanEdge);
     this.frame();
     this.renderNow();
   }
@@ -224,6 +232,7 @@ export class Viewer {
       attr.setXYZ(v, c.r, c.g, c.b);
     }
     attr.needsUpdate = true;
+    this.lic.setField(vertexVectors);
     this.vertexFieldMax = top;
     return top;
   }

@@ -285,6 +285,7 @@ export class SynthesisController {
     this.stats = null;
     this.lastFieldVersion = undefined;
     if (this.active) this.fieldChanged();
+    this.onChange(); // the status line must stop showing the old model's numbers
   }
 
   // Resolves (with the latest stats) once no synthesis is queued or pending.

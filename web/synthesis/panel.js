@@ -106,7 +106,9 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
     }
     const s = controller.synthesisStats();
     if (!s) {
-      status.textContent = controller.active ? 'Synthesizing…' : 'No texture yet.';
+      // Active but stale with nothing running: a new model while automatic updates are off.
+      if (controller.active && controller.stale) status.textContent = 'No texture for this model yet: Synthesize makes one.';
+      else status.textContent = controller.active ? 'Synthesizing…' : 'No texture yet.';
       return;
     }
     // The controls show the options in use, also when they were set through the API.

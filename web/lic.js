@@ -1,0 +1,223 @@
+// Flow-texture view: line integral convolution (LIC) of white noise along the field, in screen space, on the
+// GPU. Two passes after the ordinary scene render:
+//   1. the surface is drawn into a half-float target: the field's direction on screen (unit, in drawing-buffer
+//      pixels), a shading term and a coverage mask, with a depth texture;
+//   2. a full-screen pass averages a fixed noise texture along that direction field (±LIC_STEPS steps of one
+//      pixel, re-reading the direction at each step) and writes the streaked grey over the surface. It writes
+//      the surface's own depth and tests it against the scene's, so arrows, lines and handles in front of the
+//      surface stay visible.
+// The noise is anchored to the screen: a still picture is exact, while an orbit makes the streaks swim.
+import {
+  BufferAttribute,
+  Color,
+  DataTexture,
+  DepthTexture,
+  DoubleSide,
+  HalfFloatType,
+  LessEqualDepth,
+  LinearFilter,
+  Mesh,
+  NearestFilter,
+  OrthographicCamera,
+  PlaneGeometry,
+  RGBAFormat,
+  RepeatWrapping,
+  Scene,
+  ShaderMaterial,
+  UnsignedByteType,
+  Vector2,
+  WebGLRenderTarget,
+} from 'three';
+
+export const LIC_STEPS = 20; // each way: streaks of about 2 × 20 px
+const NOISE_SIZE = 256;
+
+// Pass 1: per pixel, the field's direction projected to the screen. The field is interpolated in 3D and
+// projected per fragment (not per vertex), so a curved surface bends the direction correctly inside a face.
+const DIRECTION_VERTEX = /* glsl */ `
+attribute vec3 licField;
+varying vec3 vWorld;
+varying vec3 vField;
+varying vec3 vNormal;
+void main() {
+  vec4 world = modelMatrix * vec4(position, 1.0);
+  vWorld = world.xyz;
+  vField = mat3(modelMatrix) * licField;
+  vNormal = normalize(mat3(modelMatrix) * normal);
+  gl_Position = projectionMatrix * viewMatrix * world;
+}`;
+const DIRECTION_FRAGMENT = /* glsl */ `
+uniform mat4 projectionMatrix; // three.js declares it for vertex shaders only
+uniform vec2 resolution;
+uniform float eps;
+varying vec3 vWorld;
+varying vec3 vField;
+varying vec3 vNormal;
+void main() {
+  float len = length(vField);
+  vec2 dir = vec2(0.0);
+  if (len > 0.0) {
+    vec4 a = projectionMatrix * viewMatrix * vec4(vWorld, 1.0);
+    vec4 b = projectionMatrix * viewMatrix * vec4(vWorld + eps * vField / len, 1.0);
+    vec2 d = (b.xy / b.w - a.xy / a.w) * 0.5 * resolution;
+    float l = length(d);
+    if (l > 0.0) dir = d / l;
+  }
+  vec3 toEye = normalize(cameraPosition - vWorld);
+  float shade = abs(dot(normalize(vNormal), toEye));
+  gl_FragColor = vec4(dir, shade, 1.0);
+}`;
+
+const CONVOLVE_VERTEX = /* glsl */ `
+void main() { gl_Position = vec4(position.xy, 0.0, 1.0); }`;
+const CONVOLVE_FRAGMENT = /* glsl */ `
+uniform sampler2D directions;
+uniform sampler2D depths;
+uniform sampler2D noise;
+uniform vec2 resolution;
+uniform float contrast;
+const float NOISE_PX = 2.0;
+// One noise texel per NOISE_PX pixels, bilinear: pixel-sized nearest noise would leave stair steps along
+// oblique streaks, which bias their direction towards the diagonals.
+float noiseAt(vec2 p) { return texture2D(noise, p / (NOISE_PX * ${NOISE_SIZE.toFixed(1)})).r; }
+void main() {
+  vec2 p0 = gl_FragCoord.xy;
+  vec4 here = texture2D(directions, p0 / resolution);
+  if (here.a < 0.5) discard;
+  float sum = noiseAt(p0);
+  float count = 1.0;
+  for (int side = 0; side < 2; side++) {
+    float s = side == 0 ? 1.0 : -1.0;
+    vec2 p = p0;
+    vec2 d = here.xy;
+    for (int i = 0; i < ${LIC_STEPS}; i++) {
+      // Midpoint step: the direction half a pixel ahead, kept on the same side as the last one (the field
+      // is a vector field, but a sign flip from interpolation noise would fold the streak back).
+      vec4 mid = texture2D(directions, (p + 0.5 * s * d) / resolution);
+      if (mid.a < 0.5 || dot(mid.xy, mid.xy) < 0.01) break;
+      d = dot(mid.xy, d) < 0.0 ? -mid.xy : mid.xy;
+      p += s * d;
+      sum += noiseAt(p);
+      count += 1.0;
+    }
+  }
+  float v = clamp(0.5 + contrast * (sum / count - 0.5), 0.0, 1.0);
+  float shade = 0.35 + 0.65 * here.b;
+  gl_FragColor = vec4(vec3(v * shade), 1.0);
+  gl_FragDepth = texture2D(depths, p0 / resolution).r;
+}`;
+
+// White noise, one value per texel, from a fixed seed (mulberry32): the same picture on every run.
+function noiseTexture(seed = 0x2545f491) {
+  const data = new Uint8Array(NOISE_SIZE * NOISE_SIZE * 4);
+  let a = seed >>> 0;
+  for (let i = 0; i < NOISE_SIZE * NOISE_SIZE; i++) {
+    a = (a + 0x6d2b79f5) >>> 0;
+    let t = Math.imul(a ^ (a >>> 15), 1 | a);
+    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
+    const v = ((t ^ (t >>> 14)) >>> 0) & 255;
+    data.set([v, v, v, 255], 4 * i);
+  }
+  const tex = new DataTexture(data, NOISE_SIZE, NOISE_SIZE, RGBAFormat, UnsignedByteType);
+  tex.wrapS = tex.wrapT = RepeatWrapping;
+  tex.magFilter = tex.minFilter = LinearFilter;
+  tex.needsUpdate = true;
+  return tex;
+}
+
+export class LicView {
+  constructor() {
+    this.visible = false;
+    this.size = new Vector2(1, 1);
+    this.directionScene = new Scene();
+    this.directionMaterial = new ShaderMaterial({
+      vertexShader: DIRECTION_VERTEX,
+      fragmentShader: DIRECTION_FRAGMENT,
+      uniforms: { resolution: { value: this.size }, eps: { value: 1e-3 } },
+      side: DoubleSide,
+      // The surface material's offset: the same depths, so the depth test in pass 2 meets the scene's exactly.
+      polygonOffset: true,
+      polygonOffsetFactor: 1,
+      polygonOffsetUnits: 1,
+    });
+    this.target = new WebGLRenderTarget(1, 1, { type: HalfFloatType, depthTexture: new DepthTexture(1, 1) });
+    this.target.texture.minFilter = this.target.texture.magFilter = NearestFilter;
+    this.noise = noiseTexture();
+    this.convolveMaterial = new ShaderMaterial({
+      vertexShader: CONVOLVE_VERTEX,
+      fragmentShader: CONVOLVE_FRAGMENT,
+      uniforms: {
+        directions: { value: this.target.texture },
+        depths: { value: this.target.depthTexture },
+        noise: { value: this.noise },
+        resolution: { value: this.size },
+        contrast: { value: 3.5 },
+      },
+      depthTest: true,
+      depthWrite: false,
+      depthFunc: LessEqualDepth,
+    });
+    this.quadScene = new Scene();
+    this.quad = new Mesh(new PlaneGeometry(2, 2), this.convolveMaterial);
+    this.quad.frustumCulled = false;
+    this.quadScene.add(this.quad);
+    this.quadCamera = new OrthographicCamera(-1, 1, 1, -1, 0, 1);
+    this.surface = null;
+    this.clearColor = new Color();
+  }
+
+  // The surface mesh's geometry (shared, not copied) and its size for the projection step.
+  setSurface(geometry, meanEdge) {
+    if (this.surface) this.directionScene.remove(this.surface);
+    this.surface = new Mesh(geometry, this.directionMaterial);
+    this.surface.frustumCulled = false;
+    this.directionScene.add(this.surface);
+    this.directionMaterial.uniforms.eps.value = 0.05 * meanEdge;
+  }
+
+  // Per-vertex field (the vertex vectors, 3 per vertex).
+  setField(vertexVectors) {
+    const geom = this.surface?.geometry;
+    if (!geom) return;
+    const n = geom.getAttribute('position').count;
+    if (vertexVectors.length !== 3 * n) return;
+    const attr = geom.getAttribute('licField');
+    if (attr && attr.count === n) {
+      attr.array.set(vertexVectors);
+      attr.needsUpdate = true;
+    } else geom.setAttribute('licField', new BufferAttribute(Float32Array.from(vertexVectors), 3));
+  }
+
+  setVisible(on) {
+    this.visible = !!on;
+  }
+
+  // Draws the flow texture over what `renderer` has just drawn with `camera` (called after the scene render).
+  render(renderer, camera) {
+    if (!this.visible || !this.surface?.geometry.getAttribute('licField')) return;
+    renderer.getDrawingBufferSize(this.size);
+    if (this.target.width !== this.size.x || this.target.height !== this.size.y) this.target.setSize(this.size.x, this.size.y);
+    const previous = renderer.getRenderTarget();
+    const clearAlpha = renderer.getClearAlpha();
+    const autoClear = renderer.autoClear;
+    renderer.getClearColor(this.clearColor);
+    renderer.setRenderTarget(this.target);
+    renderer.setClearColor(0x000000, 0);
+    renderer.clear(true, true, false);
+    renderer.render(this.directionScene, camera);
+    renderer.setRenderTarget(previous);
+    renderer.setClearColor(this.clearColor, clearAlpha);
+    renderer.autoClear = false;
+    renderer.render(this.quadScene, this.quadCamera);
+    renderer.autoClear = autoClear;
+  }
+
+  dispose() {
+    this.target.dispose();
+    this.target.depthTexture?.dispose();
+    this.noise.dispose();
+    this.directionMaterial.dispose();
+    this.convolveMaterial.dispose();
+    this.quad.geometry.dispose();
+  }
+}
