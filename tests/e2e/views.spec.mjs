@@ -1,5 +1,5 @@
 // Legible field views (issue 10, items 1, 2, 4 and 10) on the real page: arrows spaced by the screen (the
-// same visible count and on-screen length on a 3.7k-face and a 60k-face model), resampled on zoom, coloured
+// same visible count and on-screen length on a 3.7k-face and a 235k-face model), resampled on zoom, coloured
 // with viridis; screenshots in test-results/views.
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
@@ -150,7 +150,7 @@ test.describe.serial('field views', () => {
     await evaluate(() => window.tvf.setViews({ streamlines: false }));
   });
 
-  test('arrows: the same visible count and screen length on a 3.7k- and a 60k-face model, resampled on zoom', async () => {
+  test('arrows: the same visible count and screen length on a 3.7k- and a 235k-face model, resampled on zoom', async () => {
     test.setTimeout(300_000);
     bunny = await addStroke();
     await settle();
@@ -159,15 +159,15 @@ test.describe.serial('field views', () => {
     // The legend explains the arrow colours.
     await expect(page.locator('#legend')).toBeVisible();
 
-    await page.setInputFiles('#file-input', { name: 'bunny-x16.off', mimeType: 'text/plain', buffer: Buffer.from(subdividedOff(bunny, 2)) });
+    await page.setInputFiles('#file-input', { name: 'bunny-x64.off', mimeType: 'text/plain', buffer: Buffer.from(subdividedOff(bunny, 3)) });
     // The stroke is an unsaved edit: opening a model asks first.
     await page.locator('#confirm-ok').click();
-    await expect.poll(() => evaluate(() => window.tvf.info().faces), { timeout: 240_000 }).toBe(16 * (bunny.triangles.length / 3));
+    await expect.poll(() => evaluate(() => window.tvf.info().faces), { timeout: 240_000 }).toBe(64 * (bunny.triangles.length / 3));
     await addStroke();
     await settle();
     const large = await visibleArrows();
-    await page.screenshot({ path: resolve(OUT, 'arrows-bunny-x16.png') });
-    console.log(`arrows visible: ${small.visible} of ${small.drawn} (3.7k faces), ${large.visible} of ${large.drawn} (60k faces); ` +
+    await page.screenshot({ path: resolve(OUT, 'arrows-bunny-x64.png') });
+    console.log(`arrows visible: ${small.visible} of ${small.drawn} (3.7k faces), ${large.visible} of ${large.drawn} (235k faces); ` +
       `median length ${median(small.lengths).toFixed(1)} / ${median(large.lengths).toFixed(1)} px`);
 
     for (const r of [small, large]) {
