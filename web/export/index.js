@@ -2,6 +2,7 @@
 // Exports of the designed field (docs/export.md) and the material preview, for one designer session: the
 // worker's FieldExporter writes the bytes (the same as `tvf export`), this module downloads them or shows the
 // GLB in the viewer. Wiring surface: setupExport({...}) and the controller's fieldChanged()/modelChanged().
+import { downloadBlob } from '../documents.js';
 import { MATERIAL_PRESETS, MaterialPreview } from '../views/material-preview.js';
 import { mountExportPanel } from './panel.js';
 
@@ -51,9 +52,9 @@ export function setupExport({ viewer, panel, call, modelName, onError }) {
     onOptions: (next) => setOptions(next),
     onFlowMap: () =>
       exportFlowMap()
-        .then((png) => download(png, 'image/png', `${modelName()}.flow-${options.convention}-${options.size}.png`))
+        .then((png) => downloadBlob(`${modelName()}.flow-${options.convention}-${options.size}.png`, new Blob([png], { type: 'image/png' })))
         .catch(onError),
-    onGlb: () => exportGlb().then((glb) => download(glb, 'model/gltf-binary', `${modelName()}.field.glb`)).catch(onError),
+    onGlb: () => exportGlb().then((glb) => downloadBlob(`${modelName()}.field.glb`, new Blob([glb], { type: 'model/gltf-binary' }))).catch(onError),
     onPreview: (preset) => materialPreview(preset).catch(onError),
   });
 
@@ -74,15 +75,4 @@ export function setupExport({ viewer, panel, call, modelName, onError }) {
       ui.dispose();
     },
   };
-}
-
-function download(bytes, type, name) {
-  const url = URL.createObjectURL(new Blob([bytes], { type }));
-  const a = document.createElement('a');
-  a.href = url;
-  a.download = name;
-  document.body.append(a);
-  a.click();
-  a.remove();
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
 }
