@@ -9,6 +9,7 @@ import { fileURLToPath } from 'node:url';
 import { expect, test } from '@playwright/test';
 import * as esbuild from 'esbuild';
 import { faceVector, relativeDifference, trackErrors } from './helpers.mjs';
+import { icosphereOff } from '../icosphere.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const FIXTURES = resolve(ROOT, 'tests/e2e/embed');
@@ -16,28 +17,6 @@ const SITE = resolve(ROOT, '.cache/embed-site'); // served by the second web ser
 const PACK = resolve(ROOT, '.cache/embed-pack');
 const PORT = Number(process.env.TVF_EMBED_PORT || Number(process.env.TVF_TEST_PORT || 8191) + 100);
 const ORIGIN = `http://127.0.0.1:${PORT}`;
-
-// An icosphere (2 subdivisions, 320 faces) as OFF: a second, different model.
-function icosphereOff() {
-  const t = (1 + Math.sqrt(5)) / 2;
-  let V = [[-1, t, 0], [1, t, 0], [-1, -t, 0], [1, -t, 0], [0, -1, t], [0, 1, t], [0, -1, -t], [0, 1, -t], [t, 0, -1], [t, 0, 1], [-t, 0, -1], [-t, 0, 1]];
-  let F = [[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
-    [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1]];
-  for (let level = 0; level < 2; level++) {
-    const mid = new Map();
-    const m = (i, j) => {
-      const key = i < j ? `${i},${j}` : `${j},${i}`;
-      if (!mid.has(key)) mid.set(key, V.push(V[i].map((x, k) => (x + V[j][k]) / 2)) - 1);
-      return mid.get(key);
-    };
-    F = F.flatMap(([a, b, c]) => {
-      const [ab, bc, ca] = [m(a, b), m(b, c), m(c, a)];
-      return [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]];
-    });
-  }
-  V = V.map((p) => p.map((x) => x / Math.hypot(...p)));
-  return `OFF\n${V.length} ${F.length} 0\n${V.map((p) => p.join(' ')).join('\n')}\n${F.map((f) => `3 ${f.join(' ')}`).join('\n')}\n`;
-}
 
 test.describe.configure({ mode: 'serial' });
 
@@ -55,7 +34,7 @@ test.beforeAll(async () => {
   cpSync(FIXTURES, SITE, { recursive: true });
   mkdirSync(resolve(SITE, 'models'), { recursive: true });
   cpSync(resolve(ROOT, 'dist/models/bunny.glb'), resolve(SITE, 'models/bunny.glb'));
-  writeFileSync(resolve(SITE, 'models/ico.off'), icosphereOff());
+  writeFileSync(resolve(SITE, 'models/ico.off'), icosphereOff(2));
   mkdirSync(resolve(SITE, 'designs'), { recursive: true });
   writeFileSync(resolve(SITE, 'designs/two-sources.json'), JSON.stringify({ boundary: 'free', gamma: 0, constraints: [{ type: 'source', vertex: 0, strength: 1 }, { type: 'sink', vertex: 3, strength: 1 }] }));
   writeFileSync(resolve(SITE, 'models/broken.glb'), Buffer.from('glTF this is not a binary glTF at all'));
