@@ -1,6 +1,7 @@
 #include "constraints/constraint_set.h"
 
 #include <chrono>
+#include <utility>
 
 #include "common/input_error.h"
 #include "common/numeric_ranges.h"
@@ -89,14 +90,14 @@ double ConstraintSet::lastRowsMs() const {
   return rowsMs_;
 }
 
-ConstraintSet::Entry& ConstraintSet::find(int32_t id) {
+const ConstraintSet::Entry& ConstraintSet::find(int32_t id) const {
   const auto it = entries_.find(id);
   if (it == entries_.end()) throw InputError("no constraint with id " + std::to_string(id));
   return it->second;
 }
 
-const ConstraintSet::Entry& ConstraintSet::find(int32_t id) const {
-  return const_cast<ConstraintSet*>(this)->find(id);
+ConstraintSet::Entry& ConstraintSet::find(int32_t id) {
+  return const_cast<Entry&>(std::as_const(*this).find(id));
 }
 
 void ConstraintSet::remove(int32_t id) {
