@@ -147,7 +147,7 @@ class DesignerBinding {
 
   std::string infoJson() const {
     std::string out, error;
-    if (!attempt(error, [&] { out = designer_ ? designer_->infoJson() : tvf::meshInfoJson(tvf::SurfaceMesh{}).dump(); }))
+    if (!attempt(error, [&] { out = designer_ ? tvf::meshInfoJson(designer_->mesh()).dump() : tvf::meshInfoJson(tvf::SurfaceMesh{}).dump(); }))
       return "null";
     return out;
   }

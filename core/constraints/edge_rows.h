@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "design/designer.h"
+#include "constraints/constraint_spec.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
 

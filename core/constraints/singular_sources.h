@@ -4,8 +4,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "constraints/constraint_spec.h"
 #include "dec/hodge_star.h"
-#include "design/designer.h"
 #include "mesh/mesh_topology.h"
 
 namespace tvf {

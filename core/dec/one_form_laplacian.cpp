@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "dec/boundary_condition.h"
-
 namespace tvf {
 namespace {
 
@@ -99,24 +97,6 @@ SparseMatrix biLaplacian(const SparseMatrix& M, const MeshGeometry& g, double ga
 
 double meanDiagonal(const SparseMatrix& A) {
   return A.rows() > 0 ? A.diagonal().sum() / A.rows() : 1.0;
-}
-
-std::vector<double> boundaryEdgeAngles(const MeshTopology& t, const BoundaryCondition& bc) {
-  if (bc.free) return {};
-  std::vector<double> angles(t.numEdges, std::nan(""));
-  for (int32_t e = 0; e < t.numEdges; ++e)
-    if (t.isBoundaryEdge[e]) angles[e] = bc.angle;
-  for (const auto& o : bc.perEdge) {
-    const int32_t e = findEdge(t, o.i, o.j);
-    if (e < 0 || !t.isBoundaryEdge[e])
-      throw InputError("boundary override (" + std::to_string(o.i) + ", " + std::to_string(o.j) +
-                       ") is not a boundary edge of the mesh");
-    if (!std::isfinite(o.angle))
-      throw InputError("boundary override (" + std::to_string(o.i) + ", " + std::to_string(o.j) +
-                       ") has a non-finite angle");
-    angles[e] = o.angle;
-  }
-  return angles;
 }
 
 }  // namespace tvf

@@ -1,69 +1,22 @@
 #pragma once
-// The field-design session: one mesh, its boundary condition and gamma, a factored system, and a set of
-// constraints edited through rank-1 updates of that factor. This is the object the CLI and the wasm
-// bindings drive; it holds no UI state.
+// The field-design session: one mesh with its topology, geometry and base matrix (boundary condition and
+// gamma), a set of constraints (constraints/constraint_set.h) and the shifted factor of the system they make
+// (solver/shifted_factor.h), edited through rank updates of that factor. This is the object the CLI and the
+// wasm bindings drive; it holds no UI state.
 #include <Eigen/Core>
-#include <Eigen/SparseCore>
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "common/numeric_ranges.h"  // the ranges its inputs are checked against
+#include "common/sparse_matrix.h"
+#include "constraints/constraint_spec.h"
+#include "dec/boundary_condition.h"
+#include "field/singularities.h"
 #include "mesh/surface_mesh.h"
 
 namespace tvf {
-
-struct SurfacePoint {
-  int32_t face;
-  double bary[3];
-};
-
-// "free", or a fixed angle beta per boundary edge (tangential = pi/2, normal = 0), with optional overrides.
-struct BoundaryCondition {
-  bool free = true;
-  double angle = 0.0;  // used when !free
-  struct EdgeAngle {
-    int32_t i, j;
-    double angle;
-  };
-  std::vector<EdgeAngle> perEdge;  // overrides, vertex pairs in any order
-
-  static BoundaryCondition makeFree() { return {}; }
-  static BoundaryCondition fixedAngle(double beta) { return {false, beta, {}}; }
-  static BoundaryCondition tangential();
-  static BoundaryCondition normal() { return fixedAngle(0.0); }
-};
-
-// Ranges every numeric input is checked against, in the core so that the CLI, the wasm bindings and design
-// files share one check (documented in docs/design-format.md, "Numeric ranges"). Weights are relative to the
-// mean diagonal of the system matrix: a constraint 1e8 times stiffer than the surface is already exact to
-// about 1e-8, and adding then removing it again is undone by the factor to round-off (see kDowndateBudget in
-// designer.cpp). Magnitudes (strengths, vector components, edge values) bound the field well inside double
-// range on any mesh whose coordinates stay below 1e100.
-constexpr double kMinWeight = 1e-8;
-constexpr double kMaxWeight = 1e8;
-constexpr double kMaxMagnitude = 1e12;
-constexpr double kMaxGamma = 1e6;
-
-enum class ConstraintKind { Stroke, Vector, Edge, Source, Sink, Vortex };
-
-// What the user asked for, kept verbatim so a design can be saved and replayed exactly.
-struct ConstraintSpec {
-  int32_t id = 0;
-  ConstraintKind kind = ConstraintKind::Edge;
-  std::vector<SurfacePoint> points;  // stroke
-  int32_t element = -1;              // face (vector, vortex) or vertex (source, sink)
-  int32_t edge[2] = {-1, -1};        // edge: vertex pair, value along i -> j
-  double vector[3] = {0, 0, 0};
-  double value = 0;
-  double strength = 1;  // stroke: |t|; source/sink: total flux; vortex: signed circulation
-  double weight = 1;    // edge-type constraints: relative to the mean diagonal of the system matrix
-};
-
-struct Singularity {
-  int32_t vertex;
-  double index;
-};
 
 struct DesignStats {
   double analyzeMs = 0, factorMs = 0, updateMs = 0, solveMs = 0, reconstructMs = 0;
@@ -131,15 +84,14 @@ class Designer {
   double gamma() const;
   // The system the design means (base + constraint rows, without the kernel shift) and its right-hand side,
   // for checking the update path against an independent solve.
-  void assembleSystem(Eigen::SparseMatrix<double, Eigen::ColMajor, int>& A, Eigen::VectorXd& b);
+  void assembleSystem(SparseMatrix& A, Eigen::VectorXd& b);
   // The plain boundary-modified Laplacian (or bi-Laplacian) without shift or constraints.
-  const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& baseMatrix();
+  const SparseMatrix& baseMatrix();
   double weightScale();  // weights are multiplied by this (the mean diagonal of the base matrix)
   Eigen::VectorXd textureFaceVectors() const;  // 2 per face when the mesh has UVs
 
   const SurfaceMesh& mesh() const;
   const std::vector<int32_t>& edgeVertices() const;  // 2 per edge, lower index first
-  std::string infoJson() const;                      // same keys as `tvf info`
 
   struct Impl;
 

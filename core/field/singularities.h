@@ -1,18 +1,24 @@
 #pragma once
 // Index of the per-face field around each interior vertex: the turning of the field across the one-ring
 // measured against discrete Levi-Civita transport (angles to shared edges), plus the angle defect.
+#include <cstdint>
 #include <vector>
 
 #include "dec/hodge_star.h"
-#include "design/designer.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
 
 namespace tvf {
 
+struct Singularity {
+  int32_t vertex;
+  double index;
+};
+
 // Nonzero indices only. Vertices on a boundary, and vertices where the field vanishes in an incident face,
 // have no index and are skipped.
 std::vector<Singularity> findSingularities(const SurfaceMesh& mesh, const MeshTopology& topology,
-                                           const MeshGeometry& geometry, const std::vector<double>& faceVectors);
+                                           const MeshGeometry& geometry,
+                                           const std::vector<double>& faceVectors);
 
 }  // namespace tvf

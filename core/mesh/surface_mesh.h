@@ -1,17 +1,13 @@
 #pragma once
 // A triangle soup as it comes from a file, before any topology is built.
 #include <cstdint>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
-namespace tvf {
+// Every reader and check of a mesh reports through InputError, so its users get it with the mesh.
+#include "common/input_error.h"
 
-// Raised for input that cannot be used; the message names the problem and the first offending element.
-class InputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace tvf {
 
 struct SurfaceMesh {
   std::vector<double> positions;   // x, y, z per vertex

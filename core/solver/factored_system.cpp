@@ -7,7 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "mesh/surface_mesh.h"
+#include "common/input_error.h"
 #include "solver/cholmod_handles.h"
 
 namespace tvf {

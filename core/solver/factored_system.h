@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "dec/exterior_derivative.h"
+#include "common/sparse_matrix.h"
 
 namespace tvf {
 

@@ -1,0 +1,189 @@
+#include "solver/shifted_factor.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include "common/input_error.h"
+
+namespace tvf {
+namespace {
+
+// The kernel of M is made definite by a diagonal shift this small relative to the mean diagonal; it is
+// raised only if CHOLMOD still finds a non-positive pivot.
+constexpr double kInitialShift = 1e-9;
+constexpr double kMaxShift = 1e-4;
+// A downdate that removes weight w (relative to the mean diagonal) leaves round-off of about eps * w in the
+// pivots it passes through: removing a 1e20 weight leaves nothing of the original pivot (all NaN), removing
+// 1e8 leaves 1e-8. The weights taken out by downdates since the last factorization are summed; a downdate
+// that would push the sum past this budget refactors instead, which keeps the factor within ~1e-12 of a
+// fresh one.
+constexpr double kDowndateBudget = 1e4;
+// Backward error of a solve with an updated factor beyond which the factor is considered spoilt (a fresh
+// LDL' gives ~1e-15).
+constexpr double kUpdatedResidualTolerance = 1e-10;
+
+double physicalMemoryBytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+  return pages > 0 && pageSize > 0 ? static_cast<double>(pages) * static_cast<double>(pageSize) : 0.0;
+}
+
+}  // namespace
+
+SparseMatrix plusDiagonal(const SparseMatrix& base, const DiagonalTerms& terms) {
+  std::vector<Eigen::Triplet<double, int>> diag;
+  for (size_t k = 0; k < terms.rows.size(); ++k)
+    diag.emplace_back(terms.rows[k], terms.rows[k], terms.weights[k]);
+  SparseMatrix D(base.rows(), base.cols());
+  D.setFromTriplets(diag.begin(), diag.end());
+  return base + D;
+}
+
+ShiftedFactor::ShiftedFactor(std::vector<uint8_t> kernelEdges, FillOrdering ordering)
+    : kernelEdges_(std::move(kernelEdges)), system_(ordering) {
+  anyKernel_ = std::any_of(kernelEdges_.begin(), kernelEdges_.end(), [](uint8_t k) { return k != 0; });
+}
+
+void ShiftedFactor::setOrdering(FillOrdering ordering) {
+  system_ = FactoredSystem(ordering);
+  stale_ = true;
+}
+
+void ShiftedFactor::setMemoryLimit(double bytes) {
+  memoryLimit_ = bytes;
+}
+
+double ShiftedFactor::memoryLimit() const {
+  return memoryLimit_;
+}
+
+bool ShiftedFactor::current() const {
+  return !stale_ && system_.factored();
+}
+
+void ShiftedFactor::invalidate() {
+  stale_ = true;
+}
+
+SparseMatrix ShiftedFactor::shiftedMatrix(const SparseMatrix& base, double scale,
+                                          const DiagonalTerms& terms) const {
+  std::vector<Eigen::Triplet<double, int>> diag;
+  for (int32_t e = 0; e < static_cast<int32_t>(kernelEdges_.size()); ++e)
+    if (shiftEverywhere_ || kernelEdges_[e]) diag.emplace_back(e, e, shift_ * scale);
+  for (size_t k = 0; k < terms.rows.size(); ++k)
+    diag.emplace_back(terms.rows[k], terms.rows[k], terms.weights[k]);
+  SparseMatrix D(base.rows(), base.cols());
+  D.setFromTriplets(diag.begin(), diag.end());
+  return base + D;
+}
+
+void ShiftedFactor::factor(const SparseMatrix& base, double scale, const DiagonalTerms& terms) {
+  int retries = 0;
+  shiftEverywhere_ = false;
+  shift_ = anyKernel_ ? kInitialShift : 0.0;
+  system_.setMemoryLimit(memoryLimit_ > 0 ? memoryLimit_ : physicalMemoryBytes());
+  while (!system_.factor(shiftedMatrix(base, scale, terms))) {
+    // Numerically singular despite the topology (e.g. a near-kernel on a badly shaped closed mesh).
+    ++retries;
+    shift_ = shiftEverywhere_ ? shift_ * 100 : kInitialShift;
+    shiftEverywhere_ = true;
+    if (shift_ > kMaxShift)
+      throw InputError("the system could not be factored even with a diagonal shift of " +
+                       std::to_string(shift_ / 100) + " (is the mesh badly shaped?)");
+  }
+  const FactorTimings& t = system_.timings();
+  report_.analyzeMs = t.analyzeMs;
+  report_.analysisReused = t.analysisReused;
+  report_.factorMs = t.factorMs + t.convertMs;
+  report_.factorNonzeros = system_.factorNonzeros();
+  report_.kernelShift = shift_;
+  char text[240];
+  if (shift_ == 0)
+    std::snprintf(text, sizeof text, "none needed: every component is closed and of genus 0");
+  else
+    std::snprintf(text, sizeof text,
+                  "diagonal shift %.0e x mean diagonal on the edges of %s, then one step of iterative "
+                  "refinement against the unshifted matrix; %d retries",
+                  shift_, shiftEverywhere_ ? "every component" : "components with handles or boundary",
+                  retries);
+  report_.kernelHandling = text;
+  report_.factorKind = system_.description();
+  stale_ = false;
+  downdateLoad_ = 0;
+  updatedSinceFactor_ = false;
+}
+
+void ShiftedFactor::update(const DiagonalTerms& change, double scale, bool downdate) {
+  if (stale_ || change.rows.empty()) return;  // the next factorization includes the change
+  if (downdate) {
+    double largest = 0;
+    for (const double w : change.weights) largest = std::max(largest, w / scale);
+    if (downdateLoad_ + largest > kDowndateBudget) {
+      stale_ = true;  // refactor at the next solve instead of downdating away the precision
+      return;
+    }
+    downdateLoad_ += largest;
+  }
+  updatedSinceFactor_ = true;
+  const auto start = std::chrono::steady_clock::now();
+  system_.updateDiagonal(change.rows, change.weights, downdate);
+  updateMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The shift biases the solution by O(shift / smallest nonzero eigenvalue), and fully for fields that only
+// constraints pin down (a constant field on a free-boundary patch lies in the kernel of M). One step of
+// iterative refinement against the unshifted matrix cuts that to O(shift^2) for one more solve; kernel
+// components the design leaves free stay at the minimum-norm choice.
+void ShiftedFactor::refineAgainstUnshiftedSystem(const SparseMatrix& base, const DiagonalTerms& terms,
+                                                 const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  Eigen::VectorXd residual = b - base * x;
+  for (size_t k = 0; k < terms.rows.size(); ++k)
+    residual[terms.rows[k]] -= terms.weights[k] * x[terms.rows[k]];
+  Eigen::VectorXd correction;
+  system_.solve(residual, correction);
+  x += correction;
+}
+
+// The matrix the factor holds (base + shift + terms) times x.
+Eigen::VectorXd ShiftedFactor::factoredProduct(const SparseMatrix& base, double scale,
+                                               const DiagonalTerms& terms, const Eigen::VectorXd& x) const {
+  Eigen::VectorXd y = base * x;
+  if (shift_ > 0)
+    for (int32_t e = 0; e < static_cast<int32_t>(kernelEdges_.size()); ++e)
+      if (shiftEverywhere_ || kernelEdges_[e]) y[e] += shift_ * scale * x[e];
+  for (size_t k = 0; k < terms.rows.size(); ++k) y[terms.rows[k]] += terms.weights[k] * x[terms.rows[k]];
+  return y;
+}
+
+void ShiftedFactor::solve(const SparseMatrix& base, double scale, const DiagonalTerms& terms,
+                          const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  system_.solve(b, x);
+  if (updatedSinceFactor_) {
+    const Eigen::VectorXd y = factoredProduct(base, scale, terms, x);
+    const double residual = (b - y).norm(), size = b.norm() + y.norm();
+    if (!x.allFinite() || !std::isfinite(residual) || residual > kUpdatedResidualTolerance * size) {
+      ++precisionRefactors_;
+      factor(base, scale, terms);
+      system_.solve(b, x);
+    }
+  }
+  if (shift_ > 0 && x.allFinite()) refineAgainstUnshiftedSystem(base, terms, b, x);
+}
+
+const FactorReport& ShiftedFactor::report() const {
+  return report_;
+}
+
+double ShiftedFactor::lastUpdateMs() const {
+  return updateMs_;
+}
+
+int32_t ShiftedFactor::precisionRefactors() const {
+  return precisionRefactors_;
+}
+
+}  // namespace tvf

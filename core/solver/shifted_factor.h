@@ -1,0 +1,91 @@
+#pragma once
+// The factor of the design's system A = base + sum_k w_k e_{r_k} e_{r_k}' (constraint rows with one nonzero
+// each). The base matrix M is only semidefinite (its kernel: harmonic fields, and more with free boundaries),
+// so what is factored is A + sigma * mean diagonal on the edges of components with a kernel, with sigma as
+// small as CHOLMOD accepts (Sec. 5.1). Solves are refined against the unshifted A. Constraint changes are
+// rank updates of the factor; downdates are rationed by how much precision they cost, and a solve after
+// updates is checked and refactors once if the updated factor lost precision.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/sparse_matrix.h"
+#include "solver/factored_system.h"
+
+namespace tvf {
+
+// sum_k weights[k] e_{rows[k]} e_{rows[k]}', in a fixed order (the order the constraints were added).
+struct DiagonalTerms {
+  std::vector<int32_t> rows;
+  std::vector<double> weights;
+};
+
+// base + the terms (entries on one row summed).
+SparseMatrix plusDiagonal(const SparseMatrix& base, const DiagonalTerms& terms);
+
+// What the last factorization did, for the session's stats.
+struct FactorReport {
+  double analyzeMs = 0, factorMs = 0;
+  bool analysisReused = false;
+  int64_t factorNonzeros = 0;
+  double kernelShift = 0;      // sigma, relative to the mean diagonal
+  std::string kernelHandling;  // how the kernel was made definite, in words
+  std::string factorKind;      // e.g. "supernodal LL' (AMD)"
+};
+
+class ShiftedFactor {
+ public:
+  // kernelEdges[e] != 0: edge e lies in a component whose base matrix has a kernel (handles or boundary
+  // loops); those edges get the shift, the others only if the factorization fails without it.
+  explicit ShiftedFactor(std::vector<uint8_t> kernelEdges, FillOrdering ordering = FillOrdering::Metis);
+
+  void setOrdering(FillOrdering ordering);  // forgets the factor and the ordering
+  void setMemoryLimit(double bytes);        // 0: the machine's physical memory
+  double memoryLimit() const;
+
+  // Whether the factor stands for the current system: false before the first factorization, after
+  // invalidate() and after a refused downdate.
+  bool current() const;
+  void invalidate();  // the base matrix changed
+
+  // Factors base + terms + the shift, raising the shift (and spreading it to every edge) until CHOLMOD finds
+  // the matrix definite. Throws InputError when even the largest shift fails, or when the factor would need
+  // more memory than the limit.
+  void factor(const SparseMatrix& base, double scale, const DiagonalTerms& terms);
+  // Adds (or with downdate, removes) `change` by one rank update; nothing while the factor is not current.
+  // A downdate that would take the weight removed since the factorization past the budget is not done: the
+  // factor is then no longer current, and the next solve refactors.
+  void update(const DiagonalTerms& change, double scale, bool downdate);
+  // Solves (base + terms) x = b: with the factor, plus one step of iterative refinement against the
+  // unshifted matrix. After updates, a solution that is not finite or whose backward error is beyond
+  // round-off makes it refactor and solve again, once. base, scale and terms must be those the factor holds.
+  void solve(const SparseMatrix& base, double scale, const DiagonalTerms& terms, const Eigen::VectorXd& b,
+             Eigen::VectorXd& x);
+
+  const FactorReport& report() const;
+  double lastUpdateMs() const;         // the last rank update that was done
+  int32_t precisionRefactors() const;  // how many times solve() found an updated factor wanting
+
+ private:
+  SparseMatrix shiftedMatrix(const SparseMatrix& base, double scale, const DiagonalTerms& terms) const;
+  Eigen::VectorXd factoredProduct(const SparseMatrix& base, double scale, const DiagonalTerms& terms,
+                                  const Eigen::VectorXd& x) const;
+  void refineAgainstUnshiftedSystem(const SparseMatrix& base, const DiagonalTerms& terms,
+                                    const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
+  std::vector<uint8_t> kernelEdges_;
+  bool anyKernel_ = false;
+  FactoredSystem system_;
+  bool stale_ = true;
+  double memoryLimit_ = 0;
+  double shift_ = 0;
+  bool shiftEverywhere_ = false;
+  double downdateLoad_ = 0;          // relative weight removed by downdates since the last factorization
+  bool updatedSinceFactor_ = false;  // the factor is no longer the one CHOLMOD computed from scratch
+  int32_t precisionRefactors_ = 0;
+  double updateMs_ = 0;
+  FactorReport report_;
+};
+
+}  // namespace tvf

@@ -1,0 +1,314 @@
+// The solver module: the fill-reducing ordering (METIS nested dissection and AMD give the same field; the
+// ordering is computed once and reused while boundary-condition and gamma changes keep the matrix's sparsity
+// pattern), rank updates against fresh factorizations and independent solvers, and the kernel shift.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <cmath>
+
+#include "design/designer.h"
+#include "mesh/mesh_checks.h"
+#include "solver/shifted_factor.h"
+#include "test_fields.h"
+#include "test_meshes.h"
+
+using namespace tvf;
+using namespace tvf::testing;
+
+namespace {
+
+// A stroke through the barycentres of a few faces, a source and a vortex: every kind of right-hand side, and
+// rank-k updates of the factor.
+void designEveryKind(Designer& d) {
+  const int32_t nF = d.mesh().numFaces();
+  std::vector<SurfacePoint> points;
+  for (int32_t f : {nF / 7, nF / 7 + 1, nF / 7 + 2}) points.push_back({f, {0.2, 0.3, 0.5}});
+  d.addStroke(points, 1.0, 1.0);
+  d.addSource(d.mesh().triangles[0], 1.0);
+  d.addVortex(nF / 2, -0.5);
+  d.solve();
+}
+
+DiagonalTerms concatenate(const DiagonalTerms& a, const DiagonalTerms& b) {
+  DiagonalTerms out = a;
+  out.rows.insert(out.rows.end(), b.rows.begin(), b.rows.end());
+  out.weights.insert(out.weights.end(), b.weights.begin(), b.weights.end());
+  return out;
+}
+
+}  // namespace
+
+// Both meshes of the ordering tests have more edges than the subgraph size at which the nested dissection
+// stops (20000), so the METIS build really partitions: its factor has a different fill than AMD's.
+TEST(Ordering, MetisAndAmdGiveTheSameFieldOnAClosedSurface) {
+  const SurfaceMesh m = icosphere(5);  // 30720 edges
+  Designer metis(m), amd(m);
+  amd.setMetisOrdering(false);
+  designEveryKind(metis);
+  designEveryKind(amd);
+  EXPECT_NE(metis.stats().factorKind.find("METIS"), std::string::npos) << metis.stats().factorKind;
+  EXPECT_NE(amd.stats().factorKind.find("AMD"), std::string::npos) << amd.stats().factorKind;
+  EXPECT_NE(metis.stats().nnzPerRowL, amd.stats().nnzPerRowL);
+  EXPECT_LT(relativeDifference(metis.oneForm(), amd.oneForm()), 1e-9);
+}
+
+TEST(Ordering, MetisAndAmdGiveTheSameFieldWithFreeAndNormalBoundaries) {
+  const SurfaceMesh m = flatGrid(92, 1.0, true);  // 25576 edges
+  Designer metis(m), amd(m);
+  amd.setMetisOrdering(false);
+  designEveryKind(metis);
+  designEveryKind(amd);
+  EXPECT_NE(metis.stats().nnzPerRowL, amd.stats().nnzPerRowL);
+  EXPECT_LT(relativeDifference(metis.oneForm(), amd.oneForm()), 1e-9);  // 1.1e-10 measured
+  for (Designer* d : {&metis, &amd}) {
+    d->setBoundary(BoundaryCondition::normal());
+    d->solve();
+  }
+  EXPECT_LT(relativeDifference(metis.oneForm(), amd.oneForm()), 1e-9);  // 5e-15 measured
+}
+
+TEST(Ordering, MetisAndAmdAgreeToTheConditioningOfTangentialAndBiLaplacianSystems) {
+  // On this square the tangential boundary leaves a near-kernel (a field circulating along the boundary that
+  // only the constraints pin down), and gamma > 0 squares the Laplacian's condition number: two correct
+  // factorizations differ by round-off times that (measured 1.7e-8 and 3.4e-8), not by 1e-9.
+  const SurfaceMesh m = flatGrid(92, 1.0, true);
+  Designer metis(m), amd(m);
+  amd.setMetisOrdering(false);
+  for (Designer* d : {&metis, &amd}) {
+    d->setBoundary(BoundaryCondition::tangential());
+    designEveryKind(*d);
+  }
+  EXPECT_LT(relativeDifference(metis.oneForm(), amd.oneForm()), 1e-6);
+  for (Designer* d : {&metis, &amd}) {
+    d->setGamma(0.01);
+    d->solve();
+  }
+  EXPECT_LT(relativeDifference(metis.oneForm(), amd.oneForm()), 1e-6);
+}
+
+TEST(Ordering, ReusedAcrossBoundaryAndGammaChangesThatKeepThePattern) {
+  const SurfaceMesh m = flatGrid(92, 1.0, true);
+  Designer d(m);
+  d.setBoundary(BoundaryCondition::tangential());
+  d.factor();
+  EXPECT_FALSE(d.stats().analysisReused);
+  designEveryKind(d);
+  // Another fixed angle: the same boundary rows with other coefficients.
+  d.setBoundary(BoundaryCondition::fixedAngle(0.3));
+  d.solve();
+  EXPECT_TRUE(d.stats().analysisReused);
+  // gamma > 0 widens the stencil (a new pattern); another gamma > 0 keeps it.
+  d.setGamma(0.01);
+  d.solve();
+  EXPECT_FALSE(d.stats().analysisReused);
+  d.setGamma(0.02);
+  d.solve();
+  EXPECT_TRUE(d.stats().analysisReused);
+  // The reused ordering gives what a fresh designer computes for the same settings and constraints.
+  Designer fresh(m);
+  fresh.setBoundary(BoundaryCondition::fixedAngle(0.3));
+  fresh.setGamma(0.02);
+  designEveryKind(fresh);
+  EXPECT_FALSE(fresh.stats().analysisReused);
+  EXPECT_LT(relativeDifference(d.oneForm(), fresh.oneForm()), 1e-9);
+  // Free boundary: the divergence rows change shape, so the pattern does, and the ordering is recomputed.
+  d.setBoundary(BoundaryCondition::makeFree());
+  d.solve();
+  EXPECT_FALSE(d.stats().analysisReused);
+}
+
+TEST(Ordering, ReusedOnAClosedSurfaceWhoseBoundaryConditionCannotMatter) {
+  Designer d(icosphere(3));
+  d.solve();
+  EXPECT_FALSE(d.stats().analysisReused);
+  d.setBoundary(BoundaryCondition::tangential());  // no boundary edges: the same matrix
+  d.solve();
+  EXPECT_TRUE(d.stats().analysisReused);
+}
+
+TEST(Solver, UpdatesEqualAFreshFactorization) {
+  SurfaceMesh m = torus(24, 12, 2, 0.7);
+  Designer incremental(m);
+  incremental.factor();
+  const double u[3] = {0.3, 1, 0.1};
+  const int a = incremental.addVector(10, u, 5.0);
+  const int b = incremental.addEdge(m.triangles[300], m.triangles[301], 0.2, 2.0);
+  std::vector<SurfacePoint> stroke;
+  for (int f = 100; f < 110; ++f) stroke.push_back({f, {0.3, 0.3, 0.4}});
+  const int s = incremental.addStroke(stroke, 1.5, 3.0);
+  incremental.addSource(5, 1.0);
+  incremental.setWeight(a, 50.0);  // reweight up
+  incremental.setWeight(s, 0.5);   // and down
+  incremental.remove(b);
+  incremental.solve();
+
+  Designer fresh(m);
+  for (const auto& spec : incremental.constraints()) fresh.add(spec);
+  fresh.solve();  // factors once with every constraint in the matrix
+  EXPECT_LT(relativeDifference(incremental.oneForm(), fresh.oneForm()), 1e-9);
+
+  // And an independent solver on the assembled system agrees with the updated factor.
+  SparseMatrix A;
+  Eigen::VectorXd rhs;
+  incremental.assembleSystem(A, rhs);
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt(A);
+  const Eigen::VectorXd x = ldlt.solve(rhs);
+  EXPECT_LT((x - asVector(incremental.oneForm())).norm() / x.norm(), 1e-9);
+}
+
+TEST(Solver, RemovingEverythingReturnsToTheOriginalField) {
+  Designer d(icosphere(2));
+  d.addSource(0, 1.0);
+  d.solve();
+  const std::vector<double> before = d.oneForm();
+  const double u[3] = {1, 0, 0};
+  const int id = d.addVector(40, u, 10.0);
+  d.solve();
+  EXPECT_GT(relativeDifference(d.oneForm(), before), 1e-3);
+  d.remove(id);
+  d.solve();
+  EXPECT_LT(relativeDifference(d.oneForm(), before), 1e-9);
+}
+
+TEST(Solver, FactoringNeverFailsWithoutConstraints) {
+  for (const SurfaceMesh& m :
+       {icosphere(2), torus(12, 8, 2, 0.7), holedPlate(7, 3, {{1, 1}, {3, 1}, {5, 1}}, 2),
+        flatAnnulus(3, 16, 1, 2), disjointUnion(flatGrid(4), torus(8, 6, 2, 0.7))})
+    for (const BoundaryCondition& bc :
+         {BoundaryCondition::makeFree(), BoundaryCondition::tangential(), BoundaryCondition::normal()}) {
+      Designer d(m);
+      d.setBoundary(bc);
+      EXPECT_NO_THROW(d.solve());
+      for (const double x : d.oneForm()) EXPECT_EQ(x, 0.0);  // nothing asked for, nothing produced
+      EXPECT_NO_THROW(d.setGamma(0.05));
+      EXPECT_NO_THROW(d.solve());
+    }
+}
+
+TEST(Solver, KernelShiftHasNegligibleEffect) {
+  // Against the exact minimum-norm solution of the unshifted system, from a dense eigendecomposition.
+  struct Case {
+    SurfaceMesh mesh;
+    bool constrained;
+  };
+  const std::vector<Case> cases = {{torus(14, 8, 2, 0.7), false},
+                                   {torus(14, 8, 2, 0.7), true},
+                                   {flatAnnulus(3, 16, 1, 2), false},
+                                   {flatGrid(8, 1, true), true}};
+  for (const Case& c : cases) {
+    Designer d(c.mesh);
+    d.addSource(0, 1.0);
+    d.addVortex(c.mesh.numFaces() / 2, 0.5);
+    if (c.constrained) {
+      const double u[3] = {1, 0.5, 0.2};
+      d.addVector(c.mesh.numFaces() / 3, u, 10.0);
+    }
+    d.solve();
+    SparseMatrix A;
+    Eigen::VectorXd b;
+    d.assembleSystem(A, b);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig{Eigen::MatrixXd(A)};
+    const Eigen::VectorXd& lambda = eig.eigenvalues();
+    Eigen::VectorXd inv = Eigen::VectorXd::Zero(lambda.size());
+    for (int k = 0; k < lambda.size(); ++k)
+      if (lambda[k] > 1e-9 * lambda.maxCoeff()) inv[k] = 1 / lambda[k];
+    const Eigen::VectorXd exact = eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose() * b;
+    // Unconstrained, round-off in b along the kernel is amplified by 1/shift (measured ~1e-8); constrained,
+    // the refined solution is exact to ~1e-11.
+    const double effect = (exact - asVector(d.oneForm())).norm() / exact.norm();
+    EXPECT_LT(effect, c.constrained ? 1e-9 : 5e-8) << "constrained " << c.constrained;
+    EXPECT_EQ(d.stats().kernelShift, 1e-9);
+  }
+}
+
+TEST(Solver, HighGenusSolutionsAgreeAcrossOrderingsAndTheUpdatePath) {
+  // Many handles, thousands of kernel-adjacent edges: two correct solvers must agree, not just have small
+  // residuals.
+  const SurfaceMesh m = holedPlate(9, 5, {{1, 1}, {3, 1}, {5, 1}, {7, 1}, {1, 3}, {3, 3}, {5, 3}, {7, 3}}, 2);
+  const auto design = [&](Designer& d) {
+    d.addSource(0, 1.0);
+    d.addVortex(m.numFaces() / 2, 1.0);
+    const double u[3] = {1, 1, 0};
+    d.addVector(m.numFaces() / 3, u, 10.0);
+  };
+  Designer amd(m), metis(m), incremental(m);
+  metis.setMetisOrdering(true);
+  design(amd);
+  design(metis);
+  amd.solve();
+  metis.solve();
+  incremental.factor();
+  design(incremental);
+  incremental.solve();
+  // One vector constraint pins only part of the 16-dimensional harmonic space; along the rest, round-off
+  // amplified by 1/shift remains (~1e-8 measured), far from the O(1) disagreement of an ill-conditioned
+  // system.
+  EXPECT_LT(relativeDifference(metis.oneForm(), amd.oneForm()), 1e-7);
+  EXPECT_LT(relativeDifference(incremental.oneForm(), amd.oneForm()), 1e-7);
+  double sum = 0;
+  for (const auto& s : amd.singularities()) sum += s.index;
+  EXPECT_EQ(sum, 2 - 2 * 8);
+}
+
+TEST(ShiftedFactor, RankUpdatesEqualAFreshFactorizationAndDowndatesKeepToTheBudget) {
+  // Closed and of genus 0: no kernel, no shift, so the updated and the fresh factor solve the same matrix.
+  Designer d(icosphere(3));
+  const SparseMatrix base = d.baseMatrix();
+  const double scale = d.weightScale();
+  const int32_t n = static_cast<int32_t>(base.rows());
+  ShiftedFactor updated(std::vector<uint8_t>(n, 0)), fresh(std::vector<uint8_t>(n, 0));
+  const DiagonalTerms first{{3, 10, 40}, {5 * scale, 5 * scale, 2 * scale}};
+  const DiagonalTerms second{{10, 77}, {100 * scale, scale}};
+  const DiagonalTerms both = concatenate(first, second);
+  EXPECT_FALSE(updated.current());
+  updated.update(second, scale, false);  // nothing to update yet: the factorization will include it
+  updated.factor(base, scale, first);
+  EXPECT_TRUE(updated.current());
+  EXPECT_EQ(updated.report().kernelShift, 0.0);
+  EXPECT_NE(updated.report().kernelHandling.find("none needed"), std::string::npos);
+  updated.update(second, scale, false);
+  fresh.factor(base, scale, both);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  Eigen::VectorXd x, y;
+  updated.solve(base, scale, both, b, x);
+  fresh.solve(base, scale, both, b, y);
+  EXPECT_LT((x - y).norm() / y.norm(), 1e-10);
+  EXPECT_LT((plusDiagonal(base, both) * x - b).norm() / b.norm(), 1e-10);
+  EXPECT_EQ(updated.precisionRefactors(), 0);  // the updated factor passed the backward-error check
+  // Taking `second` out again spends 100 of the budget of 1e4: done, and the factor is `first`'s again.
+  updated.update(second, scale, true);
+  EXPECT_TRUE(updated.current());
+  fresh.factor(base, scale, first);
+  updated.solve(base, scale, first, b, x);
+  fresh.solve(base, scale, first, b, y);
+  EXPECT_LT((x - y).norm() / y.norm(), 1e-10);
+  // Adding a constraint 2e4 times stiffer than the surface is free; taking it out would spend more than the
+  // budget, so it is refused and the factor is no longer current (the session refactors at its next solve).
+  const DiagonalTerms stiff{{5}, {2e4 * scale}};
+  updated.update(stiff, scale, false);
+  EXPECT_TRUE(updated.current());
+  updated.update(stiff, scale, true);
+  EXPECT_FALSE(updated.current());
+}
+
+TEST(ShiftedFactor, AKernelIsShiftedAndTheRefinedSolutionSolvesTheUnshiftedSystem) {
+  // A torus: its two harmonic fields are M's kernel, so its edges get the shift.
+  const SurfaceMesh m = torus(16, 8, 2, 0.7);
+  Designer d(m);
+  const SparseMatrix base = d.baseMatrix();
+  const double scale = d.weightScale();
+  const int32_t n = static_cast<int32_t>(base.rows());
+  ShiftedFactor factor(std::vector<uint8_t>(n, 1));
+  const DiagonalTerms terms{{3, 10, 40}, {5 * scale, 5 * scale, 2 * scale}};
+  factor.factor(base, scale, terms);
+  EXPECT_EQ(factor.report().kernelShift, 1e-9);
+  EXPECT_NE(factor.report().kernelHandling.find("components with handles or boundary"), std::string::npos);
+  // A right-hand side in the range of the unshifted matrix A: the refined solution must solve A x = b far
+  // better than the shifted solve alone (whose residual is the shift times x, ~1e-9 relative).
+  const SparseMatrix A = plusDiagonal(base, terms);
+  const Eigen::VectorXd b = A * Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  Eigen::VectorXd x;
+  factor.solve(base, scale, terms, b, x);
+  EXPECT_LT((A * x - b).norm() / b.norm(), 1e-12);
+}
