@@ -143,7 +143,8 @@ class TextureAtlasBinding {
     return val(emscripten::typed_memory_view(atlas_.faceChart.size(), atlas_.faceChart.data()));
   }
   // {resolution, gutter, charts, splits, packAttempts, ms, chartMs, coverage, overlap, flippedFaces,
-  //  degenerateFaces, densityP05, densityP95, densityMin, densityMax, texelsPerUnitLength, stretchL2}
+  //  degenerateFaces, densityP05, densityP95, densityMin, densityMax, texelsPerUnitLength, stretchL2,
+  //  seamShare, used}
   std::string statsJson() const {
     const tvf::AtlasMeasures& m = atlas_.measures;
     return nlohmann::json{{"resolution", atlas_.resolution},
@@ -162,7 +163,9 @@ class TextureAtlasBinding {
                           {"densityMin", m.densityMin},
                           {"densityMax", m.densityMax},
                           {"texelsPerUnitLength", m.texelsPerUnitLength},
-                          {"stretchL2", m.stretchL2}}
+                          {"stretchL2", m.stretchL2},
+                          {"seamShare", m.seamShare},
+                          {"used", atlas_.used}}
         .dump();
   }
   std::string check(const val& cornerUVs, int numFaces, int resolution) const {

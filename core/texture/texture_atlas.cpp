@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numeric>
 #include <queue>
+#include <tuple>
 #include <utility>
 
 namespace tvf {
@@ -26,10 +27,13 @@ constexpr double kMinMeanNormal = 0.75;
 // A chart is split when, inside it, the area-weighted 95th / 5th percentile of the texel density exceeds
 // this.
 constexpr double kMaxDensityRatio = 1.8;
-// Grid on which a chart's self-overlap is checked (its longer side).
-constexpr int kOverlapGrid = 128;
 // Chart positions are searched on a grid of at most this many blocks per side.
 constexpr int kPackGrid = 256;
+// The density search stops when the densest packing found and the least dense failure are this close.
+constexpr double kDensityPrecision = 1.004;
+constexpr int kBisections = 6;
+// Quarter turns tried per chart (8 or 16 angles packed no better on the test models, at 2-4x the time).
+constexpr int kRotations = 4;
 
 Vec3 sub(const Vec3& a, const Vec3& b) {
   return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
@@ -51,6 +55,7 @@ Vec3 vertex(const SurfaceMesh& mesh, int32_t v) {
 struct FaceGeometry {
   std::vector<Vec3> normals, centroids;
   std::vector<double> areas;
+  std::vector<double> edgeLength;  // per corner k: |v_k+1 - v_k|
 };
 
 FaceGeometry faceGeometry(const SurfaceMesh& mesh) {
@@ -59,6 +64,7 @@ FaceGeometry faceGeometry(const SurfaceMesh& mesh) {
   g.normals.resize(nF);
   g.centroids.resize(nF);
   g.areas.resize(nF);
+  g.edgeLength.resize(3 * static_cast<size_t>(nF));
   for (int32_t f = 0; f < nF; ++f) {
     const Vec3 a = vertex(mesh, mesh.triangles[3 * f]), b = vertex(mesh, mesh.triangles[3 * f + 1]),
                c = vertex(mesh, mesh.triangles[3 * f + 2]);
@@ -67,6 +73,8 @@ FaceGeometry faceGeometry(const SurfaceMesh& mesh) {
     g.areas[f] = l / 2;
     g.normals[f] = l > 0 ? Vec3{n[0] / l, n[1] / l, n[2] / l} : Vec3{0, 0, 0};
     for (int k = 0; k < 3; ++k) g.centroids[f][k] = (a[k] + b[k] + c[k]) / 3;
+    g.edgeLength[3 * f] = norm(sub(b, a)), g.edgeLength[3 * f + 1] = norm(sub(c, b));
+    g.edgeLength[3 * f + 2] = norm(sub(a, c));
   }
   return g;
 }
@@ -96,23 +104,50 @@ std::vector<int32_t> faceAdjacency(const SurfaceMesh& mesh) {
   return adj;
 }
 
-// A face with two or three neighbours in one other chart moves there: growth in distance order leaves ragged
-// borders on meshes of long thin triangles, and single faces cut off between two charts. Charts are then
-// split into connected pieces.
-void smoothChartBorders(const std::vector<int32_t>& adj, std::vector<int32_t>& chartOf,
+// Chart borders shortened: a face moves to a neighbouring chart when it shares more edge length with that
+// chart than with its own and its normal is within the cone around that chart's mean normal. Growth in
+// distance order leaves ragged, saw-toothed borders on meshes of long thin triangles; every tooth costs
+// texels of border and gutter in the atlas and makes charts pack worse. Each move shortens the total border,
+// so the passes end. Charts are then split into connected pieces.
+void smoothChartBorders(const FaceGeometry& g, const std::vector<int32_t>& adj, std::vector<int32_t>& chartOf,
                         std::vector<std::vector<int32_t>>& charts) {
   const int32_t nF = static_cast<int32_t>(chartOf.size());
-  for (int pass = 0; pass < 3; ++pass)
+  const std::vector<double>& edgeLength = g.edgeLength;
+  std::vector<Vec3> normalSum(charts.size(), Vec3{0, 0, 0});
+  for (int32_t f = 0; f < nF; ++f)
+    if (chartOf[f] >= 0)
+      for (int k = 0; k < 3; ++k) normalSum[chartOf[f]][k] += g.normals[f][k] * g.areas[f];
+  for (int pass = 0; pass < 16; ++pass) {
+    int moves = 0;
     for (int32_t f = 0; f < nF; ++f) {
-      if (chartOf[f] < 0) continue;
-      int32_t n[3];
-      for (int k = 0; k < 3; ++k) n[k] = adj[3 * f + k] >= 0 ? chartOf[adj[3 * f + k]] : -1;
-      for (int k = 0; k < 3; ++k)
-        if (n[k] >= 0 && n[k] != chartOf[f] && (n[k] == n[(k + 1) % 3] || n[k] == n[(k + 2) % 3])) {
-          chartOf[f] = n[k];
-          break;
+      const int32_t own = chartOf[f];
+      if (own < 0) continue;
+      int32_t nb[3];
+      double shared[3] = {0, 0, 0}, ownShared = 0;
+      for (int k = 0; k < 3; ++k) {
+        nb[k] = adj[3 * f + k] >= 0 ? chartOf[adj[3 * f + k]] : -1;
+        if (nb[k] == own) ownShared += edgeLength[3 * f + k];
+      }
+      int best = -1;
+      for (int k = 0; k < 3; ++k) {
+        if (nb[k] < 0 || nb[k] == own) continue;
+        for (int j = 0; j < 3; ++j)
+          if (nb[j] == nb[k]) shared[k] += edgeLength[3 * f + j];
+        if (shared[k] > ownShared * (1 + 1e-9) && (best < 0 || shared[k] > shared[best])) {
+          const Vec3& n = normalSum[nb[k]];
+          if (dot(g.normals[f], n) > kConeCos * norm(n)) best = k;
         }
+      }
+      if (best < 0) continue;
+      for (int k = 0; k < 3; ++k) {
+        normalSum[own][k] -= g.normals[f][k] * g.areas[f];
+        normalSum[nb[best]][k] += g.normals[f][k] * g.areas[f];
+      }
+      chartOf[f] = nb[best];
+      ++moves;
     }
+    if (moves == 0) break;
+  }
   std::vector<uint8_t> seen(nF, 0);
   std::vector<std::vector<int32_t>> pieces;
   for (int32_t f = 0; f < nF; ++f) {
@@ -171,7 +206,7 @@ std::vector<std::vector<int32_t>> growCharts(const FaceGeometry& g, const std::v
     }
     charts.push_back(std::move(members));
   }
-  smoothChartBorders(adj, chartOf, charts);
+  smoothChartBorders(g, adj, chartOf, charts);
   return charts;
 }
 
@@ -295,27 +330,91 @@ double weightedQuantile(std::vector<std::pair<double, double>> valueWeight, doub
   return valueWeight.back().first;
 }
 
-bool selfOverlaps(const Chart& chart) {
+// Whether the flattened chart covers some point twice. Its faces keep their orientation (checked first), so
+// it does exactly when two of its boundary edges cross or touch away from a shared vertex. Boundary edges are
+// bucketed on a grid of about one edge length; exact for any resolution the chart is later drawn at.
+bool selfOverlaps(const SurfaceMesh& mesh, const Chart& chart) {
+  struct Edge {
+    int32_t a, b;  // mesh vertices
+    Vec2 p, q;
+  };
+  std::vector<std::tuple<int32_t, int32_t, size_t>> all;  // (min vertex, max vertex, corner)
+  for (size_t j = 0; j < chart.faces.size(); ++j)
+    for (int k = 0; k < 3; ++k) {
+      const int32_t a = mesh.triangles[3 * chart.faces[j] + k],
+                    b = mesh.triangles[3 * chart.faces[j] + (k + 1) % 3];
+      all.emplace_back(std::min(a, b), std::max(a, b), 3 * j + k);
+    }
+  std::sort(all.begin(), all.end());
+  std::vector<Edge> edges;
+  double length = 0;
+  for (size_t i = 0; i < all.size();) {
+    size_t j = i;
+    while (j < all.size() && std::get<0>(all[j]) == std::get<0>(all[i]) &&
+           std::get<1>(all[j]) == std::get<1>(all[i]))
+      ++j;
+    if (j - i == 1) {
+      const size_t c = std::get<2>(all[i]), face = c / 3, k = c % 3, k1 = (k + 1) % 3;
+      Edge e{mesh.triangles[3 * chart.faces[face] + k],
+             mesh.triangles[3 * chart.faces[face] + k1],
+             {chart.uv[6 * face + 2 * k], chart.uv[6 * face + 2 * k + 1]},
+             {chart.uv[6 * face + 2 * k1], chart.uv[6 * face + 2 * k1 + 1]}};
+      length += std::hypot(e.q[0] - e.p[0], e.q[1] - e.p[1]);
+      edges.push_back(e);
+    }
+    i = j;
+  }
+  if (edges.size() < 3) return false;
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (size_t i = 0; i < chart.uv.size(); i += 2) {
-    x0 = std::min(x0, chart.uv[i]), x1 = std::max(x1, chart.uv[i]);
-    y0 = std::min(y0, chart.uv[i + 1]), y1 = std::max(y1, chart.uv[i + 1]);
+  for (const Edge& e : edges)
+    for (const Vec2& v : {e.p, e.q})
+      x0 = std::min(x0, v[0]), y0 = std::min(y0, v[1]), x1 = std::max(x1, v[0]), y1 = std::max(y1, v[1]);
+  const double cell = std::max({length / edges.size(), (x1 - x0) / 1024, (y1 - y0) / 1024, 1e-300});
+  const int nx = static_cast<int>((x1 - x0) / cell) + 1, ny = static_cast<int>((y1 - y0) / cell) + 1;
+  std::vector<std::vector<int32_t>> bucket(static_cast<size_t>(nx) * ny);
+  auto orient = [](const Vec2& a, const Vec2& b, const Vec2& c) {
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+  };
+  auto onSegment = [](const Vec2& a, const Vec2& b, const Vec2& c) {  // c collinear with a-b: between them?
+    return std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) && std::min(a[1], b[1]) <= c[1] &&
+           c[1] <= std::max(a[1], b[1]);
+  };
+  auto meet = [&](const Edge& e, const Edge& f) {
+    const bool shareA = e.a == f.a || e.a == f.b, shareB = e.b == f.a || e.b == f.b;
+    if (shareA && shareB) return false;
+    if (shareA ||
+        shareB) {  // adjacent along the boundary: they meet elsewhere only if collinear and folded back
+      const Vec2& s = shareA ? e.p : e.q;
+      const Vec2& eo = shareA ? e.q : e.p;
+      const Vec2& fo = (f.a == (shareA ? e.a : e.b)) ? f.q : f.p;
+      if (orient(s, eo, fo) != 0) return false;
+      return (eo[0] - s[0]) * (fo[0] - s[0]) + (eo[1] - s[1]) * (fo[1] - s[1]) > 0;
+    }
+    const double d1 = orient(f.p, f.q, e.p), d2 = orient(f.p, f.q, e.q), d3 = orient(e.p, e.q, f.p),
+                 d4 = orient(e.p, e.q, f.q);
+    if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
+    return (d1 == 0 && onSegment(f.p, f.q, e.p)) || (d2 == 0 && onSegment(f.p, f.q, e.q)) ||
+           (d3 == 0 && onSegment(e.p, e.q, f.p)) || (d4 == 0 && onSegment(e.p, e.q, f.q));
+  };
+  for (size_t i = 0; i < edges.size(); ++i) {
+    const Edge& e = edges[i];
+    const int cx0 = static_cast<int>((std::min(e.p[0], e.q[0]) - x0) / cell),
+              cx1 = static_cast<int>((std::max(e.p[0], e.q[0]) - x0) / cell);
+    const int cy0 = static_cast<int>((std::min(e.p[1], e.q[1]) - y0) / cell),
+              cy1 = static_cast<int>((std::max(e.p[1], e.q[1]) - y0) / cell);
+    for (int cy = cy0; cy <= std::min(cy1, ny - 1); ++cy)
+      for (int cx = cx0; cx <= std::min(cx1, nx - 1); ++cx) {
+        std::vector<int32_t>& b = bucket[static_cast<size_t>(cy) * nx + cx];
+        for (int32_t o : b)
+          if (meet(e, edges[o])) return true;
+        b.push_back(static_cast<int32_t>(i));
+      }
   }
-  const double size = std::max(x1 - x0, y1 - y0);
-  if (!(size > 0)) return true;
-  std::vector<float> scaled(chart.uv.size());
-  for (size_t i = 0; i < chart.uv.size(); i += 2) {
-    scaled[i] = static_cast<float>((chart.uv[i] - x0) / size * 0.98 + 0.01);
-    scaled[i + 1] = static_cast<float>((chart.uv[i + 1] - y0) / size * 0.98 + 0.01);
-  }
-  const std::vector<uint16_t> count = rasterCoverage(scaled, kOverlapGrid);
-  size_t covered = 0, twice = 0;
-  for (uint16_t c : count) covered += c > 0, twice += c > 1;
-  return twice > 0;
+  return false;
 }
 
 // Why a flattened chart cannot be used as it is; empty when it can.
-bool chartAcceptable(const Chart& chart, const FaceGeometry& g) {
+bool chartAcceptable(const SurfaceMesh& mesh, const Chart& chart, const FaceGeometry& g) {
   std::vector<std::pair<double, double>> density;
   double uvArea = 0;
   for (size_t j = 0; j < chart.faces.size(); ++j) {
@@ -327,7 +426,26 @@ bool chartAcceptable(const Chart& chart, const FaceGeometry& g) {
   if (chart.faces.size() == 1) return true;
   const double p05 = weightedQuantile(density, 0.05), p95 = weightedQuantile(density, 0.95);
   if (!(p95 <= kMaxDensityRatio * p05)) return false;
-  return !selfOverlaps(chart);
+  return !selfOverlaps(mesh, chart);
+}
+
+// The cut between the halves (mark 1 and 2) of a chart being split, shortened as smoothChartBorders does: a
+// plane cut through the faces is saw-toothed.
+void shortenCut(const std::vector<int32_t>& faces, const FaceGeometry& g, const std::vector<int32_t>& adj,
+                std::vector<int32_t>& mark) {
+  for (int pass = 0; pass < 16; ++pass) {
+    int moves = 0;
+    for (int32_t f : faces) {
+      double len[3] = {0, 0, 0};
+      for (int k = 0; k < 3; ++k) {
+        const int32_t o = adj[3 * f + k];
+        if (o >= 0 && (mark[o] == 1 || mark[o] == 2)) len[mark[o]] += g.edgeLength[3 * f + k];
+      }
+      const int32_t other = 3 - mark[f];
+      if (len[other] > len[mark[f]] * (1 + 1e-9)) mark[f] = other, ++moves;
+    }
+    if (moves == 0) break;
+  }
 }
 
 // Splits faces in two at the median of their centroids along the longest axis of their spread, then into
@@ -352,6 +470,7 @@ std::vector<std::vector<int32_t>> splitFaces(const std::vector<int32_t>& faces, 
   const size_t half = keyed.size() / 2;
   // mark: 1 + half index for faces of this chart, 0 elsewhere (restored before returning).
   for (size_t i = 0; i < keyed.size(); ++i) mark[keyed[i].second] = i < half ? 1 : 2;
+  shortenCut(faces, g, adj, mark);
   std::vector<std::vector<int32_t>> pieces;
   for (const auto& kf : keyed) {
     const int32_t seed = kf.second;
@@ -447,7 +566,7 @@ std::vector<Chart> makeCharts(const SurfaceMesh& mesh, const FaceGeometry& g, in
     Chart chart;
     chart.faces = std::move(pending.back());
     pending.pop_back();
-    if (lscm(mesh, g, chart) && chartAcceptable(chart, g)) {
+    if (lscm(mesh, g, chart) && chartAcceptable(mesh, chart, g)) {
       normalizeChart(chart, g);
       charts.push_back(std::move(chart));
       continue;
@@ -511,11 +630,25 @@ double pointTriangleDistance2(double px, double py, const double* t) {
 }
 
 // A chart laid out in texels at one density and rotation: corner positions (texels, from the bitmap's origin)
-// and the bitmap of every texel its triangles touch, dilated by the gutter.
+// and the bitmap of the texels it owns: those its triangles cover, and its gutter.
 struct ChartShape {
   std::vector<double> texel;  // 6 per face
   Bitmap mask{0, 0};
 };
+
+// Adds to `out` the square (Chebyshev) dilation of `in` by r texels: rows, then columns.
+void dilateInto(const Bitmap& in, int r, Bitmap& out) {
+  const int w = in.width, h = in.height;
+  Bitmap rows(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (in.get(x, y))
+        for (int d = std::max(0, x - r); d <= std::min(w - 1, x + r); ++d) rows.set(d, y);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (rows.get(x, y))
+        for (int d = std::max(0, y - r); d <= std::min(h - 1, y + r); ++d) out.set(x, d);
+}
 
 ChartShape chartShape(const Chart& chart, double density, int rotation, int gutter) {
   ChartShape s;
@@ -531,9 +664,10 @@ ChartShape chartShape(const Chart& chart, double density, int rotation, int gutt
   for (size_t i = 0; i < s.texel.size(); i += 2) s.texel[i] += margin - x0, s.texel[i + 1] += margin - y0;
   const int w = static_cast<int>(std::ceil(x1 - x0 + 2 * margin)) + 1;
   const int h = static_cast<int>(std::ceil(y1 - y0 + 2 * margin)) + 1;
-  Bitmap touched(w, h);
-  // A texel is touched when its square meets a triangle; its centre is then within half a diagonal.
-  constexpr double kReach2 = 0.5 + 1e-9;
+  // Touched: the texel's square meets a triangle (its centre within half a diagonal). Covered: its centre is
+  // in a triangle (with a margin for the rounding of UVs to floats), i.e. the texels synthesis writes.
+  Bitmap touched(w, h), covered(w, h);
+  constexpr double kReach2 = 0.5 + 1e-9, kCoveredReach2 = 1e-6;
   for (size_t j = 0; j < s.texel.size(); j += 6) {
     const double* t = &s.texel[j];
     const int tx0 = std::max(0, static_cast<int>(std::floor(std::min({t[0], t[2], t[4]}))) - 1);
@@ -541,20 +675,20 @@ ChartShape chartShape(const Chart& chart, double density, int rotation, int gutt
     const int ty0 = std::max(0, static_cast<int>(std::floor(std::min({t[1], t[3], t[5]}))) - 1);
     const int ty1 = std::min(h - 1, static_cast<int>(std::floor(std::max({t[1], t[3], t[5]}))) + 1);
     for (int y = ty0; y <= ty1; ++y)
-      for (int x = tx0; x <= tx1; ++x)
-        if (!touched.get(x, y) && pointTriangleDistance2(x + 0.5, y + 0.5, t) <= kReach2) touched.set(x, y);
+      for (int x = tx0; x <= tx1; ++x) {
+        if (covered.get(x, y)) continue;
+        const double d2 = pointTriangleDistance2(x + 0.5, y + 0.5, t);
+        if (d2 <= kReach2) touched.set(x, y);
+        if (d2 <= kCoveredReach2) covered.set(x, y);
+      }
   }
-  // Square dilation by the gutter: rows, then columns.
-  Bitmap rows(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (touched.get(x, y))
-        for (int d = std::max(0, x - gutter); d <= std::min(w - 1, x + gutter); ++d) rows.set(d, y);
+  // The chart owns its covered texels and `gutter` texels around them; the touched ring counts as the first
+  // gutter texel rather than coming on top of the gutter (with no gutter, the touched texels stay its own so
+  // that no texel is shared). Two charts' masks never overlap, so covered texels of different charts are more
+  // than 2 * gutter texels apart and touched ones never share a texel.
   s.mask = Bitmap(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (rows.get(x, y))
-        for (int d = std::max(0, y - gutter); d <= std::min(h - 1, y + gutter); ++d) s.mask.set(x, d);
+  dilateInto(covered, gutter, s.mask);
+  dilateInto(touched, std::max(0, gutter - 1), s.mask);
   return s;
 }
 
@@ -589,6 +723,9 @@ Bitmap coarsen(const Bitmap& mask, int b) {
 // First fit (lowest row, then column) of each chart, largest first, trying 4 rotations and keeping the one
 // whose top edge ends lowest. Positions are searched on a grid of `block` texels (the search costs the square
 // of the grid size). Returns false when a chart does not fit.
+// First fit (lowest row, then column) of each chart, largest first, trying kRotations rotations and keeping
+// the one whose top edge ends lowest. Positions are searched on a grid of `block` texels (the search costs
+// the square of the grid size). Returns false when a chart does not fit.
 bool pack(const std::vector<Chart>& charts, double density, int resolution, int gutter, int block,
           std::vector<Placement>& placements, std::vector<ChartShape>& shapes, double& used) {
   const int grid = resolution / block;
@@ -598,7 +735,7 @@ bool pack(const std::vector<Chart>& charts, double density, int resolution, int 
   for (size_t c = 0; c < charts.size(); ++c) {
     int bestTop = 1 << 30;
     Bitmap bestMask(0, 0);
-    for (int rot = 0; rot < 4; ++rot) {
+    for (int rot = 0; rot < kRotations; ++rot) {
       ChartShape shape = chartShape(charts[c], density, rot, gutter);
       if (shape.mask.width > resolution || shape.mask.height > resolution) continue;
       Bitmap m = coarsen(shape.mask, block);
@@ -634,6 +771,23 @@ void checkInput(const SurfaceMesh& mesh) {
                        std::to_string(mesh.triangles[i]) + " (the mesh has " + std::to_string(nV) + ")");
   for (double p : mesh.positions)
     if (!std::isfinite(p)) throw InputError("atlas: the mesh has a non-finite vertex coordinate");
+}
+
+// Length of the edges between two charts over the length of all edges (each edge counted once).
+double seamShare(const SurfaceMesh& mesh, const std::vector<int32_t>& faceChart) {
+  if (faceChart.size() != static_cast<size_t>(mesh.numFaces())) return 0;
+  const std::vector<int32_t> adj = faceAdjacency(mesh);
+  double seam = 0, total = 0;
+  for (int32_t f = 0; f < mesh.numFaces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int32_t o = adj[3 * f + k];
+      if (o >= 0 && o < f) continue;  // the other side counts it
+      const double l = norm(
+          sub(vertex(mesh, mesh.triangles[3 * f + (k + 1) % 3]), vertex(mesh, mesh.triangles[3 * f + k])));
+      total += l;
+      if (o >= 0 && faceChart[o] != faceChart[f]) seam += l;
+    }
+  return total > 0 ? seam / total : 0;
 }
 
 }  // namespace
@@ -727,6 +881,7 @@ AtlasMeasures measureAtlas(const SurfaceMesh& mesh, const std::vector<float>& co
     area += g.areas[f];
   }
   m.stretchL2 = area > 0 ? std::sqrt(stretch2 / area) : 0;
+  m.seamShare = seamShare(mesh, faceChart);
   if (m.densityMax == 0) m.densityMin = 0;
   return m;
 }
@@ -768,7 +923,7 @@ TextureAtlas generateAtlas(const SurfaceMesh& mesh, int resolution, int gutterTe
     }
     if (density < 1e-12 * fail) throw InputError("atlas: the charts do not fit the resolution");
   }
-  for (int it = 0; it < 4 && fail / ok > 1.01; ++it) {
+  for (int it = 0; it < kBisections && fail / ok > kDensityPrecision; ++it) {
     density = std::sqrt(ok * fail);
     ++atlas.packAttempts;
     if (pack(charts, density, resolution, gutterTexels, block, placements, shapes, used))

@@ -32,6 +32,9 @@ struct AtlasMeasures {
   // Area-weighted mean of Sander's L2 stretch of the per-face map relative to the median density (1 = no
   // anisotropy and no density change).
   double stretchL2 = 0;
+  // Length of the edges between faces of two charts over the length of all edges (0 when faceChart is empty):
+  // the seams a texture must be continued across.
+  double seamShare = 0;
 };
 
 struct TextureAtlas {
