@@ -15,3 +15,19 @@ export function viridis(t, out) {
   const i = Math.min(Math.floor(s), STOPS.length - 2);
   return out.copy(STOPS[i]).lerp(STOPS[i + 1], s - i);
 }
+
+// The magnitude scale the arrows, the surface colours and the legend share, for vectors 3 per item: the
+// largest magnitude and the 98th percentile, where the ramp tops out (sources and vortices make a few huge
+// values that would otherwise leave everything else at the bottom). Non-finite magnitudes count as 0.
+export function magnitudeScale(vectors) {
+  const m = vectors.length / 3;
+  const mags = new Float64Array(m);
+  for (let i = 0; i < m; i++) {
+    const v = Math.hypot(vectors[3 * i], vectors[3 * i + 1], vectors[3 * i + 2]);
+    mags[i] = Number.isFinite(v) ? v : 0;
+  }
+  mags.sort();
+  const max = m ? mags[m - 1] : 0;
+  const top = (m ? mags[Math.min(m - 1, Math.floor(0.98 * m))] : 0) || max;
+  return { max, top };
+}

@@ -72,20 +72,19 @@ export class CoreProxy {
     await this.#send('init', [new URL('./', this.assetBase).href]);
   }
 
-  // Resolves with the whole reply ({value, snapshot?, mesh?, workerMs}); rejects with the core's message.
-  // A rejection may still carry the state the core is left in: err.reply.snapshot. onEarly receives the new
-  // face vectors of an edit as soon as the solve is done, before the rest of the snapshot.
-  async call(op, args = [], transfer = [], onEarly = null) {
+  // Resolves with the whole reply ({value, snapshot?, workerMs, timing}); rejects with the core's message.
+  // A rejection may still carry the state the core is left in: err.reply.snapshot.
+  async call(op, args = [], transfer = []) {
     await this.ready; // a restart in progress finishes (model and design back) first
-    return this.#send(op, args, transfer, onEarly);
+    return this.#send(op, args, transfer);
   }
 
-  #send(op, args = [], transfer = [], onEarly = null) {
+  #send(op, args = [], transfer = []) {
     if (this.failure) return Promise.reject(this.failure);
     if (!this.worker) return Promise.reject(new CoreError(`${op}: the core is restarting`));
     const seq = ++this.seq;
     return new Promise((resolve, reject) => {
-      this.pending.set(seq, { resolve, reject, onEarly, op });
+      this.pending.set(seq, { resolve, reject, op });
       try {
         this.worker.postMessage({ seq, op, args }, transfer);
       } catch (err) {
@@ -155,7 +154,6 @@ export class CoreProxy {
     if (reply.locked) return void this.#watchLock(worker, lockName);
     const p = this.pending.get(reply.seq);
     if (!p) return;
-    if (reply.early) return void p.onEarly?.(reply.early);
     this.pending.delete(reply.seq);
     if (reply.ok) p.resolve(reply);
     else {
@@ -202,7 +200,7 @@ export class CoreProxy {
     }
     this.restarts++;
     // The session's replay goes straight to the new worker; everyone else waits for it to finish.
-    const call = (op, args, transfer, onEarly) => this.#send(op, args, transfer, onEarly);
+    const call = (op, args, transfer) => this.#send(op, args, transfer);
     if (this.onRestart) await this.onRestart({ kind, detail, call });
   }
 }

@@ -1,5 +1,7 @@
 #include "field/whitney_reconstruction.h"
 
+#include <algorithm>
+
 #include "mesh/mesh_geometry.h"
 
 namespace tvf {
@@ -62,29 +64,70 @@ void faceVectors(const SurfaceMesh& mesh, const MeshTopology& t, const double* o
 
 void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
                    const double* oneForm, std::vector<double>& out) {
-  out.assign(3 * static_cast<size_t>(t.numVertices), 0.0);
+  vertexVectors(vertexVectorMap(mesh, t, g), oneForm, out);
+}
+
+VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g) {
   std::vector<double> weight(t.numVertices, 0.0);
+  for (int32_t f = 0; f < t.numFaces; ++f)
+    for (int k = 0; k < 3; ++k) weight[mesh.triangles[3 * f + k]] += g.cornerArea[3 * f + k];
+  // Two terms per corner, (vertex, edge, coefficient), merged per (vertex, edge) below.
+  struct Term {
+    int32_t vertex, edge;
+    Eigen::Vector3d coefficient;
+  };
+  std::vector<Term> terms;
+  terms.reserve(6 * static_cast<size_t>(t.numFaces));
   for (int32_t f = 0; f < t.numFaces; ++f) {
     Eigen::Vector3d p[3];
     facePositions(mesh, f, p);
     const Eigen::Map<const Eigen::Vector3d> n(&g.faceNormal[3 * f]);
-    // At corner i Eq. 4 reduces to (c_ij p_ki^perp - c_ki p_ij^perp) / 2|t| (the summand of Eq. 5).
     const Eigen::Vector3d perp[3] = {n.cross(p[1] - p[0]), n.cross(p[2] - p[1]), n.cross(p[0] - p[2])};
-    double c[3];
-    faceCoefficients(t, oneForm, f, c);
     const double scale = 1 / (2 * g.faceArea[f]);
     for (int k = 0; k < 3; ++k) {
-      // Corner k: its outgoing edge is k (k -> k+1), its incoming edge k+2 (k+2 -> k).
-      const Eigen::Vector3d u = scale * (c[k] * perp[(k + 2) % 3] - c[(k + 2) % 3] * perp[k]);
+      // Corner k: u = (c_k perp_{k+2} - c_{k+2} perp_k) / 2|t| (the summand of Eq. 5), c_k = sign * oneForm.
       const int32_t v = mesh.triangles[3 * f + k];
-      const double area = g.cornerArea[3 * f + k];
-      for (int d = 0; d < 3; ++d) out[3 * v + d] += area * u[d];
-      weight[v] += area;
+      if (!(weight[v] > 0)) continue;
+      const double w = scale * g.cornerArea[3 * f + k] / weight[v];
+      const int in = (k + 2) % 3;
+      terms.push_back({v, t.edgeOf(f, k), (w * t.signOf(f, k)) * perp[in]});
+      terms.push_back({v, t.edgeOf(f, in), (-w * t.signOf(f, in)) * perp[k]});
     }
   }
-  for (int32_t v = 0; v < t.numVertices; ++v)
-    if (weight[v] > 0)
-      for (int k = 0; k < 3; ++k) out[3 * v + k] /= weight[v];
+  std::sort(terms.begin(), terms.end(), [](const Term& a, const Term& b) {
+    return a.vertex != b.vertex ? a.vertex < b.vertex : a.edge < b.edge;
+  });
+  VertexVectorMap map;
+  map.start.assign(t.numVertices + 1, 0);
+  for (size_t i = 0; i < terms.size(); ++i) {
+    if (i > 0 && terms[i].vertex == terms[i - 1].vertex && terms[i].edge == terms[i - 1].edge) {
+      for (int d = 0; d < 3; ++d) map.coefficient[map.coefficient.size() - 3 + d] += terms[i].coefficient[d];
+      continue;
+    }
+    ++map.start[terms[i].vertex + 1];
+    map.edge.push_back(terms[i].edge);
+    for (int d = 0; d < 3; ++d) map.coefficient.push_back(terms[i].coefficient[d]);
+  }
+  for (int32_t v = 0; v < t.numVertices; ++v) map.start[v + 1] += map.start[v];
+  return map;
+}
+
+void vertexVectors(const VertexVectorMap& map, const double* oneForm, std::vector<double>& out) {
+  const size_t numVertices = map.start.size() - 1;
+  out.resize(3 * numVertices);
+  for (size_t v = 0; v < numVertices; ++v) {
+    double x = 0, y = 0, z = 0;
+    for (int32_t i = map.start[v]; i < map.start[v + 1]; ++i) {
+      const double c = oneForm[map.edge[i]];
+      const double* a = &map.coefficient[3 * static_cast<size_t>(i)];
+      x += c * a[0];
+      y += c * a[1];
+      z += c * a[2];
+    }
+    out[3 * v] = x;
+    out[3 * v + 1] = y;
+    out[3 * v + 2] = z;
+  }
 }
 
 void textureFaceVectors(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,

@@ -23,6 +23,18 @@ void faceVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const do
 // Per-vertex vectors: the corner values of Eq. 4 averaged with mixed Voronoi corner areas (Eq. 5).
 void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& geometry,
                    const double* oneForm, std::vector<double>& out);
+
+// Eq. 5 as the linear map it is: vertex v's vector is a sum over the edges at v of the edge's 1-form value
+// times a 3-vector that depends on the geometry only. Built once per mesh, applying it reads each edge value
+// twice and does no geometry (the interactive loop derives vertex vectors after every edit).
+struct VertexVectorMap {
+  std::vector<int32_t> start;       // the entries of vertex v are start[v] .. start[v + 1]
+  std::vector<int32_t> edge;        // per entry
+  std::vector<double> coefficient;  // 3 per entry
+};
+VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                const MeshGeometry& geometry);
+void vertexVectors(const VertexVectorMap& map, const double* oneForm, std::vector<double>& out);
 // Texture-domain vectors at barycentres (2 per face); empty when the mesh has no UVs.
 void textureFaceVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,
                         std::vector<double>& out);
