@@ -53,12 +53,14 @@ function snapshot(changed, timing = {}) {
     ? { ids, changed: changed.filter((id) => ids.includes(id)).map((id) => [id, core.constraint(id)]) }
     : { ids, document: JSON.parse(core.designJson()) };
   lap('designMs');
+  const stats = core.stats();
+  lap('statsMs');
   return {
     version,
     faceVectors,
     vertexVectors,
     oneForm,
-    stats: core.stats(),
+    stats,
     design,
     transfer: [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer],
   };

@@ -40,6 +40,11 @@ const PROGRESS_LABELS = {
   exportGlb: 'Exporting the GLB…',
 };
 
+function allFinite(values) {
+  for (let i = 0; i < values.length; i++) if (!Number.isFinite(values[i])) return false;
+  return true;
+}
+
 export class Session {
   // host: the element (events are dispatched on it); root: its shadow root (markup already in place);
   // assetBase: URL of the folder with core-worker.js and wasm/; autosave: storage key or null (off);
@@ -463,7 +468,7 @@ export class Session {
   #autosaveNow() {
     const store = this.#store();
     if (!store || !this.modelKey) return;
-    const finite = this.field.oneForm.every(Number.isFinite) && this.field.faceVectors.every(Number.isFinite);
+    const finite = allFinite(this.field.oneForm) && allFinite(this.field.faceVectors);
     if (!finite) {
       this.ui.showError('The field is not finite; this state was not autosaved.');
       return;

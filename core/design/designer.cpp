@@ -129,6 +129,7 @@ struct Designer::Impl {
   // Derived on first read, each on its own: the page's default view needs the vertex vectors only.
   bool vertexVectorsStale = false, singularitiesStale = false;
   VertexVectorMap vertexVectorMap;  // built on first use (geometry only)
+  FaceVectorMap faceVectorMap;      // likewise
   DesignStats stats;
 
   void rebuildBase() {
@@ -551,7 +552,8 @@ void Designer::solve() {
         "the previous field is kept");
   start = Clock::now();
   std::vector<double> faceVectors;
-  tvf::faceVectors(d.mesh, d.topology, x.data(), faceVectors);
+  if (d.faceVectorMap.coefficient.empty()) d.faceVectorMap = tvf::faceVectorMap(d.mesh, d.topology);
+  tvf::faceVectors(d.faceVectorMap, d.topology, x.data(), faceVectors);
   for (const double v : faceVectors)
     if (!std::isfinite(v))
       throw InputError(

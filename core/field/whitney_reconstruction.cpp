@@ -20,21 +20,27 @@ void whitneyWeights(const double c[3], const double a[3], double w[3]) {
   w[2] = cjk * a[1] - cki * a[0];
 }
 
-}  // namespace
-
-Eigen::Vector3d whitneyVector(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,
-                              int32_t f, const double bary[3]) {
+// Eq. 4 in face f for the face's own 1-form values c.
+Eigen::Vector3d whitneyVectorOf(const SurfaceMesh& mesh, int32_t f, const double c[3], const double bary[3]) {
   Eigen::Vector3d p[3];
   facePositions(mesh, f, p);
   const Eigen::Vector3d cross = (p[1] - p[0]).cross(p[2] - p[0]);
   const Eigen::Vector3d n = cross.normalized();
-  double c[3], w[3];
-  faceCoefficients(t, oneForm, f, c);
+  double w[3];
   whitneyWeights(c, bary, w);
   // Opposite edges: p_jk (corner 1 -> 2), p_ki (2 -> 0), p_ij (0 -> 1); perp = rotation by +pi/2 about n.
   const Eigen::Vector3d sum =
       w[0] * n.cross(p[2] - p[1]) + w[1] * n.cross(p[0] - p[2]) + w[2] * n.cross(p[1] - p[0]);
   return sum / cross.norm();
+}
+
+}  // namespace
+
+Eigen::Vector3d whitneyVector(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,
+                              int32_t f, const double bary[3]) {
+  double c[3];
+  faceCoefficients(t, oneForm, f, c);
+  return whitneyVectorOf(mesh, f, c, bary);
 }
 
 Eigen::Vector2d whitneyTextureVector(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,
@@ -54,11 +60,32 @@ Eigen::Vector2d whitneyTextureVector(const SurfaceMesh& mesh, const MeshTopology
 
 void faceVectors(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,
                  std::vector<double>& out) {
+  faceVectors(faceVectorMap(mesh, t), t, oneForm, out);
+}
+
+FaceVectorMap faceVectorMap(const SurfaceMesh& mesh, const MeshTopology& t) {
   const double centre[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
+  FaceVectorMap map;
+  map.coefficient.resize(9 * static_cast<size_t>(t.numFaces));
+  for (int32_t f = 0; f < t.numFaces; ++f)
+    for (int k = 0; k < 3; ++k) {
+      // Eq. 4 is linear in the face's values: its vector for the value 1 on edge k (in the edge's canonical
+      // orientation) and 0 on the others.
+      double c[3] = {0, 0, 0};
+      c[k] = t.signOf(f, k);
+      const Eigen::Vector3d u = whitneyVectorOf(mesh, f, c, centre);
+      for (int d = 0; d < 3; ++d) map.coefficient[9 * static_cast<size_t>(f) + 3 * k + d] = u[d];
+    }
+  return map;
+}
+
+void faceVectors(const FaceVectorMap& map, const MeshTopology& t, const double* oneForm,
+                 std::vector<double>& out) {
   out.resize(3 * static_cast<size_t>(t.numFaces));
   for (int32_t f = 0; f < t.numFaces; ++f) {
-    const Eigen::Vector3d u = whitneyVector(mesh, t, oneForm, f, centre);
-    for (int k = 0; k < 3; ++k) out[3 * f + k] = u[k];
+    const double* a = &map.coefficient[9 * static_cast<size_t>(f)];
+    const double c0 = oneForm[t.edgeOf(f, 0)], c1 = oneForm[t.edgeOf(f, 1)], c2 = oneForm[t.edgeOf(f, 2)];
+    for (int d = 0; d < 3; ++d) out[3 * f + d] = c0 * a[d] + c1 * a[3 + d] + c2 * a[6 + d];
   }
 }
 

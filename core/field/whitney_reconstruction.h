@@ -20,6 +20,15 @@ Eigen::Vector2d whitneyTextureVector(const SurfaceMesh& mesh, const MeshTopology
 // Per-face vectors at barycentres (3 per face).
 void faceVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,
                  std::vector<double>& out);
+
+// The same as a linear map of the face's three 1-form values: 3 coefficient vectors per face (orientation
+// signs included), built once per mesh, so that reconstructing after every solve does no geometry.
+struct FaceVectorMap {
+  std::vector<double> coefficient;  // 9 per face: the vector for edge k of face f at 9 f + 3 k
+};
+FaceVectorMap faceVectorMap(const SurfaceMesh& mesh, const MeshTopology& topology);
+void faceVectors(const FaceVectorMap& map, const MeshTopology& topology, const double* oneForm,
+                 std::vector<double>& out);
 // Per-vertex vectors: the corner values of Eq. 4 averaged with mixed Voronoi corner areas (Eq. 5).
 void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& geometry,
                    const double* oneForm, std::vector<double>& out);

@@ -104,10 +104,10 @@ TEST(Reconstruction, ConstantFieldIsReproducedExactlyEverywhereInEveryTriangle) 
     EXPECT_LT((Eigen::Map<const Eigen::Vector3d>(&vertexField[3 * v]) - u).norm(), 1e-13);
 }
 
-// The precomputed map (vertexVectorMap) against Eq. 5 written out: the Whitney vector at each corner
-// (whitneyVector at bary = that corner), averaged with the corner areas. A torus (curved, every vertex
+// The precomputed maps against Eq. 5 written out (the Whitney vector at each corner, whitneyVector at bary =
+// that corner, averaged with the corner areas) and Eq. 4 at the barycentre. A torus (curved, every vertex
 // interior) and an annulus (boundary vertices), with an arbitrary 1-form.
-TEST(Reconstruction, VertexVectorMapIsEquation5) {
+TEST(Reconstruction, PrecomputedMapsAreEquations4And5) {
   for (const SurfaceMesh& m : {torus(14, 9, 1.0, 0.35), flatAnnulus(4, 24, 0.5, 1.0)}) {
     const MeshTopology t = buildTopology(m);
     const MeshGeometry g = computeMeshGeometry(m, t);
@@ -131,6 +131,19 @@ TEST(Reconstruction, VertexVectorMapIsEquation5) {
       const Eigen::Vector3d expected = sum[v] / weight[v];
       largest = std::max(largest, expected.norm());
       error = std::max(error, (Eigen::Map<const Eigen::Vector3d>(&vertexField[3 * v]) - expected).norm());
+    }
+    EXPECT_GT(largest, 0.1);
+    EXPECT_LT(error, 1e-12 * largest);
+    // Face vectors through their map: Eq. 4 at the barycentre.
+    const double centre[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
+    std::vector<double> faceField;
+    faceVectors(faceVectorMap(m, t), t, c.data(), faceField);
+    ASSERT_EQ(faceField.size(), 3 * static_cast<size_t>(t.numFaces));
+    largest = error = 0;
+    for (int f = 0; f < t.numFaces; ++f) {
+      const Eigen::Vector3d expected = whitneyVector(m, t, c.data(), f, centre);
+      largest = std::max(largest, expected.norm());
+      error = std::max(error, (Eigen::Map<const Eigen::Vector3d>(&faceField[3 * f]) - expected).norm());
     }
     EXPECT_GT(largest, 0.1);
     EXPECT_LT(error, 1e-12 * largest);
