@@ -73,18 +73,19 @@ export class CoreProxy {
   }
 
   // Resolves with the whole reply ({value, snapshot?, workerMs, timing}); rejects with the core's message.
-  // A rejection may still carry the state the core is left in: err.reply.snapshot.
-  async call(op, args = [], transfer = []) {
+  // A rejection may still carry the state the core is left in: err.reply.snapshot. background: a read-out the
+  // page can do without (the streamlines view), which cancel() does not count as an operation in flight.
+  async call(op, args = [], transfer = [], { background = false } = {}) {
     await this.ready; // a restart in progress finishes (model and design back) first
-    return this.#send(op, args, transfer);
+    return this.#send(op, args, transfer, background);
   }
 
-  #send(op, args = [], transfer = []) {
+  #send(op, args = [], transfer = [], background = false) {
     if (this.failure) return Promise.reject(this.failure);
     if (!this.worker) return Promise.reject(new CoreError(`${op}: the core is restarting`));
     const seq = ++this.seq;
     return new Promise((resolve, reject) => {
-      this.pending.set(seq, { resolve, reject, op });
+      this.pending.set(seq, { resolve, reject, op, background });
       try {
         this.worker.postMessage({ seq, op, args }, transfer);
       } catch (err) {
@@ -97,7 +98,7 @@ export class CoreProxy {
   // Stops whatever the worker is doing (a huge stroke, a factorization) by replacing it: the pending calls
   // reject with "cancelled", and the model and the design as they were before the cancelled call come back.
   cancel() {
-    if (!this.pending.size || this.failure) return false;
+    if (this.failure || ![...this.pending.values()].some((p) => !p.background)) return false;
     this.#fail('cancelled', 'cancelled by the user');
     return true;
   }

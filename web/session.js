@@ -345,7 +345,7 @@ export class Session {
     }
     const t0 = performance.now();
     this.proxy
-      ?.call('streamlines', [this.field.version, spacing, this.#streamlineLift()])
+      ?.call('streamlines', [this.field.version, spacing, this.#streamlineLift()], [], { background: true })
       .then(({ value: lines, workerMs }) => {
         if (!lines || !current()) return;
         this.streamlineCache = { version: fieldVersion, spacing, surface, lines, source: 'worker' };
