@@ -17,7 +17,8 @@
 //                   the synchronous three.js render), up to the promise resolving
 //     pageMs        tvf.addStroke() call to its promise resolving with the new field drawn
 //     pageNoRenderMs  pageMs less renderMs (with software GL the render is rasterization on the CPU)
-//   and ratios workerOverUpdateSolve = workerMs / (updateMs + solveMs), page*OverUpdateSolve likewise.
+//   and ratios workerOverUpdateSolve = workerMs / (updateMs + solveMs), page*OverUpdateSolve likewise (of the
+//   medians), and ratiosPerEdit: the same ratios taken per edit, then the median.
 //   Writes bench-data/web-stroke-bench.json.
 //
 // node scripts/bench-web.mjs [--sizes 256,512,1024] [--port 8194]
@@ -150,6 +151,12 @@ async function strokeBench(page, meshPath) {
     loadMs: load.loadMs,
     factorKind: runs.at(-1)?.stats.factorKind,
     median: m,
+    // Each edit's own ratio, then the median: steadier than a ratio of medians on a busy machine.
+    ratiosPerEdit: {
+      workerOverUpdateSolve: Number(pick((r) => r.lastOp.workerMs / (r.stats.updateMs + r.stats.solveMs)).toFixed(2)),
+      pageNoRenderOverUpdateSolve: Number(pick((r) => (r.pageMs - (r.refresh?.renderMs ?? 0)) / (r.stats.updateMs + r.stats.solveMs)).toFixed(2)),
+      pageOverUpdateSolve: Number(pick((r) => r.pageMs / (r.stats.updateMs + r.stats.solveMs)).toFixed(2)),
+    },
     ratios: {
       workerOverUpdateSolve: Number((m.workerMs / updateSolve).toFixed(2)),
       pageOverUpdateSolve: Number((m.pageMs / updateSolve).toFixed(2)),
