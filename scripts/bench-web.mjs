@@ -8,15 +8,17 @@
 //   on the mesh. Prints one JSON object {mesh, edges, strokes, loadMs, median: {...}, ratios} whose medians are
 //     updateMs, solveMs, rhsMs, rowsMs   the core's own timings of the edit (DesignStats)
 //     workerMs      all worker-side time of the edit (message in to reply out)
-//     workerOpMs, workerSolveMs, copyMs, deriveMs, designMs   where the worker's time goes: the add itself
-//                   (walk + update), the solve + early face vectors, copying the field out of the wasm heap,
-//                   vertex vectors + singularities, the design document
+//     workerOpMs, workerSolveMs, copyMs, deriveMs, designMs, workerOtherMs   where the worker's time goes:
+//                   the add itself (walk + update), the solve (right-hand side, solve, face vectors), copying
+//                   the field out of the wasm heap, the vertex vectors, the design change, statsMs (the core's stats), the rest
+//     reconstructMs the core's face vectors after the solve (DesignStats)
 //     messageMs     round trip less workerMs (structured clone, transfer, event-loop waits)
 //     applyMs       the page taking the snapshot and redrawing (refreshMs of it: updating the views; renderMs:
 //                   the synchronous three.js render), up to the promise resolving
 //     pageMs        tvf.addStroke() call to its promise resolving with the new field drawn
 //     pageNoRenderMs  pageMs less renderMs (with software GL the render is rasterization on the CPU)
-//   and ratios workerOverUpdateSolve = workerMs / (updateMs + solveMs), page*OverUpdateSolve likewise.
+//   and ratios workerOverUpdateSolve = workerMs / (updateMs + solveMs), page*OverUpdateSolve likewise (of the
+//   medians), and ratiosPerEdit: the same ratios taken per edit, then the median.
 //   Writes bench-data/web-stroke-bench.json.
 //
 // node scripts/bench-web.mjs [--sizes 256,512,1024] [--port 8194]
@@ -125,6 +127,13 @@ async function strokeBench(page, meshPath) {
     copyMs: pick((r) => r.lastOp.workerParts?.copyMs),
     deriveMs: pick((r) => r.lastOp.workerParts?.deriveMs),
     designMs: pick((r) => r.lastOp.workerParts?.designMs),
+    statsMs: pick((r) => r.lastOp.workerParts?.statsMs),
+    // The worker's time outside the parts above (the reply's stats, the message's own handling), per edit.
+    workerOtherMs: pick((r) => {
+      const p = r.lastOp.workerParts ?? {};
+      return r.lastOp.workerMs - ['opMs', 'solveMs', 'copyMs', 'deriveMs', 'designMs', 'statsMs'].reduce((t, k) => t + (p[k] ?? 0), 0);
+    }),
+    reconstructMs: pick((r) => r.stats.reconstructMs),
     messageMs: pick((r) => r.lastOp.roundTripMs - r.lastOp.workerMs),
     applyMs: pick((r) => r.pageMs - r.lastOp.roundTripMs),
     refreshMs: pick((r) => r.refresh?.updateViewsMs),
@@ -142,6 +151,12 @@ async function strokeBench(page, meshPath) {
     loadMs: load.loadMs,
     factorKind: runs.at(-1)?.stats.factorKind,
     median: m,
+    // Each edit's own ratio, then the median: steadier than a ratio of medians on a busy machine.
+    ratiosPerEdit: {
+      workerOverUpdateSolve: Number(pick((r) => r.lastOp.workerMs / (r.stats.updateMs + r.stats.solveMs)).toFixed(2)),
+      pageNoRenderOverUpdateSolve: Number(pick((r) => (r.pageMs - (r.refresh?.renderMs ?? 0)) / (r.stats.updateMs + r.stats.solveMs)).toFixed(2)),
+      pageOverUpdateSolve: Number(pick((r) => r.pageMs / (r.stats.updateMs + r.stats.solveMs)).toFixed(2)),
+    },
     ratios: {
       workerOverUpdateSolve: Number((m.workerMs / updateSolve).toFixed(2)),
       pageOverUpdateSolve: Number((m.pageMs / updateSolve).toFixed(2)),

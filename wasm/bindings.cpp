@@ -242,6 +242,16 @@ class DesignerBinding {
       return out;
     });
   }
+  // One constraint in the design format ("null" when there is no such id): what the page adds to its copy of
+  // the design after an edit, instead of the whole document.
+  std::string constraintJson(double id) const {
+    return json([&] {
+      if (designer_)
+        for (const tvf::ConstraintSpec& c : designer_->constraints())
+          if (c.id == id) return tvf::constraintToJson(c);
+      return nlohmann::json();
+    });
+  }
   std::string statsJson() const {
     return json([&] { return tvf::statsJson(designer_ ? designer_->stats() : tvf::DesignStats{}); });
   }
@@ -454,6 +464,7 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("singularitiesJson", &DesignerBinding::singularitiesJson)
       .function("statsJson", &DesignerBinding::statsJson)
       .function("constraintIdsJson", &DesignerBinding::constraintIdsJson)
+      .function("constraintJson", &DesignerBinding::constraintJson)
       .function("designJson", &DesignerBinding::designJson)
       .function("applyDesignJson", &DesignerBinding::applyDesignJson)
       .function("addConstraintJson", &DesignerBinding::addConstraintJson)

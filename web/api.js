@@ -57,7 +57,7 @@ export const api = {
   faceVectors: read((s) => s.field.faceVectors.slice()),
   vertexVectors: read((s) => s.field.vertexVectors.slice()),
   oneForm: read((s) => s.field.oneForm.slice()),
-  singularities: read((s) => structuredClone(s.field.singularities)),
+  singularities: read((s) => structuredClone(s.currentSingularities())),
   stats: read((s) => structuredClone(s.field.stats)),
 
   select: (s, id) => s.select(id),
@@ -92,6 +92,11 @@ export const api = {
   debugHangCore: (s, ms) => s.proxy?.hangForTest(ms),
   debugTrapCore: (s) => s.exclusive(() => s.proxy.call('trapForTest')),
   debugSetFactorMemoryLimit: (s, bytes) => s.exclusive(() => s.proxy.call('setFactorMemoryLimit', [bytes])).then(() => true),
+  // The tests' references for what the page derives lazily or keeps incrementally: the core's own read-outs
+  // ({oneForm, vertexVectors, singularities, design}, derived by the core now), and streamlines traced on the
+  // page now for the current field and spacing (whatever the view's cache, traced in the worker, holds).
+  debugCoreReadout: (s) => s.exclusive(async () => (s.requireReady(), (await s.proxy.call('read')).value)),
+  debugTraceStreamlines: read((s) => s.traceStreamlinesHere().map((l) => Array.from(l))),
 };
 
 // The texture-synthesis calls (web/synthesis/index.js installs them on the session's synthesis controller).

@@ -1,7 +1,8 @@
 // Thin wrapper over the embind Designer of the wasm core (dist/wasm/tvf_core.mjs).
 // The core reports failures as strings (or -1 plus lastError()); this wrapper turns them into Errors so the
 // page has one error path. Views the core returns point into wasm memory and die at the next mutating call
-// or memory growth, so everything handed out is a copy.
+// or memory growth, so everything handed out is a copy (slice(): one memcpy into a buffer of its own, which
+// the worker can then transfer).
 
 export class CoreError extends Error {
   constructor(message) {
@@ -181,25 +182,25 @@ export class CoreClient {
 
   mesh() {
     return guard('mesh', () => ({
-      positions: Float64Array.from(this.designer.positions()),
-      triangles: Int32Array.from(this.designer.triangles()),
+      positions: this.designer.positions().slice(),
+      triangles: this.designer.triangles().slice(),
     }));
   }
 
   faceVectors() {
-    return guard('faceVectors', () => Float64Array.from(this.designer.faceVectors()));
+    return guard('faceVectors', () => this.designer.faceVectors().slice());
   }
 
   vertexVectors() {
-    return guard('vertexVectors', () => Float64Array.from(this.designer.vertexVectors()));
+    return guard('vertexVectors', () => this.designer.vertexVectors().slice());
   }
 
   oneForm() {
-    return guard('oneForm', () => Float64Array.from(this.designer.oneForm()));
+    return guard('oneForm', () => this.designer.oneForm().slice());
   }
 
   edges() {
-    return guard('edges', () => Int32Array.from(this.designer.edges()));
+    return guard('edges', () => this.designer.edges().slice());
   }
 
   fieldJson() {
@@ -212,6 +213,12 @@ export class CoreClient {
 
   singularities() {
     return JSON.parse(guard('singularities', () => this.designer.singularitiesJson()));
+  }
+
+  // One constraint in the design format, or null when there is no constraint `id`.
+  constraint(id) {
+    requireNumber('constraint: id', id);
+    return JSON.parse(guard('constraint', () => this.designer.constraintJson(id)));
   }
 
   designJson() {

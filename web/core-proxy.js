@@ -72,20 +72,20 @@ export class CoreProxy {
     await this.#send('init', [new URL('./', this.assetBase).href]);
   }
 
-  // Resolves with the whole reply ({value, snapshot?, mesh?, workerMs}); rejects with the core's message.
-  // A rejection may still carry the state the core is left in: err.reply.snapshot. onEarly receives the new
-  // face vectors of an edit as soon as the solve is done, before the rest of the snapshot.
-  async call(op, args = [], transfer = [], onEarly = null) {
+  // Resolves with the whole reply ({value, snapshot?, workerMs, timing}); rejects with the core's message.
+  // A rejection may still carry the state the core is left in: err.reply.snapshot. background: a read-out the
+  // page can do without (the streamlines view), which cancel() does not count as an operation in flight.
+  async call(op, args = [], transfer = [], { background = false } = {}) {
     await this.ready; // a restart in progress finishes (model and design back) first
-    return this.#send(op, args, transfer, onEarly);
+    return this.#send(op, args, transfer, background);
   }
 
-  #send(op, args = [], transfer = [], onEarly = null) {
+  #send(op, args = [], transfer = [], background = false) {
     if (this.failure) return Promise.reject(this.failure);
     if (!this.worker) return Promise.reject(new CoreError(`${op}: the core is restarting`));
     const seq = ++this.seq;
     return new Promise((resolve, reject) => {
-      this.pending.set(seq, { resolve, reject, onEarly, op });
+      this.pending.set(seq, { resolve, reject, op, background });
       try {
         this.worker.postMessage({ seq, op, args }, transfer);
       } catch (err) {
@@ -98,7 +98,7 @@ export class CoreProxy {
   // Stops whatever the worker is doing (a huge stroke, a factorization) by replacing it: the pending calls
   // reject with "cancelled", and the model and the design as they were before the cancelled call come back.
   cancel() {
-    if (!this.pending.size || this.failure) return false;
+    if (this.failure || ![...this.pending.values()].some((p) => !p.background)) return false;
     this.#fail('cancelled', 'cancelled by the user');
     return true;
   }
@@ -155,7 +155,6 @@ export class CoreProxy {
     if (reply.locked) return void this.#watchLock(worker, lockName);
     const p = this.pending.get(reply.seq);
     if (!p) return;
-    if (reply.early) return void p.onEarly?.(reply.early);
     this.pending.delete(reply.seq);
     if (reply.ok) p.resolve(reply);
     else {
@@ -202,7 +201,7 @@ export class CoreProxy {
     }
     this.restarts++;
     // The session's replay goes straight to the new worker; everyone else waits for it to finish.
-    const call = (op, args, transfer, onEarly) => this.#send(op, args, transfer, onEarly);
+    const call = (op, args, transfer) => this.#send(op, args, transfer);
     if (this.onRestart) await this.onRestart({ kind, detail, call });
   }
 }

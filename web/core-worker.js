@@ -1,43 +1,67 @@
 // Module worker that owns the wasm core, so factorizations never block the page. The page (core-proxy.js)
-// sends one request at a time: {seq, op, args}; every mutating op ends with a solve and replies with a
-// snapshot of everything the page reads synchronously (field arrays are transferred, not copied).
+// sends one request at a time: {seq, op, args}; every mutating op ends with a solve and replies with what
+// changed: the field arrays (transferred, not copied), the stats, and the design as a change to the page's
+// copy (the constraints the op touched and the id order) rather than the whole document. Everything else is
+// derived when it is read or shown: the singularities on the page (web/singularities.js), the streamlines
+// here on request (`streamlines`), the whole design document on request (`read`).
 //
 // One worker per <tangent-field-designer> element: its globals are that element's core and nothing else.
 import { CoreError, loadCore } from './core-client.js';
 import { CoreExport } from './export/core-export.js';
+import { traceStreamlines } from './streamlines.js';
+import { Surface } from './surface.js';
 
 let core = null;
 let coreExport = null;
+// The field's version: one more after every solve the page is told about. Requests for derived read-outs
+// name the version they are for, so a reply never pairs one field with another field's read-outs.
+let version = 0;
+// For the streamlines: the mesh's surface (built on first use), and the last trace.
+let tracing = { surface: null, key: '', lines: null };
 
 function requireMesh() {
   if (!core?.hasMesh) throw new CoreError('no mesh loaded');
 }
 
-// timing (optional) receives where the time goes: vertex vectors and singularities are derived by the core
-// on first read, the design document is serialised.
-function snapshot(timing = {}) {
+// A result that carries its own transfer list.
+class Transfer {
+  constructor(value, list) {
+    this.value = value;
+    this.list = list;
+  }
+}
+
+// After a solve: the field arrays the views need, copied out of the wasm heap (a memcpy each) and
+// transferred; the vertex vectors are derived here because the default arrow view interpolates them.
+// `changed`: core ids whose design entry the op set (null: the whole document, after a load, a boundary or
+// γ change, a design, or an edit taken back). timing (optional) receives where the time goes.
+function snapshot(changed, timing = {}) {
   let t = performance.now();
   const lap = (key) => {
     const now = performance.now();
     timing[key] = now - t;
     t = now;
   };
+  version++;
   const faceVectors = core.faceVectors();
   const oneForm = core.oneForm();
   lap('copyMs');
   const vertexVectors = core.vertexVectors();
-  const singularities = core.singularities();
   lap('deriveMs');
-  const design = JSON.parse(core.designJson());
+  const ids = core.constraintIds();
+  const design = changed
+    ? { ids, changed: changed.filter((id) => ids.includes(id)).map((id) => [id, core.constraint(id)]) }
+    : { ids, document: JSON.parse(core.designJson()) };
   lap('designMs');
+  const stats = core.stats();
+  lap('statsMs');
   return {
+    version,
     faceVectors,
     vertexVectors,
     oneForm,
-    singularities,
-    stats: core.stats(),
+    stats,
     design,
-    ids: core.constraintIds(), // in the order of design.constraints
     transfer: [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer],
   };
 }
@@ -45,14 +69,8 @@ function snapshot(timing = {}) {
 // How to take back the edit in flight when the solve after it fails (a factor that does not fit, a field that
 // is not finite): the core then holds exactly what it held before the request. Set by each mutating op.
 let undoEdit = null;
-
-// The current design, and the entry of one core id in it.
-function currentDesign() {
-  return JSON.parse(core.designJson());
-}
-function currentSpec(id) {
-  return currentDesign().constraints[core.constraintIds().indexOf(id)];
-}
+// The core ids whose entry in the design the op in flight changed; null: the whole document.
+let changedIds = null;
 
 const ops = {
   // assetBase: the folder holding wasm/tvf_core.mjs (the element's asset base; the worker may run from a
@@ -86,16 +104,16 @@ const ops = {
     const embedded = design ? null : coreExport.embeddedDesign(bytes);
     const { settingsError, restoreError } = core.loadModel(bytes, format, settings, design ?? embedded);
     coreExport.modelLoaded(bytes, format);
+    tracing = { surface: null, key: '', lines: null };
     const info = core.info();
     const mesh = core.mesh();
     const edges = core.edges();
     // Texture synthesis (web/synthesis/) needs the model's per-corner UVs (6 per face; empty without TEXCOORD_0).
-    const cornerUVs = Float32Array.from(core.designer.cornerUVs());
-    return {
-      value: { info, settingsError, restoreError, embeddedDesign: embedded != null },
-      mesh: { positions: mesh.positions, triangles: mesh.triangles, edges, cornerUVs },
-      transfer: [mesh.positions.buffer, mesh.triangles.buffer, edges.buffer, cornerUVs.buffer],
-    };
+    const cornerUVs = core.designer.cornerUVs().slice();
+    return new Transfer(
+      { info, settingsError, restoreError, embeddedDesign: embedded != null, mesh: { positions: mesh.positions, triangles: mesh.triangles, edges, cornerUVs } },
+      [mesh.positions.buffer, mesh.triangles.buffer, edges.buffer, cornerUVs.buffer],
+    );
   },
 
   // One constraint in the design format: new ones and re-added ones (undo of a delete) alike go through the
@@ -103,30 +121,34 @@ const ops = {
   add(spec) {
     const id = core.addConstraintJson(spec);
     undoEdit = () => core.remove(id);
+    changedIds = [id];
     return id;
   },
 
   remove(id) {
     core.remove(id);
+    changedIds = [];
     return true;
   },
 
   setWeight(id, w) {
-    const before = currentSpec(id)?.weight;
+    const before = core.constraint(id)?.weight;
     core.setWeight(id, w);
     if (before !== undefined) undoEdit = () => core.setWeight(id, before);
+    changedIds = [id];
     return true;
   },
 
   setStrength(id, s) {
-    const before = currentSpec(id)?.strength;
+    const before = core.constraint(id)?.strength;
     core.setStrength(id, s);
     if (before !== undefined) undoEdit = () => core.setStrength(id, before);
+    changedIds = [id];
     return true;
   },
 
   setBoundary(bc) {
-    const before = currentDesign().boundary;
+    const before = JSON.parse(core.designJson()).boundary;
     undoEdit = () => core.setBoundary(before);
     core.setBoundary(bc);
     core.factor();
@@ -142,7 +164,7 @@ const ops = {
   },
 
   applyDesign(design) {
-    const before = currentDesign();
+    const before = JSON.parse(core.designJson());
     undoEdit = () => core.applyDesignJson(JSON.stringify(before));
     core.applyDesignJson(JSON.stringify(design));
     core.factor();
@@ -151,6 +173,37 @@ const ops = {
 
   fieldJson() {
     return core.fieldJson();
+  },
+
+  // The streamlines of field `forVersion` at `spacing` (web/streamlines.js, off the page's thread): Float32Array
+  // polylines, transferred; null when the field has changed since the page asked (it asks again for the new one).
+  streamlines(forVersion, spacing, lift) {
+    if (forVersion !== version) return null;
+    const key = `${version} ${spacing} ${lift}`;
+    if (tracing.key !== key) {
+      if (!tracing.surface) {
+        const { positions, triangles } = core.mesh();
+        tracing.surface = new Surface(positions, triangles, core.edges());
+      }
+      tracing.lines = traceStreamlines(tracing.surface, core.vertexVectors(), { spacing, lift });
+      tracing.key = key;
+    }
+    // Copies: the cached lines stay here for the next request at the same spacing.
+    const lines = tracing.lines.map((l) => l.slice());
+    return new Transfer(lines, lines.map((l) => l.buffer));
+  },
+
+  // What the core itself holds now, each read-out derived by the core (not the page's copies): the tests'
+  // reference for the page's lazily derived and incrementally kept read-outs.
+  read() {
+    const value = {
+      version,
+      oneForm: core.oneForm(),
+      vertexVectors: core.vertexVectors(),
+      singularities: core.singularities(),
+      design: JSON.parse(core.designJson()),
+    };
+    return new Transfer(value, [value.oneForm.buffer, value.vertexVectors.buffer]);
   },
 
   // For the supervision tests: what a wasm trap (unreachable, an out-of-bounds access, an abort) looks like
@@ -215,29 +268,27 @@ self.onmessage = async ({ data }) => {
   const timing = {};
   let reply, transfer = [];
   undoEdit = null;
+  changedIds = null;
   try {
     if (!ops[op]) throw new CoreError(`unknown operation ${op}`);
     if (!NO_MESH_NEEDED.has(op)) requireMesh();
-    const out = await ops[op](...args);
+    let out = await ops[op](...args);
+    if (out instanceof Transfer) {
+      transfer = out.list;
+      out = out.value;
+    }
     const t1 = performance.now();
     timing.opMs = t1 - t0;
-    if (MUTATING.has(op) && op !== 'loadMesh') {
-      core.solve();
-      // The arrows need only the face vectors: send them at once, before the derived read-outs.
-      const early = core.faceVectors();
-      self.postMessage({ seq, early: { faceVectors: early } }, [early.buffer]);
-    }
+    if (MUTATING.has(op) && op !== 'loadMesh') core.solve();
     timing.solveMs = performance.now() - t1;
-    const snap = MUTATING.has(op) ? snapshot(timing) : null;
-    if (op === 'loadMesh') {
-      reply = { ok: true, value: out.value, mesh: out.mesh, snapshot: snap };
-      transfer = [...out.transfer, ...snap.transfer];
-    } else {
-      reply = { ok: true, value: out, snapshot: snap };
-      if (snap) transfer = snap.transfer;
+    reply = { ok: true, value: out };
+    if (MUTATING.has(op)) {
+      reply.snapshot = snapshot(changedIds, timing);
+      transfer = [...transfer, ...reply.snapshot.transfer];
     }
   } catch (err) {
     reply = { ok: false, error: err?.message || String(err), fatal: isFatal(err) };
+    transfer = [];
     // An edit whose factor or solve failed is taken back, so the core never keeps a state it cannot solve.
     if (undoEdit && !reply.fatal) {
       try {
@@ -246,11 +297,12 @@ self.onmessage = async ({ data }) => {
         // the snapshot below shows whatever the core holds
       }
     }
-    // The page mirrors the core: after a failed edit it must still see what the core now holds.
+    // The page mirrors the core: after a failed edit it must still see what the core now holds (the whole
+    // design, whatever the edit had got to).
     if (MUTATING.has(op) && core?.hasMesh && !reply.fatal) {
       try {
         core.solve();
-        reply.snapshot = snapshot();
+        reply.snapshot = snapshot(null);
         transfer = reply.snapshot.transfer;
       } catch {
         // no field to show; the page keeps its previous copies

@@ -22,7 +22,7 @@ import {
   Vector3,
 } from 'three';
 import { POISSON_PACKING, sampleSurface, worldPerPixel } from './arrow-sampling.js';
-import { viridis } from './colormap.js';
+import { magnitudeScale, viridis } from './colormap.js';
 
 const ARROW_LIFT = 0.02; // × mean edge length, keeps arrows above the surface they lie on
 
@@ -67,6 +67,7 @@ export class ArrowsView {
     this.sampledAt = null; // {wpp, position, direction, local} of the view the samples were made for
     this.wpp = 0; // model units per pixel at the pivot, for the current view
     this.top = 0; // magnitude at the top of the colour map
+    this.scale = null; // magnitudeScale of the field drawn
   }
 
   setSurface(surface) {
@@ -103,10 +104,12 @@ export class ArrowsView {
   }
 
   // faceVectors: 3 per face; vertexVectors (optional): 3 per vertex, interpolated inside each face so the
-  // arrows turn smoothly rather than in steps at face edges.
-  setField(faceVectors, vertexVectors = null) {
+  // arrows turn smoothly rather than in steps at face edges; scale (optional): magnitudeScale(vertexVectors),
+  // when the caller has it already.
+  setField(faceVectors, vertexVectors = null, scale = null) {
     this.faceVectors = faceVectors;
     this.vertexVectors = vertexVectors && this.surface && vertexVectors.length === 3 * this.surface.nV ? vertexVectors : null;
+    this.scale = this.vertexVectors ? scale : null;
     this.#rebuild();
   }
 
@@ -171,16 +174,8 @@ export class ArrowsView {
     if (this.mesh.instanceMatrix.count < n) this.#grow(n);
     // Colours and scaled lengths top out at the 98th percentile of the magnitudes (as the colour map does):
     // the spike at a source or vortex would otherwise leave every other arrow at the bottom of the map.
-    const src = V ?? F;
-    const m = src.length / 3;
-    const mags = new Float64Array(m);
-    for (let i = 0; i < m; i++) {
-      const v = Math.hypot(src[3 * i], src[3 * i + 1], src[3 * i + 2]);
-      mags[i] = Number.isFinite(v) ? v : 0;
-    }
-    const sorted = mags.slice().sort();
-    const max = sorted[m - 1] ?? 0;
-    const top = sorted[Math.min(m - 1, Math.floor(0.98 * m))] || max;
+    this.scale ??= magnitudeScale(V ?? F);
+    const { max, top } = this.scale;
     this.top = top;
     const len = ARROW_LENGTH * arrowSpacingPx(this.options.density) * this.wpp;
     const lift = ARROW_LIFT * s.meanEdge;

@@ -31,16 +31,25 @@ export class HandlesView {
     this.hidePreview();
   }
 
-  // list: [{uid, spec}] with spec in the design format.
+  // list: [{uid, spec}] with spec in the design format. A handle whose spec is the very object it was built
+  // from is kept (the session's copy of the design replaces the entries an edit touched, and only those), so
+  // an edit builds the handles of the constraints it changed, not all of them.
   setConstraints(list) {
-    for (const item of this.items.values()) this.#disposeItem(item);
-    this.items.clear();
+    const kept = new Map();
     for (const { uid, spec } of list) {
+      const old = this.items.get(uid);
+      if (old && old.spec === spec) {
+        kept.set(uid, old);
+        this.items.delete(uid);
+        continue;
+      }
       const item = this.#build(spec);
       if (!item) continue;
       item.object.userData.uid = uid;
-      this.items.set(uid, item);
+      kept.set(uid, item);
     }
+    for (const item of this.items.values()) this.#disposeItem(item);
+    this.items = kept;
     this.#paintSelection();
   }
 

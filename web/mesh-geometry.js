@@ -67,3 +67,19 @@ export function vertexNormals(triangles, nV, normals, areas) {
   }
   return out;
 }
+
+// 2π less the corner angles around each vertex (meaningful on interior vertices), as the core's geometry.
+export function angleDefects(positions, triangles, nV) {
+  const P = positions, T = triangles, nF = T.length / 3;
+  const defect = new Float64Array(nV).fill(2 * Math.PI);
+  for (let f = 0; f < nF; f++) {
+    for (let c = 0; c < 3; c++) {
+      const o = 3 * T[3 * f + c], p = 3 * T[3 * f + ((c + 1) % 3)], q = 3 * T[3 * f + ((c + 2) % 3)];
+      const ux = P[p] - P[o], uy = P[p + 1] - P[o + 1], uz = P[p + 2] - P[o + 2];
+      const vx = P[q] - P[o], vy = P[q + 1] - P[o + 1], vz = P[q + 2] - P[o + 2];
+      const cross = Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+      defect[T[3 * f + c]] -= Math.atan2(cross, ux * vx + uy * vy + uz * vz);
+    }
+  }
+  return defect;
+}

@@ -4,8 +4,9 @@
 // elements.
 //
 // The core runs in a module worker (core-worker.js); every edit is one request that ends with a solve and a
-// snapshot (field arrays, singularities, stats, the design), which the session keeps so that reads stay
-// synchronous.
+// snapshot of what changed (the field arrays, the stats, the touched constraints), which the session keeps
+// so that reads stay synchronous. What no edit needs is derived when read or shown, once per field: the
+// singularities on the page, the streamlines in the worker (on the page when read before the worker's arrive).
 import { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting } from './commands.js';
 import { CoreProxy } from './core-proxy.js';
 import { AutosaveStore } from './autosave-store.js';
@@ -14,7 +15,9 @@ import { setupExport } from './export/index.js';
 import { captureScreenshot } from './screenshot.js';
 import { History } from './history.js';
 import { ACCEPT, readModel } from './model-files.js';
+import { findSingularities } from './singularities.js';
 import { traceStreamlines } from './streamlines.js';
+import { magnitudeScale } from './colormap.js';
 import { boundarySpec, gammaSpec, pointSpec, strokeSpec, vectorSpec } from './specs.js';
 import { Surface } from './surface.js';
 import { setupSynthesis } from './synthesis/index.js';
@@ -36,6 +39,11 @@ const PROGRESS_LABELS = {
   exportFlowMap: 'Exporting the flow map…',
   exportGlb: 'Exporting the GLB…',
 };
+
+function allFinite(values) {
+  for (let i = 0; i < values.length; i++) if (!Number.isFinite(values[i])) return false;
+  return true;
+}
 
 export class Session {
   // host: the element (events are dispatched on it); root: its shadow root (markup already in place);
@@ -60,18 +68,19 @@ export class Session {
     this.loadsPending = 0; // model loads asked for and not finished: tool input meanwhile is refused
     this.info = null;
     this.surface = null;
-    this.field = null; // {faceVectors, vertexVectors, oneForm, singularities, stats} of the last completed change
-    this.design = { boundary: 'free', gamma: 0, constraints: [] }; // the core's document, verbatim
+    // {version (the worker's), faceVectors, vertexVectors, oneForm, stats, singularities (null until derived)}
+    // of the last completed change.
+    this.field = null;
+    // The core's document, kept in step from the constraints each edit touched (core-worker.js snapshot()).
+    this.design = { boundary: 'free', gamma: 0, constraints: [] };
     this.specByCore = new Map(); // core id → spec (design format)
     this.coreOrder = []; // core ids in the core's order (that of design.constraints)
     this.constraints = new Map(); // uid → core id
     this.nextUid = 1;
     this.selected = null;
     this.fieldVersion = 0;
-    this.streamlineCache = null; // {version, spacing, surface, lines}
-    this.streamlineTimer = 0;
-    this.arrowsAhead = false; // the arrows already show the field of the edit in flight (worker's early message)
-    this.earlyFrame = null; // resolves when those arrows were on screen
+    this.streamlineCache = null; // {version, spacing, surface, lines, source: 'worker' | 'page'}
+    this.shown = { singularities: -1, vertexField: -1 }; // the field versions those views were last given
     this.perf = {};
     this.meshSerial = 0;
     this.cornerUVs = null;
@@ -145,7 +154,6 @@ export class Session {
   dispose() {
     if (this.disposed) return;
     this.disposed = true;
-    clearTimeout(this.streamlineTimer);
     this.proxy?.terminate();
     this.autosaveStore?.close();
     this.synthesis.dispose();
@@ -202,19 +210,8 @@ export class Session {
     this.emit('progress', { phase: op, fraction: 0 });
     const t0 = performance.now();
     const renders0 = this.viewer.renderCount;
-    let earlyFrame = null;
-    // The new arrows go on screen as soon as the worker has solved; reads (faceVectors() ...) still show the
-    // previous change until the whole snapshot is in.
-    const onEarly = ({ faceVectors }) => {
-      if (!this.surface || faceVectors.length !== 3 * this.surface.nF) return;
-      this.viewer.arrows.setField(faceVectors);
-      this.arrowsAhead = true;
-      // Queued, not drawn now: when the rest of the snapshot follows within a frame, one render shows both.
-      earlyFrame = this.viewer.nextRenderShown();
-      this.viewer.requestRender();
-    };
     try {
-      const reply = await this.proxy.call(op, args, transfer, onEarly);
+      const reply = await this.proxy.call(op, args, transfer);
       const t1 = performance.now();
       // Frames the page drew while the worker computed: the page never waits for the core.
       this.perf.lastOp = {
@@ -226,11 +223,10 @@ export class Session {
         receivedAt: t1,
         framesDrawnMeanwhile: this.viewer.renderCount - renders0,
       };
-      this.earlyFrame = earlyFrame;
       if (reply.snapshot) this.#applySnapshot(reply.snapshot);
+      this.perf.lastOp.applyMs = performance.now() - t1;
       return reply;
     } catch (err) {
-      this.arrowsAhead = false; // whatever was drawn early, the next refresh draws what the core holds
       if (err.reply?.snapshot) this.#applySnapshot(err.reply.snapshot);
       throw err;
     } finally {
@@ -240,14 +236,28 @@ export class Session {
   }
 
   #applySnapshot(snap) {
-    const { faceVectors, vertexVectors, oneForm, singularities, stats, design, ids } = snap;
-    this.field = { faceVectors, vertexVectors, oneForm, singularities, stats };
+    const { version, faceVectors, vertexVectors, oneForm, stats, design } = snap;
+    this.field = { version, faceVectors, vertexVectors, oneForm, stats, singularities: null };
     this.fieldVersion++;
-    this.design = design;
-    this.specByCore = new Map(ids.map((id, k) => [id, design.constraints[k]]));
-    this.coreOrder = ids;
+    this.#applyDesign(design);
     for (const [uid, coreId] of this.constraints) if (!this.specByCore.has(coreId)) this.constraints.delete(uid);
     if (this.selected != null && !this.constraints.has(this.selected)) this.selected = null;
+  }
+
+  // The worker sends the whole document after loads, settings, designs and failed edits; after a constraint
+  // edit only the entries it touched and the id order.
+  #applyDesign({ ids, document, changed }) {
+    if (document) {
+      this.design = document;
+      this.specByCore = new Map(ids.map((id, k) => [id, document.constraints[k]]));
+    } else {
+      for (const [id, spec] of changed) this.specByCore.set(id, spec);
+      const missing = ids.find((id) => !this.specByCore.has(id));
+      if (missing !== undefined) throw new Error(`internal error: the core has constraint ${missing}, which the page never saw`);
+      this.specByCore = new Map(ids.map((id) => [id, this.specByCore.get(id)]));
+      this.design = { ...this.design, constraints: ids.map((id) => this.specByCore.get(id)) };
+    }
+    this.coreOrder = ids;
   }
 
   // ------------------------------------------------------------------------------------------ id mapping
@@ -295,43 +305,89 @@ export class Session {
     return this.surface.radius * (0.01 + 0.008 * (this.views?.streamlineSpacing ?? 5));
   }
 
-  // Traced lazily and cached per field version and spacing: the view and streamlines() share them.
+  #streamlineLift() {
+    return 0.03 * this.surface.meanEdge;
+  }
+
+  // Cached per field version and spacing; the view and streamlines() share them. The view has them traced in
+  // the worker (#scheduleStreamlines); a read before those arrive traces here, with the same code and field.
   currentStreamlines() {
     const spacing = this.#streamlineSpacing();
     const c = this.streamlineCache;
     if (c && c.version === this.fieldVersion && c.spacing === spacing && c.surface === this.surface) return c.lines;
-    const t0 = performance.now();
-    const lines = traceStreamlines(this.surface, this.field.vertexVectors, { spacing, lift: 0.03 * this.surface.meanEdge });
-    this.perf.streamlinesMs = performance.now() - t0;
-    this.streamlineCache = { version: this.fieldVersion, spacing, surface: this.surface, lines };
+    const lines = this.traceStreamlinesHere();
+    this.streamlineCache = { version: this.fieldVersion, spacing, surface: this.surface, lines, source: 'page' };
     return lines;
   }
 
+  // Traces on the page, now, whatever the cache holds.
+  traceStreamlinesHere() {
+    const t0 = performance.now();
+    const lines = traceStreamlines(this.surface, this.field.vertexVectors, { spacing: this.#streamlineSpacing(), lift: this.#streamlineLift() });
+    this.perf.streamlines = { ms: performance.now() - t0, source: 'page', fieldVersion: this.fieldVersion };
+    return lines;
+  }
+
+  // The streamlines view asks the worker for the lines of the field it shows; they are drawn when they come
+  // (after the frame with the arrows), unless the field, the spacing or the view changed meanwhile.
   #scheduleStreamlines() {
-    clearTimeout(this.streamlineTimer);
     if (!this.views.streamlines) {
       this.viewer.streamlines.setLines([]);
       return;
     }
-    // After the frame that shows the arrows: tracing takes tens of ms and must not delay that frame.
-    this.streamlineTimer = setTimeout(() => {
-      if (this.disposed || !this.field) return;
-      this.viewer.streamlines.setLines(this.currentStreamlines());
-      this.viewer.requestRender();
-    }, 0);
+    const spacing = this.#streamlineSpacing(), surface = this.surface, fieldVersion = this.fieldVersion;
+    const c = this.streamlineCache;
+    const current = () =>
+      !this.disposed && this.views.streamlines && this.fieldVersion === fieldVersion && this.surface === surface && this.#streamlineSpacing() === spacing;
+    if (c && c.version === fieldVersion && c.spacing === spacing && c.surface === surface) {
+      this.viewer.streamlines.setLines(c.lines);
+      return;
+    }
+    const t0 = performance.now();
+    this.proxy
+      ?.call('streamlines', [this.field.version, spacing, this.#streamlineLift()], [], { background: true })
+      .then(({ value: lines, workerMs }) => {
+        if (!lines || !current()) return;
+        this.streamlineCache = { version: fieldVersion, spacing, surface, lines, source: 'worker' };
+        this.perf.streamlines = { ms: performance.now() - t0, workerMs, source: 'worker', fieldVersion };
+        this.viewer.streamlines.setLines(lines);
+        this.viewer.requestRender();
+      })
+      .catch(() => {}); // a restarted worker: the refresh after the restart asks again
+  }
+
+  // Derived on first read, once per field: no edit waits for them.
+  currentSingularities() {
+    this.field.singularities ??= findSingularities(this.surface, this.field.faceVectors);
+    return this.field.singularities;
+  }
+
+  // One magnitude scale per field for the arrows, the surface colours and the legend.
+  #fieldScale() {
+    this.field.scale ??= magnitudeScale(this.field.vertexVectors);
+    return this.field.scale;
+  }
+
+  // The views that are on get the current field, once per field version; the others get nothing.
+  #showDerived() {
+    const { viewer, views, shown } = this;
+    if (views.singularities && shown.singularities !== this.fieldVersion) {
+      viewer.singularities.setSingularities(this.currentSingularities());
+      shown.singularities = this.fieldVersion;
+    }
+    if ((views.colorMap || views.lic) && shown.vertexField !== this.fieldVersion) {
+      viewer.setVertexField(this.field.vertexVectors, this.#fieldScale());
+      shown.vertexField = this.fieldVersion;
+    }
+    this.ui.setLegend(this.#legendShown() ? this.#fieldScale().top : null);
   }
 
   // Pushes the current field, constraints and settings to the view and the panels; draws synchronously.
   refresh() {
-    const { viewer, ui, field, views } = this;
+    const { viewer, ui, field } = this;
     const t0 = performance.now();
-    // Drawn already from the worker's early message: the same numbers.
-    // The early arrows were face-constant; the full snapshot adds the vertex vectors they interpolate.
-    viewer.arrows.setField(field.faceVectors, field.vertexVectors);
-    this.arrowsAhead = false;
-    const max = viewer.setVertexField(field.vertexVectors);
-    ui.setLegend(this.#legendShown() ? max : null);
-    viewer.singularities.setSingularities(field.singularities);
+    viewer.arrows.setField(field.faceVectors, field.vertexVectors, this.#fieldScale());
+    this.#showDerived();
     viewer.handles.setConstraints([...this.constraints.keys()].map((uid) => ({ uid, spec: this.specOf(uid) })));
     viewer.handles.setSelected(this.selected);
     ui.setConstraints(this.constraintList(), this.selected);
@@ -359,13 +415,12 @@ export class Session {
     this.views = { ...this.views, ...views };
     const v = this.views, viewer = this.viewer;
     viewer.arrows.setOptions({ visible: v.arrows, density: v.arrowDensity, scaled: v.arrowsScaled });
+    // The views turned on get the current field first (the markers are built when the view shows).
+    if (this.field) this.#showDerived();
     viewer.setColorMap(v.colorMap);
     viewer.singularities.setVisible(v.singularities);
     viewer.lic.setVisible(v.lic);
-    if (this.field) {
-      this.ui.setLegend(this.#legendShown() ? viewer.vertexFieldMax : null);
-      this.#scheduleStreamlines();
-    }
+    if (this.field) this.#scheduleStreamlines();
     viewer.requestRender();
   }
 
@@ -413,7 +468,7 @@ export class Session {
   #autosaveNow() {
     const store = this.#store();
     if (!store || !this.modelKey) return;
-    const finite = this.field.oneForm.every(Number.isFinite) && this.field.faceVectors.every(Number.isFinite);
+    const finite = allFinite(this.field.oneForm) && allFinite(this.field.faceVectors);
     if (!finite) {
       this.ui.showError('The field is not finite; this state was not autosaved.');
       return;
@@ -488,7 +543,7 @@ export class Session {
       const tApply = performance.now();
       this.ui.clearError();
       const { info, settingsError, restoreError, embeddedDesign } = reply.value;
-      const { positions, triangles, edges } = reply.mesh;
+      const { positions, triangles, edges, cornerUVs } = reply.value.mesh;
       this.surface = new Surface(positions, triangles, edges);
       this.info = info;
       this.modelName = model.name;
@@ -503,7 +558,7 @@ export class Session {
       this.history.clear();
       this.viewer.setMesh(this.surface);
       // Texture synthesis: the model's UVs (6 per face, or none) and a fresh atlas for the new mesh.
-      this.cornerUVs = reply.mesh.cornerUVs?.length ? reply.mesh.cornerUVs : null;
+      this.cornerUVs = cornerUVs.length ? cornerUVs : null;
       this.meshSerial++;
       this.synthesis.modelChanged();
       this.ui.setHasBoundary(info.boundaryLoops > 0);
@@ -539,7 +594,6 @@ export class Session {
     const uids = this.uidsInCoreOrder();
     const bytes = this.modelSource.bytes.slice();
     const reply = await call('loadMesh', [bytes, this.modelSource.format, this.settings(), this.design], [bytes.buffer]);
-    this.arrowsAhead = false;
     this.#applySnapshot(reply.snapshot);
     this.mapDocument(uids);
     this.refresh();
@@ -712,9 +766,7 @@ export class Session {
     // refresh() has drawn synchronously; the next animation frame puts it on screen.
     const shown = await new Promise((resolve) => requestAnimationFrame(() => resolve(performance.now())));
     const op = this.perf.lastOp ?? {};
-    const arrowsShown = await this.earlyFrame;
     this.perf[name] = {
-      arrowsOnScreenMs: arrowsShown ? arrowsShown - t0 : undefined,
       toFrameMs: shown - t0,
       workerMs: op.workerMs,
       workerParts: op.workerParts,

@@ -1,7 +1,7 @@
 // Main-thread geometry and topology of the core's welded mesh, for drawing and for tracing on the surface.
 // Face f here is face f of the core; local edge k of a face runs from corner k to corner k+1. Normals, areas
 // and the edge→face maps come from mesh-geometry.js.
-import { faceGeometry, halfEdgeNeighbours, vertexFaceMap, vertexNormals } from './mesh-geometry.js';
+import { angleDefects, faceGeometry, halfEdgeNeighbours, vertexFaceMap, vertexNormals } from './mesh-geometry.js';
 
 export class Surface {
   // positions: Float64Array (3 per vertex), triangles: Int32Array (3 per face), edges: Int32Array (2 per edge,
@@ -12,6 +12,7 @@ export class Surface {
     this.edges = edges;
     this.nV = positions.length / 3;
     this.nF = triangles.length / 3;
+    this.angleDefect = null;
     this.#geometry();
     this.#adjacency();
   }
@@ -52,6 +53,12 @@ export class Surface {
     ({ start: this.vertexFaceStart, faces: this.vertexFaces } = vertexFaceMap(this.triangles, this.nV));
     // For lifting markers off the surface.
     this.vertexNormals = vertexNormals(this.triangles, this.nV, this.normals, this.areas);
+  }
+
+  // 2π less the corner angles per vertex; computed on first use (the singularities need it).
+  angleDefects() {
+    this.angleDefect ??= angleDefects(this.positions, this.triangles, this.nV);
+    return this.angleDefect;
   }
 
   vertex(v) {

@@ -28,6 +28,7 @@ import { ArrowsView, LabelTextures, SingularitiesView, StreamlinesView, rampColo
 import { HandlesView } from './handles.js';
 import { LicView } from './lic.js';
 import { frameModel, refitToAspect } from './camera.js';
+import { magnitudeScale } from './colormap.js';
 
 const BACKGROUND = 0x1b1d21;
 const SURFACE_GREY = 0xb9bec8;
@@ -215,20 +216,16 @@ export class Viewer {
   // Magnitude colour map from per-vertex vectors. The ramp tops out at the 98th percentile, not the maximum:
   // sources and vortices make a few huge values that would leave the rest of the model one colour.
   // Returns the magnitude at the top of the ramp (for the legend).
-  setVertexField(vertexVectors) {
+  // scale (optional): magnitudeScale(vertexVectors), when the caller has it already.
+  setVertexField(vertexVectors, scale = magnitudeScale(vertexVectors)) {
     if (!this.surfaceMesh) return 0;
     const attr = this.surfaceMesh.geometry.getAttribute('color');
     const n = vertexVectors.length / 3;
-    const mags = new Float64Array(n);
-    for (let v = 0; v < n; v++) {
-      const m = Math.hypot(vertexVectors[3 * v], vertexVectors[3 * v + 1], vertexVectors[3 * v + 2]);
-      mags[v] = Number.isFinite(m) ? m : 0;
-    }
-    const sorted = mags.slice().sort();
-    const top = n ? sorted[Math.min(n - 1, Math.floor(0.98 * n))] || sorted[n - 1] : 0;
+    const { top } = scale;
     const c = new Color();
     for (let v = 0; v < n; v++) {
-      rampColor(top > 0 ? mags[v] / top : 0, c);
+      const m = Math.hypot(vertexVectors[3 * v], vertexVectors[3 * v + 1], vertexVectors[3 * v + 2]);
+      rampColor(top > 0 && Number.isFinite(m) ? m / top : 0, c);
       attr.setXYZ(v, c.r, c.g, c.b);
     }
     attr.needsUpdate = true;

@@ -54,7 +54,10 @@ struct Designer::Impl {
   Eigen::VectorXd solution;
   std::vector<double> oneForm, faceVectors, vertexVectors;
   std::vector<Singularity> singularities;
-  bool derivedStale = false;
+  // Derived on first read, each on its own: the page's default view needs the vertex vectors only.
+  bool vertexVectorsStale = false, singularitiesStale = false;
+  VertexVectorMap vertexVectorMap;  // built on first use (geometry only)
+  FaceVectorMap faceVectorMap;      // likewise
   DesignStats stats;
 
   Impl(SurfaceMesh m, MeshTopology t)
@@ -121,8 +124,6 @@ struct Designer::Impl {
     if (isEdgeKind(spec.kind)) updateRows(id, spec.weight, false);
     return id;
   }
-
-  void deriveIfStale();
 };
 
 Designer::Designer(SurfaceMesh mesh) {
@@ -275,7 +276,8 @@ void Designer::solve() {
         "the previous field is kept");
   start = Clock::now();
   std::vector<double> faceVectors;
-  tvf::faceVectors(d.mesh, d.topology, x.data(), faceVectors);
+  if (d.faceVectorMap.coefficient.empty()) d.faceVectorMap = tvf::faceVectorMap(d.mesh, d.topology);
+  tvf::faceVectors(d.faceVectorMap, d.topology, x.data(), faceVectors);
   for (const double v : faceVectors)
     if (!std::isfinite(v))
       throw InputError(
@@ -285,15 +287,7 @@ void Designer::solve() {
   d.oneForm.assign(d.solution.data(), d.solution.data() + d.solution.size());
   d.faceVectors = std::move(faceVectors);
   d.stats.reconstructMs = msSince(start);
-  d.derivedStale = true;
-}
-
-// Vertex vectors and singularities are derived on first read: the interactive loop needs only face vectors.
-void Designer::Impl::deriveIfStale() {
-  if (!derivedStale) return;
-  tvf::vertexVectors(mesh, topology, geometry, oneForm.data(), vertexVectors);
-  singularities = findSingularities(mesh, topology, geometry, faceVectors);
-  derivedStale = false;
+  d.vertexVectorsStale = d.singularitiesStale = true;
 }
 
 const std::vector<double>& Designer::oneForm() const {
@@ -302,13 +296,23 @@ const std::vector<double>& Designer::oneForm() const {
 const std::vector<double>& Designer::faceVectors() const {
   return impl_->faceVectors;
 }
+// Vertex vectors and singularities are derived on first read: the interactive loop needs only face vectors.
 const std::vector<double>& Designer::vertexVectors() const {
-  impl_->deriveIfStale();
-  return impl_->vertexVectors;
+  Impl& d = *impl_;
+  if (d.vertexVectorsStale) {
+    if (d.vertexVectorMap.start.empty())
+      d.vertexVectorMap = tvf::vertexVectorMap(d.mesh, d.topology, d.geometry);
+    tvf::vertexVectors(d.vertexVectorMap, d.oneForm.data(), d.vertexVectors);
+  }
+  d.vertexVectorsStale = false;
+  return d.vertexVectors;
 }
 const std::vector<Singularity>& Designer::singularities() const {
-  impl_->deriveIfStale();
-  return impl_->singularities;
+  Impl& d = *impl_;
+  if (d.singularitiesStale)
+    d.singularities = findSingularities(d.mesh, d.topology, d.geometry, d.faceVectors);
+  d.singularitiesStale = false;
+  return d.singularities;
 }
 const DesignStats& Designer::stats() const {
   return impl_->stats;

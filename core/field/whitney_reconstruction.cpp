@@ -1,5 +1,7 @@
 #include "field/whitney_reconstruction.h"
 
+#include <algorithm>
+
 #include "mesh/mesh_geometry.h"
 
 namespace tvf {
@@ -18,21 +20,27 @@ void whitneyWeights(const double c[3], const double a[3], double w[3]) {
   w[2] = cjk * a[1] - cki * a[0];
 }
 
-}  // namespace
-
-Eigen::Vector3d whitneyVector(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,
-                              int32_t f, const double bary[3]) {
+// Eq. 4 in face f for the face's own 1-form values c.
+Eigen::Vector3d whitneyVectorOf(const SurfaceMesh& mesh, int32_t f, const double c[3], const double bary[3]) {
   Eigen::Vector3d p[3];
   facePositions(mesh, f, p);
   const Eigen::Vector3d cross = (p[1] - p[0]).cross(p[2] - p[0]);
   const Eigen::Vector3d n = cross.normalized();
-  double c[3], w[3];
-  faceCoefficients(t, oneForm, f, c);
+  double w[3];
   whitneyWeights(c, bary, w);
   // Opposite edges: p_jk (corner 1 -> 2), p_ki (2 -> 0), p_ij (0 -> 1); perp = rotation by +pi/2 about n.
   const Eigen::Vector3d sum =
       w[0] * n.cross(p[2] - p[1]) + w[1] * n.cross(p[0] - p[2]) + w[2] * n.cross(p[1] - p[0]);
   return sum / cross.norm();
+}
+
+}  // namespace
+
+Eigen::Vector3d whitneyVector(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,
+                              int32_t f, const double bary[3]) {
+  double c[3];
+  faceCoefficients(t, oneForm, f, c);
+  return whitneyVectorOf(mesh, f, c, bary);
 }
 
 Eigen::Vector2d whitneyTextureVector(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,
@@ -52,39 +60,101 @@ Eigen::Vector2d whitneyTextureVector(const SurfaceMesh& mesh, const MeshTopology
 
 void faceVectors(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,
                  std::vector<double>& out) {
+  faceVectors(faceVectorMap(mesh, t), t, oneForm, out);
+}
+
+FaceVectorMap faceVectorMap(const SurfaceMesh& mesh, const MeshTopology& t) {
   const double centre[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
+  FaceVectorMap map;
+  map.coefficient.resize(9 * static_cast<size_t>(t.numFaces));
+  for (int32_t f = 0; f < t.numFaces; ++f)
+    for (int k = 0; k < 3; ++k) {
+      // Eq. 4 is linear in the face's values: its vector for the value 1 on edge k (in the edge's canonical
+      // orientation) and 0 on the others.
+      double c[3] = {0, 0, 0};
+      c[k] = t.signOf(f, k);
+      const Eigen::Vector3d u = whitneyVectorOf(mesh, f, c, centre);
+      for (int d = 0; d < 3; ++d) map.coefficient[9 * static_cast<size_t>(f) + 3 * k + d] = u[d];
+    }
+  return map;
+}
+
+void faceVectors(const FaceVectorMap& map, const MeshTopology& t, const double* oneForm,
+                 std::vector<double>& out) {
   out.resize(3 * static_cast<size_t>(t.numFaces));
   for (int32_t f = 0; f < t.numFaces; ++f) {
-    const Eigen::Vector3d u = whitneyVector(mesh, t, oneForm, f, centre);
-    for (int k = 0; k < 3; ++k) out[3 * f + k] = u[k];
+    const double* a = &map.coefficient[9 * static_cast<size_t>(f)];
+    const double c0 = oneForm[t.edgeOf(f, 0)], c1 = oneForm[t.edgeOf(f, 1)], c2 = oneForm[t.edgeOf(f, 2)];
+    for (int d = 0; d < 3; ++d) out[3 * f + d] = c0 * a[d] + c1 * a[3 + d] + c2 * a[6 + d];
   }
 }
 
 void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
                    const double* oneForm, std::vector<double>& out) {
-  out.assign(3 * static_cast<size_t>(t.numVertices), 0.0);
+  vertexVectors(vertexVectorMap(mesh, t, g), oneForm, out);
+}
+
+VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g) {
   std::vector<double> weight(t.numVertices, 0.0);
+  for (int32_t f = 0; f < t.numFaces; ++f)
+    for (int k = 0; k < 3; ++k) weight[mesh.triangles[3 * f + k]] += g.cornerArea[3 * f + k];
+  // Two terms per corner, (vertex, edge, coefficient), merged per (vertex, edge) below.
+  struct Term {
+    int32_t vertex, edge;
+    Eigen::Vector3d coefficient;
+  };
+  std::vector<Term> terms;
+  terms.reserve(6 * static_cast<size_t>(t.numFaces));
   for (int32_t f = 0; f < t.numFaces; ++f) {
     Eigen::Vector3d p[3];
     facePositions(mesh, f, p);
     const Eigen::Map<const Eigen::Vector3d> n(&g.faceNormal[3 * f]);
-    // At corner i Eq. 4 reduces to (c_ij p_ki^perp - c_ki p_ij^perp) / 2|t| (the summand of Eq. 5).
     const Eigen::Vector3d perp[3] = {n.cross(p[1] - p[0]), n.cross(p[2] - p[1]), n.cross(p[0] - p[2])};
-    double c[3];
-    faceCoefficients(t, oneForm, f, c);
     const double scale = 1 / (2 * g.faceArea[f]);
     for (int k = 0; k < 3; ++k) {
-      // Corner k: its outgoing edge is k (k -> k+1), its incoming edge k+2 (k+2 -> k).
-      const Eigen::Vector3d u = scale * (c[k] * perp[(k + 2) % 3] - c[(k + 2) % 3] * perp[k]);
+      // Corner k: u = (c_k perp_{k+2} - c_{k+2} perp_k) / 2|t| (the summand of Eq. 5), c_k = sign * oneForm.
       const int32_t v = mesh.triangles[3 * f + k];
-      const double area = g.cornerArea[3 * f + k];
-      for (int d = 0; d < 3; ++d) out[3 * v + d] += area * u[d];
-      weight[v] += area;
+      if (!(weight[v] > 0)) continue;
+      const double w = scale * g.cornerArea[3 * f + k] / weight[v];
+      const int in = (k + 2) % 3;
+      terms.push_back({v, t.edgeOf(f, k), (w * t.signOf(f, k)) * perp[in]});
+      terms.push_back({v, t.edgeOf(f, in), (-w * t.signOf(f, in)) * perp[k]});
     }
   }
-  for (int32_t v = 0; v < t.numVertices; ++v)
-    if (weight[v] > 0)
-      for (int k = 0; k < 3; ++k) out[3 * v + k] /= weight[v];
+  std::sort(terms.begin(), terms.end(), [](const Term& a, const Term& b) {
+    return a.vertex != b.vertex ? a.vertex < b.vertex : a.edge < b.edge;
+  });
+  VertexVectorMap map;
+  map.start.assign(t.numVertices + 1, 0);
+  for (size_t i = 0; i < terms.size(); ++i) {
+    if (i > 0 && terms[i].vertex == terms[i - 1].vertex && terms[i].edge == terms[i - 1].edge) {
+      for (int d = 0; d < 3; ++d) map.coefficient[map.coefficient.size() - 3 + d] += terms[i].coefficient[d];
+      continue;
+    }
+    ++map.start[terms[i].vertex + 1];
+    map.edge.push_back(terms[i].edge);
+    for (int d = 0; d < 3; ++d) map.coefficient.push_back(terms[i].coefficient[d]);
+  }
+  for (int32_t v = 0; v < t.numVertices; ++v) map.start[v + 1] += map.start[v];
+  return map;
+}
+
+void vertexVectors(const VertexVectorMap& map, const double* oneForm, std::vector<double>& out) {
+  const size_t numVertices = map.start.size() - 1;
+  out.resize(3 * numVertices);
+  for (size_t v = 0; v < numVertices; ++v) {
+    double x = 0, y = 0, z = 0;
+    for (int32_t i = map.start[v]; i < map.start[v + 1]; ++i) {
+      const double c = oneForm[map.edge[i]];
+      const double* a = &map.coefficient[3 * static_cast<size_t>(i)];
+      x += c * a[0];
+      y += c * a[1];
+      z += c * a[2];
+    }
+    out[3 * v] = x;
+    out[3 * v + 1] = y;
+    out[3 * v + 2] = z;
+  }
 }
 
 void textureFaceVectors(const SurfaceMesh& mesh, const MeshTopology& t, const double* oneForm,

@@ -20,9 +20,30 @@ Eigen::Vector2d whitneyTextureVector(const SurfaceMesh& mesh, const MeshTopology
 // Per-face vectors at barycentres (3 per face).
 void faceVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,
                  std::vector<double>& out);
+
+// The same as a linear map of the face's three 1-form values: 3 coefficient vectors per face (orientation
+// signs included), built once per mesh, so that reconstructing after every solve does no geometry.
+struct FaceVectorMap {
+  std::vector<double> coefficient;  // 9 per face: the vector for edge k of face f at 9 f + 3 k
+};
+FaceVectorMap faceVectorMap(const SurfaceMesh& mesh, const MeshTopology& topology);
+void faceVectors(const FaceVectorMap& map, const MeshTopology& topology, const double* oneForm,
+                 std::vector<double>& out);
 // Per-vertex vectors: the corner values of Eq. 4 averaged with mixed Voronoi corner areas (Eq. 5).
 void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& geometry,
                    const double* oneForm, std::vector<double>& out);
+
+// Eq. 5 as the linear map it is: vertex v's vector is a sum over the edges at v of the edge's 1-form value
+// times a 3-vector that depends on the geometry only. Built once per mesh, applying it reads each edge value
+// twice and does no geometry (the interactive loop derives vertex vectors after every edit).
+struct VertexVectorMap {
+  std::vector<int32_t> start;       // the entries of vertex v are start[v] .. start[v + 1]
+  std::vector<int32_t> edge;        // per entry
+  std::vector<double> coefficient;  // 3 per entry
+};
+VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                const MeshGeometry& geometry);
+void vertexVectors(const VertexVectorMap& map, const double* oneForm, std::vector<double>& out);
 // Texture-domain vectors at barycentres (2 per face); empty when the mesh has no UVs.
 void textureFaceVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,
                         std::vector<double>& out);

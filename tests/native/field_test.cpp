@@ -35,6 +35,52 @@ TEST(Reconstruction, ConstantFieldIsReproducedExactlyEverywhereInEveryTriangle) 
     EXPECT_LT((Eigen::Map<const Eigen::Vector3d>(&vertexField[3 * v]) - u).norm(), 1e-13);
 }
 
+// The precomputed maps against Eq. 5 written out (the Whitney vector at each corner, whitneyVector at bary =
+// that corner, averaged with the corner areas) and Eq. 4 at the barycentre. A torus (curved, every vertex
+// interior) and an annulus (boundary vertices), with an arbitrary 1-form.
+TEST(Reconstruction, PrecomputedMapsAreEquations4And5) {
+  for (const SurfaceMesh& m : {torus(14, 9, 1.0, 0.35), flatAnnulus(4, 24, 0.5, 1.0)}) {
+    const MeshTopology t = buildTopology(m);
+    const MeshGeometry g = computeMeshGeometry(m, t);
+    std::vector<double> c(t.numEdges);
+    for (int e = 0; e < t.numEdges; ++e) c[e] = std::sin(1.7 * e) + 0.3 * std::cos(0.2 * e * e);
+    std::vector<Eigen::Vector3d> sum(t.numVertices, Eigen::Vector3d::Zero());
+    std::vector<double> weight(t.numVertices, 0.0);
+    for (int f = 0; f < t.numFaces; ++f)
+      for (int k = 0; k < 3; ++k) {
+        double bary[3] = {0, 0, 0};
+        bary[k] = 1;
+        const int32_t v = m.triangles[3 * f + k];
+        sum[v] += g.cornerArea[3 * f + k] * whitneyVector(m, t, c.data(), f, bary);
+        weight[v] += g.cornerArea[3 * f + k];
+      }
+    std::vector<double> vertexField;
+    vertexVectors(vertexVectorMap(m, t, g), c.data(), vertexField);
+    ASSERT_EQ(vertexField.size(), 3 * static_cast<size_t>(t.numVertices));
+    double largest = 0, error = 0;
+    for (int v = 0; v < t.numVertices; ++v) {
+      const Eigen::Vector3d expected = sum[v] / weight[v];
+      largest = std::max(largest, expected.norm());
+      error = std::max(error, (Eigen::Map<const Eigen::Vector3d>(&vertexField[3 * v]) - expected).norm());
+    }
+    EXPECT_GT(largest, 0.1);
+    EXPECT_LT(error, 1e-12 * largest);
+    // Face vectors through their map: Eq. 4 at the barycentre.
+    const double centre[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
+    std::vector<double> faceField;
+    faceVectors(faceVectorMap(m, t), t, c.data(), faceField);
+    ASSERT_EQ(faceField.size(), 3 * static_cast<size_t>(t.numFaces));
+    largest = error = 0;
+    for (int f = 0; f < t.numFaces; ++f) {
+      const Eigen::Vector3d expected = whitneyVector(m, t, c.data(), f, centre);
+      largest = std::max(largest, expected.norm());
+      error = std::max(error, (Eigen::Map<const Eigen::Vector3d>(&faceField[3 * f]) - expected).norm());
+    }
+    EXPECT_GT(largest, 0.1);
+    EXPECT_LT(error, 1e-12 * largest);
+  }
+}
+
 TEST(Reconstruction, TextureDomainVersionIsTheOneFormsDualInUVSpace) {
   // UV = an affine image of the plane. The 1-form u.dx becomes (J^-T u).duv in UV space, so Eq. 4 with UV
   // quantities gives J^-T u (the push-forward J u itself when J is conformal).
