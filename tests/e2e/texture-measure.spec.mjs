@@ -108,6 +108,20 @@ async function measureModel(page, testInfo, { name, bytes }) {
   const seams = seamJumpRatio(glb, Int32Array.from(data.triangles));
   await page.screenshot({ path: testInfo.outputPath(`${name}.png`) });
   writeFileSync(testInfo.outputPath(`${name}.glb`), Buffer.from(data.glb));
+  if (process.env.TVF_DIAGNOSE) {
+    // Everything scripts/texture-diagnose.mjs needs to split the deviation by cause, and GLBs at other
+    // export resolutions (the measure's own floor shrinks with the image's resolution).
+    const extra = await page.evaluate(async (sizes) => {
+      const m = window.tvf.mesh();
+      const rb = await window.tvf.synthesisReadback();
+      const glbs = {};
+      for (const r of sizes) glbs[r] = Array.from(new Uint8Array(await (await window.tvf.exportGLB({ resolution: r })).arrayBuffer()));
+      return { positions: Array.from(m.positions), triangles: Array.from(m.triangles), faceVectors: Array.from(window.tvf.faceVectors()), vertexVectors: Array.from(window.tvf.vertexVectors()), singularities: window.tvf.singularities(), cornerUVs: Array.from(rb.cornerUVs), glbs };
+    }, (process.env.TVF_DIAGNOSE_SIZES || '2048').split(',').map(Number));
+    for (const [r, bytes] of Object.entries(extra.glbs)) writeFileSync(testInfo.outputPath(`${name}-${r}.glb`), Buffer.from(bytes));
+    delete extra.glbs;
+    writeFileSync(testInfo.outputPath(`${name}-diag.json`), JSON.stringify({ ...extra, stats, period }));
+  }
   const report = {
     model: name,
     faces: data.triangles.length / 3,
