@@ -54,12 +54,13 @@ export function shapeComplexity(positions, triangles) {
     area += l / 2;
     if (l > 0) normals.set([n[0] / l, n[1] / l, n[2] / l], 3 * f);
   }
-  const firstFace = new Map();
+  const nV = positions.length / 3;
+  const firstFace = new Map(); // edge (i < j) as i * nV + j -> the first face seen on it
   let bend = 0;
   for (let f = 0; f < nF; f++)
     for (let k = 0; k < 3; k++) {
       const i = triangles[3 * f + k], j = triangles[3 * f + ((k + 1) % 3)];
-      const key = i < j ? `${i},${j}` : `${j},${i}`;
+      const key = i < j ? i * nV + j : j * nV + i;
       const g = firstFace.get(key);
       if (g === undefined) {
         firstFace.set(key, f);
