@@ -9,7 +9,9 @@ import bunny from 'bunny';
 import { checkAtlasUVs, generateAtlas, rasterCoverage } from '../../web/synthesis/atlas.js';
 import createTvfCore from '../../build-wasm/tvf_core.mjs';
 import { flatSquareGlb } from '../../web/synthesis/glb.js';
+import { defaultFeatureScale, shapeComplexity } from '../../web/synthesis/index.js';
 import { seamIndirection } from '../../web/synthesis/seams.js';
+import { icosphereOff } from '../icosphere.mjs';
 import { openDesigner, trackErrors } from './helpers.mjs';
 import {
   colourAt,
@@ -368,13 +370,65 @@ test.describe('atlas choice and generation (node)', () => {
     for (let t = 0; t < 256 * 256; t++) {
       if (!seams.map[4 * t + 2]) continue;
       expect(covered[t], 'only texels outside every triangle are redirected').toBe(0);
-      const x = seams.map[4 * t], y = seams.map[4 * t + 1];
-      // The target, or a texel next to it, lies inside a chart.
+      const x = Math.floor(seams.map[4 * t]), y = Math.floor(seams.map[4 * t + 1]);
+      // The target (a point, in texels), or a texel next to it, lies inside a chart.
       let hit = false;
       for (let dy = -1; dy <= 1 && !hit; dy++) for (let dx = -1; dx <= 1; dx++) if (covered[Math.min(255, Math.max(0, y + dy)) * 256 + Math.min(255, Math.max(0, x + dx))]) hit = true;
       into += hit;
     }
     expect(into).toBeGreaterThan(0.98 * seams.redirected);
     console.log(JSON.stringify({ charts: stats.charts, coverage: +check.stats.coverage.toFixed(3), density: [stats.densityP05, stats.densityP95], ms: stats.ms, seamEdges: seams.seamEdges, redirected: seams.redirected }));
+  });
+});
+
+// The default feature size follows the model's curvature (web/synthesis/index.js): checked against the analytic
+// area-mean |mean curvature| of a sphere (1 / r) and of an open cylinder (1 / 2r).
+test.describe('default feature size from the shape (node)', () => {
+  const fromOff = (text) => {
+    const lines = text.split('\n').filter((l) => l && !l.startsWith('#') && l !== 'OFF');
+    const nv = Number(lines[0].split(' ')[0]);
+    const positions = Float64Array.from(lines.slice(1, 1 + nv).flatMap((l) => l.split(' ').map(Number)));
+    const triangles = Int32Array.from(lines.slice(1 + nv).flatMap((l) => l.split(' ').slice(1).map(Number)));
+    return { positions, triangles };
+  };
+  const cylinder = (r, length, around, along) => {
+    const positions = [], triangles = [];
+    for (let j = 0; j <= along; j++)
+      for (let i = 0; i < around; i++) {
+        const a = (2 * Math.PI * i) / around;
+        positions.push(r * Math.cos(a), r * Math.sin(a), (length * j) / along);
+      }
+    for (let j = 0; j < along; j++)
+      for (let i = 0; i < around; i++) {
+        const a = j * around + i, b = j * around + ((i + 1) % around);
+        triangles.push(a, b, b + around, a, b + around, a + around);
+      }
+    return { positions: Float64Array.from(positions), triangles: Int32Array.from(triangles) };
+  };
+
+  test('shape complexity: sqrt(area) x mean |H| of a sphere and a cylinder, scale-free, 0 when flat', () => {
+    const sphere = fromOff(icosphereOff(4));
+    const s = shapeComplexity(sphere.positions, sphere.triangles);
+    expect(Math.abs(s - Math.sqrt(4 * Math.PI))).toBeLessThan(0.01 * Math.sqrt(4 * Math.PI));
+    expect(Math.abs(shapeComplexity(sphere.positions.map((x) => 37 * x), sphere.triangles) - s)).toBeLessThan(1e-9 * s);
+    // Open cylinder, r = 0.1, length 4: H = 1 / (2r), area 2 pi r L.
+    const c = cylinder(0.1, 4, 64, 400);
+    const truth = Math.sqrt(2 * Math.PI * 0.1 * 4) / (2 * 0.1);
+    expect(Math.abs(shapeComplexity(c.positions, c.triangles) - truth)).toBeLessThan(0.02 * truth);
+    const flat = { positions: Float64Array.from([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0]), triangles: Int32Array.from([0, 1, 2, 0, 2, 3]) };
+    expect(shapeComplexity(flat.positions, flat.triangles)).toBe(0);
+  });
+
+  test('more curved shapes get smaller features, within the tile and texel limits', () => {
+    const fs = (complexity) => defaultFeatureScale(1024, 0.6, 64, complexity);
+    // A sphere and the flat square keep 6 tiles across sqrt(area): R sqrt(coverage) / (6 m).
+    expect(fs(3.5)).toBeCloseTo((1024 * Math.sqrt(0.6)) / (6 * 64), 9);
+    expect(fs(0)).toBe(fs(3.5));
+    expect(fs(14)).toBeLessThan(fs(10));
+    expect(fs(18)).toBeLessThan(fs(14));
+    // A thin tube (complexity 34) stops at 16 tiles; a small atlas keeps >= 0.625 texels per exemplar pixel.
+    expect(fs(34)).toBeCloseTo(fs(60), 9);
+    expect(fs(34)).toBeCloseTo((1024 * Math.sqrt(0.6)) / (16 * 64), 9);
+    expect(defaultFeatureScale(256, 0.6, 64, 30)).toBe(0.625);
   });
 });

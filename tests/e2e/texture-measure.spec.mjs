@@ -107,7 +107,29 @@ async function measureModel(page, testInfo, { name, bytes }) {
   const align = stripeAlignment(glb, Float64Array.from(data.faceVectors), period);
   const seams = seamJumpRatio(glb, Int32Array.from(data.triangles));
   await page.screenshot({ path: testInfo.outputPath(`${name}.png`) });
+  // The model alone (README pictures): the hint dismissed, the view's middle clipped.
+  await page.evaluate(() => document.querySelector('tangent-field-designer').shadowRoot.querySelector('#hint .close')?.click());
+  const box = await page.evaluate(() => {
+    const r = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
+    const side = Math.min(r.width, r.height) * 0.8;
+    return { x: r.left + (r.width - side) / 2, y: r.top + (r.height - side) / 2, width: side, height: side };
+  });
+  await page.screenshot({ path: testInfo.outputPath(`${name}-view.png`), clip: box });
   writeFileSync(testInfo.outputPath(`${name}.glb`), Buffer.from(data.glb));
+  if (process.env.TVF_DIAGNOSE) {
+    // Everything scripts/texture-diagnose.mjs needs to split the deviation by cause, and GLBs at other
+    // export resolutions (the measure's own floor shrinks with the image's resolution).
+    const extra = await page.evaluate(async (sizes) => {
+      const m = window.tvf.mesh();
+      const rb = await window.tvf.synthesisReadback();
+      const glbs = {};
+      for (const r of sizes) glbs[r] = Array.from(new Uint8Array(await (await window.tvf.exportGLB({ resolution: r })).arrayBuffer()));
+      return { positions: Array.from(m.positions), triangles: Array.from(m.triangles), faceVectors: Array.from(window.tvf.faceVectors()), vertexVectors: Array.from(window.tvf.vertexVectors()), singularities: window.tvf.singularities(), cornerUVs: Array.from(rb.cornerUVs), glbs };
+    }, (process.env.TVF_DIAGNOSE_SIZES || '2048').split(',').map(Number));
+    for (const [r, bytes] of Object.entries(extra.glbs)) writeFileSync(testInfo.outputPath(`${name}-${r}.glb`), Buffer.from(bytes));
+    delete extra.glbs;
+    writeFileSync(testInfo.outputPath(`${name}-diag.json`), JSON.stringify({ ...extra, stats, period }));
+  }
   const report = {
     model: name,
     faces: data.triangles.length / 3,
@@ -160,6 +182,6 @@ test.describe.serial('exported GLB at the default settings', () => {
   });
 });
 
-// Measured 6.46–6.72° / 0.85–0.857 / 1.00 (calibration floor of the measure at 512²: 4.6° / 0.88 / 1.06); the issue asks for
-// 6° / 0.85 / 1.3 — the mean misses it by half a degree (docs/texture-synthesis.md).
-const BUNNY_LIMITS = { mean: 7.5, share: 0.8, seam: 1.2 };
+// Measured 5.02–5.03° / 0.91 / 0.95 at the curvature-sized default (the previous fixed 6 tiles across √area measured
+// 6.72° / 0.85 / 1.00); the issue's targets are 6° / 0.85 / 1.3 (docs/texture-synthesis.md, "Exported GLB").
+const BUNNY_LIMITS = { mean: 6, share: 0.87, seam: 1.15 };

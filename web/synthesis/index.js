@@ -16,12 +16,21 @@ const CONTROLLER_KEYS = ['resolution', 'autoUpdate', 'interleave'];
 // Field changes closer together than this count as quick edits: the texture follows them with a preview (one
 // level short of the finest, a quarter of the work) and is synthesized in full once they stop for this long.
 const QUICK_EDIT_MS = 400;
-// The default exemplar tile spans this share of sqrt(surface area): ~6 tiles across the model, so the first
-// synthesis on any model looks like the exemplar laid on it, at a scale that is neither blotchy nor noise.
-const TILES_ACROSS = 6;
+// Default feature size. Stripes read as following the field only where the field (and the surface it lies on)
+// turns little over a stripe period; on a curved model the field turns with the surface, so the exemplar tile
+// is sized from the model's curvature: tiles across sqrt(area) = TILES_PER_COMPLEXITY x the shape complexity
+// (sqrt(area) x the area-mean |mean curvature|: 3.5 for a sphere, ~14 for the bunny, ~18 for homer, ~34 for a thin
+// knotted tube), between MIN_TILES and MAX_TILES. Measured on exported GLBs (docs/texture-synthesis.md): on
+// homer 6 tiles left 9.6° mean deviation, 12 tiles 5.8°, with the same synthesis.
+const TILES_PER_COMPLEXITY = 0.66;
+const MIN_TILES = 6;
+const MAX_TILES = 16;
+// Below this many atlas texels per exemplar pixel the synthesis resolves the exemplar's features with too few
+// texels (a 16-pixel stripe period in fewer than 10 texels): the tile count gives way first.
+const MIN_FEATURE_SCALE = 0.625;
 
 // The atlas resolution a model gets by default: enough texels per face for the Jacobian to vary smoothly and for
-// a stripe period to span ≥ 12 texels at the default feature size (≈ 16 texels per face at ~60 % coverage),
+// a stripe period to span ≥ 10 texels at the default feature size (≈ 16 texels per face at ~60 % coverage),
 // between 256² and 1024².
 export function defaultResolution(numFaces) {
   const want = Math.sqrt((numFaces * 16) / 0.6);
@@ -30,12 +39,47 @@ export function defaultResolution(numFaces) {
   return r;
 }
 
-// The feature scale (exemplar pixels per atlas texel, inverted) that makes one exemplar tile span
-// sqrt(area) / TILES_ACROSS on the surface: tile length m * featureScale * texelLength, with
-// texelLength = sqrt(area / coverage) / R.
-export function defaultFeatureScale(resolution, coverage, exemplarSize) {
-  const fs = (resolution * Math.sqrt(Math.max(coverage, 0.05))) / (TILES_ACROSS * exemplarSize);
-  return Math.min(8, Math.max(0.5, fs));
+// sqrt(area) x the area-mean |mean curvature|, from dihedral angles: sum over interior edges of |theta_e| l_e,
+// over 2 x area (1 / radius on a sphere, so a sphere scores sqrt(4 pi) = 3.5). Scale-free.
+export function shapeComplexity(positions, triangles) {
+  const nF = triangles.length / 3;
+  const normals = new Float64Array(3 * nF);
+  let area = 0;
+  for (let f = 0; f < nF; f++) {
+    const a = 3 * triangles[3 * f], b = 3 * triangles[3 * f + 1], c = 3 * triangles[3 * f + 2];
+    const e1 = [positions[b] - positions[a], positions[b + 1] - positions[a + 1], positions[b + 2] - positions[a + 2]];
+    const e2 = [positions[c] - positions[a], positions[c + 1] - positions[a + 1], positions[c + 2] - positions[a + 2]];
+    const n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+    const l = Math.hypot(n[0], n[1], n[2]);
+    area += l / 2;
+    if (l > 0) normals.set([n[0] / l, n[1] / l, n[2] / l], 3 * f);
+  }
+  const nV = positions.length / 3;
+  const firstFace = new Map(); // edge (i < j) as i * nV + j -> the first face seen on it
+  let bend = 0;
+  for (let f = 0; f < nF; f++)
+    for (let k = 0; k < 3; k++) {
+      const i = triangles[3 * f + k], j = triangles[3 * f + ((k + 1) % 3)];
+      const key = i < j ? i * nV + j : j * nV + i;
+      const g = firstFace.get(key);
+      if (g === undefined) {
+        firstFace.set(key, f);
+        continue;
+      }
+      const d = normals[3 * f] * normals[3 * g] + normals[3 * f + 1] * normals[3 * g + 1] + normals[3 * f + 2] * normals[3 * g + 2];
+      const len = Math.hypot(positions[3 * i] - positions[3 * j], positions[3 * i + 1] - positions[3 * j + 1], positions[3 * i + 2] - positions[3 * j + 2]);
+      bend += Math.acos(Math.min(1, Math.max(-1, d))) * len;
+    }
+  return area > 0 ? (bend / (2 * area)) * Math.sqrt(area) : 0;
+}
+
+// The feature scale (atlas texels per exemplar pixel at the atlas's mean density) that makes one exemplar tile
+// span sqrt(area) / tiles on the surface, tiles from the shape complexity (above): tile length
+// m * featureScale * texelLength, with texelLength = sqrt(area / coverage) / R.
+export function defaultFeatureScale(resolution, coverage, exemplarSize, complexity = MIN_TILES / TILES_PER_COMPLEXITY) {
+  const tiles = Math.min(MAX_TILES, Math.max(MIN_TILES, TILES_PER_COMPLEXITY * complexity));
+  const fs = (resolution * Math.sqrt(Math.max(coverage, 0.05))) / (tiles * exemplarSize);
+  return Math.min(8, Math.max(MIN_FEATURE_SCALE, fs));
 }
 
 // RGBA8 (row 0 = bottom, as read from WebGL) to a PNG Blob, rows flipped so that v = 1 is the image's top row
@@ -189,7 +233,10 @@ export class SynthesisController {
     const synthOptions = {};
     for (const k of OPTION_KEYS) if (this.options[k] !== undefined) synthOptions[k] = this.options[k];
     const coverage = atlas.stats.coverage ?? atlas.stats.check?.coverage ?? 0.5;
-    if (synthOptions.featureScale === 'auto') synthOptions.featureScale = defaultFeatureScale(atlas.resolution, coverage, this.exemplar.tables.size);
+    if (synthOptions.featureScale === 'auto') {
+      atlas.complexity ??= shapeComplexity(model.positions, model.triangles);
+      synthOptions.featureScale = defaultFeatureScale(atlas.resolution, coverage, this.exemplar.tables.size, atlas.complexity);
+    }
     if (preview) synthOptions.finestLevel = 1;
     let s;
     if (this.options.interleave) {
@@ -217,6 +264,7 @@ export class SynthesisController {
     this.stats = {
       ...s,
       autoFeatureScale: this.options.featureScale === 'auto',
+      shapeComplexity: atlas.complexity ?? null,
       autoResolution: this.options.resolution === 'auto',
       exemplar: this.exemplarInfo(),
       atlas: { source: atlas.source, reason: atlas.reason, resolution: atlas.resolution, ...atlas.stats, ms: tAtlas },

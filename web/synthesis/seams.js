@@ -38,8 +38,10 @@ function faceFrame(positions, triangles, cornerUVs, f) {
   return { P, Q, M, n: n.map((x) => x / nl) };
 }
 
-// Gutter texel -> target texel at `resolution` (texel units). Returns Float32Array (4 per texel: target x, target
-// y, 1 if redirected, 0) and the number of redirected texels.
+// Gutter texel -> the same surface point across the seam at `resolution`, in texel units (continuous: texel i spans
+// [i, i + 1), so floor() names the target texel and the fraction where inside it the point lies). Returns
+// Float32Array (4 per texel: target x, target y, 1 if redirected, and for a texel that borrowed a neighbour's
+// target the neighbour's offset code 1 + (dx + 1) + 3 (dy + 1), else 0) and the number of redirected texels.
 export function seamIndirection(positions, triangles, cornerUVs, resolution) {
   const R = resolution;
   const nF = triangles.length / 3;
@@ -95,7 +97,11 @@ export function seamIndirection(positions, triangles, cornerUVs, resolution) {
           }
         if (touchesChart && from >= 0) add.push([t, from]);
       }
-    for (const [t, n] of add) out.set([out[4 * n], out[4 * n + 1], 1, 0], 4 * t);
+    // The neighbour's offset goes along: rendering continues the neighbour's resolved patch by it (SEAM_RESOLVE_FS).
+    for (const [t, n] of add) {
+      const dx = (n % R) - (t % R), dy = Math.floor(n / R) - Math.floor(t / R);
+      out.set([out[4 * n], out[4 * n + 1], 1, 1 + (dx + 1) + 3 * (dy + 1)], 4 * t);
+    }
     return add.length;
   }
 
@@ -147,8 +153,8 @@ export function seamIndirection(positions, triangles, cornerUVs, resolution) {
         if (l0 < -1e-6 || l1 < -1e-6 || l2 < -1e-6) continue;
         const tx = l0 * dst[0][0] + l1 * dst[1][0] + l2 * dst[2][0];
         const ty = l0 * dst[0][1] + l1 * dst[1][1] + l2 * dst[2][1];
-        out[4 * t] = Math.min(R - 1, Math.max(0, Math.floor(tx)));
-        out[4 * t + 1] = Math.min(R - 1, Math.max(0, Math.floor(ty)));
+        out[4 * t] = Math.min(R - 0.5, Math.max(0, tx));
+        out[4 * t + 1] = Math.min(R - 0.5, Math.max(0, ty));
         out[4 * t + 2] = 1;
         count++;
       }

@@ -308,20 +308,41 @@ void main() {
   outColour = found > 0.0 ? vec4(colour, 1.0) : vec4(0.0);
 }`;
 
-// Seam resolve (LH06 Sec. 6.2, for rendering): a gutter texel next to a seam takes the coordinate of the texel
-// across the seam that holds the same surface point, so the magnification blend at a chart's edge continues the
-// neighbouring chart's texture instead of this chart's own gutter synthesis.
+// Seam resolve (LH06 Sec. 6.2, for rendering): a gutter texel next to a seam takes the exemplar coordinate of the
+// surface point it stands for, read across the seam, so the magnification blend at a chart's edge continues the
+// neighbouring chart's texture instead of this chart's own gutter synthesis. The indirection names that point to
+// within a texel's fraction: the coordinate is the target texel's patch continued to it with the target's Jacobian
+// (the texel centre alone would be up to 0.7 texel, i.e. J x 0.7 exemplar pixels, off). A texel that borrowed a
+// neighbour's target continues that neighbour's resolved coordinate by its own Jacobian over the one-texel step.
 export const SEAM_RESOLVE_FS = `${HEADER}
 uniform sampler2D uCoord;
+uniform sampler2D uJac;
 uniform sampler2D uIndir;
+uniform float uM;
 out vec4 outS;
+vec4 across(vec2 target) {
+  ivec2 t = ivec2(floor(target));
+  vec4 s = texelFetch(uCoord, t, 0);
+  if (s.w == 0.0) return s;
+  vec4 jv = texelFetch(uJac, t, 0);
+  return vec4(s.xy + mat2(jv.xy, jv.zw) * (target - vec2(t) - 0.5), s.zw);
+}
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec4 ind = texelFetch(uIndir, p, 0);
   vec4 own = texelFetch(uCoord, p, 0);
   if (ind.z > 0.5) {
-    vec4 across = texelFetch(uCoord, ivec2(ind.xy), 0);
-    if (across.w != 0.0) own = across;
+    vec4 s = across(ind.xy);
+    if (s.w != 0.0) {
+      if (ind.w > 0.5) {
+        // Borrowed from neighbour p + d: continue from there with this texel's Jacobian.
+        int code = int(ind.w + 0.5) - 1;
+        vec2 d = vec2(code % 3 - 1, code / 3 - 1);
+        vec4 jv = texelFetch(uJac, p, 0);
+        s.xy -= mat2(jv.xy, jv.zw) * d;
+      }
+      own = vec4(s.xy - uM * floor(s.xy / uM), s.zw);
+    }
   }
   outS = own;
 }`;

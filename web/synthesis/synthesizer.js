@@ -359,7 +359,7 @@ export class Synthesizer {
         // Gutter texels next to seams take the coordinates across the seam (for the magnified rendering).
         L.spare2 ??= new FloatTarget(gl, L.size, L.size);
         L.spare2.bindAsTarget();
-        this.programs.seamResolve.use().texture('uCoord', L.result).texture('uIndir', L.indirection);
+        this.programs.seamResolve.use().texture('uCoord', L.result).texture('uJac', L.jac).texture('uIndir', L.indirection).float('uM', m);
         drawFullscreen(gl, this.vao);
         [L.result, L.spare2] = [L.spare2, L.result];
         parent = L.result;
