@@ -108,6 +108,11 @@ export class Session {
       panel: $('#side-panel'),
       bench: bench ? host : null,
       onError: (err) => this.fail('texture', err),
+      computeAtlas: async ({ positions, triangles, cornerUVs }, options) => {
+        if (!this.proxy) throw new Error(this.disposed ? 'the designer was disposed' : 'the core is not running');
+        const reply = await this.proxy.call('textureAtlas', [positions, triangles, cornerUVs ?? null, options], [], { background: true });
+        return reply.value;
+      },
       getModel: () =>
         this.surface && this.field
           ? {

@@ -11,6 +11,7 @@ import bunny from 'bunny';
 import { generateAtlas } from '../../web/synthesis/atlas.js';
 import createTvfCore from '../../build-wasm/tvf_core.mjs';
 import { openDesigner, trackErrors } from './helpers.mjs';
+import { neighbourhoodEnergy, randomCoordinates } from './synthesis-metrics.mjs';
 import { pixelLength, readGlb, seamJumpRatio, stripeAlignment } from './surface-texture-metrics.mjs';
 
 const STRIPE_PERIOD_PX = 16; // the 'stripes' exemplar: 64² with a period of 16 pixels
@@ -130,6 +131,25 @@ async function measureModel(page, testInfo, { name, bytes }) {
     delete extra.glbs;
     writeFileSync(testInfo.outputPath(`${name}-diag.json`), JSON.stringify({ ...extra, stats, period }));
   }
+  // LH05's neighbourhood energy of the synthesized coordinates (in the atlas, neighbours inside the charts and
+  // their gutters), against the same atlas with random coordinates: comparable with the flat square's (README).
+  const rb = await page.evaluate(async () => {
+    const r = await window.tvf.synthesisReadback();
+    const b64 = (a) => {
+      const u8 = new Uint8Array(a.buffer, a.byteOffset, a.byteLength);
+      let s = '';
+      for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode(...u8.subarray(i, i + 0x8000));
+      return btoa(s);
+    };
+    return { R: r.resolution, m: r.exemplarSize, coords: b64(r.coords), jacobian: b64(r.jacobian), exemplar: b64(r.exemplar) };
+  });
+  const f32 = (text) => {
+    const b = Buffer.from(text, 'base64');
+    return new Float32Array(b.buffer, b.byteOffset, b.byteLength / 4);
+  };
+  const coords = f32(rb.coords), jac = f32(rb.jacobian), ex = Uint8Array.from(Buffer.from(rb.exemplar, 'base64'));
+  const energy = neighbourhoodEnergy(coords, jac, rb.R, rb.R, ex, rb.m);
+  const energyRandom = neighbourhoodEnergy(randomCoordinates(coords, rb.m), jac, rb.R, rb.R, ex, rb.m);
   const report = {
     model: name,
     faces: data.triangles.length / 3,
@@ -140,7 +160,10 @@ async function measureModel(page, testInfo, { name, bytes }) {
     seamJump: +seams.seamJump.toFixed(1),
     interiorJump: +seams.interiorJump.toFixed(1),
     seamRatio: +seams.ratio.toFixed(3),
+    neighbourhoodEnergy: +energy.toFixed(1),
+    neighbourhoodEnergyRandom: +energyRandom.toFixed(1),
     synthesisMs: Math.round(stats.totalMs),
+    levelMs: stats.levels?.map((l) => Math.round(l.ms)),
     wallMs: Math.round(stats.wallMs),
   };
   console.log(JSON.stringify(report));
@@ -164,6 +187,8 @@ test.describe.serial('exported GLB at the default settings', () => {
     expect(r.stripeMeanDegrees).toBeLessThan(BUNNY_LIMITS.mean);
     expect(r.shareWithin10).toBeGreaterThan(BUNNY_LIMITS.share);
     expect(r.seamRatio).toBeLessThan(BUNNY_LIMITS.seam);
+    // Coherent patches continued across the atlas: far below random coordinates (measured 0.026 of it).
+    expect(r.neighbourhoodEnergy).toBeLessThan(0.05 * r.neighbourhoodEnergyRandom);
   });
 
   const MESHES = new URL('../../bench-data/meshes/', import.meta.url);

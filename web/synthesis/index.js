@@ -102,8 +102,10 @@ async function rgbaToPngBlob(pixels, width, height) {
 export class SynthesisController {
   // baseUrl: where wasm/tvf_core.mjs lives. viewer: the page's Viewer (scene, surfaceMesh, requestRender).
   // getModel(): {key, name, positions, triangles, cornerUVs | null, vertexVectors} of the current model and field.
-  constructor({ baseUrl, viewer, getModel, onChange = () => {}, onError = () => {} }) {
+  // computeAtlas(model, {resolution, gutter}) (optional): chooseAtlas off the page's thread, resolving with its result.
+  constructor({ baseUrl, viewer, getModel, computeAtlas = null, onChange = () => {}, onError = () => {} }) {
     this.baseUrl = baseUrl;
+    this.computeAtlas = computeAtlas;
     this.viewer = viewer;
     this.getModel = getModel;
     this.onChange = onChange;
@@ -188,7 +190,9 @@ export class SynthesisController {
     const gutter = this.options.gutter ?? DEFAULTS.gutter;
     if (this.atlas && this.atlas.key === model.key && this.atlas.resolution === resolution && this.atlas.gutter === gutter) return this.atlas;
     await this.#ensureModule();
-    const chosen = chooseAtlas(this.module, model, { resolution, gutter });
+    // Generating an atlas takes up to seconds on a big model: the element's core worker does it when there is
+    // one, so the page keeps drawing and taking input.
+    const chosen = this.computeAtlas ? await this.computeAtlas(model, { resolution, gutter }) : chooseAtlas(this.module, model, { resolution, gutter });
     this.atlas = { key: model.key, resolution, gutter, ...chosen };
     this.#ensureSynth().setAtlas({ resolution, positions: model.positions, triangles: model.triangles, cornerUVs: this.atlas.cornerUVs });
     if (!this.render) this.render = new TexturedModel(this.viewer);
