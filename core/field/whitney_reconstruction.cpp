@@ -98,13 +98,16 @@ VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& t, 
   std::vector<double> weight(t.numVertices, 0.0);
   for (int32_t f = 0; f < t.numFaces; ++f)
     for (int k = 0; k < 3; ++k) weight[mesh.triangles[3 * f + k]] += g.cornerArea[3 * f + k];
-  // Two terms per corner, (vertex, edge, coefficient), merged per (vertex, edge) below.
-  struct Term {
-    int32_t vertex, edge;
-    Eigen::Vector3d coefficient;
+  // Accumulated in place per (edge, endpoint): no list of corner terms to sort and merge, whose transient size
+  // (~200 bytes per face) would outgrow the map itself on a big mesh and grow the wasm heap for good.
+  VertexVectorMap map;
+  map.edgeVertices = t.edgeVertices;
+  map.numVertices = t.numVertices;
+  map.coefficient.assign(6 * static_cast<size_t>(t.numEdges), 0.0);
+  const auto add = [&](int32_t v, int32_t e, const Eigen::Vector3d& u) {
+    double* a = &map.coefficient[6 * static_cast<size_t>(e) + (v == t.edgeVertices[2 * e] ? 0 : 3)];
+    for (int d = 0; d < 3; ++d) a[d] += u[d];
   };
-  std::vector<Term> terms;
-  terms.reserve(6 * static_cast<size_t>(t.numFaces));
   for (int32_t f = 0; f < t.numFaces; ++f) {
     Eigen::Vector3d p[3];
     facePositions(mesh, f, p);
@@ -117,43 +120,23 @@ VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& t, 
       if (!(weight[v] > 0)) continue;
       const double w = scale * g.cornerArea[3 * f + k] / weight[v];
       const int in = (k + 2) % 3;
-      terms.push_back({v, t.edgeOf(f, k), (w * t.signOf(f, k)) * perp[in]});
-      terms.push_back({v, t.edgeOf(f, in), (-w * t.signOf(f, in)) * perp[k]});
+      add(v, t.edgeOf(f, k), (w * t.signOf(f, k)) * perp[in]);
+      add(v, t.edgeOf(f, in), (-w * t.signOf(f, in)) * perp[k]);
     }
   }
-  std::sort(terms.begin(), terms.end(), [](const Term& a, const Term& b) {
-    return a.vertex != b.vertex ? a.vertex < b.vertex : a.edge < b.edge;
-  });
-  VertexVectorMap map;
-  map.start.assign(t.numVertices + 1, 0);
-  for (size_t i = 0; i < terms.size(); ++i) {
-    if (i > 0 && terms[i].vertex == terms[i - 1].vertex && terms[i].edge == terms[i - 1].edge) {
-      for (int d = 0; d < 3; ++d) map.coefficient[map.coefficient.size() - 3 + d] += terms[i].coefficient[d];
-      continue;
-    }
-    ++map.start[terms[i].vertex + 1];
-    map.edge.push_back(terms[i].edge);
-    for (int d = 0; d < 3; ++d) map.coefficient.push_back(terms[i].coefficient[d]);
-  }
-  for (int32_t v = 0; v < t.numVertices; ++v) map.start[v + 1] += map.start[v];
   return map;
 }
 
 void vertexVectors(const VertexVectorMap& map, const double* oneForm, std::vector<double>& out) {
-  const size_t numVertices = map.start.size() - 1;
-  out.resize(3 * numVertices);
-  for (size_t v = 0; v < numVertices; ++v) {
-    double x = 0, y = 0, z = 0;
-    for (int32_t i = map.start[v]; i < map.start[v + 1]; ++i) {
-      const double c = oneForm[map.edge[i]];
-      const double* a = &map.coefficient[3 * static_cast<size_t>(i)];
-      x += c * a[0];
-      y += c * a[1];
-      z += c * a[2];
+  out.assign(3 * static_cast<size_t>(map.numVertices), 0.0);
+  const size_t numEdges = map.edgeVertices.size() / 2;
+  for (size_t e = 0; e < numEdges; ++e) {
+    const double c = oneForm[e];
+    const double* a = &map.coefficient[6 * e];
+    for (int end = 0; end < 2; ++end) {
+      double* o = &out[3 * static_cast<size_t>(map.edgeVertices[2 * e + end])];
+      for (int d = 0; d < 3; ++d) o[d] += c * a[3 * end + d];
     }
-    out[3 * v] = x;
-    out[3 * v + 1] = y;
-    out[3 * v + 2] = z;
   }
 }
 

@@ -35,11 +35,12 @@ void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const 
 
 // Eq. 5 as the linear map it is: vertex v's vector is a sum over the edges at v of the edge's 1-form value
 // times a 3-vector that depends on the geometry only. Built once per mesh, applying it reads each edge value
-// twice and does no geometry (the interactive loop derives vertex vectors after every edit).
+// once and does no geometry (the interactive loop derives vertex vectors after every edit).
 struct VertexVectorMap {
-  std::vector<int32_t> start;       // the entries of vertex v are start[v] .. start[v + 1]
-  std::vector<int32_t> edge;        // per entry
-  std::vector<double> coefficient;  // 3 per entry
+  int32_t numVertices = 0;
+  std::vector<int32_t> edgeVertices;  // the topology's: 2 per edge
+  std::vector<double> coefficient;    // 6 per edge: the 3-vector for its first vertex, then for its second
+  bool empty() const { return coefficient.empty() && numVertices == 0; }
 };
 VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& topology,
                                 const MeshGeometry& geometry);
