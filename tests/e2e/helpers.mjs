@@ -206,3 +206,17 @@ export function subdividedOff(mesh, levels) {
   for (let t = 0; t < T.length; t += 3) lines.push(`3 ${T[t]} ${T[t + 1]} ${T[t + 2]}`);
   return lines.join('\n') + '\n';
 }
+
+// Surface points under a horizontal screen line across the view: `count + 1` samples from x0 in steps of dx (both
+// as fractions of the view's width) at height y (a fraction of its height); misses off the model are dropped.
+export function surfacePointsAlongScreenLine(page, { x0, dx, y, count }) {
+  return page.evaluate(({ x0, dx, y, count }) => {
+    const rect = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
+    const pts = [];
+    for (let k = 0; k <= count; k++) {
+      const h = window.tvf.pick(rect.left + rect.width * (x0 + dx * k), rect.top + rect.height * y);
+      if (h) pts.push({ face: h.face, bary: h.bary });
+    }
+    return pts;
+  }, { x0, dx, y, count });
+}

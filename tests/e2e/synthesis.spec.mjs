@@ -12,7 +12,7 @@ import { flatSquareGlb } from '../../web/synthesis/glb.js';
 import { defaultFeatureScale, shapeComplexity } from '../../web/synthesis/index.js';
 import { seamIndirection } from '../../web/synthesis/seams.js';
 import { icosphereOff } from '../icosphere.mjs';
-import { openDesigner, trackErrors } from './helpers.mjs';
+import { openDesigner, trackErrors, surfacePointsAlongScreenLine } from './helpers.mjs';
 import {
   colourAt,
   colourHistogram,
@@ -260,15 +260,7 @@ test.describe.serial('texture synthesis on a curved model (the default bunny, ge
 
   test('stripes follow a stroke-designed field within 10°; seams continue across charts', async ({}, testInfo) => {
     // A stroke across the body, sampled from the surface under a horizontal screen line.
-    const points = await page.evaluate(() => {
-      const rect = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
-      const pts = [];
-      for (let k = 0; k <= 20; k++) {
-        const h = window.tvf.pick(rect.left + rect.width * (0.38 + 0.012 * k), rect.top + rect.height * 0.55);
-        if (h) pts.push({ face: h.face, bary: h.bary });
-      }
-      return pts;
-    });
+    const points = await surfacePointsAlongScreenLine(page, { x0: 0.38, dx: 0.012, y: 0.55, count: 20 });
     expect(points.length).toBeGreaterThan(10);
     await page.evaluate((pts) => window.tvf.addStroke(pts), points);
     await page.evaluate(() => window.tvf.setExemplar('stripes'));

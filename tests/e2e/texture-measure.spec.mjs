@@ -10,7 +10,7 @@ import { expect, test } from '@playwright/test';
 import bunny from 'bunny';
 import { generateAtlas } from '../../web/synthesis/atlas.js';
 import createTvfCore from '../../build-wasm/tvf_core.mjs';
-import { openDesigner, trackErrors } from './helpers.mjs';
+import { openDesigner, trackErrors, surfacePointsAlongScreenLine } from './helpers.mjs';
 import { neighbourhoodEnergy, randomCoordinates } from './synthesis-metrics.mjs';
 import { pixelLength, readGlb, seamJumpRatio, stripeAlignment } from './surface-texture-metrics.mjs';
 
@@ -84,15 +84,7 @@ test('the surface stripe measure on an analytic texture over a generated atlas (
 async function measureModel(page, testInfo, { name, bytes }) {
   if (bytes) await page.evaluate(([b, n]) => window.tvf.loadModel(new Uint8Array(b), { name: n }), [bytes, name]);
   await page.evaluate(() => window.tvf.setViews({ arrows: false }));
-  const points = await page.evaluate(() => {
-    const rect = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
-    const pts = [];
-    for (let k = 0; k <= 30; k++) {
-      const h = window.tvf.pick(rect.left + rect.width * (0.3 + 0.013 * k), rect.top + rect.height * 0.5);
-      if (h) pts.push({ face: h.face, bary: h.bary });
-    }
-    return pts;
-  });
+  const points = await surfacePointsAlongScreenLine(page, { x0: 0.3, dx: 0.013, y: 0.5, count: 30 });
   expect(points.length).toBeGreaterThan(5);
   await page.evaluate((pts) => window.tvf.addStroke(pts), points);
   await page.evaluate(() => window.tvf.setExemplar('stripes'));

@@ -33,6 +33,23 @@ function texelStepStatistics({ width, height, pixels }, mag, big = 60) {
   return { across: across / nAcross, inside: inside / nInside };
 }
 
+// Animation frames the page draws while one tvf.synthesize(options) runs: {frames, stats}.
+function synthesisFrames(page, options) {
+  return page.evaluate(async (options) => {
+    let frames = 0, running = true;
+    const tick = () => {
+      frames++;
+      if (running) requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+    await new Promise((r) => requestAnimationFrame(() => r()));
+    frames = 0;
+    const stats = await window.tvf.synthesize(options);
+    running = false;
+    return { frames, stats };
+  }, options);
+}
+
 test.describe.serial('texture quality and responsiveness (flat square)', () => {
   let page, errors, face;
 
@@ -94,22 +111,9 @@ test.describe.serial('texture quality and responsiveness (flat square)', () => {
 
   test('the page keeps rendering and handling input while a texture is synthesized, with progress', async () => {
     // Blocking run first (interleave off): the frame count over the run is the baseline.
-    const count = (interleave) =>
-      page.evaluate(async (interleave) => {
-        let frames = 0, running = true;
-        const tick = () => {
-          frames++;
-          if (running) requestAnimationFrame(tick);
-        };
-        requestAnimationFrame(tick);
-        await new Promise((r) => requestAnimationFrame(() => r()));
-        frames = 0;
-        await window.tvf.synthesize({ resolution: 256, featureScale: 1, interleave, seed: interleave ? 2 : 3 });
-        running = false;
-        return frames;
-      }, interleave);
-    const blocking = await count(false);
-    const interleaved = await count(true);
+    const count = (interleave) => synthesisFrames(page, { resolution: 256, featureScale: 1, interleave, seed: interleave ? 2 : 3 });
+    const blocking = (await count(false)).frames;
+    const interleaved = (await count(true)).frames;
     console.log(JSON.stringify({ framesBlocking: blocking, framesInterleaved: interleaved }));
     expect(blocking).toBeLessThanOrEqual(2);
     expect(interleaved).toBeGreaterThan(10);
@@ -172,24 +176,11 @@ test.describe.serial('the generated atlas is made off the page thread (bunny)', 
   });
 
   test('frames keep coming while the atlas is generated', async () => {
-    const framesDuring = () =>
-      page.evaluate(async () => {
-        let frames = 0, running = true;
-        const tick = () => {
-          frames++;
-          if (running) requestAnimationFrame(tick);
-        };
-        requestAnimationFrame(tick);
-        await new Promise((r) => requestAnimationFrame(() => r()));
-        frames = 0;
-        const stats = await window.tvf.synthesize({ resolution: 512, featureScale: 1, interleave: false, seed: 5 });
-        running = false;
-        return { frames, atlas: stats.atlas };
-      });
-    const first = await framesDuring();
-    const cached = await framesDuring();
-    console.log(JSON.stringify({ framesWhileAtlasGenerated: first.frames, framesAtlasCached: cached.frames, atlas: first.atlas }));
-    expect(first.atlas.source).toBe('generated');
+    const options = { resolution: 512, featureScale: 1, interleave: false, seed: 5 };
+    const first = await synthesisFrames(page, options);
+    const cached = await synthesisFrames(page, options);
+    console.log(JSON.stringify({ framesWhileAtlasGenerated: first.frames, framesAtlasCached: cached.frames, atlas: first.stats.atlas }));
+    expect(first.stats.atlas.source).toBe('generated');
     expect(cached.frames, 'a blocking synthesis with the atlas cached draws no frames (the baseline)').toBeLessThanOrEqual(2);
     expect(first.frames, 'frames drawn while the worker generated the atlas').toBeGreaterThan(cached.frames + 3);
   });

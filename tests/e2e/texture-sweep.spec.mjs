@@ -4,7 +4,7 @@
 // texture defaults (docs/texture-synthesis.md), not a test.
 import { readFileSync, writeFileSync } from 'node:fs';
 import { test } from '@playwright/test';
-import { openDesigner } from './helpers.mjs';
+import { openDesigner, surfacePointsAlongScreenLine } from './helpers.mjs';
 
 const MESHES = new URL('../../bench-data/meshes/', import.meta.url);
 const models = (process.env.TVF_SWEEP_MODELS || 'homer').split(',');
@@ -17,15 +17,7 @@ for (const name of models) {
     await openDesigner(page);
     if (name !== 'bunny') await page.evaluate(([b, n]) => window.tvf.loadModel(new Uint8Array(b), { name: n }), [Array.from(readFileSync(new URL(`${name}.off`, MESHES))), name]);
     await page.evaluate(() => window.tvf.setViews({ arrows: false }));
-    const points = await page.evaluate(() => {
-      const rect = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
-      const pts = [];
-      for (let k = 0; k <= 30; k++) {
-        const h = window.tvf.pick(rect.left + rect.width * (0.3 + 0.013 * k), rect.top + rect.height * 0.5);
-        if (h) pts.push({ face: h.face, bary: h.bary });
-      }
-      return pts;
-    });
+    const points = await surfacePointsAlongScreenLine(page, { x0: 0.3, dx: 0.013, y: 0.5, count: 30 });
     await page.evaluate((pts) => window.tvf.addStroke(pts), points);
     await page.evaluate(() => window.tvf.setExemplar('stripes'));
     for (const [i, cfg] of configs.entries()) {
