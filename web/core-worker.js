@@ -10,6 +10,7 @@ import { CoreError, loadCore } from './core-client.js';
 import { CoreExport } from './export/core-export.js';
 import { traceStreamlines } from './streamlines.js';
 import { chooseAtlas } from './synthesis/atlas.js';
+import { analyzeExemplar, exemplarBuffers } from './synthesis/exemplar.js';
 import { Surface } from './surface.js';
 
 let core = null;
@@ -202,6 +203,12 @@ const ops = {
     return new Transfer(atlas, [atlas.cornerUVs.buffer, ...(atlas.faceCharts ? [atlas.faceCharts.buffer] : [])]);
   },
 
+  // An exemplar's analysis for synthesis (spec as for analyzeExemplar): 0.1-0.5 s that the page does not wait on.
+  analyzeExemplar(spec) {
+    const tables = analyzeExemplar(core.Module, spec);
+    return new Transfer(tables, exemplarBuffers(tables));
+  },
+
   // What the core itself holds now, each read-out derived by the core (not the page's copies): the tests'
   // reference for the page's lazily derived and incrementally kept read-outs.
   read() {
@@ -242,7 +249,7 @@ const ops = {
   },
 };
 
-const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas']);
+const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar']);
 // Ops after which the field may have changed: they solve and send a snapshot back.
 const MUTATING = new Set([
   'loadMesh',

@@ -46,6 +46,8 @@ function allFinite(values) {
 }
 
 export class Session {
+  #coreStartSettled;
+
   // host: the element (events are dispatched on it); root: its shadow root (markup already in place);
   // assetBase: URL of the folder with core-worker.js and wasm/; autosave: storage key or null (off);
   // bench: run the synthesis benchmark when the page asks for it (the app page only); onTool(name): the user
@@ -62,6 +64,8 @@ export class Session {
     this.autosaveError = null; // the last save's failure, shown until a save succeeds
     this.readonly = false;
     this.proxy = null;
+    // Settles when start() has finished, whether the core came up or not (then `proxy` stays null).
+    this.coreStarted = new Promise((resolve) => (this.#coreStartSettled = resolve));
     this.modelName = '';
     this.modelKey = '';
     this.modelSource = null; // {bytes, format}: what a restarted core reloads
@@ -103,7 +107,6 @@ export class Session {
     // Texture synthesis (web/synthesis/, docs/texture-synthesis.md): its calls go onto the element.
     this.textureApi = {};
     this.synthesis = setupSynthesis(this.textureApi, {
-      baseUrl: assetBase,
       viewer: this.viewer,
       panel: $('#side-panel'),
       bench: bench ? host : null,
@@ -112,6 +115,12 @@ export class Session {
         if (!this.proxy) throw new Error(this.disposed ? 'the designer was disposed' : 'the core is not running');
         const reply = await this.proxy.call('textureAtlas', [positions, triangles, cornerUVs ?? null, options], [], { background: true });
         return reply.value;
+      },
+      // An exemplar may be chosen before the core has started: the analysis waits for it.
+      analyzeExemplar: async (spec) => {
+        await this.coreStarted;
+        if (!this.proxy) throw new Error(this.disposed ? 'the designer was disposed' : 'the core is not running');
+        return (await this.proxy.call('analyzeExemplar', [spec], [], { background: true })).value;
       },
       getModel: () =>
         this.surface && this.field
@@ -152,6 +161,8 @@ export class Session {
     } catch (err) {
       this.fail('core', err);
       throw err;
+    } finally {
+      this.#coreStartSettled();
     }
   }
 

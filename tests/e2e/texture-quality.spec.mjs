@@ -161,7 +161,7 @@ test.describe.serial('texture quality and responsiveness (flat square)', () => {
 // worker: the page keeps drawing frames while it is computed. Counted over a synthesis that itself blocks
 // (interleave off), so every frame drawn during the call was drawn while the atlas was computed elsewhere;
 // the same call again with the atlas cached is the baseline (no frames).
-test.describe.serial('the generated atlas is made off the page thread (bunny)', () => {
+test.describe.serial('the generated atlas and the exemplar analysis are made off the page thread (bunny)', () => {
   let page, errors;
 
   test.beforeAll(async ({ browser }) => {
@@ -183,6 +183,41 @@ test.describe.serial('the generated atlas is made off the page thread (bunny)', 
     expect(first.stats.atlas.source).toBe('generated');
     expect(cached.frames, 'a blocking synthesis with the atlas cached draws no frames (the baseline)').toBeLessThanOrEqual(2);
     expect(first.frames, 'frames drawn while the worker generated the atlas').toBeGreaterThan(cached.frames + 3);
+  });
+
+  // The exemplar analysis (Gaussian stack, PCA, k-coherence candidates: 0.2-0.4 s for 128²) runs in the
+  // core worker too. A new image exemplar is analysed while no texture is shown (so no synthesis follows);
+  // the same image again comes from the page's cache and is the baseline.
+  test('frames keep coming while a new exemplar is analysed', async () => {
+    const framesDuring = (seed) =>
+      page.evaluate(async (seed) => {
+        window.tvf.clearTexture();
+        let state = seed;
+        const random = () => ((state = (Math.imul(state, 1664525) + 1013904223) >>> 0) / 2 ** 32);
+        const image = new ImageData(128, 128);
+        for (let i = 0; i < image.data.length; i += 4) {
+          const v = 255 * (0.5 + 0.5 * Math.sin(i / 37 + 6 * random()));
+          image.data.set([v, 255 - v, 128 * random(), 255], i);
+        }
+        let frames = 0, running = true;
+        const tick = () => {
+          frames++;
+          if (running) requestAnimationFrame(tick);
+        };
+        requestAnimationFrame(tick);
+        await new Promise((r) => requestAnimationFrame(() => r()));
+        frames = 0;
+        const info = await window.tvf.setExemplar(image, { size: 128 });
+        running = false;
+        return { frames, cached: info.cached, analysisMs: info.analysisMs, levels: info.levels };
+      }, seed);
+    const first = await framesDuring(11);
+    const cached = await framesDuring(11);
+    console.log(JSON.stringify({ framesWhileAnalysed: first.frames, framesCached: cached.frames, analysisMs: first.analysisMs }));
+    expect(first.cached).toBe(false);
+    expect(cached.cached).toBe(true);
+    expect(first.levels).toBeGreaterThan(3);
+    expect(first.frames, 'frames drawn while the worker analysed the exemplar').toBeGreaterThan(cached.frames + 3);
   });
 
   test('no console errors', () => {

@@ -24,8 +24,8 @@ function flatSquare(n = 16) {
 
 // library: an ExemplarLibrary (exemplar.js). Returns {device, exemplar, runs: [{size, levels, totalMs, plainMs,
 // ratio, ...}]}; `repeats` measured runs per size after one warm-up run (shader compilation), best one reported.
-export function runSynthesisBench(library, { sizes = [256, 512, 1024], exemplar = 'scales', repeats = 2, featureScale = 1 } = {}) {
-  const { tables } = library.procedural(exemplar, 64, 1);
+export async function runSynthesisBench(library, { sizes = [256, 512, 1024], exemplar = 'scales', repeats = 2, featureScale = 1 } = {}) {
+  const { tables } = await library.procedural(exemplar, 64, 1);
   const synth = new Synthesizer();
   const gl = synth.gl;
   const dbg = gl.getExtension('WEBGL_debug_renderer_info');

@@ -3,29 +3,14 @@
 // by the wasm core's ExemplarAnalysis (core/texture/) and cached per exemplar, as the flat tables the GPU
 // synthesizer uploads.
 //
-// The analysis runs in an instance of the core module of its own on the page's thread (the design core lives
-// in its worker): ~0.1-0.5 s for a 128^2 exemplar, once per exemplar.
+// The analysis (~0.1-0.5 s for a 128^2 exemplar) runs in the element's core worker (analyzeExemplar there), so
+// the page keeps drawing and taking input; the page keeps the cache.
 
 export const USER_EXEMPLAR_SIZE = 128;
 export const PROCEDURAL_SIZE = 64;
 
-export async function loadAnalysisModule(baseUrl) {
-  const moduleUrl = new URL('wasm/tvf_core.mjs', baseUrl).href;
-  let factory;
-  try {
-    factory = (await import(/* @vite-ignore */ moduleUrl)).default;
-  } catch (err) {
-    throw new Error(`could not load the core for exemplar analysis from ${moduleUrl} (${err?.message || err})`);
-  }
-  const Module = await factory({ locateFile: (path) => new URL(path, moduleUrl).href });
-  if (typeof Module.ExemplarAnalysis !== 'function')
-    throw new Error('this build of the core has no ExemplarAnalysis; rebuild it (npm run build:wasm)');
-  return Module;
-}
-
 // Copies everything out of wasm memory (the views die at the next call).
-function tablesOf(analysis, key, sourceLabel) {
-  const size = analysis.size();
+function tablesOf(analysis) {
   const levels = [];
   for (let s = 0; s < analysis.numLevels(); s++) {
     levels.push({
@@ -37,53 +22,56 @@ function tablesOf(analysis, key, sourceLabel) {
       projectionOffset: Float32Array.from(analysis.projectionOffset(s)),
     });
   }
-  return { key, source: sourceLabel, size, levels, rgba8: Uint8Array.from(analysis.rgba8()), stats: JSON.parse(analysis.statsJson()) };
+  return { size: analysis.size(), levels, rgba8: Uint8Array.from(analysis.rgba8()), stats: JSON.parse(analysis.statsJson()) };
+}
+
+// spec: {procedural, size, seed} or {rgba (Uint8Array of size*size*4), size}. Returns the tables: {size,
+// levels, rgba8, stats}.
+export function analyzeExemplar(Module, spec) {
+  if (typeof Module?.ExemplarAnalysis !== 'function') throw new Error('this build of the core has no ExemplarAnalysis; rebuild it (npm run build:wasm)');
+  const a = new Module.ExemplarAnalysis();
+  try {
+    const err = typeof spec.procedural === 'string' ? a.analyzeProcedural(spec.procedural, spec.size, spec.seed ?? 1) : a.analyzeRGBA8(spec.rgba, spec.size);
+    if (err) throw new Error(`exemplar analysis: ${err}`);
+    return tablesOf(a);
+  } finally {
+    a.delete();
+  }
+}
+
+// The buffers of the tables, to transfer them between threads.
+export function exemplarBuffers(tables) {
+  return [tables.rgba8.buffer, ...tables.levels.flatMap((l) => Object.values(l).map((a) => a.buffer))];
 }
 
 export class ExemplarLibrary {
-  constructor(Module, { capacity = 6 } = {}) {
-    this.Module = Module;
+  // analyze(spec): resolves with the tables of analyzeExemplar (above), wherever it runs.
+  constructor(analyze, { capacity = 6 } = {}) {
+    this.analyze = analyze;
     this.cache = new Map(); // key -> tables, most recently used last
     this.capacity = capacity;
   }
 
-  names() {
-    return JSON.parse(this.Module.proceduralExemplarNames());
-  }
-
-  #cached(key, make) {
+  async #cached(key, label, spec) {
     if (this.cache.has(key)) {
       const t = this.cache.get(key);
       this.cache.delete(key);
       this.cache.set(key, t);
       return { tables: t, cached: true };
     }
-    const tables = make();
+    const tables = { key, source: label, ...(await this.analyze(spec)) };
     this.cache.set(key, tables);
     while (this.cache.size > this.capacity) this.cache.delete(this.cache.keys().next().value);
     return { tables, cached: false };
   }
 
-  #analyze(run, key, label) {
-    const a = new this.Module.ExemplarAnalysis();
-    try {
-      const err = run(a);
-      if (err) throw new Error(`exemplar analysis: ${err}`);
-      return tablesOf(a, key, label);
-    } finally {
-      a.delete();
-    }
-  }
-
   procedural(name, size = PROCEDURAL_SIZE, seed = 1) {
-    const key = `procedural:${name}:${size}:${seed}`;
-    return this.#cached(key, () => this.#analyze((a) => a.analyzeProcedural(name, size, seed), key, name));
+    return this.#cached(`procedural:${name}:${size}:${seed}`, name, { procedural: name, size, seed });
   }
 
   // rgba: Uint8Array of size*size*4.
   image(rgba, size, label = 'image') {
-    const key = `image:${size}:${contentHash(rgba)}`;
-    return this.#cached(key, () => this.#analyze((a) => a.analyzeRGBA8(rgba, size), key, label));
+    return this.#cached(`image:${size}:${contentHash(rgba)}`, label, { rgba, size });
   }
 }
 

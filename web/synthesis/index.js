@@ -2,9 +2,8 @@
 // Field-guided texture synthesis on the page: exemplar analysis (wasm), GPU synthesis in the model's texture
 // atlas (synthesizer.js), the textured model in the view (render.js), exports, and the window.tvf additions
 // (docs/js-api.md, "Texture synthesis"). The page hands in a small adapter; see installSynthesis().
-import { chooseAtlas } from './atlas.js';
 import { formatBench, runSynthesisBench } from './bench.js';
-import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8, loadAnalysisModule } from './exemplar.js';
+import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8 } from './exemplar.js';
 import { encodeGlb } from './glb.js';
 import { mountSynthesisPanel } from './panel.js';
 import { TexturedModel } from './render.js';
@@ -100,18 +99,17 @@ async function rgbaToPngBlob(pixels, width, height) {
 }
 
 export class SynthesisController {
-  // baseUrl: where wasm/tvf_core.mjs lives. viewer: the page's Viewer (scene, surfaceMesh, requestRender).
+  // viewer: the page's Viewer (scene, surfaceMesh, requestRender).
   // getModel(): {key, name, positions, triangles, cornerUVs | null, vertexVectors} of the current model and field.
-  // computeAtlas(model, {resolution, gutter}) (optional): chooseAtlas off the page's thread, resolving with its result.
-  constructor({ baseUrl, viewer, getModel, computeAtlas = null, onChange = () => {}, onError = () => {} }) {
-    this.baseUrl = baseUrl;
+  // computeAtlas(model, {resolution, gutter}) and analyzeExemplar(spec): chooseAtlas (atlas.js) and
+  // analyzeExemplar (exemplar.js) off the page's thread (the element's core worker), resolving with their results.
+  constructor({ viewer, getModel, computeAtlas, analyzeExemplar, onChange = () => {}, onError = () => {} }) {
     this.computeAtlas = computeAtlas;
     this.viewer = viewer;
     this.getModel = getModel;
     this.onChange = onChange;
     this.onError = onError;
-    this.module = null;
-    this.library = null;
+    this.library = new ExemplarLibrary(analyzeExemplar);
     this.synth = null;
     this.render = null;
     this.exemplar = null; // {tables, label, analysisMs, cached}
@@ -136,13 +134,6 @@ export class SynthesisController {
     return run;
   }
 
-  async #ensureModule() {
-    if (!this.module) {
-      this.module = await loadAnalysisModule(this.baseUrl);
-      this.library = new ExemplarLibrary(this.module);
-    }
-  }
-
   #ensureSynth() {
     if (!this.synth) this.synth = new Synthesizer();
     return this.synth;
@@ -156,19 +147,18 @@ export class SynthesisController {
   // a Blob/File (PNG or JPEG), ImageData or an ImageBitmap. Options: {size} for images (power of two, default 128).
   setExemplar(src, { size } = {}) {
     return this.#exclusive(async () => {
-      await this.#ensureModule();
       const t0 = performance.now();
       let result, label;
       const spec = typeof src === 'string' && this.proceduralNames().includes(src) ? { procedural: src } : src;
       if (spec && typeof spec === 'object' && typeof spec.procedural === 'string') {
         const n = spec.size ?? PROCEDURAL_SIZE;
-        result = this.library.procedural(spec.procedural, n, spec.seed ?? 1);
+        result = await this.library.procedural(spec.procedural, n, spec.seed ?? 1);
         label = spec.procedural;
       } else {
         const n = size ?? USER_EXEMPLAR_SIZE;
         if (!Number.isInteger(n) || n < 16 || n > 256 || (n & (n - 1))) throw new Error(`exemplar size must be a power of two in [16, 256] (got ${n})`);
         const img = await imageToRGBA8(spec, n);
-        result = this.library.image(img.rgba, img.size, img.label);
+        result = await this.library.image(img.rgba, img.size, img.label);
         label = img.label;
       }
       this.exemplar = { tables: result.tables, label, cached: result.cached, analysisMs: performance.now() - t0 };
@@ -189,10 +179,9 @@ export class SynthesisController {
   async #atlasFor(model, resolution) {
     const gutter = this.options.gutter ?? DEFAULTS.gutter;
     if (this.atlas && this.atlas.key === model.key && this.atlas.resolution === resolution && this.atlas.gutter === gutter) return this.atlas;
-    await this.#ensureModule();
-    // Generating an atlas takes up to seconds on a big model: the element's core worker does it when there is
-    // one, so the page keeps drawing and taking input.
-    const chosen = this.computeAtlas ? await this.computeAtlas(model, { resolution, gutter }) : chooseAtlas(this.module, model, { resolution, gutter });
+    // Generating an atlas takes up to seconds on a big model: the element's core worker does it, so the page
+    // keeps drawing and taking input.
+    const chosen = await this.computeAtlas(model, { resolution, gutter });
     this.atlas = { key: model.key, resolution, gutter, ...chosen };
     this.#ensureSynth().setAtlas({ resolution, positions: model.positions, triangles: model.triangles, cornerUVs: this.atlas.cornerUVs });
     if (!this.render) this.render = new TexturedModel(this.viewer);
@@ -215,8 +204,7 @@ export class SynthesisController {
       if (options.featureScale !== undefined && options.featureScale !== 'auto' && !(options.featureScale > 0)) throw new Error("featureScale must be 'auto' or > 0");
       this.options = { ...this.options, ...options };
       if (!this.exemplar) {
-        await this.#ensureModule();
-        const r = this.library.procedural('stripes', PROCEDURAL_SIZE, 1);
+        const r = await this.library.procedural('stripes', PROCEDURAL_SIZE, 1);
         this.exemplar = { tables: r.tables, label: 'stripes', cached: r.cached, analysisMs: 0 };
         this.#ensureSynth().setExemplar(r.tables);
       }
@@ -438,7 +426,6 @@ export class SynthesisController {
   // The synthesis benchmark (bench.js) on a synthesizer of its own.
   bench(options = {}) {
     return this.#exclusive(async () => {
-      await this.#ensureModule();
       return runSynthesisBench(this.library, options);
     });
   }
