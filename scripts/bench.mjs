@@ -5,7 +5,7 @@
 // Runs the native `tvf bench MESH --json --repeat N` over the mesh ladder (~15k to ~133k edges, real meshes
 // from Debian's libcgal-demo, fetched by scripts/fetch-meshes.sh) plus a 1.25M-edge subdivided armadillo,
 // prints a markdown table (Sec. 6.1 style: times in ms, medians over the repeats) and writes
-// bench-data/bench-native.json. Build the binary first: cmake -S . -B build && cmake --build build -j2.
+// bench-data/bench-native.json. Build the binary first: npm run build:native.
 // METIS nested dissection by default; --amd for AMD; --compare for both (interleaved in one process per mesh,
 // one table row per mesh and ordering).
 import { execFileSync } from 'node:child_process';
@@ -90,7 +90,7 @@ async function main() {
   const opts = parseArgs(process.argv.slice(2), { amd: false, compare: false });
   const extra = opts.compare ? ['--compare'] : opts.amd ? ['--amd'] : [];
   if (!existsSync(opts.tvf)) {
-    console.error(`bench: ${opts.tvf} not found; build it: cmake -S . -B build && cmake --build build -j2`);
+    console.error(`bench: ${opts.tvf} not found; build it: npm run build:native`);
     process.exit(1);
   }
   ensureMeshes(opts.meshes);

@@ -223,15 +223,15 @@ function ratios(native, wasm) {
   return out;
 }
 
-// The native CLI the comparison needs: built here (cmake, -j2) when the default build/tvf is missing.
+// The native CLI the comparison needs: built here (scripts/build-native.sh, the `npm run build:native` of the
+// README) when the default build/tvf is missing.
 function ensureNativeCli(opts) {
   if (opts['no-native'] || opts.native || existsSync(opts.tvf)) return;
   if (opts.tvf !== resolve(ROOT, 'build/tvf'))
     fail('native', `${opts.tvf} not found (build it, or pass --no-native)`);
-  console.error('bench:wasm: build/tvf not found; building it (cmake -S . -B build && cmake --build build --target tvf -j2)');
+  console.error('bench:wasm: build/tvf not found; building it (npm run build:native)');
   try {
-    execFileSync('cmake', ['-S', ROOT, '-B', resolve(ROOT, 'build'), '-DCMAKE_BUILD_TYPE=Release'], { stdio: ['ignore', 'ignore', 'inherit'] });
-    execFileSync('cmake', ['--build', resolve(ROOT, 'build'), '--target', 'tvf', '-j2'], { stdio: ['ignore', 'ignore', 'inherit'] });
+    execFileSync('bash', [resolve(ROOT, 'scripts/build-native.sh'), '--target', 'tvf'], { stdio: ['ignore', 'ignore', 'inherit'] });
   } catch {
     fail('native', 'building build/tvf failed (see above); run `npm run setup` for the Debian packages, or pass --no-native');
   }

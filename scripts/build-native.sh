@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# The native build (`npm run build:native`): the core, `tvf` and the native tests in build/, linked against
+# CHOLMOD compiled for this machine from Debian's source packages (wasm/build-cholmod.sh --native: the same
+# sources as the wasm build). Where those sources cannot be had, it says so and links Debian's libcholmod3.
+# Usage: scripts/build-native.sh [--target T]   (extra arguments go to `cmake --build`)
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
+cd "$ROOT"
+
+cholmod=()
+if out=$(bash wasm/build-cholmod.sh --native | tail -n1) && [ -f "$out/lib/libcholmod_native.a" ]; then
+  cholmod=(-DTVF_CHOLMOD_INCLUDE_DIR="$out/include" -DTVF_CHOLMOD_LIBRARIES="$out/lib/libcholmod_native.a;lapack;blas;m")
+else
+  echo "build-native: CHOLMOD could not be built from source here; linking the system's libcholmod3" >&2
+  cholmod=(-DTVF_CHOLMOD_INCLUDE_DIR= -DTVF_CHOLMOD_LIBRARIES=)
+fi
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" "${cholmod[@]}" >/dev/null
+cmake --build build -j2 "$@"
