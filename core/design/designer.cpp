@@ -66,6 +66,7 @@ struct Designer::Impl {
         geometry(computeMeshGeometry(mesh, topology)),
         constraints(mesh, topology, geometry),
         factor(kernelEdges(topology)) {
+    factor.setEdgeGraph(topology.edgeVertices, topology.numVertices);
     stats.positiveAreaFallbackVertices = geometry.positiveAreaFallbackVertices;
   }
 

@@ -41,6 +41,8 @@ class ShiftedFactor {
   explicit ShiftedFactor(std::vector<uint8_t> kernelEdges, FillOrdering ordering = FillOrdering::Metis);
 
   void setOrdering(FillOrdering ordering);  // forgets the factor and the ordering
+  // The mesh's edges (2 vertices each): the METIS ordering dissects its vertex graph (FactoredSystem).
+  void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);
   void setMemoryLimit(double bytes);        // 0: the machine's physical memory
   double memoryLimit() const;
 
@@ -77,6 +79,8 @@ class ShiftedFactor {
   std::vector<uint8_t> kernelEdges_;
   bool anyKernel_ = false;
   FactoredSystem system_;
+  std::vector<int32_t> edgeVertices_;
+  int32_t numVertices_ = 0;
   bool stale_ = true;
   double memoryLimit_ = 0;
   double shift_ = 0;

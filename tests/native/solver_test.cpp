@@ -7,8 +7,14 @@
 #include <Eigen/SparseCholesky>
 #include <cmath>
 
+#include <numeric>
+
+#include "dec/hodge_star.h"
+#include "dec/one_form_laplacian.h"
 #include "design/designer.h"
 #include "mesh/mesh_checks.h"
+#include "mesh/mesh_topology.h"
+#include "solver/edge_dissection.h"
 #include "solver/shifted_factor.h"
 #include "test_fields.h"
 #include "test_meshes.h"
@@ -37,10 +43,98 @@ DiagonalTerms concatenate(const DiagonalTerms& a, const DiagonalTerms& b) {
   return out;
 }
 
+SparseMatrix upperTriangle(const SparseMatrix& A) {
+  SparseMatrix upper = A.triangularView<Eigen::Upper>();
+  upper.makeCompressed();
+  return upper;
+}
+
+// The sets of the top separator's two subtrees in postorder: [left.first, left.second] and the right.
+std::pair<std::pair<int32_t, int32_t>, std::pair<int32_t, int32_t>> topSubtrees(const EdgeDissection& d) {
+  const int32_t top = static_cast<int32_t>(d.firstSet.size()) - 1, right = top - 1;
+  return {{d.firstSet[top], d.firstSet[right] - 1}, {d.firstSet[right], right}};
+}
+
+// Connected components of A's graph on the edges for which `keep` holds (breadth-first, from the pattern).
+std::vector<int32_t> componentsWithout(const SparseMatrix& A, const std::vector<bool>& keep) {
+  const int32_t n = static_cast<int32_t>(A.rows());
+  std::vector<int32_t> component(n, -1), queue;
+  int32_t count = 0;
+  for (int32_t s = 0; s < n; ++s) {
+    if (!keep[s] || component[s] >= 0) continue;
+    component[s] = count;
+    queue.assign(1, s);
+    while (!queue.empty()) {
+      const int32_t e = queue.back();
+      queue.pop_back();
+      for (SparseMatrix::InnerIterator it(A, e); it; ++it) {
+        const int32_t f = static_cast<int32_t>(it.row());
+        if (keep[f] && component[f] < 0) component[f] = count, queue.push_back(f);
+      }
+    }
+    ++count;
+  }
+  return component;
+}
+
 }  // namespace
 
-// Both meshes of the ordering tests have more edges than the subgraph size at which the nested dissection
-// stops (20000), so the METIS build really partitions: its factor has a different fill than AMD's.
+// The dissection of the vertex graph: removing the top separator's edges leaves no path in M's graph between
+// the edges of its two sides (checked by a breadth-first search of M's own pattern), so its ordering keeps
+// M's fill local; the bi-Laplacian couples edges two vertex-steps apart, which only the widened separators
+// cut. The core checks this itself before using a dissection (separatesPattern), and says which it used.
+TEST(EdgeDissection, SeparatorsCutTheLaplacianAndWidenedOnesTheBiLaplacian) {
+  const SurfaceMesh m = torus(60, 40, 2.0, 0.7);  // 7200 edges
+  const MeshTopology t = buildTopology(m);
+  const MeshGeometry g = computeMeshGeometry(m, t);
+  const SparseMatrix M = oneFormLaplacian(buildOneFormOperators(m, t, g, {}), g);
+  const SparseMatrix B = biLaplacian(M, g, 0.1 * g.totalArea);
+  const SparseMatrix upperM = upperTriangle(M), upperB = upperTriangle(B);
+  auto separates = [](const EdgeDissection& d, const SparseMatrix& upper) {
+    return separatesPattern(d, upper.outerIndexPtr(), upper.innerIndexPtr(), static_cast<int32_t>(upper.cols()));
+  };
+  auto sidesDisconnected = [](const EdgeDissection& d, const SparseMatrix& A) {
+    const int32_t top = static_cast<int32_t>(d.firstSet.size()) - 1;
+    const auto [left, right] = topSubtrees(d);
+    std::vector<bool> keep(A.rows());
+    for (size_t e = 0; e < keep.size(); ++e) keep[e] = d.constraintSet[e] != top;
+    const std::vector<int32_t> component = componentsWithout(A, keep);
+    std::vector<int> side(*std::max_element(component.begin(), component.end()) + 1, -1);
+    for (size_t e = 0; e < keep.size(); ++e) {
+      if (!keep[e]) continue;
+      const int32_t s = d.constraintSet[e];
+      const int here = s >= left.first && s <= left.second ? 0 : s >= right.first && s <= right.second ? 1 : 2;
+      if (here == 2) return false;
+      if (side[component[e]] >= 0 && side[component[e]] != here) return false;
+      side[component[e]] = here;
+    }
+    return true;
+  };
+
+  for (int hops : {1, 2}) {
+    const EdgeDissection d = dissectEdges(t.edgeVertices, t.numVertices, 500, hops);
+    ASSERT_EQ(d.constraintSet.size(), static_cast<size_t>(t.numEdges));
+    EXPECT_GE(d.firstSet.size(), 7u) << "hops " << hops;  // at least two levels of cuts
+    for (size_t s = 0; s < d.firstSet.size(); ++s) EXPECT_LE(d.firstSet[s], static_cast<int32_t>(s));
+    std::vector<int32_t> perSet(d.firstSet.size(), 0);
+    for (const int32_t s : d.constraintSet) ++perSet[s];
+    EXPECT_LT(perSet.back(), t.numEdges / 10) << "the top separator is a thin band, hops " << hops;
+    EXPECT_TRUE(separates(d, upperM));
+    EXPECT_TRUE(sidesDisconnected(d, M)) << "hops " << hops;
+    EXPECT_EQ(separates(d, upperB), hops == 2);
+    EXPECT_EQ(sidesDisconnected(d, B), hops == 2);
+  }
+
+  Designer laplacian(m), bi(m);
+  bi.setGamma(0.1);
+  laplacian.solve();
+  bi.solve();
+  EXPECT_NE(laplacian.stats().factorKind.find("vertex graph)"), std::string::npos) << laplacian.stats().factorKind;
+  EXPECT_NE(bi.stats().factorKind.find("two-hop separators"), std::string::npos) << bi.stats().factorKind;
+}
+
+// Both meshes of the ordering tests have many more edges than the parts at which the nested dissection stops
+// (1000), so the METIS build really partitions: its factor has a different fill than AMD's.
 TEST(Ordering, MetisAndAmdGiveTheSameFieldOnAClosedSurface) {
   const SurfaceMesh m = icosphere(5);  // 30720 edges
   Designer metis(m), amd(m);
