@@ -9,8 +9,9 @@ namespace {
 
 class Dissector {
  public:
-  Dissector(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges, int hops)
-      : ev_(edgeVertices), leafEdges_(leafEdges), hops_(hops), local_(numVertices, -1) {
+  Dissector(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
+            const EdgeCoupling& coupling)
+      : ev_(edgeVertices), coupling_(coupling), leafEdges_(leafEdges), local_(numVertices, -1) {
     const int32_t nE = static_cast<int32_t>(edgeVertices.size() / 2);
     incidentStart_.assign(numVertices + 1, 0);
     for (const int32_t v : edgeVertices) ++incidentStart_[v + 1];
@@ -20,6 +21,7 @@ class Dissector {
     for (int32_t e = 0; e < nE; ++e)
       for (int k = 0; k < 2; ++k) incident_[fill[ev_[2 * e + k]]++] = e;
     edgePart_.assign(nE, -1);
+    edgeSide_.assign(nE, -1);
     out_.constraintSet.assign(nE, 0);
   }
 
@@ -55,7 +57,7 @@ class Dissector {
       if (a != b) separator.push_back(e);
       else sideEdges[a].push_back(e);
     }
-    if (hops_ > 1) widenSeparator(sideEdges[0], separator);
+    widenSeparator(sideEdges, separator);
     for (const int32_t v : vertices) local_[v] = -1;
     if (sideEdges[0].empty() || sideEdges[1].empty()) {  // no useful cut
       assign(edges, newSet(first));
@@ -66,19 +68,20 @@ class Dissector {
     assign(separator, newSet(first));
   }
 
-  // Edges of one side at the cut's vertices join the separator: then no remaining edge of that side is two
-  // vertex-steps from an edge of the other side.
-  void widenSeparator(std::vector<int32_t>& side, std::vector<int32_t>& separator) {
-    std::vector<int32_t> atCut;
-    for (const int32_t e : separator) atCut.insert(atCut.end(), {ev_[2 * e], ev_[2 * e + 1]});
-    std::sort(atCut.begin(), atCut.end());
-    auto touches = [&](int32_t e) {
-      return std::binary_search(atCut.begin(), atCut.end(), ev_[2 * e]) ||
-             std::binary_search(atCut.begin(), atCut.end(), ev_[2 * e + 1]);
-    };
+  // Edges of side 0 that the matrix couples to side 1 join the separator (none for the plain Laplacian).
+  void widenSeparator(std::vector<int32_t> (&side)[2], std::vector<int32_t>& separator) {
+    for (int k = 0; k < 2; ++k)
+      for (const int32_t e : side[k]) edgeSide_[e] = k;
     std::vector<int32_t> kept;
-    for (const int32_t e : side) (touches(e) ? separator : kept).push_back(e);
-    side.swap(kept);
+    for (const int32_t e : side[0]) {
+      bool coupled = false;
+      for (int32_t p = coupling_.start[e]; p < coupling_.start[e + 1] && !coupled; ++p)
+        coupled = edgeSide_[coupling_.index[p]] == 1;
+      (coupled ? separator : kept).push_back(e);
+    }
+    for (int k = 0; k < 2; ++k)
+      for (const int32_t e : side[k]) edgeSide_[e] = -1;
+    side[0].swap(kept);
   }
 
   // An edge-cut bisection of the vertex graph made of `edges`, weighted by vertex degree so that the halves
@@ -117,18 +120,37 @@ class Dissector {
   }
 
   const std::vector<int32_t>& ev_;
+  const EdgeCoupling& coupling_;
   int32_t leafEdges_;
-  int hops_;
-  std::vector<int32_t> local_, incidentStart_, incident_, edgePart_;
+  std::vector<int32_t> local_, incidentStart_, incident_, edgePart_, edgeSide_;
   int32_t tag_ = 0;
   EdgeDissection out_;
 };
 
 }  // namespace
 
+EdgeCoupling couplingOfUpperPattern(const int32_t* colStart, const int32_t* rowIndex, int32_t n) {
+  EdgeCoupling c;
+  c.start.assign(n + 1, 0);
+  for (int32_t j = 0; j < n; ++j)
+    for (int32_t p = colStart[j]; p < colStart[j + 1]; ++p)
+      if (rowIndex[p] != j) ++c.start[j + 1], ++c.start[rowIndex[p] + 1];
+  for (int32_t j = 0; j < n; ++j) c.start[j + 1] += c.start[j];
+  c.index.resize(c.start[n]);
+  std::vector<int32_t> fill(c.start.begin(), c.start.end() - 1);
+  for (int32_t j = 0; j < n; ++j)
+    for (int32_t p = colStart[j]; p < colStart[j + 1]; ++p) {
+      const int32_t i = rowIndex[p];
+      if (i == j) continue;
+      c.index[fill[j]++] = i;
+      c.index[fill[i]++] = j;
+    }
+  return c;
+}
+
 EdgeDissection dissectEdges(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
-                            int hops) {
-  return Dissector(edgeVertices, numVertices, leafEdges, hops).run(numVertices);
+                            const EdgeCoupling& coupling) {
+  return Dissector(edgeVertices, numVertices, leafEdges, coupling).run(numVertices);
 }
 
 bool separatesPattern(const EdgeDissection& dissection, const int32_t* colStart, const int32_t* rowIndex,

@@ -4,8 +4,9 @@
 // Two edges couple in the 1-form Laplacian M only when they share a vertex. Split the vertices in two (an
 // edge cut of the vertex graph, which METIS makes cheaply on a graph a third the size of M's, with 6 instead of
 // 11 neighbours): the edges inside each half share no vertex with the other half's, so the edges crossing the
-// cut separate M's graph. The bi-Laplacian M + g M *1^-1 M couples edges two vertex-steps apart, and then the
-// half's edges at the cut's vertices join the separator (hops = 2).
+// cut separate M's graph. Where the matrix couples edges further apart (the bi-Laplacian M + g M *1^-1 M, the
+// half boundary fluxes of free boundaries) the edges of one half that it couples to the other half join the
+// separator, read from the matrix's own pattern.
 #include <cstdint>
 #include <vector>
 
@@ -19,9 +20,15 @@ struct EdgeDissection {
   std::vector<int32_t> firstSet;
 };
 
+// The symmetric sparsity pattern of the system (both triangles, compressed columns; one column per edge).
+struct EdgeCoupling {
+  std::vector<int32_t> start, index;
+};
+EdgeCoupling couplingOfUpperPattern(const int32_t* colStart, const int32_t* rowIndex, int32_t n);
+
 // edgeVertices: 2 per edge. Parts with at most leafEdges edges are not cut further.
 EdgeDissection dissectEdges(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
-                            int hops);
+                            const EdgeCoupling& coupling);
 
 // Whether the symmetric pattern (upper triangle, compressed columns, n columns) couples no two edges whose sets
 // lie in different subtrees, i.e. the dissection's separators separate this matrix.

@@ -91,7 +91,7 @@ struct FactoredSystem::Impl {
   double memoryLimit = 0, estimatedBytes = 0;
   std::vector<int32_t> edgeVertices;
   int32_t numVertices = 0;
-  int dissectionHops = 0;  // the mesh's dissection ordered the last analysis (its separator width), or 0
+  bool usedDissection = false;  // the mesh's dissection ordered the last analysis
 
   explicit Impl(FillOrdering o) : ordering(o) {
     chooseOrdering(*common.get(), o);
@@ -124,27 +124,24 @@ struct FactoredSystem::Impl {
     return cholmod_copy_factor(symbolic.get(), common.get());
   }
 
-  // Nested dissection of the mesh's vertex graph (edge cuts; the bi-Laplacian's wider coupling widens the
-  // separators), then one CAMD ordering that keeps each separator after the parts it separates: CHOLMOD's
-  // NESDIS, on a graph a third the size. Empty when there is no mesh or the separators do not separate A.
+  // Nested dissection of the mesh's vertex graph (edge cuts, widened where A couples edges further apart), then
+  // one CAMD ordering that keeps each separator after the parts it separates: CHOLMOD's NESDIS, on a graph a
+  // third the size. Empty when there is no mesh, or (never seen) when the separators do not separate A.
   std::vector<int> dissectionOrdering(cholmod_sparse& A) {
     const int32_t n = static_cast<int32_t>(A.ncol);
     if (ordering != FillOrdering::Metis || static_cast<int32_t>(edgeVertices.size()) != 2 * n) return {};
     const auto* Ap = static_cast<const int32_t*>(A.p);
     const auto* Ai = static_cast<const int32_t*>(A.i);
-    for (int hops = 1; hops <= 2; ++hops) {
-      EdgeDissection d = dissectEdges(edgeVertices, numVertices, kDissectionLeafEdges, hops);
-      if (!separatesPattern(d, Ap, Ai, n)) continue;
-      std::vector<int> perm(n);
-      if (!cholmod_camd(&A, nullptr, 0, d.constraintSet.data(), perm.data(), common.get())) return {};
-      dissectionHops = hops;
-      return perm;
-    }
-    return {};
+    EdgeDissection d = dissectEdges(edgeVertices, numVertices, kDissectionLeafEdges, couplingOfUpperPattern(Ap, Ai, n));
+    if (!separatesPattern(d, Ap, Ai, n)) return {};
+    std::vector<int> perm(n);
+    if (!cholmod_camd(&A, nullptr, 0, d.constraintSet.data(), perm.data(), common.get())) return {};
+    usedDissection = true;
+    return perm;
   }
 
   cholmod_factor* analyze(cholmod_sparse& A) {
-    dissectionHops = 0;
+    usedDissection = false;
     std::vector<int> perm = dissectionOrdering(A);
     if (perm.empty()) return cholmod_analyze(&A, common.get());
     cholmod_common& c = *common.get();
@@ -304,10 +301,9 @@ const FactorTimings& FactoredSystem::timings() const {
 std::string FactoredSystem::description() const {
   return std::string(impl_->wasSupernodal ? "supernodal LL'" : "simplicial LDL'") +
          " factor, kept as simplicial LDL' for updates (" +
-         (impl_->ordering == FillOrdering::Amd        ? "AMD ordering)"
-          : impl_->dissectionHops == 1 ? "METIS nested dissection of the mesh's vertex graph)"
-          : impl_->dissectionHops == 2 ? "METIS nested dissection of the mesh's vertex graph, two-hop separators)"
-                                       : "METIS nested dissection ordering)");
+         (impl_->ordering == FillOrdering::Amd ? "AMD ordering)"
+          : impl_->usedDissection            ? "METIS nested dissection of the mesh's vertex graph)"
+                                             : "METIS nested dissection ordering)");
 }
 
 }  // namespace tvf

@@ -79,17 +79,21 @@ std::vector<int32_t> componentsWithout(const SparseMatrix& A, const std::vector<
 
 }  // namespace
 
-// The dissection of the vertex graph: removing the top separator's edges leaves no path in M's graph between
-// the edges of its two sides (checked by a breadth-first search of M's own pattern), so its ordering keeps
-// M's fill local; the bi-Laplacian couples edges two vertex-steps apart, which only the widened separators
-// cut. The core checks this itself before using a dissection (separatesPattern), and says which it used.
-TEST(EdgeDissection, SeparatorsCutTheLaplacianAndWidenedOnesTheBiLaplacian) {
+// The dissection of the vertex graph: removing the top separator's edges leaves no path in the matrix's graph
+// between the edges of its two sides (checked by a breadth-first search of the matrix's own pattern), so its
+// ordering keeps the fill local. The bi-Laplacian couples edges two vertex-steps apart: the plain edge cut does
+// not separate it, the cut widened from its pattern does. Free and fixed-angle boundaries, likewise, use it.
+TEST(EdgeDissection, SeparatorsCutTheMatrixTheyAreMadeFor) {
   const SurfaceMesh m = torus(60, 40, 2.0, 0.7);  // 7200 edges
   const MeshTopology t = buildTopology(m);
   const MeshGeometry g = computeMeshGeometry(m, t);
   const SparseMatrix M = oneFormLaplacian(buildOneFormOperators(m, t, g, {}), g);
   const SparseMatrix B = biLaplacian(M, g, 0.1 * g.totalArea);
   const SparseMatrix upperM = upperTriangle(M), upperB = upperTriangle(B);
+  auto dissect = [&](const SparseMatrix& upper) {
+    return dissectEdges(t.edgeVertices, t.numVertices, 500,
+                        couplingOfUpperPattern(upper.outerIndexPtr(), upper.innerIndexPtr(), t.numEdges));
+  };
   auto separates = [](const EdgeDissection& d, const SparseMatrix& upper) {
     return separatesPattern(d, upper.outerIndexPtr(), upper.innerIndexPtr(), static_cast<int32_t>(upper.cols()));
   };
@@ -110,27 +114,32 @@ TEST(EdgeDissection, SeparatorsCutTheLaplacianAndWidenedOnesTheBiLaplacian) {
     }
     return true;
   };
+  auto topSeparatorSize = [](const EdgeDissection& d) {
+    return std::count(d.constraintSet.begin(), d.constraintSet.end(), static_cast<int32_t>(d.firstSet.size()) - 1);
+  };
 
-  for (int hops : {1, 2}) {
-    const EdgeDissection d = dissectEdges(t.edgeVertices, t.numVertices, 500, hops);
-    ASSERT_EQ(d.constraintSet.size(), static_cast<size_t>(t.numEdges));
-    EXPECT_GE(d.firstSet.size(), 7u) << "hops " << hops;  // at least two levels of cuts
-    for (size_t s = 0; s < d.firstSet.size(); ++s) EXPECT_LE(d.firstSet[s], static_cast<int32_t>(s));
-    std::vector<int32_t> perSet(d.firstSet.size(), 0);
-    for (const int32_t s : d.constraintSet) ++perSet[s];
-    EXPECT_LT(perSet.back(), t.numEdges / 10) << "the top separator is a thin band, hops " << hops;
-    EXPECT_TRUE(separates(d, upperM));
-    EXPECT_TRUE(sidesDisconnected(d, M)) << "hops " << hops;
-    EXPECT_EQ(separates(d, upperB), hops == 2);
-    EXPECT_EQ(sidesDisconnected(d, B), hops == 2);
+  const EdgeDissection forM = dissect(upperM), forB = dissect(upperB);
+  for (const EdgeDissection* d : {&forM, &forB}) {
+    ASSERT_EQ(d->constraintSet.size(), static_cast<size_t>(t.numEdges));
+    EXPECT_GE(d->firstSet.size(), 7u);  // at least two levels of cuts
+    for (size_t s = 0; s < d->firstSet.size(); ++s) EXPECT_LE(d->firstSet[s], static_cast<int32_t>(s));
+    EXPECT_LT(topSeparatorSize(*d), t.numEdges / 10) << "the top separator is a thin band";
   }
+  EXPECT_TRUE(separates(forM, upperM));
+  EXPECT_TRUE(sidesDisconnected(forM, M));
+  EXPECT_FALSE(separates(forM, upperB));
+  EXPECT_FALSE(sidesDisconnected(forM, B));
+  EXPECT_TRUE(separates(forB, upperB));
+  EXPECT_TRUE(sidesDisconnected(forB, B));
+  EXPECT_GT(topSeparatorSize(forB), topSeparatorSize(forM));
 
-  Designer laplacian(m), bi(m);
+  Designer laplacian(m), bi(m), freeBoundary(flatGrid(40, 1.0, true)), fixedAngle(flatGrid(40, 1.0, true));
   bi.setGamma(0.1);
-  laplacian.solve();
-  bi.solve();
-  EXPECT_NE(laplacian.stats().factorKind.find("vertex graph)"), std::string::npos) << laplacian.stats().factorKind;
-  EXPECT_NE(bi.stats().factorKind.find("two-hop separators"), std::string::npos) << bi.stats().factorKind;
+  fixedAngle.setBoundary(BoundaryCondition::normal());
+  for (Designer* d : {&laplacian, &bi, &freeBoundary, &fixedAngle}) {
+    d->solve();
+    EXPECT_NE(d->stats().factorKind.find("vertex graph"), std::string::npos) << d->stats().factorKind;
+  }
 }
 
 // Both meshes of the ordering tests have many more edges than the parts at which the nested dissection stops
