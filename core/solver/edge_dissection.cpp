@@ -107,6 +107,9 @@ class Dissector {
     idx_t options[METIS_NOPTIONS];
     METIS_SetDefaultOptions(options);
     options[METIS_OPTION_NUMBERING] = 0;
+    // The better of two cuts: at 1.25M edges fill 66.5 nnz/row and a 50-edge stroke's update 112 ms, against
+    // 68.0 and 137 ms with one, for 4.8 s of analysis instead of 3.6 s (CHOLMOD's NESDIS: 68.4, 91 ms, 11.2 s).
+    options[METIS_OPTION_NCUTS] = 2;
     part.assign(n, 0);
     idx_t nv = n;
     const int status = METIS_PartGraphRecursive(&nv, &constraints, xadj.data(), adjncy.data(), weight.data(),
