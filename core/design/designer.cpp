@@ -301,8 +301,7 @@ const std::vector<double>& Designer::faceVectors() const {
 const std::vector<double>& Designer::vertexVectors() const {
   Impl& d = *impl_;
   if (d.vertexVectorsStale) {
-    if (d.vertexVectorMap.empty())
-      d.vertexVectorMap = tvf::vertexVectorMap(d.mesh, d.topology, d.geometry);
+    if (d.vertexVectorMap.empty()) d.vertexVectorMap = tvf::vertexVectorMap(d.mesh, d.topology, d.geometry);
     tvf::vertexVectors(d.vertexVectorMap, d.oneForm.data(), d.vertexVectors);
   }
   d.vertexVectorsStale = false;

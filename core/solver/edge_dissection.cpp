@@ -54,8 +54,10 @@ class Dissector {
     for (size_t k = 0; k < vertices.size(); ++k) sideVertices[part[k]].push_back(vertices[k]);
     for (const int32_t e : edges) {
       const idx_t a = part[local_[ev_[2 * e]]], b = part[local_[ev_[2 * e + 1]]];
-      if (a != b) separator.push_back(e);
-      else sideEdges[a].push_back(e);
+      if (a != b)
+        separator.push_back(e);
+      else
+        sideEdges[a].push_back(e);
     }
     widenSeparator(sideEdges, separator);
     for (const int32_t v : vertices) local_[v] = -1;
@@ -86,7 +88,8 @@ class Dissector {
 
   // An edge-cut bisection of the vertex graph made of `edges`, weighted by vertex degree so that the halves
   // hold about as many edges. Leaves local_ set for `vertices`.
-  bool bisect(const std::vector<int32_t>& vertices, const std::vector<int32_t>& edges, std::vector<idx_t>& part) {
+  bool bisect(const std::vector<int32_t>& vertices, const std::vector<int32_t>& edges,
+              std::vector<idx_t>& part) {
     const idx_t n = static_cast<idx_t>(vertices.size());
     for (idx_t k = 0; k < n; ++k) local_[vertices[k]] = k;
     ++tag_;
@@ -108,13 +111,14 @@ class Dissector {
     METIS_SetDefaultOptions(options);
     options[METIS_OPTION_NUMBERING] = 0;
     // The better of two cuts: at 1.25M edges fill 66.5 nnz/row and a 50-edge stroke's update 112 ms, against
-    // 68.0 and 137 ms with one, for 4.8 s of analysis instead of 3.6 s (CHOLMOD's NESDIS: 68.4, 91 ms, 11.2 s).
+    // 68.0 and 137 ms with one, for 4.8 s of analysis instead of 3.6 s (CHOLMOD's NESDIS: 68.4, 91 ms,
+    // 11.2 s).
     options[METIS_OPTION_NCUTS] = 2;
     part.assign(n, 0);
     idx_t nv = n;
-    const int status = METIS_PartGraphRecursive(&nv, &constraints, xadj.data(), adjncy.data(), weight.data(),
-                                                nullptr, nullptr, &parts, nullptr, nullptr, options, &cut,
-                                                part.data());
+    const int status =
+        METIS_PartGraphRecursive(&nv, &constraints, xadj.data(), adjncy.data(), weight.data(), nullptr,
+                                 nullptr, &parts, nullptr, nullptr, options, &cut, part.data());
     if (status != METIS_OK) {
       for (const int32_t v : vertices) local_[v] = -1;
       return false;

@@ -2,11 +2,11 @@
 // Nested dissection of a 1-form system by edge cuts of the mesh's vertex graph.
 //
 // Two edges couple in the 1-form Laplacian M only when they share a vertex. Split the vertices in two (an
-// edge cut of the vertex graph, which METIS makes cheaply on a graph a third the size of M's, with 6 instead of
-// 11 neighbours): the edges inside each half share no vertex with the other half's, so the edges crossing the
-// cut separate M's graph. Where the matrix couples edges further apart (the bi-Laplacian M + g M *1^-1 M, the
-// half boundary fluxes of free boundaries) the edges of one half that it couples to the other half join the
-// separator, read from the matrix's own pattern.
+// edge cut of the vertex graph, which METIS makes cheaply on a graph a third the size of M's, with 6 instead
+// of 11 neighbours): the edges inside each half share no vertex with the other half's, so the edges crossing
+// the cut separate M's graph. Where the matrix couples edges further apart (the bi-Laplacian M + g M *1^-1 M,
+// the half boundary fluxes of free boundaries) the edges of one half that it couples to the other half join
+// the separator, read from the matrix's own pattern.
 #include <cstdint>
 #include <vector>
 
@@ -30,8 +30,8 @@ EdgeCoupling couplingOfUpperPattern(const int32_t* colStart, const int32_t* rowI
 EdgeDissection dissectEdges(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
                             const EdgeCoupling& coupling);
 
-// Whether the symmetric pattern (upper triangle, compressed columns, n columns) couples no two edges whose sets
-// lie in different subtrees, i.e. the dissection's separators separate this matrix.
+// Whether the symmetric pattern (upper triangle, compressed columns, n columns) couples no two edges whose
+// sets lie in different subtrees, i.e. the dissection's separators separate this matrix.
 bool separatesPattern(const EdgeDissection& dissection, const int32_t* colStart, const int32_t* rowIndex,
                       int32_t n);
 

@@ -43,8 +43,8 @@ void chooseOrdering(cholmod_common& c, FillOrdering ordering) {
 }
 
 // Parts of the mesh's dissection with at most this many edges are left to CAMD whole. The vertex graph's cuts
-// are cheap enough to go this deep (bunny00: analysis 1.6x AMD's, fill 52.0 nnz/row against 53.9 for CHOLMOD's
-// NESDIS to 20000-edge leaves at 3x, 58.6 for AMD; README).
+// are cheap enough to go this deep (bunny00: analysis ~2x AMD's, fill 51.2 nnz/row against 53.9 for CHOLMOD's
+// NESDIS to 20000-edge leaves at ~3x, 58.6 for AMD; README).
 constexpr int32_t kDissectionLeafEdges = 1000;
 
 bool samePattern(const cholmod_sparse& A, const std::vector<int>& p, const std::vector<int>& i) {
@@ -124,15 +124,17 @@ struct FactoredSystem::Impl {
     return cholmod_copy_factor(symbolic.get(), common.get());
   }
 
-  // Nested dissection of the mesh's vertex graph (edge cuts, widened where A couples edges further apart), then
-  // one CAMD ordering that keeps each separator after the parts it separates: CHOLMOD's NESDIS, on a graph a
-  // third the size. Empty when there is no mesh, or (never seen) when the separators do not separate A.
+  // Nested dissection of the mesh's vertex graph (edge cuts, widened where A couples edges further apart),
+  // then one CAMD ordering that keeps each separator after the parts it separates: CHOLMOD's NESDIS, on a
+  // graph a third the size. Empty when there is no mesh, or (never seen) when the separators do not separate
+  // A.
   std::vector<int> dissectionOrdering(cholmod_sparse& A) {
     const int32_t n = static_cast<int32_t>(A.ncol);
     if (ordering != FillOrdering::Metis || static_cast<int32_t>(edgeVertices.size()) != 2 * n) return {};
     const auto* Ap = static_cast<const int32_t*>(A.p);
     const auto* Ai = static_cast<const int32_t*>(A.i);
-    EdgeDissection d = dissectEdges(edgeVertices, numVertices, kDissectionLeafEdges, couplingOfUpperPattern(Ap, Ai, n));
+    EdgeDissection d =
+        dissectEdges(edgeVertices, numVertices, kDissectionLeafEdges, couplingOfUpperPattern(Ap, Ai, n));
     if (!separatesPattern(d, Ap, Ai, n)) return {};
     std::vector<int> perm(n);
     if (!cholmod_camd(&A, nullptr, 0, d.constraintSet.data(), perm.data(), common.get())) return {};
@@ -302,8 +304,8 @@ std::string FactoredSystem::description() const {
   return std::string(impl_->wasSupernodal ? "supernodal LL'" : "simplicial LDL'") +
          " factor, kept as simplicial LDL' for updates (" +
          (impl_->ordering == FillOrdering::Amd ? "AMD ordering)"
-          : impl_->usedDissection            ? "METIS nested dissection of the mesh's vertex graph)"
-                                             : "METIS nested dissection ordering)");
+          : impl_->usedDissection              ? "METIS nested dissection of the mesh's vertex graph)"
+                                               : "METIS nested dissection ordering)");
 }
 
 }  // namespace tvf

@@ -32,8 +32,8 @@ class FactoredSystem {
   // Throws InputError, before the numeric factorization, when the symbolic
   // analysis says the factor would need more than the memory limit.
   bool factor(const SparseMatrix& A);
-  // The mesh behind a 1-form system (2 vertices per edge, one edge per row of A): with it the METIS ordering is
-  // a nested dissection of the vertex graph (solver/edge_dissection.h) instead of CHOLMOD's of A's graph.
+  // The mesh behind a 1-form system (2 vertices per edge, one edge per row of A): with it the METIS ordering
+  // is a nested dissection of the vertex graph (solver/edge_dissection.h) instead of CHOLMOD's of A's graph.
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);
   void setMemoryLimit(double bytes);  // 0: no limit
   double estimatedBytes() const;      // the last analysis' estimate of the factor's peak memory

@@ -43,7 +43,7 @@ class ShiftedFactor {
   void setOrdering(FillOrdering ordering);  // forgets the factor and the ordering
   // The mesh's edges (2 vertices each): the METIS ordering dissects its vertex graph (FactoredSystem).
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);
-  void setMemoryLimit(double bytes);        // 0: the machine's physical memory
+  void setMemoryLimit(double bytes);  // 0: the machine's physical memory
   double memoryLimit() const;
 
   // Whether the factor stands for the current system: false before the first factorization, after

@@ -33,21 +33,31 @@ function texelStepStatistics({ width, height, pixels }, mag, big = 60) {
   return { across: across / nAcross, inside: inside / nInside };
 }
 
-// Animation frames the page draws while one tvf.synthesize(options) runs: {frames, stats}.
-function synthesisFrames(page, options) {
-  return page.evaluate(async (options) => {
-    let frames = 0, running = true;
-    const tick = () => {
-      frames++;
-      if (running) requestAnimationFrame(tick);
+// Animation frames the page draws while `run(arg)`, evaluated in the page, awaits a call made through
+// window.framesDuring(call): {frames, value}.
+async function framesDuring(page, run, arg) {
+  await page.evaluate(() => {
+    window.framesDuring ??= async (call) => {
+      let frames = 0, running = true;
+      const tick = () => {
+        frames++;
+        if (running) requestAnimationFrame(tick);
+      };
+      requestAnimationFrame(tick);
+      await new Promise((r) => requestAnimationFrame(() => r()));
+      frames = 0;
+      const value = await call();
+      running = false;
+      return { frames, value };
     };
-    requestAnimationFrame(tick);
-    await new Promise((r) => requestAnimationFrame(() => r()));
-    frames = 0;
-    const stats = await window.tvf.synthesize(options);
-    running = false;
-    return { frames, stats };
-  }, options);
+  });
+  return page.evaluate(run, arg);
+}
+
+// Animation frames the page draws while one tvf.synthesize(options) runs: {frames, stats}.
+async function synthesisFrames(page, options) {
+  const { frames, value } = await framesDuring(page, (o) => window.framesDuring(() => window.tvf.synthesize(o)), options);
+  return { frames, stats: value };
 }
 
 test.describe.serial('texture quality and responsiveness (flat square)', () => {
@@ -189,8 +199,8 @@ test.describe.serial('the generated atlas and the exemplar analysis are made off
   // core worker too. A new image exemplar is analysed while no texture is shown (so no synthesis follows);
   // the same image again comes from the page's cache and is the baseline.
   test('frames keep coming while a new exemplar is analysed', async () => {
-    const framesDuring = (seed) =>
-      page.evaluate(async (seed) => {
+    const analysed = async (seed) => {
+      const { frames, value } = await framesDuring(page, (seed) => {
         window.tvf.clearTexture();
         let state = seed;
         const random = () => ((state = (Math.imul(state, 1664525) + 1013904223) >>> 0) / 2 ** 32);
@@ -199,20 +209,12 @@ test.describe.serial('the generated atlas and the exemplar analysis are made off
           const v = 255 * (0.5 + 0.5 * Math.sin(i / 37 + 6 * random()));
           image.data.set([v, 255 - v, 128 * random(), 255], i);
         }
-        let frames = 0, running = true;
-        const tick = () => {
-          frames++;
-          if (running) requestAnimationFrame(tick);
-        };
-        requestAnimationFrame(tick);
-        await new Promise((r) => requestAnimationFrame(() => r()));
-        frames = 0;
-        const info = await window.tvf.setExemplar(image, { size: 128 });
-        running = false;
-        return { frames, cached: info.cached, analysisMs: info.analysisMs, levels: info.levels };
+        return window.framesDuring(() => window.tvf.setExemplar(image, { size: 128 }));
       }, seed);
-    const first = await framesDuring(11);
-    const cached = await framesDuring(11);
+      return { frames, cached: value.cached, analysisMs: value.analysisMs, levels: value.levels };
+    };
+    const first = await analysed(11);
+    const cached = await analysed(11);
     console.log(JSON.stringify({ framesWhileAnalysed: first.frames, framesCached: cached.frames, analysisMs: first.analysisMs }));
     expect(first.cached).toBe(false);
     expect(cached.cached).toBe(true);

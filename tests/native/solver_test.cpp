@@ -6,7 +6,6 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <cmath>
-
 #include <numeric>
 
 #include "dec/hodge_star.h"
@@ -81,8 +80,9 @@ std::vector<int32_t> componentsWithout(const SparseMatrix& A, const std::vector<
 
 // The dissection of the vertex graph: removing the top separator's edges leaves no path in the matrix's graph
 // between the edges of its two sides (checked by a breadth-first search of the matrix's own pattern), so its
-// ordering keeps the fill local. The bi-Laplacian couples edges two vertex-steps apart: the plain edge cut does
-// not separate it, the cut widened from its pattern does. Free and fixed-angle boundaries, likewise, use it.
+// ordering keeps the fill local. The bi-Laplacian couples edges two vertex-steps apart: the plain edge cut
+// does not separate it, the cut widened from its pattern does. Free and fixed-angle boundaries, likewise, use
+// it.
 TEST(EdgeDissection, SeparatorsCutTheMatrixTheyAreMadeFor) {
   const SurfaceMesh m = torus(60, 40, 2.0, 0.7);  // 7200 edges
   const MeshTopology t = buildTopology(m);
@@ -95,7 +95,8 @@ TEST(EdgeDissection, SeparatorsCutTheMatrixTheyAreMadeFor) {
                         couplingOfUpperPattern(upper.outerIndexPtr(), upper.innerIndexPtr(), t.numEdges));
   };
   auto separates = [](const EdgeDissection& d, const SparseMatrix& upper) {
-    return separatesPattern(d, upper.outerIndexPtr(), upper.innerIndexPtr(), static_cast<int32_t>(upper.cols()));
+    return separatesPattern(d, upper.outerIndexPtr(), upper.innerIndexPtr(),
+                            static_cast<int32_t>(upper.cols()));
   };
   auto sidesDisconnected = [](const EdgeDissection& d, const SparseMatrix& A) {
     const int32_t top = static_cast<int32_t>(d.firstSet.size()) - 1;
@@ -107,7 +108,9 @@ TEST(EdgeDissection, SeparatorsCutTheMatrixTheyAreMadeFor) {
     for (size_t e = 0; e < keep.size(); ++e) {
       if (!keep[e]) continue;
       const int32_t s = d.constraintSet[e];
-      const int here = s >= left.first && s <= left.second ? 0 : s >= right.first && s <= right.second ? 1 : 2;
+      const int here = s >= left.first && s <= left.second     ? 0
+                       : s >= right.first && s <= right.second ? 1
+                                                               : 2;
       if (here == 2) return false;
       if (side[component[e]] >= 0 && side[component[e]] != here) return false;
       side[component[e]] = here;
@@ -115,7 +118,8 @@ TEST(EdgeDissection, SeparatorsCutTheMatrixTheyAreMadeFor) {
     return true;
   };
   auto topSeparatorSize = [](const EdgeDissection& d) {
-    return std::count(d.constraintSet.begin(), d.constraintSet.end(), static_cast<int32_t>(d.firstSet.size()) - 1);
+    return std::count(d.constraintSet.begin(), d.constraintSet.end(),
+                      static_cast<int32_t>(d.firstSet.size()) - 1);
   };
 
   const EdgeDissection forM = dissect(upperM), forB = dissect(upperB);
