@@ -10,8 +10,8 @@ namespace {
 class Dissector {
  public:
   Dissector(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
-            const EdgeCoupling& coupling)
-      : ev_(edgeVertices), coupling_(coupling), leafEdges_(leafEdges), local_(numVertices, -1) {
+            const SparseMatrix& A)
+      : ev_(edgeVertices), A_(A), leafEdges_(leafEdges), local_(numVertices, -1) {
     const int32_t nE = static_cast<int32_t>(edgeVertices.size() / 2);
     incidentStart_.assign(numVertices + 1, 0);
     for (const int32_t v : edgeVertices) ++incidentStart_[v + 1];
@@ -77,8 +77,7 @@ class Dissector {
     std::vector<int32_t> kept;
     for (const int32_t e : side[0]) {
       bool coupled = false;
-      for (int32_t p = coupling_.start[e]; p < coupling_.start[e + 1] && !coupled; ++p)
-        coupled = edgeSide_[coupling_.index[p]] == 1;
+      for (SparseMatrix::InnerIterator it(A_, e); it && !coupled; ++it) coupled = edgeSide_[it.row()] == 1;
       (coupled ? separator : kept).push_back(e);
     }
     for (int k = 0; k < 2; ++k)
@@ -127,7 +126,7 @@ class Dissector {
   }
 
   const std::vector<int32_t>& ev_;
-  const EdgeCoupling& coupling_;
+  const SparseMatrix& A_;
   int32_t leafEdges_;
   std::vector<int32_t> local_, incidentStart_, incident_, edgePart_, edgeSide_;
   int32_t tag_ = 0;
@@ -136,38 +135,18 @@ class Dissector {
 
 }  // namespace
 
-EdgeCoupling couplingOfUpperPattern(const int32_t* colStart, const int32_t* rowIndex, int32_t n) {
-  EdgeCoupling c;
-  c.start.assign(n + 1, 0);
-  for (int32_t j = 0; j < n; ++j)
-    for (int32_t p = colStart[j]; p < colStart[j + 1]; ++p)
-      if (rowIndex[p] != j) ++c.start[j + 1], ++c.start[rowIndex[p] + 1];
-  for (int32_t j = 0; j < n; ++j) c.start[j + 1] += c.start[j];
-  c.index.resize(c.start[n]);
-  std::vector<int32_t> fill(c.start.begin(), c.start.end() - 1);
-  for (int32_t j = 0; j < n; ++j)
-    for (int32_t p = colStart[j]; p < colStart[j + 1]; ++p) {
-      const int32_t i = rowIndex[p];
-      if (i == j) continue;
-      c.index[fill[j]++] = i;
-      c.index[fill[i]++] = j;
-    }
-  return c;
-}
-
 EdgeDissection dissectEdges(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
-                            const EdgeCoupling& coupling) {
-  return Dissector(edgeVertices, numVertices, leafEdges, coupling).run(numVertices);
+                            const SparseMatrix& A) {
+  return Dissector(edgeVertices, numVertices, leafEdges, A).run(numVertices);
 }
 
-bool separatesPattern(const EdgeDissection& dissection, const int32_t* colStart, const int32_t* rowIndex,
-                      int32_t n) {
+bool separatesPattern(const EdgeDissection& dissection, const SparseMatrix& A) {
   const std::vector<int32_t>& set = dissection.constraintSet;
   const std::vector<int32_t>& first = dissection.firstSet;
   auto inSubtree = [&](int32_t s, int32_t root) { return first[root] <= s && s <= root; };
-  for (int32_t j = 0; j < n; ++j)
-    for (int32_t p = colStart[j]; p < colStart[j + 1]; ++p) {
-      const int32_t a = set[rowIndex[p]], b = set[j];
+  for (int32_t j = 0; j < A.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+      const int32_t a = set[it.row()], b = set[j];
       if (!inSubtree(a, b) && !inSubtree(b, a)) return false;
     }
   return true;

@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/sparse_matrix.h"
+
 namespace tvf {
 
 struct EdgeDissection {
@@ -20,19 +22,14 @@ struct EdgeDissection {
   std::vector<int32_t> firstSet;
 };
 
-// The symmetric sparsity pattern of the system (both triangles, compressed columns; one column per edge).
-struct EdgeCoupling {
-  std::vector<int32_t> start, index;
-};
-EdgeCoupling couplingOfUpperPattern(const int32_t* colStart, const int32_t* rowIndex, int32_t n);
-
-// edgeVertices: 2 per edge. Parts with at most leafEdges edges are not cut further.
+// edgeVertices: 2 per edge. A: the system (symmetric, both triangles stored; one row and column per edge),
+// whose pattern decides which edges the separators must part. Parts with at most leafEdges edges are not cut
+// further.
 EdgeDissection dissectEdges(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
-                            const EdgeCoupling& coupling);
+                            const SparseMatrix& A);
 
-// Whether the symmetric pattern (upper triangle, compressed columns, n columns) couples no two edges whose
-// sets lie in different subtrees, i.e. the dissection's separators separate this matrix.
-bool separatesPattern(const EdgeDissection& dissection, const int32_t* colStart, const int32_t* rowIndex,
-                      int32_t n);
+// Whether A (both triangles stored) couples no two edges whose sets lie in different subtrees, i.e. the
+// dissection's separators separate A.
+bool separatesPattern(const EdgeDissection& dissection, const SparseMatrix& A);
 
 }  // namespace tvf

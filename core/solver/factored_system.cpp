@@ -107,10 +107,10 @@ struct FactoredSystem::Impl {
 
   // A fresh copy of the symbolic factor of A: the saved one when A's pattern is unchanged, else a new
   // analysis.
-  cholmod_factor* analyzeOrReuse(cholmod_sparse& A) {
+  cholmod_factor* analyzeOrReuse(cholmod_sparse& A, const SparseMatrix& full) {
     timings.analysisReused = symbolic && samePattern(A, symbolicP, symbolicI);
     if (!timings.analysisReused) {
-      symbolic.reset(analyze(A));
+      symbolic.reset(analyze(A, full));
       if (!symbolic) return nullptr;
       symbolicLnz = common->lnz;
       symbolicFl = common->fl;
@@ -128,23 +128,21 @@ struct FactoredSystem::Impl {
   // then one CAMD ordering that keeps each separator after the parts it separates: CHOLMOD's NESDIS, on a
   // graph a third the size. Empty when there is no mesh, or (never seen) when the separators do not separate
   // A.
-  std::vector<int> dissectionOrdering(cholmod_sparse& A) {
+  std::vector<int> dissectionOrdering(cholmod_sparse& A, const SparseMatrix& full) {
     const int32_t n = static_cast<int32_t>(A.ncol);
     if (ordering != FillOrdering::Metis || static_cast<int32_t>(edgeVertices.size()) != 2 * n) return {};
-    const auto* Ap = static_cast<const int32_t*>(A.p);
-    const auto* Ai = static_cast<const int32_t*>(A.i);
-    EdgeDissection d =
-        dissectEdges(edgeVertices, numVertices, kDissectionLeafEdges, couplingOfUpperPattern(Ap, Ai, n));
-    if (!separatesPattern(d, Ap, Ai, n)) return {};
+    EdgeDissection d = dissectEdges(edgeVertices, numVertices, kDissectionLeafEdges, full);
+    if (!separatesPattern(d, full)) return {};
     std::vector<int> perm(n);
     if (!cholmod_camd(&A, nullptr, 0, d.constraintSet.data(), perm.data(), common.get())) return {};
     usedDissection = true;
     return perm;
   }
 
-  cholmod_factor* analyze(cholmod_sparse& A) {
+  // full: A with both triangles, whose pattern the dissection must respect.
+  cholmod_factor* analyze(cholmod_sparse& A, const SparseMatrix& full) {
     usedDissection = false;
-    std::vector<int> perm = dissectionOrdering(A);
+    std::vector<int> perm = dissectionOrdering(A, full);
     if (perm.empty()) return cholmod_analyze(&A, common.get());
     cholmod_common& c = *common.get();
     const auto saved = c.method[0];
@@ -184,7 +182,7 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
   upper.makeCompressed();
   cholmod_sparse view = Impl::upperView(upper);
   auto start = std::chrono::steady_clock::now();
-  s.factor.reset(s.analyzeOrReuse(view));
+  s.factor.reset(s.analyzeOrReuse(view, A));
   if (!s.factor) throw std::runtime_error("CHOLMOD analysis failed (out of memory?)");
   s.n = static_cast<int>(A.rows());
   s.timings.analyzeMs = msSince(start);
@@ -266,6 +264,14 @@ void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   s.solution.reset(out);
   if (!out) throw std::runtime_error("CHOLMOD solve failed");
   x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(out->x), b.size());
+}
+
+void FactoredSystem::setOrdering(FillOrdering ordering) {
+  auto next = std::make_unique<Impl>(ordering);
+  next->edgeVertices = std::move(impl_->edgeVertices);
+  next->numVertices = impl_->numVertices;
+  next->memoryLimit = impl_->memoryLimit;
+  impl_ = std::move(next);
 }
 
 void FactoredSystem::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices) {

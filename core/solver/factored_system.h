@@ -32,6 +32,8 @@ class FactoredSystem {
   // Throws InputError, before the numeric factorization, when the symbolic
   // analysis says the factor would need more than the memory limit.
   bool factor(const SparseMatrix& A);
+  // Forgets the factor and the symbolic analysis; the next factor() orders with `ordering`.
+  void setOrdering(FillOrdering ordering);
   // The mesh behind a 1-form system (2 vertices per edge, one edge per row of A): with it the METIS ordering
   // is a nested dissection of the vertex graph (solver/edge_dissection.h) instead of CHOLMOD's of A's graph.
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);

@@ -49,15 +49,12 @@ ShiftedFactor::ShiftedFactor(std::vector<uint8_t> kernelEdges, FillOrdering orde
 }
 
 void ShiftedFactor::setOrdering(FillOrdering ordering) {
-  system_ = FactoredSystem(ordering);
-  system_.setEdgeGraph(edgeVertices_, numVertices_);
+  system_.setOrdering(ordering);
   stale_ = true;
 }
 
 void ShiftedFactor::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices) {
-  edgeVertices_ = std::move(edgeVertices);
-  numVertices_ = numVertices;
-  system_.setEdgeGraph(edgeVertices_, numVertices_);
+  system_.setEdgeGraph(std::move(edgeVertices), numVertices);
   stale_ = true;
 }
 

@@ -79,8 +79,6 @@ class ShiftedFactor {
   std::vector<uint8_t> kernelEdges_;
   bool anyKernel_ = false;
   FactoredSystem system_;
-  std::vector<int32_t> edgeVertices_;
-  int32_t numVertices_ = 0;
   bool stale_ = true;
   double memoryLimit_ = 0;
   double shift_ = 0;
