@@ -5,7 +5,7 @@ import { mkdirSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, test } from '@playwright/test';
-import { centreCoverage, openDesigner, trackErrors } from './helpers.mjs';
+import { centreCoverage, openDesignerPage } from './helpers.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const OUT = resolve(ROOT, 'test-results/views');
@@ -24,9 +24,7 @@ test.describe.serial('camera and help', () => {
   const settle = () => evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage({ viewport: { width: 1024, height: 720 } });
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser, { viewport: { width: 1024, height: 720 } }));
     mkdirSync(OUT, { recursive: true });
   });
 

@@ -4,7 +4,7 @@
 // These tests hold each of those against the core's own read-outs (derived by the core, eagerly, on request)
 // after a sequence of edits of every kind, a refused edit, undo and redo, and against the page's own tracer.
 import { expect, test } from '@playwright/test';
-import { CENTRE, openDesigner, readMesh, topFacePair, trackErrors } from './helpers.mjs';
+import { CENTRE, readMesh, topFacePair, openDesignerPage } from './helpers.mjs';
 
 test.describe.serial('lazily derived read-outs', () => {
   let page, errors, mesh;
@@ -38,9 +38,7 @@ test.describe.serial('lazily derived read-outs', () => {
   };
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage({ viewport: { width: 1024, height: 720 } });
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser, { viewport: { width: 1024, height: 720 } }));
     mesh = await readMesh(page);
   });
 

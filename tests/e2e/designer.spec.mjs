@@ -2,20 +2,7 @@
 // deleting it through the UI, and a broken file that must leave the current model usable.
 import { writeFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
-import {
-  CENTRE,
-  angleInPlane,
-  centreCoverage,
-  faceNormal,
-  faceVector,
-  norm,
-  openDesigner,
-  relativeDifference,
-  sub,
-  surfacePoint,
-  topFacePair,
-  trackErrors,
-} from './helpers.mjs';
+import { CENTRE, angleInPlane, centreCoverage, faceNormal, faceVector, norm, openDesigner, relativeDifference, sub, surfacePoint, topFacePair, trackErrors, openDesignerPage } from './helpers.mjs';
 
 const INFO_KEYS = ['vertices', 'edges', 'faces', 'components', 'boundaryLoops', 'eulerCharacteristic', 'genus', 'problems'];
 
@@ -47,9 +34,7 @@ test.describe.serial('a stroke drawn with the mouse', () => {
   let page, errors, mesh, baselineField, strokeId, strokePoints;
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage();
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser));
     mesh = await page.evaluate(() => {
       const m = window.tvf.mesh();
       return { positions: Array.from(m.positions), triangles: Array.from(m.triangles) };

@@ -19,6 +19,14 @@ export async function openDesigner(page) {
   await page.evaluate(() => window.tvf.ready.then(() => true));
 }
 
+// A new page (browser.newPage options) with the designer open and its console errors collected: {page, errors}.
+export async function openDesignerPage(browser, options) {
+  const page = await browser.newPage(options);
+  const errors = trackErrors(page);
+  await openDesigner(page);
+  return { page, errors };
+}
+
 // Fraction of pixels in the central box of the WebGL canvas that differ from the background colour.
 export function centreCoverage(page, box = 0.3) {
   return page.evaluate((box) => {

@@ -7,7 +7,7 @@ import { mkdirSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, test } from '@playwright/test';
-import { openDesigner, trackErrors } from './helpers.mjs';
+import { openDesigner, trackErrors, openDesignerPage } from './helpers.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const OUT = resolve(ROOT, 'test-results/views');
@@ -70,9 +70,7 @@ test.describe.serial('flow-texture view', () => {
   const settle = () => evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage({ viewport: { width: 1024, height: 720 } });
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser, { viewport: { width: 1024, height: 720 } }));
     mkdirSync(OUT, { recursive: true });
     await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'square.off', restore: false }), squareOff(24));
     await evaluate(() => window.tvf.setViews({ arrows: false, streamlines: false, singularities: false, colorMap: false }));

@@ -6,7 +6,7 @@ import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, test } from '@playwright/test';
-import { openDesigner, readMesh, relativeDifference, topFacePair, trackErrors } from './helpers.mjs';
+import { openDesigner, readMesh, relativeDifference, topFacePair, trackErrors, openDesignerPage } from './helpers.mjs';
 import { icosphereOff } from '../icosphere.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
@@ -43,9 +43,7 @@ test.describe.serial('nothing a user does or loads loses their work', () => {
   };
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage();
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser));
     mesh = await readMesh(page);
   });
   test.afterAll(async () => {

@@ -10,31 +10,7 @@ import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, test } from '@playwright/test';
-import {
-  CENTRE,
-  angleInPlane,
-  boundaryEdges,
-  centroid,
-  cornerAngle,
-  cross,
-  dot,
-  edgeIndex,
-  edgeValue,
-  faceNormal,
-  faceVector,
-  facesAround,
-  nearestCorner,
-  norm,
-  openDesigner,
-  readMesh,
-  relativeDifference,
-  sub,
-  surfacePoint,
-  subdividedOff,
-  topFacePair,
-  trackErrors,
-  vertex,
-} from './helpers.mjs';
+import { CENTRE, angleInPlane, boundaryEdges, centroid, cornerAngle, cross, dot, edgeIndex, edgeValue, faceNormal, faceVector, facesAround, nearestCorner, norm, readMesh, relativeDifference, sub, surfacePoint, subdividedOff, topFacePair, vertex, openDesignerPage } from './helpers.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const TVF = resolve(ROOT, 'build/tvf');
@@ -70,9 +46,7 @@ test.describe.serial('the design studio', () => {
   }
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage({ viewport: { width: 1024, height: 720 } });
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser, { viewport: { width: 1024, height: 720 } }));
     mesh = await readMesh(page);
   });
 

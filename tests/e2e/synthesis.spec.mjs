@@ -12,7 +12,7 @@ import { flatSquareGlb } from '../../web/synthesis/glb.js';
 import { defaultFeatureScale, shapeComplexity } from '../../web/synthesis/index.js';
 import { seamIndirection } from '../../web/synthesis/seams.js';
 import { icosphereOff } from '../icosphere.mjs';
-import { openDesigner, trackErrors, surfacePointsAlongScreenLine } from './helpers.mjs';
+import { surfacePointsAlongScreenLine, openDesignerPage } from './helpers.mjs';
 import {
   colourAt,
   colourHistogram,
@@ -75,9 +75,7 @@ test.describe.serial('texture synthesis on a flat square', () => {
   let page, errors, mesh;
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage();
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser));
     const glb = Array.from(flatSquareGlb(16));
     await page.evaluate((bytes) => window.tvf.loadModel(new Uint8Array(bytes), { name: 'flat-square.glb' }), glb);
     mesh = await page.evaluate(() => {
@@ -249,9 +247,7 @@ test.describe.serial('texture synthesis on a curved model (the default bunny, ge
   let page, errors;
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage();
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser));
   });
 
   test.afterAll(async () => {

@@ -10,7 +10,7 @@ import { expect, test } from '@playwright/test';
 import bunny from 'bunny';
 import { generateAtlas } from '../../web/synthesis/atlas.js';
 import createTvfCore from '../../build-wasm/tvf_core.mjs';
-import { openDesigner, trackErrors, surfacePointsAlongScreenLine } from './helpers.mjs';
+import { surfacePointsAlongScreenLine, openDesignerPage } from './helpers.mjs';
 import { neighbourhoodEnergy, randomCoordinates } from './synthesis-metrics.mjs';
 import { pixelLength, readGlb, seamJumpRatio, stripeAlignment } from './surface-texture-metrics.mjs';
 
@@ -166,9 +166,7 @@ async function measureModel(page, testInfo, { name, bytes }) {
 test.describe.serial('exported GLB at the default settings', () => {
   let page, errors;
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage();
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser));
   });
   test.afterAll(async () => {
     await page?.close();

@@ -7,7 +7,7 @@
 // - "update texture automatically" off: field changes leave the texture as it is (marked stale) until it is on.
 import { expect, test } from '@playwright/test';
 import { flatSquareGlb } from '../../web/synthesis/glb.js';
-import { openDesigner, trackErrors } from './helpers.mjs';
+import { openDesignerPage } from './helpers.mjs';
 import { decodePng } from './surface-texture-metrics.mjs';
 
 
@@ -64,9 +64,7 @@ test.describe.serial('texture quality and responsiveness (flat square)', () => {
   let page, errors, face;
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage();
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser));
     await page.evaluate((bytes) => window.tvf.loadModel(new Uint8Array(bytes), { name: 'flat-square.glb' }), Array.from(flatSquareGlb(8)));
     face = 0;
     await page.evaluate(() => window.tvf.setExemplar('stripes'));
@@ -175,9 +173,7 @@ test.describe.serial('the generated atlas and the exemplar analysis are made off
   let page, errors;
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage();
-    errors = trackErrors(page);
-    await openDesigner(page); // the default model: the bunny, whose TEXCOORD_0 is not a usable atlas
+    ({ page, errors } = await openDesignerPage(browser)); // the default model: the bunny, whose TEXCOORD_0 is not a usable atlas
     await page.evaluate(() => window.tvf.setExemplar('stripes'));
   });
 

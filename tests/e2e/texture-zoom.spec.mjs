@@ -6,7 +6,7 @@
 // (each pixel from its own texel's patch only), which does step at texel boundaries.
 import { expect, test } from '@playwright/test';
 import { flatSquareGlb } from '../../web/synthesis/glb.js';
-import { openDesigner, trackErrors } from './helpers.mjs';
+import { openDesignerPage } from './helpers.mjs';
 import { decodePng } from './surface-texture-metrics.mjs';
 
 const R = 64; // atlas resolution
@@ -37,9 +37,7 @@ test.describe.serial('zoomed 3D view of the textured flat square', () => {
   let page, errors;
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage();
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser));
     await page.evaluate((bytes) => window.tvf.loadModel(new Uint8Array(bytes), { name: 'flat-square.glb' }), Array.from(flatSquareGlb(8)));
     await page.evaluate(() => window.tvf.setExemplar('stripes'));
   });

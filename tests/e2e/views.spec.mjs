@@ -5,7 +5,7 @@ import { mkdirSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, test } from '@playwright/test';
-import { CENTRE, cross, dot, faceCorners, facesAround, norm, openDesigner, readMesh, sub, subdividedOff, topFacePair, trackErrors, vertex } from './helpers.mjs';
+import { CENTRE, cross, dot, faceCorners, facesAround, norm, readMesh, sub, subdividedOff, topFacePair, vertex, openDesignerPage } from './helpers.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const OUT = resolve(ROOT, 'test-results/views');
@@ -44,9 +44,7 @@ test.describe.serial('field views', () => {
   };
 
   test.beforeAll(async ({ browser }) => {
-    page = await browser.newPage({ viewport: { width: 1024, height: 720 } });
-    errors = trackErrors(page);
-    await openDesigner(page);
+    ({ page, errors } = await openDesignerPage(browser, { viewport: { width: 1024, height: 720 } }));
     mkdirSync(OUT, { recursive: true });
   });
 
