@@ -63,6 +63,7 @@ struct Samples {
       strokeSolve, reconstruct;
   double nnzPerRowM = 0, nnzPerRowL = 0;
   int strokeEdges = 0;  // edges the benchmark stroke crosses (one per step between adjacent faces)
+  int strokeRefactors = 0;  // stroke solves that refactored (an updated factor found wanting): timings void
   std::string factorKind;
 };
 
@@ -88,6 +89,7 @@ void runRepeat(Designer& designer, const MeshTopology& topology, int r, bool met
   s.update.push_back(designer.stats().updateMs);
   designer.remove(id);
   const auto points = stripStroke(designer.mesh(), topology, (r * 104729 + 7) % nF, 50);
+  const int32_t refactorsBefore = designer.stats().precisionRefactors;
   // Mouse-up to new one-form: the surface walk, the rank-k update, the right-hand side and the solve
   // (reconstruction is reported on its own).
   const double total = timeMs([&] {
@@ -100,6 +102,7 @@ void runRepeat(Designer& designer, const MeshTopology& topology, int r, bool met
   s.strokeRows.push_back(designer.stats().rowsMs);
   s.strokeRhs.push_back(designer.stats().rhsMs);
   s.strokeSolve.push_back(designer.stats().solveMs);
+  s.strokeRefactors += designer.stats().precisionRefactors - refactorsBefore;
   s.nnzPerRowM = designer.stats().nnzPerRowM;
   s.nnzPerRowL = designer.stats().nnzPerRowL;
   s.factorKind = designer.stats().factorKind;
@@ -118,6 +121,7 @@ nlohmann::json summary(const Samples& s, bool metis) {
           {"strokeRhsMs", median(s.strokeRhs)},
           {"strokeSolveMs", median(s.strokeSolve)},
           {"strokeEdges", s.strokeEdges},
+          {"strokeRefactors", s.strokeRefactors},
           {"reconstructMs", median(s.reconstruct)},
           {"ordering", metis ? "metis" : "amd"},
           {"factorKind", s.factorKind}};

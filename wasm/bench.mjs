@@ -136,7 +136,7 @@ async function measureWasm(mesh, opts) {
   const nF = tri.length / 3;
   const orderings = opts.compare ? [true, false] : [!opts.amd];
   const samples = orderings.map(() => ({ analyze: [], factor: [], solve: [], update: [], stroke: [], strokeUpdate: [],
-    strokeRows: [], strokeRhs: [], strokeSolve: [], reconstruct: [], factorCall: [], solveCall: [], updateCall: [] }));
+    strokeRows: [], strokeRhs: [], strokeSolve: [], reconstruct: [], factorCall: [], solveCall: [], updateCall: [], strokeRefactors: 0 }));
   const last = [];
   const statsNow = () => JSON.parse(d.statsJson());
   // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
@@ -171,6 +171,7 @@ async function measureWasm(mesh, opts) {
       s.update.push(statsNow().updateMs);
       if (!d.remove(id)) fail('remove', d.lastError());
       const strip = faceStrip(pos, tri, nb, (r * 104729 + 7) % nF, 50);
+      const refactorsBefore = statsNow().precisionRefactors;
       // Mouse-up to new one-form: the walk, the rank-k update, the right-hand side and the solve
       // (reconstruction reported on its own).
       t = performance.now();
@@ -184,6 +185,7 @@ async function measureWasm(mesh, opts) {
       s.strokeRhs.push(stats.rhsMs);
       s.strokeSolve.push(stats.solveMs);
       s.strokeEdges = strip.length / 4 - 1;
+      s.strokeRefactors += stats.precisionRefactors - refactorsBefore;
       last[o] = stats;
     });
   d.delete();
@@ -193,6 +195,7 @@ async function measureWasm(mesh, opts) {
     analyzeMs: median(s.analyze), factorMs: median(s.factor), solveMs: median(s.solve), updateMs: median(s.update),
     strokeUpdateSolveMs: median(s.stroke), strokeUpdateMs: median(s.strokeUpdate), strokeRowsMs: median(s.strokeRows),
     strokeRhsMs: median(s.strokeRhs), strokeSolveMs: median(s.strokeSolve), strokeEdges: s.strokeEdges,
+    strokeRefactors: s.strokeRefactors,
     reconstructMs: median(s.reconstruct),
     factorCallMs: median(s.factorCall), solveCallMs: median(s.solveCall), updateCallMs: median(s.updateCall),
     repeat: opts.repeat, warmUp: opts.warmup === false ? 'none' : String(opts.warmup), settleMs: opts.settle,

@@ -298,6 +298,7 @@ json statsJson(const DesignStats& s) {
           {"rowsMs", s.rowsMs},
           {"rhsMs", s.rhsMs},
           {"analysisReused", s.analysisReused},
+          {"precisionRefactors", s.precisionRefactors},
           {"nnzPerRowM", s.nnzPerRowM},
           {"nnzPerRowL", s.nnzPerRowL},
           {"positiveAreaFallbackVertices", s.positiveAreaFallbackVertices},

@@ -270,6 +270,7 @@ void Designer::solve() {
   Eigen::VectorXd x;
   d.factor.solve(d.base, d.scale, d.constraintTerms(), b, x);
   d.stats.solveMs = msSince(start);
+  d.stats.precisionRefactors = d.factor.precisionRefactors();
   d.copyFactorReport();  // the solve refactors when an updated factor lost precision
   if (!x.allFinite())
     throw InputError(

@@ -23,6 +23,9 @@ struct DesignStats {
   double rowsMs = 0;            // the last added constraint's rows (a stroke's surface walk)
   double rhsMs = 0;             // the last solve's right-hand side
   bool analysisReused = false;  // the last factorization reused the ordering (unchanged sparsity pattern)
+  // Solves that found the updated factor wanting (backward error beyond round-off) and refactored: a
+  // benchmark that times updates must see none.
+  int32_t precisionRefactors = 0;
   double nnzPerRowM = 0, nnzPerRowL = 0;
   int32_t positiveAreaFallbackVertices = 0;
   std::string kernelHandling;  // how the kernel of M was made definite

@@ -413,14 +413,12 @@ bool selfOverlaps(const SurfaceMesh& mesh, const Chart& chart) {
   return false;
 }
 
-// Why a flattened chart cannot be used as it is; empty when it can.
+// Whether a flattened chart can be used as it is: no flipped triangle, a bounded density spread, no overlap.
 bool chartAcceptable(const SurfaceMesh& mesh, const Chart& chart, const FaceGeometry& g) {
   std::vector<std::pair<double, double>> density;
-  double uvArea = 0;
   for (size_t j = 0; j < chart.faces.size(); ++j) {
     const double a = signedArea2(&chart.uv[6 * j]) / 2;
     if (!(a > 0)) return false;  // flipped or degenerate
-    uvArea += a;
     density.push_back({std::sqrt(a / g.areas[chart.faces[j]]), g.areas[chart.faces[j]]});
   }
   if (chart.faces.size() == 1) return true;

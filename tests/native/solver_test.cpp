@@ -7,6 +7,7 @@
 #include <Eigen/SparseCholesky>
 #include <cmath>
 #include <numeric>
+#include <random>
 
 #include "dec/hodge_star.h"
 #include "dec/one_form_laplacian.h"
@@ -14,6 +15,7 @@
 #include "mesh/mesh_checks.h"
 #include "mesh/mesh_topology.h"
 #include "solver/edge_dissection.h"
+#include "solver/factored_system.h"
 #include "solver/shifted_factor.h"
 #include "test_fields.h"
 #include "test_meshes.h"
@@ -248,6 +250,58 @@ TEST(Solver, UpdatesEqualAFreshFactorization) {
   Eigen::SimplicialLDLT<SparseMatrix> ldlt(A);
   const Eigen::VectorXd x = ldlt.solve(rhs);
   EXPECT_LT((x - asVector(incremental.oneForm())).norm() / x.norm(), 1e-9);
+}
+
+// The factor itself after rank updates and downdates, with no refinement or refactoring behind it (the session's
+// solve would hide a wrong update by refactoring). cholmod_updown takes the columns up to 8 at a time in kernels
+// for ranks 1 to 8 along paths of 1, 2 and 4 columns, with rows in lane pairs and an odd last row (patched,
+// wasm/patches/cholmod-updown-row-pairs.patch): every rank from 1 to 8, several passes, a stroke-like run of
+// neighbouring edges and scattered ones, each checked against a fresh factorization of the modified matrix.
+TEST(FactoredSystem, UpdatesAndDowndatesOfEveryRankSolveTheModifiedMatrix) {
+  Designer d(icosphere(4));  // closed, genus 0: M is definite; 7680 edges, dense separators at the top
+  const SparseMatrix base = d.baseMatrix();
+  const double scale = d.weightScale();
+  const int32_t n = static_cast<int32_t>(base.rows());
+  const auto factorOf = [&](const SparseMatrix& A) {
+    FactoredSystem f;
+    f.setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
+    EXPECT_TRUE(f.factor(A));
+    return f;
+  };
+  FactoredSystem updated = factorOf(base);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  std::vector<DiagonalTerms> held;  // the updates the factor holds, in order
+  const auto expectSolvesTheHeldMatrix = [&](const std::string& what) {
+    DiagonalTerms all;
+    for (const DiagonalTerms& t : held) all = concatenate(all, t);
+    const SparseMatrix A = plusDiagonal(base, all);
+    Eigen::VectorXd x, y;
+    updated.solve(b, x);
+    factorOf(A).solve(b, y);
+    EXPECT_LT((x - y).norm() / y.norm(), 1e-11) << what;
+    EXPECT_LT((A * x - b).norm() / b.norm(), 1e-11) << what;
+  };
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> weight(0.1, 10.0);
+  int32_t next = 0;
+  for (const int k : {1, 2, 3, 4, 5, 6, 7, 8, 9, 13, 50}) {
+    DiagonalTerms t;
+    // Half a run of consecutive edge indices (neighbours on the mesh, like a stroke's), half scattered.
+    for (int c = 0; c < k; ++c) {
+      next = (c % 2 == 0) ? (next + 1) % n : static_cast<int32_t>(random() % n);
+      t.rows.push_back(next);
+      t.weights.push_back(weight(random) * scale);
+    }
+    updated.updateDiagonal(t.rows, t.weights, false);
+    held.push_back(t);
+    expectSolvesTheHeldMatrix("after an update of rank " + std::to_string(k));
+  }
+  while (!held.empty()) {
+    const DiagonalTerms t = held.back();
+    updated.updateDiagonal(t.rows, t.weights, true);
+    held.pop_back();
+    expectSolvesTheHeldMatrix("after a downdate of rank " + std::to_string(t.rows.size()));
+  }
 }
 
 TEST(Solver, RemovingEverythingReturnsToTheOriginalField) {
