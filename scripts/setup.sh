@@ -8,9 +8,12 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 DEB_PACKAGES=(build-essential cmake libeigen3-dev libsuitesparse-dev libtinygltf-dev nlohmann-json3-dev
-  libgtest-dev libopenblas0 libmetis-dev emscripten chromium dpkg-dev clang libclang-rt-14-dev libstb-dev libpng-dev)
+  libgtest-dev libopenblas0 libmetis-dev emscripten chromium dpkg-dev clang libclang-rt-14-dev libstb-dev libpng-dev
+  libfast-float-dev)
 # libstb-dev: stb_image_write encodes flow maps (native and wasm alike); libpng-dev: the tests decode them with
 # an independent reader.
+# libfast-float-dev: exact, locale-independent number parsing for OFF/OBJ/PLY (emscripten's libc++ has no
+# floating-point from_chars, and its strtod is slow).
 # libopenblas0: CHOLMOD's supernodal factorization runs 2-3x faster on it than on the reference BLAS.
 # clang + libclang-rt-14-dev: libFuzzer (libclang_rt.fuzzer-x86_64.a) and its sanitizers, for scripts/fuzz.sh.
 

@@ -40,6 +40,7 @@ command -v cmake >/dev/null || die "cmake not found"
 [ -f /usr/include/nlohmann/json.hpp ] || die "nlohmann/json.hpp not found (apt-get install nlohmann-json3-dev)"
 [ -f /usr/include/tiny_gltf.h ] || die "tiny_gltf.h not found (apt-get install libtinygltf-dev)"
 [ -f /usr/include/stb/stb_image_write.h ] || die "stb_image_write.h not found (apt-get install libstb-dev)"
+[ -f /usr/include/fast_float/fast_float.h ] || die "fast_float.h not found (apt-get install libfast-float-dev)"
 
 start=$(date +%s.%N)
 
@@ -60,6 +61,7 @@ mkdir -p "$INC"
 ln -sfn /usr/include/nlohmann "$INC/nlohmann"
 ln -sfn /usr/include/tiny_gltf.h "$INC/tiny_gltf.h"
 ln -sfn /usr/include/stb "$INC/stb"  # stb_image_write for flow maps (libstb-dev)
+ln -sfn /usr/include/fast_float "$INC/fast_float"  # number parsing for OFF/OBJ/PLY (libfast-float-dev)
 
 # 3. Configure once (reconfigure only when the CHOLMOD folder changed or the cache is missing).
 want="$CHOLMOD_WASM"

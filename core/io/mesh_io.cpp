@@ -10,6 +10,10 @@
 #include <limits>
 #include <system_error>
 
+#if __has_include(<fast_float/fast_float.h>)
+#include <fast_float/fast_float.h>
+#endif
+
 #include "io/loaders.h"
 
 namespace tvf {
@@ -71,7 +75,13 @@ bool parseDouble(std::string_view token, double& value) {
   // from_chars rejects a leading '+', which some exporters write.
   if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
   if (token.empty()) return false;
-#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
+#if __has_include(<fast_float/fast_float.h>)
+  // Exact and locale-independent like from_chars, and fast where the standard library has no floating-point
+  // from_chars (emscripten's libc++: its strtod went through software long double, ~0.35 s for bunny00.off).
+  // Overflow gives +-inf and underflow the denormal or zero, numbers all the same.
+  const auto result = fast_float::from_chars(token.data(), token.data() + token.size(), value);
+  return result.ec == std::errc() && result.ptr == token.data() + token.size();
+#elif defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
   // from_chars ignores the locale, unlike strtod, so "1.5" never turns into 1 under a German LC_NUMERIC.
   const auto result = std::from_chars(token.data(), token.data() + token.size(), value);
   if (result.ec == std::errc::result_out_of_range) {
