@@ -2,7 +2,7 @@
 // Benchmarks of the real page in Debian's Chromium (never a downloaded browser), served from dist/ (build it
 // first: npm run build:wasm && npm run build:web).
 //
-// node scripts/bench-web.mjs --json --stroke MESH [--strokes N] [--crossings N] [--port P]
+// node scripts/bench-web.mjs --json --stroke MESH [--strokes N] [--crossings N] [--port P] [--profile FILE]
 //   Edit latency: loads MESH (a path; served to the page under /bench-mesh/) through tvf.loadModel, then draws
 //   N strokes (default 15) of ~50 crossed edges each through tvf.addStroke, each on a strip of faces elsewhere
 //   on the mesh. Prints one JSON object {mesh, edges, strokes, loadMs, median: {...}, ratios} whose medians are
@@ -104,6 +104,14 @@ async function strokeBench(page, meshPath) {
     return { info, loadMs: performance.now() - t0 };
   }, `/bench-mesh/${name}`);
   const strokes = await page.evaluate(strokesInPage, { count, crossings });
+  // --profile FILE: a CPU profile of the page's main thread over the strokes (.cpuprofile, for DevTools).
+  const profileFile = arg('--profile', null);
+  const cdp = profileFile ? await page.context().newCDPSession(page) : null;
+  if (cdp) {
+    await cdp.send('Profiler.enable');
+    await cdp.send('Profiler.setSamplingInterval', { interval: 100 });
+    await cdp.send('Profiler.start');
+  }
   const runs = [];
   for (const points of strokes) {
     runs.push(await page.evaluate(async (pts) => {
@@ -115,6 +123,7 @@ async function strokeBench(page, meshPath) {
       return { pageMs, lastOp, refresh, stats };
     }, points));
   }
+  if (cdp) writeFileSync(profileFile, JSON.stringify((await cdp.send('Profiler.stop')).profile));
   const pick = (f) => median(runs.map(f));
   const m = {
     updateMs: pick((r) => r.stats.updateMs),

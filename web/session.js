@@ -45,6 +45,8 @@ function allFinite(values) {
   return true;
 }
 
+const nextTask = () => new Promise((resolve) => setTimeout(resolve, 0));
+
 export class Session {
   #coreStartSettled;
 
@@ -481,17 +483,18 @@ export class Session {
 
   // A non-finite field is never saved (the core refuses to make one; this is the last guard). A failed save
   // is shown, and stays shown until a save succeeds, so nobody believes unsaved work is safe.
+  // The save's own work (the finiteness scan, the localStorage mirror, IndexedDB) starts in the next task, so an
+  // edit's promise resolves with the new field drawn without waiting for it; the state saved is this edit's.
   #autosaveNow() {
     const store = this.#store();
     if (!store || !this.modelKey) return;
-    const finite = allFinite(this.field.oneForm) && allFinite(this.field.faceVectors);
-    if (!finite) {
-      this.ui.showError('The field is not finite; this state was not autosaved.');
-      return;
-    }
-    const key = this.modelKey, design = structuredClone(this.design);
-    this.autosaveChain = this.autosaveChain.then(() =>
-      store.save(key, design).then(
+    const key = this.modelKey, design = structuredClone(this.design), field = this.field;
+    this.autosaveChain = this.autosaveChain.then(nextTask).then(() => {
+      if (!(allFinite(field.oneForm) && allFinite(field.faceVectors))) {
+        this.ui.showError('The field is not finite; this state was not autosaved.');
+        return undefined;
+      }
+      return store.save(key, design).then(
         () => {
           this.perf.lastAutosave = { savedAt: Date.now(), constraints: design.constraints.length };
           if (this.autosaveError) this.ui.flash('Autosave works again; the design is saved.', 4000);
@@ -501,8 +504,8 @@ export class Session {
           this.autosaveError = err.message || String(err);
           this.fail('autosave', new Error(`Autosave failed (${this.autosaveError}): the latest edits are not saved in this browser; use Save to download the design.`));
         },
-      ),
-    );
+      );
+    });
   }
 
   #otherTab(key) {
