@@ -62,7 +62,7 @@ struct Samples {
   std::vector<double> analyze, factor, solve, update, stroke, strokeUpdate, strokeRows, strokeRhs,
       strokeSolve, reconstruct;
   double nnzPerRowM = 0, nnzPerRowL = 0;
-  int strokeEdges = 0;  // edges the benchmark stroke crosses (one per step between adjacent faces)
+  int strokeEdges = 0;      // edges the benchmark stroke crosses (one per step between adjacent faces)
   int strokeRefactors = 0;  // stroke solves that refactored (an updated factor found wanting): timings void
   std::string factorKind;
 };

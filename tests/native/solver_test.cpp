@@ -252,11 +252,12 @@ TEST(Solver, UpdatesEqualAFreshFactorization) {
   EXPECT_LT((x - asVector(incremental.oneForm())).norm() / x.norm(), 1e-9);
 }
 
-// The factor itself after rank updates and downdates, with no refinement or refactoring behind it (the session's
-// solve would hide a wrong update by refactoring). cholmod_updown takes the columns up to 8 at a time in kernels
-// for ranks 1 to 8 along paths of 1, 2 and 4 columns, with rows in lane pairs and an odd last row (patched,
-// wasm/patches/cholmod-updown-row-pairs.patch): every rank from 1 to 8, several passes, a stroke-like run of
-// neighbouring edges and scattered ones, each checked against a fresh factorization of the modified matrix.
+// The factor itself after rank updates and downdates, with no refinement or refactoring behind it (the
+// session's solve would hide a wrong update by refactoring). cholmod_updown takes the columns up to 8 at a
+// time in kernels for ranks 1 to 8 along paths of 1, 2 and 4 columns, with rows in lane pairs and an odd last
+// row (patched, wasm/patches/cholmod-updown-row-pairs.patch): every rank from 1 to 8, several passes, a
+// stroke-like run of neighbouring edges and scattered ones, each checked against a fresh factorization of the
+// modified matrix.
 TEST(FactoredSystem, UpdatesAndDowndatesOfEveryRankSolveTheModifiedMatrix) {
   Designer d(icosphere(4));  // closed, genus 0: M is definite; 7680 edges, dense separators at the top
   const SparseMatrix base = d.baseMatrix();
