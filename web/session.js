@@ -173,7 +173,9 @@ export class Session {
     if (this.disposed) return;
     this.disposed = true;
     this.proxy?.terminate();
-    this.autosaveStore?.close();
+    // Saves still queued (the last edit's starts in the next task) are written before the store closes.
+    const store = this.autosaveStore;
+    if (store) this.autosaveChain.then(() => store.close());
     this.synthesis.dispose();
     this.exports.dispose();
     this.tools.dispose();
@@ -491,13 +493,13 @@ export class Session {
     const key = this.modelKey, design = structuredClone(this.design), field = this.field;
     this.autosaveChain = this.autosaveChain.then(nextTask).then(() => {
       if (!(allFinite(field.oneForm) && allFinite(field.faceVectors))) {
-        this.ui.showError('The field is not finite; this state was not autosaved.');
+        if (!this.disposed) this.ui.showError('The field is not finite; this state was not autosaved.');
         return undefined;
       }
       return store.save(key, design).then(
         () => {
           this.perf.lastAutosave = { savedAt: Date.now(), constraints: design.constraints.length };
-          if (this.autosaveError) this.ui.flash('Autosave works again; the design is saved.', 4000);
+          if (this.autosaveError && !this.disposed) this.ui.flash('Autosave works again; the design is saved.', 4000);
           this.autosaveError = null;
         },
         (err) => {

@@ -258,10 +258,42 @@ test('attributes drive the element and are reflected; an embedded element autosa
   await page.evaluate(() => document.getElementById('d').addVortex(3));
   expect((await state()).storage).toEqual([]);
   await page.evaluate(() => (document.getElementById('d').autosave = 'notes'));
-  await page.evaluate(() => document.getElementById('d').addVortex(4));
+  // The save starts in the task after the edit resolves; autosaveIdle() waits for it.
+  await page.evaluate(async () => {
+    const el = document.getElementById('d');
+    await el.addVortex(4);
+    await el.autosaveIdle();
+  });
   const keys = (await state()).storage;
   expect(keys).toHaveLength(1);
   expect(keys[0]).toMatch(/^tvf\.autosave\.v1:notes\|ico\.off\|/);
+  expect((await record(page)).events.filter((e) => e.type === 'error')).toEqual([]);
+
+  // An edit followed at once by the element's removal is still saved, in localStorage and in IndexedDB, and
+  // the removed element reports no error.
+  const savedVortices = () =>
+    page.evaluate(async (key) => {
+      const mirror = JSON.parse(localStorage.getItem(key)).design.constraints.filter((c) => c.type === 'vortex').length;
+      const db = await new Promise((resolve, reject) => {
+        const open = indexedDB.open('tvf-autosave');
+        open.onsuccess = () => resolve(open.result);
+        open.onerror = () => reject(open.error);
+      });
+      const records = await new Promise((resolve) => {
+        const get = db.transaction(db.objectStoreNames[0]).objectStore(db.objectStoreNames[0]).getAll();
+        get.onsuccess = () => resolve(get.result);
+      });
+      db.close();
+      const latest = records.filter((r) => r.key.startsWith('notes|')).sort((a, b) => b.id - a.id)[0];
+      return { mirror, indexedDB: latest.design.constraints.filter((c) => c.type === 'vortex').length };
+    }, keys[0]);
+  expect(await savedVortices()).toEqual({ mirror: 2, indexedDB: 2 });
+  await page.evaluate(async () => {
+    const el = document.getElementById('d');
+    await el.addVortex(5);
+    el.remove();
+  });
+  await expect.poll(savedVortices).toEqual({ mirror: 3, indexedDB: 3 });
   expect((await record(page)).events.filter((e) => e.type === 'error')).toEqual([]);
   expect(errors).toEqual([]);
 });
