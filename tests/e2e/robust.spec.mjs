@@ -116,6 +116,7 @@ test.describe.serial('nothing a user does or loads loses their work', () => {
     const undone = await oneForm();
     expect(allFinite(undone)).toBe(true);
     expect(relativeDifference(undone, await cliField(testInfo, 'undo'))).toBeLessThan(1e-9);
+    await evaluate(() => window.tvf.autosaveIdle());
     const saved = await evaluate(() => Object.entries(localStorage).filter(([k]) => k.startsWith('tvf.autosave')).map(([, v]) => v));
     for (const text of saved) expect(text).not.toMatch(/NaN|Infinity|null/);
   });
