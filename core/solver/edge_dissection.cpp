@@ -3,6 +3,7 @@
 #include <metis.h>
 
 #include <algorithm>
+#include <numeric>
 
 namespace tvf {
 namespace {
@@ -25,10 +26,10 @@ class Dissector {
     out_.constraintSet.assign(nE, 0);
   }
 
-  EdgeDissection run(int32_t numVertices) {
-    std::vector<int32_t> vertices(numVertices), edges(ev_.size() / 2);
-    for (int32_t v = 0; v < numVertices; ++v) vertices[v] = v;
-    for (size_t e = 0; e < edges.size(); ++e) edges[e] = static_cast<int32_t>(e);
+  EdgeDissection run() {
+    std::vector<int32_t> vertices(local_.size()), edges(ev_.size() / 2);
+    std::iota(vertices.begin(), vertices.end(), 0);
+    std::iota(edges.begin(), edges.end(), 0);
     dissect(vertices, edges);
     return std::move(out_);
   }
@@ -137,7 +138,7 @@ class Dissector {
 
 EdgeDissection dissectEdges(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
                             const SparseMatrix& A) {
-  return Dissector(edgeVertices, numVertices, leafEdges, A).run(numVertices);
+  return Dissector(edgeVertices, numVertices, leafEdges, A).run();
 }
 
 bool separatesPattern(const EdgeDissection& dissection, const SparseMatrix& A) {
