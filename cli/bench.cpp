@@ -88,6 +88,7 @@ void runRepeat(Designer& designer, const MeshTopology& topology, int r, bool met
   const int32_t id = designer.addEdge(i, j, 0.1, 1.0);
   s.update.push_back(designer.stats().updateMs);
   designer.remove(id);
+  designer.solve();  // as the page does after every edit: the stroke starts from a solved design
   const auto points = stripStroke(designer.mesh(), topology, (r * 104729 + 7) % nF, 50);
   const int32_t refactorsBefore = designer.stats().precisionRefactors;
   // Mouse-up to new one-form: the surface walk, the rank-k update, the right-hand side and the solve

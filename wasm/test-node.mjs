@@ -229,7 +229,7 @@ d.delete();
 }
 // The update kernel (cholmod_updown, patched to update pairs of rows in simd128 lanes: wasm/patches): strokes
 // crossing 1 to 50 edges take every rank from 1 to 8 and several passes; after each update and each downdate
-// the solve's backward-error check passes without refactoring (a wrong update would make it refactor, which
+// the solve's backward-error check passes without refactoring (a wrong downdate would make it refactor, which
 // hides the error from the field), and the fields equal fresh factorizations'.
 {
   const e = new Module.Designer();
@@ -245,6 +245,7 @@ d.delete();
     return x;
   };
   const ids = [];
+  const incrementalBefore = JSON.parse(e.statsJson()).incrementalSolves;
   let refactors = 0, worst = 0, solveErrors = '';
   const solveAndCompare = () => {
     solveErrors += e.solve();
@@ -262,6 +263,9 @@ d.delete();
   }
   check('strokes of 1 to 50 edges and their removal solve', solveErrors === '', solveErrors);
   check('... and no solve refactored', refactors === 0, `${refactors}`);
+  // Each edit's solve redid the forward substitution only on the paths it changed.
+  const incremental = JSON.parse(e.statsJson()).incrementalSolves - incrementalBefore;
+  check('... each incrementally', incremental === 2 * 11, `${incremental} incremental solves of ${2 * 11}`);
   check('... and every field equals a fresh factorization\'s (1e-9)', worst <= 1e-9, `relative max difference ${worst}`);
   e.delete();
 }

@@ -87,7 +87,8 @@ void checkSchema(const json& doc) {
   if (doc.contains("schema")) {
     const json& s = doc["schema"];
     if (!s.is_string() || s.get<std::string>() != kDesignSchema)
-      throw InputError("unknown design schema " + s.dump() + " (this version reads \"" + kDesignSchema + "\")");
+      throw InputError("unknown design schema " + s.dump() + " (this version reads \"" + kDesignSchema +
+                       "\")");
   }
   for (const auto& item : doc.items())
     if (!known.count(item.key()))
@@ -100,7 +101,8 @@ void checkFingerprint(const SurfaceMesh& mesh, const json& doc) {
   if (!doc.contains("mesh")) return;  // older files carry none: indices are still range-checked
   const json& saved = doc["mesh"];
   if (!saved.is_object() || !saved.contains("hash") || !saved["hash"].is_string() ||
-      !saved.value("vertices", json()).is_number_integer() || !saved.value("faces", json()).is_number_integer())
+      !saved.value("vertices", json()).is_number_integer() ||
+      !saved.value("faces", json()).is_number_integer())
     throw InputError("design: \"mesh\" must be {\"vertices\", \"faces\", \"hash\"}");
   const json current = meshFingerprint(mesh);
   if (saved["vertices"] != current["vertices"] || saved["faces"] != current["faces"] ||
@@ -299,6 +301,7 @@ json statsJson(const DesignStats& s) {
           {"rhsMs", s.rhsMs},
           {"analysisReused", s.analysisReused},
           {"precisionRefactors", s.precisionRefactors},
+          {"incrementalSolves", s.incrementalSolves},
           {"nnzPerRowM", s.nnzPerRowM},
           {"nnzPerRowL", s.nnzPerRowL},
           {"positiveAreaFallbackVertices", s.positiveAreaFallbackVertices},

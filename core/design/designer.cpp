@@ -271,6 +271,7 @@ void Designer::solve() {
   d.factor.solve(d.base, d.scale, d.constraintTerms(), b, x);
   d.stats.solveMs = msSince(start);
   d.stats.precisionRefactors = d.factor.precisionRefactors();
+  d.stats.incrementalSolves = d.factor.incrementalSolves();
   d.copyFactorReport();  // the solve refactors when an updated factor lost precision
   if (!x.allFinite())
     throw InputError(

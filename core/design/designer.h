@@ -26,6 +26,9 @@ struct DesignStats {
   // Solves that found the updated factor wanting (backward error beyond round-off) and refactored: a
   // benchmark that times updates must see none.
   int32_t precisionRefactors = 0;
+  // Solves whose forward substitution was redone only on the paths the edits changed (all since the mesh
+  // was loaded; solver/forward_solution.h).
+  int64_t incrementalSolves = 0;
   double nnzPerRowM = 0, nnzPerRowL = 0;
   int32_t positiveAreaFallbackVertices = 0;
   std::string kernelHandling;  // how the kernel of M was made definite

@@ -10,6 +10,7 @@
 #include "common/input_error.h"
 #include "solver/cholmod_handles.h"
 #include "solver/edge_dissection.h"
+#include "solver/forward_solution.h"
 
 namespace tvf {
 namespace {
@@ -78,6 +79,10 @@ struct FactoredSystem::Impl {
   // Workspace reused across solves so that a solve allocates nothing.
   cholmod_dense* ySolve = nullptr;
   cholmod_dense* eSolve = nullptr;
+  cholmod_dense* forwardFull = nullptr;
+  // L^-1 P b of the last tracked solve, redone after an edit only on the columns the edit changed.
+  ForwardSolution forward;
+  std::vector<double> bPermuted;
   FactorTimings timings;
   std::vector<int> inversePerm;
   bool wasSupernodal = false;
@@ -103,6 +108,29 @@ struct FactoredSystem::Impl {
   ~Impl() {
     cholmod_free_dense(&ySolve, common.get());
     cholmod_free_dense(&eSolve, common.get());
+    cholmod_free_dense(&forwardFull, common.get());
+  }
+
+  static cholmod_dense columnView(const double* values, size_t n) {
+    cholmod_dense d{};
+    d.nrow = n;
+    d.ncol = 1;
+    d.nzmax = n;
+    d.d = n;
+    d.x = const_cast<double*>(values);
+    d.xtype = CHOLMOD_REAL;
+    d.dtype = CHOLMOD_DOUBLE;
+    return d;
+  }
+
+  // sys (CHOLMOD_A, _L, _DLt) applied to rhs, into `solution`.
+  const double* solveSystem(int sys, const double* rhs, CholmodDensePtr& into) {
+    cholmod_dense view = columnView(rhs, static_cast<size_t>(n));
+    cholmod_dense* out = into.release();
+    cholmod_solve2(sys, factor.get(), &view, nullptr, &out, nullptr, &ySolve, &eSolve, common.get());
+    into.reset(out);
+    if (!out) throw std::runtime_error("CHOLMOD solve failed");
+    return static_cast<const double*>(out->x);
   }
 
   // A fresh copy of the symbolic factor of A: the saved one when A's pattern is unchanged, else a new
@@ -182,6 +210,7 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
   upper.makeCompressed();
   cholmod_sparse view = Impl::upperView(upper);
   auto start = std::chrono::steady_clock::now();
+  s.forward.invalidate();
   s.factor.reset(s.analyzeOrReuse(view, A));
   if (!s.factor) throw std::runtime_error("CHOLMOD analysis failed (out of memory?)");
   s.n = static_cast<int>(A.rows());
@@ -244,26 +273,37 @@ void FactoredSystem::updateDiagonal(const std::vector<int32_t>& rows, const std:
     x[c] = std::sqrt(weights[order[c]]);
   }
   p[k] = k;
-  if (!cholmod_updown(downdate ? 0 : 1, C.get(), s.factor.get(), s.common.get()))
+  s.forward.beforeUpdate(*s.factor, i, k);
+  if (!cholmod_updown(downdate ? 0 : 1, C.get(), s.factor.get(), s.common.get())) {
+    s.forward.invalidate();
     throw std::runtime_error("CHOLMOD update/downdate failed");
+  }
 }
 
 void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Impl& s = *impl_;
-  cholmod_dense rhs{};
-  rhs.nrow = b.size();
-  rhs.ncol = 1;
-  rhs.nzmax = b.size();
-  rhs.d = b.size();
-  rhs.x = const_cast<double*>(b.data());
-  rhs.xtype = CHOLMOD_REAL;
-  rhs.dtype = CHOLMOD_DOUBLE;
-  cholmod_dense* out = s.solution.release();
-  cholmod_solve2(CHOLMOD_A, s.factor.get(), &rhs, nullptr, &out, nullptr, &s.ySolve, &s.eSolve,
-                 s.common.get());
-  s.solution.reset(out);
-  if (!out) throw std::runtime_error("CHOLMOD solve failed");
-  x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(out->x), b.size());
+  const int* perm = static_cast<const int*>(s.factor->Perm);
+  s.bPermuted.resize(s.n);
+  for (int k = 0; k < s.n; ++k) s.bPermuted[k] = b[perm[k]];
+  if (!s.forward.substituteIncrementally(*s.factor, s.bPermuted.data())) {
+    CholmodDensePtr full(s.forwardFull, {s.common.get()});
+    const double* y = s.solveSystem(CHOLMOD_L, s.bPermuted.data(), full);
+    s.forwardFull = full.release();
+    s.forward.setFull(s.bPermuted.data(), y, s.n);
+  }
+  const double* z = s.solveSystem(CHOLMOD_DLt, s.forward.y().data(), s.solution);
+  x.resize(s.n);
+  for (int k = 0; k < s.n; ++k) x[perm[k]] = z[k];
+}
+
+void FactoredSystem::solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  Impl& s = *impl_;
+  const double* z = s.solveSystem(CHOLMOD_A, b.data(), s.solution);
+  x = Eigen::Map<const Eigen::VectorXd>(z, b.size());
+}
+
+int64_t FactoredSystem::incrementalSolves() const {
+  return impl_->forward.incrementalCount();
 }
 
 void FactoredSystem::setOrdering(FillOrdering ordering) {

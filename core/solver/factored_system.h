@@ -2,6 +2,7 @@
 // A sparse SPD matrix factored once by CHOLMOD and then modified only by rank-1 updates/downdates of its
 // factor (cholmod_updown), as constraint rows with a single nonzero come and go.
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,7 +42,14 @@ class FactoredSystem {
   double estimatedBytes() const;      // the last analysis' estimate of the factor's peak memory
   // L L' +/- sum_k w_k e_{row_k} e_{row_k}' in one cholmod_updown call; weights must be positive.
   void updateDiagonal(const std::vector<int32_t>& rows, const std::vector<double>& weights, bool downdate);
+  // Solves A x = b. The forward substitution L^-1 P b is kept: after updates and a change of b on a few
+  // rows (a stroke's), the next solve redoes it only on the elimination-tree paths they changed, then
+  // substitutes backward (solver/forward_solution.h).
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  // Solves A x = b without touching what solve() keeps (a right-hand side that is not the design's, such
+  // as a refinement's residual).
+  void solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  int64_t incrementalSolves() const;  // solves whose forward substitution was incremental
 
   bool factored() const;
   int64_t factorNonzeros() const;

@@ -60,19 +60,24 @@ class ShiftedFactor {
   // factor is then no longer current, and the next solve refactors.
   void update(const DiagonalTerms& change, double scale, bool downdate);
   // Solves (base + terms) x = b: with the factor, plus one step of iterative refinement against the
-  // unshifted matrix. After updates, a solution that is not finite or whose backward error is beyond
-  // round-off makes it refactor and solve again, once. base, scale and terms must be those the factor holds.
+  // unshifted matrix. After updates, a solution that is not finite, or after downdates one whose backward
+  // error is beyond round-off, makes it refactor and solve again, once. base, scale and terms must be those
+  // the factor holds.
   void solve(const SparseMatrix& base, double scale, const DiagonalTerms& terms, const Eigen::VectorXd& b,
              Eigen::VectorXd& x);
 
   const FactorReport& report() const;
   double lastUpdateMs() const;         // the last rank update that was done
   int32_t precisionRefactors() const;  // how many times solve() found an updated factor wanting
+  int64_t incrementalSolves() const;   // FactoredSystem::incrementalSolves
 
  private:
   SparseMatrix shiftedMatrix(const SparseMatrix& base, double scale, const DiagonalTerms& terms) const;
   Eigen::VectorXd factoredProduct(const SparseMatrix& base, double scale, const DiagonalTerms& terms,
                                   const Eigen::VectorXd& x) const;
+  double factoredNorm(double scale, const DiagonalTerms& terms);
+  bool solvesToRoundOff(const SparseMatrix& base, double scale, const DiagonalTerms& terms,
+                        const Eigen::VectorXd& b, const Eigen::VectorXd& x);
   void refineAgainstUnshiftedSystem(const SparseMatrix& base, const DiagonalTerms& terms,
                                     const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
@@ -83,8 +88,11 @@ class ShiftedFactor {
   double memoryLimit_ = 0;
   double shift_ = 0;
   bool shiftEverywhere_ = false;
-  double downdateLoad_ = 0;          // relative weight removed by downdates since the last factorization
-  bool updatedSinceFactor_ = false;  // the factor is no longer the one CHOLMOD computed from scratch
+  double downdateLoad_ = 0;           // relative weight removed by downdates since the last factorization
+  bool updatedSinceFactor_ = false;   // the factor is no longer the one CHOLMOD computed from scratch
+  bool downdatedSinceCheck_ = false;  // downdated since the last solve that checked the factor
+  double baseNorm_ = 0;               // infinity norm of the base matrix last factored
+  Eigen::VectorXd termSums_;          // scratch: the terms summed per row
   int32_t precisionRefactors_ = 0;
   double updateMs_ = 0;
   FactorReport report_;
