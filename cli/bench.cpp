@@ -64,6 +64,7 @@ struct Samples {
   double nnzPerRowM = 0, nnzPerRowL = 0;
   int strokeEdges = 0;      // edges the benchmark stroke crosses (one per step between adjacent faces)
   int strokeRefactors = 0;  // stroke solves that refactored (an updated factor found wanting): timings void
+  int strokeIncrementalSolves = 0;  // stroke solves whose forward substitution was incremental
   std::string factorKind;
 };
 
@@ -91,6 +92,7 @@ void runRepeat(Designer& designer, const MeshTopology& topology, int r, bool met
   designer.solve();  // as the page does after every edit: the stroke starts from a solved design
   const auto points = stripStroke(designer.mesh(), topology, (r * 104729 + 7) % nF, 50);
   const int32_t refactorsBefore = designer.stats().precisionRefactors;
+  const int64_t incrementalBefore = designer.stats().incrementalSolves;
   // Mouse-up to new one-form: the surface walk, the rank-k update, the right-hand side and the solve
   // (reconstruction is reported on its own).
   const double total = timeMs([&] {
@@ -104,6 +106,7 @@ void runRepeat(Designer& designer, const MeshTopology& topology, int r, bool met
   s.strokeRhs.push_back(designer.stats().rhsMs);
   s.strokeSolve.push_back(designer.stats().solveMs);
   s.strokeRefactors += designer.stats().precisionRefactors - refactorsBefore;
+  s.strokeIncrementalSolves += static_cast<int>(designer.stats().incrementalSolves - incrementalBefore);
   s.nnzPerRowM = designer.stats().nnzPerRowM;
   s.nnzPerRowL = designer.stats().nnzPerRowL;
   s.factorKind = designer.stats().factorKind;
@@ -123,6 +126,7 @@ nlohmann::json summary(const Samples& s, bool metis) {
           {"strokeSolveMs", median(s.strokeSolve)},
           {"strokeEdges", s.strokeEdges},
           {"strokeRefactors", s.strokeRefactors},
+          {"strokeIncrementalSolves", s.strokeIncrementalSolves},
           {"reconstructMs", median(s.reconstruct)},
           {"ordering", metis ? "metis" : "amd"},
           {"factorKind", s.factorKind}};

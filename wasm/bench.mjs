@@ -137,7 +137,7 @@ async function measureWasm(mesh, opts) {
   const orderings = opts.compare ? [true, false] : [!opts.amd];
   const samples = orderings.map(() => ({ analyze: [], factor: [], solve: [], update: [], stroke: [], strokeUpdate: [],
     strokeRows: [], strokeRhs: [], strokeSolve: [], reconstruct: [], factorCall: [], solveCall: [], updateCall: [],
-    strokeRefactors: 0 }));
+    strokeRefactors: 0, strokeIncrementalSolves: 0 }));
   const last = [];
   const statsNow = () => JSON.parse(d.statsJson());
   // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
@@ -174,6 +174,7 @@ async function measureWasm(mesh, opts) {
       ok('solve', d.solve());  // as the page does after every edit: the stroke starts from a solved design
       const strip = faceStrip(pos, tri, nb, (r * 104729 + 7) % nF, 50);
       const refactorsBefore = statsNow().precisionRefactors;
+      const incrementalBefore = statsNow().incrementalSolves;
       // Mouse-up to new one-form: the walk, the rank-k update, the right-hand side and the solve
       // (reconstruction reported on its own).
       t = performance.now();
@@ -188,6 +189,7 @@ async function measureWasm(mesh, opts) {
       s.strokeSolve.push(stats.solveMs);
       s.strokeEdges = strip.length / 4 - 1;
       s.strokeRefactors += stats.precisionRefactors - refactorsBefore;
+      s.strokeIncrementalSolves += stats.incrementalSolves - incrementalBefore;
       last[o] = stats;
     });
   d.delete();
@@ -198,6 +200,7 @@ async function measureWasm(mesh, opts) {
     strokeUpdateSolveMs: median(s.stroke), strokeUpdateMs: median(s.strokeUpdate), strokeRowsMs: median(s.strokeRows),
     strokeRhsMs: median(s.strokeRhs), strokeSolveMs: median(s.strokeSolve), strokeEdges: s.strokeEdges,
     strokeRefactors: s.strokeRefactors,
+    strokeIncrementalSolves: s.strokeIncrementalSolves,
     reconstructMs: median(s.reconstruct),
     factorCallMs: median(s.factorCall), solveCallMs: median(s.solveCall), updateCallMs: median(s.updateCall),
     repeat: opts.repeat, warmUp: opts.warmup === false ? 'none' : String(opts.warmup), settleMs: opts.settle,
