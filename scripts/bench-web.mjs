@@ -137,6 +137,8 @@ async function strokeBench(page, meshPath) {
     deriveMs: pick((r) => r.lastOp.workerParts?.deriveMs),
     designMs: pick((r) => r.lastOp.workerParts?.designMs),
     statsMs: pick((r) => r.lastOp.workerParts?.statsMs),
+    // Field arrays the worker refilled from buffers the page handed back, instead of allocating (of 3).
+    reusedArrays: pick((r) => r.lastOp.workerParts?.reusedArrays),
     // The worker's time outside the parts above (the reply's stats, the message's own handling), per edit.
     workerOtherMs: pick((r) => {
       const p = r.lastOp.workerParts ?? {};

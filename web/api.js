@@ -93,7 +93,7 @@ export const api = {
   debugTrapCore: (s) => s.exclusive(() => s.proxy.call('trapForTest')),
   debugSetFactorMemoryLimit: (s, bytes) => s.exclusive(() => s.proxy.call('setFactorMemoryLimit', [bytes])).then(() => true),
   // The tests' references for what the page derives lazily or keeps incrementally: the core's own read-outs
-  // ({oneForm, vertexVectors, singularities, design}, derived by the core now), and streamlines traced on the
+  // ({oneForm, faceVectors, vertexVectors, singularities, design}, derived by the core now), and streamlines traced on the
   // page now for the current field and spacing (whatever the view's cache, traced in the worker, holds).
   debugCoreReadout: (s) => s.exclusive(async () => (s.requireReady(), (await s.proxy.call('read')).value)),
   debugTraceStreamlines: read((s) => s.traceStreamlinesHere().map((l) => Array.from(l))),

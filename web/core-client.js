@@ -199,6 +199,19 @@ export class CoreClient {
     return guard('oneForm', () => this.designer.oneForm().slice());
   }
 
+  // The same through `copy(view of the wasm heap)`, which returns the copy (the worker's refill of a spare).
+  copyFaceVectors(copy) {
+    return guard('faceVectors', () => copy(this.designer.faceVectors()));
+  }
+
+  copyVertexVectors(copy) {
+    return guard('vertexVectors', () => copy(this.designer.vertexVectors()));
+  }
+
+  copyOneForm(copy) {
+    return guard('oneForm', () => copy(this.designer.oneForm()));
+  }
+
   edges() {
     return guard('edges', () => this.designer.edges().slice());
   }

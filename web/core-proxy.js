@@ -47,9 +47,17 @@ export class CoreProxy {
     this.restarts = 0;
     this.lastFailure = null;
     this.ready = Promise.resolve();
+    this.spare = []; // buffers of field arrays the page is done with, for the worker's next copies
+  }
+
+  // Field arrays the page no longer uses (a field replaced by a newer one): their buffers go back to the worker
+  // with the next request, to be refilled instead of allocated (core-worker.js). They are detached here then.
+  recycle(arrays) {
+    for (const a of arrays) if (a?.buffer?.byteLength > 0 && !this.spare.includes(a.buffer)) this.spare.push(a.buffer);
   }
 
   async #open() {
+    this.spare = []; // a new worker starts without spares; these stay with the page's garbage
     const { href, revoke } = await workerUrl(this.assetBase);
     if (this.failure) return revoke(); // terminated while the source was fetched
     const lockName = `tvf-core-${Date.now().toString(36)}-${Math.random().toString(36).slice(2)}`;
@@ -84,10 +92,12 @@ export class CoreProxy {
     if (this.failure) return Promise.reject(this.failure);
     if (!this.worker) return Promise.reject(new CoreError(`${op}: the core is restarting`));
     const seq = ++this.seq;
+    const spare = this.spare.filter((b) => b.byteLength > 0 && !transfer.includes(b));
+    this.spare = [];
     return new Promise((resolve, reject) => {
       this.pending.set(seq, { resolve, reject, op, background });
       try {
-        this.worker.postMessage({ seq, op, args }, transfer);
+        this.worker.postMessage({ seq, op, args, spare }, [...transfer, ...spare]);
       } catch (err) {
         this.pending.delete(seq);
         reject(new CoreError(`could not send ${op} to the core: ${err.message}`));

@@ -33,8 +33,37 @@ class Transfer {
   }
 }
 
-// After a solve: the field arrays the views need, copied out of the wasm heap (a memcpy each) and
-// transferred; the vertex vectors are derived here because the default arrow view interpolates them.
+// Buffers of earlier field arrays the page handed back (core-proxy.js recycle()), by length. Refilling one is a
+// memcpy; a fresh ArrayBuffer of the same size costs Chromium several times that (new zeroed pages, and garbage
+// on both sides): copies took 134 of a stroke's 582 ms in the worker at 1.25M edges.
+const spare = new Map();
+const SPARES_PER_LENGTH = 2;
+// The field arrays' lengths on the current mesh (3 per face, 3 per vertex, 1 per edge): spares of any other
+// length (a previous model's) are dropped, not kept.
+let fieldLengths = new Set();
+
+function takeSpares(buffers) {
+  for (const buffer of buffers ?? []) {
+    const array = new Float64Array(buffer);
+    if (!fieldLengths.has(array.length)) continue;
+    const list = spare.get(array.length) ?? [];
+    if (list.length < SPARES_PER_LENGTH) list.push(array);
+    spare.set(array.length, list);
+  }
+}
+
+// A copy of a view of the wasm heap, into a spare when there is one of its length.
+function copyOut(view, counts) {
+  const array = spare.get(view.length)?.pop();
+  if (!array) return view.slice();
+  array.set(view);
+  counts.reused++;
+  return array;
+}
+
+// After a solve: the field arrays the views need, copied out of the wasm heap (a memcpy each, into spares where
+// the page has handed some back) and transferred; the vertex vectors are derived here because the default
+// arrow view interpolates them.
 // `changed`: core ids whose design entry the op set (null: the whole document, after a load, a boundary or
 // γ change, a design, or an edit taken back). timing (optional) receives where the time goes.
 function snapshot(changed, timing = {}) {
@@ -45,11 +74,13 @@ function snapshot(changed, timing = {}) {
     t = now;
   };
   version++;
-  const faceVectors = core.faceVectors();
-  const oneForm = core.oneForm();
+  const counts = { reused: 0 };
+  const faceVectors = core.copyFaceVectors((v) => copyOut(v, counts));
+  const oneForm = core.copyOneForm((v) => copyOut(v, counts));
   lap('copyMs');
-  const vertexVectors = core.vertexVectors();
+  const vertexVectors = core.copyVertexVectors((v) => copyOut(v, counts));
   lap('deriveMs');
+  timing.reusedArrays = counts.reused;
   const ids = core.constraintIds();
   const design = changed
     ? { ids, changed: changed.filter((id) => ids.includes(id)).map((id) => [id, core.constraint(id)]) }
@@ -108,6 +139,8 @@ const ops = {
     coreExport.modelLoaded(bytes, format);
     tracing = { surface: null, key: '', lines: null };
     const info = core.info();
+    spare.clear();
+    fieldLengths = new Set([3 * info.faces, 3 * info.vertices, info.edges]);
     const mesh = core.mesh();
     const edges = core.edges();
     // Texture synthesis (web/synthesis/) needs the model's per-corner UVs (6 per face; empty without TEXCOORD_0).
@@ -215,11 +248,12 @@ const ops = {
     const value = {
       version,
       oneForm: core.oneForm(),
+      faceVectors: core.faceVectors(),
       vertexVectors: core.vertexVectors(),
       singularities: core.singularities(),
       design: JSON.parse(core.designJson()),
     };
-    return new Transfer(value, [value.oneForm.buffer, value.vertexVectors.buffer]);
+    return new Transfer(value, [value.oneForm.buffer, value.faceVectors.buffer, value.vertexVectors.buffer]);
   },
 
   // For the supervision tests: what a wasm trap (unreachable, an out-of-bounds access, an abort) looks like
@@ -280,6 +314,7 @@ self.onmessage = async ({ data }) => {
     return;
   }
   const { seq, op, args } = data;
+  takeSpares(data.spare);
   const t0 = performance.now();
   const timing = {};
   let reply, transfer = [];

@@ -45,6 +45,12 @@ function allFinite(values) {
   return true;
 }
 
+// Computed once per field (the autosave's last guard), before its arrays may go back to the worker.
+function fieldIsFinite(field) {
+  field.finite ??= allFinite(field.oneForm) && allFinite(field.faceVectors);
+  return field.finite;
+}
+
 const nextTask = () => new Promise((resolve) => setTimeout(resolve, 0));
 
 export class Session {
@@ -77,6 +83,7 @@ export class Session {
     // {version (the worker's), faceVectors, vertexVectors, oneForm, stats, singularities (null until derived)}
     // of the last completed change.
     this.field = null;
+    this.retired = []; // fields replaced since the last refresh(), whose arrays go back to the worker
     // The core's document, kept in step from the constraints each edit touched (core-worker.js snapshot()).
     this.design = { boundary: 'free', gamma: 0, constraints: [] };
     this.specByCore = new Map(); // core id → spec (design format)
@@ -132,7 +139,9 @@ export class Session {
               positions: this.surface.positions,
               triangles: this.surface.triangles,
               cornerUVs: this.cornerUVs,
-              vertexVectors: this.field.vertexVectors,
+              // A copy: synthesis and exports hold it across awaits, and the session's own array goes back to the
+              // worker once a newer field replaces it (#recycleRetired).
+              vertexVectors: this.field.vertexVectors.slice(),
               fieldVersion: this.fieldVersion,
             }
           : null,
@@ -257,6 +266,7 @@ export class Session {
 
   #applySnapshot(snap) {
     const { version, faceVectors, vertexVectors, oneForm, stats, design } = snap;
+    if (this.field) this.retired.push(this.field);
     this.field = { version, faceVectors, vertexVectors, oneForm, stats, singularities: null };
     this.fieldVersion++;
     this.#applyDesign(design);
@@ -419,6 +429,19 @@ export class Session {
     this.perf.refresh = { updateViewsMs: t1 - t0, renderMs: performance.now() - t1 };
     this.#scheduleStreamlines();
     this.synthesis.fieldChanged(); // texture synthesis: resynthesize when the field changed (no-op otherwise)
+    this.#recycleRetired();
+  }
+
+  // The arrays of fields a newer one replaced go back to the worker, which refills them for the next field
+  // instead of allocating (core-worker.js). Only the session holds them by then: the views took the current
+  // field above, what they keep of it is their own (GPU buffers, samples), the read API and getModel() hand
+  // out copies, and an autosave still to run has its finiteness check done here first.
+  #recycleRetired() {
+    for (const field of this.retired) {
+      if (field.autosavePending) fieldIsFinite(field);
+      this.proxy?.recycle([field.faceVectors, field.vertexVectors, field.oneForm]);
+    }
+    this.retired = [];
   }
 
   refreshHistory() {
@@ -491,8 +514,10 @@ export class Session {
     const store = this.#store();
     if (!store || !this.modelKey) return;
     const key = this.modelKey, design = structuredClone(this.design), field = this.field;
+    field.autosavePending = true;
     this.autosaveChain = this.autosaveChain.then(nextTask).then(() => {
-      if (!(allFinite(field.oneForm) && allFinite(field.faceVectors))) {
+      field.autosavePending = false;
+      if (!fieldIsFinite(field)) {
         if (!this.disposed) this.ui.showError('The field is not finite; this state was not autosaved.');
         return undefined;
       }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 #include "common/input_error.h"
 #include "solver/cholmod_handles.h"
@@ -211,6 +212,8 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
   cholmod_sparse view = Impl::upperView(upper);
   auto start = std::chrono::steady_clock::now();
   s.forward.invalidate();
+  std::vector<double>().swap(s.bPermuted);
+  cholmod_free_dense(&s.forwardFull, s.common.get());
   s.factor.reset(s.analyzeOrReuse(view, A));
   if (!s.factor) throw std::runtime_error("CHOLMOD analysis failed (out of memory?)");
   s.n = static_cast<int>(A.rows());
@@ -286,10 +289,10 @@ void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   s.bPermuted.resize(s.n);
   for (int k = 0; k < s.n; ++k) s.bPermuted[k] = b[perm[k]];
   if (!s.forward.substituteIncrementally(*s.factor, s.bPermuted.data())) {
-    CholmodDensePtr full(s.forwardFull, {s.common.get()});
+    CholmodDensePtr full(std::exchange(s.forwardFull, nullptr), {s.common.get()});
     const double* y = s.solveSystem(CHOLMOD_L, s.bPermuted.data(), full);
-    s.forwardFull = full.release();
     s.forward.setFull(s.bPermuted.data(), y, s.n);
+    s.forwardFull = full.release();
   }
   const double* z = s.solveSystem(CHOLMOD_DLt, s.forward.y().data(), s.solution);
   x.resize(s.n);

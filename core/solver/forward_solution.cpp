@@ -37,9 +37,17 @@ int parent(const ColumnView& L, int j) {
 
 }  // namespace
 
+// Frees the vectors too: a factorization follows, and in wasm, whose heap never shrinks, vectors left between
+// its large blocks would make it grow.
 void ForwardSolution::invalidate() {
   clearPending();
   valid_ = false;
+  std::vector<double>().swap(y_);
+  std::vector<double>().swap(bLast_);
+  std::vector<double>().swap(r_);
+  std::vector<uint8_t>().swap(inSet_);
+  std::vector<int>().swap(pending_);
+  std::vector<int>().swap(changed_);
 }
 
 bool ForwardSolution::valid() const {

@@ -19,7 +19,7 @@ namespace tvf {
 
 class ForwardSolution {
  public:
-  // Forgets y: the next solve substitutes in full.
+  // Forgets y (and frees its storage): the next solve substitutes in full.
   void invalidate();
   bool valid() const;
 

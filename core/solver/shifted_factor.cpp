@@ -102,6 +102,7 @@ void ShiftedFactor::factor(const SparseMatrix& base, double scale, const Diagona
   int retries = 0;
   shiftEverywhere_ = false;
   shift_ = anyKernel_ ? kInitialShift : 0.0;
+  termSums_ = Eigen::VectorXd();  // scratch of the checks: not kept between the factorization's large blocks
   system_.setMemoryLimit(memoryLimit_ > 0 ? memoryLimit_ : physicalMemoryBytes());
   while (!system_.factor(shiftedMatrix(base, scale, terms))) {
     // Numerically singular despite the topology (e.g. a near-kernel on a badly shaped closed mesh).

@@ -3,6 +3,8 @@
 // shown, keeps the design document from those changes, and has the streamlines view traced in the worker.
 // These tests hold each of those against the core's own read-outs (derived by the core, eagerly, on request)
 // after a sequence of edits of every kind, a refused edit, undo and redo, and against the page's own tracer.
+// The field arrays the page holds are, after the first edits, the worker's refills of buffers the page handed
+// back when a newer field replaced them (core-proxy.js recycle()).
 import { expect, test } from '@playwright/test';
 import { CENTRE, readMesh, topFacePair, openDesignerPage } from './helpers.mjs';
 
@@ -20,10 +22,11 @@ test.describe.serial('lazily derived read-outs', () => {
           design: t.saveDesign(),
           singularities: t.singularities(),
           vertexVectors: Array.from(t.vertexVectors()),
+          faceVectors: Array.from(t.faceVectors()),
           oneForm: Array.from(t.oneForm()),
           constraints: t.constraints().map(({ id, ...spec }) => spec),
         },
-        core: { ...core, vertexVectors: Array.from(core.vertexVectors), oneForm: Array.from(core.oneForm) },
+        core: { ...core, vertexVectors: Array.from(core.vertexVectors), faceVectors: Array.from(core.faceVectors), oneForm: Array.from(core.oneForm) },
       };
     });
     expect(mine.design, `${label}: design`).toEqual(core.design);
@@ -34,6 +37,7 @@ test.describe.serial('lazily derived read-outs', () => {
     // The same arrays bit for bit: the page's copies are of the field the core holds now.
     expect(mine.oneForm, `${label}: one-form`).toEqual(core.oneForm);
     expect(mine.vertexVectors, `${label}: vertex vectors`).toEqual(core.vertexVectors);
+    expect(mine.faceVectors, `${label}: face vectors`).toEqual(core.faceVectors);
     return core;
   };
 
@@ -61,7 +65,13 @@ test.describe.serial('lazily derived read-outs', () => {
     // Not a comparison of two empty lists: a source, a sink and a vortex on a stroked field are singular.
     expect(core.singularities.length).toBeGreaterThanOrEqual(3);
     await evaluate(([id, w]) => window.tvf.setWeight(id, w), [vector, 3]);
-    await evaluate(([id, s]) => window.tvf.setStrength(id, s), [stroke, -1]);
+    // By now the worker copies every field array into a buffer the page gave back; the comparisons check that
+    // what it refilled is the new field.
+    const reused = await evaluate(async (args) => {
+      await window.tvf.setStrength(...args);
+      return window.tvf.perf().lastOp.workerParts.reusedArrays;
+    }, [stroke, -1]);
+    expect(reused).toBe(3);
     await compare('weight and strength');
     // A refused edit leaves the page on what the core holds.
     await expect(evaluate((id) => window.tvf.setWeight(id, 1e16), vector)).rejects.toThrow(/weight/);
