@@ -433,9 +433,10 @@ export class Session {
   }
 
   // The arrays of fields a newer one replaced go back to the worker, which refills them for the next field
-  // instead of allocating (core-worker.js). Only the session holds them by then: the views took the current
-  // field above, what they keep of it is their own (GPU buffers, samples), the read API and getModel() hand
-  // out copies, and an autosave still to run has its finiteness check done here first.
+  // instead of allocating (core-worker.js). Only the session holds them by then: the views were handed the
+  // current field's arrays above and keep nothing else of a field but what they made of it (GPU buffers,
+  // samples), the read API and getModel() hand out copies, and an autosave still to run has its finiteness
+  // check done here first.
   #recycleRetired() {
     for (const field of this.retired) {
       if (field.autosavePending) fieldIsFinite(field);

@@ -44,6 +44,15 @@ DiagonalTerms concatenate(const DiagonalTerms& a, const DiagonalTerms& b) {
   return out;
 }
 
+// A FactoredSystem of A ordered as the session orders it (the mesh's dissection), for tests of the factor
+// alone.
+FactoredSystem factorOnMesh(const Designer& d, const SparseMatrix& A) {
+  FactoredSystem f;
+  f.setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
+  EXPECT_TRUE(f.factor(A));
+  return f;
+}
+
 // The sets of the top separator's two subtrees in postorder: [left.first, left.second] and the right.
 std::pair<std::pair<int32_t, int32_t>, std::pair<int32_t, int32_t>> topSubtrees(const EdgeDissection& d) {
   const int32_t top = static_cast<int32_t>(d.firstSet.size()) - 1, right = top - 1;
@@ -263,13 +272,7 @@ TEST(FactoredSystem, UpdatesAndDowndatesOfEveryRankSolveTheModifiedMatrix) {
   const SparseMatrix base = d.baseMatrix();
   const double scale = d.weightScale();
   const int32_t n = static_cast<int32_t>(base.rows());
-  const auto factorOf = [&](const SparseMatrix& A) {
-    FactoredSystem f;
-    f.setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
-    EXPECT_TRUE(f.factor(A));
-    return f;
-  };
-  FactoredSystem updated = factorOf(base);
+  FactoredSystem updated = factorOnMesh(d, base);
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
   std::vector<DiagonalTerms> held;  // the updates the factor holds, in order
   const auto expectSolvesTheHeldMatrix = [&](const std::string& what) {
@@ -278,7 +281,7 @@ TEST(FactoredSystem, UpdatesAndDowndatesOfEveryRankSolveTheModifiedMatrix) {
     const SparseMatrix A = plusDiagonal(base, all);
     Eigen::VectorXd x, y;
     updated.solve(b, x);
-    factorOf(A).solve(b, y);
+    factorOnMesh(d, A).solve(b, y);
     EXPECT_LT((x - y).norm() / y.norm(), 1e-11) << what;
     EXPECT_LT((A * x - b).norm() / b.norm(), 1e-11) << what;
   };
@@ -316,13 +319,7 @@ TEST(FactoredSystem, IncrementalForwardSubstitutionEqualsAFreshSolve) {
   const SparseMatrix base = d.baseMatrix();
   const double scale = d.weightScale();
   const int32_t n = static_cast<int32_t>(base.rows());
-  const auto factorOf = [&](const SparseMatrix& A) {
-    FactoredSystem f;
-    f.setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
-    EXPECT_TRUE(f.factor(A));
-    return f;
-  };
-  FactoredSystem kept = factorOf(base);
+  FactoredSystem kept = factorOnMesh(d, base);
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n), x, fresh;
   b[17] = 1.0;  // a design's right-hand side is zero but on its constraints' and sources' rows
   kept.solve(b, x);
@@ -358,7 +355,7 @@ TEST(FactoredSystem, IncrementalForwardSubstitutionEqualsAFreshSolve) {
     kept.solve(b, x);
     DiagonalTerms all;
     for (const auto& h : held) all = concatenate(all, h.first);
-    factorOf(plusDiagonal(base, all)).solve(b, fresh);
+    factorOnMesh(d, plusDiagonal(base, all)).solve(b, fresh);
     ASSERT_LT((x - fresh).norm() / fresh.norm(), 1e-11) << "step " << step;
   }
   // One full substitution in every 65 solves, the rest incremental.
