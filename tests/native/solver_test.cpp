@@ -497,6 +497,38 @@ TEST(ShiftedFactor, RankUpdatesEqualAFreshFactorizationAndDowndatesKeepToTheBudg
   EXPECT_FALSE(updated.current());
 }
 
+// The check after downdates: its backward error ||b - Ax|| / (||A|| ||x|| + ||b||) must see a factor that no
+// longer holds the matrix (here one downdated by a term the matrix never had, a relative error of 1e-6 on
+// one row), refactor once and give the fresh solution; a solve after updates alone is not checked, and the
+// same factor with the term taken back passes.
+TEST(ShiftedFactor, ASolveAfterDowndatesRefactorsWhenTheFactorNoLongerHoldsTheMatrix) {
+  Designer d(icosphere(3));
+  const SparseMatrix base = d.baseMatrix();
+  const double scale = d.weightScale();
+  const int32_t n = static_cast<int32_t>(base.rows());
+  const DiagonalTerms held{{3, 10, 40}, {5 * scale, 5 * scale, 2 * scale}};
+  const DiagonalTerms foreign{{10}, {1e-6 * scale}};
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  ShiftedFactor updated(std::vector<uint8_t>(n, 0)), fresh(std::vector<uint8_t>(n, 0));
+  fresh.factor(base, scale, held);
+  Eigen::VectorXd x, y;
+  fresh.solve(base, scale, held, b, y);
+
+  updated.factor(base, scale, held);
+  updated.update(foreign, scale, false);  // an update alone: not checked, and the factor holds held + foreign
+  updated.solve(base, scale, held, b, x);
+  EXPECT_EQ(updated.precisionRefactors(), 0);
+  updated.update(foreign, scale, true);  // taken back: the factor holds `held` again, to round-off
+  updated.solve(base, scale, held, b, x);
+  EXPECT_EQ(updated.precisionRefactors(), 0);
+  EXPECT_LT((x - y).norm() / y.norm(), 1e-10);
+
+  updated.update(foreign, scale, true);  // a term the matrix never had: the factor is of held - foreign
+  updated.solve(base, scale, held, b, x);
+  EXPECT_EQ(updated.precisionRefactors(), 1);
+  EXPECT_LT((x - y).norm() / y.norm(), 1e-12);
+}
+
 TEST(ShiftedFactor, AKernelIsShiftedAndTheRefinedSolutionSolvesTheUnshiftedSystem) {
   // A torus: its two harmonic fields are M's kernel, so its edges get the shift.
   const SurfaceMesh m = torus(16, 8, 2, 0.7);
