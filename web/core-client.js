@@ -63,6 +63,8 @@ export async function loadCore(baseUrl) {
   return new CoreClient(Module);
 }
 
+const sliceOf = (view) => view.slice();
+
 export class CoreClient {
   constructor(Module) {
     this.Module = Module;
@@ -187,28 +189,17 @@ export class CoreClient {
     }));
   }
 
-  faceVectors() {
-    return guard('faceVectors', () => this.designer.faceVectors().slice());
-  }
-
-  vertexVectors() {
-    return guard('vertexVectors', () => this.designer.vertexVectors().slice());
-  }
-
-  oneForm() {
-    return guard('oneForm', () => this.designer.oneForm().slice());
-  }
-
-  // The same through `copy(view of the wasm heap)`, which returns the copy (the worker's refill of a spare).
-  copyFaceVectors(copy) {
+  // The field arrays, copied out of the wasm heap by `copy(view)` (a fresh array by default; the worker
+  // passes one that refills a spare).
+  faceVectors(copy = sliceOf) {
     return guard('faceVectors', () => copy(this.designer.faceVectors()));
   }
 
-  copyVertexVectors(copy) {
+  vertexVectors(copy = sliceOf) {
     return guard('vertexVectors', () => copy(this.designer.vertexVectors()));
   }
 
-  copyOneForm(copy) {
+  oneForm(copy = sliceOf) {
     return guard('oneForm', () => copy(this.designer.oneForm()));
   }
 

@@ -75,10 +75,11 @@ function snapshot(changed, timing = {}) {
   };
   version++;
   const counts = { reused: 0 };
-  const faceVectors = core.copyFaceVectors((v) => copyOut(v, counts));
-  const oneForm = core.copyOneForm((v) => copyOut(v, counts));
+  const copy = (view) => copyOut(view, counts);
+  const faceVectors = core.faceVectors(copy);
+  const oneForm = core.oneForm(copy);
   lap('copyMs');
-  const vertexVectors = core.copyVertexVectors((v) => copyOut(v, counts));
+  const vertexVectors = core.vertexVectors(copy);
   lap('deriveMs');
   timing.reusedArrays = counts.reused;
   const ids = core.constraintIds();

@@ -50,10 +50,6 @@ void ForwardSolution::invalidate() {
   std::vector<int>().swap(changed_);
 }
 
-bool ForwardSolution::valid() const {
-  return valid_;
-}
-
 void ForwardSolution::clearPending() {
   for (const int j : pending_) {
     r_[j] = 0;

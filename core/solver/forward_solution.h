@@ -21,7 +21,6 @@ class ForwardSolution {
  public:
   // Forgets y (and frees its storage): the next solve substitutes in full.
   void invalidate();
-  bool valid() const;
 
   // Before L's columns on the paths from `columns` (positions in L) to the root are changed: keeps what
   // y needs from the old L. Nothing while y is not valid.
@@ -46,9 +45,9 @@ class ForwardSolution {
   bool valid_ = false;
   int incremental_ = 0;  // incremental substitutions since the last full one
   int64_t incrementalTotal_ = 0;
-  double largestSinceFull_ =
-      0;                   // the largest |b| (infinity norm) y has solved since its last full substitution
-  std::vector<double> y_;  // L y = bLast_
+  // The largest |b| (infinity norm) y has solved since its last full substitution.
+  double largestSinceFull_ = 0;
+  std::vector<double> y_;       // L y = bLast_
   std::vector<double> bLast_;   // the permuted right-hand side y solves
   std::vector<double> r_;       // on pending_: P b less the contributions of L's columns outside pending_
   std::vector<uint8_t> inSet_;  // membership of pending_
