@@ -110,10 +110,9 @@ class Dissector {
     idx_t options[METIS_NOPTIONS];
     METIS_SetDefaultOptions(options);
     options[METIS_OPTION_NUMBERING] = 0;
-    // The better of two cuts: at 1.25M edges fill 66.5 nnz/row and a 50-edge stroke's update 112 ms, against
-    // 68.0 and 137 ms with one, for 4.8 s of analysis instead of 3.6 s (CHOLMOD's NESDIS: 68.4, 91 ms,
-    // 11.2 s).
-    options[METIS_OPTION_NCUTS] = 2;
+    // One cut (METIS's default). The better of two buys 1.5-2 % of fill (bunny00 51.2 against 52.0 nnz/row,
+    // 1.25M edges 66.5 against 68.0) and no stroke time measurable in interleaved runs, for 40-45 % more
+    // analysis (bunny00 225-265 against 165-185 ms, 1.25M edges 4.9-5.3 against 3.3-3.8 s; README).
     part.assign(n, 0);
     idx_t nv = n;
     const int status =

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "common/input_error.h"
+#include "solver/backward_substitution.h"
 #include "solver/cholmod_handles.h"
 #include "solver/edge_dissection.h"
 #include "solver/forward_solution.h"
@@ -83,7 +84,9 @@ struct FactoredSystem::Impl {
   cholmod_dense* forwardFull = nullptr;
   // L^-1 P b of the last tracked solve, redone after an edit only on the columns the edit changed.
   ForwardSolution forward;
-  std::vector<double> bPermuted;
+  BackwardKernel backwardKernel = kDefaultBackwardKernel;
+  BackwardSubstitution backward;
+  std::vector<double> bPermuted, xPermuted;
   FactorTimings timings;
   std::vector<int> inversePerm;
   bool wasSupernodal = false;
@@ -132,6 +135,15 @@ struct FactoredSystem::Impl {
     into.reset(out);
     if (!out) throw std::runtime_error("CHOLMOD solve failed");
     return static_cast<const double*>(out->x);
+  }
+
+  // L^-T D^-1 y for the kept forward substitution y.
+  const double* substituteBackward() {
+    if (backwardKernel == BackwardKernel::Columns)
+      return solveSystem(CHOLMOD_DLt, forward.y().data(), solution);
+    xPermuted.resize(n);
+    backward.solve(*factor, forward.y().data(), xPermuted.data());
+    return xPermuted.data();
   }
 
   // A fresh copy of the symbolic factor of A: the saved one when A's pattern is unchanged, else a new
@@ -212,7 +224,9 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
   cholmod_sparse view = Impl::upperView(upper);
   auto start = std::chrono::steady_clock::now();
   s.forward.invalidate();
+  s.backward.invalidate();
   std::vector<double>().swap(s.bPermuted);
+  std::vector<double>().swap(s.xPermuted);
   cholmod_free_dense(&s.forwardFull, s.common.get());
   s.factor.reset(s.analyzeOrReuse(view, A));
   if (!s.factor) throw std::runtime_error("CHOLMOD analysis failed (out of memory?)");
@@ -294,7 +308,7 @@ void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     s.forward.setFull(s.bPermuted.data(), y, s.n);
     s.forwardFull = full.release();
   }
-  const double* z = s.solveSystem(CHOLMOD_DLt, s.forward.y().data(), s.solution);
+  const double* z = s.substituteBackward();
   x.resize(s.n);
   for (int k = 0; k < s.n; ++k) x[perm[k]] = z[k];
 }
@@ -314,6 +328,7 @@ void FactoredSystem::setOrdering(FillOrdering ordering) {
   next->edgeVertices = std::move(impl_->edgeVertices);
   next->numVertices = impl_->numVertices;
   next->memoryLimit = impl_->memoryLimit;
+  next->backwardKernel = impl_->backwardKernel;
   impl_ = std::move(next);
 }
 
@@ -321,6 +336,14 @@ void FactoredSystem::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t num
   impl_->edgeVertices = std::move(edgeVertices);
   impl_->numVertices = numVertices;
   impl_->symbolic.reset();
+}
+
+void FactoredSystem::setBackwardKernel(BackwardKernel kernel) {
+  impl_->backwardKernel = kernel;
+}
+
+BackwardKernel FactoredSystem::backwardKernel() const {
+  return impl_->backwardKernel;
 }
 
 void FactoredSystem::setMemoryLimit(double bytes) {
@@ -354,7 +377,8 @@ std::string FactoredSystem::description() const {
          " factor, kept as simplicial LDL' for updates (" +
          (impl_->ordering == FillOrdering::Amd ? "AMD ordering)"
           : impl_->usedDissection              ? "METIS nested dissection of the mesh's vertex graph)"
-                                               : "METIS nested dissection ordering)");
+                                               : "METIS nested dissection ordering)") +
+         (impl_->backwardKernel == BackwardKernel::Supernodes ? ", backward substitution by supernodes" : "");
 }
 
 }  // namespace tvf

@@ -13,6 +13,18 @@ namespace tvf {
 
 enum class FillOrdering { Amd, Metis };
 
+// How solve() substitutes backward: CHOLMOD's column-by-column L^-T (each entry a row index and a gather), or
+// supernode by supernode, gathering each supernode's rows once (solver/backward_substitution.h). On bunny00
+// the supernodes take a wasm stroke's solve from ~13.5 to ~11.2 ms, but natively, where CHOLMOD is compiled
+// for the machine and its own groups of up to four columns already share their gathers, they are ~10 %
+// slower (README): each build takes the faster one.
+enum class BackwardKernel { Columns, Supernodes };
+#ifdef __EMSCRIPTEN__
+inline constexpr BackwardKernel kDefaultBackwardKernel = BackwardKernel::Supernodes;
+#else
+inline constexpr BackwardKernel kDefaultBackwardKernel = BackwardKernel::Columns;
+#endif
+
 struct FactorTimings {
   double analyzeMs = 0, factorMs = 0, convertMs = 0;
   // The last factor() reused the previous symbolic analysis (same sparsity pattern): no ordering was
@@ -39,7 +51,9 @@ class FactoredSystem {
   // is a nested dissection of the vertex graph (solver/edge_dissection.h) instead of CHOLMOD's of A's graph.
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);
   void setMemoryLimit(double bytes);  // 0: no limit
-  double estimatedBytes() const;      // the last analysis' estimate of the factor's peak memory
+  void setBackwardKernel(BackwardKernel kernel);
+  BackwardKernel backwardKernel() const;
+  double estimatedBytes() const;  // the last analysis' estimate of the factor's peak memory
   // L L' +/- sum_k w_k e_{row_k} e_{row_k}' in one cholmod_updown call; weights must be positive.
   void updateDiagonal(const std::vector<int32_t>& rows, const std::vector<double>& weights, bool downdate);
   // Solves A x = b. The forward substitution L^-1 P b is kept: after updates and a change of b on a few

@@ -362,6 +362,72 @@ TEST(FactoredSystem, IncrementalForwardSubstitutionEqualsAFreshSolve) {
   EXPECT_GE(kept.incrementalSolves(), solves - solves / 65 - 1);
 }
 
+// The backward substitution by supernodes (the wasm build's, solver/backward_substitution.h) against
+// CHOLMOD's column by column (the native build's), on a closed surface and on a grid with a boundary, in both
+// orderings: after the factorization and after strokes and removals, which keep L's pattern and so the
+// supernodes found once, both give the same field to round-off, and it solves the modified matrix.
+TEST(FactoredSystem, BackwardSubstitutionBySupernodesEqualsCholmodsByColumns) {
+  for (const bool closed : {true, false}) {
+    Designer d(closed ? icosphere(4) : flatGrid(24));
+    const double scale = d.weightScale();
+    const int32_t edges = static_cast<int32_t>(d.baseMatrix().rows());
+    DiagonalTerms everywhere;  // makes the grid's matrix, whose free boundary leaves a kernel, definite
+    for (int32_t e = 0; e < (closed ? 0 : edges); ++e) {
+      everywhere.rows.push_back(e);
+      everywhere.weights.push_back(1e-3 * scale);
+    }
+    const SparseMatrix base = plusDiagonal(d.baseMatrix(), everywhere);
+    const int32_t n = static_cast<int32_t>(base.rows());
+    for (const FillOrdering ordering : {FillOrdering::Metis, FillOrdering::Amd}) {
+      const std::string where = std::string(closed ? "icosphere, " : "grid, ") +
+                                (ordering == FillOrdering::Metis ? "METIS" : "AMD");
+      FactoredSystem columns(ordering), supernodes(ordering);
+      columns.setBackwardKernel(BackwardKernel::Columns);
+      supernodes.setBackwardKernel(BackwardKernel::Supernodes);
+      for (FactoredSystem* f : {&columns, &supernodes}) {
+        f->setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
+        ASSERT_TRUE(f->factor(base)) << where;
+      }
+      EXPECT_NE(supernodes.description().find("by supernodes"), std::string::npos)
+          << supernodes.description();
+      std::mt19937 random(5);
+      std::uniform_real_distribution<double> value(-1.0, 1.0), weight(0.1, 10.0);
+      Eigen::VectorXd b(n), x, expected;
+      for (int32_t e = 0; e < n; ++e) b[e] = value(random);
+      std::vector<DiagonalTerms> held;
+      for (int step = 0; step < 12; ++step) {
+        if (step > 0 && step % 3 == 0) {
+          for (FactoredSystem* f : {&columns, &supernodes})
+            f->updateDiagonal(held.back().rows, held.back().weights, true);
+          held.pop_back();
+        } else if (step > 0) {
+          DiagonalTerms t;
+          const int32_t start = static_cast<int32_t>(random() % n);
+          for (int c = 0; c < 1 + step * 4; ++c) {
+            t.rows.push_back((start + c) % n);
+            t.weights.push_back(weight(random) * scale);
+          }
+          for (FactoredSystem* f : {&columns, &supernodes}) f->updateDiagonal(t.rows, t.weights, false);
+          held.push_back(t);
+        }
+        b[random() % n] += value(random);
+        columns.solve(b, expected);
+        supernodes.solve(b, x);
+        ASSERT_LT((x - expected).norm() / expected.norm(), 1e-12) << where << ", step " << step;
+        DiagonalTerms all;
+        for (const DiagonalTerms& t : held) all = concatenate(all, t);
+        EXPECT_LT((plusDiagonal(base, all) * x - b).norm() / b.norm(), 1e-10) << where << ", step " << step;
+      }
+      // A factorization of another pattern (A^2 couples edges two steps apart) finds its own supernodes.
+      const SparseMatrix squared = (base * base).pruned();
+      for (FactoredSystem* f : {&columns, &supernodes}) ASSERT_TRUE(f->factor(squared)) << where;
+      columns.solve(b, expected);
+      supernodes.solve(b, x);
+      EXPECT_LT((x - expected).norm() / expected.norm(), 1e-12) << where << ", A^2";
+    }
+  }
+}
+
 TEST(Solver, RemovingEverythingReturnsToTheOriginalField) {
   Designer d(icosphere(2));
   d.addSource(0, 1.0);

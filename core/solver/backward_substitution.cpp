@@ -1,0 +1,135 @@
+#include "solver/backward_substitution.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace tvf {
+namespace {
+
+// Two doubles in one vector register: SSE2 natively, simd128 in wasm (GCC and Clang vector extension).
+typedef double Lanes2 __attribute__((vector_size(16)));
+
+Lanes2 load2(const double* p) {
+  Lanes2 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// sum a(k) b(k), both contiguous: four running sums in two vectors, so no chain of dependent adds.
+double dot(const double* a, const double* b, int m) {
+  Lanes2 s0 = {0, 0};
+  Lanes2 s1 = {0, 0};
+  int k = 0;
+  for (; k + 4 <= m; k += 4) {
+    s0 += load2(a + k) * load2(b + k);
+    s1 += load2(a + k + 2) * load2(b + k + 2);
+  }
+  double s = (s0[0] + s1[0]) + (s0[1] + s1[1]);
+  for (; k < m; ++k) s += a[k] * b[k];
+  return s;
+}
+
+// The four sums a_c(k) t(k), c = 0..3, in one pass over t: the columns of a supernode share t.
+void dot4(const double* const a[4], const double* t, int m, double sums[4]) {
+  Lanes2 s0 = {0, 0}, s1 = {0, 0}, s2 = {0, 0}, s3 = {0, 0};
+  int k = 0;
+  for (; k + 2 <= m; k += 2) {
+    const Lanes2 tk = load2(t + k);
+    s0 += load2(a[0] + k) * tk;
+    s1 += load2(a[1] + k) * tk;
+    s2 += load2(a[2] + k) * tk;
+    s3 += load2(a[3] + k) * tk;
+  }
+  sums[0] = s0[0] + s0[1];
+  sums[1] = s1[0] + s1[1];
+  sums[2] = s2[0] + s2[1];
+  sums[3] = s3[0] + s3[1];
+  if (k < m) {
+    for (int c = 0; c < 4; ++c) sums[c] += a[c][k] * t[k];
+  }
+}
+
+// sum a(k) x(rows(k)): a column on its own, where gathering first would only copy.
+double dotGathered(const double* a, const int* rows, const double* x, int m) {
+  double s0 = 0, s1 = 0;
+  int k = 0;
+  for (; k + 2 <= m; k += 2) {
+    s0 += a[k] * x[rows[k]];
+    s1 += a[k + 1] * x[rows[k + 1]];
+  }
+  if (k < m) s0 += a[k] * x[rows[k]];
+  return s0 + s1;
+}
+
+}  // namespace
+
+void BackwardSubstitution::invalidate() {
+  std::vector<int>().swap(first_);
+  std::vector<double>().swap(gathered_);
+}
+
+// Columns j and j + 1 share a supernode when j's parent is j + 1 and j has exactly one row more (the
+// diagonal): a column's rows below its diagonal are its ancestors, so then they are j + 1's rows.
+void BackwardSubstitution::findSupernodes(const cholmod_factor& L) {
+  const int n = static_cast<int>(L.n);
+  const int* Lp = static_cast<const int*>(L.p);
+  const int* Li = static_cast<const int*>(L.i);
+  const int* Lnz = static_cast<const int*>(L.nz);
+  first_.clear();
+  int widest = 0;
+  for (int j = 0; j < n; ++j) {
+    if (j == 0 || !(Lnz[j - 1] == Lnz[j] + 1 && Li[Lp[j - 1] + 1] == j)) first_.push_back(j);
+    widest = std::max(widest, Lnz[j] - 1);
+  }
+  first_.push_back(n);
+  gathered_.assign(static_cast<size_t>(widest), 0.0);
+}
+
+// x(c) = x(c) / D(c) - L(R, c)' t for the columns c = f..l of a supernode, whose rows R below it are final
+// and gathered in t. These sums do not depend on one another: four columns at a time share each load of t,
+// in the order the columns lie in memory.
+void BackwardSubstitution::subtractBelow(const cholmod_factor& L, int f, int l, const double* t, int m,
+                                         double* x) {
+  const int* Lp = static_cast<const int*>(L.p);
+  const double* Lx = static_cast<const double*>(L.x);
+  const auto below = [&](int c) { return Lx + Lp[c] + 1 + (l - c); };
+  int c = f;
+  for (; c + 4 <= l + 1; c += 4) {
+    const double* const a[4] = {below(c), below(c + 1), below(c + 2), below(c + 3)};
+    double sums[4];
+    dot4(a, t, m, sums);
+    for (int q = 0; q < 4; ++q) x[c + q] = x[c + q] / Lx[Lp[c + q]] - sums[q];
+  }
+  for (; c <= l; ++c) x[c] = x[c] / Lx[Lp[c]] - dot(below(c), t, m);
+}
+
+void BackwardSubstitution::solve(const cholmod_factor& L, const double* y, double* x) {
+  const int n = static_cast<int>(L.n);
+  if (first_.empty() || first_.back() != n) findSupernodes(L);
+  if (x != y) std::copy(y, y + n, x);
+  const int* Lp = static_cast<const int*>(L.p);
+  const int* Li = static_cast<const int*>(L.i);
+  const int* Lnz = static_cast<const int*>(L.nz);
+  const double* Lx = static_cast<const double*>(L.x);
+  double* t = gathered_.data();
+  for (int s = supernodeCount() - 1; s >= 0; --s) {
+    const int f = first_[s];
+    const int l = first_[s + 1] - 1;
+    const int m = Lnz[l] - 1;
+    const int* below = Li + Lp[l] + 1;
+    if (f == l) {
+      const double* column = Lx + Lp[l];
+      x[l] = x[l] / column[0] - dotGathered(column + 1, below, x, m);
+      continue;
+    }
+    for (int k = 0; k < m; ++k) t[k] = x[below[k]];
+    subtractBelow(L, f, l, t, m, x);
+    // The triangle within the supernode, last column first: column c's rows c + 1 .. l are final by then.
+    for (int c = l; c >= f; --c) {
+      const double* column = Lx + Lp[c];
+      x[c] -= dot(column + 1, x + c + 1, l - c);
+    }
+  }
+}
+
+}  // namespace tvf
