@@ -29,23 +29,19 @@ double dot(const double* a, const double* b, int m) {
   return s;
 }
 
-// The four sums a_c(k) t(k), c = 0..3, in one pass over t: the columns of a supernode share t.
-void dot4(const double* const a[4], const double* t, int m, double sums[4]) {
-  Lanes2 s0 = {0, 0}, s1 = {0, 0}, s2 = {0, 0}, s3 = {0, 0};
+// The K sums a_c(k) t(k), c < K, in one pass over t: the columns of a supernode share t.
+template <int K>
+void dotColumns(const double* const* a, const double* t, int m, double* sums) {
+  Lanes2 acc[K];
+  for (int c = 0; c < K; ++c) acc[c] = Lanes2{0, 0};
   int k = 0;
   for (; k + 2 <= m; k += 2) {
     const Lanes2 tk = load2(t + k);
-    s0 += load2(a[0] + k) * tk;
-    s1 += load2(a[1] + k) * tk;
-    s2 += load2(a[2] + k) * tk;
-    s3 += load2(a[3] + k) * tk;
+    for (int c = 0; c < K; ++c) acc[c] += load2(a[c] + k) * tk;
   }
-  sums[0] = s0[0] + s0[1];
-  sums[1] = s1[0] + s1[1];
-  sums[2] = s2[0] + s2[1];
-  sums[3] = s3[0] + s3[1];
+  for (int c = 0; c < K; ++c) sums[c] = acc[c][0] + acc[c][1];
   if (k < m) {
-    for (int c = 0; c < 4; ++c) sums[c] += a[c][k] * t[k];
+    for (int c = 0; c < K; ++c) sums[c] += a[c][k] * t[k];
   }
 }
 
@@ -86,21 +82,33 @@ void BackwardSubstitution::findSupernodes(const cholmod_factor& L) {
 }
 
 // x(c) = x(c) / D(c) - L(R, c)' t for the columns c = f..l of a supernode, whose rows R below it are final
-// and gathered in t. These sums do not depend on one another: four columns at a time share each load of t,
-// in the order the columns lie in memory.
+// and gathered in t. These sums do not depend on one another: up to four columns at a time share each load
+// of t, in the order the columns lie in memory.
 void BackwardSubstitution::subtractBelow(const cholmod_factor& L, int f, int l, const double* t, int m,
                                          double* x) {
   const int* Lp = static_cast<const int*>(L.p);
   const double* Lx = static_cast<const double*>(L.x);
   const auto below = [&](int c) { return Lx + Lp[c] + 1 + (l - c); };
-  int c = f;
-  for (; c + 4 <= l + 1; c += 4) {
-    const double* const a[4] = {below(c), below(c + 1), below(c + 2), below(c + 3)};
+  for (int c = f; c <= l; c += 4) {
+    const int count = std::min(4, l + 1 - c);
+    const double* a[4];
     double sums[4];
-    dot4(a, t, m, sums);
-    for (int q = 0; q < 4; ++q) x[c + q] = x[c + q] / Lx[Lp[c + q]] - sums[q];
+    for (int q = 0; q < count; ++q) a[q] = below(c + q);
+    switch (count) {
+      case 4:
+        dotColumns<4>(a, t, m, sums);
+        break;
+      case 3:
+        dotColumns<3>(a, t, m, sums);
+        break;
+      case 2:
+        dotColumns<2>(a, t, m, sums);
+        break;
+      default:
+        dotColumns<1>(a, t, m, sums);
+    }
+    for (int q = 0; q < count; ++q) x[c + q] = x[c + q] / Lx[Lp[c + q]] - sums[q];
   }
-  for (; c <= l; ++c) x[c] = x[c] / Lx[Lp[c]] - dot(below(c), t, m);
 }
 
 void BackwardSubstitution::solve(const cholmod_factor& L, const double* y, double* x) {
