@@ -2,14 +2,14 @@
 // The backward substitution x = L^-T D^-1 y of CHOLMOD's simplicial LDL' factor (L unit lower triangular, D
 // on its diagonal), done supernode by supernode.
 //
-// Column by column (CHOLMOD's own), each entry of L costs a row index, a gather of x through it, and a
-// multiply-add in a chain: the substitution is bound by the gathers, and in wasm, which has neither vector
-// gathers nor fused multiply-adds, even more so. The columns of a fundamental supernode f..l share their rows
-// R below the supernode (column c holds c..l, then R), so x(R) is gathered once per supernode into a
-// contiguous buffer and each column's part on R is a dense dot product of contiguous values. The row indices
-// on R are read once per supernode instead of once per column, and the dot products run in two-double vector
-// lanes, four columns per pass over the gathered rows. In wasm this is the faster backward substitution;
-// natively CHOLMOD's, compiled for the machine, stays ahead (BackwardKernel in solver/factored_system.h).
+// Column by column (CHOLMOD's own, in groups of up to four columns with the same rows), each entry of L costs
+// a row index and a gather of x through it. The columns of a fundamental supernode f..l share their rows R
+// below the supernode (column c holds c..l, then R), so x(R) is gathered once per supernode into a contiguous
+// buffer and each column's part on R is a dense dot product of contiguous values. The row indices on R are
+// read once per supernode instead of once per group of columns, and the dot products run in two-double vector
+// lanes, up to four columns per pass over the gathered rows. In wasm, which has no vector gathers, this is
+// the faster backward substitution; natively CHOLMOD's, compiled for the machine, stays ahead (BackwardKernel
+// in solver/factored_system.h).
 //
 // Diagonal updates keep L's pattern (the path of a column with one entry lies in L's pattern), so the
 // supernodes found after a factorization stay valid until the next one.

@@ -15,9 +15,9 @@ enum class FillOrdering { Amd, Metis };
 
 // How solve() substitutes backward: CHOLMOD's column-by-column L^-T (each entry a row index and a gather), or
 // supernode by supernode, gathering each supernode's rows once (solver/backward_substitution.h). On bunny00
-// the supernodes take a wasm stroke's solve from ~13.5 to ~11.2 ms, but natively, where CHOLMOD is compiled
-// for the machine and its own groups of up to four columns already share their gathers, they are ~10 %
-// slower (README): each build takes the faster one.
+// the supernodes take wasm's solve after an edit from 12.7-12.9 to 10.4-10.5 ms, but natively, where CHOLMOD
+// is compiled for the machine and its own groups of up to four columns already share their gathers, the
+// backward substitution by supernodes is ~10 % slower (README): each build takes the faster one.
 enum class BackwardKernel { Columns, Supernodes };
 #ifdef __EMSCRIPTEN__
 inline constexpr BackwardKernel kDefaultBackwardKernel = BackwardKernel::Supernodes;
