@@ -87,6 +87,9 @@ struct FactoredSystem::Impl {
   BackwardKernel backwardKernel = kDefaultBackwardKernel;
   BackwardSubstitution backward;
   std::vector<double> bPermuted, xPermuted;
+  // solveOnce's own: it must not disturb what solve() keeps.
+  std::vector<double> onceRhs;
+  CholmodDensePtr onceForward{nullptr, {common.get()}};
   FactorTimings timings;
   std::vector<int> inversePerm;
   bool wasSupernodal = false;
@@ -227,6 +230,8 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
   s.backward.invalidate();
   std::vector<double>().swap(s.bPermuted);
   std::vector<double>().swap(s.xPermuted);
+  std::vector<double>().swap(s.onceRhs);
+  s.onceForward.reset();
   cholmod_free_dense(&s.forwardFull, s.common.get());
   s.factor.reset(s.analyzeOrReuse(view, A));
   if (!s.factor) throw std::runtime_error("CHOLMOD analysis failed (out of memory?)");
@@ -315,8 +320,19 @@ void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
 
 void FactoredSystem::solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Impl& s = *impl_;
-  const double* z = s.solveSystem(CHOLMOD_A, b.data(), s.solution);
-  x = Eigen::Map<const Eigen::VectorXd>(z, b.size());
+  if (s.backwardKernel == BackwardKernel::Columns) {
+    const double* z = s.solveSystem(CHOLMOD_A, b.data(), s.solution);
+    x = Eigen::Map<const Eigen::VectorXd>(z, b.size());
+    return;
+  }
+  const int* perm = static_cast<const int*>(s.factor->Perm);
+  s.onceRhs.resize(s.n);
+  for (int k = 0; k < s.n; ++k) s.onceRhs[k] = b[perm[k]];
+  const double* y = s.solveSystem(CHOLMOD_L, s.onceRhs.data(), s.onceForward);
+  s.xPermuted.resize(s.n);
+  s.backward.solve(*s.factor, y, s.xPermuted.data());
+  x.resize(s.n);
+  for (int k = 0; k < s.n; ++k) x[perm[k]] = s.xPermuted[k];
 }
 
 int64_t FactoredSystem::incrementalSolves() const {
