@@ -249,6 +249,7 @@ d.delete();
   };
   const ids = [];
   const incrementalBefore = JSON.parse(e.statsJson()).incrementalSolves;
+  const supernodalBefore = JSON.parse(e.statsJson()).supernodalSolves;
   let refactors = 0, worst = 0, solveErrors = '';
   const solveAndCompare = () => {
     solveErrors += e.solve();
@@ -269,6 +270,8 @@ d.delete();
   // Each edit's solve redid the forward substitution only on the paths it changed.
   const incremental = JSON.parse(e.statsJson()).incrementalSolves - incrementalBefore;
   check('... each incrementally', incremental === 2 * 11, `${incremental} incremental solves of ${2 * 11}`);
+  const supernodal = JSON.parse(e.statsJson()).supernodalSolves - supernodalBefore;
+  check('... and substituting backward by supernodes', supernodal === 2 * 11, `${supernodal} of ${2 * 11}`);
   check('... and every field equals a fresh factorization\'s (1e-9)', worst <= 1e-9, `relative max difference ${worst}`);
   e.delete();
 }

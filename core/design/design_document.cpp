@@ -302,6 +302,7 @@ json statsJson(const DesignStats& s) {
           {"analysisReused", s.analysisReused},
           {"precisionRefactors", s.precisionRefactors},
           {"incrementalSolves", s.incrementalSolves},
+          {"supernodalSolves", s.supernodalSolves},
           {"nnzPerRowM", s.nnzPerRowM},
           {"nnzPerRowL", s.nnzPerRowL},
           {"positiveAreaFallbackVertices", s.positiveAreaFallbackVertices},

@@ -272,6 +272,7 @@ void Designer::solve() {
   d.stats.solveMs = msSince(start);
   d.stats.precisionRefactors = d.factor.precisionRefactors();
   d.stats.incrementalSolves = d.factor.incrementalSolves();
+  d.stats.supernodalSolves = d.factor.supernodalSolves();
   d.copyFactorReport();  // the solve refactors when an updated factor lost precision
   if (!x.allFinite())
     throw InputError(

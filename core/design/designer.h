@@ -29,6 +29,9 @@ struct DesignStats {
   // Solves whose forward substitution was redone only on the paths the edits changed (all since the mesh
   // was loaded; solver/forward_solution.h).
   int64_t incrementalSolves = 0;
+  // Solves (and refinement steps) whose backward substitution went by supernodes (the wasm build's;
+  // solver/backward_substitution.h), since the factored system was made.
+  int64_t supernodalSolves = 0;
   double nnzPerRowM = 0, nnzPerRowL = 0;
   int32_t positiveAreaFallbackVertices = 0;
   std::string kernelHandling;  // how the kernel of M was made definite

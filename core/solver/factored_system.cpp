@@ -86,6 +86,7 @@ struct FactoredSystem::Impl {
   ForwardSolution forward;
   BackwardKernel backwardKernel = kDefaultBackwardKernel;
   BackwardSubstitution backward;
+  int64_t supernodalSolves = 0;
   std::vector<double> bPermuted, xPermuted;
   // solveOnce's own: it must not disturb what solve() keeps.
   std::vector<double> onceRhs;
@@ -140,10 +141,16 @@ struct FactoredSystem::Impl {
     return static_cast<const double*>(out->x);
   }
 
+  // The supernodes are read from a simplicial LDL' factor's columns, which factor() leaves after every
+  // successful factorization.
+  bool bySupernodes() const {
+    return backwardKernel == BackwardKernel::Supernodes && !factor->is_super && !factor->is_ll;
+  }
+
   // L^-T D^-1 y for the kept forward substitution y.
   const double* substituteBackward() {
-    if (backwardKernel == BackwardKernel::Columns)
-      return solveSystem(CHOLMOD_DLt, forward.y().data(), solution);
+    if (!bySupernodes()) return solveSystem(CHOLMOD_DLt, forward.y().data(), solution);
+    ++supernodalSolves;
     xPermuted.resize(n);
     backward.solve(*factor, forward.y().data(), xPermuted.data());
     return xPermuted.data();
@@ -320,7 +327,7 @@ void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
 
 void FactoredSystem::solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Impl& s = *impl_;
-  if (s.backwardKernel == BackwardKernel::Columns) {
+  if (!s.bySupernodes()) {
     const double* z = s.solveSystem(CHOLMOD_A, b.data(), s.solution);
     x = Eigen::Map<const Eigen::VectorXd>(z, b.size());
     return;
@@ -329,6 +336,7 @@ void FactoredSystem::solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   s.onceRhs.resize(s.n);
   for (int k = 0; k < s.n; ++k) s.onceRhs[k] = b[perm[k]];
   const double* y = s.solveSystem(CHOLMOD_L, s.onceRhs.data(), s.onceForward);
+  ++s.supernodalSolves;
   s.xPermuted.resize(s.n);
   s.backward.solve(*s.factor, y, s.xPermuted.data());
   x.resize(s.n);
@@ -337,6 +345,10 @@ void FactoredSystem::solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
 
 int64_t FactoredSystem::incrementalSolves() const {
   return impl_->forward.incrementalCount();
+}
+
+int64_t FactoredSystem::supernodalSolves() const {
+  return impl_->supernodalSolves;
 }
 
 void FactoredSystem::setOrdering(FillOrdering ordering) {

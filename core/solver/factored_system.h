@@ -64,6 +64,7 @@ class FactoredSystem {
   // as a refinement's residual).
   void solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   int64_t incrementalSolves() const;  // solves whose forward substitution was incremental
+  int64_t supernodalSolves() const;   // solves and solveOnce calls that substituted backward by supernodes
 
   bool factored() const;
   int64_t factorNonzeros() const;

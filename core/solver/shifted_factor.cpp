@@ -230,6 +230,10 @@ int64_t ShiftedFactor::incrementalSolves() const {
   return system_.incrementalSolves();
 }
 
+int64_t ShiftedFactor::supernodalSolves() const {
+  return system_.supernodalSolves();
+}
+
 int32_t ShiftedFactor::precisionRefactors() const {
   return precisionRefactors_;
 }

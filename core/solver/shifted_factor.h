@@ -70,6 +70,7 @@ class ShiftedFactor {
   double lastUpdateMs() const;         // the last rank update that was done
   int32_t precisionRefactors() const;  // how many times solve() found an updated factor wanting
   int64_t incrementalSolves() const;   // FactoredSystem::incrementalSolves
+  int64_t supernodalSolves() const;    // FactoredSystem::supernodalSolves
 
  private:
   SparseMatrix shiftedMatrix(const SparseMatrix& base, double scale, const DiagonalTerms& terms) const;

@@ -424,6 +424,8 @@ TEST(FactoredSystem, BackwardSubstitutionBySupernodesEqualsCholmodsByColumns) {
         for (const DiagonalTerms& t : held) all = concatenate(all, t);
         EXPECT_LT((plusDiagonal(base, all) * x - b).norm() / b.norm(), 1e-10) << where << ", step " << step;
       }
+      EXPECT_EQ(supernodes.supernodalSolves(), 2 * 12) << where;
+      EXPECT_EQ(columns.supernodalSolves(), 0) << where;
       // A factorization of another pattern (A^2 couples edges two steps apart) finds its own supernodes.
       const SparseMatrix squared = (base * base).pruned();
       for (FactoredSystem* f : {&columns, &supernodes}) ASSERT_TRUE(f->factor(squared)) << where;
