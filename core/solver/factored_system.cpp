@@ -141,19 +141,36 @@ struct FactoredSystem::Impl {
     return static_cast<const double*>(out->x);
   }
 
+  // P b and its inverse: L factors P A P'.
+  void permute(const Eigen::VectorXd& b, std::vector<double>& into) const {
+    const int* perm = static_cast<const int*>(factor->Perm);
+    into.resize(n);
+    for (int k = 0; k < n; ++k) into[k] = b[perm[k]];
+  }
+  void unpermute(const double* z, Eigen::VectorXd& x) const {
+    const int* perm = static_cast<const int*>(factor->Perm);
+    x.resize(n);
+    for (int k = 0; k < n; ++k) x[perm[k]] = z[k];
+  }
+
   // The supernodes are read from a simplicial LDL' factor's columns, which factor() leaves after every
   // successful factorization.
   bool bySupernodes() const {
     return backwardKernel == BackwardKernel::Supernodes && !factor->is_super && !factor->is_ll;
   }
 
+  // L^-T D^-1 y by supernodes, into xPermuted.
+  const double* substituteBackwardBySupernodes(const double* y) {
+    ++supernodalSolves;
+    xPermuted.resize(n);
+    backward.solve(*factor, y, xPermuted.data());
+    return xPermuted.data();
+  }
+
   // L^-T D^-1 y for the kept forward substitution y.
   const double* substituteBackward() {
     if (!bySupernodes()) return solveSystem(CHOLMOD_DLt, forward.y().data(), solution);
-    ++supernodalSolves;
-    xPermuted.resize(n);
-    backward.solve(*factor, forward.y().data(), xPermuted.data());
-    return xPermuted.data();
+    return substituteBackwardBySupernodes(forward.y().data());
   }
 
   // A fresh copy of the symbolic factor of A: the saved one when A's pattern is unchanged, else a new
@@ -311,18 +328,14 @@ void FactoredSystem::updateDiagonal(const std::vector<int32_t>& rows, const std:
 
 void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Impl& s = *impl_;
-  const int* perm = static_cast<const int*>(s.factor->Perm);
-  s.bPermuted.resize(s.n);
-  for (int k = 0; k < s.n; ++k) s.bPermuted[k] = b[perm[k]];
+  s.permute(b, s.bPermuted);
   if (!s.forward.substituteIncrementally(*s.factor, s.bPermuted.data())) {
     CholmodDensePtr full(std::exchange(s.forwardFull, nullptr), {s.common.get()});
     const double* y = s.solveSystem(CHOLMOD_L, s.bPermuted.data(), full);
     s.forward.setFull(s.bPermuted.data(), y, s.n);
     s.forwardFull = full.release();
   }
-  const double* z = s.substituteBackward();
-  x.resize(s.n);
-  for (int k = 0; k < s.n; ++k) x[perm[k]] = z[k];
+  s.unpermute(s.substituteBackward(), x);
 }
 
 void FactoredSystem::solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
@@ -332,15 +345,9 @@ void FactoredSystem::solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     x = Eigen::Map<const Eigen::VectorXd>(z, b.size());
     return;
   }
-  const int* perm = static_cast<const int*>(s.factor->Perm);
-  s.onceRhs.resize(s.n);
-  for (int k = 0; k < s.n; ++k) s.onceRhs[k] = b[perm[k]];
+  s.permute(b, s.onceRhs);
   const double* y = s.solveSystem(CHOLMOD_L, s.onceRhs.data(), s.onceForward);
-  ++s.supernodalSolves;
-  s.xPermuted.resize(s.n);
-  s.backward.solve(*s.factor, y, s.xPermuted.data());
-  x.resize(s.n);
-  for (int k = 0; k < s.n; ++k) x[perm[k]] = s.xPermuted[k];
+  s.unpermute(s.substituteBackwardBySupernodes(y), x);
 }
 
 int64_t FactoredSystem::incrementalSolves() const {
@@ -368,10 +375,6 @@ void FactoredSystem::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t num
 
 void FactoredSystem::setBackwardKernel(BackwardKernel kernel) {
   impl_->backwardKernel = kernel;
-}
-
-BackwardKernel FactoredSystem::backwardKernel() const {
-  return impl_->backwardKernel;
 }
 
 void FactoredSystem::setMemoryLimit(double bytes) {

@@ -52,7 +52,6 @@ class FactoredSystem {
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);
   void setMemoryLimit(double bytes);  // 0: no limit
   void setBackwardKernel(BackwardKernel kernel);
-  BackwardKernel backwardKernel() const;
   double estimatedBytes() const;  // the last analysis' estimate of the factor's peak memory
   // L L' +/- sum_k w_k e_{row_k} e_{row_k}' in one cholmod_updown call; weights must be positive.
   void updateDiagonal(const std::vector<int32_t>& rows, const std::vector<double>& weights, bool downdate);
