@@ -112,7 +112,7 @@ class Dissector {
     options[METIS_OPTION_NUMBERING] = 0;
     // One cut (METIS's default). The better of two buys 1.5-2 % of fill (bunny00 51.2 against 52.0 nnz/row,
     // 1.25M edges 66.5 against 68.0) and no stroke time measurable in interleaved runs, for 40-45 % more
-    // analysis (bunny00 225-265 against 165-185 ms, 1.25M edges 4.9-5.3 against 3.3-3.8 s; README).
+    // analysis (bunny00 223-266 against 164-185 ms, 1.25M edges 4.9-5.3 against 3.3-3.8 s; README).
     part.assign(n, 0);
     idx_t nv = n;
     const int status =
