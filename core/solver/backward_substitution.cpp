@@ -15,20 +15,6 @@ Lanes2 load2(const double* p) {
   return v;
 }
 
-// sum a(k) b(k), both contiguous: four running sums in two vectors, so no chain of dependent adds.
-double dot(const double* a, const double* b, int m) {
-  Lanes2 s0 = {0, 0};
-  Lanes2 s1 = {0, 0};
-  int k = 0;
-  for (; k + 4 <= m; k += 4) {
-    s0 += load2(a + k) * load2(b + k);
-    s1 += load2(a + k + 2) * load2(b + k + 2);
-  }
-  double s = (s0[0] + s1[0]) + (s0[1] + s1[1]);
-  for (; k < m; ++k) s += a[k] * b[k];
-  return s;
-}
-
 // The K sums a_c(k) t(k), c < K, in one pass over t: the columns of a supernode share t.
 template <int K>
 void dotColumns(const double* const* a, const double* t, int m, double* sums) {
@@ -134,8 +120,10 @@ void BackwardSubstitution::solve(const cholmod_factor& L, const double* y, doubl
     subtractBelow(L, f, l, t, m, x);
     // The triangle within the supernode, last column first: column c's rows c + 1 .. l are final by then.
     for (int c = l; c >= f; --c) {
-      const double* column = Lx + Lp[c];
-      x[c] -= dot(column + 1, x + c + 1, l - c);
+      const double* inside = Lx + Lp[c] + 1;
+      double sum;
+      dotColumns<1>(&inside, x + c + 1, l - c, &sum);
+      x[c] -= sum;
     }
   }
 }

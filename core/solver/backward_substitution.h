@@ -27,9 +27,8 @@ class BackwardSubstitution {
   // x = L^-T D^-1 y; x and y may be the same array.
   void solve(const cholmod_factor& L, const double* y, double* x);
 
-  int supernodeCount() const { return static_cast<int>(first_.empty() ? 0 : first_.size() - 1); }
-
  private:
+  int supernodeCount() const { return static_cast<int>(first_.empty() ? 0 : first_.size() - 1); }
   void findSupernodes(const cholmod_factor& L);
   static void subtractBelow(const cholmod_factor& L, int f, int l, const double* t, int m, double* x);
 

@@ -87,10 +87,7 @@ struct FactoredSystem::Impl {
   BackwardKernel backwardKernel = kDefaultBackwardKernel;
   BackwardSubstitution backward;
   int64_t supernodalSolves = 0;
-  std::vector<double> bPermuted, xPermuted;
-  // solveOnce's own: it must not disturb what solve() keeps.
-  std::vector<double> onceRhs;
-  CholmodDensePtr onceForward{nullptr, {common.get()}};
+  std::vector<double> bPermuted, xPermuted;  // scratch: what solve() keeps is in `forward`
   FactorTimings timings;
   std::vector<int> inversePerm;
   bool wasSupernodal = false;
@@ -157,6 +154,14 @@ struct FactoredSystem::Impl {
   // successful factorization.
   bool bySupernodes() const {
     return backwardKernel == BackwardKernel::Supernodes && !factor->is_super && !factor->is_ll;
+  }
+
+  // L^-1 bPermuted in full (CHOLMOD), into forwardFull.
+  const double* substituteForward() {
+    CholmodDensePtr full(std::exchange(forwardFull, nullptr), {common.get()});
+    const double* y = solveSystem(CHOLMOD_L, bPermuted.data(), full);
+    forwardFull = full.release();
+    return y;
   }
 
   // L^-T D^-1 y by supernodes, into xPermuted.
@@ -254,8 +259,6 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
   s.backward.invalidate();
   std::vector<double>().swap(s.bPermuted);
   std::vector<double>().swap(s.xPermuted);
-  std::vector<double>().swap(s.onceRhs);
-  s.onceForward.reset();
   cholmod_free_dense(&s.forwardFull, s.common.get());
   s.factor.reset(s.analyzeOrReuse(view, A));
   if (!s.factor) throw std::runtime_error("CHOLMOD analysis failed (out of memory?)");
@@ -329,12 +332,8 @@ void FactoredSystem::updateDiagonal(const std::vector<int32_t>& rows, const std:
 void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Impl& s = *impl_;
   s.permute(b, s.bPermuted);
-  if (!s.forward.substituteIncrementally(*s.factor, s.bPermuted.data())) {
-    CholmodDensePtr full(std::exchange(s.forwardFull, nullptr), {s.common.get()});
-    const double* y = s.solveSystem(CHOLMOD_L, s.bPermuted.data(), full);
-    s.forward.setFull(s.bPermuted.data(), y, s.n);
-    s.forwardFull = full.release();
-  }
+  if (!s.forward.substituteIncrementally(*s.factor, s.bPermuted.data()))
+    s.forward.setFull(s.bPermuted.data(), s.substituteForward(), s.n);
   s.unpermute(s.substituteBackward(), x);
 }
 
@@ -345,9 +344,8 @@ void FactoredSystem::solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     x = Eigen::Map<const Eigen::VectorXd>(z, b.size());
     return;
   }
-  s.permute(b, s.onceRhs);
-  const double* y = s.solveSystem(CHOLMOD_L, s.onceRhs.data(), s.onceForward);
-  s.unpermute(s.substituteBackwardBySupernodes(y), x);
+  s.permute(b, s.bPermuted);
+  s.unpermute(s.substituteBackwardBySupernodes(s.substituteForward()), x);
 }
 
 int64_t FactoredSystem::incrementalSolves() const {
