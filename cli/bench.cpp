@@ -135,9 +135,10 @@ nlohmann::json summary(const Samples& s, bool metis) {
 }  // namespace
 
 nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
-                        const std::vector<bool>& orderings) {
+                        const std::vector<bool>& orderings, int threads) {
   Designer designer(loadMesh(meshPath));
   designer.setGamma(gamma);
+  if (threads > 0) designer.setSolverThreads(threads);
   const MeshTopology topology = buildTopology(designer.mesh());  // for the benchmark's stroke paths only
   std::vector<Samples> samples(orderings.size());
   // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
@@ -146,7 +147,8 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
   nlohmann::json out = {{"mesh", meshPath},
                         {"edges", designer.edgeVertices().size() / 2},
                         {"repeat", repeat},
-                        {"gamma", gamma}};
+                        {"gamma", gamma},
+                        {"threads", designer.solverThreads()}};
   if (orderings.size() == 1) {
     out.update(summary(samples[0], orderings[0]));
     return out;

@@ -7,6 +7,7 @@ namespace tvf {
 // Median timings of the interactive pipeline on one mesh (Sec. 6.1's table), per fill-reducing ordering
 // (true: METIS nested dissection, false: AMD). One ordering: a flat object; several: one object per ordering
 // under "metis" / "amd", measured interleaved in this process.
+// threads: of the backward substitution (0: the default, the cores there are).
 nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
-                        const std::vector<bool>& orderings);
+                        const std::vector<bool>& orderings, int threads = 0);
 }  // namespace tvf

@@ -27,9 +27,11 @@ int usage() {
                "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
                "             [--no-embed-flowmap]\n"
                "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
+               "            [--threads N]\n"
                "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
                "updates, slower analysis), as in the browser build; --amd for AMD; --compare for both,\n"
                "interleaved repeat by repeat in one process (JSON only).\n"
+               "--threads: threads of each solve's backward substitution (default: the cores, up to 4).\n"
                "MESH: .gltf, .glb, .off, .obj or .ply\n"
                "A design saved for another mesh (its \"mesh\" fingerprint differs) is refused unless\n"
                "--ignore-fingerprint is given.\n";
@@ -209,6 +211,7 @@ int bench(int argc, char** argv) {
   int repeat = 5;
   double gamma = 0;
   bool json = false;
+  int threads = 0;
   std::vector<bool> orderings{true};
   for (int k = 3; k < argc; ++k) {
     const std::string a = argv[k];
@@ -218,6 +221,9 @@ int bench(int argc, char** argv) {
       gamma = std::atof(argv[++k]);
     } else if (a == "--json") {
       json = true;
+    } else if (a == "--threads" && k + 1 < argc) {
+      threads = std::atoi(argv[++k]);
+      if (threads < 1) throw tvf::InputError("--threads must be a whole number of at least 1");
     } else if (a == "--metis") {
       orderings = {true};
     } else if (a == "--amd") {
@@ -229,7 +235,7 @@ int bench(int argc, char** argv) {
       return usage();
     }
   }
-  const nlohmann::json r = tvf::runBench(argv[2], repeat, gamma, orderings);
+  const nlohmann::json r = tvf::runBench(argv[2], repeat, gamma, orderings, threads);
   if (json)
     std::cout << r.dump() << "\n";
   else

@@ -5,6 +5,8 @@
 //   lib/chunk-*.js                 code both share (the element, three.js)
 //   lib/core-worker.js             the core's module worker (one file: it may be started from a blob: URL)
 //   lib/wasm/tvf_core.{mjs,wasm}   the core
+//   lib/wasm/tvf_core_threads.{mjs,wasm,worker.js}   the core with a helper thread (cross-origin-isolated
+//                                  pages; package.json there keeps the worker script CommonJS under node)
 // Every file is self-contained ES2022 with no bare imports: it loads in a browser as it is.
 import { copyFileSync, existsSync, mkdirSync, rmSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
@@ -24,9 +26,10 @@ const common = {
   logLevel: 'warning',
 };
 
-const coreFiles = ['tvf_core.mjs', 'tvf_core.wasm'].map((f) => resolve(ROOT, 'build-wasm', f));
+const coreFiles = ['tvf_core.mjs', 'tvf_core.wasm', 'tvf_core_threads.mjs', 'tvf_core_threads.wasm',
+  'tvf_core_threads.worker.js', 'package.json'].map((f) => resolve(ROOT, 'build-wasm', f));
 if (!coreFiles.every(existsSync)) {
-  console.error('build-package: build-wasm/tvf_core.{mjs,wasm} not found; run `npm run build:wasm` first');
+  console.error('build-package: build-wasm/tvf_core{,_threads}.* not found; run `npm run build:wasm` first');
   process.exit(1);
 }
 rmSync(LIB, { recursive: true, force: true });

@@ -34,10 +34,16 @@ await esbuild.build({
 cpSync(resolve(ROOT, 'public'), DIST, { recursive: true });
 
 const wasmDir = resolve(ROOT, 'build-wasm');
+// The plain core, and the core with a helper thread that cross-origin-isolated pages load instead
+// (web/core-client.js); package.json keeps the pthread worker script CommonJS for node.
 const coreFiles = ['tvf_core.mjs', 'tvf_core.wasm'];
+const threadedFiles = ['tvf_core_threads.mjs', 'tvf_core_threads.wasm', 'tvf_core_threads.worker.js', 'package.json'];
 if (coreFiles.every((f) => existsSync(resolve(wasmDir, f)))) {
   mkdirSync(resolve(DIST, 'wasm'), { recursive: true });
   for (const f of coreFiles) copyFileSync(resolve(wasmDir, f), resolve(DIST, 'wasm', f));
+  if (threadedFiles.every((f) => existsSync(resolve(wasmDir, f))))
+    for (const f of threadedFiles) copyFileSync(resolve(wasmDir, f), resolve(DIST, 'wasm', f));
+  else console.warn('build-web: build-wasm/tvf_core_threads.* not found; isolated pages will run the plain core');
 } else {
   console.warn('build-web: build-wasm/tvf_core.{mjs,wasm} not found; run `npm run build:wasm` (the page needs the core)');
 }

@@ -29,6 +29,10 @@
 //   --no-warmup, --warmup LEVELS,ROUNDS (icosphere subdivisions and rounds; default 3,1), --settle MS (wait
 //   after the warm-up so background compilation can finish; default 100), --node-flags "FLAGS" (for the child
 //   processes, e.g. "--no-liftoff" to compare V8 tiering strategies), --module PATH (tvf_core.mjs).
+// Threads: the module is build-wasm/tvf_core_threads.mjs when it was built (what a cross-origin-isolated page,
+// the app's own, runs), with as many backward-substitution threads as it has (2) where the machine has the
+// cores; --threads 1 takes the plain tvf_core.mjs (what any other page runs). The native side runs with the
+// same number of threads as the wasm side (tvf bench --threads), like with like.
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
@@ -99,8 +103,13 @@ const ok = (what, r) => {
 };
 
 // In this process: instantiate, optionally warm up, load, first factor, then `repeat` warm repeats.
+function defaultModule(opts) {
+  const threaded = resolve(ROOT, 'build-wasm/tvf_core_threads.mjs');
+  return Number(opts.threads) !== 1 && existsSync(threaded) ? threaded : resolve(ROOT, 'build-wasm/tvf_core.mjs');
+}
+
 async function measureWasm(mesh, opts) {
-  const modulePath = resolve(opts.module ?? resolve(ROOT, 'build-wasm/tvf_core.mjs'));
+  const modulePath = resolve(opts.module ?? defaultModule(opts));
   if (!existsSync(modulePath)) fail('wasm', `${modulePath} not found; run npm run build:wasm`);
   const createTvfCore = (await import(pathToFileURL(modulePath).href)).default;
   let t = performance.now();
@@ -120,11 +129,18 @@ async function measureWasm(mesh, opts) {
   t = performance.now();
   ok('load', d.loadMesh(bytes, ''));
   const loadMs = performance.now() - t;
+  if (opts.threads) {
+    const wanted = Number(opts.threads);
+    if (wanted > Module.solverThreadsAvailable())
+      fail('--threads', `${modulePath} has ${Module.solverThreadsAvailable()} thread(s) for the solve, not ${wanted}`);
+    ok('threads', d.setSolverThreads(wanted));
+  }
   t = performance.now();
   ok('factor', d.factor());
   const firstFactorMs = performance.now() - t;
   const firstStats = JSON.parse(d.statsJson());
   const result = {
+    module: modulePath.replace(`${ROOT}/`, ''), threads: d.solverThreads(),
     edges: d.edges().length / 2, instantiateMs, warmUpMs, loadMs, firstFactorMs,
     firstFactorStats: { analyzeMs: firstStats.analyzeMs, factorMs: firstStats.factorMs },
   };
@@ -262,6 +278,7 @@ function commonArgs(opts) {
   if (opts.amd) a.push('--amd');
   if (opts.compare) a.push('--compare');
   if (opts.module) a.push('--module', opts.module);
+  if (opts.threads) a.push('--threads', String(opts.threads));
   if (opts.warmup === false) a.push('--no-warmup');
   else a.push('--warmup', String(opts.warmup));
   if (opts.native) a.push('--native', opts.native);
@@ -269,7 +286,7 @@ function commonArgs(opts) {
   return a;
 }
 
-function nativeFor(mesh, opts) {
+function nativeFor(mesh, opts, threads) {
   if (opts['no-native']) return null;
   if (opts.native) {
     const saved = JSON.parse(readFileSync(opts.native, 'utf8')).results ?? [];
@@ -277,15 +294,18 @@ function nativeFor(mesh, opts) {
     if (hit) return hit;
   }
   // Like with like: the same ordering(s) as the wasm side.
-  return runNative(opts.tvf, mesh, repeatFor(opts, mesh), opts.compare ? ['--compare'] : opts.amd ? ['--amd'] : []);
+  const ordering = opts.compare ? ['--compare'] : opts.amd ? ['--amd'] : [];
+  return runNative(opts.tvf, mesh, repeatFor(opts, mesh), [...ordering, '--threads', String(threads)]);
 }
 
 async function main() {
   const argv = process.argv.slice(2);
   const opts = parseArgs(argv, {
     json: false, 'first-factor-only': false, 'no-warmup': false, warmup: '3,1', settle: '100', native: '',
-    'no-native': false, 'node-flags': '', module: '', amd: false, compare: false,
+    'no-native': false, 'node-flags': '', module: '', amd: false, compare: false, threads: '',
   });
+  if (opts.threads && !(Number.isInteger(Number(opts.threads)) && Number(opts.threads) >= 1))
+    fail('--threads', `must be a whole number of at least 1 (got ${opts.threads})`);
   opts.warmup = opts['no-warmup'] ? false : opts.warmup;
   opts.settle = Number(opts.settle);
   opts.module = opts.module || undefined;
@@ -304,11 +324,12 @@ async function main() {
     opts.repeat = repeatFor(opts, mesh);
     const wasm = await measureWasm(mesh, opts);
     if (opts.warmup !== false) {
-      const cold = child(['--first-factor-only', '--no-warmup', mesh, ...(opts.module ? ['--module', opts.module] : [])], opts);
+      const cold = child(['--first-factor-only', '--no-warmup', mesh, ...(opts.module ? ['--module', opts.module] : []),
+        ...(opts.threads ? ['--threads', String(opts.threads)] : [])], opts);
       wasm.firstFactorNoWarmUpMs = cold.firstFactorMs;
       for (const o of ['metis', 'amd']) if (wasm[o]) wasm[o].firstFactorNoWarmUpMs = cold.firstFactorMs;
     }
-    const native = nativeFor(mesh, opts);
+    const native = nativeFor(mesh, opts, wasm.threads);
     const out = { mesh, edges: wasm.edges, native, wasm };
     if (opts.compare) out.ratios = ratios(native, wasm);
     console.log(JSON.stringify(out, null, 2));

@@ -37,6 +37,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/thread_team.h"
 #include "design/design_document.h"
 #include "design/designer.h"
 #include "design/mesh_info.h"
@@ -159,6 +160,13 @@ class DesignerBinding {
   double gamma() const { return designer_ ? designer_->gamma() : 0.0; }
   // METIS nested dissection (the default) or AMD; the next factorization orders again.
   std::string setMetisOrdering(bool metis) { return run([&] { need().setMetisOrdering(metis); }); }
+  // Threads of the backward substitution (1 .. solverThreadsAvailable()); the next solve refactors.
+  std::string setSolverThreads(int threads) {
+    return run([&] { need().setSolverThreads(threads); });
+  }
+  int solverThreads() const {
+    return designer_ ? designer_->solverThreads() : tvf::ThreadTeam::usefulParts();
+  }
   std::string factor() {
     return run([&] {
       fitMemory(need());
@@ -440,6 +448,8 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("setBoundaryJson", &DesignerBinding::setBoundaryJson)
       .function("setGamma", &DesignerBinding::setGamma)
       .function("setMetisOrdering", &DesignerBinding::setMetisOrdering)
+      .function("setSolverThreads", &DesignerBinding::setSolverThreads)
+      .function("solverThreads", &DesignerBinding::solverThreads)
       .function("factor", &DesignerBinding::factor)
       .function("solve", &DesignerBinding::solve)
       .function("addStroke", &DesignerBinding::addStroke)
@@ -470,4 +480,7 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("addConstraintJson", &DesignerBinding::addConstraintJson)
       .function("fieldJson", &DesignerBinding::fieldJson);
   function("warmUp", &warmUp);
+  // 1 in the plain build; in the build with pthreads (tvf_core_threads.mjs) one more than its helper threads.
+  function("solverThreadsAvailable",
+           emscripten::optional_override([] { return tvf::ThreadTeam::kHelpers + 1; }));
 }

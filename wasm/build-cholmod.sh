@@ -10,6 +10,7 @@
 #   wasm/build-cholmod.sh --refresh                     # re-read the archive's Sources index (new Debian revision?)
 #   JOBS=4 wasm/build-cholmod.sh                        # parallel compile jobs (default 2)
 #   CHOLMOD_NATIVE=$(wasm/build-cholmod.sh --native | tail -1)   # the same sources built for this machine (below)
+#   CHOLMOD_THREADS=$(wasm/build-cholmod.sh --threads | tail -1) # the wasm archive compiled with -pthread (below)
 # The last line on stdout is the absolute path of the output folder; all progress goes to stderr.
 #
 # Output (ignored: build-wasm/ matches build-*/ in .gitignore):
@@ -65,6 +66,10 @@
 #   -lblas). The native CLI links it instead of Debian's libcholmod3 (built -O2 for any x86-64, with OpenMP):
 #   on bunny00 a 50-edge stroke's rank-50 update goes from 12-15 to 7.5-8 ms and the factorization from
 #   ~360 to ~170 ms (README), and native and wasm then run one CHOLMOD, from one source package.
+# * --threads: the same wasm archive with every source compiled -pthread (atomics and bulk memory), into
+#   build-wasm/cholmod-threads/<key>_pthread/: a module linked with shared memory (wasm/build.sh builds
+#   tvf_core_threads.mjs for cross-origin-isolated pages) can only take objects compiled that way. CHOLMOD
+#   itself runs on one thread there too; the core's own backward substitution uses the others.
 
 set -euo pipefail
 
@@ -72,11 +77,13 @@ RECIPE=3
 SMOKE=0
 REFRESH=0
 NATIVE=0
+THREADS=0
 for arg in "$@"; do
   case "$arg" in
     --smoke) SMOKE=1 ;;
     --refresh) REFRESH=1 ;;
     --native) NATIVE=1 ;;
+    --threads) THREADS=1 ;;
     -h|--help) sed -n '4,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -n 's/^# \{0,1\}//p' >&2; exit 0 ;;
     *) echo "build-cholmod.sh: unknown argument: $arg (try --help)" >&2; exit 2 ;;
   esac
@@ -90,6 +97,8 @@ if [ "$NATIVE" = 1 ]; then
   ISA=generic
   if grep -qw avx2 /proc/cpuinfo 2>/dev/null && grep -qw fma /proc/cpuinfo && grep -qw bmi2 /proc/cpuinfo &&
     gcc -march=x86-64-v3 -E -x c /dev/null >/dev/null 2>&1; then ISA=x86-64-v3; fi
+elif [ "$THREADS" = 1 ]; then
+  TOP=$ROOT/build-wasm/cholmod-threads
 else
   TOP=$ROOT/build-wasm/cholmod
 fi
@@ -108,7 +117,8 @@ run_smoke() {
   echo '{ "type": "commonjs" }' > "$sd/package.json"
   log "smoke: compiling wasm/cholmod-smoke.c against $out"
   # WASM_ASYNC_COMPILATION=0: emscripten 3.1.6 + node >= 18 would try to fetch() the .wasm by path otherwise.
-  emcc -O2 -std=c11 -Wall -I"$out/include" "$ROOT/wasm/cholmod-smoke.c" "$out/lib/libcholmod_wasm.a" \
+  local pthread=; [ "$THREADS" = 0 ] || pthread=-pthread
+  emcc -O2 -std=c11 -Wall $pthread -I"$out/include" "$ROOT/wasm/cholmod-smoke.c" "$out/lib/libcholmod_wasm.a" \
     -Wl,--fatal-warnings -sALLOW_MEMORY_GROWTH=1 -sWASM_ASYNC_COMPILATION=0 -sENVIRONMENT=node \
     -o "$sd/cholmod-smoke.js" >&2
   log "smoke: running with node ($(node --version))"
@@ -220,6 +230,7 @@ if [ -z "$SS_VER" ] || [ -z "$EIG_VER" ] || [ -z "$METIS_VER" ]; then
 fi
 KEY=suitesparse-${SS_VER}_eigen3-${EIG_VER}_metis-${METIS_VER}_r${RECIPE}_p${PATCHSUM}
 [ "$NATIVE" = 0 ] || KEY=suitesparse-${SS_VER}_metis-${METIS_VER}_${ISA}_r${RECIPE}_p${PATCHSUM}
+[ "$THREADS" = 0 ] || KEY=${KEY}_pthread
 OUT=$TOP/$KEY
 log "suitesparse $SS_VER, eigen3 $EIG_VER, metis $METIS_VER -> $OUT"
 if stamp_ok "$OUT"; then printf '%s\n' "$KEY" > "$TOP/current"; finish "$OUT"; fi
@@ -286,6 +297,11 @@ CFLAGS="-O3 -DNDEBUG -msimd128"
 METISFLAGS="-O3 -msimd128 -DLINUX -D_FILE_OFFSET_BITS=64 -std=c99 -fno-strict-aliasing -DNDEBUG -DNDEBUG2 -I$METIS/include -I$METIS/GKlib -I$METIS/libmetis"
 CXXFLAGS="-O3 -DNDEBUG -msimd128"
 CC=emcc CXX=em++ AR=emar ARCHIVE=libcholmod_wasm.a
+if [ "$THREADS" = 1 ]; then
+  CFLAGS="$CFLAGS -pthread"
+  METISFLAGS="$METISFLAGS -pthread"
+  CXXFLAGS="$CXXFLAGS -pthread"
+fi
 if [ "$NATIVE" = 1 ]; then
   march=; [ "$ISA" = generic ] || march=-march=$ISA
   CFLAGS="-O3 -DNDEBUG -fPIC $march"

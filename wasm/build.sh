@@ -2,15 +2,17 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 #
 # build.sh: build the WebAssembly core, build-wasm/tvf_core.mjs + build-wasm/tvf_core.wasm (ES6 module,
-# factory `createTvfCore`, runs in browsers, workers and node).
+# factory `createTvfCore`, runs in browsers, workers and node), and the same core with a helper thread,
+# build-wasm/tvf_core_threads.{mjs,wasm,worker.js} (cross-origin-isolated pages and node; see build_variant).
 #
 # Usage:
 #   wasm/build.sh            # incremental; a rerun with nothing changed takes a few seconds
 #   JOBS=4 wasm/build.sh     # parallel compile jobs (default: number of CPUs)
-#   wasm/build.sh --clean    # drop build-wasm/core first (the CHOLMOD archive is kept)
+#   wasm/build.sh --clean    # drop build-wasm/core{,-threads} first (the CHOLMOD archives are kept)
+#   wasm/build.sh --only plain|threads   # one of the two modules (default: both)
 #
 # Steps: CHOLMOD via wasm/build-cholmod.sh (cached in build-wasm/cholmod), then the top-level CMake project
-# configured with emcmake into build-wasm/core (Release, -O3 -msimd128 -fexceptions, Eigen from
+# configured with emcmake into build-wasm/core and build-wasm/core-threads (Release, -O3 -msimd128 -fexceptions, Eigen from
 # /usr/include/eigen3, nlohmann/tinygltf headers from /usr/include through a private include folder so that
 # no other host header can leak into the wasm build), whose `tvf_core` target (wasm/CMakeLists.txt) links the
 # module with embind. Prints the raw and gzipped size of the .wasm.
@@ -19,16 +21,23 @@ set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
 OUT=$ROOT/build-wasm
-BUILD=$OUT/core
 JOBS=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 export NODE_PATH=${NODE_PATH:+$NODE_PATH:}/usr/share/nodejs
 
 log() { printf '[build-wasm] %s\n' "$*" >&2; }
 die() { printf '[build-wasm] ERROR: %s\n' "$*" >&2; exit 1; }
 
+VARIANTS="plain threads"
+only=0
 for arg in "$@"; do
+  if [ "$only" = 1 ]; then
+    case "$arg" in plain|threads) VARIANTS=$arg ;; *) die "--only takes plain or threads (got $arg)" ;; esac
+    only=0
+    continue
+  fi
   case "$arg" in
-    --clean) rm -rf "$BUILD" ;;
+    --clean) rm -rf "$OUT/core" "$OUT/core-threads" ;;
+    --only) only=1 ;;
     -h|--help) sed -n '4,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -n 's/^# \{0,1\}//p' >&2; exit 0 ;;
     *) die "unknown argument: $arg (try --help)" ;;
   esac
@@ -51,11 +60,59 @@ if command -v flock >/dev/null; then
   flock 9
 fi
 
-# 1. CHOLMOD for wasm (instant when cached).
-CHOLMOD_WASM=$("$ROOT/wasm/build-cholmod.sh" | tail -1)
-[ -f "$CHOLMOD_WASM/lib/libcholmod_wasm.a" ] || die "build-cholmod.sh gave no archive in $CHOLMOD_WASM"
+# One variant: $1 = plain | threads. plain: tvf_core.{mjs,wasm}, one thread, runs anywhere. threads:
+# tvf_core_threads.{mjs,wasm,worker.js}, shared memory and one helper pthread (PTHREAD_POOL_SIZE=1, started with
+# the module) for the backward substitution; only cross-origin-isolated pages and node can run it
+# (SharedArrayBuffer), so the page picks it when `crossOriginIsolated` and the plain one otherwise.
+build_variant() {
+  local variant=$1 build cholmod name extra
+  if [ "$variant" = threads ]; then
+    build=$OUT/core-threads name=tvf_core_threads extra="-pthread -DTVF_THREAD_HELPERS=1"
+    cholmod=$("$ROOT/wasm/build-cholmod.sh" --threads | tail -1)
+  else
+    build=$OUT/core name=tvf_core extra=
+    cholmod=$("$ROOT/wasm/build-cholmod.sh" | tail -1)
+  fi
+  [ -f "$cholmod/lib/libcholmod_wasm.a" ] || die "build-cholmod.sh gave no archive in $cholmod"
 
-# 2. Header-only dependencies, exposed one by one (never -I/usr/include: glibc headers must not shadow musl's).
+  # Configure once (reconfigure only when the CHOLMOD folder changed or the cache is missing).
+  local want="$cholmod $extra"
+  if [ ! -f "$build/CMakeCache.txt" ] || [ "$(cat "$build/.cholmod" 2>/dev/null)" != "$want" ]; then
+    log "configuring $build"
+    emcmake cmake -S "$ROOT" -B "$build" \
+      -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_CXX_FLAGS="-isystem $INC $extra" \
+      -DCMAKE_CXX_FLAGS_RELEASE="-O3 -DNDEBUG" \
+      -DEigen3_DIR=/usr/share/eigen3/cmake \
+      -DCMAKE_FIND_ROOT_PATH_MODE_PACKAGE=BOTH \
+      -DTVF_CHOLMOD_INCLUDE_DIR="$cholmod/include" \
+      -DTVF_CHOLMOD_LIBRARIES="$cholmod/lib/libcholmod_wasm.a" \
+      -DTVF_WASM_OUTPUT_DIR="$OUT" \
+      -DTVF_WASM_OUTPUT_NAME="$name" \
+      -DTVF_WASM_THREADS="$([ "$variant" = threads ] && echo ON || echo OFF)" \
+      -DCMAKE_CROSSCOMPILING_EMULATOR="$(command -v node)" >&2
+    printf '%s\n' "$want" > "$build/.cholmod"
+  fi
+
+  # Build (make/ninja are incremental; the link reruns only when an object or the archive changed).
+  cmake --build "$build" --target tvf_core -j "$JOBS" >&2
+
+  local wasm=$OUT/$name.wasm
+  [ -f "$wasm" ] && [ -f "$OUT/$name.mjs" ] || die "the link produced no $name.{mjs,wasm}"
+  [ "$variant" = plain ] || [ -f "$OUT/$name.worker.js" ] || die "the link produced no $name.worker.js"
+  local raw gz js jsgz
+  raw=$(stat -c %s "$wasm")
+  gz=$(gzip -9 -c "$wasm" | wc -c)
+  js=$(stat -c %s "$OUT/$name.mjs")
+  jsgz=$(gzip -9 -c "$OUT/$name.mjs" | wc -c)
+  printf '[build-wasm] %s: %d bytes (%.0f KiB), gzip -9 %d bytes (%.0f KiB)\n' \
+    "${wasm#$ROOT/}" "$raw" "$(echo "$raw/1024" | bc -l)" "$gz" "$(echo "$gz/1024" | bc -l)" >&2
+  printf '[build-wasm] %s: %d bytes, gzip -9 %d bytes\n' "build-wasm/$name.mjs" "$js" "$jsgz" >&2
+  local limit=$((2 * 1024 * 1024))
+  [ "$gz" -le "$limit" ] || log "WARNING: the gzipped $name.wasm is over the 2 MiB budget"
+}
+
+# Header-only dependencies, exposed one by one (never -I/usr/include: glibc headers must not shadow musl's).
 INC=$OUT/include
 mkdir -p "$INC"
 ln -sfn /usr/include/nlohmann "$INC/nlohmann"
@@ -63,37 +120,11 @@ ln -sfn /usr/include/tiny_gltf.h "$INC/tiny_gltf.h"
 ln -sfn /usr/include/stb "$INC/stb"  # stb_image_write for flow maps (libstb-dev)
 ln -sfn /usr/include/fast_float "$INC/fast_float"  # number parsing for OFF/OBJ/PLY (libfast-float-dev)
 
-# 3. Configure once (reconfigure only when the CHOLMOD folder changed or the cache is missing).
-want="$CHOLMOD_WASM"
-if [ ! -f "$BUILD/CMakeCache.txt" ] || [ "$(cat "$BUILD/.cholmod" 2>/dev/null)" != "$want" ]; then
-  log "configuring $BUILD"
-  emcmake cmake -S "$ROOT" -B "$BUILD" \
-    -DCMAKE_BUILD_TYPE=Release \
-    -DCMAKE_CXX_FLAGS="-isystem $INC" \
-    -DCMAKE_CXX_FLAGS_RELEASE="-O3 -DNDEBUG" \
-    -DEigen3_DIR=/usr/share/eigen3/cmake \
-    -DCMAKE_FIND_ROOT_PATH_MODE_PACKAGE=BOTH \
-    -DTVF_CHOLMOD_INCLUDE_DIR="$CHOLMOD_WASM/include" \
-    -DTVF_CHOLMOD_LIBRARIES="$CHOLMOD_WASM/lib/libcholmod_wasm.a" \
-    -DTVF_WASM_OUTPUT_DIR="$OUT" \
-    -DCMAKE_CROSSCOMPILING_EMULATOR="$(command -v node)" >&2
-  printf '%s\n' "$want" > "$BUILD/.cholmod"
-fi
+# tvf_core_threads.worker.js is a CommonJS script under node (worker_threads): the repository's package.json
+# says "type": "module", so this folder says otherwise (the .mjs files stay ES modules by their extension).
+printf '{ "type": "commonjs" }\n' > "$OUT/package.json"
 
-# 4. Build (make/ninja are incremental; the link reruns only when an object or the archive changed).
-cmake --build "$BUILD" --target tvf_core -j "$JOBS" >&2
-
-WASM=$OUT/tvf_core.wasm
-[ -f "$WASM" ] && [ -f "$OUT/tvf_core.mjs" ] || die "the link produced no tvf_core.{mjs,wasm}"
-raw=$(stat -c %s "$WASM")
-gz=$(gzip -9 -c "$WASM" | wc -c)
-js=$(stat -c %s "$OUT/tvf_core.mjs")
-jsgz=$(gzip -9 -c "$OUT/tvf_core.mjs" | wc -c)
+for variant in $VARIANTS; do build_variant "$variant"; done
 elapsed=$(echo "$(date +%s.%N) - $start" | bc)
-printf '[build-wasm] %s: %d bytes (%.0f KiB), gzip -9 %d bytes (%.0f KiB)\n' \
-  "${WASM#$ROOT/}" "$raw" "$(echo "$raw/1024" | bc -l)" "$gz" "$(echo "$gz/1024" | bc -l)" >&2
-printf '[build-wasm] %s: %d bytes, gzip -9 %d bytes; done in %.1f s\n' \
-  "build-wasm/tvf_core.mjs" "$js" "$jsgz" "$elapsed" >&2
-limit=$((2 * 1024 * 1024))
-[ "$gz" -le "$limit" ] || log "WARNING: the gzipped .wasm is over the 2 MiB budget"
+printf '[build-wasm] done in %.1f s\n' "$elapsed" >&2
 echo "$OUT"

@@ -18,10 +18,20 @@ if (typeof process == 'object' && typeof process.versions == 'object' && typeof 
     };
   }
   if (!Module['wasmBinary'] && !Module['instantiateWasm'] && typeof process.getBuiltinModule == 'function') {
-    var wasmPath = Module['locateFile'] ? Module['locateFile']('tvf_core.wasm', __dirname + '/') :
-                                          new URL('tvf_core.wasm', _scriptDir).href;
+    // tvf_core.mjs reads tvf_core.wasm, tvf_core_threads.mjs tvf_core_threads.wasm.
+    var wasmName = new URL(_scriptDir).pathname.replace(/^.*\//, '').replace(/\.m?js$/, '.wasm');
+    var wasmPath = Module['locateFile'] ? Module['locateFile'](wasmName, __dirname + '/') :
+                                          new URL(wasmName, _scriptDir).href;
     if (/^file:/.test(wasmPath)) wasmPath = require('url').fileURLToPath(wasmPath);
     if (!/^[a-z][a-z0-9+.-]*:/i.test(wasmPath) || /^[a-z]:[\\/]/i.test(wasmPath))  // a path, not an http(s) URL
       Module['wasmBinary'] = require('fs').readFileSync(wasmPath);
   }
+  // The build with pthreads starts its helper's worker with the module. A worker keeps node running, so an
+  // idle one is unref'd: a script that is done exits, as it does with the plain build.
+  Module['postRun'] = [].concat(Module['postRun'] || [], function () {
+    if (typeof PThread == 'undefined') return;
+    PThread.unusedWorkers.concat(PThread.runningWorkers).forEach(function (w) {
+      if (w.unref) w.unref();
+    });
+  });
 }

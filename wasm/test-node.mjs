@@ -275,6 +275,41 @@ d.delete();
   check('... and every field equals a fresh factorization\'s (1e-9)', worst <= 1e-9, `relative max difference ${worst}`);
   e.delete();
 }
+// Threads: the plain module has one for the solve, the one built with pthreads (tvf_core_threads.mjs, run
+// here too by npm test) two. On two threads the backward substitution gives the field of one thread bit for
+// bit, after the factorization and after strokes; a number of threads the build lacks is cut to what it has.
+{
+  const available = Module.solverThreadsAvailable();
+  const threaded = /_threads\.mjs$/.test(modulePath);
+  check(`${threaded ? 'the pthread build' : 'the plain build'} has ${threaded ? 2 : 1} solve thread(s)`,
+    available === (threaded ? 2 : 1), `${available}`);
+  const run = (threads) => {
+    const e = new Module.Designer();
+    e.loadMesh(new TextEncoder().encode(icosphere(5)), 'off');
+    const set = e.setSolverThreads(threads);
+    const t = e.triangles();
+    e.addSource(t[0], 1);
+    e.solve();
+    const fields = [Float64Array.from(e.oneForm())];
+    for (let k = 0; k < 3; ++k) {
+      e.addStroke(faceStrip(t, 97 * k + 5, 30), 1, 1);
+      e.solve();
+      fields.push(Float64Array.from(e.oneForm()));
+    }
+    const out = { set, threads: e.solverThreads(), kind: JSON.parse(e.statsJson()).factorKind, fields };
+    e.delete();
+    return out;
+  };
+  const one = run(1), two = run(2);
+  check('setSolverThreads(1) and (2) are accepted', one.set === '' && two.set === '', `${one.set} ${two.set}`);
+  check('... and cut to what the build has', one.threads === 1 && two.threads === Math.min(2, available),
+    `${one.threads}, ${two.threads}`);
+  check('one thread: no threads named in the factor kind', !/threads/.test(one.kind), one.kind);
+  if (available > 1)
+    check('two threads: the backward substitution splits in two', /by supernodes on 2 threads/.test(two.kind), two.kind);
+  const identical = one.fields.every((f, k) => f.length === two.fields[k].length && f.every((v, i) => Object.is(v, two.fields[k][i])));
+  check('... and the fields equal one thread\'s bit for bit', identical);
+}
 // ------------------------------------------------------------------ transactional loads, safe updates
 // The model is replaced only when read, checked, factored and solved; any failure leaves the previous one
 // fully working (finite field, a stroke can be added).

@@ -47,8 +47,25 @@ function check(what, result) {
   return result;
 }
 
+// The core with a helper thread for each solve's backward substitution (tvf_core_threads.mjs) needs shared
+// memory, which a page has only when it is cross-origin isolated (COOP/COEP, as `npm start` serves the app);
+// any other page, and an isolated one where the threaded core fails to start (its worker script on another
+// origin, say), runs the plain core: the same results, bit for bit, one thread.
 export async function loadCore(baseUrl) {
-  const moduleUrl = new URL('wasm/tvf_core.mjs', baseUrl).href;
+  if (globalThis.crossOriginIsolated === true && typeof SharedArrayBuffer === 'function') {
+    try {
+      return await loadModule(baseUrl, 'tvf_core_threads');
+    } catch (err) {
+      const fallback = await loadModule(baseUrl, 'tvf_core');
+      fallback.threadsUnavailable = describe(err);
+      return fallback;
+    }
+  }
+  return loadModule(baseUrl, 'tvf_core');
+}
+
+async function loadModule(baseUrl, name) {
+  const moduleUrl = new URL(`wasm/${name}.mjs`, baseUrl).href;
   let factory;
   try {
     // A computed specifier keeps the bundler from trying to inline the emscripten module.
@@ -60,14 +77,16 @@ export async function loadCore(baseUrl) {
     );
   }
   const Module = await factory({ locateFile: (path) => new URL(path, moduleUrl).href });
-  return new CoreClient(Module);
+  return new CoreClient(Module, name);
 }
 
 const sliceOf = (view) => view.slice();
 
 export class CoreClient {
-  constructor(Module) {
+  constructor(Module, moduleName = 'tvf_core') {
     this.Module = Module;
+    this.moduleName = moduleName;
+    this.threadsUnavailable = null; // why an isolated page runs the plain core, if it does
     this.designer = new Module.Designer();
     this.hasMesh = false;
   }

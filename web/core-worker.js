@@ -121,7 +121,14 @@ const ops = {
         .catch(() => {});
     }
     coreExport = new CoreExport(core.Module);
-    return { crossOriginIsolated: self.crossOriginIsolated === true };
+    if (core.threadsUnavailable)
+      console.warn(`tangent-field-designer: the core with threads did not start (${core.threadsUnavailable}); solving on one thread`);
+    return {
+      crossOriginIsolated: self.crossOriginIsolated === true,
+      module: core.moduleName,
+      solverThreads: core.Module.solverThreadsAvailable(),
+      threadsUnavailable: core.threadsUnavailable,
+    };
   },
 
   warmUp(levels, rounds) {

@@ -172,6 +172,14 @@ void Designer::setMetisOrdering(bool metis) {
   impl_->factor.setOrdering(metis ? FillOrdering::Metis : FillOrdering::Amd);
 }
 
+void Designer::setSolverThreads(int threads) {
+  impl_->factor.setThreads(threads);
+}
+
+int Designer::solverThreads() const {
+  return impl_->factor.threads();
+}
+
 void Designer::factor() {
   impl_->factorNow();
 }

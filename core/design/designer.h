@@ -53,6 +53,10 @@ class Designer {
   void setBoundary(const BoundaryCondition& bc);
   void setGamma(double gamma);
   void setMetisOrdering(bool metis);  // METIS nested dissection by default; false: AMD
+  // Threads for the backward substitution of every solve (solver/factored_system.h; default: the cores there
+  // are, up to what the build provides). Refactors at the next solve; the solution does not change.
+  void setSolverThreads(int threads);
+  int solverThreads() const;
   // The most memory a factorization may take, in bytes; estimated from CHOLMOD's symbolic analysis before the
   // numeric factorization, which is refused (InputError naming both sizes) when it would need more. 0: the
   // machine's physical memory (the default). The wasm bindings pass what is left of the 4 GB address space.

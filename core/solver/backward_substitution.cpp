@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "common/thread_team.h"
+
 namespace tvf {
 namespace {
 
@@ -47,7 +49,13 @@ double dotGathered(const double* a, const int* rows, const double* x, int m) {
 
 void BackwardSubstitution::invalidate() {
   std::vector<int>().swap(first_);
-  std::vector<double>().swap(gathered_);
+  partition_ = SubtreePartition();
+  std::vector<std::vector<double>>().swap(gathered_);
+}
+
+void BackwardSubstitution::setParts(int parts) {
+  parts_ = std::max(1, parts);
+  invalidate();
 }
 
 // Columns j and j + 1 share a supernode when j's parent is j + 1 and j has exactly one row more (the
@@ -64,7 +72,29 @@ void BackwardSubstitution::findSupernodes(const cholmod_factor& L) {
     widest = std::max(widest, Lnz[j] - 1);
   }
   first_.push_back(n);
-  gathered_.assign(static_cast<size_t>(widest), 0.0);
+  partitionSupernodes(L);
+  gathered_.assign(std::max<size_t>(1, partition_.groups.size()), std::vector<double>(widest, 0.0));
+}
+
+// The supernodes' elimination tree: a supernode's parent holds the parent of its last column, the first row
+// below its diagonal. Work: the supernode's entries of L, which its substitution reads once.
+void BackwardSubstitution::partitionSupernodes(const cholmod_factor& L) {
+  const int* Lp = static_cast<const int*>(L.p);
+  const int* Li = static_cast<const int*>(L.i);
+  const int* Lnz = static_cast<const int*>(L.nz);
+  const int count = supernodeCount();
+  std::vector<int> supernodeOf(L.n), parent(count, -1);
+  std::vector<int64_t> work(count, 0);
+  for (int s = 0; s < count; ++s)
+    for (int c = first_[s]; c < first_[s + 1]; ++c) {
+      supernodeOf[c] = s;
+      work[s] += Lnz[c];
+    }
+  for (int s = 0; s < count; ++s) {
+    const int l = first_[s + 1] - 1;
+    if (Lnz[l] > 1) parent[s] = supernodeOf[Li[Lp[l] + 1]];
+  }
+  partition_ = partitionSubtrees(parent, work, parts_);
 }
 
 // x(c) = x(c) / D(c) - L(R, c)' t for the columns c = f..l of a supernode, whose rows R below it are final
@@ -97,16 +127,14 @@ void BackwardSubstitution::subtractBelow(const cholmod_factor& L, int f, int l, 
   }
 }
 
-void BackwardSubstitution::solve(const cholmod_factor& L, const double* y, double* x) {
-  const int n = static_cast<int>(L.n);
-  if (first_.empty() || first_.back() != n) findSupernodes(L);
-  if (x != y) std::copy(y, y + n, x);
+// The supernodes in the order given (descending: each after its ancestors), with t as gather buffer.
+void BackwardSubstitution::substitute(const cholmod_factor& L, const std::vector<int>& supernodes, double* t,
+                                      double* x) const {
   const int* Lp = static_cast<const int*>(L.p);
   const int* Li = static_cast<const int*>(L.i);
   const int* Lnz = static_cast<const int*>(L.nz);
   const double* Lx = static_cast<const double*>(L.x);
-  double* t = gathered_.data();
-  for (int s = supernodeCount() - 1; s >= 0; --s) {
+  for (const int s : supernodes) {
     const int f = first_[s];
     const int l = first_[s + 1] - 1;
     const int m = Lnz[l] - 1;
@@ -126,6 +154,21 @@ void BackwardSubstitution::solve(const cholmod_factor& L, const double* y, doubl
       x[c] -= sum;
     }
   }
+}
+
+void BackwardSubstitution::prepare(const cholmod_factor& L) {
+  if (first_.empty() || first_.back() != static_cast<int>(L.n)) findSupernodes(L);
+}
+
+void BackwardSubstitution::solve(const cholmod_factor& L, const double* y, double* x) {
+  const int n = static_cast<int>(L.n);
+  prepare(L);
+  if (x != y) std::copy(y, y + n, x);
+  substitute(L, partition_.top, gathered_[0].data(), x);
+  const std::vector<std::vector<int>>& groups = partition_.groups;
+  if (groups.empty()) return;
+  ThreadTeam::shared().run(static_cast<int>(groups.size()),
+                           [&](int k) { substitute(L, groups[k], gathered_[k].data(), x); });
 }
 
 }  // namespace tvf

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "common/input_error.h"
+#include "common/thread_team.h"
 #include "solver/backward_substitution.h"
 #include "solver/cholmod_handles.h"
 #include "solver/edge_dissection.h"
@@ -84,7 +85,8 @@ struct FactoredSystem::Impl {
   cholmod_dense* forwardFull = nullptr;
   // L^-1 P b of the last tracked solve, redone after an edit only on the columns the edit changed.
   ForwardSolution forward;
-  BackwardKernel backwardKernel = kDefaultBackwardKernel;
+  int threads = ThreadTeam::usefulParts();
+  BackwardKernel backwardKernel = defaultBackwardKernel(threads);
   BackwardSubstitution backward;
   int64_t supernodalSolves = 0;
   std::vector<double> bPermuted, xPermuted;  // scratch: what solve() keeps is in `forward`
@@ -104,6 +106,7 @@ struct FactoredSystem::Impl {
   bool usedDissection = false;  // the mesh's dissection ordered the last analysis
 
   explicit Impl(FillOrdering o) : ordering(o) {
+    backward.setParts(threads);
     chooseOrdering(*common.get(), o);
     common->supernodal = CHOLMOD_AUTO;
     common->final_asis = 1;
@@ -287,6 +290,7 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
     cholmod_change_factor(CHOLMOD_REAL, 0, 0, 1, 1, s.factor.get(), s.common.get());
     // Relaxed supernodes carry explicit zeros; dropping them makes every later solve and update cheaper.
     if (s.wasSupernodal) cholmod_resymbol(&view, nullptr, 0, 1, s.factor.get(), s.common.get());
+    if (s.bySupernodes()) s.backward.prepare(*s.factor);
   }
   s.timings.convertMs = msSince(start);
   const int* perm = static_cast<const int*>(s.factor->Perm);
@@ -362,6 +366,8 @@ void FactoredSystem::setOrdering(FillOrdering ordering) {
   next->numVertices = impl_->numVertices;
   next->memoryLimit = impl_->memoryLimit;
   next->backwardKernel = impl_->backwardKernel;
+  next->threads = impl_->threads;
+  next->backward.setParts(next->threads);
   impl_ = std::move(next);
 }
 
@@ -369,6 +375,16 @@ void FactoredSystem::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t num
   impl_->edgeVertices = std::move(edgeVertices);
   impl_->numVertices = numVertices;
   impl_->symbolic.reset();
+}
+
+void FactoredSystem::setThreads(int threads) {
+  impl_->threads = std::clamp(threads, 1, ThreadTeam::kHelpers + 1);
+  impl_->backwardKernel = defaultBackwardKernel(impl_->threads);
+  impl_->backward.setParts(impl_->threads);
+}
+
+int FactoredSystem::threads() const {
+  return impl_->threads;
 }
 
 void FactoredSystem::setBackwardKernel(BackwardKernel kernel) {
@@ -402,12 +418,19 @@ const FactorTimings& FactoredSystem::timings() const {
 }
 
 std::string FactoredSystem::description() const {
-  return std::string(impl_->wasSupernodal ? "supernodal LL'" : "simplicial LDL'") +
+  const Impl& s = *impl_;
+  std::string backward;
+  if (s.backwardKernel == BackwardKernel::Supernodes) {
+    const size_t groups = s.backward.partition().groups.size();
+    backward = ", backward substitution by supernodes";
+    if (groups > 1) backward += " on " + std::to_string(groups) + " threads";
+  }
+  return std::string(s.wasSupernodal ? "supernodal LL'" : "simplicial LDL'") +
          " factor, kept as simplicial LDL' for updates (" +
-         (impl_->ordering == FillOrdering::Amd ? "AMD ordering)"
-          : impl_->usedDissection              ? "METIS nested dissection of the mesh's vertex graph)"
-                                               : "METIS nested dissection ordering)") +
-         (impl_->backwardKernel == BackwardKernel::Supernodes ? ", backward substitution by supernodes" : "");
+         (s.ordering == FillOrdering::Amd ? "AMD ordering)"
+          : s.usedDissection              ? "METIS nested dissection of the mesh's vertex graph)"
+                                          : "METIS nested dissection ordering)") +
+         backward;
 }
 
 }  // namespace tvf

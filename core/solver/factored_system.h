@@ -14,16 +14,19 @@ namespace tvf {
 enum class FillOrdering { Amd, Metis };
 
 // How solve() substitutes backward: CHOLMOD's column-by-column L^-T (each entry a row index and a gather), or
-// supernode by supernode, gathering each supernode's rows once (solver/backward_substitution.h). On bunny00
-// the supernodes take wasm's solve after an edit from 12.7-12.9 to 10.4-10.5 ms, but natively, where CHOLMOD
-// is compiled for the machine and its own groups of up to four columns already share their gathers, the
-// backward substitution by supernodes is ~10 % slower (README): each build takes the faster one.
+// supernode by supernode, gathering each supernode's rows once, on one thread or several
+// (solver/backward_substitution.h). On bunny00 the supernodes take wasm's solve after an edit from 12.7-12.9
+// to 10.4-10.5 ms, but natively, where CHOLMOD is compiled for the machine and its own groups of up to four
+// columns already share their gathers, the backward substitution by supernodes on one thread is ~10 % slower
+// (README): each build takes the faster one, and the supernodes wherever there are threads to share them.
 enum class BackwardKernel { Columns, Supernodes };
+constexpr BackwardKernel defaultBackwardKernel(int threads) {
 #ifdef __EMSCRIPTEN__
-inline constexpr BackwardKernel kDefaultBackwardKernel = BackwardKernel::Supernodes;
+  return static_cast<void>(threads), BackwardKernel::Supernodes;
 #else
-inline constexpr BackwardKernel kDefaultBackwardKernel = BackwardKernel::Columns;
+  return threads > 1 ? BackwardKernel::Supernodes : BackwardKernel::Columns;
 #endif
+}
 
 struct FactorTimings {
   double analyzeMs = 0, factorMs = 0, convertMs = 0;
@@ -51,6 +54,11 @@ class FactoredSystem {
   // is a nested dissection of the vertex graph (solver/edge_dissection.h) instead of CHOLMOD's of A's graph.
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);
   void setMemoryLimit(double bytes);  // 0: no limit
+  // Threads for the backward substitution (default: the cores there are; at most what common/thread_team.h
+  // provides, to which larger numbers are cut); also sets the backward kernel to
+  // defaultBackwardKernel(threads). CHOLMOD's columns run on one.
+  void setThreads(int threads);
+  int threads() const;
   void setBackwardKernel(BackwardKernel kernel);
   double estimatedBytes() const;  // the last analysis' estimate of the factor's peak memory
   // L L' +/- sum_k w_k e_{row_k} e_{row_k}' in one cholmod_updown call; weights must be positive.

@@ -70,6 +70,15 @@ void ShiftedFactor::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numV
   stale_ = true;
 }
 
+void ShiftedFactor::setThreads(int threads) {
+  system_.setThreads(threads);
+  stale_ = true;
+}
+
+int ShiftedFactor::threads() const {
+  return system_.threads();
+}
+
 void ShiftedFactor::setMemoryLimit(double bytes) {
   memoryLimit_ = bytes;
 }

@@ -30,6 +30,23 @@ test('loads the default model, reports its counts and renders it', async ({ page
   expect(errors).toEqual([]);
 });
 
+// npm start serves the app cross-origin isolated (COOP/COEP), so the page runs the core built with pthreads:
+// each solve's backward substitution on two threads where the machine has two cores (a plain page runs the
+// plain core: embed.spec.mjs).
+test('the app page is cross-origin isolated and solves on the core with threads', async ({ page }) => {
+  const errors = trackErrors(page);
+  const requests = [];
+  page.on('request', (r) => requests.push(new URL(r.url()).pathname));
+  await openDesigner(page);
+  expect(await page.evaluate(() => window.crossOriginIsolated)).toBe(true);
+  expect(requests.filter((p) => /\/wasm\/tvf_core.*\.wasm$/.test(p)).map((p) => p.split('/').pop())).toEqual(['tvf_core_threads.wasm']);
+  const cores = await page.evaluate(() => navigator.hardwareConcurrency);
+  const kind = await page.evaluate(() => window.tvf.stats().factorKind);
+  if (cores >= 2) expect(kind).toContain('backward substitution by supernodes on 2 threads');
+  else expect(kind).not.toContain('threads');
+  expect(errors).toEqual([]);
+});
+
 test.describe.serial('a stroke drawn with the mouse', () => {
   let page, errors, mesh, baselineField, strokeId, strokePoints;
 

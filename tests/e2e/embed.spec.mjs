@@ -183,8 +183,11 @@ test('an esbuild-bundled consumer app, with assetBase set as the docs say', asyn
   // The worker and the core came from the folder assetBase names, not from next to the bundle.
   expect(requests).toContain('/app/tangent-field-designer/core-worker.js');
   expect(requests).toContain('/app/tangent-field-designer/wasm/tvf_core.wasm');
+  // A page that is not cross-origin isolated has no shared memory: the plain core, one thread.
+  expect(requests).not.toContain('/app/tangent-field-designer/wasm/tvf_core_threads.wasm');
   await page.evaluate(() => document.getElementById('bundled').addVortex(5));
   expect(await page.evaluate(() => document.getElementById('bundled').constraints()[0].type)).toBe('vortex');
+  expect(await page.evaluate(() => document.getElementById('bundled').stats().factorKind)).not.toContain('threads');
   expect((await record(page)).violations).toEqual([]);
   expect(foreign).toEqual([]);
   expect(errors).toEqual([]);

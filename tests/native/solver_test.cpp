@@ -17,6 +17,7 @@
 #include "solver/edge_dissection.h"
 #include "solver/factored_system.h"
 #include "solver/shifted_factor.h"
+#include "solver/subtree_partition.h"
 #include "test_fields.h"
 #include "test_meshes.h"
 
@@ -432,6 +433,129 @@ TEST(FactoredSystem, BackwardSubstitutionBySupernodesEqualsCholmodsByColumns) {
       columns.solve(b, expected);
       supernodes.solve(b, x);
       EXPECT_LT((x - expected).norm() / expected.norm(), 1e-12) << where << ", A^2";
+    }
+  }
+}
+
+// Checks what makes a partition safe to run in parallel: every node once; the top holds the parents of its
+// nodes (it is done first, whole); a group holds the parents of its nodes that are not in the top (groups
+// never read each other's columns); each list descends (a node after its ancestors).
+void expectValidPartition(const std::vector<int>& parent, const std::vector<int64_t>& work,
+                          const SubtreePartition& p, int parts, const std::string& where) {
+  const int n = static_cast<int>(parent.size());
+  std::vector<int> owner(n, -2);  // -1: top
+  const auto claim = [&](const std::vector<int>& list, int who) {
+    for (size_t k = 0; k < list.size(); ++k) {
+      ASSERT_EQ(owner[list[k]], -2) << where << ": node " << list[k] << " twice";
+      owner[list[k]] = who;
+      if (k > 0) ASSERT_LT(list[k], list[k - 1]) << where << ": not descending";
+    }
+  };
+  claim(p.top, -1);
+  for (size_t g = 0; g < p.groups.size(); ++g) claim(p.groups[g], static_cast<int>(g));
+  ASSERT_LE(p.groups.size(), static_cast<size_t>(parts)) << where;
+  int64_t top = 0, largest = 0, total = 0;
+  std::vector<int64_t> load(p.groups.size(), 0);
+  for (int s = 0; s < n; ++s) {
+    ASSERT_NE(owner[s], -2) << where << ": node " << s << " missing";
+    total += work[s];
+    (owner[s] < 0 ? top : load[owner[s]]) += work[s];
+    if (parent[s] < 0) continue;
+    if (owner[s] < 0) EXPECT_EQ(owner[parent[s]], -1) << where << ": a top node's parent below the top";
+    if (owner[s] >= 0) EXPECT_TRUE(owner[parent[s]] == -1 || owner[parent[s]] == owner[s]) << where;
+  }
+  for (const int64_t l : load) largest = std::max(largest, l);
+  EXPECT_EQ(p.topWork, top) << where;
+  EXPECT_EQ(p.largestGroupWork, largest) << where;
+  EXPECT_EQ(p.totalWork, total) << where;
+}
+
+TEST(SubtreePartition, TwoEqualHalvesUnderASeparatorGoToTwoParts) {
+  // 0-2 -> 3 <- 4-6 ... as a postordered tree: two chains of three under the root 6.
+  const std::vector<int> parent{1, 2, 6, 4, 5, 6, -1};
+  const std::vector<int64_t> work{10, 10, 10, 10, 10, 10, 1};
+  const SubtreePartition p = partitionSubtrees(parent, work, 2);
+  expectValidPartition(parent, work, p, 2, "halves");
+  EXPECT_EQ(p.top, std::vector<int>{6});
+  ASSERT_EQ(p.groups.size(), 2u);
+  EXPECT_EQ(p.largestGroupWork, 30);
+  const SubtreePartition one = partitionSubtrees(parent, work, 1);
+  EXPECT_TRUE(one.groups.empty());
+  EXPECT_EQ(one.top.size(), parent.size());
+}
+
+TEST(SubtreePartition, AChainHasNothingToRunInParallel) {
+  const std::vector<int> parent{1, 2, 3, 4, -1};
+  const std::vector<int64_t> work(5, 7);
+  const SubtreePartition p = partitionSubtrees(parent, work, 4);
+  expectValidPartition(parent, work, p, 4, "chain");
+  EXPECT_TRUE(p.groups.empty());
+}
+
+TEST(SubtreePartition, RandomForestsSplitSafelyAndShorten) {
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 1 + static_cast<int>(random() % 400);
+    std::vector<int> parent(n, -1);
+    std::vector<int64_t> work(n);
+    // A random postordered forest: each node's parent a later node (or none), near it more often than not.
+    for (int s = 0; s < n; ++s) {
+      work[s] = 1 + static_cast<int64_t>(random() % 100);
+      if (s + 1 < n && random() % 10 != 0)
+        parent[s] = s + 1 + static_cast<int>(random() % std::min(n - s - 1, 8));
+    }
+    for (const int parts : {1, 2, 3, 4}) {
+      const std::string where = "trial " + std::to_string(trial) + ", " + std::to_string(parts) + " parts";
+      const SubtreePartition p = partitionSubtrees(parent, work, parts);
+      expectValidPartition(parent, work, p, parts, where);
+      if (!p.groups.empty()) EXPECT_LE(10 * (p.topWork + p.largestGroupWork), 9 * p.totalWork) << where;
+    }
+  }
+}
+
+// The backward substitution on 1, 2, 3 and 4 threads gives the same solution bit for bit (each column's sums
+// are the same operations in the same order), after the factorization and after updates, in both orderings;
+// and the split is a real one on a mesh this size.
+TEST(FactoredSystem, ThreadedBackwardSubstitutionIsBitIdentical) {
+  Designer d(icosphere(5));
+  const SparseMatrix& base = d.baseMatrix();
+  const int32_t n = static_cast<int32_t>(base.rows());
+  const double scale = d.weightScale();
+  for (const FillOrdering ordering : {FillOrdering::Metis, FillOrdering::Amd}) {
+    const std::string where = ordering == FillOrdering::Metis ? "METIS" : "AMD";
+    std::vector<FactoredSystem> systems;
+    for (int threads = 1; threads <= 4; ++threads) {
+      systems.emplace_back(ordering);
+      systems.back().setThreads(threads);
+      systems.back().setBackwardKernel(BackwardKernel::Supernodes);
+      systems.back().setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
+      ASSERT_TRUE(systems.back().factor(base)) << where;
+    }
+    EXPECT_EQ(systems[0].description().find("threads"), std::string::npos) << systems[0].description();
+    EXPECT_NE(systems[1].description().find("on 2 threads"), std::string::npos) << systems[1].description();
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> value(-1.0, 1.0);
+    Eigen::VectorXd b(n), one, x;
+    for (int32_t e = 0; e < n; ++e) b[e] = value(random);
+    for (int step = 0; step < 6; ++step) {
+      if (step > 0) {
+        std::vector<int32_t> rows;
+        std::vector<double> weights;
+        for (int c = 0; c < 20; ++c) {
+          rows.push_back(static_cast<int32_t>(random() % n));
+          weights.push_back(scale);
+        }
+        for (FactoredSystem& f : systems) f.updateDiagonal(rows, weights, false);
+        b[random() % n] += 1.0;
+      }
+      systems[0].solve(b, one);
+      for (size_t t = 1; t < systems.size(); ++t) {
+        systems[t].solve(b, x);
+        ASSERT_EQ(x.size(), one.size());
+        ASSERT_TRUE(std::equal(x.data(), x.data() + n, one.data()))
+            << where << ", " << t + 1 << " threads, step " << step << ": max difference "
+            << (x - one).cwiseAbs().maxCoeff();
+      }
     }
   }
 }
