@@ -8,8 +8,8 @@
 // buffer and each column's part on R is a dense dot product of contiguous values. The row indices on R are
 // read once per supernode instead of once per group of columns, and the dot products run in two-double vector
 // lanes, up to four columns per pass over the gathered rows. In wasm, which has no vector gathers, this is
-// the faster backward substitution; natively CHOLMOD's, compiled for the machine, stays ahead (BackwardKernel
-// in solver/factored_system.h).
+// the faster backward substitution; natively CHOLMOD's, compiled for the machine, stays ahead on one thread
+// (BackwardKernel in solver/factored_system.h).
 //
 // Subtrees of the supernodes' elimination tree that are not nested read none of each other's columns: below
 // a top done first, they go to several threads (solver/subtree_partition.h, common/thread_team.h). Each
@@ -31,10 +31,9 @@ class BackwardSubstitution {
   // Forgets the supernodes: L's pattern is about to change (a factorization).
   void invalidate();
 
-  // How many threads the substitution may use (1: the calling thread alone). Takes effect at the next
-  // factorization's first solve.
+  // How many threads the substitution may use (1: the calling thread alone); the next solve splits the
+  // supernodes again.
   void setParts(int parts);
-  int parts() const { return parts_; }
   // The split of the last factor's supernodes between threads (its works are entries of L).
   const SubtreePartition& partition() const { return partition_; }
 

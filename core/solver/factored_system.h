@@ -22,7 +22,8 @@ enum class FillOrdering { Amd, Metis };
 enum class BackwardKernel { Columns, Supernodes };
 constexpr BackwardKernel defaultBackwardKernel(int threads) {
 #ifdef __EMSCRIPTEN__
-  return static_cast<void>(threads), BackwardKernel::Supernodes;
+  static_cast<void>(threads);
+  return BackwardKernel::Supernodes;
 #else
   return threads > 1 ? BackwardKernel::Supernodes : BackwardKernel::Columns;
 #endif
