@@ -77,15 +77,14 @@ async function loadModule(baseUrl, name) {
     );
   }
   const Module = await factory({ locateFile: (path) => new URL(path, moduleUrl).href });
-  return new CoreClient(Module, name);
+  return new CoreClient(Module);
 }
 
 const sliceOf = (view) => view.slice();
 
 export class CoreClient {
-  constructor(Module, moduleName = 'tvf_core') {
+  constructor(Module) {
     this.Module = Module;
-    this.moduleName = moduleName;
     this.threadsUnavailable = null; // why an isolated page runs the plain core, if it does
     this.designer = new Module.Designer();
     this.hasMesh = false;

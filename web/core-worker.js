@@ -123,12 +123,7 @@ const ops = {
     coreExport = new CoreExport(core.Module);
     if (core.threadsUnavailable)
       console.warn(`tangent-field-designer: the core with threads did not start (${core.threadsUnavailable}); solving on one thread`);
-    return {
-      crossOriginIsolated: self.crossOriginIsolated === true,
-      module: core.moduleName,
-      solverThreads: core.Module.solverThreadsAvailable(),
-      threadsUnavailable: core.threadsUnavailable,
-    };
+    return { crossOriginIsolated: self.crossOriginIsolated === true };
   },
 
   warmUp(levels, rounds) {

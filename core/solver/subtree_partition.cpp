@@ -37,7 +37,7 @@ Forest forestOf(const std::vector<int>& parent, const std::vector<int64_t>& work
 
 // Longest-processing-time-first assignment of subtrees to `parts` groups: their loads, and each subtree's
 // group in `owner` (same order as `subtrees`).
-int64_t largestLoad(const Forest& f, std::vector<int> subtrees, int parts, std::vector<int>* owner) {
+int64_t largestLoad(const Forest& f, const std::vector<int>& subtrees, int parts, std::vector<int>* owner) {
   std::vector<int> order(subtrees.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
   std::sort(order.begin(), order.end(),
@@ -58,6 +58,14 @@ int64_t largestLoad(const Forest& f, std::vector<int> subtrees, int parts, std::
   return largest;
 }
 
+// Everything in the top, on the calling thread: nothing worth splitting.
+SubtreePartition oneThread(int n, int64_t totalWork) {
+  SubtreePartition out;
+  for (int s = n - 1; s >= 0; --s) out.top.push_back(s);
+  out.topWork = out.totalWork = totalWork;
+  return out;
+}
+
 void collectSubtree(const Forest& f, int root, std::vector<int>& into) {
   std::vector<int> stack{root};
   while (!stack.empty()) {
@@ -73,22 +81,17 @@ void collectSubtree(const Forest& f, int root, std::vector<int>& into) {
 SubtreePartition partitionSubtrees(const std::vector<int>& parent, const std::vector<int64_t>& work,
                                    int parts) {
   const int n = static_cast<int>(parent.size());
-  SubtreePartition out;
-  for (const int64_t w : work) out.totalWork += w;
-  if (n == 0 || parts < 2) {
-    for (int s = n - 1; s >= 0; --s) out.top.push_back(s);
-    out.topWork = out.totalWork;
-    return out;
-  }
+  int64_t totalWork = 0;
+  for (const int64_t w : work) totalWork += w;
+  if (n == 0 || parts < 2) return oneThread(n, totalWork);
   const Forest f = forestOf(parent, work);
 
   // Split the largest subtree below the cut, one at a time, and remember the cut that was best so far.
   const auto heavier = [&](int a, int b) { return f.subtreeWork[a] < f.subtreeWork[b]; };
   std::vector<int> frontier = f.roots, top;
   std::make_heap(frontier.begin(), frontier.end(), heavier);
-  int64_t topWork = 0, best = out.totalWork;
+  int64_t topWork = 0, best = totalWork;
   size_t bestTopSize = 0;
-  bool improved = false;
   // Past a few subtrees per part the groups are as even as they get; further splits only grow the top.
   const size_t enough = 32 * static_cast<size_t>(parts);
   while (!frontier.empty() && frontier.size() <= enough && topWork < best) {
@@ -96,7 +99,6 @@ SubtreePartition partitionSubtrees(const std::vector<int>& parent, const std::ve
     if (span < best) {
       best = span;
       bestTopSize = top.size();
-      improved = true;
     }
     std::pop_heap(frontier.begin(), frontier.end(), heavier);
     const int s = frontier.back();
@@ -108,11 +110,7 @@ SubtreePartition partitionSubtrees(const std::vector<int>& parent, const std::ve
       std::push_heap(frontier.begin(), frontier.end(), heavier);
     }
   }
-  if (!improved || 10 * best > 9 * out.totalWork) {
-    for (int s = n - 1; s >= 0; --s) out.top.push_back(s);
-    out.topWork = out.totalWork;
-    return out;
-  }
+  if (10 * best > 9 * totalWork) return oneThread(n, totalWork);
 
   // Replay the best cut: its top, and the subtrees hanging below it.
   top.resize(bestTopSize);
@@ -124,6 +122,8 @@ SubtreePartition partitionSubtrees(const std::vector<int>& parent, const std::ve
   for (const int s : top)
     for (int c = f.childStart[s]; c < f.childStart[s + 1]; ++c)
       if (!inTop[f.children[c]]) below.push_back(f.children[c]);
+  SubtreePartition out;
+  out.totalWork = totalWork;
   std::vector<int> owner;
   out.largestGroupWork = largestLoad(f, below, parts, &owner);
   out.groups.assign(parts, {});
