@@ -42,6 +42,6 @@ await esbuild.build({
   splitting: true,
   chunkNames: 'chunk-[hash]',
 });
-await esbuild.build({ ...common, entryPoints: { 'core-worker': resolve(ROOT, 'web/core-worker.js') }, outdir: LIB });
+await esbuild.build({ ...common, entryPoints: { 'core-worker': resolve(ROOT, 'web/core/core-worker.js') }, outdir: LIB });
 for (const f of coreFiles) copyFileSync(f, resolve(LIB, 'wasm', f.split('/').pop()));
 console.log('build-package: lib/ ready');

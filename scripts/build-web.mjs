@@ -18,7 +18,7 @@ mkdirSync(DIST, { recursive: true });
 
 // The core runs in a module worker: a second entry point, loaded by the page as dist/core-worker.js.
 await esbuild.build({
-  entryPoints: { main: resolve(ROOT, 'web/main.js'), 'core-worker': resolve(ROOT, 'web/core-worker.js') },
+  entryPoints: { main: resolve(ROOT, 'web/main.js'), 'core-worker': resolve(ROOT, 'web/core/core-worker.js') },
   outdir: DIST,
   bundle: true,
   format: 'esm',

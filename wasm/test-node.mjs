@@ -408,7 +408,7 @@ check('after all refusals the field is finite and the design unchanged', t.solve
 
 // The page's client: constraints go in as design-format JSON, where null or a missing number is refused by the
 // core's parser (never read as 0); the remaining typed calls check their numbers before embind converts them.
-const { CoreClient } = await import(pathToFileURL(resolve(ROOT, 'web/core-client.js')).href);
+const { CoreClient } = await import(pathToFileURL(resolve(ROOT, 'web/core/core-client.js')).href);
 const client = new CoreClient(Module);
 client.loadModel(ico(1), 'off');
 const refused = (f) => { try { f(); return ''; } catch (err) { return err.message; } };

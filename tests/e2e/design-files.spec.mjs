@@ -62,7 +62,7 @@ test.describe.serial('design files and inputs', () => {
     // Over unsaved edits the page asks first; going ahead is the explicit choice.
     if (unsaved) {
       await expect(page.getByRole('alertdialog')).toContainText('unsaved edits');
-      await page.getByRole('button', { name: 'Loading a design anyway' }).click();
+      await page.getByRole('button', { name: 'Load anyway' }).click();
     }
   }
 

@@ -202,7 +202,7 @@ test('a broken file shows a readable error and keeps the current model usable', 
   // The stroke above is an unsaved edit: opening a file asks first.
   const dialog = page.getByRole('alertdialog');
   await expect(dialog).toContainText('unsaved edits');
-  await dialog.getByRole('button', { name: 'Opening a model anyway' }).click();
+  await dialog.getByRole('button', { name: 'Open anyway' }).click();
   await expect(banner).toBeVisible();
   await expect(banner.locator('.message')).toContainText('external buffer');
   expect(await page.evaluate(() => window.tvf.info())).toEqual(before);

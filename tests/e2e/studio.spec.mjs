@@ -529,7 +529,7 @@ test.describe.serial('the design studio', () => {
     const unsaved = await evaluate(() => window.tvf.hasUnsavedEdits());
     await page.setInputFiles('#file-input', source.path ?? source);
     // The earlier tests' design has unsaved edits: opening a model asks first.
-    if (unsaved) await page.getByRole('alertdialog').getByRole('button', { name: 'Opening a model anyway' }).click();
+    if (unsaved) await page.getByRole('alertdialog').getByRole('button', { name: 'Open anyway' }).click();
     // Orbit with the mouse while it loads: each move redraws the (old) model.
     const box = await page.locator('#view').boundingBox();
     const cx = box.x + box.width / 2, cy = box.y + box.height / 2;

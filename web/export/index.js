@@ -2,7 +2,7 @@
 // Exports of the designed field (docs/export.md) and the material preview, for one designer session: the
 // worker's FieldExporter writes the bytes (the same as `tvf export`), this module downloads them or shows the
 // GLB in the viewer. Wiring surface: setupExport({...}) and the controller's fieldChanged()/modelChanged().
-import { downloadBlob } from '../documents.js';
+import { downloadBlob } from '../session/documents.js';
 import { MATERIAL_PRESETS, MaterialPreview } from '../views/material-preview.js';
 import { mountExportPanel } from './panel.js';
 

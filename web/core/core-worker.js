@@ -7,11 +7,11 @@
 //
 // One worker per <tangent-field-designer> element: its globals are that element's core and nothing else.
 import { CoreError, loadCore } from './core-client.js';
-import { CoreExport } from './export/core-export.js';
-import { traceStreamlines } from './streamlines.js';
-import { chooseAtlas } from './synthesis/atlas.js';
-import { analyzeExemplar, exemplarBuffers } from './synthesis/exemplar.js';
-import { Surface } from './surface.js';
+import { CoreExport } from './core-export.js';
+import { traceStreamlines } from '../geometry/streamlines.js';
+import { chooseAtlas } from '../synthesis/atlas.js';
+import { analyzeExemplar, exemplarBuffers } from '../synthesis/exemplar.js';
+import { Surface } from '../geometry/surface.js';
 
 let core = null;
 let coreExport = null;

@@ -16,7 +16,7 @@ export function modelKey(name, bytes) {
   return `${name}|${bytes.length}|${fnv1a(bytes)}`;
 }
 
-function isEmptyDesign(design) {
+export function isEmptyDesign(design) {
   return !design.constraints?.length && (design.boundary ?? 'free') === 'free' && !design.gamma;
 }
 

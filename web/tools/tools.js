@@ -8,12 +8,11 @@ const CLICK_SLOP_PX = 6; // a press that moves less than this is a click
 export const TOOLS = ['orbit', 'select', 'stroke', 'vector', 'source', 'sink', 'vortex'];
 
 export class ToolController {
-  // session: the designer these tools edit (its viewer picks and draws); target: the element that receives
-  // the pointer events. actions: {onStroke(points, event), onVector(face, vector3, event),
-  // onPlace(kind, hit, event), onSelect(uid | null), flash(text)}
-  constructor(session, target, actions) {
-    const viewer = session.viewer;
-    this.session = session;
+  // viewer: picks and draws the gestures; target: the element that receives the pointer events.
+  // actions: {onStroke(points, event), onVector(face, vector3, event), onPlace(kind, hit, event),
+  // onSelect(uid | null), flash(text)}; readonly(): true while only orbit and select may be used.
+  constructor(viewer, target, actions, readonly = () => false) {
+    this.readonly = readonly;
     this.viewer = viewer;
     this.actions = actions;
     this.tool = 'orbit';
@@ -45,7 +44,7 @@ export class ToolController {
   // In readonly mode only orbit and select are available.
   setTool(name) {
     if (!TOOLS.includes(name)) return;
-    if (this.session.readonly && name !== 'orbit' && name !== 'select') name = 'orbit';
+    if (this.readonly() && name !== 'orbit' && name !== 'select') name = 'orbit';
     if (this.active) this.#release(this.active.pointerId, () => this.active.handler.cancel());
     this.tool = name;
     this.viewer.canvas.dataset.tool = name;

@@ -1,15 +1,16 @@
 // <tangent-field-designer>: the designer as a custom element (docs/embedding.md). Each element owns one
-// Session (its core worker, canvas, state, history and texture) in an open shadow root; attributes are
-// reflected to properties, the API of docs/js-api.md is on the element, and events fire on the element whose
-// field or constraints changed.
+// Designer (designer.js: the composition of its session, canvas, panels, tools and texture) in an open shadow
+// root; attributes are reflected to properties, the API of docs/js-api.md (api.js) is on the element, and
+// events fire on the element whose field or constraints changed.
 //
 // Importing this module has no side effects and touches no DOM globals at the top level, so it loads in node
 // and during server-side rendering; define() registers the element.
 import { TEXTURE_METHODS, api } from './api.js';
 import css from './element.css';
-import { DEFAULT_WEIGHT, Session } from './session.js';
+import { Designer } from './designer.js';
+import { DEFAULT_WEIGHT } from '../session/session.js';
 import { TEMPLATE } from './template.js';
-import { TOOLS } from './tools.js';
+import { TOOLS } from '../tools/tools.js';
 
 export const TAG_NAME = 'tangent-field-designer';
 const VIEW_NAMES = ['arrows', 'streamlines', 'lic', 'magnitude', 'singularities', 'texture'];
@@ -58,7 +59,7 @@ export class TangentFieldDesigner extends Base {
     return [...Object.values(STRING_ATTRIBUTES), 'gamma', 'readonly'];
   }
 
-  #session = null;
+  #designer = null;
   #ready;
   #settle = null; // {resolve, reject} of #ready while the first start-up is under way
   #connecting = false;
@@ -95,12 +96,12 @@ export class TangentFieldDesigner extends Base {
   // ------------------------------------------------------------------------------------------ lifecycle
 
   connectedCallback() {
-    if (this.#session || this.#connecting) return; // moved within the document: keep everything
+    if (this.#designer || this.#connecting) return; // moved within the document: keep everything
     this.#connecting = true;
     // A microtask later: attributes set right after insertion, and the app page's marker, are in place.
     queueMicrotask(() => {
       this.#connecting = false;
-      if (this.isConnected && !this.#session) this.#start();
+      if (this.isConnected && !this.#designer) this.#start();
     });
   }
 
@@ -114,10 +115,10 @@ export class TangentFieldDesigner extends Base {
   // Ends the worker, frees the WebGL contexts and clears the shadow root. Inserting the element again starts
   // a fresh designer.
   dispose() {
-    const session = this.#session;
-    if (!session) return;
-    this.#session = null;
-    session.dispose();
+    const designer = this.#designer;
+    if (!designer) return;
+    this.#designer = null;
+    designer.dispose();
     this.#settle?.reject(new Error('the designer was disposed'));
     this.#resetReady();
   }
@@ -132,7 +133,7 @@ export class TangentFieldDesigner extends Base {
   #start() {
     const root = this.shadowRoot;
     root.innerHTML = TEMPLATE;
-    const session = new Session({
+    const d = new Designer({
       host: this,
       root,
       assetBase: this.#assetBase(),
@@ -142,17 +143,17 @@ export class TangentFieldDesigner extends Base {
         if (this.getAttribute('tool') !== tool && (tool !== 'orbit' || this.hasAttribute('tool'))) this.setAttribute('tool', tool);
       },
     });
-    this.#session = session;
-    if (this.#appPage) session.ui.listenTo(window);
-    session.readonly = this.hasAttribute('readonly');
+    this.#designer = d;
+    if (this.#appPage) d.ui.listenTo(window);
+    d.session.readonly = this.hasAttribute('readonly');
     this.#applyAttribute('tool');
     this.#applyAttribute('views');
     this.#applyAttribute('boundary');
     this.#applyAttribute('gamma');
     const settle = this.#settle;
-    const started = session.exclusive(() => session.start());
+    const started = d.start();
     const src = this.getAttribute('src');
-    const loaded = started.then(() => (src ? this.#loadSrc(session, src) : null));
+    const loaded = started.then(() => (src ? this.#loadSrc(d, src) : null));
     loaded.then(
       () => settle.resolve(),
       (err) => settle.reject(err),
@@ -163,26 +164,27 @@ export class TangentFieldDesigner extends Base {
   // ------------------------------------------------------------------------------------------ attributes
 
   attributeChangedCallback(name, oldValue, value) {
-    if (oldValue === value || !this.#session) return;
+    if (oldValue === value || !this.#designer) return;
     this.#applyAttribute(name === 'asset-base' ? 'assetBase' : name);
   }
 
   // Applies the current value of one attribute (by property name) to the running session.
   #applyAttribute(prop) {
-    const s = this.#session;
+    const d = this.#designer;
+    const s = d.session;
     const attr = STRING_ATTRIBUTES[prop] ?? prop;
     const value = this.getAttribute(attr);
     try {
       switch (prop) {
         case 'src':
           if (value) {
-            const loaded = this.#loadSrc(s, value);
+            const loaded = this.#loadSrc(d, value);
             loaded.catch(() => {}); // reported by the `error` event
             this.#ready = loaded;
           }
           break;
         case 'design':
-          if (value && s.info) this.#loadDesignUrl(s, value).catch(() => {});
+          if (value && s.info) this.#loadDesignUrl(d, value).catch(() => {});
           break;
         case 'boundary':
         case 'gamma':
@@ -190,20 +192,20 @@ export class TangentFieldDesigner extends Base {
           break;
         case 'tool':
           if (!TOOLS.includes(value ?? 'orbit')) throw new Error(`unknown tool "${value}" (tools: ${TOOLS.join(' ')})`);
-          s.ui.setTool(value ?? 'orbit');
+          d.ui.setTool(value ?? 'orbit');
           break;
         case 'views':
-          this.#applyViews(s, parseViews(value ?? DEFAULT_VIEWS));
+          this.#applyViews(d, parseViews(value ?? DEFAULT_VIEWS));
           break;
         case 'readonly':
           s.readonly = value !== null;
-          if (s.readonly && !['orbit', 'select'].includes(s.tools.tool)) s.ui.setTool('orbit');
+          if (s.readonly && !['orbit', 'select'].includes(d.tools.tool)) d.ui.setTool('orbit');
           break;
         case 'autosave':
-          s.autosave = value;
+          s.autosave.name = value;
           break;
         case 'exemplar':
-          if (value && s.textureView && s.info) s.textureApi.setExemplar(value).catch((err) => s.fail('texture', err));
+          if (value && d.textureView && s.info) d.textureApi.setExemplar(value).catch((err) => s.fail('texture', err));
           break;
         default: // controls: CSS only; asset-base: read at the next start
       }
@@ -221,32 +223,34 @@ export class TangentFieldDesigner extends Base {
     s.setSetting(kind, setting).catch((err) => s.fail('setting', err));
   }
 
-  #applyViews(s, on) {
-    s.setViews({ arrows: on.has('arrows'), streamlines: on.has('streamlines'), lic: on.has('lic'), colorMap: on.has('magnitude'), singularities: on.has('singularities') });
+  #applyViews(d, on) {
+    const s = d.session;
+    d.viewSync.set({ arrows: on.has('arrows'), streamlines: on.has('streamlines'), lic: on.has('lic'), colorMap: on.has('magnitude'), singularities: on.has('singularities') });
     const texture = on.has('texture');
-    if (texture === s.textureView) return;
-    s.textureView = texture;
+    if (texture === d.textureView) return;
+    d.textureView = texture;
     if (texture && !s.info) return; // synthesized once the model is loaded (#loadSrc)
-    const run = texture ? this.#synthesize(s) : s.textureApi.clearTexture();
+    const run = texture ? this.#synthesize(d) : d.textureApi.clearTexture();
     run.catch((err) => s.fail('texture', err));
   }
 
   // The texture view: the `exemplar` attribute's exemplar (the default one without it) along the field.
-  async #synthesize(s) {
+  async #synthesize(d) {
     const exemplar = this.getAttribute('exemplar');
-    if (exemplar) await s.textureApi.setExemplar(exemplar);
-    return s.textureApi.synthesize();
+    if (exemplar) await d.textureApi.setExemplar(exemplar);
+    return d.textureApi.synthesize();
   }
 
   // Loads `src` (restoring the autosave only when the element asked for one), then `design`.
-  async #loadSrc(s, src) {
-    await s.loadModel(src);
+  async #loadSrc(d, src) {
+    await d.session.loadModel(src);
     const design = this.getAttribute('design');
-    if (design && this.#session === s) await this.#loadDesignUrl(s, design);
-    if (s.textureView && this.#session === s) this.#synthesize(s).catch((err) => s.fail('texture', err));
+    if (design && this.#designer === d) await this.#loadDesignUrl(d, design);
+    if (d.textureView && this.#designer === d) this.#synthesize(d).catch((err) => d.session.fail('texture', err));
   }
 
-  async #loadDesignUrl(s, href) {
+  async #loadDesignUrl(d, href) {
+    const s = d.session;
     try {
       const url = new URL(href, document.baseURI);
       const res = await fetch(url);
@@ -289,8 +293,8 @@ export class TangentFieldDesigner extends Base {
   }
 
   #require() {
-    if (!this.#session) throw new Error('the designer is not in a document (or was disposed)');
-    return this.#session;
+    if (!this.#designer) throw new Error('the designer is not in a document (or was disposed)');
+    return this.#designer;
   }
 
   static {

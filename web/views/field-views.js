@@ -21,7 +21,7 @@ import {
   SpriteMaterial,
   Vector3,
 } from 'three';
-import { POISSON_PACKING, sampleSurface, worldPerPixel } from './arrow-sampling.js';
+import { POISSON_PACKING, sampleSurface, worldPerPixel } from '../geometry/arrow-sampling.js';
 import { magnitudeScale, viridis } from './colormap.js';
 
 const ARROW_LIFT = 0.02; // × mean edge length, keeps arrows above the surface they lie on

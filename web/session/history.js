@@ -1,5 +1,6 @@
-// Undo/redo stacks of command objects (commands.js): execute() applies a command and records it, undo()
-// reverts the newest, redo() applies it again. A command that fails stays where it was.
+// Undo/redo stacks of command objects (commands/): execute() runs a command and records it, undo() takes the
+// newest back (the inverse factor update), redo() runs it again. A command that fails stays where it was.
+// The history only stacks; each command knows its own change.
 
 const LIMIT = 500;
 
@@ -12,7 +13,7 @@ export class History {
 
   // Applies the command; records it unless it changed nothing (command.changes === false).
   async execute(command, session) {
-    await command.apply(session);
+    await command.execute(session);
     if (command.changes === false) return;
     this.undoStack.push(command);
     if (this.undoStack.length > LIMIT) this.undoStack.shift();
@@ -23,7 +24,7 @@ export class History {
   async undo(session) {
     const command = this.peekUndo();
     if (!command) return false;
-    await command.revert(session);
+    await command.undo(session);
     this.redoStack.push(this.undoStack.pop());
     this.onChange();
     return true;
@@ -32,7 +33,7 @@ export class History {
   async redo(session) {
     const command = this.peekRedo();
     if (!command) return false;
-    await command.apply(session);
+    await command.execute(session);
     this.undoStack.push(this.redoStack.pop());
     this.onChange();
     return true;
@@ -50,6 +51,11 @@ export class History {
 
   peekRedo() {
     return this.redoStack[this.redoStack.length - 1] ?? null;
+  }
+
+  // The stacks as plain data (commands' serialize()), oldest first.
+  serialize() {
+    return { undo: this.undoStack.map((c) => c.serialize()), redo: this.redoStack.map((c) => c.serialize()) };
   }
 
   labels() {

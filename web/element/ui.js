@@ -2,7 +2,7 @@
 // target, progress indicator and status line. The markup is the element's (template.js, in its shadow root);
 // this module binds it, reports user intent through the callbacks it is given, and renders the state it is
 // handed. Keyboard shortcuts act while the focus is inside the element (or, on the app page, anywhere).
-import { VIEW_PRESETS } from './camera.js';
+import { VIEW_PRESETS } from '../views/camera.js';
 import { bindHelp } from './help.js';
 
 const TOOL_KEYS = { o: 'orbit', e: 'select', s: 'stroke', v: 'vector', r: 'source', g: 'sink', b: 'vortex' };

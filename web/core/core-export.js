@@ -1,7 +1,7 @@
 // Worker side of the exports (docs/export.md): the wasm FieldExporter (wasm/export_bindings.cpp) holding the
 // model file as it was opened, so a GLB keeps the model's own glTF and the bytes match `tvf export`.
 // One per worker, i.e. per <tangent-field-designer> element.
-import { CoreError } from '../core-client.js';
+import { CoreError } from './core-client.js';
 
 export class CoreExport {
   constructor(Module) {

@@ -4,7 +4,7 @@
 // tab can say that another one is editing the same model. One store per element (its autosave name).
 //
 // Records: {id, key, tab, savedAt, design}; key = element's autosave name + the model key (documents.js).
-import { loadAutosave as loadMirror, saveAutosave as saveMirror } from './documents.js';
+import { isEmptyDesign, loadAutosave as loadMirror, saveAutosave as saveMirror } from './documents.js';
 
 const DB_NAME = 'tvf-autosave';
 const STORE = 'versions';
@@ -23,10 +23,6 @@ function done(tx) {
     tx.oncomplete = () => resolve();
     tx.onabort = tx.onerror = () => reject(tx.error ?? new Error('IndexedDB transaction failed'));
   });
-}
-
-function isEmptyDesign(design) {
-  return !design.constraints?.length && (design.boundary ?? 'free') === 'free' && !design.gamma;
 }
 
 // A design whose numbers are all finite (JSON would turn NaN and Infinity into null and lose them).

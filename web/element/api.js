@@ -1,0 +1,120 @@
+// The designer's public JavaScript API (docs/js-api.md, docs/embedding.md): every method of a
+// <tangent-field-designer> element, as functions of its Designer (designer.js; `d.session` is the model).
+// The element installs them on its prototype; the app page's window.tvf is its element, so the same
+// functions serve both. This table is the one declaration of the API: the manifest and the .d.ts are checked
+// against it (tests/node/api-declaration.test.mjs).
+import { DEFAULT_WEIGHT } from '../session/session.js';
+import { edgeSpec, pointSpec, strokeSpec, vectorSpec } from '../session/specs.js';
+import { cameraState, setCameraState } from '../views/camera.js';
+import { captureScreenshot } from '../views/screenshot.js';
+
+// Synchronous reads: copies of what the session holds after the last completed change.
+const read = (fn) => (d, ...args) => (d.session.requireReady(), fn(d, d.session, ...args));
+const add = (d, spec) => d.session.addConstraint(spec);
+
+export const api = {
+  loadModel: (d, src, opts) => d.session.loadModel(src, opts),
+  info: read((d, s) => structuredClone(s.info)),
+  mesh: read((d, s) => ({ positions: s.surface.positions.slice(), triangles: s.surface.triangles.slice() })),
+  edges: read((d, s) => s.surface.edges.slice()),
+
+  addStroke: (d, points, { strength = 1, weight = DEFAULT_WEIGHT } = {}) => add(d, strokeSpec(points, { strength, weight })),
+  addVector: (d, face, vector, { weight = DEFAULT_WEIGHT } = {}) => add(d, vectorSpec(face, vector, { weight })),
+  addEdge: (d, edge, value, { weight = DEFAULT_WEIGHT } = {}) => add(d, edgeSpec(edge, value, { weight })),
+  addSource: (d, vertex, { strength = 1 } = {}) => add(d, pointSpec('source', vertex, strength)),
+  addSink: (d, vertex, { strength = 1 } = {}) => add(d, pointSpec('sink', vertex, strength)),
+  addVortex: (d, face, { strength = 1 } = {}) => add(d, pointSpec('vortex', face, strength)),
+  remove: (d, id) => d.session.remove(id),
+  setWeight: (d, id, w) => d.session.setParameter('weight', id, w),
+  setStrength: (d, id, v) => d.session.setParameter('strength', id, v),
+  constraints: (d) => d.session.constraintList(),
+  setBoundary: (d, bc) => d.session.setSetting('boundary', bc),
+  setGamma: (d, gamma) => d.session.setSetting('gamma', gamma),
+  settings: (d) => structuredClone(d.session.settings()),
+
+  undo: (d) => d.session.step(false),
+  redo: (d) => d.session.step(true),
+  history: (d) => d.session.history.labels(),
+
+  saveDesign: read((d, s) => structuredClone(s.design)),
+  frame: read((d, s, view = 'home') => d.viewer.frame(view)),
+  camera: (d) => cameraState(d.viewer),
+  // A PNG Blob of the view at {width, height} pixels (default: the canvas), {transparent} background.
+  screenshot: (d, options) => (d.session.requireReady(), captureScreenshot(d.viewer, options)),
+  setCamera: (d, state) => setCameraState(d.viewer, state),
+  hasUnsavedEdits: (d) => d.session.hasUnsavedEdits(),
+  // options.ignoreFingerprint: apply a design saved for another mesh anyway.
+  loadDesign: (d, design, options) =>
+    d.session.replaceDesign(design, 'load design', options).catch((err) => {
+      throw d.session.fail('design', err);
+    }),
+  exportField: (d) => d.session.exportField().then((text) => JSON.parse(text)),
+  // docs/export.md: Uint8Arrays with the same bytes as `tvf export` for this model file and field.
+  exportFlowMap: (d, options) => d.exports.exportFlowMap(options),
+  exportGlb: (d, options) => d.exports.exportGlb(options),
+  exportOptions: (d) => d.exports.exportOptions(),
+  setExportOptions: (d, options) => d.exports.setExportOptions(options),
+  materialPreview: (d, preset) => d.exports.materialPreview(preset),
+  materialPreviewInfo: (d) => d.exports.materialPreviewInfo(),
+
+  faceVectors: read((d, s) => s.field.faceVectors.slice()),
+  vertexVectors: read((d, s) => s.field.vertexVectors.slice()),
+  oneForm: read((d, s) => s.field.oneForm.slice()),
+  singularities: read((d, s) => structuredClone(s.currentSingularities())),
+  stats: read((d, s) => structuredClone(s.field.stats)),
+
+  select: (d, id) => d.session.select(id),
+  selected: (d) => d.session.selected,
+  views: (d) => ({ ...d.viewSync.views }),
+  setViews: (d, views) => d.viewSync.set(views),
+  streamlines: read((d) => d.viewSync.currentStreamlines().map((l) => Array.from(l))),
+  // The direction cues drawn on the streamlines: each chevron's tip and the middle of its back.
+  streamlineCues: read((d) => d.viewer.streamlines.cues.map(({ tip, back }) => ({ tip, back }))),
+  strokeCues: read((d) => d.viewer.handles.cues()),
+  singularityMarkers: read((d) => d.viewer.singularities.drawn()),
+  // The arrows as drawn (the instances on the GPU): anchor and vector (model units) of each.
+  arrowInstances: read((d) => {
+    const { anchors, vectors } = d.viewer.arrows.drawn();
+    return { anchors: Array.from(anchors), vectors: Array.from(vectors) };
+  }),
+  perf: (d) => structuredClone(d.session.perf),
+  projectToScreen: read((d, s, xyz) => d.viewer.projectToScreen(Array.from(xyz))),
+  pick: read((d, s, clientX, clientY) => d.viewer.pick(clientX, clientY)),
+
+  // Autosave versions (IndexedDB, docs/js-api.md): newest first; restore one as an undoable design change.
+  autosaveVersions: (d) => d.session.autosave.versions(),
+  restoreAutosave: (d, id) => d.session.autosave.restore(id),
+  autosaveIdle: (d) => d.session.autosave.idle().then(() => true),
+
+  // Supervision (docs/js-api.md): stop the operation in flight; how often the core was replaced and why.
+  cancel: (d) => Promise.resolve(d.session.cancel()),
+  supervision: (d) => d.session.supervision(),
+  // What a crash of the core's worker does, on purpose (tests, demonstrations); a memory limit for the factor
+  // (0: the wasm address space left) so tests need no multi-million-edge mesh.
+  debugTerminateCore: (d) => d.session.proxy?.terminateForTest(),
+  debugHangCore: (d, ms) => d.session.proxy?.hangForTest(ms),
+  debugTrapCore: (d) => d.session.exclusive(() => d.session.proxy.call('trapForTest')),
+  debugSetFactorMemoryLimit: (d, bytes) => d.session.exclusive(() => d.session.proxy.call('setFactorMemoryLimit', [bytes])).then(() => true),
+  // The tests' references for what the page derives lazily or keeps incrementally: the core's own read-outs
+  // ({oneForm, faceVectors, vertexVectors, singularities, design}, derived by the core now), and streamlines
+  // traced on the page now for the current field and spacing (whatever the view's cache, traced in the worker,
+  // holds).
+  debugCoreReadout: (d) => d.session.exclusive(async () => (d.session.requireReady(), (await d.session.proxy.call('read')).value)),
+  debugTraceStreamlines: read((d) => d.viewSync.traceStreamlinesHere().map((l) => Array.from(l))),
+};
+
+// The texture-synthesis calls (web/synthesis/index.js installs them on the designer's synthesis controller).
+export const TEXTURE_METHODS = [
+  'setExemplar',
+  'synthesize',
+  'exportTexturePNG',
+  'exportGLB',
+  'synthesisStats',
+  'clearTexture',
+  'exemplarInfo',
+  'synthesisReadback',
+  'synthesisIdle',
+  'synthesisProgress',
+  'setTextureAutoUpdate',
+  'synthesisBench',
+];

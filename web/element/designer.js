@@ -1,0 +1,169 @@
+// The composition root of one <tangent-field-designer>: builds the session (the model), the viewer, the
+// panels, the tools, texture synthesis and export, and subscribes them to the session's signals. Nothing
+// below this module knows the others exist; everything that connects them is here or in the two action
+// tables (panel-actions.js, tool-actions.js).
+import { panelActions } from './panel-actions.js';
+import { toolActions } from './tool-actions.js';
+import { bindUi } from './ui.js';
+import { ViewSync } from './view-sync.js';
+import { setupExport } from '../export/index.js';
+import { baseName } from '../session/documents.js';
+import { Session } from '../session/session.js';
+import { setupSynthesis } from '../synthesis/index.js';
+import { ToolController } from '../tools/tools.js';
+import { setPivotAt } from '../views/camera.js';
+import { Viewer } from '../views/viewer.js';
+
+const PROGRESS_LABELS = {
+  loadMesh: 'Loading and factoring…',
+  setBoundary: 'Refactoring…',
+  setGamma: 'Refactoring…',
+  applyDesign: 'Applying the design…',
+  fieldJson: 'Exporting…',
+  exportFlowMap: 'Exporting the flow map…',
+  exportGlb: 'Exporting the GLB…',
+};
+
+// The session's signals that are the element's public events (docs/js-api.md).
+const PUBLIC_EVENTS = ['load', 'fieldchange', 'constraintschange', 'corerestart', 'autosaveconflict', 'error'];
+
+export class Designer {
+  // host: the element (events are dispatched on it); root: its shadow root (markup already in place);
+  // assetBase: URL of the folder with core-worker.js and wasm/; autosave: storage key or null (off);
+  // bench: run the synthesis benchmark when the page asks for it (the app page only); onTool(name): the user
+  // picked a tool.
+  constructor({ host, root, assetBase, autosave = null, bench = false, onTool = () => {} }) {
+    this.host = host;
+    this.onTool = onTool;
+    this.textureView = false; // the `texture` view is on: synthesize after every model load
+    const $ = (sel) => root.querySelector(sel);
+    const container = $('#viewport');
+    const session = (this.session = new Session({ assetBase, autosave }));
+    this.viewer = new Viewer(container);
+    this.ui = bindUi(root, host, panelActions(this));
+    this.tools = new ToolController(this.viewer, container, toolActions(this), () => session.readonly);
+    // Double-click (double-tap) on the model: orbit around that point from now on.
+    this.viewer.canvas.addEventListener('dblclick', (e) => setPivotAt(this.viewer, e.clientX, e.clientY));
+    this.viewSync = new ViewSync({ session, viewer: this.viewer, ui: this.ui });
+    this.viewSync.apply(this.ui.views());
+    this.textureApi = {};
+    this.synthesis = this.#setupSynthesis($('#side-panel'), bench);
+    this.viewSync.onRefreshed = () => this.synthesis.fieldChanged(); // resynthesize when the field changed
+    this.exports = setupExport({
+      viewer: this.viewer,
+      panel: $('#side-panel'),
+      call: (op, args) => session.request(op, args, { exclusive: true }),
+      modelName: () => baseName(session.modelName),
+      onError: (err) => !session.disposed && this.ui.showError(err.message),
+    });
+    this.#subscribe();
+  }
+
+  // Texture synthesis (web/synthesis/, docs/texture-synthesis.md): its calls go onto the element.
+  #setupSynthesis(panel, bench) {
+    const s = this.session;
+    return setupSynthesis(this.textureApi, {
+      viewer: this.viewer,
+      panel,
+      bench: bench ? this.host : null,
+      onError: (err) => s.fail('texture', err),
+      computeAtlas: ({ positions, triangles, cornerUVs }, options) => s.request('textureAtlas', [positions, triangles, cornerUVs ?? null, options]),
+      // An exemplar may be chosen before the core has started: the analysis waits for it.
+      analyzeExemplar: async (spec) => {
+        await s.coreStarted;
+        return s.request('analyzeExemplar', [spec]);
+      },
+      getModel: () =>
+        s.surface && s.field
+          ? {
+              key: `${s.modelKey}#${s.meshSerial}`,
+              name: s.modelName,
+              positions: s.surface.positions,
+              triangles: s.surface.triangles,
+              // The mesh's derived geometry (normals, areas, adjacency, angle defects), computed once per mesh.
+              surface: s.surface,
+              cornerUVs: s.cornerUVs,
+              // A copy: synthesis and exports hold it across awaits, and the session's own array goes back to
+              // the worker once a newer field replaces it.
+              vertexVectors: s.field.vertexVectors.slice(),
+              fieldVersion: s.fieldVersion,
+            }
+          : null,
+    });
+  }
+
+  #subscribe() {
+    const s = this.session, ui = this.ui, viewer = this.viewer;
+    for (const type of PUBLIC_EVENTS) s.on(type, (detail) => this.#dispatch(type, detail));
+    s.on('error', ({ message }) => ui.showError(message));
+    s.on('banner', ({ message, action }) => ui.showError(message, action));
+    s.on('banner-clear', () => ui.clearError());
+    s.on('flash', ({ text, ms }) => ui.flash(text, ms));
+    s.on('settings', (settings) => ui.setSettings(settings));
+    s.on('history', () => this.viewSync.refreshHistory());
+    s.on('selection', (uid) => this.viewSync.selectionChanged(uid));
+    s.on('model', (model) => {
+      this.viewSync.modelChanged(model);
+      this.synthesis.modelChanged(); // the model's UVs and a fresh atlas for the new mesh
+    });
+    s.on('change', () => this.viewSync.refresh());
+    s.on('fieldchange', () => this.exports.fieldChanged());
+    const ends = new Map();
+    s.on('busy', ({ op, done }) => {
+      if (!done) {
+        ends.set(op, { end: ui.startProgress(PROGRESS_LABELS[op] ?? 'Updating…'), renders: viewer.renderCount });
+        return void this.#dispatch('progress', { phase: op, fraction: 0 });
+      }
+      const started = ends.get(op);
+      ends.delete(op);
+      started?.end();
+      // Frames the page drew while the worker computed: the page never waits for the core.
+      if (started && s.perf.lastOp?.op === op) s.perf.lastOp.framesDrawnMeanwhile = viewer.renderCount - started.renders;
+      this.#dispatch('progress', { phase: op, fraction: 1 });
+    });
+  }
+
+  #dispatch(type, detail) {
+    if (this.session.disposed) return;
+    this.host.dispatchEvent(new CustomEvent(type, { detail, bubbles: true, composed: true }));
+  }
+
+  start() {
+    return this.session.exclusive(() => this.session.start());
+  }
+
+  // Ends the worker and frees the WebGL contexts; the element is dead afterwards.
+  dispose() {
+    if (this.session.disposed) return;
+    this.session.dispose();
+    this.synthesis.dispose();
+    this.exports.dispose();
+    this.tools.dispose();
+    this.ui.dispose();
+    this.viewer.dispose();
+  }
+
+  // Surfaces any failure of a UI-started action in the banner; the API variants reject instead. The panels
+  // are redrawn from the state so an input the core refused shows the value in force again.
+  report(promise) {
+    return promise.catch((err) => {
+      if (this.session.disposed) return;
+      this.ui.showError(err.message);
+      this.session.changed();
+    });
+  }
+
+  // Time from a user action to the frame that shows its result (reported through perf()).
+  async #timed(name, t0, promise) {
+    const result = await promise;
+    // The redraw was synchronous; the next animation frame puts it on screen.
+    const shown = await new Promise((resolve) => requestAnimationFrame(() => resolve(performance.now())));
+    const perf = this.session.perf, op = perf.lastOp ?? {};
+    perf[name] = { toFrameMs: shown - t0, workerMs: op.workerMs, workerParts: op.workerParts, roundTripMs: op.roundTripMs, refresh: perf.refresh };
+    return result;
+  }
+
+  edit(name, promise) {
+    return this.report(this.#timed(name, performance.now(), promise));
+  }
+}

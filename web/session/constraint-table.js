@@ -1,0 +1,94 @@
+// The page's mirror of the design the core holds (docs/design-format.md), kept in step from the replies' design
+// changes, and the page ids of its constraints. Page ids ("uids") are what the API, the panels and the
+// history name; they survive a delete and its undo, whereas the core hands out a fresh id whenever it re-adds
+// a constraint. Specs are kept exactly as the core sent them (the core validated and stored them).
+export class ConstraintTable {
+  constructor() {
+    this.design = { boundary: 'free', gamma: 0, constraints: [] };
+    this.specByCore = new Map(); // core id → spec
+    this.coreOrder = []; // core ids in the core's order (that of design.constraints)
+    this.uids = new Map(); // uid → core id
+    this.nextUid = 1;
+  }
+
+  get size() {
+    return this.uids.size;
+  }
+
+  has(uid) {
+    return this.uids.has(Number(uid));
+  }
+
+  // A new model: constraint numbers restart.
+  restart() {
+    this.uids.clear();
+    this.nextUid = 1;
+    this.mapDocument(null);
+  }
+
+  // The worker sends the whole document after loads, settings, designs and failed edits; after a constraint
+  // edit only the entries it touched and the id order.
+  apply({ ids, document, changed }) {
+    if (document) {
+      this.design = document;
+      this.specByCore = new Map(ids.map((id, k) => [id, document.constraints[k]]));
+    } else {
+      for (const [id, spec] of changed) this.specByCore.set(id, spec);
+      const missing = ids.find((id) => !this.specByCore.has(id));
+      if (missing !== undefined) throw new Error(`internal error: the core has constraint ${missing}, which the page never saw`);
+      this.specByCore = new Map(ids.map((id) => [id, this.specByCore.get(id)]));
+      this.design = { ...this.design, constraints: ids.map((id) => this.specByCore.get(id)) };
+    }
+    this.coreOrder = ids;
+    for (const [uid, coreId] of this.uids) if (!this.specByCore.has(coreId)) this.uids.delete(uid);
+  }
+
+  // Core constraints no page id points at (a loaded design, an autosave) get fresh ids in the core's order.
+  adoptUnmapped() {
+    const mapped = new Set(this.uids.values());
+    for (const coreId of this.coreOrder) if (!mapped.has(coreId)) this.uids.set(this.nextUid++, coreId);
+  }
+
+  // After a document replaced the core's list: give its constraints the page ids `uids` (same order).
+  mapDocument(uids) {
+    this.uids.clear();
+    const ids = this.coreOrder;
+    if (uids && uids.length === ids.length) uids.forEach((uid, k) => this.uids.set(uid, ids[k]));
+    this.adoptUnmapped();
+  }
+
+  uidsInCoreOrder() {
+    const byCore = new Map([...this.uids].map(([uid, coreId]) => [coreId, uid]));
+    return this.coreOrder.map((id) => byCore.get(id));
+  }
+
+  coreIdOf(uid) {
+    const coreId = this.uids.get(Number(uid));
+    if (coreId === undefined) throw new Error(`no constraint with id ${uid}`);
+    return coreId;
+  }
+
+  specOf(uid) {
+    return this.specByCore.get(this.coreIdOf(uid));
+  }
+
+  // Every constraint with its page id, in page-id order (copies).
+  list() {
+    return [...this.uids.keys()].sort((a, b) => a - b).map((uid) => ({ id: uid, ...structuredClone(this.specOf(uid)) }));
+  }
+
+  // [{uid, spec}] for the views (the specs themselves, not copies).
+  entries() {
+    return [...this.uids.keys()].map((uid) => ({ uid, spec: this.specOf(uid) }));
+  }
+
+  settings() {
+    return { boundary: this.design.boundary ?? 'free', gamma: this.design.gamma ?? 0 };
+  }
+
+  // The design's content as text, to tell unsaved edits (undoing back to the saved state counts as none).
+  key() {
+    const { boundary, gamma, constraints } = this.design;
+    return JSON.stringify({ boundary, gamma, constraints });
+  }
+}

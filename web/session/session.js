@@ -1,0 +1,369 @@
+// One designer's model: its core (a worker, core/), the page's copies of what the core holds (mesh, field,
+// design mirror with page ids), the history of edits, the autosave and the model files. A
+// <tangent-field-designer> element owns one Session; nothing here is shared between elements.
+//
+// The session imports nothing of the element, its panels, views or tools: it emits change signals
+// (emitter.js) and the element subscribes them. Every edit is a command object (commands/) run by execute(),
+// one at a time in call order; each ends in one request to the worker that solves and replies with a
+// snapshot of what changed (field arrays, stats, the touched constraints), which becomes the session's state,
+// so reads stay synchronous.
+//
+// Signals: 'change' (new field or design: redraw), 'model' (a new mesh: before its 'change'), 'selection',
+// 'history', 'settings' (after a refused edit), 'busy' {op, done}, 'flash' {text, ms}, 'banner' {message,
+// action}, 'banner-clear', and the element's public events: 'error' {code, message}, 'load', 'fieldchange',
+// 'constraintschange', 'corerestart', 'autosaveconflict'.
+import { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting } from './commands/index.js';
+import { Autosave } from './autosave.js';
+import { ConstraintTable } from './constraint-table.js';
+import { Emitter } from './emitter.js';
+import { History } from './history.js';
+import { ModelLoader } from './model-loader.js';
+import { CoreProxy } from '../core/core-proxy.js';
+import { findSingularities } from '../geometry/singularities.js';
+
+// Weight 1e4 keeps strokes within ~0.4% of the drawn direction (paper, Sec. 6.1) while the rank-1 updates
+// stay well conditioned.
+export const DEFAULT_WEIGHT = 1e4;
+
+export class Session extends Emitter {
+  #coreStartSettled;
+
+  // assetBase: URL of the folder with core-worker.js and wasm/; autosave: storage key or null (off).
+  constructor({ assetBase, autosave = null }) {
+    super();
+    this.assetBase = assetBase;
+    this.readonly = false;
+    this.proxy = null;
+    // Settles when start() has finished, whether the core came up or not (then `proxy` stays null).
+    this.coreStarted = new Promise((resolve) => (this.#coreStartSettled = resolve));
+    this.modelName = '';
+    this.modelKey = '';
+    this.modelSource = null; // {bytes, format}: what a restarted core reloads
+    this.info = null;
+    this.surface = null;
+    this.cornerUVs = null;
+    this.meshSerial = 0;
+    // {version (the worker's), faceVectors, vertexVectors, oneForm, stats, singularities (null until derived)}
+    // of the last completed change.
+    this.field = null;
+    this.fieldVersion = 0;
+    this.retired = []; // fields replaced since the last 'change', whose arrays go back to the worker
+    this.table = new ConstraintTable();
+    this.selected = null;
+    this.history = new History(() => this.emit('history'));
+    this.autosave = new Autosave(this, autosave);
+    this.models = new ModelLoader(this);
+    this.perf = {};
+    this.disposed = false;
+    // Every mutation runs alone and in call order: the worker's state and the session's copies move together.
+    this.queue = Promise.resolve();
+    this.lastConstraintsJson = '[]';
+    this.savedDesignJson = null; // the design as last saved, loaded or found with the model
+  }
+
+  get design() {
+    return this.table.design;
+  }
+
+  // Before the first model, settings wait in the design and go in with the mesh.
+  set design(design) {
+    this.table.design = design;
+  }
+
+  // Starts the worker and the core. Rejects (and signals `error`, code 'core') when either fails.
+  async start() {
+    try {
+      const proxy = await CoreProxy.start(this.assetBase, {
+        onRestart: (reason) => this.#revive(reason),
+        onStatus: (text) => this.flash(text, 4000),
+      });
+      if (this.disposed) return proxy.terminate();
+      this.proxy = proxy;
+    } catch (err) {
+      this.fail('core', err);
+      throw err;
+    } finally {
+      this.#coreStartSettled();
+    }
+  }
+
+  // Ends the worker; the session is dead afterwards.
+  dispose() {
+    if (this.disposed) return;
+    this.disposed = true;
+    this.proxy?.terminate();
+    this.autosave.close();
+    this.clearListeners();
+  }
+
+  // ------------------------------------------------------------------------------------------ signals
+
+  flash(text, ms) {
+    this.emit('flash', { text, ms });
+  }
+
+  // A failure the user did not ask to handle (a model, design, texture or core start): `error` signal (the
+  // element's event and banner). Returns the Error.
+  fail(code, err) {
+    const error = err instanceof Error ? err : new Error(String(err));
+    this.emit('error', { code, message: error.message });
+    return error;
+  }
+
+  #emitChanges() {
+    this.emit('fieldchange', { version: this.fieldVersion, stats: structuredClone(this.field.stats) });
+    const constraints = this.constraintList();
+    const json = JSON.stringify(constraints);
+    if (json !== this.lastConstraintsJson) {
+      this.lastConstraintsJson = json;
+      this.emit('constraintschange', { constraints });
+    }
+  }
+
+  // The field and design changed (or must be shown again): listeners redraw synchronously; afterwards the
+  // replaced fields' arrays go back to the worker, which refills them instead of allocating (the views keep
+  // nothing of a field but what they made of it; the read API hands out copies).
+  changed() {
+    this.emit('change');
+    for (const field of this.retired) {
+      if (field.autosavePending) this.autosave.checkFinite(field);
+      this.proxy?.recycle([field.faceVectors, field.vertexVectors, field.oneForm]);
+    }
+    this.retired = [];
+  }
+
+  // ------------------------------------------------------------------------------------------ core link
+
+  exclusive(fn) {
+    const run = this.queue.then(fn);
+    this.queue = run.catch(() => {});
+    return run;
+  }
+
+  requireProxy() {
+    if (!this.proxy) throw new Error(this.disposed ? 'the designer was disposed' : 'the core is not running');
+    return this.proxy;
+  }
+
+  requireReady() {
+    if (this.disposed) throw new Error('the designer was disposed');
+    if (!this.proxy || !this.info || !this.field) throw new Error('the designer is not ready yet; await its ready promise first');
+  }
+
+  // One request to the worker; the snapshot it returns (also with a failure) becomes the session's state.
+  async call(op, args = [], transfer = []) {
+    const proxy = this.requireProxy();
+    this.emit('busy', { op, done: false });
+    const t0 = performance.now();
+    try {
+      const reply = await proxy.call(op, args, transfer);
+      const t1 = performance.now();
+      this.perf.lastOp = { op, workerMs: reply.workerMs, workerParts: reply.timing, roundTripMs: t1 - t0, sentAt: t0, receivedAt: t1 };
+      if (reply.snapshot) this.#applySnapshot(reply.snapshot);
+      this.perf.lastOp.applyMs = performance.now() - t1;
+      return reply;
+    } catch (err) {
+      if (err.reply?.snapshot) this.#applySnapshot(err.reply.snapshot);
+      throw err;
+    } finally {
+      this.emit('busy', { op, done: true });
+    }
+  }
+
+  // A call that changes nothing the session mirrors (exports, the texture's analyses): in the queue when
+  // `exclusive`, else in the background beside the edits.
+  async request(op, args = [], { exclusive = false, transfer = [] } = {}) {
+    if (exclusive) {
+      return this.exclusive(async () => {
+        this.requireReady();
+        return (await this.call(op, args, transfer)).value;
+      });
+    }
+    return (await this.requireProxy().call(op, args, transfer, { background: true })).value;
+  }
+
+  #applySnapshot({ version, faceVectors, vertexVectors, oneForm, stats, design }) {
+    if (this.field) this.retired.push(this.field);
+    this.field = { version, faceVectors, vertexVectors, oneForm, stats, singularities: null };
+    this.fieldVersion++;
+    this.table.apply(design);
+    if (this.selected != null && !this.table.has(this.selected)) this.selected = null;
+  }
+
+  // ------------------------------------------------------------------------------------------ reads
+
+  constraintList() {
+    return this.table.list();
+  }
+
+  settings() {
+    return this.table.settings();
+  }
+
+  // Derived on first read, once per field: no edit waits for them.
+  currentSingularities() {
+    this.field.singularities ??= findSingularities(this.surface, this.field.faceVectors);
+    return this.field.singularities;
+  }
+
+  select(uid) {
+    this.selected = uid != null && this.table.has(uid) ? Number(uid) : null;
+    this.emit('selection', this.selected);
+  }
+
+  // ------------------------------------------------------------------------------------------ edits
+
+  // Runs the command made by makeCommand() (inside the queue, once the session is ready) and records it.
+  execute(makeCommand) {
+    return this.exclusive(async () => {
+      this.requireReady();
+      const command = makeCommand();
+      try {
+        await this.history.execute(command, this);
+      } catch (err) {
+        this.emit('settings', this.settings()); // what the core holds, also after a refusal
+        throw err;
+      }
+      this.afterEdit();
+      return command.result;
+    });
+  }
+
+  // spec: a design-format constraint; meshSerial: the model the edit was made on (tool input), dropped when
+  // the model changed before it reached the core; undefined for API calls.
+  addConstraint(spec, meshSerial = undefined) {
+    return this.execute(() => {
+      if (meshSerial !== undefined && meshSerial !== this.meshSerial)
+        throw new Error('the model changed before this edit reached the core; it was not applied');
+      return new AddConstraint(spec);
+    });
+  }
+
+  remove(uid) {
+    return this.execute(() => RemoveConstraint.of(this, uid));
+  }
+
+  // kind: 'weight' | 'strength'.
+  setParameter(kind, uid, value) {
+    return this.execute(() => SetParameter.of(this, kind, uid, value));
+  }
+
+  // kind: 'boundary' | 'gamma'; the core checks the value.
+  setSetting(kind, value) {
+    return this.execute(() => SetSetting.of(this, kind, value));
+  }
+
+  // ignoreFingerprint: apply a design saved for another mesh anyway (its indices taken as they are).
+  replaceDesign(design, label, { ignoreFingerprint = false } = {}) {
+    return this.execute(() => {
+      if (!design || typeof design !== 'object' || Array.isArray(design)) throw new Error('a design must be a JSON object');
+      if (ignoreFingerprint) {
+        design = { ...design };
+        delete design.mesh;
+      }
+      return ReplaceDesign.of(this, design, label);
+    });
+  }
+
+  step(forward) {
+    return this.exclusive(async () => {
+      this.requireReady();
+      let done;
+      try {
+        done = forward ? await this.history.redo(this) : await this.history.undo(this);
+      } finally {
+        if (this.selected != null && !this.table.has(this.selected)) this.selected = null;
+      }
+      if (done) this.afterEdit();
+      return done;
+    });
+  }
+
+  // After every completed change: redraw, keep the autosave (when on) in step with the core, tell listeners.
+  afterEdit() {
+    this.table.adoptUnmapped();
+    this.emit('banner-clear');
+    this.changed();
+    this.autosave.saveNow();
+    this.#emitChanges();
+  }
+
+  exportField() {
+    return this.request('fieldJson', [], { exclusive: true });
+  }
+
+  // ------------------------------------------------------------------------------------------ unsaved edits
+
+  markSaved() {
+    this.savedDesignJson = this.table.key();
+  }
+
+  // Edits since the design was last saved, loaded or opened with its model (undoing back to it counts as none).
+  hasUnsavedEdits() {
+    return !!this.field && this.savedDesignJson !== this.table.key();
+  }
+
+  // ------------------------------------------------------------------------------------------ models
+
+  // opts: {name, format, companions, restore}. The autosaved design is restored only when autosave is on.
+  loadModel(src, opts = {}) {
+    return this.models.load(src, opts);
+  }
+
+  // A model the core has just taken on (model-loader.js): the session's copies, then the signals.
+  adoptModel({ model, key, source, info, surface, cornerUVs }) {
+    this.surface = surface;
+    this.info = info;
+    this.modelName = model.name;
+    this.modelKey = key;
+    this.modelSource = source;
+    this.selected = null;
+    this.table.restart();
+    this.markSaved();
+    this.history.clear();
+    this.cornerUVs = cornerUVs.length ? cornerUVs : null;
+    this.meshSerial++;
+    this.emit('banner-clear');
+    const t0 = performance.now();
+    this.emit('model', { info, surface });
+    this.changed();
+    // Main-thread cost of taking a new mesh on (adjacency, BVH, buffers, first draw): the one pause left.
+    this.perf.meshSetupMs = performance.now() - t0;
+  }
+
+  announceModel() {
+    this.emit('load', { info: structuredClone(this.info) });
+    this.#emitChanges();
+  }
+
+  // ------------------------------------------------------------------------------------------ supervision
+
+  // The proxy replaced a dead, trapped or cancelled worker: the current model and design go to the new one,
+  // the page ids are mapped onto the new core ids (the history stays valid), and the user is told.
+  async #revive({ kind, detail, call }) {
+    const t0 = performance.now();
+    if (!this.modelSource || this.disposed) return;
+    const uids = this.table.uidsInCoreOrder();
+    const bytes = this.modelSource.bytes.slice();
+    const reply = await call('loadMesh', [bytes, this.modelSource.format, this.settings(), this.design], [bytes.buffer]);
+    this.#applySnapshot(reply.snapshot);
+    this.table.mapDocument(uids);
+    this.changed();
+    this.perf.lastRestart = { kind, detail, restoreMs: performance.now() - t0, constraints: this.table.size };
+    this.emit('corerestart', { kind, detail });
+    this.flash(
+      kind === 'cancelled'
+        ? 'Cancelled. The design is as it was before.'
+        : `The core stopped (${detail}) and was restarted; your model and design are back.`,
+      6000,
+    );
+  }
+
+  cancel() {
+    return this.proxy?.cancel() ?? false;
+  }
+
+  supervision() {
+    return { restarts: this.proxy?.restarts ?? 0, lastFailure: structuredClone(this.proxy?.lastFailure ?? null) };
+  }
+}
