@@ -251,7 +251,7 @@ function ratios(native, wasm) {
 }
 
 // The native CLI the comparison needs: built here (scripts/build-native.sh, the `npm run build:native` of the
-// README) when the default build/tvf is missing.
+// docs/benchmarks.md) when the default build/tvf is missing.
 function ensureNativeCli(opts) {
   if (opts['no-native'] || opts.native || existsSync(opts.tvf)) return;
   if (opts.tvf !== resolve(ROOT, 'build/tvf'))

@@ -53,7 +53,7 @@
 #   they touch (the extracted tree stays pristine). cholmod-updown-row-pairs.patch: cholmod_updown's numeric
 #   kernel updates two rows of L at a time in the lanes of a two-double vector (simd128 in wasm), with each
 #   lane doing the scalar code's exact operations; a 50-edge stroke's update on bunny00 goes from 22 to about
-#   10.5 ms in wasm (README). Nothing else is patched.
+#   10.5 ms in wasm (docs/benchmarks.md). Nothing else is patched.
 # * Link consumers with -Wl,--fatal-warnings so any future signature mismatch fails the link instead of trapping.
 # * Debian's emscripten 3.1.6 has a frozen cache (no ports); node links at -O1+ need NODE_PATH=/usr/share/nodejs.
 # * The output folder name carries a RECIPE number (bump it when flags/sources in this script change) and the
@@ -65,7 +65,7 @@
 #   libcholmod_native.a, with the original headers (no patch) and the system's BLAS/LAPACK (link -llapack
 #   -lblas). The native CLI links it instead of Debian's libcholmod3 (built -O2 for any x86-64, with OpenMP):
 #   on bunny00 a 50-edge stroke's rank-50 update goes from 12-15 to 7.5-8 ms and the factorization from
-#   ~360 to ~170 ms (README), and native and wasm then run one CHOLMOD, from one source package.
+#   ~360 to ~170 ms (docs/benchmarks.md), and native and wasm then run one CHOLMOD, from one source package.
 # * --threads: the same wasm archive with every source compiled -pthread (atomics and bulk memory), into
 #   build-wasm/cholmod-threads/<key>_pthread/: a module linked with shared memory (wasm/build.sh builds
 #   tvf_core_threads.mjs for cross-origin-isolated pages) can only take objects compiled that way. CHOLMOD

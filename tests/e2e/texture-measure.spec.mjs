@@ -4,7 +4,7 @@
 //   stripes are level sets of a linear function (truth: their tangent) and which is continuous across seams;
 // - the default bunny with a stroke-designed field;
 // - with TVF_MEASURE=1 and scripts/fetch-meshes.sh run: held-out CGAL models (knot2 has genus 1), reported for
-//   the README (slow under software WebGL: not part of `npm test`).
+//   docs/benchmarks.md (slow under software WebGL: not part of `npm test`).
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 import bunny from 'bunny';
@@ -100,7 +100,7 @@ async function measureModel(page, testInfo, { name, bytes }) {
   const align = stripeAlignment(glb, Float64Array.from(data.faceVectors), period);
   const seams = seamJumpRatio(glb, Int32Array.from(data.triangles));
   await page.screenshot({ path: testInfo.outputPath(`${name}.png`) });
-  // The model alone (README pictures): the hint dismissed, the view's middle clipped.
+  // The model alone (the pictures in docs/images): the hint dismissed, the view's middle clipped.
   await page.evaluate(() => document.querySelector('tangent-field-designer').shadowRoot.querySelector('#hint .close')?.click());
   const box = await page.evaluate(() => {
     const r = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
@@ -124,7 +124,7 @@ async function measureModel(page, testInfo, { name, bytes }) {
     writeFileSync(testInfo.outputPath(`${name}-diag.json`), JSON.stringify({ ...extra, stats, period }));
   }
   // LH05's neighbourhood energy of the synthesized coordinates (in the atlas, neighbours inside the charts and
-  // their gutters), against the same atlas with random coordinates: comparable with the flat square's (README).
+  // their gutters), against the same atlas with random coordinates: comparable with the flat square's (docs/benchmarks.md).
   const rb = await page.evaluate(async () => {
     const r = await window.tvf.synthesisReadback();
     const b64 = (a) => {

@@ -13,359 +13,364 @@ import { chooseAtlas } from '../synthesis/atlas.js';
 import { analyzeExemplar, exemplarBuffers } from '../synthesis/exemplar.js';
 import { Surface } from '../geometry/surface.js';
 
-let core = null;
-let coreExport = null;
-// The field's version: one more after every solve the page is told about. Requests for derived read-outs
-// name the version they are for, so a reply never pairs one field with another field's read-outs.
-let version = 0;
-// For the streamlines: the mesh's surface (built on first use), and the last trace.
-let tracing = { surface: null, key: '', lines: null };
+// The worker's whole state lives in this closure: one served core per worker, one worker per element.
+function serve(scope) {
+  let core = null;
+  let coreExport = null;
+  // The field's version: one more after every solve the page is told about. Requests for derived read-outs
+  // name the version they are for, so a reply never pairs one field with another field's read-outs.
+  let version = 0;
+  // For the streamlines: the mesh's surface (built on first use), and the last trace.
+  let tracing = { surface: null, key: '', lines: null };
 
-function requireMesh() {
-  if (!core?.hasMesh) throw new CoreError('no mesh loaded');
-}
-
-// A result that carries its own transfer list.
-class Transfer {
-  constructor(value, list) {
-    this.value = value;
-    this.list = list;
+  function requireMesh() {
+    if (!core?.hasMesh) throw new CoreError('no mesh loaded');
   }
-}
 
-// Buffers of earlier field arrays the page handed back (core-proxy.js recycle()), by length. Refilling one is a
-// memcpy; a fresh ArrayBuffer of the same size costs Chromium several times that (new zeroed pages, and garbage
-// on both sides): copies took 134 of a stroke's 582 ms in the worker at 1.25M edges.
-const spare = new Map();
-const SPARES_PER_LENGTH = 2;
-// The field arrays' lengths on the current mesh (3 per face, 3 per vertex, 1 per edge): spares of any other
-// length (a previous model's) are dropped, not kept.
-let fieldLengths = new Set();
-
-function takeSpares(buffers) {
-  for (const buffer of buffers ?? []) {
-    const array = new Float64Array(buffer);
-    if (!fieldLengths.has(array.length)) continue;
-    const list = spare.get(array.length) ?? [];
-    if (list.length < SPARES_PER_LENGTH) list.push(array);
-    spare.set(array.length, list);
+  // A result that carries its own transfer list.
+  class Transfer {
+    constructor(value, list) {
+      this.value = value;
+      this.list = list;
+    }
   }
-}
 
-// A copy of a view of the wasm heap, into a spare when there is one of its length.
-function copyOut(view, counts) {
-  const array = spare.get(view.length)?.pop();
-  if (!array) return view.slice();
-  array.set(view);
-  counts.reused++;
-  return array;
-}
+  // Buffers of earlier field arrays the page handed back (core-proxy.js recycle()), by length. Refilling one is a
+  // memcpy; a fresh ArrayBuffer of the same size costs Chromium several times that (new zeroed pages, and garbage
+  // on both sides): copies took 134 of a stroke's 582 ms in the worker at 1.25M edges.
+  const spare = new Map();
+  const SPARES_PER_LENGTH = 2;
+  // The field arrays' lengths on the current mesh (3 per face, 3 per vertex, 1 per edge): spares of any other
+  // length (a previous model's) are dropped, not kept.
+  let fieldLengths = new Set();
 
-// After a solve: the field arrays the views need, copied out of the wasm heap (a memcpy each, into spares where
-// the page has handed some back) and transferred; the vertex vectors are derived here because the default
-// arrow view interpolates them.
-// `changed`: core ids whose design entry the op set (null: the whole document, after a load, a boundary or
-// γ change, a design, or an edit taken back). timing (optional) receives where the time goes.
-function snapshot(changed, timing = {}) {
-  let t = performance.now();
-  const lap = (key) => {
-    const now = performance.now();
-    timing[key] = now - t;
-    t = now;
-  };
-  version++;
-  const counts = { reused: 0 };
-  const copy = (view) => copyOut(view, counts);
-  const faceVectors = core.faceVectors(copy);
-  const oneForm = core.oneForm(copy);
-  lap('copyMs');
-  const vertexVectors = core.vertexVectors(copy);
-  lap('deriveMs');
-  timing.reusedArrays = counts.reused;
-  const ids = core.constraintIds();
-  const design = changed
-    ? { ids, changed: changed.filter((id) => ids.includes(id)).map((id) => [id, core.constraint(id)]) }
-    : { ids, document: JSON.parse(core.designJson()) };
-  lap('designMs');
-  const stats = core.stats();
-  lap('statsMs');
-  return {
-    version,
-    faceVectors,
-    vertexVectors,
-    oneForm,
-    stats,
-    design,
-    transfer: [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer],
-  };
-}
-
-// How to take back the edit in flight when the solve after it fails (a factor that does not fit, a field that
-// is not finite): the core then holds exactly what it held before the request. Set by each mutating op.
-let undoEdit = null;
-// The core ids whose entry in the design the op in flight changed; null: the whole document.
-let changedIds = null;
-
-const ops = {
-  // assetBase: the folder holding wasm/tvf_core.mjs (the element's asset base; the worker may run from a
-  // blob: URL, where its own import.meta.url names nothing useful).
-  async init(assetBase) {
-    core = await loadCore(assetBase);
-    // Held for the worker's whole life: the page notices its release the moment this worker ends.
-    if (self.name && self.navigator?.locks) {
-      self.navigator.locks
-        .request(self.name, () => {
-          self.postMessage({ locked: true });
-          return new Promise(() => {});
-        })
-        .catch(() => {});
+  function takeSpares(buffers) {
+    for (const buffer of buffers ?? []) {
+      const array = new Float64Array(buffer);
+      if (!fieldLengths.has(array.length)) continue;
+      const list = spare.get(array.length) ?? [];
+      if (list.length < SPARES_PER_LENGTH) list.push(array);
+      spare.set(array.length, list);
     }
-    coreExport = new CoreExport(core.Module);
-    if (core.threadsUnavailable)
-      console.warn(`tangent-field-designer: the core with threads did not start (${core.threadsUnavailable}); solving on one thread`);
-    return { crossOriginIsolated: self.crossOriginIsolated === true };
-  },
+  }
 
-  warmUp(levels, rounds) {
-    return core.warmUp(levels, rounds);
-  },
+  // A copy of a view of the wasm heap, into a spare when there is one of its length.
+  function copyOut(view, counts) {
+    const array = spare.get(view.length)?.pop();
+    if (!array) return view.slice();
+    array.set(view);
+    counts.reused++;
+    return array;
+  }
 
-  // settings: {boundary, gamma} carried over from the previous model; design: an autosaved document to
-  // restore (its failure is reported, not fatal: the mesh still loads with the settings).
-  // One transaction in the core: the new mesh is read, checked, configured, factored and solved aside and
-  // replaces the current model only when all of that succeeded; a failure leaves the core and the page on the
-  // previous model.
-  loadMesh(bytes, format, settings, design) {
-    // A GLB exported with its design (docs/export.md) reopens with it, unless an autosave is newer.
-    const embedded = design ? null : coreExport.embeddedDesign(bytes);
-    const { settingsError, restoreError } = core.loadModel(bytes, format, settings, design ?? embedded);
-    coreExport.modelLoaded(bytes, format);
-    tracing = { surface: null, key: '', lines: null };
-    const info = core.info();
-    spare.clear();
-    fieldLengths = new Set([3 * info.faces, 3 * info.vertices, info.edges]);
-    const mesh = core.mesh();
-    const edges = core.edges();
-    // Texture synthesis (web/synthesis/) needs the model's per-corner UVs (6 per face; empty without TEXCOORD_0).
-    const cornerUVs = core.designer.cornerUVs().slice();
-    return new Transfer(
-      { info, settingsError, restoreError, embeddedDesign: embedded != null, mesh: { positions: mesh.positions, triangles: mesh.triangles, edges, cornerUVs } },
-      [mesh.positions.buffer, mesh.triangles.buffer, edges.buffer, cornerUVs.buffer],
-    );
-  },
-
-  // One constraint in the design format: new ones and re-added ones (undo of a delete) alike go through the
-  // core's own design-file parser.
-  add(spec) {
-    const id = core.addConstraintJson(spec);
-    undoEdit = () => core.remove(id);
-    changedIds = [id];
-    return id;
-  },
-
-  remove(id) {
-    core.remove(id);
-    changedIds = [];
-    return true;
-  },
-
-  setWeight(id, w) {
-    const before = core.constraint(id)?.weight;
-    core.setWeight(id, w);
-    if (before !== undefined) undoEdit = () => core.setWeight(id, before);
-    changedIds = [id];
-    return true;
-  },
-
-  setStrength(id, s) {
-    const before = core.constraint(id)?.strength;
-    core.setStrength(id, s);
-    if (before !== undefined) undoEdit = () => core.setStrength(id, before);
-    changedIds = [id];
-    return true;
-  },
-
-  setBoundary(bc) {
-    const before = JSON.parse(core.designJson()).boundary;
-    undoEdit = () => core.setBoundary(before);
-    core.setBoundary(bc);
-    core.factor();
-    return true;
-  },
-
-  setGamma(g) {
-    const before = core.gamma();
-    undoEdit = () => core.setGamma(before);
-    core.setGamma(g);
-    core.factor();
-    return true;
-  },
-
-  applyDesign(design) {
-    const before = JSON.parse(core.designJson());
-    undoEdit = () => core.applyDesignJson(JSON.stringify(before));
-    core.applyDesignJson(JSON.stringify(design));
-    core.factor();
-    return true;
-  },
-
-  fieldJson() {
-    return core.fieldJson();
-  },
-
-  // The streamlines of field `forVersion` at `spacing` (web/streamlines.js, off the page's thread): Float32Array
-  // polylines, transferred; null when the field has changed since the page asked (it asks again for the new one).
-  streamlines(forVersion, spacing, lift) {
-    if (forVersion !== version) return null;
-    const key = `${version} ${spacing} ${lift}`;
-    if (tracing.key !== key) {
-      if (!tracing.surface) {
-        const { positions, triangles } = core.mesh();
-        tracing.surface = new Surface(positions, triangles, core.edges());
-      }
-      tracing.lines = traceStreamlines(tracing.surface, core.vertexVectors(), { spacing, lift });
-      tracing.key = key;
-    }
-    // Copies: the cached lines stay here for the next request at the same spacing.
-    const lines = tracing.lines.map((l) => l.slice());
-    return new Transfer(lines, lines.map((l) => l.buffer));
-  },
-
-  // The texture atlas of a model (web/synthesis/atlas.js): its TEXCOORD_0 when usable, else one generated by
-  // the core (LSCM charts, packing: up to seconds on a big model, so here rather than on the page's thread).
-  // The model's arrays come from the page: the synthesis works on the page's copy of the mesh.
-  textureAtlas(positions, triangles, cornerUVs, options) {
-    const atlas = chooseAtlas(core.Module, { positions, triangles, cornerUVs }, options);
-    return new Transfer(atlas, [atlas.cornerUVs.buffer, ...(atlas.faceCharts ? [atlas.faceCharts.buffer] : [])]);
-  },
-
-  // An exemplar's analysis for synthesis (spec as for analyzeExemplar): 0.1-0.5 s that the page does not wait on.
-  analyzeExemplar(spec) {
-    const tables = analyzeExemplar(core.Module, spec);
-    return new Transfer(tables, exemplarBuffers(tables));
-  },
-
-  // What the core itself holds now, each read-out derived by the core (not the page's copies): the tests'
-  // reference for the page's lazily derived and incrementally kept read-outs.
-  read() {
-    const value = {
-      version,
-      oneForm: core.oneForm(),
-      faceVectors: core.faceVectors(),
-      vertexVectors: core.vertexVectors(),
-      singularities: core.singularities(),
-      design: JSON.parse(core.designJson()),
+  // After a solve: the field arrays the views need, copied out of the wasm heap (a memcpy each, into spares where
+  // the page has handed some back) and transferred; the vertex vectors are derived here because the default
+  // arrow view interpolates them.
+  // `changed`: core ids whose design entry the op set (null: the whole document, after a load, a boundary or
+  // γ change, a design, or an edit taken back). timing (optional) receives where the time goes.
+  function snapshot(changed, timing = {}) {
+    let t = performance.now();
+    const lap = (key) => {
+      const now = performance.now();
+      timing[key] = now - t;
+      t = now;
     };
-    return new Transfer(value, [value.oneForm.buffer, value.faceVectors.buffer, value.vertexVectors.buffer]);
-  },
+    version++;
+    const counts = { reused: 0 };
+    const copy = (view) => copyOut(view, counts);
+    const faceVectors = core.faceVectors(copy);
+    const oneForm = core.oneForm(copy);
+    lap('copyMs');
+    const vertexVectors = core.vertexVectors(copy);
+    lap('deriveMs');
+    timing.reusedArrays = counts.reused;
+    const ids = core.constraintIds();
+    const design = changed
+      ? { ids, changed: changed.filter((id) => ids.includes(id)).map((id) => [id, core.constraint(id)]) }
+      : { ids, document: JSON.parse(core.designJson()) };
+    lap('designMs');
+    const stats = core.stats();
+    lap('statsMs');
+    return {
+      version,
+      faceVectors,
+      vertexVectors,
+      oneForm,
+      stats,
+      design,
+      transfer: [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer],
+    };
+  }
 
-  // For the supervision tests: what a wasm trap (unreachable, an out-of-bounds access, an abort) looks like
-  // to the worker; the core itself has none to offer on purpose.
-  trapForTest() {
-    throw new WebAssembly.RuntimeError('unreachable executed (test)');
-  },
+  // How to take back the edit in flight when the solve after it fails (a factor that does not fit, a field that
+  // is not finite): the core then holds exactly what it held before the request. Set by each mutating op.
+  let undoEdit = null;
+  // The core ids whose entry in the design the op in flight changed; null: the whole document.
+  let changedIds = null;
 
-  // 0: the wasm address space left (default); a number: a fixed limit (tests scale it down instead of
-  // building a multi-million-edge mesh).
-  setFactorMemoryLimit(bytes) {
-    core.setFactorMemoryLimit(bytes);
-    return true;
-  },
+  const ops = {
+    // assetBase: the folder holding wasm/tvf_core.mjs (the element's asset base; the worker may run from a
+    // blob: URL, where its own import.meta.url names nothing useful).
+    async init(assetBase) {
+      core = await loadCore(assetBase);
+      // Held for the worker's whole life: the page notices its release the moment this worker ends.
+      if (self.name && self.navigator?.locks) {
+        self.navigator.locks
+          .request(self.name, () => {
+            self.postMessage({ locked: true });
+            return new Promise(() => {});
+          })
+          .catch(() => {});
+      }
+      coreExport = new CoreExport(core.Module);
+      if (core.threadsUnavailable)
+        console.warn(`tangent-field-designer: the core with threads did not start (${core.threadsUnavailable}); solving on one thread`);
+      return { crossOriginIsolated: self.crossOriginIsolated === true };
+    },
 
-  // Exports of the current field (docs/export.md): the same bytes as `tvf export` for this model file.
-  exportAtlasNote() {
-    return coreExport.atlasNote();
-  },
+    warmUp(levels, rounds) {
+      return core.warmUp(levels, rounds);
+    },
 
-  exportFlowMap(options) {
-    return coreExport.flowMapPng(core.oneForm(), options);
-  },
+    // settings: {boundary, gamma} carried over from the previous model; design: an autosaved document to
+    // restore (its failure is reported, not fatal: the mesh still loads with the settings).
+    // One transaction in the core: the new mesh is read, checked, configured, factored and solved aside and
+    // replaces the current model only when all of that succeeded; a failure leaves the core and the page on the
+    // previous model.
+    loadMesh(bytes, format, settings, design) {
+      // A GLB exported with its design (docs/export.md) reopens with it, unless an autosave is newer.
+      const embedded = design ? null : coreExport.embeddedDesign(bytes);
+      const { settingsError, restoreError } = core.loadModel(bytes, format, settings, design ?? embedded);
+      coreExport.modelLoaded(bytes, format);
+      tracing = { surface: null, key: '', lines: null };
+      const info = core.info();
+      spare.clear();
+      fieldLengths = new Set([3 * info.faces, 3 * info.vertices, info.edges]);
+      const mesh = core.mesh();
+      const edges = core.edges();
+      // Texture synthesis (web/synthesis/) needs the model's per-corner UVs (6 per face; empty without TEXCOORD_0).
+      const cornerUVs = core.designer.cornerUVs().slice();
+      return new Transfer(
+        { info, settingsError, restoreError, embeddedDesign: embedded != null, mesh: { positions: mesh.positions, triangles: mesh.triangles, edges, cornerUVs } },
+        [mesh.positions.buffer, mesh.triangles.buffer, edges.buffer, cornerUVs.buffer],
+      );
+    },
 
-  exportGlb(options, baseColorPng) {
-    return coreExport.glb(core.oneForm(), JSON.parse(core.designJson()), options, baseColorPng);
-  },
-};
+    // One constraint in the design format: new ones and re-added ones (undo of a delete) alike go through the
+    // core's own design-file parser.
+    add(spec) {
+      const id = core.addConstraintJson(spec);
+      undoEdit = () => core.remove(id);
+      changedIds = [id];
+      return id;
+    },
 
-const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar']);
-// Ops after which the field may have changed: they solve and send a snapshot back.
-const MUTATING = new Set([
-  'loadMesh',
-  'add',
-  'remove',
-  'setWeight',
-  'setStrength',
-  'setBoundary',
-  'setGamma',
-  'applyDesign',
-]);
+    remove(id) {
+      core.remove(id);
+      changedIds = [];
+      return true;
+    },
 
-// A wasm trap or an abort (out of memory, an assertion) leaves the instance unusable: the page must replace
-// this worker rather than send it more work.
-function isFatal(err) {
-  const text = `${err?.name ?? ''} ${err?.message ?? err}`;
-  return err instanceof WebAssembly.RuntimeError ||
-    /RuntimeError|Aborted\(|unreachable|memory access out of bounds|table index is out of bounds/.test(text);
+    setWeight(id, w) {
+      const before = core.constraint(id)?.weight;
+      core.setWeight(id, w);
+      if (before !== undefined) undoEdit = () => core.setWeight(id, before);
+      changedIds = [id];
+      return true;
+    },
+
+    setStrength(id, s) {
+      const before = core.constraint(id)?.strength;
+      core.setStrength(id, s);
+      if (before !== undefined) undoEdit = () => core.setStrength(id, before);
+      changedIds = [id];
+      return true;
+    },
+
+    setBoundary(bc) {
+      const before = JSON.parse(core.designJson()).boundary;
+      undoEdit = () => core.setBoundary(before);
+      core.setBoundary(bc);
+      core.factor();
+      return true;
+    },
+
+    setGamma(g) {
+      const before = core.gamma();
+      undoEdit = () => core.setGamma(before);
+      core.setGamma(g);
+      core.factor();
+      return true;
+    },
+
+    applyDesign(design) {
+      const before = JSON.parse(core.designJson());
+      undoEdit = () => core.applyDesignJson(JSON.stringify(before));
+      core.applyDesignJson(JSON.stringify(design));
+      core.factor();
+      return true;
+    },
+
+    fieldJson() {
+      return core.fieldJson();
+    },
+
+    // The streamlines of field `forVersion` at `spacing` (web/streamlines.js, off the page's thread): Float32Array
+    // polylines, transferred; null when the field has changed since the page asked (it asks again for the new one).
+    streamlines(forVersion, spacing, lift) {
+      if (forVersion !== version) return null;
+      const key = `${version} ${spacing} ${lift}`;
+      if (tracing.key !== key) {
+        if (!tracing.surface) {
+          const { positions, triangles } = core.mesh();
+          tracing.surface = new Surface(positions, triangles, core.edges());
+        }
+        tracing.lines = traceStreamlines(tracing.surface, core.vertexVectors(), { spacing, lift });
+        tracing.key = key;
+      }
+      // Copies: the cached lines stay here for the next request at the same spacing.
+      const lines = tracing.lines.map((l) => l.slice());
+      return new Transfer(lines, lines.map((l) => l.buffer));
+    },
+
+    // The texture atlas of a model (web/synthesis/atlas.js): its TEXCOORD_0 when usable, else one generated by
+    // the core (LSCM charts, packing: up to seconds on a big model, so here rather than on the page's thread).
+    // The model's arrays come from the page: the synthesis works on the page's copy of the mesh.
+    textureAtlas(positions, triangles, cornerUVs, options) {
+      const atlas = chooseAtlas(core.Module, { positions, triangles, cornerUVs }, options);
+      return new Transfer(atlas, [atlas.cornerUVs.buffer, ...(atlas.faceCharts ? [atlas.faceCharts.buffer] : [])]);
+    },
+
+    // An exemplar's analysis for synthesis (spec as for analyzeExemplar): 0.1-0.5 s that the page does not wait on.
+    analyzeExemplar(spec) {
+      const tables = analyzeExemplar(core.Module, spec);
+      return new Transfer(tables, exemplarBuffers(tables));
+    },
+
+    // What the core itself holds now, each read-out derived by the core (not the page's copies): the tests'
+    // reference for the page's lazily derived and incrementally kept read-outs.
+    read() {
+      const value = {
+        version,
+        oneForm: core.oneForm(),
+        faceVectors: core.faceVectors(),
+        vertexVectors: core.vertexVectors(),
+        singularities: core.singularities(),
+        design: JSON.parse(core.designJson()),
+      };
+      return new Transfer(value, [value.oneForm.buffer, value.faceVectors.buffer, value.vertexVectors.buffer]);
+    },
+
+    // For the supervision tests: what a wasm trap (unreachable, an out-of-bounds access, an abort) looks like
+    // to the worker; the core itself has none to offer on purpose.
+    trapForTest() {
+      throw new WebAssembly.RuntimeError('unreachable executed (test)');
+    },
+
+    // 0: the wasm address space left (default); a number: a fixed limit (tests scale it down instead of
+    // building a multi-million-edge mesh).
+    setFactorMemoryLimit(bytes) {
+      core.setFactorMemoryLimit(bytes);
+      return true;
+    },
+
+    // Exports of the current field (docs/export.md): the same bytes as `tvf export` for this model file.
+    exportAtlasNote() {
+      return coreExport.atlasNote();
+    },
+
+    exportFlowMap(options) {
+      return coreExport.flowMapPng(core.oneForm(), options);
+    },
+
+    exportGlb(options, baseColorPng) {
+      return coreExport.glb(core.oneForm(), JSON.parse(core.designJson()), options, baseColorPng);
+    },
+  };
+
+  const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar']);
+  // Ops after which the field may have changed: they solve and send a snapshot back.
+  const MUTATING = new Set([
+    'loadMesh',
+    'add',
+    'remove',
+    'setWeight',
+    'setStrength',
+    'setBoundary',
+    'setGamma',
+    'applyDesign',
+  ]);
+
+  // A wasm trap or an abort (out of memory, an assertion) leaves the instance unusable: the page must replace
+  // this worker rather than send it more work.
+  function isFatal(err) {
+    const text = `${err?.name ?? ''} ${err?.message ?? err}`;
+    return err instanceof WebAssembly.RuntimeError ||
+      /RuntimeError|Aborted\(|unreachable|memory access out of bounds|table index is out of bounds/.test(text);
+  }
+
+  scope.onmessage = async ({ data }) => {
+    if (data.ping) return void scope.postMessage({ pong: true });
+    // For the supervision tests: a worker that stops answering without a call in flight (an infinite loop in
+    // a timer, a deadlock), for `ms` milliseconds.
+    if (data.hangForTest) {
+      const end = performance.now() + data.hangForTest;
+      while (performance.now() < end);
+      return;
+    }
+    const { seq, op, args } = data;
+    takeSpares(data.spare);
+    const t0 = performance.now();
+    const timing = {};
+    let reply, transfer = [];
+    undoEdit = null;
+    changedIds = null;
+    try {
+      if (!ops[op]) throw new CoreError(`unknown operation ${op}`);
+      if (!NO_MESH_NEEDED.has(op)) requireMesh();
+      let out = await ops[op](...args);
+      if (out instanceof Transfer) {
+        transfer = out.list;
+        out = out.value;
+      }
+      const t1 = performance.now();
+      timing.opMs = t1 - t0;
+      if (MUTATING.has(op) && op !== 'loadMesh') core.solve();
+      timing.solveMs = performance.now() - t1;
+      reply = { ok: true, value: out };
+      if (MUTATING.has(op)) {
+        reply.snapshot = snapshot(changedIds, timing);
+        transfer = [...transfer, ...reply.snapshot.transfer];
+      }
+    } catch (err) {
+      reply = { ok: false, error: err?.message || String(err), fatal: isFatal(err) };
+      transfer = [];
+      // An edit whose factor or solve failed is taken back, so the core never keeps a state it cannot solve.
+      if (undoEdit && !reply.fatal) {
+        try {
+          undoEdit();
+        } catch {
+          // the snapshot below shows whatever the core holds
+        }
+      }
+      // The page mirrors the core: after a failed edit it must still see what the core now holds (the whole
+      // design, whatever the edit had got to).
+      if (MUTATING.has(op) && core?.hasMesh && !reply.fatal) {
+        try {
+          core.solve();
+          reply.snapshot = snapshot(null);
+          transfer = reply.snapshot.transfer;
+        } catch {
+          // no field to show; the page keeps its previous copies
+        }
+      }
+    }
+    if (reply.snapshot) delete reply.snapshot.transfer;
+    reply.seq = seq;
+    reply.workerMs = performance.now() - t0;
+    reply.timing = timing;
+    scope.postMessage(reply, transfer);
+  };
 }
 
-self.onmessage = async ({ data }) => {
-  if (data.ping) return void self.postMessage({ pong: true });
-  // For the supervision tests: a worker that stops answering without a call in flight (an infinite loop in
-  // a timer, a deadlock), for `ms` milliseconds.
-  if (data.hangForTest) {
-    const end = performance.now() + data.hangForTest;
-    while (performance.now() < end);
-    return;
-  }
-  const { seq, op, args } = data;
-  takeSpares(data.spare);
-  const t0 = performance.now();
-  const timing = {};
-  let reply, transfer = [];
-  undoEdit = null;
-  changedIds = null;
-  try {
-    if (!ops[op]) throw new CoreError(`unknown operation ${op}`);
-    if (!NO_MESH_NEEDED.has(op)) requireMesh();
-    let out = await ops[op](...args);
-    if (out instanceof Transfer) {
-      transfer = out.list;
-      out = out.value;
-    }
-    const t1 = performance.now();
-    timing.opMs = t1 - t0;
-    if (MUTATING.has(op) && op !== 'loadMesh') core.solve();
-    timing.solveMs = performance.now() - t1;
-    reply = { ok: true, value: out };
-    if (MUTATING.has(op)) {
-      reply.snapshot = snapshot(changedIds, timing);
-      transfer = [...transfer, ...reply.snapshot.transfer];
-    }
-  } catch (err) {
-    reply = { ok: false, error: err?.message || String(err), fatal: isFatal(err) };
-    transfer = [];
-    // An edit whose factor or solve failed is taken back, so the core never keeps a state it cannot solve.
-    if (undoEdit && !reply.fatal) {
-      try {
-        undoEdit();
-      } catch {
-        // the snapshot below shows whatever the core holds
-      }
-    }
-    // The page mirrors the core: after a failed edit it must still see what the core now holds (the whole
-    // design, whatever the edit had got to).
-    if (MUTATING.has(op) && core?.hasMesh && !reply.fatal) {
-      try {
-        core.solve();
-        reply.snapshot = snapshot(null);
-        transfer = reply.snapshot.transfer;
-      } catch {
-        // no field to show; the page keeps its previous copies
-      }
-    }
-  }
-  if (reply.snapshot) delete reply.snapshot.transfer;
-  reply.seq = seq;
-  reply.workerMs = performance.now() - t0;
-  reply.timing = timing;
-  self.postMessage(reply, transfer);
-};
+serve(self);

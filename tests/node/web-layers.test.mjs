@@ -1,0 +1,88 @@
+// The shape of web/ (docs/architecture.md), checked on the source: every module imports only its own layer or
+// the layers below it, there is no import cycle, no module keeps mutable state at the top level (each
+// <tangent-field-designer> owns its state), and no file grows past 400 lines.
+import assert from 'node:assert/strict';
+import { readdirSync, readFileSync } from 'node:fs';
+import { dirname, join, relative, resolve } from 'node:path';
+import test from 'node:test';
+import { fileURLToPath } from 'node:url';
+
+const WEB = resolve(dirname(fileURLToPath(import.meta.url)), '../../web');
+
+// Higher imports lower, never the reverse. Entry points (the page, the package entries, the core's worker)
+// compose a whole program and may import any layer.
+export const LAYERS = { element: 7, export: 6, synthesis: 6, tools: 6, views: 5, session: 4, core: 3, geometry: 2, '.': 1 };
+const ENTRY_POINTS = new Set(['index.js', 'main.js', 'element-entry.js', 'core/core-worker.js']);
+
+function sources(dir = WEB) {
+  return readdirSync(dir, { withFileTypes: true }).flatMap((e) =>
+    e.isDirectory() ? sources(join(dir, e.name)) : e.name.endsWith('.js') ? [join(dir, e.name)] : [],
+  );
+}
+
+const layerOf = (file) => {
+  const rel = relative(WEB, file);
+  return rel.includes('/') ? rel.split('/')[0] : '.';
+};
+
+function localImports(file) {
+  const text = readFileSync(file, 'utf8');
+  const specs = [...text.matchAll(/^\s*(?:import|export)\s[^;]*?from\s+['"](\.[^'"]+)['"]/gms)].map((m) => m[1]);
+  return specs.filter((s) => s.endsWith('.js')).map((s) => resolve(dirname(file), s));
+}
+
+const files = sources();
+
+test('web/ has a layer for every folder', () => {
+  for (const f of files) assert.ok(layerOf(f) in LAYERS, `${relative(WEB, f)} is in no layer of docs/architecture.md`);
+});
+
+test('layers import downward only', () => {
+  const upward = [];
+  for (const f of files) {
+    const rel = relative(WEB, f);
+    if (ENTRY_POINTS.has(rel)) continue;
+    for (const target of localImports(f)) {
+      const from = layerOf(f), to = layerOf(target);
+      if (from !== to && LAYERS[to] >= LAYERS[from]) upward.push(`${rel} → ${relative(WEB, target)}`);
+    }
+  }
+  assert.deepEqual(upward, []);
+});
+
+test('no import cycles', () => {
+  const graph = new Map(files.map((f) => [f, localImports(f)]));
+  const state = new Map();
+  const cycles = [];
+  const visit = (f, path) => {
+    if (state.get(f) === 'done') return;
+    if (state.get(f) === 'open') return void cycles.push([...path.slice(path.indexOf(f)), f].map((p) => relative(WEB, p)).join(' → '));
+    state.set(f, 'open');
+    for (const g of graph.get(f) ?? []) visit(g, [...path, f]);
+    state.set(f, 'done');
+  };
+  for (const f of files) visit(f, []);
+  assert.deepEqual(cycles, []);
+});
+
+test('no module-level mutable state', () => {
+  const found = [];
+  for (const f of files) {
+    const lines = readFileSync(f, 'utf8').split('\n');
+    lines.forEach((line, k) => {
+      if (/^(let|var)\s/.test(line) || /^const\s+\w+\s*=\s*new\s+(Map|Set|WeakMap|Array)\b/.test(line)) found.push(`${relative(WEB, f)}:${k + 1}: ${line.trim()}`);
+    });
+  }
+  assert.deepEqual(found, []);
+});
+
+test('no JS file over 400 lines', () => {
+  const long = files.map((f) => [relative(WEB, f), readFileSync(f, 'utf8').split('\n').length - 1]).filter(([, n]) => n > 400);
+  assert.deepEqual(long, []);
+});
+
+test('the session knows no element, panel, view or tool', () => {
+  for (const f of files.filter((f) => layerOf(f) === 'session')) {
+    for (const target of localImports(f)) assert.ok(!['element', 'views', 'tools', 'synthesis', 'export'].includes(layerOf(target)), `${relative(WEB, f)} imports ${relative(WEB, target)}`);
+  }
+});
