@@ -3,11 +3,14 @@
 // viewport and at least 40% of the viewport still shows the model's canvas unobscured, with the panels closed
 // (drawers) and open; the model stays framed when the view turns from landscape to portrait; a touch stroke
 // adds a stroke constraint.
+// Wide windows (issue 10, item 9): at 1280×800 and 1024×720 the toolbar keeps one row whichever tool is active
+// (what does not fit goes into the ⋯ menu, which works from the keyboard), so the panels never move; the
+// stroke ribbon and the live stroke are drawn a fixed width in pixels, the same on a coarse and a dense mesh.
 import { mkdirSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, test } from '@playwright/test';
-import { openDesigner, trackErrors } from './helpers.mjs';
+import { openDesigner, subdividedOff, readMesh, surfacePointsAlongScreenLine, trackErrors } from './helpers.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const OUT = resolve(ROOT, 'test-results/layout');
@@ -163,6 +166,212 @@ test.describe.serial('small screens and touch', () => {
     expect(await page.evaluate(() => window.__pointerTypes.length)).toBeGreaterThan(0);
     expect(await page.evaluate(() => window.__pointerTypes.every((t) => t === 'touch'))).toBe(true);
     await page.screenshot({ path: resolve(OUT, 'touch-stroke-390x844.png') });
+    expect(errors).toEqual([]);
+    await context.close();
+  });
+});
+
+// The toolbar's box, the panels' tops, and where each overflowable toolbar button is now: in the row, in the ⋯
+// menu (a stand-in with its name) or hidden for another reason (readonly).
+function toolbarState(page) {
+  return page.evaluate(() => {
+    const root = document.querySelector('tangent-field-designer').shadowRoot;
+    const bar = root.querySelector('.toolbar');
+    const r = bar.getBoundingClientRect();
+    const shown = (el) => el.checkVisibility() && el.getBoundingClientRect().width > 0;
+    const menu = [...root.querySelectorAll('#more-menu [role="menuitem"]')].map((m) => m.textContent);
+    const rowRight = Math.max(...[...bar.children].filter(shown).map((el) => el.getBoundingClientRect().right));
+    return {
+      height: r.height,
+      right: r.right,
+      rowRight,
+      sideTop: root.querySelector('#side-panel').getBoundingClientRect().top,
+      constraintsTop: root.querySelector('#constraints-panel').getBoundingClientRect().top,
+      tools: [...root.querySelectorAll('[data-tool]')].every(shown),
+      more: shown(root.querySelector('#more-button')),
+      menu,
+      missing: [...bar.querySelectorAll('button[data-overflow]')]
+        .filter((b) => !shown(b) && !menu.includes(b.getAttribute('aria-label') ?? b.textContent))
+        .map((b) => b.id),
+    };
+  });
+}
+
+const RIBBON_RGB = [0xff, 0x7a, 0x1a]; // handles.js COLORS.stroke, drawn unlit
+
+// Width in canvas pixels of the ribbon-coloured band crossing each column from x0 to x1 (fractions of the view's
+// width) within ±30 px of row y (a fraction of its height): the median over the columns it crosses, and the
+// fraction of columns it crosses at all (a dotted line crosses few).
+function ribbonWidth(page, { x0, x1, y }) {
+  return page.evaluate(({ x0, x1, y, rgb }) => {
+    const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
+    const w = src.width, h = src.height;
+    const c = document.createElement('canvas');
+    c.width = w;
+    c.height = h;
+    const ctx = c.getContext('2d', { willReadFrequently: true });
+    ctx.drawImage(src, 0, 0);
+    const data = ctx.getImageData(0, 0, w, h).data;
+    const yc = Math.round(y * h), counts = [];
+    for (let x = Math.round(x0 * w); x <= Math.round(x1 * w); x++) {
+      let n = 0;
+      for (let yy = Math.max(0, yc - 30); yy < Math.min(h, yc + 30); yy++) {
+        const i = 4 * (yy * w + x);
+        if (Math.abs(data[i] - rgb[0]) + Math.abs(data[i + 1] - rgb[1]) + Math.abs(data[i + 2] - rgb[2]) < 60) n++;
+      }
+      counts.push(n);
+    }
+    const crossed = counts.filter((n) => n > 0).sort((a, b) => a - b);
+    return { median: crossed.length ? crossed[Math.floor(crossed.length / 2)] : 0, coverage: crossed.length / counts.length };
+  }, { x0, x1, y, rgb: RIBBON_RGB });
+}
+
+test.describe.serial('wide windows: one toolbar row, strokes in pixels', () => {
+  test.beforeAll(() => mkdirSync(OUT, { recursive: true }));
+
+  for (const [width, height] of [[1280, 800], [1024, 720]]) {
+    test(`the toolbar keeps one row at ${width}×${height} with any tool active`, async ({ browser }) => {
+      const context = await browser.newContext({ viewport: { width, height } });
+      const page = await context.newPage();
+      const errors = trackErrors(page);
+      await openDesigner(page);
+      await page.getByRole('button', { name: 'Orbit', exact: true }).click();
+      await settle(page);
+      const orbit = await toolbarState(page);
+      const heights = { orbit: orbit.height };
+      for (const tool of ['Stroke', 'Vortex', 'Vector', 'Source', 'Select']) {
+        await page.getByRole('button', { name: tool, exact: true }).click();
+        await settle(page);
+        const s = await toolbarState(page);
+        heights[tool.toLowerCase()] = s.height;
+        expect(s.height, `${tool}: toolbar height`).toBeCloseTo(orbit.height, 1);
+        expect(s.sideTop, `${tool}: settings panel top`).toBeCloseTo(orbit.sideTop, 1);
+        expect(s.constraintsTop, `${tool}: constraints panel top`).toBeCloseTo(orbit.constraintsTop, 1);
+        expect(s.rowRight, `${tool}: the row ends inside the toolbar`).toBeLessThanOrEqual(s.right + 0.5);
+        expect(s.tools, `${tool}: every tool button shows`).toBe(true);
+        expect(s.missing, `${tool}: buttons neither in the row nor in the ⋯ menu`).toEqual([]);
+        expect(s.more, `${tool}: ⋯ shows exactly when it holds something`).toBe(s.menu.length > 0);
+        if (tool === 'Stroke' || tool === 'Vortex') await page.screenshot({ path: resolve(OUT, `toolbar-${width}x${height}-${tool.toLowerCase()}.png`) });
+      }
+      // One row: a toolbar button's height plus the padding, far from two rows.
+      const button = await page.getByRole('button', { name: 'Orbit', exact: true }).boundingBox();
+      expect(orbit.height).toBeLessThan(1.6 * button.height + 12);
+      await page.getByRole('button', { name: 'Stroke', exact: true }).click();
+      const inMenu = (await toolbarState(page)).menu;
+      console.log(`${width}x${height}: toolbar height ${JSON.stringify(heights)} px; panels' top ${orbit.sideTop} px; ⋯ menu with Stroke: [${inMenu.join(', ')}]`);
+      expect(errors).toEqual([]);
+      await context.close();
+    });
+  }
+
+  test('the ⋯ menu holds what does not fit and works from the keyboard', async ({ browser }) => {
+    const context = await browser.newContext({ viewport: { width: 960, height: 720 } });
+    const page = await context.newPage();
+    const errors = trackErrors(page);
+    await openDesigner(page);
+    const stroke = page.getByRole('button', { name: 'Stroke', exact: true });
+    await stroke.click();
+    const more = page.getByRole('button', { name: 'More', exact: true });
+    await expect(more).toBeVisible();
+    await expect(more).toHaveAttribute('aria-expanded', 'false');
+    const menu = page.getByRole('menu', { name: 'More' });
+    const items = menu.getByRole('menuitem');
+    const names = await page.locator('#more-menu [role="menuitem"]').allTextContents(); // while it is closed
+    expect(names).toContain('Frame');
+    // Keyboard: ↓ opens on the first entry, ↓ ↑ Home End move, Escape closes and gives the focus back.
+    await more.focus();
+    await page.keyboard.press('ArrowDown');
+    await expect(menu).toBeVisible();
+    await expect(more).toHaveAttribute('aria-expanded', 'true');
+    await expect(items.first()).toBeFocused();
+    await page.keyboard.press('End');
+    await expect(items.last()).toBeFocused();
+    await page.keyboard.press('ArrowDown');
+    await expect(items.first()).toBeFocused();
+    await page.keyboard.press('Escape');
+    await expect(menu).toBeHidden();
+    await expect(more).toBeFocused();
+    await expect(stroke).toHaveAttribute('aria-pressed', 'true'); // Escape closed the menu only
+    // Enter opens it too; choosing Frame brings a lost model back.
+    const home = await page.evaluate(() => window.tvf.camera());
+    await page.evaluate(() => {
+      const { target } = window.tvf.camera();
+      window.tvf.setCamera({ target: [target[0] + 50, target[1] + 50, target[2]], position: [target[0] + 50, target[1] + 50, target[2] + 200] });
+    });
+    await page.keyboard.press('Enter');
+    await expect(items.first()).toBeFocused();
+    for (let i = 0; i < names.indexOf('Frame'); i++) await page.keyboard.press('ArrowDown');
+    await expect(items.nth(names.indexOf('Frame'))).toBeFocused();
+    await page.keyboard.press('Enter');
+    await expect(menu).toBeHidden();
+    const framed = await page.evaluate(() => window.tvf.camera());
+    for (let k = 0; k < 3; k++) expect(framed.target[k]).toBeCloseTo(home.target[k], 5);
+    // A press elsewhere closes it.
+    await more.click();
+    await expect(menu).toBeVisible();
+    await page.locator('#status').click();
+    await expect(menu).toBeHidden();
+    expect(errors).toEqual([]);
+    await context.close();
+  });
+
+  test('stroke ribbons and the live stroke keep their width in pixels on a coarse and a dense mesh', async ({ browser }) => {
+    test.setTimeout(420_000);
+    const context = await browser.newContext({ viewport: { width: 1024, height: 720 } });
+    const page = await context.newPage();
+    const errors = trackErrors(page);
+    await openDesigner(page);
+    await page.evaluate(() => window.tvf.setViews({ arrows: false }));
+    const bunny = await readMesh(page);
+    const line = { x0: 0.4, x1: 0.6, y: 0.5 };
+    const measure = async (label) => {
+      // The ribbon of a stroke through the surface points under a horizontal screen line.
+      const points = await surfacePointsAlongScreenLine(page, { x0: 0.36, dx: 0.28 / 40, y: line.y, count: 40 });
+      expect(points.length, `${label}: the line crosses the model`).toBeGreaterThan(30);
+      const id = await page.evaluate((pts) => window.tvf.addStroke(pts), points);
+      await settle(page);
+      const ribbon = await ribbonWidth(page, line);
+      await page.screenshot({ path: resolve(OUT, `ribbon-${label}.png`) });
+      await page.evaluate((id) => window.tvf.remove(id), id);
+      // The live stroke, while the mouse is still down: a little above, from left to right.
+      await page.getByRole('button', { name: 'Stroke', exact: true }).click();
+      const box = await page.locator('#view').boundingBox();
+      const yLive = 0.45;
+      await page.mouse.move(box.x + 0.38 * box.width, box.y + yLive * box.height);
+      await page.mouse.down();
+      await page.mouse.move(box.x + 0.62 * box.width, box.y + yLive * box.height, { steps: 40 });
+      await settle(page);
+      const live = await ribbonWidth(page, { ...line, y: yLive });
+      await page.screenshot({ path: resolve(OUT, `live-stroke-${label}.png`) });
+      await page.mouse.up();
+      await expect.poll(() => page.evaluate(() => window.tvf.constraints().length)).toBe(1);
+      await page.evaluate(() => window.tvf.remove(window.tvf.constraints()[0].id));
+      await page.getByRole('button', { name: 'Orbit', exact: true }).click();
+      return { ribbon, live };
+    };
+
+    const coarse = await measure('coarse');
+    const faces = bunny.triangles.length / 3;
+    await page.evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'bunny-x16.off', restore: false }), subdividedOff(bunny, 2));
+    await expect.poll(() => page.evaluate(() => window.tvf.info().faces), { timeout: 300_000 }).toBe(16 * faces);
+    const edges = await page.evaluate(() => window.tvf.info().edges);
+    await page.evaluate(() => window.tvf.setViews({ arrows: false }));
+    const dense = await measure('dense');
+    console.log(
+      `stroke ribbon width: ${coarse.ribbon.median} px (${faces} faces) / ${dense.ribbon.median} px (${16 * faces} faces, ${edges} edges), ` +
+        `columns crossed ${(100 * coarse.ribbon.coverage).toFixed(0)}% / ${(100 * dense.ribbon.coverage).toFixed(0)}%; ` +
+        `live stroke ${coarse.live.median} px / ${dense.live.median} px, crossed ${(100 * coarse.live.coverage).toFixed(0)}% / ${(100 * dense.live.coverage).toFixed(0)}%`,
+    );
+    for (const [label, r] of Object.entries({ coarse, dense })) {
+      for (const kind of ['ribbon', 'live']) {
+        expect(r[kind].median, `${label} ${kind}: width in pixels`).toBeGreaterThanOrEqual(3);
+        expect(r[kind].coverage, `${label} ${kind}: a solid band, not dots`).toBeGreaterThan(0.9);
+      }
+    }
+    for (const kind of ['ribbon', 'live']) {
+      expect(dense[kind].median / coarse[kind].median, `${kind}: dense / coarse width`).toBeGreaterThan(0.75);
+      expect(dense[kind].median / coarse[kind].median, `${kind}: dense / coarse width`).toBeLessThan(1.34);
+    }
     expect(errors).toEqual([]);
     await context.close();
   });

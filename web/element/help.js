@@ -28,6 +28,7 @@ export const HELP_GESTURES = [
   ['Double-click / double-tap on the model', 'Orbit around that point'],
   ['Drop a file on the view', 'Open a mesh (.glb, .gltf, .obj, .off, .ply) or load a design (.json)'],
   ['☰ Panels (small screens)', 'Open or close the settings and constraint drawers (a bottom sheet on phones)'],
+  ['⋯ (narrower windows)', 'The toolbar buttons that do not fit in its row: ↑ ↓ to move, Enter to choose, Escape to close'],
 ];
 
 function table(caption, rows) {

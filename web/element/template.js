@@ -1,18 +1,19 @@
 // The markup of one designer, cloned into its shadow root. Parts (for ::part() styling) and the ids the
-// panels bind to (ui.js) live here; styles in element.css. Which pieces show depends on the host's
-// `controls` and `readonly` attributes (element.css).
+// panels bind to (ui.js and the modules it composes) live here; styles in element.css. Which pieces show
+// depends on the host's `controls` and `readonly` attributes (element.css); data-overflow ranks the toolbar
+// items that leave a full row for the ⋯ menu, lowest first (toolbar-overflow.js).
 
 export const TEMPLATE = `<div class="root" part="root">
   <header class="toolbar" part="toolbar" role="toolbar" aria-label="Design tools">
-    <span class="brand" part="brand">Tangent-field designer</span>
+    <span class="brand" part="brand" data-overflow="0" data-overflow-reserve>Tangent-field designer</span>
     <button id="panels-toggle" type="button" part="panels-toggle" aria-expanded="false" aria-controls="side-panel constraints-panel" title="Show or hide the settings and constraint panels (on small screens they are drawers)">☰ Panels</button>
     <div class="group" role="group" aria-label="Files">
-      <button id="open-button" type="button" class="edit" title="Open a mesh (.glb, .gltf, .obj, .off, .ply) — or drop one on the view">Open…</button>
+      <button id="open-button" type="button" class="edit" data-overflow="5" title="Open a mesh (.glb, .gltf, .obj, .off, .ply) — or drop one on the view">Open…</button>
       <input id="file-input" type="file" hidden>
-      <button id="save-design" type="button" title="Save the design as JSON, the format "tvf design" reads (Ctrl+S)">Save</button>
-      <button id="load-design" type="button" class="edit" title="Load a design JSON (or drop one on the view)">Load…</button>
+      <button id="save-design" type="button" data-overflow="7" title="Save the design as JSON, the format "tvf design" reads (Ctrl+S)">Save</button>
+      <button id="load-design" type="button" class="edit" data-overflow="4" title="Load a design JSON (or drop one on the view)">Load…</button>
       <input id="design-input" type="file" accept=".json,application/json" hidden>
-      <button id="export-field" type="button" title="Download the solved field: per-edge one-form, per-face and per-vertex vectors, singularities">Export</button>
+      <button id="export-field" type="button" data-overflow="6" title="Download the solved field: per-edge one-form, per-face and per-vertex vectors, singularities">Export</button>
     </div>
     <span class="sep" aria-hidden="true"></span>
     <div class="segmented" role="group" aria-label="Tool">
@@ -44,9 +45,11 @@ export const TEMPLATE = `<div class="root" part="root">
     <button id="undo" type="button" class="edit" title="Undo (Ctrl+Z)" aria-label="Undo" disabled>↶</button>
     <button id="redo" type="button" class="edit" title="Redo (Ctrl+Shift+Z)" aria-label="Redo" disabled>↷</button>
     <span class="sep" aria-hidden="true"></span>
-    <button id="frame-button" type="button" title="Frame the model: bring all of it back into view (F or Home)">Frame</button>
-    <button id="screenshot-button" type="button" title="Save a PNG picture of the view (twice the view's size)">Picture</button>
+    <button id="frame-button" type="button" data-overflow="2" title="Frame the model: bring all of it back into view (F or Home)">Frame</button>
+    <button id="screenshot-button" type="button" data-overflow="1" title="Save a PNG picture of the view (twice the view's size)">Picture</button>
+    <button id="more-button" type="button" aria-label="More" aria-haspopup="menu" aria-expanded="false" aria-controls="more-menu" title="More: the toolbar buttons that do not fit in this width" hidden>⋯</button>
     <button id="help-button" type="button" title="Help: every tool, shortcut and gesture (? , H or F1)" aria-label="Help">?</button>
+    <div id="more-menu" role="menu" aria-label="More" hidden></div>
   </header>
 
   <div id="error-banner" part="error" role="alert" hidden>

@@ -55,6 +55,27 @@ export class Surface {
     this.vertexNormals = vertexNormals(this.triangles, this.nV, this.normals, this.areas);
   }
 
+  // The per-mesh arrays, copied (the caller keeps its own Surface): the worker builds the Surface once per mesh
+  // and the page takes it over with fromArrays(), so the main thread never recomputes it.
+  arrays() {
+    const out = { meanEdge: this.meanEdge, centre: this.centre, radius: this.radius };
+    for (const key of Surface.ARRAYS) out[key] = this[key].slice();
+    return out;
+  }
+
+  static ARRAYS = ['positions', 'triangles', 'edges', 'normals', 'areas', 'centres', 'frames', 'corners2d', 'neighbour', 'vertexFaceStart', 'vertexFaces', 'vertexNormals'];
+
+  static fromArrays(arrays) {
+    const surface = Object.create(Surface.prototype);
+    Object.assign(surface, arrays, { nV: arrays.positions.length / 3, nF: arrays.triangles.length / 3, angleDefect: null });
+    return surface;
+  }
+
+  // Buffers of arrays() to transfer rather than copy.
+  static transferList(arrays) {
+    return Surface.ARRAYS.map((key) => arrays[key].buffer);
+  }
+
   // 2π less the corner angles per vertex; computed on first use (the singularities need it).
   angleDefects() {
     this.angleDefect ??= angleDefects(this.positions, this.triangles, this.nV);

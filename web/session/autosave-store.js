@@ -126,10 +126,11 @@ export class AutosaveStore {
     const key = this.#key(modelKey);
     const tx = db.transaction(STORE, 'readwrite');
     const store = tx.objectStore(STORE);
-    const mine = (await request(store.index('byKey').getAll(key))).filter((r) => r.tab === this.tab);
-    const latest = mine.sort((a, b) => b.id - a.id)[0];
-    // An empty design is saved too once there was a non-empty one (a cleared design must stay cleared).
-    if (!(isEmptyDesign(design) && !latest)) {
+    const all = await request(store.index('byKey').getAll(key));
+    const mine = all.filter((r) => r.tab === this.tab).sort((a, b) => b.id - a.id);
+    // An empty design is saved too once the model has a version, whichever tab or page load saved it (a cleared
+    // design must stay cleared, also when the design it cleared was restored from an earlier page load).
+    if (!(isEmptyDesign(design) && !all.length)) {
       store.add({ key, tab: this.tab, savedAt, design: structuredClone(design) });
       for (const old of mine.slice(VERSIONS_KEPT - 1)) store.delete(old.id);
     }

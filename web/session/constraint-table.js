@@ -54,6 +54,8 @@ export class ConstraintTable {
     this.uids.clear();
     const ids = this.coreOrder;
     if (uids && uids.length === ids.length) uids.forEach((uid, k) => this.uids.set(uid, ids[k]));
+    // Page ids from elsewhere (a deserialized command's) are taken: new ones are numbered after them.
+    for (const uid of this.uids.keys()) if (uid >= this.nextUid) this.nextUid = uid + 1;
     this.adoptUnmapped();
   }
 

@@ -35,9 +35,8 @@ export class ModelLoader {
           if (s.info) s.changed();
           throw s.fail('model', new Error(`Could not load ${model.name}: ${err.message.replace(/^load: /, '')}`));
         }
-        const { info, settingsError, restoreError, embeddedDesign } = reply.value;
-        const { positions, triangles, edges, cornerUVs } = reply.value.mesh;
-        const surface = new Surface(positions, triangles, edges);
+        const { info, settingsError, restoreError, embeddedDesign, cornerUVs } = reply.value;
+        const surface = Surface.fromArrays(reply.value.surface);
         s.adoptModel({ model, key, source: { bytes: model.bytes, format: model.format }, info, surface, cornerUVs });
         this.#tellRestored(model, saved, restoreError, embeddedDesign, settingsError);
         s.announceModel();

@@ -1,8 +1,11 @@
 // Constraint handles drawn on the surface — stroke ribbons, vector arrows, and markers for sources (red),
 // sinks (green) and vortices (blue) — plus the live preview arrow of the vector tool. Handles are picked in
-// screen space (nearest anchor within a few pixels that is not hidden behind the surface).
-import { BufferAttribute, BufferGeometry, DoubleSide, Group, Matrix4, Mesh, MeshBasicMaterial, Vector3 } from 'three';
-import { arrowGeometry, fixSpriteScales, markerSprite } from './field-views.js';
+// screen space (nearest anchor within a few pixels that is not hidden behind the surface). Ribbons and their
+// chevrons are a fixed width in pixels (screen-ribbon.js): they read on a fine mesh as on a coarse one.
+import { DoubleSide, Group, Matrix4, Mesh, MeshBasicMaterial, Vector3 } from 'three';
+import { worldPerPixel } from '../geometry/arrow-sampling.js';
+import { arrowGeometry, fixSpriteScales, markerSprite } from './markers.js';
+import { BandMaterial, bandGeometry, bandMesh, chevronGeometry } from './screen-ribbon.js';
 
 const COLORS = { stroke: 0xff7a1a, vector: 0xfbbf24, selected: 0xffffff, preview: 0xfde68a, chevron: 0x431407 };
 const MARKERS = {
@@ -12,6 +15,9 @@ const MARKERS = {
 };
 const LIFT = 0.12; // × mean edge length
 const PICK_PX = 12;
+export const RIBBON_PX = 6; // the ribbons' width on screen (CSS pixels)
+const CHEVRON = { length: 1.5, width: 0.84 }; // × the ribbon's width
+const CHEVRON_SPACING = 0.1; // × the model's radius (about 30 px in the framed view), at least one per stroke
 
 export class HandlesView {
   constructor(scene, labels) {
@@ -69,18 +75,16 @@ export class HandlesView {
       case 'stroke': {
         const pts = spec.points.map((q) => liftedOn(q.face, s.pointFromBary(q.face, q.bary)));
         const normals = spec.points.map((q) => s.normal(q.face));
-        const width = 0.3 * s.meanEdge;
-        const mesh = new Mesh(ribbon(pts, normals, width), basic(COLORS.stroke));
-        mesh.renderOrder = 2;
+        const mesh = ribbon(pts, normals, COLORS.stroke);
         // Chevrons along the ribbon, in the stroke's direction (the direction it asks of the field).
-        const cues = ribbonChevrons(pts, normals, width, 0.05 * s.meanEdge);
-        if (cues.list.length) {
-          const marks = new Mesh(cues.geometry, basic(COLORS.chevron));
+        const cues = chevronsAlong(pts, normals, CHEVRON_SPACING * s.radius);
+        if (cues.length) {
+          const marks = bandMesh(chevronGeometry(cues, CHEVRON), new BandMaterial({ color: COLORS.chevron, widthPx: RIBBON_PX, liftPx: 3 }));
           marks.renderOrder = 3;
           mesh.add(marks);
         }
         this.group.add(mesh);
-        return { spec, object: mesh, anchors: pts, cues: cues.list };
+        return { spec, object: mesh, anchors: pts, cues };
       }
       case 'vector': {
         const n = s.normal(spec.face);
@@ -103,7 +107,7 @@ export class HandlesView {
         const pts = [s.vertex(i), s.vertex(j)];
         const nrm = [0, 1].map((k) => [...s.vertexNormals.subarray(3 * spec.edge[k], 3 * spec.edge[k] + 3)]);
         const lifted = pts.map((p, k) => p.map((x, c) => x + lift * nrm[k][c]));
-        const mesh = new Mesh(ribbon(lifted, nrm, 0.3 * s.meanEdge), basic(COLORS.stroke));
+        const mesh = ribbon(lifted, nrm, COLORS.stroke);
         this.group.add(mesh);
         return { spec, object: mesh, anchors: lifted };
       }
@@ -147,15 +151,24 @@ export class HandlesView {
     item.object.material.dispose();
   }
 
-  // Direction cues on the stroke ribbons: uid → [{tip, back}].
+  // Direction cues on the stroke ribbons as drawn in the current view: uid → [{tip, back}] (model units).
   cues() {
     const out = [];
-    for (const [uid, item] of this.items) if (item.cues) out.push({ uid, cues: item.cues.map(({ tip, back }) => ({ tip, back })) });
+    for (const [uid, item] of this.items) {
+      if (!item.cues) continue;
+      const cues = item.cues.map(({ centre, tangent }) => {
+        const wpp = this.view ? worldPerPixel(this.view.camera, new Vector3(...centre), this.view.heightPx) : this.surface.meanEdge / RIBBON_PX;
+        const half = (0.5 * CHEVRON.length * RIBBON_PX * wpp) / (Math.hypot(...tangent) || 1);
+        return { tip: centre.map((x, c) => x + half * tangent[c]), back: centre.map((x, c) => x - half * tangent[c]) };
+      });
+      out.push({ uid, cues });
+    }
     return out;
   }
 
   updateScale(camera, renderer) {
     fixSpriteScales(this.markers, camera, renderer);
+    this.view = { camera, heightPx: renderer.domElement.clientHeight || renderer.domElement.height || 1 };
   }
 
   // The handle under a client pixel: nearest anchor within PICK_PX on screen that the surface does not hide.
@@ -216,56 +229,30 @@ function markerTexture(labels, spec, selected) {
   return labels.get(`${spec.type}:${text}:${selected}`, m.fill, text, { ring: selected, textColor: '#ffffff' });
 }
 
-// A flat band of width w along a polyline, in the local tangent plane (normal per point).
-function ribbon(points, normals, w) {
-  const n = points.length;
-  const pos = new Float32Array(6 * n);
-  for (let k = 0; k < n; k++) {
-    const a = points[Math.max(0, k - 1)], b = points[Math.min(n - 1, k + 1)];
-    const t = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    const nr = normals[k];
-    let side = [nr[1] * t[2] - nr[2] * t[1], nr[2] * t[0] - nr[0] * t[2], nr[0] * t[1] - nr[1] * t[0]];
-    const l = Math.hypot(...side) || 1;
-    side = side.map((x) => (x / l) * (w / 2));
-    const p = points[k];
-    pos.set([p[0] - side[0], p[1] - side[1], p[2] - side[2], p[0] + side[0], p[1] + side[1], p[2] + side[2]], 6 * k);
-  }
-  const index = [];
-  for (let k = 0; k + 1 < n; k++) index.push(2 * k, 2 * k + 1, 2 * k + 2, 2 * k + 1, 2 * k + 3, 2 * k + 2);
-  const g = new BufferGeometry();
-  g.setAttribute('position', new BufferAttribute(pos, 3));
-  g.setIndex(index);
-  return g;
+// A ribbon along a polyline (lifted surface points, the surface normal at each), RIBBON_PX wide on screen.
+function ribbon(points, normals, color) {
+  const mesh = bandMesh(bandGeometry(points, normals), new BandMaterial({ color, widthPx: RIBBON_PX }));
+  mesh.renderOrder = 2;
+  return mesh;
 }
 
-// Filled chevrons (arrowheads) inside a ribbon of width w, about every 3 w of its length and at least one,
-// lifted by `lift` over it along the local normal. Returns the geometry and each chevron's tip and back.
-function ribbonChevrons(points, normals, w, lift) {
+// Where the chevrons go along a polyline: about every `spacing` of its length and at least one, each a
+// centre on the polyline, the surface normal and the direction there.
+function chevronsAlong(points, normals, spacing) {
   const n = points.length;
   const cum = [0];
   for (let k = 1; k < n; k++) cum.push(cum[k - 1] + Math.hypot(...points[k].map((x, c) => x - points[k - 1][c])));
   const L = cum[n - 1];
-  const list = [], pos = [];
-  if (!(L > 0)) return { list, geometry: new BufferGeometry() };
-  const count = Math.max(1, Math.floor(L / (3 * w)));
-  const h = Math.min(0.9 * w, (0.8 * L) / count); // chevron length along the stroke
+  if (!(L > 0)) return [];
+  const count = Math.max(1, Math.floor(L / spacing));
+  const out = [];
   let k = 1;
   for (let i = 0; i < count; i++) {
     const at = ((i + 0.5) * L) / count;
     while (k < n - 1 && cum[k] < at) k++;
     const a = points[k - 1], b = points[k], f = (at - cum[k - 1]) / (cum[k] - cum[k - 1] || 1);
-    const t0 = b.map((x, c) => x - a[c]);
-    const tl = Math.hypot(...t0) || 1;
-    const t = t0.map((x) => x / tl);
-    const nr = normals[k];
-    const side = [nr[1] * t[2] - nr[2] * t[1], nr[2] * t[0] - nr[0] * t[2], nr[0] * t[1] - nr[1] * t[0]];
-    const centre = a.map((x, c) => x + f * t0[c] + lift * nr[c]);
-    const tip = centre.map((x, c) => x + 0.5 * h * t[c]);
-    const back = centre.map((x, c) => x - 0.5 * h * t[c]);
-    pos.push(...tip, ...back.map((x, c) => x + 0.4 * w * side[c]), ...back.map((x, c) => x - 0.4 * w * side[c]));
-    list.push({ tip, back });
+    const tangent = b.map((x, c) => x - a[c]);
+    out.push({ centre: a.map((x, c) => x + f * tangent[c]), normal: normals[k], tangent });
   }
-  const g = new BufferGeometry();
-  g.setAttribute('position', new BufferAttribute(new Float32Array(pos), 3));
-  return { list, geometry: g };
+  return out;
 }

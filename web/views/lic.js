@@ -28,6 +28,7 @@ import {
   Vector2,
   WebGLRenderTarget,
 } from 'three';
+import { randomSequence } from '../geometry/arrow-sampling.js';
 
 export const LIC_STEPS = 20; // each way: streaks of about 2 × 20 px
 const NOISE_SIZE = 256;
@@ -107,15 +108,13 @@ void main() {
   gl_FragDepth = texture2D(depths, p0 / resolution).r;
 }`;
 
-// White noise, one value per texel, from a fixed seed (mulberry32): the same picture on every run.
+// White noise, one value per texel, from a fixed seed (geometry/arrow-sampling.js's generator): the same
+// picture on every run.
 function noiseTexture(seed = 0x2545f491) {
   const data = new Uint8Array(NOISE_SIZE * NOISE_SIZE * 4);
-  let a = seed >>> 0;
+  const random = randomSequence(seed);
   for (let i = 0; i < NOISE_SIZE * NOISE_SIZE; i++) {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = Math.imul(a ^ (a >>> 15), 1 | a);
-    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
-    const v = ((t ^ (t >>> 14)) >>> 0) & 255;
+    const v = Math.floor(random() * 256);
     data.set([v, v, v, 255], 4 * i);
   }
   const tex = new DataTexture(data, NOISE_SIZE, NOISE_SIZE, RGBAFormat, UnsignedByteType);

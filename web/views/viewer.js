@@ -1,6 +1,8 @@
 // three.js view of the core's welded mesh. Face i of the rendered geometry is face i of the core, so picks
-// translate to core surface points without any remapping. The field views and constraint handles live in
-// field-views.js and handles.js; this module owns the scene, the camera, picking and the surface itself.
+// translate to core surface points without any remapping. The field views live in arrows-view.js,
+// streamlines-view.js and singularities-view.js, the constraint handles in handles.js; this module owns the
+// scene, the camera, picking and the surface itself. Normals come from the Surface (geometry/surface.js),
+// computed once per mesh.
 import {
   AmbientLight,
   BufferAttribute,
@@ -9,8 +11,6 @@ import {
   DirectionalLight,
   DoubleSide,
   HemisphereLight,
-  Line,
-  LineBasicMaterial,
   Mesh,
   MeshStandardMaterial,
   PerspectiveCamera,
@@ -24,11 +24,15 @@ import {
 } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { MeshBVH, acceleratedRaycast } from 'three-mesh-bvh';
-import { ArrowsView, LabelTextures, SingularitiesView, StreamlinesView, rampColor } from './field-views.js';
-import { HandlesView } from './handles.js';
-import { LicView } from './lic.js';
+import { ArrowsView } from './arrows-view.js';
 import { frameModel, refitToAspect } from './camera.js';
-import { magnitudeScale } from './colormap.js';
+import { magnitudeScale, viridis } from './colormap.js';
+import { HandlesView, RIBBON_PX } from './handles.js';
+import { LicView } from './lic.js';
+import { LabelTextures } from './markers.js';
+import { BandMaterial, GrowingBand } from './screen-ribbon.js';
+import { SingularitiesView } from './singularities-view.js';
+import { StreamlinesView } from './streamlines-view.js';
 
 const BACKGROUND = 0x1b1d21;
 const SURFACE_GREY = 0xb9bec8;
@@ -73,7 +77,7 @@ export class Viewer {
 
     this.surface = null; // Surface (geometry/topology), set by setMesh
     this.surfaceMesh = null; // the three.js mesh
-    this.strokeLine = null;
+    this.strokeBand = null; // the live stroke (GrowingBand) while it is drawn
     this.colorMapOn = false;
     this.arrows = new ArrowsView(this.scene);
     this.streamlines = new StreamlinesView(this.scene);
@@ -165,9 +169,9 @@ export class Viewer {
     this.surface = surface;
     const geom = new BufferGeometry();
     geom.setAttribute('position', new BufferAttribute(Float32Array.from(surface.positions), 3));
+    geom.setAttribute('normal', new BufferAttribute(Float32Array.from(surface.vertexNormals), 3));
     geom.setAttribute('color', new BufferAttribute(new Float32Array(surface.positions.length).fill(1), 3));
     geom.setIndex(new BufferAttribute(Uint32Array.from(surface.triangles), 1));
-    geom.computeVertexNormals();
     geom.computeBoundingSphere();
     // indirect: the default build reorders the index buffer, and then hit.faceIndex no longer names the
     // core's face. Indirect mode leaves the triangles in place and reports original indices.
@@ -225,7 +229,7 @@ export class Viewer {
     const c = new Color();
     for (let v = 0; v < n; v++) {
       const m = Math.hypot(vertexVectors[3 * v], vertexVectors[3 * v + 1], vertexVectors[3 * v + 2]);
-      rampColor(top > 0 && Number.isFinite(m) ? m / top : 0, c);
+      viridis(top > 0 && Number.isFinite(m) ? m / top : 0, c);
       attr.setXYZ(v, c.r, c.g, c.b);
     }
     attr.needsUpdate = true;
@@ -298,41 +302,26 @@ export class Viewer {
     return d <= tolerance * this.meanEdge;
   }
 
-  // The live stroke: a polyline lifted off the surface along each sample's face normal.
+  // The live stroke: a band as wide on screen as the stroke handles' ribbons, through the samples lifted off
+  // the surface along their face normals.
   strokeAdd(sample) {
-    if (!this.strokeLine) {
-      const g = new BufferGeometry();
-      g.setAttribute('position', new BufferAttribute(new Float32Array(3 * 256), 3));
-      g.setDrawRange(0, 0);
-      this.strokeLine = new Line(g, new LineBasicMaterial({ color: 0xff7a1a, depthTest: true }));
-      this.strokeLine.frustumCulled = false;
-      this.strokeLine.renderOrder = 2;
-      this.scene.add(this.strokeLine);
-    }
-    const g = this.strokeLine.geometry;
-    let attr = g.getAttribute('position');
-    const n = g.drawRange.count;
-    if (n + 1 > attr.count) {
-      const grown = new Float32Array(attr.array.length * 2);
-      grown.set(attr.array);
-      attr = new BufferAttribute(grown, 3);
-      g.setAttribute('position', attr);
+    if (!this.strokeBand) {
+      this.strokeBand = new GrowingBand(new BandMaterial({ color: 0xff7a1a, widthPx: RIBBON_PX }));
+      this.strokeBand.mesh.renderOrder = 2;
+      this.scene.add(this.strokeBand.mesh);
     }
     const lift = STROKE_LIFT * this.meanEdge;
-    const N = this.surface.normals, f = sample.face;
-    const p = this.pointFromBary(f, sample.bary);
-    attr.setXYZ(n, p[0] + lift * N[3 * f], p[1] + lift * N[3 * f + 1], p[2] + lift * N[3 * f + 2]);
-    attr.needsUpdate = true;
-    g.setDrawRange(0, n + 1);
+    const n = this.surface.normal(sample.face);
+    const p = this.pointFromBary(sample.face, sample.bary);
+    this.strokeBand.push([p[0] + lift * n[0], p[1] + lift * n[1], p[2] + lift * n[2]], n);
     this.requestRender();
   }
 
   clearStroke() {
-    if (!this.strokeLine) return;
-    this.scene.remove(this.strokeLine);
-    this.strokeLine.geometry.dispose();
-    this.strokeLine.material.dispose();
-    this.strokeLine = null;
+    if (!this.strokeBand) return;
+    this.scene.remove(this.strokeBand.mesh);
+    this.strokeBand.dispose();
+    this.strokeBand = null;
     this.requestRender();
   }
 }

@@ -22,6 +22,7 @@ export class AddConstraint {
     const reply = await s.call('add', [this.spec]);
     this.uid ??= s.table.nextUid++;
     s.table.uids.set(this.uid, reply.value);
+    s.table.nextUid = Math.max(s.table.nextUid, this.uid + 1); // a deserialized command brings its own page id
     this.spec = s.table.specOf(this.uid);
   }
 

@@ -1,0 +1,151 @@
+// The side panels: field settings (boundary, smoothness), the views and their legend, and the constraint
+// list with the selection editor. Reports user intent through `actions` and renders the state it is handed;
+// a box the user is typing in is never overwritten.
+import { checkedNumber, fmtNum, guarded } from './numbers.js';
+
+const SWATCH = { stroke: '#ff7a1a', vector: '#fbbf24', edge: '#ff7a1a', source: '#ef4444', sink: '#22c55e', vortex: '#3b82f6' };
+const VIEW_INPUTS = ['show-arrows', 'arrow-density', 'arrow-scaled', 'show-streamlines', 'streamline-spacing', 'show-lic', 'show-colormap', 'show-singularities'];
+
+const title = (type) => `${type[0].toUpperCase()}${type.slice(1)}`;
+
+function describe(c) {
+  switch (c.type) {
+    case 'stroke': return `${c.points.length} points · strength ${fmtNum(c.strength)} · weight ${fmtNum(c.weight)}`;
+    case 'vector': return `face ${c.face} · size ${fmtNum(Math.hypot(...c.vector))} · weight ${fmtNum(c.weight)}`;
+    case 'edge': return `${c.edge[0]}→${c.edge[1]} = ${fmtNum(c.value)} · weight ${fmtNum(c.weight)}`;
+    case 'source':
+    case 'sink': return `vertex ${c.vertex} · strength ${fmtNum(c.strength)}`;
+    case 'vortex': return `face ${c.face} · ${c.strength >= 0 ? 'CCW' : 'CW'} ${fmtNum(Math.abs(c.strength))}`;
+    default: return '';
+  }
+}
+
+function listItem(c, selected) {
+  const li = document.createElement('li');
+  li.dataset.constraintId = String(c.id);
+  li.classList.toggle('selected', c.id === selected);
+  const label = document.createElement('span');
+  label.className = 'label';
+  const sw = document.createElement('span');
+  sw.className = 'swatch';
+  sw.style.background = SWATCH[c.type] ?? '#999';
+  label.append(sw, `${title(c.type)} #${c.id}`);
+  const detail = document.createElement('span');
+  detail.className = 'detail';
+  detail.textContent = describe(c);
+  const del = document.createElement('button');
+  del.className = 'delete';
+  del.type = 'button';
+  del.title = `Delete ${c.type} #${c.id}`;
+  del.setAttribute('aria-label', `Delete ${c.type} ${c.id}`);
+  del.textContent = '×';
+  li.append(label, detail, del);
+  return li;
+}
+
+// $: querySelector in the shadow root; focused(): the shadow root's active element; showError: the banner.
+export function bindPanels($, focused, actions, showError) {
+  const guard = (fn) => guarded(showError, fn);
+  let selectedUid = null;
+
+  // ---- field settings
+  const boundarySelect = $('#boundary');
+  const angleInput = $('#boundary-angle');
+  const gamma = $('#gamma');
+  function boundaryChoice() {
+    if (boundarySelect.value !== 'angle') return boundarySelect.value;
+    const deg = Number(angleInput.value);
+    return { angle: ((Number.isFinite(deg) ? deg : 0) * Math.PI) / 180 };
+  }
+  boundarySelect.addEventListener('change', () => {
+    $('#boundary-angle-row').hidden = boundarySelect.value !== 'angle';
+    actions.onBoundary(boundaryChoice());
+  });
+  angleInput.addEventListener('change', guard(() => (checkedNumber(angleInput, 'The boundary angle'), actions.onBoundary(boundaryChoice()))));
+  gamma.addEventListener('change', guard((e) => actions.onGamma(checkedNumber(e.target, 'Smoothness γ'))));
+
+  function setSettings({ boundary, gamma: g }) {
+    const isAngle = typeof boundary !== 'string';
+    boundarySelect.value = isAngle ? 'angle' : boundary;
+    $('#boundary-angle-row').hidden = !isAngle;
+    if (isAngle && focused() !== angleInput) angleInput.value = String(+((boundary.angle * 180) / Math.PI).toFixed(6));
+    if (focused() !== gamma) gamma.value = String(g);
+  }
+
+  function setHasBoundary(has) {
+    $('#boundary-row').hidden = !has;
+    $('#boundary-note').hidden = !has;
+  }
+
+  // ---- views
+  for (const id of VIEW_INPUTS) $(`#${id}`).addEventListener('input', () => actions.onViews(views()));
+  function views() {
+    return {
+      arrows: $('#show-arrows').checked,
+      arrowDensity: Number($('#arrow-density').value),
+      arrowsScaled: $('#arrow-scaled').checked,
+      streamlines: $('#show-streamlines').checked,
+      streamlineSpacing: Number($('#streamline-spacing').value),
+      lic: $('#show-lic').checked,
+      colorMap: $('#show-colormap').checked,
+      singularities: $('#show-singularities').checked,
+    };
+  }
+  function setViews(v) {
+    if ('arrows' in v) $('#show-arrows').checked = v.arrows;
+    if ('arrowDensity' in v) $('#arrow-density').value = String(v.arrowDensity);
+    if ('arrowsScaled' in v) $('#arrow-scaled').checked = v.arrowsScaled;
+    if ('streamlines' in v) $('#show-streamlines').checked = v.streamlines;
+    if ('streamlineSpacing' in v) $('#streamline-spacing').value = String(v.streamlineSpacing);
+    if ('lic' in v) $('#show-lic').checked = !!v.lic;
+    if ('colorMap' in v) $('#show-colormap').checked = v.colorMap;
+    if ('singularities' in v) $('#show-singularities').checked = v.singularities;
+  }
+
+  function setLegend(max) {
+    $('#legend').hidden = max == null;
+    if (max != null) $('#legend-max').textContent = `≥ ${fmtNum(max)}`;
+  }
+
+  // ---- constraint list and selection editor
+  const list = $('#constraint-list');
+  list.addEventListener('click', (e) => {
+    const li = e.target.closest('[data-constraint-id]');
+    if (!li) return;
+    const uid = Number(li.dataset.constraintId);
+    if (e.target.closest('button.delete')) actions.onRemove(uid);
+    else actions.onSelect(uid);
+  });
+  $('#clear-all').addEventListener('click', () => actions.onClear());
+  $('#sel-delete').addEventListener('click', () => selectedUid != null && actions.onRemove(selectedUid));
+  $('#sel-weight').addEventListener('change', guard((e) => selectedUid != null && actions.onEditWeight(selectedUid, checkedNumber(e.target, 'The weight'))));
+  $('#sel-strength').addEventListener('change', guard((e) => selectedUid != null && actions.onEditStrength(selectedUid, checkedNumber(e.target, 'The strength'))));
+
+  // constraints: [{id, type, ...spec}] in the page's order; selected: id or null.
+  function setConstraints(constraints, selected) {
+    selectedUid = selected;
+    list.replaceChildren(...constraints.map((c) => listItem(c, selected)));
+    $('#constraints-empty').hidden = constraints.length > 0;
+    const sel = constraints.find((c) => c.id === selected);
+    $('#selection-panel').hidden = !sel;
+    if (!sel) return;
+    $('#selection-title').textContent = `${title(sel.type)} #${sel.id}`;
+    const hasWeight = 'weight' in sel, hasStrength = 'strength' in sel;
+    $('#sel-weight-row').hidden = !hasWeight;
+    $('#sel-strength-row').hidden = !hasStrength;
+    if (hasWeight && focused() !== $('#sel-weight')) $('#sel-weight').value = String(sel.weight);
+    if (hasStrength && focused() !== $('#sel-strength')) $('#sel-strength').value = String(sel.strength);
+  }
+
+  return {
+    setSettings,
+    setHasBoundary,
+    views,
+    setViews,
+    setLegend,
+    setConstraints,
+    get selected() {
+      return selectedUid;
+    },
+  };
+}
