@@ -366,3 +366,18 @@ test('singularities: none on the boundary, none next to a vanishing vector, none
   assert.deepEqual(findSingularities(s, holed), [], 'an undefined index is not reported');
   assert.deepEqual(findSingularities(s, new Float64Array(F.length)), []);
 });
+
+// The page takes over the worker's Surface (core-worker.js loadMesh): the copy must trace exactly as the original.
+test('surface: one rebuilt from another thread\'s arrays walks and traces exactly as the original', () => {
+  const m = icosphere(2);
+  const original = surfaceOf(m);
+  const copy = Surface.fromArrays(original.arrays());
+  assert.equal(copy.nF, original.nF);
+  assert.equal(copy.meanEdge, original.meanEdge);
+  assert.deepEqual(copy.walk(5, [0.01, 0.01], [1, 0], 0.7), original.walk(5, [0.01, 0.01], [1, 0], 0.7));
+  const rotation = new Float64Array(m.positions.length);
+  for (let v = 0; v < m.positions.length / 3; v++) rotation.set([-m.positions[3 * v + 1], m.positions[3 * v], 0], 3 * v);
+  const opts = { spacing: 0.2 };
+  assert.deepEqual(traceStreamlines(copy, rotation, opts), traceStreamlines(original, rotation, opts));
+  assert.deepEqual(copy.angleDefects(), original.angleDefects());
+});

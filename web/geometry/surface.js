@@ -6,13 +6,15 @@ import { angleDefects, faceGeometry, halfEdgeNeighbours, vertexFaceMap, vertexNo
 export class Surface {
   // positions: Float64Array (3 per vertex), triangles: Int32Array (3 per face), edges: Int32Array (2 per edge,
   // the core's canonical order, lower index first).
-  constructor(positions, triangles, edges) {
+  // derived: the other arrays of arrays() when another thread already built them (fromArrays()).
+  constructor(positions, triangles, edges, derived = null) {
     this.positions = positions;
     this.triangles = triangles;
     this.edges = edges;
     this.nV = positions.length / 3;
     this.nF = triangles.length / 3;
     this.angleDefect = null;
+    if (derived) return void Object.assign(this, derived);
     this.#geometry();
     this.#adjacency();
   }
@@ -65,10 +67,8 @@ export class Surface {
 
   static ARRAYS = ['positions', 'triangles', 'edges', 'normals', 'areas', 'centres', 'frames', 'corners2d', 'neighbour', 'vertexFaceStart', 'vertexFaces', 'vertexNormals'];
 
-  static fromArrays(arrays) {
-    const surface = Object.create(Surface.prototype);
-    Object.assign(surface, arrays, { nV: arrays.positions.length / 3, nF: arrays.triangles.length / 3, angleDefect: null });
-    return surface;
+  static fromArrays({ positions, triangles, edges, ...derived }) {
+    return new Surface(positions, triangles, edges, derived);
   }
 
   // Buffers of arrays() to transfer rather than copy.
