@@ -41,7 +41,7 @@ std::vector<SurfacePoint> stripStroke(const SurfaceMesh& mesh, const MeshTopolog
     double farthest = -1;
     for (int c = 0; c < 3; ++c) {
       const int32_t e = t.edgeOf(f, c);
-      const int32_t g = t.edgeFaces[2 * e] == f ? t.edgeFaces[2 * e + 1] : t.edgeFaces[2 * e];
+      const int32_t g = t.otherFace(e, f);
       if (g < 0) continue;
       const double d = (centre(g) - origin).norm();
       if (d > farthest) farthest = d, next = g;
@@ -68,7 +68,7 @@ struct Samples {
   std::string factorKind;
 };
 
-void runRepeat(Designer& designer, const MeshTopology& topology, int r, bool metis, Samples& s) {
+void runRepeat(Designer& designer, int r, bool metis, Samples& s) {
   const int32_t nF = designer.mesh().numFaces();
   designer.clearConstraints();
   // A fresh factored system: the designer would otherwise reuse the previous repeat's ordering.
@@ -90,7 +90,7 @@ void runRepeat(Designer& designer, const MeshTopology& topology, int r, bool met
   s.update.push_back(designer.stats().updateMs);
   designer.remove(id);
   designer.solve();  // as the page does after every edit: the stroke starts from a solved design
-  const auto points = stripStroke(designer.mesh(), topology, (r * 104729 + 7) % nF, 50);
+  const auto points = stripStroke(designer.mesh(), designer.topology(), (r * 104729 + 7) % nF, 50);
   const int32_t refactorsBefore = designer.stats().precisionRefactors;
   const int64_t incrementalBefore = designer.stats().incrementalSolves;
   // Mouse-up to new one-form: the surface walk, the rank-k update, the right-hand side and the solve
@@ -139,11 +139,10 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
   Designer designer(loadMesh(meshPath));
   designer.setGamma(gamma);
   if (threads > 0) designer.setSolverThreads(threads);
-  const MeshTopology topology = buildTopology(designer.mesh());  // for the benchmark's stroke paths only
   std::vector<Samples> samples(orderings.size());
   // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
   for (int r = 0; r < repeat; ++r)
-    for (size_t o = 0; o < orderings.size(); ++o) runRepeat(designer, topology, r, orderings[o], samples[o]);
+    for (size_t o = 0; o < orderings.size(); ++o) runRepeat(designer, r, orderings[o], samples[o]);
   nlohmann::json out = {{"mesh", meshPath},
                         {"edges", designer.edgeVertices().size() / 2},
                         {"repeat", repeat},

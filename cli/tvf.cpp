@@ -168,8 +168,8 @@ int exportCommand(int argc, char** argv) {
   tvf::applyDesignDocument(designer, readDesign(designPath));
   designer.solve();
   const tvf::SurfaceMesh& mesh = designer.mesh();
-  const tvf::ExportAtlas atlas =
-      tvf::exportAtlasFor(mesh, options, !flowMapPath.empty() || (!glbPath.empty() && options.embedFlowMap));
+  const tvf::ExportAtlas atlas = tvf::exportAtlasFor(
+      mesh, designer.topology(), options, !flowMapPath.empty() || (!glbPath.empty() && options.embedFlowMap));
   if (atlas.generated) {
     std::cerr << "tvf: " << meshPath << ": " << atlas.reason << "; using a generated atlas"
               << (glbPath.empty()
@@ -178,7 +178,8 @@ int exportCommand(int argc, char** argv) {
               << "\n";
   }
   if (!flowMapPath.empty()) {
-    writeBytes(flowMapPath, tvf::exportFlowMapPng(mesh, atlas.cornerUVs, designer.oneForm(), options));
+    writeBytes(flowMapPath, tvf::exportFlowMapPng(mesh, designer.topology(), atlas.cornerUVs,
+                                                  designer.oneForm(), options));
   }
   if (!glbPath.empty()) {
     std::unique_ptr<tvf::GltfSource> source;
@@ -189,8 +190,9 @@ int exportCommand(int argc, char** argv) {
           tvf::loadGltfSource(bytes.data(), bytes.size(), format == tvf::MeshFormat::Glb,
                               parent.empty() ? "." : parent, meshPath));
     }
-    writeBytes(glbPath, tvf::exportFieldGlb(mesh, source.get(), atlas, designer.oneForm(),
-                                            tvf::designDocument(designer), options));
+    writeBytes(glbPath,
+               tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(), atlas,
+                                   designer.oneForm(), tvf::designDocument(designer), options));
   }
   return 0;
 }

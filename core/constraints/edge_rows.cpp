@@ -7,27 +7,9 @@
 namespace tvf {
 namespace {
 
-Eigen::Vector3d edgeVector(const SurfaceMesh& mesh, const MeshTopology& t, int32_t e) {
-  return vertexPosition(mesh, t.edgeVertices[2 * e + 1]) - vertexPosition(mesh, t.edgeVertices[2 * e]);
-}
-
 Eigen::Vector3d projectToFace(const SurfaceMesh& mesh, int32_t face, const Eigen::Vector3d& u) {
   const Eigen::Vector3d n = faceNormal(mesh, face);
   return u - n * n.dot(u);
-}
-
-// Gradients of the barycentric coordinates of a face: grad(lambda_k) = n x p_{k+1,k+2} / (2|t|).
-void barycentricGradients(const SurfaceMesh& mesh, int32_t face, Eigen::Vector3d grad[3]) {
-  Eigen::Vector3d p[3];
-  facePositions(mesh, face, p);
-  const Eigen::Vector3d cross = (p[1] - p[0]).cross(p[2] - p[0]);
-  const Eigen::Vector3d n = cross.normalized();
-  const double twiceArea = cross.norm();
-  for (int k = 0; k < 3; ++k) grad[k] = n.cross(p[(k + 2) % 3] - p[(k + 1) % 3]) / twiceArea;
-}
-
-int32_t otherFace(const MeshTopology& t, int32_t e, int32_t f) {
-  return t.edgeFaces[2 * e] == f ? t.edgeFaces[2 * e + 1] : t.edgeFaces[2 * e];
 }
 
 // Walks from a to b across faces along the direction to b re-projected in each face (a discrete straight
@@ -46,7 +28,7 @@ bool walkSegment(const SurfaceMesh& mesh, const MeshTopology& t, const SurfacePo
     const Eigen::Vector3d d = projectToFace(mesh, face, target - x);
     if (!(d.norm() > 1e-14 * (p[1] - p[0]).norm())) return false;
     Eigen::Vector3d grad[3];
-    barycentricGradients(mesh, face, grad);
+    barycentricGradients(p, grad);
     // Leave through the edge opposite the corner whose coordinate reaches zero first.
     int exitCorner = -1;
     double sMin = INFINITY;
@@ -64,7 +46,7 @@ bool walkSegment(const SurfaceMesh& mesh, const MeshTopology& t, const SurfacePo
     const int ci = (exitCorner + 1) % 3, cj = (exitCorner + 2) % 3;
     const int32_t e = t.edgeOf(face, ci);  // edge from corner ci to cj, opposite exitCorner
     rows.push_back({e, d.normalized().dot(edgeVector(mesh, t, e))});
-    const int32_t next = otherFace(t, e, face);
+    const int32_t next = t.otherFace(e, face);
     if (next < 0) return false;
     // Where the walk crosses, as a parameter along the edge from corner ci to cj.
     const double bi = std::max(0.0, bary[ci] + sMin * grad[ci].dot(d));

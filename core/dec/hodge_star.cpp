@@ -40,10 +40,10 @@ MeshGeometry computeMeshGeometry(const SurfaceMesh& mesh, const MeshTopology& t)
   for (int32_t f = 0; f < nF; ++f) {
     Eigen::Vector3d p[3];
     facePositions(mesh, f, p);
-    const Eigen::Vector3d cross = (p[1] - p[0]).cross(p[2] - p[0]);
-    const double area = 0.5 * cross.norm();
+    const FaceNormalArea face = faceNormalArea(p);
+    const double area = face.area;
     g.faceArea[f] = area;
-    for (int k = 0; k < 3; ++k) g.faceNormal[3 * f + k] = cross[k] / (2 * area);
+    for (int k = 0; k < 3; ++k) g.faceNormal[3 * f + k] = face.normal[k];
     g.star2[f] = 1.0 / area;
     g.totalArea += area;
     double* cot = &g.cornerCot[3 * f];
@@ -78,10 +78,7 @@ MeshGeometry computeMeshGeometry(const SurfaceMesh& mesh, const MeshTopology& t)
     }
   }
   double lengthSum = 0;
-  for (int32_t e = 0; e < t.numEdges; ++e)
-    lengthSum +=
-        (vertexPosition(mesh, t.edgeVertices[2 * e + 1]) - vertexPosition(mesh, t.edgeVertices[2 * e]))
-            .norm();
+  for (int32_t e = 0; e < t.numEdges; ++e) lengthSum += edgeVector(mesh, t, e).norm();
   g.meanEdgeLength = lengthSum / std::max(1, t.numEdges);
   return g;
 }

@@ -343,6 +343,12 @@ const SurfaceMesh& Designer::mesh() const {
 const std::vector<int32_t>& Designer::edgeVertices() const {
   return impl_->topology.edgeVertices;
 }
+const MeshTopology& Designer::topology() const {
+  return impl_->topology;
+}
+const MeshGeometry& Designer::geometry() const {
+  return impl_->geometry;
+}
 
 void Designer::assembleSystem(SparseMatrix& A, Eigen::VectorXd& b) {
   Impl& d = *impl_;

@@ -13,7 +13,9 @@
 #include "common/sparse_matrix.h"
 #include "constraints/constraint_spec.h"
 #include "dec/boundary_condition.h"
+#include "dec/hodge_star.h"
 #include "field/singularities.h"
+#include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
 
 namespace tvf {
@@ -105,6 +107,9 @@ class Designer {
 
   const SurfaceMesh& mesh() const;
   const std::vector<int32_t>& edgeVertices() const;  // 2 per edge, lower index first
+  // Derived from the mesh once, at construction; exports and benchmarks read them rather than derive again.
+  const MeshTopology& topology() const;
+  const MeshGeometry& geometry() const;
 
   struct Impl;
 

@@ -2,14 +2,18 @@
 // What `tvf export` and the page's export buttons produce, computed once here for both: the flow map PNG
 // and the GLB with the field (docs/export.md).
 #include <cstdint>
-#include <string>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
+#include "dec/hodge_star.h"
 #include "field/flow_map.h"
 #include "io/gltf_source.h"
+#include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
 
+// Every export takes the mesh with its topology (and the GLB its geometry) as the caller already holds them
+// (a Designer's, or the wasm exporter's, derived once per loaded mesh): none derives them again.
 namespace tvf {
 
 struct FieldExportOptions {
@@ -31,21 +35,25 @@ struct ExportAtlas {
   bool generated = false;
   std::string reason;  // why the model's own UVs were not used (empty when they were)
 };
-ExportAtlas exportAtlas(const SurfaceMesh& mesh, const FieldExportOptions& options);
+ExportAtlas exportAtlas(const SurfaceMesh& mesh, const MeshTopology& topology,
+                        const FieldExportOptions& options);
 // The atlas an export uses: exportAtlas() when it includes a flow map (a PNG, or a GLB with
 // options.embedFlowMap); otherwise only the model's own UVs when usable (a normal-mapped material's
 // anisotropyTexture indexes them), never a generated atlas, so the GLB keeps the model's layout.
-ExportAtlas exportAtlasFor(const SurfaceMesh& mesh, const FieldExportOptions& options, bool flowMap);
+ExportAtlas exportAtlasFor(const SurfaceMesh& mesh, const MeshTopology& topology,
+                           const FieldExportOptions& options, bool flowMap);
 
-std::vector<uint8_t> exportFlowMapPng(const SurfaceMesh& mesh, const std::vector<float>& cornerUVs,
-                                      const std::vector<double>& oneForm, const FieldExportOptions& options);
+std::vector<uint8_t> exportFlowMapPng(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                      const std::vector<float>& cornerUVs, const std::vector<double>& oneForm,
+                                      const FieldExportOptions& options);
 
 // source: the glTF the mesh was loaded from (kept as it was), or null. atlas: the UVs of the flow map and
 // the anisotropy texture; cornerUVs empty for none (then no flow map). A generated atlas makes the GLB a new
 // document over the welded mesh with those UVs as TEXCOORD_0 (the source's layout has no room for them).
 // oneForm: per edge, canonical orientation. design: stored in extras when not null (and options.embedDesign).
-std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const GltfSource* source, const ExportAtlas& atlas,
-                                    const std::vector<double>& oneForm,
+std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                    const MeshGeometry& geometry, const GltfSource* source,
+                                    const ExportAtlas& atlas, const std::vector<double>& oneForm,
                                     const nlohmann::json& design, const FieldExportOptions& options,
                                     const std::vector<uint8_t>& baseColorPng = {});
 

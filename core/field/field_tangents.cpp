@@ -21,25 +21,6 @@ Eigen::Vector3d anyOrthogonal(const Eigen::Vector3d& n) {
 
 }  // namespace
 
-std::vector<double> vertexNormals(const SurfaceMesh& mesh) {
-  std::vector<double> normals(3 * static_cast<size_t>(mesh.numVertices()), 0.0);
-  for (int32_t f = 0; f < mesh.numFaces(); ++f) {
-    Eigen::Vector3d p[3];
-    facePositions(mesh, f, p);
-    const Eigen::Vector3d areaNormal = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]);
-    for (int c = 0; c < 3; ++c) {
-      const int32_t v = mesh.triangles[3 * f + c];
-      for (int d = 0; d < 3; ++d) normals[3 * v + d] += areaNormal[d];
-    }
-  }
-  for (int32_t v = 0; v < mesh.numVertices(); ++v) {
-    const Eigen::Vector3d n = at(normals, v);
-    const double length = n.norm();
-    for (int d = 0; d < 3; ++d) normals[3 * v + d] = length > 0 ? n[d] / length : 0.0;
-  }
-  return normals;
-}
-
 std::vector<double> fieldTangents(const SurfaceMesh& mesh, const std::vector<double>& normals,
                                   const std::vector<double>& vertexField) {
   const int32_t n = mesh.numVertices();

@@ -7,11 +7,9 @@
 
 namespace tvf {
 
-// Unit vertex normals: face normals weighted by face area (0 for vertices no face uses).
-std::vector<double> vertexNormals(const SurfaceMesh& mesh);
-
-// 3 per vertex, unit and orthogonal to `normals`. Where the projected field vanishes (below 1e-9 of the
-// largest), the direction of the vertex's first edge stands in, so every tangent is a valid unit vector.
+// 3 per vertex, unit and orthogonal to `normals` (mesh/mesh_geometry.h's vertexNormals). Where the projected
+// field vanishes (below 1e-9 of the largest), the direction of the vertex's first edge stands in, so every
+// tangent is a valid unit vector.
 std::vector<double> fieldTangents(const SurfaceMesh& mesh, const std::vector<double>& normals,
                                   const std::vector<double>& vertexField);
 

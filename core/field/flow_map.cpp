@@ -49,7 +49,7 @@ FaceMaps faceMaps(const SurfaceMesh& mesh, int32_t f, const Eigen::Vector2d q[3]
   maps.toUV = D * (E.transpose() * E).inverse() * E.transpose();
   const Eigen::Vector2d d1 = q[1] - q[0], d2 = q[2] - q[0];
   const Eigen::Vector3d t = ((E.col(0) * d2.y() - E.col(1) * d1.y()) / twiceArea).normalized();
-  const Eigen::Vector3d b = E.col(0).cross(E.col(1)).normalized().cross(t) * (twiceArea > 0 ? 1.0 : -1.0);
+  const Eigen::Vector3d b = faceNormalArea(p).normal.cross(t) * (twiceArea > 0 ? 1.0 : -1.0);
   maps.toFrame << t.transpose(), b.transpose();
   return maps;
 }

@@ -46,8 +46,7 @@ std::vector<Singularity> findSingularities(const SurfaceMesh& mesh, const MeshTo
       const int c = cornerOf(mesh, f, v);
       // Edge (b -> v) of f leads to the next face counter-clockwise around v.
       const int32_t shared = t.edgeOf(f, (c + 2) % 3);
-      const int32_t next =
-          t.edgeFaces[2 * shared] == f ? t.edgeFaces[2 * shared + 1] : t.edgeFaces[2 * shared];
+      const int32_t next = t.otherFace(shared, f);
       const Eigen::Map<const Eigen::Vector3d> uf(&faceVectors[3 * f]), ug(&faceVectors[3 * next]);
       if (uf.norm() <= tiny || ug.norm() <= tiny) defined = false;
       const Eigen::Vector3d edge = vertexPosition(mesh, mesh.triangles[3 * f + (c + 2) % 3]) - pv;

@@ -20,18 +20,14 @@ void whitneyWeights(const double c[3], const double a[3], double w[3]) {
   w[2] = cjk * a[1] - cki * a[0];
 }
 
-// Eq. 4 in face f for the face's own 1-form values c.
+// Eq. 4 in face f for the face's own 1-form values c: p_jk^perp / 2|t| is grad(lambda_i), and so on.
 Eigen::Vector3d whitneyVectorOf(const SurfaceMesh& mesh, int32_t f, const double c[3], const double bary[3]) {
-  Eigen::Vector3d p[3];
+  Eigen::Vector3d p[3], grad[3];
   facePositions(mesh, f, p);
-  const Eigen::Vector3d cross = (p[1] - p[0]).cross(p[2] - p[0]);
-  const Eigen::Vector3d n = cross.normalized();
+  barycentricGradients(p, grad);
   double w[3];
   whitneyWeights(c, bary, w);
-  // Opposite edges: p_jk (corner 1 -> 2), p_ki (2 -> 0), p_ij (0 -> 1); perp = rotation by +pi/2 about n.
-  const Eigen::Vector3d sum =
-      w[0] * n.cross(p[2] - p[1]) + w[1] * n.cross(p[0] - p[2]) + w[2] * n.cross(p[1] - p[0]);
-  return sum / cross.norm();
+  return w[0] * grad[0] + w[1] * grad[1] + w[2] * grad[2];
 }
 
 }  // namespace
@@ -109,19 +105,18 @@ VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& t, 
     for (int d = 0; d < 3; ++d) a[d] += u[d];
   };
   for (int32_t f = 0; f < t.numFaces; ++f) {
-    Eigen::Vector3d p[3];
+    Eigen::Vector3d p[3], grad[3];
     facePositions(mesh, f, p);
-    const Eigen::Map<const Eigen::Vector3d> n(&g.faceNormal[3 * f]);
-    const Eigen::Vector3d perp[3] = {n.cross(p[1] - p[0]), n.cross(p[2] - p[1]), n.cross(p[0] - p[2])};
-    const double scale = 1 / (2 * g.faceArea[f]);
+    barycentricGradients(p, grad);
     for (int k = 0; k < 3; ++k) {
-      // Corner k: u = (c_k perp_{k+2} - c_{k+2} perp_k) / 2|t| (the summand of Eq. 5), c_k = sign * oneForm.
+      // Corner k: Eq. 4 at lambda_k = 1 is c_k grad(lambda_{k+1}) - c_{k+2} grad(lambda_{k+2}) (the summand
+      // of Eq. 5), c_k = sign * oneForm.
       const int32_t v = mesh.triangles[3 * f + k];
       if (!(weight[v] > 0)) continue;
-      const double w = scale * g.cornerArea[3 * f + k] / weight[v];
+      const double w = g.cornerArea[3 * f + k] / weight[v];
       const int in = (k + 2) % 3;
-      add(v, t.edgeOf(f, k), (w * t.signOf(f, k)) * perp[in]);
-      add(v, t.edgeOf(f, in), (-w * t.signOf(f, in)) * perp[k]);
+      add(v, t.edgeOf(f, k), (w * t.signOf(f, k)) * grad[(k + 1) % 3]);
+      add(v, t.edgeOf(f, in), (-w * t.signOf(f, in)) * grad[in]);
     }
   }
   return map;

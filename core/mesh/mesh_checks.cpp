@@ -46,11 +46,11 @@ void checkDegenerateFaces(const SurfaceMesh& mesh, std::vector<MeshProblem>& out
     const int32_t* t = &mesh.triangles[3 * f];
     bool degenerate = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
     if (!degenerate) {
-      const Eigen::Vector3d a = vertexPosition(mesh, t[0]), b = vertexPosition(mesh, t[1]),
-                            c = vertexPosition(mesh, t[2]);
-      const double scale = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-      const double doubleArea = (b - a).cross(c - a).norm();
-      degenerate = !(doubleArea > 1e-12 * scale);  // also catches NaN
+      Eigen::Vector3d p[3];
+      facePositions(mesh, f, p);
+      const double scale =
+          std::max({(p[1] - p[0]).squaredNorm(), (p[2] - p[1]).squaredNorm(), (p[0] - p[2]).squaredNorm()});
+      degenerate = !(2 * faceNormalArea(p).area > 1e-12 * scale);  // also catches NaN
     }
     if (degenerate && count++ == 0) first = f;
   }
@@ -97,7 +97,7 @@ void checkOrientation(const MeshTopology& t, std::vector<MeshProblem>& out) {
       for (int32_t c = 0; c < 3; ++c) {
         const int32_t e = t.edgeOf(f, c);
         if (t.edgeFaceCount[e] != 2) continue;
-        const int32_t g = t.edgeFaces[2 * e] == f ? t.edgeFaces[2 * e + 1] : t.edgeFaces[2 * e];
+        const int32_t g = t.otherFace(e, f);
         int sg = 0;
         for (int32_t k = 0; k < 3; ++k)
           if (t.edgeOf(g, k) == e) sg = t.signOf(g, k);

@@ -34,6 +34,10 @@ struct MeshTopology {
 
   int32_t edgeOf(int32_t face, int32_t corner) const { return faceEdges[3 * face + corner]; }
   int32_t signOf(int32_t face, int32_t corner) const { return faceEdgeSigns[3 * face + corner]; }
+  // The face across edge e from face f: -1 on a boundary edge; on a non-manifold edge only one of the others.
+  int32_t otherFace(int32_t e, int32_t f) const {
+    return edgeFaces[2 * e] == f ? edgeFaces[2 * e + 1] : edgeFaces[2 * e];
+  }
   int32_t eulerCharacteristic() const;
 };
 

@@ -5,7 +5,6 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -13,11 +12,10 @@
 #include <tuple>
 #include <utility>
 
+#include "mesh/mesh_geometry.h"
+
 namespace tvf {
 namespace {
-
-using Vec3 = std::array<double, 3>;
-using Vec2 = std::array<double, 2>;
 
 // Normal cone of a chart: a face joins while its normal is within ~66 degrees of the chart's mean normal.
 // LSCM flattens such a patch with little area distortion; wider cones leave more charts to split.
@@ -35,73 +33,42 @@ constexpr int kBisections = 6;
 // Quarter turns tried per chart (8 or 16 angles packed no better on the test models, at 2-4x the time).
 constexpr int kRotations = 4;
 
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-double norm(const Vec3& a) {
-  return std::sqrt(dot(a, a));
-}
-
-Vec3 vertex(const SurfaceMesh& mesh, int32_t v) {
-  return {mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]};
-}
-
+// What chart growth and flattening read per face and edge, over the mesh's own topology.
 struct FaceGeometry {
-  std::vector<Vec3> normals, centroids;
+  const MeshTopology& topology;
+  std::vector<Eigen::Vector3d> normals, centroids;
   std::vector<double> areas;
-  std::vector<double> edgeLength;  // per corner k: |v_k+1 - v_k|
+  std::vector<double> edgeLength;  // per edge
 };
 
-FaceGeometry faceGeometry(const SurfaceMesh& mesh) {
-  const int32_t nF = mesh.numFaces();
-  FaceGeometry g;
-  g.normals.resize(nF);
-  g.centroids.resize(nF);
-  g.areas.resize(nF);
-  g.edgeLength.resize(3 * static_cast<size_t>(nF));
-  for (int32_t f = 0; f < nF; ++f) {
-    const Vec3 a = vertex(mesh, mesh.triangles[3 * f]), b = vertex(mesh, mesh.triangles[3 * f + 1]),
-               c = vertex(mesh, mesh.triangles[3 * f + 2]);
-    const Vec3 n = cross(sub(b, a), sub(c, a));
-    const double l = norm(n);
-    g.areas[f] = l / 2;
-    g.normals[f] = l > 0 ? Vec3{n[0] / l, n[1] / l, n[2] / l} : Vec3{0, 0, 0};
-    for (int k = 0; k < 3; ++k) g.centroids[f][k] = (a[k] + b[k] + c[k]) / 3;
-    g.edgeLength[3 * f] = norm(sub(b, a)), g.edgeLength[3 * f + 1] = norm(sub(c, b));
-    g.edgeLength[3 * f + 2] = norm(sub(a, c));
+FaceGeometry faceGeometry(const SurfaceMesh& mesh, const MeshTopology& t) {
+  FaceGeometry g{t, {}, {}, {}, {}};
+  g.normals.resize(t.numFaces);
+  g.centroids.resize(t.numFaces);
+  g.areas.resize(t.numFaces);
+  for (int32_t f = 0; f < t.numFaces; ++f) {
+    Eigen::Vector3d p[3];
+    facePositions(mesh, f, p);
+    const FaceNormalArea face = faceNormalArea(p);
+    g.areas[f] = face.area;
+    g.normals[f] = face.normal;
+    g.centroids[f] = (p[0] + p[1] + p[2]) / 3;
   }
+  g.edgeLength.resize(t.numEdges);
+  for (int32_t e = 0; e < t.numEdges; ++e) g.edgeLength[e] = edgeVector(mesh, t, e).norm();
   return g;
 }
 
-// The face across each corner's edge (corner k: edge v_k -> v_k+1), or -1 at a boundary or non-manifold edge.
-std::vector<int32_t> faceAdjacency(const SurfaceMesh& mesh) {
-  const int32_t nF = mesh.numFaces();
-  std::vector<std::pair<uint64_t, int32_t>> halfEdges;
-  halfEdges.reserve(3 * static_cast<size_t>(nF));
-  for (int32_t f = 0; f < nF; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const uint64_t a = static_cast<uint32_t>(mesh.triangles[3 * f + k]);
-      const uint64_t b = static_cast<uint32_t>(mesh.triangles[3 * f + (k + 1) % 3]);
-      halfEdges.push_back({std::min(a, b) << 32 | std::max(a, b), 3 * f + k});
-    }
-  std::sort(halfEdges.begin(), halfEdges.end());
-  std::vector<int32_t> adj(3 * static_cast<size_t>(nF), -1);
-  for (size_t i = 0; i < halfEdges.size();) {
-    size_t j = i;
-    while (j < halfEdges.size() && halfEdges[j].first == halfEdges[i].first) ++j;
-    if (j - i == 2) {
-      adj[halfEdges[i].second] = halfEdges[i + 1].second / 3;
-      adj[halfEdges[i + 1].second] = halfEdges[i].second / 3;
-    }
-    i = j;
-  }
-  return adj;
+// The face across corner k's edge (v_k -> v_k+1) of face f, or -1 at a boundary or non-manifold edge: charts
+// grow only across edges where the surface is a surface.
+int32_t neighbour(const MeshTopology& t, int32_t f, int k) {
+  const int32_t e = t.edgeOf(f, k);
+  return t.edgeFaceCount[e] == 2 ? t.otherFace(e, f) : -1;
+}
+
+// Corner k's edge length.
+double cornerEdgeLength(const FaceGeometry& g, int32_t f, int k) {
+  return g.edgeLength[g.topology.edgeOf(f, k)];
 }
 
 // Chart borders shortened: a face moves to a neighbouring chart when it shares more edge length with that
@@ -109,14 +76,13 @@ std::vector<int32_t> faceAdjacency(const SurfaceMesh& mesh) {
 // distance order leaves ragged, saw-toothed borders on meshes of long thin triangles; every tooth costs
 // texels of border and gutter in the atlas and makes charts pack worse. Each move shortens the total border,
 // so the passes end. Charts are then split into connected pieces.
-void smoothChartBorders(const FaceGeometry& g, const std::vector<int32_t>& adj, std::vector<int32_t>& chartOf,
+void smoothChartBorders(const FaceGeometry& g, std::vector<int32_t>& chartOf,
                         std::vector<std::vector<int32_t>>& charts) {
+  const MeshTopology& t = g.topology;
   const int32_t nF = static_cast<int32_t>(chartOf.size());
-  const std::vector<double>& edgeLength = g.edgeLength;
-  std::vector<Vec3> normalSum(charts.size(), Vec3{0, 0, 0});
+  std::vector<Eigen::Vector3d> normalSum(charts.size(), Eigen::Vector3d::Zero());
   for (int32_t f = 0; f < nF; ++f)
-    if (chartOf[f] >= 0)
-      for (int k = 0; k < 3; ++k) normalSum[chartOf[f]][k] += g.normals[f][k] * g.areas[f];
+    if (chartOf[f] >= 0) normalSum[chartOf[f]] += g.normals[f] * g.areas[f];
   for (int pass = 0; pass < 16; ++pass) {
     int moves = 0;
     for (int32_t f = 0; f < nF; ++f) {
@@ -125,24 +91,23 @@ void smoothChartBorders(const FaceGeometry& g, const std::vector<int32_t>& adj, 
       int32_t nb[3];
       double shared[3] = {0, 0, 0}, ownShared = 0;
       for (int k = 0; k < 3; ++k) {
-        nb[k] = adj[3 * f + k] >= 0 ? chartOf[adj[3 * f + k]] : -1;
-        if (nb[k] == own) ownShared += edgeLength[3 * f + k];
+        const int32_t across = neighbour(t, f, k);
+        nb[k] = across >= 0 ? chartOf[across] : -1;
+        if (nb[k] == own) ownShared += cornerEdgeLength(g, f, k);
       }
       int best = -1;
       for (int k = 0; k < 3; ++k) {
         if (nb[k] < 0 || nb[k] == own) continue;
         for (int j = 0; j < 3; ++j)
-          if (nb[j] == nb[k]) shared[k] += edgeLength[3 * f + j];
+          if (nb[j] == nb[k]) shared[k] += cornerEdgeLength(g, f, j);
         if (shared[k] > ownShared * (1 + 1e-9) && (best < 0 || shared[k] > shared[best])) {
-          const Vec3& n = normalSum[nb[k]];
-          if (dot(g.normals[f], n) > kConeCos * norm(n)) best = k;
+          const Eigen::Vector3d& n = normalSum[nb[k]];
+          if (g.normals[f].dot(n) > kConeCos * n.norm()) best = k;
         }
       }
       if (best < 0) continue;
-      for (int k = 0; k < 3; ++k) {
-        normalSum[own][k] -= g.normals[f][k] * g.areas[f];
-        normalSum[nb[best]][k] += g.normals[f][k] * g.areas[f];
-      }
+      normalSum[own] -= g.normals[f] * g.areas[f];
+      normalSum[nb[best]] += g.normals[f] * g.areas[f];
       chartOf[f] = nb[best];
       ++moves;
     }
@@ -156,7 +121,7 @@ void smoothChartBorders(const FaceGeometry& g, const std::vector<int32_t>& adj, 
     seen[f] = 1;
     for (size_t h = 0; h < piece.size(); ++h)
       for (int k = 0; k < 3; ++k) {
-        const int32_t o = adj[3 * piece[h] + k];
+        const int32_t o = neighbour(t, piece[h], k);
         if (o >= 0 && !seen[o] && chartOf[o] == chartOf[f]) seen[o] = 1, piece.push_back(o);
       }
     pieces.push_back(std::move(piece));
@@ -166,7 +131,7 @@ void smoothChartBorders(const FaceGeometry& g, const std::vector<int32_t>& adj, 
 
 // Charts grown from seeds (largest faces first) in order of centroid distance from the seed, taking a face
 // while its normal stays within the cone around the chart's area-weighted mean normal.
-std::vector<std::vector<int32_t>> growCharts(const FaceGeometry& g, const std::vector<int32_t>& adj) {
+std::vector<std::vector<int32_t>> growCharts(const FaceGeometry& g) {
   const int32_t nF = static_cast<int32_t>(g.areas.size());
   std::vector<int32_t> chartOf(nF, -1), order;
   for (int32_t f = 0; f < nF; ++f)
@@ -178,7 +143,7 @@ std::vector<std::vector<int32_t>> growCharts(const FaceGeometry& g, const std::v
     if (chartOf[seed] >= 0) continue;
     const int32_t id = static_cast<int32_t>(charts.size());
     std::vector<int32_t> members;
-    Vec3 sum{0, 0, 0};
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     double area = 0;
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> front;
     front.push({0.0, seed});
@@ -187,26 +152,24 @@ std::vector<std::vector<int32_t>> growCharts(const FaceGeometry& g, const std::v
       front.pop();
       if (chartOf[f] >= 0) continue;
       if (!members.empty()) {
-        const double l = norm(sum);
-        if (dot(g.normals[f], {sum[0] / l, sum[1] / l, sum[2] / l}) < kConeCos) continue;
+        if (g.normals[f].dot(sum / sum.norm()) < kConeCos) continue;
         // The normals must not spread so far that their mean shrinks (a band around a tube would close).
-        Vec3 next = sum;
-        for (int k = 0; k < 3; ++k) next[k] += g.normals[f][k] * g.areas[f];
-        if (norm(next) < kMinMeanNormal * (area + g.areas[f])) continue;
+        const Eigen::Vector3d next = sum + g.normals[f] * g.areas[f];
+        if (next.norm() < kMinMeanNormal * (area + g.areas[f])) continue;
       }
       chartOf[f] = id;
       members.push_back(f);
       area += g.areas[f];
-      for (int k = 0; k < 3; ++k) sum[k] += g.normals[f][k] * g.areas[f];
+      sum += g.normals[f] * g.areas[f];
       for (int k = 0; k < 3; ++k) {
-        const int32_t h = adj[3 * f + k];
+        const int32_t h = neighbour(g.topology, f, k);
         if (h >= 0 && chartOf[h] < 0 && g.areas[h] > 0)
-          front.push({d + norm(sub(g.centroids[h], g.centroids[f])), h});
+          front.push({d + (g.centroids[h] - g.centroids[f]).norm(), h});
       }
     }
     charts.push_back(std::move(members));
   }
-  smoothChartBorders(g, adj, chartOf, charts);
+  smoothChartBorders(g, chartOf, charts);
   return charts;
 }
 
@@ -221,6 +184,16 @@ double signedArea2(const double* t) {
   return (t[2] - t[0]) * (t[5] - t[1]) - (t[4] - t[0]) * (t[3] - t[1]);
 }
 
+// The face laid flat in its own plane: corner 0 at the origin, corner 1 on the x axis, y = normal x x.
+void inPlaneCorners(const Eigen::Vector3d p[3], const Eigen::Vector3d& normal, Eigen::Vector2d q[3]) {
+  const Eigen::Vector3d e1 = p[1] - p[0];
+  const double l1 = e1.norm();
+  const Eigen::Vector3d x = e1 / l1, y = normal.cross(x);
+  q[0] = {0, 0};
+  q[1] = {l1, 0};
+  q[2] = {(p[2] - p[0]).dot(x), (p[2] - p[0]).dot(y)};
+}
+
 // Least-squares conformal map of the faces (Levy et al. 2002) with two far-apart vertices pinned. In each
 // face's own orthonormal frame the map's gradients must satisfy grad v = rot90(grad u) (Cauchy-Riemann,
 // orientation preserving); each face contributes those two residuals weighted by sqrt(area). Returns false if
@@ -233,28 +206,27 @@ bool lscm(const SurfaceMesh& mesh, const FaceGeometry& g, Chart& chart) {
       if (local[v] < 0) local[v] = static_cast<int32_t>(verts.size()), verts.push_back(v);
     }
   const int32_t n = static_cast<int32_t>(verts.size());
-  Vec3 centre{0, 0, 0};
-  for (int32_t v : verts)
-    for (int k = 0; k < 3; ++k) centre[k] += mesh.positions[3 * v + k] / n;
-  auto farthestFrom = [&](const Vec3& p) {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (int32_t v : verts) centre += vertexPosition(mesh, v) / static_cast<double>(n);
+  auto farthestFrom = [&](const Eigen::Vector3d& p) {
     int32_t best = 0;
     double bestD = -1;
     for (int32_t i = 0; i < n; ++i) {
-      const double d = norm(sub(vertex(mesh, verts[i]), p));
+      const double d = (vertexPosition(mesh, verts[i]) - p).norm();
       if (d > bestD) bestD = d, best = i;
     }
     return best;
   };
   const int32_t pinA = farthestFrom(centre);
-  const int32_t pinB = farthestFrom(vertex(mesh, verts[pinA]));
-  const double span = norm(sub(vertex(mesh, verts[pinA]), vertex(mesh, verts[pinB])));
+  const int32_t pinB = farthestFrom(vertexPosition(mesh, verts[pinA]));
+  const double span = (vertexPosition(mesh, verts[pinA]) - vertexPosition(mesh, verts[pinB])).norm();
   if (pinA == pinB || !(span > 0)) return false;
   // Unknowns: u of every free vertex, then v; pinned values move to the right-hand side.
   std::vector<int32_t> column(n, -1);
   int32_t nFree = 0;
   for (int32_t i = 0; i < n; ++i)
     if (i != pinA && i != pinB) column[i] = nFree++;
-  const std::array<Vec2, 2> pinned = {Vec2{0, 0}, Vec2{span, 0}};
+  const Eigen::Vector2d pinned[2] = {{0, 0}, {span, 0}};
   auto pinIndex = [&](int32_t i) { return i == pinA ? 0 : 1; };
 
   const int32_t rows = 2 * static_cast<int32_t>(chart.faces.size());
@@ -262,19 +234,16 @@ bool lscm(const SurfaceMesh& mesh, const FaceGeometry& g, Chart& chart) {
   Eigen::VectorXd constant = Eigen::VectorXd::Zero(rows);
   int32_t row = 0;
   for (int32_t f : chart.faces) {
-    const Vec3 p0 = vertex(mesh, mesh.triangles[3 * f]), p1 = vertex(mesh, mesh.triangles[3 * f + 1]),
-               p2 = vertex(mesh, mesh.triangles[3 * f + 2]);
-    const Vec3 e1 = sub(p1, p0);
-    const double l1 = norm(e1);
-    const Vec3 x = {e1[0] / l1, e1[1] / l1, e1[2] / l1};
-    const Vec3 y = cross(g.normals[f], x);
-    const std::array<Vec2, 3> q = {Vec2{0, 0}, Vec2{l1, 0}, Vec2{dot(sub(p2, p0), x), dot(sub(p2, p0), y)}};
+    Eigen::Vector3d p[3];
+    facePositions(mesh, f, p);
+    Eigen::Vector2d q[3];
+    inPlaneCorners(p, g.normals[f], q);
     const double w = 1.0 / (2.0 * std::sqrt(g.areas[f]));
     for (int j = 0; j < 3; ++j) {
       // Edge opposite corner j, counter-clockwise: grad u = sum_j u_j rot90(e_j) / 2A.
-      const Vec2& a = q[(j + 1) % 3];
-      const Vec2& b = q[(j + 2) % 3];
-      const double ex = b[0] - a[0], ey = b[1] - a[1];
+      const Eigen::Vector2d& a = q[(j + 1) % 3];
+      const Eigen::Vector2d& b = q[(j + 2) % 3];
+      const double ex = b.x() - a.x(), ey = b.y() - a.y();
       const int32_t i = local[mesh.triangles[3 * f + j]];
       // rot90(grad u) - grad v = (-sum u_j e_j - sum v_j rot90(e_j)) / 2A, rot90(e) = (-ey, ex).
       const double cu[2] = {-ex * w, -ey * w};
@@ -284,15 +253,15 @@ bool lscm(const SurfaceMesh& mesh, const FaceGeometry& g, Chart& chart) {
           triplets.emplace_back(row + r, column[i], cu[r]);
           triplets.emplace_back(row + r, nFree + column[i], cv[r]);
         } else {
-          const Vec2& pv = pinned[pinIndex(i)];
-          constant[row + r] += cu[r] * pv[0] + cv[r] * pv[1];
+          const Eigen::Vector2d& pv = pinned[pinIndex(i)];
+          constant[row + r] += cu[r] * pv.x() + cv[r] * pv.y();
         }
       }
     }
     row += 2;
   }
   chart.uv.assign(6 * chart.faces.size(), 0.0);
-  std::vector<Vec2> uvOf(n);
+  std::vector<Eigen::Vector2d> uvOf(n, Eigen::Vector2d::Zero());
   uvOf[pinA] = pinned[0];
   uvOf[pinB] = pinned[1];
   if (nFree > 0) {
@@ -309,9 +278,9 @@ bool lscm(const SurfaceMesh& mesh, const FaceGeometry& g, Chart& chart) {
   }
   for (size_t j = 0; j < chart.faces.size(); ++j)
     for (int k = 0; k < 3; ++k) {
-      const Vec2& p = uvOf[local[mesh.triangles[3 * chart.faces[j] + k]]];
-      chart.uv[6 * j + 2 * k] = p[0];
-      chart.uv[6 * j + 2 * k + 1] = p[1];
+      const Eigen::Vector2d& p = uvOf[local[mesh.triangles[3 * chart.faces[j] + k]]];
+      chart.uv[6 * j + 2 * k] = p.x();
+      chart.uv[6 * j + 2 * k + 1] = p.y();
     }
   return true;
 }
@@ -333,33 +302,28 @@ double weightedQuantile(std::vector<std::pair<double, double>> valueWeight, doub
 // Whether the flattened chart covers some point twice. Its faces keep their orientation (checked first), so
 // it does exactly when two of its boundary edges cross or touch away from a shared vertex. Boundary edges are
 // bucketed on a grid of about one edge length; exact for any resolution the chart is later drawn at.
-bool selfOverlaps(const SurfaceMesh& mesh, const Chart& chart) {
+bool selfOverlaps(const SurfaceMesh& mesh, const MeshTopology& t, const Chart& chart) {
   struct Edge {
     int32_t a, b;  // mesh vertices
-    Vec2 p, q;
+    Eigen::Vector2d p, q;
   };
-  std::vector<std::tuple<int32_t, int32_t, size_t>> all;  // (min vertex, max vertex, corner)
+  // The chart's boundary edges are those only one of its faces has.
+  std::vector<std::pair<int32_t, size_t>> all;  // (edge, corner)
   for (size_t j = 0; j < chart.faces.size(); ++j)
-    for (int k = 0; k < 3; ++k) {
-      const int32_t a = mesh.triangles[3 * chart.faces[j] + k],
-                    b = mesh.triangles[3 * chart.faces[j] + (k + 1) % 3];
-      all.emplace_back(std::min(a, b), std::max(a, b), 3 * j + k);
-    }
+    for (int k = 0; k < 3; ++k) all.emplace_back(t.edgeOf(chart.faces[j], k), 3 * j + k);
   std::sort(all.begin(), all.end());
   std::vector<Edge> edges;
   double length = 0;
   for (size_t i = 0; i < all.size();) {
     size_t j = i;
-    while (j < all.size() && std::get<0>(all[j]) == std::get<0>(all[i]) &&
-           std::get<1>(all[j]) == std::get<1>(all[i]))
-      ++j;
+    while (j < all.size() && all[j].first == all[i].first) ++j;
     if (j - i == 1) {
-      const size_t c = std::get<2>(all[i]), face = c / 3, k = c % 3, k1 = (k + 1) % 3;
+      const size_t c = all[i].second, face = c / 3, k = c % 3, k1 = (k + 1) % 3;
       Edge e{mesh.triangles[3 * chart.faces[face] + k],
              mesh.triangles[3 * chart.faces[face] + k1],
              {chart.uv[6 * face + 2 * k], chart.uv[6 * face + 2 * k + 1]},
              {chart.uv[6 * face + 2 * k1], chart.uv[6 * face + 2 * k1 + 1]}};
-      length += std::hypot(e.q[0] - e.p[0], e.q[1] - e.p[1]);
+      length += std::hypot(e.q.x() - e.p.x(), e.q.y() - e.p.y());
       edges.push_back(e);
     }
     i = j;
@@ -367,28 +331,29 @@ bool selfOverlaps(const SurfaceMesh& mesh, const Chart& chart) {
   if (edges.size() < 3) return false;
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   for (const Edge& e : edges)
-    for (const Vec2& v : {e.p, e.q})
-      x0 = std::min(x0, v[0]), y0 = std::min(y0, v[1]), x1 = std::max(x1, v[0]), y1 = std::max(y1, v[1]);
+    for (const Eigen::Vector2d& v : {e.p, e.q})
+      x0 = std::min(x0, v.x()), y0 = std::min(y0, v.y()), x1 = std::max(x1, v.x()), y1 = std::max(y1, v.y());
   const double cell = std::max({length / edges.size(), (x1 - x0) / 1024, (y1 - y0) / 1024, 1e-300});
   const int nx = static_cast<int>((x1 - x0) / cell) + 1, ny = static_cast<int>((y1 - y0) / cell) + 1;
   std::vector<std::vector<int32_t>> bucket(static_cast<size_t>(nx) * ny);
-  auto orient = [](const Vec2& a, const Vec2& b, const Vec2& c) {
-    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+  auto orient = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+    return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
   };
-  auto onSegment = [](const Vec2& a, const Vec2& b, const Vec2& c) {  // c collinear with a-b: between them?
-    return std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) && std::min(a[1], b[1]) <= c[1] &&
-           c[1] <= std::max(a[1], b[1]);
+  // c collinear with a-b: between them?
+  auto onSegment = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+    return std::min(a.x(), b.x()) <= c.x() && c.x() <= std::max(a.x(), b.x()) &&
+           std::min(a.y(), b.y()) <= c.y() && c.y() <= std::max(a.y(), b.y());
   };
   auto meet = [&](const Edge& e, const Edge& f) {
     const bool shareA = e.a == f.a || e.a == f.b, shareB = e.b == f.a || e.b == f.b;
     if (shareA && shareB) return false;
     if (shareA ||
         shareB) {  // adjacent along the boundary: they meet elsewhere only if collinear and folded back
-      const Vec2& s = shareA ? e.p : e.q;
-      const Vec2& eo = shareA ? e.q : e.p;
-      const Vec2& fo = (f.a == (shareA ? e.a : e.b)) ? f.q : f.p;
+      const Eigen::Vector2d& s = shareA ? e.p : e.q;
+      const Eigen::Vector2d& eo = shareA ? e.q : e.p;
+      const Eigen::Vector2d& fo = (f.a == (shareA ? e.a : e.b)) ? f.q : f.p;
       if (orient(s, eo, fo) != 0) return false;
-      return (eo[0] - s[0]) * (fo[0] - s[0]) + (eo[1] - s[1]) * (fo[1] - s[1]) > 0;
+      return (eo.x() - s.x()) * (fo.x() - s.x()) + (eo.y() - s.y()) * (fo.y() - s.y()) > 0;
     }
     const double d1 = orient(f.p, f.q, e.p), d2 = orient(f.p, f.q, e.q), d3 = orient(e.p, e.q, f.p),
                  d4 = orient(e.p, e.q, f.q);
@@ -398,10 +363,10 @@ bool selfOverlaps(const SurfaceMesh& mesh, const Chart& chart) {
   };
   for (size_t i = 0; i < edges.size(); ++i) {
     const Edge& e = edges[i];
-    const int cx0 = static_cast<int>((std::min(e.p[0], e.q[0]) - x0) / cell),
-              cx1 = static_cast<int>((std::max(e.p[0], e.q[0]) - x0) / cell);
-    const int cy0 = static_cast<int>((std::min(e.p[1], e.q[1]) - y0) / cell),
-              cy1 = static_cast<int>((std::max(e.p[1], e.q[1]) - y0) / cell);
+    const int cx0 = static_cast<int>((std::min(e.p.x(), e.q.x()) - x0) / cell),
+              cx1 = static_cast<int>((std::max(e.p.x(), e.q.x()) - x0) / cell);
+    const int cy0 = static_cast<int>((std::min(e.p.y(), e.q.y()) - y0) / cell),
+              cy1 = static_cast<int>((std::max(e.p.y(), e.q.y()) - y0) / cell);
     for (int cy = cy0; cy <= std::min(cy1, ny - 1); ++cy)
       for (int cx = cx0; cx <= std::min(cx1, nx - 1); ++cx) {
         std::vector<int32_t>& b = bucket[static_cast<size_t>(cy) * nx + cx];
@@ -424,20 +389,19 @@ bool chartAcceptable(const SurfaceMesh& mesh, const Chart& chart, const FaceGeom
   if (chart.faces.size() == 1) return true;
   const double p05 = weightedQuantile(density, 0.05), p95 = weightedQuantile(density, 0.95);
   if (!(p95 <= kMaxDensityRatio * p05)) return false;
-  return !selfOverlaps(mesh, chart);
+  return !selfOverlaps(mesh, g.topology, chart);
 }
 
 // The cut between the halves (mark 1 and 2) of a chart being split, shortened as smoothChartBorders does: a
 // plane cut through the faces is saw-toothed.
-void shortenCut(const std::vector<int32_t>& faces, const FaceGeometry& g, const std::vector<int32_t>& adj,
-                std::vector<int32_t>& mark) {
+void shortenCut(const std::vector<int32_t>& faces, const FaceGeometry& g, std::vector<int32_t>& mark) {
   for (int pass = 0; pass < 16; ++pass) {
     int moves = 0;
     for (int32_t f : faces) {
       double len[3] = {0, 0, 0};
       for (int k = 0; k < 3; ++k) {
-        const int32_t o = adj[3 * f + k];
-        if (o >= 0 && (mark[o] == 1 || mark[o] == 2)) len[mark[o]] += g.edgeLength[3 * f + k];
+        const int32_t o = neighbour(g.topology, f, k);
+        if (o >= 0 && (mark[o] == 1 || mark[o] == 2)) len[mark[o]] += cornerEdgeLength(g, f, k);
       }
       const int32_t other = 3 - mark[f];
       if (len[other] > len[mark[f]] * (1 + 1e-9)) mark[f] = other, ++moves;
@@ -449,26 +413,23 @@ void shortenCut(const std::vector<int32_t>& faces, const FaceGeometry& g, const 
 // Splits faces in two at the median of their centroids along the longest axis of their spread, then into
 // connected pieces.
 std::vector<std::vector<int32_t>> splitFaces(const std::vector<int32_t>& faces, const FaceGeometry& g,
-                                             const std::vector<int32_t>& adj, std::vector<int32_t>& mark) {
-  Vec3 mean{0, 0, 0};
-  for (int32_t f : faces)
-    for (int k = 0; k < 3; ++k) mean[k] += g.centroids[f][k] / faces.size();
+                                             std::vector<int32_t>& mark) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int32_t f : faces) mean += g.centroids[f] / static_cast<double>(faces.size());
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   for (int32_t f : faces) {
-    const Vec3 d = sub(g.centroids[f], mean);
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) cov(a, b) += d[a] * d[b];
+    const Eigen::Vector3d d = g.centroids[f] - mean;
+    cov += d * d.transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
   const Eigen::Vector3d axis = eig.eigenvectors().col(2);
   std::vector<std::pair<double, int32_t>> keyed;
-  for (int32_t f : faces)
-    keyed.push_back({axis.dot(Eigen::Vector3d(g.centroids[f][0], g.centroids[f][1], g.centroids[f][2])), f});
+  for (int32_t f : faces) keyed.push_back({axis.dot(g.centroids[f]), f});
   std::sort(keyed.begin(), keyed.end());
   const size_t half = keyed.size() / 2;
   // mark: 1 + half index for faces of this chart, 0 elsewhere (restored before returning).
   for (size_t i = 0; i < keyed.size(); ++i) mark[keyed[i].second] = i < half ? 1 : 2;
-  shortenCut(faces, g, adj, mark);
+  shortenCut(faces, g, mark);
   std::vector<std::vector<int32_t>> pieces;
   for (const auto& kf : keyed) {
     const int32_t seed = kf.second;
@@ -478,7 +439,7 @@ std::vector<std::vector<int32_t>> splitFaces(const std::vector<int32_t>& faces, 
     mark[seed] = -side;
     for (size_t h = 0; h < piece.size(); ++h)
       for (int k = 0; k < 3; ++k) {
-        const int32_t o = adj[3 * piece[h] + k];
+        const int32_t o = neighbour(g.topology, piece[h], k);
         if (o >= 0 && mark[o] == side) mark[o] = -side, piece.push_back(o);
       }
     pieces.push_back(std::move(piece));
@@ -488,16 +449,18 @@ std::vector<std::vector<int32_t>> splitFaces(const std::vector<int32_t>& faces, 
 }
 
 // Convex hull of points (x, y pairs), counter-clockwise (Andrew's monotone chain).
-std::vector<Vec2> convexHull(const std::vector<double>& xy) {
-  std::vector<Vec2> p;
+std::vector<Eigen::Vector2d> convexHull(const std::vector<double>& xy) {
+  std::vector<Eigen::Vector2d> p;
   for (size_t i = 0; i + 1 < xy.size(); i += 2) p.push_back({xy[i], xy[i + 1]});
-  std::sort(p.begin(), p.end());
+  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (!(b.x() < a.x()) && a.y() < b.y());
+  });
   p.erase(std::unique(p.begin(), p.end()), p.end());
   if (p.size() < 3) return p;
-  auto turn = [](const Vec2& o, const Vec2& a, const Vec2& b) {
-    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
   };
-  std::vector<Vec2> h(2 * p.size());
+  std::vector<Eigen::Vector2d> h(2 * p.size());
   size_t k = 0;
   for (size_t i = 0; i < p.size(); ++i) {
     while (k >= 2 && turn(h[k - 2], h[k - 1], p[i]) <= 0) --k;
@@ -513,16 +476,16 @@ std::vector<Vec2> convexHull(const std::vector<double>& xy) {
 
 // The rotation angle that makes the chart's bounding rectangle smallest (one hull edge is always on it).
 double minimumRectangleAngle(const std::vector<double>& xy) {
-  const std::vector<Vec2> hull = convexHull(xy);
+  const std::vector<Eigen::Vector2d> hull = convexHull(xy);
   double bestArea = 1e300, bestAngle = 0;
   for (size_t i = 0; i < hull.size(); ++i) {
-    const Vec2& a = hull[i];
-    const Vec2& b = hull[(i + 1) % hull.size()];
-    const double angle = std::atan2(b[1] - a[1], b[0] - a[0]);
+    const Eigen::Vector2d& a = hull[i];
+    const Eigen::Vector2d& b = hull[(i + 1) % hull.size()];
+    const double angle = std::atan2(b.y() - a.y(), b.x() - a.x());
     const double c = std::cos(angle), s = std::sin(angle);
     double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (const Vec2& p : hull) {
-      const double x = c * p[0] + s * p[1], y = -s * p[0] + c * p[1];
+    for (const Eigen::Vector2d& p : hull) {
+      const double x = c * p.x() + s * p.y(), y = -s * p.x() + c * p.y();
       x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
     }
     if ((x1 - x0) * (y1 - y0) < bestArea) bestArea = (x1 - x0) * (y1 - y0), bestAngle = angle;
@@ -555,8 +518,7 @@ void normalizeChart(Chart& chart, const FaceGeometry& g) {
 
 // Flat charts covering every face of positive area: grown, flattened, split until acceptable.
 std::vector<Chart> makeCharts(const SurfaceMesh& mesh, const FaceGeometry& g, int& splits) {
-  const std::vector<int32_t> adj = faceAdjacency(mesh);
-  std::vector<std::vector<int32_t>> pending = growCharts(g, adj);
+  std::vector<std::vector<int32_t>> pending = growCharts(g);
   std::vector<int32_t> mark(mesh.numFaces(), 0);
   std::vector<Chart> charts;
   splits = 0;
@@ -572,18 +534,17 @@ std::vector<Chart> makeCharts(const SurfaceMesh& mesh, const FaceGeometry& g, in
     if (chart.faces.size() == 1) {
       // A single face whose map failed (a sliver): its own shape in its plane.
       const int32_t f = chart.faces[0];
-      const Vec3 p0 = vertex(mesh, mesh.triangles[3 * f]), p1 = vertex(mesh, mesh.triangles[3 * f + 1]),
-                 p2 = vertex(mesh, mesh.triangles[3 * f + 2]);
-      const Vec3 e = sub(p1, p0);
-      const double l = norm(e);
-      const Vec3 x = {e[0] / l, e[1] / l, e[2] / l}, y = cross(g.normals[f], x);
-      chart.uv = {0, 0, l, 0, dot(sub(p2, p0), x), dot(sub(p2, p0), y)};
+      Eigen::Vector3d p[3];
+      facePositions(mesh, f, p);
+      Eigen::Vector2d q[3];
+      inPlaneCorners(p, g.normals[f], q);
+      chart.uv = {q[0].x(), q[0].y(), q[1].x(), q[1].y(), q[2].x(), q[2].y()};
       normalizeChart(chart, g);
       charts.push_back(std::move(chart));
       continue;
     }
     ++splits;
-    for (auto& piece : splitFaces(chart.faces, g, adj, mark)) pending.push_back(std::move(piece));
+    for (auto& piece : splitFaces(chart.faces, g, mark)) pending.push_back(std::move(piece));
   }
   std::stable_sort(charts.begin(), charts.end(),
                    [](const Chart& a, const Chart& b) { return a.surfaceArea > b.surfaceArea; });
@@ -772,20 +733,26 @@ void checkInput(const SurfaceMesh& mesh) {
 }
 
 // Length of the edges between two charts over the length of all edges (each edge counted once).
-double seamShare(const SurfaceMesh& mesh, const std::vector<int32_t>& faceChart) {
-  if (faceChart.size() != static_cast<size_t>(mesh.numFaces())) return 0;
-  const std::vector<int32_t> adj = faceAdjacency(mesh);
+double seamShare(const FaceGeometry& g, const std::vector<int32_t>& faceChart) {
+  const int32_t nF = g.topology.numFaces;
+  if (faceChart.size() != static_cast<size_t>(nF)) return 0;
   double seam = 0, total = 0;
-  for (int32_t f = 0; f < mesh.numFaces(); ++f)
+  for (int32_t f = 0; f < nF; ++f)
     for (int k = 0; k < 3; ++k) {
-      const int32_t o = adj[3 * f + k];
+      const int32_t o = neighbour(g.topology, f, k);
       if (o >= 0 && o < f) continue;  // the other side counts it
-      const double l = norm(
-          sub(vertex(mesh, mesh.triangles[3 * f + (k + 1) % 3]), vertex(mesh, mesh.triangles[3 * f + k])));
+      const double l = cornerEdgeLength(g, f, k);
       total += l;
       if (o >= 0 && faceChart[o] != faceChart[f]) seam += l;
     }
   return total > 0 ? seam / total : 0;
+}
+
+void checkOptions(int resolution, int gutterTexels) {
+  if (resolution < 16 || resolution > 8192)
+    throw InputError("atlas: resolution must be in [16, 8192] (got " + std::to_string(resolution) + ")");
+  if (gutterTexels < 0 || gutterTexels > 16)
+    throw InputError("atlas: gutter must be in [0, 16] texels (got " + std::to_string(gutterTexels) + ")");
 }
 
 }  // namespace
@@ -822,8 +789,10 @@ std::vector<uint16_t> rasterCoverage(const std::vector<float>& cornerUVs, int n)
   return count;
 }
 
-AtlasMeasures measureAtlas(const SurfaceMesh& mesh, const std::vector<float>& cornerUVs,
-                           const std::vector<int32_t>& faceChart, int resolution) {
+namespace {
+
+AtlasMeasures measure(const SurfaceMesh& mesh, const FaceGeometry& g, const std::vector<float>& cornerUVs,
+                      const std::vector<int32_t>& faceChart, int resolution) {
   AtlasMeasures m;
   m.resolution = resolution;
   const std::vector<uint16_t> count = rasterCoverage(cornerUVs, resolution);
@@ -831,7 +800,6 @@ AtlasMeasures measureAtlas(const SurfaceMesh& mesh, const std::vector<float>& co
   for (uint16_t c : count) covered += c > 0, twice += c > 1;
   m.coverage = static_cast<double>(covered) / count.size();
   m.overlap = covered ? static_cast<double>(twice) / covered : 0;
-  const FaceGeometry g = faceGeometry(mesh);
   const int32_t nF = mesh.numFaces();
   // Majority orientation per chart (or over everything).
   std::vector<double> orientation;
@@ -865,33 +833,42 @@ AtlasMeasures measureAtlas(const SurfaceMesh& mesh, const std::vector<float>& co
     if (uvArea[f] * orientation[c] < 0) ++m.flippedFaces;
     m.densityMin = std::min(m.densityMin, d), m.densityMax = std::max(m.densityMax, d);
     // Sander's L2 stretch of the texture-to-surface map, texel lengths over the median density.
-    const Vec3 p0 = vertex(mesh, mesh.triangles[3 * f]), p1 = vertex(mesh, mesh.triangles[3 * f + 1]),
-               p2 = vertex(mesh, mesh.triangles[3 * f + 2]);
+    Eigen::Vector3d p[3];
+    facePositions(mesh, f, p);
     double s[6];
     for (int k = 0; k < 6; ++k) s[k] = static_cast<double>(cornerUVs[6 * f + k]) * resolution / median;
     const double A2 = signedArea2(s);
-    Vec3 Ss, St;
-    for (int k = 0; k < 3; ++k) {
-      Ss[k] = (p0[k] * (s[3] - s[5]) + p1[k] * (s[5] - s[1]) + p2[k] * (s[1] - s[3])) / A2;
-      St[k] = (p0[k] * (s[4] - s[2]) + p1[k] * (s[0] - s[4]) + p2[k] * (s[2] - s[0])) / A2;
-    }
-    stretch2 += g.areas[f] * (dot(Ss, Ss) + dot(St, St)) / 2;
+    const Eigen::Vector3d Ss = (p[0] * (s[3] - s[5]) + p[1] * (s[5] - s[1]) + p[2] * (s[1] - s[3])) / A2;
+    const Eigen::Vector3d St = (p[0] * (s[4] - s[2]) + p[1] * (s[0] - s[4]) + p[2] * (s[2] - s[0])) / A2;
+    stretch2 += g.areas[f] * (Ss.squaredNorm() + St.squaredNorm()) / 2;
     area += g.areas[f];
   }
   m.stretchL2 = area > 0 ? std::sqrt(stretch2 / area) : 0;
-  m.seamShare = seamShare(mesh, faceChart);
+  m.seamShare = seamShare(g, faceChart);
   if (m.densityMax == 0) m.densityMin = 0;
   return m;
 }
 
+}  // namespace
+
+AtlasMeasures measureAtlas(const SurfaceMesh& mesh, const MeshTopology& topology,
+                           const std::vector<float>& cornerUVs, const std::vector<int32_t>& faceChart,
+                           int resolution) {
+  return measure(mesh, faceGeometry(mesh, topology), cornerUVs, faceChart, resolution);
+}
+
 TextureAtlas generateAtlas(const SurfaceMesh& mesh, int resolution, int gutterTexels) {
-  const auto t0 = std::chrono::steady_clock::now();
-  if (resolution < 16 || resolution > 8192)
-    throw InputError("atlas: resolution must be in [16, 8192] (got " + std::to_string(resolution) + ")");
-  if (gutterTexels < 0 || gutterTexels > 16)
-    throw InputError("atlas: gutter must be in [0, 16] texels (got " + std::to_string(gutterTexels) + ")");
+  checkOptions(resolution, gutterTexels);
   checkInput(mesh);
-  const FaceGeometry g = faceGeometry(mesh);
+  return generateAtlas(mesh, buildTopology(mesh), resolution, gutterTexels);
+}
+
+TextureAtlas generateAtlas(const SurfaceMesh& mesh, const MeshTopology& topology, int resolution,
+                           int gutterTexels) {
+  const auto t0 = std::chrono::steady_clock::now();
+  checkOptions(resolution, gutterTexels);
+  checkInput(mesh);
+  const FaceGeometry g = faceGeometry(mesh, topology);
   TextureAtlas atlas;
   atlas.resolution = resolution;
   atlas.gutter = gutterTexels;
@@ -946,7 +923,7 @@ TextureAtlas generateAtlas(const SurfaceMesh& mesh, int resolution, int gutterTe
       }
     }
   }
-  atlas.measures = measureAtlas(mesh, atlas.cornerUVs, atlas.faceChart, resolution);
+  atlas.measures = measure(mesh, g, atlas.cornerUVs, atlas.faceChart, resolution);
   atlas.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return atlas;

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
 
 namespace tvf {
@@ -51,7 +52,11 @@ struct TextureAtlas {
 };
 
 // Throws InputError for an empty mesh, a bad index, a resolution outside [16, 8192] or a gutter outside [0,
-// 16].
+// 16]. Charts grow across the edges of `topology`, the mesh's own (buildTopology), passed in where the caller
+// already holds it.
+TextureAtlas generateAtlas(const SurfaceMesh& mesh, const MeshTopology& topology, int resolution,
+                           int gutterTexels);
+// The same for a mesh that comes without its topology (checked first, then built here).
 TextureAtlas generateAtlas(const SurfaceMesh& mesh, int resolution, int gutterTexels);
 
 // Per texel centre of an n x n grid, how many triangles cover it (half-open edge rule, so a centre on an edge
@@ -59,8 +64,9 @@ TextureAtlas generateAtlas(const SurfaceMesh& mesh, int resolution, int gutterTe
 std::vector<uint16_t> rasterCoverage(const std::vector<float>& cornerUVs, int n);
 
 // Measures an atlas; faceChart may be empty (then orientation is judged against the whole atlas).
-AtlasMeasures measureAtlas(const SurfaceMesh& mesh, const std::vector<float>& cornerUVs,
-                           const std::vector<int32_t>& faceChart, int resolution);
+AtlasMeasures measureAtlas(const SurfaceMesh& mesh, const MeshTopology& topology,
+                           const std::vector<float>& cornerUVs, const std::vector<int32_t>& faceChart,
+                           int resolution);
 
 struct AtlasCheck {
   bool usable = false;

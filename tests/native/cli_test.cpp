@@ -87,7 +87,7 @@ TEST(Cli, InfoListsProblemsOfAnUnusableMesh) {
 }
 
 TEST(Cli, DesignWritesTheFieldDocument) {
-  const fs::path mesh = writeOff("cli_sphere.off", tvf::testing::icosphere(2));
+  const fs::path mesh = writeOff("cli_sphere.off", tvf::icosphere(2));
   const fs::path design = writeText("cli_design.json", R"({"boundary": "free", "gamma": 0, "constraints": [
       {"type": "source", "vertex": 0, "strength": 1}, {"type": "sink", "vertex": 3, "strength": 1}]})");
   const fs::path out = fs::temp_directory_path() / (std::to_string(getpid()) + "_cli_field.json");
@@ -113,7 +113,7 @@ TEST(Cli, BadInputExitsTwoWithAReason) {
   EXPECT_EQ(
       runTvf("info " + writeText("cli_nofaces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n").string()).exitCode,
       2);
-  const fs::path mesh = writeOff("cli_sphere.off", tvf::testing::icosphere(1));
+  const fs::path mesh = writeOff("cli_sphere.off", tvf::icosphere(1));
   const CliRun badJson =
       runTvf("design " + mesh.string() + " " + writeText("cli_bad.json", "{ nope").string());
   EXPECT_EQ(badJson.exitCode, 2);
@@ -155,10 +155,10 @@ TEST(Cli, BenchCompareReportsBothOrderings) {
 }
 
 TEST(Cli, DesignForAnotherMeshIsRefusedUnlessOverridden) {
-  const fs::path sphere = writeOff("cli_fp_sphere.off", tvf::testing::icosphere(2));
+  const fs::path sphere = writeOff("cli_fp_sphere.off", tvf::icosphere(2));
   const fs::path torus = writeOff("cli_fp_torus.off", tvf::testing::torus(12, 8, 2, 0.7));
   // A design saved against the sphere: what `tvf design` reads back from its own fingerprint.
-  tvf::Designer d(tvf::testing::icosphere(2));
+  tvf::Designer d(tvf::icosphere(2));
   d.addVortex(3, 1.0);
   const fs::path design = writeText("cli_fp_design.json", tvf::designDocument(d).dump());
   EXPECT_EQ(runTvf("design " + sphere.string() + " " + design.string()).exitCode, 0);

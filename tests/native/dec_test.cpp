@@ -40,9 +40,7 @@ SparseMatrix plainLaplacian(const Built& b) {
 
 Eigen::VectorXd sampleConstantField(const Built& b, const Eigen::Vector3d& u) {
   Eigen::VectorXd c(b.topology.numEdges);
-  for (int e = 0; e < b.topology.numEdges; ++e)
-    c[e] = u.dot(vertexPosition(b.mesh, b.topology.edgeVertices[2 * e + 1]) -
-                 vertexPosition(b.mesh, b.topology.edgeVertices[2 * e]));
+  for (int e = 0; e < b.topology.numEdges; ++e) c[e] = u.dot(edgeVector(b.mesh, b.topology, e));
   return c;
 }
 

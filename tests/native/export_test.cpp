@@ -97,9 +97,7 @@ std::vector<float> cornerUVsOf(const SurfaceMesh& m, Eigen::Vector2d (*uv)(doubl
 std::vector<double> constantOneForm(const SurfaceMesh& m, const tvf::MeshTopology& t,
                                     const Eigen::Vector3d& u) {
   std::vector<double> c(t.numEdges);
-  for (int e = 0; e < t.numEdges; ++e)
-    c[e] = u.dot(tvf::vertexPosition(m, t.edgeVertices[2 * e + 1]) -
-                 tvf::vertexPosition(m, t.edgeVertices[2 * e]));
+  for (int e = 0; e < t.numEdges; ++e) c[e] = u.dot(tvf::edgeVector(m, t, e));
   return c;
 }
 
@@ -121,7 +119,7 @@ TEST(FlowMap, FlatSquareWithAConstantFieldGivesExactTexels) {
       options.bits = bits;
       options.convention = convention;
       options.gutterTexels = 3;
-      const Image image = decodePng(tvf::exportFlowMapPng(m, uvs, c, options));
+      const Image image = decodePng(tvf::exportFlowMapPng(m, t, uvs, c, options));
       ASSERT_EQ(image.width, n);
       ASSERT_EQ(image.bits, bits);
       const double top = bits == 8 ? 255 : 65535;

@@ -23,8 +23,7 @@ TEST(Reconstruction, ConstantFieldIsReproducedExactlyEverywhereInEveryTriangle) 
   const MeshTopology t = buildTopology(m);
   const Eigen::Vector3d u(0.4, -1.3, 0);
   std::vector<double> c(t.numEdges);
-  for (int e = 0; e < t.numEdges; ++e)
-    c[e] = u.dot(vertexPosition(m, t.edgeVertices[2 * e + 1]) - vertexPosition(m, t.edgeVertices[2 * e]));
+  for (int e = 0; e < t.numEdges; ++e) c[e] = u.dot(edgeVector(m, t, e));
   const double samples[4][3] = {{1, 0, 0}, {0.2, 0.5, 0.3}, {1.0 / 3, 1.0 / 3, 1.0 / 3}, {0, 0.5, 0.5}};
   for (int f = 0; f < t.numFaces; ++f)
     for (const auto& b : samples) EXPECT_LT((whitneyVector(m, t, c.data(), f, b) - u).norm(), 1e-13);
@@ -98,8 +97,7 @@ TEST(Reconstruction, TextureDomainVersionIsTheOneFormsDualInUVSpace) {
   const MeshTopology t = buildTopology(m);
   const Eigen::Vector3d u(1.0, 0.5, 0);
   std::vector<double> c(t.numEdges);
-  for (int e = 0; e < t.numEdges; ++e)
-    c[e] = u.dot(vertexPosition(m, t.edgeVertices[2 * e + 1]) - vertexPosition(m, t.edgeVertices[2 * e]));
+  for (int e = 0; e < t.numEdges; ++e) c[e] = u.dot(edgeVector(m, t, e));
   const Eigen::Vector2d expected = J.inverse().transpose() * u.head<2>();
   const double centre[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
   for (int f = 0; f < t.numFaces; ++f)

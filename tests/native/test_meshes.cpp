@@ -73,42 +73,6 @@ SurfaceMesh torus(int n, int m, double R, double r) {
   return t;
 }
 
-SurfaceMesh icosphere(int subdivisions) {
-  const double g = (1 + std::sqrt(5.0)) / 2;
-  SurfaceMesh m;
-  const double v[12][3] = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
-                           {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
-  for (const auto& p : v) addVertex(m, p[0], p[1], p[2]);
-  m.triangles = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
-                 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
-                 6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
-  for (int s = 0; s < subdivisions; ++s) {
-    std::map<std::pair<int, int>, int> midpoint;
-    const auto mid = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      const auto it = midpoint.find(key);
-      if (it != midpoint.end()) return it->second;
-      addVertex(m, 0.5 * (m.positions[3 * a] + m.positions[3 * b]),
-                0.5 * (m.positions[3 * a + 1] + m.positions[3 * b + 1]),
-                0.5 * (m.positions[3 * a + 2] + m.positions[3 * b + 2]));
-      return midpoint[key] = m.numVertices() - 1;
-    };
-    std::vector<int32_t> next;
-    for (int f = 0; f < m.numFaces(); ++f) {
-      const int a = m.triangles[3 * f], b = m.triangles[3 * f + 1], c = m.triangles[3 * f + 2];
-      const int ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
-      next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
-    }
-    m.triangles = next;
-  }
-  for (int k = 0; k < m.numVertices(); ++k) {
-    double* p = &m.positions[3 * k];
-    const double len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-    for (int d = 0; d < 3; ++d) p[d] /= len;
-  }
-  return m;
-}
-
 SurfaceMesh holedPlate(int width, int depth, const std::vector<std::pair<int, int>>& holes, int k) {
   const auto solid = [&](int x, int y) {
     if (x < 0 || y < 0 || x >= width || y >= depth) return false;

@@ -2,6 +2,7 @@
 // Meshes made in code, with known topology and geometry, for the native tests.
 #include <vector>
 
+#include "mesh/icosphere.h"  // icosphere(): core's, the one the wasm warm-up designs on
 #include "mesh/surface_mesh.h"
 
 namespace tvf::testing {
@@ -13,8 +14,6 @@ SurfaceMesh flatGrid(int n, double size = 1.0, bool alternate = false);
 SurfaceMesh flatAnnulus(int rings, int sectors, double r0, double r1);
 // Torus of revolution, valence 6 everywhere.
 SurfaceMesh torus(int n, int m, double R, double r);
-// Subdivided icosahedron projected to the unit sphere.
-SurfaceMesh icosphere(int subdivisions);
 // Surface of a one-voxel-thick plate of width x depth cells with a hole at every listed cell, each unit face
 // split into k x k quads: genus = number of holes.
 SurfaceMesh holedPlate(int width, int depth, const std::vector<std::pair<int, int>>& holes, int k);
