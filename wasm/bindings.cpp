@@ -42,6 +42,7 @@
 #include "design/designer.h"
 #include "design/mesh_info.h"
 #include "io/mesh_io.h"
+#include "mesh/icosphere.h"
 
 namespace {
 
@@ -231,6 +232,8 @@ class DesignerBinding {
   val faceVectors() const { return designer_ ? view(designer_->faceVectors()) : view(emptyD_); }
   val vertexVectors() const { return designer_ ? view(designer_->vertexVectors()) : view(emptyD_); }
   val cornerUVs() const { return designer_ ? view(designer_->mesh().cornerUVs) : view(emptyF_); }
+  // glTF: the welded vertex of every source vertex (the exporter keeps the model's layout with it).
+  val sourceToWelded() const { return designer_ ? view(designer_->mesh().sourceToWelded) : view(emptyI_); }
 
   std::string singularitiesJson() const {
     return json([&] {
@@ -368,42 +371,6 @@ class DesignerBinding {
 };
 
 // ------------------------------------------------------------------------------------------ warm-up
-// An icosphere with `levels` 1-to-4 subdivisions (levels = 4: 2562 vertices, 7680 edges).
-tvf::SurfaceMesh icosphere(int levels) {
-  tvf::SurfaceMesh m;
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  m.positions = {-1, t, 0, 1, t, 0, -1, -t, 0, 1, -t, 0, 0, -1, t, 0, 1, t,
-                 0, -1, -t, 0, 1, -t, t, 0, -1, t, 0, 1, -t, 0, -1, -t, 0, 1};
-  m.triangles = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
-                 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<int32_t, int32_t>, int32_t> mid;
-    const auto midpoint = [&](int32_t a, int32_t b) {
-      const auto key = std::minmax(a, b);
-      const auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      const int32_t v = m.numVertices();
-      for (int c = 0; c < 3; ++c) m.positions.push_back(0.5 * (m.positions[3 * a + c] + m.positions[3 * b + c]));
-      mid.emplace(key, v);
-      return v;
-    };
-    std::vector<int32_t> next;
-    next.reserve(4 * m.triangles.size());
-    for (std::size_t f = 0; f < m.triangles.size(); f += 3) {
-      const int32_t a = m.triangles[f], b = m.triangles[f + 1], c = m.triangles[f + 2];
-      const int32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
-      next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
-    }
-    m.triangles = std::move(next);
-  }
-  for (int32_t v = 0; v < m.numVertices(); ++v) {
-    double* p = &m.positions[3 * v];
-    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-    for (int c = 0; c < 3; ++c) p[c] /= r;
-  }
-  return m;
-}
-
 // Runs the calls a design session makes (factor, solve with sources, edge/stroke updates and downdates,
 // read-outs) `rounds` times on an icosphere, so that V8 compiles their hot functions with its optimizing tier
 // before the user's first large factorization. Returns the milliseconds spent, or -1 on failure.
@@ -411,7 +378,7 @@ double warmUp(int levels, int rounds) {
   const auto start = std::chrono::steady_clock::now();
   std::string error;
   const bool ok = attempt(error, [&] {
-    tvf::Designer d(icosphere(std::max(0, std::min(levels, 6))));
+    tvf::Designer d(tvf::icosphere(std::max(0, std::min(levels, 6))));
     const tvf::SurfaceMesh& m = d.mesh();
     for (int r = 0; r < std::max(1, rounds); ++r) {
       d.clearConstraints();
@@ -471,6 +438,7 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("faceVectors", &DesignerBinding::faceVectors)
       .function("vertexVectors", &DesignerBinding::vertexVectors)
       .function("cornerUVs", &DesignerBinding::cornerUVs)
+      .function("sourceToWelded", &DesignerBinding::sourceToWelded)
       .function("singularitiesJson", &DesignerBinding::singularitiesJson)
       .function("statsJson", &DesignerBinding::statsJson)
       .function("constraintIdsJson", &DesignerBinding::constraintIdsJson)

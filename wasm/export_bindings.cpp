@@ -1,19 +1,28 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 //
 // embind bindings of the exporters (core/design/field_export.h): the page's export buttons produce the
-// same bytes as `tvf export` for the same mesh file and one-form. Same conventions as bindings.cpp: nothing
-// throws into JS (failures return null or '' and leave the message in lastError()).
+// same bytes as `tvf export` for the same mesh file and one-form. The exporter takes the welded mesh the
+// page's Designer already holds (no second parse of the model file); of a glTF/GLB file it keeps only the
+// document, so a GLB export keeps the model's own glTF. Same conventions as bindings.cpp: nothing throws into
+// JS (failures return null or '' and leave the message in lastError()).
 //
 //   const x = new Module.FieldExporter();
-//   x.load(uint8Array, 'glb')                 // '' or an error message; keeps a glTF document for re-export
+//   x.setMesh(positions, triangles, cornerUVs, sourceToWelded)   // the Designer's welded mesh (copied in;
+//                                             // pass copies, not views of wasm memory); '' or an error message
+//   x.setSource(uint8Array, 'glb')            // glTF/GLB: the document kept for re-export; other formats keep
+//                                             // nothing; '' or an error message
 //   x.atlasNote()                             // '' when the model's own UVs are the atlas, else why not
 //                                             // (then exports generate one: texture/texture_atlas.h)
 //   x.flowMapPng(oneForm, optionsJson)        // Uint8Array (a copy) or null
-//   x.glb(oneForm, designJson, optionsJson, baseColorPng)   // Uint8Array or null; designJson may be ''
+//   x.glb(oneForm, designJson, optionsJson, texture)   // Uint8Array or null; designJson may be ''
 //   x.lastError(), x.delete()
 //   Module.embeddedDesignJson(uint8Array)     // the design a GLB carries, 'null' when none
 // optionsJson: {size, convention: 'gltf'|'opengl', bits: 8|16, gutter, strength, rotation, embedFlowMap,
 // embedDesign}; every key optional (defaults as the CLI's).
+// texture: null, or {png: Uint8Array, cornerUVs: Float32Array (6 per face)}: a base-colour image over its own
+// UVs (e.g. the synthesized texture in its atlas; image row 0 = v 0, as glTF samples it). Those UVs then index
+// the flow map too; unless they are the model's own, the GLB is a new document over the welded mesh with a
+// vertex per (welded vertex, UV) pair (io/gltf_writer.h).
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
@@ -30,6 +39,10 @@ namespace {
 
 using emscripten::val;
 
+bool isNullish(const val& v) {
+  return v.isNull() || v.isUndefined();
+}
+
 std::vector<uint8_t> bytesOf(const val& array) {
   const bool buffer = array.instanceof (val::global("ArrayBuffer"));
   return emscripten::convertJSArrayToNumberVector<uint8_t>(buffer ? val::global("Uint8Array").new_(array)
@@ -39,6 +52,11 @@ std::vector<uint8_t> bytesOf(const val& array) {
 val toUint8Array(const std::vector<uint8_t>& bytes) {
   // A copy: a view into wasm memory would go stale on the next allocation.
   return val::global("Uint8Array").new_(val(emscripten::typed_memory_view(bytes.size(), bytes.data())));
+}
+
+template <typename T>
+std::vector<T> numbersOf(const val& array) {
+  return isNullish(array) ? std::vector<T>{} : emscripten::convertJSArrayToNumberVector<T>(array);
 }
 
 tvf::FieldExportOptions optionsFrom(const std::string& text) {
@@ -58,19 +76,37 @@ tvf::FieldExportOptions optionsFrom(const std::string& text) {
 
 class FieldExporterBinding {
  public:
-  std::string load(const val& bytes, const std::string& format) {
+  std::string setMesh(const val& positions, const val& triangles, const val& cornerUVs,
+                      const val& sourceToWelded) {
     return run([&] {
+      auto mesh = std::make_unique<Mesh>();
+      tvf::SurfaceMesh& s = mesh->surface;
+      s.positions = numbersOf<double>(positions);
+      s.triangles = numbersOf<int32_t>(triangles);
+      s.cornerUVs = numbersOf<float>(cornerUVs);
+      s.sourceToWelded = numbersOf<int32_t>(sourceToWelded);
+      if (s.positions.size() % 3 || s.triangles.empty() || s.triangles.size() % 3)
+        throw tvf::InputError("export: positions and triangles must hold 3 values per vertex and face");
+      if (!s.cornerUVs.empty() && s.cornerUVs.size() != 2 * s.triangles.size())
+        throw tvf::InputError("export: expected 6 UV values per face");
+      for (const int32_t v : s.triangles)
+        if (v < 0 || v >= s.numVertices()) throw tvf::InputError("export: a triangle names no vertex");
+      mesh->topology = tvf::buildTopology(s);
+      mesh_ = std::move(mesh);
+    });
+  }
+
+  // The document of the model file (glTF/GLB); nothing for the other formats, whose GLB is built anew.
+  std::string setSource(const val& bytes, const std::string& format) {
+    return run([&] {
+      source_.reset();
       const std::vector<uint8_t> data = bytesOf(bytes);
       if (data.empty()) throw tvf::InputError("the mesh file is empty");
       tvf::MeshFormat f = tvf::formatFromBytes(data.data(), data.size());
       if (!format.empty()) f = tvf::formatFromPath("model." + format);
-      auto mesh = std::make_unique<tvf::SurfaceMesh>(tvf::loadMeshFromMemory(data.data(), data.size(), f));
-      std::unique_ptr<tvf::GltfSource> source;
       if (f == tvf::MeshFormat::Glb || f == tvf::MeshFormat::Gltf)
-        source = std::make_unique<tvf::GltfSource>(
+        source_ = std::make_unique<tvf::GltfSource>(
             tvf::loadGltfSource(data.data(), data.size(), f == tvf::MeshFormat::Glb));
-      mesh_ = std::move(mesh);
-      source_ = std::move(source);
     });
   }
 
@@ -78,10 +114,11 @@ class FieldExporterBinding {
   std::string atlasNote() {
     std::string note;
     attempt(lastError_, [&] {
-      note = need().hasUVs() ? tvf::exportAtlasFor(need(), {}, false).cornerUVs.empty()
-                                   ? "its TEXCOORD_0 is not a one-to-one atlas"
-                                   : ""
-                             : "it has no texture coordinates (TEXCOORD_0)";
+      const Mesh& m = need();
+      note = m.surface.hasUVs() ? tvf::exportAtlasFor(m.surface, m.topology, {}, false).cornerUVs.empty()
+                                      ? "its TEXCOORD_0 is not a one-to-one atlas"
+                                      : ""
+                                : "it has no texture coordinates (TEXCOORD_0)";
     });
     return note;
   }
@@ -89,33 +126,56 @@ class FieldExporterBinding {
   val flowMapPng(const val& oneForm, const std::string& options) {
     return produce([&] {
       const tvf::FieldExportOptions o = optionsFrom(options);
-      return tvf::exportFlowMapPng(need(), tvf::exportAtlasFor(need(), o, true).cornerUVs, numbers(oneForm),
-                                   o);
+      const Mesh& m = need();
+      return tvf::exportFlowMapPng(m.surface, m.topology,
+                                   tvf::exportAtlasFor(m.surface, m.topology, o, true).cornerUVs,
+                                   numbersOf<double>(oneForm), o);
     });
   }
 
-  val glb(const val& oneForm, const std::string& design, const std::string& options,
-          const val& baseColorPng) {
+  val glb(const val& oneForm, const std::string& design, const std::string& options, const val& texture) {
     return produce([&] {
       const tvf::FieldExportOptions o = optionsFrom(options);
-      const std::vector<uint8_t> baseColor = baseColorPng.isNull() || baseColorPng.isUndefined()
-                                                 ? std::vector<uint8_t>{}
-                                                 : bytesOf(baseColorPng);
-      return tvf::exportFieldGlb(
-          need(), source_.get(), tvf::exportAtlasFor(need(), o, o.embedFlowMap), numbers(oneForm),
-          design.empty() ? nlohmann::json() : nlohmann::json::parse(design), o, baseColor);
+      const Mesh& m = need();
+      std::vector<uint8_t> baseColor;
+      tvf::ExportAtlas atlas;
+      if (isNullish(texture)) {
+        atlas = tvf::exportAtlasFor(m.surface, m.topology, o, o.embedFlowMap);
+      } else {
+        baseColor = bytesOf(texture["png"]);
+        atlas.cornerUVs = numbersOf<float>(texture["cornerUVs"]);
+        if (baseColor.empty()) throw tvf::InputError("export: the texture has no image");
+        if (atlas.cornerUVs.size() != 6 * static_cast<std::size_t>(m.surface.numFaces()))
+          throw tvf::InputError("export: the texture needs 6 UV values per face of the mesh");
+        // The model's own UVs fit the model's layout; any others need a vertex per (vertex, UV) pair.
+        atlas.generated = atlas.cornerUVs != m.surface.cornerUVs;
+      }
+      return tvf::exportFieldGlb(m.surface, m.topology, geometry(), source_.get(), atlas,
+                                 numbersOf<double>(oneForm),
+                                 design.empty() ? nlohmann::json() : nlohmann::json::parse(design), o, baseColor);
     });
   }
 
   std::string lastError() const { return lastError_; }
 
  private:
-  const tvf::SurfaceMesh& need() const {
-    if (!mesh_) throw tvf::InputError("no mesh loaded for export");
+  // The Designer's mesh with what the exports derive from it, each derived once per mesh: the topology when
+  // it is set (every export reads it), the geometry on the first GLB (only its vertex vectors need it).
+  struct Mesh {
+    tvf::SurfaceMesh surface;
+    tvf::MeshTopology topology;
+    std::unique_ptr<tvf::MeshGeometry> geometry;
+  };
+
+  const Mesh& need() const {
+    if (!mesh_) throw tvf::InputError("no mesh set for export");
     return *mesh_;
   }
-  static std::vector<double> numbers(const val& array) {
-    return emscripten::convertJSArrayToNumberVector<double>(array);
+  const tvf::MeshGeometry& geometry() {
+    Mesh& m = *mesh_;
+    if (!m.geometry)
+      m.geometry = std::make_unique<tvf::MeshGeometry>(tvf::computeMeshGeometry(m.surface, m.topology));
+    return *m.geometry;
   }
   template <typename F>
   static bool attempt(std::string& error, F&& f) {
@@ -146,7 +206,7 @@ class FieldExporterBinding {
     return toUint8Array(bytes);
   }
 
-  std::unique_ptr<tvf::SurfaceMesh> mesh_;
+  std::unique_ptr<Mesh> mesh_;
   std::unique_ptr<tvf::GltfSource> source_;
   std::string lastError_;
 };
@@ -165,7 +225,8 @@ std::string embeddedDesignJson(const val& bytes) {
 EMSCRIPTEN_BINDINGS(tvf_export) {
   emscripten::class_<FieldExporterBinding>("FieldExporter")
       .constructor<>()
-      .function("load", &FieldExporterBinding::load)
+      .function("setMesh", &FieldExporterBinding::setMesh)
+      .function("setSource", &FieldExporterBinding::setSource)
       .function("atlasNote", &FieldExporterBinding::atlasNote)
       .function("flowMapPng", &FieldExporterBinding::flowMapPng)
       .function("glb", &FieldExporterBinding::glb)

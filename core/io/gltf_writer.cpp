@@ -152,13 +152,19 @@ Eigen::Vector3d at(const std::vector<double>& values, int32_t v) {
   return {values[3 * v], values[3 * v + 1], values[3 * v + 2]};
 }
 
-json& materialOf(json& doc, json& primitive, int& defaultMaterial) {
+// The material of a primitive that has none: brushed metal along the field, or, under a base-colour texture
+// (a synthesized one), a dielectric that shows the texture's own colours.
+json fieldMaterial(bool textured) {
+  return {{"name", "field"},
+          {"pbrMetallicRoughness",
+           {{"metallicFactor", textured ? 0.0 : 1.0}, {"roughnessFactor", textured ? 0.6 : 0.35}}}};
+}
+
+json& materialOf(json& doc, json& primitive, int& defaultMaterial, bool textured) {
   if (!primitive.contains("material")) {
     if (defaultMaterial < 0) {
       if (!doc.contains("materials")) doc["materials"] = json::array();
-      doc["materials"].push_back(
-          {{"name", "field"},
-           {"pbrMetallicRoughness", {{"metallicFactor", 1.0}, {"roughnessFactor", 0.35}}}});
+      doc["materials"].push_back(fieldMaterial(textured));
       defaultMaterial = static_cast<int>(doc["materials"].size()) - 1;
     }
     primitive["material"] = defaultMaterial;
@@ -241,7 +247,7 @@ json fromSource(const FieldGlbContent& content, const FieldGlbOptions& options, 
       written[{instance.mesh, instance.primitive}] = true;
       const bool normalMapped = hasNormalMap(doc, primitive);
       addPrimitiveAttributes(content, instance, firstSource, normalMapped, primitive, builder);
-      json& material = materialOf(doc, primitive, defaultMaterial);
+      json& material = materialOf(doc, primitive, defaultMaterial, baseColorTexture >= 0);
       addFieldMaterial(material, options, normalMapped ? anisotropyTexture : -1, baseColorTexture);
     }
     firstSource += instance.vertexCount;
@@ -290,8 +296,7 @@ void fromMesh(const FieldGlbContent& content, const FieldGlbOptions& options, Gl
                      {"TANGENT", builder.addFloatAccessor(tangents, 4, "VEC4", false)},
                      {"_FIELD", builder.addFloatAccessor(field, 3, "VEC3", false)}};
   if (uvs) attributes["TEXCOORD_0"] = builder.addFloatAccessor(texcoords, 2, "VEC2", false);
-  json material = {{"name", "field"},
-                   {"pbrMetallicRoughness", {{"metallicFactor", 1.0}, {"roughnessFactor", 0.35}}}};
+  json material = fieldMaterial(baseColorTexture >= 0);
   addFieldMaterial(material, options, -1, baseColorTexture);
   const int materialIndex = builder.push("materials", material);
   const json primitive = {{"attributes", attributes},

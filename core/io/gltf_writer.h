@@ -17,7 +17,8 @@ inline constexpr const char* kGlbExtrasKey = "tangentFieldDesigner";
 struct FieldGlbContent {
   const SurfaceMesh* mesh = nullptr;  // the welded mesh the field lives on
   // The document the mesh came from (attributes, materials and vertex layout kept), or null: then a new
-  // document is built from the mesh, with cornerUVs (when not empty) as TEXCOORD_0.
+  // document is built from the mesh, with cornerUVs (when not empty) as TEXCOORD_0 and a vertex per (welded
+  // vertex, UV) pair: vertices split only at UV seams, so every chart imports as one connected surface.
   const GltfSource* source = nullptr;
   std::vector<float> cornerUVs;        // 6 per face; only read when source is null
   std::vector<double> vertexField;     // 3 per welded vertex, world space

@@ -428,8 +428,17 @@ std::vector<std::vector<int32_t>> splitFaces(const std::vector<int32_t>& faces, 
   std::sort(keyed.begin(), keyed.end());
   const size_t half = keyed.size() / 2;
   // mark: 1 + half index for faces of this chart, 0 elsewhere (restored before returning).
-  for (size_t i = 0; i < keyed.size(); ++i) mark[keyed[i].second] = i < half ? 1 : 2;
+  const auto halve = [&] {
+    for (size_t i = 0; i < keyed.size(); ++i) mark[keyed[i].second] = i < half ? 1 : 2;
+  };
+  halve();
   shortenCut(faces, g, mark);
+  // Shortening can move every face back to one side; the split must make the pieces smaller, or the charting
+  // loop would retry the same chart forever. The plain median cut always leaves two non-empty halves.
+  const auto onSide = [&](int32_t side) {
+    return std::count_if(faces.begin(), faces.end(), [&](int32_t f) { return mark[f] == side; });
+  };
+  if (onSide(1) == 0 || onSide(2) == 0) halve();
   std::vector<std::vector<int32_t>> pieces;
   for (const auto& kf : keyed) {
     const int32_t seed = kf.second;

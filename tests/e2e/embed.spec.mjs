@@ -1,9 +1,12 @@
 // <tangent-field-designer> embedded in other people's pages, from the tarball `npm pack` makes, installed
 // into a scratch project and served by a plain static server (no COOP/COEP) that sends a strict CSP
 // (scripts/serve.mjs --plain --csp). Checks independence of two elements, hostile host CSS, CSP, a bundled
-// consumer app, node imports, and that removed elements leave no worker and no WebGL context behind.
+// consumer app, node imports, that removed elements leave no worker and no WebGL context behind, and that the
+// package's default (peer) build in a page that already uses three.js loads no second copy of three.
+// The plain pages use the standalone bundle (script tag); the bundled app and the three.js page the peer build.
 import { execFileSync } from 'node:child_process';
-import { cpSync, mkdirSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { createHash } from 'node:crypto';
+import { cpSync, mkdirSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, test } from '@playwright/test';
@@ -22,14 +25,20 @@ test.describe.configure({ mode: 'serial' });
 
 test.beforeAll(async () => {
   test.setTimeout(600_000);
-  // The package as a user gets it: npm pack (prepack builds lib/), installed into a scratch project.
+  // The package as a user gets it: npm pack (prepack builds lib/), installed into a scratch project that has
+  // its peer dependencies (three, three-mesh-bvh) as its own dependencies, packed from our node_modules (the
+  // versions we build with; npm's cache need not hold their registry documents).
   rmSync(PACK, { recursive: true, force: true });
   mkdirSync(PACK, { recursive: true });
   execFileSync('npm', ['pack', '--pack-destination', PACK], { cwd: ROOT, stdio: 'pipe' });
   const tarball = resolve(PACK, readdirSync(PACK).find((f) => f.endsWith('.tgz')));
+  const peerDirs = ['three', 'three-mesh-bvh'].map((p) => resolve(ROOT, 'node_modules', p));
+  const peers = execFileSync('npm', ['pack', '--ignore-scripts', '--pack-destination', PACK, ...peerDirs], { cwd: ROOT, encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] })
+    .split('\n').map((f) => f.trim()).filter((f) => f.endsWith('.tgz')).map((f) => resolve(PACK, f));
+  expect(peers).toHaveLength(2);
   for (const f of readdirSync(SITE, { withFileTypes: true })) rmSync(resolve(SITE, f.name), { recursive: true, force: true });
   writeFileSync(resolve(SITE, 'package.json'), JSON.stringify({ name: 'scratch', private: true, type: 'module' }));
-  execFileSync('npm', ['install', '--offline', '--no-audit', '--no-fund', tarball], { cwd: SITE, stdio: 'pipe' });
+  execFileSync('npm', ['install', '--offline', '--no-audit', '--no-fund', tarball, ...peers], { cwd: SITE, stdio: 'pipe' });
   writeFileSync(resolve(SITE, 'index.html'), '<!doctype html><title>embed tests</title>');
   cpSync(FIXTURES, SITE, { recursive: true });
   mkdirSync(resolve(SITE, 'models'), { recursive: true });
@@ -50,6 +59,44 @@ test.beforeAll(async () => {
   cpSync(resolve(SITE, 'node_modules/tangent-field-designer/lib'), resolve(SITE, 'app/tangent-field-designer'), { recursive: true });
 });
 
+const LIB = resolve(SITE, 'node_modules/tangent-field-designer/lib');
+// Strings only three.js's and three-mesh-bvh's own code has (they survive minification).
+const THREE_MARK = 'Multiple instances of Three.js being imported';
+const BVH_MARK = 'MeshBVH: ';
+const count = (text, mark) => text.split(mark).length - 1;
+
+// Fraction of the central 40×40 pixels of a designer's canvas that differ from its background: > 0.5 when the
+// model is drawn.
+const coverage = (page, id) =>
+  page.evaluate((id) => {
+    const src = document.getElementById(id).shadowRoot.querySelector('canvas');
+    const c = document.createElement('canvas');
+    c.width = src.width;
+    c.height = src.height;
+    const g = c.getContext('2d');
+    g.drawImage(src, 0, 0);
+    const d = g.getImageData(src.width / 2 - 20, src.height / 2 - 20, 40, 40).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 0x1b) + Math.abs(d[i + 1] - 0x1d) + Math.abs(d[i + 2] - 0x21) > 24) n++;
+    return n / (d.length / 4);
+  }, id);
+
+// A site with the strict CSP and an inline import map allows that map by its hash: the server's policy with
+// 'sha256-…' of the map added to script-src, for the pages that have one.
+async function allowImportMaps(page) {
+  await page.route(`${ORIGIN}/**/*.html`, async (route) => {
+    const response = await route.fetch();
+    const body = await response.text();
+    const headers = response.headers();
+    const map = body.match(/<script type="importmap">([\s\S]*?)<\/script>/);
+    if (map) {
+      const hash = createHash('sha256').update(map[1]).digest('base64');
+      headers['content-security-policy'] = headers['content-security-policy'].replace("script-src 'self'", `script-src 'self' 'sha256-${hash}'`);
+    }
+    await route.fulfill({ response, body, headers });
+  });
+}
+
 // Requests that left the server's origin, and CSP violations the page reported.
 function watchRequests(page) {
   const foreign = [];
@@ -63,7 +110,7 @@ function watchRequests(page) {
 const record = (page) => page.evaluate(() => ({ events: window.__record.events.map(({ type, id }) => ({ type, id })), violations: window.__record.violations }));
 
 test('the package imports in node without a DOM', () => {
-  for (const spec of ['tangent-field-designer', 'tangent-field-designer/element']) {
+  for (const spec of ['tangent-field-designer', 'tangent-field-designer/element', 'tangent-field-designer/standalone', 'tangent-field-designer/standalone/element']) {
     const out = execFileSync(
       process.execPath,
       ['--input-type=module', '-e', `const m = await import('${spec}'); console.log([typeof m.TangentFieldDesigner, typeof m.define, m.define() === m.TangentFieldDesigner].join(' '));`],
@@ -112,19 +159,7 @@ test('two designers on one page under a strict CSP: independent fields, events, 
   expect(look.button[3]).not.toBe('rgb(255, 0, 0)');
   expect(look.panel).toBe('visible');
   // The model is drawn: the canvas centre differs from the background colour.
-  const drawn = await page.evaluate(() => {
-    const src = document.getElementById('a').shadowRoot.querySelector('canvas');
-    const c = document.createElement('canvas');
-    c.width = src.width;
-    c.height = src.height;
-    const g = c.getContext('2d');
-    g.drawImage(src, 0, 0);
-    const d = g.getImageData(src.width / 2 - 20, src.height / 2 - 20, 40, 40).data;
-    let n = 0;
-    for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 0x1b) + Math.abs(d[i + 1] - 0x1d) + Math.abs(d[i + 2] - 0x21) > 24) n++;
-    return n / (d.length / 4);
-  });
-  expect(drawn).toBeGreaterThan(0.5);
+  expect(await coverage(page, 'a')).toBeGreaterThan(0.5);
 
   // A mouse stroke across the middle of a: only a's field and constraints change, events only on a.
   const before = await page.evaluate(() => ({ a: Array.from(document.getElementById('a').faceVectors()), b: Array.from(document.getElementById('b').faceVectors()) }));
@@ -173,7 +208,12 @@ test('two designers on one page under a strict CSP: independent fields, events, 
 });
 
 test('an esbuild-bundled consumer app, with assetBase set as the docs say', async ({ page }) => {
+  // The app imports three itself and the package's default (peer) build: its bundle has one three.js.
+  const app = readFileSync(resolve(SITE, 'app/app.js'), 'utf8');
+  expect(count(app, THREE_MARK)).toBe(1);
   const errors = trackErrors(page);
+  const warnings = [];
+  page.on('console', (m) => /Multiple instances of Three/.test(m.text()) && warnings.push(m.text()));
   const foreign = watchRequests(page);
   const requests = [];
   page.on('request', (r) => requests.push(new URL(r.url()).pathname));
@@ -188,8 +228,92 @@ test('an esbuild-bundled consumer app, with assetBase set as the docs say', asyn
   await page.evaluate(() => document.getElementById('bundled').addVortex(5));
   expect(await page.evaluate(() => document.getElementById('bundled').constraints()[0].type)).toBe('vortex');
   expect(await page.evaluate(() => document.getElementById('bundled').stats().factorKind)).not.toContain('threads');
+  expect(await page.evaluate(() => window.__appScene?.isScene)).toBe(true);
+  expect(warnings).toEqual([]);
   expect((await record(page)).violations).toEqual([]);
   expect(foreign).toEqual([]);
+  expect(errors).toEqual([]);
+});
+
+test('the peer build has no copy of three.js or three-mesh-bvh; the standalone bundle has both', async () => {
+  const files = readdirSync(LIB).filter((f) => f.endsWith('.js'));
+  const peer = files.filter((f) => !f.includes('standalone'));
+  const standalone = files.filter((f) => f.includes('standalone'));
+  expect(peer).toEqual(expect.arrayContaining(['tangent-field-designer.js', 'element.js', 'core-worker.js']));
+  expect(standalone).toEqual(expect.arrayContaining(['tangent-field-designer.standalone.js', 'element.standalone.js']));
+  const text = (f) => readFileSync(resolve(LIB, f), 'utf8');
+  for (const f of peer) expect([f, count(text(f), THREE_MARK), count(text(f), BVH_MARK)]).toEqual([f, 0, 0]);
+  expect(standalone.map((f) => count(text(f), THREE_MARK)).reduce((a, b) => a + b)).toBe(1);
+  expect(standalone.some((f) => count(text(f), BVH_MARK) > 0)).toBe(true);
+  // The peer build's bare imports are the peers, as a bundler or an import map resolves them; the standalone
+  // bundle and the worker have none. (esbuild follows the relative imports and lists the bare ones.)
+  const bare = async (entry) => {
+    const { metafile } = await esbuild.build({ entryPoints: [resolve(LIB, entry)], bundle: true, write: false, packages: 'external', format: 'esm', metafile: true, logLevel: 'silent' });
+    return [...new Set(Object.values(metafile.inputs).flatMap((i) => i.imports.filter((m) => m.external).map((m) => m.path)))].sort();
+  };
+  for (const entry of ['tangent-field-designer.js', 'element.js']) {
+    const imports = await bare(entry);
+    expect(imports).toEqual(expect.arrayContaining(['three', 'three-mesh-bvh', 'three/addons/controls/OrbitControls.js']));
+    expect(imports.filter((p) => p !== 'three' && p !== 'three-mesh-bvh' && !p.startsWith('three/addons/'))).toEqual([]);
+  }
+  expect(await bare('core-worker.js')).toEqual([]);
+  expect(await bare('tangent-field-designer.standalone.js')).toEqual([]);
+  expect(await bare('element.standalone.js')).toEqual([]);
+});
+
+test('a page that already uses three.js, with an import map: the peer build uses its copy, one three.js loads', async ({ page }) => {
+  await allowImportMaps(page);
+  const errors = trackErrors(page);
+  const warnings = [];
+  page.on('console', (m) => /Multiple instances of Three/.test(m.text()) && warnings.push(m.text()));
+  const foreign = watchRequests(page);
+  const requests = [];
+  page.on('request', (r) => requests.push(new URL(r.url()).pathname));
+  const response = await page.goto(`${ORIGIN}/three-page.html`);
+  expect(response.headers()['content-security-policy']).toMatch(/script-src 'self' 'sha256-[^']+' 'wasm-unsafe-eval'/);
+  await page.waitForFunction(() => window.__host);
+  expect(await page.evaluate(() => window.__host)).toEqual({ revision: '187', designerDefined: true, ownDrawn: true });
+
+  // The element works with the page's three: the model loads, is drawn, and edits change the field.
+  expect(await page.evaluate(() => document.getElementById('d').ready.then(() => document.getElementById('d').info().faces))).toBe(320);
+  expect(await coverage(page, 'd')).toBeGreaterThan(0.5);
+  const before = await page.evaluate(() => Array.from(document.getElementById('d').faceVectors()));
+  await page.evaluate(() => document.getElementById('d').addVortex(5));
+  const after = await page.evaluate(() => Array.from(document.getElementById('d').faceVectors()));
+  expect(relativeDifference(after, before)).toBeGreaterThan(1e-3);
+  expect(page.workers().length).toBe(1);
+
+  // One copy of three.js: each of its modules requested once, from the page's own node_modules/three; three
+  // set window.__THREE__ once and never warned of a second instance; nothing of the standalone bundle loaded.
+  const n = (path) => requests.filter((p) => p === path).length;
+  expect(n('/node_modules/three/build/three.module.js')).toBe(1);
+  expect(n('/node_modules/three/build/three.core.js')).toBe(1);
+  expect(n('/node_modules/three/examples/jsm/controls/OrbitControls.js')).toBe(1);
+  expect(n('/node_modules/three-mesh-bvh/src/index.js')).toBe(1);
+  expect(n('/node_modules/tangent-field-designer/lib/tangent-field-designer.js')).toBe(1);
+  expect(requests.filter((p) => p.includes('standalone'))).toEqual([]);
+  expect(requests.filter((p) => /three[^/]*\.(module|core|cjs|min)\.js$/.test(p) && !p.startsWith('/node_modules/three/build/'))).toEqual([]);
+  expect(await page.evaluate(() => window.__THREE__)).toBe('187');
+  expect(warnings).toEqual([]);
+  expect((await record(page)).violations).toEqual([]);
+  expect(foreign).toEqual([]);
+  expect(errors).toEqual([]);
+});
+
+test('control: the standalone bundle in that page brings a second three.js, and three says so', async ({ page }) => {
+  await allowImportMaps(page);
+  const errors = trackErrors(page);
+  const warnings = [];
+  page.on('console', (m) => /Multiple instances of Three/.test(m.text()) && warnings.push(m.text()));
+  const requests = [];
+  page.on('request', (r) => requests.push(new URL(r.url()).pathname));
+  await page.goto(`${ORIGIN}/three-page-standalone.html`);
+  await page.waitForFunction(() => window.__host);
+  expect(await page.evaluate(() => document.getElementById('d').ready.then(() => document.getElementById('d').info().faces))).toBe(320);
+  expect(requests.filter((p) => p === '/node_modules/three/build/three.module.js').length).toBe(1);
+  expect(requests.some((p) => /\/standalone-chunk-[^/]*\.js$/.test(p))).toBe(true);
+  expect(warnings.length).toBe(1);
+  expect((await record(page)).violations).toEqual([]);
   expect(errors).toEqual([]);
 });
 

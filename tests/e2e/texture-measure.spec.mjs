@@ -90,7 +90,7 @@ async function measureModel(page, testInfo, { name, bytes }) {
   await page.evaluate(() => window.tvf.setExemplar('stripes'));
   const stats = await page.evaluate(() => window.tvf.synthesize());
   const data = await page.evaluate(async () => {
-    const glb = new Uint8Array(await (await window.tvf.exportGLB()).arrayBuffer());
+    const glb = await window.tvf.exportGlb();
     const m = window.tvf.mesh();
     return { glb: Array.from(glb), triangles: Array.from(m.triangles), faceVectors: Array.from(window.tvf.faceVectors()) };
   });
@@ -116,7 +116,7 @@ async function measureModel(page, testInfo, { name, bytes }) {
       const m = window.tvf.mesh();
       const rb = await window.tvf.synthesisReadback();
       const glbs = {};
-      for (const r of sizes) glbs[r] = Array.from(new Uint8Array(await (await window.tvf.exportGLB({ resolution: r })).arrayBuffer()));
+      for (const r of sizes) glbs[r] = Array.from(await window.tvf.exportGlb({ textureResolution: r }));
       return { positions: Array.from(m.positions), triangles: Array.from(m.triangles), faceVectors: Array.from(window.tvf.faceVectors()), vertexVectors: Array.from(window.tvf.vertexVectors()), singularities: window.tvf.singularities(), cornerUVs: Array.from(rb.cornerUVs), glbs };
     }, (process.env.TVF_DIAGNOSE_SIZES || '2048').split(',').map(Number));
     for (const [r, bytes] of Object.entries(extra.glbs)) writeFileSync(testInfo.outputPath(`${name}-${r}.glb`), Buffer.from(bytes));

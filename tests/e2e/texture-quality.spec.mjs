@@ -6,7 +6,7 @@
 //   the same synthesis run without interleaving produces no frames at all (the truth the count is read against);
 // - "update texture automatically" off: field changes leave the texture as it is (marked stale) until it is on.
 import { expect, test } from '@playwright/test';
-import { flatSquareGlb } from '../../web/synthesis/glb.js';
+import { flatSquareGlb } from '../node/export-fixtures.mjs';
 import { openDesignerPage } from './helpers.mjs';
 import { decodePng } from './surface-texture-metrics.mjs';
 

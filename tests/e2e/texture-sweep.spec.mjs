@@ -31,7 +31,7 @@ for (const name of models) {
       const data = await page.evaluate(async (r) => {
         const m = window.tvf.mesh();
         const rb = await window.tvf.synthesisReadback();
-        const glb = Array.from(new Uint8Array(await (await window.tvf.exportGLB(r ? { resolution: r } : {})).arrayBuffer()));
+        const glb = Array.from(await window.tvf.exportGlb(r ? { textureResolution: r } : {}));
         return { glb, positions: Array.from(m.positions), triangles: Array.from(m.triangles), faceVectors: Array.from(window.tvf.faceVectors()), singularities: window.tvf.singularities(), cornerUVs: Array.from(rb.cornerUVs) };
       }, exportResolution);
       writeFileSync(testInfo.outputPath(`${name}-${label}.glb`), Buffer.from(data.glb));

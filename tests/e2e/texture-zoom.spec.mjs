@@ -5,7 +5,7 @@
 // affinely to the screen). The truth the statistics are read against: the same coordinates shaded per texel
 // (each pixel from its own texel's patch only), which does step at texel boundaries.
 import { expect, test } from '@playwright/test';
-import { flatSquareGlb } from '../../web/synthesis/glb.js';
+import { flatSquareGlb } from '../node/export-fixtures.mjs';
 import { openDesignerPage } from './helpers.mjs';
 import { decodePng } from './surface-texture-metrics.mjs';
 

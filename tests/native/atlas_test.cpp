@@ -265,3 +265,31 @@ TEST(TextureAtlas, UsableTexcoordDecision) {
   const TextureAtlas gen = generateAtlas(icosphere(2), 256, 2);
   EXPECT_TRUE(checkAtlasUVs(gen.cornerUVs, icosphere(2).numFaces(), 256).usable);
 }
+
+// A bumpy grid with a non-manifold fin, a sliver and a zero-area face: a chart that fails to flatten is split,
+// and shortening the split's cut can move every face back to one side. The charting must still end (it once
+// retried that chart forever) with every face in some chart.
+TEST(TextureAtlas, SplittingAlwaysMakesProgressOnAnOddMesh) {
+  SurfaceMesh m;
+  const int n = 24;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = double(i) / n + 0.2 / n * std::sin(i * 12.9898 + j * 78.233);
+      const double y = double(j) / n + 0.2 / n * std::cos(i * 4.1 + j * 9.7);
+      m.positions.insert(m.positions.end(), {x, y, 0.3 * std::sin(3 * x) * std::cos(2 * y)});
+    }
+  const auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  const int32_t nv = m.numVertices();
+  m.positions.insert(m.positions.end(), {0.5, 0.5, 1.0, 0.04, 0.0, 0.0});
+  m.triangles.insert(m.triangles.end(), {0, 1, nv});      // a third face on edge (0, 1)
+  m.triangles.insert(m.triangles.end(), {1, nv + 1, 2});  // a sliver
+  m.triangles.insert(m.triangles.end(), {3, 4, 4});       // zero area
+  const TextureAtlas atlas = generateAtlas(m, 256, 2);
+  ASSERT_EQ(atlas.cornerUVs.size(), 6 * static_cast<size_t>(m.numFaces()));
+  for (double uv : atlas.cornerUVs) EXPECT_TRUE(std::isfinite(uv));
+}

@@ -1,5 +1,6 @@
-// Small models for the export tests, made in code: a curved height-field patch with its own (warped,
-// non-conformal) UVs as GLB, with a node transform, and the same patch as OFF without UVs.
+// Small models for the export and synthesis tests, made in code: a curved height-field patch with its own
+// (warped, non-conformal) UVs as GLB, with a node transform, the same patch as OFF without UVs, and a flat
+// square with UV = (x, y).
 export const GRID = 16;
 
 const height = (x, y) => 0.25 * Math.sin(2.5 * x) * Math.cos(2.0 * y);
@@ -23,20 +24,10 @@ function patch() {
 
 export function patchGlb({ normalMap = false } = {}) {
   const { positions, uvs, indices } = patch();
-  const parts = [positions, uvs, indices];
-  const views = [];
-  let offset = 0;
-  for (const part of parts) {
-    views.push({ buffer: 0, byteOffset: offset, byteLength: part.byteLength });
-    offset += part.byteLength;
-  }
   // A 1x1 PNG as the normal map: the smallest valid image that makes the material normal-mapped.
   const png = normalMap
     ? Uint8Array.from(atob('iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGNoaPj/HwAFhgKZXtj7LQAAAABJRU5ErkJggg=='), (c) => c.charCodeAt(0))
     : null;
-  if (png) views.push({ buffer: 0, byteOffset: offset, byteLength: png.byteLength }), (offset += (png.byteLength + 3) & ~3);
-  const min = [0, 1, 2].map((k) => Math.min(...positions.filter((_, i) => i % 3 === k)));
-  const max = [0, 1, 2].map((k) => Math.max(...positions.filter((_, i) => i % 3 === k)));
   const material = { name: 'own', pbrMetallicRoughness: { baseColorFactor: [0.9, 0.5, 0.2, 1] } };
   const doc = {
     asset: { version: '2.0' },
@@ -45,24 +36,70 @@ export function patchGlb({ normalMap = false } = {}) {
     nodes: [{ mesh: 0, translation: [1, 2, 3], scale: [2, 2, 2] }],
     meshes: [{ primitives: [{ attributes: { POSITION: 0, TEXCOORD_0: 1 }, indices: 2, material: 0 }] }],
     materials: [png ? { ...material, normalTexture: { index: 0 } } : material],
-    accessors: [
-      { bufferView: 0, componentType: 5126, count: positions.length / 3, type: 'VEC3', min, max },
-      { bufferView: 1, componentType: 5126, count: uvs.length / 2, type: 'VEC2' },
-      { bufferView: 2, componentType: 5125, count: indices.length, type: 'SCALAR' },
-    ],
-    bufferViews: views,
-    buffers: [{ byteLength: offset }],
+    accessors: meshAccessors(positions, uvs, indices),
+    bufferViews: [], // filled in by encodeGlb
+    buffers: [],
   };
   if (png) {
     doc.images = [{ bufferView: 3, mimeType: 'image/png' }];
     doc.textures = [{ source: 0 }];
   }
-  const bin = new Uint8Array(offset);
-  let at = 0;
-  for (const part of png ? [...parts, png] : parts) {
-    bin.set(new Uint8Array(part.buffer ?? part, part.byteOffset ?? 0, part.byteLength), at);
-    at += (part.byteLength + 3) & ~3;
+  return encodeGlb(doc, png ? [positions, uvs, indices, png] : [positions, uvs, indices]);
+}
+
+// An n x n grid over the unit square in the z = 0 plane, UV = (x, y): the flat test surface of the synthesis
+// tests. Counter-clockwise seen from +z.
+export function flatSquareGlb(n = 16) {
+  const positions = new Float32Array(3 * (n + 1) * (n + 1));
+  const uvs = new Float32Array(2 * (n + 1) * (n + 1));
+  for (let j = 0; j <= n; j++)
+    for (let i = 0; i <= n; i++) {
+      const v = j * (n + 1) + i;
+      positions.set([i / n, j / n, 0], 3 * v);
+      uvs.set([i / n, j / n], 2 * v);
+    }
+  const indices = [];
+  for (let j = 0; j < n; j++)
+    for (let i = 0; i < n; i++) {
+      const a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      // Alternate the diagonal so that the mesh has no preferred direction.
+      if ((i + j) % 2 === 0) indices.push(a, b, d, a, d, c);
+      else indices.push(a, b, c, b, d, c);
+    }
+  const doc = {
+    asset: { version: '2.0' },
+    scene: 0,
+    scenes: [{ nodes: [0] }],
+    nodes: [{ mesh: 0, name: 'flat-square' }],
+    meshes: [{ name: 'flat-square', primitives: [{ attributes: { POSITION: 0, TEXCOORD_0: 1 }, indices: 2, mode: 4 }] }],
+    accessors: meshAccessors(positions, uvs, Uint32Array.from(indices)),
+  };
+  return encodeGlb(doc, [positions, uvs, Uint32Array.from(indices)]);
+}
+
+// Accessors 0-2 over bufferViews 0-2: POSITION (with its bounds), TEXCOORD_0 and 32-bit indices.
+function meshAccessors(positions, uvs, indices) {
+  const min = [0, 1, 2].map((k) => Math.min(...positions.filter((_, i) => i % 3 === k)));
+  const max = [0, 1, 2].map((k) => Math.max(...positions.filter((_, i) => i % 3 === k)));
+  return [
+    { bufferView: 0, componentType: 5126, count: positions.length / 3, type: 'VEC3', min, max },
+    { bufferView: 1, componentType: 5126, count: uvs.length / 2, type: 'VEC2' },
+    { bufferView: 2, componentType: 5125, count: indices.length, type: 'SCALAR' },
+  ];
+}
+
+// A GLB of `doc` with one bufferView per part (typed arrays, each 4-byte aligned in the one buffer).
+function encodeGlb(doc, parts) {
+  const views = [];
+  let offset = 0;
+  for (const part of parts) {
+    views.push({ buffer: 0, byteOffset: offset, byteLength: part.byteLength });
+    offset += (part.byteLength + 3) & ~3;
   }
+  doc.bufferViews = views;
+  doc.buffers = [{ byteLength: offset }];
+  const bin = new Uint8Array(offset);
+  for (const [i, part] of parts.entries()) bin.set(new Uint8Array(part.buffer, part.byteOffset, part.byteLength), views[i].byteOffset);
   let json = new TextEncoder().encode(JSON.stringify(doc));
   const padded = new Uint8Array((json.length + 3) & ~3).fill(0x20);
   padded.set(json);

@@ -1,6 +1,7 @@
 #!/usr/bin/env node
 // Every GLB that `tvf export` and the wasm FieldExporter write passes the Khronos glTF-Validator with 0
-// errors, and the page's exporter (wasm) writes the same bytes as the CLI for the same mesh and one-form.
+// errors, the page's exporter (wasm, over the mesh a Designer loaded) writes the same bytes as the CLI for the
+// same mesh and one-form, and a GLB with a base-colour texture over UVs of its own has a vertex per (vertex, UV).
 // Usage: node tests/node/export-validate.mjs [path/to/tvf] [path/to/tvf_core.mjs]
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -15,6 +16,10 @@ const tvf = resolve(process.argv[2] ?? join(ROOT, 'build/tvf'));
 const modulePath = resolve(process.argv[3] ?? join(ROOT, 'build-wasm/tvf_core.mjs'));
 
 let passed = 0, failed = 0;
+// A 1x1 PNG: the smallest valid base-colour image.
+const onePixelPng = () =>
+  Uint8Array.from(atob('iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGNoaPj/HwAFhgKZXtj7LQAAAABJRU5ErkJggg=='), (c) => c.charCodeAt(0));
+
 function check(name, condition, detail = '') {
   if (condition) passed++;
   else failed++;
@@ -61,13 +66,24 @@ try {
     check(`${model}: validator sees KHR_materials_anisotropy`, report.info.extensionsUsed.includes('KHR_materials_anisotropy'));
   }
 
-  // The wasm exporter: same mesh bytes, the CLI's one-form, the CLI's embedded design -> the same bytes.
+  // The wasm exporter as the page's worker drives it (web/core/core-export.js): the mesh the Designer loaded
+  // (no second parse), the glTF document of the file, the CLI's one-form and embedded design -> the same bytes.
   const { default: createTvfCore } = await import(pathToFileURL(modulePath).href);
   const core = await createTvfCore();
   run('design', join(dir, 'patch.glb'), join(dir, 'design.json'), '-o', join(dir, 'field.json'));
   const oneForm = JSON.parse(readFileSync(join(dir, 'field.json'), 'utf8')).oneForm;
-  const exporter = new core.FieldExporter();
-  check('wasm: load the patch', exporter.load(files['patch.glb'], 'glb') === '', exporter.lastError());
+  const exporterFor = (bytes, format) => {
+    const designer = new core.Designer();
+    check(`wasm: the Designer loads ${format}`, designer.loadMesh(bytes, format) === '', designer.lastError());
+    const exporter = new core.FieldExporter();
+    const error = exporter.setMesh(designer.positions().slice(), designer.triangles().slice(), designer.cornerUVs().slice(),
+      designer.sourceToWelded().slice()) || exporter.setSource(bytes, format);
+    check(`wasm: the exporter takes the Designer's ${format} mesh`, error === '', error);
+    const mesh = { positions: designer.positions().slice(), triangles: designer.triangles().slice() };
+    designer.delete();
+    return { exporter, mesh };
+  };
+  const { exporter } = exporterFor(files['patch.glb'], 'glb');
   check('wasm: own UVs are the atlas', exporter.atlasNote() === '');
   for (const [convention, bits] of [['gltf', 8], ['opengl', 16]]) {
     const png = join(dir, `flow-${convention}-${bits}.png`);
@@ -85,8 +101,7 @@ try {
     exporter.lastError());
   await validate('wasm FieldExporter patch.glb', wasmGlb);
   // Without UVs: the core's generated atlas, the same in the CLI and in wasm.
-  const offExporter = new core.FieldExporter();
-  offExporter.load(new TextEncoder().encode(files['patch.off']), 'off');
+  const { exporter: offExporter, mesh: offMesh } = exporterFor(new TextEncoder().encode(files['patch.off']), 'off');
   check('wasm: a model without UVs says why it gets a generated atlas', /no texture coordinates/.test(offExporter.atlasNote()));
   run('export', join(dir, 'patch.off'), join(dir, 'design.json'), '--flowmap', join(dir, 'off.png'), '--size', '128');
   const offPng = offExporter.flowMapPng(oneForm, JSON.stringify({ size: 128 }));
@@ -94,6 +109,23 @@ try {
     offPng && Buffer.compare(Buffer.from(offPng), readFileSync(join(dir, 'off.png'))) === 0, offExporter.lastError());
   const offGlb = offExporter.glb(oneForm, '', JSON.stringify({ size: 128 }), null);
   await validate('wasm FieldExporter patch.off (generated atlas)', offGlb);
+  // A base-colour texture over UVs of its own (as the page's synthesized texture): one file, a vertex per
+  // (vertex, UV) pair. The UVs: the patch cut into two charts down its middle column.
+  const nF = offMesh.triangles.length / 3;
+  const uvs = new Float32Array(6 * nF);
+  for (let c = 0; c < 3 * nF; c++) {
+    const f = Math.floor(c / 3), v = offMesh.triangles[c];
+    const cx = [0, 1, 2].reduce((x, k) => x + offMesh.positions[3 * offMesh.triangles[3 * f + k]], 0) / 3;
+    const right = cx > 0.5;
+    uvs[2 * c] = 0.02 + 0.45 * offMesh.positions[3 * v] + (right ? 0.5 : 0);
+    uvs[2 * c + 1] = 0.02 + 0.96 * offMesh.positions[3 * v + 1];
+  }
+  const texturedGlb = offExporter.glb(oneForm, '', JSON.stringify({ size: 128 }), { png: onePixelPng(), cornerUVs: uvs });
+  check('wasm: textured GLB written', !!texturedGlb, offExporter.lastError());
+  const report = await validate('wasm FieldExporter patch.off with a base-colour texture', texturedGlb);
+  const pairs = new Set(Array.from(offMesh.triangles, (v, c) => `${v} ${uvs[2 * c]} ${uvs[2 * c + 1]}`));
+  const vertexCount = report.info.totalVertexCount;
+  check(`textured GLB: a vertex per (vertex, UV) pair (${vertexCount} for ${pairs.size} pairs, ${3 * nF} corners)`, vertexCount === pairs.size);
   exporter.delete();
   offExporter.delete();
 } finally {

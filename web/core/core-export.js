@@ -1,20 +1,26 @@
-// Worker side of the exports (docs/export.md): the wasm FieldExporter (wasm/export_bindings.cpp) holding the
-// model file as it was opened, so a GLB keeps the model's own glTF and the bytes match `tvf export`.
-// One per worker, i.e. per <tangent-field-designer> element.
+// Worker side of the exports (docs/export.md): the wasm FieldExporter (wasm/export_bindings.cpp) over the welded
+// mesh the core already holds (handed over once per model, on the first export: the model file is not parsed
+// again). Of a glTF/GLB file only its document is kept, so a GLB keeps the model's own glTF and a field-only
+// export matches `tvf export` byte for byte. One per worker, i.e. per <tangent-field-designer> element.
 import { CoreError } from './core-client.js';
 
+const isGltf = (format) => format === 'glb' || format === 'gltf';
+
 export class CoreExport {
-  constructor(Module) {
-    this.Module = Module;
-    this.model = null; // {bytes, format} of the mesh the designer holds
-    this.exporter = null; // loaded lazily: most sessions never export
+  // core: the worker's CoreClient (its Designer holds the mesh).
+  constructor(core) {
+    this.core = core;
+    this.Module = core.Module;
+    this.source = null; // {bytes, format} of a glTF/GLB model: the document a GLB export keeps
+    this.exporter = null; // made on the first export: most sessions never export
   }
 
-  // The file the designer just loaded (before it is parsed elsewhere): kept for export and embedded designs.
+  // The core just loaded this file: the exporter's mesh is now stale. Only a glTF/GLB file's bytes are kept.
   modelLoaded(bytes, format) {
     this.exporter?.delete();
     this.exporter = null;
-    this.model = { bytes: bytes.slice(), format };
+    const f = (format || sniffFormat(bytes)).toLowerCase().replace(/^\./, '');
+    this.source = isGltf(f) ? { bytes: bytes.slice(), format: f } : null;
   }
 
   // The design a GLB written by this project carries in its extras, or null.
@@ -23,17 +29,19 @@ export class CoreExport {
   }
 
   #loaded() {
-    if (!this.model) throw new CoreError('export: no model loaded');
-    if (!this.exporter) {
-      const exporter = new this.Module.FieldExporter();
-      const error = exporter.load(this.model.bytes, this.model.format);
-      if (error) {
-        exporter.delete();
-        throw new CoreError(`export: ${error}`);
-      }
-      this.exporter = exporter;
+    if (this.exporter) return this.exporter;
+    if (!this.core.hasMesh) throw new CoreError('export: no model loaded');
+    const d = this.core.designer;
+    const exporter = new this.Module.FieldExporter();
+    // Copies first: the views point into wasm memory, which the exporter's own allocations may move.
+    let error = exporter.setMesh(d.positions().slice(), d.triangles().slice(), d.cornerUVs().slice(), d.sourceToWelded().slice());
+    if (!error && this.source) error = exporter.setSource(this.source.bytes, this.source.format);
+    if (error) {
+      exporter.delete();
+      throw new CoreError(`export: ${error}`);
     }
-    return this.exporter;
+    this.exporter = exporter;
+    return exporter;
   }
 
   // '' when the model's own UVs are the flow map's atlas, else why not (then one is generated).
@@ -48,10 +56,24 @@ export class CoreExport {
     return png;
   }
 
-  glb(oneForm, design, options, baseColorPng = null) {
+  // texture: null, or {png: Uint8Array, cornerUVs: Float32Array (6 per face)}: the synthesized texture and its
+  // atlas, embedded as base colour; its UVs then index the flow map too.
+  glb(oneForm, design, options, texture = null) {
     const exporter = this.#loaded();
-    const glb = exporter.glb(oneForm, design ? JSON.stringify(design) : '', JSON.stringify(options), baseColorPng);
+    const glb = exporter.glb(oneForm, design ? JSON.stringify(design) : '', JSON.stringify(options), texture);
     if (!glb) throw new CoreError(`export: ${exporter.lastError()}`);
     return glb;
   }
+}
+
+// The loader's sniffing (io/mesh_io.h formatFromBytes), for a file opened with no format named: only whether
+// it is glTF matters here.
+function sniffFormat(bytes) {
+  const b = bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes);
+  if (b[0] === 0x67 && b[1] === 0x6c && b[2] === 0x54 && b[3] === 0x46) return 'glb';
+  for (const c of b.subarray(0, 64)) {
+    if (c === 0x7b) return 'gltf'; // '{'
+    if (c !== 0x20 && c !== 0x09 && c !== 0x0a && c !== 0x0d && c !== 0xef && c !== 0xbb && c !== 0xbf) return '';
+  }
+  return '';
 }

@@ -122,7 +122,7 @@ function serve(scope) {
           })
           .catch(() => {});
       }
-      coreExport = new CoreExport(core.Module);
+      coreExport = new CoreExport(core);
       if (core.threadsUnavailable)
         console.warn(`tangent-field-designer: the core with threads did not start (${core.threadsUnavailable}); solving on one thread`);
       return { crossOriginIsolated: self.crossOriginIsolated === true };
@@ -142,17 +142,20 @@ function serve(scope) {
       const embedded = design ? null : coreExport.embeddedDesign(bytes);
       const { settingsError, restoreError } = core.loadModel(bytes, format, settings, design ?? embedded);
       coreExport.modelLoaded(bytes, format);
-      tracing = { surface: null, key: '', lines: null };
       const info = core.info();
       spare.clear();
       fieldLengths = new Set([3 * info.faces, 3 * info.vertices, info.edges]);
+      // The mesh's geometry and adjacency, built once here (off the page's thread): the worker traces on it, and
+      // the page takes a copy of its arrays instead of deriving them again.
       const mesh = core.mesh();
-      const edges = core.edges();
+      const surface = new Surface(mesh.positions, mesh.triangles, core.edges());
+      tracing = { surface, key: '', lines: null };
+      const arrays = surface.arrays();
       // Texture synthesis (web/synthesis/) needs the model's per-corner UVs (6 per face; empty without TEXCOORD_0).
       const cornerUVs = core.designer.cornerUVs().slice();
       return new Transfer(
-        { info, settingsError, restoreError, embeddedDesign: embedded != null, mesh: { positions: mesh.positions, triangles: mesh.triangles, edges, cornerUVs } },
-        [mesh.positions.buffer, mesh.triangles.buffer, edges.buffer, cornerUVs.buffer],
+        { info, settingsError, restoreError, embeddedDesign: embedded != null, surface: arrays, cornerUVs },
+        [...Surface.transferList(arrays), cornerUVs.buffer],
       );
     },
 
@@ -221,10 +224,6 @@ function serve(scope) {
       if (forVersion !== version) return null;
       const key = `${version} ${spacing} ${lift}`;
       if (tracing.key !== key) {
-        if (!tracing.surface) {
-          const { positions, triangles } = core.mesh();
-          tracing.surface = new Surface(positions, triangles, core.edges());
-        }
         tracing.lines = traceStreamlines(tracing.surface, core.vertexVectors(), { spacing, lift });
         tracing.key = key;
       }
@@ -283,8 +282,9 @@ function serve(scope) {
       return coreExport.flowMapPng(core.oneForm(), options);
     },
 
-    exportGlb(options, baseColorPng) {
-      return coreExport.glb(core.oneForm(), JSON.parse(core.designJson()), options, baseColorPng);
+    // texture: null or {png, cornerUVs}, the synthesized texture (web/export/index.js).
+    exportGlb(options, texture) {
+      return coreExport.glb(core.oneForm(), JSON.parse(core.designJson()), options, texture);
     },
   };
 

@@ -1,8 +1,9 @@
 // The designer's public JavaScript API (docs/js-api.md, docs/embedding.md): every method of a
 // <tangent-field-designer> element, as functions of its Designer (designer.js; `d.session` is the model).
 // The element installs them on its prototype; the app page's window.tvf is its element, so the same
-// functions serve both. This table is the one declaration of the API: the manifest and the .d.ts are checked
-// against it (tests/node/api-declaration.test.mjs).
+// functions serve both. Each method's types and description are declared in declaration.js, from which
+// `npm run gen:api` writes custom-elements.json, types/element.d.ts and docs/js-api.md's summary; a method added
+// here, or to TEXTURE_METHODS, goes there too (tests/node/api-declaration.test.mjs fails otherwise).
 import { DEFAULT_WEIGHT } from '../session/session.js';
 import { edgeSpec, pointSpec, strokeSpec, vectorSpec } from '../session/specs.js';
 import { cameraState, setCameraState } from '../views/camera.js';
@@ -49,7 +50,8 @@ export const api = {
       throw d.session.fail('design', err);
     }),
   exportField: (d) => d.session.exportField().then((text) => JSON.parse(text)),
-  // docs/export.md: Uint8Arrays with the same bytes as `tvf export` for this model file and field.
+  // docs/export.md: Uint8Arrays with the same bytes as `tvf export` for this model file and field; the GLB also
+  // carries the synthesized texture when one is shown (options.texture).
   exportFlowMap: (d, options) => d.exports.exportFlowMap(options),
   exportGlb: (d, options) => d.exports.exportGlb(options),
   exportOptions: (d) => d.exports.exportOptions(),
@@ -108,7 +110,6 @@ export const TEXTURE_METHODS = [
   'setExemplar',
   'synthesize',
   'exportTexturePNG',
-  'exportGLB',
   'synthesisStats',
   'clearTexture',
   'exemplarInfo',

@@ -44,6 +44,12 @@ export interface ExportOptions {
   embedFlowMap?: boolean;
   /** GLB: embed the design, so loadModel() reopens it with its design (default true). */
   embedDesign?: boolean;
+  /** GLB: the synthesized texture as base colour — 'auto' (default): when one is shown; true: required; false: never. */
+  texture?: 'auto' | boolean;
+  /** GLB: the texture image's size in pixels per side (default: 2 pixels per atlas texel). */
+  textureResolution?: number;
+  /** GLB: pixels per atlas texel of the texture image (default 2). */
+  textureMagnification?: number;
 }
 
 export type Boundary = 'free' | 'tangential' | 'normal' | { angle: number };

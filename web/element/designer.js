@@ -55,6 +55,8 @@ export class Designer {
       call: (op, args) => session.request(op, args, { exclusive: true }),
       modelName: () => baseName(session.modelName),
       onError: (err) => !session.disposed && this.ui.showError(err.message),
+      // The one GLB export embeds the synthesized texture when there is one.
+      texture: this.synthesis,
     });
     this.#subscribe();
   }
@@ -67,6 +69,8 @@ export class Designer {
       panel,
       bench: bench ? this.host : null,
       onError: (err) => s.fail('texture', err),
+      // The Texture panel's GLB button is the Export panel's download (set up just after this).
+      downloadGlb: () => this.exports.downloadGlb(),
       computeAtlas: ({ positions, triangles, cornerUVs }, options) => s.request('textureAtlas', [positions, triangles, cornerUVs ?? null, options]),
       // An exemplar may be chosen before the core has started: the analysis waits for it.
       analyzeExemplar: async (spec) => {

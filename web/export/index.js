@@ -1,25 +1,50 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Exports of the designed field (docs/export.md) and the material preview, for one designer session: the
-// worker's FieldExporter writes the bytes (the same as `tvf export`), this module downloads them or shows the
-// GLB in the viewer. Wiring surface: setupExport({...}) and the controller's fieldChanged()/modelChanged().
+// worker's FieldExporter writes the bytes (the same as `tvf export` for a field-only export), this module
+// decides what goes into them, downloads them or shows the GLB in the viewer. There is one GLB export
+// (exportGlb): the model with the field, its flow map and anisotropy material, the design, and the synthesized
+// texture when there is one, all through the core's writer. Wiring surface: setupExport({...}) and the
+// controller's fieldChanged() / downloadGlb().
 import { downloadBlob } from '../session/documents.js';
 import { MATERIAL_PRESETS, MaterialPreview } from '../views/material-preview.js';
 import { mountExportPanel } from './panel.js';
 
-// The export options the page starts with (the CLI's defaults, docs/export.md).
-export const DEFAULT_EXPORT_OPTIONS = { size: 1024, convention: 'gltf', bits: 8, strength: 1, rotation: 0 };
-// The preview needs no flow map, and its anisotropy texture (normal-mapped models) can be coarser.
-const PREVIEW_OPTIONS = { embedFlowMap: false, embedDesign: false, size: 512 };
+// The export options the page starts with (the CLI's defaults, docs/export.md). texture: 'auto' embeds the
+// synthesized texture when one is shown, true requires one (the last one made), false leaves it out;
+// textureResolution / textureMagnification size its image (default 2 pixels per atlas texel).
+export const DEFAULT_EXPORT_OPTIONS = { size: 1024, convention: 'gltf', bits: 8, strength: 1, rotation: 0, texture: 'auto' };
+// The preview needs no flow map, and its anisotropy texture (normal-mapped models) can be coarser; it shows the
+// field's material, not the texture.
+const PREVIEW_OPTIONS = { embedFlowMap: false, embedDesign: false, size: 512, texture: false };
+// Options that choose the texture here; the rest go to the core's writer.
+const TEXTURE_KEYS = ['texture', 'textureResolution', 'textureMagnification'];
 
 // call(op, args): one worker request after the session's pending edits, resolving to its value.
-export function setupExport({ viewer, panel, call, modelName, onError }) {
+// texture: the synthesis controller (synthesis/controller.js exportTexture()), or null without synthesis.
+export function setupExport({ viewer, panel, call, modelName, onError, texture = null }) {
   const preview = new MaterialPreview(viewer);
   let options = { ...DEFAULT_EXPORT_OPTIONS };
   let previewPreset = null; // null: preview off
   let refresh = Promise.resolve();
 
-  const exportFlowMap = (opts = {}) => call('exportFlowMap', [{ ...options, ...opts }]);
-  const exportGlb = (opts = {}) => call('exportGlb', [{ ...options, ...opts }, null]);
+  const exportFlowMap = (opts = {}) => call('exportFlowMap', [coreOptions({ ...options, ...opts })]);
+
+  async function exportGlb(opts = {}) {
+    const o = { ...options, ...opts };
+    if (![true, false, 'auto'].includes(o.texture)) throw new Error(`exportGlb: texture must be true, false or 'auto' (got ${JSON.stringify(o.texture)})`);
+    const image =
+      o.texture === false || (!texture && o.texture === 'auto')
+        ? null
+        : await requireTexture().exportTexture({ resolution: o.textureResolution, magnification: o.textureMagnification, required: o.texture === true });
+    return call('exportGlb', [coreOptions(o), image]);
+  }
+
+  function requireTexture() {
+    if (!texture) throw new Error('exportGlb: this designer has no texture synthesis');
+    return texture;
+  }
+
+  const downloadGlb = (opts) => exportGlb(opts).then((glb) => downloadBlob(`${modelName()}.field.glb`, new Blob([glb], { type: 'model/gltf-binary' })));
 
   // Re-export and show; concurrent requests collapse into the latest (MaterialPreview drops stale loads).
   function showPreview() {
@@ -54,13 +79,14 @@ export function setupExport({ viewer, panel, call, modelName, onError }) {
       exportFlowMap()
         .then((png) => downloadBlob(`${modelName()}.flow-${options.convention}-${options.size}.png`, new Blob([png], { type: 'image/png' })))
         .catch(onError),
-    onGlb: () => exportGlb().then((glb) => downloadBlob(`${modelName()}.field.glb`, new Blob([glb], { type: 'model/gltf-binary' }))).catch(onError),
+    onGlb: () => downloadGlb().catch(onError),
     onPreview: (preset) => materialPreview(preset).catch(onError),
   });
 
   return {
     exportFlowMap,
     exportGlb,
+    downloadGlb,
     materialPreview,
     materialPreviewInfo: () => refresh.then(() => preview.info()),
     exportOptions: () => ({ ...options }),
@@ -75,4 +101,11 @@ export function setupExport({ viewer, panel, call, modelName, onError }) {
       ui.dispose();
     },
   };
+}
+
+// The options the core's writer reads (wasm/export_bindings.cpp optionsFrom).
+function coreOptions(o) {
+  const out = { ...o };
+  for (const k of TEXTURE_KEYS) delete out[k];
+  return out;
 }

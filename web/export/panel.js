@@ -2,16 +2,7 @@
 // The "Export" section of the side panel: flow map size / convention / bits, anisotropy strength and
 // rotation, the Flow map and GLB downloads, and the material preview with its presets. Built here and
 // appended to the given container; `actions` receives what the user chose.
-
-function el(tag, attrs = {}, ...children) {
-  const e = document.createElement(tag);
-  for (const [k, v] of Object.entries(attrs)) {
-    if (k === 'text') e.textContent = v;
-    else e.setAttribute(k, v);
-  }
-  e.append(...children);
-  return e;
-}
+import { el } from '../dom.js';
 
 function select(id, title, values, value) {
   const s = el('select', { id, title });
@@ -32,7 +23,7 @@ export function mountExportPanel(container, { options, presets, onOptions, onFlo
   const strength = el('input', { id: 'export-strength', type: 'number', min: '0', max: '1', step: '0.05', value: String(options.strength) });
   const rotation = el('input', { id: 'export-rotation', type: 'number', step: '15', value: String((options.rotation * 180) / Math.PI) });
   const flowMap = el('button', { id: 'export-flowmap', type: 'button', text: 'Flow map', title: 'Download the flow map PNG (the field in the model\'s UV square)' });
-  const glb = el('button', { id: 'export-glb', type: 'button', text: 'GLB', title: 'Download the model with the field: TANGENT along it, _FIELD, KHR_materials_anisotropy, flow map and design inside' });
+  const glb = el('button', { id: 'export-glb', type: 'button', text: 'GLB', title: 'Download the model with the field: TANGENT along it, _FIELD, KHR_materials_anisotropy, flow map, design and the synthesized texture (when one is shown) inside' });
   const preview = select('export-preview', 'Show the exported material (physical, anisotropic along the field) under a studio environment',
     [['', 'off'], ...presets.map((p) => [p, p])], '');
 

@@ -6,7 +6,8 @@
 
 import { Synthesizer } from './synthesizer.js';
 
-// A flat square grid like flatSquareGlb's, straight as arrays (the bench needs no core).
+// A flat square grid like the synthesis tests' (tests/node/export-fixtures.mjs flatSquareGlb), straight as arrays
+// (the bench needs no core).
 function flatSquare(n = 16) {
   const positions = [], triangles = [], cornerUVs = [];
   for (let j = 0; j <= n; j++) for (let i = 0; i <= n; i++) positions.push(i / n, j / n, 0);

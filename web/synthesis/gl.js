@@ -3,6 +3,9 @@
 // Every texture here is read with texelFetch (integer texel addresses), so all use NEAREST filtering and need only
 // EXT_color_buffer_float to be rendered into.
 
+// Texture and atlas sizes are powers of two (the pyramid halves them down to 2x2).
+export const isPow2 = (n) => Number.isInteger(n) && n > 0 && (n & (n - 1)) === 0;
+
 export class GLError extends Error {
   constructor(message) {
     super(message);

@@ -1,31 +1,14 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The "Texture" section of the side panel: exemplar picker (procedural ones or a PNG/JPEG of the user's), feature
 // scale, atlas resolution, magnitude-driven scale, synthesize / off, PNG and GLB export, and a status line with
-// the last synthesis times. Built here (no markup in index.html) and appended to the given container.
-
-function el(tag, attrs = {}, ...children) {
-  const e = document.createElement(tag);
-  for (const [k, v] of Object.entries(attrs)) {
-    if (k === 'class') e.className = v;
-    else if (k === 'text') e.textContent = v;
-    else e.setAttribute(k, v);
-  }
-  e.append(...children);
-  return e;
-}
-
-function download(blob, name) {
-  const url = URL.createObjectURL(blob);
-  const a = el('a', { href: url, download: name });
-  document.body.append(a);
-  a.click();
-  a.remove();
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
-}
+// the last synthesis times. Built here (no markup in index.html) and appended to the given container. The GLB
+// button is the one GLB export's (downloadGlb, export/index.js): the model with the field and this texture.
+import { el } from '../dom.js';
+import { downloadBlob } from '../session/documents.js';
 
 const fmt = (ms) => (ms < 10 ? ms.toFixed(1) : ms.toFixed(0));
 
-export function mountSynthesisPanel(controller, container, { onError = (e) => console.error(e), modelName = () => 'model' } = {}) {
+export function mountSynthesisPanel(controller, container, { onError = (e) => console.error(e), modelName = () => 'model', downloadGlb = null } = {}) {
   const exemplar = el('select', { id: 'tex-exemplar', title: 'The exemplar the texture is synthesized from' });
   for (const name of controller.proceduralNames()) exemplar.append(el('option', { value: name, text: name }));
   exemplar.append(el('option', { value: 'image', text: 'Image…' }));
@@ -45,7 +28,8 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
   const go = el('button', { id: 'tex-synthesize', type: 'button', text: 'Synthesize', title: 'Synthesize the texture along the field; it follows every later field change' });
   const off = el('button', { id: 'tex-off', type: 'button', text: 'Off', title: 'Back to the plain surface' });
   const png = el('button', { id: 'tex-png', type: 'button', text: 'PNG', title: 'Download the synthesized atlas texture' });
-  const glb = el('button', { id: 'tex-glb', type: 'button', text: 'GLB', title: 'Download the model with the texture (binary glTF)' });
+  const glb = el('button', { id: 'tex-glb', type: 'button', text: 'GLB', title: 'Download the model with the texture, the field and its flow map (binary glTF; the same file as Export › GLB)' });
+  glb.hidden = !downloadGlb;
   const status = el('p', { id: 'tex-status', class: 'note', text: 'No texture yet.' });
 
   const section = el(
@@ -158,8 +142,8 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
       if (controller.active) run(() => controller.synthesize(options()));
     });
   }
-  png.addEventListener('click', () => run(async () => download(await controller.exportTexturePNG({ magnification: 2 }), `${modelName()}-texture.png`)));
-  glb.addEventListener('click', () => run(async () => download(await controller.exportGLB(), `${modelName()}-textured.glb`)));
+  png.addEventListener('click', () => run(async () => downloadBlob(`${modelName()}-texture.png`, await controller.exportTexturePNG({ magnification: 2 }))));
+  glb.addEventListener('click', () => run(() => downloadGlb()));
 
   return { refresh: () => (showStats(), showPreview()) };
 }

@@ -51,28 +51,19 @@ export class TexturedModel {
     this.visible = true;
   }
 
-  // positions (3 per vertex), triangles (3 per face), cornerUVs (6 per face): a non-indexed geometry with the
-  // welded mesh's smooth vertex normals.
-  setGeometry(positions, triangles, cornerUVs) {
+  // surface: the model's Surface (geometry/surface.js); cornerUVs: 6 per face. A non-indexed geometry (every
+  // corner its own UV) shaded with the welded mesh's smooth vertex normals, which the Surface already holds.
+  setGeometry(surface, cornerUVs) {
     this.#disposeMesh();
+    const { positions, triangles, vertexNormals } = surface;
     const nF = triangles.length / 3;
-    const nV = positions.length / 3;
-    const vn = new Float64Array(3 * nV);
-    for (let f = 0; f < nF; f++) {
-      const [a, b, c] = [0, 1, 2].map((k) => 3 * triangles[3 * f + k]);
-      const u = [0, 1, 2].map((k) => positions[b + k] - positions[a + k]);
-      const w = [0, 1, 2].map((k) => positions[c + k] - positions[a + k]);
-      const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
-      for (const v of [a, b, c]) for (let k = 0; k < 3; k++) vn[v + k] += n[k];
-    }
     const pos = new Float32Array(9 * nF), nor = new Float32Array(9 * nF), uv = new Float32Array(6 * nF);
     for (let f = 0; f < nF; f++)
       for (let k = 0; k < 3; k++) {
         const v = 3 * triangles[3 * f + k];
-        const l = Math.hypot(vn[v], vn[v + 1], vn[v + 2]) || 1;
         for (let c = 0; c < 3; c++) {
           pos[9 * f + 3 * k + c] = positions[v + c];
-          nor[9 * f + 3 * k + c] = vn[v + c] / l;
+          nor[9 * f + 3 * k + c] = vertexNormals[v + c];
         }
         uv[6 * f + 2 * k] = cornerUVs[6 * f + 2 * k];
         uv[6 * f + 2 * k + 1] = cornerUVs[6 * f + 2 * k + 1];

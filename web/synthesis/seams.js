@@ -7,6 +7,7 @@
 // over the gutter, and each gutter texel centre inside it is sent through the face's own UVs.
 // Coarser synthesis levels use the finest map at each coarse texel's centre.
 
+import { halfEdgeNeighbours } from '../geometry/mesh-geometry.js';
 import { rasterCoverage } from './atlas.js';
 
 const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
@@ -39,35 +40,28 @@ function faceFrame(positions, triangles, cornerUVs, f) {
 }
 
 // Gutter texel -> the same surface point across the seam at `resolution`, in texel units (continuous: texel i spans
-// [i, i + 1), so floor() names the target texel and the fraction where inside it the point lies). Returns
-// Float32Array (4 per texel: target x, target y, 1 if redirected, and for a texel that borrowed a neighbour's
-// target the neighbour's offset code 1 + (dx + 1) + 3 (dy + 1), else 0) and the number of redirected texels.
-export function seamIndirection(positions, triangles, cornerUVs, resolution) {
+// [i, i + 1), so floor() names the target texel and the fraction where inside it the point lies). mesh:
+// {positions, triangles, neighbour?}, neighbour the half-edge map of geometry/mesh-geometry.js (the model's
+// Surface has it; derived when absent). Returns Float32Array (4 per texel: target x, target y, 1 if
+// redirected, and for a texel that borrowed a neighbour's target the neighbour's offset code
+// 1 + (dx + 1) + 3 (dy + 1), else 0) and the number of redirected texels.
+export function seamIndirection({ positions, triangles, neighbour = null }, cornerUVs, resolution) {
   const R = resolution;
   const nF = triangles.length / 3;
+  const halfEdges = neighbour ?? halfEdgeNeighbours(triangles, positions.length / 3);
   const covered = rasterCoverage(cornerUVs, R);
   const out = new Float32Array(4 * R * R);
   const frames = new Array(nF);
   const frame = (f) => (frames[f] === undefined ? (frames[f] = faceFrame(positions, triangles, cornerUVs, f)) : frames[f]);
-  // Faces across each edge.
-  const edges = new Map();
-  for (let f = 0; f < nF; f++)
-    for (let k = 0; k < 3; k++) {
-      const a = triangles[3 * f + k], b = triangles[3 * f + ((k + 1) % 3)];
-      const key = a < b ? `${a},${b}` : `${b},${a}`;
-      if (!edges.has(key)) edges.set(key, []);
-      edges.get(key).push([f, k]);
-    }
+  const uv = (f, k) => [cornerUVs[6 * f + 2 * k], cornerUVs[6 * f + 2 * k + 1]];
   let redirected = 0, seamEdges = 0;
-  const uvOf = (f, vertex) => {
-    for (let k = 0; k < 3; k++) if (triangles[3 * f + k] === vertex) return [cornerUVs[6 * f + 2 * k], cornerUVs[6 * f + 2 * k + 1]];
-    return null;
-  };
-  for (const sides of edges.values()) {
-    if (sides.length !== 2) continue;
-    const [[f, k], [g]] = sides;
-    const vi = triangles[3 * f + k], vj = triangles[3 * f + ((k + 1) % 3)];
-    const fi = uvOf(f, vi), fj = uvOf(f, vj), gi = uvOf(g, vi), gj = uvOf(g, vj);
+  // Each interior edge once, from its lower half-edge: local edge k of face f runs i -> j, and is local edge kk
+  // of face g running j -> i.
+  for (let h = 0; h < 3 * nF; h++) {
+    const other = halfEdges[h];
+    if (other < h) continue;
+    const f = Math.floor(h / 3), k = h % 3, g = Math.floor(other / 3), kk = other % 3;
+    const fi = uv(f, k), fj = uv(f, (k + 1) % 3), gi = uv(g, (kk + 1) % 3), gj = uv(g, kk);
     const same = Math.hypot(fi[0] - gi[0], fi[1] - gi[1]) < 1e-7 && Math.hypot(fj[0] - gj[0], fj[1] - gj[1]) < 1e-7;
     if (same) continue;
     seamEdges++;

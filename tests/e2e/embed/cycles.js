@@ -1,6 +1,6 @@
 // Creates a designer, waits until its model is loaded, removes it; n times. Counts the WebGL contexts the
 // elements' canvases lose (a disposed designer gives its context back at once).
-import { TangentFieldDesigner } from './node_modules/tangent-field-designer/lib/tangent-field-designer.js';
+import { TangentFieldDesigner } from './node_modules/tangent-field-designer/lib/tangent-field-designer.standalone.js';
 
 const state = { created: 0, contextsLost: 0, live: [] };
 

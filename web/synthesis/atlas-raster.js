@@ -1,0 +1,184 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The mesh laid out in one atlas on the synthesis context: the per-corner vertex data that rasterizes the
+// per-texel Jacobian (UV, field, 3D-to-UV frame, normal), the render targets of every pyramid level, and the
+// seam indirection (seams.js) per level. One per atlas (resolution and UVs); the synthesizer works in its
+// levels. Kept apart from the level loop because it changes only when the model or the atlas does.
+import { FloatTarget, GLError, drawFullscreen, isPow2 } from './gl.js';
+import { coarserIndirection, seamIndirection } from './seams.js';
+
+// Floats per corner: uv (2), field (3, filled per synthesis), G1 (3), G2 (3), unit normal (3).
+const STRIDE = 14;
+
+export class AtlasRaster {
+  // positions (3 per vertex), triangles (3 per face), cornerUVs (6 per face, in [0, 1]), resolution a power of
+  // two; neighbour: the half-edge map of geometry/mesh-geometry.js when the caller holds one (the model's
+  // Surface), else it is derived for the seams.
+  constructor(gl, jacobianProgram, { resolution, positions, triangles, cornerUVs, neighbour = null }) {
+    if (!isPow2(resolution) || resolution < 4 || resolution > 4096) throw new GLError(`atlas resolution must be a power of two in [4, 4096] (got ${resolution})`);
+    const nF = triangles.length / 3;
+    if (cornerUVs.length !== 6 * nF) throw new GLError(`cornerUVs must hold 6 numbers per face (${6 * nF}), got ${cornerUVs.length}`);
+    this.gl = gl;
+    this.resolution = resolution;
+    this.triangles = Int32Array.from(triangles);
+    const { data, faceArea, used, area3, areaUV } = cornerData(positions, triangles, cornerUVs);
+    if (!used) throw new GLError('the atlas has no usable triangle (all degenerate in UV or 3D)');
+    this.data = data;
+    this.faceArea = faceArea;
+    this.vertexCount = 3 * nF;
+    this.usedFaces = used;
+    this.coverage = areaUV;
+    // Surface length per atlas texel at the atlas's mean density.
+    this.texelLength = Math.sqrt(area3 / areaUV) / resolution;
+    this.#vertexArray(jacobianProgram.program);
+    // Per level (finest first, down to 2x2): the Jacobian, the state as four parity-class quarters plus a spare
+    // (sub-passes write a quarter into the spare, which then takes its place), and the unpacked result.
+    this.levels = [];
+    for (let r = resolution; r >= 2; r >>= 1) {
+      const h = r / 2;
+      this.levels.push({
+        size: r,
+        jac: new FloatTarget(gl, r, r),
+        result: new FloatTarget(gl, r, r),
+        quarters: [0, 1, 2, 3].map(() => new FloatTarget(gl, h, h)),
+        spare: new FloatTarget(gl, h, h),
+      });
+    }
+    this.jacScratch = new FloatTarget(gl, resolution, resolution);
+    // Seam indirection per level (an all-zero map where the atlas has no seams).
+    const t0 = performance.now();
+    const seams = seamIndirection({ positions, triangles, neighbour }, cornerUVs, resolution);
+    this.levels.forEach((L, k) => {
+      L.indirection = new FloatTarget(gl, L.size, L.size, k === 0 ? seams.map : coarserIndirection(seams.map, resolution, k), { target: false });
+    });
+    this.seams = { edges: seams.seamEdges, redirectedTexels: seams.redirected, ms: performance.now() - t0 };
+  }
+
+  #vertexArray(program) {
+    const gl = this.gl;
+    this.buffer = gl.createBuffer();
+    this.vao = gl.createVertexArray();
+    gl.bindVertexArray(this.vao);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
+    gl.bufferData(gl.ARRAY_BUFFER, this.data, gl.DYNAMIC_DRAW);
+    const attrib = (name, size, offset) => {
+      const loc = gl.getAttribLocation(program, name);
+      if (loc < 0) return;
+      gl.enableVertexAttribArray(loc);
+      gl.vertexAttribPointer(loc, size, gl.FLOAT, false, STRIDE * 4, offset * 4);
+    };
+    attrib('aUV', 2, 0);
+    attrib('aField', 3, 2);
+    attrib('aG1', 3, 5);
+    attrib('aG2', 3, 8);
+    attrib('aNormal', 3, 11);
+    gl.bindVertexArray(null);
+    gl.bindBuffer(gl.ARRAY_BUFFER, null);
+  }
+
+  // The Jacobian of every level for the per-vertex field `vertexVectors` (3 per vertex): rasterized at the finest
+  // level, dilated `o.gutter` texels past the charts, then averaged down. programs: the synthesizer's; vao: its
+  // full-screen one. Returns the reference magnitude (area-weighted mean |field|).
+  raster(programs, vao, vertexVectors, o) {
+    const gl = this.gl;
+    const magRef = this.#fillField(vertexVectors);
+    const finest = this.levels[0];
+    // Raster into the scratch target, dilate into the level-0 Jacobian (ping-pong for more than one ring).
+    const rho = o.featureScale * this.texelLength;
+    let dst = o.gutter % 2 === 0 ? finest.jac : this.jacScratch;
+    let other = dst === finest.jac ? this.jacScratch : finest.jac;
+    dst.bindAsTarget();
+    gl.clearColor(0, 0, 0, 0);
+    gl.clear(gl.COLOR_BUFFER_BIT);
+    programs.jacobian
+      .use()
+      .float('uInvRho', 1 / rho)
+      .float('uTexel', 1 / this.resolution)
+      .float('uMagRef', magRef)
+      .float('uMagExponent', o.magnitudeExponent);
+    gl.bindVertexArray(this.vao);
+    gl.drawArrays(gl.TRIANGLES, 0, this.vertexCount);
+    gl.bindVertexArray(null);
+    for (let g = 0; g < o.gutter; g++) {
+      [dst, other] = [other, dst];
+      dst.bindAsTarget();
+      programs.dilate.use().texture('uJac', other).ivec2('uSize', this.resolution, this.resolution);
+      drawFullscreen(gl, vao);
+    }
+    if (dst !== finest.jac) throw new Error('internal: Jacobian dilation ended in the wrong target');
+    for (let k = 1; k < this.levels.length; k++) {
+      this.levels[k].jac.bindAsTarget();
+      programs.jacobianDown.use().texture('uJac', this.levels[k - 1].jac);
+      drawFullscreen(gl, vao);
+    }
+    return magRef;
+  }
+
+  // The field per corner into the vertex data, and the reference magnitude (area-weighted mean over faces of
+  // the corner mean).
+  #fillField(vertexVectors) {
+    const gl = this.gl, T = this.triangles, data = this.data;
+    const nF = T.length / 3;
+    let magSum = 0, areaSum = 0;
+    for (let f = 0; f < nF; f++) {
+      let mag = 0;
+      for (let k = 0; k < 3; k++) {
+        const v = 3 * T[3 * f + k];
+        const off = (3 * f + k) * STRIDE + 2;
+        data[off] = vertexVectors[v];
+        data[off + 1] = vertexVectors[v + 1];
+        data[off + 2] = vertexVectors[v + 2];
+        mag += Math.hypot(vertexVectors[v], vertexVectors[v + 1], vertexVectors[v + 2]) / 3;
+      }
+      magSum += mag * this.faceArea[f];
+      areaSum += this.faceArea[f];
+    }
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
+    gl.bufferSubData(gl.ARRAY_BUFFER, 0, data);
+    gl.bindBuffer(gl.ARRAY_BUFFER, null);
+    return magSum > 0 ? magSum / areaSum : 1;
+  }
+
+  dispose() {
+    const gl = this.gl;
+    gl.deleteBuffer(this.buffer);
+    gl.deleteVertexArray(this.vao);
+    for (const L of this.levels) for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, ...L.quarters]) t?.dispose();
+    this.jacScratch.dispose();
+    this.levels = [];
+  }
+}
+
+// Per corner: UV, the face's 3D-to-UV frame G = [e1 e2] [[du1 du2] [dv1 dv2]]^-1 (columns G1, G2) and unit
+// normal; faces degenerate in UV or in 3D keep zeros and draw nothing.
+function cornerData(positions, triangles, cornerUVs) {
+  const nF = triangles.length / 3;
+  const data = new Float32Array(3 * nF * STRIDE);
+  const faceArea = new Float64Array(nF);
+  let area3 = 0, areaUV = 0, used = 0;
+  for (let f = 0; f < nF; f++) {
+    const a = 3 * triangles[3 * f], b = 3 * triangles[3 * f + 1], c = 3 * triangles[3 * f + 2];
+    const e1 = [positions[b] - positions[a], positions[b + 1] - positions[a + 1], positions[b + 2] - positions[a + 2]];
+    const e2 = [positions[c] - positions[a], positions[c + 1] - positions[a + 1], positions[c + 2] - positions[a + 2]];
+    const u = cornerUVs.subarray(6 * f, 6 * f + 6);
+    const du1 = u[2] - u[0], dv1 = u[3] - u[1], du2 = u[4] - u[0], dv2 = u[5] - u[1];
+    const det = du1 * dv2 - du2 * dv1;
+    const n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+    const nl = Math.hypot(n[0], n[1], n[2]);
+    faceArea[f] = nl / 2;
+    if (!(Math.abs(det) > 1e-14) || !(nl > 0)) continue;
+    used++;
+    area3 += nl / 2;
+    areaUV += Math.abs(det) / 2;
+    const G1 = [0, 1, 2].map((k) => (e1[k] * dv2 - e2[k] * dv1) / det);
+    const G2 = [0, 1, 2].map((k) => (e2[k] * du1 - e1[k] * du2) / det);
+    for (let k = 0; k < 3; k++) {
+      const o = (3 * f + k) * STRIDE;
+      data[o] = u[2 * k];
+      data[o + 1] = u[2 * k + 1];
+      data.set(G1, o + 5);
+      data.set(G2, o + 8);
+      data.set([n[0] / nl, n[1] / nl, n[2] / nl], o + 11);
+    }
+  }
+  return { data, faceArea, used, area3, areaUV };
+}

@@ -1,0 +1,354 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// One designer's texture synthesis: which exemplar, which atlas (per model and resolution), when to
+// (re)synthesize as the field changes (quick edits get a preview, bursts coalesce, stale runs are cancelled),
+// the textured model in the view, and the texture handed to the exports. Everything runs in order through one
+// queue, so an export never reads a half-made texture. The GPU work is synthesizer.js's; the settings chosen
+// for the user are auto-settings.js's.
+import { runSynthesisBench } from './bench.js';
+import { defaultFeatureScale, defaultResolution, shapeComplexity } from './auto-settings.js';
+import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8 } from './exemplar.js';
+import { TexturedModel } from './render.js';
+import { DEFAULTS, Synthesizer } from './synthesizer.js';
+import { exportMagnification, pngBlob } from './texture-image.js';
+
+const MAX_RESOLUTION = 2048;
+const OPTION_KEYS = ['featureScale', 'magnitudeExponent', 'jitter', 'finestJitter', 'passes', 'kappa', 'seed', 'gutter', 'seams', 'timing'];
+const CONTROLLER_KEYS = ['resolution', 'autoUpdate', 'interleave'];
+// Field changes closer together than this count as quick edits: the texture follows them with a preview (one
+// level short of the finest, a quarter of the work) and is synthesized in full once they stop for this long.
+const QUICK_EDIT_MS = 400;
+
+export class SynthesisController {
+  // viewer: the page's Viewer (scene, surfaceMesh, requestRender).
+  // getModel(): {key, name, positions, triangles, surface, cornerUVs | null, vertexVectors, fieldVersion} of the
+  // current model and field (surface: geometry/surface.js, with normals and the half-edge map).
+  // computeAtlas(model, {resolution, gutter}) and analyzeExemplar(spec): chooseAtlas (atlas.js) and
+  // analyzeExemplar (exemplar.js) off the page's thread (the element's core worker), resolving with their results.
+  constructor({ viewer, getModel, computeAtlas, analyzeExemplar, onChange = () => {}, onError = () => {} }) {
+    this.computeAtlas = computeAtlas;
+    this.viewer = viewer;
+    this.getModel = getModel;
+    this.onChange = onChange;
+    this.onError = onError;
+    this.library = new ExemplarLibrary(analyzeExemplar);
+    this.synth = null;
+    this.render = null;
+    this.exemplar = null; // {tables, label, analysisMs, cached}
+    this.atlas = null; // {key, resolution, cornerUVs, source, reason, stats}
+    // resolution / featureScale 'auto': chosen from the model and the exemplar (defaultResolution,
+    // defaultFeatureScale). autoUpdate: resynthesize on field changes. interleave: yield to the page between draws.
+    this.options = { ...DEFAULTS, resolution: 'auto', featureScale: 'auto', autoUpdate: true, interleave: true };
+    this.progress = null; // {fraction, preview} while a synthesis runs
+    this.stale = false; // the field changed since the texture was made (autoUpdate off)
+    this.runToken = 0;
+    this.lastFieldChange = -Infinity;
+    this.settleTimer = null;
+    this.active = false; // a texture is shown and follows field changes
+    this.stats = null;
+    this.queue = Promise.resolve();
+    this.pendingField = false;
+  }
+
+  #exclusive(fn) {
+    const run = this.queue.then(fn);
+    this.queue = run.catch(() => {});
+    return run;
+  }
+
+  #ensureSynth() {
+    if (!this.synth) this.synth = new Synthesizer();
+    return this.synth;
+  }
+
+  proceduralNames() {
+    return ['stripes', 'scales', 'weave'];
+  }
+
+  // src: a procedural name ('stripes' | 'scales' | 'weave'), {procedural, size, seed}, a URL (string or URL),
+  // a Blob/File (PNG or JPEG), ImageData or an ImageBitmap. Options: {size} for images (power of two, default 128).
+  setExemplar(src, { size } = {}) {
+    return this.#exclusive(async () => {
+      const t0 = performance.now();
+      let result, label;
+      const spec = typeof src === 'string' && this.proceduralNames().includes(src) ? { procedural: src } : src;
+      if (spec && typeof spec === 'object' && typeof spec.procedural === 'string') {
+        const n = spec.size ?? PROCEDURAL_SIZE;
+        result = await this.library.procedural(spec.procedural, n, spec.seed ?? 1);
+        label = spec.procedural;
+      } else {
+        const n = size ?? USER_EXEMPLAR_SIZE;
+        if (!Number.isInteger(n) || n < 16 || n > 256 || (n & (n - 1))) throw new Error(`exemplar size must be a power of two in [16, 256] (got ${n})`);
+        const img = await imageToRGBA8(spec, n);
+        result = await this.library.image(img.rgba, img.size, img.label);
+        label = img.label;
+      }
+      this.exemplar = { tables: result.tables, label, cached: result.cached, analysisMs: performance.now() - t0 };
+      this.#ensureSynth().setExemplar(result.tables);
+      this.onChange();
+      if (this.active) await this.#run();
+      return this.exemplarInfo();
+    });
+  }
+
+  exemplarInfo() {
+    if (!this.exemplar) return null;
+    const { tables, label, cached, analysisMs } = this.exemplar;
+    return { label, size: tables.size, levels: tables.levels.length, cached, analysisMs, analysis: tables.stats };
+  }
+
+  // The atlas for the current model at `resolution` (cached per model and resolution).
+  async #atlasFor(model, resolution) {
+    const gutter = this.options.gutter ?? DEFAULTS.gutter;
+    if (this.atlas && this.atlas.key === model.key && this.atlas.resolution === resolution && this.atlas.gutter === gutter) return this.atlas;
+    // Generating an atlas takes up to seconds on a big model: the element's core worker does it, so the page
+    // keeps drawing and taking input.
+    const chosen = await this.computeAtlas(model, { resolution, gutter });
+    this.atlas = { key: model.key, resolution, gutter, ...chosen };
+    const { positions, triangles, neighbour } = model.surface;
+    this.#ensureSynth().setAtlas({ resolution, positions, triangles, neighbour, cornerUVs: this.atlas.cornerUVs });
+    if (!this.render) this.render = new TexturedModel(this.viewer);
+    this.render.setGeometry(model.surface, this.atlas.cornerUVs);
+    return this.atlas;
+  }
+
+  // Synthesizes for the current field and shows the result; later field changes resynthesize with the same
+  // options until clearTexture(). Options: resolution (power of two, default 256) and the synthesizer's
+  // (featureScale, magnitudeExponent, jitter, passes, kappa, seed, gutter, timing).
+  synthesize(options = {}) {
+    return this.#exclusive(async () => {
+      if (options.resolution !== undefined && options.resolution !== 'auto') {
+        const r = options.resolution;
+        if (!Number.isInteger(r) || r < 16 || r > MAX_RESOLUTION || (r & (r - 1))) throw new Error(`resolution must be 'auto' or a power of two in [16, ${MAX_RESOLUTION}] (got ${r})`);
+      }
+      for (const k of Object.keys(options)) {
+        if (!CONTROLLER_KEYS.includes(k) && !OPTION_KEYS.includes(k)) throw new Error(`unknown synthesis option '${k}'`);
+      }
+      if (options.featureScale !== undefined && options.featureScale !== 'auto' && !(options.featureScale > 0)) throw new Error("featureScale must be 'auto' or > 0");
+      this.options = { ...this.options, ...options };
+      if (!this.exemplar) {
+        const r = await this.library.procedural('stripes', PROCEDURAL_SIZE, 1);
+        this.exemplar = { tables: r.tables, label: 'stripes', cached: r.cached, analysisMs: 0 };
+        this.#ensureSynth().setExemplar(r.tables);
+      }
+      this.active = true;
+      return this.#run();
+    });
+  }
+
+  // One synthesis for the current model and field. preview: stop one level short of the finest (quick edits).
+  async #run({ preview = false } = {}) {
+    const model = this.getModel();
+    if (!model) throw new Error('no model loaded');
+    const token = ++this.runToken;
+    const t0 = performance.now();
+    const resolution = this.options.resolution === 'auto' ? defaultResolution(model.triangles.length / 3) : this.options.resolution;
+    const atlas = await this.#atlasFor(model, resolution);
+    const tAtlas = performance.now() - t0;
+    const synthOptions = {};
+    for (const k of OPTION_KEYS) if (this.options[k] !== undefined) synthOptions[k] = this.options[k];
+    const coverage = atlas.stats.coverage ?? atlas.stats.check?.coverage ?? 0.5;
+    if (synthOptions.featureScale === 'auto') {
+      atlas.complexity ??= shapeComplexity(model.surface);
+      synthOptions.featureScale = defaultFeatureScale(atlas.resolution, coverage, this.exemplar.tables.size, atlas.complexity);
+    }
+    if (preview) synthOptions.finestLevel = 1;
+    let s;
+    if (this.options.interleave) {
+      let shown = -1;
+      this.progress = { fraction: 0, preview };
+      this.onChange();
+      s = await this.synth.synthesizeInterleaved(model.vertexVectors, { ...synthOptions, timing: 'total' }, {
+        cancelled: () => token !== this.runToken,
+        onProgress: (f) => {
+          this.progress = { fraction: f, preview };
+          if (Math.floor(100 * f) !== shown) (shown = Math.floor(100 * f)), this.onChange();
+        },
+      });
+      this.progress = null;
+      if (!s) return this.synthesisStats(); // superseded by a newer field change
+    } else {
+      s = this.synth.synthesize(model.vertexVectors, synthOptions);
+    }
+    const t1 = performance.now();
+    const coords = this.synth.readCoordinates();
+    const jacobian = this.synth.readJacobian();
+    this.render.setTexture({ resolution: s.resolution, coords, jacobian, exemplar: this.exemplar.tables.rgba8, exemplarSize: this.exemplar.tables.size });
+    this.viewer.requestRender?.();
+    this.stale = false;
+    this.stats = {
+      ...s,
+      autoFeatureScale: this.options.featureScale === 'auto',
+      shapeComplexity: atlas.complexity ?? null,
+      autoResolution: this.options.resolution === 'auto',
+      exemplar: this.exemplarInfo(),
+      atlas: { source: atlas.source, reason: atlas.reason, resolution: atlas.resolution, ...atlas.stats, ms: tAtlas },
+      readbackMs: performance.now() - t1,
+      wallMs: performance.now() - t0,
+      fieldVersion: model.fieldVersion,
+    };
+    this.lastFieldVersion = model.fieldVersion;
+    this.onChange();
+    return structuredClone(this.stats);
+  }
+
+  // The field changed: resynthesize while a texture is shown (autoUpdate), coalescing bursts of changes into
+  // one run and cancelling a run the change makes stale. Changes that come quickly (or with interactive: true,
+  // e.g. while a stroke is dragged) get a preview, and a full synthesis once they stop.
+  fieldChanged({ interactive = false } = {}) {
+    if (!this.active) return;
+    const model = this.getModel();
+    if (model && this.atlas && model.fieldVersion !== undefined && model.fieldVersion === this.lastFieldVersion) return;
+    if (!this.options.autoUpdate) {
+      this.stale = true;
+      this.onChange();
+      return;
+    }
+    const now = performance.now();
+    const quick = interactive || now - this.lastFieldChange < QUICK_EDIT_MS;
+    this.lastFieldChange = now;
+    this.runToken++; // cancels a run in progress
+    clearTimeout(this.settleTimer);
+    this.settleTimer = null;
+    if (quick) {
+      this.settleTimer = setTimeout(() => {
+        this.settleTimer = null;
+        this.#schedule(false);
+      }, QUICK_EDIT_MS);
+    }
+    this.#schedule(quick && this.stats !== null);
+  }
+
+  #schedule(preview) {
+    if (this.pendingField) {
+      this.pendingPreview &&= preview;
+      return;
+    }
+    this.pendingField = true;
+    this.pendingPreview = preview;
+    setTimeout(() => {
+      this.pendingField = false;
+      const p = this.pendingPreview;
+      this.#exclusive(() => (this.active ? this.#run({ preview: p }) : null)).catch((err) => this.onError(err));
+    }, 0);
+  }
+
+  // Sets autoUpdate (and brings the texture up to date when switched on).
+  setAutoUpdate(on) {
+    this.options.autoUpdate = !!on;
+    if (on && this.stale) this.fieldChanged();
+    this.onChange();
+  }
+
+  // A new model: the atlas and the textured mesh belong to the old one.
+  modelChanged() {
+    this.atlas = null;
+    this.render?.dispose();
+    this.render = null;
+    this.stats = null;
+    this.lastFieldVersion = undefined;
+    if (this.active) this.fieldChanged();
+    this.onChange(); // the status line must stop showing the old model's numbers
+  }
+
+  // Resolves (with the latest stats) once no synthesis is queued or pending.
+  async whenIdle() {
+    for (;;) {
+      await this.queue;
+      if (!this.pendingField && !this.settleTimer) return this.synthesisStats();
+      await new Promise((r) => setTimeout(r, 5));
+    }
+  }
+
+  clearTexture() {
+    return this.#exclusive(() => {
+      this.active = false;
+      this.render?.setVisible(false);
+      this.onChange();
+    });
+  }
+
+  setTextureVisible(visible) {
+    this.render?.setVisible(!!visible);
+  }
+
+  synthesisStats() {
+    return this.stats ? structuredClone(this.stats) : null;
+  }
+
+  #requireResult() {
+    if (!this.stats || !this.synth?.result) throw new Error('nothing synthesized yet: call synthesize() first');
+  }
+
+  // The synthesized texture as a PNG Blob, rendered as the page renders it (magnification: the four nearest
+  // texels' patches blended) at {resolution} pixels per side or {magnification} pixels per atlas texel; the top
+  // row is atlas v = 0 (texture-image.js).
+  exportTexturePNG(options = {}) {
+    return this.#exclusive(async () => {
+      this.#requireResult();
+      return this.#image(exportMagnification(options, this.stats.resolution, 1));
+    });
+  }
+
+  // The texture a GLB export embeds (export/index.js): {png (Uint8Array), cornerUVs (the atlas, 6 per face of
+  // the model)} at {resolution} or {magnification} (default 2 pixels per atlas texel), or null when none is
+  // shown. required: the last texture even when switched off, and an error when there is none. Waits for the
+  // synthesis in flight, so the file has the texture of the field it carries.
+  async exportTexture({ resolution, magnification, required = false } = {}) {
+    if (this.active) await this.whenIdle();
+    return this.#exclusive(async () => {
+      if (!required && !this.active) return null;
+      if (!this.stats || !this.synth?.result) {
+        if (required) throw new Error('no synthesized texture to export: call synthesize() first');
+        return null;
+      }
+      const blob = await this.#image(exportMagnification({ resolution, magnification }, this.stats.resolution, 2));
+      return { png: new Uint8Array(await blob.arrayBuffer()), cornerUVs: this.atlas.cornerUVs.slice() };
+    });
+  }
+
+  #image(magnification) {
+    const { width, height, pixels } = this.synth.readColour({ magnification, nearest: false });
+    return pngBlob(pixels, width, height);
+  }
+
+  // For tests and tools: the raw result (copies). coords/jacobian: RGBA32F per atlas texel; colour: RGBA8
+  // (nearest exemplar pixel); exemplar: RGBA8; rows start at v = 0.
+  readback() {
+    return this.#exclusive(async () => {
+      this.#requireResult();
+      const r = this.stats.resolution;
+      return {
+        resolution: r,
+        coords: this.synth.readCoordinates(),
+        jacobian: this.synth.readJacobian(),
+        colour: this.synth.readColour({ nearest: true }).pixels,
+        exemplar: this.exemplar.tables.rgba8.slice(),
+        exemplarSize: this.exemplar.tables.size,
+        cornerUVs: this.atlas.cornerUVs.slice(),
+        // The chart of every face of a generated atlas (null for the model's own UVs).
+        faceCharts: this.atlas.faceCharts?.slice() ?? null,
+      };
+    });
+  }
+
+  // The synthesis benchmark (bench.js) on a synthesizer of its own.
+  bench(options = {}) {
+    return this.#exclusive(async () => {
+      return runSynthesisBench(this.library, options);
+    });
+  }
+
+  // The element left the page: free the synthesis WebGL context and the textured mesh now.
+  dispose() {
+    this.active = false;
+    this.render?.dispose();
+    this.render = null;
+    this.synth?.dispose();
+    this.synth = null;
+  }
+
+  // Milliseconds of one plain full-screen pass at size^2 on the synthesis context (the bench's unit).
+  plainPassMs(size, repeats) {
+    return this.#ensureSynth().plainPassMs(size, repeats);
+  }
+}
