@@ -22,10 +22,10 @@ constexpr int kUsageError = 2;
 int usage() {
   std::cerr << "usage:\n"
                "  tvf info MESH\n"
-               "  tvf design MESH DESIGN.json [-o FIELD.json] [--ignore-fingerprint]\n"
+               "  tvf design MESH DESIGN.json [-o FIELD.json] [--ignore-fingerprint] [--hodge]\n"
                "  tvf export MESH DESIGN.json [--glb OUT.glb] [--flowmap OUT.png] [--size N]\n"
                "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
-               "             [--no-embed-flowmap]\n"
+               "             [--no-embed-flowmap] [--component whole|exact|coexact|harmonic]\n"
                "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
                "            [--threads N]\n"
                "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
@@ -34,7 +34,9 @@ int usage() {
                "--threads: threads of each solve's backward substitution (default: the cores, up to 4).\n"
                "MESH: .gltf, .glb, .off, .obj or .ply\n"
                "A design saved for another mesh (its \"mesh\" fingerprint differs) is refused unless\n"
-               "--ignore-fingerprint is given.\n";
+               "--ignore-fingerprint is given.\n"
+               "--hodge: the field file gets \"hodge\" (Hodge decomposition: exact, coexact, harmonic,\n"
+               "potentials, energyShares). --component: export that part of the field instead of the whole.\n";
   return kUsageError;
 }
 
@@ -59,7 +61,7 @@ int info(const std::string& path) {
 }
 
 int design(const std::string& meshPath, const std::string& designPath, const std::string& outPath,
-           bool checkFingerprint) {
+           bool checkFingerprint, bool hodge) {
   tvf::Designer designer(tvf::loadMesh(meshPath));
   designer.setMetisOrdering(true);
   try {
@@ -71,7 +73,9 @@ int design(const std::string& meshPath, const std::string& designPath, const std
                                                                           : ""));
   }
   designer.solve();
-  const std::string text = tvf::fieldDocument(designer).dump();
+  nlohmann::json field = tvf::fieldDocument(designer);
+  if (hodge) field["hodge"] = tvf::hodgeDocument(designer.hodgeDecomposition());
+  const std::string text = field.dump();
   if (outPath.empty()) {
     std::cout << text << "\n";
   } else {
@@ -83,16 +87,18 @@ int design(const std::string& meshPath, const std::string& designPath, const std
 
 int designCommand(int argc, char** argv) {
   std::string out;
-  bool checkFingerprint = true;
+  bool checkFingerprint = true, hodge = false;
   for (int k = 4; k < argc; ++k) {
     if (std::strcmp(argv[k], "-o") == 0 && k + 1 < argc)
       out = argv[++k];
     else if (std::strcmp(argv[k], "--ignore-fingerprint") == 0)
       checkFingerprint = false;
+    else if (std::strcmp(argv[k], "--hodge") == 0)
+      hodge = true;
     else
       return usage();
   }
-  return design(argv[2], argv[3], out, checkFingerprint);
+  return design(argv[2], argv[3], out, checkFingerprint, hodge);
 }
 
 std::vector<uint8_t> readBytes(const std::string& path) {
@@ -133,6 +139,7 @@ int exportCommand(int argc, char** argv) {
   const std::string meshPath = argv[2], designPath = argv[3];
   std::string glbPath, flowMapPath;
   tvf::FieldExportOptions options;
+  tvf::FieldComponent component = tvf::FieldComponent::Whole;
   for (int k = 4; k < argc; ++k) {
     const std::string a = argv[k];
     if (a == "--no-embed-flowmap") {
@@ -156,6 +163,8 @@ int exportCommand(int argc, char** argv) {
       options.anisotropyStrength = numberArgument(a, value);
     } else if (a == "--rotation") {
       options.anisotropyRotation = numberArgument(a, value);
+    } else if (a == "--component") {
+      component = tvf::fieldComponentFromName(value);
     } else {
       return usage();
     }
@@ -167,6 +176,10 @@ int exportCommand(int argc, char** argv) {
   designer.setMetisOrdering(true);
   tvf::applyDesignDocument(designer, readDesign(designPath));
   designer.solve();
+  // The whole field, or one part of its Hodge decomposition; the GLB still embeds the whole design.
+  const std::vector<double> oneForm = component == tvf::FieldComponent::Whole
+                                          ? designer.oneForm()
+                                          : tvf::componentOneForm(designer.hodgeDecomposition(), component);
   const tvf::SurfaceMesh& mesh = designer.mesh();
   const tvf::ExportAtlas atlas = tvf::exportAtlasFor(
       mesh, designer.topology(), options, !flowMapPath.empty() || (!glbPath.empty() && options.embedFlowMap));
@@ -178,8 +191,8 @@ int exportCommand(int argc, char** argv) {
               << "\n";
   }
   if (!flowMapPath.empty()) {
-    writeBytes(flowMapPath, tvf::exportFlowMapPng(mesh, designer.topology(), atlas.cornerUVs,
-                                                  designer.oneForm(), options));
+    writeBytes(flowMapPath, tvf::exportFlowMapPng(mesh, designer.topology(), atlas.cornerUVs, oneForm,
+                                                  options));
   }
   if (!glbPath.empty()) {
     std::unique_ptr<tvf::GltfSource> source;
@@ -192,7 +205,7 @@ int exportCommand(int argc, char** argv) {
     }
     writeBytes(glbPath,
                tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(), atlas,
-                                   designer.oneForm(), tvf::designDocument(designer), options));
+                                   oneForm, tvf::designDocument(designer), options));
   }
   return 0;
 }

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "constraints/constraint_set.h"
+#include "dec/exterior_derivative.h"
 #include "dec/one_form_laplacian.h"
 #include "field/whitney_reconstruction.h"
 #include "mesh/mesh_checks.h"
@@ -327,6 +328,13 @@ const std::vector<Singularity>& Designer::singularities() const {
 }
 const DesignStats& Designer::stats() const {
   return impl_->stats;
+}
+HodgeDecomposition Designer::hodgeDecomposition() const {
+  const Impl& d = *impl_;
+  if (d.oneForm.size() != static_cast<size_t>(d.topology.numEdges))
+    throw InputError("no field to decompose: solve first");
+  return hodgeDecompose(exteriorDerivative0(d.topology), exteriorDerivative1(d.topology), d.geometry,
+                        Eigen::Map<const Eigen::VectorXd>(d.oneForm.data(), d.topology.numEdges));
 }
 std::vector<ConstraintSpec> Designer::constraints() const {
   return impl_->constraints.specs();

@@ -14,6 +14,7 @@
 #include "constraints/constraint_spec.h"
 #include "dec/boundary_condition.h"
 #include "dec/hodge_star.h"
+#include "field/hodge_decomposition.h"
 #include "field/singularities.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
@@ -93,6 +94,9 @@ class Designer {
   const std::vector<double>& vertexVectors() const;  // 3 per vertex
   const std::vector<Singularity>& singularities() const;
   const DesignStats& stats() const;
+  // The Hodge decomposition (Eq. 3) of the current one-form, computed on each call (two Poisson solves on
+  // the mesh's d0, d1 and stars; field/hodge_decomposition.h). Throws InputError before the first solve.
+  HodgeDecomposition hodgeDecomposition() const;
 
   std::vector<ConstraintSpec> constraints() const;  // in the order they were added
   const BoundaryCondition& boundary() const;

@@ -22,6 +22,49 @@ void requireOneFormOn(const MeshTopology& topology, const std::vector<double>& o
 
 }  // namespace
 
+FieldComponent fieldComponentFromName(const std::string& name) {
+  for (const FieldComponent c :
+       {FieldComponent::Whole, FieldComponent::Exact, FieldComponent::Coexact, FieldComponent::Harmonic})
+    if (name == fieldComponentName(c)) return c;
+  throw InputError("unknown component \"" + name + "\" (whole, exact, coexact or harmonic)");
+}
+
+const char* fieldComponentName(FieldComponent component) {
+  switch (component) {
+    case FieldComponent::Exact:
+      return "exact";
+    case FieldComponent::Coexact:
+      return "coexact";
+    case FieldComponent::Harmonic:
+      return "harmonic";
+    case FieldComponent::Whole:
+      break;
+  }
+  return "whole";
+}
+
+std::vector<double> componentOneForm(const HodgeDecomposition& h, FieldComponent component) {
+  const Eigen::VectorXd part = component == FieldComponent::Exact     ? h.exact
+                               : component == FieldComponent::Coexact ? h.coexact
+                               : component == FieldComponent::Harmonic
+                                   ? h.harmonic
+                                   : Eigen::VectorXd(h.exact + h.coexact + h.harmonic);
+  return std::vector<double>(part.data(), part.data() + part.size());
+}
+
+nlohmann::json hodgeDocument(const HodgeDecomposition& h) {
+  const auto list = [](const Eigen::VectorXd& x) { return std::vector<double>(x.data(), x.data() + x.size()); };
+  const HodgeEnergyShares shares = hodgeEnergyShares(h);
+  return {{"exact", list(h.exact)},
+          {"coexact", list(h.coexact)},
+          {"harmonic", list(h.harmonic)},
+          {"potential0", list(h.potential0)},
+          {"potential2", list(h.potential2)},
+          {"energyShares", {{"exact", shares.exact}, {"coexact", shares.coexact}, {"harmonic", shares.harmonic}}},
+          {"metric", h.metricName},
+          {"decomposeMs", h.milliseconds}};
+}
+
 ExportAtlas exportAtlas(const SurfaceMesh& mesh, const MeshTopology& topology,
                         const FieldExportOptions& options) {
   ExportAtlas atlas;

@@ -8,6 +8,7 @@
 
 #include "dec/hodge_star.h"
 #include "field/flow_map.h"
+#include "field/hodge_decomposition.h"
 #include "io/gltf_source.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
@@ -42,6 +43,18 @@ ExportAtlas exportAtlas(const SurfaceMesh& mesh, const MeshTopology& topology,
 // anisotropyTexture indexes them), never a generated atlas, so the GLB keeps the model's layout.
 ExportAtlas exportAtlasFor(const SurfaceMesh& mesh, const MeshTopology& topology,
                            const FieldExportOptions& options, bool flowMap);
+
+// Which part of the field an export carries (`tvf export --component`): the whole one-form or one part of
+// its Hodge decomposition c = exact + coexact + harmonic (Eq. 3; field/hodge_decomposition.h).
+enum class FieldComponent { Whole, Exact, Coexact, Harmonic };
+FieldComponent fieldComponentFromName(const std::string& name);  // throws InputError naming the choices
+const char* fieldComponentName(FieldComponent component);
+// That part's one-form, per edge in canonical orientation (Whole: the sum of the three parts).
+std::vector<double> componentOneForm(const HodgeDecomposition& h, FieldComponent component);
+// The field file's "hodge" object (docs/design-format.md): the three parts and both potentials as arrays,
+// energyShares {exact, coexact, harmonic} = |part|^2 / |c|^2 in the decomposition's metric, metric (its
+// name) and decomposeMs.
+nlohmann::json hodgeDocument(const HodgeDecomposition& h);
 
 std::vector<uint8_t> exportFlowMapPng(const SurfaceMesh& mesh, const MeshTopology& topology,
                                       const std::vector<float>& cornerUVs, const std::vector<double>& oneForm,
