@@ -76,6 +76,8 @@ export interface Views {
   lic: boolean;
   colorMap: boolean;
   singularities: boolean;
+  /** The part of the Hodge decomposition every view draws (singularity markers stay the whole field's): 'exact' curl-free, 'coexact' divergence-free. */
+  component: 'whole' | 'exact' | 'coexact' | 'harmonic';
 }
 
 export interface LoadModelOptions {
@@ -114,6 +116,35 @@ export interface CoreReadout {
   vertexVectors: Float64Array;
   singularities: { vertex: number; index: number }[];
   design: Design;
+}
+
+/** The Hodge decomposition c = dα + δβ + h (Eq. 3) of the field; per-edge arrays in oneForm()'s edge order. */
+export interface HodgeDecomposition {
+  /** dα: the curl-free part, per edge. */
+  exact: Float64Array;
+  /** δβ: the divergence-free part, per edge. */
+  coexact: Float64Array;
+  /** h: the rest, both curl- and divergence-free (zero on a sphere), per edge. */
+  harmonic: Float64Array;
+  /** α per vertex (exact = dα), zero mean per connected component. */
+  potential0: Float64Array;
+  /** The 2-form potential per face (coexact = P⁻¹ d₁ᵀ potential2), zero mean per closed component. */
+  potential2: Float64Array;
+  /** |part|² / |c|² in the inner product; they sum to 1 (all 0 for a zero field). */
+  energyShares: { exact: number; coexact: number; harmonic: number };
+  /** The diagonal inner product P the parts are orthogonal in: one weight per edge. */
+  innerProduct: Float64Array;
+  /** Which one: 'star1' (the Hodge star ⋆1, when positive on every edge) or 'whitney-mass'. */
+  metric: string;
+  /** How long the decomposition took in the core's worker, in ms. */
+  decomposeMs: number;
+}
+
+/** One part of the field as the worker's `component` op returns it. */
+export interface FieldComponent {
+  oneForm: Float64Array;
+  faceVectors: Float64Array;
+  vertexVectors: Float64Array;
 }
 
 export interface SynthesisOptions {
@@ -317,6 +348,8 @@ export declare class TangentFieldDesigner extends HTMLElement {
   vertexVectors(): Float64Array;
   /** The solution: one line integral per edge of edges(). */
   oneForm(): Float64Array;
+  /** The Hodge decomposition of the current field: exact, coexact and harmonic parts (c = dα + δβ + h), made on first request. */
+  hodge(): Promise<HodgeDecomposition>;
   /** The field's singularities: an integer index per interior vertex that has one. */
   singularities(): { vertex: number; index: number }[];
   /** The core's timings and sizes for the latest operations. */
@@ -398,6 +431,8 @@ export declare class TangentFieldDesigner extends HTMLElement {
   debugCoreReadout(): Promise<CoreReadout>;
   /** @internal The streamlines traced on the page now, whatever the view holds. */
   debugTraceStreamlines(): number[][];
+  /** @internal The worker's component op: one part of the current field with its reconstructed vectors. */
+  debugComponent(name: 'whole' | 'exact' | 'coexact' | 'harmonic'): Promise<FieldComponent>;
 
   addEventListener<K extends keyof TangentFieldDesignerEventMap>(
     type: K,

@@ -41,6 +41,8 @@
 #include "design/design_document.h"
 #include "design/designer.h"
 #include "design/mesh_info.h"
+#include "field/hodge_decomposition.h"
+#include "field/whitney_reconstruction.h"
 #include "io/mesh_io.h"
 #include "mesh/icosphere.h"
 
@@ -108,12 +110,19 @@ val view(const std::vector<T>& v) {
   return val(emscripten::typed_memory_view(v.size(), v.data()));
 }
 
+// A Float64Array of its own (a copy out of wasm memory, made before anything else can run).
+val copyOf(const double* data, std::size_t size) {
+  return val::global("Float64Array").new_(val(emscripten::typed_memory_view(size, data)));
+}
+val copyOf(const std::vector<double>& v) { return copyOf(v.data(), v.size()); }
+val copyOf(const Eigen::VectorXd& v) { return copyOf(v.data(), static_cast<std::size_t>(v.size())); }
+
 class DesignerBinding {
  public:
   // format: 'glb' | 'gltf' | 'obj' | 'off' | 'ply' | '' (sniffed from the bytes).
   std::string loadMesh(const val& bytes, const std::string& format) {
     std::string error;
-    attempt(error, [&] { designer_ = prepareModel(bytes, format, "", "", nullptr, nullptr); });
+    if (attempt(error, [&] { designer_ = prepareModel(bytes, format, "", "", nullptr, nullptr); })) maps_.reset();
     lastError_ = error;
     return error;
   }
@@ -128,6 +137,7 @@ class DesignerBinding {
     std::string error, settingsError, restoreError;
     const bool ok = attempt(error, [&] {
       designer_ = prepareModel(bytes, format, settings, design, &settingsError, &restoreError);
+      maps_.reset();
     });
     lastError_ = error;
     const auto orNull = [](const std::string& s) { return s.empty() ? nlohmann::json() : nlohmann::json(s); };
@@ -234,6 +244,60 @@ class DesignerBinding {
   val cornerUVs() const { return designer_ ? view(designer_->mesh().cornerUVs) : view(emptyF_); }
   // glTF: the welded vertex of every source vertex (the exporter keeps the model's layout with it).
   val sourceToWelded() const { return designer_ ? view(designer_->mesh().sourceToWelded) : view(emptyI_); }
+
+  // The Hodge decomposition (Eq. 3, field/hodge_decomposition.h) of the current field, computed now (two Poisson
+  // solves): {exact, coexact, harmonic (per edge, the oneForm's order), potential0 (per vertex), potential2 (per
+  // face), metric (per edge: the diagonal inner product the parts are orthogonal in), metricName, milliseconds,
+  // energyShares: {exact, coexact, harmonic}}, every array a copy of its own; or the error message (a string).
+  val hodge() {
+    val out = val::object();
+    if (!ok([&] {
+          const tvf::HodgeDecomposition h = need().hodgeDecomposition();
+          const tvf::HodgeEnergyShares shares = tvf::hodgeEnergyShares(h);
+          out.set("exact", copyOf(h.exact));
+          out.set("coexact", copyOf(h.coexact));
+          out.set("harmonic", copyOf(h.harmonic));
+          out.set("potential0", copyOf(h.potential0));
+          out.set("potential2", copyOf(h.potential2));
+          out.set("metric", copyOf(h.metric));
+          out.set("metricName", h.metricName);
+          out.set("milliseconds", h.milliseconds);
+          val s = val::object();
+          s.set("exact", shares.exact);
+          s.set("coexact", shares.coexact);
+          s.set("harmonic", shares.harmonic);
+          out.set("energyShares", s);
+        }))
+      return val(lastError_);
+    return out;
+  }
+
+  // Face vectors (3 per face) and vertex vectors (3 per vertex) of the given 1-form (per edge, the oneForm's
+  // order) by the designer's own reconstruction (the same Whitney maps, built once per mesh, as solve() and
+  // vertexVectors() apply): {faceVectors, vertexVectors} as copies of their own, or the error message.
+  val reconstruct(const val& oneForm) {
+    val out = val::object();
+    if (!ok([&] {
+          const tvf::Designer& d = need();
+          const std::vector<double> c = emscripten::convertJSArrayToNumberVector<double>(oneForm);
+          if (c.size() != static_cast<std::size_t>(d.topology().numEdges))
+            throw tvf::InputError("reconstruct: expected " + std::to_string(d.topology().numEdges) +
+                                  " values (one per edge), got " + std::to_string(c.size()));
+          if (!maps_) {
+            auto maps = std::make_unique<Maps>();
+            maps->face = tvf::faceVectorMap(d.mesh(), d.topology());
+            maps->vertex = tvf::vertexVectorMap(d.mesh(), d.topology(), d.geometry());
+            maps_ = std::move(maps);
+          }
+          std::vector<double> faceVectors, vertexVectors;
+          tvf::faceVectors(maps_->face, d.topology(), c.data(), faceVectors);
+          tvf::vertexVectors(maps_->vertex, c.data(), vertexVectors);
+          out.set("faceVectors", copyOf(faceVectors));
+          out.set("vertexVectors", copyOf(vertexVectors));
+        }))
+      return val(lastError_);
+    return out;
+  }
 
   std::string singularitiesJson() const {
     return json([&] {
@@ -363,6 +427,12 @@ class DesignerBinding {
   }
 
   std::unique_ptr<tvf::Designer> designer_;
+  // reconstruct()'s Whitney maps for designer_'s mesh (built on first use; dropped when the model changes).
+  struct Maps {
+    tvf::FaceVectorMap face;
+    tvf::VertexVectorMap vertex;
+  };
+  std::unique_ptr<Maps> maps_;
   double memoryLimit_ = 0;  // 0: what is left of the wasm address space
   mutable std::string lastError_;
   std::vector<double> emptyD_;
@@ -446,7 +516,9 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("designJson", &DesignerBinding::designJson)
       .function("applyDesignJson", &DesignerBinding::applyDesignJson)
       .function("addConstraintJson", &DesignerBinding::addConstraintJson)
-      .function("fieldJson", &DesignerBinding::fieldJson);
+      .function("fieldJson", &DesignerBinding::fieldJson)
+      .function("hodge", &DesignerBinding::hodge)
+      .function("reconstruct", &DesignerBinding::reconstruct);
   function("warmUp", &warmUp);
   // 1 in the plain build; in the build with pthreads (tvf_core_threads.mjs) one more than its helper threads.
   function("solverThreadsAvailable",

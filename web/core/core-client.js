@@ -42,6 +42,12 @@ function requireNumber(what, x) {
 }
 
 
+// The calls that return an object report a failure as the error message instead.
+function checkObject(what, result) {
+  if (typeof result === 'string') throw new CoreError(prefixed(what, result || 'rejected by the core'));
+  return result;
+}
+
 function check(what, result) {
   if (typeof result === 'string' && result !== '') throw new CoreError(prefixed(what, result));
   return result;
@@ -227,6 +233,19 @@ export class CoreClient {
 
   fieldJson() {
     return guard('field', () => this.designer.fieldJson());
+  }
+
+  // The Hodge decomposition (Eq. 3) of the current field, computed now by the core (two Poisson solves):
+  // {exact, coexact, harmonic, metric (Float64Array per edge, oneForm's order), potential0 (per vertex),
+  // potential2 (per face), metricName, milliseconds, energyShares: {exact, coexact, harmonic}}; arrays of their own.
+  hodge() {
+    return checkObject('hodge', guard('hodge', () => this.designer.hodge()));
+  }
+
+  // Face and vertex vectors of a 1-form (Float64Array per edge, oneForm's order) by the core's own
+  // reconstruction, the one the field's read-outs come from: {faceVectors, vertexVectors}, arrays of their own.
+  reconstruct(oneForm) {
+    return checkObject('reconstruct', guard('reconstruct', () => this.designer.reconstruct(oneForm)));
   }
 
   stats() {

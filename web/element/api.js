@@ -12,6 +12,13 @@ import { captureScreenshot } from '../views/screenshot.js';
 // Synchronous reads: copies of what the session holds after the last completed change.
 const read = (fn) => (d, ...args) => (d.session.requireReady(), fn(d, d.session, ...args));
 const add = (d, spec) => d.session.addConstraint(spec);
+// A worker read-out of the session's current field (an op taking the field's version first); called in the
+// session's queue, where no edit can change the field before it answers.
+async function workerRead(d, op, ...args) {
+  const value = (await d.session.proxy.call(op, [d.session.field.version, ...args])).value;
+  if (value == null) throw new Error(`${op}: the core's field is not the page's (version ${d.session.field.version})`);
+  return value;
+}
 
 export const api = {
   loadModel: (d, src, opts) => d.session.loadModel(src, opts),
@@ -64,6 +71,15 @@ export const api = {
   oneForm: read((d, s) => s.field.oneForm.slice()),
   singularities: read((d, s) => structuredClone(s.currentSingularities())),
   stats: read((d, s) => structuredClone(s.field.stats)),
+  // The Hodge decomposition of the current field (docs/js-api.md): made by the worker on the first request for a
+  // field and kept there until the next solve. In the queue, so it is the field that the edits before it made.
+  hodge: (d) =>
+    d.session.exclusive(async () => {
+      d.session.requireReady();
+      const { exact, coexact, harmonic, potential0, potential2, energyShares, innerProduct, metric, decomposeMs } =
+        await workerRead(d, 'hodge');
+      return { exact, coexact, harmonic, potential0, potential2, energyShares, innerProduct, metric, decomposeMs };
+    }),
 
   select: (d, id) => d.session.select(id),
   selected: (d) => d.session.selected,
@@ -103,6 +119,9 @@ export const api = {
   // holds).
   debugCoreReadout: (d) => d.session.exclusive(async () => (d.session.requireReady(), (await d.session.proxy.call('read')).value)),
   debugTraceStreamlines: read((d) => d.viewSync.traceStreamlinesHere().map((l) => Array.from(l))),
+  // The worker's `component` op for the current field: {oneForm, faceVectors, vertexVectors} of 'whole' |
+  // 'exact' | 'coexact' | 'harmonic'.
+  debugComponent: (d, name) => d.session.exclusive(() => (d.session.requireReady(), workerRead(d, 'component', name))),
 };
 
 // The texture-synthesis calls (web/synthesis/index.js installs them on the designer's synthesis controller).

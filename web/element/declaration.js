@@ -93,6 +93,8 @@ export interface Views {
   lic: boolean;
   colorMap: boolean;
   singularities: boolean;
+  /** The part of the Hodge decomposition every view draws (singularity markers stay the whole field's): 'exact' curl-free, 'coexact' divergence-free. */
+  component: 'whole' | 'exact' | 'coexact' | 'harmonic';
 }
 
 export interface LoadModelOptions {
@@ -131,6 +133,35 @@ export interface CoreReadout {
   vertexVectors: Float64Array;
   singularities: { vertex: number; index: number }[];
   design: Design;
+}
+
+/** The Hodge decomposition c = dα + δβ + h (Eq. 3) of the field; per-edge arrays in oneForm()'s edge order. */
+export interface HodgeDecomposition {
+  /** dα: the curl-free part, per edge. */
+  exact: Float64Array;
+  /** δβ: the divergence-free part, per edge. */
+  coexact: Float64Array;
+  /** h: the rest, both curl- and divergence-free (zero on a sphere), per edge. */
+  harmonic: Float64Array;
+  /** α per vertex (exact = dα), zero mean per connected component. */
+  potential0: Float64Array;
+  /** The 2-form potential per face (coexact = P⁻¹ d₁ᵀ potential2), zero mean per closed component. */
+  potential2: Float64Array;
+  /** |part|² / |c|² in the inner product; they sum to 1 (all 0 for a zero field). */
+  energyShares: { exact: number; coexact: number; harmonic: number };
+  /** The diagonal inner product P the parts are orthogonal in: one weight per edge. */
+  innerProduct: Float64Array;
+  /** Which one: 'star1' (the Hodge star ⋆1, when positive on every edge) or 'whitney-mass'. */
+  metric: string;
+  /** How long the decomposition took in the core's worker, in ms. */
+  decomposeMs: number;
+}
+
+/** One part of the field as the worker's \`component\` op returns it. */
+export interface FieldComponent {
+  oneForm: Float64Array;
+  faceVectors: Float64Array;
+  vertexVectors: Float64Array;
 }
 
 export interface SynthesisOptions {
@@ -249,6 +280,7 @@ export const METHODS = [
   { name: 'faceVectors', source: 'api', group: 'Field and timings', signatures: [['', 'Float64Array']], description: "The field at each face's barycentre, 3 components per face." },
   { name: 'vertexVectors', source: 'api', group: 'Field and timings', signatures: [['', 'Float64Array']], description: 'The field at each vertex, 3 components per vertex.' },
   { name: 'oneForm', source: 'api', group: 'Field and timings', signatures: [['', 'Float64Array']], description: 'The solution: one line integral per edge of edges().' },
+  { name: 'hodge', source: 'api', group: 'Field and timings', signatures: [['', 'Promise<HodgeDecomposition>']], description: 'The Hodge decomposition of the current field: exact, coexact and harmonic parts (c = dα + δβ + h), made on first request.' },
   { name: 'singularities', source: 'api', group: 'Field and timings', signatures: [['', '{ vertex: number; index: number }[]']], description: "The field's singularities: an integer index per interior vertex that has one." },
   { name: 'stats', source: 'api', group: 'Field and timings', signatures: [['', 'Record<string, number | string>']], description: "The core's timings and sizes for the latest operations." },
   { name: 'perf', source: 'api', group: 'Field and timings', signatures: [['', 'Record<string, unknown>']], description: 'Page-side measurements (last worker request, last user action of each kind, restarts).' },
@@ -295,6 +327,7 @@ export const METHODS = [
   { name: 'debugSetFactorMemoryLimit', source: 'api', group: 'Test hooks', internal: true, signatures: [['bytes: number', 'Promise<true>']], description: "Sets the factor's memory limit (0: the wasm address space left)." },
   { name: 'debugCoreReadout', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'Promise<CoreReadout>']], description: 'What the core itself holds now, derived by the core on request.' },
   { name: 'debugTraceStreamlines', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'number[][]']], description: 'The streamlines traced on the page now, whatever the view holds.' },
+  { name: 'debugComponent', source: 'api', group: 'Test hooks', internal: true, signatures: [["name: 'whole' | 'exact' | 'coexact' | 'harmonic'", 'Promise<FieldComponent>']], description: "The worker's component op: one part of the current field with its reconstructed vectors." },
 ];
 
 // Events: CustomEvents that bubble and are composed, fired on the element. `detail`: [field, type, doc?].

@@ -89,8 +89,9 @@ export class Designer {
               cornerUVs: s.cornerUVs,
               // A copy: synthesis and exports hold it across awaits, and the session's own array goes back to
               // the worker once a newer field replaces it.
-              vertexVectors: s.field.vertexVectors.slice(),
-              fieldVersion: s.fieldVersion,
+              // The field the views draw: the whole field or the Hodge component chosen in the Views panel.
+              vertexVectors: this.viewSync.drawnVertexVectors().slice(),
+              fieldVersion: this.viewSync.drawnVersion(),
             }
           : null,
     });

@@ -4,7 +4,8 @@
 import { checkedNumber, fmtNum, guarded } from './numbers.js';
 
 const SWATCH = { stroke: '#ff7a1a', vector: '#fbbf24', edge: '#ff7a1a', source: '#ef4444', sink: '#22c55e', vortex: '#3b82f6' };
-const VIEW_INPUTS = ['show-arrows', 'arrow-density', 'arrow-scaled', 'show-streamlines', 'streamline-spacing', 'show-lic', 'show-colormap', 'show-singularities'];
+const VIEW_INPUTS = ['show-arrows', 'arrow-density', 'arrow-scaled', 'show-streamlines', 'streamline-spacing', 'show-lic', 'show-colormap', 'show-singularities', 'view-component'];
+const SHARE_PARTS = ['exact', 'coexact', 'harmonic'];
 
 const title = (type) => `${type[0].toUpperCase()}${type.slice(1)}`;
 
@@ -89,6 +90,7 @@ export function bindPanels($, focused, actions, showError) {
       lic: $('#show-lic').checked,
       colorMap: $('#show-colormap').checked,
       singularities: $('#show-singularities').checked,
+      component: $('#view-component').value,
     };
   }
   function setViews(v) {
@@ -100,6 +102,20 @@ export function bindPanels($, focused, actions, showError) {
     if ('lic' in v) $('#show-lic').checked = !!v.lic;
     if ('colorMap' in v) $('#show-colormap').checked = v.colorMap;
     if ('singularities' in v) $('#show-singularities').checked = v.singularities;
+    if ('component' in v) $('#view-component').value = v.component;
+    if ('shares' in v) showShares(v.shares);
+  }
+  // The energy share of each part of the decomposition ({exact, coexact, harmonic, current}; null: hidden);
+  // dimmed while they are an earlier field's.
+  function showShares(shares) {
+    const box = $('#component-shares');
+    box.hidden = !shares;
+    if (!shares) return;
+    box.classList.toggle('stale', !shares.current);
+    for (const part of SHARE_PARTS) {
+      const x = shares[part];
+      box.querySelector(`[data-share="${part}"]`).textContent = Number.isFinite(x) ? `${(100 * x).toFixed(1)} %` : '–';
+    }
   }
 
   function setLegend(max) {

@@ -96,6 +96,15 @@ export const TEMPLATE = `<div class="root" part="root">
         <label class="check"><input id="show-colormap" type="checkbox"> Magnitude colours</label>
         <div id="legend" hidden title="Magnitude (arrow and surface colours, viridis)"><span>0</span><span class="ramp"></span><span id="legend-max"></span></div>
         <label class="check"><input id="show-singularities" type="checkbox"> Singularities</label>
+        <label title="The part of the Hodge decomposition c = dα + δβ + h that the arrows, streamlines, flow texture, magnitude colours and texture draw (in the whole field's magnitude scale); singularity markers stay the whole field's">Component
+          <select id="view-component">
+            <option value="whole" selected>Whole field</option>
+            <option value="exact">Curl-free (gradient)</option>
+            <option value="coexact">Divergence-free (rotation)</option>
+            <option value="harmonic">Harmonic</option>
+          </select>
+        </label>
+        <p id="component-shares" class="note" hidden title="Share of the energy in each part: ‖part‖² / ‖c‖² in the decomposition's inner product">Energy: curl-free <span data-share="exact">–</span> · divergence-free <span data-share="coexact">–</span> · harmonic <span data-share="harmonic">–</span></p>
       </details>
     </aside>
     <aside id="constraints-panel" part="panel constraints-panel" aria-label="Constraints">

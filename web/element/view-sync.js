@@ -1,20 +1,125 @@
 // Session → views: after every 'change' the field, the constraints and the settings go to the viewer and the
 // panels, drawn synchronously; the views that are off get nothing. Owns the view options (which views are on,
-// arrow density, streamline spacing) and what is derived per field for them: the magnitude scale, the
-// singularity markers, the streamlines (traced in the worker, on the page only when read before they arrive).
+// arrow density, streamline spacing, the Hodge component drawn) and what is derived per field for them: the
+// magnitude scale, the singularity markers, the streamlines (traced in the worker, on the page only when read
+// before they arrive), the component of the decomposition c = dα + δβ + h and its energy shares.
+//
+// The component (views.component, 'whole' by default): with 'whole' the views draw the session's field and
+// nothing more is asked of the worker. Otherwise, after each change, the worker is asked in the background for
+// `component(version, name)` (and `hodge(version)` for the energy shares, shown while a part is chosen); one
+// request of each kind is in flight at a time, and a reply for a field that is no longer current is dropped.
+// Until the part of the current field arrives the arrows, colours, flow texture and streamlines keep showing
+// what they showed (never a mix of versions); then they all draw it, in the whole field's magnitude scale
+// (a small part looks small). The singularity markers stay the whole field's.
 import { magnitudeScale } from '../views/colormap.js';
 import { traceStreamlines } from '../geometry/streamlines.js';
+
+export const COMPONENTS = ['whole', 'exact', 'coexact', 'harmonic'];
 
 export class ViewSync {
   constructor({ session, viewer, ui }) {
     this.session = session;
     this.viewer = viewer;
     this.ui = ui;
-    this.views = {};
-    this.streamlineCache = null; // {version, spacing, surface, lines, source: 'worker' | 'page'}
-    this.shown = { singularities: -1, vertexField: -1 }; // the field versions those views were last given
+    this.views = { component: 'whole' };
+    this.streamlineCache = null; // {key, spacing, surface, lines, source: 'worker' | 'page'}
+    this.shown = { singularities: -1, vertexField: null }; // what those views were last given (version / key)
+    this.drawn = null; // {key, name, fieldVersion, field: {faceVectors, vertexVectors, scale}}: the field drawn now
+    this.parts = null; // {fieldVersion, surface, byName: {name: field}}: the parts of the current field received
+    this.shares = null; // {fieldVersion, surface, energyShares}
+    this.inFlight = { component: false, hodge: false };
+    this.requests = { component: 0, hodge: 0 }; // requests sent to the worker (perf().hodgeViews)
     this.onRefreshed = () => {}; // after each redraw (texture synthesis follows the field)
   }
+
+  // ---- the field the views draw
+
+  // The field of the current version and component, or null while the part is still to come.
+  #target() {
+    const s = this.session, name = this.views.component ?? 'whole';
+    if (name === 'whole') return { key: s.fieldVersion, name, fieldVersion: s.fieldVersion, field: { ...s.field, scale: this.#fieldScale() } };
+    const p = this.parts, field = p && p.fieldVersion === s.fieldVersion && p.surface === s.surface ? p.byName[name] : null;
+    return field ? { key: `${s.fieldVersion}:${name}`, name, fieldVersion: s.fieldVersion, field } : null;
+  }
+
+  // What the views draw now (the synthesized texture follows it): its per-vertex vectors and a key that changes
+  // whenever they do (the session's field version for the whole field).
+  drawnVertexVectors() {
+    return this.drawn?.field.vertexVectors ?? this.session.field.vertexVectors;
+  }
+
+  drawnVersion() {
+    return this.drawn?.key ?? this.session.fieldVersion;
+  }
+
+  #draw(target) {
+    const f = target.field;
+    this.drawn = target;
+    const hv = this.session.perf.hodgeViews;
+    this.session.perf.hodgeViews = { ...hv, drawn: { component: target.name, fieldVersion: target.fieldVersion } };
+    this.viewer.arrows.setField(f.faceVectors, f.vertexVectors, f.scale);
+    this.#showDerived();
+  }
+
+  // ---- the decomposition, asked of the worker only while a part or the shares are shown
+
+  #requestParts() {
+    const s = this.session, name = this.views.component ?? 'whole';
+    if (name === 'whole' || !s.field || s.disposed) return;
+    if (!this.#target() && !this.inFlight.component) this.#ask('component', [s.field.version, name], (value, t) => this.#partArrived(value, t));
+    const sh = this.shares;
+    if (!(sh && sh.fieldVersion === s.fieldVersion && sh.surface === s.surface) && !this.inFlight.hodge) {
+      this.#ask('hodge', [s.field.version], (value, t) => {
+        this.shares = { fieldVersion: t.fieldVersion, surface: t.surface, energyShares: value.energyShares };
+        s.perf.hodge = { decomposeMs: value.decomposeMs, roundTripMs: performance.now() - t.t0, fieldVersion: t.fieldVersion };
+        this.#showShares();
+      });
+    }
+  }
+
+  // One background request; the reply is used only when it is for the field still current.
+  #ask(op, args, use) {
+    const s = this.session, name = this.views.component;
+    const t = { fieldVersion: s.fieldVersion, surface: s.surface, name, t0: performance.now() };
+    this.inFlight[op] = true;
+    this.requests[op]++;
+    s.perf.hodgeViews = { ...s.perf.hodgeViews, requests: { ...this.requests } };
+    s.request(op, args)
+      .then((value) => {
+        if (value && !s.disposed && s.fieldVersion === t.fieldVersion && s.surface === t.surface) use(value, t);
+      })
+      // A restarted worker: the refresh after the restart asks again.
+      .catch((err) => void (s.perf.hodgeViews = { ...s.perf.hodgeViews, lastError: `${op}: ${err?.message ?? err}` }))
+      .finally(() => {
+        this.inFlight[op] = false;
+        // Asked meanwhile for another field or part: asked now (not again for the same, should it have failed).
+        const moved = s.fieldVersion !== t.fieldVersion || s.surface !== t.surface || (op === 'component' && this.views.component !== name);
+        if (moved && !s.disposed && s.field) this.#requestParts();
+      });
+  }
+
+  #partArrived(value, { name, ...t }) {
+    const s = this.session;
+    if (!(this.parts && this.parts.fieldVersion === t.fieldVersion && this.parts.surface === t.surface))
+      this.parts = { fieldVersion: t.fieldVersion, surface: t.surface, byName: {} };
+    // In the whole field's scale: the parts compare with it and with each other.
+    this.parts.byName[name] = { faceVectors: value.faceVectors, vertexVectors: value.vertexVectors, oneForm: value.oneForm, scale: this.#fieldScale() };
+    s.perf.component = { name, roundTripMs: performance.now() - t.t0, fieldVersion: t.fieldVersion };
+    if ((this.views.component ?? 'whole') !== name) return;
+    this.#draw(this.#target());
+    this.#scheduleStreamlines();
+    this.viewer.requestRender();
+    this.onRefreshed();
+  }
+
+  #showShares() {
+    const s = this.session, sh = this.shares, on = (this.views.component ?? 'whole') !== 'whole';
+    const current = sh && sh.fieldVersion === s.fieldVersion && sh.surface === s.surface;
+    // The last shares known stay until the new ones come (the panel marks them as of an earlier field).
+    this.ui.setViews({ shares: on && sh ? { ...sh.energyShares, current } : null });
+  }
+
+  // ---- streamlines
 
   #streamlineSpacing() {
     return this.session.surface.radius * (0.01 + 0.008 * (this.views?.streamlineSpacing ?? 5));
@@ -24,40 +129,41 @@ export class ViewSync {
     return 0.03 * this.session.surface.meanEdge;
   }
 
-  // Cached per field version and spacing; the view and streamlines() share them.
+  // Cached per field drawn and spacing; the view and streamlines() share them.
   currentStreamlines() {
-    const s = this.session, spacing = this.#streamlineSpacing(), c = this.streamlineCache;
-    if (c && c.version === s.fieldVersion && c.spacing === spacing && c.surface === s.surface) return c.lines;
+    const s = this.session, spacing = this.#streamlineSpacing(), c = this.streamlineCache, key = this.drawnVersion();
+    if (c && c.key === key && c.spacing === spacing && c.surface === s.surface) return c.lines;
     const lines = this.traceStreamlinesHere();
-    this.streamlineCache = { version: s.fieldVersion, spacing, surface: s.surface, lines, source: 'page' };
+    this.streamlineCache = { key, spacing, surface: s.surface, lines, source: 'page' };
     return lines;
   }
 
-  // Traces on the page, now, whatever the cache holds.
+  // Traces the field drawn on the page, now, whatever the cache holds.
   traceStreamlinesHere() {
     const s = this.session, t0 = performance.now();
-    const lines = traceStreamlines(s.surface, s.field.vertexVectors, { spacing: this.#streamlineSpacing(), lift: this.#streamlineLift() });
+    const lines = traceStreamlines(s.surface, this.drawnVertexVectors(), { spacing: this.#streamlineSpacing(), lift: this.#streamlineLift() });
     s.perf.streamlines = { ms: performance.now() - t0, source: 'page', fieldVersion: s.fieldVersion };
     return lines;
   }
 
   // The streamlines view asks the worker for the lines of the field it shows; they are drawn when they come
-  // (after the frame with the arrows), unless the field, the spacing or the view changed meanwhile.
+  // (after the frame with the arrows), unless the field, the component, the spacing or the view changed meanwhile.
   #scheduleStreamlines() {
-    const s = this.session, viewer = this.viewer;
+    const s = this.session, viewer = this.viewer, d = this.drawn;
     if (!this.views.streamlines) return void viewer.streamlines.setLines([]);
-    const spacing = this.#streamlineSpacing(), surface = s.surface, fieldVersion = s.fieldVersion;
+    if (!d || d.fieldVersion !== s.fieldVersion) return; // the part of this field is still to come
+    const spacing = this.#streamlineSpacing(), surface = s.surface, fieldVersion = s.fieldVersion, key = d.key;
     const c = this.streamlineCache;
     const current = () =>
-      !s.disposed && this.views.streamlines && s.fieldVersion === fieldVersion && s.surface === surface && this.#streamlineSpacing() === spacing;
-    if (c && c.version === fieldVersion && c.spacing === spacing && c.surface === surface) return void viewer.streamlines.setLines(c.lines);
+      !s.disposed && this.views.streamlines && this.drawn?.key === key && s.surface === surface && this.#streamlineSpacing() === spacing;
+    if (c && c.key === key && c.spacing === spacing && c.surface === surface) return void viewer.streamlines.setLines(c.lines);
     const t0 = performance.now();
     s.proxy
-      ?.call('streamlines', [s.field.version, spacing, this.#streamlineLift()], [], { background: true })
+      ?.call('streamlines', [s.field.version, spacing, this.#streamlineLift(), d.name], [], { background: true })
       .then(({ value: lines, workerMs }) => {
         if (!lines || !current()) return;
-        this.streamlineCache = { version: fieldVersion, spacing, surface, lines, source: 'worker' };
-        s.perf.streamlines = { ms: performance.now() - t0, workerMs, source: 'worker', fieldVersion };
+        this.streamlineCache = { key, spacing, surface, lines, source: 'worker' };
+        s.perf.streamlines = { ms: performance.now() - t0, workerMs, source: 'worker', fieldVersion, component: d.name };
         viewer.streamlines.setLines(lines);
         viewer.requestRender();
       })
@@ -78,17 +184,19 @@ export class ViewSync {
       viewer.singularities.setSingularities(s.currentSingularities());
       shown.singularities = s.fieldVersion;
     }
-    if ((views.colorMap || views.lic) && shown.vertexField !== s.fieldVersion) {
-      viewer.setVertexField(s.field.vertexVectors, this.#fieldScale());
-      shown.vertexField = s.fieldVersion;
+    const d = this.drawn;
+    if (!d) return;
+    if ((views.colorMap || views.lic) && shown.vertexField !== d.key) {
+      viewer.setVertexField(d.field.vertexVectors, d.field.scale);
+      shown.vertexField = d.key;
     }
-    // Arrows and the surface map share one magnitude scale (viridis, top at the 98th percentile): one legend.
-    this.ui.setLegend(views.colorMap || views.arrows ? this.#fieldScale().top : null);
+    this.ui.setLegend(views.colorMap || views.arrows ? d.field.scale.top : null);
   }
 
   // A new mesh: the surface, before its first field is shown.
   modelChanged({ info, surface }) {
     this.streamlineCache = null;
+    this.drawn = this.parts = this.shares = null;
     this.viewer.setMesh(surface);
     this.ui.setHasBoundary(info.boundaryLoops > 0);
   }
@@ -98,7 +206,8 @@ export class ViewSync {
     const { viewer, ui, session: s } = this;
     if (!s.field || !s.surface) return;
     const t0 = performance.now();
-    viewer.arrows.setField(s.field.faceVectors, s.field.vertexVectors, this.#fieldScale());
+    const target = this.#target();
+    if (target) this.#draw(target);
     this.#showDerived();
     viewer.handles.setConstraints(s.table.entries());
     viewer.handles.setSelected(s.selected);
@@ -110,6 +219,8 @@ export class ViewSync {
     viewer.renderNow();
     s.perf.refresh = { updateViewsMs: t1 - t0, renderMs: performance.now() - t1 };
     this.#scheduleStreamlines();
+    this.#requestParts();
+    this.#showShares();
     this.onRefreshed();
   }
 
@@ -125,21 +236,38 @@ export class ViewSync {
   }
 
   apply(views) {
+    const before = this.views.component ?? 'whole';
     this.views = { ...this.views, ...views };
     const v = this.views, viewer = this.viewer, s = this.session;
     viewer.arrows.setOptions({ visible: v.arrows, density: v.arrowDensity, scaled: v.arrowsScaled });
+    let redrawn = false;
+    if (s.field && s.surface && (v.component ?? 'whole') !== before) {
+      // Another component: drawn now when known (the whole field always is), else asked for.
+      const target = this.#target();
+      if (target) {
+        this.#draw(target);
+        redrawn = true;
+      }
+      this.#requestParts();
+      this.#showShares();
+    }
     // The views turned on get the current field first (the markers are built when the view shows).
     if (s.field) this.#showDerived();
     viewer.setColorMap(v.colorMap);
     viewer.singularities.setVisible(v.singularities);
     viewer.lic.setVisible(v.lic);
-    if (s.field) this.#scheduleStreamlines();
+    if (s.field && s.surface) this.#scheduleStreamlines();
     viewer.requestRender();
+    if (redrawn) this.onRefreshed();
   }
 
   // From the API: the panel's controls follow, and the views read them back.
   set(views) {
-    this.ui.setViews(views);
+    const rest = { ...views };
+    delete rest.shares; // the panel's read-out, not an option
+    if ('component' in rest && !COMPONENTS.includes(rest.component))
+      throw new Error(`setViews: unknown component ${JSON.stringify(rest.component)}; one of ${COMPONENTS.map((c) => `'${c}'`).join(', ')}`);
+    this.ui.setViews(rest);
     this.apply(this.ui.views());
     return { ...this.views };
   }
