@@ -10,35 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "design/design_document.h"
+#include "cli_run.h"
 #include "test_meshes.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliRun {
-  int exitCode;
-  std::string out, err;
-};
-
-CliRun runTvf(const std::string& args) {
-  // ctest runs tests in parallel processes: each call gets its own stderr file.
-  static int calls = 0;
-  const fs::path errFile = fs::temp_directory_path() / ("tvf_cli_stderr_" + std::to_string(getpid()) + "_" +
-                                                        std::to_string(calls++) + ".txt");
-  const std::string command = std::string(TVF_CLI_PATH) + " " + args + " 2>" + errFile.string();
-  CliRun r{-1, "", ""};
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer{};
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(errFile);
-  r.err.assign(std::istreambuf_iterator<char>(in), {});
-  fs::remove(errFile);
-  return r;
-}
 
 fs::path writeOff(const std::string& name, const tvf::SurfaceMesh& m) {
   const fs::path path = fs::temp_directory_path() / (std::to_string(getpid()) + "_" + name);

@@ -30,6 +30,7 @@
 #include "field/hodge_decomposition.h"
 #include "mesh/mesh_geometry.h"
 #include "test_fields.h"
+#include "cli_run.h"
 #include "test_meshes.h"
 
 using namespace tvf;
@@ -375,29 +376,6 @@ TEST(Hodge, DISABLED_TimingAndShares) {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliRun {
-  int exitCode;
-  std::string out, err;
-};
-
-CliRun runTvf(const std::string& args) {
-  static int calls = 0;
-  const fs::path errFile = fs::temp_directory_path() / ("tvf_hodge_stderr_" + std::to_string(getpid()) + "_" +
-                                                        std::to_string(calls++) + ".txt");
-  const std::string command = std::string(TVF_CLI_PATH) + " " + args + " 2>" + errFile.string();
-  CliRun r{-1, "", ""};
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer{};
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(errFile);
-  r.err.assign(std::istreambuf_iterator<char>(in), {});
-  fs::remove(errFile);
-  return r;
-}
 
 fs::path tempPath(const std::string& name) {
   return fs::temp_directory_path() / ("hodge_" + std::to_string(getpid()) + "_" + name);
