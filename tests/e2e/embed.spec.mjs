@@ -107,6 +107,18 @@ function watchRequests(page) {
   return foreign;
 }
 
+// For the pages that load three.js: errors, three's warning that a second copy loaded, requests that left the
+// origin, and the paths of every request.
+function watchThree(page) {
+  const errors = trackErrors(page);
+  const warnings = [];
+  page.on('console', (m) => /Multiple instances of Three/.test(m.text()) && warnings.push(m.text()));
+  const foreign = watchRequests(page);
+  const requests = [];
+  page.on('request', (r) => requests.push(new URL(r.url()).pathname));
+  return { errors, warnings, foreign, requests };
+}
+
 const record = (page) => page.evaluate(() => ({ events: window.__record.events.map(({ type, id }) => ({ type, id })), violations: window.__record.violations }));
 
 test('the package imports in node without a DOM', () => {
@@ -211,12 +223,7 @@ test('an esbuild-bundled consumer app, with assetBase set as the docs say', asyn
   // The app imports three itself and the package's default (peer) build: its bundle has one three.js.
   const app = readFileSync(resolve(SITE, 'app/app.js'), 'utf8');
   expect(count(app, THREE_MARK)).toBe(1);
-  const errors = trackErrors(page);
-  const warnings = [];
-  page.on('console', (m) => /Multiple instances of Three/.test(m.text()) && warnings.push(m.text()));
-  const foreign = watchRequests(page);
-  const requests = [];
-  page.on('request', (r) => requests.push(new URL(r.url()).pathname));
+  const { errors, warnings, foreign, requests } = watchThree(page);
   await page.goto(`${ORIGIN}/app/index.html`);
   const faces = await page.evaluate(() => document.getElementById('bundled').ready.then(() => document.getElementById('bundled').info().faces));
   expect(faces).toBe(320);
@@ -263,12 +270,7 @@ test('the peer build has no copy of three.js or three-mesh-bvh; the standalone b
 
 test('a page that already uses three.js, with an import map: the peer build uses its copy, one three.js loads', async ({ page }) => {
   await allowImportMaps(page);
-  const errors = trackErrors(page);
-  const warnings = [];
-  page.on('console', (m) => /Multiple instances of Three/.test(m.text()) && warnings.push(m.text()));
-  const foreign = watchRequests(page);
-  const requests = [];
-  page.on('request', (r) => requests.push(new URL(r.url()).pathname));
+  const { errors, warnings, foreign, requests } = watchThree(page);
   const response = await page.goto(`${ORIGIN}/three-page.html`);
   expect(response.headers()['content-security-policy']).toMatch(/script-src 'self' 'sha256-[^']+' 'wasm-unsafe-eval'/);
   await page.waitForFunction(() => window.__host);
@@ -302,11 +304,7 @@ test('a page that already uses three.js, with an import map: the peer build uses
 
 test('control: the standalone bundle in that page brings a second three.js, and three says so', async ({ page }) => {
   await allowImportMaps(page);
-  const errors = trackErrors(page);
-  const warnings = [];
-  page.on('console', (m) => /Multiple instances of Three/.test(m.text()) && warnings.push(m.text()));
-  const requests = [];
-  page.on('request', (r) => requests.push(new URL(r.url()).pathname));
+  const { errors, warnings, requests } = watchThree(page);
   await page.goto(`${ORIGIN}/three-page-standalone.html`);
   await page.waitForFunction(() => window.__host);
   expect(await page.evaluate(() => document.getElementById('d').ready.then(() => document.getElementById('d').info().faces))).toBe(320);

@@ -10,7 +10,7 @@ test.describe.serial('Hodge component views', () => {
   const evaluate = (fn, arg) => page.evaluate(fn, arg);
   const settle = () => evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
   const select = () => page.locator('tangent-field-designer #view-component');
-  const requests = () => evaluate(() => window.tvf.perf().hodgeViews?.requests ?? { component: 0, hodge: 0 });
+  const requests = () => evaluate(() => window.tvf.perf().hodgeViews?.requests ?? { component: 0, hodgeShares: 0 });
   const arrows = () => evaluate(() => window.tvf.arrowInstances());
   const lengths = (v) => Array.from({ length: v.length / 3 }, (_, i) => Math.hypot(v[3 * i], v[3 * i + 1], v[3 * i + 2]));
   const sum = (a) => a.reduce((x, y) => x + y, 0);
@@ -45,7 +45,7 @@ test.describe.serial('Hodge component views', () => {
     // Streamlines on: their worker trace marks the version drawn (perf().streamlines.fieldVersion).
     await evaluate(() => window.tvf.setViews({ arrows: true, arrowsScaled: true, streamlines: true }));
     await settle();
-    expect(await requests()).toEqual({ component: 0, hodge: 0 });
+    expect(await requests()).toEqual({ component: 0, hodgeShares: 0 });
     await expect(page.locator('tangent-field-designer #component-shares')).toBeHidden();
   });
 
@@ -110,7 +110,7 @@ test.describe.serial('Hodge component views', () => {
     await showComponent('exact');
     const before = await requests();
     expect(before.component).toBeGreaterThan(0);
-    expect(before.hodge).toBeGreaterThan(0);
+    expect(before.hodgeShares).toBeGreaterThan(0);
     await evaluate(() => window.tvf.setViews({ component: 'whole' }));
     await expect(select()).toHaveValue('whole');
     await expect(page.locator('tangent-field-designer #component-shares')).toBeHidden();

@@ -62,6 +62,12 @@ export class FieldParts {
     return { value, list: arrays.map((a) => a.buffer) };
   }
 
+  // The `hodgeShares` op's reply: what the shares line needs, without the per-edge arrays.
+  sharesReply(version) {
+    const { energyShares, decomposeMs } = this.decomposition(version).value;
+    return { energyShares: { ...energyShares }, decomposeMs };
+  }
+
   // The `component` op's reply, likewise.
   componentReply(version, name) {
     const part = this.component(version, name);

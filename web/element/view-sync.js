@@ -12,9 +12,9 @@
 // what they showed (never a mix of versions); then they all draw it, in the whole field's magnitude scale
 // (a small part looks small). The singularity markers stay the whole field's.
 import { magnitudeScale } from '../views/colormap.js';
+import { COMPONENTS } from '../core/field-parts.js';
 import { traceStreamlines } from '../geometry/streamlines.js';
 
-export const COMPONENTS = ['whole', 'exact', 'coexact', 'harmonic'];
 
 export class ViewSync {
   constructor({ session, viewer, ui }) {
@@ -27,8 +27,8 @@ export class ViewSync {
     this.drawn = null; // {key, name, fieldVersion, field: {faceVectors, vertexVectors, scale}}: the field drawn now
     this.parts = null; // {fieldVersion, surface, byName: {name: field}}: the parts of the current field received
     this.shares = null; // {fieldVersion, surface, energyShares}
-    this.inFlight = { component: false, hodge: false };
-    this.requests = { component: 0, hodge: 0 }; // requests sent to the worker (perf().hodgeViews)
+    this.inFlight = { component: false, hodgeShares: false };
+    this.requests = { component: 0, hodgeShares: 0 }; // requests sent to the worker (perf().hodgeViews)
     this.onRefreshed = () => {}; // after each redraw (texture synthesis follows the field)
   }
 
@@ -68,8 +68,8 @@ export class ViewSync {
     if (name === 'whole' || !s.field || s.disposed) return;
     if (!this.#target() && !this.inFlight.component) this.#ask('component', [s.field.version, name], (value, t) => this.#partArrived(value, t));
     const sh = this.shares;
-    if (!(sh && sh.fieldVersion === s.fieldVersion && sh.surface === s.surface) && !this.inFlight.hodge) {
-      this.#ask('hodge', [s.field.version], (value, t) => {
+    if (!(sh && sh.fieldVersion === s.fieldVersion && sh.surface === s.surface) && !this.inFlight.hodgeShares) {
+      this.#ask('hodgeShares', [s.field.version], (value, t) => {
         this.shares = { fieldVersion: t.fieldVersion, surface: t.surface, energyShares: value.energyShares };
         s.perf.hodge = { decomposeMs: value.decomposeMs, roundTripMs: performance.now() - t.t0, fieldVersion: t.fieldVersion };
         this.#showShares();
