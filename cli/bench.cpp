@@ -60,7 +60,7 @@ namespace {
 // Timings of one ordering over the repeats.
 struct Samples {
   std::vector<double> analyze, factor, solve, update, stroke, strokeUpdate, strokeRows, strokeRhs,
-      strokeSolve, reconstruct;
+      strokeSolve, reconstruct, smoothest;
   double nnzPerRowM = 0, nnzPerRowL = 0;
   int strokeEdges = 0;      // edges the benchmark stroke crosses (one per step between adjacent faces)
   int strokeRefactors = 0;  // stroke solves that refactored (an updated factor found wanting): timings void
@@ -76,7 +76,15 @@ void runRepeat(Designer& designer, int r, bool metis, Samples& s) {
   designer.factor();
   s.analyze.push_back(designer.stats().analyzeMs);
   s.factor.push_back(designer.stats().factorMs);
-  designer.addSource(designer.mesh().triangles[0], 1.0);
+  const bool directions = designer.symmetry() > 1;
+  if (directions) {
+    designer.solve();  // the smoothest field: inverse iteration with the factor
+    s.smoothest.push_back(designer.stats().solveMs);
+    const double along[3] = {1, 0.3, 0.1};
+    designer.addVector(0, along, 1.0);
+  } else {
+    designer.addSource(designer.mesh().triangles[0], 1.0);
+  }
   designer.solve();
   s.solve.push_back(designer.stats().solveMs);
   s.reconstruct.push_back(timeMs([&] {
@@ -86,7 +94,8 @@ void runRepeat(Designer& designer, int r, bool metis, Samples& s) {
                           designer.stats().solveMs);
   const int32_t face = (r * 7919 + 13) % nF;
   const int32_t i = designer.mesh().triangles[3 * face], j = designer.mesh().triangles[3 * face + 1];
-  const int32_t id = designer.addEdge(i, j, 0.1, 1.0);
+  const double dir[3] = {0.2, 1, 0.4};
+  const int32_t id = directions ? designer.addVector(face, dir, 1.0) : designer.addEdge(i, j, 0.1, 1.0);
   s.update.push_back(designer.stats().updateMs);
   designer.remove(id);
   designer.solve();  // as the page does after every edit: the stroke starts from a solved design
@@ -128,6 +137,7 @@ nlohmann::json summary(const Samples& s, bool metis) {
           {"strokeRefactors", s.strokeRefactors},
           {"strokeIncrementalSolves", s.strokeIncrementalSolves},
           {"reconstructMs", median(s.reconstruct)},
+          {"smoothestMs", median(s.smoothest)},
           {"ordering", metis ? "metis" : "amd"},
           {"factorKind", s.factorKind}};
 }
@@ -135,9 +145,10 @@ nlohmann::json summary(const Samples& s, bool metis) {
 }  // namespace
 
 nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
-                        const std::vector<bool>& orderings, int threads) {
+                        const std::vector<bool>& orderings, int threads, int symmetry) {
   Designer designer(loadMesh(meshPath));
   designer.setGamma(gamma);
+  designer.setSymmetry(symmetry);
   if (threads > 0) designer.setSolverThreads(threads);
   std::vector<Samples> samples(orderings.size());
   // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
@@ -147,6 +158,7 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
                         {"edges", designer.edgeVertices().size() / 2},
                         {"repeat", repeat},
                         {"gamma", gamma},
+                        {"symmetry", symmetry},
                         {"threads", designer.solverThreads()}};
   if (orderings.size() == 1) {
     out.update(summary(samples[0], orderings[0]));

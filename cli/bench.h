@@ -7,7 +7,10 @@ namespace tvf {
 // Median timings of the interactive pipeline on one mesh (Sec. 6.1's table), per fill-reducing ordering
 // (true: METIS nested dissection, false: AMD). One ordering: a flat object; several: one object per ordering
 // under "metis" / "amd", measured interleaved in this process.
-// threads: of the backward substitution (0: the default, the cores there are).
+// threads: of the backward substitution (0: the default, the cores there are). symmetry N >= 2 times the
+// N-direction field's power-field system instead (its solve: the first constrained solve; its update: a
+// direction constraint at one face), with the same keys, plus smoothestMs (the unconstrained field's inverse
+// iteration).
 nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
-                        const std::vector<bool>& orderings, int threads = 0);
+                        const std::vector<bool>& orderings, int threads = 0, int symmetry = 1);
 }  // namespace tvf

@@ -27,7 +27,7 @@ int usage() {
                "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
                "             [--no-embed-flowmap] [--component whole|exact|coexact|harmonic]\n"
                "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
-               "            [--threads N]\n"
+               "            [--threads N] [--symmetry N]\n"
                "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
                "updates, slower analysis), as in the browser build; --amd for AMD; --compare for both,\n"
                "interleaved repeat by repeat in one process (JSON only).\n"
@@ -36,7 +36,10 @@ int usage() {
                "A design saved for another mesh (its \"mesh\" fingerprint differs) is refused unless\n"
                "--ignore-fingerprint is given.\n"
                "--hodge: the field file gets \"hodge\" (Hodge decomposition: exact, coexact, harmonic,\n"
-               "potentials, energyShares). --component: export that part of the field instead of the whole.\n";
+               "potentials, energyShares). --component: export that part of the field instead of the whole.\n"
+               "A design's \"symmetry\" (1 vector, 2 line, 4 cross field; up to 6) makes design write\n"
+               "faceDirections (one unit representative per face) and fractional singularity indices;\n"
+               "bench --symmetry N times that field's system.\n";
   return kUsageError;
 }
 
@@ -74,6 +77,9 @@ int design(const std::string& meshPath, const std::string& designPath, const std
   }
   designer.solve();
   nlohmann::json field = tvf::fieldDocument(designer);
+  if (hodge && designer.symmetry() != 1)
+    throw tvf::InputError("--hodge: the Hodge decomposition is of vector fields (symmetry 1); this design has "
+                          "symmetry " + std::to_string(designer.symmetry()));
   if (hodge) field["hodge"] = tvf::hodgeDocument(designer.hodgeDecomposition());
   const std::string text = field.dump();
   if (outPath.empty()) {
@@ -175,6 +181,10 @@ int exportCommand(int argc, char** argv) {
   tvf::Designer designer(tvf::loadMesh(meshPath));
   designer.setMetisOrdering(true);
   tvf::applyDesignDocument(designer, readDesign(designPath));
+  if (designer.symmetry() != 1)
+    throw tvf::InputError(designPath + ": exports of line and cross fields (symmetry " +
+                          std::to_string(designer.symmetry()) +
+                          ") are not available yet; tvf design writes their faceDirections");
   designer.solve();
   // The whole field, or one part of its Hodge decomposition; the GLB still embeds the whole design.
   const std::vector<double> oneForm = component == tvf::FieldComponent::Whole
@@ -226,7 +236,7 @@ int bench(int argc, char** argv) {
   int repeat = 5;
   double gamma = 0;
   bool json = false;
-  int threads = 0;
+  int threads = 0, symmetry = 1;
   std::vector<bool> orderings{true};
   for (int k = 3; k < argc; ++k) {
     const std::string a = argv[k];
@@ -239,6 +249,9 @@ int bench(int argc, char** argv) {
     } else if (a == "--threads" && k + 1 < argc) {
       threads = std::atoi(argv[++k]);
       if (threads < 1) throw tvf::InputError("--threads must be a whole number of at least 1");
+    } else if (a == "--symmetry" && k + 1 < argc) {
+      symmetry = std::atoi(argv[++k]);
+      if (symmetry < 1 || symmetry > 6) throw tvf::InputError("--symmetry must be a whole number from 1 to 6");
     } else if (a == "--metis") {
       orderings = {true};
     } else if (a == "--amd") {
@@ -250,7 +263,7 @@ int bench(int argc, char** argv) {
       return usage();
     }
   }
-  const nlohmann::json r = tvf::runBench(argv[2], repeat, gamma, orderings, threads);
+  const nlohmann::json r = tvf::runBench(argv[2], repeat, gamma, orderings, threads, symmetry);
   if (json)
     std::cout << r.dump() << "\n";
   else

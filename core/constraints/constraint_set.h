@@ -30,6 +30,8 @@ class ConstraintSet {
   // number out of range, a stroke that cannot be walked); the set is then unchanged.
   int32_t add(ConstraintSpec spec);
   double lastRowsMs() const;                     // add()'s row computation (a stroke's surface walk)
+  // add()'s checks alone (ranges, elements that exist), throwing as add() would.
+  void validate(const ConstraintSpec& spec) const;
   void remove(int32_t id);                       // throws InputError for an unknown id
   const ConstraintSpec& spec(int32_t id) const;  // throws InputError for an unknown id
   // Returns the previous weight. Throws InputError for an unknown id, a source/sink/vortex (they have no
@@ -62,7 +64,6 @@ class ConstraintSet {
     std::vector<EdgeRow> rows;  // edge-type constraints, values for unit strength
   };
 
-  void validate(const ConstraintSpec& spec) const;
   std::vector<EdgeRow> rowsFor(const ConstraintSpec& spec) const;
   Entry& find(int32_t id);
   const Entry& find(int32_t id) const;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "constraints/constraint_spec.h"
+#include "constraints/surface_walk.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
 
@@ -26,6 +27,6 @@ std::vector<EdgeRow> vectorRows(const SurfaceMesh& mesh, const MeshTopology& top
 std::vector<EdgeRow> strokeRows(const SurfaceMesh& mesh, const MeshTopology& topology,
                                 const std::vector<SurfacePoint>& points);
 
-Eigen::Vector3d surfacePointPosition(const SurfaceMesh& mesh, const SurfacePoint& point);
+
 
 }  // namespace tvf

@@ -83,7 +83,9 @@ std::string describeFingerprint(const json& f) {
 }
 
 void checkSchema(const json& doc) {
-  static const std::set<std::string> known{"schema", "mesh", "boundary", "gamma", "constraints"};
+  static const std::set<std::string> known{"schema",   "mesh",        "boundary",
+                                           "gamma",    "constraints", "symmetry",
+                                           "curvatureAlignment"};
   if (doc.contains("schema")) {
     const json& s = doc["schema"];
     if (!s.is_string() || s.get<std::string>() != kDesignSchema)
@@ -93,7 +95,8 @@ void checkSchema(const json& doc) {
   for (const auto& item : doc.items())
     if (!known.count(item.key()))
       throw InputError("not a design file: unknown key \"" + item.key() +
-                       "\" (a design has schema, mesh, boundary, gamma and constraints)");
+                       "\" (a design has schema, mesh, boundary, gamma, symmetry, curvatureAlignment and "
+                      "constraints)");
   if (!doc.contains("constraints")) throw InputError("not a design file: it has no \"constraints\" list");
 }
 
@@ -249,6 +252,11 @@ void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) 
   if (fingerprint) checkFingerprint(designer.mesh(), doc);
   const BoundaryCondition bc = boundaryFromJson(doc.value("boundary", json()));
   const double gamma = number(doc, "gamma", 0.0, "design");
+  const double symmetryValue = number(doc, "symmetry", 1.0, "design");
+  if (symmetryValue != std::floor(symmetryValue) || symmetryValue < 1 || symmetryValue > 6)
+    throw InputError("design: \"symmetry\" must be an integer from 1 to 6 (1 vector, 2 line, 4 cross field)");
+  const int symmetry = static_cast<int>(symmetryValue);
+  const double alignment = number(doc, "curvatureAlignment", 0.0, "design");
   std::vector<ConstraintSpec> specs;
   if (doc.contains("constraints")) {
     if (!doc["constraints"].is_array()) throw InputError("design: \"constraints\" must be a list");
@@ -258,12 +266,17 @@ void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) 
   // Apply to a scratch copy of the settings first so a bad entry leaves the designer untouched.
   const BoundaryCondition oldBc = designer.boundary();
   const double oldGamma = designer.gamma();
+  const int oldSymmetry = designer.symmetry();
+  const double oldAlignment = designer.curvatureAlignment();
   const std::vector<ConstraintSpec> oldSpecs = designer.constraints();
-  const auto replace = [&](const BoundaryCondition& b, double g, const std::vector<ConstraintSpec>& list,
-                           bool annotate) {
+  const auto replace = [&](const BoundaryCondition& b, double g, int n, double s,
+                           const std::vector<ConstraintSpec>& list, bool annotate) {
     designer.setBoundary(b);
     designer.setGamma(g);
     designer.clearConstraints();
+    designer.setCurvatureAlignment(0);  // before the symmetry, which refuses an alignment it cannot take
+    designer.setSymmetry(n);
+    designer.setCurvatureAlignment(s);
     for (size_t k = 0; k < list.size(); ++k) {
       try {
         designer.add(list[k]);
@@ -274,9 +287,9 @@ void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) 
     }
   };
   try {
-    replace(bc, gamma, specs, true);
+    replace(bc, gamma, symmetry, alignment, specs, true);
   } catch (const InputError&) {
-    replace(oldBc, oldGamma, oldSpecs, false);
+    replace(oldBc, oldGamma, oldSymmetry, oldAlignment, oldSpecs, false);
     throw;
   }
 }
@@ -284,11 +297,15 @@ void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) 
 json designDocument(const Designer& designer) {
   json constraints = json::array();
   for (const auto& s : designer.constraints()) constraints.push_back(constraintToJson(s));
-  return {{"schema", kDesignSchema},
-          {"mesh", meshFingerprint(designer.mesh())},
-          {"boundary", boundaryToJson(designer.boundary())},
-          {"gamma", designer.gamma()},
-          {"constraints", constraints}};
+  json doc = {{"schema", kDesignSchema},
+              {"mesh", meshFingerprint(designer.mesh())},
+              {"boundary", boundaryToJson(designer.boundary())},
+              {"gamma", designer.gamma()},
+              {"constraints", constraints}};
+  // Written only when not the default, so a vector-field design reads (and hashes) as it always did.
+  if (designer.symmetry() != 1) doc["symmetry"] = designer.symmetry();
+  if (designer.curvatureAlignment() != 0) doc["curvatureAlignment"] = designer.curvatureAlignment();
+  return doc;
 }
 
 json statsJson(const DesignStats& s) {
@@ -309,6 +326,9 @@ json statsJson(const DesignStats& s) {
           {"kernelHandling", s.kernelHandling},
           {"kernelShift", s.kernelShift},
           {"factorKind", s.factorKind},
+          {"symmetry", s.symmetry},
+          {"inverseIterations", s.inverseIterations},
+          {"smoothestEigenvalue", s.smoothestEigenvalue},
           {"warnings", s.warnings}};
 }
 
@@ -319,6 +339,12 @@ json fieldDocument(const Designer& designer) {
   json singularities = json::array();
   for (const auto& s : designer.singularities())
     singularities.push_back({{"vertex", s.vertex}, {"index", s.index}});
+  if (designer.symmetry() != 1)
+    return {{"symmetry", designer.symmetry()},
+            {"faceDirections", vec3List(designer.faceVectors())},
+            {"vertexDirections", vec3List(designer.vertexVectors())},
+            {"singularities", singularities},
+            {"stats", statsJson(designer.stats())}};
   return {{"edges", edges},
           {"oneForm", designer.oneForm()},
           {"faceVectors", vec3List(designer.faceVectors())},

@@ -8,6 +8,8 @@
 #include "constraints/constraint_set.h"
 #include "dec/exterior_derivative.h"
 #include "dec/one_form_laplacian.h"
+#include "direction/power_field_system.h"
+#include "direction/representative_directions.h"
 #include "field/whitney_reconstruction.h"
 #include "mesh/mesh_checks.h"
 #include "solver/shifted_factor.h"
@@ -51,6 +53,11 @@ struct Designer::Impl {
 
   ConstraintSet constraints;
   ShiftedFactor factor;
+  // N >= 2: the power-field system that replaces the 1-form's (built when the symmetry is set).
+  int symmetry = 1;
+  double curvatureAlignment = 0;
+  bool metis = true;
+  std::unique_ptr<PowerFieldSystem> directions;
 
   Eigen::VectorXd solution;
   std::vector<double> oneForm, faceVectors, vertexVectors;
@@ -121,12 +128,82 @@ struct Designer::Impl {
   }
 
   int32_t add(const ConstraintSpec& spec) {
+    if (directions) {
+      // Checked (and a stroke walked) before the set changes: a refused constraint leaves nothing behind.
+      std::vector<FaceDirectionTerm> terms;
+      if (spec.kind == ConstraintKind::Stroke || spec.kind == ConstraintKind::Vector) {
+        ConstraintSpec probe = spec;
+        probe.id = 0;
+        constraints.validate(probe);
+        const auto start = Clock::now();
+        terms = directionTerms(mesh, topology, directions->frames(), spec, symmetry);
+        stats.rowsMs = msSince(start);
+      } else {
+        directionTerms(mesh, topology, directions->frames(), spec, symmetry);  // throws naming the kind
+      }
+      const int32_t id = constraints.add(spec);
+      directions->add(id, std::move(terms), spec.weight);
+      stats.updateMs = directions->lastUpdateMs();
+      return id;
+    }
     const int32_t id = constraints.add(spec);
     stats.rowsMs = constraints.lastRowsMs();
     if (isEdgeKind(spec.kind)) updateRows(id, spec.weight, false);
     return id;
   }
+
+  void buildDirections() {
+    directions.reset();
+    if (symmetry == 1) return;
+    auto system = std::make_unique<PowerFieldSystem>(mesh, topology, geometry, symmetry);
+    system->factor().setOrdering(metis ? FillOrdering::Metis : FillOrdering::Amd);
+    system->factor().setThreads(factor.threads());
+    system->factor().setMemoryLimit(factor.memoryLimit());
+    system->setCurvatureAlignment(curvatureAlignment);
+    for (const ConstraintSpec& spec : constraints.specs())
+      system->add(spec.id, directionTerms(mesh, topology, system->frames(), spec, symmetry), spec.weight);
+    directions = std::move(system);
+  }
+
+  void solveDirections();
 };
+
+void Designer::Impl::solveDirections() {
+  auto start = Clock::now();
+  Eigen::VectorXd u;
+  directions->solve(u);
+  stats.solveMs = msSince(start);
+  ShiftedFactor& f = directions->factor();
+  const FactorReport& r = f.report();
+  stats.analyzeMs = r.analyzeMs;
+  stats.analysisReused = r.analysisReused;
+  stats.factorMs = r.factorMs;
+  stats.nnzPerRowL = static_cast<double>(r.factorNonzeros) / std::max(1, 2 * topology.numFaces);
+  stats.kernelShift = r.kernelShift;
+  stats.kernelHandling = r.kernelHandling;
+  stats.factorKind = r.factorKind;
+  stats.precisionRefactors = f.precisionRefactors();
+  stats.incrementalSolves = f.incrementalSolves();
+  stats.supernodalSolves = f.supernodalSolves();
+  stats.inverseIterations = directions->report().inverseIterations;
+  stats.smoothestEigenvalue = directions->report().eigenvalue;
+  stats.rhsMs = 0;
+  stats.warnings.clear();
+  if (gamma > 0) stats.warnings.push_back("gamma applies to vector fields (symmetry 1); this field ignores it");
+  if (!boundary.free)
+    stats.warnings.push_back("the boundary's fixed angle applies to vector fields (symmetry 1); this field's "
+                             "boundary is free");
+  if (!u.allFinite())
+    throw InputError("the field is not finite (the system is too badly conditioned for these constraints); "
+                     "the previous field is kept");
+  start = Clock::now();
+  faceVectors = faceRepresentatives(directions->frames(), u, symmetry);
+  solution = std::move(u);
+  oneForm.clear();
+  stats.reconstructMs = msSince(start);
+  stats.symmetry = symmetry;
+  vertexVectorsStale = singularitiesStale = true;
+}
 
 Designer::Designer(SurfaceMesh mesh) {
   MeshReport report = checkMesh(mesh);
@@ -156,9 +233,77 @@ void Designer::setGamma(double gamma) {
   impl_->factor.invalidate();
 }
 
+void Designer::setSymmetry(int symmetry) {
+  Impl& d = *impl_;
+  if (symmetry < 1 || symmetry > 6)
+    throw InputError("the symmetry must be an integer from 1 to 6 (1 vector, 2 line, 4 cross field); got " +
+                     std::to_string(symmetry));
+  if (symmetry == d.symmetry) return;
+  if (symmetry > 1) {
+    int sources = 0, sinks = 0, vortices = 0, edges = 0;
+    for (const ConstraintSpec& spec : d.constraints.specs()) {
+      sources += spec.kind == ConstraintKind::Source;
+      sinks += spec.kind == ConstraintKind::Sink;
+      vortices += spec.kind == ConstraintKind::Vortex;
+      edges += spec.kind == ConstraintKind::Edge;
+    }
+    std::string named;
+    auto name = [&](int count, const char* one, const char* many) {
+      if (count == 0) return;
+      named += (named.empty() ? "" : ", ") + std::to_string(count) + " " + (count == 1 ? one : many);
+    };
+    name(sources, "source", "sources");
+    name(sinks, "sink", "sinks");
+    name(vortices, "vortex", "vortices");
+    name(edges, "edge value", "edge values");
+    if (!named.empty())
+      throw InputError("a field of symmetry " + std::to_string(symmetry) +
+                       " takes strokes and directions only; the design has " + named +
+                       " (vector-field notions): remove them first");
+  }
+  if (symmetry > 1 && symmetry % 2 != 0 && d.curvatureAlignment > 0)
+    throw InputError("curvature alignment needs an even symmetry; turn it off before choosing symmetry " +
+                     std::to_string(symmetry));
+  const int previous = d.symmetry;
+  d.symmetry = symmetry;
+  try {
+    d.buildDirections();
+  } catch (...) {
+    d.symmetry = previous;
+    d.buildDirections();
+    throw;
+  }
+  if (symmetry == 1) d.factor.invalidate();  // rows may have come and gone while it was not in use
+  d.oneForm.clear();
+  d.faceVectors.clear();
+  d.vertexVectors.clear();
+  d.singularities.clear();
+  d.vertexVectorsStale = d.singularitiesStale = false;
+}
+
+int Designer::symmetry() const {
+  return impl_->symmetry;
+}
+
+void Designer::setCurvatureAlignment(double s) {
+  Impl& d = *impl_;
+  if (!std::isfinite(s) || s < 0 || s > 1e6)
+    throw InputError("the curvature alignment must be a number from 0 to 1e6 (0: off)");
+  if (s > 0 && (d.symmetry == 1 || d.symmetry % 2 != 0))
+    throw InputError("curvature alignment is for line and cross fields (an even symmetry); the symmetry is " +
+                     std::to_string(d.symmetry));
+  if (d.directions) d.directions->setCurvatureAlignment(s);
+  d.curvatureAlignment = s;
+}
+
+double Designer::curvatureAlignment() const {
+  return impl_->curvatureAlignment;
+}
+
 void Designer::setFactorMemoryLimit(double bytes) {
   if (!std::isfinite(bytes) || bytes < 0) throw InputError("the factor memory limit must be a number >= 0");
   impl_->factor.setMemoryLimit(bytes);
+  if (impl_->directions) impl_->directions->factor().setMemoryLimit(bytes);
 }
 
 double Designer::factorMemoryLimit() const {
@@ -171,10 +316,13 @@ int32_t Designer::precisionRefactors() const {
 
 void Designer::setMetisOrdering(bool metis) {
   impl_->factor.setOrdering(metis ? FillOrdering::Metis : FillOrdering::Amd);
+  impl_->metis = metis;
+  if (impl_->directions) impl_->directions->factor().setOrdering(metis ? FillOrdering::Metis : FillOrdering::Amd);
 }
 
 void Designer::setSolverThreads(int threads) {
   impl_->factor.setThreads(threads);
+  if (impl_->directions) impl_->directions->factor().setThreads(threads);
 }
 
 int Designer::solverThreads() const {
@@ -182,6 +330,11 @@ int Designer::solverThreads() const {
 }
 
 void Designer::factor() {
+  if (impl_->directions) {
+    impl_->directions->factor().invalidate();
+    impl_->solveDirections();  // factors; the solve after it is what a caller wants next anyway
+    return;
+  }
   impl_->factorNow();
 }
 
@@ -244,7 +397,12 @@ int32_t Designer::addVortex(int32_t face, double strength) {
 void Designer::remove(int32_t id) {
   Impl& d = *impl_;
   const ConstraintSpec& spec = d.constraints.spec(id);  // throws for an unknown id
-  if (isEdgeKind(spec.kind)) d.updateRows(id, spec.weight, true);
+  if (d.directions) {
+    d.directions->remove(id);
+    d.stats.updateMs = d.directions->lastUpdateMs();
+  } else if (isEdgeKind(spec.kind)) {
+    d.updateRows(id, spec.weight, true);
+  }
   d.constraints.remove(id);
 }
 
@@ -253,6 +411,7 @@ void Designer::setWeight(int32_t id, double weight) {
   const double previous = d.constraints.setWeight(id, weight);  // validates
   const double change = weight - previous;
   if (change == 0) return;
+  if (d.directions) return d.directions->setWeight(id, weight);
   d.updateRows(id, std::abs(change), change < 0);
 }
 
@@ -262,6 +421,13 @@ void Designer::setStrength(int32_t id, double strength) {
 
 void Designer::clearConstraints() {
   Impl& d = *impl_;
+  if (d.directions) {
+    d.directions->clear();
+    d.stats.updateMs = d.directions->lastUpdateMs();
+    d.constraints.clear();
+    d.factor.invalidate();  // the 1-form factor no longer holds these rows
+    return;
+  }
   d.factor.update(d.constraintTerms(), d.scale, true);  // one multi-column downdate: the base is unchanged
   d.stats.updateMs = d.factor.lastUpdateMs();
   d.constraints.clear();
@@ -269,6 +435,7 @@ void Designer::clearConstraints() {
 
 void Designer::solve() {
   Impl& d = *impl_;
+  if (d.directions) return d.solveDirections();
   if (d.baseStale || !d.factor.current()) d.factorNow();
   auto start = Clock::now();
   const Eigen::VectorXd b = d.constraints.rightHandSide(d.ops, d.scale);
@@ -312,7 +479,9 @@ const std::vector<double>& Designer::faceVectors() const {
 // Vertex vectors and singularities are derived on first read: the interactive loop needs only face vectors.
 const std::vector<double>& Designer::vertexVectors() const {
   Impl& d = *impl_;
-  if (d.vertexVectorsStale) {
+  if (d.vertexVectorsStale && d.directions) {
+    d.vertexVectors = vertexRepresentatives(d.mesh, d.topology, d.geometry, d.faceVectors, d.symmetry);
+  } else if (d.vertexVectorsStale) {
     if (d.vertexVectorMap.empty()) d.vertexVectorMap = tvf::vertexVectorMap(d.mesh, d.topology, d.geometry);
     tvf::vertexVectors(d.vertexVectorMap, d.oneForm.data(), d.vertexVectors);
   }
@@ -322,7 +491,7 @@ const std::vector<double>& Designer::vertexVectors() const {
 const std::vector<Singularity>& Designer::singularities() const {
   Impl& d = *impl_;
   if (d.singularitiesStale)
-    d.singularities = findSingularities(d.mesh, d.topology, d.geometry, d.faceVectors);
+    d.singularities = findSingularities(d.mesh, d.topology, d.geometry, d.faceVectors, d.symmetry);
   d.singularitiesStale = false;
   return d.singularities;
 }
@@ -331,6 +500,9 @@ const DesignStats& Designer::stats() const {
 }
 HodgeDecomposition Designer::hodgeDecomposition() const {
   const Impl& d = *impl_;
+  if (d.directions)
+    throw InputError("the Hodge decomposition is of vector fields (symmetry 1); this field has symmetry " +
+                     std::to_string(d.symmetry));
   if (d.oneForm.size() != static_cast<size_t>(d.topology.numEdges))
     throw InputError("no field to decompose: solve first");
   return hodgeDecompose(exteriorDerivative0(d.topology), exteriorDerivative1(d.topology), d.geometry,
@@ -360,6 +532,7 @@ const MeshGeometry& Designer::geometry() const {
 
 void Designer::assembleSystem(SparseMatrix& A, Eigen::VectorXd& b) {
   Impl& d = *impl_;
+  if (d.directions) return d.directions->assemble(A, b);
   if (d.baseStale) d.rebuildBase();
   A = plusDiagonal(d.base, d.constraintTerms());
   b = d.constraints.rightHandSide(d.ops, d.scale);
@@ -376,6 +549,9 @@ double Designer::weightScale() {
 }
 
 Eigen::VectorXd Designer::textureFaceVectors() const {
+  if (impl_->directions)
+    throw InputError("texture vectors are of vector fields (symmetry 1); this field has symmetry " +
+                     std::to_string(impl_->symmetry));
   std::vector<double> out;
   tvf::textureFaceVectors(impl_->mesh, impl_->topology, impl_->oneForm.data(), out);
   return Eigen::Map<Eigen::VectorXd>(out.data(), out.size());

@@ -41,6 +41,10 @@ struct DesignStats {
   double kernelShift = 0;      // the relative diagonal shift that made the factorization succeed
   std::vector<std::string> warnings;
   std::string factorKind;  // e.g. "supernodal LL' (AMD)"
+  int32_t symmetry = 1;    // N of the field solved last (1: a vector field, the paper's 1-form)
+  // The smoothest unconstrained N-field's inverse iterations and eigenvalue (0 for any other solve).
+  int32_t inverseIterations = 0;
+  double smoothestEigenvalue = 0;
 };
 
 class Designer {
@@ -55,6 +59,16 @@ class Designer {
   // Base-matrix changes: these mark the factor stale; the next solve (or factor()) refactors.
   void setBoundary(const BoundaryCondition& bc);
   void setGamma(double gamma);
+  // N-fold symmetry of the field: 1 is a vector field (the paper's 1-form: every constraint kind, gamma, the
+  // boundary condition, Hodge); 2 a line field, 4 a cross field, up to 6 (direction/power_field_system.h:
+  // strokes and direction constraints only, free boundary). Strokes and vectors carry over; throws InputError
+  // naming the constraints that cannot (sources, sinks, vortices, edge values), leaving the design unchanged.
+  void setSymmetry(int symmetry);
+  int symmetry() const;
+  // N >= 2, even: pull towards principal curvature directions with strength s >= 0 (0: off; 1 about as strong
+  // as a weight-1 direction on every face). Throws InputError for N = 1 or odd N with s > 0.
+  void setCurvatureAlignment(double s);
+  double curvatureAlignment() const;
   void setMetisOrdering(bool metis);  // METIS nested dissection by default; false: AMD
   // Threads for the backward substitution of every solve (solver/factored_system.h; default: the cores there
   // are, up to what the build provides). Refactors at the next solve; the solution does not change.
@@ -90,8 +104,10 @@ class Designer {
 
   // Read-outs; pointers stay valid until the next solve/load. Flat arrays.
   const std::vector<double>& oneForm() const;        // per edge, canonical orientation
-  const std::vector<double>& faceVectors() const;    // 3 per face, at barycentres
-  const std::vector<double>& vertexVectors() const;  // 3 per vertex
+  // 3 per face, at barycentres; for N >= 2 one unit representative of the N directions
+  // (direction/representative_directions.h), and oneForm() is empty.
+  const std::vector<double>& faceVectors() const;
+  const std::vector<double>& vertexVectors() const;  // 3 per vertex (N >= 2: a unit representative)
   const std::vector<Singularity>& singularities() const;
   const DesignStats& stats() const;
   // The Hodge decomposition (Eq. 3) of the current one-form, computed on each call (two Poisson solves on

@@ -26,7 +26,8 @@ std::complex<double> inEdgeFrame(const Eigen::Vector3d& edge, const Eigen::Vecto
 }  // namespace
 
 std::vector<Singularity> findSingularities(const SurfaceMesh& mesh, const MeshTopology& t,
-                                           const MeshGeometry& g, const std::vector<double>& faceVectors) {
+                                           const MeshGeometry& g, const std::vector<double>& faceVectors,
+                                           int symmetry) {
   double maxNorm = 0;
   for (int32_t f = 0; f < t.numFaces; ++f)
     maxNorm = std::max(maxNorm, Eigen::Map<const Eigen::Vector3d>(&faceVectors[3 * f]).norm());
@@ -50,12 +51,13 @@ std::vector<Singularity> findSingularities(const SurfaceMesh& mesh, const MeshTo
       const Eigen::Map<const Eigen::Vector3d> uf(&faceVectors[3 * f]), ug(&faceVectors[3 * next]);
       if (uf.norm() <= tiny || ug.norm() <= tiny) defined = false;
       const Eigen::Vector3d edge = vertexPosition(mesh, mesh.triangles[3 * f + (c + 2) % 3]) - pv;
-      turning += std::arg(inEdgeFrame(edge, ug, &g.faceNormal[3 * next]) *
-                          std::conj(inEdgeFrame(edge, uf, &g.faceNormal[3 * f])));
+      const std::complex<double> jump = inEdgeFrame(edge, ug, &g.faceNormal[3 * next]) *
+                                        std::conj(inEdgeFrame(edge, uf, &g.faceNormal[3 * f]));
+      turning += symmetry == 1 ? std::arg(jump) : std::arg(std::pow(jump, symmetry)) / symmetry;
       f = next;
     }
     if (!defined) continue;
-    const double index = std::round((turning + g.angleDefect[v]) / kTwoPi);
+    const double index = std::round(symmetry * (turning + g.angleDefect[v]) / kTwoPi) / symmetry;
     if (index != 0) result.push_back({v, index});
   }
   return result;

@@ -16,9 +16,11 @@ struct Singularity {
 };
 
 // Nonzero indices only. Vertices on a boundary, and vertices where the field vanishes in an incident face,
-// have no index and are skipped.
+// have no index and are skipped. For an N-direction field (symmetry N > 1, faceVectors one representative per
+// face) the turning between neighbours is taken modulo 2 pi / N, to the nearest of the N directions, so indices
+// are multiples of 1/N.
 std::vector<Singularity> findSingularities(const SurfaceMesh& mesh, const MeshTopology& topology,
-                                           const MeshGeometry& geometry,
-                                           const std::vector<double>& faceVectors);
+                                           const MeshGeometry& geometry, const std::vector<double>& faceVectors,
+                                           int symmetry = 1);
 
 }  // namespace tvf

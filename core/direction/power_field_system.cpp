@@ -1,0 +1,184 @@
+#include "direction/power_field_system.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/input_error.h"
+#include "direction/connection_laplacian.h"
+#include "direction/principal_curvature.h"
+
+namespace tvf {
+namespace {
+
+// Components with a handle or a boundary may carry a parallel N-field (a flat torus, a disc, a cylinder): their
+// rows get the kernel shift; closed genus-0 components have none (their holonomy is never trivial).
+std::vector<uint8_t> kernelRows(const MeshTopology& t) {
+  std::vector<uint8_t> rows(2 * t.numFaces);
+  for (int32_t f = 0; f < t.numFaces; ++f) {
+    const ComponentInfo& c = t.components[t.faceComponent[f]];
+    rows[2 * f] = rows[2 * f + 1] = c.genus > 0 || c.boundaryLoops > 0;
+  }
+  return rows;
+}
+
+double meanDiagonal(const SparseMatrix& A) {
+  double sum = 0;
+  for (int j = 0; j < A.outerSize(); ++j) sum += A.coeff(j, j);
+  return A.rows() > 0 && sum > 0 ? sum / static_cast<double>(A.rows()) : 1.0;
+}
+
+// Inverse iteration stops when an iterate moves less than this (in the mass norm, iterates of norm 1), or
+// after so many steps: near-degenerate lowest eigenvalues (a round sphere's) converge slowly, and then any
+// field in their span is as smooth.
+constexpr double kEigenTolerance = 1e-7;
+constexpr int kMaxInverseIterations = 40;
+
+}  // namespace
+
+PowerFieldSystem::PowerFieldSystem(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                   const MeshGeometry& geometry, int symmetry)
+    : mesh_(mesh),
+      topology_(topology),
+      geometry_(geometry),
+      symmetry_(symmetry),
+      frames_(faceFrames(mesh, geometry)),
+      base_(connectionLaplacian(leviCivitaConnection(mesh, topology, geometry, frames_), topology.numFaces,
+                                symmetry)),
+      mass_(powerFieldMass(geometry)),
+      scale_(meanDiagonal(base_)),
+      factor_(kernelRows(topology)) {}
+
+int PowerFieldSystem::symmetry() const {
+  return symmetry_;
+}
+const FaceFrames& PowerFieldSystem::frames() const {
+  return frames_;
+}
+ShiftedFactor& PowerFieldSystem::factor() {
+  return factor_;
+}
+
+void PowerFieldSystem::setCurvatureAlignment(double s) {
+  if (!std::isfinite(s) || s < 0) throw InputError("the curvature alignment must be a number >= 0");
+  if (s > 0 && curvature_.empty())
+    curvature_ = principalCurvaturePower(mesh_, topology_, geometry_, frames_, symmetry_);
+  curvatureAlignment_ = s;
+}
+
+DiagonalTerms PowerFieldSystem::termsOf(const Entry& entry, double weight) const {
+  DiagonalTerms terms;
+  for (const FaceDirectionTerm& term : entry.terms) {
+    terms.rows.push_back(2 * term.face);
+    terms.rows.push_back(2 * term.face + 1);
+    terms.weights.push_back(weight * scale_);
+    terms.weights.push_back(weight * scale_);
+  }
+  return terms;
+}
+
+DiagonalTerms PowerFieldSystem::allTerms() const {
+  DiagonalTerms all;
+  for (const auto& [id, entry] : entries_) {
+    const DiagonalTerms terms = termsOf(entry, entry.weight);
+    all.rows.insert(all.rows.end(), terms.rows.begin(), terms.rows.end());
+    all.weights.insert(all.weights.end(), terms.weights.begin(), terms.weights.end());
+  }
+  return all;
+}
+
+void PowerFieldSystem::add(int32_t id, std::vector<FaceDirectionTerm> terms, double weight) {
+  Entry& entry = entries_[id] = Entry{std::move(terms), weight};
+  factor_.update(termsOf(entry, weight), scale_, false);
+}
+
+void PowerFieldSystem::remove(int32_t id) {
+  const auto it = entries_.find(id);
+  if (it == entries_.end()) return;
+  factor_.update(termsOf(it->second, it->second.weight), scale_, true);
+  entries_.erase(it);
+}
+
+void PowerFieldSystem::setWeight(int32_t id, double weight) {
+  const auto it = entries_.find(id);
+  if (it == entries_.end()) return;
+  const double change = weight - it->second.weight;
+  it->second.weight = weight;
+  if (change != 0) factor_.update(termsOf(it->second, std::abs(change)), scale_, change < 0);
+}
+
+void PowerFieldSystem::clear() {
+  factor_.update(allTerms(), scale_, true);  // one multi-column downdate: the base is unchanged
+  entries_.clear();
+}
+
+double PowerFieldSystem::lastUpdateMs() const {
+  return factor_.lastUpdateMs();
+}
+
+Eigen::VectorXd PowerFieldSystem::rightHandSide() {
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(base_.rows());
+  if (curvatureAlignment_ > 0) {
+    // Area relative to the mean face area, so s means the same on every mesh size.
+    const double meanArea = geometry_.totalArea / std::max(1, topology_.numFaces);
+    for (int32_t f = 0; f < topology_.numFaces; ++f) {
+      const double w = curvatureAlignment_ * scale_ * geometry_.faceArea[f] / meanArea;
+      b[2 * f] += w * curvature_[f].real();
+      b[2 * f + 1] += w * curvature_[f].imag();
+    }
+  }
+  for (const auto& [id, entry] : entries_)
+    for (const FaceDirectionTerm& term : entry.terms) {
+      b[2 * term.face] += entry.weight * scale_ * term.power.real();
+      b[2 * term.face + 1] += entry.weight * scale_ * term.power.imag();
+    }
+  return b;
+}
+
+void PowerFieldSystem::smoothestField(Eigen::VectorXd& u) {
+  // A fixed pseudo-random start: the page and the CLI find the same field.
+  Eigen::VectorXd x(base_.rows());
+  uint64_t state = 0x9E3779B97F4A7C15ull;
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    x[k] = static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5;
+  }
+  auto massNorm = [&](const Eigen::VectorXd& v) { return std::sqrt(v.dot(mass_.cwiseProduct(v))); };
+  x /= massNorm(x);
+  const DiagonalTerms none;
+  report_.inverseIterations = 0;
+  for (int k = 0; k < kMaxInverseIterations; ++k) {
+    Eigen::VectorXd y;
+    factor_.solve(base_, scale_, none, mass_.cwiseProduct(x), y);
+    y /= massNorm(y);
+    ++report_.inverseIterations;
+    // The iterate's complex phase is free (u and i u are equally smooth): compare after aligning it.
+    std::complex<double> overlap = 0;
+    for (Eigen::Index f = 0; 2 * f < y.size(); ++f)
+      overlap += mass_[2 * f] * std::complex<double>(y[2 * f], y[2 * f + 1]) *
+                 std::conj(std::complex<double>(x[2 * f], x[2 * f + 1]));
+    const double moved = std::sqrt(std::max(0.0, 2 - 2 * std::abs(overlap)));
+    x = std::move(y);
+    if (moved < kEigenTolerance) break;
+  }
+  report_.eigenvalue = x.dot(base_ * x) / x.dot(mass_.cwiseProduct(x));
+  u = std::move(x);
+}
+
+void PowerFieldSystem::solve(Eigen::VectorXd& u) {
+  const DiagonalTerms terms = allTerms();
+  if (!factor_.current()) factor_.factor(base_, scale_, terms);
+  if (entries_.empty() && curvatureAlignment_ == 0) return smoothestField(u);
+  report_ = {};
+  factor_.solve(base_, scale_, terms, rightHandSide(), u);
+}
+
+const PowerFieldReport& PowerFieldSystem::report() const {
+  return report_;
+}
+
+void PowerFieldSystem::assemble(SparseMatrix& A, Eigen::VectorXd& b) {
+  A = plusDiagonal(base_, allTerms());
+  b = rightHandSide();
+}
+
+}  // namespace tvf

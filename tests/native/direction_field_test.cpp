@@ -1,0 +1,400 @@
+// Line and cross fields (N-direction fields as power fields; direction/) against truths that do not come from
+// the solver: Poincaré–Hopf (indices sum to the Euler characteristic, each a multiple of 1/N), truly
+// fractional indices on a generic curved surface, the exactly parallel field of a flat square, a torus's zero
+// sum, undo as a downdate equal to a fresh solve, a straight stroke followed on a curved surface, the smoothest
+// field as an eigenvector (H u = lambda M u, residual), curvature alignment on a torus of revolution (whose
+// principal directions are its parallels and meridians), and the design format and CLI.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "cli_run.h"
+#include "common/input_error.h"
+#include "constraints/surface_walk.h"
+#include "design/design_document.h"
+#include "design/designer.h"
+#include "direction/connection_laplacian.h"
+#include "direction/levi_civita_connection.h"
+#include "direction/representative_directions.h"
+#include "io/mesh_io.h"
+#include "mesh/mesh_geometry.h"
+#include "test_meshes.h"
+
+using namespace tvf;
+using namespace tvf::testing;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A sphere with smooth random bumps: curved everywhere, no symmetry to make indices come out whole.
+SurfaceMesh bumpySphere(int subdivisions = 3) {
+  SurfaceMesh m = icosphere(subdivisions);
+  for (size_t v = 0; 3 * v < m.positions.size(); ++v) {
+    double* p = &m.positions[3 * v];
+    const double r = 1 + 0.15 * std::sin(3 * p[0] + 1) * std::cos(2 * p[1]) + 0.1 * std::sin(5 * p[2] + 2 * p[0]);
+    for (int k = 0; k < 3; ++k) p[k] *= r;
+  }
+  return m;
+}
+
+double indexSum(const Designer& d) {
+  double sum = 0;
+  for (const Singularity& s : d.singularities()) sum += s.index;
+  return sum;
+}
+
+void expectIndicesAreMultiplesOf(const Designer& d, int n) {
+  for (const Singularity& s : d.singularities())
+    EXPECT_NEAR(s.index * n, std::round(s.index * n), 1e-12) << "vertex " << s.vertex << " index " << s.index;
+}
+
+Eigen::Vector3d faceCentre(const SurfaceMesh& m, int32_t f) {
+  Eigen::Vector3d p[3];
+  facePositions(m, f, p);
+  return (p[0] + p[1] + p[2]) / 3;
+}
+
+// The face whose centre is nearest to x.
+int32_t nearestFace(const SurfaceMesh& m, const Eigen::Vector3d& x) {
+  int32_t best = 0;
+  for (int32_t f = 1; f < m.numFaces(); ++f)
+    if ((faceCentre(m, f) - x).norm() < (faceCentre(m, best) - x).norm()) best = f;
+  return best;
+}
+
+std::vector<SurfacePoint> centresStroke(const std::vector<int32_t>& faces) {
+  std::vector<SurfacePoint> points;
+  for (const int32_t f : faces) points.push_back({f, {1.0 / 3, 1.0 / 3, 1.0 / 3}});
+  return points;
+}
+
+double angleToRepresentative(const Designer& d, int32_t f, const Eigen::Vector3d& wanted) {
+  const Eigen::Vector3d rep(&d.faceVectors()[3 * f]);
+  const Eigen::Vector3d n(&d.geometry().faceNormal[3 * f]);
+  const Eigen::Vector3d w = (wanted - n * n.dot(wanted)).normalized();
+  return std::abs(symmetricAngle(rep, w, n, d.symmetry()));
+}
+
+}  // namespace
+
+TEST(DirectionField, ConnectionLaplacianIsHermitianAndAnnihilatesParallelFieldsOnAPlane) {
+  SurfaceMesh m = flatGrid(6, 1.0, true);
+  jitterPlanar(m, 0.03, 3);  // a fifth of a cell: no folds
+  const MeshTopology t = buildTopology(m);
+  const MeshGeometry g = computeMeshGeometry(m, t);
+  const FaceFrames frames = faceFrames(m, g);
+  for (const int n : {1, 2, 4}) {
+    const SparseMatrix H = connectionLaplacian(leviCivitaConnection(m, t, g, frames), t.numFaces, n);
+    EXPECT_NEAR((SparseMatrix(H.transpose()) - H).norm(), 0, 1e-12);
+    // The constant direction 0.3 rad from x, as a power field in each face's frame, is parallel: H u = 0.
+    Eigen::VectorXd u(2 * t.numFaces);
+    const double dir[3] = {std::cos(0.3), std::sin(0.3), 0};
+    for (int32_t f = 0; f < t.numFaces; ++f) {
+      const std::complex<double> z = std::pow(inFaceFrame(frames, f, dir), n);
+      u[2 * f] = z.real();
+      u[2 * f + 1] = z.imag();
+    }
+    EXPECT_LT((H * u).norm(), 1e-12) << "N = " << n;
+  }
+}
+
+TEST(DirectionField, IndicesSumToEulerCharacteristicAndAreMultiplesOfOneOverN) {
+  const std::vector<std::pair<const char*, SurfaceMesh>> meshes = {
+      {"icosphere", icosphere(3)},
+      {"bumpy sphere", bumpySphere()},
+      {"torus", torus(40, 20, 1.0, 0.35)},
+      {"genus 2 plate", holedPlate(3, 2, {{0, 0}, {2, 1}}, 2)}};
+  for (const auto& [name, mesh] : meshes) {
+    for (const int n : {2, 3, 4, 6}) {
+      Designer d(mesh);
+      d.setSymmetry(n);
+      d.solve();  // the smoothest unconstrained field
+      const int chi = d.topology().eulerCharacteristic();
+      EXPECT_NEAR(indexSum(d), chi, 1e-9) << name << " N = " << n << " (smoothest)";
+      expectIndicesAreMultiplesOf(d, n);
+      const double along[3] = {1, 0.2, 0.5};
+      d.addVector(7, along, 1.0);
+      d.solve();
+      EXPECT_NEAR(indexSum(d), chi, 1e-9) << name << " N = " << n << " (one direction)";
+      expectIndicesAreMultiplesOf(d, n);
+      for (int32_t f = 0; f < d.mesh().numFaces(); ++f)
+        EXPECT_NEAR(Eigen::Vector3d(&d.faceVectors()[3 * f]).norm(), 1, 1e-12);
+    }
+  }
+}
+
+TEST(DirectionField, GenericCurvedSurfaceHasTrulyFractionalIndices) {
+  for (const int n : {2, 4}) {
+    Designer d(bumpySphere());
+    d.setSymmetry(n);
+    const double along[3] = {0.3, 1, 0.2};
+    d.addVector(11, along, 1.0);
+    d.solve();
+    int fractional = 0;
+    for (const Singularity& s : d.singularities()) fractional += std::abs(s.index - std::round(s.index)) > 1e-9;
+    EXPECT_GT(fractional, 0) << "N = " << n;
+    if (n == 4) {
+      int quarter = 0;
+      for (const Singularity& s : d.singularities())
+        quarter += std::abs(2 * s.index - std::round(2 * s.index)) > 1e-9;
+      EXPECT_GT(quarter, 0) << "a cross field on a generic sphere has indices of +-1/4";
+    }
+  }
+}
+
+TEST(DirectionField, FlatSquareWithOneDirectionIsExactlyConstant) {
+  SurfaceMesh m = flatGrid(8, 1.0, true);
+  jitterPlanar(m, 0.025, 5);  // a fifth of a cell: no folds
+  for (const int n : {2, 4, 5}) {
+    Designer d(m);
+    d.setSymmetry(n);
+    const int32_t f0 = 17;
+    // Parallel to one of the face's edges, as the truth asks.
+    const Eigen::Vector3d edge = edgeVector(d.mesh(), d.topology(), d.topology().edgeOf(f0, 0));
+    d.addVector(f0, edge.data(), 1.0);
+    d.solve();
+    double worst = 0;
+    for (int32_t f = 0; f < d.mesh().numFaces(); ++f) worst = std::max(worst, angleToRepresentative(d, f, edge));
+    EXPECT_LT(worst, 1e-9) << "N = " << n;
+    EXPECT_TRUE(d.singularities().empty());
+  }
+}
+
+TEST(DirectionField, TorusIndicesSumToZero) {
+  for (const int n : {2, 4}) {
+    Designer d(torus(48, 16, 1.0, 0.45));
+    d.setSymmetry(n);
+    const double a[3] = {0, 0, 1}, b[3] = {1, 1, 0};
+    d.addVector(3, a, 1.0);
+    d.addVector(400, b, 1.0);
+    d.solve();
+    EXPECT_NEAR(indexSum(d), 0, 1e-9) << "N = " << n;
+    expectIndicesAreMultiplesOf(d, n);
+  }
+}
+
+TEST(DirectionField, UndoOfAStrokeEqualsAFreshSolve) {
+  const SurfaceMesh m = bumpySphere();
+  for (const int n : {2, 4}) {
+    Designer d(m);
+    d.setSymmetry(n);
+    const auto first = centresStroke({nearestFace(m, {1, 0, 0}), nearestFace(m, {0.9, 0.4, 0}),
+                                      nearestFace(m, {0.7, 0.7, 0.1})});
+    const auto second = centresStroke({nearestFace(m, {0, 0, 1}), nearestFace(m, {0.3, 0.1, 0.9}),
+                                       nearestFace(m, {0.6, 0.2, 0.7})});
+    d.addStroke(first, 1, 10);
+    d.solve();
+    const int32_t id = d.addStroke(second, 1, 100);
+    d.solve();
+    d.remove(id);  // undo: the inverse rank update
+    d.solve();
+    Designer fresh(m);
+    fresh.setSymmetry(n);
+    fresh.addStroke(first, 1, 10);
+    fresh.solve();
+    double worst = 0;
+    for (int32_t f = 0; f < m.numFaces(); ++f)
+      worst = std::max(worst, angleToRepresentative(d, f, Eigen::Vector3d(&fresh.faceVectors()[3 * f])));
+    EXPECT_LT(worst, 1e-9) << "N = " << n;
+    EXPECT_EQ(d.stats().precisionRefactors, 0);
+  }
+}
+
+TEST(DirectionField, StraightStrokeIsFollowedOnACurvedSurface) {
+  // A stroke along a parallel of a torus (test_meshes' layout: quad (i, j) is faces 2 (j n + i) and +1) at
+  // weight 1e4: at every face it crosses, the field is within 1 degree of the stroke's heading there.
+  const int n = 64, m = 24;
+  const SurfaceMesh mesh = torus(n, m, 1.0, 0.4);
+  std::vector<SurfacePoint> points;
+  for (int k = 0; k <= 24; ++k) {
+    const double x = 2.0 + 0.5 * k;  // in quads along the parallel, at 0.3 of the strip's height
+    const int i = static_cast<int>(x);
+    const double a = x - i, b = 0.3;
+    points.push_back(a >= b ? SurfacePoint{2 * i, {1 - a, a - b, b}} : SurfacePoint{2 * i + 1, {1 - b, a, b - a}});
+  }
+  const MeshTopology t = buildTopology(mesh);
+  const StrokeWalk walk = walkStroke(mesh, t, points);
+  ASSERT_GT(walk.crossings.size(), 20u);
+  for (const int symmetry : {2, 4}) {
+    Designer d(mesh);
+    d.setSymmetry(symmetry);
+    d.addStroke(points, 1, 1e4);
+    d.solve();
+    double worst = 0;
+    for (const StrokeCrossing& c : walk.crossings)
+      worst = std::max(worst, angleToRepresentative(d, c.face, c.direction));
+    EXPECT_LT(worst * 180 / kPi, 1.0) << "N = " << symmetry;
+  }
+}
+
+TEST(DirectionField, SmoothestFieldIsTheLowestEigenvector) {
+  Designer d(bumpySphere(2));
+  d.setSymmetry(2);
+  d.solve();
+  // Rayleigh quotient of the result against that of many random fields: the smoothest is below all.
+  const double lambda = d.stats().smoothestEigenvalue;
+  EXPECT_GT(lambda, 0);
+  EXPECT_GT(d.stats().inverseIterations, 0);
+  const FaceFrames frames = faceFrames(d.mesh(), d.geometry());
+  const SparseMatrix H = connectionLaplacian(leviCivitaConnection(d.mesh(), d.topology(), d.geometry(), frames),
+                                             d.mesh().numFaces(), 2);
+  const Eigen::VectorXd mass = powerFieldMass(d.geometry());
+  std::mt19937 rng(4);
+  std::normal_distribution<double> g;
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::VectorXd x(H.rows());
+    for (Eigen::Index k = 0; k < x.size(); ++k) x[k] = g(rng);
+    EXPECT_GT(x.dot(H * x) / x.dot(mass.cwiseProduct(x)), lambda);
+  }
+  EXPECT_NEAR(indexSum(d), 2, 1e-9);
+}
+
+TEST(DirectionField, CurvatureAlignmentFollowsATorusOfRevolutionsPrincipalDirections) {
+  const SurfaceMesh m = torus(64, 24, 1.0, 0.4);
+  Designer d(m);
+  d.setSymmetry(4);
+  d.setCurvatureAlignment(1);
+  d.solve();
+  double sum = 0;
+  for (int32_t f = 0; f < m.numFaces(); ++f) {
+    const Eigen::Vector3d c = faceCentre(m, f);
+    sum += angleToRepresentative(d, f, Eigen::Vector3d(-c.y(), c.x(), 0));  // the parallel through c
+  }
+  EXPECT_LT(sum / m.numFaces() * 180 / kPi, 2.0);
+  EXPECT_TRUE(d.singularities().empty());
+}
+
+TEST(DirectionField, VectorNotionsAreRefusedByName) {
+  Designer d(icosphere(2));
+  d.addSource(0, 1);
+  d.addVortex(3, 1);
+  try {
+    d.setSymmetry(2);
+    FAIL() << "a source and a vortex were carried into a line field";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("1 source, 1 vortex"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(d.symmetry(), 1);
+  d.clearConstraints();
+  d.setSymmetry(4);
+  EXPECT_THROW(d.addSink(2, 1), InputError);
+  EXPECT_THROW(d.addEdge(0, 1, 0.1, 1), InputError);
+  EXPECT_THROW(d.hodgeDecomposition(), InputError);
+  EXPECT_TRUE(d.constraints().empty()) << "a refused constraint left something behind";
+  EXPECT_THROW(d.setSymmetry(7), InputError);
+  EXPECT_THROW(d.setSymmetry(0), InputError);
+  d.setSymmetry(3);
+  EXPECT_THROW(d.setCurvatureAlignment(1), InputError);
+}
+
+TEST(DirectionField, SwitchingSymmetryKeepsStrokesAndDirections) {
+  const SurfaceMesh m = bumpySphere(2);
+  Designer d(m);
+  const auto stroke = centresStroke({nearestFace(m, {1, 0, 0}), nearestFace(m, {0.8, 0.5, 0})});
+  d.addStroke(stroke, 1, 10);
+  const double v[3] = {0, 1, 0};
+  d.addVector(nearestFace(m, {0, 0, 1}), v, 5);
+  d.solve();
+  const std::vector<double> vectorField = d.faceVectors();
+  d.setSymmetry(2);
+  d.solve();
+  EXPECT_EQ(d.constraints().size(), 2u);
+  d.setSymmetry(1);
+  d.solve();
+  EXPECT_EQ(d.faceVectors(), vectorField) << "back to N = 1 the vector field is what it was";
+}
+
+TEST(DirectionField, DesignDocumentCarriesSymmetry) {
+  const SurfaceMesh m = bumpySphere(2);
+  Designer d(m);
+  d.setSymmetry(4);
+  d.setCurvatureAlignment(0.5);
+  const double v[3] = {0, 1, 0};
+  d.addVector(5, v, 2);
+  const nlohmann::json doc = designDocument(d);
+  EXPECT_EQ(doc["symmetry"], 4);
+  EXPECT_EQ(doc["curvatureAlignment"], 0.5);
+  Designer other(m);
+  applyDesignDocument(other, doc);
+  EXPECT_EQ(other.symmetry(), 4);
+  EXPECT_EQ(other.curvatureAlignment(), 0.5);
+  d.solve();
+  other.solve();
+  EXPECT_EQ(d.faceVectors(), other.faceVectors());
+  // A vector design has no symmetry key, as before; a source in a line-field design is refused by name.
+  EXPECT_FALSE(designDocument(Designer(m)).contains("symmetry"));
+  nlohmann::json bad = doc;
+  bad["constraints"].push_back({{"type", "source"}, {"vertex", 0}, {"strength", 1}});
+  try {
+    applyDesignDocument(other, bad);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("constraint 1"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(other.constraints().size(), 1u) << "a refused document left the design changed";
+}
+
+#ifdef TVF_CLI_PATH
+namespace {
+void writeOff(const SurfaceMesh& m, const std::string& path) {
+  std::ofstream out(path);
+  out.precision(17);
+  out << "OFF\n" << m.positions.size() / 3 << " " << m.numFaces() << " 0\n";
+  for (size_t k = 0; k < m.positions.size(); k += 3)
+    out << m.positions[k] << " " << m.positions[k + 1] << " " << m.positions[k + 2] << "\n";
+  for (int32_t f = 0; f < m.numFaces(); ++f)
+    out << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2] << "\n";
+}
+}  // namespace
+
+TEST(DirectionField, CliWritesFaceDirectionsAndFractionalIndices) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tvf-direction-cli";
+  std::filesystem::create_directories(dir);
+  const SurfaceMesh m = bumpySphere(2);
+  writeOff(m, (dir / "sphere.off").string());
+  const SurfaceMesh loaded = loadMesh((dir / "sphere.off").string());
+  Designer d(loaded);
+  d.setSymmetry(2);
+  const double v[3] = {0.2, 1, 0.1};
+  d.addVector(9, v, 1);
+  std::ofstream((dir / "design.json").string()) << designDocument(d).dump();
+  const CliRun r = runTvf("design " + (dir / "sphere.off").string() + " " + (dir / "design.json").string() +
+                          " -o " + (dir / "field.json").string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  nlohmann::json field;
+  std::ifstream((dir / "field.json").string()) >> field;
+  EXPECT_EQ(field["symmetry"], 2);
+  EXPECT_FALSE(field.contains("oneForm"));
+  d.solve();
+  ASSERT_EQ(field["faceDirections"].size(), static_cast<size_t>(loaded.numFaces()));
+  for (int32_t f = 0; f < loaded.numFaces(); ++f) {
+    const auto& r3 = field["faceDirections"][f];
+    const Eigen::Vector3d written(r3[0].get<double>(), r3[1].get<double>(), r3[2].get<double>());
+    EXPECT_LT(angleToRepresentative(d, f, written), 1e-6);
+  }
+  double sum = 0;
+  bool half = false;
+  for (const auto& s : field["singularities"]) {
+    sum += s["index"].get<double>();
+    half |= std::abs(s["index"].get<double>()) == 0.5;
+  }
+  EXPECT_NEAR(sum, 2, 1e-12);
+  EXPECT_TRUE(half);
+  const CliRun bench = runTvf("bench " + (dir / "sphere.off").string() + " --symmetry 4 --json --repeat 1");
+  ASSERT_EQ(bench.exitCode, 0) << bench.err;
+  const nlohmann::json b = nlohmann::json::parse(bench.out);
+  for (const char* key : {"factorMs", "solveMs", "updateMs", "strokeUpdateSolveMs", "smoothestMs"})
+    EXPECT_TRUE(b.contains(key)) << key;
+  EXPECT_EQ(b["symmetry"], 4);
+  const CliRun exported = runTvf("export " + (dir / "sphere.off").string() + " " +
+                                 (dir / "design.json").string() + " --glb " + (dir / "out.glb").string());
+  EXPECT_EQ(exported.exitCode, 2);
+  EXPECT_NE(exported.err.find("not available yet"), std::string::npos) << exported.err;
+}
+#endif
