@@ -169,6 +169,12 @@ class DesignerBinding {
   }
   std::string setGamma(double gamma) { return run([&] { need().setGamma(gamma); }); }
   double gamma() const { return designer_ ? designer_->gamma() : 0.0; }
+  // N of the field (1 vector, 2 line, 4 cross; up to 6): refused, naming them, while the design holds
+  // sources, sinks, vortices or edge values; the next solve factors the new system.
+  std::string setSymmetry(int symmetry) { return run([&] { need().setSymmetry(symmetry); }); }
+  int symmetry() const { return designer_ ? designer_->symmetry() : 1; }
+  std::string setCurvatureAlignment(double s) { return run([&] { need().setCurvatureAlignment(s); }); }
+  double curvatureAlignment() const { return designer_ ? designer_->curvatureAlignment() : 0.0; }
   // METIS nested dissection (the default) or AMD; the next factorization orders again.
   std::string setMetisOrdering(bool metis) { return run([&] { need().setMetisOrdering(metis); }); }
   // Threads of the backward substitution (1 .. solverThreadsAvailable()); the next solve refactors.
@@ -373,10 +379,18 @@ class DesignerBinding {
             const nlohmann::json g = s.value("gamma", nlohmann::json(0.0));
             if (!g.is_number()) throw tvf::InputError("gamma must be a number");
             next->setGamma(g.get<double>());
+            const nlohmann::json n = s.value("symmetry", nlohmann::json(1));
+            if (!n.is_number_integer()) throw tvf::InputError("symmetry must be an integer");
+            next->setSymmetry(n.get<int>());
+            const nlohmann::json a = s.value("curvatureAlignment", nlohmann::json(0.0));
+            if (!a.is_number()) throw tvf::InputError("curvatureAlignment must be a number");
+            next->setCurvatureAlignment(a.get<double>());
           })) {
         if (settingsError) *settingsError = error;
         next->setBoundary(tvf::BoundaryCondition::makeFree());
         next->setGamma(0);
+        next->setCurvatureAlignment(0);
+        next->setSymmetry(1);
       }
     }
     bool restored = false;
@@ -484,6 +498,10 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("infoJson", &DesignerBinding::infoJson)
       .function("setBoundaryJson", &DesignerBinding::setBoundaryJson)
       .function("setGamma", &DesignerBinding::setGamma)
+      .function("setSymmetry", &DesignerBinding::setSymmetry)
+      .function("symmetry", &DesignerBinding::symmetry)
+      .function("setCurvatureAlignment", &DesignerBinding::setCurvatureAlignment)
+      .function("curvatureAlignment", &DesignerBinding::curvatureAlignment)
       .function("setMetisOrdering", &DesignerBinding::setMetisOrdering)
       .function("setSolverThreads", &DesignerBinding::setSolverThreads)
       .function("solverThreads", &DesignerBinding::solverThreads)

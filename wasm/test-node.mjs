@@ -4,7 +4,9 @@
 // Loads build-wasm/tvf_core.mjs (build it with `npm run build:wasm`), designs on an icosphere made here, and
 // checks the binding's contract (error strings instead of exceptions, ids, views, JSON read-outs, a stroke
 // whose removal restores the field). Prints "N passed, M failed"; exits 1 on any failure.
-import { readFileSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { icosphereOff as icosphere } from '../tests/icosphere.mjs';
@@ -309,6 +311,65 @@ d.delete();
     check('two threads: the backward substitution splits in two', /by supernodes on 2 threads/.test(two.kind), two.kind);
   const identical = one.fields.every((f, k) => f.length === two.fields[k].length && f.every((v, i) => Object.is(v, two.fields[k][i])));
   check('... and the fields equal one thread\'s bit for bit', identical);
+}
+// Line and cross fields (symmetry N): the binding's contract, the index invariants, and the page's field against
+// the native CLI's (tvf design, built before these tests by npm test) on the same mesh and design: the same
+// representative per face to 1e-6 in angle, modulo 2 pi / N.
+{
+  const e = new Module.Designer();
+  e.loadMesh(new TextEncoder().encode(icosphere(3)), 'off');
+  e.addSource(0, 1);
+  const refused = e.setSymmetry(2);
+  check('setSymmetry(2) with a source: refused by name', /1 source/.test(refused) && e.symmetry() === 1, refused);
+  e.clearConstraints();
+  check('setSymmetry(7): refused', e.setSymmetry(7) !== '' && e.symmetry() === 1);
+  for (const n of [2, 4]) {
+    check(`setSymmetry(${n})`, e.setSymmetry(n) === '' && e.symmetry() === n);
+    check(`N = ${n}: a sink is refused`, e.addSink(3, 1) === -1 && /vector-field notion/.test(e.lastError()), e.lastError());
+    e.clearConstraints();
+    const id = e.addStroke(faceStrip(Int32Array.from(e.triangles()), 5, 12), 1, 100);
+    check(`N = ${n}: stroke id`, id > 0, e.lastError());
+    check(`N = ${n}: solve`, e.solve() === '', e.lastError());
+    const fv = e.faceVectors();
+    let unit = true;
+    for (let f = 0; f < fv.length / 3; ++f) unit &&= Math.abs(Math.hypot(fv[3 * f], fv[3 * f + 1], fv[3 * f + 2]) - 1) < 1e-9;
+    check(`N = ${n}: unit representatives`, unit);
+    const singular = JSON.parse(e.singularitiesJson());
+    const sum = singular.reduce((a, s) => a + s.index, 0);
+    check(`N = ${n}: indices are multiples of 1/${n} summing to 2`, Math.abs(sum - 2) < 1e-9 &&
+      singular.every((s) => Math.abs(s.index * n - Math.round(s.index * n)) < 1e-9), JSON.stringify(singular));
+    const dir = mkdtempSync(resolve(tmpdir(), 'tvf-sym-'));
+    writeFileSync(resolve(dir, 'mesh.off'), icosphere(3));
+    writeFileSync(resolve(dir, 'design.json'), e.designJson());
+    const cli = resolve(ROOT, 'build/tvf');
+    let agree = false, detail = '';
+    try {
+      const out = JSON.parse(execFileSync(cli, ['design', resolve(dir, 'mesh.off'), resolve(dir, 'design.json')],
+        { maxBuffer: 1 << 28 }).toString());
+      let worst = 0;
+      const tri = e.triangles(), p = e.positions();
+      out.faceDirections.forEach((w, f) => {
+        const c = [0, 1, 2].map((k) => tri[3 * f + k]);
+        const a = [0, 1, 2].map((k) => p[3 * c[1] + k] - p[3 * c[0] + k]);
+        const b = [0, 1, 2].map((k) => p[3 * c[2] + k] - p[3 * c[0] + k]);
+        const nrm = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+        const v = [fv[3 * f], fv[3 * f + 1], fv[3 * f + 2]];
+        const cross = [v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2], v[0] * w[1] - v[1] * w[0]];
+        const angle = Math.atan2(cross[0] * nrm[0] + cross[1] * nrm[1] + cross[2] * nrm[2],
+          Math.hypot(...nrm) * (v[0] * w[0] + v[1] * w[1] + v[2] * w[2]));
+        const reduced = Math.atan2(Math.sin(n * angle), Math.cos(n * angle)) / n;
+        worst = Math.max(worst, Math.abs(reduced));
+      });
+      agree = out.faceDirections.length === fv.length / 3 && worst < 1e-6;
+      detail = `worst ${worst}`;
+    } catch (err) {
+      detail = String(err.message ?? err);
+    }
+    check(`N = ${n}: page and tvf design agree to 1e-6 rad (mod 2pi/${n})`, agree, detail);
+    rmSync(dir, { recursive: true, force: true });
+  }
+  check('back to N = 1', e.setSymmetry(1) === '' && e.solve() === '' && e.oneForm().length === 30 * 4 ** 3);
+  e.delete();
 }
 // ------------------------------------------------------------------ transactional loads, safe updates
 // The model is replaced only when read, checked, factored and solved; any failure leaves the previous one

@@ -6,6 +6,7 @@
 // principal directions are its parallels and meridians), and the design format and CLI.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <filesystem>
@@ -398,3 +399,42 @@ TEST(DirectionField, CliWritesFaceDirectionsAndFractionalIndices) {
   EXPECT_NE(exported.err.find("not available yet"), std::string::npos) << exported.err;
 }
 #endif
+
+// The page's default model (dist/models/bunny.glb, the Stanford bunny that `npm run build:web` writes from
+// the npm `bunny` package; npm test builds it before the native tests): a straight stroke — two points, so
+// the walk between them is the surface's discrete straight line — is followed within 1 degree at every face
+// it crosses, at weight 1e4, and the indices are multiples of 1/N summing to the Euler characteristic.
+TEST(DirectionField, StraightStrokeIsFollowedOnTheBunny) {
+  const std::string path = std::string(TVF_TEST_DATA_DIR) + "/../../../dist/models/bunny.glb";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path << " (npm run build:web writes it)";
+  const SurfaceMesh mesh = loadMesh(path);
+  const MeshTopology t = buildTopology(mesh);
+  // From a face on one side of the bunny's bounding box towards one a third of the way across.
+  Eigen::Vector3d lo = faceCentre(mesh, 0), hi = lo;
+  for (int32_t f = 0; f < mesh.numFaces(); ++f) {
+    lo = lo.cwiseMin(faceCentre(mesh, f));
+    hi = hi.cwiseMax(faceCentre(mesh, f));
+  }
+  const Eigen::Vector3d mid = (lo + hi) / 2, size = hi - lo;
+  const int32_t a = nearestFace(mesh, mid + Eigen::Vector3d(-0.25 * size.x(), 0.1 * size.y(), 0.5 * size.z()));
+  const int32_t b = nearestFace(mesh, mid + Eigen::Vector3d(0.1 * size.x(), 0.15 * size.y(), 0.5 * size.z()));
+  const std::vector<SurfacePoint> points = centresStroke({a, b});
+  const StrokeWalk walk = walkStroke(mesh, t, points);
+  ASSERT_GE(walk.crossings.size(), 10u);
+  for (const int n : {2, 4}) {
+    Designer d(mesh);
+    d.setSymmetry(n);
+    d.addStroke(points, 1, 1e4);
+    d.solve();
+    double worst = 0;
+    for (const StrokeCrossing& c : walk.crossings)
+      worst = std::max(worst, angleToRepresentative(d, c.face, c.direction));
+    EXPECT_LT(worst * 180 / kPi, 1.0) << "N = " << n << ", " << walk.crossings.size() << " faces";
+    double sum = 0;
+    for (const Singularity& s : d.singularities()) sum += s.index;
+    expectIndicesAreMultiplesOf(d, n);
+    if (d.topology().isBoundaryVertex.end() ==
+        std::find(d.topology().isBoundaryVertex.begin(), d.topology().isBoundaryVertex.end(), 1))
+      EXPECT_NEAR(sum, d.topology().eulerCharacteristic(), 1e-9);
+  }
+}
