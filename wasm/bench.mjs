@@ -28,7 +28,9 @@
 //   --native FILE (reuse bench-data/bench-native.json-style results instead of running tvf), --no-native,
 //   --no-warmup, --warmup LEVELS,ROUNDS (icosphere subdivisions and rounds; default 3,1), --settle MS (wait
 //   after the warm-up so background compilation can finish; default 100), --node-flags "FLAGS" (for the child
-//   processes, e.g. "--no-liftoff" to compare V8 tiering strategies), --module PATH (tvf_core.mjs).
+//   processes, e.g. "--no-liftoff" to compare V8 tiering strategies), --module PATH (tvf_core.mjs),
+//   --symmetry N (1: a vector field; 2 a line, 4 a cross field: their power-field system, a direction constraint
+//   as the single update, smoothestMs for the unconstrained field; the native side with tvf bench --symmetry N).
 // Threads: the module is build-wasm/tvf_core_threads.mjs when it was built (what a cross-origin-isolated page,
 // the app's own, runs), with as many backward-substitution threads as it has (2) where the machine has the
 // cores; --threads 1 takes the plain tvf_core.mjs (what any other page runs). The native side runs with the
@@ -135,6 +137,8 @@ async function measureWasm(mesh, opts) {
       fail('--threads', `${modulePath} has ${Module.solverThreadsAvailable()} thread(s) for the solve, not ${wanted}`);
     ok('threads', d.setSolverThreads(wanted));
   }
+  const symmetry = Number(opts.symmetry ?? 1);
+  if (symmetry > 1) ok('symmetry', d.setSymmetry(symmetry));
   t = performance.now();
   ok('factor', d.factor());
   const firstFactorMs = performance.now() - t;
@@ -153,7 +157,7 @@ async function measureWasm(mesh, opts) {
   const orderings = opts.compare ? [true, false] : [!opts.amd];
   const samples = orderings.map(() => ({ analyze: [], factor: [], solve: [], update: [], stroke: [], strokeUpdate: [],
     strokeRows: [], strokeRhs: [], strokeSolve: [], reconstruct: [], factorCall: [], solveCall: [], updateCall: [],
-    strokeRefactors: 0, strokeIncrementalSolves: 0 }));
+    strokeRefactors: 0, strokeIncrementalSolves: 0, smoothest: [] }));
   const last = [];
   const statsNow = () => JSON.parse(d.statsJson());
   // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
@@ -169,7 +173,13 @@ async function measureWasm(mesh, opts) {
       let stats = statsNow();
       s.analyze.push(stats.analyzeMs);
       s.factor.push(stats.factorMs);
-      if (d.addSource(tri[0], 1) < 0) fail('source', d.lastError());
+      // N >= 2 (--symmetry): the smoothest field first, then a direction where a vector field has a source.
+      const directions = symmetry > 1;
+      if (directions) {
+        ok('solve', d.solve());
+        s.smoothest.push(statsNow().solveMs);
+        if (d.addVector(0, 1, 0.3, 0.1, 1.0) < 0) fail('vector', d.lastError());
+      } else if (d.addSource(tri[0], 1) < 0) fail('source', d.lastError());
       t = performance.now();
       ok('solve', d.solve());
       s.solveCall.push(performance.now() - t);
@@ -182,7 +192,7 @@ async function measureWasm(mesh, opts) {
       s.reconstruct.push(both - statsNow().solveMs);
       const face = (r * 7919 + 13) % nF;
       t = performance.now();
-      const id = d.addEdge(tri[3 * face], tri[3 * face + 1], 0.1, 1.0);
+      const id = directions ? d.addVector(face, 0.2, 1, 0.4, 1.0) : d.addEdge(tri[3 * face], tri[3 * face + 1], 0.1, 1.0);
       s.updateCall.push(performance.now() - t);
       if (id < 0) fail('edge', d.lastError());
       s.update.push(statsNow().updateMs);
@@ -217,7 +227,7 @@ async function measureWasm(mesh, opts) {
     strokeRhsMs: median(s.strokeRhs), strokeSolveMs: median(s.strokeSolve), strokeEdges: s.strokeEdges,
     strokeRefactors: s.strokeRefactors,
     strokeIncrementalSolves: s.strokeIncrementalSolves,
-    reconstructMs: median(s.reconstruct),
+    reconstructMs: median(s.reconstruct), symmetry: Number(opts.symmetry ?? 1), smoothestMs: median(s.smoothest),
     factorCallMs: median(s.factorCall), solveCallMs: median(s.solveCall), updateCallMs: median(s.updateCall),
     repeat: opts.repeat, warmUp: opts.warmup === false ? 'none' : String(opts.warmup), settleMs: opts.settle,
     ordering: metis ? 'metis' : 'amd', factorKind: stats.factorKind,
@@ -279,6 +289,7 @@ function commonArgs(opts) {
   if (opts.compare) a.push('--compare');
   if (opts.module) a.push('--module', opts.module);
   if (opts.threads) a.push('--threads', String(opts.threads));
+  if (Number(opts.symmetry) > 1) a.push('--symmetry', String(opts.symmetry));
   if (opts.warmup === false) a.push('--no-warmup');
   else a.push('--warmup', String(opts.warmup));
   if (opts.native) a.push('--native', opts.native);
@@ -295,14 +306,15 @@ function nativeFor(mesh, opts, threads) {
   }
   // Like with like: the same ordering(s) as the wasm side.
   const ordering = opts.compare ? ['--compare'] : opts.amd ? ['--amd'] : [];
-  return runNative(opts.tvf, mesh, repeatFor(opts, mesh), [...ordering, '--threads', String(threads)]);
+  return runNative(opts.tvf, mesh, repeatFor(opts, mesh), [...ordering, '--threads', String(threads),
+    '--symmetry', String(opts.symmetry ?? 1)]);
 }
 
 async function main() {
   const argv = process.argv.slice(2);
   const opts = parseArgs(argv, {
     json: false, 'first-factor-only': false, 'no-warmup': false, warmup: '3,1', settle: '100', native: '',
-    'no-native': false, 'node-flags': '', module: '', amd: false, compare: false, threads: '',
+    'no-native': false, 'node-flags': '', module: '', amd: false, compare: false, threads: '', symmetry: '1',
   });
   if (opts.threads && !(Number.isInteger(Number(opts.threads)) && Number(opts.threads) >= 1))
     fail('--threads', `must be a whole number of at least 1 (got ${opts.threads})`);
@@ -324,7 +336,8 @@ async function main() {
     opts.repeat = repeatFor(opts, mesh);
     const wasm = await measureWasm(mesh, opts);
     if (opts.warmup !== false) {
-      const cold = child(['--first-factor-only', '--no-warmup', mesh, ...(opts.module ? ['--module', opts.module] : []),
+      const cold = child(['--first-factor-only', '--no-warmup', mesh, '--symmetry', String(opts.symmetry),
+        ...(opts.module ? ['--module', opts.module] : []),
         ...(opts.threads ? ['--threads', String(opts.threads)] : [])], opts);
       wasm.firstFactorNoWarmUpMs = cold.firstFactorMs;
       for (const o of ['metis', 'amd']) if (wasm[o]) wasm[o].firstFactorNoWarmUpMs = cold.firstFactorMs;
