@@ -37,6 +37,16 @@ export interface ExportOptions {
 
 export type Boundary = 'free' | 'tangential' | 'normal' | { angle: number };
 
+/** The design's settings (settings()). */
+export interface Settings {
+  boundary: Boundary;
+  gamma: number;
+  /** 1 a vector field, 2 a line field, 4 a cross field (1–6). */
+  symmetry: number;
+  /** 0: off. */
+  curvatureAlignment: number;
+}
+
 export interface MeshInfo {
   vertices: number;
   edges: number;
@@ -62,6 +72,10 @@ export type Constraint = ConstraintSpec & { id: number };
 export interface Design {
   boundary: Boundary;
   gamma: number;
+  /** The field's symmetry N: 1 a vector field, 2 a line field, 4 a cross field (1–6; 1 when absent). */
+  symmetry?: number;
+  /** Pull toward the principal curvature directions, ≥ 0 (0 or absent: off; even N only). */
+  curvatureAlignment?: number;
   constraints: ConstraintSpec[];
   [key: string]: unknown;
 }
@@ -236,6 +250,10 @@ export declare class TangentFieldDesigner extends HTMLElement {
   boundary: string | null;
   /** `gamma` (default 0): Bi-Laplacian smoothness γ ≥ 0. */
   gamma: number;
+  /** `symmetry` (default 1): The field's symmetry N, a whole number 1–6: 1 a vector field, 2 a line field (a direction without sign), 4 a cross field (four directions at right angles). Follows the design: the Symmetry selector, setSymmetry(), undo and loaded designs write it back. */
+  symmetry: number;
+  /** `curvature-alignment` (default 0): How strongly a line or cross field (even N) is pulled toward the principal curvature directions, ≥ 0 (0: off). Follows the design, as symmetry does. */
+  curvatureAlignment: number;
   /** `tool` (default orbit): The active mouse tool. */
   tool: Tool | null;
   /** `views` (default arrows): Space-separated subset of: arrows streamlines lic magnitude singularities texture (lic: the flow texture). Reading the property gives the views() method; assigning a string sets the attribute. */
@@ -294,8 +312,12 @@ export declare class TangentFieldDesigner extends HTMLElement {
   setBoundary(boundary: Boundary): Promise<void>;
   /** Sets the bi-Laplacian smoothness γ ≥ 0 (refactors). */
   setGamma(gamma: number): Promise<void>;
-  /** The current boundary condition and γ. */
-  settings(): { boundary: Boundary; gamma: number };
+  /** Sets the symmetry N (1 vector, 2 line, 4 cross; 1–6) as one undoable step; for N ≥ 2 it removes the sources, sinks, vortices and edge constraints and resolves with them (undo restores them). */
+  setSymmetry(n: number): Promise<Constraint[]>;
+  /** Pulls a line or cross field (even N) toward the principal curvature directions with this strength ≥ 0 (0: off). */
+  setCurvatureAlignment(strength: number): Promise<void>;
+  /** The current boundary condition, γ, symmetry and curvature alignment. */
+  settings(): Settings;
 
   // Undo and redo.
   /** Undoes the last edit; false when there is nothing to undo. */
@@ -314,9 +336,9 @@ export declare class TangentFieldDesigner extends HTMLElement {
   hasUnsavedEdits(): boolean;
   /** The solved field as the CLI's -o FIELD.json writes it. */
   exportField(): Promise<Record<string, unknown>>;
-  /** The flow map PNG (docs/export.md): the same bytes as `tvf export` for this model file and field. */
+  /** The flow map PNG (docs/export.md): the same bytes as `tvf export` for this model file and field. Vector fields only for now: rejects for symmetry N ≥ 2. */
   exportFlowMap(options?: Partial<ExportOptions>): Promise<Uint8Array>;
-  /** The one GLB export (docs/export.md): the model with the field attributes, the flow map and anisotropy material when asked, the design, and the synthesized texture when there is one, in one file. */
+  /** The one GLB export (docs/export.md): the model with the field attributes, the flow map and anisotropy material when asked, the design, and the synthesized texture when there is one, in one file. Vector fields only for now: rejects for symmetry N ≥ 2. */
   exportGlb(options?: Partial<ExportOptions>): Promise<Uint8Array>;
   /** The export options in force (the Export panel shows the same). */
   exportOptions(): ExportOptions;
@@ -342,7 +364,7 @@ export declare class TangentFieldDesigner extends HTMLElement {
   supervision(): Supervision;
 
   // Field and timings.
-  /** The field at each face's barycentre, 3 components per face. */
+  /** The field at each face's barycentre, 3 components per face (for N ≥ 2 a unit vector along one of its N directions). */
   faceVectors(): Float64Array;
   /** The field at each vertex, 3 components per vertex. */
   vertexVectors(): Float64Array;
@@ -350,7 +372,7 @@ export declare class TangentFieldDesigner extends HTMLElement {
   oneForm(): Float64Array;
   /** The Hodge decomposition of the current field: exact, coexact and harmonic parts (c = dα + δβ + h), made on first request. */
   hodge(): Promise<HodgeDecomposition>;
-  /** The field's singularities: an integer index per interior vertex that has one. */
+  /** The field's singularities: an index per interior vertex that has one (an integer; a multiple of 1/N for a line or cross field). */
   singularities(): { vertex: number; index: number }[];
   /** The core's timings and sizes for the latest operations. */
   stats(): Record<string, number | string>;
@@ -393,7 +415,7 @@ export declare class TangentFieldDesigner extends HTMLElement {
   // Texture synthesis.
   /** Chooses and analyses the exemplar; a shown texture is resynthesized. */
   setExemplar(source: ExemplarSource, options?: { size?: number }): Promise<Record<string, unknown>>;
-  /** Synthesizes along the current field and shows the texture; field changes resynthesize until clearTexture(). */
+  /** Synthesizes along the current field and shows the texture; field changes resynthesize until clearTexture(). Vector fields only for now: rejects for symmetry N ≥ 2. */
   synthesize(options?: SynthesisOptions): Promise<Record<string, unknown>>;
   /** The last synthesis: timings per level and in total, sizes, options, atlas. */
   synthesisStats(): Record<string, unknown> | null;

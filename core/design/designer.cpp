@@ -436,6 +436,9 @@ void Designer::clearConstraints() {
 void Designer::solve() {
   Impl& d = *impl_;
   if (d.directions) return d.solveDirections();
+  d.stats.symmetry = 1;
+  d.stats.inverseIterations = 0;
+  d.stats.smoothestEigenvalue = 0;
   if (d.baseStale || !d.factor.current()) d.factorNow();
   auto start = Clock::now();
   const Eigen::VectorXd b = d.constraints.rightHandSide(d.ops, d.scale);

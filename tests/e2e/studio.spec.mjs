@@ -282,7 +282,7 @@ test.describe.serial('the design studio', () => {
         await expect.poll(() => evaluate(() => window.tvf.history().undo.length)).toBe(before - 1);
       }
     }
-    expect(await evaluate(() => window.tvf.settings())).toEqual({ boundary: 'free', gamma: 0 });
+    expect(await evaluate(() => window.tvf.settings())).toEqual({ boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0 });
     expect(await constraints()).toEqual(start.list);
     measurements.undoRelativeDifference = { faceVectors: relativeDifference(await faceField(), start.face), oneForm: relativeDifference(await oneForm(), start.form) };
     expect(measurements.undoRelativeDifference.faceVectors).toBeLessThan(1e-9);

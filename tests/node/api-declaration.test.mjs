@@ -136,10 +136,14 @@ test('runtime ↔ declaration: attributes, properties, statics, events', () => {
   sameNames(runtime.attributes, declared.attributes, 'TangentFieldDesigner.observedAttributes');
   sameNames(runtime.accessors, declared.properties, 'accessors on TangentFieldDesigner.prototype (attribute properties + PROPERTIES)');
   sameNames(runtime.statics, declared.statics, 'static members of TangentFieldDesigner');
-  // Attribute ↔ property pairs: STRING_ATTRIBUTES of element.js, plus gamma and readonly (own accessors).
-  const table = /const STRING_ATTRIBUTES = \{([^}]*)\}/.exec(read('web/element/element.js'));
-  assert.ok(table, 'element.js: STRING_ATTRIBUTES not found');
-  const pairs = new Map([...table[1].matchAll(/(\w+):\s*'([\w-]+)'/g)].map((m) => [m[2], m[1]]));
+  // Attribute ↔ property pairs: STRING_ATTRIBUTES and NUMBER_ATTRIBUTES of element.js, plus readonly (its own
+  // accessor).
+  const pairs = new Map();
+  for (const name of ['STRING_ATTRIBUTES', 'NUMBER_ATTRIBUTES']) {
+    const table = new RegExp(`const ${name} = \\{([^}]*)\\}`).exec(read('web/element/element.js'));
+    assert.ok(table, `element.js: ${name} not found`);
+    for (const m of table[1].matchAll(/(\w+):\s*'([\w-]+)'/g)) pairs.set(m[2], m[1]);
+  }
   for (const a of decl.ATTRIBUTES) assert.equal(pairs.get(a.name) ?? a.name, a.property, `attribute ${a.name}: property`);
   sameNames(dispatchedEvents(), declared.events, 'events dispatched on the element (designer.js)');
   assert.deepEqual(decl.ENUMS.Tool, TOOLS, 'ENUMS.Tool vs web/tools/tools.js TOOLS');

@@ -77,8 +77,12 @@ const KINDS = {
   sink: { weight: false, strength: true },
   vortex: { weight: false, strength: true },
 };
-const TOP_LEVEL = new Set(['schema', 'mesh', 'boundary', 'gamma', 'constraints']);
-const MUTATING = new Set(['loadMesh', 'add', 'remove', 'setWeight', 'setStrength', 'setBoundary', 'setGamma', 'applyDesign']);
+const TOP_LEVEL = new Set(['schema', 'mesh', 'boundary', 'gamma', 'symmetry', 'curvatureAlignment', 'constraints']);
+const MUTATING = new Set(['loadMesh', 'add', 'remove', 'setWeight', 'setStrength', 'setBoundary', 'setGamma', 'setSymmetry', 'setCurvatureAlignment', 'applyDesign']);
+// Ops whose failure the worker takes back by applying the whole previous design again (core/setting-ops.js).
+const RESTORES_DESIGN = new Set(['applyDesign', 'setSymmetry']);
+// Constraints that are vector-field notions: the core refuses them for a symmetry N ≥ 2.
+const VECTOR_NOTIONS = { source: 'sources', sink: 'sinks', vortex: 'vortices', edge: 'edge values' };
 const NO_MESH_NEEDED = new Set(['loadMesh', 'warmUp']);
 
 const checkWeight = (w) => {
@@ -86,6 +90,13 @@ const checkWeight = (w) => {
 };
 const checkStrength = (s) => {
   if (typeof s !== 'number' || !(Math.abs(s) <= 1e12)) throw new Error(`strength ${s} is out of range (|x| ≤ 1e12)`);
+};
+const checkSymmetry = (n) => {
+  if (!Number.isInteger(n) || n < 1 || n > 6) throw new Error(`symmetry ${n} is out of range (a whole number 1 … 6)`);
+};
+const checkAlignment = (s, n) => {
+  if (typeof s !== 'number' || !(s >= 0 && s <= 1e6)) throw new Error(`curvature alignment ${s} is out of range (0 … 1e6)`);
+  if (s > 0 && n % 2) throw new Error(`curvature alignment needs an even symmetry (principal directions have no sign); this field has symmetry ${n}`);
 };
 
 // The core link a Session talks to (session.proxy): call(op, args) → {ok, value, snapshot?}, as the worker
@@ -100,6 +111,8 @@ export class FakeCore {
     this.nextId = firstId;
     this.boundary = 'free';
     this.gamma = 0;
+    this.symmetry = 1;
+    this.curvatureAlignment = 0;
     this.version = 0;
     this.log = []; // [op, args] of every call
     this.nonFinite = false; // the next snapshots carry a NaN in the field
@@ -115,6 +128,8 @@ export class FakeCore {
       mesh: this.fingerprint(),
       boundary: structuredClone(this.boundary),
       gamma: this.gamma,
+      symmetry: this.symmetry,
+      curvatureAlignment: this.curvatureAlignment,
       constraints: this.ids.map((id) => structuredClone(this.specs.get(id))),
     };
   }
@@ -123,11 +138,13 @@ export class FakeCore {
     return { vertices: this.mesh.positions.length / 3, faces: this.mesh.triangles.length / 3, hash: `fake${this.mesh.triangles.length}` };
   }
 
-  // The core's parse of one constraint: checked against the mesh, defaults filled in.
-  #parse(spec) {
+  // The core's parse of one constraint for a field of symmetry n: checked against the mesh, defaults filled in.
+  #parse(spec, n = this.symmetry) {
     if (!spec || typeof spec !== 'object' || Array.isArray(spec)) throw new Error('a constraint must be a JSON object');
     const kind = KINDS[spec.type];
     if (!kind) throw new Error(`unknown constraint type ${JSON.stringify(spec.type)}`);
+    if (n >= 2 && VECTOR_NOTIONS[spec.type])
+      throw new Error(`${spec.type}: ${VECTOR_NOTIONS[spec.type]} are vector-field notions; a field of symmetry ${n} has none`);
     const out = {};
     for (const [k, v] of Object.entries(spec)) if (v !== undefined) out[k] = structuredClone(v);
     const nF = this.mesh.triangles.length / 3, nV = this.mesh.positions.length / 3;
@@ -178,13 +195,18 @@ export class FakeCore {
       throw new Error('design: this design was made for another mesh');
     if (!Array.isArray(design.constraints)) throw new Error('design: no constraints list');
     const boundary = design.boundary ?? 'free', gamma = design.gamma ?? 0;
+    const symmetry = design.symmetry ?? 1, alignment = design.curvatureAlignment ?? 0;
     this.#checkBoundary(boundary);
     this.#checkGamma(gamma);
-    const parsed = design.constraints.map((c) => this.#parse(c));
+    checkSymmetry(symmetry);
+    checkAlignment(alignment, symmetry);
+    const parsed = design.constraints.map((c) => this.#parse(c, symmetry));
     this.ids = [];
     this.specs.clear();
     this.boundary = structuredClone(boundary);
     this.gamma = gamma;
+    this.symmetry = symmetry;
+    this.curvatureAlignment = alignment;
     for (const spec of parsed) this.#add(spec);
   }
 
@@ -203,11 +225,15 @@ export class FakeCore {
       this.ids = [];
       this.specs.clear();
       let settingsError = null, restoreError = null;
+      this.symmetry = 1;
+      this.curvatureAlignment = 0;
       try {
-        this.#checkBoundary(settings.boundary);
-        this.#checkGamma(settings.gamma);
-        this.boundary = settings.boundary;
-        this.gamma = settings.gamma;
+        const { boundary, gamma, symmetry = 1, curvatureAlignment = 0 } = settings;
+        this.#checkBoundary(boundary);
+        this.#checkGamma(gamma);
+        checkSymmetry(symmetry);
+        checkAlignment(curvatureAlignment, symmetry);
+        Object.assign(this, { boundary, gamma, symmetry, curvatureAlignment });
       } catch (err) {
         settingsError = err.message;
       }
@@ -246,6 +272,24 @@ export class FakeCore {
       this.gamma = g;
       return { value: true, changed: null };
     },
+    setCurvatureAlignment: (s) => {
+      checkAlignment(s, this.symmetry);
+      this.curvatureAlignment = s;
+      return { value: true, changed: null };
+    },
+    // As the worker runs it (core/setting-ops.js): the listed constraints removed, the alignment set aside, the
+    // new N (refused while a vector-field notion is left), the alignment it gets, the specs added under it.
+    setSymmetry: (n, { remove = [], curvatureAlignment = 0, add = [] } = {}) => {
+      for (const id of remove) this.#remove(id);
+      this.curvatureAlignment = 0;
+      checkSymmetry(n);
+      const kept = this.ids.map((id) => this.specs.get(id)).find((spec) => VECTOR_NOTIONS[spec.type] && n >= 2);
+      if (kept) throw new Error(`symmetry: the design has ${VECTOR_NOTIONS[kept.type]}, which a field of symmetry ${n} cannot have`);
+      this.symmetry = n;
+      checkAlignment(curvatureAlignment, n);
+      this.curvatureAlignment = curvatureAlignment;
+      return { value: add.map((spec) => this.#add(spec)), changed: null };
+    },
     applyDesign: (design) => {
       this.#apply(design);
       return { value: true, changed: null };
@@ -281,6 +325,7 @@ export class FakeCore {
       : { ids: [...this.ids], document: this.document() };
     return {
       version: this.version,
+      symmetry: this.symmetry,
       faceVectors,
       vertexVectors: new Float64Array(3 * nV),
       oneForm: new Float64Array(this.mesh.edges.length / 2),
@@ -299,7 +344,14 @@ export class FakeCore {
       for (let k = this.log.length % 3; k >= 0; k--) await new Promise((resolve) => setTimeout(resolve, 0));
       if (!this.#ops[op]) throw new Error(`unknown operation ${op}`);
       if (!NO_MESH_NEEDED.has(op) && !this.mesh) throw new Error('no mesh loaded');
-      const saved = this.mesh && { ids: [...this.ids], specs: structuredClone(this.specs), boundary: this.boundary, gamma: this.gamma };
+      const saved = this.mesh && {
+        ids: [...this.ids],
+        specs: structuredClone(this.specs),
+        boundary: this.boundary,
+        gamma: this.gamma,
+        symmetry: this.symmetry,
+        curvatureAlignment: this.curvatureAlignment,
+      };
       let out;
       try {
         out = this.#ops[op](...args);
@@ -308,11 +360,8 @@ export class FakeCore {
         if (MUTATING.has(op) && this.mesh) {
           // The core takes back whatever the failed edit got to; the worker does that for a design by
           // applying the previous one again, whose constraints then have fresh ids.
-          if (op === 'applyDesign') {
-            this.ids = saved.ids;
-            this.specs = saved.specs;
-            this.boundary = saved.boundary;
-            this.gamma = saved.gamma;
+          if (RESTORES_DESIGN.has(op)) {
+            Object.assign(this, saved);
             this.#apply({ ...this.document(), mesh: undefined });
           }
           reply.snapshot = this.#snapshot(null);

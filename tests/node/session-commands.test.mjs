@@ -31,7 +31,8 @@ function assertMirrorsCore(s, core) {
   assert.equal(list.length, core.ids.length, 'the page lists as many constraints as the core holds');
   for (const { id, ...spec } of list) assert.deepEqual(spec, core.specs.get(s.table.coreIdOf(id)), `page id ${id}`);
   assert.deepEqual(s.design.constraints, coreSpecs(core), 'the mirrored document is the core’s, in its order');
-  assert.deepEqual(s.settings(), { boundary: core.boundary, gamma: core.gamma });
+  const { boundary, gamma, symmetry, curvatureAlignment } = core;
+  assert.deepEqual(s.settings(), { boundary, gamma, symmetry, curvatureAlignment });
 }
 
 const pageIds = (s) => s.constraintList().map((c) => c.id);
@@ -146,7 +147,8 @@ test('an edit the core refuses is not recorded and the page shows what the core 
   await assert.rejects(s.setSetting('gamma', -1), /gamma -1 is out of range/);
   assert.equal(s.history.undoStack.length, depth);
   assert.deepEqual(s.constraintList(), before);
-  assert.deepEqual(settings, [{ boundary: 'free', gamma: 0 }, { boundary: 'free', gamma: 0 }]);
+  const defaults = { boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0 };
+  assert.deepEqual(settings, [defaults, defaults]);
   // The failure's snapshot is the session's field now: the core's latest version.
   assert.equal(s.field.version, core.version);
   assertMirrorsCore(s, core);
@@ -157,7 +159,7 @@ test('boundary and γ settings go to the core and undo to the previous values', 
   const { s, core } = await withThree();
   await s.setSetting('gamma', 2.5);
   await s.setSetting('boundary', { angle: 0.5 });
-  assert.deepEqual(s.settings(), { boundary: { angle: 0.5 }, gamma: 2.5 });
+  assert.deepEqual(s.settings(), { boundary: { angle: 0.5 }, gamma: 2.5, symmetry: 1, curvatureAlignment: 0 });
   assertMirrorsCore(s, core);
   await s.step(false);
   assert.equal(core.boundary, 'free');

@@ -113,8 +113,9 @@ export class CoreClient {
     this.hasMesh = true;
   }
 
-  // The whole model change at once (mesh, settings {boundary, gamma}, an autosaved design or null), factored
-  // and solved before it replaces the current model; on any failure the current model stays as it was.
+  // The whole model change at once (mesh, settings {boundary, gamma, symmetry, curvatureAlignment}, an autosaved
+  // design or null), factored and solved before it replaces the current model; on any failure the current model
+  // stays as it was.
   // Returns {settingsError, restoreError} (null or the reason that part was dropped).
   loadModel(bytes, format, settings = null, design = null) {
     const settingsJson = settings ? JSON.stringify(settings) : '';
@@ -148,6 +149,30 @@ export class CoreClient {
     requireNumber('gamma', gamma);
     // setGamma returns nothing, or an error string in a stricter build.
     check('gamma', guard('gamma', () => this.designer.setGamma(gamma)));
+  }
+
+  symmetry() {
+    return guard('symmetry', () => this.designer.symmetry());
+  }
+
+  // n: 1 a vector field, 2 a line field, 4 a cross field (the core takes 1..6, and refuses N ≥ 2 while a source,
+  // sink, vortex or edge constraint is in the design). Embind would truncate 2.5 to 2 unseen: checked here.
+  setSymmetry(n) {
+    if (!Number.isInteger(n)) {
+      const got = typeof n === 'number' ? String(n) : n == null ? 'nothing' : JSON.stringify(n);
+      throw new CoreError(`symmetry must be a whole number from 1 to 6 (got ${got})`);
+    }
+    check('symmetry', guard('symmetry', () => this.designer.setSymmetry(n)));
+  }
+
+  curvatureAlignment() {
+    return guard('curvature alignment', () => this.designer.curvatureAlignment());
+  }
+
+  // s ≥ 0 (0: off): how strongly the field is pulled towards the principal curvature directions; for even N only.
+  setCurvatureAlignment(s) {
+    requireNumber('curvature alignment', s);
+    check('curvature alignment', guard('curvature alignment', () => this.designer.setCurvatureAlignment(s)));
   }
 
   factor() {

@@ -9,6 +9,9 @@
 import { CoreError, loadCore } from './core-client.js';
 import { CoreExport } from './core-export.js';
 import { FieldParts } from './field-parts.js';
+import { settingOps } from './setting-ops.js';
+import { SpareArrays } from './spare-arrays.js';
+import { NOT_YET } from './symmetry.js';
 import { traceStreamlines } from '../geometry/streamlines.js';
 import { chooseAtlas } from '../synthesis/atlas.js';
 import { analyzeExemplar, exemplarBuffers } from '../synthesis/exemplar.js';
@@ -40,39 +43,20 @@ function serve(scope) {
     }
   }
 
-  // Buffers of earlier field arrays the page handed back (core-proxy.js recycle()), by length. Refilling one is a
-  // memcpy; a fresh ArrayBuffer of the same size costs Chromium several times that (new zeroed pages, and garbage
-  // on both sides): copies took 134 of a stroke's 582 ms in the worker at 1.25M edges.
-  const spare = new Map();
-  const SPARES_PER_LENGTH = 2;
-  // The field arrays' lengths on the current mesh (3 per face, 3 per vertex, 1 per edge): spares of any other
-  // length (a previous model's) are dropped, not kept.
-  let fieldLengths = new Set();
+  // Earlier field arrays the page handed back, refilled instead of allocated (spare-arrays.js).
+  const spares = new SpareArrays();
 
-  function takeSpares(buffers) {
-    for (const buffer of buffers ?? []) {
-      const array = new Float64Array(buffer);
-      if (!fieldLengths.has(array.length)) continue;
-      const list = spare.get(array.length) ?? [];
-      if (list.length < SPARES_PER_LENGTH) list.push(array);
-      spare.set(array.length, list);
-    }
-  }
-
-  // A copy of a view of the wasm heap, into a spare when there is one of its length.
-  function copyOut(view, counts) {
-    const array = spare.get(view.length)?.pop();
-    if (!array) return view.slice();
-    array.set(view);
-    counts.reused++;
-    return array;
+  // The exports write a vector field's flow map and tangents; a line or cross field has no sign to write yet.
+  function requireVectorField() {
+    if (core.symmetry() > 1) throw new CoreError(NOT_YET.export);
   }
 
   // After a solve: the field arrays the views need, copied out of the wasm heap (a memcpy each, into spares where
   // the page has handed some back) and transferred; the vertex vectors are derived here because the default
   // arrow view interpolates them.
-  // `changed`: core ids whose design entry the op set (null: the whole document, after a load, a boundary or
-  // γ change, a design, or an edit taken back). timing (optional) receives where the time goes.
+  // `changed`: core ids whose design entry the op set (null: the whole document, after a load, a setting, a
+  // design, or an edit taken back). timing (optional) receives where the time goes. `symmetry`: the field's N
+  // (faceVectors and vertexVectors are then unit representatives, one of the N directions: web/views/).
   function snapshot(changed, timing = {}) {
     let t = performance.now();
     const lap = (key) => {
@@ -83,7 +67,7 @@ function serve(scope) {
     version++;
     parts.drop();
     const counts = { reused: 0 };
-    const copy = (view) => copyOut(view, counts);
+    const copy = (view) => spares.copyOut(view, counts);
     const faceVectors = core.faceVectors(copy);
     const oneForm = core.oneForm(copy);
     lap('copyMs');
@@ -99,6 +83,7 @@ function serve(scope) {
     lap('statsMs');
     return {
       version,
+      symmetry: core.symmetry(),
       faceVectors,
       vertexVectors,
       oneForm,
@@ -113,6 +98,7 @@ function serve(scope) {
   let undoEdit = null;
   // The core ids whose entry in the design the op in flight changed; null: the whole document.
   let changedIds = null;
+  const settingEdits = settingOps(() => core, (undo) => (undoEdit = undo));
 
   const ops = {
     // assetBase: the folder holding wasm/tvf_core.mjs (the element's asset base; the worker may run from a
@@ -138,8 +124,8 @@ function serve(scope) {
       return core.warmUp(levels, rounds);
     },
 
-    // settings: {boundary, gamma} carried over from the previous model; design: an autosaved document to
-    // restore (its failure is reported, not fatal: the mesh still loads with the settings).
+    // settings: {boundary, gamma, symmetry, curvatureAlignment} carried over from the previous model; design: an
+    // autosaved document to restore (its failure is reported, not fatal: the mesh still loads with the settings).
     // One transaction in the core: the new mesh is read, checked, configured, factored and solved aside and
     // replaces the current model only when all of that succeeded; a failure leaves the core and the page on the
     // previous model.
@@ -149,8 +135,7 @@ function serve(scope) {
       const { settingsError, restoreError } = core.loadModel(bytes, format, settings, design ?? embedded);
       coreExport.modelLoaded(bytes, format);
       const info = core.info();
-      spare.clear();
-      fieldLengths = new Set([3 * info.faces, 3 * info.vertices, info.edges]);
+      spares.reset([3 * info.faces, 3 * info.vertices, info.edges]);
       // The mesh's geometry and adjacency, built once here (off the page's thread): the worker traces on it, and
       // the page takes a copy of its arrays instead of deriving them again.
       const mesh = core.mesh();
@@ -196,29 +181,8 @@ function serve(scope) {
       return true;
     },
 
-    setBoundary(bc) {
-      const before = JSON.parse(core.designJson()).boundary;
-      undoEdit = () => core.setBoundary(before);
-      core.setBoundary(bc);
-      core.factor();
-      return true;
-    },
-
-    setGamma(g) {
-      const before = core.gamma();
-      undoEdit = () => core.setGamma(before);
-      core.setGamma(g);
-      core.factor();
-      return true;
-    },
-
-    applyDesign(design) {
-      const before = JSON.parse(core.designJson());
-      undoEdit = () => core.applyDesignJson(JSON.stringify(before));
-      core.applyDesignJson(JSON.stringify(design));
-      core.factor();
-      return true;
-    },
+    // setBoundary, setGamma, setSymmetry, setCurvatureAlignment, applyDesign (setting-ops.js).
+    ...settingEdits,
 
     fieldJson() {
       return core.fieldJson();
@@ -232,8 +196,10 @@ function serve(scope) {
       if (forVersion !== version) return null;
       const key = `${version} ${spacing} ${lift} ${component}`;
       if (tracing.key !== key) {
-        const vectors = component === 'whole' ? core.vertexVectors() : parts.component(version, component).vertexVectors;
-        tracing.lines = traceStreamlines(tracing.surface, vectors, { spacing, lift });
+        const field = component === 'whole' ? { vertexVectors: core.vertexVectors(), faceVectors: core.faceVectors() } : parts.component(version, component);
+        // An N-field's corners are matched to its face representatives before they are interpolated.
+        const options = { spacing, lift, symmetry: core.symmetry(), faceVectors: field.faceVectors };
+        tracing.lines = traceStreamlines(tracing.surface, field.vertexVectors, options);
         tracing.key = key;
       }
       // Copies: the cached lines stay here for the next request at the same spacing.
@@ -303,27 +269,20 @@ function serve(scope) {
     },
 
     exportFlowMap(options) {
+      requireVectorField();
       return coreExport.flowMapPng(core.oneForm(), options);
     },
 
     // texture: null or {png, cornerUVs}, the synthesized texture (web/export/index.js).
     exportGlb(options, texture) {
+      requireVectorField();
       return coreExport.glb(core.oneForm(), JSON.parse(core.designJson()), options, texture);
     },
   };
 
   const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar']);
   // Ops after which the field may have changed: they solve and send a snapshot back.
-  const MUTATING = new Set([
-    'loadMesh',
-    'add',
-    'remove',
-    'setWeight',
-    'setStrength',
-    'setBoundary',
-    'setGamma',
-    'applyDesign',
-  ]);
+  const MUTATING = new Set(['loadMesh', 'add', 'remove', 'setWeight', 'setStrength', ...Object.keys(settingEdits)]);
 
   // A wasm trap or an abort (out of memory, an assertion) leaves the instance unusable: the page must replace
   // this worker rather than send it more work.
@@ -343,7 +302,7 @@ function serve(scope) {
       return;
     }
     const { seq, op, args } = data;
-    takeSpares(data.spare);
+    spares.take(data.spare);
     const t0 = performance.now();
     const timing = {};
     let reply, transfer = [];

@@ -38,6 +38,9 @@ export const api = {
   constraints: (d) => d.session.constraintList(),
   setBoundary: (d, bc) => d.session.setSetting('boundary', bc),
   setGamma: (d, gamma) => d.session.setSetting('gamma', gamma),
+  // Resolves with the constraints the new N could not keep and removed in the same step (undo restores them).
+  setSymmetry: (d, n) => d.session.setSetting('symmetry', n),
+  setCurvatureAlignment: (d, strength) => d.session.setSetting('curvatureAlignment', strength),
   settings: (d) => structuredClone(d.session.settings()),
 
   undo: (d) => d.session.step(false),

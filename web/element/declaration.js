@@ -54,6 +54,16 @@ export interface ExportOptions {
 
 export type Boundary = 'free' | 'tangential' | 'normal' | { angle: number };
 
+/** The design's settings (settings()). */
+export interface Settings {
+  boundary: Boundary;
+  gamma: number;
+  /** 1 a vector field, 2 a line field, 4 a cross field (1–6). */
+  symmetry: number;
+  /** 0: off. */
+  curvatureAlignment: number;
+}
+
 export interface MeshInfo {
   vertices: number;
   edges: number;
@@ -79,6 +89,10 @@ export type Constraint = ConstraintSpec & { id: number };
 export interface Design {
   boundary: Boundary;
   gamma: number;
+  /** The field's symmetry N: 1 a vector field, 2 a line field, 4 a cross field (1–6; 1 when absent). */
+  symmetry?: number;
+  /** Pull toward the principal curvature directions, ≥ 0 (0 or absent: off; even N only). */
+  curvatureAlignment?: number;
   constraints: ConstraintSpec[];
   [key: string]: unknown;
 }
@@ -198,6 +212,8 @@ export const ATTRIBUTES = [
   { name: 'design', property: 'design', type: 'string | null', description: 'URL of a design JSON (docs/design-format.md), applied after the model loads.' },
   { name: 'boundary', property: 'boundary', type: 'string | null', default: 'free', description: 'Boundary condition: free, tangential, normal, or an angle in radians.' },
   { name: 'gamma', property: 'gamma', type: 'number', default: '0', description: 'Bi-Laplacian smoothness γ ≥ 0.' },
+  { name: 'symmetry', property: 'symmetry', type: 'number', default: '1', description: "The field's symmetry N, a whole number 1–6: 1 a vector field, 2 a line field (a direction without sign), 4 a cross field (four directions at right angles). Follows the design: the Symmetry selector, setSymmetry(), undo and loaded designs write it back." },
+  { name: 'curvature-alignment', property: 'curvatureAlignment', type: 'number', default: '0', description: 'How strongly a line or cross field (even N) is pulled toward the principal curvature directions, ≥ 0 (0: off). Follows the design, as symmetry does.' },
   { name: 'tool', property: 'tool', type: 'Tool | null', default: 'orbit', description: 'The active mouse tool.' },
   { name: 'views', property: 'views', type: 'string | null', default: 'arrows', description: 'Space-separated subset of: arrows streamlines lic magnitude singularities texture (lic: the flow texture). Reading the property gives the views() method; assigning a string sets the attribute.' },
   { name: 'controls', property: 'controls', type: 'Controls | null', default: 'minimal', description: 'full = the studio panels, minimal = toolbar only, none = canvas only.' },
@@ -248,7 +264,9 @@ export const METHODS = [
   { name: 'constraints', source: 'api', group: 'Constraints', signatures: [['', 'Constraint[]']], description: 'The constraints in id order, each in the design format plus its id.' },
   { name: 'setBoundary', source: 'api', group: 'Constraints', signatures: [['boundary: Boundary', 'Promise<void>']], description: 'Sets the boundary condition (refactors).' },
   { name: 'setGamma', source: 'api', group: 'Constraints', signatures: [['gamma: number', 'Promise<void>']], description: 'Sets the bi-Laplacian smoothness γ ≥ 0 (refactors).' },
-  { name: 'settings', source: 'api', group: 'Constraints', signatures: [['', '{ boundary: Boundary; gamma: number }']], description: 'The current boundary condition and γ.' },
+  { name: 'setSymmetry', source: 'api', group: 'Constraints', signatures: [['n: number', 'Promise<Constraint[]>']], description: 'Sets the symmetry N (1 vector, 2 line, 4 cross; 1–6) as one undoable step; for N ≥ 2 it removes the sources, sinks, vortices and edge constraints and resolves with them (undo restores them).' },
+  { name: 'setCurvatureAlignment', source: 'api', group: 'Constraints', signatures: [['strength: number', 'Promise<void>']], description: 'Pulls a line or cross field (even N) toward the principal curvature directions with this strength ≥ 0 (0: off).' },
+  { name: 'settings', source: 'api', group: 'Constraints', signatures: [['', 'Settings']], description: 'The current boundary condition, γ, symmetry and curvature alignment.' },
 
   // Undo and redo
   { name: 'undo', source: 'api', group: 'Undo and redo', signatures: [['', 'Promise<boolean>']], description: 'Undoes the last edit; false when there is nothing to undo.' },
@@ -260,8 +278,8 @@ export const METHODS = [
   { name: 'loadDesign', source: 'api', group: 'Designs and fields as documents', signatures: [['design: Design, options?: { ignoreFingerprint?: boolean }', 'Promise<void>']], description: 'Replaces boundary condition, γ and all constraints with those of a design (one undo step).' },
   { name: 'hasUnsavedEdits', source: 'api', group: 'Designs and fields as documents', signatures: [['', 'boolean']], description: 'Whether the design differs from the one last saved, loaded or opened with the model.' },
   { name: 'exportField', source: 'api', group: 'Designs and fields as documents', signatures: [['', 'Promise<Record<string, unknown>>']], description: "The solved field as the CLI's -o FIELD.json writes it." },
-  { name: 'exportFlowMap', source: 'api', group: 'Designs and fields as documents', signatures: [['options?: Partial<ExportOptions>', 'Promise<Uint8Array>']], description: 'The flow map PNG (docs/export.md): the same bytes as `tvf export` for this model file and field.' },
-  { name: 'exportGlb', source: 'api', group: 'Designs and fields as documents', signatures: [['options?: Partial<ExportOptions>', 'Promise<Uint8Array>']], description: 'The one GLB export (docs/export.md): the model with the field attributes, the flow map and anisotropy material when asked, the design, and the synthesized texture when there is one, in one file.' },
+  { name: 'exportFlowMap', source: 'api', group: 'Designs and fields as documents', signatures: [['options?: Partial<ExportOptions>', 'Promise<Uint8Array>']], description: 'The flow map PNG (docs/export.md): the same bytes as `tvf export` for this model file and field. Vector fields only for now: rejects for symmetry N ≥ 2.' },
+  { name: 'exportGlb', source: 'api', group: 'Designs and fields as documents', signatures: [['options?: Partial<ExportOptions>', 'Promise<Uint8Array>']], description: 'The one GLB export (docs/export.md): the model with the field attributes, the flow map and anisotropy material when asked, the design, and the synthesized texture when there is one, in one file. Vector fields only for now: rejects for symmetry N ≥ 2.' },
   { name: 'exportOptions', source: 'api', group: 'Designs and fields as documents', signatures: [['', 'ExportOptions']], description: 'The export options in force (the Export panel shows the same).' },
   { name: 'setExportOptions', source: 'api', group: 'Designs and fields as documents', signatures: [['options: Partial<ExportOptions>', 'void']], description: 'Changes some export options.' },
   { name: 'materialPreview', source: 'api', group: 'Designs and fields as documents', signatures: [['preset: MaterialPreset | null', 'Promise<void>']], description: "Shows (a preset) or hides (null) the exported GLB read back with three.js's GLTFLoader." },
@@ -277,11 +295,11 @@ export const METHODS = [
   { name: 'supervision', source: 'api', group: 'Supervision of the core', signatures: [['', 'Supervision']], description: 'How often the core was replaced, and the last failure.' },
 
   // Field and timings
-  { name: 'faceVectors', source: 'api', group: 'Field and timings', signatures: [['', 'Float64Array']], description: "The field at each face's barycentre, 3 components per face." },
+  { name: 'faceVectors', source: 'api', group: 'Field and timings', signatures: [['', 'Float64Array']], description: "The field at each face's barycentre, 3 components per face (for N ≥ 2 a unit vector along one of its N directions)." },
   { name: 'vertexVectors', source: 'api', group: 'Field and timings', signatures: [['', 'Float64Array']], description: 'The field at each vertex, 3 components per vertex.' },
   { name: 'oneForm', source: 'api', group: 'Field and timings', signatures: [['', 'Float64Array']], description: 'The solution: one line integral per edge of edges().' },
   { name: 'hodge', source: 'api', group: 'Field and timings', signatures: [['', 'Promise<HodgeDecomposition>']], description: 'The Hodge decomposition of the current field: exact, coexact and harmonic parts (c = dα + δβ + h), made on first request.' },
-  { name: 'singularities', source: 'api', group: 'Field and timings', signatures: [['', '{ vertex: number; index: number }[]']], description: "The field's singularities: an integer index per interior vertex that has one." },
+  { name: 'singularities', source: 'api', group: 'Field and timings', signatures: [['', '{ vertex: number; index: number }[]']], description: "The field's singularities: an index per interior vertex that has one (an integer; a multiple of 1/N for a line or cross field)." },
   { name: 'stats', source: 'api', group: 'Field and timings', signatures: [['', 'Record<string, number | string>']], description: "The core's timings and sizes for the latest operations." },
   { name: 'perf', source: 'api', group: 'Field and timings', signatures: [['', 'Record<string, unknown>']], description: 'Page-side measurements (last worker request, last user action of each kind, restarts).' },
 
@@ -306,7 +324,7 @@ export const METHODS = [
 
   // Texture synthesis
   { name: 'setExemplar', source: 'texture', group: 'Texture synthesis', signatures: [['source: ExemplarSource, options?: { size?: number }', 'Promise<Record<string, unknown>>']], description: 'Chooses and analyses the exemplar; a shown texture is resynthesized.' },
-  { name: 'synthesize', source: 'texture', group: 'Texture synthesis', signatures: [['options?: SynthesisOptions', 'Promise<Record<string, unknown>>']], description: 'Synthesizes along the current field and shows the texture; field changes resynthesize until clearTexture().' },
+  { name: 'synthesize', source: 'texture', group: 'Texture synthesis', signatures: [['options?: SynthesisOptions', 'Promise<Record<string, unknown>>']], description: 'Synthesizes along the current field and shows the texture; field changes resynthesize until clearTexture(). Vector fields only for now: rejects for symmetry N ≥ 2.' },
   { name: 'synthesisStats', source: 'texture', group: 'Texture synthesis', signatures: [['', 'Record<string, unknown> | null']], description: 'The last synthesis: timings per level and in total, sizes, options, atlas.' },
   { name: 'synthesisProgress', source: 'texture', group: 'Texture synthesis', signatures: [['', '{ fraction: number; preview: boolean } | null']], description: 'Progress of the synthesis in flight, or null when none runs.' },
   { name: 'setTextureAutoUpdate', source: 'texture', group: 'Texture synthesis', signatures: [['on: boolean', 'void']], description: 'Resynthesize after every field change (on by default); off: field changes only mark the texture stale.' },

@@ -18,6 +18,8 @@ const PROGRESS_LABELS = {
   loadMesh: 'Loading and factoring…',
   setBoundary: 'Refactoring…',
   setGamma: 'Refactoring…',
+  setSymmetry: 'Refactoring…',
+  setCurvatureAlignment: 'Solving…',
   applyDesign: 'Applying the design…',
   fieldJson: 'Exporting…',
   exportFlowMap: 'Exporting the flow map…',
@@ -31,10 +33,11 @@ export class Designer {
   // host: the element (events are dispatched on it); root: its shadow root (markup already in place);
   // assetBase: URL of the folder with core-worker.js and wasm/; autosave: storage key or null (off);
   // bench: run the synthesis benchmark when the page asks for it (the app page only); onTool(name): the user
-  // picked a tool.
-  constructor({ host, root, assetBase, autosave = null, bench = false, onTool = () => {} }) {
+  // picked a tool; onSettings(settings): the design's settings after every change (the element reflects some).
+  constructor({ host, root, assetBase, autosave = null, bench = false, onTool = () => {}, onSettings = () => {} }) {
     this.host = host;
     this.onTool = onTool;
+    this.onSettings = onSettings;
     this.textureView = false; // the `texture` view is on: synthesize after every model load
     const $ = (sel) => root.querySelector(sel);
     const container = $('#viewport');
@@ -92,6 +95,8 @@ export class Designer {
               // The field the views draw: the whole field or the Hodge component chosen in the Views panel.
               vertexVectors: this.viewSync.drawnVertexVectors().slice(),
               fieldVersion: this.viewSync.drawnVersion(),
+              // N ≥ 2: the vectors are representatives of a line or cross field, which synthesis refuses for now.
+              symmetry: s.field.symmetry ?? 1,
             }
           : null,
     });
@@ -104,14 +109,20 @@ export class Designer {
     s.on('banner', ({ message, action }) => ui.showError(message, action));
     s.on('banner-clear', () => ui.clearError());
     s.on('flash', ({ text, ms }) => ui.flash(text, ms));
-    s.on('settings', (settings) => ui.setSettings(settings));
+    s.on('settings', (settings) => {
+      ui.setSettings(settings);
+      this.onSettings(settings);
+    });
     s.on('history', () => this.viewSync.refreshHistory());
     s.on('selection', (uid) => this.viewSync.selectionChanged(uid));
     s.on('model', (model) => {
       this.viewSync.modelChanged(model);
       this.synthesis.modelChanged(); // the model's UVs and a fresh atlas for the new mesh
     });
-    s.on('change', () => this.viewSync.refresh());
+    s.on('change', () => {
+      this.viewSync.refresh();
+      this.onSettings(s.settings());
+    });
     s.on('fieldchange', () => this.exports.fieldChanged());
     const ends = new Map();
     s.on('busy', ({ op, done }) => {

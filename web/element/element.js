@@ -6,6 +6,7 @@
 // Importing this module has no side effects and touches no DOM globals at the top level, so it loads in node
 // and during server-side rendering; define() registers the element.
 import { TEXTURE_METHODS, api } from './api.js';
+import { DEFAULT_VIEWS, parseBoundary, parseSetting, parseViews } from './attribute-values.js';
 import css from './element.css';
 import { Designer } from './designer.js';
 import { DEFAULT_WEIGHT } from '../session/session.js';
@@ -13,8 +14,6 @@ import { TEMPLATE } from './template.js';
 import { TOOLS } from '../tools/tools.js';
 
 export const TAG_NAME = 'tangent-field-designer';
-const VIEW_NAMES = ['arrows', 'streamlines', 'lic', 'magnitude', 'singularities', 'texture'];
-const DEFAULT_VIEWS = 'arrows';
 // Reflected string attributes: property name → attribute name.
 const STRING_ATTRIBUTES = {
   src: 'src',
@@ -27,27 +26,23 @@ const STRING_ATTRIBUTES = {
   exemplar: 'exemplar',
   assetBase: 'asset-base',
 };
+// Reflected number attributes: property name → attribute name; NUMBER_DEFAULTS: the property without it.
+const NUMBER_ATTRIBUTES = {
+  gamma: 'gamma',
+  symmetry: 'symmetry',
+  curvatureAlignment: 'curvature-alignment',
+};
+const NUMBER_DEFAULTS = Object.freeze({ gamma: 0, symmetry: 1, curvatureAlignment: 0 });
+// The settings the element writes back into their attributes whenever the design's change (the panel, the API,
+// an undo, a loaded design), as it does the tool into `tool`: the attribute and the selector always agree.
+const REFLECTED_SETTINGS = ['symmetry', 'curvatureAlignment'];
+const propertyOf = (attr) => Object.entries({ ...STRING_ATTRIBUTES, ...NUMBER_ATTRIBUTES }).find(([, a]) => a === attr)?.[0] ?? attr;
 // Tells the element it is the app page's designer (index.html): the page's keyboard shortcuts and the
 // ?bench=1 benchmark. Not for embedding pages.
 export const APP_PAGE = Symbol('tangent-field-designer app page');
 
 // In node (no DOM) the class still has to be definable: extend an empty class there.
 const Base = globalThis.HTMLElement ?? class {};
-
-function parseBoundary(text) {
-  const t = String(text).trim();
-  if (['free', 'tangential', 'normal'].includes(t)) return t;
-  const angle = Number(t);
-  if (t !== '' && Number.isFinite(angle)) return { angle };
-  throw new Error(`boundary must be free, tangential, normal or an angle in radians (got "${text}")`);
-}
-
-function parseViews(text) {
-  const names = String(text).split(/\s+/).filter(Boolean);
-  const unknown = names.filter((n) => !VIEW_NAMES.includes(n));
-  if (unknown.length) throw new Error(`unknown view "${unknown[0]}" (views: ${VIEW_NAMES.join(' ')})`);
-  return new Set(names);
-}
 
 export class TangentFieldDesigner extends Base {
   // Folder (URL string) holding the package's entry module, core-worker.js and wasm/; null = next to this
@@ -56,7 +51,7 @@ export class TangentFieldDesigner extends Base {
   static DEFAULT_WEIGHT = DEFAULT_WEIGHT;
 
   static get observedAttributes() {
-    return [...Object.values(STRING_ATTRIBUTES), 'gamma', 'readonly'];
+    return [...Object.values(STRING_ATTRIBUTES), ...Object.values(NUMBER_ATTRIBUTES), 'readonly'];
   }
 
   #designer = null;
@@ -142,14 +137,14 @@ export class TangentFieldDesigner extends Base {
       onTool: (tool) => {
         if (this.getAttribute('tool') !== tool && (tool !== 'orbit' || this.hasAttribute('tool'))) this.setAttribute('tool', tool);
       },
+      onSettings: (settings) => this.#reflectSettings(settings),
     });
     this.#designer = d;
     if (this.#appPage) d.ui.listenTo(window);
     d.session.readonly = this.hasAttribute('readonly');
     this.#applyAttribute('tool');
     this.#applyAttribute('views');
-    this.#applyAttribute('boundary');
-    this.#applyAttribute('gamma');
+    for (const prop of ['boundary', ...Object.keys(NUMBER_ATTRIBUTES)]) this.#applyAttribute(prop);
     const settle = this.#settle;
     const started = d.start();
     const src = this.getAttribute('src');
@@ -165,14 +160,14 @@ export class TangentFieldDesigner extends Base {
 
   attributeChangedCallback(name, oldValue, value) {
     if (oldValue === value || !this.#designer) return;
-    this.#applyAttribute(name === 'asset-base' ? 'assetBase' : name);
+    this.#applyAttribute(propertyOf(name));
   }
 
   // Applies the current value of one attribute (by property name) to the running session.
   #applyAttribute(prop) {
     const d = this.#designer;
     const s = d.session;
-    const attr = STRING_ATTRIBUTES[prop] ?? prop;
+    const attr = STRING_ATTRIBUTES[prop] ?? NUMBER_ATTRIBUTES[prop] ?? prop;
     const value = this.getAttribute(attr);
     try {
       switch (prop) {
@@ -188,6 +183,8 @@ export class TangentFieldDesigner extends Base {
           break;
         case 'boundary':
         case 'gamma':
+        case 'symmetry':
+        case 'curvatureAlignment':
           this.#applySetting(s, prop, value);
           break;
         case 'tool':
@@ -216,11 +213,22 @@ export class TangentFieldDesigner extends Base {
 
   #applySetting(s, kind, value) {
     if (value === null) return;
-    const setting = kind === 'boundary' ? parseBoundary(value) : Number(value);
-    if (kind === 'gamma' && !(setting >= 0)) throw new Error(`gamma must be a number ≥ 0 (got "${value}")`);
+    const setting = kind === 'boundary' ? parseBoundary(value) : parseSetting(kind, NUMBER_ATTRIBUTES[kind], value);
     // Before the first model, the setting waits in the session's design and goes in with the mesh.
     if (!s.info) return void (s.design = { ...s.design, [kind]: setting });
+    // The value in force already (also: the element's own reflection of a change made elsewhere).
+    if (kind !== 'boundary' && s.settings()[kind] === setting) return;
     s.setSetting(kind, setting).catch((err) => s.fail('setting', err));
+  }
+
+  // Called after every change: the attribute is written only when it is there already or the value is not the
+  // default, so an element nobody configured keeps a clean tag.
+  #reflectSettings(settings) {
+    for (const prop of REFLECTED_SETTINGS) {
+      const attr = NUMBER_ATTRIBUTES[prop], text = String(settings[prop]);
+      if (!this.hasAttribute(attr) && settings[prop] === NUMBER_DEFAULTS[prop]) continue;
+      if (this.getAttribute(attr) !== text) this.setAttribute(attr, text);
+    }
   }
 
   #applyViews(d, on) {
@@ -256,7 +264,9 @@ export class TangentFieldDesigner extends Base {
       const res = await fetch(url);
       if (!res.ok) throw new Error(`could not fetch ${url.href}: HTTP ${res.status}`);
       const design = await res.json();
-      // The boundary and gamma attributes, when given, win over the document's own settings.
+      // The boundary and gamma attributes, when given, win over the document's own settings; its symmetry and
+      // curvature alignment are its own (they say what its constraints mean: a design with sources is a vector
+      // field's) and the attributes follow them.
       if (design && typeof design === 'object') {
         if (this.hasAttribute('boundary')) design.boundary = parseBoundary(this.getAttribute('boundary'));
         if (this.hasAttribute('gamma')) design.gamma = Number(this.getAttribute('gamma'));
@@ -268,14 +278,6 @@ export class TangentFieldDesigner extends Base {
   }
 
   // ------------------------------------------------------------------------------------------ properties
-
-  get gamma() {
-    return Number(this.getAttribute('gamma') ?? 0);
-  }
-
-  set gamma(value) {
-    this.setAttribute('gamma', String(value));
-  }
 
   get readonly() {
     return this.hasAttribute('readonly');
@@ -307,6 +309,17 @@ export class TangentFieldDesigner extends Base {
         set(value) {
           if (value == null) this.removeAttribute(attr);
           else this.setAttribute(attr, String(value));
+        },
+        configurable: true,
+      });
+    }
+    for (const [prop, attr] of Object.entries(NUMBER_ATTRIBUTES)) {
+      Object.defineProperty(this.prototype, prop, {
+        get() {
+          return Number(this.getAttribute(attr) ?? NUMBER_DEFAULTS[prop]);
+        },
+        set(value) {
+          this.setAttribute(attr, String(value));
         },
         configurable: true,
       });

@@ -5,9 +5,9 @@ export const HELP_TOOLS = [
   ['Select', 'E', 'Click a constraint handle to edit its weight or strength, or delete it.'],
   ['Stroke', 'S', 'Drag across the surface: the field follows the stroke, in the direction you drew it.'],
   ['Vector', 'V', 'Drag on a triangle: the field’s direction and size there.'],
-  ['Source', 'R', 'Click: the field flows out of the nearest vertex.'],
-  ['Sink', 'G', 'Click: the field flows into the nearest vertex.'],
-  ['Vortex', 'B', 'Click: the field turns around the triangle (X flips counter-clockwise / clockwise).'],
+  ['Source', 'R', 'Click: the field flows out of the nearest vertex. Vector fields only.'],
+  ['Sink', 'G', 'Click: the field flows into the nearest vertex. Vector fields only.'],
+  ['Vortex', 'B', 'Click: the field turns around the triangle (X flips counter-clockwise / clockwise). Vector fields only.'],
 ];
 
 export const HELP_SHORTCUTS = [

@@ -73,6 +73,9 @@ export function panelActions(d) {
     onRedo: editable(() => d.edit('redo', s().step(true))),
     onBoundary: editable((bc) => d.report(s().setSetting('boundary', bc))),
     onGamma: editable((g) => d.report(s().setSetting('gamma', g))),
+    // What a new N removes is announced by the session (a flash) and comes back with undo.
+    onSymmetry: editable((n) => d.report(s().setSetting('symmetry', n))),
+    onCurvatureAlignment: editable((strength) => d.report(s().setSetting('curvatureAlignment', strength))),
     onViews: (views) => d.viewSync?.apply(views),
     onSelect: (uid) => s().select(uid),
     onFrame: (view) => d.viewer.frame(view),

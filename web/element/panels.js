@@ -1,7 +1,8 @@
-// The side panels: field settings (boundary, smoothness), the views and their legend, and the constraint
+// The side panels: field settings (symmetry, curvature alignment, boundary, smoothness), the views and their legend, and the constraint
 // list with the selection editor. Reports user intent through `actions` and renders the state it is handed;
 // a box the user is typing in is never overwritten.
 import { checkedNumber, fmtNum, guarded } from './numbers.js';
+import { alignsToCurvature } from '../core/symmetry.js';
 
 const SWATCH = { stroke: '#ff7a1a', vector: '#fbbf24', edge: '#ff7a1a', source: '#ef4444', sink: '#22c55e', vortex: '#3b82f6' };
 const VIEW_INPUTS = ['show-arrows', 'arrow-density', 'arrow-scaled', 'show-streamlines', 'streamline-spacing', 'show-lic', 'show-colormap', 'show-singularities', 'view-component'];
@@ -65,12 +66,51 @@ export function bindPanels($, focused, actions, showError) {
   angleInput.addEventListener('change', guard(() => (checkedNumber(angleInput, 'The boundary angle'), actions.onBoundary(boundaryChoice()))));
   gamma.addEventListener('change', guard((e) => actions.onGamma(checkedNumber(e.target, 'Smoothness γ'))));
 
-  function setSettings({ boundary, gamma: g }) {
+  // ---- symmetry and curvature alignment: the checkbox turns the alignment on at the strength in the box.
+  const symmetry = $('#symmetry');
+  const align = $('#curvature-align');
+  const alignStrength = $('#curvature-strength');
+  const alignment = () => (align.checked ? checkedNumber(alignStrength, 'The curvature alignment strength') : 0);
+  symmetry.addEventListener('change', () => actions.onSymmetry(Number(symmetry.value)));
+  align.addEventListener('change', guard(() => actions.onCurvatureAlignment(alignment())));
+  alignStrength.addEventListener('change', guard(() => align.checked && actions.onCurvatureAlignment(alignment())));
+
+  // n: 1..6; the selector names 1, 2 and 4 and shows any other N the API set as 'N = n'.
+  function setSymmetry(n, strength) {
+    const other = $('#symmetry-other');
+    const named = [...symmetry.options].some((o) => o !== other && o.value === String(n));
+    other.hidden = named;
+    if (!named) Object.assign(other, { value: String(n), textContent: `N = ${n}` });
+    symmetry.value = String(n);
+    const available = alignsToCurvature(n);
+    const row = $('#curvature-row');
+    align.disabled = alignStrength.disabled = !available;
+    row.title = available
+      ? 'Pulls the field toward principal curvature directions: the usual start for quad remeshing and hatching'
+      : 'Only for line and cross fields (an even symmetry): principal curvature directions have no sign and come in pairs at right angles';
+    align.checked = strength > 0;
+    if (strength > 0 && focused() !== alignStrength) alignStrength.value = String(strength);
+  }
+
+  // A line or cross field has an energy of its own (core/direction/): a free boundary, no γ, no decomposition.
+  // Their controls stay, greyed, with the reason, and come back with a vector field.
+  const VECTOR_ONLY = ['#boundary', '#boundary-angle', '#gamma', '#view-component'];
+  const vectorTitles = new Map(VECTOR_ONLY.map((sel) => [sel, $(sel).closest('label').title]));
+  function setVectorOnly(n) {
+    for (const sel of VECTOR_ONLY) {
+      $(sel).disabled = n > 1;
+      $(sel).closest('label').title = n > 1 ? `For vector fields only: a line or cross field has a free boundary, no γ and no Hodge decomposition. ${vectorTitles.get(sel)}` : vectorTitles.get(sel);
+    }
+  }
+
+  function setSettings({ boundary, gamma: g, symmetry: n = 1, curvatureAlignment = 0 }) {
     const isAngle = typeof boundary !== 'string';
     boundarySelect.value = isAngle ? 'angle' : boundary;
     $('#boundary-angle-row').hidden = !isAngle;
     if (isAngle && focused() !== angleInput) angleInput.value = String(+((boundary.angle * 180) / Math.PI).toFixed(6));
     if (focused() !== gamma) gamma.value = String(g);
+    setSymmetry(n, curvatureAlignment);
+    setVectorOnly(n);
   }
 
   function setHasBoundary(has) {

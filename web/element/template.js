@@ -76,10 +76,22 @@ export const TEMPLATE = `<div class="root" part="root">
             <input id="boundary-angle" type="number" value="45" step="5">
           </label>
         </div>
+        <label title="What the field is made of. Vector: flows, directions with a sign. Line: a direction without sign, for anisotropic materials (hair, brushed metal, wood grain, KHR_materials_anisotropy). Cross: four directions at right angles, for weaves, tiles, bricks and quad remeshing. Line and cross fields have no sources, sinks or vortices: switching removes them (undo restores them)">Symmetry
+          <select id="symmetry">
+            <option value="1" selected>Vector</option>
+            <option value="2">Line</option>
+            <option value="4">Cross</option>
+            <option id="symmetry-other" value="" hidden></option>
+          </select>
+        </label>
+        <div id="curvature-row" title="Pulls the field toward principal curvature directions: the usual start for quad remeshing and hatching">
+          <label class="check"><input id="curvature-align" type="checkbox"> Align to curvature</label>
+          <label class="sub" title="How strongly the field turns toward the curvature directions where nothing you drew says otherwise">Strength <input id="curvature-strength" type="number" value="1" min="0" step="0.1"></label>
+        </div>
         <label title="How gently the field's size fades away from what you drew: 0 = quickly (plain Laplacian), larger = more gently (bi-Laplacian term γ)">Smoothness γ
           <input id="gamma" type="number" value="0" min="0" step="0.1">
         </label>
-        <p class="note">Changing smoothness<span id="boundary-note" hidden> or the boundary</span> rebuilds the solver: a moment on large models.</p>
+        <p class="note">Changing symmetry, smoothness<span id="boundary-note" hidden> or the boundary</span> rebuilds the solver: a moment on large models.</p>
       </details>
       <details open>
         <summary>Views</summary>

@@ -2,11 +2,15 @@
 // redo, the camera buttons and the ☰ Panels toggle of small screens. The file buttons are files.js's; what
 // does not fit in one row goes into the ⋯ menu (toolbar-overflow.js).
 import { VIEW_PRESETS } from '../views/camera.js';
+import { fieldPhrase, keepsConstraint } from '../core/symmetry.js';
 import { checkedNumber } from './numbers.js';
 import { bindOverflow } from './toolbar-overflow.js';
 
-// $, $$: querySelector(All) in the shadow root.
-export function bindToolbar($, $$, actions) {
+// The tools whose constraint a line or cross field cannot have (core/symmetry.js).
+const POINT_TOOLS = ['source', 'sink', 'vortex'];
+
+// $, $$: querySelector(All) in the shadow root; flash(text): a passing message in the status line.
+export function bindToolbar($, $$, actions, flash) {
   const strength = $('#strength');
   const weight = $('#weight');
   let orientation = 'ccw';
@@ -23,7 +27,10 @@ export function bindToolbar($, $$, actions) {
 
   // ---- tools and their options
   for (const btn of $$('[data-tool]')) btn.addEventListener('click', () => setTool(btn.dataset.tool));
+  const toolButton = (tool) => $(`.segmented [data-tool="${tool}"]`);
   function setTool(tool) {
+    // A key or the `tool` attribute may ask for a tool the field's symmetry rules out: say why, keep the current.
+    if (toolButton(tool)?.disabled) return void flash(toolButton(tool).title);
     for (const b of $$('[data-tool]')) b.setAttribute('aria-pressed', String(b.dataset.tool === tool));
     for (const el of $$('.tool-options [data-for]')) el.hidden = !el.dataset.for.split(' ').includes(tool);
     overflow.fit(); // this tool's options may need room: refit now, not a frame later
@@ -33,6 +40,20 @@ export function bindToolbar($, $$, actions) {
   function setOrientation(o) {
     orientation = o;
     for (const b of $$('[data-orientation]')) b.setAttribute('aria-pressed', String(b.dataset.orientation === o));
+  }
+
+  // Sources, sinks and vortices are vector-field notions: their tools are off for a line or cross field (N ≥ 2),
+  // with the reason as their tooltip; a tool in use that goes off gives way to orbit.
+  const baseTitles = new Map(POINT_TOOLS.map((tool) => [tool, toolButton(tool).title]));
+  function setSymmetry(n) {
+    for (const tool of POINT_TOOLS) {
+      const btn = toolButton(tool), off = !keepsConstraint(tool, n);
+      btn.disabled = off;
+      btn.title = off
+        ? `${btn.textContent}: not for ${fieldPhrase(n)} — its directions have no sign, so it has no sources, sinks or vortices (switch Symmetry to Vector)`
+        : baseTitles.get(tool);
+      if (off && btn.getAttribute('aria-pressed') === 'true') setTool('orbit');
+    }
   }
 
   // Throws (naming the box and what it shows) when the strength is not a valid number: never coerced.
@@ -64,6 +85,7 @@ export function bindToolbar($, $$, actions) {
 
   return {
     setTool,
+    setSymmetry,
     flipOrientation: () => setOrientation(orientation === 'ccw' ? 'cw' : 'ccw'),
     toolOptions,
     setHistory,

@@ -19,7 +19,7 @@ export function bindUi(root, host, actions) {
   const $$ = (sel) => root.querySelectorAll(sel);
   const status = bindStatus($, host, { onCancel: () => actions.onCancel?.() });
   const panels = bindPanels($, () => root.activeElement, actions, status.showError);
-  const toolbar = bindToolbar($, $$, actions);
+  const toolbar = bindToolbar($, $$, actions, (text) => status.flash(text, 5000));
   bindFiles($, actions);
   watchNumbers($$('input[type="number"]'));
 
@@ -88,7 +88,10 @@ export function bindUi(root, host, actions) {
     setConstraints: panels.setConstraints,
     setStatus: status.setStatus,
     startProgress: status.startProgress,
-    setSettings: panels.setSettings,
+    setSettings: (settings) => {
+      panels.setSettings(settings);
+      toolbar.setSymmetry(settings.symmetry ?? 1);
+    },
     setHasBoundary: panels.setHasBoundary,
     setHistory: toolbar.setHistory,
     setLegend: panels.setLegend,

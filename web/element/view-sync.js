@@ -11,6 +11,10 @@
 // Until the part of the current field arrives the arrows, colours, flow texture and streamlines keep showing
 // what they showed (never a mix of versions); then they all draw it, in the whole field's magnitude scale
 // (a small part looks small). The singularity markers stay the whole field's.
+//
+// Every view is told the field's symmetry N (session.field.symmetry: 1 a vector field, 2 a line field, 4 a cross
+// field): for N ≥ 2 the vectors are unit representatives, one of N directions, which the views draw as such.
+// Such a field has no 1-form and so no decomposition: the views draw the whole field whatever component is chosen.
 import { magnitudeScale } from '../views/colormap.js';
 import { COMPONENTS } from '../core/field-parts.js';
 import { traceStreamlines } from '../geometry/streamlines.js';
@@ -36,7 +40,7 @@ export class ViewSync {
 
   // The field of the current version and component, or null while the part is still to come.
   #target() {
-    const s = this.session, name = this.views.component ?? 'whole';
+    const s = this.session, name = this.#component();
     if (name === 'whole') return { key: s.fieldVersion, name, fieldVersion: s.fieldVersion, field: { ...s.field, scale: this.#fieldScale() } };
     const p = this.parts, field = p && p.fieldVersion === s.fieldVersion && p.surface === s.surface ? p.byName[name] : null;
     return field ? { key: `${s.fieldVersion}:${name}`, name, fieldVersion: s.fieldVersion, field } : null;
@@ -52,19 +56,29 @@ export class ViewSync {
     return this.drawn?.key ?? this.session.fieldVersion;
   }
 
+  // The N of the current field (the parts of its decomposition share it).
+  #symmetry() {
+    return this.session.field?.symmetry ?? 1;
+  }
+
+  // The component drawn: the one chosen, or the whole field when there is no decomposition (N ≥ 2).
+  #component() {
+    return this.#symmetry() > 1 ? 'whole' : (this.views.component ?? 'whole');
+  }
+
   #draw(target) {
     const f = target.field;
     this.drawn = target;
     const hv = this.session.perf.hodgeViews;
     this.session.perf.hodgeViews = { ...hv, drawn: { component: target.name, fieldVersion: target.fieldVersion } };
-    this.viewer.arrows.setField(f.faceVectors, f.vertexVectors, f.scale);
+    this.viewer.arrows.setField(f.faceVectors, f.vertexVectors, f.scale, this.#symmetry());
     this.#showDerived();
   }
 
   // ---- the decomposition, asked of the worker only while a part or the shares are shown
 
   #requestParts() {
-    const s = this.session, name = this.views.component ?? 'whole';
+    const s = this.session, name = this.#component();
     if (name === 'whole' || !s.field || s.disposed) return;
     if (!this.#target() && !this.inFlight.component) this.#ask('component', [s.field.version, name], (value, t) => this.#partArrived(value, t));
     const sh = this.shares;
@@ -105,7 +119,7 @@ export class ViewSync {
     // In the whole field's scale: the parts compare with it and with each other.
     this.parts.byName[name] = { faceVectors: value.faceVectors, vertexVectors: value.vertexVectors, oneForm: value.oneForm, scale: this.#fieldScale() };
     s.perf.component = { name, roundTripMs: performance.now() - t.t0, fieldVersion: t.fieldVersion };
-    if ((this.views.component ?? 'whole') !== name) return;
+    if (this.#component() !== name) return;
     this.#draw(this.#target());
     this.#scheduleStreamlines();
     this.viewer.requestRender();
@@ -113,7 +127,7 @@ export class ViewSync {
   }
 
   #showShares() {
-    const s = this.session, sh = this.shares, on = (this.views.component ?? 'whole') !== 'whole';
+    const s = this.session, sh = this.shares, on = this.#component() !== 'whole';
     const current = sh && sh.fieldVersion === s.fieldVersion && sh.surface === s.surface;
     // The last shares known stay until the new ones come (the panel marks them as of an earlier field).
     this.ui.setViews({ shares: on && sh ? { ...sh.energyShares, current } : null });
@@ -138,10 +152,13 @@ export class ViewSync {
     return lines;
   }
 
-  // Traces the field drawn on the page, now, whatever the cache holds.
+  // Traces the field drawn on the page, now, whatever the cache holds. An N-field's corners are matched to its
+  // face representatives before they are interpolated, as in the worker.
   traceStreamlinesHere() {
     const s = this.session, t0 = performance.now();
-    const lines = traceStreamlines(s.surface, this.drawnVertexVectors(), { spacing: this.#streamlineSpacing(), lift: this.#streamlineLift() });
+    const faceVectors = this.drawn?.field.faceVectors ?? s.field.faceVectors;
+    const options = { spacing: this.#streamlineSpacing(), lift: this.#streamlineLift(), symmetry: this.#symmetry(), faceVectors };
+    const lines = traceStreamlines(s.surface, this.drawnVertexVectors(), options);
     s.perf.streamlines = { ms: performance.now() - t0, source: 'page', fieldVersion: s.fieldVersion };
     return lines;
   }
@@ -156,7 +173,7 @@ export class ViewSync {
     const c = this.streamlineCache;
     const current = () =>
       !s.disposed && this.views.streamlines && this.drawn?.key === key && s.surface === surface && this.#streamlineSpacing() === spacing;
-    if (c && c.key === key && c.spacing === spacing && c.surface === surface) return void viewer.streamlines.setLines(c.lines);
+    if (c && c.key === key && c.spacing === spacing && c.surface === surface) return void viewer.streamlines.setLines(c.lines, this.#symmetry());
     const t0 = performance.now();
     s.proxy
       ?.call('streamlines', [s.field.version, spacing, this.#streamlineLift(), d.name], [], { background: true })
@@ -164,7 +181,7 @@ export class ViewSync {
         if (!lines || !current()) return;
         this.streamlineCache = { key, spacing, surface, lines, source: 'worker' };
         s.perf.streamlines = { ms: performance.now() - t0, workerMs, source: 'worker', fieldVersion, component: d.name };
-        viewer.streamlines.setLines(lines);
+        viewer.streamlines.setLines(lines, this.#symmetry());
         viewer.requestRender();
       })
       .catch(() => {}); // a restarted worker: the refresh after the restart asks again
@@ -181,13 +198,13 @@ export class ViewSync {
   #showDerived() {
     const { viewer, views, shown, session: s } = this;
     if (views.singularities && shown.singularities !== s.fieldVersion) {
-      viewer.singularities.setSingularities(s.currentSingularities());
+      viewer.singularities.setSingularities(s.currentSingularities(), this.#symmetry());
       shown.singularities = s.fieldVersion;
     }
     const d = this.drawn;
     if (!d) return;
     if ((views.colorMap || views.lic) && shown.vertexField !== d.key) {
-      viewer.setVertexField(d.field.vertexVectors, d.field.scale);
+      viewer.setVertexField(d.field.vertexVectors, d.field.scale, { symmetry: this.#symmetry(), faceVectors: d.field.faceVectors });
       shown.vertexField = d.key;
     }
     this.ui.setLegend(views.colorMap || views.arrows ? d.field.scale.top : null);

@@ -8,11 +8,19 @@
 // that number, so the ratio is the rotation. Each interior edge is measured once and counted for both its
 // ends with opposite signs (walked the other way round its other end). Vertices next to a face with a
 // negligible vector have no defined index and are skipped, as in the core.
+//
+// An N-symmetric field (symmetry N ≥ 2) has one representative per face chosen arbitrarily among N: the
+// turning across an edge is then the smallest rotation taking one face's set onto the other's (the jump
+// reduced to (−π/N, π/N]), and the index is a multiple of 1/N.
+
+import { symmetryOf } from './nfield.js';
 
 const TWO_PI = 2 * Math.PI;
 
-// surface: web/surface.js; faceVectors: 3 per face. Returns [{vertex, index}] in vertex order.
-export function findSingularities(surface, faceVectors) {
+// surface: web/surface.js; faceVectors: 3 per face; symmetry: N (1 when absent). Returns [{vertex, index}] in
+// vertex order.
+export function findSingularities(surface, faceVectors, symmetry = 1) {
+  const sym = symmetryOf(symmetry);
   const { positions: P, triangles: T, normals: N, neighbour, nV, nF } = surface;
   const F = faceVectors;
   let maxNorm2 = 0;
@@ -43,7 +51,8 @@ export function findSingularities(surface, faceVectors) {
       const vx = F[3 * g], vy = F[3 * g + 1], vz = F[3 * g + 2];
       const gr = ex * vx + ey * vy + ez * vz;
       const gi = (ey * vz - ez * vy) * N[3 * g] + (ez * vx - ex * vz) * N[3 * g + 1] + (ex * vy - ey * vx) * N[3 * g + 2];
-      const jump = Math.atan2(gi * fr - gr * fi, gr * fr + gi * fi); // arg(g · conj(f))
+      let jump = Math.atan2(gi * fr - gr * fi, gr * fr + gi * fi); // arg(g · conj(f))
+      if (sym > 1) jump -= (TWO_PI / sym) * Math.round((sym * jump) / TWO_PI);
       turning[b] += jump;
       turning[a] -= jump;
     }
@@ -52,7 +61,7 @@ export function findSingularities(surface, faceVectors) {
   const out = [];
   for (let v = 0; v < nV; v++) {
     if (!counted[v]) continue;
-    const index = Math.round((turning[v] + defect[v]) / TWO_PI);
+    const index = sym > 1 ? Math.round((sym * (turning[v] + defect[v])) / TWO_PI) / sym : Math.round((turning[v] + defect[v]) / TWO_PI);
     if (index !== 0) out.push({ vertex: v, index });
   }
   return out;

@@ -2,9 +2,14 @@
 // changes, and the page ids of its constraints. Page ids ("uids") are what the API, the panels and the
 // history name; they survive a delete and its undo, whereas the core hands out a fresh id whenever it re-adds
 // a constraint. Specs are kept exactly as the core sent them (the core validated and stored them).
+
+// The design's settings as a document without them means them (docs/design-format.md): symmetry 1 is a
+// vector field, curvature alignment 0 is off.
+const DEFAULT_SETTINGS = Object.freeze({ boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0 });
+
 export class ConstraintTable {
   constructor() {
-    this.design = { boundary: 'free', gamma: 0, constraints: [] };
+    this.design = { ...DEFAULT_SETTINGS, constraints: [] };
     this.specByCore = new Map(); // core id → spec
     this.coreOrder = []; // core ids in the core's order (that of design.constraints)
     this.uids = new Map(); // uid → core id
@@ -84,13 +89,14 @@ export class ConstraintTable {
     return [...this.uids.keys()].map((uid) => ({ uid, spec: this.specOf(uid) }));
   }
 
+  // {boundary, gamma, symmetry, curvatureAlignment}, the defaults where the document leaves one out.
   settings() {
-    return { boundary: this.design.boundary ?? 'free', gamma: this.design.gamma ?? 0 };
+    const d = this.design;
+    return Object.fromEntries(Object.entries(DEFAULT_SETTINGS).map(([key, fallback]) => [key, d[key] ?? fallback]));
   }
 
   // The design's content as text, to tell unsaved edits (undoing back to the saved state counts as none).
   key() {
-    const { boundary, gamma, constraints } = this.design;
-    return JSON.stringify({ boundary, gamma, constraints });
+    return JSON.stringify({ ...this.settings(), constraints: this.design.constraints });
   }
 }

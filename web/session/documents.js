@@ -16,8 +16,10 @@ export function modelKey(name, bytes) {
   return `${name}|${bytes.length}|${fnv1a(bytes)}`;
 }
 
+// Nothing to keep: no constraint and every setting at its default.
 export function isEmptyDesign(design) {
-  return !design.constraints?.length && (design.boundary ?? 'free') === 'free' && !design.gamma;
+  const defaults = (design.boundary ?? 'free') === 'free' && !design.gamma && (design.symmetry ?? 1) === 1 && !design.curvatureAlignment;
+  return !design.constraints?.length && defaults;
 }
 
 // store: the autosave attribute's value ('' on the app page), so that several designers on one origin can keep

@@ -51,7 +51,7 @@ export class ModelLoader {
     const restored = saved?.design ? 'autosaved' : 'embedded';
     if (restoreError) s.flash(`The ${restored} design could not be restored: ${restoreError}`, 6000);
     else if ((saved?.design || embeddedDesign) && s.table.size) s.flash(`Restored the ${restored} design (${s.table.size} constraints).`);
-    if (settingsError) s.emit('banner', { message: `The boundary/γ settings did not apply to ${model.name}: ${settingsError}` });
+    if (settingsError) s.emit('banner', { message: `The field settings (boundary, γ, symmetry, curvature alignment) did not apply to ${model.name}: ${settingsError}` });
   }
 
   // After the first frame, not before: on the small default model warming up costs more than it saves

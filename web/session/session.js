@@ -12,7 +12,7 @@
 // 'history', 'settings' (after a refused edit), 'busy' {op, done}, 'flash' {text, ms}, 'banner' {message,
 // action}, 'banner-clear', and the element's public events: 'error' {code, message}, 'load', 'fieldchange',
 // 'constraintschange', 'corerestart', 'autosaveconflict'.
-import { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting } from './commands/index.js';
+import { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting, SetSymmetry } from './commands/index.js';
 import { Autosave } from './autosave.js';
 import { ConstraintTable } from './constraint-table.js';
 import { Emitter } from './emitter.js';
@@ -43,8 +43,9 @@ export class Session extends Emitter {
     this.surface = null;
     this.cornerUVs = null;
     this.meshSerial = 0;
-    // {version (the worker's), faceVectors, vertexVectors, oneForm, stats, singularities (null until derived)}
-    // of the last completed change.
+    // {version (the worker's), symmetry (N: 1 vector, 2 line, 4 cross; for N ≥ 2 the vectors are unit
+    // representatives), faceVectors, vertexVectors, oneForm, stats, singularities (null until derived)} of the
+    // last completed change.
     this.field = null;
     this.fieldVersion = 0;
     this.retired = []; // fields replaced since the last 'change', whose arrays go back to the worker
@@ -182,9 +183,9 @@ export class Session extends Emitter {
     return (await this.requireProxy().call(op, args, transfer, { background: true })).value;
   }
 
-  #applySnapshot({ version, faceVectors, vertexVectors, oneForm, stats, design }) {
+  #applySnapshot({ version, symmetry, faceVectors, vertexVectors, oneForm, stats, design }) {
     if (this.field) this.retired.push(this.field);
-    this.field = { version, faceVectors, vertexVectors, oneForm, stats, singularities: null };
+    this.field = { version, symmetry, faceVectors, vertexVectors, oneForm, stats, singularities: null };
     this.fieldVersion++;
     this.table.apply(design);
     if (this.selected != null && !this.table.has(this.selected)) this.selected = null;
@@ -202,7 +203,7 @@ export class Session extends Emitter {
 
   // Derived on first read, once per field: no edit waits for them.
   currentSingularities() {
-    this.field.singularities ??= findSingularities(this.surface, this.field.faceVectors);
+    this.field.singularities ??= findSingularities(this.surface, this.field.faceVectors, this.field.symmetry);
     return this.field.singularities;
   }
 
@@ -248,9 +249,10 @@ export class Session extends Emitter {
     return this.execute(() => SetParameter.of(this, kind, uid, value));
   }
 
-  // kind: 'boundary' | 'gamma'; the core checks the value.
+  // kind: 'boundary' | 'gamma' | 'symmetry' | 'curvatureAlignment'; the core checks the value. A new symmetry
+  // takes the constraints it cannot keep with it, in the same step, and resolves with them ({id, ...spec}).
   setSetting(kind, value) {
-    return this.execute(() => SetSetting.of(this, kind, value));
+    return this.execute(() => (kind === 'symmetry' ? SetSymmetry.of(this, value) : SetSetting.of(this, kind, value)));
   }
 
   // ignoreFingerprint: apply a design saved for another mesh anyway (its indices taken as they are).

@@ -10,6 +10,7 @@ import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8 } fr
 import { TexturedModel } from './render.js';
 import { DEFAULTS, Synthesizer } from './synthesizer.js';
 import { exportMagnification, pngBlob } from './texture-image.js';
+import { NOT_YET } from '../core/symmetry.js';
 
 const MAX_RESOLUTION = 2048;
 const OPTION_KEYS = ['featureScale', 'magnitudeExponent', 'jitter', 'finestJitter', 'passes', 'kappa', 'seed', 'gutter', 'seams', 'timing'];
@@ -139,6 +140,14 @@ export class SynthesisController {
   async #run({ preview = false } = {}) {
     const model = this.getModel();
     if (!model) throw new Error('no model loaded');
+    // A line or cross field's vectors are each one of its N directions, chosen arbitrarily: a texture along them
+    // would be wrong, so none is made, and a texture shown stops following the field.
+    if ((model.symmetry ?? 1) > 1) {
+      this.active = false;
+      this.render?.setVisible(false);
+      this.onChange();
+      throw new Error(NOT_YET.texture);
+    }
     const token = ++this.runToken;
     const t0 = performance.now();
     const resolution = this.options.resolution === 'auto' ? defaultResolution(model.triangles.length / 3) : this.options.resolution;

@@ -1,10 +1,13 @@
 // Instanced arrows over the surface, spaced and sized on the screen (the same count and length in pixels at
 // any mesh resolution and zoom) and coloured by magnitude (viridis). Handed the Surface once per mesh and the
-// field arrays after every change; resampled when a zoom changes the scale on screen.
+// field arrays after every change; resampled when a zoom changes the scale on screen. An N-field (symmetry
+// N ≥ 2) is drawn with N spokes per sample instead of an arrow (a segment for a line field, a cross for a
+// cross field), its vertex representatives matched to the face's before they are interpolated.
 import { Color, DoubleSide, DynamicDrawUsage, InstancedMesh, Matrix4, MeshBasicMaterial, Vector3 } from 'three';
 import { POISSON_PACKING, sampleSurface, worldPerPixel } from '../geometry/arrow-sampling.js';
+import { matchedAt, symmetryOf } from '../geometry/nfield.js';
 import { magnitudeScale, viridis } from './colormap.js';
-import { arrowGeometry } from './markers.js';
+import { glyphGeometry } from './markers.js';
 
 const ARROW_LIFT = 0.02; // × mean edge length, keeps arrows above the surface they lie on
 
@@ -33,6 +36,7 @@ export class ArrowsView {
     this.wpp = 0; // model units per pixel at the pivot, for the current view
     this.top = 0; // magnitude at the top of the colour map
     this.scale = null; // magnitudeScale of the field drawn
+    this.symmetry = 1; // N of the field drawn: the glyph and how vertex vectors are interpolated
   }
 
   setSurface(surface) {
@@ -40,7 +44,7 @@ export class ArrowsView {
     this.surface = surface;
     this.faceVectors = this.vertexVectors = null;
     this.samples = this.sampledAt = null;
-    this.mesh = new InstancedMesh(arrowGeometry(), new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide }), 1);
+    this.mesh = new InstancedMesh(glyphGeometry(this.symmetry), new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide }), 1);
     this.mesh.instanceMatrix.setUsage(DynamicDrawUsage);
     this.mesh.frustumCulled = false;
     this.mesh.count = 0;
@@ -70,12 +74,22 @@ export class ArrowsView {
 
   // faceVectors: 3 per face; vertexVectors (optional): 3 per vertex, interpolated inside each face so the
   // arrows turn smoothly rather than in steps at face edges; scale (optional): magnitudeScale(vertexVectors),
-  // when the caller has it already.
-  setField(faceVectors, vertexVectors = null, scale = null) {
+  // when the caller has it already; symmetry (optional): the field's N, 1 (arrows) when absent.
+  setField(faceVectors, vertexVectors = null, scale = null, symmetry = 1) {
+    this.#setSymmetry(symmetryOf(symmetry));
     this.faceVectors = faceVectors;
     this.vertexVectors = vertexVectors && this.surface && vertexVectors.length === 3 * this.surface.nV ? vertexVectors : null;
     this.scale = this.vertexVectors ? scale : null;
     this.#rebuild();
+  }
+
+  // Another N takes another glyph; the instances, their matrices and colours stay.
+  #setSymmetry(N) {
+    if (N === this.symmetry) return;
+    this.symmetry = N;
+    if (!this.mesh) return;
+    this.mesh.geometry.dispose();
+    this.mesh.geometry = glyphGeometry(N);
   }
 
   // Called before each render: keeps the spacing and the length constant in pixels. A small zoom only
@@ -148,11 +162,16 @@ export class ArrowsView {
     const x = new Vector3(), y = new Vector3(), z = new Vector3(), color = new Color(0xf4f4f5);
     // Samples whose vector is negligible next to the largest get no arrow rather than a noisy direction.
     const floor = max * 1e-6;
+    const N = this.symmetry, matched = [0, 0, 0];
     let k = 0;
     for (let i = 0; i < n; i++) {
       const f = faces[i];
       z.set(s.normals[3 * f], s.normals[3 * f + 1], s.normals[3 * f + 2]);
-      if (V) {
+      if (V && N > 1) {
+        // The face's representative is the reference the three corners are turned to before they mix.
+        matchedAt(s, V, f, bary.subarray(3 * i, 3 * i + 3), [F[3 * f], F[3 * f + 1], F[3 * f + 2]], N, matched);
+        x.fromArray(matched);
+      } else if (V) {
         x.set(0, 0, 0);
         for (let c = 0; c < 3; c++) {
           const v = T[3 * f + c], b = bary[3 * i + c];
@@ -193,7 +212,8 @@ export class ArrowsView {
     old.dispose();
   }
 
-  // The arrows as drawn: for each instance its anchor and its vector (length and direction, model units).
+  // The arrows as drawn: for each instance its anchor and its vector (length and direction, model units);
+  // for an N-field the vector is the glyph's first spoke, the others being it turned by 2πk/N.
   drawn() {
     const n = this.mesh?.visible ? this.mesh.count : 0;
     const M = this.mesh?.instanceMatrix.array;

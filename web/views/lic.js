@@ -7,6 +7,7 @@
 //      the surface's own depth and tests it against the scene's, so arrows, lines and handles in front of the
 //      surface stay visible.
 // The noise is anchored to the screen: a still picture is exact, while an orbit makes the streaks swim.
+// An N-field (N ≥ 2) takes both passes once per family of lines, on a surface copy of its own (lic-lines.js).
 import {
   BufferAttribute,
   Color,
@@ -29,6 +30,8 @@ import {
   WebGLRenderTarget,
 } from 'three';
 import { randomSequence } from '../geometry/arrow-sampling.js';
+import { symmetryOf } from '../geometry/nfield.js';
+import { LINE_DIRECTION_VERTEX, lineGeometry, linePasses, setLineField } from './lic-lines.js';
 
 export const LIC_STEPS = 20; // each way: streaks of about 2 × 20 px
 const NOISE_SIZE = 256;
@@ -71,12 +74,15 @@ void main() {
 
 const CONVOLVE_VERTEX = /* glsl */ `
 void main() { gl_Position = vec4(position.xy, 0.0, 1.0); }`;
-const CONVOLVE_FRAGMENT = /* glsl */ `
+// lines (N-fields): each pass is blended in at passAlpha, and a streak stops where the direction turns to
+// another family (|cos| < minCos) rather than following it.
+const convolveFragment = (lines) => /* glsl */ `
 uniform sampler2D directions;
 uniform sampler2D depths;
 uniform sampler2D noise;
 uniform vec2 resolution;
 uniform float contrast;
+${lines ? 'uniform float passAlpha;\nuniform float minCos;' : ''}
 const float NOISE_PX = 2.0;
 // One noise texel per NOISE_PX pixels, bilinear: pixel-sized nearest noise would leave stair steps along
 // oblique streaks, which bias their direction towards the diagonals.
@@ -95,7 +101,7 @@ void main() {
       // Midpoint step: the direction half a pixel ahead, kept on the same side as the last one (the field
       // is a vector field, but a sign flip from interpolation noise would fold the streak back).
       vec4 mid = texture2D(directions, (p + 0.5 * s * d) / resolution);
-      if (mid.a < 0.5 || dot(mid.xy, mid.xy) < 0.01) break;
+      if (mid.a < 0.5 || dot(mid.xy, mid.xy) < 0.01${lines ? ' || abs(dot(mid.xy, d)) < minCos' : ''}) break;
       d = dot(mid.xy, d) < 0.0 ? -mid.xy : mid.xy;
       p += s * d;
       sum += noiseAt(p);
@@ -104,7 +110,7 @@ void main() {
   }
   float v = clamp(0.5 + contrast * (sum / count - 0.5), 0.0, 1.0);
   float shade = 0.35 + 0.65 * here.b;
-  gl_FragColor = vec4(vec3(v * shade), 1.0);
+  gl_FragColor = vec4(vec3(v * shade), ${lines ? 'passAlpha' : '1.0'});
   gl_FragDepth = texture2D(depths, p0 / resolution).r;
 }`;
 
@@ -124,37 +130,47 @@ function noiseTexture(seed = 0x2545f491) {
   return tex;
 }
 
+function directionMaterial(vertexShader, uniforms) {
+  return new ShaderMaterial({
+    vertexShader,
+    fragmentShader: DIRECTION_FRAGMENT,
+    uniforms,
+    side: DoubleSide,
+    // The surface material's offset: the same depths, so the depth test in pass 2 meets the scene's exactly.
+    polygonOffset: true,
+    polygonOffsetFactor: 1,
+    polygonOffsetUnits: 1,
+  });
+}
+
+// lines: an N-field's pass, blended into the mean of the passes before it (transparent).
+function convolveMaterial(lines, uniforms) {
+  return new ShaderMaterial({
+    vertexShader: CONVOLVE_VERTEX,
+    fragmentShader: convolveFragment(lines),
+    uniforms,
+    depthTest: true,
+    depthWrite: false,
+    depthFunc: LessEqualDepth,
+    transparent: lines,
+  });
+}
+
 export class LicView {
   constructor() {
     this.visible = false;
     this.size = new Vector2(1, 1);
     this.directionScene = new Scene();
-    this.directionMaterial = new ShaderMaterial({
-      vertexShader: DIRECTION_VERTEX,
-      fragmentShader: DIRECTION_FRAGMENT,
-      uniforms: { resolution: { value: this.size }, eps: { value: 1e-3 } },
-      side: DoubleSide,
-      // The surface material's offset: the same depths, so the depth test in pass 2 meets the scene's exactly.
-      polygonOffset: true,
-      polygonOffsetFactor: 1,
-      polygonOffsetUnits: 1,
-    });
+    this.directionMaterial = directionMaterial(DIRECTION_VERTEX, { resolution: { value: this.size }, eps: { value: 1e-3 } });
     this.target = new WebGLRenderTarget(1, 1, { type: HalfFloatType, depthTexture: new DepthTexture(1, 1) });
     this.target.texture.minFilter = this.target.texture.magFilter = NearestFilter;
     this.noise = noiseTexture();
-    this.convolveMaterial = new ShaderMaterial({
-      vertexShader: CONVOLVE_VERTEX,
-      fragmentShader: CONVOLVE_FRAGMENT,
-      uniforms: {
-        directions: { value: this.target.texture },
-        depths: { value: this.target.depthTexture },
-        noise: { value: this.noise },
-        resolution: { value: this.size },
-        contrast: { value: 3.5 },
-      },
-      depthTest: true,
-      depthWrite: false,
-      depthFunc: LessEqualDepth,
+    this.convolveMaterial = convolveMaterial(false, {
+      directions: { value: this.target.texture },
+      depths: { value: this.target.depthTexture },
+      noise: { value: this.noise },
+      resolution: { value: this.size },
+      contrast: { value: 3.5 },
     });
     this.quadScene = new Scene();
     this.quad = new Mesh(new PlaneGeometry(2, 2), this.convolveMaterial);
@@ -163,19 +179,54 @@ export class LicView {
     this.quadCamera = new OrthographicCamera(-1, 1, 1, -1, 0, 1);
     this.surface = null;
     this.clearColor = new Color();
+    this.#initLines();
   }
 
-  // The surface mesh's geometry (shared, not copied) and its size for the projection step.
-  setSurface(geometry, meanEdge) {
+  // The N-field's passes: their own materials and scene, the surface copy made on the first N-field drawn.
+  #initLines() {
+    // The uniforms they share with the vector field's passes are the same objects (size, eps, textures).
+    const d = this.directionMaterial.uniforms, c = this.convolveMaterial.uniforms;
+    this.lineDirectionMaterial = directionMaterial(LINE_DIRECTION_VERTEX, { resolution: d.resolution, eps: d.eps, angle: { value: 0 } });
+    this.lineConvolveMaterial = convolveMaterial(true, { ...c, contrast: { value: c.contrast.value }, passAlpha: { value: 1 }, minCos: { value: 0 } });
+    this.lineScene = new Scene();
+    this.lineMesh = null;
+    this.meshSurface = null; // the Surface the copy is made from
+    this.symmetry = 1;
+    this.pendingLines = null; // {vertexVectors, faceVectors}: made into the corner field when next drawn
+  }
+
+  // The surface mesh's geometry (shared, not copied) and its size for the projection step. surface: the
+  // Surface, for N-fields.
+  setSurface(geometry, meanEdge, surface = null) {
     if (this.surface) this.directionScene.remove(this.surface);
     this.surface = new Mesh(geometry, this.directionMaterial);
     this.surface.frustumCulled = false;
     this.directionScene.add(this.surface);
     this.directionMaterial.uniforms.eps.value = 0.05 * meanEdge;
+    this.#disposeLines();
+    this.meshSurface = surface;
+    this.pendingLines = null;
   }
 
-  // Per-vertex field (the vertex vectors, 3 per vertex).
-  setField(vertexVectors) {
+  #disposeLines() {
+    if (!this.lineMesh) return;
+    this.lineScene.remove(this.lineMesh);
+    this.lineMesh.geometry.dispose();
+    this.lineMesh = null;
+  }
+
+  // Per-vertex field (the vertex vectors, 3 per vertex). symmetry: the field's N (1 when absent);
+  // faceVectors: its face representatives, the references an N-field's corners are matched to.
+  setField(vertexVectors, { symmetry = 1, faceVectors = null } = {}) {
+    this.symmetry = symmetryOf(symmetry);
+    if (this.symmetry > 1) {
+      // Made when drawn: the colour map also hands the field here, and needs no corner field.
+      this.pendingLines = { vertexVectors, faceVectors };
+      return;
+    }
+    // Back to a vector field: the copy's memory (four values per corner) is not kept for a later N-field.
+    this.pendingLines = null;
+    this.#disposeLines();
     const geom = this.surface?.geometry;
     if (!geom) return;
     const n = geom.getAttribute('position').count;
@@ -193,7 +244,14 @@ export class LicView {
 
   // Draws the flow texture over what `renderer` has just drawn with `camera` (called after the scene render).
   render(renderer, camera) {
-    if (!this.visible || !this.surface?.geometry.getAttribute('licField')) return;
+    if (!this.visible) return;
+    if (this.symmetry > 1) return void this.#renderLines(renderer, camera);
+    if (!this.surface?.geometry.getAttribute('licField')) return;
+    this.#pass(renderer, camera, this.directionScene, this.convolveMaterial);
+  }
+
+  // One direction pass into the target, then one convolution over the screen.
+  #pass(renderer, camera, scene, convolve) {
     renderer.getDrawingBufferSize(this.size);
     if (this.target.width !== this.size.x || this.target.height !== this.size.y) this.target.setSize(this.size.x, this.size.y);
     const previous = renderer.getRenderTarget();
@@ -203,12 +261,35 @@ export class LicView {
     renderer.setRenderTarget(this.target);
     renderer.setClearColor(0x000000, 0);
     renderer.clear(true, true, false);
-    renderer.render(this.directionScene, camera);
+    renderer.render(scene, camera);
     renderer.setRenderTarget(previous);
     renderer.setClearColor(this.clearColor, clearAlpha);
     renderer.autoClear = false;
+    this.quad.material = convolve;
     renderer.render(this.quadScene, this.quadCamera);
     renderer.autoClear = autoClear;
+  }
+
+  #renderLines(renderer, camera) {
+    if (this.pendingLines && this.meshSurface) {
+      if (!this.lineMesh) {
+        this.lineMesh = new Mesh(lineGeometry(this.meshSurface), this.lineDirectionMaterial);
+        this.lineMesh.frustumCulled = false;
+        this.lineScene.add(this.lineMesh);
+      }
+      const { vertexVectors, faceVectors } = this.pendingLines;
+      if (vertexVectors.length === 3 * this.meshSurface.nV) setLineField(this.lineMesh.geometry, this.meshSurface, vertexVectors, faceVectors, this.symmetry);
+      this.pendingLines = null;
+    }
+    if (!this.lineMesh?.geometry.getAttribute('licField')) return;
+    const u = this.lineConvolveMaterial.uniforms;
+    for (const p of linePasses(this.symmetry, this.convolveMaterial.uniforms.contrast.value)) {
+      this.lineDirectionMaterial.uniforms.angle.value = p.angle;
+      u.passAlpha.value = p.passAlpha;
+      u.minCos.value = p.minCos;
+      u.contrast.value = p.contrast;
+      this.#pass(renderer, camera, this.lineScene, this.lineConvolveMaterial);
+    }
   }
 
   dispose() {
@@ -217,6 +298,9 @@ export class LicView {
     this.noise.dispose();
     this.directionMaterial.dispose();
     this.convolveMaterial.dispose();
+    this.#disposeLines();
+    this.lineDirectionMaterial.dispose();
+    this.lineConvolveMaterial.dispose();
     this.quad.geometry.dispose();
   }
 }

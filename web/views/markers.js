@@ -1,6 +1,8 @@
-// Shapes shared by the field views and the constraint handles: the flat arrow, and labelled discs drawn as
-// sprites that keep a fixed size in pixels (handles) or as textures laid on the surface (singularities).
+// Shapes shared by the field views and the constraint handles: the flat arrow, the N-spoke glyph of an
+// N-field, and labelled discs drawn as sprites that keep a fixed size in pixels (handles) or as textures laid
+// on the surface (singularities), and text tags beside them.
 import { BufferAttribute, BufferGeometry, CanvasTexture, SRGBColorSpace, Sprite, SpriteMaterial } from 'three';
+import { spokeAngles } from '../geometry/nfield.js';
 
 // A flat arrow in the xy-plane, unit length along +x, centred on the origin so it sits on its anchor.
 export function arrowGeometry({ shaftW = 0.05, headW = 0.2, headL = 0.38, centred = true } = {}) {
@@ -16,6 +18,30 @@ export function arrowGeometry({ shaftW = 0.05, headW = 0.2, headL = 0.38, centre
   return g;
 }
 
+// An N-field's glyph in the xy-plane: N spokes of length `length` from the origin at 2πk/N from +x (N = 2, a
+// headless segment through the origin; N = 4, a cross), as wide as the arrow's shaft. Triangles (x, y, 0).
+export function spokeTriangles(N, { length = 0.5, halfWidth = 0.05 } = {}) {
+  const out = [];
+  for (const a of spokeAngles(N)) {
+    const c = Math.cos(a), s = Math.sin(a), wx = -s * halfWidth, wy = c * halfWidth, ex = c * length, ey = s * length;
+    // prettier-ignore
+    out.push(
+      -wx, -wy, 0,  ex - wx, ey - wy, 0,  ex + wx, ey + wy, 0,
+      -wx, -wy, 0,  ex + wx, ey + wy, 0,  wx, wy, 0,
+    );
+  }
+  return new Float32Array(out);
+}
+
+// The glyph drawn per sample of an N-field: the arrow for N = 1 (unchanged), N spokes otherwise; both one
+// unit across along +x, so the arrows' instance matrices size and turn either.
+export function glyphGeometry(N = 1) {
+  if (N === 1) return arrowGeometry();
+  const g = new BufferGeometry();
+  g.setAttribute('position', new BufferAttribute(spokeTriangles(N), 3));
+  return g;
+}
+
 // Markers with the index written on them, as sprites: always facing the viewer, hidden behind the surface.
 const MARKER_PX = 20;
 
@@ -28,6 +54,13 @@ export class LabelTextures {
   get(key, fill, text, options) {
     let tex = this.cache.get(key);
     if (!tex) this.cache.set(key, (tex = discTexture(fill, text, options)));
+    return tex;
+  }
+
+  // A text tag (TAG_ASPECT wide per unit high): the text in `color` on a dark rounded box.
+  getTag(key, color, text) {
+    let tex = this.cache.get(key);
+    if (!tex) this.cache.set(key, (tex = tagTexture(color, text)));
     return tex;
   }
 
@@ -54,6 +87,32 @@ function discTexture(fill, text, { ring = false, textColor = '#111827' } = {}) {
   g.textAlign = 'center';
   g.textBaseline = 'middle';
   g.fillText(text, size / 2, size / 2 + 2);
+  const tex = new CanvasTexture(c);
+  tex.colorSpace = SRGBColorSpace;
+  return tex;
+}
+
+export const TAG_ASPECT = 2.5;
+
+function tagTexture(color, text) {
+  const h = 48, w = Math.round(TAG_ASPECT * h);
+  const c = document.createElement('canvas');
+  c.width = w;
+  c.height = h;
+  const g = c.getContext('2d');
+  g.beginPath();
+  if (g.roundRect) g.roundRect(2, 2, w - 4, h - 4, 10);
+  else g.rect(2, 2, w - 4, h - 4); // canvases before roundRect (Chromium < 99, Safari < 16)
+  g.fillStyle = 'rgba(17, 24, 39, 0.85)';
+  g.fill();
+  g.lineWidth = 3;
+  g.strokeStyle = color;
+  g.stroke();
+  g.fillStyle = color;
+  g.font = 'bold 28px system-ui, sans-serif';
+  g.textAlign = 'center';
+  g.textBaseline = 'middle';
+  g.fillText(text, w / 2, h / 2 + 2);
   const tex = new CanvasTexture(c);
   tex.colorSpace = SRGBColorSpace;
   return tex;

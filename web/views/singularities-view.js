@@ -1,12 +1,12 @@
 // Singularity markers: a disc with the index written on it, lying in the tangent plane at the singular
-// vertex. Built only while the view is shown.
-import { CircleGeometry, DoubleSide, Group, Matrix4, Mesh, MeshBasicMaterial, Vector3 } from 'three';
+// vertex. Built only while the view is shown. An N-field's (N ≥ 2) indices are fractions: the disc is then
+// coloured on the ramp of singularity-style.js and the index, as a fraction, is a tag beside it that faces
+// the viewer (a disc 22 px across has no room for "−1/4").
+import { CircleGeometry, DoubleSide, Group, Matrix4, Mesh, MeshBasicMaterial, Sprite, SpriteMaterial, Vector3 } from 'three';
 import { worldPerPixel } from '../geometry/arrow-sampling.js';
-
-function indexLabel(index) {
-  const r = Math.round(index);
-  return r > 0 ? `+${r}` : r < 0 ? `\u2212${-r}` : '0';
-}
+import { symmetryOf } from '../geometry/nfield.js';
+import { TAG_ASPECT } from './markers.js';
+import { indexLabel, singularityFill } from './singularity-style.js';
 
 // Singularity markers lie on the surface: a labelled disc in the tangent plane at the vertex, lifted by a
 // hair and drawn with a negative polygon offset so it wins against the surface it lies on but against nothing
@@ -14,6 +14,8 @@ function indexLabel(index) {
 // keeps a constant size in pixels and turns about the normal so its label reads upright.
 const SINGULARITY_PX = 22;
 const SINGULARITY_LIFT = 0.01; // × mean edge length
+const TAG_PX = 20; // tag height
+const TAG_GAP_PX = 14; // from the vertex to the tag's left edge: clear of the disc
 
 export class SingularitiesView {
   constructor(scene, labels) {
@@ -21,7 +23,12 @@ export class SingularitiesView {
     this.group = new Group();
     this.group.visible = false;
     scene.add(this.group);
+    // Tags apart from the discs: drawn() and the disc code see discs only.
+    this.tags = new Group();
+    this.tags.visible = false;
+    scene.add(this.tags);
     this.list = [];
+    this.symmetry = 1;
     this.disc = new CircleGeometry(0.5, 32);
   }
 
@@ -32,29 +39,34 @@ export class SingularitiesView {
 
   setVisible(on) {
     const was = this.group.visible;
-    this.group.visible = on;
+    this.group.visible = this.tags.visible = on;
     if (on && !was) this.#build();
   }
 
   // Markers are built only while shown: a hidden view costs nothing per edit.
-  setSingularities(list) {
+  // list: [{vertex, index}]; symmetry: the field's N (1 when absent), which says how indices are written.
+  setSingularities(list, symmetry = 1) {
     this.list = list;
+    this.symmetry = symmetryOf(symmetry);
     this.#build();
   }
 
   #build() {
-    for (const m of this.group.children) m.material.dispose();
+    for (const m of [...this.group.children, ...this.tags.children]) m.material.dispose();
     this.group.clear();
-    const s = this.surface, list = this.list;
+    this.tags.clear();
+    const s = this.surface, list = this.list, N = this.symmetry;
     if (!s || !this.group.visible) return;
     const lift = SINGULARITY_LIFT * s.meanEdge;
     // A field that has not settled (or is zero) can report a singularity at almost every vertex; drawing
     // thousands of markers would only hide the model.
     for (const { vertex, index } of list.slice(0, 400)) {
-      const label = indexLabel(index);
-      const fill = index > 0 ? '#facc15' : '#c084fc';
+      const label = indexLabel(index, N);
+      const fill = singularityFill(index);
+      // N = 1: the index on the disc, as always; N ≥ 2: a plain disc, the index on the tag.
+      const onDisc = N === 1 ? label : '';
       const material = new MeshBasicMaterial({
-        map: this.labels.get(`sing:${label}`, fill, label),
+        map: this.labels.get(`sing:${fill}:${onDisc}`, fill, onDisc),
         transparent: true,
         side: DoubleSide,
         polygonOffset: true,
@@ -68,6 +80,30 @@ export class SingularitiesView {
       marker.userData = { vertex, normal };
       marker.renderOrder = 1;
       this.group.add(marker);
+      if (N > 1) this.tags.add(this.#tag(vertex, label, fill, marker.position));
+    }
+  }
+
+  // A sprite of fixed size in pixels, anchored at the vertex and drawn to its right (center.x < 0).
+  #tag(vertex, label, fill, at) {
+    const map = this.labels.getTag(`tag:${fill}:${label}`, fill, label);
+    const tag = new Sprite(new SpriteMaterial({ map, sizeAttenuation: false, depthTest: true, transparent: true }));
+    tag.center.set(-TAG_GAP_PX / (TAG_ASPECT * TAG_PX), 0.5);
+    tag.userData = { vertex, at: at.clone(), label };
+    tag.renderOrder = 3;
+    return tag;
+  }
+
+  // Tags keep their size in pixels (sprite scales without attenuation are in units of the view height ×
+  // tan(fov/2)). Each is pulled towards the eye along its view ray, by more than its own height: it stays where
+  // it was on screen, clear of the surface curving up beside the vertex, and still hidden behind the model.
+  #scaleTags(camera, h) {
+    const k = (2 * Math.tan((camera.fov * Math.PI) / 360)) / h, toEye = new Vector3();
+    for (const t of this.tags.children) {
+      const { at } = t.userData;
+      t.scale.set(TAG_ASPECT * TAG_PX * k, TAG_PX * k, 1);
+      toEye.subVectors(camera.position, at).normalize();
+      t.position.copy(at).addScaledVector(toEye, 1.5 * TAG_PX * worldPerPixel(camera, at, h));
     }
   }
 
@@ -86,6 +122,12 @@ export class SingularitiesView {
       m.quaternion.setFromRotationMatrix(basis.makeBasis(x, y, normal));
       m.scale.setScalar(SINGULARITY_PX * worldPerPixel(camera, m.position, h));
     }
+    this.#scaleTags(camera, h);
+  }
+
+  // The tags as drawn (N ≥ 2): each singular vertex's label, e.g. "+1/2".
+  drawnTags() {
+    return this.tags.children.map((t) => ({ vertex: t.userData.vertex, label: t.userData.label }));
   }
 
   // Each marker's vertex and the corners of its disc as drawn (world coordinates), for checking it lies on

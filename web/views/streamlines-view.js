@@ -1,6 +1,8 @@
 // Streamlines drawn as line segments over the surface, with chevrons pointing downstream. The lines come
-// traced (geometry/streamlines.js, in the worker); this view only draws them.
+// traced (geometry/streamlines.js, in the worker); this view only draws them. The lines of an N-field
+// (N ≥ 2) have no downstream: they are drawn plain.
 import { BufferAttribute, BufferGeometry, LineBasicMaterial, LineSegments } from 'three';
+import { symmetryOf } from '../geometry/nfield.js';
 
 // Streamlines run along the field (the tracer orders each line's points that way), so each carries chevrons
 // pointing downstream: a "V" lying on the surface every CUE_EVERY points.
@@ -20,10 +22,11 @@ export class StreamlinesView {
     this.setLines([]);
   }
 
-  // polylines: Float32Array per line (x, y, z per point).
-  setLines(polylines) {
+  // polylines: Float32Array per line (x, y, z per point); symmetry: the field's N (chevrons only for 1).
+  setLines(polylines, symmetry = 1) {
     this.polylines = polylines;
-    this.cues = this.normalAt ? polylines.flatMap((l) => chevrons(l, this.normalAt)) : [];
+    const oriented = symmetryOf(symmetry) === 1;
+    this.cues = this.normalAt && oriented ? polylines.flatMap((l) => chevrons(l, this.normalAt)) : [];
     let segments = 2 * this.cues.length;
     for (const l of polylines) segments += Math.max(0, l.length / 3 - 1);
     const pos = new Float32Array(6 * segments);

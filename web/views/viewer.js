@@ -192,7 +192,7 @@ export class Viewer {
     this.#applyColorMapMaterial();
     for (const view of [this.arrows, this.streamlines, this.singularities, this.handles]) view.setSurface(surface);
     this.streamlines.normalAt = (x, y, z) => this.#normalNear(x, y, z);
-    this.lic.setSurface(geom, surface.meanEdge);
+    this.lic.setSurface(geom, surface.meanEdge, surface);
     this.frame();
     this.renderNow();
   }
@@ -221,7 +221,9 @@ export class Viewer {
   // sources and vortices make a few huge values that would leave the rest of the model one colour.
   // Returns the magnitude at the top of the ramp (for the legend).
   // scale (optional): magnitudeScale(vertexVectors), when the caller has it already.
-  setVertexField(vertexVectors, scale = magnitudeScale(vertexVectors)) {
+  // symmetry, faceVectors (optional): an N-field's N and face representatives, for the flow texture (its
+  // corners are matched to the faces'); the colours need neither (|v| is the same for every representative).
+  setVertexField(vertexVectors, scale = magnitudeScale(vertexVectors), { symmetry = 1, faceVectors = null } = {}) {
     if (!this.surfaceMesh) return 0;
     const attr = this.surfaceMesh.geometry.getAttribute('color');
     const n = vertexVectors.length / 3;
@@ -233,7 +235,7 @@ export class Viewer {
       attr.setXYZ(v, c.r, c.g, c.b);
     }
     attr.needsUpdate = true;
-    this.lic.setField(vertexVectors);
+    this.lic.setField(vertexVectors, { symmetry, faceVectors });
     this.vertexFieldMax = top;
     return top;
   }

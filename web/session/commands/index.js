@@ -4,10 +4,11 @@ import { RemoveConstraint } from './remove-constraint.js';
 import { ReplaceDesign } from './replace-design.js';
 import { SetParameter } from './set-parameter.js';
 import { SetSetting } from './set-setting.js';
+import { SetSymmetry } from './set-symmetry.js';
 
-export { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting };
+export { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting, SetSymmetry };
 
-const COMMANDS = [AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting];
+const COMMANDS = [AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting, SetSymmetry];
 
 // A command from its serialize() form.
 export function deserializeCommand(json) {

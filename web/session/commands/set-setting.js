@@ -1,8 +1,12 @@
-// The boundary condition or γ (each a refactorization), with the value it replaces.
+// The boundary condition, γ or the curvature alignment, with the value it replaces (each a refactorization or a
+// new right-hand side). The symmetry N has a command of its own (set-symmetry.js): it may take constraints with it.
+const OPS = { boundary: 'setBoundary', gamma: 'setGamma', curvatureAlignment: 'setCurvatureAlignment' };
+const LABELS = { boundary: 'boundary condition', gamma: 'γ', curvatureAlignment: 'curvature alignment' };
+
 export class SetSetting {
   static type = 'SetSetting';
 
-  // kind: 'boundary' | 'gamma'; the values as the design format writes them.
+  // kind: 'boundary' | 'gamma' | 'curvatureAlignment'; the values as the design format writes them.
   constructor(kind, from, to) {
     this.kind = kind;
     this.from = from;
@@ -10,11 +14,12 @@ export class SetSetting {
   }
 
   static of(s, kind, to) {
+    if (!OPS[kind]) throw new Error(`unknown setting ${JSON.stringify(kind)} (settings: ${Object.keys(OPS).join(', ')}, symmetry)`);
     return new SetSetting(kind, structuredClone(s.table.settings()[kind]), to);
   }
 
   get label() {
-    return this.kind === 'boundary' ? 'boundary condition' : 'γ';
+    return LABELS[this.kind];
   }
 
   get result() {
@@ -25,17 +30,13 @@ export class SetSetting {
     return true;
   }
 
-  #op() {
-    return this.kind === 'boundary' ? 'setBoundary' : 'setGamma';
-  }
-
   async execute(s) {
-    await s.call(this.#op(), [this.to]);
+    await s.call(OPS[this.kind], [this.to]);
     this.to = structuredClone(s.table.settings()[this.kind]); // as the core holds it
   }
 
   undo(s) {
-    return s.call(this.#op(), [this.from]);
+    return s.call(OPS[this.kind], [this.from]);
   }
 
   serialize() {
