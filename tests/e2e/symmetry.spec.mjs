@@ -5,11 +5,15 @@
 // with a source present removes it in one announced step and undo brings it back under its id; the curvature
 // alignment goes with even N only; texture synthesis and the exports refuse a line field for now. One page for
 // the file (the default model, closed); the tests run in order.
+import { mkdirSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { expect, test } from '@playwright/test';
 import { dot, faceNormal, norm, openDesignerPage, readMesh, sub, surfacePoint, topFacePair } from './helpers.mjs';
 
 const EMPTY = { boundary: 'free', gamma: 0, constraints: [] };
 const EPS = 1e-9;
+const PICTURES = resolve(dirname(fileURLToPath(import.meta.url)), '../../test-results/symmetry');
 
 test.describe.serial('line and cross fields', () => {
   let page, errors, mesh, info, stroke;
@@ -185,5 +189,23 @@ test.describe.serial('line and cross fields', () => {
     await expectSymmetry(1);
     const png = await evaluate(() => window.tvf.exportFlowMap({ size: 64 }).then((bytes) => bytes.length));
     expect(png).toBeGreaterThan(0);
+  });
+
+  // Pictures of the same stroke as a vector, line and cross field (arrows/glyphs, streamlines, singularity
+  // labels) into test-results/symmetry/ (docs/images/symmetry-N.png are copies): each view must differ from the
+  // others, since a glyph with N spokes is not an arrow.
+  test('the same stroke as a vector, line and cross field draws three different pictures', async () => {
+    mkdirSync(PICTURES, { recursive: true });
+    await evaluate(() => window.tvf.setViews({ arrows: true, streamlines: true, singularities: true }));
+    const shots = [];
+    for (const n of [1, 2, 4]) {
+      await evaluate((k) => window.tvf.setSymmetry(k), n);
+      await expectSymmetry(n);
+      await page.waitForTimeout(500);
+      const shot = await page.locator('tangent-field-designer').screenshot({ path: resolve(PICTURES, `symmetry-${n}.png`) });
+      shots.push(shot.toString('base64'));
+    }
+    expect(new Set(shots).size).toBe(3);
+    expect(errors).toEqual([]);
   });
 });
