@@ -26,6 +26,7 @@ int usage() {
                "  tvf export MESH DESIGN.json [--glb OUT.glb] [--flowmap OUT.png] [--size N]\n"
                "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
                "             [--no-embed-flowmap] [--component whole|exact|coexact|harmonic]\n"
+               "             [--rawfield OUT.rawfield]\n"
                "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
                "            [--threads N] [--symmetry N]\n"
                "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
@@ -39,7 +40,9 @@ int usage() {
                "potentials, energyShares). --component: export that part of the field instead of the whole.\n"
                "A design's \"symmetry\" (1 vector, 2 line, 4 cross field; up to 6) makes design write\n"
                "faceDirections (one unit representative per face) and fractional singularity indices;\n"
-               "bench --symmetry N times that field's system.\n";
+               "bench --symmetry N times that field's system. export of such a design combs the directions\n"
+               "per atlas chart for the flow map and the GLB (KHR_materials_anisotropy, _FIELD); --rawfield\n"
+               "writes all N directions per face in Directional's raw field format (docs/export.md).\n";
   return kUsageError;
 }
 
@@ -143,7 +146,7 @@ double numberArgument(const std::string& flag, const char* text) {
 int exportCommand(int argc, char** argv) {
   if (argc < 4) return usage();
   const std::string meshPath = argv[2], designPath = argv[3];
-  std::string glbPath, flowMapPath;
+  std::string glbPath, flowMapPath, rawFieldPath;
   tvf::FieldExportOptions options;
   tvf::FieldComponent component = tvf::FieldComponent::Whole;
   for (int k = 4; k < argc; ++k) {
@@ -158,6 +161,8 @@ int exportCommand(int argc, char** argv) {
       glbPath = value;
     } else if (a == "--flowmap") {
       flowMapPath = value;
+    } else if (a == "--rawfield") {
+      rawFieldPath = value;
     } else if (a == "--size") {
       options.size = static_cast<int>(numberArgument(a, value));
     } else if (a == "--convention") {
@@ -175,21 +180,31 @@ int exportCommand(int argc, char** argv) {
       return usage();
     }
   }
-  if (glbPath.empty() && flowMapPath.empty())
-    throw tvf::InputError("nothing to export: give --glb and/or --flowmap");
+  if (glbPath.empty() && flowMapPath.empty() && rawFieldPath.empty())
+    throw tvf::InputError("nothing to export: give --glb, --flowmap and/or --rawfield");
   const tvf::MeshFormat format = tvf::formatFromPath(meshPath);
   tvf::Designer designer(tvf::loadMesh(meshPath));
   designer.setMetisOrdering(true);
   tvf::applyDesignDocument(designer, readDesign(designPath));
-  if (designer.symmetry() != 1)
-    throw tvf::InputError(designPath + ": exports of line and cross fields (symmetry " +
-                          std::to_string(designer.symmetry()) +
-                          ") are not available yet; tvf design writes their faceDirections");
+  const int symmetry = designer.symmetry();
+  if (symmetry != 1 && component != tvf::FieldComponent::Whole)
+    throw tvf::InputError("--component: the Hodge decomposition is of vector fields (symmetry 1); this design "
+                          "has symmetry " + std::to_string(symmetry));
   designer.solve();
+  if (!rawFieldPath.empty()) {
+    if (symmetry == 1)
+      throw tvf::InputError("--rawfield: a raw field holds line or cross fields; this design is a vector field "
+                            "(symmetry 1)");
+    const std::string text = tvf::exportRawField(designer.geometry(), designer.faceVectors(), symmetry);
+    writeBytes(rawFieldPath, std::vector<uint8_t>(text.begin(), text.end()));
+  }
+  if (glbPath.empty() && flowMapPath.empty()) return 0;
   // The whole field, or one part of its Hodge decomposition; the GLB still embeds the whole design.
-  const std::vector<double> oneForm = component == tvf::FieldComponent::Whole
-                                          ? designer.oneForm()
-                                          : tvf::componentOneForm(designer.hodgeDecomposition(), component);
+  const std::vector<double> oneForm =
+      symmetry != 1 ? std::vector<double>{}
+      : component == tvf::FieldComponent::Whole
+          ? designer.oneForm()
+          : tvf::componentOneForm(designer.hodgeDecomposition(), component);
   const tvf::SurfaceMesh& mesh = designer.mesh();
   const tvf::ExportAtlas atlas = tvf::exportAtlasFor(
       mesh, designer.topology(), options, !flowMapPath.empty() || (!glbPath.empty() && options.embedFlowMap));
@@ -201,8 +216,12 @@ int exportCommand(int argc, char** argv) {
               << "\n";
   }
   if (!flowMapPath.empty()) {
-    writeBytes(flowMapPath, tvf::exportFlowMapPng(mesh, designer.topology(), atlas.cornerUVs, oneForm,
-                                                  options));
+    writeBytes(flowMapPath, symmetry == 1 ? tvf::exportFlowMapPng(mesh, designer.topology(), atlas.cornerUVs,
+                                                                  oneForm, options)
+                                          : tvf::exportDirectionFlowMapPng(mesh, designer.topology(),
+                                                                           designer.geometry(), atlas.cornerUVs,
+                                                                           designer.faceVectors(), symmetry,
+                                                                           options));
   }
   if (!glbPath.empty()) {
     std::unique_ptr<tvf::GltfSource> source;
@@ -213,9 +232,12 @@ int exportCommand(int argc, char** argv) {
           tvf::loadGltfSource(bytes.data(), bytes.size(), format == tvf::MeshFormat::Glb,
                               parent.empty() ? "." : parent, meshPath));
     }
-    writeBytes(glbPath,
-               tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(), atlas,
-                                   oneForm, tvf::designDocument(designer), options));
+    writeBytes(glbPath, symmetry == 1
+                            ? tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(),
+                                                  atlas, oneForm, tvf::designDocument(designer), options)
+                            : tvf::exportDirectionGlb(mesh, designer.topology(), designer.geometry(),
+                                                      source.get(), atlas, designer.faceVectors(), symmetry,
+                                                      tvf::designDocument(designer), options));
   }
   return 0;
 }

@@ -336,10 +336,12 @@ export declare class TangentFieldDesigner extends HTMLElement {
   hasUnsavedEdits(): boolean;
   /** The solved field as the CLI's -o FIELD.json writes it. */
   exportField(): Promise<Record<string, unknown>>;
-  /** The flow map PNG (docs/export.md): the same bytes as `tvf export` for this model file and field. Vector fields only for now: rejects for symmetry N ≥ 2. */
+  /** The flow map PNG (docs/export.md): the same bytes as `tvf export` for this model file and field. A line or cross field is combed per atlas chart first (its sign flips only along the comb's cuts). */
   exportFlowMap(options?: Partial<ExportOptions>): Promise<Uint8Array>;
-  /** The one GLB export (docs/export.md): the model with the field attributes, the flow map and anisotropy material when asked, the design, and the synthesized texture when there is one, in one file. Vector fields only for now: rejects for symmetry N ≥ 2. */
+  /** The one GLB export (docs/export.md): the model with the field attributes, the flow map and anisotropy material when asked, the design, and the synthesized texture when there is one, in one file. For a line or cross field the symmetry comes from the design: the directions are combed per atlas chart (KHR_materials_anisotropy does not see their sign) and _FIELD holds them per vertex. */
   exportGlb(options?: Partial<ExportOptions>): Promise<Uint8Array>;
+  /** A line or cross field (symmetry N ≥ 2) as Directional's raw field text: "N numF", then the N directions (x y z each, counter-clockwise about the normal) of every face of the welded mesh (docs/export.md), as `tvf export --rawfield` writes it. Rejects for a vector field. */
+  exportRawField(): Promise<string>;
   /** The export options in force (the Export panel shows the same). */
   exportOptions(): ExportOptions;
   /** Changes some export options. */

@@ -15,6 +15,9 @@
 //                                             // (then exports generate one: texture/texture_atlas.h)
 //   x.flowMapPng(oneForm, optionsJson)        // Uint8Array (a copy) or null
 //   x.glb(oneForm, designJson, optionsJson, texture)   // Uint8Array or null; designJson may be ''
+//   x.directionFlowMapPng(faceDirections, symmetry, optionsJson)            // a line or cross field (N >= 2):
+//   x.directionGlb(faceDirections, symmetry, designJson, optionsJson, texture)  // one unit representative per
+//   x.rawField(faceDirections, symmetry)      // face, combed per chart by the core; rawField: Directional's text
 //   x.lastError(), x.delete()
 //   Module.embeddedDesignJson(uint8Array)     // the design a GLB carries, 'null' when none
 // optionsJson: {size, convention: 'gltf'|'opengl', bits: 8|16, gutter, strength, rotation, embedFlowMap,
@@ -138,22 +141,47 @@ class FieldExporterBinding {
       const tvf::FieldExportOptions o = optionsFrom(options);
       const Mesh& m = need();
       std::vector<uint8_t> baseColor;
-      tvf::ExportAtlas atlas;
-      if (isNullish(texture)) {
-        atlas = tvf::exportAtlasFor(m.surface, m.topology, o, o.embedFlowMap);
-      } else {
-        baseColor = bytesOf(texture["png"]);
-        atlas.cornerUVs = numbersOf<float>(texture["cornerUVs"]);
-        if (baseColor.empty()) throw tvf::InputError("export: the texture has no image");
-        if (atlas.cornerUVs.size() != 6 * static_cast<std::size_t>(m.surface.numFaces()))
-          throw tvf::InputError("export: the texture needs 6 UV values per face of the mesh");
-        // The model's own UVs fit the model's layout; any others need a vertex per (vertex, UV) pair.
-        atlas.generated = atlas.cornerUVs != m.surface.cornerUVs;
-      }
+      const tvf::ExportAtlas atlas = atlasFor(m, o, texture, baseColor);
       return tvf::exportFieldGlb(m.surface, m.topology, geometry(), source_.get(), atlas,
                                  numbersOf<double>(oneForm),
                                  design.empty() ? nlohmann::json() : nlohmann::json::parse(design), o, baseColor);
     });
+  }
+
+  val directionFlowMapPng(const val& faceDirections, int symmetry, const std::string& options) {
+    return produce([&] {
+      const tvf::FieldExportOptions o = optionsFrom(options);
+      const Mesh& m = need();
+      return tvf::exportDirectionFlowMapPng(m.surface, m.topology, geometry(),
+                                            tvf::exportAtlasFor(m.surface, m.topology, o, true).cornerUVs,
+                                            numbersOf<double>(faceDirections), symmetry, o);
+    });
+  }
+
+  val directionGlb(const val& faceDirections, int symmetry, const std::string& design, const std::string& options,
+                   const val& texture) {
+    return produce([&] {
+      const tvf::FieldExportOptions o = optionsFrom(options);
+      const Mesh& m = need();
+      std::vector<uint8_t> baseColor;
+      const tvf::ExportAtlas atlas = atlasFor(m, o, texture, baseColor);
+      return tvf::exportDirectionGlb(m.surface, m.topology, geometry(), source_.get(), atlas,
+                                     numbersOf<double>(faceDirections), symmetry,
+                                     design.empty() ? nlohmann::json() : nlohmann::json::parse(design), o,
+                                     baseColor);
+    });
+  }
+
+  // Directional's raw field text, or '' with lastError() set.
+  std::string rawField(const val& faceDirections, int symmetry) {
+    std::string text;
+    attempt(lastError_, [&] {
+      const std::vector<double> directions = numbersOf<double>(faceDirections);
+      if (symmetry < 2 || directions.size() != 3 * static_cast<std::size_t>(need().surface.numFaces()))
+        throw tvf::InputError("a raw field needs symmetry >= 2 and one direction per face");
+      text = tvf::exportRawField(geometry(), directions, symmetry);
+    });
+    return text;
   }
 
   std::string lastError() const { return lastError_; }
@@ -166,6 +194,21 @@ class FieldExporterBinding {
     tvf::MeshTopology topology;
     std::unique_ptr<tvf::MeshGeometry> geometry;
   };
+
+  // The atlas a GLB uses: the export's own, or the texture's UVs when a texture goes with it.
+  static tvf::ExportAtlas atlasFor(const Mesh& m, const tvf::FieldExportOptions& o, const val& texture,
+                                   std::vector<uint8_t>& baseColor) {
+    tvf::ExportAtlas atlas;
+    if (isNullish(texture)) return tvf::exportAtlasFor(m.surface, m.topology, o, o.embedFlowMap);
+    baseColor = bytesOf(texture["png"]);
+    atlas.cornerUVs = numbersOf<float>(texture["cornerUVs"]);
+    if (baseColor.empty()) throw tvf::InputError("export: the texture has no image");
+    if (atlas.cornerUVs.size() != 6 * static_cast<std::size_t>(m.surface.numFaces()))
+      throw tvf::InputError("export: the texture needs 6 UV values per face of the mesh");
+    // The model's own UVs fit the model's layout; any others need a vertex per (vertex, UV) pair.
+    atlas.generated = atlas.cornerUVs != m.surface.cornerUVs;
+    return atlas;
+  }
 
   const Mesh& need() const {
     if (!mesh_) throw tvf::InputError("no mesh set for export");
@@ -230,6 +273,9 @@ EMSCRIPTEN_BINDINGS(tvf_export) {
       .function("atlasNote", &FieldExporterBinding::atlasNote)
       .function("flowMapPng", &FieldExporterBinding::flowMapPng)
       .function("glb", &FieldExporterBinding::glb)
+      .function("directionFlowMapPng", &FieldExporterBinding::directionFlowMapPng)
+      .function("directionGlb", &FieldExporterBinding::directionGlb)
+      .function("rawField", &FieldExporterBinding::rawField)
       .function("lastError", &FieldExporterBinding::lastError);
   emscripten::function("embeddedDesignJson", &embeddedDesignJson);
 }

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 
+#include "direction/combing.h"
 #include "field/field_tangents.h"
 #include "field/whitney_reconstruction.h"
+#include "io/raw_field.h"
 #include "io/gltf_writer.h"
 #include "io/png_writer.h"
 #include "mesh/mesh_geometry.h"
@@ -108,12 +110,14 @@ std::vector<uint8_t> exportFlowMapPng(const SurfaceMesh& mesh, const MeshTopolog
                        options.bits);
 }
 
-std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const MeshTopology& topology,
-                                    const MeshGeometry& geometry, const GltfSource* source,
-                                    const ExportAtlas& atlas, const std::vector<double>& oneForm,
-                                    const nlohmann::json& design, const FieldExportOptions& options,
-                                    const std::vector<uint8_t>& baseColorPng) {
-  requireOneFormOn(topology, oneForm);
+namespace {
+
+// The GLB of any field: its vertex values (the _FIELD attribute and the tangent frames) and its value inside
+// faces (the flow map and the anisotropy texture of normal-mapped materials).
+std::vector<uint8_t> fieldGlb(const SurfaceMesh& mesh, const MeshTopology& topology, const GltfSource* source,
+                              const ExportAtlas& atlas, std::vector<double> vertexField,
+                              const FaceFieldSampler& sample, const nlohmann::json& design,
+                              const FieldExportOptions& options, const std::vector<uint8_t>& baseColorPng) {
   const std::vector<float>& cornerUVs = atlas.cornerUVs;
   // A generated atlas cuts the surface where the source's vertices do not: only a new layout can hold it.
   if (atlas.generated) source = nullptr;
@@ -121,14 +125,14 @@ std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const MeshTopology&
   content.mesh = &mesh;
   content.source = source;
   content.cornerUVs = source ? std::vector<float>{} : cornerUVs;
-  vertexVectors(mesh, topology, geometry, oneForm.data(), content.vertexField);
+  content.vertexField = std::move(vertexField);
   content.vertexNormal = vertexNormals(mesh);
   content.vertexTangent = fieldTangents(mesh, content.vertexNormal, content.vertexField);
   if (source && sourceHasNormalMappedMaterial(*source)) {
     if (cornerUVs.empty()) {
       throw InputError("the model has a normal map but no usable texture coordinates for anisotropyTexture");
     }
-    const FlowField frame = rasterizeFlowField(mesh, topology, cornerUVs.data(), oneForm.data(), options.size,
+    const FlowField frame = rasterizeFlowField(mesh, topology, cornerUVs.data(), sample, options.size,
                                                options.gutterTexels, FlowFrame::UvTangent);
     content.anisotropyPng =
         encodePngRgba(encodeFlowMap(frame, FlowMapConvention::Gltf, 8), options.size, options.size, 8);
@@ -137,10 +141,85 @@ std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const MeshTopology&
   glb.anisotropyStrength = options.anisotropyStrength;
   glb.anisotropyRotation = options.anisotropyRotation;
   glb.baseColorPng = baseColorPng;
-  if (options.embedFlowMap && !cornerUVs.empty())
-    glb.flowMapPng = exportFlowMapPng(mesh, topology, cornerUVs, oneForm, options);
+  if (options.embedFlowMap && !cornerUVs.empty()) {
+    requireUnitSquareUVs(cornerUVs, mesh.numFaces());
+    const FlowField field =
+        rasterizeFlowField(mesh, topology, cornerUVs.data(), sample, options.size, options.gutterTexels);
+    glb.flowMapPng = encodePngRgba(encodeFlowMap(field, options.convention, options.bits), options.size,
+                                   options.size, options.bits);
+  }
   if (options.embedDesign) glb.design = design;
   return writeFieldGlb(content, glb);
+}
+
+// The combed field's vertex values: each vertex's corners summed (they agree within a chart away from the
+// flip lines), or its own representative where they cancel.
+std::vector<double> combedVertexField(const SurfaceMesh& mesh, const CombedDirections& combed) {
+  std::vector<double> out(mesh.positions.size(), 0.0);
+  for (int32_t f = 0; f < mesh.numFaces(); ++f)
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) out[3 * mesh.triangles[3 * f + c] + k] += combed.corner[9 * f + 3 * c + k];
+  for (size_t v = 0; 3 * v < out.size(); ++v) {
+    Eigen::Map<Eigen::Vector3d> u(&out[3 * v]);
+    if (u.norm() > 1e-6) u.normalize();
+  }
+  return out;
+}
+
+void requireDirectionsOn(const MeshTopology& topology, const std::vector<double>& faceDirections, int symmetry) {
+  if (symmetry < 2 || symmetry > 6) throw InputError("direction exports need a symmetry from 2 to 6");
+  if (faceDirections.size() != 3 * static_cast<std::size_t>(topology.numFaces))
+    throw InputError("the field has " + std::to_string(faceDirections.size() / 3) + " directions, the mesh has " +
+                     std::to_string(topology.numFaces) + " faces");
+}
+
+}  // namespace
+
+std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                    const MeshGeometry& geometry, const GltfSource* source,
+                                    const ExportAtlas& atlas, const std::vector<double>& oneForm,
+                                    const nlohmann::json& design, const FieldExportOptions& options,
+                                    const std::vector<uint8_t>& baseColorPng) {
+  requireOneFormOn(topology, oneForm);
+  std::vector<double> vertexField;
+  vertexVectors(mesh, topology, geometry, oneForm.data(), vertexField);
+  const FaceFieldSampler whitney = [&](int32_t f, const double bary[3]) {
+    return whitneyVector(mesh, topology, oneForm.data(), f, bary);
+  };
+  return fieldGlb(mesh, topology, source, atlas, std::move(vertexField), whitney, design, options, baseColorPng);
+}
+
+std::vector<uint8_t> exportDirectionFlowMapPng(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                               const MeshGeometry& geometry, const std::vector<float>& cornerUVs,
+                                               const std::vector<double>& faceDirections, int symmetry,
+                                               const FieldExportOptions& options) {
+  requireUnitSquareUVs(cornerUVs, mesh.numFaces());
+  requireDirectionsOn(topology, faceDirections, symmetry);
+  const CombedDirections combed = combDirections(mesh, topology, geometry, faceDirections, symmetry, cornerUVs);
+  const FaceFieldSampler sample = [&](int32_t f, const double bary[3]) { return combedDirection(combed, f, bary); };
+  const FlowField field =
+      rasterizeFlowField(mesh, topology, cornerUVs.data(), sample, options.size, options.gutterTexels);
+  return encodePngRgba(encodeFlowMap(field, options.convention, options.bits), options.size, options.size,
+                       options.bits);
+}
+
+std::vector<uint8_t> exportDirectionGlb(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                        const MeshGeometry& geometry, const GltfSource* source,
+                                        const ExportAtlas& atlas, const std::vector<double>& faceDirections,
+                                        int symmetry, const nlohmann::json& design,
+                                        const FieldExportOptions& options,
+                                        const std::vector<uint8_t>& baseColorPng) {
+  requireDirectionsOn(topology, faceDirections, symmetry);
+  const CombedDirections combed =
+      combDirections(mesh, topology, geometry, faceDirections, symmetry, atlas.cornerUVs);
+  const FaceFieldSampler sample = [&](int32_t f, const double bary[3]) { return combedDirection(combed, f, bary); };
+  return fieldGlb(mesh, topology, source, atlas, combedVertexField(mesh, combed), sample, design, options,
+                  baseColorPng);
+}
+
+std::string exportRawField(const MeshGeometry& geometry, const std::vector<double>& faceDirections,
+                           int symmetry) {
+  return writeRawField(faceDirections, geometry.faceNormal, symmetry);
 }
 
 }  // namespace tvf

@@ -70,4 +70,23 @@ std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const MeshTopology&
                                     const nlohmann::json& design, const FieldExportOptions& options,
                                     const std::vector<uint8_t>& baseColorPng = {});
 
+// Line and cross fields (symmetry N >= 2; faceDirections: one unit representative per face, a Designer's
+// faceVectors()). Flow maps, tangent frames and anisotropy textures are signed, so the directions are combed
+// per chart of the atlas first (direction/combing.h): a line field's KHR_materials_anisotropy direction is
+// exact either way (the BRDF does not see the sign), and a flow map of it flips only along the comb's cuts.
+// The GLB's _FIELD attribute holds the combed direction per vertex.
+std::vector<uint8_t> exportDirectionFlowMapPng(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                               const MeshGeometry& geometry, const std::vector<float>& cornerUVs,
+                                               const std::vector<double>& faceDirections, int symmetry,
+                                               const FieldExportOptions& options);
+std::vector<uint8_t> exportDirectionGlb(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                        const MeshGeometry& geometry, const GltfSource* source,
+                                        const ExportAtlas& atlas, const std::vector<double>& faceDirections,
+                                        int symmetry, const nlohmann::json& design,
+                                        const FieldExportOptions& options,
+                                        const std::vector<uint8_t>& baseColorPng = {});
+// The field as Directional's raw field text (io/raw_field.h), all N directions per face.
+std::string exportRawField(const MeshGeometry& geometry, const std::vector<double>& faceDirections,
+                           int symmetry);
+
 }  // namespace tvf

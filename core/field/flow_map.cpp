@@ -54,8 +54,8 @@ FaceMaps faceMaps(const SurfaceMesh& mesh, int32_t f, const Eigen::Vector2d q[3]
   return maps;
 }
 
-void rasterizeFace(const SurfaceMesh& mesh, const MeshTopology& topology, const float* cornerUVs,
-                   const double* oneForm, int32_t f, FlowFrame frame, FlowField& field) {
+void rasterizeFace(const SurfaceMesh& mesh, const float* cornerUVs, const FaceFieldSampler& sample, int32_t f,
+                   FlowFrame frame, FlowField& field) {
   const float* uv = &cornerUVs[6 * f];
   const Eigen::Vector2d q[3] = {{uv[0], uv[1]}, {uv[2], uv[3]}, {uv[4], uv[5]}};
   const double twiceArea = cross2(q[1] - q[0], q[2] - q[0]);  // signed: mirrored charts are fine
@@ -71,7 +71,7 @@ void rasterizeFace(const SurfaceMesh& mesh, const MeshTopology& topology, const 
       const double bary[3] = {cross2(q[1] - p, q[2] - p) / twiceArea, cross2(q[2] - p, q[0] - p) / twiceArea,
                               cross2(q[0] - p, q[1] - p) / twiceArea};
       if (bary[0] < -kEdgeTolerance || bary[1] < -kEdgeTolerance || bary[2] < -kEdgeTolerance) continue;
-      const Eigen::Vector3d u = whitneyVector(mesh, topology, oneForm, f, bary);
+      const Eigen::Vector3d u = sample(f, bary);
       const Eigen::Vector2d d = frame == FlowFrame::Texture ? maps.toUV * u : maps.toFrame * u;
       const double length = d.norm();
       const std::size_t texel = static_cast<std::size_t>(y) * n + x;
@@ -143,6 +143,14 @@ void requireUnitSquareUVs(const std::vector<float>& cornerUVs, int32_t numFaces)
 
 FlowField rasterizeFlowField(const SurfaceMesh& mesh, const MeshTopology& topology, const float* cornerUVs,
                              const double* oneForm, int size, int gutterTexels, FlowFrame frame) {
+  const FaceFieldSampler whitney = [&](int32_t f, const double bary[3]) {
+    return whitneyVector(mesh, topology, oneForm, f, bary);
+  };
+  return rasterizeFlowField(mesh, topology, cornerUVs, whitney, size, gutterTexels, frame);
+}
+
+FlowField rasterizeFlowField(const SurfaceMesh& mesh, const MeshTopology& topology, const float* cornerUVs,
+                             const FaceFieldSampler& sample, int size, int gutterTexels, FlowFrame frame) {
   if (size < 1 || size > 8192) throw InputError("flow map size must be 1..8192, got " + std::to_string(size));
   if (gutterTexels < 0 || gutterTexels > 64) throw InputError("gutter must be 0..64 texels");
   FlowField field;
@@ -152,7 +160,7 @@ FlowField rasterizeFlowField(const SurfaceMesh& mesh, const MeshTopology& topolo
   field.magnitude.assign(texels, 0.0f);
   field.coverage.assign(texels, kUncovered);
   for (int32_t f = 0; f < topology.numFaces; ++f)
-    rasterizeFace(mesh, topology, cornerUVs, oneForm, f, frame, field);
+    rasterizeFace(mesh, cornerUVs, sample, f, frame, field);
   for (std::size_t t = 0; t < texels; ++t) {
     if (field.coverage[t] != kInside) continue;
     field.maxMagnitude = std::max(field.maxMagnitude, field.magnitude[t]);

@@ -5,7 +5,9 @@
 // texture moves when the surface point moves along the field. (Eq. 4 evaluated with UV positions instead
 // gives the field whose UV line integrals match the one-form, J^-T u rather than J u: the same direction
 // only where the atlas is conformal.)
+#include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,12 @@ enum class FlowFrame { Texture, UvTangent };
 // dilates the charts by `gutterTexels` so bilinear lookups at chart borders read field values, not holes.
 FlowField rasterizeFlowField(const SurfaceMesh& mesh, const MeshTopology& topology, const float* cornerUVs,
                              const double* oneForm, int size, int gutterTexels,
+                             FlowFrame frame = FlowFrame::Texture);
+// The same for any field given by its value at a barycentric point of a face (world space): e.g. a line
+// field's directions combed per chart (direction/combing.h), interpolated from its corners.
+using FaceFieldSampler = std::function<Eigen::Vector3d(int32_t face, const double bary[3])>;
+FlowField rasterizeFlowField(const SurfaceMesh& mesh, const MeshTopology& topology, const float* cornerUVs,
+                             const FaceFieldSampler& sample, int size, int gutterTexels,
                              FlowFrame frame = FlowFrame::Texture);
 
 // RGBA samples, 4 per texel, row-major from texel row 0, each in [0, 2^bits - 1]:

@@ -175,18 +175,43 @@ test.describe.serial('line and cross fields', () => {
     expect(errors).toEqual([]);
   });
 
-  test('texture synthesis and the exports refuse a line field with the reason, and work again for a vector field', async () => {
+  test('a line field exports as an anisotropy GLB and a cross-field file; texture synthesis refuses N = 3 by name', async () => {
     await evaluate(() => window.tvf.setSymmetry(2));
     await expectSymmetry(2);
-    expect(await rejection(call('synthesize'))).toMatch(/texture synthesis along line\/cross fields is not available yet; switch to Vector/);
-    expect(await rejection(call('exportFlowMap'))).toMatch(/not available yet; switch to Vector/);
-    expect(await rejection(call('exportGlb', { texture: false }))).toMatch(/not available yet; switch to Vector/);
-    // The Texture panel's button says the same in the banner.
-    await page.locator('#tex-synthesize').click();
-    await expect(page.locator('#error-banner .message')).toHaveText(/texture synthesis along line\/cross fields is not available yet/);
+    await expect(page.locator('#export-glb')).toHaveText('Anisotropy GLB');
+    // (The Export section may be folded: the button's own hidden flag is what the symmetry sets.)
+    expect(await page.locator('#export-rawfield').evaluate((b) => b.hidden)).toBe(false);
+    const glb = await evaluate(() => window.tvf.exportGlb({ texture: false, size: 64 }).then((bytes) => {
+      const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+      return JSON.parse(new TextDecoder().decode(bytes.subarray(20, 20 + view.getUint32(12, true))));
+    }));
+    expect(glb.extensionsUsed).toContain('KHR_materials_anisotropy');
+    expect(glb.meshes[0].primitives[0].attributes._FIELD).toBeDefined();
+    expect(glb.extras.tangentFieldDesigner.design.symmetry).toBe(2);
+    const faces = (await evaluate(() => window.tvf.info())).faces;
+    const raw = await evaluate(() => window.tvf.exportRawField());
+    const lines = raw.trim().split('\n');
+    expect(lines[0]).toBe(`2 ${faces}`);
+    expect(lines.length).toBe(faces + 1);
+    // Each face's two directions are opposite unit vectors, the first the page's own representative.
+    const fv = await evaluate(() => Array.from(window.tvf.faceVectors()));
+    for (const f of [0, 7, faces - 1]) {
+      const [x0, y0, z0, x1, y1, z1] = lines[f + 1].split(' ').map(Number);
+      expect(Math.hypot(x0, y0, z0)).toBeCloseTo(1, 9);
+      expect(Math.hypot(x0 + x1, y0 + y1, z0 + z1)).toBeLessThan(1e-9);
+      expect(Math.hypot(x0 - fv[3 * f], y0 - fv[3 * f + 1], z0 - fv[3 * f + 2])).toBeLessThan(1e-9);
+    }
+    expect((await evaluate(() => window.tvf.exportFlowMap({ size: 64 }))).length ?? 1).toBeGreaterThan(0);
+
+    await evaluate(() => window.tvf.setSymmetry(3));
+    await expectSymmetry(3);
+    expect(await rejection(call('synthesize'))).toMatch(/symmetry 3/);
 
     await evaluate(() => window.tvf.setSymmetry(1));
     await expectSymmetry(1);
+    await expect(page.locator('#export-glb')).toHaveText('GLB');
+    expect(await page.locator('#export-rawfield').evaluate((b) => b.hidden)).toBe(true);
+    expect(await rejection(call('exportRawField'))).toMatch(/vector field/);
     const png = await evaluate(() => window.tvf.exportFlowMap({ size: 64 }).then((bytes) => bytes.length));
     expect(png).toBeGreaterThan(0);
   });

@@ -15,6 +15,8 @@
 
 #include "design/design_document.h"
 #include "design/field_export.h"
+#include "direction/representative_directions.h"
+#include "io/raw_field.h"
 #include "field/flow_map.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_io.h"
@@ -599,6 +601,105 @@ TEST_F(CurvedPatchExport, NormalMappedMaterialsGetTheDirectionInAnisotropyTextur
   }
   EXPECT_LT(worst, 2.0);
   std::cout << "[ measured ] anisotropyTexture worst deviation from the stroke: " << worst << " deg\n";
+}
+
+
+// Line and cross fields (symmetry N >= 2) leave in the same GLB, combed per chart: the direction a viewer's
+// KHR_materials_anisotropy uses (TANGENT, or anisotropyTexture for normal-mapped materials), decoded, within
+// 5 degrees of the stroke modulo pi at the faces it crosses; and as Directional's raw field.
+double degreesModPi(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const double d = degreesBetween(a, b);
+  return std::min(d, 180 - d);
+}
+
+TEST_F(CurvedPatchExport, LineFieldAnisotropyFollowsTheStrokeModuloPi) {
+  json line = design_;
+  line["symmetry"] = 2;
+  std::ofstream(dir_ / "line.json") << line.dump();
+  ASSERT_EQ(runCli(path("patch.glb") + " " + path("line.json") + " --glb " + path("line.glb") + " --size 128"), 0);
+  const Glb out = parseGlb(readBytes(dir_ / "line.glb"));
+  const json& primitive = out.doc["meshes"][0]["primitives"][0];
+  EXPECT_TRUE(out.doc["materials"][0]["extensions"].contains("KHR_materials_anisotropy"));
+  EXPECT_EQ(out.doc["extras"][tvf::kGlbExtrasKey]["design"]["symmetry"], 2);
+  const std::vector<float> tangents = accessorFloats(out, primitive["attributes"]["TANGENT"].get<int>());
+  double worst = 0;
+  for (size_t k = 0; k + 1 < stroke_.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      const int32_t v = mesh_.triangles[3 * stroke_[k].face + c];
+      const Eigen::Vector3d t(tangents[4 * v], tangents[4 * v + 1], tangents[4 * v + 2]);
+      const Eigen::Vector3d n = tvf::faceNormal(mesh_, stroke_[k].face), along = strokeTangent(k);
+      worst = std::max(worst, degreesModPi(t - n.dot(t) * n, along - n.dot(along) * n));
+    }
+  EXPECT_LT(worst, 5.0);
+  std::cout << "[ measured ] line field TANGENT worst deviation from the stroke (mod pi): " << worst << " deg\n";
+
+  const std::vector<uint8_t> source = curvedPatchGlb(true);
+  std::ofstream(dir_ / "mapped.glb", std::ios::binary)
+      .write(reinterpret_cast<const char*>(source.data()), static_cast<std::streamsize>(source.size()));
+  ASSERT_EQ(runCli(path("mapped.glb") + " " + path("line.json") + " --glb " + path("mapped.line.glb") +
+                   " --size 256"),
+            0);
+  const Glb mapped = parseGlb(readBytes(dir_ / "mapped.line.glb"));
+  const json& anisotropy = mapped.doc["materials"][0]["extensions"]["KHR_materials_anisotropy"];
+  ASSERT_TRUE(anisotropy.contains("anisotropyTexture"));
+  const json& image =
+      mapped.doc["images"]
+                [mapped.doc["textures"][anisotropy["anisotropyTexture"]["index"].get<int>()]["source"].get<int>()];
+  const json& view = mapped.doc["bufferViews"][image["bufferView"].get<int>()];
+  const auto begin = mapped.bin.begin() + view["byteOffset"].get<long>();
+  const Image map = decodePng(std::vector<uint8_t>(begin, begin + view["byteLength"].get<long>()));
+  double worstTexture = 0;
+  for (size_t k = 0; k + 1 < stroke_.size(); ++k) {
+    const int f = stroke_[k].face;
+    Eigen::Vector3d p[3];
+    tvf::facePositions(mesh_, f, p);
+    const Eigen::Vector3d n = tvf::faceNormal(mesh_, f);
+    Eigen::Matrix2d D;
+    const float* uv = &mesh_.cornerUVs[6 * f];
+    D << uv[2] - uv[0], uv[4] - uv[0], uv[3] - uv[1], uv[5] - uv[1];
+    const Eigen::Vector2d ab = D.inverse() * Eigen::Vector2d(1, 0);
+    const Eigen::Vector3d T = (ab.x() * (p[1] - p[0]) + ab.y() * (p[2] - p[0])).normalized(), B = n.cross(T);
+    const Eigen::Vector3d along = strokeTangent(k);
+    const Eigen::Vector2d q = uvAt(mesh_.cornerUVs, stroke_[k]);
+    const int x = int(q.x() * 256), y = int(q.y() * 256);
+    const Eigen::Vector2d decoded(map.at(x, y, 0) / 127.5 - 1, map.at(x, y, 1) / 127.5 - 1);
+    worstTexture = std::max(worstTexture, degreesModPi(decoded, Eigen::Vector2d(along.dot(T), along.dot(B))));
+  }
+  EXPECT_LT(worstTexture, 5.0);
+  std::cout << "[ measured ] line field anisotropyTexture worst deviation (mod pi): " << worstTexture << " deg\n";
+}
+
+TEST_F(CurvedPatchExport, CrossFieldRawFieldReadsBackTheSameDirections) {
+  json cross = design_;
+  cross["symmetry"] = 4;
+  std::ofstream(dir_ / "cross.json") << cross.dump();
+  ASSERT_EQ(runCli(path("patch.glb") + " " + path("cross.json") + " --rawfield " + path("cross.rawfield") +
+                   " --glb " + path("cross.glb") + " --size 64"),
+            0);
+  const std::vector<uint8_t> bytes = readBytes(dir_ / "cross.rawfield");
+  const tvf::RawField raw = tvf::readRawField(std::string(bytes.begin(), bytes.end()));
+  ASSERT_EQ(raw.symmetry, 4);
+  ASSERT_EQ(raw.directions.size(), 12u * mesh_.numFaces());
+  tvf::Designer d(mesh_);
+  tvf::applyDesignDocument(d, cross);
+  d.solve();
+  double worst = 0, worstRight = 0;
+  for (int32_t f = 0; f < mesh_.numFaces(); ++f) {
+    const Eigen::Vector3d n = tvf::faceNormal(mesh_, f), rep(&d.faceVectors()[3 * f]);
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d w(&raw.directions[12 * f + 3 * k]);
+      EXPECT_NEAR(w.norm(), 1, 1e-9);
+      EXPECT_NEAR(w.dot(n), 0, 1e-9);
+      worst = std::max(worst, std::abs(tvf::symmetricAngle(rep, w, n, 4)));
+      // Counter-clockwise order: each direction is the previous one turned by +pi/2 about the normal.
+      const Eigen::Vector3d next(&raw.directions[12 * f + 3 * ((k + 1) % 4)]);
+      worstRight = std::max(worstRight, (n.cross(w) - next).norm());
+    }
+  }
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_LT(worstRight, 1e-9);
+  EXPECT_THROW(tvf::readRawField("4 2\n1 0 0"), tvf::InputError);
+  EXPECT_THROW(tvf::readRawField("hello"), tvf::InputError);
 }
 
 }  // namespace

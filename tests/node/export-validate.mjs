@@ -66,6 +66,19 @@ try {
     check(`${model}: validator sees KHR_materials_anisotropy`, report.info.extensionsUsed.includes('KHR_materials_anisotropy'));
   }
 
+  // Line and cross fields (the design's symmetry): the combed anisotropy GLB validates, on a model of its own
+  // and a normal-mapped one, and the OFF patch rebuilt on a generated atlas.
+  for (const symmetry of [2, 4]) {
+    writeFileSync(join(dir, `design-${symmetry}.json`), JSON.stringify({ ...diagonalStrokeDesign(), symmetry }));
+    for (const model of ['patch.glb', 'normal-mapped.glb', 'patch.off']) {
+      const out = join(dir, `${model}.n${symmetry}.glb`);
+      run('export', join(dir, model), join(dir, `design-${symmetry}.json`), '--glb', out, '--size', '128');
+      const report = await validate(`tvf export ${model} (symmetry ${symmetry})`, readFileSync(out));
+      check(`${model} (symmetry ${symmetry}): validator sees KHR_materials_anisotropy`,
+        report.info.extensionsUsed.includes('KHR_materials_anisotropy'));
+    }
+  }
+
   // The wasm exporter as the page's worker drives it (web/core/core-export.js): the mesh the Designer loaded
   // (no second parse), the glTF document of the file, the CLI's one-form and embedded design -> the same bytes.
   const { default: createTvfCore } = await import(pathToFileURL(modulePath).href);

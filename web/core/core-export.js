@@ -49,20 +49,35 @@ export class CoreExport {
     return this.#loaded().atlasNote();
   }
 
-  flowMapPng(oneForm, options) {
+  // field: {oneForm} of a vector field, or {faceDirections, symmetry} of a line or cross field (one unit
+  // representative per face; the core combs them per chart of the atlas).
+  flowMapPng(field, options) {
     const exporter = this.#loaded();
-    const png = exporter.flowMapPng(oneForm, JSON.stringify(options));
+    const png = field.symmetry > 1
+      ? exporter.directionFlowMapPng(field.faceDirections, field.symmetry, JSON.stringify(options))
+      : exporter.flowMapPng(field.oneForm, JSON.stringify(options));
     if (!png) throw new CoreError(`export: ${exporter.lastError()}`);
     return png;
   }
 
   // texture: null, or {png: Uint8Array, cornerUVs: Float32Array (6 per face)}: the synthesized texture and its
   // atlas, embedded as base colour; its UVs then index the flow map too.
-  glb(oneForm, design, options, texture = null) {
+  glb(field, design, options, texture = null) {
     const exporter = this.#loaded();
-    const glb = exporter.glb(oneForm, design ? JSON.stringify(design) : '', JSON.stringify(options), texture);
+    const text = design ? JSON.stringify(design) : '';
+    const glb = field.symmetry > 1
+      ? exporter.directionGlb(field.faceDirections, field.symmetry, text, JSON.stringify(options), texture)
+      : exporter.glb(field.oneForm, text, JSON.stringify(options), texture);
     if (!glb) throw new CoreError(`export: ${exporter.lastError()}`);
     return glb;
+  }
+
+  // Directional's raw field text (all N directions per face, io/raw_field.h) of a line or cross field.
+  rawField(field) {
+    const exporter = this.#loaded();
+    const text = exporter.rawField(field.faceDirections, field.symmetry);
+    if (!text) throw new CoreError(`export: ${exporter.lastError()}`);
+    return text;
   }
 }
 

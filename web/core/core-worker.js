@@ -46,9 +46,10 @@ function serve(scope) {
   // Earlier field arrays the page handed back, refilled instead of allocated (spare-arrays.js).
   const spares = new SpareArrays();
 
-  // The exports write a vector field's flow map and tangents; a line or cross field has no sign to write yet.
-  function requireVectorField() {
-    if (core.symmetry() > 1) throw new CoreError(NOT_YET.export);
+  // What the exports read of the field: a vector field's one-form, or a line or cross field's directions.
+  function exportedField() {
+    const symmetry = core.symmetry();
+    return symmetry > 1 ? { symmetry, faceDirections: core.faceVectors() } : { symmetry, oneForm: core.oneForm() };
   }
 
   // After a solve: the field arrays the views need, copied out of the wasm heap (a memcpy each, into spares where
@@ -269,14 +270,19 @@ function serve(scope) {
     },
 
     exportFlowMap(options) {
-      requireVectorField();
-      return coreExport.flowMapPng(core.oneForm(), options);
+      return coreExport.flowMapPng(exportedField(), options);
     },
 
     // texture: null or {png, cornerUVs}, the synthesized texture (web/export/index.js).
     exportGlb(options, texture) {
-      requireVectorField();
-      return coreExport.glb(core.oneForm(), JSON.parse(core.designJson()), options, texture);
+      return coreExport.glb(exportedField(), JSON.parse(core.designJson()), options, texture);
+    },
+
+    // A line or cross field as Directional's raw field text (docs/export.md).
+    exportRawField() {
+      const field = exportedField();
+      if (field.symmetry < 2) throw new CoreError(NOT_YET.rawField);
+      return coreExport.rawField(field);
     },
   };
 

@@ -33,8 +33,14 @@ export function countedTypes(constraints) {
   return parts.length > 1 ? `${parts.slice(0, -1).join(', ')} and ${parts.at(-1)}` : (parts[0] ?? '');
 }
 
-// The refusals while these are made for vector fields only (a later change brings them to line and cross fields).
+// What only a line or cross field can be exported as.
 export const NOT_YET = {
   texture: 'texture synthesis along line/cross fields is not available yet; switch to Vector',
-  export: 'flow-map and GLB exports of line/cross fields are not available yet; switch to Vector',
+  rawField: 'a cross-field file (raw field) holds line and cross fields; this is a vector field: choose Line or Cross',
 };
+
+// Texture synthesis follows a vector field, and a line or cross field combed for the atlas (one sign, or one of
+// the cross's two families, per region: geometry/chart-comb.js); other N it refuses with this reason.
+export const TEXTURE_SYMMETRIES = [1, 2, 4];
+export const textureRefusal = (n) =>
+  `texture synthesis follows vector, line and cross fields (N = 1, 2, 4), not ${fieldPhrase(n)}; switch to Vector, Line or Cross`;

@@ -64,6 +64,7 @@ export const api = {
   // carries the synthesized texture when one is shown (options.texture).
   exportFlowMap: (d, options) => d.exports.exportFlowMap(options),
   exportGlb: (d, options) => d.exports.exportGlb(options),
+  exportRawField: (d) => d.exports.exportRawField(),
   exportOptions: (d) => d.exports.exportOptions(),
   setExportOptions: (d, options) => d.exports.setExportOptions(options),
   materialPreview: (d, preset) => d.exports.materialPreview(preset),

@@ -60,6 +60,7 @@ export class Designer {
       onError: (err) => !session.disposed && this.ui.showError(err.message),
       // The one GLB export embeds the synthesized texture when there is one.
       texture: this.synthesis,
+      symmetry: () => session.field?.symmetry ?? 1,
     });
     this.#subscribe();
   }

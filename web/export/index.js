@@ -21,7 +21,7 @@ const TEXTURE_KEYS = ['texture', 'textureResolution', 'textureMagnification'];
 
 // call(op, args): one worker request after the session's pending edits, resolving to its value.
 // texture: the synthesis controller (synthesis/controller.js exportTexture()), or null without synthesis.
-export function setupExport({ viewer, panel, call, modelName, onError, texture = null }) {
+export function setupExport({ viewer, panel, call, modelName, onError, texture = null, symmetry = () => 1 }) {
   const preview = new MaterialPreview(viewer);
   let options = { ...DEFAULT_EXPORT_OPTIONS };
   let previewPreset = null; // null: preview off
@@ -43,6 +43,11 @@ export function setupExport({ viewer, panel, call, modelName, onError, texture =
     if (!texture) throw new Error('exportGlb: this designer has no texture synthesis');
     return texture;
   }
+
+  // A line or cross field as Directional's raw field text (the core refuses a vector field with the reason).
+  const exportRawField = () => call('exportRawField', []);
+  const downloadRawField = () =>
+    exportRawField().then((text) => downloadBlob(`${modelName()}.rawfield`, new Blob([text], { type: 'text/plain' })));
 
   const downloadGlb = (opts) => exportGlb(opts).then((glb) => downloadBlob(`${modelName()}.field.glb`, new Blob([glb], { type: 'model/gltf-binary' })));
 
@@ -80,12 +85,16 @@ export function setupExport({ viewer, panel, call, modelName, onError, texture =
         .then((png) => downloadBlob(`${modelName()}.flow-${options.convention}-${options.size}.png`, new Blob([png], { type: 'image/png' })))
         .catch(onError),
     onGlb: () => downloadGlb().catch(onError),
+    onRawField: () => downloadRawField().catch(onError),
     onPreview: (preset) => materialPreview(preset).catch(onError),
   });
+
+  ui.setSymmetry(symmetry());
 
   return {
     exportFlowMap,
     exportGlb,
+    exportRawField,
     downloadGlb,
     materialPreview,
     materialPreviewInfo: () => refresh.then(() => preview.info()),
@@ -93,6 +102,7 @@ export function setupExport({ viewer, panel, call, modelName, onError, texture =
     setExportOptions: setOptions,
     // The field or the model changed: a visible preview follows.
     fieldChanged: () => {
+      ui.setSymmetry(symmetry());
       if (previewPreset) showPreview().catch(onError);
     },
     dispose() {

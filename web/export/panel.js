@@ -11,7 +11,7 @@ function select(id, title, values, value) {
   return s;
 }
 
-export function mountExportPanel(container, { options, presets, onOptions, onFlowMap, onGlb, onPreview }) {
+export function mountExportPanel(container, { options, presets, onOptions, onFlowMap, onGlb, onRawField, onPreview }) {
   const size = select('export-size', 'Flow map texels per side', [256, 512, 1024, 2048, 4096].map((n) => [n, String(n)]), options.size);
   const convention = select(
     'export-convention',
@@ -23,7 +23,12 @@ export function mountExportPanel(container, { options, presets, onOptions, onFlo
   const strength = el('input', { id: 'export-strength', type: 'number', min: '0', max: '1', step: '0.05', value: String(options.strength) });
   const rotation = el('input', { id: 'export-rotation', type: 'number', step: '15', value: String((options.rotation * 180) / Math.PI) });
   const flowMap = el('button', { id: 'export-flowmap', type: 'button', text: 'Flow map', title: 'Download the flow map PNG (the field in the model\'s UV square)' });
-  const glb = el('button', { id: 'export-glb', type: 'button', text: 'GLB', title: 'Download the model with the field: TANGENT along it, _FIELD, KHR_materials_anisotropy, flow map, design and the synthesized texture (when one is shown) inside' });
+  const glbTitle = 'Download the model with the field: TANGENT along it, _FIELD, KHR_materials_anisotropy, flow map, design and the synthesized texture (when one is shown) inside';
+  const glb = el('button', { id: 'export-glb', type: 'button', text: 'GLB', title: glbTitle });
+  // Line and cross fields only: all N directions per face, as Directional's tools (and quad remeshers fed by
+  // them) read them (docs/export.md).
+  const rawField = el('button', { id: 'export-rawfield', type: 'button', text: 'Cross-field file', hidden: true,
+    title: 'Download the field as a raw field (.rawfield: "N numF", then the N directions of each face), the format Directional reads, for quad remeshing' });
   const preview = select('export-preview', 'Show the exported material (physical, anisotropic along the field) under a studio environment',
     [['', 'off'], ...presets.map((p) => [p, p])], '');
 
@@ -36,7 +41,7 @@ export function mountExportPanel(container, { options, presets, onOptions, onFlo
     el('label', {}, 'Bits ', bits),
     el('label', { title: 'KHR_materials_anisotropy strength (0..1)' }, 'Anisotropy ', strength),
     el('label', { title: 'Rotation of the highlights from the field direction, degrees' }, 'Rotation° ', rotation),
-    el('div', { class: 'buttons' }, flowMap, ' ', glb),
+    el('div', { class: 'buttons' }, flowMap, ' ', glb, ' ', rawField),
     el('label', {}, 'Material preview ', preview),
   );
   container.append(section);
@@ -49,6 +54,7 @@ export function mountExportPanel(container, { options, presets, onOptions, onFlo
     [rotation, 'change', () => onOptions({ rotation: ((Number(rotation.value) || 0) * Math.PI) / 180 })],
     [flowMap, 'click', () => onFlowMap()],
     [glb, 'click', () => onGlb()],
+    [rawField, 'click', () => onRawField()],
     [preview, 'change', () => onPreview(preview.value || null)],
   ];
   for (const [target, type, fn] of listeners) target.addEventListener(type, fn);
@@ -60,6 +66,15 @@ export function mountExportPanel(container, { options, presets, onOptions, onFlo
       bits.value = String(o.bits);
       strength.value = String(o.strength);
       rotation.value = String((o.rotation * 180) / Math.PI);
+    },
+    // N >= 2: the GLB is an anisotropy GLB (the direction has no sign, which KHR_materials_anisotropy does not
+    // see), and the raw field applies.
+    setSymmetry(n) {
+      rawField.hidden = n < 2;
+      glb.textContent = n === 2 ? 'Anisotropy GLB' : 'GLB';
+      glb.title = n >= 2
+        ? `${glbTitle}; the ${n === 2 ? 'line' : 'cross'} field combed to one direction per region (KHR_materials_anisotropy does not see its sign)`
+        : glbTitle;
     },
     setPreview(preset) {
       preview.value = preset ?? '';
