@@ -265,7 +265,7 @@ export declare class TangentFieldDesigner extends HTMLElement {
   readonly: boolean;
   /** `autosave`: Autosave the design (IndexedDB, the last versions per model, with a localStorage copy) under this key and the model, and restore it on load. Off unless given. */
   autosave: string | null;
-  /** `exemplar` (default stripes): Texture exemplar for the texture view: 'stripes', 'scales', 'weave' or an image URL. */
+  /** `exemplar` (default stripes): Texture exemplar for the texture view: 'stripes', 'scales', 'weave', 'brushed' (streaks for line fields) or an image URL. */
   exemplar: string | null;
   /** `asset-base`: Folder (URL) with core-worker.js and wasm/; overrides TangentFieldDesigner.assetBase. */
   assetBase: string | null;
@@ -417,7 +417,7 @@ export declare class TangentFieldDesigner extends HTMLElement {
   // Texture synthesis.
   /** Chooses and analyses the exemplar; a shown texture is resynthesized. */
   setExemplar(source: ExemplarSource, options?: { size?: number }): Promise<Record<string, unknown>>;
-  /** Synthesizes along the current field and shows the texture; field changes resynthesize until clearTexture(). Vector fields only for now: rejects for symmetry N ≥ 2. */
+  /** Synthesizes along the current field and shows the texture; field changes resynthesize until clearTexture(). Vector, line and cross fields (N = 1, 2, 4; a line or cross field combed per atlas chart); rejects other N with the reason. */
   synthesize(options?: SynthesisOptions): Promise<Record<string, unknown>>;
   /** The last synthesis: timings per level and in total, sizes, options, atlas. */
   synthesisStats(): Record<string, unknown> | null;

@@ -327,6 +327,7 @@ json statsJson(const DesignStats& s) {
           {"kernelShift", s.kernelShift},
           {"factorKind", s.factorKind},
           {"symmetry", s.symmetry},
+          {"factorizations", s.factorizations},
           {"inverseIterations", s.inverseIterations},
           {"smoothestEigenvalue", s.smoothestEigenvalue},
           {"warnings", s.warnings}};

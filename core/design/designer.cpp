@@ -111,6 +111,7 @@ struct Designer::Impl {
     stats.kernelShift = r.kernelShift;
     stats.kernelHandling = r.kernelHandling;
     stats.factorKind = r.factorKind;
+    stats.factorizations = r.factorizations;
   }
 
   void factorNow() {
@@ -160,12 +161,21 @@ struct Designer::Impl {
     system->factor().setThreads(factor.threads());
     system->factor().setMemoryLimit(factor.memoryLimit());
     system->setCurvatureAlignment(curvatureAlignment);
+    applyBoundary(*system);
     for (const ConstraintSpec& spec : constraints.specs())
       system->add(spec.id, directionTerms(mesh, topology, system->frames(), spec, symmetry), spec.weight);
     directions = std::move(system);
   }
 
   void solveDirections();
+
+  // A fixed-angle boundary as strongly weighted directions at the boundary faces (the weight of the 1-form's
+  // fixed-angle rows); a free boundary adds none.
+  void applyBoundary(PowerFieldSystem& system) {
+    const std::vector<double> angles = boundary.free ? std::vector<double>{} : boundaryEdgeAngles(topology, boundary);
+    system.setBoundaryTerms(boundaryDirectionTerms(mesh, topology, system.frames(), angles, symmetry),
+                            kBoundaryWeight);
+  }
 };
 
 void Designer::Impl::solveDirections() {
@@ -182,6 +192,7 @@ void Designer::Impl::solveDirections() {
   stats.kernelShift = r.kernelShift;
   stats.kernelHandling = r.kernelHandling;
   stats.factorKind = r.factorKind;
+  stats.factorizations = r.factorizations;
   stats.precisionRefactors = f.precisionRefactors();
   stats.incrementalSolves = f.incrementalSolves();
   stats.supernodalSolves = f.supernodalSolves();
@@ -190,9 +201,6 @@ void Designer::Impl::solveDirections() {
   stats.rhsMs = 0;
   stats.warnings.clear();
   if (gamma > 0) stats.warnings.push_back("gamma applies to vector fields (symmetry 1); this field ignores it");
-  if (!boundary.free)
-    stats.warnings.push_back("the boundary's fixed angle applies to vector fields (symmetry 1); this field's "
-                             "boundary is free");
   if (!u.allFinite())
     throw InputError("the field is not finite (the system is too badly conditioned for these constraints); "
                      "the previous field is kept");
@@ -223,6 +231,7 @@ void Designer::setBoundary(const BoundaryCondition& bc) {
   impl_->boundary = bc;
   impl_->baseStale = true;
   impl_->factor.invalidate();
+  if (impl_->directions) impl_->applyBoundary(*impl_->directions);
 }
 
 void Designer::setGamma(double gamma) {

@@ -5,6 +5,7 @@
 
 #include "common/input_error.h"
 #include "constraints/surface_walk.h"
+#include "mesh/mesh_geometry.h"
 
 namespace tvf {
 namespace {
@@ -33,6 +34,25 @@ std::complex<double> directionPower(const FaceFrames& frames, int32_t face, cons
   const double r = std::abs(z);
   if (!(r > 0) || !std::isfinite(r)) return 0;
   return std::polar(1.0, symmetry * std::arg(z));
+}
+
+std::vector<FaceDirectionTerm> boundaryDirectionTerms(const SurfaceMesh& mesh, const MeshTopology& t,
+                                                      const FaceFrames& frames, const std::vector<double>& angles,
+                                                      int symmetry) {
+  std::vector<FaceDirectionTerm> terms;
+  if (angles.empty()) return terms;
+  for (int32_t f = 0; f < t.numFaces; ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int32_t e = t.edgeOf(f, c);
+      if (!t.isBoundaryEdge[e]) continue;
+      Eigen::Vector3d p[3];
+      facePositions(mesh, f, p);
+      const Eigen::Vector3d along = (p[(c + 1) % 3] - p[c]).normalized();
+      const Eigen::Vector3d inward = faceNormalArea(p).normal.cross(along);
+      const double beta = angles[e];
+      push(terms, frames, f, -std::sin(beta) * along + std::cos(beta) * inward, symmetry);
+    }
+  return terms;
 }
 
 std::vector<FaceDirectionTerm> directionTerms(const SurfaceMesh& mesh, const MeshTopology& t,

@@ -26,6 +26,14 @@ std::vector<FaceDirectionTerm> directionTerms(const SurfaceMesh& mesh, const Mes
                                              const FaceFrames& frames, const ConstraintSpec& spec,
                                              int symmetry);
 
+// A fixed-angle boundary condition (dec/boundary_condition.h: beta per boundary edge, NaN elsewhere) as
+// directions at the boundary faces: the direction at angle beta + pi/2 from the boundary edge (traversed in its
+// face's orientation), turning towards the interior — the direction a vector field's fixed-angle row leaves free
+// (tangential, beta = pi/2: along the boundary; normal, beta = 0: across it). One term per boundary edge.
+std::vector<FaceDirectionTerm> boundaryDirectionTerms(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                                      const FaceFrames& frames, const std::vector<double>& angles,
+                                                      int symmetry);
+
 // A unit tangent at face f raised to the N-th power in f's frame (0 for a vector normal to the face).
 std::complex<double> directionPower(const FaceFrames& frames, int32_t face, const double vector[3],
                                     int symmetry);

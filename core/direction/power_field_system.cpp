@@ -44,10 +44,11 @@ PowerFieldSystem::PowerFieldSystem(const SurfaceMesh& mesh, const MeshTopology& 
       geometry_(geometry),
       symmetry_(symmetry),
       frames_(faceFrames(mesh, geometry)),
-      base_(connectionLaplacian(leviCivitaConnection(mesh, topology, geometry, frames_), topology.numFaces,
-                                symmetry)),
+      connection_(connectionLaplacian(leviCivitaConnection(mesh, topology, geometry, frames_),
+                                      topology.numFaces, symmetry)),
+      base_(connection_),
       mass_(powerFieldMass(geometry)),
-      scale_(meanDiagonal(base_)),
+      scale_(meanDiagonal(connection_)),
       factor_(kernelRows(topology)) {}
 
 int PowerFieldSystem::symmetry() const {
@@ -65,6 +66,15 @@ void PowerFieldSystem::setCurvatureAlignment(double s) {
   if (s > 0 && curvature_.empty())
     curvature_ = principalCurvaturePower(mesh_, topology_, geometry_, frames_, symmetry_);
   curvatureAlignment_ = s;
+}
+
+void PowerFieldSystem::setBoundaryTerms(std::vector<FaceDirectionTerm> terms, double weight) {
+  boundaryTerms_ = std::move(terms);
+  boundaryWeight_ = weight;
+  const DiagonalTerms diagonal = termsOf(Entry{boundaryTerms_, weight}, weight);
+  base_ = plusDiagonal(connection_, diagonal);
+  base_.makeCompressed();
+  factor_.invalidate();
 }
 
 DiagonalTerms PowerFieldSystem::termsOf(const Entry& entry, double weight) const {
@@ -128,6 +138,10 @@ Eigen::VectorXd PowerFieldSystem::rightHandSide() {
       b[2 * f + 1] += w * curvature_[f].imag();
     }
   }
+  for (const FaceDirectionTerm& term : boundaryTerms_) {
+    b[2 * term.face] += boundaryWeight_ * scale_ * term.power.real();
+    b[2 * term.face + 1] += boundaryWeight_ * scale_ * term.power.imag();
+  }
   for (const auto& [id, entry] : entries_)
     for (const FaceDirectionTerm& term : entry.terms) {
       b[2 * term.face] += entry.weight * scale_ * term.power.real();
@@ -187,7 +201,7 @@ void PowerFieldSystem::smoothestField(Eigen::VectorXd& u) {
 void PowerFieldSystem::solve(Eigen::VectorXd& u) {
   const DiagonalTerms terms = allTerms();
   if (!factor_.current()) factor_.factor(base_, scale_, terms);
-  if (entries_.empty() && curvatureAlignment_ == 0) return smoothestField(u);
+  if (entries_.empty() && curvatureAlignment_ == 0 && boundaryTerms_.empty()) return smoothestField(u);
   report_ = {};
   factor_.solve(base_, scale_, terms, rightHandSide(), u);
 }

@@ -38,6 +38,10 @@ class PowerFieldSystem {
   // s >= 0: how strongly the field is pulled towards the principal curvature directions (0: not at all).
   void setCurvatureAlignment(double s);
 
+  // Directions the boundary condition fixes (direction/direction_constraints.h), at relative weight `weight`:
+  // part of the base matrix (they change only with the boundary condition), so the factor is made again.
+  void setBoundaryTerms(std::vector<FaceDirectionTerm> terms, double weight);
+
   // A constraint's face terms at its relative weight; ids as the Designer gives them.
   void add(int32_t id, std::vector<FaceDirectionTerm> terms, double weight);
   void remove(int32_t id);
@@ -66,7 +70,10 @@ class PowerFieldSystem {
   const MeshGeometry& geometry_;
   int symmetry_;
   FaceFrames frames_;
-  SparseMatrix base_;
+  SparseMatrix connection_;  // H alone
+  SparseMatrix base_;        // H + the boundary terms
+  std::vector<FaceDirectionTerm> boundaryTerms_;
+  double boundaryWeight_ = 0;
   Eigen::VectorXd mass_;
   double scale_ = 1;
   double curvatureAlignment_ = 0;

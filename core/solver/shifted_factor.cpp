@@ -127,6 +127,7 @@ void ShiftedFactor::factor(const SparseMatrix& base, double scale, const Diagona
   report_.analysisReused = t.analysisReused;
   report_.factorMs = t.factorMs + t.convertMs;
   report_.factorNonzeros = system_.factorNonzeros();
+  ++report_.factorizations;
   report_.kernelShift = shift_;
   char text[240];
   if (shift_ == 0)

@@ -32,6 +32,7 @@ struct FactorReport {
   double kernelShift = 0;      // sigma, relative to the mean diagonal
   std::string kernelHandling;  // how the kernel was made definite, in words
   std::string factorKind;      // e.g. "supernodal LL' (AMD)"
+  int64_t factorizations = 0;  // numeric factorizations since the factor was made (edits must add none)
 };
 
 class ShiftedFactor {

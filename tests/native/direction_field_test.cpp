@@ -234,6 +234,51 @@ TEST(DirectionField, StraightStrokeIsFollowedOnACurvedSurface) {
   }
 }
 
+TEST(DirectionField, EditsAreRankUpdatesNeverRefactorizations) {
+  // The smoothest field, then strokes in and out, a weight change and a clear: one numeric factorization in all.
+  const SurfaceMesh m = bumpySphere(2);
+  Designer d(m);
+  d.setSymmetry(4);
+  d.solve();
+  ASSERT_EQ(d.stats().factorizations, 1);
+  ASSERT_GT(d.stats().inverseIterations, 0);
+  const int32_t a = d.addStroke(centresStroke({nearestFace(m, {1, 0, 0}), nearestFace(m, {0.7, 0.7, 0})}), 1, 10);
+  d.solve();  // the first stroke switches to the constrained solve with the same factor
+  EXPECT_EQ(d.stats().inverseIterations, 0);
+  const int32_t b = d.addStroke(centresStroke({nearestFace(m, {0, 0, 1}), nearestFace(m, {0.5, 0, 0.8})}), 1, 100);
+  d.solve();
+  d.setWeight(b, 1000);
+  d.solve();
+  d.remove(a);
+  d.solve();
+  d.clearConstraints();
+  d.solve();
+  EXPECT_EQ(d.stats().factorizations, 1);
+  EXPECT_EQ(d.stats().precisionRefactors, 0);
+}
+
+TEST(DirectionField, FixedAngleBoundaryHoldsLineAndCrossFields) {
+  // A flat annulus: tangential makes the field follow the boundary circles (a line field there is the field of
+  // circles: index 0 inside the annulus); normal makes it radial.
+  const SurfaceMesh m = flatAnnulus(6, 48, 0.5, 1.0);
+  for (const int n : {2, 4}) {
+    for (const char* which : {"tangential", "normal"}) {
+      Designer d(m);
+      d.setSymmetry(n);
+      d.setBoundary(boundaryFromJson(which));
+      d.solve();
+      double worst = 0;
+      for (int32_t f = 0; f < m.numFaces(); ++f) {
+        const Eigen::Vector3d c = faceCentre(m, f);
+        const Eigen::Vector3d circle(-c.y(), c.x(), 0);
+        worst = std::max(worst, angleToRepresentative(d, f, std::string(which) == "tangential" ? circle : c));
+      }
+      EXPECT_LT(worst * 180 / kPi, 1.0) << which << " N = " << n;
+      EXPECT_TRUE(d.stats().warnings.empty());
+    }
+  }
+}
+
 TEST(DirectionField, SmoothestFieldIsTheLowestEigenvector) {
   Designer d(bumpySphere(2));
   d.setSymmetry(2);

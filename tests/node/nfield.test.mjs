@@ -10,8 +10,6 @@ import { randomSequence } from '../../web/geometry/arrow-sampling.js';
 import {
   closestRotation,
   closestRotation2d,
-  combFaceVectors,
-  combedCorners,
   familyCosine,
   lineFamilies,
   matchedCorners,
@@ -20,6 +18,7 @@ import {
   symmetryOf,
 } from '../../web/geometry/nfield.js';
 import { findSingularities } from '../../web/geometry/singularities.js';
+import { atlasCombedCorners, combForAtlas } from '../../web/geometry/chart-comb.js';
 import { arrowGeometry, glyphGeometry, spokeTriangles } from '../../web/views/markers.js';
 import { indexLabel, singularityFill } from '../../web/views/singularity-style.js';
 import { linePasses } from '../../web/views/lic-lines.js';
@@ -85,12 +84,12 @@ test('nfield: combing a scrambled constant field makes every face and corner one
   const s = surfaceOf(grid(8, 1));
   for (const N of [2, 4, 5]) {
     const { V, F } = scrambledField(s, N, () => -1.1, randomSequence(10 + N));
-    const combed = combFaceVectors(s, F, N), C = combedCorners(s, V, F, N), first = combed.slice(0, 3);
+    const { faces: combed, corners: C } = atlasCombedCorners(s, V, F, N), first = combed.slice(0, 3);
     for (let f = 0; f < s.nF; f++) near(combed.subarray(3 * f, 3 * f + 3), first, 1e-12, `N=${N} face ${f}`);
     for (let c = 0; c < C.length / 3; c++) near(C.subarray(3 * c, 3 * c + 3), first, 1e-12, `N=${N} corner ${c}`);
     // Without face representatives the corners comb from each face's corner 0, to the same result up to the
     // one rotation left free.
-    const loose = combedCorners(s, V, null, N), a = Math.atan2(loose[1], loose[0]);
+    const loose = atlasCombedCorners(s, V, null, N).corners, a = Math.atan2(loose[1], loose[0]);
     for (let c = 0; c < loose.length / 3; c++) assert.ok(Math.abs(Math.atan2(loose[3 * c + 1], loose[3 * c]) - a) < 1e-9 || Math.abs(Math.abs(Math.atan2(loose[3 * c + 1], loose[3 * c]) - a) - TWO_PI) < 1e-9);
   }
 });
@@ -98,7 +97,7 @@ test('nfield: combing a scrambled constant field makes every face and corner one
 test('nfield: a line field around a +1/2 singularity combs consistently except across one cut', () => {
   const n = 12, s = surfaceOf(grid(n, 2, -1));
   const { F } = scrambledField(s, 2, (x, y) => 0.5 * Math.atan2(y - 0.01, x - 0.013), randomSequence(3));
-  const combed = combFaceVectors(s, F, 2);
+  const combed = combForAtlas(s, F, 2).faces;
   let cut = 0;
   for (let h = 0; h < s.neighbour.length; h++) {
     const g = (s.neighbour[h] / 3) | 0, f = (h / 3) | 0;

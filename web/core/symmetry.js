@@ -35,7 +35,6 @@ export function countedTypes(constraints) {
 
 // What only a line or cross field can be exported as.
 export const NOT_YET = {
-  texture: 'texture synthesis along line/cross fields is not available yet; switch to Vector',
   rawField: 'a cross-field file (raw field) holds line and cross fields; this is a vector field: choose Line or Cross',
 };
 

@@ -219,7 +219,7 @@ export const ATTRIBUTES = [
   { name: 'controls', property: 'controls', type: 'Controls | null', default: 'minimal', description: 'full = the studio panels, minimal = toolbar only, none = canvas only.' },
   { name: 'readonly', property: 'readonly', type: 'boolean', default: 'false', description: 'No edits from the tools or panels (the script API still edits).' },
   { name: 'autosave', property: 'autosave', type: 'string | null', description: 'Autosave the design (IndexedDB, the last versions per model, with a localStorage copy) under this key and the model, and restore it on load. Off unless given.' },
-  { name: 'exemplar', property: 'exemplar', type: 'string | null', default: 'stripes', description: "Texture exemplar for the texture view: 'stripes', 'scales', 'weave' or an image URL." },
+  { name: 'exemplar', property: 'exemplar', type: 'string | null', default: 'stripes', description: "Texture exemplar for the texture view: 'stripes', 'scales', 'weave', 'brushed' (streaks for line fields) or an image URL." },
   { name: 'asset-base', property: 'assetBase', type: 'string | null', description: 'Folder (URL) with core-worker.js and wasm/; overrides TangentFieldDesigner.assetBase.' },
 ];
 
@@ -325,7 +325,7 @@ export const METHODS = [
 
   // Texture synthesis
   { name: 'setExemplar', source: 'texture', group: 'Texture synthesis', signatures: [['source: ExemplarSource, options?: { size?: number }', 'Promise<Record<string, unknown>>']], description: 'Chooses and analyses the exemplar; a shown texture is resynthesized.' },
-  { name: 'synthesize', source: 'texture', group: 'Texture synthesis', signatures: [['options?: SynthesisOptions', 'Promise<Record<string, unknown>>']], description: 'Synthesizes along the current field and shows the texture; field changes resynthesize until clearTexture(). Vector fields only for now: rejects for symmetry N ≥ 2.' },
+  { name: 'synthesize', source: 'texture', group: 'Texture synthesis', signatures: [['options?: SynthesisOptions', 'Promise<Record<string, unknown>>']], description: 'Synthesizes along the current field and shows the texture; field changes resynthesize until clearTexture(). Vector, line and cross fields (N = 1, 2, 4; a line or cross field combed per atlas chart); rejects other N with the reason.' },
   { name: 'synthesisStats', source: 'texture', group: 'Texture synthesis', signatures: [['', 'Record<string, unknown> | null']], description: 'The last synthesis: timings per level and in total, sizes, options, atlas.' },
   { name: 'synthesisProgress', source: 'texture', group: 'Texture synthesis', signatures: [['', '{ fraction: number; preview: boolean } | null']], description: 'Progress of the synthesis in flight, or null when none runs.' },
   { name: 'setTextureAutoUpdate', source: 'texture', group: 'Texture synthesis', signatures: [['on: boolean', 'void']], description: 'Resynthesize after every field change (on by default); off: field changes only mark the texture stale.' },

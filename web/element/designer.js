@@ -96,8 +96,10 @@ export class Designer {
               // The field the views draw: the whole field or the Hodge component chosen in the Views panel.
               vertexVectors: this.viewSync.drawnVertexVectors().slice(),
               fieldVersion: this.viewSync.drawnVersion(),
-              // N ≥ 2: the vectors are representatives of a line or cross field, which synthesis refuses for now.
+              // N ≥ 2: the vectors are representatives of a line or cross field, which synthesis combs per chart
+              // starting from the core's own face representatives (a copy, as above).
               symmetry: s.field.symmetry ?? 1,
+              faceVectors: (s.field.symmetry ?? 1) > 1 ? s.field.faceVectors.slice() : null,
             }
           : null,
     });

@@ -75,12 +75,13 @@ export class AtlasRaster {
     gl.bindBuffer(gl.ARRAY_BUFFER, null);
   }
 
-  // The Jacobian of every level for the per-vertex field `vertexVectors` (3 per vertex): rasterized at the finest
-  // level, dilated `o.gutter` texels past the charts, then averaged down. programs: the synthesizer's; vao: its
-  // full-screen one. Returns the reference magnitude (area-weighted mean |field|).
-  raster(programs, vao, vertexVectors, o) {
+  // The Jacobian of every level for the field: the per-vertex `vertexVectors` (3 per vertex) or, for a combed
+  // line or cross field, {cornerVectors} (9 per face, corner k of face f at 9f + 3k: geometry/chart-comb.js);
+  // rasterized at the finest level, dilated `o.gutter` texels past the charts, then averaged down. programs:
+  // the synthesizer's; vao: its full-screen one. Returns the reference magnitude (area-weighted mean |field|).
+  raster(programs, vao, field, o) {
     const gl = this.gl;
-    const magRef = this.#fillField(vertexVectors);
+    const magRef = field?.cornerVectors ? this.#fillCorners(field.cornerVectors) : this.#fillField(field);
     const finest = this.levels[0];
     // Raster into the scratch target, dilate into the level-0 Jacobian (ping-pong for more than one ring).
     const rho = o.featureScale * this.texelLength;
@@ -116,7 +117,7 @@ export class AtlasRaster {
   // The field per corner into the vertex data, and the reference magnitude (area-weighted mean over faces of
   // the corner mean).
   #fillField(vertexVectors) {
-    const gl = this.gl, T = this.triangles, data = this.data;
+    const T = this.triangles, data = this.data;
     const nF = T.length / 3;
     let magSum = 0, areaSum = 0;
     for (let f = 0; f < nF; f++) {
@@ -132,8 +133,34 @@ export class AtlasRaster {
       magSum += mag * this.faceArea[f];
       areaSum += this.faceArea[f];
     }
+    return this.#upload(magSum, areaSum);
+  }
+
+  // The same from a per-corner field (9 per face).
+  #fillCorners(cornerVectors) {
+    const data = this.data, C = cornerVectors;
+    const nF = this.triangles.length / 3;
+    if (C.length !== 9 * nF) throw new GLError(`cornerVectors must hold 9 numbers per face (${9 * nF}), got ${C.length}`);
+    let magSum = 0, areaSum = 0;
+    for (let f = 0; f < nF; f++) {
+      let mag = 0;
+      for (let k = 0; k < 3; k++) {
+        const c = 9 * f + 3 * k, off = (3 * f + k) * STRIDE + 2;
+        data[off] = C[c];
+        data[off + 1] = C[c + 1];
+        data[off + 2] = C[c + 2];
+        mag += Math.hypot(C[c], C[c + 1], C[c + 2]) / 3;
+      }
+      magSum += mag * this.faceArea[f];
+      areaSum += this.faceArea[f];
+    }
+    return this.#upload(magSum, areaSum);
+  }
+
+  #upload(magSum, areaSum) {
+    const gl = this.gl;
     gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
-    gl.bufferSubData(gl.ARRAY_BUFFER, 0, data);
+    gl.bufferSubData(gl.ARRAY_BUFFER, 0, this.data);
     gl.bindBuffer(gl.ARRAY_BUFFER, null);
     return magSum > 0 ? magSum / areaSum : 1;
   }

@@ -10,7 +10,8 @@ import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8 } fr
 import { TexturedModel } from './render.js';
 import { DEFAULTS, Synthesizer } from './synthesizer.js';
 import { exportMagnification, pngBlob } from './texture-image.js';
-import { NOT_YET } from '../core/symmetry.js';
+import { TEXTURE_SYMMETRIES, textureRefusal } from '../core/symmetry.js';
+import { atlasCombedCorners } from '../geometry/chart-comb.js';
 
 const MAX_RESOLUTION = 2048;
 const OPTION_KEYS = ['featureScale', 'magnitudeExponent', 'jitter', 'finestJitter', 'passes', 'kappa', 'seed', 'gutter', 'seams', 'timing'];
@@ -61,11 +62,12 @@ export class SynthesisController {
     return this.synth;
   }
 
+  // 'brushed' (exemplar.js) reads as lines: for line fields, as stripes do.
   proceduralNames() {
-    return ['stripes', 'scales', 'weave'];
+    return ['stripes', 'scales', 'weave', 'brushed'];
   }
 
-  // src: a procedural name ('stripes' | 'scales' | 'weave'), {procedural, size, seed}, a URL (string or URL),
+  // src: a procedural name ('stripes' | 'scales' | 'weave' | 'brushed'), {procedural, size, seed}, a URL (string or URL),
   // a Blob/File (PNG or JPEG), ImageData or an ImageBitmap. Options: {size} for images (power of two, default 128).
   setExemplar(src, { size } = {}) {
     return this.#exclusive(async () => {
@@ -140,13 +142,14 @@ export class SynthesisController {
   async #run({ preview = false } = {}) {
     const model = this.getModel();
     if (!model) throw new Error('no model loaded');
-    // A line or cross field's vectors are each one of its N directions, chosen arbitrarily: a texture along them
-    // would be wrong, so none is made, and a texture shown stops following the field.
-    if ((model.symmetry ?? 1) > 1) {
+    // A line or cross field's vectors are each one of its N directions, chosen arbitrarily: it is combed for the
+    // atlas below. Other N are refused, and a texture shown stops following the field.
+    const symmetry = model.symmetry ?? 1;
+    if (!TEXTURE_SYMMETRIES.includes(symmetry)) {
       this.active = false;
       this.render?.setVisible(false);
       this.onChange();
-      throw new Error(NOT_YET.texture);
+      throw new Error(textureRefusal(symmetry));
     }
     const token = ++this.runToken;
     const t0 = performance.now();
@@ -161,12 +164,13 @@ export class SynthesisController {
       synthOptions.featureScale = defaultFeatureScale(atlas.resolution, coverage, this.exemplar.tables.size, atlas.complexity);
     }
     if (preview) synthOptions.finestLevel = 1;
+    const field = this.#fieldFor(model, atlas);
     let s;
     if (this.options.interleave) {
       let shown = -1;
       this.progress = { fraction: 0, preview };
       this.onChange();
-      s = await this.synth.synthesizeInterleaved(model.vertexVectors, { ...synthOptions, timing: 'total' }, {
+      s = await this.synth.synthesizeInterleaved(field.input, { ...synthOptions, timing: 'total' }, {
         cancelled: () => token !== this.runToken,
         onProgress: (f) => {
           this.progress = { fraction: f, preview };
@@ -176,7 +180,7 @@ export class SynthesisController {
       this.progress = null;
       if (!s) return this.synthesisStats(); // superseded by a newer field change
     } else {
-      s = this.synth.synthesize(model.vertexVectors, synthOptions);
+      s = this.synth.synthesize(field.input, synthOptions);
     }
     const t1 = performance.now();
     const coords = this.synth.readCoordinates();
@@ -194,10 +198,23 @@ export class SynthesisController {
       readbackMs: performance.now() - t1,
       wallMs: performance.now() - t0,
       fieldVersion: model.fieldVersion,
+      symmetry: field.symmetry,
+      ...(field.symmetry > 1 ? { combMs: field.ms, combCutEdges: field.cutEdges } : {}),
     };
     this.lastFieldVersion = model.fieldVersion;
     this.onChange();
     return structuredClone(this.stats);
+  }
+
+  // What the synthesizer follows: a vector field's vertexVectors as they are; a line or cross field's
+  // representatives combed per corner for the atlas (geometry/chart-comb.js), its cuts along the chart seams
+  // where it can (model.faceVectors, the field's own face representatives, when the model hands them in).
+  #fieldFor(model, atlas) {
+    const symmetry = model.symmetry ?? 1;
+    if (symmetry === 1) return { symmetry, input: model.vertexVectors };
+    const t0 = performance.now();
+    const comb = atlasCombedCorners(model.surface, model.vertexVectors, model.faceVectors ?? null, symmetry, atlas.cornerUVs);
+    return { symmetry, input: { cornerVectors: comb.corners }, ms: performance.now() - t0, cutEdges: comb.flips.length };
   }
 
   // The field changed: resynthesize while a texture is shown (autoUpdate), coalescing bursts of changes into

@@ -66,6 +66,7 @@ export class ExemplarLibrary {
   }
 
   procedural(name, size = PROCEDURAL_SIZE, seed = 1) {
+    if (name === 'brushed') return this.#cached(`procedural:${name}:${size}:${seed}`, name, { rgba: brushedRGBA8(size, seed), size });
     return this.#cached(`procedural:${name}:${size}:${seed}`, name, { procedural: name, size, seed });
   }
 
@@ -124,4 +125,31 @@ export async function imageToRGBA8(source, size = USER_EXEMPLAR_SIZE) {
   ctx.drawImage(bitmap, (bitmap.width - side) / 2, (bitmap.height - side) / 2, side, side, 0, 0, size, size);
   const rgba = new Uint8Array(ctx.getImageData(0, 0, size, size).data.buffer);
   return { rgba, size, label };
+}
+
+// 'brushed': brushed metal, fine streaks along the exemplar's x axis (the field's direction), for line fields
+// (hair, grain, anisotropic metal), made here rather than in the core. Each row's brightness varies slowly along x
+// (a few harmonics of the tile, so it tiles seamlessly) with its own random amplitudes and phases, rows mixed
+// lightly with their neighbours; deterministic in seed. RGBA8, size × size.
+export function brushedRGBA8(size, seed = 1) {
+  let state = (seed * 2654435761) >>> 0 || 1;
+  const rand = () => ((state = (Math.imul(state, 1664525) + 1013904223) >>> 0) / 4294967296);
+  const H = 4;
+  const rows = Array.from({ length: size }, () => ({ base: rand() - 0.5, a: Array.from({ length: H }, () => rand() / (1 + rand())), p: Array.from({ length: H }, () => 2 * Math.PI * rand()) }));
+  const raw = new Float64Array(size * size);
+  for (let y = 0; y < size; y++)
+    for (let x = 0; x < size; x++) {
+      const r = rows[y];
+      let v = r.base;
+      for (let h = 0; h < H; h++) v += 0.35 * r.a[h] * Math.cos((2 * Math.PI * (h + 1) * x) / size + r.p[h]);
+      raw[y * size + x] = v;
+    }
+  const out = new Uint8Array(4 * size * size);
+  for (let y = 0; y < size; y++)
+    for (let x = 0; x < size; x++) {
+      const at = (dy) => raw[((y + dy + size) % size) * size + x];
+      const v = Math.max(0, Math.min(1, 0.55 + 0.5 * (0.25 * at(-1) + 0.5 * at(0) + 0.25 * at(1))));
+      out.set([Math.round(255 * v * 0.92), Math.round(255 * v * 0.95), Math.round(255 * v), 255], 4 * (y * size + x));
+    }
+  return out;
 }

@@ -84,7 +84,8 @@ export class Synthesizer {
     this.atlas = atlas;
   }
 
-  // Runs the whole pyramid for the per-vertex field `vertexVectors` (3 per vertex, the core's vertexVectors).
+  // Runs the whole pyramid for the per-vertex field `vertexVectors` (3 per vertex, the core's vertexVectors), or
+  // for {cornerVectors} (9 per face: a line or cross field combed for the atlas, AtlasRaster.raster).
   // Returns {levels: [{size, stackLevel, spacing, ms}], jacobianMs, totalMs, ...}.
   synthesize(vertexVectors, options = {}) {
     const steps = this.#steps(vertexVectors, options);

@@ -2,12 +2,13 @@
 //
 // The vertex representatives cannot be interpolated as they come (a line field's two ends of a face may
 // point opposite ways), so the direction pass draws its own, unindexed copy of the surface whose corners carry
-// each face's matched representatives (nfield.js combedCorners): matched within a face before they reach the
+// each face's matched representatives (geometry/chart-comb.js atlasCombedCorners): matched within a face before they reach the
 // GPU, combed across faces so that "the representative turned by 2πk/N" is one family of lines over whole
 // regions. Each family (lineFamilies: a line field one, a cross field two at 90°) is one direction pass and
 // one convolution, and the convolutions are averaged on screen.
 import { BufferAttribute, BufferGeometry } from 'three';
-import { combedCorners, familyCosine, lineFamilies } from '../geometry/nfield.js';
+import { atlasCombedCorners } from '../geometry/chart-comb.js';
+import { familyCosine, lineFamilies } from '../geometry/nfield.js';
 
 // Pass 1 for one family: the corner field turned by `angle` about its face's normal.
 export const LINE_DIRECTION_VERTEX = /* glsl */ `
@@ -50,7 +51,8 @@ export function lineGeometry(surface) {
 
 // The corner field of one N-field on the line geometry.
 export function setLineField(geometry, surface, vertexVectors, faceVectors, N) {
-  const corners = Float32Array.from(combedCorners(surface, vertexVectors, faceVectors, N));
+  // One comb over each connected surface (no atlas here): the one the texture uses, without seams.
+  const corners = Float32Array.from(atlasCombedCorners(surface, vertexVectors, faceVectors, N).corners);
   const attr = geometry.getAttribute('licField');
   if (attr && attr.count === corners.length / 3) {
     attr.array.set(corners);
