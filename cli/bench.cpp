@@ -154,12 +154,9 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
   // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
   for (int r = 0; r < repeat; ++r)
     for (size_t o = 0; o < orderings.size(); ++o) runRepeat(designer, r, orderings[o], samples[o]);
-  nlohmann::json out = {{"mesh", meshPath},
-                        {"edges", designer.edgeVertices().size() / 2},
-                        {"repeat", repeat},
-                        {"gamma", gamma},
-                        {"symmetry", symmetry},
-                        {"threads", designer.solverThreads()}};
+  nlohmann::json out = {{"mesh", meshPath},     {"edges", designer.edgeVertices().size() / 2},
+                        {"repeat", repeat},     {"gamma", gamma},
+                        {"symmetry", symmetry}, {"threads", designer.solverThreads()}};
   if (orderings.size() == 1) {
     out.update(summary(samples[0], orderings[0]));
     return out;

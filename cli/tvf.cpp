@@ -74,15 +74,17 @@ int design(const std::string& meshPath, const std::string& designPath, const std
     tvf::applyDesignDocument(designer, readJsonFile(designPath), checkFingerprint);
   } catch (const tvf::InputError& e) {
     const std::string why = e.what();
-    throw tvf::InputError(designPath + ": " + why +
-                          (why.find("another mesh") != std::string::npos ? " (--ignore-fingerprint applies it anyway)"
-                                                                          : ""));
+    throw tvf::InputError(
+        designPath + ": " + why +
+        (why.find("another mesh") != std::string::npos ? " (--ignore-fingerprint applies it anyway)" : ""));
   }
   designer.solve();
   nlohmann::json field = tvf::fieldDocument(designer);
   if (hodge && designer.symmetry() != 1)
-    throw tvf::InputError("--hodge: the Hodge decomposition is of vector fields (symmetry 1); this design has "
-                          "symmetry " + std::to_string(designer.symmetry()));
+    throw tvf::InputError(
+        "--hodge: the Hodge decomposition is of vector fields (symmetry 1); this design has "
+        "symmetry " +
+        std::to_string(designer.symmetry()));
   if (hodge) field["hodge"] = tvf::hodgeDocument(designer.hodgeDecomposition());
   const std::string text = field.dump();
   if (outPath.empty()) {
@@ -188,23 +190,25 @@ int exportCommand(int argc, char** argv) {
   tvf::applyDesignDocument(designer, readDesign(designPath));
   const int symmetry = designer.symmetry();
   if (symmetry != 1 && component != tvf::FieldComponent::Whole)
-    throw tvf::InputError("--component: the Hodge decomposition is of vector fields (symmetry 1); this design "
-                          "has symmetry " + std::to_string(symmetry));
+    throw tvf::InputError(
+        "--component: the Hodge decomposition is of vector fields (symmetry 1); this design "
+        "has symmetry " +
+        std::to_string(symmetry));
   designer.solve();
   if (!rawFieldPath.empty()) {
     if (symmetry == 1)
-      throw tvf::InputError("--rawfield: a raw field holds line or cross fields; this design is a vector field "
-                            "(symmetry 1)");
+      throw tvf::InputError(
+          "--rawfield: a raw field holds line or cross fields; this design is a vector field "
+          "(symmetry 1)");
     const std::string text = tvf::exportRawField(designer.geometry(), designer.faceVectors(), symmetry);
     writeBytes(rawFieldPath, std::vector<uint8_t>(text.begin(), text.end()));
   }
   if (glbPath.empty() && flowMapPath.empty()) return 0;
   // The whole field, or one part of its Hodge decomposition; the GLB still embeds the whole design.
-  const std::vector<double> oneForm =
-      symmetry != 1 ? std::vector<double>{}
-      : component == tvf::FieldComponent::Whole
-          ? designer.oneForm()
-          : tvf::componentOneForm(designer.hodgeDecomposition(), component);
+  const std::vector<double> oneForm = symmetry != 1 ? std::vector<double>{}
+                                      : component == tvf::FieldComponent::Whole
+                                          ? designer.oneForm()
+                                          : tvf::componentOneForm(designer.hodgeDecomposition(), component);
   const tvf::SurfaceMesh& mesh = designer.mesh();
   const tvf::ExportAtlas atlas = tvf::exportAtlasFor(
       mesh, designer.topology(), options, !flowMapPath.empty() || (!glbPath.empty() && options.embedFlowMap));
@@ -218,10 +222,9 @@ int exportCommand(int argc, char** argv) {
   if (!flowMapPath.empty()) {
     writeBytes(flowMapPath, symmetry == 1 ? tvf::exportFlowMapPng(mesh, designer.topology(), atlas.cornerUVs,
                                                                   oneForm, options)
-                                          : tvf::exportDirectionFlowMapPng(mesh, designer.topology(),
-                                                                           designer.geometry(), atlas.cornerUVs,
-                                                                           designer.faceVectors(), symmetry,
-                                                                           options));
+                                          : tvf::exportDirectionFlowMapPng(
+                                                mesh, designer.topology(), designer.geometry(),
+                                                atlas.cornerUVs, designer.faceVectors(), symmetry, options));
   }
   if (!glbPath.empty()) {
     std::unique_ptr<tvf::GltfSource> source;
@@ -232,12 +235,13 @@ int exportCommand(int argc, char** argv) {
           tvf::loadGltfSource(bytes.data(), bytes.size(), format == tvf::MeshFormat::Glb,
                               parent.empty() ? "." : parent, meshPath));
     }
-    writeBytes(glbPath, symmetry == 1
-                            ? tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(),
-                                                  atlas, oneForm, tvf::designDocument(designer), options)
-                            : tvf::exportDirectionGlb(mesh, designer.topology(), designer.geometry(),
-                                                      source.get(), atlas, designer.faceVectors(), symmetry,
-                                                      tvf::designDocument(designer), options));
+    writeBytes(glbPath,
+               symmetry == 1
+                   ? tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(), atlas,
+                                         oneForm, tvf::designDocument(designer), options)
+                   : tvf::exportDirectionGlb(mesh, designer.topology(), designer.geometry(), source.get(),
+                                             atlas, designer.faceVectors(), symmetry,
+                                             tvf::designDocument(designer), options));
   }
   return 0;
 }
@@ -273,7 +277,8 @@ int bench(int argc, char** argv) {
       if (threads < 1) throw tvf::InputError("--threads must be a whole number of at least 1");
     } else if (a == "--symmetry" && k + 1 < argc) {
       symmetry = std::atoi(argv[++k]);
-      if (symmetry < 1 || symmetry > 6) throw tvf::InputError("--symmetry must be a whole number from 1 to 6");
+      if (symmetry < 1 || symmetry > 6)
+        throw tvf::InputError("--symmetry must be a whole number from 1 to 6");
     } else if (a == "--metis") {
       orderings = {true};
     } else if (a == "--amd") {

@@ -96,7 +96,8 @@ Eigen::Vector3d projectToFace(const SurfaceMesh& mesh, int32_t face, const Eigen
   return u - n * n.dot(u);
 }
 
-StrokeWalk walkStroke(const SurfaceMesh& mesh, const MeshTopology& t, const std::vector<SurfacePoint>& input) {
+StrokeWalk walkStroke(const SurfaceMesh& mesh, const MeshTopology& t,
+                      const std::vector<SurfacePoint>& input) {
   if (input.size() < 2) throw InputError("a stroke needs at least two points");
   StrokeWalk walk;
   for (size_t k = 0; k < input.size(); ++k) {

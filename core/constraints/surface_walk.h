@@ -23,8 +23,8 @@ struct StrokeWalk {
   std::vector<StrokeCrossing> crossings;
 };
 
-// Throws InputError naming the first bad point (a face that does not exist, coordinates out of range), or when
-// there are fewer than two points. A segment that hits the boundary ends there.
+// Throws InputError naming the first bad point (a face that does not exist, coordinates out of range), or
+// when there are fewer than two points. A segment that hits the boundary ends there.
 StrokeWalk walkStroke(const SurfaceMesh& mesh, const MeshTopology& topology,
                       const std::vector<SurfacePoint>& points);
 

@@ -83,9 +83,8 @@ std::string describeFingerprint(const json& f) {
 }
 
 void checkSchema(const json& doc) {
-  static const std::set<std::string> known{"schema",   "mesh",        "boundary",
-                                           "gamma",    "constraints", "symmetry",
-                                           "curvatureAlignment"};
+  static const std::set<std::string> known{"schema",      "mesh",     "boundary",          "gamma",
+                                           "constraints", "symmetry", "curvatureAlignment"};
   if (doc.contains("schema")) {
     const json& s = doc["schema"];
     if (!s.is_string() || s.get<std::string>() != kDesignSchema)
@@ -96,7 +95,7 @@ void checkSchema(const json& doc) {
     if (!known.count(item.key()))
       throw InputError("not a design file: unknown key \"" + item.key() +
                        "\" (a design has schema, mesh, boundary, gamma, symmetry, curvatureAlignment and "
-                      "constraints)");
+                       "constraints)");
   if (!doc.contains("constraints")) throw InputError("not a design file: it has no \"constraints\" list");
 }
 

@@ -172,7 +172,8 @@ struct Designer::Impl {
   // A fixed-angle boundary as strongly weighted directions at the boundary faces (the weight of the 1-form's
   // fixed-angle rows); a free boundary adds none.
   void applyBoundary(PowerFieldSystem& system) {
-    const std::vector<double> angles = boundary.free ? std::vector<double>{} : boundaryEdgeAngles(topology, boundary);
+    const std::vector<double> angles =
+        boundary.free ? std::vector<double>{} : boundaryEdgeAngles(topology, boundary);
     system.setBoundaryTerms(boundaryDirectionTerms(mesh, topology, system.frames(), angles, symmetry),
                             kBoundaryWeight);
   }
@@ -200,10 +201,12 @@ void Designer::Impl::solveDirections() {
   stats.smoothestEigenvalue = directions->report().eigenvalue;
   stats.rhsMs = 0;
   stats.warnings.clear();
-  if (gamma > 0) stats.warnings.push_back("gamma applies to vector fields (symmetry 1); this field ignores it");
+  if (gamma > 0)
+    stats.warnings.push_back("gamma applies to vector fields (symmetry 1); this field ignores it");
   if (!u.allFinite())
-    throw InputError("the field is not finite (the system is too badly conditioned for these constraints); "
-                     "the previous field is kept");
+    throw InputError(
+        "the field is not finite (the system is too badly conditioned for these constraints); "
+        "the previous field is kept");
   start = Clock::now();
   faceVectors = faceRepresentatives(directions->frames(), u, symmetry);
   solution = std::move(u);
@@ -326,7 +329,8 @@ int32_t Designer::precisionRefactors() const {
 void Designer::setMetisOrdering(bool metis) {
   impl_->factor.setOrdering(metis ? FillOrdering::Metis : FillOrdering::Amd);
   impl_->metis = metis;
-  if (impl_->directions) impl_->directions->factor().setOrdering(metis ? FillOrdering::Metis : FillOrdering::Amd);
+  if (impl_->directions)
+    impl_->directions->factor().setOrdering(metis ? FillOrdering::Metis : FillOrdering::Amd);
 }
 
 void Designer::setSolverThreads(int threads) {

@@ -5,9 +5,9 @@
 #include "direction/combing.h"
 #include "field/field_tangents.h"
 #include "field/whitney_reconstruction.h"
-#include "io/raw_field.h"
 #include "io/gltf_writer.h"
 #include "io/png_writer.h"
+#include "io/raw_field.h"
 #include "mesh/mesh_geometry.h"
 #include "texture/texture_atlas.h"
 
@@ -55,16 +55,19 @@ std::vector<double> componentOneForm(const HodgeDecomposition& h, FieldComponent
 }
 
 nlohmann::json hodgeDocument(const HodgeDecomposition& h) {
-  const auto list = [](const Eigen::VectorXd& x) { return std::vector<double>(x.data(), x.data() + x.size()); };
+  const auto list = [](const Eigen::VectorXd& x) {
+    return std::vector<double>(x.data(), x.data() + x.size());
+  };
   const HodgeEnergyShares shares = hodgeEnergyShares(h);
-  return {{"exact", list(h.exact)},
-          {"coexact", list(h.coexact)},
-          {"harmonic", list(h.harmonic)},
-          {"potential0", list(h.potential0)},
-          {"potential2", list(h.potential2)},
-          {"energyShares", {{"exact", shares.exact}, {"coexact", shares.coexact}, {"harmonic", shares.harmonic}}},
-          {"metric", h.metricName},
-          {"decomposeMs", h.milliseconds}};
+  return {
+      {"exact", list(h.exact)},
+      {"coexact", list(h.coexact)},
+      {"harmonic", list(h.harmonic)},
+      {"potential0", list(h.potential0)},
+      {"potential2", list(h.potential2)},
+      {"energyShares", {{"exact", shares.exact}, {"coexact", shares.coexact}, {"harmonic", shares.harmonic}}},
+      {"metric", h.metricName},
+      {"decomposeMs", h.milliseconds}};
 }
 
 ExportAtlas exportAtlas(const SurfaceMesh& mesh, const MeshTopology& topology,
@@ -166,11 +169,12 @@ std::vector<double> combedVertexField(const SurfaceMesh& mesh, const CombedDirec
   return out;
 }
 
-void requireDirectionsOn(const MeshTopology& topology, const std::vector<double>& faceDirections, int symmetry) {
+void requireDirectionsOn(const MeshTopology& topology, const std::vector<double>& faceDirections,
+                         int symmetry) {
   if (symmetry < 2 || symmetry > 6) throw InputError("direction exports need a symmetry from 2 to 6");
   if (faceDirections.size() != 3 * static_cast<std::size_t>(topology.numFaces))
-    throw InputError("the field has " + std::to_string(faceDirections.size() / 3) + " directions, the mesh has " +
-                     std::to_string(topology.numFaces) + " faces");
+    throw InputError("the field has " + std::to_string(faceDirections.size() / 3) +
+                     " directions, the mesh has " + std::to_string(topology.numFaces) + " faces");
 }
 
 }  // namespace
@@ -186,17 +190,22 @@ std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const MeshTopology&
   const FaceFieldSampler whitney = [&](int32_t f, const double bary[3]) {
     return whitneyVector(mesh, topology, oneForm.data(), f, bary);
   };
-  return fieldGlb(mesh, topology, source, atlas, std::move(vertexField), whitney, design, options, baseColorPng);
+  return fieldGlb(mesh, topology, source, atlas, std::move(vertexField), whitney, design, options,
+                  baseColorPng);
 }
 
 std::vector<uint8_t> exportDirectionFlowMapPng(const SurfaceMesh& mesh, const MeshTopology& topology,
-                                               const MeshGeometry& geometry, const std::vector<float>& cornerUVs,
+                                               const MeshGeometry& geometry,
+                                               const std::vector<float>& cornerUVs,
                                                const std::vector<double>& faceDirections, int symmetry,
                                                const FieldExportOptions& options) {
   requireUnitSquareUVs(cornerUVs, mesh.numFaces());
   requireDirectionsOn(topology, faceDirections, symmetry);
-  const CombedDirections combed = combDirections(mesh, topology, geometry, faceDirections, symmetry, cornerUVs);
-  const FaceFieldSampler sample = [&](int32_t f, const double bary[3]) { return combedDirection(combed, f, bary); };
+  const CombedDirections combed =
+      combDirections(mesh, topology, geometry, faceDirections, symmetry, cornerUVs);
+  const FaceFieldSampler sample = [&](int32_t f, const double bary[3]) {
+    return combedDirection(combed, f, bary);
+  };
   const FlowField field =
       rasterizeFlowField(mesh, topology, cornerUVs.data(), sample, options.size, options.gutterTexels);
   return encodePngRgba(encodeFlowMap(field, options.convention, options.bits), options.size, options.size,
@@ -212,7 +221,9 @@ std::vector<uint8_t> exportDirectionGlb(const SurfaceMesh& mesh, const MeshTopol
   requireDirectionsOn(topology, faceDirections, symmetry);
   const CombedDirections combed =
       combDirections(mesh, topology, geometry, faceDirections, symmetry, atlas.cornerUVs);
-  const FaceFieldSampler sample = [&](int32_t f, const double bary[3]) { return combedDirection(combed, f, bary); };
+  const FaceFieldSampler sample = [&](int32_t f, const double bary[3]) {
+    return combedDirection(combed, f, bary);
+  };
   return fieldGlb(mesh, topology, source, atlas, combedVertexField(mesh, combed), sample, design, options,
                   baseColorPng);
 }

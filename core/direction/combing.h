@@ -1,9 +1,9 @@
 #pragma once
-// What a signed consumer (a flow map, a tangent frame, a texture synthesizer, a bilinear texture lookup) needs
-// of an N-direction field: one of the N directions chosen per face so that neighbours agree. Within each chart
-// of a UV atlas (faces joined across edges whose corners keep their UVs) the choice spreads over a spanning
-// tree grown best-aligned first, so the lines where it cannot agree — forced by singularities of fractional
-// index — fall where the field turns most, and chart seams cost nothing.
+// What a signed consumer (a flow map, a tangent frame, a texture synthesizer, a bilinear texture lookup)
+// needs of an N-direction field: one of the N directions chosen per face so that neighbours agree. Within
+// each chart of a UV atlas (faces joined across edges whose corners keep their UVs) the choice spreads over a
+// spanning tree grown best-aligned first, so the lines where it cannot agree — forced by singularities of
+// fractional index — fall where the field turns most, and chart seams cost nothing.
 #include <vector>
 
 #include "dec/hodge_star.h"

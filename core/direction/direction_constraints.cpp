@@ -12,11 +12,16 @@ namespace {
 
 const char* kindName(ConstraintKind kind) {
   switch (kind) {
-    case ConstraintKind::Source: return "a source";
-    case ConstraintKind::Sink: return "a sink";
-    case ConstraintKind::Vortex: return "a vortex";
-    case ConstraintKind::Edge: return "an edge value";
-    default: return "this constraint";
+    case ConstraintKind::Source:
+      return "a source";
+    case ConstraintKind::Sink:
+      return "a sink";
+    case ConstraintKind::Vortex:
+      return "a vortex";
+    case ConstraintKind::Edge:
+      return "an edge value";
+    default:
+      return "this constraint";
   }
 }
 
@@ -37,8 +42,8 @@ std::complex<double> directionPower(const FaceFrames& frames, int32_t face, cons
 }
 
 std::vector<FaceDirectionTerm> boundaryDirectionTerms(const SurfaceMesh& mesh, const MeshTopology& t,
-                                                      const FaceFrames& frames, const std::vector<double>& angles,
-                                                      int symmetry) {
+                                                      const FaceFrames& frames,
+                                                      const std::vector<double>& angles, int symmetry) {
   std::vector<FaceDirectionTerm> terms;
   if (angles.empty()) return terms;
   for (int32_t f = 0; f < t.numFaces; ++f)
@@ -56,14 +61,15 @@ std::vector<FaceDirectionTerm> boundaryDirectionTerms(const SurfaceMesh& mesh, c
 }
 
 std::vector<FaceDirectionTerm> directionTerms(const SurfaceMesh& mesh, const MeshTopology& t,
-                                             const FaceFrames& frames, const ConstraintSpec& spec,
-                                             int symmetry) {
+                                              const FaceFrames& frames, const ConstraintSpec& spec,
+                                              int symmetry) {
   std::vector<FaceDirectionTerm> terms;
   if (spec.kind == ConstraintKind::Vector) {
     push(terms, frames, spec.element, projectToFace(mesh, spec.element, Eigen::Vector3d(spec.vector)),
          symmetry);
-    if (terms.empty()) throw InputError("the vector at face " + std::to_string(spec.element) +
-                                        " has no direction in the face's plane");
+    if (terms.empty())
+      throw InputError("the vector at face " + std::to_string(spec.element) +
+                       " has no direction in the face's plane");
     return terms;
   }
   if (spec.kind != ConstraintKind::Stroke)

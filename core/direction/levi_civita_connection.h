@@ -1,8 +1,9 @@
 #pragma once
 // The discrete Levi-Civita connection between adjacent faces (Knöppel, Crane, Pinkall, Schröder 2013): each
-// face has a tangent frame (its first edge and the normal x it), and transport across a shared edge unfolds one
-// face onto the other about that edge, which in the two frames is a rotation by the difference of the angles
-// the edge makes in each. Angle defects enter through these rotations: around a vertex they sum to its defect.
+// face has a tangent frame (its first edge and the normal x it), and transport across a shared edge unfolds
+// one face onto the other about that edge, which in the two frames is a rotation by the difference of the
+// angles the edge makes in each. Angle defects enter through these rotations: around a vertex they sum to its
+// defect.
 #include <complex>
 #include <cstdint>
 #include <vector>
@@ -23,8 +24,8 @@ FaceFrames faceFrames(const SurfaceMesh& mesh, const MeshGeometry& geometry);
 std::complex<double> inFaceFrame(const FaceFrames& frames, int32_t f, const double vector[3]);
 void fromFaceFrame(const FaceFrames& frames, int32_t f, std::complex<double> z, double out[3]);
 
-// Per interior edge: the faces f, g on either side, the rotation `angle` that carries a direction at g (in g's
-// frame) to f's frame (theta_f = theta_g + angle), and a positive smoothness weight.
+// Per interior edge: the faces f, g on either side, the rotation `angle` that carries a direction at g (in
+// g's frame) to f's frame (theta_f = theta_g + angle), and a positive smoothness weight.
 struct FaceConnection {
   std::vector<int32_t> faceF, faceG;
   std::vector<double> angle, weight;

@@ -1,7 +1,7 @@
 #include "direction/power_field_system.h"
 
-#include <algorithm>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 #include "common/input_error.h"
@@ -11,8 +11,8 @@
 namespace tvf {
 namespace {
 
-// Components with a handle or a boundary may carry a parallel N-field (a flat torus, a disc, a cylinder): their
-// rows get the kernel shift; closed genus-0 components have none (their holonomy is never trivial).
+// Components with a handle or a boundary may carry a parallel N-field (a flat torus, a disc, a cylinder):
+// their rows get the kernel shift; closed genus-0 components have none (their holonomy is never trivial).
 std::vector<uint8_t> kernelRows(const MeshTopology& t) {
   std::vector<uint8_t> rows(2 * t.numFaces);
   for (int32_t f = 0; f < t.numFaces; ++f) {
@@ -158,7 +158,9 @@ void PowerFieldSystem::smoothestField(Eigen::VectorXd& u) {
     state = state * 6364136223846793005ull + 1442695040888963407ull;
     x[k] = static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5;
   }
-  auto dotM = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return a.dot(mass_.cwiseProduct(b)); };
+  auto dotM = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    return a.dot(mass_.cwiseProduct(b));
+  };
   const DiagonalTerms none;
   report_.inverseIterations = 0;
   // Lanczos on A^-1 M (self-adjoint in the mass inner product), restarted from its best Ritz vector: the

@@ -4,9 +4,9 @@
 // (direction/connection_laplacian.h), E_k the two diagonal entries of a constrained face, q_k its unit power
 // value and M the area mass. H is factored once (solver/shifted_factor.h: the kernel of a flat or torus-like
 // mesh gets the same shift as the 1-form system's); a constraint enters and leaves as one multi-column rank
-// update of that factor (a stroke over m faces: 2m columns), never a refactorization. With no constraint and no
-// curvature alignment the field is the smoothest one: the lowest eigenvector of H u = lambda M u, by inverse
-// iteration with the same factor.
+// update of that factor (a stroke over m faces: 2m columns), never a refactorization. With no constraint and
+// no curvature alignment the field is the smoothest one: the lowest eigenvector of H u = lambda M u, by
+// inverse iteration with the same factor.
 #include <Eigen/Core>
 #include <complex>
 #include <cstdint>

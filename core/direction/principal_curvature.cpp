@@ -26,8 +26,10 @@ std::vector<std::complex<double>> principalCurvaturePower(const SurfaceMesh& mes
                                                           const MeshGeometry& g, const FaceFrames& frames,
                                                           int symmetry) {
   if (symmetry % 2 != 0)
-    throw InputError("curvature alignment needs an even symmetry (a line or cross field): principal "
-                     "directions have no sign; symmetry " + std::to_string(symmetry) + " was asked for");
+    throw InputError(
+        "curvature alignment needs an even symmetry (a line or cross field): principal "
+        "directions have no sign; symmetry " +
+        std::to_string(symmetry) + " was asked for");
   std::vector<std::complex<double>> z(t.numFaces, 0.0);
   for (int32_t e = 0; e < t.numEdges; ++e) {
     const int32_t f = t.edgeFaces[2 * e], h = t.edgeFaces[2 * e + 1];

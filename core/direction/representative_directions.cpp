@@ -7,7 +7,8 @@
 
 namespace tvf {
 
-std::vector<double> faceRepresentatives(const FaceFrames& frames, const Eigen::VectorXd& power, int symmetry) {
+std::vector<double> faceRepresentatives(const FaceFrames& frames, const Eigen::VectorXd& power,
+                                        int symmetry) {
   const int32_t numFaces = static_cast<int32_t>(power.size() / 2);
   std::vector<double> out(3 * numFaces, 0.0);
   for (int32_t f = 0; f < numFaces; ++f) {
@@ -18,8 +19,9 @@ std::vector<double> faceRepresentatives(const FaceFrames& frames, const Eigen::V
   return out;
 }
 
-std::vector<double> vertexRepresentatives(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
-                                          const std::vector<double>& faceDirections, int symmetry) {
+std::vector<double> vertexRepresentatives(const SurfaceMesh& mesh, const MeshTopology& t,
+                                          const MeshGeometry& g, const std::vector<double>& faceDirections,
+                                          int symmetry) {
   const std::vector<double> normals = vertexNormals(mesh);
   std::vector<std::complex<double>> sum(t.numVertices, 0.0);
   std::vector<double> out(3 * t.numVertices, 0.0);

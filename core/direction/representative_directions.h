@@ -18,8 +18,8 @@ std::vector<double> faceRepresentatives(const FaceFrames& frames, const Eigen::V
 // normal), averaged as N-th powers, and one N-th root of the mean: unit, 3 per vertex, the choice among the N
 // arbitrary (views match it to a neighbour before interpolating).
 std::vector<double> vertexRepresentatives(const SurfaceMesh& mesh, const MeshTopology& topology,
-                                          const MeshGeometry& geometry, const std::vector<double>& faceDirections,
-                                          int symmetry);
+                                          const MeshGeometry& geometry,
+                                          const std::vector<double>& faceDirections, int symmetry);
 
 // Two representatives a and b point the same way up to a rotation by 2 pi k / N: the angle between them
 // reduced to (-pi/N, pi/N] (about `normal`).

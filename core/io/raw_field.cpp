@@ -38,9 +38,11 @@ RawField readRawField(const std::string& text) {
   field.directions.resize(static_cast<size_t>(numFaces) * 3 * field.symmetry);
   for (size_t k = 0; k < field.directions.size(); ++k) {
     if (!(in >> field.directions[k]))
-      throw InputError("raw field: face " + std::to_string(k / (3 * field.symmetry)) + " has too few numbers");
+      throw InputError("raw field: face " + std::to_string(k / (3 * field.symmetry)) +
+                       " has too few numbers");
     if (!std::isfinite(field.directions[k]))
-      throw InputError("raw field: face " + std::to_string(k / (3 * field.symmetry)) + " has a number that is "
+      throw InputError("raw field: face " + std::to_string(k / (3 * field.symmetry)) +
+                       " has a number that is "
                        "not finite");
   }
   return field;

@@ -1,9 +1,9 @@
 // Line and cross fields (N-direction fields as power fields; direction/) against truths that do not come from
 // the solver: Poincaré–Hopf (indices sum to the Euler characteristic, each a multiple of 1/N), truly
 // fractional indices on a generic curved surface, the exactly parallel field of a flat square, a torus's zero
-// sum, undo as a downdate equal to a fresh solve, a straight stroke followed on a curved surface, the smoothest
-// field as an eigenvector (H u = lambda M u, residual), curvature alignment on a torus of revolution (whose
-// principal directions are its parallels and meridians), and the design format and CLI.
+// sum, undo as a downdate equal to a fresh solve, a straight stroke followed on a curved surface, the
+// smoothest field as an eigenvector (H u = lambda M u, residual), curvature alignment on a torus of
+// revolution (whose principal directions are its parallels and meridians), and the design format and CLI.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -38,7 +38,8 @@ SurfaceMesh bumpySphere(int subdivisions = 3) {
   SurfaceMesh m = icosphere(subdivisions);
   for (size_t v = 0; 3 * v < m.positions.size(); ++v) {
     double* p = &m.positions[3 * v];
-    const double r = 1 + 0.15 * std::sin(3 * p[0] + 1) * std::cos(2 * p[1]) + 0.1 * std::sin(5 * p[2] + 2 * p[0]);
+    const double r =
+        1 + 0.15 * std::sin(3 * p[0] + 1) * std::cos(2 * p[1]) + 0.1 * std::sin(5 * p[2] + 2 * p[0]);
     for (int k = 0; k < 3; ++k) p[k] *= r;
   }
   return m;
@@ -138,7 +139,8 @@ TEST(DirectionField, GenericCurvedSurfaceHasTrulyFractionalIndices) {
     d.addVector(11, along, 1.0);
     d.solve();
     int fractional = 0;
-    for (const Singularity& s : d.singularities()) fractional += std::abs(s.index - std::round(s.index)) > 1e-9;
+    for (const Singularity& s : d.singularities())
+      fractional += std::abs(s.index - std::round(s.index)) > 1e-9;
     EXPECT_GT(fractional, 0) << "N = " << n;
     if (n == 4) {
       int quarter = 0;
@@ -161,7 +163,8 @@ TEST(DirectionField, FlatSquareWithOneDirectionIsExactlyConstant) {
     d.addVector(f0, edge.data(), 1.0);
     d.solve();
     double worst = 0;
-    for (int32_t f = 0; f < d.mesh().numFaces(); ++f) worst = std::max(worst, angleToRepresentative(d, f, edge));
+    for (int32_t f = 0; f < d.mesh().numFaces(); ++f)
+      worst = std::max(worst, angleToRepresentative(d, f, edge));
     EXPECT_LT(worst, 1e-9) << "N = " << n;
     EXPECT_TRUE(d.singularities().empty());
   }
@@ -185,10 +188,10 @@ TEST(DirectionField, UndoOfAStrokeEqualsAFreshSolve) {
   for (const int n : {2, 4}) {
     Designer d(m);
     d.setSymmetry(n);
-    const auto first = centresStroke({nearestFace(m, {1, 0, 0}), nearestFace(m, {0.9, 0.4, 0}),
-                                      nearestFace(m, {0.7, 0.7, 0.1})});
-    const auto second = centresStroke({nearestFace(m, {0, 0, 1}), nearestFace(m, {0.3, 0.1, 0.9}),
-                                       nearestFace(m, {0.6, 0.2, 0.7})});
+    const auto first = centresStroke(
+        {nearestFace(m, {1, 0, 0}), nearestFace(m, {0.9, 0.4, 0}), nearestFace(m, {0.7, 0.7, 0.1})});
+    const auto second = centresStroke(
+        {nearestFace(m, {0, 0, 1}), nearestFace(m, {0.3, 0.1, 0.9}), nearestFace(m, {0.6, 0.2, 0.7})});
     d.addStroke(first, 1, 10);
     d.solve();
     const int32_t id = d.addStroke(second, 1, 100);
@@ -217,7 +220,8 @@ TEST(DirectionField, StraightStrokeIsFollowedOnACurvedSurface) {
     const double x = 2.0 + 0.5 * k;  // in quads along the parallel, at 0.3 of the strip's height
     const int i = static_cast<int>(x);
     const double a = x - i, b = 0.3;
-    points.push_back(a >= b ? SurfacePoint{2 * i, {1 - a, a - b, b}} : SurfacePoint{2 * i + 1, {1 - b, a, b - a}});
+    points.push_back(a >= b ? SurfacePoint{2 * i, {1 - a, a - b, b}}
+                            : SurfacePoint{2 * i + 1, {1 - b, a, b - a}});
   }
   const MeshTopology t = buildTopology(mesh);
   const StrokeWalk walk = walkStroke(mesh, t, points);
@@ -235,17 +239,20 @@ TEST(DirectionField, StraightStrokeIsFollowedOnACurvedSurface) {
 }
 
 TEST(DirectionField, EditsAreRankUpdatesNeverRefactorizations) {
-  // The smoothest field, then strokes in and out, a weight change and a clear: one numeric factorization in all.
+  // The smoothest field, then strokes in and out, a weight change and a clear: one numeric factorization in
+  // all.
   const SurfaceMesh m = bumpySphere(2);
   Designer d(m);
   d.setSymmetry(4);
   d.solve();
   ASSERT_EQ(d.stats().factorizations, 1);
   ASSERT_GT(d.stats().inverseIterations, 0);
-  const int32_t a = d.addStroke(centresStroke({nearestFace(m, {1, 0, 0}), nearestFace(m, {0.7, 0.7, 0})}), 1, 10);
+  const int32_t a =
+      d.addStroke(centresStroke({nearestFace(m, {1, 0, 0}), nearestFace(m, {0.7, 0.7, 0})}), 1, 10);
   d.solve();  // the first stroke switches to the constrained solve with the same factor
   EXPECT_EQ(d.stats().inverseIterations, 0);
-  const int32_t b = d.addStroke(centresStroke({nearestFace(m, {0, 0, 1}), nearestFace(m, {0.5, 0, 0.8})}), 1, 100);
+  const int32_t b =
+      d.addStroke(centresStroke({nearestFace(m, {0, 0, 1}), nearestFace(m, {0.5, 0, 0.8})}), 1, 100);
   d.solve();
   d.setWeight(b, 1000);
   d.solve();
@@ -258,8 +265,8 @@ TEST(DirectionField, EditsAreRankUpdatesNeverRefactorizations) {
 }
 
 TEST(DirectionField, FixedAngleBoundaryHoldsLineAndCrossFields) {
-  // A flat annulus: tangential makes the field follow the boundary circles (a line field there is the field of
-  // circles: index 0 inside the annulus); normal makes it radial.
+  // A flat annulus: tangential makes the field follow the boundary circles (a line field there is the field
+  // of circles: index 0 inside the annulus); normal makes it radial.
   const SurfaceMesh m = flatAnnulus(6, 48, 0.5, 1.0);
   for (const int n : {2, 4}) {
     for (const char* which : {"tangential", "normal"}) {
@@ -288,8 +295,8 @@ TEST(DirectionField, SmoothestFieldIsTheLowestEigenvector) {
   EXPECT_GT(lambda, 0);
   EXPECT_GT(d.stats().inverseIterations, 0);
   const FaceFrames frames = faceFrames(d.mesh(), d.geometry());
-  const SparseMatrix H = connectionLaplacian(leviCivitaConnection(d.mesh(), d.topology(), d.geometry(), frames),
-                                             d.mesh().numFaces(), 2);
+  const SparseMatrix H = connectionLaplacian(
+      leviCivitaConnection(d.mesh(), d.topology(), d.geometry(), frames), d.mesh().numFaces(), 2);
   const Eigen::VectorXd mass = powerFieldMass(d.geometry());
   std::mt19937 rng(4);
   std::normal_distribution<double> g;
@@ -395,7 +402,8 @@ void writeOff(const SurfaceMesh& m, const std::string& path) {
   for (size_t k = 0; k < m.positions.size(); k += 3)
     out << m.positions[k] << " " << m.positions[k + 1] << " " << m.positions[k + 2] << "\n";
   for (int32_t f = 0; f < m.numFaces(); ++f)
-    out << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2] << "\n";
+    out << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2]
+        << "\n";
 }
 }  // namespace
 
@@ -438,8 +446,8 @@ TEST(DirectionField, CliWritesFaceDirectionsAndFractionalIndices) {
   for (const char* key : {"factorMs", "solveMs", "updateMs", "strokeUpdateSolveMs", "smoothestMs"})
     EXPECT_TRUE(b.contains(key)) << key;
   EXPECT_EQ(b["symmetry"], 4);
-  const CliRun hodge = runTvf("design " + (dir / "sphere.off").string() + " " + (dir / "design.json").string() +
-                              " --hodge");
+  const CliRun hodge =
+      runTvf("design " + (dir / "sphere.off").string() + " " + (dir / "design.json").string() + " --hodge");
   EXPECT_EQ(hodge.exitCode, 2);
   EXPECT_NE(hodge.err.find("vector fields"), std::string::npos) << hodge.err;
 }
@@ -461,7 +469,8 @@ TEST(DirectionField, StraightStrokeIsFollowedOnTheBunny) {
     hi = hi.cwiseMax(faceCentre(mesh, f));
   }
   const Eigen::Vector3d mid = (lo + hi) / 2, size = hi - lo;
-  const int32_t a = nearestFace(mesh, mid + Eigen::Vector3d(-0.25 * size.x(), 0.1 * size.y(), 0.5 * size.z()));
+  const int32_t a =
+      nearestFace(mesh, mid + Eigen::Vector3d(-0.25 * size.x(), 0.1 * size.y(), 0.5 * size.z()));
   const int32_t b = nearestFace(mesh, mid + Eigen::Vector3d(0.1 * size.x(), 0.15 * size.y(), 0.5 * size.z()));
   const std::vector<SurfacePoint> points = centresStroke({a, b});
   const StrokeWalk walk = walkStroke(mesh, t, points);

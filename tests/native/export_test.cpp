@@ -16,11 +16,11 @@
 #include "design/design_document.h"
 #include "design/field_export.h"
 #include "direction/representative_directions.h"
-#include "io/raw_field.h"
 #include "field/flow_map.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_io.h"
 #include "io/png_writer.h"
+#include "io/raw_field.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
 #include "test_meshes.h"
@@ -400,6 +400,51 @@ class CurvedPatchExport : public ::testing::Test {
     return (positionAt(mesh_, stroke_[k + 1]) - positionAt(mesh_, stroke_[k])).normalized();
   }
 
+  // The curved patch with a normal map exported with `design`: the worst angle between the stroke and the
+  // direction decoded from anisotropyTexture at the stroke's texels (in the face's orthonormal UV frame),
+  // modulo pi for a line field.
+  double anisotropyTextureDeviation(const std::string& design, const std::string& outName, bool moduloPi) {
+    const std::vector<uint8_t> source = curvedPatchGlb(true);
+    std::ofstream(dir_ / "mapped.glb", std::ios::binary)
+        .write(reinterpret_cast<const char*>(source.data()), static_cast<std::streamsize>(source.size()));
+    EXPECT_EQ(runCli(path("mapped.glb") + " " + path(design) + " --glb " + path(outName) + " --size 256"), 0);
+    const Glb out = parseGlb(readBytes(dir_ / outName));
+    const json& primitive = out.doc["meshes"][0]["primitives"][0];
+    EXPECT_FALSE(primitive["attributes"].contains("TANGENT"));  // the normal map's frame stays the viewer's
+    const json& anisotropy = out.doc["materials"][0]["extensions"]["KHR_materials_anisotropy"];
+    EXPECT_TRUE(anisotropy.contains("anisotropyTexture"));
+    if (!anisotropy.contains("anisotropyTexture")) return 180;
+    const json& image =
+        out.doc["images"][out.doc["textures"][anisotropy["anisotropyTexture"]["index"].get<int>()]["source"]
+                              .get<int>()];
+    const json& view = out.doc["bufferViews"][image["bufferView"].get<int>()];
+    const auto begin = out.bin.begin() + view["byteOffset"].get<long>();
+    const Image map = decodePng(std::vector<uint8_t>(begin, begin + view["byteLength"].get<long>()));
+    // Expected: the stroke direction in the face's orthonormal UV frame (T along dp/du, B = N x T), the frame
+    // KHR_materials_anisotropy measures directions in when tangents follow the UVs (MikkTSpace).
+    double worst = 0;
+    for (size_t k = 0; k + 1 < stroke_.size(); ++k) {
+      const int f = stroke_[k].face;
+      Eigen::Vector3d p[3];
+      tvf::facePositions(mesh_, f, p);
+      const Eigen::Vector3d n = tvf::faceNormal(mesh_, f);
+      // dp/du: the 3D vector whose UV image is (1, 0).
+      Eigen::Matrix2d D;
+      const float* uv = &mesh_.cornerUVs[6 * f];
+      D << uv[2] - uv[0], uv[4] - uv[0], uv[3] - uv[1], uv[5] - uv[1];
+      const Eigen::Vector2d ab = D.inverse() * Eigen::Vector2d(1, 0);
+      const Eigen::Vector3d T = (ab.x() * (p[1] - p[0]) + ab.y() * (p[2] - p[0])).normalized(),
+                            B = n.cross(T);
+      const Eigen::Vector3d along = strokeTangent(k);
+      const Eigen::Vector2d q = uvAt(mesh_.cornerUVs, stroke_[k]);
+      const int x = int(q.x() * 256), y = int(q.y() * 256);
+      const Eigen::Vector2d decoded(map.at(x, y, 0) / 127.5 - 1, map.at(x, y, 1) / 127.5 - 1);
+      const double d = degreesBetween(decoded, Eigen::Vector2d(along.dot(T), along.dot(B)));
+      worst = std::max(worst, moduloPi ? std::min(d, 180 - d) : d);
+    }
+    return worst;
+  }
+
   fs::path dir_;
   std::vector<uint8_t> source_;
   SurfaceMesh mesh_;
@@ -562,47 +607,10 @@ TEST_F(CurvedPatchExport, AModelWithoutUVsGetsAGeneratedAtlas) {
 }
 
 TEST_F(CurvedPatchExport, NormalMappedMaterialsGetTheDirectionInAnisotropyTexture) {
-  const std::vector<uint8_t> source = curvedPatchGlb(true);
-  std::ofstream(dir_ / "mapped.glb", std::ios::binary)
-      .write(reinterpret_cast<const char*>(source.data()), static_cast<std::streamsize>(source.size()));
-  ASSERT_EQ(runCli(path("mapped.glb") + " " + path("design.json") + " --glb " + path("mapped.out.glb") +
-                   " --size 256"),
-            0);
-  const Glb out = parseGlb(readBytes(dir_ / "mapped.out.glb"));
-  const json& primitive = out.doc["meshes"][0]["primitives"][0];
-  EXPECT_FALSE(primitive["attributes"].contains("TANGENT"));  // the normal map's frame stays the viewer's
-  const json& anisotropy = out.doc["materials"][0]["extensions"]["KHR_materials_anisotropy"];
-  ASSERT_TRUE(anisotropy.contains("anisotropyTexture"));
-  const json& image =
-      out.doc["images"]
-             [out.doc["textures"][anisotropy["anisotropyTexture"]["index"].get<int>()]["source"].get<int>()];
-  const json& view = out.doc["bufferViews"][image["bufferView"].get<int>()];
-  const auto begin = out.bin.begin() + view["byteOffset"].get<long>();
-  const Image map = decodePng(std::vector<uint8_t>(begin, begin + view["byteLength"].get<long>()));
-  // Expected: the stroke direction in the face's orthonormal UV frame (T along dp/du, B = N x T), the frame
-  // KHR_materials_anisotropy measures directions in when tangents follow the UVs (MikkTSpace).
-  double worst = 0;
-  for (size_t k = 0; k + 1 < stroke_.size(); ++k) {
-    const int f = stroke_[k].face;
-    Eigen::Vector3d p[3];
-    tvf::facePositions(mesh_, f, p);
-    const Eigen::Vector3d n = tvf::faceNormal(mesh_, f);
-    // dp/du: the 3D vector whose UV image is (1, 0).
-    Eigen::Matrix2d D;
-    const float* uv = &mesh_.cornerUVs[6 * f];
-    D << uv[2] - uv[0], uv[4] - uv[0], uv[3] - uv[1], uv[5] - uv[1];
-    const Eigen::Vector2d ab = D.inverse() * Eigen::Vector2d(1, 0);
-    const Eigen::Vector3d T = (ab.x() * (p[1] - p[0]) + ab.y() * (p[2] - p[0])).normalized(), B = n.cross(T);
-    const Eigen::Vector3d along = strokeTangent(k);
-    const Eigen::Vector2d q = uvAt(mesh_.cornerUVs, stroke_[k]);
-    const int x = int(q.x() * 256), y = int(q.y() * 256);
-    const Eigen::Vector2d decoded(map.at(x, y, 0) / 127.5 - 1, map.at(x, y, 1) / 127.5 - 1);
-    worst = std::max(worst, degreesBetween(decoded, Eigen::Vector2d(along.dot(T), along.dot(B))));
-  }
+  const double worst = anisotropyTextureDeviation("design.json", "mapped.out.glb", false);
   EXPECT_LT(worst, 2.0);
   std::cout << "[ measured ] anisotropyTexture worst deviation from the stroke: " << worst << " deg\n";
 }
-
 
 // Line and cross fields (symmetry N >= 2) leave in the same GLB, combed per chart: the direction a viewer's
 // KHR_materials_anisotropy uses (TANGENT, or anisotropyTexture for normal-mapped materials), decoded, within
@@ -616,7 +624,8 @@ TEST_F(CurvedPatchExport, LineFieldAnisotropyFollowsTheStrokeModuloPi) {
   json line = design_;
   line["symmetry"] = 2;
   std::ofstream(dir_ / "line.json") << line.dump();
-  ASSERT_EQ(runCli(path("patch.glb") + " " + path("line.json") + " --glb " + path("line.glb") + " --size 128"), 0);
+  ASSERT_EQ(
+      runCli(path("patch.glb") + " " + path("line.json") + " --glb " + path("line.glb") + " --size 128"), 0);
   const Glb out = parseGlb(readBytes(dir_ / "line.glb"));
   const json& primitive = out.doc["meshes"][0]["primitives"][0];
   EXPECT_TRUE(out.doc["materials"][0]["extensions"].contains("KHR_materials_anisotropy"));
@@ -631,42 +640,13 @@ TEST_F(CurvedPatchExport, LineFieldAnisotropyFollowsTheStrokeModuloPi) {
       worst = std::max(worst, degreesModPi(t - n.dot(t) * n, along - n.dot(along) * n));
     }
   EXPECT_LT(worst, 5.0);
-  std::cout << "[ measured ] line field TANGENT worst deviation from the stroke (mod pi): " << worst << " deg\n";
+  std::cout << "[ measured ] line field TANGENT worst deviation from the stroke (mod pi): " << worst
+            << " deg\n";
 
-  const std::vector<uint8_t> source = curvedPatchGlb(true);
-  std::ofstream(dir_ / "mapped.glb", std::ios::binary)
-      .write(reinterpret_cast<const char*>(source.data()), static_cast<std::streamsize>(source.size()));
-  ASSERT_EQ(runCli(path("mapped.glb") + " " + path("line.json") + " --glb " + path("mapped.line.glb") +
-                   " --size 256"),
-            0);
-  const Glb mapped = parseGlb(readBytes(dir_ / "mapped.line.glb"));
-  const json& anisotropy = mapped.doc["materials"][0]["extensions"]["KHR_materials_anisotropy"];
-  ASSERT_TRUE(anisotropy.contains("anisotropyTexture"));
-  const json& image =
-      mapped.doc["images"]
-                [mapped.doc["textures"][anisotropy["anisotropyTexture"]["index"].get<int>()]["source"].get<int>()];
-  const json& view = mapped.doc["bufferViews"][image["bufferView"].get<int>()];
-  const auto begin = mapped.bin.begin() + view["byteOffset"].get<long>();
-  const Image map = decodePng(std::vector<uint8_t>(begin, begin + view["byteLength"].get<long>()));
-  double worstTexture = 0;
-  for (size_t k = 0; k + 1 < stroke_.size(); ++k) {
-    const int f = stroke_[k].face;
-    Eigen::Vector3d p[3];
-    tvf::facePositions(mesh_, f, p);
-    const Eigen::Vector3d n = tvf::faceNormal(mesh_, f);
-    Eigen::Matrix2d D;
-    const float* uv = &mesh_.cornerUVs[6 * f];
-    D << uv[2] - uv[0], uv[4] - uv[0], uv[3] - uv[1], uv[5] - uv[1];
-    const Eigen::Vector2d ab = D.inverse() * Eigen::Vector2d(1, 0);
-    const Eigen::Vector3d T = (ab.x() * (p[1] - p[0]) + ab.y() * (p[2] - p[0])).normalized(), B = n.cross(T);
-    const Eigen::Vector3d along = strokeTangent(k);
-    const Eigen::Vector2d q = uvAt(mesh_.cornerUVs, stroke_[k]);
-    const int x = int(q.x() * 256), y = int(q.y() * 256);
-    const Eigen::Vector2d decoded(map.at(x, y, 0) / 127.5 - 1, map.at(x, y, 1) / 127.5 - 1);
-    worstTexture = std::max(worstTexture, degreesModPi(decoded, Eigen::Vector2d(along.dot(T), along.dot(B))));
-  }
+  const double worstTexture = anisotropyTextureDeviation("line.json", "mapped.line.glb", true);
   EXPECT_LT(worstTexture, 5.0);
-  std::cout << "[ measured ] line field anisotropyTexture worst deviation (mod pi): " << worstTexture << " deg\n";
+  std::cout << "[ measured ] line field anisotropyTexture worst deviation (mod pi): " << worstTexture
+            << " deg\n";
 }
 
 TEST_F(CurvedPatchExport, CrossFieldRawFieldReadsBackTheSameDirections) {
