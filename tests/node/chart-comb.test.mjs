@@ -5,24 +5,11 @@
 // grid instead of wandering; the face directions from the vertex representatives recover the field.
 import assert from 'node:assert/strict';
 import test from 'node:test';
-import { grid } from './fakes.mjs';
-import { Surface } from '../../web/geometry/surface.js';
+import { grid, scrambledField, surfaceOf } from './fakes.mjs';
 import { randomSequence } from '../../web/geometry/arrow-sampling.js';
 import { atlasCombedCorners, combForAtlas, faceDirections } from '../../web/geometry/chart-comb.js';
 
-const TWO_PI = 2 * Math.PI;
-const surfaceOf = (m) => new Surface(m.positions, m.triangles, m.edges);
 
-function scrambled(s, N, theta, random) {
-  const V = new Float64Array(3 * s.nV), F = new Float64Array(3 * s.nF);
-  const put = (out, i, [x, y]) => {
-    const a = theta(x, y) + (TWO_PI * Math.floor(random() * N)) / N;
-    out.set([Math.cos(a), Math.sin(a), 0], 3 * i);
-  };
-  for (let v = 0; v < s.nV; v++) put(V, v, s.vertex(v));
-  for (let f = 0; f < s.nF; f++) put(F, f, s.centroid(f));
-  return { V, F };
-}
 
 // UVs of a flat grid in [0, 1]² as two charts split at x = 0.5 (the right half moved up by 0.01: a seam).
 function twoChartUVs(s) {
@@ -41,7 +28,7 @@ test('chart comb: a scrambled constant line/cross field comes back as one direct
   const s = surfaceOf(grid(10, 1));
   for (const N of [2, 4]) {
     for (const useFaces of [true, false]) {
-      const { V, F } = scrambled(s, N, () => 0.7, randomSequence(3 + N));
+      const { V, F } = scrambledField(s, N, () => 0.7, randomSequence(3 + N));
       const { corners, flips } = atlasCombedCorners(s, V, useFaces ? F : null, N, twoChartUVs(s));
       assert.equal(flips.length, 0, 'no cut in a field without singularities');
       const first = corners.subarray(0, 3);
@@ -56,7 +43,7 @@ test('chart comb: a scrambled constant line/cross field comes back as one direct
 test('chart comb: face directions from the vertex representatives recover a smooth line field', () => {
   const s = surfaceOf(grid(10, 1));
   const theta = (x, y) => 0.5 * x + 0.3 * y;
-  const { V } = scrambled(s, 2, theta, randomSequence(5));
+  const { V } = scrambledField(s, 2, theta, randomSequence(5));
   const D = faceDirections(s, V, 2);
   for (let f = 0; f < s.nF; f++) {
     const [x, y] = s.centroid(f);
@@ -70,7 +57,7 @@ test('chart comb: the cut a +1/2 singularity forces runs to the boundary, along 
   const s = surfaceOf(grid(20, 2, -1));
   // θ = arg(z)/2 about (0.05, 0.03): a +1/2 singularity inside a face near the centre.
   const theta = (x, y) => Math.atan2(y - 0.03, x - 0.05) / 2;
-  const { V, F } = scrambled(s, 2, theta, randomSequence(11));
+  const { V, F } = scrambledField(s, 2, theta, randomSequence(11));
   // Without an atlas: one cut, a chain of edges from the singularity to the boundary (every flip edge's faces
   // lie on one ray from the singularity, give or take a face).
   const free = combForAtlas(s, F, 2);

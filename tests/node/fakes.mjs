@@ -714,3 +714,19 @@ export class FakeIndexedDB {
     return req;
   }
 }
+
+// A Surface over a fake mesh ({positions, triangles, edges}, e.g. grid()).
+export const surfaceOf = (m) => new Surface(m.positions, m.triangles, m.edges);
+
+// Per-vertex and per-face fields of angle θ(x, y) in the z = 0 plane, each turned by its own random 2πk/N: an
+// N-field whose representatives a consumer must match before it can use them.
+export function scrambledField(s, N, theta, random) {
+  const V = new Float64Array(3 * s.nV), F = new Float64Array(3 * s.nF);
+  const put = (out, i, [x, y]) => {
+    const a = theta(x, y) + (2 * Math.PI * Math.floor(random() * N)) / N;
+    out.set([Math.cos(a), Math.sin(a), 0], 3 * i);
+  };
+  for (let v = 0; v < s.nV; v++) put(V, v, s.vertex(v));
+  for (let f = 0; f < s.nF; f++) put(F, f, s.centroid(f));
+  return { V, F };
+}

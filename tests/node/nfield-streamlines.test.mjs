@@ -5,25 +5,13 @@
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import { PerspectiveCamera, Scene, Vector3 } from 'three';
-import { grid } from './fakes.mjs';
-import { Surface } from '../../web/geometry/surface.js';
+import { grid, scrambledField, surfaceOf } from './fakes.mjs';
 import { randomSequence } from '../../web/geometry/arrow-sampling.js';
 import { traceStreamlines } from '../../web/geometry/streamlines.js';
 import { ArrowsView } from '../../web/views/arrows-view.js';
 
 const TWO_PI = 2 * Math.PI;
-const surfaceOf = (m) => new Surface(m.positions, m.triangles, m.edges);
 
-function scrambledField(s, N, theta, random) {
-  const V = new Float64Array(3 * s.nV), F = new Float64Array(3 * s.nF);
-  const put = (out, i, [x, y]) => {
-    const a = theta(x, y) + (TWO_PI * Math.floor(random() * N)) / N;
-    out.set([Math.cos(a), Math.sin(a), 0], 3 * i);
-  };
-  for (let v = 0; v < s.nV; v++) put(V, v, s.vertex(v));
-  for (let f = 0; f < s.nF; f++) put(F, f, s.centroid(f));
-  return { V, F };
-}
 
 const pointsOf = (l) => Array.from({ length: l.length / 3 }, (_, k) => [l[3 * k], l[3 * k + 1], l[3 * k + 2]]);
 const lengthOf = (pts) => pts.slice(1).reduce((sum, p, k) => sum + Math.hypot(p[0] - pts[k][0], p[1] - pts[k][1]), 0);

@@ -4,8 +4,7 @@
 // multiple of 1/N; the glyph has N spokes 2π/N apart; labels are the reduced fractions.
 import assert from 'node:assert/strict';
 import test from 'node:test';
-import { grid } from './fakes.mjs';
-import { Surface } from '../../web/geometry/surface.js';
+import { grid, scrambledField, surfaceOf } from './fakes.mjs';
 import { randomSequence } from '../../web/geometry/arrow-sampling.js';
 import {
   closestRotation,
@@ -24,22 +23,10 @@ import { indexLabel, singularityFill } from '../../web/views/singularity-style.j
 import { linePasses } from '../../web/views/lic-lines.js';
 
 const TWO_PI = 2 * Math.PI;
-const surfaceOf = (m) => new Surface(m.positions, m.triangles, m.edges);
 const near = (a, b, tol, what) => a.forEach((x, k) => assert.ok(Math.abs(x - b[k]) < tol, `${what}: ${a} vs ${b}`));
 const rot2 = ([x, y], a) => [Math.cos(a) * x - Math.sin(a) * y, Math.sin(a) * x + Math.cos(a) * y];
 const unit = (v) => v.map((x) => x / Math.hypot(...v));
 
-// Per-vertex and per-face fields of angle θ(x, y) in the z = 0 plane, each turned by its own random 2πk/N.
-function scrambledField(s, N, theta, random) {
-  const V = new Float64Array(3 * s.nV), F = new Float64Array(3 * s.nF);
-  const put = (out, i, [x, y]) => {
-    const a = theta(x, y) + (TWO_PI * Math.floor(random() * N)) / N;
-    out.set([Math.cos(a), Math.sin(a), 0], 3 * i);
-  };
-  for (let v = 0; v < s.nV; v++) put(V, v, s.vertex(v));
-  for (let f = 0; f < s.nF; f++) put(F, f, s.centroid(f));
-  return { V, F };
-}
 
 test('nfield: the symmetry is an integer 1..6, anything else a vector field; families and spokes per N', () => {
   assert.deepEqual([1, 2, 4, 6, 0, 7, 2.5, undefined, '4', null].map(symmetryOf), [1, 2, 4, 6, 1, 1, 1, 1, 1, 1]);
