@@ -8,8 +8,10 @@
 // is sized from the model's curvature: tiles across sqrt(area) = TILES_PER_COMPLEXITY x the shape complexity
 // (sqrt(area) x the area-mean |mean curvature|: 3.5 for a sphere, ~14 for the bunny, ~18 for homer, ~34 for a thin
 // knotted tube), between MIN_TILES and MAX_TILES. Measured on exported GLBs (docs/texture-synthesis.md): on
-// homer 6 tiles left 9.6° mean deviation, 12 tiles 5.8°, with the same synthesis.
-const TILES_PER_COMPLEXITY = 0.66;
+// homer 6 tiles left 9.6° mean deviation, 12 tiles 5.8°, with the same synthesis. 0.66 (refined_elephant, c ≈ 19:
+// 12.7 tiles) left the genus-3 elephant at 6.43° / 83 %; 0.84 (16 tiles) measured 5.19° / 90 %. A 2048² atlas at
+// 12.7 tiles did not help (6.59° / 82 %): the feature size, not texels per face, was the limit.
+const TILES_PER_COMPLEXITY = 0.84;
 const MIN_TILES = 6;
 const MAX_TILES = 16;
 // Below this many atlas texels per exemplar pixel the synthesis resolves the exemplar's features with too few
