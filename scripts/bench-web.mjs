@@ -3,6 +3,7 @@
 // first: npm run build:wasm && npm run build:web).
 //
 // node scripts/bench-web.mjs --json --stroke MESH [--strokes N] [--crossings N] [--port P] [--profile FILE]
+//                             [--preview-edges N]   (loadModel's previewEdges: 1 forces a preview, 0 none)
 //   Edit latency: loads MESH (a path; served to the page under /bench-mesh/) through tvf.loadModel, then draws
 //   N strokes (default 15) of ~50 crossed edges each through tvf.addStroke, each on a strip of faces elsewhere
 //   on the mesh. Prints one JSON object {mesh, edges, strokes, loadMs, median: {...}, ratios} whose medians are
@@ -19,6 +20,10 @@
 //     pageNoRenderMs  pageMs less renderMs (with software GL the render is rasterization on the CPU)
 //   and ratios workerOverUpdateSolve = workerMs / (updateMs + solveMs), page*OverUpdateSolve likewise (of the
 //   medians), and ratiosPerEdit: the same ratios taken per edit, then the median.
+//   and issue 28's measures: firstFieldMs and exactFieldMs (loadModel called → the first field drawn, the exact one:
+//   tvf.settled()), strokePreviewMs and strokeExactMs (medians: a stroke's first field drawn, a preview on a big
+//   mesh, and its exact field), longestTaskMs (the main thread's longest task during load and strokes,
+//   PerformanceObserver 'longtask'), heapPeakBytes (the exact core's wasm memory at the end).
 //   Writes bench-data/web-stroke-bench.json.
 //
 // node scripts/bench-web.mjs [--sizes 256,512,1024] [--port 8194]
@@ -26,7 +31,7 @@
 //   with the ratio to a plain full-screen pass of the same size (web/synthesis/bench.js).
 //   Writes bench-data/synthesis-bench.json.
 import { spawn } from 'node:child_process';
-import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
+import { copyFileSync, existsSync, mkdirSync, rmSync, writeFileSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from '@playwright/test';
@@ -95,14 +100,29 @@ async function strokeBench(page, meshPath) {
   const count = Number(arg('--strokes', 15));
   const crossings = Number(arg('--crossings', 50));
   const name = basename(meshPath);
-  await page.route(`**/bench-mesh/${name}`, (route) => route.fulfill({ path: resolve(meshPath) }));
+  // Served by the app's own server as a real download (a route through the driver took seconds at 33 MB).
+  mkdirSync(resolve(ROOT, 'dist/bench-mesh'), { recursive: true });
+  copyFileSync(resolve(meshPath), resolve(ROOT, 'dist/bench-mesh', name));
+  // Long tasks of the page's main thread (> 50 ms by the browser's definition), from the page's start on.
+  await page.addInitScript(() => {
+    window.__longTasks = [];
+    new PerformanceObserver((list) => window.__longTasks.push(...list.getEntries().map((e) => ({ at: e.startTime, ms: e.duration })))).observe({ type: 'longtask', buffered: true });
+  });
+  page.on('console', (m) => m.type() === 'warning' && !m.text().includes('GL Driver') && console.error(`page: ${m.text()}`));
   await page.goto(`http://127.0.0.1:${port}/`);
   await page.evaluate(() => window.tvf.ready);
-  const load = await page.evaluate(async (url) => {
+  const load = await page.evaluate(async ({ url, previewEdges }) => {
+    window.__longTasks.length = 0; // the page's own start is not the model's
     const t0 = performance.now();
-    const info = await window.tvf.loadModel(url, { restore: false });
-    return { info, loadMs: performance.now() - t0 };
-  }, `/bench-mesh/${name}`);
+    const info = await window.tvf.loadModel(url, { restore: false, ...(previewEdges != null ? { previewEdges } : {}) });
+    const firstFieldMs = performance.now() - t0;
+    const firstStats = window.tvf.stats();
+    const previewTimings = window.tvf.perf().previewTimings ?? null;
+    const phases = Object.fromEntries(Object.entries(window.tvf.perf().loadPhases ?? {}).map(([k, v]) => [k, v - t0]));
+    await window.tvf.settled();
+    return { info, phases, previewTimings, loadMs: performance.now() - t0, firstFieldMs, exactFieldMs: performance.now() - t0, preview: firstStats.preview, previewFaces: firstStats.previewFaces ?? null, previewStats: firstStats };
+  }, { url: `/bench-mesh/${name}`, previewEdges: arg('--preview-edges', null) == null ? null : Number(arg('--preview-edges')) });
+  const loadTasks = await page.evaluate(() => window.__longTasks.splice(0));
   const strokes = await page.evaluate(strokesInPage, { count, crossings });
   // --profile FILE: a CPU profile of the page's main thread over the strokes (.cpuprofile, for DevTools).
   const profileFile = arg('--profile', null);
@@ -119,8 +139,11 @@ async function strokeBench(page, meshPath) {
       await window.tvf.addStroke(pts);
       const pageMs = performance.now() - t0;
       const { lastOp, refresh } = window.tvf.perf();
+      const preview = window.tvf.stats().preview;
+      await window.tvf.settled();
+      const exactMs = performance.now() - t0;
       const stats = window.tvf.stats();
-      return { pageMs, lastOp, refresh, stats };
+      return { pageMs, exactMs, preview, lastOp, refresh, stats };
     }, points));
   }
   if (cdp) writeFileSync(profileFile, JSON.stringify((await cdp.send('Profiler.stop')).profile));
@@ -154,9 +177,28 @@ async function strokeBench(page, meshPath) {
     pageNoRenderMs: pick((r) => r.pageMs - (r.refresh?.renderMs ?? 0)),
   };
   const updateSolve = m.updateMs + m.solveMs;
+  const strokeTasks = await page.evaluate(() => window.__longTasks.splice(0));
+  const longest = (tasks) => tasks.reduce((m, t) => Math.max(m, t.ms), 0);
   const result = {
     mesh: meshPath,
     edges: load.info.edges,
+    // Issue 28's measures: the first field and the exact one after loadModel is called; a stroke's field drawn
+    // (the preview's on a big mesh) and its exact field (medians); the longest main-thread task during the load
+    // and during the strokes; the exact core's wasm memory (it never shrinks: the peak).
+    firstFieldMs: load.firstFieldMs,
+    exactFieldMs: load.exactFieldMs,
+    preview: load.preview,
+    previewFaces: load.previewFaces,
+    strokePreviewMs: median(runs.map((r) => r.pageMs)),
+    strokeExactMs: median(runs.map((r) => r.exactMs)),
+    strokesPreviewed: runs.filter((r) => r.preview).length,
+    longestTaskMs: Math.max(longest(loadTasks), longest(strokeTasks)),
+    longestLoadTaskMs: longest(loadTasks),
+    longestStrokeTaskMs: longest(strokeTasks),
+    heapPeakBytes: runs.at(-1)?.stats.heapBytes ?? null,
+    previewHeapBytes: load.previewStats.previewHeapBytes ?? null,
+    loadPhasesMs: load.phases,
+    previewTimings: load.previewTimings,
     strokes: runs.length,
     crossings,
     loadMs: load.loadMs,
@@ -177,6 +219,7 @@ async function strokeBench(page, meshPath) {
   console.log(process.argv.includes('--json') ? JSON.stringify(result, null, 2) : result);
   mkdirSync(resolve(ROOT, 'bench-data'), { recursive: true });
   writeFileSync(resolve(ROOT, 'bench-data/web-stroke-bench.json'), JSON.stringify({ date: new Date().toISOString(), ...result }, null, 1));
+  rmSync(resolve(ROOT, 'dist/bench-mesh'), { recursive: true, force: true });
 }
 
 const server = spawn(process.execPath, [resolve(ROOT, 'scripts/serve.mjs')], { env: { ...process.env, PORT: String(port) }, stdio: ['ignore', 'pipe', 'inherit'] });

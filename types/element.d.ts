@@ -100,6 +100,8 @@ export interface LoadModelOptions {
   companions?: File[];
   /** false: do not restore the autosaved design (autosave is only ever on with the `autosave` attribute). */
   restore?: boolean;
+  /** A mesh with at least this many edges opens with a preview field solved on a coarse copy, the exact field following (default 300000; 0: never). */
+  previewEdges?: number;
 }
 
 export type ModelSource = string | URL | Blob | ArrayBuffer | ArrayBufferView;
@@ -376,8 +378,10 @@ export declare class TangentFieldDesigner extends HTMLElement {
   hodge(): Promise<HodgeDecomposition>;
   /** The field's singularities: an index per interior vertex that has one (an integer; a multiple of 1/N for a line or cross field). */
   singularities(): { vertex: number; index: number }[];
-  /** The core's timings and sizes for the latest operations. */
-  stats(): Record<string, number | string>;
+  /** The core's timings and sizes for the latest operations; `preview` is true while the field shown is a big model's preview (solved on a coarse copy), false for the exact field. */
+  stats(): Record<string, number | string | boolean>;
+  /** Resolves when the field shown is the exact one: at once on a small model; on a big one after the exact core has caught up with the preview's edits. */
+  settled(): Promise<void>;
   /** Page-side measurements (last worker request, last user action of each kind, restarts). */
   perf(): Record<string, unknown>;
 
@@ -443,6 +447,10 @@ export declare class TangentFieldDesigner extends HTMLElement {
   dispose(): void;
 
   // Test hooks (internal).
+  /** @internal The renderer's compiled programs and GPU memory counts. */
+  debugRendererInfo(): Record<string, unknown>;
+  /** @internal Makes the exact factorization of the next loads wait ms first, so a preview surely leads. */
+  debugDelayExact(ms: number): void;
   /** @internal Ends the core worker as a crash would. */
   debugTerminateCore(): void;
   /** @internal Makes the core worker stop answering for ms milliseconds. */

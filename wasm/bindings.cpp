@@ -148,6 +148,55 @@ class DesignerBinding {
     return out.dump();
   }
 
+  // loadModel in two steps, for big meshes (web/core/preview/): openModel reads, checks and configures the next
+  // model aside (seconds less than the factorization), so its mesh and design can be read (pending*) and a
+  // preview shown while commitModel factors and solves it and makes it current. The same transaction: until
+  // commitModel succeeds the current model is untouched; a failed commit drops the pending model.
+  std::string openModel(const val& bytes, const std::string& format, const std::string& settings,
+                        const std::string& design) {
+    std::string error, settingsError, restoreError;
+    pending_.reset();
+    const bool ok = attempt(error, [&] {
+      auto next = openPrepared(bytes, format, settings, design, &settingsError, &pendingRestored_);
+      pending_ = std::move(next);
+    });
+    restoreError = pendingRestored_.error;
+    lastError_ = error;
+    const auto orNull = [](const std::string& s) { return s.empty() ? nlohmann::json() : nlohmann::json(s); };
+    nlohmann::json out = ok ? nlohmann::json{{"ok", true},
+                                             {"settingsError", orNull(settingsError)},
+                                             {"restoreError", orNull(restoreError)}}
+                            : nlohmann::json{{"ok", false}, {"error", error}};
+    return out.dump();
+  }
+  std::string commitModel() {
+    std::string error;
+    if (!pending_) return nlohmann::json{{"ok", false}, {"error", "no model is open to commit"}}.dump();
+    if (attempt(error, [&] {
+          solvePrepared(*pending_, pendingRestored_);
+          designer_ = std::move(pending_);
+          maps_.reset();
+        })) {
+      pending_.reset();
+      lastError_.clear();
+      const std::string& r = pendingRestored_.error;
+      return nlohmann::json{{"ok", true}, {"restoreError", r.empty() ? nlohmann::json() : nlohmann::json(r)}}.dump();
+    }
+    pending_.reset();
+    lastError_ = error;
+    return nlohmann::json{{"ok", false}, {"error", error}}.dump();
+  }
+  std::string pendingInfoJson() const {
+    return pending_ ? tvf::meshInfoJson(pending_->mesh()).dump() : "null";
+  }
+  std::string pendingDesignJson() const {
+    return json([&] { return pending_ ? tvf::designDocument(*pending_) : nlohmann::json(); });
+  }
+  val pendingPositions() const { return pending_ ? view(pending_->mesh().positions) : view(emptyD_); }
+  val pendingTriangles() const { return pending_ ? view(pending_->mesh().triangles) : view(emptyI_); }
+  val pendingEdges() const { return pending_ ? view(pending_->edgeVertices()) : view(emptyI_); }
+  val pendingCornerUVs() const { return pending_ ? view(pending_->mesh().cornerUVs) : view(emptyF_); }
+
   // bytes <= 0: the address space left in wasm memory (the default); otherwise a fixed limit, for tests.
   std::string setFactorMemoryLimit(double bytes) {
     return run([&] {
@@ -354,10 +403,27 @@ class DesignerBinding {
 
   void fitMemory(tvf::Designer& d) const { d.setFactorMemoryLimit(memoryLimit_ > 0 ? memoryLimit_ : availableHeapBytes()); }
 
+  // Whether the design given with a model took, and why not.
+  struct Restored {
+    bool ok = false;
+    std::string error;
+  };
+
   // Builds the next model aside; the current one is untouched until the caller assigns the result.
   std::unique_ptr<tvf::Designer> prepareModel(const val& bytes, const std::string& format,
                                               const std::string& settings, const std::string& design,
                                               std::string* settingsError, std::string* restoreError) const {
+    Restored restored;
+    auto next = openPrepared(bytes, format, settings, design, settingsError, &restored);
+    solvePrepared(*next, restored);
+    if (restoreError) *restoreError = restored.error;
+    return next;
+  }
+
+  // The next model read, checked and configured (settings, design), not yet factored.
+  std::unique_ptr<tvf::Designer> openPrepared(const val& bytes, const std::string& format,
+                                              const std::string& settings, const std::string& design,
+                                              std::string* settingsError, Restored* restored) const {
     if (bytes.isNull() || bytes.isUndefined()) throw tvf::InputError("no mesh data");
     // A Uint8Array (or any array-like); an ArrayBuffer is viewed as bytes.
     const bool buffer = bytes.instanceof(val::global("ArrayBuffer"));
@@ -393,25 +459,29 @@ class DesignerBinding {
         next->setSymmetry(1);
       }
     }
-    bool restored = false;
+    *restored = Restored{};
     if (!design.empty()) {
       std::string error;
-      restored = attempt(error, [&] { tvf::applyDesignDocument(*next, nlohmann::json::parse(design)); });
-      if (!restored && restoreError) *restoreError = error;
-    }
-    fitMemory(*next);
-    std::string error;
-    if (!attempt(error, [&] { next->solve(); })) {
-      // A restored design the mesh cannot take (a field that is not finite, a gamma whose factor does not fit)
-      // is dropped and reported; a mesh that cannot be factored even without it fails the load.
-      if (!restored) throw tvf::InputError(error);
-      if (restoreError) *restoreError = error;
-      next->clearConstraints();
-      next->setBoundary(tvf::BoundaryCondition::makeFree());
-      next->setGamma(0);
-      next->solve();
+      restored->ok = attempt(error, [&] { tvf::applyDesignDocument(*next, nlohmann::json::parse(design)); });
+      if (!restored->ok) restored->error = error;
     }
     return next;
+  }
+
+  // Factors and solves a prepared model. A restored design the mesh cannot take (a field that is not finite, a
+  // gamma whose factor does not fit) is dropped and reported; a mesh that cannot be factored even without it
+  // fails.
+  void solvePrepared(tvf::Designer& next, Restored& restored) const {
+    fitMemory(next);
+    std::string error;
+    if (attempt(error, [&] { next.solve(); })) return;
+    if (!restored.ok) throw tvf::InputError(error);
+    restored.ok = false;
+    restored.error = error;
+    next.clearConstraints();
+    next.setBoundary(tvf::BoundaryCondition::makeFree());
+    next.setGamma(0);
+    next.solve();
   }
   template <typename F>
   std::string run(F&& f) {
@@ -441,6 +511,8 @@ class DesignerBinding {
   }
 
   std::unique_ptr<tvf::Designer> designer_;
+  std::unique_ptr<tvf::Designer> pending_;  // openModel's model, until commitModel
+  Restored pendingRestored_;
   // reconstruct()'s Whitney maps for designer_'s mesh (built on first use; dropped when the model changes).
   struct Maps {
     tvf::FaceVectorMap face;
@@ -493,6 +565,14 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .constructor<>()
       .function("loadMesh", &DesignerBinding::loadMesh)
       .function("loadModel", &DesignerBinding::loadModel)
+      .function("openModel", &DesignerBinding::openModel)
+      .function("commitModel", &DesignerBinding::commitModel)
+      .function("pendingInfoJson", &DesignerBinding::pendingInfoJson)
+      .function("pendingDesignJson", &DesignerBinding::pendingDesignJson)
+      .function("pendingPositions", &DesignerBinding::pendingPositions)
+      .function("pendingTriangles", &DesignerBinding::pendingTriangles)
+      .function("pendingEdges", &DesignerBinding::pendingEdges)
+      .function("pendingCornerUVs", &DesignerBinding::pendingCornerUVs)
       .function("setFactorMemoryLimit", &DesignerBinding::setFactorMemoryLimit)
       .function("gamma", &DesignerBinding::gamma)
       .function("infoJson", &DesignerBinding::infoJson)

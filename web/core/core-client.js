@@ -126,6 +126,39 @@ export class CoreClient {
     return { settingsError: out.settingsError, restoreError: out.restoreError };
   }
 
+  // loadModel in two steps (core-worker.js, big meshes): openModel reads, checks and configures the next model
+  // aside ({settingsError, restoreError}); pendingInfo/pendingMesh/pendingDesign read it; commitModel factors,
+  // solves and makes it current ({restoreError}: a design the solve could not take). Any failure leaves the
+  // current model as it was.
+  openModel(bytes, format, settings = null, design = null) {
+    const settingsJson = settings ? JSON.stringify(settings) : '';
+    const designJson = design ? JSON.stringify(design) : '';
+    const out = JSON.parse(guard('load', () => this.designer.openModel(bytes, format, settingsJson, designJson)));
+    if (!out.ok) throw new CoreError(prefixed('load', out.error));
+    return { settingsError: out.settingsError, restoreError: out.restoreError };
+  }
+
+  commitModel() {
+    const out = JSON.parse(guard('load', () => this.designer.commitModel()));
+    if (!out.ok) throw new CoreError(prefixed('load', out.error));
+    this.hasMesh = true;
+    return { restoreError: out.restoreError };
+  }
+
+  pendingInfo() {
+    return JSON.parse(guard('info', () => this.designer.pendingInfoJson()));
+  }
+
+  pendingDesign() {
+    return JSON.parse(guard('design', () => this.designer.pendingDesignJson()));
+  }
+
+  // Copies (transferable) of the opened model's welded mesh.
+  pendingMesh() {
+    const d = this.designer;
+    return { positions: d.pendingPositions().slice(), triangles: d.pendingTriangles().slice(), edges: d.pendingEdges().slice() };
+  }
+
   // bytes: a fixed limit for the factor's memory; 0: what is left of the wasm address space (default).
   setFactorMemoryLimit(bytes) {
     check('memory limit', guard('memory limit', () => this.designer.setFactorMemoryLimit(bytes)));

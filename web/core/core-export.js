@@ -3,6 +3,7 @@
 // again). Of a glTF/GLB file only its document is kept, so a GLB keeps the model's own glTF and a field-only
 // export matches `tvf export` byte for byte. One per worker, i.e. per <tangent-field-designer> element.
 import { CoreError } from './core-client.js';
+import { NOT_YET } from './symmetry.js';
 
 const isGltf = (format) => format === 'glb' || format === 'gltf';
 
@@ -91,4 +92,30 @@ function sniffFormat(bytes) {
     if (c !== 0x20 && c !== 0x09 && c !== 0x0a && c !== 0x0d && c !== 0xef && c !== 0xbb && c !== 0xbf) return '';
   }
   return '';
+}
+
+// The worker's export ops (core-worker.js): the same bytes as `tvf export` for this model file (docs/export.md).
+// coreExport(), field() (core-worker.js exportedField), design(): the current ones, read at each call.
+export function exportOps(coreExport, field, design) {
+  return {
+    exportAtlasNote() {
+      return coreExport().atlasNote();
+    },
+
+    exportFlowMap(options) {
+      return coreExport().flowMapPng(field(), options);
+    },
+
+    // texture: null or {png, cornerUVs}, the synthesized texture (web/export/index.js).
+    exportGlb(options, texture) {
+      return coreExport().glb(field(), design(), options, texture);
+    },
+
+    // A line or cross field as Directional's raw field text (docs/export.md).
+    exportRawField() {
+      const f = field();
+      if (f.symmetry < 2) throw new CoreError(NOT_YET.rawField);
+      return coreExport().rawField(f);
+    },
+  };
 }

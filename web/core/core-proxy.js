@@ -83,21 +83,23 @@ export class CoreProxy {
   // Resolves with the whole reply ({value, snapshot?, workerMs, timing}); rejects with the core's message.
   // A rejection may still carry the state the core is left in: err.reply.snapshot. background: a read-out the
   // page can do without (the streamlines view), which cancel() does not count as an operation in flight.
-  async call(op, args = [], transfer = [], { background = false } = {}) {
+  // onProgress(progress): the worker's word on a long op before its reply (core-worker.js `progress`).
+  // wholeDesign: the reply's snapshot carries the whole design document, not the change (progressive-core.js).
+  async call(op, args = [], transfer = [], { background = false, onProgress = null, wholeDesign = false } = {}) {
     await this.ready; // a restart in progress finishes (model and design back) first
-    return this.#send(op, args, transfer, background);
+    return this.#send(op, args, transfer, background, onProgress, wholeDesign);
   }
 
-  #send(op, args = [], transfer = [], background = false) {
+  #send(op, args = [], transfer = [], background = false, onProgress = null, wholeDesign = false) {
     if (this.failure) return Promise.reject(this.failure);
     if (!this.worker) return Promise.reject(new CoreError(`${op}: the core is restarting`));
     const seq = ++this.seq;
     const spare = this.spare.filter((b) => b.byteLength > 0 && !transfer.includes(b));
     this.spare = [];
     return new Promise((resolve, reject) => {
-      this.pending.set(seq, { resolve, reject, op, background });
+      this.pending.set(seq, { resolve, reject, op, background, onProgress });
       try {
-        this.worker.postMessage({ seq, op, args, spare }, [...transfer, ...spare]);
+        this.worker.postMessage({ seq, op, args, spare, wholeDesign }, [...transfer, ...spare]);
       } catch (err) {
         this.pending.delete(seq);
         reject(new CoreError(`could not send ${op} to the core: ${err.message}`));
@@ -165,6 +167,7 @@ export class CoreProxy {
     if (reply.locked) return void this.#watchLock(worker, lockName);
     const p = this.pending.get(reply.seq);
     if (!p) return;
+    if (reply.progress) return void p.onProgress?.(reply.progress);
     this.pending.delete(reply.seq);
     if (reply.ok) p.resolve(reply);
     else {

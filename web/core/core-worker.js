@@ -7,15 +7,16 @@
 //
 // One worker per <tangent-field-designer> element: its globals are that element's core and nothing else.
 import { CoreError, loadCore } from './core-client.js';
-import { CoreExport } from './core-export.js';
+import { CoreExport, exportOps } from './core-export.js';
 import { FieldParts } from './field-parts.js';
 import { settingOps } from './setting-ops.js';
 import { SpareArrays } from './spare-arrays.js';
-import { NOT_YET } from './symmetry.js';
+import { Preview } from './preview/preview.js';
 import { traceStreamlines } from '../geometry/streamlines.js';
 import { chooseAtlas } from '../synthesis/atlas.js';
 import { analyzeExemplar, exemplarBuffers } from '../synthesis/exemplar.js';
 import { Surface } from '../geometry/surface.js';
+import { pageSurface } from '../geometry/mesh-bvh-transfer.js';
 
 // The worker's whole state lives in this closure: one served core per worker, one worker per element.
 function serve(scope) {
@@ -28,6 +29,20 @@ function serve(scope) {
   let tracing = { surface: null, key: '', lines: null };
   // The current field's Hodge decomposition and its parts' vectors, made on request and kept until the next solve.
   const parts = new FieldParts(() => core);
+  // In a preview worker (progressive-core.js): the coarse stand-in of the page's big mesh, else null.
+  let preview = null;
+  // The request in flight, whose `progress` messages the page routes to its caller (core-proxy.js).
+  let seqNow = 0;
+  const progress = (value, list = []) => scope.postMessage({ seq: seqNow, progress: value }, list);
+
+  // The mesh's surface, for tracing: built on first use.
+  function surfaceOf() {
+    if (!tracing.surface) {
+      const mesh = core.mesh();
+      tracing.surface = new Surface(mesh.positions, mesh.triangles, core.edges());
+    }
+    return tracing.surface;
+  }
 
   function requireMesh() {
     if (!core?.hasMesh) throw new CoreError('no mesh loaded');
@@ -80,7 +95,8 @@ function serve(scope) {
       ? { ids, changed: changed.filter((id) => ids.includes(id)).map((id) => [id, core.constraint(id)]) }
       : { ids, document: JSON.parse(core.designJson()) };
     lap('designMs');
-    const stats = core.stats();
+    // heapBytes: the wasm memory, which never shrinks: the peak so far.
+    const stats = { ...core.stats(), preview: false, heapBytes: core.Module.HEAP8.buffer.byteLength };
     lap('statsMs');
     return {
       version,
@@ -130,25 +146,50 @@ function serve(scope) {
     // One transaction in the core: the new mesh is read, checked, configured, factored and solved aside and
     // replaces the current model only when all of that succeeded; a failure leaves the core and the page on the
     // previous model.
-    loadMesh(bytes, format, settings, design) {
+    // options.previewEdges: a mesh with at least this many edges is opened first, and its mesh and design are
+    // sent ahead as `progress` {phase: 'opened'} for a preview core (progressive-core.js), before the long
+    // factorization; the surface is then built there, not here.
+    loadMesh(bytes, format, settings, design, options = {}) {
+      preview = null;
       // A GLB exported with its design (docs/export.md) reopens with it, unless an autosave is newer.
       const embedded = design ? null : coreExport.embeddedDesign(bytes);
-      const { settingsError, restoreError } = core.loadModel(bytes, format, settings, design ?? embedded);
+      const opened = core.openModel(bytes, format, settings, design ?? embedded);
+      const pendingInfo = core.pendingInfo();
+      const ahead = options.previewEdges > 0 && pendingInfo.edges >= options.previewEdges;
+      if (ahead) {
+        const mesh = core.pendingMesh();
+        const cornerUVs = core.designer.pendingCornerUVs().slice();
+        const early = { ...opened, embeddedDesign: embedded != null, cornerUVs, design: core.pendingDesign() };
+        progress({ phase: 'opened', info: pendingInfo, mesh, ...early }, [mesh.positions.buffer, mesh.triangles.buffer, mesh.edges.buffer, cornerUVs.buffer]);
+        // The page's surface and BVH, built here while the preview worker simplifies (two cores at work).
+        const m = core.pendingMesh();
+        const { arrays, list } = pageSurface(new Surface(m.positions, m.triangles, m.edges), true);
+        progress({ phase: 'surface', surface: arrays }, list);
+      }
+      progress({ phase: 'factoring', info: pendingInfo });
+      // Tests: an exact factorization that takes at least this long, so the preview surely leads.
+      for (const end = performance.now() + (options.delayForTestMs ?? 0); performance.now() < end; );
+      const committed = core.commitModel();
       coreExport.modelLoaded(bytes, format);
       const info = core.info();
       spares.reset([3 * info.faces, 3 * info.vertices, info.edges]);
-      // The mesh's geometry and adjacency, built once here (off the page's thread): the worker traces on it, and
-      // the page takes a copy of its arrays instead of deriving them again.
-      const mesh = core.mesh();
-      const surface = new Surface(mesh.positions, mesh.triangles, core.edges());
-      tracing = { surface, key: '', lines: null };
-      const arrays = surface.arrays();
+      tracing = { surface: null, key: '', lines: null };
       // Texture synthesis (web/synthesis/) needs the model's per-corner UVs (6 per face; empty without TEXCOORD_0).
       const cornerUVs = core.designer.cornerUVs().slice();
-      return new Transfer(
-        { info, settingsError, restoreError, embeddedDesign: embedded != null, surface: arrays, cornerUVs },
-        [...Surface.transferList(arrays), cornerUVs.buffer],
-      );
+      const value = { info, settingsError: opened.settingsError, restoreError: opened.restoreError ?? committed.restoreError, embeddedDesign: embedded != null, cornerUVs };
+      if (ahead) return new Transfer(value, [cornerUVs.buffer]);
+      // The mesh's geometry and adjacency, built once here (off the page's thread): the worker traces on it, and
+      // the page takes a copy of its arrays instead of deriving them again.
+      const { arrays, list } = pageSurface(surfaceOf());
+      return new Transfer({ ...value, surface: arrays }, [...list, cornerUVs.buffer]);
+    },
+
+    // In a fresh worker: the preview of a big model (preview/preview.js) from the exact worker's `opened`
+    // progress; replies (as every mutating op) with the preview field.
+    async openPreview(mesh, fineDoc, settings) {
+      preview = await Preview.open(core, mesh, fineDoc, settings);
+      spares.reset([mesh.triangles.length, mesh.positions.length, mesh.edges.length / 2]);
+      return { timings: preview.timings };
     },
 
     // One constraint in the design format: new ones and re-added ones (undo of a delete) alike go through the
@@ -200,7 +241,7 @@ function serve(scope) {
         const field = component === 'whole' ? { vertexVectors: core.vertexVectors(), faceVectors: core.faceVectors() } : parts.component(version, component);
         // An N-field's corners are matched to its face representatives before they are interpolated.
         const options = { spacing, lift, symmetry: core.symmetry(), faceVectors: field.faceVectors };
-        tracing.lines = traceStreamlines(tracing.surface, field.vertexVectors, options);
+        tracing.lines = traceStreamlines(surfaceOf(), field.vertexVectors, options);
         tracing.key = key;
       }
       // Copies: the cached lines stay here for the next request at the same spacing.
@@ -264,31 +305,13 @@ function serve(scope) {
       return true;
     },
 
-    // Exports of the current field (docs/export.md): the same bytes as `tvf export` for this model file.
-    exportAtlasNote() {
-      return coreExport.atlasNote();
-    },
-
-    exportFlowMap(options) {
-      return coreExport.flowMapPng(exportedField(), options);
-    },
-
-    // texture: null or {png, cornerUVs}, the synthesized texture (web/export/index.js).
-    exportGlb(options, texture) {
-      return coreExport.glb(exportedField(), JSON.parse(core.designJson()), options, texture);
-    },
-
-    // A line or cross field as Directional's raw field text (docs/export.md).
-    exportRawField() {
-      const field = exportedField();
-      if (field.symmetry < 2) throw new CoreError(NOT_YET.rawField);
-      return coreExport.rawField(field);
-    },
+    // exportAtlasNote, exportFlowMap, exportGlb, exportRawField (core-export.js).
+    ...exportOps(() => coreExport, () => exportedField(), () => JSON.parse(core.designJson())),
   };
 
-  const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar']);
+  const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'openPreview', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar']);
   // Ops after which the field may have changed: they solve and send a snapshot back.
-  const MUTATING = new Set(['loadMesh', 'add', 'remove', 'setWeight', 'setStrength', ...Object.keys(settingEdits)]);
+  const MUTATING = new Set(['loadMesh', 'openPreview', 'add', 'remove', 'setWeight', 'setStrength', ...Object.keys(settingEdits)]);
 
   // A wasm trap or an abort (out of memory, an assertion) leaves the instance unusable: the page must replace
   // this worker rather than send it more work.
@@ -307,7 +330,9 @@ function serve(scope) {
       while (performance.now() < end);
       return;
     }
-    const { seq, op, args } = data;
+    const { seq, op } = data;
+    let { args } = data;
+    seqNow = seq;
     spares.take(data.spare);
     const t0 = performance.now();
     const timing = {};
@@ -317,18 +342,21 @@ function serve(scope) {
     try {
       if (!ops[op]) throw new CoreError(`unknown operation ${op}`);
       if (!NO_MESH_NEEDED.has(op)) requireMesh();
+      const fineArgs = args;
+      if (preview && MUTATING.has(op)) args = preview.argsOnCoarse(op, args);
       let out = await ops[op](...args);
+      if (preview && MUTATING.has(op)) preview.afterOp(op, fineArgs, out instanceof Transfer ? out.value : out);
       if (out instanceof Transfer) {
         transfer = out.list;
         out = out.value;
       }
       const t1 = performance.now();
       timing.opMs = t1 - t0;
-      if (MUTATING.has(op) && op !== 'loadMesh') core.solve();
+      if (MUTATING.has(op) && op !== 'loadMesh' && op !== 'openPreview') core.solve();
       timing.solveMs = performance.now() - t1;
       reply = { ok: true, value: out };
       if (MUTATING.has(op)) {
-        reply.snapshot = snapshot(changedIds, timing);
+        reply.snapshot = preview ? preview.snapshot(spares, timing) : snapshot(data.wholeDesign ? null : changedIds, timing);
         transfer = [...transfer, ...reply.snapshot.transfer];
       }
     } catch (err) {
@@ -347,7 +375,7 @@ function serve(scope) {
       if (MUTATING.has(op) && core?.hasMesh && !reply.fatal) {
         try {
           core.solve();
-          reply.snapshot = snapshot(null);
+          reply.snapshot = preview ? preview.snapshot(spares, timing) : snapshot(null);
           transfer = reply.snapshot.transfer;
         } catch {
           // no field to show; the page keeps its previous copies

@@ -28,6 +28,11 @@ export class SpareArrays {
     }
   }
 
+  // A spare of this length, or a fresh array.
+  pop(length) {
+    return this.byLength.get(length)?.pop() ?? new Float64Array(length);
+  }
+
   // A copy of a view of the wasm heap, into a spare when there is one of its length (counts.reused counts those).
   copyOut(view, counts) {
     const array = this.byLength.get(view.length)?.pop();

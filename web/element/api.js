@@ -15,6 +15,7 @@ const add = (d, spec) => d.session.addConstraint(spec);
 // A worker read-out of the session's current field (an op taking the field's version first); called in the
 // session's queue, where no edit can change the field before it answers.
 async function workerRead(d, op, ...args) {
+  if (d.session.field?.stats?.preview) await d.session.settled(); // the exact core reads its own field only
   const value = (await d.session.proxy.call(op, [d.session.field.version, ...args])).value;
   if (value == null) throw new Error(`${op}: the core's field is not the page's (version ${d.session.field.version})`);
   return value;
@@ -75,6 +76,7 @@ export const api = {
   oneForm: read((d, s) => s.field.oneForm.slice()),
   singularities: read((d, s) => structuredClone(s.currentSingularities())),
   stats: read((d, s) => structuredClone(s.field.stats)),
+  settled: (d) => d.session.settled(),
   // The Hodge decomposition of the current field (docs/js-api.md): made by the worker on the first request for a
   // field and kept there until the next solve. In the queue, so it is the field that the edits before it made.
   hodge: (d) =>
@@ -113,6 +115,8 @@ export const api = {
   supervision: (d) => d.session.supervision(),
   // What a crash of the core's worker does, on purpose (tests, demonstrations); a memory limit for the factor
   // (0: the wasm address space left) so tests need no multi-million-edge mesh.
+  debugRendererInfo: (d) => ({ programs: d.viewer.renderer.info.programs.map((p) => p.name), ...d.viewer.renderer.info.memory }),
+  debugDelayExact: (d, ms) => void (d.session.debugExactDelayMs = ms),
   debugTerminateCore: (d) => d.session.proxy?.terminateForTest(),
   debugHangCore: (d, ms) => d.session.proxy?.hangForTest(ms),
   debugTrapCore: (d) => d.session.exclusive(() => d.session.proxy.call('trapForTest')),

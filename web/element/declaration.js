@@ -117,6 +117,8 @@ export interface LoadModelOptions {
   companions?: File[];
   /** false: do not restore the autosaved design (autosave is only ever on with the \`autosave\` attribute). */
   restore?: boolean;
+  /** A mesh with at least this many edges opens with a preview field solved on a coarse copy, the exact field following (default 300000; 0: never). */
+  previewEdges?: number;
 }
 
 export type ModelSource = string | URL | Blob | ArrayBuffer | ArrayBufferView;
@@ -301,7 +303,8 @@ export const METHODS = [
   { name: 'oneForm', source: 'api', group: 'Field and timings', signatures: [['', 'Float64Array']], description: 'The solution: one line integral per edge of edges().' },
   { name: 'hodge', source: 'api', group: 'Field and timings', signatures: [['', 'Promise<HodgeDecomposition>']], description: 'The Hodge decomposition of the current field: exact, coexact and harmonic parts (c = dα + δβ + h), made on first request.' },
   { name: 'singularities', source: 'api', group: 'Field and timings', signatures: [['', '{ vertex: number; index: number }[]']], description: "The field's singularities: an index per interior vertex that has one (an integer; a multiple of 1/N for a line or cross field)." },
-  { name: 'stats', source: 'api', group: 'Field and timings', signatures: [['', 'Record<string, number | string>']], description: "The core's timings and sizes for the latest operations." },
+  { name: 'stats', source: 'api', group: 'Field and timings', signatures: [['', 'Record<string, number | string | boolean>']], description: "The core's timings and sizes for the latest operations; \`preview\` is true while the field shown is a big model's preview (solved on a coarse copy), false for the exact field." },
+  { name: 'settled', source: 'api', group: 'Field and timings', signatures: [['', 'Promise<void>']], description: "Resolves when the field shown is the exact one: at once on a small model; on a big one after the exact core has caught up with the preview's edits." },
   { name: 'perf', source: 'api', group: 'Field and timings', signatures: [['', 'Record<string, unknown>']], description: 'Page-side measurements (last worker request, last user action of each kind, restarts).' },
 
   // Views
@@ -340,6 +343,8 @@ export const METHODS = [
   { name: 'dispose', source: 'element', group: 'The element', signatures: [['', 'void']], description: 'Ends the worker, frees the WebGL contexts and clears the shadow root (removing the element does the same).' },
 
   // Test hooks
+  { name: 'debugRendererInfo', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'Record<string, unknown>']], description: "The renderer's compiled programs and GPU memory counts." },
+  { name: 'debugDelayExact', source: 'api', group: 'Test hooks', internal: true, signatures: [['ms: number', 'void']], description: 'Makes the exact factorization of the next loads wait ms first, so a preview surely leads.' },
   { name: 'debugTerminateCore', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'void']], description: 'Ends the core worker as a crash would.' },
   { name: 'debugHangCore', source: 'api', group: 'Test hooks', internal: true, signatures: [['ms: number', 'void']], description: 'Makes the core worker stop answering for ms milliseconds.' },
   { name: 'debugTrapCore', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'Promise<unknown>']], description: 'Makes the worker report what a wasm trap looks like.' },

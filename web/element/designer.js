@@ -16,6 +16,7 @@ import { Viewer } from '../views/viewer.js';
 
 const PROGRESS_LABELS = {
   loadMesh: 'Loading and factoring…',
+  exactFactor: 'Preview shown; computing the exact field…',
   setBoundary: 'Refactoring…',
   setGamma: 'Refactoring…',
   setSymmetry: 'Refactoring…',

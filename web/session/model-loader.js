@@ -1,9 +1,12 @@
 // Opening a model: read the file (model-files.js), find its autosave, hand it to the core in one transaction
 // (loaded, checked, factored and solved aside; a failure keeps the previous model), then adopt the new mesh.
-// Tool input made meanwhile is refused (loadsPending), and one made on the previous model is dropped.
+// Tool input made meanwhile is refused (loadsPending), and one made on the previous model is dropped. A big model
+// (opts.previewEdges, default core/progressive-core.js PREVIEW_EDGES) is adopted with its preview field, the
+// exact one following (session/core-follow.js exactLanded); should the exact load then fail, the previous model comes back.
 import { modelKey } from './documents.js';
 import { readModel } from './model-files.js';
 import { Surface } from '../geometry/surface.js';
+import { PREVIEW_EDGES } from '../core/progressive-core.js';
 
 export class ModelLoader {
   constructor(session) {
@@ -28,8 +31,11 @@ export class ModelLoader {
         const saved = opts.restore === false ? null : await s.autosave.load(key);
         const bytes = model.bytes.slice(); // its own buffer, transferred to the worker
         let reply;
+        const previous = this.#current();
+        s.perf.loadPhases = { start: performance.now() };
+        const load = { previewEdges: opts.previewEdges ?? PREVIEW_EDGES, delayForTestMs: s.debugExactDelayMs ?? 0, onPhase: (p) => this.#phase(p) };
         try {
-          reply = await s.call('loadMesh', [bytes, model.format, s.settings(), saved?.design ?? null], [bytes.buffer]);
+          reply = await s.call('loadMesh', [bytes, model.format, s.settings(), saved?.design ?? null], [bytes.buffer], load);
         } catch (err) {
           // The core kept its previous mesh and everything on it.
           if (s.info) s.changed();
@@ -37,13 +43,46 @@ export class ModelLoader {
         }
         const { info, settingsError, restoreError, embeddedDesign, cornerUVs } = reply.value;
         const surface = Surface.fromArrays(reply.value.surface);
+        this.previous = reply.snapshot?.stats?.preview ? previous : null;
         s.adoptModel({ model, key, source: { bytes: model.bytes, format: model.format }, info, surface, cornerUVs });
+        s.perf.loadPhases.adopted = performance.now();
+        s.perf.previewTimings = reply.value.previewTimings ?? null;
         this.#tellRestored(model, saved, restoreError, embeddedDesign, settingsError);
         s.announceModel();
         this.#warmUpLater();
         return structuredClone(info);
       })
       .finally(() => this.loadsPending--);
+  }
+
+  // What adoptModel needs to bring the current model back, and its design.
+  #current() {
+    const s = this.session;
+    if (!s.info) return null;
+    return { model: { name: s.modelName }, key: s.modelKey, source: s.modelSource, info: s.info, surface: s.surface, cornerUVs: s.cornerUVs ?? new Float32Array(0), design: s.design };
+  }
+
+  #phase(p) {
+    const s = this.session;
+    (s.perf.loadPhases ??= {})[p.phase] = performance.now();
+    if (p.phase === 'opened') s.flash(`Opening a big mesh (${p.info.faces.toLocaleString('en')} faces): a preview first, the exact field follows.`, 4000);
+  }
+
+  // The exact core could not take the big model whose preview is shown (too large to factor, say): it still
+  // holds the previous model, which comes back on the page with its design; the preview's edits are gone.
+  exactLoadFailed(err) {
+    const s = this.session;
+    const name = s.modelName;
+    s.fail('model', new Error(`Could not load ${name}: ${err.message.replace(/^load: /, '')}`));
+    const previous = this.previous;
+    this.previous = null;
+    if (!previous) return;
+    s.exclusive(async () => {
+      s.adoptModel(previous);
+      await s.call('applyDesign', [previous.design]);
+      s.changed();
+      s.announceModel();
+    }).catch((e) => s.fail('model', e));
   }
 
   #tellRestored(model, saved, restoreError, embeddedDesign, settingsError) {

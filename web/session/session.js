@@ -19,6 +19,8 @@ import { Emitter } from './emitter.js';
 import { History } from './history.js';
 import { ModelLoader } from './model-loader.js';
 import { CoreProxy } from '../core/core-proxy.js';
+import { ProgressiveCore } from '../core/progressive-core.js';
+import { awaitExact, exactFailed, exactLanded, revive } from './core-follow.js';
 import { findSingularities } from '../geometry/singularities.js';
 
 // Weight 1e4 keeps strokes within ~0.4% of the drawn direction (paper, Sec. 6.1) while the rank-1 updates
@@ -27,6 +29,7 @@ export const DEFAULT_WEIGHT = 1e4;
 
 export class Session extends Emitter {
   #coreStartSettled;
+  #core = null;
 
   // assetBase: URL of the folder with core-worker.js and wasm/; autosave: storage key or null (off).
   constructor({ assetBase, autosave = null }) {
@@ -62,6 +65,18 @@ export class Session extends Emitter {
     this.savedDesignJson = null; // the design as last saved, loaded or found with the model
   }
 
+  // The proxy, with a preview core beside it on big models (core/progressive-core.js); null before start().
+  get core() {
+    if (this.proxy && this.#core?.exact !== this.proxy) {
+      this.#core = new ProgressiveCore(this.proxy, {
+        assetBase: this.assetBase,
+        onExact: (snapshot) => exactLanded(this, snapshot),
+        onExactError: (err, op, caughtUp) => exactFailed(this, err, op, caughtUp),
+      });
+    }
+    return this.#core;
+  }
+
   get design() {
     return this.table.design;
   }
@@ -75,7 +90,7 @@ export class Session extends Emitter {
   async start() {
     try {
       const proxy = await CoreProxy.start(this.assetBase, {
-        onRestart: (reason) => this.#revive(reason),
+        onRestart: (reason) => revive(this, reason),
         onStatus: (text) => this.flash(text, 4000),
       });
       if (this.disposed) return proxy.terminate();
@@ -92,6 +107,7 @@ export class Session extends Emitter {
   dispose() {
     if (this.disposed) return;
     this.disposed = true;
+    this.#core?.terminate();
     this.proxy?.terminate();
     this.autosave.close();
     this.clearListeners();
@@ -111,7 +127,7 @@ export class Session extends Emitter {
     return error;
   }
 
-  #emitChanges() {
+  emitChanges() {
     this.emit('fieldchange', { version: this.fieldVersion, stats: structuredClone(this.field.stats) });
     const constraints = this.constraintList();
     const json = JSON.stringify(constraints);
@@ -128,7 +144,7 @@ export class Session extends Emitter {
     this.emit('change');
     for (const field of this.retired) {
       if (field.autosavePending) this.autosave.checkFinite(field);
-      this.proxy?.recycle([field.faceVectors, field.vertexVectors, field.oneForm]);
+      this.core?.recycle([field.faceVectors, field.vertexVectors, field.oneForm], field.stats?.preview);
     }
     this.retired = [];
   }
@@ -151,24 +167,34 @@ export class Session extends Emitter {
     if (!this.proxy || !this.info || !this.field) throw new Error('the designer is not ready yet; await its ready promise first');
   }
 
-  // One request to the worker; the snapshot it returns (also with a failure) becomes the session's state.
-  async call(op, args = [], transfer = []) {
-    const proxy = this.requireProxy();
+  // One request to the worker; the snapshot it returns (also with a failure) becomes the session's state. On a
+  // big model the reply may be the preview core's (core/progressive-core.js): the exact field follows through
+  // core-follow.js exactLanded. load: loadMesh's options for ProgressiveCore.load ({previewEdges, onPhase}).
+  async call(op, args = [], transfer = [], load = null) {
+    this.requireProxy();
     this.emit('busy', { op, done: false });
     const t0 = performance.now();
     try {
-      const reply = await proxy.call(op, args, transfer);
+      let reply, progressive = false;
+      if (load) ({ reply, progressive } = await this.core.load(args, transfer, load));
+      else reply = await this.core.call(op, args, transfer);
       const t1 = performance.now();
-      this.perf.lastOp = { op, workerMs: reply.workerMs, workerParts: reply.timing, roundTripMs: t1 - t0, sentAt: t0, receivedAt: t1 };
-      if (reply.snapshot) this.#applySnapshot(reply.snapshot);
+      this.perf.lastOp = { op, workerMs: reply.workerMs, workerParts: reply.timing, roundTripMs: t1 - t0, sentAt: t0, receivedAt: t1, preview: !!reply.snapshot?.stats?.preview };
+      if (reply.snapshot) this.applySnapshot(reply.snapshot);
       this.perf.lastOp.applyMs = performance.now() - t1;
+      if (progressive) awaitExact(this);
       return reply;
     } catch (err) {
-      if (err.reply?.snapshot) this.#applySnapshot(err.reply.snapshot);
+      if (err.reply?.snapshot) this.applySnapshot(err.reply.snapshot);
       throw err;
     } finally {
       this.emit('busy', { op, done: true });
     }
+  }
+
+  // Resolves when the field shown is the exact core's (after a preview on a big model: docs/js-api.md).
+  settled() {
+    return this.core ? this.core.settled() : Promise.resolve();
   }
 
   // A call that changes nothing the session mirrors (exports, the texture's analyses): in the queue when
@@ -183,7 +209,7 @@ export class Session extends Emitter {
     return (await this.requireProxy().call(op, args, transfer, { background: true })).value;
   }
 
-  #applySnapshot({ version, symmetry, faceVectors, vertexVectors, oneForm, stats, design }) {
+  applySnapshot({ version, symmetry, faceVectors, vertexVectors, oneForm, stats, design }) {
     if (this.field) this.retired.push(this.field);
     this.field = { version, symmetry, faceVectors, vertexVectors, oneForm, stats, singularities: null };
     this.fieldVersion++;
@@ -287,7 +313,7 @@ export class Session extends Emitter {
     this.emit('banner-clear');
     this.changed();
     this.autosave.saveNow();
-    this.#emitChanges();
+    this.emitChanges();
   }
 
   exportField() {
@@ -335,31 +361,10 @@ export class Session extends Emitter {
 
   announceModel() {
     this.emit('load', { info: structuredClone(this.info) });
-    this.#emitChanges();
+    this.emitChanges();
   }
 
   // ------------------------------------------------------------------------------------------ supervision
-
-  // The proxy replaced a dead, trapped or cancelled worker: the current model and design go to the new one,
-  // the page ids are mapped onto the new core ids (the history stays valid), and the user is told.
-  async #revive({ kind, detail, call }) {
-    const t0 = performance.now();
-    if (!this.modelSource || this.disposed) return;
-    const uids = this.table.uidsInCoreOrder();
-    const bytes = this.modelSource.bytes.slice();
-    const reply = await call('loadMesh', [bytes, this.modelSource.format, this.settings(), this.design], [bytes.buffer]);
-    this.#applySnapshot(reply.snapshot);
-    this.table.mapDocument(uids);
-    this.changed();
-    this.perf.lastRestart = { kind, detail, restoreMs: performance.now() - t0, constraints: this.table.size };
-    this.emit('corerestart', { kind, detail });
-    this.flash(
-      kind === 'cancelled'
-        ? 'Cancelled. The design is as it was before.'
-        : `The core stopped (${detail}) and was restarted; your model and design are back.`,
-      6000,
-    );
-  }
 
   cancel() {
     return this.proxy?.cancel() ?? false;

@@ -24,6 +24,7 @@ import {
 } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { MeshBVH, acceleratedRaycast } from 'three-mesh-bvh';
+import { adoptBVH } from '../geometry/mesh-bvh-transfer.js';
 import { ArrowsView } from './arrows-view.js';
 import { frameModel, refitToAspect } from './camera.js';
 import { magnitudeScale, viridis } from './colormap.js';
@@ -162,20 +163,35 @@ export class Viewer {
     });
   }
 
-  // surface: a Surface (surface.js) built from the core's mesh.
+  // surface: a Surface (surface.js) built from the core's mesh. When the worker sent them
+  // (geometry/mesh-bvh-transfer.js), surface.bvh (a SerializedMeshBVH) and surface.float32 ({positions, normals,
+  // index, colors}) are drawn from as they are and the bounds tree is adopted, not built: on a scanned mesh the
+  // build and the Float64→Float32 copies held the page's thread for seconds (issue 28). Without them (small
+  // meshes, tests) all of it is done here.
   setMesh(surface) {
     this.clearStroke();
     this.#disposeMesh();
     this.surface = surface;
+    const { bvh = null, float32 = null } = surface;
+    const positions = bvh?.positions ?? float32?.positions ?? new Float32Array(surface.positions);
+    const normals = float32?.normals ?? new Float32Array(surface.vertexNormals);
+    const index = bvh?.index ?? float32?.index ?? new Uint32Array(surface.triangles);
     const geom = new BufferGeometry();
-    geom.setAttribute('position', new BufferAttribute(Float32Array.from(surface.positions), 3));
-    geom.setAttribute('normal', new BufferAttribute(Float32Array.from(surface.vertexNormals), 3));
-    geom.setAttribute('color', new BufferAttribute(new Float32Array(surface.positions.length).fill(1), 3));
-    geom.setIndex(new BufferAttribute(Uint32Array.from(surface.triangles), 1));
-    geom.computeBoundingSphere();
-    // indirect: the default build reorders the index buffer, and then hit.faceIndex no longer names the
-    // core's face. Indirect mode leaves the triangles in place and reports original indices.
-    geom.boundsTree = new MeshBVH(geom, { indirect: true });
+    geom.setAttribute('position', new BufferAttribute(positions, 3));
+    geom.setAttribute('normal', new BufferAttribute(normals, 3));
+    // The worker's all-white colours are handed over, not shared: setVertexField paints into them, and a later
+    // setMesh of the same Surface (a re-attached element) must start white again.
+    const colors = float32?.colors ?? new Float32Array(positions.length).fill(1);
+    if (float32) float32.colors = null;
+    geom.setAttribute('color', new BufferAttribute(colors, 3));
+    geom.setIndex(new BufferAttribute(index, 1));
+    if (bvh) adoptBVH(geom, bvh); // also sets the bounding sphere the worker computed
+    else {
+      geom.computeBoundingSphere();
+      // indirect: the default build reorders the index buffer, and then hit.faceIndex no longer names the
+      // core's face. Indirect mode leaves the triangles in place and reports original indices.
+      geom.boundsTree = new MeshBVH(geom, { indirect: true });
+    }
 
     const material = new MeshStandardMaterial({
       color: SURFACE_GREY,

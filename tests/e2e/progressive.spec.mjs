@@ -1,0 +1,167 @@
+// Big meshes open progressively (web/core/progressive-core.js): a preview field solved on a coarse copy first, the
+// exact one behind it. Forced here on a small mesh (the default bunny subdivided once, `previewEdges: 1`) with the
+// exact factorization held back, so the preview surely leads: the first field and every edit made meanwhile
+// are marked `preview` in stats(), edits apply at once and are replayed on the exact core in order, a design
+// saved during the preview is the design the exact core ends with, undo still works, and once the exact field
+// has landed it equals a fresh exact solve of the same design to 1e-9 (the independent truth: a plain load).
+import { expect, test } from '@playwright/test';
+import { openDesignerPage, readMesh, subdividedOff } from './helpers.mjs';
+
+// In the page: strips of faces walked away from a start face (as scripts/bench-web.mjs), as stroke points.
+function strokesInPage({ starts, crossings }) {
+  const { positions, triangles } = window.tvf.mesh();
+  const edgeFaces = new Map();
+  const key = (a, b) => (a < b ? `${a},${b}` : `${b},${a}`);
+  for (let g = 0; g < triangles.length / 3; ++g)
+    for (let k = 0; k < 3; ++k) {
+      const e = key(triangles[3 * g + k], triangles[3 * g + ((k + 1) % 3)]);
+      edgeFaces.set(e, [...(edgeFaces.get(e) ?? []), g]);
+    }
+  const centre = (f) => [0, 1, 2].map((c) => (positions[3 * triangles[3 * f] + c] + positions[3 * triangles[3 * f + 1] + c] + positions[3 * triangles[3 * f + 2] + c]) / 3);
+  return starts.map((start) => {
+    const origin = centre(start);
+    const faces = [start];
+    for (let f = start, step = 0; step < crossings; ++step) {
+      let next = -1, farthest = -1;
+      for (let k = 0; k < 3; ++k)
+        for (const g of edgeFaces.get(key(triangles[3 * f + k], triangles[3 * f + ((k + 1) % 3)]))) {
+          const d = Math.hypot(...centre(g).map((x, i) => x - origin[i]));
+          if (g !== f && d > farthest) [farthest, next] = [d, g];
+        }
+      if (next < 0) break;
+      faces.push((f = next));
+    }
+    // Every fourth face's centre: a polyline of the strip's course (through every centre it would zig-zag, and
+    // a zig-zag is taken literally by the exact core, not by the coarse preview).
+    return faces.filter((_, i) => i % 4 === 0 || i === faces.length - 1).map((face) => ({ face, bary: [1 / 3, 1 / 3, 1 / 3] }));
+  });
+}
+
+test.describe.serial('progressive loading of big meshes', () => {
+  let page, errors, off;
+
+  test.beforeAll(async ({ browser }) => {
+    ({ page, errors } = await openDesignerPage(browser));
+    page.on('console', (m) => {
+      if (m.type() === 'warning' && !m.text().includes('GL Driver Message')) errors.push(m.text());
+      if (m.type() === 'log') console.log(m.text());
+    });
+    off = subdividedOff(await readMesh(page), 1);
+  });
+
+  test.afterAll(async () => {
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  test('the preview leads; edits made meanwhile replay on the exact core; the exact field is a fresh solve', async () => {
+    const loaded = await page.evaluate(async (off) => {
+      const t = window.tvf;
+      t.debugDelayExact(10000); // the edits below all happen while the preview leads
+      const info = await t.loadModel(new TextEncoder().encode(off), { name: 'bunny-sub1.off', format: 'off', previewEdges: 1, restore: false });
+      return { info, first: t.stats() };
+    }, off);
+    const strokes = await page.evaluate(strokesInPage, { starts: [100, 5000, 12000], crossings: 24 });
+    const r = await page.evaluate(async ({ off, strokes, loaded: { info, first } }) => {
+      const t = window.tvf;
+      const bytes = new TextEncoder().encode(off);
+      const ids = [];
+      const marks = [];
+      for (const s of strokes) {
+        ids.push(await t.addStroke(s));
+        marks.push(t.stats().preview);
+      }
+      await t.remove(ids[1]);
+      marks.push(t.stats().preview);
+      const savedDuringPreview = t.saveDesign();
+      const previewFaces = t.faceVectors();
+      await t.settled();
+      const exactStats = t.stats();
+      const savedAfter = t.saveDesign();
+      const exact = await t.debugCoreReadout();
+      const exactFaces = t.faceVectors();
+      // Undo and redo of the remove, on the exact core now.
+      await t.undo();
+      const afterUndo = t.constraints().length;
+      await t.redo();
+      const afterRedo = t.constraints().length;
+      const redone = await t.debugCoreReadout();
+      // The independent truth: the same mesh loaded plainly, the saved design applied, solved from scratch.
+      t.debugDelayExact(0);
+      await t.loadModel(bytes, { name: 'bunny-sub1.off', format: 'off', previewEdges: 0, restore: false });
+      const plain = t.stats().preview;
+      await t.loadDesign(savedDuringPreview);
+      const fresh = await t.debugCoreReadout();
+      const diff = (a, b) => {
+        let d = 0, m = 0;
+        for (let i = 0; i < a.length; i++) {
+          d = Math.max(d, Math.abs(a[i] - b[i]));
+          m = Math.max(m, Math.abs(b[i]));
+        }
+        return d / m;
+      };
+      // Mean angle between the preview's face vectors and the exact field's (same design).
+      // Weighted by the exact field's magnitude: where it has decayed to nothing its direction means little.
+      let angle = 0, n = 0;
+      for (let f = 0; f < exactFaces.length / 3; f++) {
+        const a = previewFaces.subarray(3 * f, 3 * f + 3), b = exactFaces.subarray(3 * f, 3 * f + 3);
+        const la = Math.hypot(...a), lb = Math.hypot(...b);
+        if (la < 1e-12 || lb < 1e-12) continue;
+        angle += lb * Math.acos(Math.min(1, Math.max(-1, (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb))));
+        n += lb;
+      }
+      return {
+        edges: info.edges, faces: info.faces, first: first.preview, previewFaces: first.previewFaces, marks, exactPreview: exactStats.preview,
+        savedSame: JSON.stringify(savedDuringPreview) === JSON.stringify(savedAfter), savedCount: savedDuringPreview.constraints.length,
+        savedFaces: savedDuringPreview.constraints.map((c) => c.points[0].face), strokeStarts: [strokes[0][0].face, strokes[2][0].face],
+        meshKept: JSON.stringify(savedDuringPreview.mesh) === JSON.stringify(savedAfter.mesh) && !!savedAfter.mesh,
+        afterUndo, afterRedo, plain,
+        exactVsFresh: diff(exact.oneForm, fresh.oneForm), redoneVsFresh: diff(redone.oneForm, fresh.oneForm),
+        meanAngleDeg: (angle / n) * (180 / Math.PI),
+      };
+    }, { off, strokes, loaded });
+    console.log('progressive:', JSON.stringify(r));
+    expect(r.first).toBe(true);
+    expect(r.previewFaces).toBeLessThan(0.3 * r.faces); // the preview's mesh is the coarse one
+    expect(r.marks).toEqual([true, true, true, true]);
+    expect(r.exactPreview).toBe(false);
+    expect(r.plain).toBe(false);
+    expect(r.savedCount).toBe(2);
+    expect(r.savedFaces).toEqual(r.strokeStarts); // the fine mesh's faces, never the coarse one's
+    expect(r.savedSame).toBe(true);
+    expect(r.meshKept).toBe(true);
+    expect(r.afterUndo).toBe(3);
+    expect(r.afterRedo).toBe(2);
+    expect(r.exactVsFresh).toBeLessThan(1e-9);
+    expect(r.redoneVsFresh).toBeLessThan(1e-9);
+    expect(r.meanAngleDeg).toBeLessThan(30); // a preview, 4x coarser here: it resembles the field (21 deg measured), no more
+  });
+
+  test('an exact load that fails after its preview was shown brings the previous model back, design and all', async () => {
+    // The open model is the bunny subdivided once (22k edges) with 2 strokes; this one is subdivided twice (88k).
+    const bigger = subdividedOff(await readMesh(page), 1);
+    const before = await page.evaluate(() => ({ faces: window.tvf.info().faces, design: window.tvf.saveDesign() }));
+    const r = await page.evaluate(async (off) => {
+      const t = window.tvf;
+      const el = document.querySelector('tangent-field-designer');
+      const failed = new Promise((resolve) => el.addEventListener('error', (e) => resolve(e.detail), { once: true }));
+      // 50 MB: the open model's factor fits (~25 MB), the new one's (~100 MB) does not; the preview's core has no limit.
+      await t.debugSetFactorMemoryLimit(5e7);
+      t.debugDelayExact(2000);
+      const info = await t.loadModel(new TextEncoder().encode(off), { name: 'other.off', format: 'off', previewEdges: 1, restore: false });
+      const shown = { faces: info.faces, preview: t.stats().preview };
+      const error = await failed;
+      t.debugDelayExact(0);
+      await t.settled();
+      for (let i = 0; i < 100 && t.info().faces === shown.faces; i++) await new Promise((r) => setTimeout(r, 100));
+      await t.debugSetFactorMemoryLimit(0);
+      return { shown, error, faces: t.info().faces, preview: t.stats().preview, design: t.saveDesign() };
+    }, bigger);
+    expect(r.shown.preview).toBe(true);
+    expect(r.error.code).toBe('model');
+    expect(r.error.message).toMatch(/other\.off.*too large/);
+    expect(r.faces).toBe(before.faces);
+    expect(r.preview).toBe(false);
+    expect(r.design.constraints).toEqual(before.design.constraints);
+  });
+});

@@ -1,0 +1,116 @@
+// The preview core's side of a big model (docs/architecture.md, "Big meshes"): a second worker serves the same
+// core on a coarse stand-in of the mesh (coarse-mesh.js), takes every edit the exact core takes, posed on the
+// coarse surface (surface-map.js), and answers with the coarse field carried to the fine mesh, in a few
+// milliseconds where the exact solve takes hundreds and the first exact factorization many seconds.
+//
+// The design stays the fine one: the preview keeps each constraint's fine spec under the core id both cores
+// give it (they take the same edits in the same order, so their ids agree; an edit the coarse core refuses
+// ends the preview, see progressive-core.js), and replies carry the fine design document, never the coarse one.
+//
+// Owned by core-worker.js (one per preview worker). Imports geometry/ for the fine surface it hands the page.
+import { coarseMesh, offBytes } from './coarse-mesh.js';
+import { SurfaceMap } from './surface-map.js';
+
+export class Preview {
+  // core: the worker's CoreClient; fine: {positions, triangles, edges}; fineDoc: the exact core's design
+  // document of the model (settings, fingerprint, constraints: normalized fine specs); settings as loadModel's.
+  static async open(core, fine, fineDoc, settings) {
+    const t0 = performance.now();
+    const coarse = await coarseMesh(fine.positions, fine.triangles);
+    const t1 = performance.now();
+    const map = new SurfaceMap(fine, coarse);
+    const t2 = performance.now();
+    const { restoreError } = core.loadModel(offBytes(coarse), 'off', settings, map.designOnCoarse(fineDoc));
+    // A constraint the coarse surface cannot take would leave the two cores' ids apart: no preview then.
+    if (restoreError) throw new Error(`the preview could not take the design: ${restoreError}`);
+    const preview = new Preview(core, map, fineDoc);
+    preview.timings = { simplifyMs: t1 - t0, mapMs: t2 - t1, coarseSolveMs: performance.now() - t2, coarseFaces: coarse.triangles.length / 3 };
+    return preview;
+  }
+
+  constructor(core, map, fineDoc) {
+    this.core = core;
+    this.map = map;
+    this.template = fineDoc;
+    this.version = 0;
+    this.fineSpecs = new Map();
+    this.#adoptDocument(fineDoc);
+  }
+
+  // The fine specs of a document the coarse core has just taken whole, under the ids it gave them.
+  #adoptDocument(doc) {
+    const ids = this.core.constraintIds();
+    this.fineSpecs = new Map(ids.map((id, k) => [id, this.#normal(id, doc.constraints[k])]));
+  }
+
+  // A fine spec as the exact core keeps it (keys sorted, defaults filled in): the coarse core's own copy of
+  // the constraint, which it parsed with the same code, with the fine mesh's location put back.
+  #normal(id, fine) {
+    const out = { ...this.core.constraint(id) };
+    if (fine.type === 'edge') {
+      delete out.face;
+      delete out.vector;
+      Object.assign(out, { type: 'edge', edge: fine.edge, value: fine.value });
+    } else for (const key of ['points', 'face', 'vertex']) if (key in fine) out[key] = fine[key];
+    return sortedKeys(out);
+  }
+
+  // An op's arguments as the coarse core takes them (the ops of core-worker.js and setting-ops.js).
+  argsOnCoarse(op, args) {
+    const m = this.map;
+    if (op === 'add') return [m.specOnCoarse(args[0])];
+    if (op === 'applyDesign') return [m.designOnCoarse(args[0])];
+    if (op === 'setSymmetry' && args[1]?.add) return [args[0], { ...args[1], add: args[1].add.map((s) => m.specOnCoarse(s)) }];
+    return args;
+  }
+
+  // After the op succeeded on the coarse core: the fine specs follow.
+  afterOp(op, args, result) {
+    if (op === 'add') this.fineSpecs.set(result, this.#normal(result, args[0]));
+    else if (op === 'remove') this.fineSpecs.delete(args[0]);
+    else if (op === 'setWeight' || op === 'setStrength') {
+      const spec = this.fineSpecs.get(args[0]);
+      if (spec) this.fineSpecs.set(args[0], this.#normal(args[0], spec));
+    } else if (op === 'applyDesign') this.#adoptDocument(args[0]);
+    else if (op === 'setSymmetry') (args[1]?.add ?? []).forEach((spec, k) => this.fineSpecs.set(result[k], this.#normal(result[k], spec)));
+  }
+
+  // The fine design document: the coarse core's settings, the fine mesh's fingerprint, the fine specs.
+  fineDocument(ids) {
+    const coarse = JSON.parse(this.core.designJson());
+    const doc = { ...coarse, constraints: ids.map((id) => this.fineSpecs.get(id)) };
+    if (this.template.mesh) doc.mesh = this.template.mesh;
+    else delete doc.mesh;
+    return doc;
+  }
+
+  // The reply to a mutating op (core-worker.js's snapshot, in fine terms): the preview field on the fine
+  // mesh, the coarse core's stats marked `preview`, the whole fine document. A negative version: the exact
+  // worker's read-outs (streamlines, Hodge parts) are never asked for a preview's field.
+  snapshot(spares, timing) {
+    const t0 = performance.now();
+    const c = this.core;
+    const symmetry = c.symmetry();
+    const out = { faceVectors: spares.pop(3 * this.map.nF), vertexVectors: spares.pop(3 * this.map.nV), oneForm: spares.pop(this.map.fine.edges.length / 2) };
+    const field = this.map.fieldOnFine(c.faceVectors(), c.vertexVectors(), symmetry, out);
+    timing.transferMs = this.timings.transferMs = performance.now() - t0;
+    const ids = c.constraintIds();
+    const stats = { ...c.stats(), preview: true, previewHeapBytes: c.Module.HEAP8.buffer.byteLength, previewFaces: this.map.coarse.triangles.length / 3, ...this.timings };
+    return {
+      version: -++this.version,
+      symmetry,
+      ...field,
+      stats,
+      design: { ids, document: this.fineDocument(ids) },
+      transfer: [field.faceVectors.buffer, field.vertexVectors.buffer, field.oneForm.buffer],
+    };
+  }
+}
+
+
+// JSON values with every object's keys in order, as the core writes them (nlohmann's objects are sorted).
+function sortedKeys(value) {
+  if (Array.isArray(value)) return value.map(sortedKeys);
+  if (value === null || typeof value !== 'object') return value;
+  return Object.fromEntries(Object.keys(value).sort().map((key) => [key, sortedKeys(value[key])]));
+}

@@ -1,0 +1,134 @@
+// The surface's three-mesh-bvh bounds tree and draw arrays, built in the core worker and handed to the page,
+// so that taking a model on costs the page's thread no O(n) pass (issue 28: ~800k-triangle scans blocked it
+// for seconds, mostly in `new MeshBVH` and in Float64→Float32 copies).
+//
+// Worker side (no DOM: three's BufferGeometry and three-mesh-bvh's builder run in a worker):
+//   const bvh = buildSerializedBVH(mesh.positions, mesh.triangles);
+//   const float32 = float32Arrays(surface.vertexNormals, bvh);
+//   post { …, surface: { ...surface.arrays(), bvh, float32 } } with transferList(bvh, float32) added to the
+//   transfer list. Surface.fromArrays() keeps unknown keys, so the page's Surface carries `bvh` and `float32`.
+// Page side: viewer.setMesh(surface) draws from those arrays and calls adoptBVH() instead of building.
+//
+// SerializedMeshBVH (what buildSerializedBVH returns; a plain, structured-cloneable object):
+//   version, roots, index, indirectBuffer  three-mesh-bvh's SerializedBVH (MeshBVH.serialize, indirect mode):
+//       roots: ArrayBuffer[] (the packed nodes), index: Uint32Array (3 per face, the core's triangles, in the
+//       core's face order: indirect mode never reorders it), indirectBuffer: Uint32Array | Uint16Array (the
+//       BVH's leaf order → face index, which is what keeps hit.faceIndex the core's face).
+//   positions       Float32Array (3 per vertex): the position attribute the bounds were computed on.
+//   boundingSphere  [cx, cy, cz, r]: three's computeBoundingSphere() of `positions`, done here so the page
+//       need not walk the vertices again (the camera frames the model on it).
+//   faces, vertices counts, to check the geometry it is adopted onto.
+//
+// Float32Mesh (surface.float32, optional): { positions: Float32Array (3/vertex), normals: Float32Array
+//   (3/vertex, the Surface's area-weighted vertex normals), index: Uint32Array (3/face), colors:
+//   Float32Array (3/vertex, all 1: the colour map's attribute, written by viewer.setVertexField) }. With a bvh,
+//   positions and index are the bvh's own arrays (the same objects: structured cloning keeps that identity,
+//   and transferList() lists each buffer once, since a buffer listed twice makes postMessage throw).
+import { BufferAttribute, BufferGeometry, Box3, Sphere, Vector3 } from 'three';
+import { MeshBVH } from 'three-mesh-bvh';
+
+// Bumped when the object's shape changes; adoptBVH refuses others (a stale cache would otherwise mis-hit).
+export const SERIALIZED_MESH_BVH_VERSION = 1;
+
+// positions: Float64Array (3 per vertex), triangles: Int32Array (3 per face), as the core gives them.
+// options: three-mesh-bvh build options (strategy, targetLeafSize, …); `indirect` is always on.
+export function buildSerializedBVH(positions, triangles, options = {}) {
+  if (positions.length % 3 || triangles.length % 3) throw new Error('buildSerializedBVH: not 3 values per item');
+  // `new Float32Array(typedArray)` is the engine's bulk conversion; Float32Array.from() walks an iterator.
+  const position = new Float32Array(positions);
+  const index = new Uint32Array(triangles);
+  const geometry = new BufferGeometry();
+  geometry.setAttribute('position', new BufferAttribute(position, 3));
+  geometry.setIndex(new BufferAttribute(index, 1));
+  // indirect: the default build reorders the index buffer in place, and then hit.faceIndex (and the drawn
+  // triangle order) would no longer be the core's face. Indirect mode sorts a separate face list instead.
+  const bvh = new MeshBVH(geometry, { verbose: false, ...options, indirect: true });
+  geometry.computeBoundingSphere();
+  const { center, radius } = geometry.boundingSphere;
+  // cloneBuffers false: this BVH is thrown away after, so its buffers can be sent as they are (no copy), and
+  // the serialized index is then `index` itself rather than a second copy of it.
+  const serialized = MeshBVH.serialize(bvh, { cloneBuffers: false });
+  return {
+    version: serialized.version,
+    roots: serialized.roots,
+    index: serialized.index,
+    indirectBuffer: serialized.indirectBuffer,
+    format: SERIALIZED_MESH_BVH_VERSION,
+    positions: position,
+    boundingSphere: [center.x, center.y, center.z, radius],
+    faces: triangles.length / 3,
+    vertices: positions.length / 3,
+  };
+}
+
+// The Float32 draw arrays of a mesh (worker side). vertexNormals: Float64Array (3 per vertex), e.g. the
+// Surface's. bvh: a SerializedMeshBVH whose positions and index are shared rather than converted again;
+// without one, positions and triangles (Float64Array, Int32Array) are needed.
+export function float32Arrays(vertexNormals, bvh = null, positions = null, triangles = null) {
+  return {
+    positions: bvh?.positions ?? new Float32Array(positions),
+    normals: new Float32Array(vertexNormals),
+    index: bvh?.index ?? new Uint32Array(triangles),
+    // The colour map's vertex colours, white until a field is shown: allocating and filling 5 MB on the page
+    // measured up to tens of ms there, here it is free for the page.
+    colors: new Float32Array(vertexNormals.length).fill(1),
+  };
+}
+
+// Every ArrayBuffer under the given objects (SerializedMeshBVH, Float32Mesh, …), each once: postMessage throws
+// a DataCloneError on a buffer listed twice, and the bvh and the Float32Mesh share two. SharedArrayBuffers are
+// shared, not transferred, so they are left out.
+export function transferList(...objects) {
+  const out = new Set();
+  const visit = (x) => {
+    if (x == null || typeof x !== 'object') return;
+    if (x instanceof ArrayBuffer) out.add(x);
+    else if (ArrayBuffer.isView(x)) visit(x.buffer);
+    else if (Array.isArray(x)) x.forEach(visit);
+    else if (Object.getPrototypeOf(x) === Object.prototype) Object.values(x).forEach(visit);
+  };
+  objects.forEach(visit);
+  return [...out];
+}
+
+// Page side: puts the serialized BVH on `geometry` as geometry.boundsTree (no rebuild) and returns it.
+// The geometry's position attribute, when it has one, must hold serialized.positions' values (the bounds were
+// computed on them); when it has none, serialized.positions becomes it. The index becomes serialized.index
+// itself: deserialize() would otherwise copy it element by element into whatever index array the geometry
+// has, which is the O(n) pass this avoids, and a different index would not match the tree's leaves anyway.
+// Sets geometry.boundingBox and boundingSphere when absent, from the tree's root and the worker's sphere.
+export function adoptBVH(geometry, serialized) {
+  if (serialized?.format !== SERIALIZED_MESH_BVH_VERSION || !serialized.indirectBuffer)
+    throw new Error('adoptBVH: not an indirect SerializedMeshBVH of this version');
+  const { positions, index, faces, vertices } = serialized;
+  if (index.length !== 3 * faces || positions.length !== 3 * vertices)
+    throw new Error('adoptBVH: serialized arrays do not match their counts');
+  const position = geometry.getAttribute('position');
+  if (!position) geometry.setAttribute('position', new BufferAttribute(positions, 3));
+  else if (position.count !== vertices || position.itemSize !== 3)
+    throw new Error(`adoptBVH: the geometry has ${position.count} vertices, the BVH ${vertices}`);
+  if (geometry.index?.array !== index) geometry.setIndex(new BufferAttribute(index, 1));
+  // indirect follows from indirectBuffer; setIndex finds geometry.index.array === index and copies nothing.
+  const bvh = MeshBVH.deserialize(serialized, geometry, { setIndex: true });
+  geometry.boundsTree = bvh;
+  // Both as a fresh build would leave them: MeshBVH's build sets the box from its root bounds.
+  geometry.boundingBox ??= bvh.getBoundingBox(new Box3());
+  if (!geometry.boundingSphere) {
+    const [x, y, z, r] = serialized.boundingSphere;
+    geometry.boundingSphere = new Sphere(new Vector3(x, y, z), r);
+  }
+  return bvh;
+}
+
+// A Surface's arrays for the page (Surface.fromArrays), with what the page would otherwise build on its own
+// thread: the ray-casting BVH (~0.5 s at 800k faces) and the Float32 drawing arrays. Returns {arrays, list (the
+// buffers to transfer)}. own: the caller keeps no use of the surface, so its own arrays go rather than copies
+// (~0.7 s at 800k faces).
+export function pageSurface(surface, own = false) {
+  const keys = surface.constructor.ARRAYS;
+  const arrays = own ? { meanEdge: surface.meanEdge, centre: surface.centre, radius: surface.radius } : surface.arrays();
+  if (own) for (const key of keys) arrays[key] = surface[key];
+  arrays.bvh = buildSerializedBVH(surface.positions, surface.triangles);
+  arrays.float32 = float32Arrays(surface.vertexNormals, arrays.bvh);
+  return { arrays, list: [...keys.map((key) => arrays[key].buffer), ...transferList(arrays.bvh, arrays.float32)] };
+}
