@@ -135,6 +135,10 @@ async function strokeBench(page, meshPath) {
   const runs = [];
   for (const points of strokes) {
     runs.push(await page.evaluate(async (pts) => {
+      // A user's pace: the previous field is on screen (two frames presented) before the next stroke. With
+      // software GL a frame of a million triangles takes the GPU process a second or more, and a render issued
+      // while one is in flight waits for it.
+      await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
       const t0 = performance.now();
       await window.tvf.addStroke(pts);
       const pageMs = performance.now() - t0;

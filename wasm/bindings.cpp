@@ -140,12 +140,7 @@ class DesignerBinding {
       maps_.reset();
     });
     lastError_ = error;
-    const auto orNull = [](const std::string& s) { return s.empty() ? nlohmann::json() : nlohmann::json(s); };
-    nlohmann::json out = ok ? nlohmann::json{{"ok", true},
-                                             {"settingsError", orNull(settingsError)},
-                                             {"restoreError", orNull(restoreError)}}
-                            : nlohmann::json{{"ok", false}, {"error", error}};
-    return out.dump();
+    return loadResult(ok, error, settingsError, restoreError);
   }
 
   // loadModel in two steps, for big meshes (web/core/preview/): openModel reads, checks and configures the next
@@ -162,12 +157,7 @@ class DesignerBinding {
     });
     restoreError = pendingRestored_.error;
     lastError_ = error;
-    const auto orNull = [](const std::string& s) { return s.empty() ? nlohmann::json() : nlohmann::json(s); };
-    nlohmann::json out = ok ? nlohmann::json{{"ok", true},
-                                             {"settingsError", orNull(settingsError)},
-                                             {"restoreError", orNull(restoreError)}}
-                            : nlohmann::json{{"ok", false}, {"error", error}};
-    return out.dump();
+    return loadResult(ok, error, settingsError, restoreError);
   }
   std::string commitModel() {
     std::string error;
@@ -402,6 +392,17 @@ class DesignerBinding {
   }
 
   void fitMemory(tvf::Designer& d) const { d.setFactorMemoryLimit(memoryLimit_ > 0 ? memoryLimit_ : availableHeapBytes()); }
+
+  // {"ok": true, "settingsError": string|null, "restoreError": string|null} or {"ok": false, "error": string}.
+  static std::string loadResult(bool ok, const std::string& error, const std::string& settingsError,
+                                const std::string& restoreError) {
+    const auto orNull = [](const std::string& s) { return s.empty() ? nlohmann::json() : nlohmann::json(s); };
+    const nlohmann::json out = ok ? nlohmann::json{{"ok", true},
+                                                   {"settingsError", orNull(settingsError)},
+                                                   {"restoreError", orNull(restoreError)}}
+                                  : nlohmann::json{{"ok", false}, {"error", error}};
+    return out.dump();
+  }
 
   // Whether the design given with a model took, and why not.
   struct Restored {
