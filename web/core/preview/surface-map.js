@@ -124,18 +124,29 @@ export class SurfaceMap {
   }
 
   // The closest point of the candidate coarse faces to p, into face[slot] and bary[3 slot..].
+  // The nearest kept vertex in hops need not be a corner of the face the point lies over: while the closest
+  // point found is on a face's border, the faces around that face's corners are searched too (a descent that
+  // stops when the best face no longer changes).
   #closest(p, candidates, slot, face, bary) {
     let best = Infinity;
     const b = [0, 0, 0];
-    for (const c of candidates) {
-      const d2 = closestOnTriangle(p, this.coarse.positions, this.coarse.triangles, c, b);
-      if (d2 < best) {
-        best = d2;
-        face[slot] = c;
-        bary.set(b, 3 * slot);
+    const T = this.coarse.triangles;
+    for (let round = 0; round < 8; round++) {
+      const before = face[slot];
+      for (const c of candidates) {
+        const d2 = closestOnTriangle(p, this.coarse.positions, T, c, b);
+        if (d2 < best) {
+          best = d2;
+          face[slot] = c;
+          bary.set(b, 3 * slot);
+        }
       }
+      if (best === Infinity) return void (face[slot] = 0);
+      const onBorder = bary[3 * slot] <= 0 || bary[3 * slot + 1] <= 0 || bary[3 * slot + 2] <= 0;
+      if (!onBorder || (round > 0 && face[slot] === before)) return;
+      const f = face[slot];
+      candidates = [...this.#facesAround(T[3 * f]), ...this.#facesAround(T[3 * f + 1]), ...this.#facesAround(T[3 * f + 2])];
     }
-    if (best === Infinity) face[slot] = 0;
   }
 
   #fineNormals() {

@@ -1,0 +1,109 @@
+// The preview's coarse stand-in and its map (web/core/preview/), against independent truth: the coarse mesh is a
+// manifold, consistently oriented surface on the fine mesh's own vertices (checked here edge by edge and fan by
+// fan, not with the module's own repair code); on a plane the map puts every fine vertex exactly where it is; a
+// constant field on the coarse mesh comes back constant on every fine face and vertex, and its 1-form is the
+// field's line integral along every fine edge; a stroke's points land on the coarse surface where they were.
+import assert from 'node:assert/strict';
+import test from 'node:test';
+import { coarseMesh } from '../../web/core/preview/coarse-mesh.js';
+import { SurfaceMap } from '../../web/core/preview/surface-map.js';
+
+// An n × n grid of squares on z = 0, jittered inside, split into triangles along alternating diagonals.
+function jitteredPlane(n, seed = 7) {
+  let s = seed;
+  const rand = () => ((s = (s * 1103515245 + 12345) % 2147483648) / 2147483648) - 0.5;
+  const P = [], T = [];
+  for (let j = 0; j <= n; j++)
+    for (let i = 0; i <= n; i++) {
+      const inner = i > 0 && j > 0 && i < n && j < n;
+      P.push(i + (inner ? 0.3 * rand() : 0), j + (inner ? 0.3 * rand() : 0), 0);
+    }
+  const v = (i, j) => j * (n + 1) + i;
+  for (let j = 0; j < n; j++)
+    for (let i = 0; i < n; i++) {
+      if ((i + j) % 2) T.push(v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j), v(i + 1, j + 1), v(i, j + 1));
+      else T.push(v(i, j), v(i + 1, j), v(i, j + 1), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1));
+    }
+  return { positions: Float64Array.from(P), triangles: Int32Array.from(T) };
+}
+
+function edgesOf(triangles) {
+  const seen = new Set(), E = [];
+  for (let f = 0; f < triangles.length / 3; f++)
+    for (let k = 0; k < 3; k++) {
+      const a = triangles[3 * f + k], b = triangles[3 * f + ((k + 1) % 3)];
+      const key = `${Math.min(a, b)},${Math.max(a, b)}`;
+      if (!seen.has(key)) seen.add(key), E.push(Math.min(a, b), Math.max(a, b));
+    }
+  return Int32Array.from(E);
+}
+
+// Every undirected edge has one or two faces, traversed in opposite directions; every vertex's faces form one fan.
+function assertManifold(triangles) {
+  const directed = new Map();
+  for (let f = 0; f < triangles.length / 3; f++)
+    for (let k = 0; k < 3; k++) {
+      const key = `${triangles[3 * f + k]},${triangles[3 * f + ((k + 1) % 3)]}`;
+      assert.ok(!directed.has(key), `directed edge ${key} twice`);
+      directed.set(key, f);
+    }
+  const around = new Map();
+  for (let f = 0; f < triangles.length / 3; f++)
+    for (let k = 0; k < 3; k++) around.set(triangles[3 * f + k], [...(around.get(triangles[3 * f + k]) ?? []), f]);
+  for (const [v, faces] of around) {
+    // Walk the fan through shared edges at v: it must reach every face of v.
+    const reached = new Set([faces[0]]), queue = [faces[0]];
+    while (queue.length) {
+      const f = queue.pop();
+      const others = [0, 1, 2].map((k) => triangles[3 * f + k]).filter((w) => w !== v);
+      for (const g of faces)
+        if (!reached.has(g) && [0, 1, 2].some((k) => others.includes(triangles[3 * g + k]))) reached.add(g), queue.push(g);
+    }
+    assert.equal(reached.size, faces.length, `vertex ${v} pinches ${faces.length} faces into more than one fan`);
+  }
+}
+
+const point = (P, T, face, bary) => [0, 1, 2].map((c) => bary[0] * P[3 * T[3 * face] + c] + bary[1] * P[3 * T[3 * face + 1] + c] + bary[2] * P[3 * T[3 * face + 2] + c]);
+
+test('preview: the coarse mesh is a manifold on the fine vertices; the map is exact on a plane', async () => {
+  const fine = jitteredPlane(60);
+  fine.edges = edgesOf(fine.triangles);
+  const coarse = await coarseMesh(fine.positions, fine.triangles);
+  const nF = fine.triangles.length / 3, nC = coarse.triangles.length / 3;
+  assert.ok(nC <= Math.ceil(nF / 4) && nC > nF / 20, `${nC} coarse faces of ${nF}`);
+  assertManifold(coarse.triangles);
+  coarse.fineVertex.forEach((v, c) => assert.deepEqual([...coarse.positions.subarray(3 * c, 3 * c + 3)], [...fine.positions.subarray(3 * v, 3 * v + 3)]));
+
+  const map = new SurfaceMap(fine, coarse);
+  let worst = 0;
+  for (let v = 0; v < map.nV; v++) {
+    const q = point(coarse.positions, coarse.triangles, map.vertexFace[v], map.vertexBary.subarray(3 * v, 3 * v + 3));
+    worst = Math.max(worst, Math.hypot(...q.map((x, k) => x - fine.positions[3 * v + k])));
+  }
+  assert.ok(worst < 1e-9, `a fine vertex mapped ${worst} away from itself`);
+
+  // A constant field on the coarse mesh comes back constant, and its 1-form is u · (p_j − p_i) on every edge.
+  const u = [0.6, -0.8, 0];
+  const cv = new Float64Array(coarse.positions.length).map((_, i) => u[i % 3]);
+  const cf = new Float64Array(3 * nC).map((_, i) => u[i % 3]);
+  const field = map.fieldOnFine(cf, cv, 1);
+  for (const arr of [field.faceVectors, field.vertexVectors]) for (let i = 0; i < arr.length; i++) assert.ok(Math.abs(arr[i] - u[i % 3]) < 1e-12);
+  const P = fine.positions, E = fine.edges;
+  for (let e = 0; e < E.length / 2; e++) {
+    const d = [0, 1, 2].map((k) => P[3 * E[2 * e + 1] + k] - P[3 * E[2 * e] + k]);
+    assert.ok(Math.abs(field.oneForm[e] - (u[0] * d[0] + u[1] * d[1])) < 1e-12);
+  }
+
+  // A stroke's points stay where they were (the plane has no distance to lose); the polyline keeps one point per
+  // coarse face entered, its first and its last.
+  const points = [100, 161, 222, 283, 344, 405].map((face) => ({ face, bary: [0.2, 0.3, 0.5] }));
+  const spec = map.specOnCoarse({ type: 'stroke', points, strength: 1, weight: 1e4 });
+  for (const q of spec.points) {
+    const there = point(coarse.positions, coarse.triangles, q.face, q.bary);
+    const near = points.some((p) => Math.hypot(...point(fine.positions, fine.triangles, p.face, p.bary).map((x, k) => x - there[k])) < 1e-9);
+    assert.ok(near, 'a coarse stroke point is not one of the fine points');
+  }
+  assert.deepEqual(spec.points[0], map.pointOnCoarse(points[0]));
+  assert.deepEqual(spec.points.at(-1), map.pointOnCoarse(points.at(-1)));
+  for (let i = 1; i < spec.points.length; i++) assert.notEqual(spec.points[i].face, spec.points[i - 1].face);
+});
