@@ -147,7 +147,7 @@ test.describe.serial('progressive loading of big meshes', () => {
       const failed = new Promise((resolve) => el.addEventListener('error', (e) => resolve(e.detail), { once: true }));
       // 50 MB: the open model's factor fits (~25 MB), the new one's (~100 MB) does not; the preview's core has no limit.
       await t.debugSetFactorMemoryLimit(5e7);
-      t.debugDelayExact(2000);
+      t.debugDelayExact(6000); // the refusal comes after the preview is shown (before it, the load itself fails)
       const info = await t.loadModel(new TextEncoder().encode(off), { name: 'other.off', format: 'off', previewEdges: 1, restore: false });
       const shown = { faces: info.faces, preview: t.stats().preview };
       const error = await failed;

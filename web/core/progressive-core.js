@@ -62,7 +62,7 @@ export class ProgressiveCore {
     this.dropPreview();
     let opened, surfaced;
     const ahead = new Promise((resolve) => (opened = resolve));
-    const surface = new Promise((resolve) => (surfaced = resolve));
+    const surfaceSent = new Promise((resolve) => (surfaced = resolve));
     // A file this large may well be past the threshold (binary formats take ≥ 8 bytes per edge): the preview
     // worker starts now, beside the exact worker's reading, rather than after it.
     const early = previewEdges > 0 && args[0].byteLength >= 4 * previewEdges ? this.#startPreview() : null;
@@ -73,6 +73,9 @@ export class ProgressiveCore {
         if (p.phase === 'surface') surfaced(p.surface);
       },
     });
+    // The surface comes before the factorization; a load that fails first sends none.
+    const surface = Promise.race([surfaceSent, exactLoad.then(() => surfaceSent)]);
+    surface.catch(() => {}); // a failed load is reported by exactLoad itself
     const first = await Promise.race([ahead, exactLoad.then((reply) => ({ reply }), () => ({}))]);
     if (!first.info) {
       early?.then((p) => p.terminate(), () => {});
@@ -84,9 +87,12 @@ export class ProgressiveCore {
       preview = await (early ?? this.#startPreview());
       onPhase({ phase: 'previewStarted' });
       const { mesh, design } = first;
-      let exactDone = null;
-      exactLoad.then((r) => (exactDone = r), () => {});
+      let exactDone = null, exactFailed = null;
+      exactLoad.then((r) => (exactDone = r), (err) => (exactFailed = err));
       const reply = await preview.call('openPreview', [mesh, design, args[2]], [mesh.positions.buffer, mesh.triangles.buffer, mesh.edges.buffer]);
+      // The exact core refused the model while the preview was made (too large to factor, say): the load fails
+      // as any other, and the previous model stays.
+      if (exactFailed) throw Object.assign(exactFailed, { exactLoad: true });
       this.preview = preview; // kept for the strokes' previews, even when the exact field came first
       onPhase({ phase: 'previewSolved' });
       const value = { info: first.info, settingsError: first.settingsError, restoreError: first.restoreError, embeddedDesign: first.embeddedDesign, cornerUVs: first.cornerUVs, surface: await surface, previewTimings: reply.value.timings };
@@ -95,6 +101,7 @@ export class ProgressiveCore {
       return { reply: { ...reply, value }, progressive: true };
     } catch (err) {
       preview?.terminate();
+      if (err.exactLoad) throw err;
       console.warn(`tangent-field-designer: no preview (${err.message}); waiting for the exact field`);
       const reply = await exactLoad;
       reply.value.surface = await surface;
