@@ -123,8 +123,8 @@ export class Designer {
       this.viewSync.modelChanged(model);
       this.synthesis.modelChanged(); // the model's UVs and a fresh atlas for the new mesh
     });
-    s.on('change', () => {
-      this.viewSync.refresh();
+    s.on('change', (detail) => {
+      this.viewSync.refresh(detail);
       this.onSettings(s.settings());
     });
     s.on('fieldchange', () => this.exports.fieldChanged());

@@ -218,8 +218,9 @@ export class ViewSync {
     this.ui.setHasBoundary(info.boundaryLoops > 0);
   }
 
-  // Pushes the current field, constraints and settings to the view and the panels; draws synchronously.
-  refresh() {
+  // Pushes the current field, constraints and settings to the view and the panels; draws synchronously, or at
+  // the next frame for a background change (session.changed()).
+  refresh({ background = false } = {}) {
     const { viewer, ui, session: s } = this;
     if (!s.field || !s.surface) return;
     const t0 = performance.now();
@@ -233,8 +234,9 @@ export class ViewSync {
     ui.setStatus({ name: s.modelName, info: s.info, stats: s.field.stats });
     this.refreshHistory();
     const t1 = performance.now();
-    viewer.renderNow();
-    s.perf.refresh = { updateViewsMs: t1 - t0, renderMs: performance.now() - t1 };
+    if (background) viewer.requestRender();
+    else viewer.renderNow();
+    s.perf.refresh = { updateViewsMs: t1 - t0, renderMs: performance.now() - t1, background };
     this.#scheduleStreamlines();
     this.#requestParts();
     this.#showShares();

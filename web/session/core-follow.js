@@ -15,7 +15,7 @@ export function exactLanded(s, snapshot) {
   s.applySnapshot(snapshot);
   s.perf.exactLandedAt = performance.now();
   s.models.previous = null;
-  s.changed();
+  s.changed({ background: true });
   s.emitChanges();
 }
 

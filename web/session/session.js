@@ -140,8 +140,10 @@ export class Session extends Emitter {
   // The field and design changed (or must be shown again): listeners redraw synchronously; afterwards the
   // replaced fields' arrays go back to the worker, which refills them instead of allocating (the views keep
   // nothing of a field but what they made of it; the read API hands out copies).
-  changed() {
-    this.emit('change');
+  // background: a change nobody awaits (the exact field landing behind its preview): drawn at the next frame
+  // rather than at once, so the page's thread never waits on the GPU for it.
+  changed({ background = false } = {}) {
+    this.emit('change', { background });
     for (const field of this.retired) {
       if (field.autosavePending) this.autosave.checkFinite(field);
       this.core?.recycle([field.faceVectors, field.vertexVectors, field.oneForm], field.stats?.preview);

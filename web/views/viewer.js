@@ -49,6 +49,10 @@ export class Viewer {
       this._renderQueued = false;
       this.requestRender();
     });
+    // Checking a new program's compile log is a synchronous round trip to the GPU process, which waits for every
+    // frame still in flight: with software GL and a million triangles the first stroke's new program held the
+    // page's thread for 2.3 s. The shaders are the project's own and covered by the picture tests.
+    this.renderer.debug.checkShaderErrors = false;
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
     this.renderer.outputColorSpace = SRGBColorSpace;
     this.renderer.setClearColor(BACKGROUND, 1);
