@@ -35,6 +35,7 @@ import { copyFileSync, existsSync, mkdirSync, rmSync, writeFileSync } from 'node
 import { basename, dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from '@playwright/test';
+import { stripStrokesInPage } from '../tests/e2e/helpers.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const arg = (name, fallback) => {
@@ -56,45 +57,6 @@ const median = (v) => {
   const s = v.filter(Number.isFinite).sort((a, b) => a - b);
   return s.length === 0 ? null : s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
 };
-
-// In the page: strokes of `crossings` edges through the barycentres of strips of adjacent faces, each strip
-// heading away from its start (the walk of cli/bench.cpp), starts spread over the mesh.
-function strokesInPage({ count, crossings }) {
-  const { positions, triangles } = window.tvf.mesh();
-  const nF = triangles.length / 3;
-  const edgeFaces = new Map();
-  const key = (a, b) => (a < b ? a * 4294967296 + b : b * 4294967296 + a);
-  for (let g = 0; g < nF; ++g)
-    for (let k = 0; k < 3; ++k) {
-      const e = key(triangles[3 * g + k], triangles[3 * g + ((k + 1) % 3)]);
-      const list = edgeFaces.get(e);
-      if (list) list.push(g);
-      else edgeFaces.set(e, [g]);
-    }
-  const centre = (f) => [0, 1, 2].map((c) => (positions[3 * triangles[3 * f] + c] + positions[3 * triangles[3 * f + 1] + c] +
-    positions[3 * triangles[3 * f + 2] + c]) / 3);
-  const strokes = [];
-  for (let s = 0; s < count; ++s) {
-    const start = (s * 104729 + 7) % nF;
-    const origin = centre(start);
-    const faces = [start];
-    let f = start;
-    for (let step = 0; step < crossings; ++step) {
-      let next = -1, farthest = -1;
-      for (let k = 0; k < 3; ++k)
-        for (const g of edgeFaces.get(key(triangles[3 * f + k], triangles[3 * f + ((k + 1) % 3)]))) {
-          if (g === f) continue;
-          const d = Math.hypot(...centre(g).map((x, i) => x - origin[i]));
-          if (d > farthest) { farthest = d; next = g; }
-        }
-      if (next < 0) break;
-      faces.push(next);
-      f = next;
-    }
-    strokes.push(faces.map((face) => ({ face, bary: [1 / 3, 1 / 3, 1 / 3] })));
-  }
-  return strokes;
-}
 
 async function strokeBench(page, meshPath) {
   const count = Number(arg('--strokes', 15));
@@ -124,7 +86,8 @@ async function strokeBench(page, meshPath) {
     return { info, phases, previewTimings, loadMs: performance.now() - t0, firstFieldMs, exactFieldMs: performance.now() - t0, preview: firstStats.preview, previewFaces: firstStats.previewFaces ?? null, previewStats: firstStats };
   }, { url: `/bench-mesh/${name}`, previewEdges: arg('--preview-edges', null) == null ? null : Number(arg('--preview-edges')) });
   const loadTasks = await page.evaluate(() => window.__longTasks.splice(0));
-  const strokes = await page.evaluate(strokesInPage, { count, crossings });
+  const starts = Array.from({ length: count }, (_, s) => (s * 104729 + 7) % load.info.faces); // spread over the mesh
+  const strokes = await page.evaluate(stripStrokesInPage, { starts, crossings });
   // --profile FILE: a CPU profile of the page's main thread over the strokes (.cpuprofile, for DevTools).
   const profileFile = arg('--profile', null);
   const cdp = profileFile ? await page.context().newCDPSession(page) : null;

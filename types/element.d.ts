@@ -447,8 +447,6 @@ export declare class TangentFieldDesigner extends HTMLElement {
   dispose(): void;
 
   // Test hooks (internal).
-  /** @internal The renderer's compiled programs and GPU memory counts. */
-  debugRendererInfo(): Record<string, unknown>;
   /** @internal Makes the exact factorization of the next loads wait ms first, so a preview surely leads. */
   debugDelayExact(ms: number): void;
   /** @internal Ends the core worker as a crash would. */

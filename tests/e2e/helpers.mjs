@@ -228,3 +228,37 @@ export function surfacePointsAlongScreenLine(page, { x0, dx, y, count }) {
     return pts;
   }, { x0, dx, y, count });
 }
+
+// In the page (pass to page.evaluate): for each start face, a strip of `crossings` faces walked away from it (each
+// step to the neighbour farthest from the start), as stroke points at the centres of every `every`-th face and the
+// last. Every centre of a strip zig-zags, and a zig-zag is taken literally; every fourth follows its course.
+// Shared by the page tests and scripts/bench-web.mjs.
+export function stripStrokesInPage({ starts, crossings, every = 1 }) {
+  const { positions, triangles } = window.tvf.mesh();
+  const edgeFaces = new Map();
+  const key = (a, b) => (a < b ? a * 4294967296 + b : b * 4294967296 + a);
+  for (let g = 0; g < triangles.length / 3; ++g)
+    for (let k = 0; k < 3; ++k) {
+      const e = key(triangles[3 * g + k], triangles[3 * g + ((k + 1) % 3)]);
+      const list = edgeFaces.get(e);
+      if (list) list.push(g);
+      else edgeFaces.set(e, [g]);
+    }
+  const centre = (f) => [0, 1, 2].map((c) => (positions[3 * triangles[3 * f] + c] + positions[3 * triangles[3 * f + 1] + c] + positions[3 * triangles[3 * f + 2] + c]) / 3);
+  return starts.map((start) => {
+    const origin = centre(start);
+    const faces = [start];
+    for (let f = start, step = 0; step < crossings; ++step) {
+      let next = -1, farthest = -1;
+      for (let k = 0; k < 3; ++k)
+        for (const g of edgeFaces.get(key(triangles[3 * f + k], triangles[3 * f + ((k + 1) % 3)]))) {
+          if (g === f) continue;
+          const d = Math.hypot(...centre(g).map((x, i) => x - origin[i]));
+          if (d > farthest) [farthest, next] = [d, g];
+        }
+      if (next < 0) break;
+      faces.push((f = next));
+    }
+    return faces.filter((_, i) => i % every === 0 || i === faces.length - 1).map((face) => ({ face, bary: [1 / 3, 1 / 3, 1 / 3] }));
+  });
+}

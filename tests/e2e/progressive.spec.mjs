@@ -5,37 +5,7 @@
 // saved during the preview is the design the exact core ends with, undo still works, and once the exact field
 // has landed it equals a fresh exact solve of the same design to 1e-9 (the independent truth: a plain load).
 import { expect, test } from '@playwright/test';
-import { openDesignerPage, readMesh, subdividedOff } from './helpers.mjs';
-
-// In the page: strips of faces walked away from a start face (as scripts/bench-web.mjs), as stroke points.
-function strokesInPage({ starts, crossings }) {
-  const { positions, triangles } = window.tvf.mesh();
-  const edgeFaces = new Map();
-  const key = (a, b) => (a < b ? `${a},${b}` : `${b},${a}`);
-  for (let g = 0; g < triangles.length / 3; ++g)
-    for (let k = 0; k < 3; ++k) {
-      const e = key(triangles[3 * g + k], triangles[3 * g + ((k + 1) % 3)]);
-      edgeFaces.set(e, [...(edgeFaces.get(e) ?? []), g]);
-    }
-  const centre = (f) => [0, 1, 2].map((c) => (positions[3 * triangles[3 * f] + c] + positions[3 * triangles[3 * f + 1] + c] + positions[3 * triangles[3 * f + 2] + c]) / 3);
-  return starts.map((start) => {
-    const origin = centre(start);
-    const faces = [start];
-    for (let f = start, step = 0; step < crossings; ++step) {
-      let next = -1, farthest = -1;
-      for (let k = 0; k < 3; ++k)
-        for (const g of edgeFaces.get(key(triangles[3 * f + k], triangles[3 * f + ((k + 1) % 3)]))) {
-          const d = Math.hypot(...centre(g).map((x, i) => x - origin[i]));
-          if (g !== f && d > farthest) [farthest, next] = [d, g];
-        }
-      if (next < 0) break;
-      faces.push((f = next));
-    }
-    // Every fourth face's centre: a polyline of the strip's course (through every centre it would zig-zag, and
-    // a zig-zag is taken literally by the exact core, not by the coarse preview).
-    return faces.filter((_, i) => i % 4 === 0 || i === faces.length - 1).map((face) => ({ face, bary: [1 / 3, 1 / 3, 1 / 3] }));
-  });
-}
+import { openDesignerPage, readMesh, stripStrokesInPage, subdividedOff } from './helpers.mjs';
 
 test.describe.serial('progressive loading of big meshes', () => {
   let page, errors, off;
@@ -61,7 +31,8 @@ test.describe.serial('progressive loading of big meshes', () => {
       const info = await t.loadModel(new TextEncoder().encode(off), { name: 'bunny-sub1.off', format: 'off', previewEdges: 1, restore: false });
       return { info, first: t.stats() };
     }, off);
-    const strokes = await page.evaluate(strokesInPage, { starts: [100, 5000, 12000], crossings: 24 });
+    // Every fourth face's centre: the strip's course (the coarse preview does not take a zig-zag literally).
+    const strokes = await page.evaluate(stripStrokesInPage, { starts: [100, 5000, 12000], crossings: 24, every: 4 });
     const r = await page.evaluate(async ({ off, strokes, loaded: { info, first } }) => {
       const t = window.tvf;
       const bytes = new TextEncoder().encode(off);

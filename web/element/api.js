@@ -115,7 +115,6 @@ export const api = {
   supervision: (d) => d.session.supervision(),
   // What a crash of the core's worker does, on purpose (tests, demonstrations); a memory limit for the factor
   // (0: the wasm address space left) so tests need no multi-million-edge mesh.
-  debugRendererInfo: (d) => ({ programs: d.viewer.renderer.info.programs.map((p) => p.name), ...d.viewer.renderer.info.memory }),
   debugDelayExact: (d, ms) => void (d.session.debugExactDelayMs = ms),
   debugTerminateCore: (d) => d.session.proxy?.terminateForTest(),
   debugHangCore: (d, ms) => d.session.proxy?.hangForTest(ms),

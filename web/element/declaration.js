@@ -343,7 +343,6 @@ export const METHODS = [
   { name: 'dispose', source: 'element', group: 'The element', signatures: [['', 'void']], description: 'Ends the worker, frees the WebGL contexts and clears the shadow root (removing the element does the same).' },
 
   // Test hooks
-  { name: 'debugRendererInfo', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'Record<string, unknown>']], description: "The renderer's compiled programs and GPU memory counts." },
   { name: 'debugDelayExact', source: 'api', group: 'Test hooks', internal: true, signatures: [['ms: number', 'void']], description: 'Makes the exact factorization of the next loads wait ms first, so a preview surely leads.' },
   { name: 'debugTerminateCore', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'void']], description: 'Ends the core worker as a crash would.' },
   { name: 'debugHangCore', source: 'api', group: 'Test hooks', internal: true, signatures: [['ms: number', 'void']], description: 'Makes the core worker stop answering for ms milliseconds.' },
