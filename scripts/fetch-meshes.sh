@@ -3,7 +3,7 @@
 #
 # fetch-meshes.sh: real benchmark meshes from Debian's `libcgal-demo` package (CGAL's data/meshes/*.off,
 # shipped inside /usr/share/doc/libcgal-dev/data.tar.gz), plus a ~1.25M-edge mesh made by two rounds of
-# 1-to-4 midpoint subdivision of armadillo.off (scripts/subdivide-off.mjs).
+# 1-to-4 midpoint subdivision of armadillo.off (scripts/subdivide-off.mjs), and a ~1.8M-edge one of bunny00.off.
 #
 # Usage: scripts/fetch-meshes.sh             # idempotent: does nothing when every mesh is already there
 #        scripts/fetch-meshes.sh --fuzz-seeds # only the fuzzing seeds (see below), nothing else
@@ -22,6 +22,7 @@ MESHES=$DATA/meshes
 # man 52.5k, diplodocus 71.9k, armadillo 78.0k, bunny00 113.1k, refined_elephant 133.4k.
 NAMES=(homer knot2 lion-head camel mannequin-devil man diplodocus armadillo bunny00 refined_elephant)
 BIG=armadillo-sub2   # armadillo subdivided twice: 1,248,000 edges
+BIGGER=bunny00-sub2  # bunny00 subdivided twice: 1,809,792 edges (the page's size limit, docs/benchmarks.md)
 
 log() { printf '[fetch-meshes] %s\n' "$*" >&2; }
 die() { printf '[fetch-meshes] ERROR: %s\n' "$*" >&2; exit 1; }
@@ -104,11 +105,14 @@ if [ ${#missing[@]} -gt 0 ]; then
   log "extracted: ${missing[*]}"
 fi
 
-if [ ! -s "$MESHES/$BIG.off" ]; then
+# name base: two 1-to-4 subdivisions of base.off
+for pair in "$BIG:armadillo" "$BIGGER:bunny00"; do
+  name=${pair%%:*} base=${pair#*:}
+  [ -s "$MESHES/$name.off" ] && continue
   command -v node >/dev/null || die "node not found (needed for scripts/subdivide-off.mjs)"
-  log "making $BIG.off (two 1-to-4 subdivisions of armadillo.off)"
-  node "$ROOT/scripts/subdivide-off.mjs" "$MESHES/armadillo.off" "$MESHES/$BIG.off.tmp" --levels 2 >&2
-  mv "$MESHES/$BIG.off.tmp" "$MESHES/$BIG.off"
-fi
+  log "making $name.off (two 1-to-4 subdivisions of $base.off)"
+  node "$ROOT/scripts/subdivide-off.mjs" "$MESHES/$base.off" "$MESHES/$name.off.tmp" --levels 2 >&2
+  mv "$MESHES/$name.off.tmp" "$MESHES/$name.off"
+done
 
 ls -1 "$MESHES"/*.off | sed "s|^$ROOT/||"

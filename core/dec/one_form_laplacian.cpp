@@ -1,5 +1,6 @@
 #include "dec/one_form_laplacian.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tvf {
@@ -78,13 +79,67 @@ OneFormOperators buildOneFormOperators(const SurfaceMesh& mesh, const MeshTopolo
   return ops;
 }
 
-SparseMatrix oneFormLaplacian(const OneFormOperators& ops, const MeshGeometry& g) {
-  const SparseMatrix curl = ops.d1.transpose() * g.star2.asDiagonal() * ops.d1;
+SparseMatrix oneFormLaplacianUpper(const OneFormOperators& ops, const MeshGeometry& g) {
   const Eigen::VectorXd inverseStar0 = g.star0.cwiseInverse();
-  const SparseMatrix div = ops.divergence.transpose() * inverseStar0.asDiagonal() * ops.divergence;
-  SparseMatrix M = curl + div;
-  M.prune(0.0);
-  return M;
+  return upperWeightedGram({{&ops.d1, &g.star2}, {&ops.divergence, &inverseStar0}});
+}
+
+SparseMatrix oneFormLaplacian(const OneFormOperators& ops, const MeshGeometry& g) {
+  return fullFromUpper(oneFormLaplacianUpper(ops, g));
+}
+
+// Column j of sum_t K_t' W_t K_t is sum over the rows r with K_t(r, j) != 0 of w_r K_t(r, j) K_t(r, :)': one
+// pass over the columns with a dense accumulator, written straight into the result's arrays, counted first so
+// that nothing is reallocated.
+SparseMatrix upperWeightedGram(const std::vector<GramTerm>& terms) {
+  using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+  const int n = terms.empty() ? 0 : static_cast<int>(terms[0].K->cols());
+  std::vector<RowMajor> rows;
+  rows.reserve(terms.size());
+  for (const GramTerm& t : terms) rows.emplace_back(*t.K);
+  std::vector<double> sum(n, 0.0);
+  std::vector<int> seen(n, -1), touched;
+  // Visits column j's upper entries (row <= j), leaving their sums in `sum` and rows in `touched`, sorted.
+  auto column = [&](int j) {
+    touched.clear();
+    for (size_t k = 0; k < terms.size(); ++k)
+      for (SparseMatrix::InnerIterator it(*terms[k].K, j); it; ++it) {
+        const double s = (*terms[k].w)[it.row()] * it.value();
+        for (RowMajor::InnerIterator jt(rows[k], it.row()); jt && jt.col() <= j; ++jt) {
+          if (seen[jt.col()] != j) {
+            seen[jt.col()] = j;
+            sum[jt.col()] = 0;
+            touched.push_back(jt.col());
+          }
+          sum[jt.col()] += s * jt.value();
+        }
+      }
+    std::sort(touched.begin(), touched.end());
+  };
+  auto kept = [&](int i, int j) { return sum[i] != 0.0 || i == j; };  // the diagonal always: it is factored
+  SparseMatrix G(n, n);
+  Eigen::Index nonZeros = 0;
+  for (int j = 0; j < n; ++j) {
+    column(j);
+    for (const int i : touched) nonZeros += kept(i, j);
+  }
+  std::fill(seen.begin(), seen.end(), -1);
+  G.resizeNonZeros(nonZeros);
+  int* outer = G.outerIndexPtr();
+  int* inner = G.innerIndexPtr();
+  double* values = G.valuePtr();
+  int next = 0;
+  outer[0] = 0;
+  for (int j = 0; j < n; ++j) {
+    column(j);
+    for (const int i : touched)
+      if (kept(i, j)) {
+        inner[next] = i;
+        values[next++] = sum[i];
+      }
+    outer[j + 1] = next;
+  }
+  return G;
 }
 
 SparseMatrix biLaplacian(const SparseMatrix& M, const MeshGeometry& g, double gamma) {

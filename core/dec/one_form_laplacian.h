@@ -25,6 +25,17 @@ OneFormOperators buildOneFormOperators(const SurfaceMesh& mesh, const MeshTopolo
 
 // d1' *2 d1 + D' *0^-1 D.
 SparseMatrix oneFormLaplacian(const OneFormOperators& ops, const MeshGeometry& geometry);
+// Its upper triangle (common/sparse_matrix.h), assembled as such: no product temporaries, no lower half (the
+// products took the assembly to 1.1 GB of wasm heap at 1.25M edges, for a 85 MB result).
+SparseMatrix oneFormLaplacianUpper(const OneFormOperators& ops, const MeshGeometry& geometry);
+
+// The upper triangle of sum_t K_t' diag(w_t) K_t (every K_t with the same columns; exact zeros dropped, the
+// diagonal always stored).
+struct GramTerm {
+  const SparseMatrix* K;
+  const Eigen::VectorXd* w;
+};
+SparseMatrix upperWeightedGram(const std::vector<GramTerm>& terms);
 
 // M + gamma M P^-1 M with P the (strictly positive) Whitney 1-form mass diagonal: *1 may be zero or negative.
 SparseMatrix biLaplacian(const SparseMatrix& M, const MeshGeometry& geometry, double gamma);

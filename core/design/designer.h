@@ -123,7 +123,7 @@ class Designer {
   // for checking the update path against an independent solve.
   void assembleSystem(SparseMatrix& A, Eigen::VectorXd& b);
   // The plain boundary-modified Laplacian (or bi-Laplacian) without shift or constraints.
-  const SparseMatrix& baseMatrix();
+  SparseMatrix baseMatrix();
   double weightScale();  // weights are multiplied by this (the mean diagonal of the base matrix)
   Eigen::VectorXd textureFaceVectors() const;  // 2 per face when the mesh has UVs
 

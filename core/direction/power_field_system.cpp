@@ -46,7 +46,7 @@ PowerFieldSystem::PowerFieldSystem(const SurfaceMesh& mesh, const MeshTopology& 
       frames_(faceFrames(mesh, geometry)),
       connection_(connectionLaplacian(leviCivitaConnection(mesh, topology, geometry, frames_),
                                       topology.numFaces, symmetry)),
-      base_(connection_),
+      base_(upperTriangle(connection_)),
       mass_(powerFieldMass(geometry)),
       scale_(meanDiagonal(connection_)),
       factor_(kernelRows(topology)) {}
@@ -72,8 +72,7 @@ void PowerFieldSystem::setBoundaryTerms(std::vector<FaceDirectionTerm> terms, do
   boundaryTerms_ = std::move(terms);
   boundaryWeight_ = weight;
   const DiagonalTerms diagonal = termsOf(Entry{boundaryTerms_, weight}, weight);
-  base_ = plusDiagonal(connection_, diagonal);
-  base_.makeCompressed();
+  base_ = upperTriangle(plusDiagonal(connection_, diagonal));
   factor_.invalidate();
 }
 
@@ -196,7 +195,7 @@ void PowerFieldSystem::smoothestField(Eigen::VectorXd& u) {
     // |beta_m s_m| is the Ritz pair's residual ||A^-1 M x - theta x||_M.
     if (std::abs(beta[m - 1] * s[m - 1]) < kEigenTolerance * theta) break;
   }
-  report_.eigenvalue = x.dot(base_ * x) / dotM(x, x);
+  report_.eigenvalue = x.dot(base_.selfadjointView<Eigen::Upper>() * x) / dotM(x, x);
   u = std::move(x);
 }
 
@@ -213,7 +212,7 @@ const PowerFieldReport& PowerFieldSystem::report() const {
 }
 
 void PowerFieldSystem::assemble(SparseMatrix& A, Eigen::VectorXd& b) {
-  A = plusDiagonal(base_, allTerms());
+  A = plusDiagonal(fullFromUpper(base_), allTerms());
   b = rightHandSide();
 }
 

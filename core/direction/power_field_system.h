@@ -71,7 +71,7 @@ class PowerFieldSystem {
   int symmetry_;
   FaceFrames frames_;
   SparseMatrix connection_;  // H alone
-  SparseMatrix base_;        // H + the boundary terms
+  SparseMatrix base_;        // H + the boundary terms, upper triangle
   std::vector<FaceDirectionTerm> boundaryTerms_;
   double boundaryWeight_ = 0;
   Eigen::VectorXd mass_;

@@ -71,16 +71,21 @@ class Dissector {
     assign(separator, newSet(first));
   }
 
-  // Edges of side 0 that the matrix couples to side 1 join the separator (none for the plain Laplacian).
+  // Edges of side 0 that the matrix couples to side 1 join the separator (none for the plain Laplacian). Each
+  // coupling is stored in one column or both (the upper triangle: the later edge's), so both sides' columns
+  // are read; kCoupled marks a side-0 edge found coupled.
   void widenSeparator(std::vector<int32_t> (&side)[2], std::vector<int32_t>& separator) {
+    constexpr int32_t kCoupled = 2;
     for (int k = 0; k < 2; ++k)
       for (const int32_t e : side[k]) edgeSide_[e] = k;
+    for (const int32_t e : side[0])
+      for (SparseMatrix::InnerIterator it(A_, e); it && edgeSide_[e] != kCoupled; ++it)
+        if (edgeSide_[it.row()] == 1) edgeSide_[e] = kCoupled;
+    for (const int32_t f : side[1])
+      for (SparseMatrix::InnerIterator it(A_, f); it; ++it)
+        if (edgeSide_[it.row()] == 0) edgeSide_[it.row()] = kCoupled;
     std::vector<int32_t> kept;
-    for (const int32_t e : side[0]) {
-      bool coupled = false;
-      for (SparseMatrix::InnerIterator it(A_, e); it && !coupled; ++it) coupled = edgeSide_[it.row()] == 1;
-      (coupled ? separator : kept).push_back(e);
-    }
+    for (const int32_t e : side[0]) (edgeSide_[e] == kCoupled ? separator : kept).push_back(e);
     for (int k = 0; k < 2; ++k)
       for (const int32_t e : side[k]) edgeSide_[e] = -1;
     side[0].swap(kept);

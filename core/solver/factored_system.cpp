@@ -51,19 +51,41 @@ void chooseOrdering(cholmod_common& c, FillOrdering ordering) {
 // NESDIS to 20000-edge leaves at ~3x, 58.6 for AMD; README).
 constexpr int32_t kDissectionLeafEdges = 1000;
 
-bool samePattern(const cholmod_sparse& A, const std::vector<int>& p, const std::vector<int>& i) {
+// A 64-bit FNV-1a hash of a sparse pattern, with its size: what decides whether the saved analysis fits the
+// next matrix (a copy of the pattern to compare with took 36 MB at 1.25M edges).
+uint64_t patternHash(const cholmod_sparse& A) {
   const int* Ap = static_cast<const int*>(A.p);
   const int* Ai = static_cast<const int*>(A.i);
-  return p.size() == A.ncol + 1 && std::equal(p.begin(), p.end(), Ap) &&
-         i.size() == static_cast<size_t>(Ap[A.ncol]) && std::equal(i.begin(), i.end(), Ai);
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](uint64_t v) {
+    for (int k = 0; k < 4; ++k, v >>= 8) h = (h ^ (v & 0xff)) * 1099511628211ull;
+  };
+  mix(A.ncol);
+  for (size_t j = 0; j <= A.ncol; ++j) mix(static_cast<uint32_t>(Ap[j]));
+  for (int k = 0; k < Ap[A.ncol]; ++k) mix(static_cast<uint32_t>(Ai[k]));
+  return h;
+}
+
+// upper's values with diagonal[j] added to each column's last entry, which must be its diagonal; empty when
+// a diagonal entry is missing from the pattern.
+std::vector<double> valuesPlusDiagonal(const SparseMatrix& upper, const std::vector<double>& diagonal) {
+  const int* p = upper.outerIndexPtr();
+  const int* i = upper.innerIndexPtr();
+  std::vector<double> values(upper.valuePtr(), upper.valuePtr() + upper.nonZeros());
+  for (int j = 0; j < upper.outerSize(); ++j) {
+    if (p[j + 1] == p[j] || i[p[j + 1] - 1] != j) return {};
+    values[p[j + 1] - 1] += diagonal[j];
+  }
+  return values;
 }
 
 // Peak memory of factor() from the symbolic analysis: the supernodal values (xsize doubles) live together
-// with the simplicial LDL' they are converted into (lnz values + row indices), plus CHOLMOD's O(n) workspace.
+// with the row indices the conversion to the simplicial LDL' allocates (at most xsize ints; the values are
+// converted in place), plus CHOLMOD's O(n) workspace and the updates' (8 columns of n doubles).
 double peakFactorBytes(const cholmod_factor& L, double lnz) {
   const double n = static_cast<double>(L.n);
-  const double supernodal = L.is_super ? 8.0 * static_cast<double>(L.xsize) : 0.0;
-  return supernodal + 12.0 * (lnz + n) + 80.0 * n;
+  const double supernodal = L.is_super ? 12.0 * static_cast<double>(L.xsize) : 12.0 * lnz;
+  return supernodal + 12.0 * n + 144.0 * n;
 }
 
 std::string gigabytes(double bytes) {
@@ -94,21 +116,34 @@ struct FactoredSystem::Impl {
   std::vector<int> inversePerm;
   bool wasSupernodal = false;
   int n = 0;
-  // The symbolic analysis (ordering, elimination tree, supernodes) of the last factored matrix and that
-  // matrix's pattern: a boundary or gamma change that keeps the pattern is refactored without ordering again.
-  CholmodFactorPtr symbolic{nullptr, {common.get()}};
-  std::vector<int> symbolicP, symbolicI;
-  double symbolicLnz = 0, symbolicFl = 0;
+  // The fill-reducing ordering of the last factored matrix and a hash of that matrix's pattern: a boundary or
+  // gamma change that keeps the pattern is refactored without ordering again. Only the permutation is kept,
+  // not the symbolic factor (its supernodes' row indices: ~60 MB at 1.25M edges, at the memory peak); the
+  // symbolic analysis with a given permutation is a small part of the analysis.
+  std::vector<int> orderingPerm;
+  uint64_t orderingPattern = 0;
   std::vector<int> updateOrder;  // update columns by position in L (see updateDiagonal)
   double memoryLimit = 0, estimatedBytes = 0;
   std::vector<int32_t> edgeVertices;
   int32_t numVertices = 0;
   bool usedDissection = false;  // the mesh's dissection ordered the last analysis
 
+  // The updates' workspace (up to 8 columns of n doubles, 80 MB at 1.25M edges), allocated right after the
+  // conversion, into the room it freed, rather than at the first edit, when that room has gone to the solve's
+  // vectors and the wasm heap would have to grow for it (2.04 -> 2.00 GB at 1.25M edges).
+  void allocateUpdateWorkspace() {
+    const size_t size = static_cast<size_t>(n);
+    cholmod_allocate_work(size, size, cholmod_maxrank(size, common.get()) * size, common.get());
+  }
+
   explicit Impl(FillOrdering o) : ordering(o) {
     backward.setParts(threads);
     chooseOrdering(*common.get(), o);
     common->supernodal = CHOLMOD_AUTO;
+    // No relaxed amalgamation of supernodes: the explicit zeros it adds (30 % of the values at 1.25M edges)
+    // sit in the supernodal factor beside the row indices the conversion to LDL' allocates, the memory peak,
+    // only to be dropped by the resymbol after it; the factorization is no slower without them (README).
+    std::fill(std::begin(common->zrelax), std::end(common->zrelax), 0.0);
     common->final_asis = 1;
     common->print = 0;
     common->error_handler = nullptr;
@@ -181,51 +216,49 @@ struct FactoredSystem::Impl {
     return substituteBackwardBySupernodes(forward.y().data());
   }
 
-  // A fresh copy of the symbolic factor of A: the saved one when A's pattern is unchanged, else a new
-  // analysis.
-  cholmod_factor* analyzeOrReuse(cholmod_sparse& A, const SparseMatrix& full) {
-    timings.analysisReused = symbolic && samePattern(A, symbolicP, symbolicI);
-    if (!timings.analysisReused) {
-      symbolic.reset(analyze(A, full));
-      if (!symbolic) return nullptr;
-      symbolicLnz = common->lnz;
-      symbolicFl = common->fl;
-      const int* Ap = static_cast<const int*>(A.p);
-      symbolicP.assign(Ap, Ap + A.ncol + 1);
-      symbolicI.assign(static_cast<const int*>(A.i), static_cast<const int*>(A.i) + Ap[A.ncol]);
-    }
-    // What cholmod_analyze reports, as if it had run.
-    common->lnz = symbolicLnz;
-    common->fl = symbolicFl;
-    return cholmod_copy_factor(symbolic.get(), common.get());
+  // The symbolic factor of A, ordered by the kept permutation when A's pattern is unchanged, else by a new
+  // ordering (which is kept).
+  cholmod_factor* analyzeOrReuse(cholmod_sparse& A, const SparseMatrix& upper) {
+    const uint64_t pattern = patternHash(A);
+    timings.analysisReused = !orderingPerm.empty() && pattern == orderingPattern;
+    cholmod_factor* L = timings.analysisReused ? analyzeGiven(A, orderingPerm) : analyze(A, upper);
+    if (!L) return nullptr;
+    const int* perm = static_cast<const int*>(L->Perm);
+    orderingPerm.assign(perm, perm + L->n);
+    orderingPattern = pattern;
+    return L;
   }
 
-  // Nested dissection of the mesh's vertex graph (edge cuts, widened where A couples edges further apart),
-  // then one CAMD ordering that keeps each separator after the parts it separates: CHOLMOD's NESDIS, on a
-  // graph a third the size. Empty when there is no mesh, or (never seen) when the separators do not separate
-  // A.
-  std::vector<int> dissectionOrdering(cholmod_sparse& A, const SparseMatrix& full) {
-    const int32_t n = static_cast<int32_t>(A.ncol);
-    if (ordering != FillOrdering::Metis || static_cast<int32_t>(edgeVertices.size()) != 2 * n) return {};
-    EdgeDissection d = dissectEdges(edgeVertices, numVertices, kDissectionLeafEdges, full);
-    if (!separatesPattern(d, full)) return {};
-    std::vector<int> perm(n);
-    if (!cholmod_camd(&A, nullptr, 0, d.constraintSet.data(), perm.data(), common.get())) return {};
-    usedDissection = true;
-    return perm;
-  }
-
-  // full: A with both triangles, whose pattern the dissection must respect.
-  cholmod_factor* analyze(cholmod_sparse& A, const SparseMatrix& full) {
-    usedDissection = false;
-    std::vector<int> perm = dissectionOrdering(A, full);
-    if (perm.empty()) return cholmod_analyze(&A, common.get());
+  cholmod_factor* analyzeGiven(cholmod_sparse& A, std::vector<int>& perm) {
     cholmod_common& c = *common.get();
     const auto saved = c.method[0];
     c.method[0].ordering = CHOLMOD_GIVEN;
     cholmod_factor* L = cholmod_analyze_p(&A, perm.data(), nullptr, 0, &c);
     c.method[0] = saved;
     return L;
+  }
+
+  // Nested dissection of the mesh's vertex graph (edge cuts, widened where A couples edges further apart),
+  // then one CAMD ordering that keeps each separator after the parts it separates: CHOLMOD's NESDIS, on a
+  // graph a third the size. Empty when there is no mesh, or (never seen) when the separators do not separate
+  // A.
+  std::vector<int> dissectionOrdering(cholmod_sparse& A, const SparseMatrix& upper) {
+    const int32_t n = static_cast<int32_t>(A.ncol);
+    if (ordering != FillOrdering::Metis || static_cast<int32_t>(edgeVertices.size()) != 2 * n) return {};
+    EdgeDissection d = dissectEdges(edgeVertices, numVertices, kDissectionLeafEdges, upper);
+    if (!separatesPattern(d, upper)) return {};
+    std::vector<int> perm(n);
+    if (!cholmod_camd(&A, nullptr, 0, d.constraintSet.data(), perm.data(), common.get())) return {};
+    usedDissection = true;
+    return perm;
+  }
+
+  // upper: A's upper triangle, whose pattern the dissection must respect.
+  cholmod_factor* analyze(cholmod_sparse& A, const SparseMatrix& upper) {
+    usedDissection = false;
+    std::vector<int> perm = dissectionOrdering(A, upper);
+    if (perm.empty()) return cholmod_analyze(&A, common.get());
+    return analyzeGiven(A, perm);
   }
 
   // A view of the upper triangle of A as CHOLMOD's packed, sorted, symmetric-upper sparse matrix.
@@ -253,19 +286,33 @@ FactoredSystem::FactoredSystem(FactoredSystem&&) noexcept = default;
 FactoredSystem& FactoredSystem::operator=(FactoredSystem&&) noexcept = default;
 
 bool FactoredSystem::factor(const SparseMatrix& A) {
+  return factorUpper(upperTriangle(A), {});
+}
+
+bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<double>& diagonal) {
   Impl& s = *impl_;
-  SparseMatrix upper = A.triangularView<Eigen::Upper>();
-  upper.makeCompressed();
+  s.factor.reset();  // the previous factor goes before the new one is made
+  s.n = static_cast<int>(upper.rows());
+  std::vector<double> values;
+  if (!diagonal.empty()) {
+    values = valuesPlusDiagonal(upper, diagonal);
+    if (values.empty()) {  // a diagonal entry the pattern lacks: only then is the matrix copied whole
+      SparseMatrix D(upper.rows(), upper.cols());
+      D.reserve(Eigen::VectorXi::Constant(upper.cols(), 1));
+      for (int j = 0; j < upper.cols(); ++j) D.insert(j, j) = diagonal[j];
+      return factorUpper(upperTriangle(upper + D), {});
+    }
+  }
   cholmod_sparse view = Impl::upperView(upper);
+  if (!values.empty()) view.x = values.data();
   auto start = std::chrono::steady_clock::now();
   s.forward.invalidate();
   s.backward.invalidate();
   std::vector<double>().swap(s.bPermuted);
   std::vector<double>().swap(s.xPermuted);
   cholmod_free_dense(&s.forwardFull, s.common.get());
-  s.factor.reset(s.analyzeOrReuse(view, A));
+  s.factor.reset(s.analyzeOrReuse(view, upper));
   if (!s.factor) throw std::runtime_error("CHOLMOD analysis failed (out of memory?)");
-  s.n = static_cast<int>(A.rows());
   s.timings.analyzeMs = msSince(start);
   s.wasSupernodal = s.factor->is_super;
   s.estimatedBytes = peakFactorBytes(*s.factor, s.common->lnz);
@@ -283,6 +330,9 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
     throw InputError("out of memory while factoring the " + std::to_string(s.n) + "-edge system (estimated " +
                      gigabytes(s.estimatedBytes) + ")");
   }
+  // The resymbol below reads the pattern only: the values copy goes before the conversion's peak.
+  std::vector<double>().swap(values);
+  view.x = const_cast<double*>(upper.valuePtr());
   const bool ok = s.common->status == CHOLMOD_OK && s.factor->minor == s.factor->n;
   // Updates need the simplicial LDL' form; converting once here keeps every later edit a pure update.
   start = std::chrono::steady_clock::now();
@@ -292,6 +342,9 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
     if (s.wasSupernodal) cholmod_resymbol(&view, nullptr, 0, 1, s.factor.get(), s.common.get());
     if (s.bySupernodes()) s.backward.prepare(*s.factor);
   }
+  // The factorization's workspace (the supernodal update matrices among it) would stay in the common object.
+  cholmod_free_work(s.common.get());
+  if (ok) s.allocateUpdateWorkspace();
   s.timings.convertMs = msSince(start);
   const int* perm = static_cast<const int*>(s.factor->Perm);
   s.inversePerm.resize(s.n);
@@ -374,7 +427,7 @@ void FactoredSystem::setOrdering(FillOrdering ordering) {
 void FactoredSystem::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices) {
   impl_->edgeVertices = std::move(edgeVertices);
   impl_->numVertices = numVertices;
-  impl_->symbolic.reset();
+  impl_->orderingPerm.clear();
 }
 
 void FactoredSystem::setThreads(int threads) {

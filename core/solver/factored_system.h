@@ -49,6 +49,10 @@ class FactoredSystem {
   // Throws InputError, before the numeric factorization, when the symbolic
   // analysis says the factor would need more than the memory limit.
   bool factor(const SparseMatrix& A);
+  // The same for upper + diag(diagonal) (diagonal empty: none), with `upper` the matrix's upper triangle,
+  // compressed: it is read in place, and only its values are copied, to add the diagonal, until the
+  // numeric factorization is done (the conversion for updates that follows is the memory peak).
+  bool factorUpper(const SparseMatrix& upper, const std::vector<double>& diagonal);
   // Forgets the factor and the symbolic analysis; the next factor() orders with `ordering`.
   void setOrdering(FillOrdering ordering);
   // The mesh behind a 1-form system (2 vertices per edge, one edge per row of A): with it the METIS ordering

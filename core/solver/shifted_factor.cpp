@@ -28,15 +28,15 @@ constexpr double kDowndateBudget = 1e4;
 // removed), and this is ||E x|| / ||A|| ||x||; a fresh LDL' gives ~1e-16.
 constexpr double kDowndatedBackwardErrorTolerance = 1e-10;
 
-// Largest absolute row sum (A is symmetric: column sums, which is how it is stored).
-double infinityNorm(const SparseMatrix& A) {
-  double largest = 0;
-  for (int j = 0; j < A.outerSize(); ++j) {
-    double sum = 0;
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it) sum += std::abs(it.value());
-    largest = std::max(largest, sum);
-  }
-  return largest;
+// Largest absolute row sum of the symmetric matrix whose upper triangle is `upper`.
+double infinityNorm(const SparseMatrix& upper) {
+  std::vector<double> sums(static_cast<size_t>(upper.rows()), 0.0);
+  for (int j = 0; j < upper.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(upper, j); it; ++it) {
+      sums[j] += std::abs(it.value());
+      if (it.row() != j) sums[it.row()] += std::abs(it.value());
+    }
+  return sums.empty() ? 0.0 : *std::max_element(sums.begin(), sums.end());
 }
 
 double physicalMemoryBytes() {
@@ -95,16 +95,12 @@ void ShiftedFactor::invalidate() {
   stale_ = true;
 }
 
-SparseMatrix ShiftedFactor::shiftedMatrix(const SparseMatrix& base, double scale,
-                                          const DiagonalTerms& terms) const {
-  std::vector<Eigen::Triplet<double, int>> diag;
-  for (int32_t e = 0; e < static_cast<int32_t>(kernelEdges_.size()); ++e)
-    if (shiftEverywhere_ || kernelEdges_[e]) diag.emplace_back(e, e, shift_ * scale);
-  for (size_t k = 0; k < terms.rows.size(); ++k)
-    diag.emplace_back(terms.rows[k], terms.rows[k], terms.weights[k]);
-  SparseMatrix D(base.rows(), base.cols());
-  D.setFromTriplets(diag.begin(), diag.end());
-  return base + D;
+std::vector<double> ShiftedFactor::shiftedDiagonal(double scale, const DiagonalTerms& terms) const {
+  std::vector<double> diagonal(kernelEdges_.size(), 0.0);
+  for (size_t e = 0; e < kernelEdges_.size(); ++e)
+    if (shiftEverywhere_ || kernelEdges_[e]) diagonal[e] = shift_ * scale;
+  for (size_t k = 0; k < terms.rows.size(); ++k) diagonal[terms.rows[k]] += terms.weights[k];
+  return diagonal;
 }
 
 void ShiftedFactor::factor(const SparseMatrix& base, double scale, const DiagonalTerms& terms) {
@@ -113,7 +109,7 @@ void ShiftedFactor::factor(const SparseMatrix& base, double scale, const Diagona
   shift_ = anyKernel_ ? kInitialShift : 0.0;
   termSums_ = Eigen::VectorXd();  // scratch of the checks: not kept between the factorization's large blocks
   system_.setMemoryLimit(memoryLimit_ > 0 ? memoryLimit_ : physicalMemoryBytes());
-  while (!system_.factor(shiftedMatrix(base, scale, terms))) {
+  while (!system_.factorUpper(base, shiftedDiagonal(scale, terms))) {
     // Numerically singular despite the topology (e.g. a near-kernel on a badly shaped closed mesh).
     ++retries;
     shift_ = shiftEverywhere_ ? shift_ * 100 : kInitialShift;
@@ -171,7 +167,7 @@ void ShiftedFactor::update(const DiagonalTerms& change, double scale, bool downd
 // components the design leaves free stay at the minimum-norm choice.
 void ShiftedFactor::refineAgainstUnshiftedSystem(const SparseMatrix& base, const DiagonalTerms& terms,
                                                  const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  Eigen::VectorXd residual = b - base * x;
+  Eigen::VectorXd residual = b - base.selfadjointView<Eigen::Upper>() * x;
   for (size_t k = 0; k < terms.rows.size(); ++k)
     residual[terms.rows[k]] -= terms.weights[k] * x[terms.rows[k]];
   Eigen::VectorXd correction;
@@ -182,7 +178,7 @@ void ShiftedFactor::refineAgainstUnshiftedSystem(const SparseMatrix& base, const
 // The matrix the factor holds (base + shift + terms) times x.
 Eigen::VectorXd ShiftedFactor::factoredProduct(const SparseMatrix& base, double scale,
                                                const DiagonalTerms& terms, const Eigen::VectorXd& x) const {
-  Eigen::VectorXd y = base * x;
+  Eigen::VectorXd y = base.selfadjointView<Eigen::Upper>() * x;
   if (shift_ > 0)
     for (int32_t e = 0; e < static_cast<int32_t>(kernelEdges_.size()); ++e)
       if (shiftEverywhere_ || kernelEdges_[e]) y[e] += shift_ * scale * x[e];

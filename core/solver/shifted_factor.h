@@ -1,6 +1,7 @@
 #pragma once
 // The factor of the design's system A = base + sum_k w_k e_{r_k} e_{r_k}' (constraint rows with one nonzero
-// each). The base matrix M is only semidefinite (its kernel: harmonic fields, and more with free boundaries),
+// each); `base` is always passed as its upper triangle, compressed, every diagonal entry stored
+// (common/sparse_matrix.h: upperTriangle). The base matrix M is only semidefinite (its kernel: harmonic fields, and more with free boundaries),
 // so what is factored is A + sigma * mean diagonal on the edges of components with a kernel, with sigma as
 // small as CHOLMOD accepts (Sec. 5.1). Solves are refined against the unshifted A. Constraint changes are
 // rank updates of the factor; downdates are rationed by how much precision they cost, and a solve after
@@ -76,7 +77,8 @@ class ShiftedFactor {
   int64_t supernodalSolves() const;    // FactoredSystem::supernodalSolves
 
  private:
-  SparseMatrix shiftedMatrix(const SparseMatrix& base, double scale, const DiagonalTerms& terms) const;
+  // The shift and the terms, summed per row.
+  std::vector<double> shiftedDiagonal(double scale, const DiagonalTerms& terms) const;
   Eigen::VectorXd factoredProduct(const SparseMatrix& base, double scale, const DiagonalTerms& terms,
                                   const Eigen::VectorXd& x) const;
   double factoredNorm(double scale, const DiagonalTerms& terms);

@@ -134,6 +134,15 @@ TEST(EdgeDissection, SeparatorsCutTheMatrixTheyAreMadeFor) {
   EXPECT_TRUE(separatesPattern(forB, B));
   EXPECT_TRUE(sidesDisconnected(forB, B));
   EXPECT_GT(topSeparatorSize(forB), topSeparatorSize(forM));
+  // The systems keep their upper triangle only (common/sparse_matrix.h): read from it, the widened cuts and
+  // the check are the same as from the full matrix.
+  const SparseMatrix upperB = upperTriangle(B);
+  ASSERT_LT(upperB.nonZeros(), B.nonZeros());
+  const EdgeDissection fromUpper = dissect(upperB);
+  EXPECT_EQ(fromUpper.constraintSet, forB.constraintSet);
+  EXPECT_EQ(fromUpper.firstSet, forB.firstSet);
+  EXPECT_TRUE(separatesPattern(forB, upperB));
+  EXPECT_FALSE(separatesPattern(forM, upperTriangle(B)));
 
   Designer laplacian(m), bi(m), freeBoundary(flatGrid(40, 1.0, true)), fixedAngle(flatGrid(40, 1.0, true));
   bi.setGamma(0.1);
@@ -658,6 +667,7 @@ TEST(ShiftedFactor, RankUpdatesEqualAFreshFactorizationAndDowndatesKeepToTheBudg
   // Closed and of genus 0: no kernel, no shift, so the updated and the fresh factor solve the same matrix.
   Designer d(icosphere(3));
   const SparseMatrix base = d.baseMatrix();
+  const SparseMatrix upper = upperTriangle(base);  // what ShiftedFactor takes
   const double scale = d.weightScale();
   const int32_t n = static_cast<int32_t>(base.rows());
   ShiftedFactor updated(std::vector<uint8_t>(n, 0)), fresh(std::vector<uint8_t>(n, 0));
@@ -666,25 +676,25 @@ TEST(ShiftedFactor, RankUpdatesEqualAFreshFactorizationAndDowndatesKeepToTheBudg
   const DiagonalTerms both = concatenate(first, second);
   EXPECT_FALSE(updated.current());
   updated.update(second, scale, false);  // nothing to update yet: the factorization will include it
-  updated.factor(base, scale, first);
+  updated.factor(upper, scale, first);
   EXPECT_TRUE(updated.current());
   EXPECT_EQ(updated.report().kernelShift, 0.0);
   EXPECT_NE(updated.report().kernelHandling.find("none needed"), std::string::npos);
   updated.update(second, scale, false);
-  fresh.factor(base, scale, both);
+  fresh.factor(upper, scale, both);
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
   Eigen::VectorXd x, y;
-  updated.solve(base, scale, both, b, x);
-  fresh.solve(base, scale, both, b, y);
+  updated.solve(upper, scale, both, b, x);
+  fresh.solve(upper, scale, both, b, y);
   EXPECT_LT((x - y).norm() / y.norm(), 1e-10);
   EXPECT_LT((plusDiagonal(base, both) * x - b).norm() / b.norm(), 1e-10);
   EXPECT_EQ(updated.precisionRefactors(), 0);
   // Taking `second` out again spends 100 of the budget of 1e4: done, and the factor is `first`'s again.
   updated.update(second, scale, true);
   EXPECT_TRUE(updated.current());
-  fresh.factor(base, scale, first);
-  updated.solve(base, scale, first, b, x);
-  fresh.solve(base, scale, first, b, y);
+  fresh.factor(upper, scale, first);
+  updated.solve(upper, scale, first, b, x);
+  fresh.solve(upper, scale, first, b, y);
   EXPECT_LT((x - y).norm() / y.norm(), 1e-10);
   // Adding a constraint 2e4 times stiffer than the surface is free; taking it out would spend more than the
   // budget, so it is refused and the factor is no longer current (the session refactors at its next solve).
@@ -702,29 +712,62 @@ TEST(ShiftedFactor, RankUpdatesEqualAFreshFactorizationAndDowndatesKeepToTheBudg
 TEST(ShiftedFactor, ASolveAfterDowndatesRefactorsWhenTheFactorNoLongerHoldsTheMatrix) {
   Designer d(icosphere(3));
   const SparseMatrix base = d.baseMatrix();
+  const SparseMatrix upper = upperTriangle(base);  // what ShiftedFactor takes
   const double scale = d.weightScale();
   const int32_t n = static_cast<int32_t>(base.rows());
   const DiagonalTerms held{{3, 10, 40}, {5 * scale, 5 * scale, 2 * scale}};
   const DiagonalTerms foreign{{10}, {1e-6 * scale}};
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
   ShiftedFactor updated(std::vector<uint8_t>(n, 0)), fresh(std::vector<uint8_t>(n, 0));
-  fresh.factor(base, scale, held);
+  fresh.factor(upper, scale, held);
   Eigen::VectorXd x, y;
-  fresh.solve(base, scale, held, b, y);
+  fresh.solve(upper, scale, held, b, y);
 
-  updated.factor(base, scale, held);
+  updated.factor(upper, scale, held);
   updated.update(foreign, scale, false);  // an update alone: not checked, and the factor holds held + foreign
-  updated.solve(base, scale, held, b, x);
+  updated.solve(upper, scale, held, b, x);
   EXPECT_EQ(updated.precisionRefactors(), 0);
   updated.update(foreign, scale, true);  // taken back: the factor holds `held` again, to round-off
-  updated.solve(base, scale, held, b, x);
+  updated.solve(upper, scale, held, b, x);
   EXPECT_EQ(updated.precisionRefactors(), 0);
   EXPECT_LT((x - y).norm() / y.norm(), 1e-10);
 
   updated.update(foreign, scale, true);  // a term the matrix never had: the factor is of held - foreign
-  updated.solve(base, scale, held, b, x);
+  updated.solve(upper, scale, held, b, x);
   EXPECT_EQ(updated.precisionRefactors(), 1);
   EXPECT_LT((x - y).norm() / y.norm(), 1e-12);
+}
+
+// factorUpper reads the upper triangle in place and adds the diagonal to a copy of its values; a pattern
+// without some diagonal entry is completed first. Both solve upper + diag(d) as a dense solve does.
+TEST(FactoredSystem, UpperTrianglePlusDiagonalIsWhatIsFactored) {
+  Designer d(icosphere(2));
+  const SparseMatrix upper = upperTriangle(d.baseMatrix());
+  const int n = static_cast<int>(upper.rows());
+  std::vector<double> diagonal(n);
+  for (int k = 0; k < n; ++k) diagonal[k] = d.weightScale() * (0.5 + (k % 7) / 7.0);
+  const Eigen::VectorXd dv = Eigen::Map<const Eigen::VectorXd>(diagonal.data(), n);
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(fullFromUpper(upper)) + Eigen::MatrixXd(dv.asDiagonal());
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  const Eigen::VectorXd expected = dense.ldlt().solve(b);
+  FactoredSystem system;
+  ASSERT_TRUE(system.factorUpper(upper, diagonal));
+  Eigen::VectorXd x;
+  system.solve(b, x);
+  EXPECT_LT((x - expected).norm() / expected.norm(), 1e-10);
+  const Eigen::VectorXd before = Eigen::Map<const Eigen::VectorXd>(upper.valuePtr(), upper.nonZeros());
+  // The base is untouched, and a pattern lacking diagonal entries is factored all the same.
+  SparseMatrix holes = upper;
+  for (int k = 0; k < n; k += 3) holes.coeffRef(k, k) = 0;
+  holes.prune(0.0);
+  ASSERT_LT(holes.nonZeros(), upper.nonZeros());
+  std::vector<double> fill = diagonal;
+  for (int k = 0; k < n; k += 3) fill[k] += upper.coeff(k, k);
+  FactoredSystem completed;
+  ASSERT_TRUE(completed.factorUpper(holes, fill));
+  completed.solve(b, x);
+  EXPECT_LT((x - expected).norm() / expected.norm(), 1e-10);
+  EXPECT_EQ(before, Eigen::Map<const Eigen::VectorXd>(upper.valuePtr(), upper.nonZeros()));
 }
 
 TEST(ShiftedFactor, AKernelIsShiftedAndTheRefinedSolutionSolvesTheUnshiftedSystem) {
@@ -732,11 +775,12 @@ TEST(ShiftedFactor, AKernelIsShiftedAndTheRefinedSolutionSolvesTheUnshiftedSyste
   const SurfaceMesh m = torus(16, 8, 2, 0.7);
   Designer d(m);
   const SparseMatrix base = d.baseMatrix();
+  const SparseMatrix upper = upperTriangle(base);  // what ShiftedFactor takes
   const double scale = d.weightScale();
   const int32_t n = static_cast<int32_t>(base.rows());
   ShiftedFactor factor(std::vector<uint8_t>(n, 1));
   const DiagonalTerms terms{{3, 10, 40}, {5 * scale, 5 * scale, 2 * scale}};
-  factor.factor(base, scale, terms);
+  factor.factor(upper, scale, terms);
   EXPECT_EQ(factor.report().kernelShift, 1e-9);
   EXPECT_NE(factor.report().kernelHandling.find("components with handles or boundary"), std::string::npos);
   // A right-hand side in the range of the unshifted matrix A: the refined solution must solve A x = b far
@@ -744,6 +788,6 @@ TEST(ShiftedFactor, AKernelIsShiftedAndTheRefinedSolutionSolvesTheUnshiftedSyste
   const SparseMatrix A = plusDiagonal(base, terms);
   const Eigen::VectorXd b = A * Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
   Eigen::VectorXd x;
-  factor.solve(base, scale, terms, b, x);
+  factor.solve(upper, scale, terms, b, x);
   EXPECT_LT((A * x - b).norm() / b.norm(), 1e-12);
 }
