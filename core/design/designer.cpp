@@ -83,7 +83,8 @@ struct Designer::Impl {
     ops = buildOneFormOperators(mesh, topology, geometry, angles);
     constraints.operatorsChanged();
     base = SparseMatrix();  // the old one goes before the new one is assembled
-    base = gamma > 0 ? upperTriangle(biLaplacian(oneFormLaplacian(ops, geometry), geometry, gamma * geometry.totalArea))
+    base = gamma > 0 ? upperTriangle(
+                           biLaplacian(oneFormLaplacian(ops, geometry), geometry, gamma * geometry.totalArea))
                      : oneFormLaplacianUpper(ops, geometry);
     ops.d0 = SparseMatrix();  // it made the divergence; nothing reads it after (35 MB at 1.25M edges)
     scale = meanDiagonal(base);

@@ -42,7 +42,8 @@ struct DesignStats {
   std::vector<std::string> warnings;
   std::string factorKind;  // e.g. "supernodal LL' (AMD)"
   int32_t symmetry = 1;    // N of the field solved last (1: a vector field, the paper's 1-form)
-  // Numeric factorizations of the system in use since it was made: a constraint edit adds none (rank updates).
+  // Numeric factorizations of the system in use since it was made: a constraint edit adds none (rank
+  // updates).
   int64_t factorizations = 0;
   // The smoothest unconstrained N-field's inverse iterations and eigenvalue (0 for any other solve).
   int32_t inverseIterations = 0;
@@ -105,7 +106,7 @@ class Designer {
   int32_t precisionRefactors() const;
 
   // Read-outs; pointers stay valid until the next solve/load. Flat arrays.
-  const std::vector<double>& oneForm() const;        // per edge, canonical orientation
+  const std::vector<double>& oneForm() const;  // per edge, canonical orientation
   // 3 per face, at barycentres; for N >= 2 one unit representative of the N directions
   // (direction/representative_directions.h), and oneForm() is empty.
   const std::vector<double>& faceVectors() const;

@@ -22,14 +22,14 @@ struct EdgeDissection {
   std::vector<int32_t> firstSet;
 };
 
-// edgeVertices: 2 per edge. A: the system (symmetric, one triangle or both stored; one row and column per edge),
-// whose pattern decides which edges the separators must part. Parts with at most leafEdges edges are not cut
-// further.
+// edgeVertices: 2 per edge. A: the system (symmetric, one triangle or both stored; one row and column per
+// edge), whose pattern decides which edges the separators must part. Parts with at most leafEdges edges are
+// not cut further.
 EdgeDissection dissectEdges(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
                             const SparseMatrix& A);
 
-// Whether A (symmetric, one triangle or both stored) couples no two edges whose sets lie in different subtrees, i.e. the
-// dissection's separators separate A.
+// Whether A (symmetric, one triangle or both stored) couples no two edges whose sets lie in different
+// subtrees, i.e. the dissection's separators separate A.
 bool separatesPattern(const EdgeDissection& dissection, const SparseMatrix& A);
 
 }  // namespace tvf

@@ -1,11 +1,12 @@
 #pragma once
 // The factor of the design's system A = base + sum_k w_k e_{r_k} e_{r_k}' (constraint rows with one nonzero
 // each); `base` is always passed as its upper triangle, compressed, every diagonal entry stored
-// (common/sparse_matrix.h: upperTriangle). The base matrix M is only semidefinite (its kernel: harmonic fields, and more with free boundaries),
-// so what is factored is A + sigma * mean diagonal on the edges of components with a kernel, with sigma as
-// small as CHOLMOD accepts (Sec. 5.1). Solves are refined against the unshifted A. Constraint changes are
-// rank updates of the factor; downdates are rationed by how much precision they cost, and a solve after
-// updates is checked and refactors once if the updated factor lost precision.
+// (common/sparse_matrix.h: upperTriangle). The base matrix M is only semidefinite (its kernel: harmonic
+// fields, and more with free boundaries), so what is factored is A + sigma * mean diagonal on the edges of
+// components with a kernel, with sigma as small as CHOLMOD accepts (Sec. 5.1). Solves are refined against the
+// unshifted A. Constraint changes are rank updates of the factor; downdates are rationed by how much
+// precision they cost, and a solve after updates is checked and refactors once if the updated factor lost
+// precision.
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>

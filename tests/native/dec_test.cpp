@@ -85,8 +85,9 @@ TEST(OneFormLaplacian, UpperTriangleAssemblyEqualsTheProducts) {
   b.geometry = computeMeshGeometry(b.mesh, b.topology);
   const OneFormOperators ops = buildOneFormOperators(b.mesh, b.topology, b.geometry, {});
   const Eigen::VectorXd inverseStar0 = b.geometry.star0.cwiseInverse();
-  const SparseMatrix products = SparseMatrix(ops.d1.transpose() * b.geometry.star2.asDiagonal() * ops.d1) +
-                                SparseMatrix(ops.divergence.transpose() * inverseStar0.asDiagonal() * ops.divergence);
+  const SparseMatrix products =
+      SparseMatrix(ops.d1.transpose() * b.geometry.star2.asDiagonal() * ops.d1) +
+      SparseMatrix(ops.divergence.transpose() * inverseStar0.asDiagonal() * ops.divergence);
   const SparseMatrix upper = oneFormLaplacianUpper(ops, b.geometry);
   const Eigen::MatrixXd expected = Eigen::MatrixXd(products).triangularView<Eigen::Upper>();
   EXPECT_LT((Eigen::MatrixXd(upper) - expected).cwiseAbs().maxCoeff(), 1e-12 * meanDiagonal(products));
@@ -94,11 +95,13 @@ TEST(OneFormLaplacian, UpperTriangleAssemblyEqualsTheProducts) {
     ASSERT_GT(upper.outerIndexPtr()[j + 1], upper.outerIndexPtr()[j]);
     EXPECT_EQ(upper.innerIndexPtr()[upper.outerIndexPtr()[j + 1] - 1], j);
   }
-  EXPECT_LT((Eigen::MatrixXd(oneFormLaplacian(ops, b.geometry)) - Eigen::MatrixXd(products)).cwiseAbs().maxCoeff(),
-            1e-12 * meanDiagonal(products));
+  EXPECT_LT(
+      (Eigen::MatrixXd(oneFormLaplacian(ops, b.geometry)) - Eigen::MatrixXd(products)).cwiseAbs().maxCoeff(),
+      1e-12 * meanDiagonal(products));
 
   std::srand(5);
-  const Eigen::MatrixXd K = Eigen::MatrixXd::Random(9, 7).unaryExpr([](double v) { return v > 0.3 ? v : 0.0; });
+  const Eigen::MatrixXd K =
+      Eigen::MatrixXd::Random(9, 7).unaryExpr([](double v) { return v > 0.3 ? v : 0.0; });
   const Eigen::VectorXd w = Eigen::VectorXd::Random(9).cwiseAbs();
   const SparseMatrix Ks = K.sparseView();
   const Eigen::MatrixXd gram = K.transpose() * w.asDiagonal() * K;
