@@ -142,7 +142,8 @@ struct FactoredSystem::Impl {
     common->supernodal = CHOLMOD_AUTO;
     // No relaxed amalgamation of supernodes: the explicit zeros it adds (30 % of the values at 1.25M edges)
     // sit in the supernodal factor beside the row indices the conversion to LDL' allocates, the memory peak,
-    // only to be dropped by the resymbol after it; the factorization is no slower without them (README).
+    // only to be dropped by the resymbol after it; the factorization is no slower without them
+    // (docs/method.md).
     std::fill(std::begin(common->zrelax), std::end(common->zrelax), 0.0);
     common->final_asis = 1;
     common->print = 0;
