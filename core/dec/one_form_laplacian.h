@@ -1,6 +1,7 @@
 #pragma once
-// The 1-form Laplacian M = d1' *2 d1 + *1 d0 *0^-1 d0' *1 (Eq. 1), assembled as products, with the boundary
-// modifications of Sec. 4.2, and the bi-Laplacian of Sec. 6.3.
+// The 1-form Laplacian M = d1' *2 d1 + *1 d0 *0^-1 d0' *1 (Eq. 1), assembled as a sum of weighted Gram
+// matrices of d1 and the divergence, with the boundary modifications of Sec. 4.2, and the bi-Laplacian of
+// Sec. 6.3.
 #include <Eigen/Core>
 #include <vector>
 
