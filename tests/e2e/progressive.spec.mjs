@@ -28,9 +28,16 @@ test.describe.serial('progressive loading of big meshes', () => {
     const loaded = await page.evaluate(async (off) => {
       const t = window.tvf;
       t.debugDelayExact(10000); // the edits below all happen while the preview leads
+      // The progress label names the load's phases as they come.
+      const label = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#progress .label');
+      const labels = [];
+      const observer = new MutationObserver(() => labels.push(label.textContent));
+      observer.observe(label, { childList: true, characterData: true, subtree: true });
       const info = await t.loadModel(new TextEncoder().encode(off), { name: 'bunny-sub1.off', format: 'off', previewEdges: 1, restore: false });
-      return { info, first: t.stats() };
+      observer.disconnect();
+      return { info, first: t.stats(), labels };
     }, off);
+    expect(loaded.labels.some((l) => new RegExp(`a preview of ${loaded.info.faces.toLocaleString('en')} faces`).test(l)), loaded.labels.join(' | ')).toBe(true);
     // Every fourth face's centre: the strip's course (the coarse preview does not take a zig-zag literally).
     const strokes = await page.evaluate(stripStrokesInPage, { starts: [100, 5000, 12000], crossings: 24, every: 4 });
     const r = await page.evaluate(async ({ off, strokes, loaded: { info, first } }) => {

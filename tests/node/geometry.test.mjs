@@ -6,6 +6,8 @@ import assert from 'node:assert/strict';
 import test from 'node:test';
 import { grid, icosphere } from './fakes.mjs';
 import { Surface } from '../../web/geometry/surface.js';
+import { halfEdgeNeighbours } from '../../web/geometry/mesh-geometry.js';
+import { torus } from '../../web/core/preview/warm-up.js';
 import { POISSON_PACKING, sampleSurface } from '../../web/geometry/arrow-sampling.js';
 import { traceStreamlines } from '../../web/geometry/streamlines.js';
 import { findSingularities } from '../../web/geometry/singularities.js';
@@ -53,6 +55,67 @@ test('surface: areas, normals and angle defects of a closed sphere obey Gauss–
   const totalDefect = s.angleDefects().reduce((x, y) => x + y);
   assert.ok(Math.abs(totalDefect - 2 * Math.PI * 2) < 1e-9, `Σ defects = 2πχ = 4π (got ${totalDefect})`);
   assert.ok(s.neighbour.every((h) => h >= 0), 'closed: every half-edge has a twin');
+});
+
+// Twins found the slow, obvious way: every other half-edge compared (pairing in face order, as the map does).
+function twinsByScan(T) {
+  const out = new Int32Array(T.length).fill(-1);
+  const ends = (h) => [T[h], T[h - (h % 3) + ((h % 3) + 1) % 3]];
+  for (let h = 0; h < T.length; h++) {
+    if (out[h] !== -1) continue;
+    const [a, b] = ends(h);
+    for (let g = h + 1; g < T.length; g++) {
+      const [c, d] = ends(g);
+      if (out[g] === -1 && ((a === c && b === d) || (a === d && b === c))) {
+        out[h] = g;
+        out[g] = h;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+test('half-edge twins: reversed on closed meshes, none on a boundary, pairs in face order on a non-manifold edge', () => {
+  for (const m of [icosphere(1), torus(12, 6), grid(5)]) {
+    const nV = m.positions.length / 3, T = m.triangles;
+    const twins = halfEdgeNeighbours(T, nV);
+    assert.deepEqual(twins, twinsByScan(T));
+    for (let h = 0; h < T.length; h++) {
+      const g = twins[h];
+      if (g < 0) continue;
+      assert.equal(twins[g], h);
+      assert.equal(T[h], T[g - (g % 3) + ((g % 3) + 1) % 3], 'a twin runs the other way');
+    }
+  }
+  assert.ok(halfEdgeNeighbours(torus(12, 6).triangles, 72).every((h) => h >= 0), 'a torus is closed');
+  const boundary = halfEdgeNeighbours(grid(5).triangles, 36).filter((h) => h < 0).length;
+  assert.equal(boundary, 4 * 5, 'a 5 × 5 grid has 20 boundary half-edges');
+  // Four faces on edge 0–1 (a book of pages) and a fifth page: 1st with 2nd, 3rd with 4th, the 5th alone.
+  const book = Int32Array.from([0, 1, 2, 1, 0, 3, 0, 1, 4, 1, 0, 5, 0, 1, 6]);
+  const twins = halfEdgeNeighbours(book, 7);
+  assert.deepEqual([twins[0], twins[3], twins[6], twins[9], twins[12]], [3, 0, 9, 6, -1]);
+  assert.deepEqual(twins, twinsByScan(book));
+});
+
+test('the warm-up torus is a closed genus-1 surface: V − E + F = 0, each edge once, on two faces', () => {
+  const m = torus(16, 8);
+  const nV = m.positions.length / 3, nE = m.edges.length / 2, nF = m.triangles.length / 3;
+  assert.equal(nV - nE + nF, 0);
+  const key = (a, b) => Math.min(a, b) * nV + Math.max(a, b);
+  const listed = new Set();
+  for (let e = 0; e < nE; e++) {
+    assert.ok(m.edges[2 * e] < m.edges[2 * e + 1], 'lower vertex first');
+    listed.add(key(m.edges[2 * e], m.edges[2 * e + 1]));
+  }
+  assert.equal(listed.size, nE, 'no edge twice');
+  const faces = new Map();
+  for (let h = 0; h < 3 * nF; h++) {
+    const k = key(m.triangles[h], m.triangles[h - (h % 3) + ((h % 3) + 1) % 3]);
+    assert.ok(listed.has(k), 'every face edge is listed');
+    faces.set(k, (faces.get(k) ?? 0) + 1);
+  }
+  assert.ok([...faces.values()].every((n) => n === 2));
 });
 
 test('surface: walking straight on a flat grid goes in a straight line, and stops at the boundary', () => {

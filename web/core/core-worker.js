@@ -12,6 +12,7 @@ import { FieldParts } from './field-parts.js';
 import { settingOps } from './setting-ops.js';
 import { SpareArrays } from './spare-arrays.js';
 import { Preview } from './preview/preview.js';
+import { warmUpPreview } from './preview/warm-up.js';
 import { traceStreamlines } from '../geometry/streamlines.js';
 import { chooseAtlas } from '../synthesis/atlas.js';
 import { analyzeExemplar, exemplarBuffers } from '../synthesis/exemplar.js';
@@ -31,6 +32,7 @@ function serve(scope) {
   const parts = new FieldParts(() => core);
   // In a preview worker (progressive-core.js): the coarse stand-in of the page's big mesh, else null.
   let preview = null;
+  let warming = null;
   // The request in flight, whose `progress` messages the page routes to its caller (core-proxy.js).
   let seqNow = 0;
   const progress = (value, list = []) => scope.postMessage({ seq: seqNow, progress: value }, list);
@@ -137,9 +139,7 @@ function serve(scope) {
       return { crossOriginIsolated: self.crossOriginIsolated === true };
     },
 
-    warmUp(levels, rounds) {
-      return core.warmUp(levels, rounds);
-    },
+    warmUp: (levels, rounds) => core.warmUp(levels, rounds),
 
     // settings: {boundary, gamma, symmetry, curvatureAlignment} carried over from the previous model; design: an
     // autosaved document to restore (its failure is reported, not fatal: the mesh still loads with the settings).
@@ -184,9 +184,15 @@ function serve(scope) {
       return new Transfer({ ...value, surface: arrays }, [...list, cornerUVs.buffer]);
     },
 
+    // A fresh preview worker's warm-up (preview/warm-up.js), which openPreview waits for; a failed one costs time.
+    warmUpPreview() {
+      return (warming = warmUpPreview(core).then(() => true, () => false));
+    },
+
     // In a fresh worker: the preview of a big model (preview/preview.js) from the exact worker's `opened`
     // progress; replies (as every mutating op) with the preview field.
     async openPreview(mesh, fineDoc, settings) {
+      await warming;
       preview = await Preview.open(core, mesh, fineDoc, settings);
       spares.reset([mesh.triangles.length, mesh.positions.length, mesh.edges.length / 2]);
       return { timings: preview.timings };
@@ -309,7 +315,7 @@ function serve(scope) {
     ...exportOps(() => coreExport, () => exportedField(), () => JSON.parse(core.designJson())),
   };
 
-  const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'loadMesh', 'openPreview', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar']);
+  const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'warmUpPreview', 'loadMesh', 'openPreview', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar']);
   // Ops after which the field may have changed: they solve and send a snapshot back.
   const MUTATING = new Set(['loadMesh', 'openPreview', 'add', 'remove', 'setWeight', 'setStrength', ...Object.keys(settingEdits)]);
 

@@ -65,7 +65,8 @@ export class ProgressiveCore {
     const surfaceSent = new Promise((resolve) => (surfaced = resolve));
     // A file this large may well be past the threshold (binary formats take ≥ 8 bytes per edge): the preview
     // worker starts now, beside the exact worker's reading, rather than after it.
-    const early = previewEdges > 0 && args[0].byteLength >= 4 * previewEdges ? this.#startPreview() : null;
+    // It warms up while the exact worker reads (preview/warm-up.js).
+    const early = previewEdges > 0 && args[0].byteLength >= 4 * previewEdges ? this.#startPreview(true) : null;
     const exactLoad = this.exact.call('loadMesh', [...args, { previewEdges, delayForTestMs }], transfer, {
       onProgress: (p) => {
         onPhase(p);
@@ -109,8 +110,10 @@ export class ProgressiveCore {
     }
   }
 
-  #startPreview() {
-    return CoreProxy.start(this.assetBase, { silentMs: 60_000 });
+  async #startPreview(warm = false) {
+    const proxy = await CoreProxy.start(this.assetBase, { silentMs: 60_000 });
+    if (warm) proxy.call('warmUpPreview').catch(() => {});
+    return proxy;
   }
 
   // The session's request: an edit goes to both cores while the preview leads; everything else to the exact one.

@@ -15,7 +15,7 @@ import { setPivotAt } from '../views/camera.js';
 import { Viewer } from '../views/viewer.js';
 
 const PROGRESS_LABELS = {
-  loadMesh: 'Loading and factoring…',
+  loadMesh: 'Reading the model…',
   exactFactor: 'Preview shown; computing the exact field…',
   setBoundary: 'Refactoring…',
   setGamma: 'Refactoring…',
@@ -129,7 +129,8 @@ export class Designer {
     });
     s.on('fieldchange', () => this.exports.fieldChanged());
     const ends = new Map();
-    s.on('busy', ({ op, done }) => {
+    s.on('busy', ({ op, done, phase }) => {
+      if (phase) return void ends.get(op)?.end.relabel(phase);
       if (!done) {
         ends.set(op, { end: ui.startProgress(PROGRESS_LABELS[op] ?? 'Updating…'), renders: viewer.renderCount });
         return void this.#dispatch('progress', { phase: op, fraction: 0 });

@@ -102,23 +102,33 @@ export function bindStatus($, host, { onCancel }) {
   // Cancel stops the operation in flight by replacing the core (core-proxy.js); Escape does the same while busy.
   progress.querySelector('.cancel')?.addEventListener('click', () => onCancel?.());
 
-  // Returns a function that ends the indication. Shows nothing for operations shorter than 200 ms.
+  // Returns a function that ends the indication, whose relabel(text) names the operation's current phase. Shows
+  // nothing for operations shorter than 200 ms. The bar does not move and the seconds tick once a second: with
+  // software GL every repaint is composited on the CPU, and a sliding bar's frames took a core from the very
+  // factorization it waited for (a 1.25M-edge model's first field came 4 s later).
   function startProgress(label) {
     const t0 = performance.now();
     let ticker = 0;
+    let shown = false;
+    const update = () => shown && (progress.querySelector('.label').textContent = `${label} ${Math.round((performance.now() - t0) / 1000)} s`);
     const show = setTimeout(() => {
+      shown = true;
       progress.hidden = false;
       host.classList.add('busy');
-      const update = () => (progress.querySelector('.label').textContent = `${label} ${((performance.now() - t0) / 1000).toFixed(1)} s`);
       update();
-      ticker = setInterval(update, 100);
+      ticker = setInterval(update, 1000);
     }, PROGRESS_DELAY_MS);
-    return () => {
+    const end = () => {
       clearTimeout(show);
       clearInterval(ticker);
       progress.hidden = true;
       host.classList.remove('busy');
     };
+    end.relabel = (text) => {
+      label = text;
+      update();
+    };
+    return end;
   }
 
   return {

@@ -2,7 +2,8 @@
 // texture synthesis. Flat typed arrays, face f = triangles[3f..3f+2]; local edge k of a face runs from corner
 // k to corner k+1.
 
-// Unit normals (3 per face; [0, 0, 1] for a degenerate face), areas and centroids.
+// Unit normals (3 per face; [0, 0, 1] for a degenerate face), areas and centroids. Scalars only in the loops
+// here and below: they run once per face of 800k-face scans, where a small array per face cost seconds of GC.
 export function faceGeometry(positions, triangles) {
   const P = positions, T = triangles, nF = T.length / 3;
   const normals = new Float64Array(3 * nF), areas = new Float64Array(nF), centres = new Float64Array(3 * nF);
@@ -11,9 +12,9 @@ export function faceGeometry(positions, triangles) {
     const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
     const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
     const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
-    const l = Math.hypot(nx, ny, nz);
+    const l = Math.sqrt(nx * nx + ny * ny + nz * nz);
     areas[f] = l / 2;
-    if (l > 0) normals.set([nx / l, ny / l, nz / l], 3 * f);
+    if (l > 0) (normals[3 * f] = nx / l), (normals[3 * f + 1] = ny / l), (normals[3 * f + 2] = nz / l);
     else normals[3 * f + 2] = 1;
     for (let k = 0; k < 3; k++) centres[3 * f + k] = (P[a + k] + P[b + k] + P[c + k]) / 3;
   }
@@ -21,21 +22,32 @@ export function faceGeometry(positions, triangles) {
 }
 
 // Edge → face map as half-edge pairing: neighbour[3f+k] = 3g+kk when local edge k of face f is local edge kk
-// of face g, -1 on a boundary (or a non-manifold edge's third face).
+// of face g, -1 on a boundary (or a non-manifold edge's third face). Half-edges are grouped by their lower
+// vertex (a counting sort, no hash map: a Map keyed by vertex pairs took ~2 s at 800k faces) and paired with
+// the next one of the same upper vertex in face order, as they come.
 export function halfEdgeNeighbours(triangles, nV) {
-  const T = triangles, nF = T.length / 3;
-  const neighbour = new Int32Array(3 * nF).fill(-1);
-  const open = new Map();
-  for (let f = 0; f < nF; f++) {
-    for (let k = 0; k < 3; k++) {
-      const i = T[3 * f + k], j = T[3 * f + ((k + 1) % 3)];
-      const key = i < j ? i * nV + j : j * nV + i;
-      const other = open.get(key);
-      if (other === undefined) open.set(key, 3 * f + k);
-      else {
-        neighbour[3 * f + k] = other;
-        neighbour[other] = 3 * f + k;
-        open.delete(key);
+  const T = triangles, nH = T.length;
+  const neighbour = new Int32Array(nH).fill(-1);
+  const lower = (h) => Math.min(T[h], T[h - (h % 3) + ((h % 3) + 1) % 3]);
+  const upper = (h) => Math.max(T[h], T[h - (h % 3) + ((h % 3) + 1) % 3]);
+  const start = new Int32Array(nV + 1);
+  for (let h = 0; h < nH; h++) start[lower(h) + 1]++;
+  for (let v = 0; v < nV; v++) start[v + 1] += start[v];
+  const list = new Int32Array(nH);
+  const fill = start.slice(0, nV);
+  for (let h = 0; h < nH; h++) list[fill[lower(h)]++] = h;
+  for (let v = 0; v < nV; v++) {
+    const end = start[v + 1];
+    for (let i = start[v]; i < end; i++) {
+      const h = list[i];
+      if (neighbour[h] !== -1) continue;
+      const w = upper(h);
+      for (let j = i + 1; j < end; j++) {
+        const g = list[j];
+        if (neighbour[g] !== -1 || upper(g) !== w) continue;
+        neighbour[h] = g;
+        neighbour[g] = h;
+        break;
       }
     }
   }

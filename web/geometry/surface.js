@@ -33,17 +33,22 @@ export class Surface {
         hi[k] = Math.max(hi[k], P[3 * v + k]);
       }
     }
+    const N = this.normals, F = this.frames, C = this.corners2d;
     for (let f = 0; f < nF; f++) {
       const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
-      const u = [P[b] - P[a], P[b + 1] - P[a + 1], P[b + 2] - P[a + 2]];
-      const w = [P[c] - P[a], P[c + 1] - P[a + 1], P[c + 2] - P[a + 2]];
-      const lu = Math.hypot(...u);
-      edgeSum += lu + Math.hypot(...w) + Math.hypot(P[c] - P[b], P[c + 1] - P[b + 1], P[c + 2] - P[b + 2]);
-      const n = this.normal(f);
-      const e1 = lu > 0 ? u.map((x) => x / lu) : [1, 0, 0];
-      const e2 = cross(n, e1);
-      this.frames.set([...e1, ...e2], 6 * f);
-      this.corners2d.set([0, 0, lu, 0, dot(w, e1), dot(w, e2)], 6 * f);
+      const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
+      const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
+      const vx = P[c] - P[b], vy = P[c + 1] - P[b + 1], vz = P[c + 2] - P[b + 2];
+      const lu = Math.sqrt(ux * ux + uy * uy + uz * uz);
+      edgeSum += lu + Math.sqrt(wx * wx + wy * wy + wz * wz) + Math.sqrt(vx * vx + vy * vy + vz * vz);
+      const nx = N[3 * f], ny = N[3 * f + 1], nz = N[3 * f + 2];
+      const ex = lu > 0 ? ux / lu : 1, ey = lu > 0 ? uy / lu : 0, ez = lu > 0 ? uz / lu : 0;
+      // e2 = n × e1
+      const fx = ny * ez - nz * ey, fy = nz * ex - nx * ez, fz = nx * ey - ny * ex;
+      const o = 6 * f;
+      (F[o] = ex), (F[o + 1] = ey), (F[o + 2] = ez), (F[o + 3] = fx), (F[o + 4] = fy), (F[o + 5] = fz);
+      (C[o] = 0), (C[o + 1] = 0), (C[o + 2] = lu), (C[o + 3] = 0);
+      (C[o + 4] = wx * ex + wy * ey + wz * ez), (C[o + 5] = wx * fx + wy * fy + wz * fz);
     }
     this.meanEdge = nF ? edgeSum / (3 * nF) : 1;
     this.centre = lo.map((x, k) => (x + hi[k]) / 2);

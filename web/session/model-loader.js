@@ -8,6 +8,14 @@ import { readModel } from './model-files.js';
 import { Surface } from '../geometry/surface.js';
 import { PREVIEW_EDGES } from '../core/progressive-core.js';
 
+// The progress label through a load's phases (core-worker.js loadMesh's progress, progressive-core.js): a big
+// model is read, previewed while the exact factorization starts, then factored; a small one read and factored.
+const LOAD_PHASE_LABELS = {
+  opened: (p) => `Reading done; a preview of ${p.info.faces.toLocaleString('en')} faces on a coarse mesh…`,
+  factoring: 'Factoring…',
+  previewSolved: 'Drawing the preview…',
+};
+
 export class ModelLoader {
   constructor(session) {
     this.session = session;
@@ -66,6 +74,9 @@ export class ModelLoader {
     const s = this.session;
     (s.perf.loadPhases ??= {})[p.phase] = performance.now();
     if (p.phase === 'opened') s.flash(`Opening a big mesh (${p.info.faces.toLocaleString('en')} faces): a preview first, the exact field follows.`, 4000);
+    // While a preview is made, the exact worker's factoring is not what the page waits for.
+    const label = p.phase === 'factoring' && s.perf.loadPhases?.opened ? null : LOAD_PHASE_LABELS[p.phase];
+    if (label) s.emit('busy', { op: 'loadMesh', phase: typeof label === 'function' ? label(p) : label });
   }
 
   // The exact core could not take the big model whose preview is shown (too large to factor, say): it still

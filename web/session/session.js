@@ -9,9 +9,9 @@
 // so reads stay synchronous.
 //
 // Signals: 'change' (new field or design: redraw), 'model' (a new mesh: before its 'change'), 'selection',
-// 'history', 'settings' (after a refused edit), 'busy' {op, done}, 'flash' {text, ms}, 'banner' {message,
-// action}, 'banner-clear', and the element's public events: 'error' {code, message}, 'load', 'fieldchange',
-// 'constraintschange', 'corerestart', 'autosaveconflict'.
+// 'history', 'settings' (after a refused edit), 'busy' {op, done} or {op, phase} (a label naming the op's phase
+// now), 'flash' {text, ms}, 'banner' {message, action}, 'banner-clear', and the element's public events: 'error'
+// {code, message}, 'load', 'fieldchange', 'constraintschange', 'corerestart', 'autosaveconflict'.
 import { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting, SetSymmetry } from './commands/index.js';
 import { Autosave } from './autosave.js';
 import { ConstraintTable } from './constraint-table.js';

@@ -8,7 +8,8 @@
 // search over the fine edges from all of them names, for each fine vertex, the nearest kept vertex, whose
 // coarse faces are the candidates (a collapse moves a vertex by about one coarse edge).
 //
-// Owns the maps; imports nothing.
+// Owns the maps; imports geometry/mesh-geometry.js (the fine normals).
+import { faceGeometry, vertexNormals } from '../../geometry/mesh-geometry.js';
 
 export class SurfaceMap {
   // fine: {positions, triangles, edges} (Float64Array, Int32Array, Int32Array 2 per edge); coarse: {positions,
@@ -22,17 +23,21 @@ export class SurfaceMap {
     const nearest = (this.nearest = this.#nearestKeptVertex());
     this.stamp = new Int32Array(this.coarse.triangles.length / 3).fill(-1);
     this.query = -1; // stamps of later queries (pointOnCoarse) count down from here, below every face index
+    // Reused lists and coordinates: the searches run a few million times per model, and an array per call
+    // cost about a second of garbage collection at 800k faces.
     this.scratch = [];
+    this.descent = [];
+    this.b3 = [0, 0, 0];
     this.vertexFace = new Int32Array(this.nV);
     this.vertexBary = new Float64Array(3 * this.nV);
     const p = [0, 0, 0];
     for (let v = 0; v < this.nV; v++) {
       for (let k = 0; k < 3; k++) p[k] = fine.positions[3 * v + k];
-      this.#closest(p, this.#facesAround(nearest[v]), v, this.vertexFace, this.vertexBary);
+      this.#closest(p, this.#aroundInto(nearest[v], this.scratch), v, this.vertexFace, this.vertexBary);
     }
     this.faceFace = new Int32Array(this.nF);
     this.faceBary = new Float64Array(3 * this.nF);
-    for (let f = 0; f < this.nF; f++) if (!this.#insideOneFace(f)) this.#closest(this.#fineCentre(f, p), this.#candidatesOfFace(f), f, this.faceFace, this.faceBary);
+    for (let f = 0; f < this.nF; f++) if (!this.#insideOneFace(f)) this.#closestOfCorners(f, this.#fineCentre(f, p));
     this.#fineNormals();
   }
 
@@ -49,8 +54,11 @@ export class SurfaceMap {
     this.aroundList = list;
   }
 
-  #facesAround(c) {
-    return this.aroundList.subarray(this.aroundStart[c], this.aroundStart[c + 1]);
+  // The coarse faces around coarse vertex c appended to `out` (a plain array, cleared first when `clear`).
+  #aroundInto(c, out, clear = true) {
+    if (clear) out.length = 0;
+    for (let k = this.aroundStart[c], end = this.aroundStart[c + 1]; k < end; k++) out.push(this.aroundList[k]);
+    return out;
   }
 
   // Coarse vertex nearest (in edge hops) to each fine vertex; a fine component the coarse mesh lost falls back
@@ -106,15 +114,32 @@ export class SurfaceMap {
     return true;
   }
 
+  // A fine face across coarse faces: its centre goes to the closest of its corners' coarse faces (within a
+  // fine edge of the closest point of the whole coarse surface, which a wider search took twice as long to find).
+  #closestOfCorners(f, p) {
+    const T = this.fine.triangles, b = this.b3;
+    let best = Infinity;
+    for (let k = 0; k < 3; k++) {
+      const c = this.vertexFace[T[3 * f + k]];
+      if (k > 0 && c === this.faceFace[f]) continue;
+      const d2 = closestOnTriangle(p, this.coarse.positions, this.coarse.triangles, c, b);
+      if (d2 < best) {
+        best = d2;
+        this.faceFace[f] = c;
+        (this.faceBary[3 * f] = b[0]), (this.faceBary[3 * f + 1] = b[1]), (this.faceBary[3 * f + 2] = b[2]);
+      }
+    }
+  }
+
   // The coarse faces around the nearest kept vertex of each corner of fine face f (each once): the face the
   // centre lies on is among them (with the coarse mesh equal to the fine one, f itself).
   #candidatesOfFace(f, stamp = f) {
     const T = this.fine.triangles, out = this.scratch;
     out.length = 0;
     for (let k = 0; k < 3; k++) {
-      const around = this.#facesAround(this.nearest[T[3 * f + k]]);
-      for (let i = 0; i < around.length; i++) {
-        const c = around[i];
+      const v = this.nearest[T[3 * f + k]];
+      for (let i = this.aroundStart[v], end = this.aroundStart[v + 1]; i < end; i++) {
+        const c = this.aroundList[i];
         if (this.stamp[c] === stamp) continue;
         this.stamp[c] = stamp;
         out.push(c);
@@ -129,46 +154,35 @@ export class SurfaceMap {
   // stops when the best face no longer changes).
   #closest(p, candidates, slot, face, bary) {
     let best = Infinity;
-    const b = [0, 0, 0];
+    const b = this.b3;
     const T = this.coarse.triangles;
     for (let round = 0; round < 8; round++) {
       const before = face[slot];
-      for (const c of candidates) {
+      for (let i = 0, n = candidates.length; i < n; i++) {
+        const c = candidates[i];
         const d2 = closestOnTriangle(p, this.coarse.positions, T, c, b);
         if (d2 < best) {
           best = d2;
           face[slot] = c;
-          bary.set(b, 3 * slot);
+          (bary[3 * slot] = b[0]), (bary[3 * slot + 1] = b[1]), (bary[3 * slot + 2] = b[2]);
         }
       }
       if (best === Infinity) return void (face[slot] = 0);
       const onBorder = bary[3 * slot] <= 0 || bary[3 * slot + 1] <= 0 || bary[3 * slot + 2] <= 0;
       if (!onBorder || (round > 0 && face[slot] === before)) return;
       const f = face[slot];
-      candidates = [...this.#facesAround(T[3 * f]), ...this.#facesAround(T[3 * f + 1]), ...this.#facesAround(T[3 * f + 2])];
+      candidates = this.#aroundInto(T[3 * f], this.descent);
+      this.#aroundInto(T[3 * f + 1], candidates, false);
+      this.#aroundInto(T[3 * f + 2], candidates, false);
     }
   }
 
+  // The planes the carried field is laid into: the fine faces' unit normals and the area-weighted vertex normals.
   #fineNormals() {
     const { positions: P, triangles: T } = this.fine;
-    this.faceNormals = new Float64Array(3 * this.nF);
-    this.vertexNormals = new Float64Array(3 * this.nV);
-    for (let f = 0; f < this.nF; f++) {
-      const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
-      const u = [P[b] - P[a], P[b + 1] - P[a + 1], P[b + 2] - P[a + 2]];
-      const w = [P[c] - P[a], P[c + 1] - P[a + 1], P[c + 2] - P[a + 2]];
-      const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
-      const len = Math.hypot(...n) || 1;
-      for (let k = 0; k < 3; k++) {
-        this.faceNormals[3 * f + k] = n[k] / len;
-        for (let j = 0; j < 3; j++) this.vertexNormals[3 * T[3 * f + j] + k] += n[k]; // area-weighted
-      }
-    }
-    for (let v = 0; v < this.nV; v++) {
-      const n = this.vertexNormals.subarray(3 * v, 3 * v + 3);
-      const len = Math.hypot(n[0], n[1], n[2]) || 1;
-      for (let k = 0; k < 3; k++) n[k] /= len;
-    }
+    const { normals, areas } = faceGeometry(P, T);
+    this.faceNormals = normals;
+    this.vertexNormals = vertexNormals(T, this.nV, normals, areas);
   }
 
   // ------------------------------------------------------------------------------------------ designs
