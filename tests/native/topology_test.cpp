@@ -1,6 +1,9 @@
 // Topology and mesh checks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+
 #include "design/mesh_info.h"
 #include "mesh/mesh_checks.h"
 #include "test_meshes.h"
@@ -45,6 +48,47 @@ TEST(Topology, EdgesAreCanonicallyOrientedAndSignsMatchFaces) {
       EXPECT_EQ(t.signOf(f, c), a == t.edgeVertices[2 * e] ? 1 : -1);
       EXPECT_EQ(std::min(a, b), t.edgeVertices[2 * e]);
     }
+}
+
+// The edges as a sort of every corner's (lower, upper, corner) key numbers them: the canonical order the
+// linear-time build must reproduce exactly (edge ids are the 1-form's unknowns, saved in field files).
+TEST(Topology, EdgeNumberingEqualsASortOfAllCornerKeys) {
+  SurfaceMesh shuffled = torus(9, 7, 2, 0.7);
+  // Faces in a scrambled order and vertices renumbered, so that neither follows the other.
+  const int32_t nF = shuffled.numFaces(), nV = shuffled.numVertices();
+  std::vector<int32_t> tri(shuffled.triangles.size());
+  for (int32_t f = 0; f < nF; ++f)
+    for (int c = 0; c < 3; ++c) tri[3 * f + c] = (shuffled.triangles[3 * ((f * 37) % nF) + c] * 11) % nV;
+  shuffled.triangles = tri;
+  SurfaceMesh book = flatGrid(3);
+  book.triangles.insert(book.triangles.end(), {0, 1, 5, 1, 0, 6});  // edge (0, 1) on three, then four faces
+  for (const SurfaceMesh& m : {shuffled, book, holedPlate(7, 3, {{1, 1}, {3, 1}}, 1)}) {
+    std::vector<std::array<int64_t, 3>> keys;
+    for (int32_t h = 0; h < static_cast<int32_t>(m.triangles.size()); ++h) {
+      const int32_t a = m.triangles[h], b = m.triangles[h - h % 3 + (h % 3 + 1) % 3];
+      keys.push_back({std::min(a, b), std::max(a, b), h});
+    }
+    std::sort(keys.begin(), keys.end());
+    const MeshTopology t = buildTopology(m);
+    int32_t e = -1;
+    std::vector<int32_t> count;
+    for (size_t k = 0; k < keys.size(); ++k) {
+      if (k == 0 || keys[k][0] != keys[k - 1][0] || keys[k][1] != keys[k - 1][1]) {
+        ++e;
+        ASSERT_LT(e, t.numEdges);
+        EXPECT_EQ(t.edgeVertices[2 * e], keys[k][0]);
+        EXPECT_EQ(t.edgeVertices[2 * e + 1], keys[k][1]);
+        count.push_back(0);
+      }
+      const int32_t h = static_cast<int32_t>(keys[k][2]);
+      EXPECT_EQ(t.faceEdges[h], e);
+      if (count[e] < 2)
+        EXPECT_EQ(t.edgeFaces[2 * e + count[e]], h / 3) << "the corners of an edge in corner order";
+      ++count[e];
+    }
+    EXPECT_EQ(e + 1, t.numEdges);
+    for (int32_t k = 0; k <= e; ++k) EXPECT_EQ(t.edgeFaceCount[k], count[k]);
+  }
 }
 
 namespace {

@@ -26,12 +26,16 @@ export class ModelLoader {
   load(src, opts = {}) {
     const s = this.session;
     this.loadsPending++;
+    // The file is read at once, beside whatever the core is still doing (the previous model's warm-up, an
+    // edit); only handing it to the core waits its turn. A read that fails is reported in that turn.
+    const reading = readModel(src, opts);
+    reading.catch(() => {});
     return s
       .exclusive(async () => {
         s.requireProxy();
         let model;
         try {
-          model = await readModel(src, opts);
+          model = await reading;
         } catch (err) {
           throw s.fail('model', new Error(`Could not load model: ${err.message}`));
         }
