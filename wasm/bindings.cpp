@@ -159,6 +159,34 @@ class DesignerBinding {
     lastError_ = error;
     return loadResult(ok, error, settingsError, restoreError);
   }
+  // openModel in two steps itself, so a preview can start on the mesh while it is checked (web/core/preview/):
+  // readModel parses the file into the next model's mesh ({"ok", "vertices", "faces"} or {"ok": false,
+  // "error"}), parsedPositions/parsedTriangles view it, and openParsed checks and configures it as openModel.
+  std::string readModel(const val& bytes, const std::string& format) {
+    std::string error;
+    pending_.reset();
+    parsed_.reset();
+    if (attempt(error, [&] { parsed_ = std::make_unique<tvf::SurfaceMesh>(parseMesh(bytes, format)); }))
+      return nlohmann::json{{"ok", true}, {"vertices", parsed_->numVertices()}, {"faces", parsed_->numFaces()}}.dump();
+    lastError_ = error;
+    return nlohmann::json{{"ok", false}, {"error", error}}.dump();
+  }
+  val parsedPositions() const { return parsed_ ? view(parsed_->positions) : view(emptyD_); }
+  val parsedTriangles() const { return parsed_ ? view(parsed_->triangles) : view(emptyI_); }
+  std::string openParsed(const std::string& settings, const std::string& design) {
+    std::string error, settingsError, restoreError;
+    pending_.reset();
+    const bool ok = attempt(error, [&] {
+      if (!parsed_) throw tvf::InputError("no model has been read to open");
+      tvf::SurfaceMesh mesh = std::move(*parsed_);
+      parsed_.reset();
+      pending_ = configured(std::move(mesh), settings, design, &settingsError, &pendingRestored_);
+    });
+    restoreError = pendingRestored_.error;
+    lastError_ = error;
+    return loadResult(ok, error, settingsError, restoreError);
+  }
+
   std::string commitModel() {
     std::string error;
     if (!pending_) return nlohmann::json{{"ok", false}, {"error", "no model is open to commit"}}.dump();
@@ -425,6 +453,11 @@ class DesignerBinding {
   std::unique_ptr<tvf::Designer> openPrepared(const val& bytes, const std::string& format,
                                               const std::string& settings, const std::string& design,
                                               std::string* settingsError, Restored* restored) const {
+    return configured(parseMesh(bytes, format), settings, design, settingsError, restored);
+  }
+
+  // The file's mesh, as read (welded, not yet checked).
+  static tvf::SurfaceMesh parseMesh(const val& bytes, const std::string& format) {
     if (bytes.isNull() || bytes.isUndefined()) throw tvf::InputError("no mesh data");
     // A Uint8Array (or any array-like); an ArrayBuffer is viewed as bytes.
     const bool buffer = bytes.instanceof(val::global("ArrayBuffer"));
@@ -434,8 +467,13 @@ class DesignerBinding {
     tvf::MeshFormat f;
     if (!parseFormat(format, data.data(), data.size(), f))
       throw tvf::InputError("unknown mesh format '" + format + "' (expected glb, gltf, obj, off, ply or '')");
-    tvf::SurfaceMesh mesh = tvf::loadMeshFromMemory(data.data(), data.size(), f);
-    std::vector<uint8_t>().swap(data);  // the file's bytes are not needed during the factorization
+    return tvf::loadMeshFromMemory(data.data(), data.size(), f);  // the bytes are freed on return
+  }
+
+  // A read mesh checked and configured (settings, design) as the next model, not yet factored.
+  std::unique_ptr<tvf::Designer> configured(tvf::SurfaceMesh mesh, const std::string& settings,
+                                            const std::string& design, std::string* settingsError,
+                                            Restored* restored) const {
     auto next = std::make_unique<tvf::Designer>(std::move(mesh));
     if (!settings.empty()) {
       std::string error;
@@ -513,6 +551,7 @@ class DesignerBinding {
 
   std::unique_ptr<tvf::Designer> designer_;
   std::unique_ptr<tvf::Designer> pending_;  // openModel's model, until commitModel
+  std::unique_ptr<tvf::SurfaceMesh> parsed_;  // readModel's mesh, until openParsed
   Restored pendingRestored_;
   // reconstruct()'s Whitney maps for designer_'s mesh (built on first use; dropped when the model changes).
   struct Maps {
@@ -568,6 +607,10 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("loadModel", &DesignerBinding::loadModel)
       .function("openModel", &DesignerBinding::openModel)
       .function("commitModel", &DesignerBinding::commitModel)
+      .function("readModel", &DesignerBinding::readModel)
+      .function("parsedPositions", &DesignerBinding::parsedPositions)
+      .function("parsedTriangles", &DesignerBinding::parsedTriangles)
+      .function("openParsed", &DesignerBinding::openParsed)
       .function("pendingInfoJson", &DesignerBinding::pendingInfoJson)
       .function("pendingDesignJson", &DesignerBinding::pendingDesignJson)
       .function("pendingPositions", &DesignerBinding::pendingPositions)

@@ -118,6 +118,36 @@ check('cornerUVs view (empty for OFF)', d.cornerUVs() instanceof Float32Array &&
 const keep = d.loadMesh(new TextEncoder().encode('OFF\n1 1 0\n0 0 0\n3 0 0 0\n'), '');
 check('failed load keeps the previous mesh', keep !== '' && d.positions().length === 3 * nV, keep);
 
+// A load in steps (big meshes, web/core/core-worker.js): read, then open (checks, settings), then commit; the
+// mesh read is the mesh opened, vertex for vertex, and every step's failure keeps the current model.
+{
+  const before = Float64Array.from(d.oneForm());
+  const other = new TextEncoder().encode(icosphere(2));
+  const read = JSON.parse(d.readModel(other, 'off'));
+  check('readModel: counts of the mesh read', read.ok && read.vertices === 162 && read.faces === 320, JSON.stringify(read));
+  const parsedP = Float64Array.from(d.parsedPositions()), parsedT = Int32Array.from(d.parsedTriangles());
+  check('readModel: the mesh read is viewable', parsedP.length === 3 * 162 && parsedT.length === 3 * 320);
+  const opened = JSON.parse(d.openParsed('{"gamma": 0.5}', ''));
+  check('openParsed succeeds', opened.ok && opened.settingsError === null, JSON.stringify(opened));
+  check('openParsed: the mesh opened is the mesh read',
+    d.pendingPositions().every((x, k) => x === parsedP[k]) && d.pendingTriangles().every((x, k) => x === parsedT[k]));
+  check('openParsed: the mesh read is consumed', d.parsedPositions().length === 0);
+  check('openParsed: the current model is untouched until the commit', d.positions().length === 3 * nV &&
+    d.oneForm().every((x, k) => x === before[k]));
+  const committed = JSON.parse(d.commitModel());
+  check('commitModel after openParsed', committed.ok && d.positions().length === 3 * 162 && d.gamma() === 0.5, JSON.stringify(committed));
+  const badRead = JSON.parse(d.readModel(new TextEncoder().encode('OFF\n3 1 0\n0 0 0\n'), 'off'));
+  check('readModel of a broken file: error, model kept', !badRead.ok && badRead.error.length > 0 && d.positions().length === 3 * 162, JSON.stringify(badRead));
+  const nothing = JSON.parse(d.openParsed('', ''));
+  check('openParsed with nothing read: error', !nothing.ok && /no model has been read/.test(nothing.error), JSON.stringify(nothing));
+  // Non-manifold: read fine, refused when opened, by name.
+  JSON.parse(d.readModel(new TextEncoder().encode('OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n'), 'off'));
+  const refused = JSON.parse(d.openParsed('', ''));
+  check('openParsed of a non-manifold mesh: refused by name, model kept', !refused.ok && /non-manifold/.test(refused.error) &&
+    d.positions().length === 3 * 162, JSON.stringify(refused));
+  check('back to the icosphere', d.loadMesh(new TextEncoder().encode(off), 'off') === '' && d.positions().length === 3 * nV);
+}
+
 // Source at vertex 0, sink at the antipodal vertex.
 const pos = Float64Array.from(d.positions());
 let far = 0, best = Infinity;

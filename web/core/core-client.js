@@ -138,6 +138,25 @@ export class CoreClient {
     return { settingsError: out.settingsError, restoreError: out.restoreError };
   }
 
+  // openModel in two steps (a preview starts on the mesh read while it is checked): readModel parses the file
+  // ({vertices, faces}), parsedMesh copies its positions and triangles, openParsed checks and configures it as
+  // openModel does.
+  readModel(bytes, format) {
+    const out = JSON.parse(guard('load', () => this.designer.readModel(bytes, format)));
+    if (!out.ok) throw new CoreError(prefixed('load', out.error));
+    return { vertices: out.vertices, faces: out.faces };
+  }
+
+  parsedMesh() {
+    return { positions: this.designer.parsedPositions().slice(), triangles: this.designer.parsedTriangles().slice() };
+  }
+
+  openParsed(settings = null, design = null) {
+    const out = JSON.parse(guard('load', () => this.designer.openParsed(settings ? JSON.stringify(settings) : '', design ? JSON.stringify(design) : '')));
+    if (!out.ok) throw new CoreError(prefixed('load', out.error));
+    return { settingsError: out.settingsError, restoreError: out.restoreError };
+  }
+
   commitModel() {
     const out = JSON.parse(guard('load', () => this.designer.commitModel()));
     if (!out.ok) throw new CoreError(prefixed('load', out.error));

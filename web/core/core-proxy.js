@@ -107,6 +107,11 @@ export class CoreProxy {
     });
   }
 
+  // A word for the worker outside the request sequence (core-worker.js onmessage: previewMade).
+  notify(message) {
+    this.worker?.postMessage(message);
+  }
+
   // Stops whatever the worker is doing (a huge stroke, a factorization) by replacing it: the pending calls
   // reject with "cancelled", and the model and the design as they were before the cancelled call come back.
   cancel() {

@@ -13,6 +13,7 @@ import { settingOps } from './setting-ops.js';
 import { SpareArrays } from './spare-arrays.js';
 import { Preview } from './preview/preview.js';
 import { warmUpPreview } from './preview/warm-up.js';
+import { openModelInSteps } from './open-steps.js';
 import { traceStreamlines } from '../geometry/streamlines.js';
 import { chooseAtlas } from '../synthesis/atlas.js';
 import { analyzeExemplar, exemplarBuffers } from '../synthesis/exemplar.js';
@@ -33,6 +34,8 @@ function serve(scope) {
   // In a preview worker (progressive-core.js): the coarse stand-in of the page's big mesh, else null.
   let preview = null;
   let warming = null;
+  let prepared = null; // the big model's coarse stand-in and map, until its preview opens
+  let previewMade = () => {}; // what a big model's load waits for before factoring
   // The request in flight, whose `progress` messages the page routes to its caller (core-proxy.js).
   let seqNow = 0;
   const progress = (value, list = []) => scope.postMessage({ seq: seqNow, progress: value }, list);
@@ -100,16 +103,8 @@ function serve(scope) {
     // heapBytes: the wasm memory, which never shrinks: the peak so far.
     const stats = { ...core.stats(), preview: false, heapBytes: core.Module.HEAP8.buffer.byteLength };
     lap('statsMs');
-    return {
-      version,
-      symmetry: core.symmetry(),
-      faceVectors,
-      vertexVectors,
-      oneForm,
-      stats,
-      design,
-      transfer: [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer],
-    };
+    const transfer = [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer];
+    return { version, symmetry: core.symmetry(), faceVectors, vertexVectors, oneForm, stats, design, transfer };
   }
 
   // How to take back the edit in flight when the solve after it fails (a factor that does not fit, a field that
@@ -146,25 +141,26 @@ function serve(scope) {
     // One transaction in the core: the new mesh is read, checked, configured, factored and solved aside and
     // replaces the current model only when all of that succeeded; a failure leaves the core and the page on the
     // previous model.
-    // options.previewEdges: a mesh with at least this many edges is opened first, and its mesh and design are
-    // sent ahead as `progress` {phase: 'opened'} for a preview core (progressive-core.js), before the long
-    // factorization; the surface is then built there, not here.
-    loadMesh(bytes, format, settings, design, options = {}) {
+    // options.previewEdges: a mesh with at least this many edges is read and opened first, its mesh and design
+    // sent ahead as `progress` {phase: 'read'} and {phase: 'opened'} (open-steps.js) for a preview core
+    // (progressive-core.js), before the long factorization; the page's surface is then built there.
+    async loadMesh(bytes, format, settings, design, options = {}) {
       preview = null;
       // A GLB exported with its design (docs/export.md) reopens with it, unless an autosave is newer.
       const embedded = design ? null : coreExport.embeddedDesign(bytes);
-      const opened = core.openModel(bytes, format, settings, design ?? embedded);
-      const pendingInfo = core.pendingInfo();
-      const ahead = options.previewEdges > 0 && pendingInfo.edges >= options.previewEdges;
+      const steps = { bytes, format, settings, design: design ?? embedded, embedded: embedded != null, previewEdges: options.previewEdges };
+      const { opened, info: pendingInfo, ahead } = openModelInSteps(core, steps, progress);
       if (ahead) {
-        const mesh = core.pendingMesh();
-        const cornerUVs = core.designer.pendingCornerUVs().slice();
-        const early = { ...opened, embeddedDesign: embedded != null, cornerUVs, design: core.pendingDesign() };
-        progress({ phase: 'opened', info: pendingInfo, mesh, ...early }, [mesh.positions.buffer, mesh.triangles.buffer, mesh.edges.buffer, cornerUVs.buffer]);
         // The page's surface and BVH, built here while the preview worker simplifies (two cores at work).
         const m = core.pendingMesh();
         const { arrays, list } = pageSurface(new Surface(m.positions, m.triangles, m.edges), true);
         progress({ phase: 'surface', surface: arrays }, list);
+        // The factorization's two threads would take the cores from the preview: they wait for the page's word
+        // that it is made (or failed), 20 s at most.
+        await new Promise((resolve) => {
+          previewMade = resolve;
+          setTimeout(resolve, 20_000);
+        });
       }
       progress({ phase: 'factoring', info: pendingInfo });
       // Tests: an exact factorization that takes at least this long, so the preview surely leads.
@@ -184,17 +180,20 @@ function serve(scope) {
       return new Transfer({ ...value, surface: arrays }, [...list, cornerUVs.buffer]);
     },
 
-    // A fresh preview worker's warm-up (preview/warm-up.js), which openPreview waits for; a failed one costs time.
+    // A preview worker's steps (preview/): a warm-up (warm-up.js; a failed one costs time), the mesh's part from
+    // the exact worker's `read` (or `opened`) progress, the rest from `opened` (replying with the preview field).
     warmUpPreview() {
       return (warming = warmUpPreview(core).then(() => true, () => false));
     },
-
-    // In a fresh worker: the preview of a big model (preview/preview.js) from the exact worker's `opened`
-    // progress; replies (as every mutating op) with the preview field.
-    async openPreview(mesh, fineDoc, settings) {
+    async previewMesh(mesh) {
       await warming;
-      preview = await Preview.open(core, mesh, fineDoc, settings);
-      spares.reset([mesh.triangles.length, mesh.positions.length, mesh.edges.length / 2]);
+      prepared = await Preview.prepare(mesh);
+      return true;
+    },
+    openPreview(edges, fineDoc, settings) {
+      preview = Preview.open(core, prepared, edges, fineDoc, settings);
+      const { fine } = preview.map;
+      spares.reset([fine.triangles.length, fine.positions.length, edges.length / 2]);
       return { timings: preview.timings };
     },
 
@@ -315,7 +314,7 @@ function serve(scope) {
     ...exportOps(() => coreExport, () => exportedField(), () => JSON.parse(core.designJson())),
   };
 
-  const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'warmUpPreview', 'loadMesh', 'openPreview', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar']);
+  const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'warmUpPreview', 'previewMesh', 'loadMesh', 'openPreview', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar']);
   // Ops after which the field may have changed: they solve and send a snapshot back.
   const MUTATING = new Set(['loadMesh', 'openPreview', 'add', 'remove', 'setWeight', 'setStrength', ...Object.keys(settingEdits)]);
 
@@ -329,6 +328,7 @@ function serve(scope) {
 
   scope.onmessage = async ({ data }) => {
     if (data.ping) return void scope.postMessage({ pong: true });
+    if (data.previewMade) return void previewMade();
     // For the supervision tests: a worker that stops answering without a call in flight (an infinite loop in
     // a timer, a deadlock), for `ms` milliseconds.
     if (data.hangForTest) {

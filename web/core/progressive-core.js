@@ -64,12 +64,21 @@ export class ProgressiveCore {
     const ahead = new Promise((resolve) => (opened = resolve));
     const surfaceSent = new Promise((resolve) => (surfaced = resolve));
     // A file this large may well be past the threshold (binary formats take ≥ 8 bytes per edge): the preview
-    // worker starts now, beside the exact worker's reading, rather than after it.
-    // It warms up while the exact worker reads (preview/warm-up.js).
+    // worker starts now, beside the exact worker's reading, rather than after it. It warms up while the exact
+    // worker reads (preview/warm-up.js), and simplifies the mesh as soon as it is read (open-steps.js).
     const early = previewEdges > 0 && args[0].byteLength >= 4 * previewEdges ? this.#startPreview(true) : null;
+    let meshed = null;
+    const prepare = (mesh) =>
+      (meshed ??= (async () => {
+        const proxy = await (early ?? this.#startPreview());
+        await proxy.call('previewMesh', [{ positions: mesh.positions, triangles: mesh.triangles }], [mesh.positions.buffer, mesh.triangles.buffer]);
+        return proxy;
+      })());
+    const endWorkers = () => [early, meshed].forEach((p) => p?.then((proxy) => proxy.terminate(), () => {}));
     const exactLoad = this.exact.call('loadMesh', [...args, { previewEdges, delayForTestMs }], transfer, {
       onProgress: (p) => {
         onPhase(p);
+        if (p.phase === 'read') prepare(p.mesh).catch(() => {});
         if (p.phase === 'opened') opened(p);
         if (p.phase === 'surface') surfaced(p.surface);
       },
@@ -79,18 +88,19 @@ export class ProgressiveCore {
     surface.catch(() => {}); // a failed load is reported by exactLoad itself
     const first = await Promise.race([ahead, exactLoad.then((reply) => ({ reply }), () => ({}))]);
     if (!first.info) {
-      early?.then((p) => p.terminate(), () => {});
+      endWorkers();
       return { reply: await exactLoad, progressive: false };
     }
     let preview = null;
     try {
       onPhase({ phase: 'preview', info: first.info });
-      preview = await (early ?? this.#startPreview());
-      onPhase({ phase: 'previewStarted' });
       const { mesh, design } = first;
+      preview = await prepare(mesh);
+      onPhase({ phase: 'previewStarted' });
       let exactDone = null, exactFailed = null;
       exactLoad.then((r) => (exactDone = r), (err) => (exactFailed = err));
-      const reply = await preview.call('openPreview', [mesh, design, args[2]], [mesh.positions.buffer, mesh.triangles.buffer, mesh.edges.buffer]);
+      const reply = await preview.call('openPreview', [mesh.edges, design, args[2]], [mesh.edges.buffer]);
+      this.exact.notify({ previewMade: true }); // the exact worker factors from here on (core-worker.js loadMesh)
       // The exact core refused the model while the preview was made (too large to factor, say): the load fails
       // as any other, and the previous model stays.
       if (exactFailed) throw Object.assign(exactFailed, { exactLoad: true });
@@ -101,7 +111,8 @@ export class ProgressiveCore {
       this.#track(exactLoad, 'loadMesh');
       return { reply: { ...reply, value }, progressive: true };
     } catch (err) {
-      preview?.terminate();
+      this.exact.notify({ previewMade: true });
+      endWorkers();
       if (err.exactLoad) throw err;
       console.warn(`tangent-field-designer: no preview (${err.message}); waiting for the exact field`);
       const reply = await exactLoad;

@@ -12,19 +12,27 @@ import { coarseMesh, offBytes } from './coarse-mesh.js';
 import { SurfaceMap } from './surface-map.js';
 
 export class Preview {
-  // core: the worker's CoreClient; fine: {positions, triangles, edges}; fineDoc: the exact core's design
-  // document of the model (settings, fingerprint, constraints: normalized fine specs); settings as loadModel's.
-  static async open(core, fine, fineDoc, settings) {
+  // The mesh's part, which needs no design: the coarse stand-in and the map. fine: {positions, triangles} as
+  // the exact worker read them (Float64Array, Int32Array). Returns what open() takes.
+  static async prepare(fine) {
     const t0 = performance.now();
     const coarse = await coarseMesh(fine.positions, fine.triangles);
     const t1 = performance.now();
     const map = new SurfaceMap(fine, coarse);
-    const t2 = performance.now();
+    return { coarse, map, timings: { simplifyMs: t1 - t0, mapMs: performance.now() - t1, coarseFaces: coarse.triangles.length / 3 } };
+  }
+
+  // core: the worker's CoreClient; prepared: prepare()'s; edges: the fine mesh's (Int32Array, 2 per edge, the
+  // exact core's order); fineDoc: the exact core's design document of the model (settings, fingerprint,
+  // constraints: normalized fine specs); settings as loadModel's.
+  static open(core, { coarse, map, timings }, edges, fineDoc, settings) {
+    const t0 = performance.now();
+    map.fine.edges = edges;
     const { restoreError } = core.loadModel(offBytes(coarse), 'off', settings, map.designOnCoarse(fineDoc));
     // A constraint the coarse surface cannot take would leave the two cores' ids apart: no preview then.
     if (restoreError) throw new Error(`the preview could not take the design: ${restoreError}`);
     const preview = new Preview(core, map, fineDoc);
-    preview.timings = { simplifyMs: t1 - t0, mapMs: t2 - t1, coarseSolveMs: performance.now() - t2, coarseFaces: coarse.triangles.length / 3 };
+    preview.timings = { ...timings, coarseSolveMs: performance.now() - t0 };
     return preview;
   }
 

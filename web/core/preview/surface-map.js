@@ -5,15 +5,15 @@
 // (fieldOnFine), so the page draws a preview on the mesh it shows.
 //
 // The closest point is searched near where it must be: the coarse vertices are fine vertices, so a breadth-first
-// search over the fine edges from all of them names, for each fine vertex, the nearest kept vertex, whose
+// search over the fine faces' sides from all of them names, for each fine vertex, the nearest kept vertex, whose
 // coarse faces are the candidates (a collapse moves a vertex by about one coarse edge).
 //
 // Owns the maps; imports geometry/mesh-geometry.js (the fine normals).
 import { faceGeometry, vertexNormals } from '../../geometry/mesh-geometry.js';
 
 export class SurfaceMap {
-  // fine: {positions, triangles, edges} (Float64Array, Int32Array, Int32Array 2 per edge); coarse: {positions,
-  // triangles, fineVertex} (coarse-mesh.js).
+  // fine: {positions, triangles} (Float64Array, Int32Array) and, by the time fieldOnFine is called, edges
+  // (Int32Array, 2 per edge: the fine one-form's order); coarse: {positions, triangles, fineVertex} (coarse-mesh.js).
   constructor(fine, coarse) {
     this.fine = fine;
     this.coarse = coarse;
@@ -64,16 +64,19 @@ export class SurfaceMap {
   // Coarse vertex nearest (in edge hops) to each fine vertex; a fine component the coarse mesh lost falls back
   // to coarse vertex 0's faces (the closest-point search still picks the nearest of them).
   #nearestKeptVertex() {
-    const { edges } = this.fine;
+    // Neighbours through the faces' sides (each interior edge twice: no matter to a breadth-first search), so
+    // that the map needs no edge list and is built while the exact core still numbers the edges.
+    const T = this.fine.triangles;
     const nV = this.nV;
     const deg = new Int32Array(nV + 1);
-    for (const v of edges) deg[v + 1]++;
+    for (let k = 0; k < T.length; k++) deg[T[k] + 1] += 2;
     for (let v = 0; v < nV; v++) deg[v + 1] += deg[v];
-    const adj = new Int32Array(edges.length);
+    const adj = new Int32Array(2 * T.length);
     const fill = deg.slice(0, nV);
-    for (let e = 0; e < edges.length; e += 2) {
-      adj[fill[edges[e]]++] = edges[e + 1];
-      adj[fill[edges[e + 1]]++] = edges[e];
+    for (let k = 0; k < T.length; k++) {
+      const a = T[k], b = T[k - (k % 3) + ((k % 3) + 1) % 3];
+      adj[fill[a]++] = b;
+      adj[fill[b]++] = a;
     }
     const nearest = new Int32Array(nV).fill(-1);
     const queue = new Int32Array(nV);
