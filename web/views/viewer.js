@@ -34,6 +34,7 @@ import { LabelTextures } from './markers.js';
 import { BandMaterial, GrowingBand } from './screen-ribbon.js';
 import { SingularitiesView } from './singularities-view.js';
 import { StreamlinesView } from './streamlines-view.js';
+import { warmUpShaders } from './shader-warm-up.js';
 
 const BACKGROUND = 0x1b1d21;
 const SURFACE_GREY = 0xb9bec8;
@@ -95,6 +96,7 @@ export class Viewer {
 
     this._renderQueued = false;
     this.disposed = false;
+    this.shadersReady = warmUpShaders(this.renderer, this.scene, this.camera, this.labels).catch(() => {});
     this.resizeObserver = new ResizeObserver(() => this.resize());
     this.resizeObserver.observe(container);
     this.resize();

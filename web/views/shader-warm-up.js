@@ -1,0 +1,58 @@
+// Every kind of material the views draw, compiled when the viewer starts rather than when a view first shows
+// one. A new program's first draw reads its uniforms back, a synchronous round trip to the GPU process that
+// waits for the link and for every frame still in flight: with software GL and a million-triangle model that
+// froze the page for seconds at the first stroke, the first singularity markers, the first colour map.
+// Compiled at the start, they are linked by the GPU process while the page goes on (renderer.compileAsync
+// waits for that where the browser offers KHR_parallel_shader_compile).
+//
+// The samples copy the views' material settings (handles.js, markers.js, singularities-view.js, arrows-view.js,
+// streamlines-view.js, viewer.js): a setting that drifts only costs that program its head start.
+//
+// Owns nothing past the call. Imports three and the views' band and marker makers.
+import { BufferAttribute, BufferGeometry, Color, DoubleSide, Group, InstancedMesh, LineBasicMaterial, LineSegments, Mesh, MeshBasicMaterial, MeshStandardMaterial } from 'three';
+import { markerSprite } from './markers.js';
+import { BandMaterial, bandGeometry, bandMesh } from './screen-ribbon.js';
+
+function triangle() {
+  const g = new BufferGeometry();
+  g.setAttribute('position', new BufferAttribute(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0]), 3));
+  g.setAttribute('normal', new BufferAttribute(new Float32Array([0, 0, 1, 0, 0, 1, 0, 0, 1]), 3));
+  g.setAttribute('uv', new BufferAttribute(new Float32Array([0, 0, 1, 0, 0, 1]), 2));
+  g.setAttribute('color', new BufferAttribute(new Float32Array(9).fill(1), 3));
+  return g;
+}
+
+function samples(labels) {
+  const tri = triangle();
+  const group = new Group();
+  const points = [[0, 0, 0], [1, 0, 0], [1, 1, 0]], normals = points.map(() => [0, 0, 1]);
+  group.add(bandMesh(bandGeometry(points, normals), new BandMaterial({ color: 0xffffff, widthPx: 6 })));
+  group.add(new Mesh(tri, new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide })));
+  const map = labels.get('warm-up', '#ffffff', '');
+  group.add(new Mesh(tri, new MeshBasicMaterial({ map, transparent: true, side: DoubleSide, polygonOffset: true })));
+  group.add(markerSprite(map));
+  const arrows = new InstancedMesh(tri, new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide }), 1);
+  arrows.setColorAt(0, new Color(1, 1, 1));
+  group.add(arrows);
+  group.add(new LineSegments(tri, new LineBasicMaterial({ color: 0x111827 })));
+  for (const vertexColors of [false, true]) {
+    group.add(new Mesh(tri, new MeshStandardMaterial({ roughness: 0.65, metalness: 0, side: DoubleSide, polygonOffset: true, vertexColors })));
+  }
+  for (const object of group.children) object.frustumCulled = false;
+  return group;
+}
+
+// Resolves when the programs are linked (or at once where compiling in the background is not offered). The
+// samples' materials are left undisposed: disposing the last material of a program deletes the program.
+export async function warmUpShaders(renderer, scene, camera, labels) {
+  const group = samples(labels);
+  scene.add(group);
+  try {
+    // Without the extension compile() is the same minus the waiting (compileAsync would warn that it is missing):
+    // the GPU process links while the page goes on, and the first draw finds the program linked.
+    if (renderer.extensions.has('KHR_parallel_shader_compile')) await renderer.compileAsync(scene, camera);
+    else renderer.compile(scene, camera);
+  } finally {
+    scene.remove(group);
+  }
+}
