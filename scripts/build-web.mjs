@@ -24,7 +24,7 @@ await esbuild.build({
   format: 'esm',
   platform: 'browser',
   target: 'es2022',
-  minify: true,
+  minify: process.env.TVF_NO_MINIFY ? false : true,
   sourcemap: true,
   legalComments: 'linked',
   loader: { '.css': 'text' }, // the element's stylesheet, adopted by its shadow root

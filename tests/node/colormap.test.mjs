@@ -3,7 +3,8 @@
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import { Color, SRGBColorSpace } from 'three';
-import { VIRIDIS, magnitudeScale, viridis } from '../../web/views/colormap.js';
+import { VIRIDIS, viridis } from '../../web/views/colormap.js';
+import { magnitudeScale } from '../../web/geometry/magnitudes.js';
 
 // matplotlib's viridis at t = 0, 0.25, 0.5, 0.75, 1 (table entries 0, 64, 128, 192, 255), sRGB in [0, 1].
 const PUBLISHED = [

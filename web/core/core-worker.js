@@ -19,6 +19,7 @@ import { chooseAtlas } from '../synthesis/atlas.js';
 import { analyzeExemplar, exemplarBuffers } from '../synthesis/exemplar.js';
 import { Surface } from '../geometry/surface.js';
 import { pageSurface } from '../geometry/mesh-bvh-transfer.js';
+import { magnitudeScale } from '../geometry/magnitudes.js';
 
 // The worker's whole state lives in this closure: one served core per worker, one worker per element.
 function serve(scope) {
@@ -63,8 +64,7 @@ function serve(scope) {
     }
   }
 
-  // Earlier field arrays the page handed back, refilled instead of allocated (spare-arrays.js).
-  const spares = new SpareArrays();
+  const spares = new SpareArrays(); // earlier field arrays the page handed back, refilled rather than allocated
 
   // What the exports read of the field: a vector field's one-form, or a line or cross field's directions.
   function exportedField() {
@@ -104,7 +104,8 @@ function serve(scope) {
     const stats = { ...core.stats(), preview: false, heapBytes: core.Module.HEAP8.buffer.byteLength };
     lap('statsMs');
     const transfer = [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer];
-    return { version, symmetry: core.symmetry(), faceVectors, vertexVectors, oneForm, stats, design, transfer };
+    // The magnitude scale here rather than on the page's thread.
+    return { version, symmetry: core.symmetry(), faceVectors, vertexVectors, oneForm, scale: magnitudeScale(vertexVectors), stats, design, transfer };
   }
 
   // How to take back the edit in flight when the solve after it fails (a factor that does not fit, a field that

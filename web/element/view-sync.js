@@ -15,7 +15,7 @@
 // Every view is told the field's symmetry N (session.field.symmetry: 1 a vector field, 2 a line field, 4 a cross
 // field): for N ≥ 2 the vectors are unit representatives, one of N directions, which the views draw as such.
 // Such a field has no 1-form and so no decomposition: the views draw the whole field whatever component is chosen.
-import { magnitudeScale } from '../views/colormap.js';
+import { magnitudeScale } from '../geometry/magnitudes.js';
 import { COMPONENTS } from '../core/field-parts.js';
 import { traceStreamlines } from '../geometry/streamlines.js';
 

@@ -211,9 +211,10 @@ export class Session extends Emitter {
     return (await this.requireProxy().call(op, args, transfer, { background: true })).value;
   }
 
-  applySnapshot({ version, symmetry, faceVectors, vertexVectors, oneForm, stats, design }) {
+  // scale: the field's magnitudeScale (geometry/magnitudes.js), made by the worker; the views derive it if absent.
+  applySnapshot({ version, symmetry, faceVectors, vertexVectors, oneForm, scale, stats, design }) {
     if (this.field) this.retired.push(this.field);
-    this.field = { version, symmetry, faceVectors, vertexVectors, oneForm, stats, singularities: null };
+    this.field = { version, symmetry, faceVectors, vertexVectors, oneForm, stats, singularities: null, ...(scale ? { scale } : {}) };
     this.fieldVersion++;
     this.table.apply(design);
     if (this.selected != null && !this.table.has(this.selected)) this.selected = null;

@@ -6,7 +6,8 @@
 import { Color, DoubleSide, DynamicDrawUsage, InstancedMesh, Matrix4, MeshBasicMaterial, Vector3 } from 'three';
 import { POISSON_PACKING, sampleSurface, worldPerPixel } from '../geometry/arrow-sampling.js';
 import { matchedAt, symmetryOf } from '../geometry/nfield.js';
-import { magnitudeScale, viridis } from './colormap.js';
+import { viridis } from './colormap.js';
+import { magnitudeScale } from '../geometry/magnitudes.js';
 import { glyphGeometry } from './markers.js';
 
 const ARROW_LIFT = 0.02; // × mean edge length, keeps arrows above the surface they lie on

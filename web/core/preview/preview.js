@@ -10,6 +10,7 @@
 // Owned by core-worker.js (one per preview worker). Imports geometry/ for the fine surface it hands the page.
 import { coarseMesh, offBytes } from './coarse-mesh.js';
 import { SurfaceMap } from './surface-map.js';
+import { magnitudeScale } from '../../geometry/magnitudes.js';
 
 export class Preview {
   // The mesh's part, which needs no design: the coarse stand-in and the map. fine: {positions, triangles} as
@@ -100,7 +101,11 @@ export class Preview {
     const c = this.core;
     const symmetry = c.symmetry();
     const out = { faceVectors: spares.pop(3 * this.map.nF), vertexVectors: spares.pop(3 * this.map.nV), oneForm: spares.pop(this.map.fine.edges.length / 2) };
-    const field = this.map.fieldOnFine(c.faceVectors(), c.vertexVectors(), symmetry, out);
+    const coarseVertexVectors = c.vertexVectors();
+    const field = this.map.fieldOnFine(c.faceVectors(), coarseVertexVectors, symmetry, out);
+    // The carried vectors are the coarse ones interpolated and laid into the fine planes: the coarse lengths'
+    // scale is theirs to within that, for a tiny fraction of the work.
+    const scale = magnitudeScale(coarseVertexVectors);
     timing.transferMs = this.timings.transferMs = performance.now() - t0;
     const ids = c.constraintIds();
     const stats = { ...c.stats(), preview: true, previewHeapBytes: c.Module.HEAP8.buffer.byteLength, previewFaces: this.map.coarse.triangles.length / 3, ...this.timings };
@@ -108,6 +113,7 @@ export class Preview {
       version: -++this.version,
       symmetry,
       ...field,
+      scale,
       stats,
       design: { ids, document: this.fineDocument(ids) },
       transfer: [field.faceVectors.buffer, field.vertexVectors.buffer, field.oneForm.buffer],
