@@ -122,7 +122,7 @@ class DesignerBinding {
   // format: 'glb' | 'gltf' | 'obj' | 'off' | 'ply' | '' (sniffed from the bytes).
   std::string loadMesh(const val& bytes, const std::string& format) {
     std::string error;
-    if (attempt(error, [&] { designer_ = prepareModel(bytes, format, "", "", nullptr, nullptr); })) maps_.reset();
+    attempt(error, [&] { designer_ = prepareModel(bytes, format, "", "", nullptr, nullptr); });
     lastError_ = error;
     return error;
   }
@@ -137,7 +137,6 @@ class DesignerBinding {
     std::string error, settingsError, restoreError;
     const bool ok = attempt(error, [&] {
       designer_ = prepareModel(bytes, format, settings, design, &settingsError, &restoreError);
-      maps_.reset();
     });
     lastError_ = error;
     return loadResult(ok, error, settingsError, restoreError);
@@ -193,7 +192,6 @@ class DesignerBinding {
     if (attempt(error, [&] {
           solvePrepared(*pending_, pendingRestored_);
           designer_ = std::move(pending_);
-          maps_.reset();
         })) {
       pending_.reset();
       lastError_.clear();
@@ -346,8 +344,9 @@ class DesignerBinding {
   }
 
   // Face vectors (3 per face) and vertex vectors (3 per vertex) of the given 1-form (per edge, the oneForm's
-  // order) by the designer's own reconstruction (the same Whitney maps, built once per mesh, as solve() and
-  // vertexVectors() apply): {faceVectors, vertexVectors} as copies of their own, or the error message.
+  // order) by the designer's own reconstruction (Designer::reconstruct: the Whitney maps solve() and
+  // vertexVectors() apply, one copy per mesh): {faceVectors, vertexVectors} as copies of their own, or the error
+  // message.
   val reconstruct(const val& oneForm) {
     val out = val::object();
     if (!ok([&] {
@@ -356,15 +355,8 @@ class DesignerBinding {
           if (c.size() != static_cast<std::size_t>(d.topology().numEdges))
             throw tvf::InputError("reconstruct: expected " + std::to_string(d.topology().numEdges) +
                                   " values (one per edge), got " + std::to_string(c.size()));
-          if (!maps_) {
-            auto maps = std::make_unique<Maps>();
-            maps->face = tvf::faceVectorMap(d.mesh(), d.topology());
-            maps->vertex = tvf::vertexVectorMap(d.mesh(), d.topology(), d.geometry());
-            maps_ = std::move(maps);
-          }
           std::vector<double> faceVectors, vertexVectors;
-          tvf::faceVectors(maps_->face, d.topology(), c.data(), faceVectors);
-          tvf::vertexVectors(maps_->vertex, c.data(), vertexVectors);
+          d.reconstruct(c.data(), faceVectors, vertexVectors);
           out.set("faceVectors", copyOf(faceVectors));
           out.set("vertexVectors", copyOf(vertexVectors));
         }))
@@ -554,11 +546,6 @@ class DesignerBinding {
   std::unique_ptr<tvf::SurfaceMesh> parsed_;  // readModel's mesh, until openParsed
   Restored pendingRestored_;
   // reconstruct()'s Whitney maps for designer_'s mesh (built on first use; dropped when the model changes).
-  struct Maps {
-    tvf::FaceVectorMap face;
-    tvf::VertexVectorMap vertex;
-  };
-  std::unique_ptr<Maps> maps_;
   double memoryLimit_ = 0;  // 0: what is left of the wasm address space
   mutable std::string lastError_;
   std::vector<double> emptyD_;

@@ -64,8 +64,16 @@ struct Designer::Impl {
   std::vector<Singularity> singularities;
   // Derived on first read, each on its own: the page's default view needs the vertex vectors only.
   bool vertexVectorsStale = false, singularitiesStale = false;
-  VertexVectorMap vertexVectorMap;  // built on first use (geometry only)
-  FaceVectorMap faceVectorMap;      // likewise
+  VertexVectorMap vertexVectorMap;  // built on first use (geometry only): vertexMap()
+  FaceVectorMap faceVectorMap;      // likewise: faceMap()
+  const FaceVectorMap& faceMap() {
+    if (faceVectorMap.coefficient.empty()) faceVectorMap = tvf::faceVectorMap(mesh, topology);
+    return faceVectorMap;
+  }
+  const VertexVectorMap& vertexMap() {
+    if (vertexVectorMap.empty()) vertexVectorMap = tvf::vertexVectorMap(mesh, topology, geometry);
+    return vertexVectorMap;
+  }
   DesignStats stats;
 
   Impl(SurfaceMesh m, MeshTopology t)
@@ -476,8 +484,7 @@ void Designer::solve() {
         "the previous field is kept");
   start = Clock::now();
   std::vector<double> faceVectors;
-  if (d.faceVectorMap.coefficient.empty()) d.faceVectorMap = tvf::faceVectorMap(d.mesh, d.topology);
-  tvf::faceVectors(d.faceVectorMap, d.topology, x.data(), faceVectors);
+  tvf::faceVectors(d.faceMap(), d.topology, x.data(), faceVectors);
   for (const double v : faceVectors)
     if (!std::isfinite(v))
       throw InputError(
@@ -496,14 +503,19 @@ const std::vector<double>& Designer::oneForm() const {
 const std::vector<double>& Designer::faceVectors() const {
   return impl_->faceVectors;
 }
+void Designer::reconstruct(const double* oneForm, std::vector<double>& faceVectors,
+                           std::vector<double>& vertexVectors) const {
+  Impl& d = *impl_;
+  tvf::faceVectors(d.faceMap(), d.topology, oneForm, faceVectors);
+  tvf::vertexVectors(d.vertexMap(), d.topology, oneForm, vertexVectors);
+}
 // Vertex vectors and singularities are derived on first read: the interactive loop needs only face vectors.
 const std::vector<double>& Designer::vertexVectors() const {
   Impl& d = *impl_;
   if (d.vertexVectorsStale && d.directions) {
     d.vertexVectors = vertexRepresentatives(d.mesh, d.topology, d.geometry, d.faceVectors, d.symmetry);
   } else if (d.vertexVectorsStale) {
-    if (d.vertexVectorMap.empty()) d.vertexVectorMap = tvf::vertexVectorMap(d.mesh, d.topology, d.geometry);
-    tvf::vertexVectors(d.vertexVectorMap, d.oneForm.data(), d.vertexVectors);
+    tvf::vertexVectors(d.vertexMap(), d.topology, d.oneForm.data(), d.vertexVectors);
   }
   d.vertexVectorsStale = false;
   return d.vertexVectors;

@@ -111,6 +111,10 @@ class Designer {
   // (direction/representative_directions.h), and oneForm() is empty.
   const std::vector<double>& faceVectors() const;
   const std::vector<double>& vertexVectors() const;  // 3 per vertex (N >= 2: a unit representative)
+  // Face and vertex vectors (Eq. 4, 5) of any 1-form (one value per edge, oneForm()'s order: a Hodge part,
+  // say), by the Whitney maps the solve itself applies, built once per mesh and shared.
+  void reconstruct(const double* oneForm, std::vector<double>& faceVectors,
+                   std::vector<double>& vertexVectors) const;
   const std::vector<Singularity>& singularities() const;
   const DesignStats& stats() const;
   // The Hodge decomposition (Eq. 3) of the current one-form, computed on each call (two Poisson solves on

@@ -87,17 +87,17 @@ void faceVectors(const FaceVectorMap& map, const MeshTopology& t, const double* 
 
 void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
                    const double* oneForm, std::vector<double>& out) {
-  vertexVectors(vertexVectorMap(mesh, t, g), oneForm, out);
+  vertexVectors(vertexVectorMap(mesh, t, g), t, oneForm, out);
 }
 
 VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g) {
   std::vector<double> weight(t.numVertices, 0.0);
   for (int32_t f = 0; f < t.numFaces; ++f)
     for (int k = 0; k < 3; ++k) weight[mesh.triangles[3 * f + k]] += g.cornerArea[3 * f + k];
-  // Accumulated in place per (edge, endpoint): no list of corner terms to sort and merge, whose transient size
+  // Accumulated in place per (edge, endpoint): no list of corner terms to sort and merge, whose transient
+  // size
   // (~200 bytes per face) would outgrow the map itself on a big mesh and grow the wasm heap for good.
   VertexVectorMap map;
-  map.edgeVertices = t.edgeVertices;
   map.numVertices = t.numVertices;
   map.coefficient.assign(6 * static_cast<size_t>(t.numEdges), 0.0);
   const auto add = [&](int32_t v, int32_t e, const Eigen::Vector3d& u) {
@@ -122,14 +122,15 @@ VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& t, 
   return map;
 }
 
-void vertexVectors(const VertexVectorMap& map, const double* oneForm, std::vector<double>& out) {
+void vertexVectors(const VertexVectorMap& map, const MeshTopology& t, const double* oneForm,
+                   std::vector<double>& out) {
   out.assign(3 * static_cast<size_t>(map.numVertices), 0.0);
-  const size_t numEdges = map.edgeVertices.size() / 2;
+  const size_t numEdges = map.coefficient.size() / 6;
   for (size_t e = 0; e < numEdges; ++e) {
     const double c = oneForm[e];
     const double* a = &map.coefficient[6 * e];
     for (int end = 0; end < 2; ++end) {
-      double* o = &out[3 * static_cast<size_t>(map.edgeVertices[2 * e + end])];
+      double* o = &out[3 * static_cast<size_t>(t.edgeVertices[2 * e + end])];
       for (int d = 0; d < 3; ++d) o[d] += c * a[3 * end + d];
     }
   }

@@ -35,16 +35,17 @@ void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const 
 
 // Eq. 5 as the linear map it is: vertex v's vector is a sum over the edges at v of the edge's 1-form value
 // times a 3-vector that depends on the geometry only. Built once per mesh, applying it reads each edge value
-// once and does no geometry (the interactive loop derives vertex vectors after every edit).
+// once and does no geometry (the interactive loop derives vertex vectors after every edit). The edges' ends
+// are the topology's, not copied (a map is 48 bytes per edge already).
 struct VertexVectorMap {
   int32_t numVertices = 0;
-  std::vector<int32_t> edgeVertices;  // the topology's: 2 per edge
-  std::vector<double> coefficient;    // 6 per edge: the 3-vector for its first vertex, then for its second
+  std::vector<double> coefficient;  // 6 per edge: the 3-vector for its first vertex, then for its second
   bool empty() const { return coefficient.empty() && numVertices == 0; }
 };
 VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& topology,
                                 const MeshGeometry& geometry);
-void vertexVectors(const VertexVectorMap& map, const double* oneForm, std::vector<double>& out);
+void vertexVectors(const VertexVectorMap& map, const MeshTopology& topology, const double* oneForm,
+                   std::vector<double>& out);
 // Texture-domain vectors at barycentres (2 per face); empty when the mesh has no UVs.
 void textureFaceVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,
                         std::vector<double>& out);
