@@ -461,6 +461,8 @@ export declare class TangentFieldDesigner extends HTMLElement {
   debugCoreReadout(): Promise<CoreReadout>;
   /** @internal The streamlines traced on the page now, whatever the view holds. */
   debugTraceStreamlines(): number[][];
+  /** @internal How many shader programs the viewer's renderer holds (views/shader-warm-up.js makes them all at the start). */
+  debugGlPrograms(): number;
   /** @internal The worker's component op: one part of the current field with its reconstructed vectors. */
   debugComponent(name: 'whole' | 'exact' | 'coexact' | 'harmonic'): Promise<FieldComponent>;
 

@@ -53,6 +53,25 @@ test.describe.serial('field views', () => {
     await page?.close();
   });
 
+  // Every program a view draws with is made when the viewer starts (views/shader-warm-up.js): a program first
+  // used later reads its uniforms back synchronously, which held the page's thread for seconds at the first
+  // stroke on a big model under software GL.
+  test('no view makes a new shader program on first use', async () => {
+    await settle();
+    const before = await evaluate(() => window.tvf.debugGlPrograms());
+    const mesh = await addStroke(); // a ribbon with chevrons
+    const [f0] = topFacePair(mesh);
+    await evaluate((f) => window.tvf.addVector(f, [1, 0, 0]), f0); // an arrow handle
+    await evaluate((v) => window.tvf.addSource(v), mesh.triangles[0]); // a marker sprite
+    await evaluate(() => window.tvf.setViews({ singularities: true, colorMap: true, streamlines: true }));
+    await settle();
+    await evaluate(() => window.tvf.setViews({ singularities: false, colorMap: false, streamlines: false }));
+    await settle();
+    const after = await evaluate(() => window.tvf.debugGlPrograms());
+    for (let k = 0; k < 3; k++) await evaluate(() => window.tvf.undo());
+    expect(after, 'programs made after the start').toBe(before);
+  });
+
   test('singularity markers lie on the surface at their vertex', async () => {
     const mesh = await readMesh(page);
     // A source at the vertex nearest the top: a +1 singularity there.

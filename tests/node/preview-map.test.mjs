@@ -81,6 +81,18 @@ test('preview: the coarse mesh is a manifold on the fine vertices; the map is ex
     worst = Math.max(worst, Math.hypot(...q.map((x, k) => x - fine.positions[3 * v + k])));
   }
   assert.ok(worst < 1e-9, `a fine vertex mapped ${worst} away from itself`);
+  // Face centres: on the plane exactly where a face lies in one coarse face, else on the closest of its
+  // corners' coarse faces, within a fine edge of the centre.
+  let exact = 0, far = 0;
+  for (let f = 0; f < nF; f++) {
+    const q = point(coarse.positions, coarse.triangles, map.faceFace[f], map.faceBary.subarray(3 * f, 3 * f + 3));
+    const c = point(fine.positions, fine.triangles, f, [1 / 3, 1 / 3, 1 / 3]);
+    const d = Math.hypot(...q.map((x, k) => x - c[k]));
+    if (d < 1e-9) exact++;
+    far = Math.max(far, d);
+  }
+  assert.ok(exact > 0.95 * nF, `${exact} of ${nF} face centres mapped exactly`);
+  assert.ok(far < 1, `a face centre mapped ${far} away (the fine edges are about 1 long)`);
 
   // A constant field on the coarse mesh comes back constant, and its 1-form is u · (p_j − p_i) on every edge.
   const u = [0.6, -0.8, 0];

@@ -126,6 +126,7 @@ export const api = {
   // holds).
   debugCoreReadout: (d) => d.session.exclusive(async () => (d.session.requireReady(), (await d.session.proxy.call('read')).value)),
   debugTraceStreamlines: read((d) => d.viewSync.traceStreamlinesHere().map((l) => Array.from(l))),
+  debugGlPrograms: (d) => d.viewer.renderer.info.programs.length,
   // The worker's `component` op for the current field: {oneForm, faceVectors, vertexVectors} of 'whole' |
   // 'exact' | 'coexact' | 'harmonic'.
   debugComponent: (d, name) => d.session.exclusive(() => (d.session.requireReady(), workerRead(d, 'component', name))),

@@ -350,6 +350,7 @@ export const METHODS = [
   { name: 'debugSetFactorMemoryLimit', source: 'api', group: 'Test hooks', internal: true, signatures: [['bytes: number', 'Promise<true>']], description: "Sets the factor's memory limit (0: the wasm address space left)." },
   { name: 'debugCoreReadout', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'Promise<CoreReadout>']], description: 'What the core itself holds now, derived by the core on request.' },
   { name: 'debugTraceStreamlines', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'number[][]']], description: 'The streamlines traced on the page now, whatever the view holds.' },
+  { name: 'debugGlPrograms', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'number']], description: "How many shader programs the viewer's renderer holds (views/shader-warm-up.js makes them all at the start)." },
   { name: 'debugComponent', source: 'api', group: 'Test hooks', internal: true, signatures: [["name: 'whole' | 'exact' | 'coexact' | 'harmonic'", 'Promise<FieldComponent>']], description: "The worker's component op: one part of the current field with its reconstructed vectors." },
 ];
 

@@ -9,34 +9,33 @@
 // streamlines-view.js, viewer.js): a setting that drifts only costs that program its head start.
 //
 // Owns nothing past the call. Imports three and the views' band and marker makers.
-import { BufferAttribute, BufferGeometry, Color, DoubleSide, Group, InstancedMesh, LineBasicMaterial, LineSegments, Mesh, MeshBasicMaterial, MeshStandardMaterial } from 'three';
-import { markerSprite } from './markers.js';
+import { BufferAttribute, BufferGeometry, CircleGeometry, Color, DoubleSide, Group, InstancedMesh, LineBasicMaterial, LineSegments, Mesh, MeshBasicMaterial, MeshStandardMaterial } from 'three';
+import { arrowGeometry, glyphGeometry, markerSprite } from './markers.js';
 import { BandMaterial, bandGeometry, bandMesh } from './screen-ribbon.js';
 
-function triangle() {
+// A triangle with the given attributes: a program depends on which attributes the geometry has.
+function triangle(...names) {
   const g = new BufferGeometry();
-  g.setAttribute('position', new BufferAttribute(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0]), 3));
-  g.setAttribute('normal', new BufferAttribute(new Float32Array([0, 0, 1, 0, 0, 1, 0, 0, 1]), 3));
-  g.setAttribute('uv', new BufferAttribute(new Float32Array([0, 0, 1, 0, 0, 1]), 2));
-  g.setAttribute('color', new BufferAttribute(new Float32Array(9).fill(1), 3));
+  const data = { position: [0, 0, 0, 1, 0, 0, 0, 1, 0], normal: [0, 0, 1, 0, 0, 1, 0, 0, 1], color: new Array(9).fill(1) };
+  for (const name of names) g.setAttribute(name, new BufferAttribute(new Float32Array(data[name]), 3));
   return g;
 }
 
 function samples(labels) {
-  const tri = triangle();
   const group = new Group();
   const points = [[0, 0, 0], [1, 0, 0], [1, 1, 0]], normals = points.map(() => [0, 0, 1]);
   group.add(bandMesh(bandGeometry(points, normals), new BandMaterial({ color: 0xffffff, widthPx: 6 })));
-  group.add(new Mesh(tri, new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide })));
+  group.add(new Mesh(arrowGeometry(), new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide })));
   const map = labels.get('warm-up', '#ffffff', '');
-  group.add(new Mesh(tri, new MeshBasicMaterial({ map, transparent: true, side: DoubleSide, polygonOffset: true })));
+  group.add(new Mesh(new CircleGeometry(0.5, 8), new MeshBasicMaterial({ map, transparent: true, side: DoubleSide, polygonOffset: true })));
   group.add(markerSprite(map));
-  const arrows = new InstancedMesh(tri, new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide }), 1);
+  const arrows = new InstancedMesh(glyphGeometry(1), new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide }), 1);
   arrows.setColorAt(0, new Color(1, 1, 1));
   group.add(arrows);
-  group.add(new LineSegments(tri, new LineBasicMaterial({ color: 0x111827 })));
+  group.add(new LineSegments(triangle('position'), new LineBasicMaterial({ color: 0x111827 })));
   for (const vertexColors of [false, true]) {
-    group.add(new Mesh(tri, new MeshStandardMaterial({ roughness: 0.65, metalness: 0, side: DoubleSide, polygonOffset: true, vertexColors })));
+    const surface = new MeshStandardMaterial({ roughness: 0.65, metalness: 0, side: DoubleSide, polygonOffset: true, vertexColors });
+    group.add(new Mesh(triangle('position', 'normal', 'color'), surface));
   }
   for (const object of group.children) object.frustumCulled = false;
   return group;

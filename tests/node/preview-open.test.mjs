@@ -1,0 +1,77 @@
+// A big model's opening in steps, with the real wasm core (dist/wasm, built before the unit tests run): the exact
+// worker's side (web/core/open-steps.js) sends the mesh read before it is checked, then the edges and the design;
+// the preview worker's side (web/core/preview/: warm-up, prepare, open) takes them in that order and makes a
+// preview field whose one-form is on the exact core's edges.
+import assert from 'node:assert/strict';
+import test from 'node:test';
+import { loadCore } from '../../web/core/core-client.js';
+import { openModelInSteps } from '../../web/core/open-steps.js';
+import { Preview } from '../../web/core/preview/preview.js';
+import { warmUpPreview } from '../../web/core/preview/warm-up.js';
+import { SpareArrays } from '../../web/core/spare-arrays.js';
+import { icosphere, parseOff } from './fakes.mjs';
+
+const DIST = new URL('../../dist/', import.meta.url).href;
+
+function offText({ positions, triangles }) {
+  const lines = [`OFF\n${positions.length / 3} ${triangles.length / 3} 0`];
+  for (let v = 0; v < positions.length; v += 3) lines.push(`${positions[v]} ${positions[v + 1]} ${positions[v + 2]}`);
+  for (let f = 0; f < triangles.length; f += 3) lines.push(`3 ${triangles[f]} ${triangles[f + 1]} ${triangles[f + 2]}`);
+  return lines.join('\n') + '\n';
+}
+
+function opening(core, bytes, previewEdges) {
+  const sent = [];
+  const steps = { bytes, format: 'off', settings: null, design: null, embedded: false, previewEdges };
+  const out = openModelInSteps(core, steps, (value, list) => sent.push({ value, list }));
+  return { ...out, sent };
+}
+
+test('opening in steps: the mesh read goes first, then the edges and design; a small model sends nothing', async () => {
+  const core = await loadCore(DIST);
+  const mesh = icosphere(3);
+  const bytes = new TextEncoder().encode(offText(mesh));
+  const nE = mesh.edges.length / 2;
+
+  const big = opening(core, bytes, nE); // just at the threshold: 1.5 faces per edge promise it
+  assert.deepEqual(big.sent.map((s) => s.value.phase), ['read', 'opened']);
+  const [read, opened] = big.sent.map((s) => s.value);
+  assert.deepEqual(Array.from(read.mesh.positions), Array.from(mesh.positions));
+  assert.deepEqual(Array.from(read.mesh.triangles), Array.from(mesh.triangles));
+  assert.deepEqual(Object.keys(opened.mesh), ['edges'], 'positions and triangles are not sent twice');
+  assert.equal(opened.mesh.edges.length, 2 * nE);
+  assert.equal(opened.info.edges, nE);
+  assert.ok(big.ahead && Array.isArray(opened.design.constraints));
+  for (const { list } of big.sent) assert.equal(new Set(list).size, list.length, 'each buffer transferred once');
+  core.commitModel();
+  assert.equal(core.info().edges, nE);
+
+  const small = opening(core, bytes, nE + 1);
+  assert.deepEqual(small.sent, [], 'below the threshold the model opens without a preview');
+  assert.equal(small.ahead, false);
+  const none = opening(core, bytes, 0);
+  assert.deepEqual(none.sent, []);
+
+  // A broken file fails at the read, and a non-manifold one at the check, each by name, with nothing sent.
+  assert.throws(() => opening(core, new TextEncoder().encode('OFF\n3 1 0\n0 0 0\n'), 1), /load:/);
+  const book = 'OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n';
+  assert.throws(() => opening(core, new TextEncoder().encode(book), 1), /non-manifold/);
+});
+
+test('the preview worker: warmed up on a torus, then prepared on the mesh read and opened with the edges', async () => {
+  const core = await loadCore(DIST);
+  await warmUpPreview(core);
+  assert.ok(core.info().genus === 1, 'the warm-up leaves the torus loaded');
+
+  const exact = await loadCore(DIST);
+  const fine = parseOff(offText(icosphere(4)));
+  const sent = opening(exact, new TextEncoder().encode(offText(fine)), 1).sent.map((s) => s.value);
+  const prepared = await Preview.prepare(sent[0].mesh);
+  assert.ok(prepared.coarse.triangles.length / 3 <= fine.triangles.length / 12, 'a quarter of the faces at most');
+  const preview = Preview.open(core, prepared, sent[1].mesh.edges, sent[1].design, null);
+  const snap = preview.snapshot(new SpareArrays(), {});
+  assert.equal(snap.oneForm.length, sent[1].mesh.edges.length / 2, 'the one-form lives on the exact core\'s edges');
+  assert.equal(snap.faceVectors.length, fine.triangles.length);
+  assert.ok(snap.stats.preview && snap.version < 0);
+  assert.ok(snap.scale.max >= snap.scale.top && snap.scale.top >= 0);
+});
