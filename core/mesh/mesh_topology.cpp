@@ -44,10 +44,8 @@ std::vector<int32_t> halfEdgesByEdge(const SurfaceMesh& mesh, int32_t nV, std::v
   std::partial_sum(start.begin(), start.end(), start.begin());
   std::vector<int32_t> order(nH);
   std::vector<int32_t> fill(start.begin(), start.end() - 1);
-  for (size_t h = 0; h < nH; ++h) {
-    const int32_t a = T[h], b = T[h - h % 3 + (h % 3 + 1) % 3];
-    order[fill[std::min(a, b)]++] = static_cast<int32_t>(h);
-  }
+  for (size_t h = 0; h < nH; ++h)
+    order[fill[lowerOf(mesh, static_cast<int32_t>(h))]++] = static_cast<int32_t>(h);
   for (int32_t v = 0; v < nV; ++v)
     std::sort(order.begin() + start[v], order.begin() + start[v + 1],
               [&](int32_t g, int32_t h) { return upper[g] != upper[h] ? upper[g] < upper[h] : g < h; });

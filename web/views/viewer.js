@@ -97,7 +97,7 @@ export class Viewer {
 
     this._renderQueued = false;
     this.disposed = false;
-    this.shadersReady = warmUpShaders(this.renderer, this.scene, this.camera, this.labels).catch(() => {});
+    warmUpShaders(this.renderer, this.scene, this.camera, this.labels).catch(() => {});
     this.resizeObserver = new ResizeObserver(() => this.resize());
     this.resizeObserver.observe(container);
     this.resize();
