@@ -142,25 +142,12 @@ class DesignerBinding {
     return loadResult(ok, error, settingsError, restoreError);
   }
 
-  // loadModel in two steps, for big meshes (web/core/preview/): openModel reads, checks and configures the next
-  // model aside (seconds less than the factorization), so its mesh and design can be read (pending*) and a
-  // preview shown while commitModel factors and solves it and makes it current. The same transaction: until
-  // commitModel succeeds the current model is untouched; a failed commit drops the pending model.
-  std::string openModel(const val& bytes, const std::string& format, const std::string& settings,
-                        const std::string& design) {
-    std::string error, settingsError, restoreError;
-    pending_.reset();
-    const bool ok = attempt(error, [&] {
-      auto next = openPrepared(bytes, format, settings, design, &settingsError, &pendingRestored_);
-      pending_ = std::move(next);
-    });
-    restoreError = pendingRestored_.error;
-    lastError_ = error;
-    return loadResult(ok, error, settingsError, restoreError);
-  }
-  // openModel in two steps itself, so a preview can start on the mesh while it is checked (web/core/preview/):
-  // readModel parses the file into the next model's mesh ({"ok", "vertices", "faces"} or {"ok": false,
-  // "error"}), parsedPositions/parsedTriangles view it, and openParsed checks and configures it as openModel.
+  // loadModel in steps, for big meshes (web/core/open-steps.js): readModel parses the file into the next
+  // model's mesh ({"ok", "vertices", "faces"} or {"ok": false, "error"}) and parsedPositions/parsedTriangles
+  // view it, so a preview can start on it while openParsed checks and configures it aside (seconds less than the
+  // factorization); its mesh and design can then be read (pending*) while commitModel factors and solves it and
+  // makes it current. The same transaction: until commitModel succeeds the current model is untouched; a failed
+  // step drops what it was given.
   std::string readModel(const val& bytes, const std::string& format) {
     std::string error;
     pending_.reset();
@@ -542,7 +529,7 @@ class DesignerBinding {
   }
 
   std::unique_ptr<tvf::Designer> designer_;
-  std::unique_ptr<tvf::Designer> pending_;  // openModel's model, until commitModel
+  std::unique_ptr<tvf::Designer> pending_;  // openParsed's model, until commitModel
   std::unique_ptr<tvf::SurfaceMesh> parsed_;  // readModel's mesh, until openParsed
   Restored pendingRestored_;
   // reconstruct()'s Whitney maps for designer_'s mesh (built on first use; dropped when the model changes).
@@ -592,7 +579,6 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .constructor<>()
       .function("loadMesh", &DesignerBinding::loadMesh)
       .function("loadModel", &DesignerBinding::loadModel)
-      .function("openModel", &DesignerBinding::openModel)
       .function("commitModel", &DesignerBinding::commitModel)
       .function("readModel", &DesignerBinding::readModel)
       .function("parsedPositions", &DesignerBinding::parsedPositions)

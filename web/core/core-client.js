@@ -126,21 +126,11 @@ export class CoreClient {
     return { settingsError: out.settingsError, restoreError: out.restoreError };
   }
 
-  // loadModel in two steps (core-worker.js, big meshes): openModel reads, checks and configures the next model
-  // aside ({settingsError, restoreError}); pendingInfo/pendingMesh/pendingDesign read it; commitModel factors,
-  // solves and makes it current ({restoreError}: a design the solve could not take). Any failure leaves the
-  // current model as it was.
-  openModel(bytes, format, settings = null, design = null) {
-    const settingsJson = settings ? JSON.stringify(settings) : '';
-    const designJson = design ? JSON.stringify(design) : '';
-    const out = JSON.parse(guard('load', () => this.designer.openModel(bytes, format, settingsJson, designJson)));
-    if (!out.ok) throw new CoreError(prefixed('load', out.error));
-    return { settingsError: out.settingsError, restoreError: out.restoreError };
-  }
-
-  // openModel in two steps (a preview starts on the mesh read while it is checked): readModel parses the file
-  // ({vertices, faces}), parsedMesh copies its positions and triangles, openParsed checks and configures it as
-  // openModel does.
+  // loadModel in steps (core-worker.js, open-steps.js; big meshes): readModel parses the file ({vertices,
+  // faces}) and parsedMesh copies its positions and triangles, so that a preview can start on them; openParsed
+  // checks and configures it as the next model, aside ({settingsError, restoreError}); pendingInfo/pendingMesh/
+  // pendingDesign read it; commitModel factors, solves and makes it current ({restoreError}: a design the solve
+  // could not take). Any failure leaves the current model as it was.
   readModel(bytes, format) {
     const out = JSON.parse(guard('load', () => this.designer.readModel(bytes, format)));
     if (!out.ok) throw new CoreError(prefixed('load', out.error));

@@ -22,8 +22,8 @@ export function openModelInSteps(core, args, progress) {
   const info = core.pendingInfo();
   const ahead = previewEdges > 0 && info.edges >= previewEdges;
   if (ahead) {
-    const { positions, triangles, edges } = core.pendingMesh();
-    const mesh = early ? { edges } : { positions, triangles, edges };
+    // With `read` sent, only the edges are new: no second copy of the positions and triangles.
+    const mesh = early ? { edges: core.designer.pendingEdges().slice() } : core.pendingMesh();
     const cornerUVs = core.designer.pendingCornerUVs().slice();
     const value = { phase: 'opened', info, mesh, ...opened, embeddedDesign: embedded, cornerUVs, design: core.pendingDesign() };
     progress(value, [...Object.values(mesh).map((a) => a.buffer), cornerUVs.buffer]);
