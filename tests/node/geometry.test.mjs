@@ -11,6 +11,7 @@ import { torus } from '../../web/core/preview/warm-up.js';
 import { POISSON_PACKING, sampleSurface } from '../../web/geometry/arrow-sampling.js';
 import { traceStreamlines } from '../../web/geometry/streamlines.js';
 import { findSingularities } from '../../web/geometry/singularities.js';
+import { faceVectorsOfVertexField, oneFormOfVertexField } from '../../web/geometry/vertex-field.js';
 
 const surfaceOf = (m) => new Surface(m.positions, m.triangles, m.edges);
 const vertexOf = (m, v) => [m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]];
@@ -443,4 +444,33 @@ test('surface: one rebuilt from another thread\'s arrays walks and traces exactl
   const opts = { spacing: 0.2 };
   assert.deepEqual(traceStreamlines(copy, rotation, opts), traceStreamlines(original, rotation, opts));
   assert.deepEqual(copy.angleDefects(), original.angleDefects());
+});
+
+test("a preview's face vectors and one-form, derived from its vertex vectors, are exact for a linear field", () => {
+  // V(p) = A p on a plane (A a rotation plus a stretch): linear, so a face's corner mean is V at its barycentre
+  // and the trapezoid rule along an edge is the exact line integral of V · dp.
+  const m = grid(7, 1.5), s = surfaceOf(m);
+  const V = vertexField(m, ([x, y]) => [0.3 * x - 1.2 * y, 0.9 * x + 0.5 * y, 0]);
+  const faces = faceVectorsOfVertexField(s, V);
+  for (let f = 0; f < s.nF; f++) {
+    const [cx, cy] = [0, 1].map((k) => s.centres[3 * f + k]);
+    const want = [0.3 * cx - 1.2 * cy, 0.9 * cx + 0.5 * cy, 0];
+    assert.ok(dist(Array.from(faces.subarray(3 * f, 3 * f + 3)), want) < 1e-12, `face ${f}`);
+  }
+  const oneForm = oneFormOfVertexField(s, V);
+  assert.equal(oneForm.length, m.edges.length / 2);
+  for (let e = 0; e < m.edges.length / 2; e++) {
+    // ∫₀¹ A(p + t d) · d dt = (A p) · d + ½ dᵀ A d along the segment from p to q = p + d.
+    const [px, py] = vertexOf(m, m.edges[2 * e]), [qx, qy] = vertexOf(m, m.edges[2 * e + 1]);
+    const A = (x, y) => [0.3 * x - 1.2 * y, 0.9 * x + 0.5 * y];
+    const [dx, dy] = [qx - px, qy - py], Ap = A(px, py), Ad = A(dx, dy);
+    const want = Ap[0] * dx + Ap[1] * dy + 0.5 * (dx * Ad[0] + dy * Ad[1]);
+    assert.ok(Math.abs(oneForm[e] - want) < 1e-12, `edge ${e}: ${oneForm[e]} vs ${want}`);
+  }
+  // On a curved surface the face vectors lie in the faces' planes; an N-field has no one-form.
+  const sphere = icosphere(2), ss = surfaceOf(sphere);
+  const W = vertexField(sphere, ([x, y, z]) => [-y, x, 0.4 * z]);
+  const onSphere = faceVectorsOfVertexField(ss, W);
+  for (let f = 0; f < ss.nF; f++) assert.ok(Math.abs(dot(Array.from(onSphere.subarray(3 * f, 3 * f + 3)), Array.from(ss.normals.subarray(3 * f, 3 * f + 3)))) < 1e-12);
+  assert.ok(oneFormOfVertexField(ss, W, 2).every((x) => x === 0));
 });

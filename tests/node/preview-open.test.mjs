@@ -1,7 +1,7 @@
 // A big model's opening in steps, with the real wasm core (dist/wasm, built before the unit tests run): the exact
-// worker's side (web/core/open-steps.js) sends the mesh read before it is checked, then the edges and the design;
-// the preview worker's side (web/core/preview/: warm-up, prepare, open) takes them in that order and makes a
-// preview field whose one-form is on the exact core's edges.
+// worker's side (web/core/open-steps.js) sends the mesh read before it is checked, then the design; the preview
+// worker's side (web/core/preview/: warm-up, prepare, open) takes them in that order and makes a preview field
+// of vertex vectors on the fine mesh.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import { loadCore } from '../../web/core/core-client.js';
@@ -27,7 +27,7 @@ function opening(core, bytes, previewEdges) {
   return { ...out, sent };
 }
 
-test('opening in steps: the mesh read goes first, then the edges and design; a small model sends nothing', async () => {
+test('opening in steps: the mesh read goes first, then the design; a small model sends nothing', async () => {
   const core = await loadCore(DIST);
   const mesh = icosphere(3);
   const bytes = new TextEncoder().encode(offText(mesh));
@@ -38,8 +38,7 @@ test('opening in steps: the mesh read goes first, then the edges and design; a s
   const [read, opened] = big.sent.map((s) => s.value);
   assert.deepEqual(Array.from(read.mesh.positions), Array.from(mesh.positions));
   assert.deepEqual(Array.from(read.mesh.triangles), Array.from(mesh.triangles));
-  assert.deepEqual(Object.keys(opened.mesh), ['edges'], 'positions and triangles are not sent twice');
-  assert.equal(opened.mesh.edges.length, 2 * nE);
+  assert.deepEqual(Object.keys(opened.mesh), [], 'the mesh is not sent twice');
   assert.equal(opened.info.edges, nE);
   assert.ok(big.ahead && Array.isArray(opened.design.constraints));
   for (const { list } of big.sent) assert.equal(new Set(list).size, list.length, 'each buffer transferred once');
@@ -58,7 +57,7 @@ test('opening in steps: the mesh read goes first, then the edges and design; a s
   assert.throws(() => opening(core, new TextEncoder().encode(book), 1), /non-manifold/);
 });
 
-test('the preview worker: warmed up on a torus, then prepared on the mesh read and opened with the edges', async () => {
+test('the preview worker: warmed up on a torus, then prepared on the mesh read and opened with the design', async () => {
   const core = await loadCore(DIST);
   await warmUpPreview(core);
   assert.ok(core.info().genus === 1, 'the warm-up leaves the torus loaded');
@@ -68,10 +67,12 @@ test('the preview worker: warmed up on a torus, then prepared on the mesh read a
   const sent = opening(exact, new TextEncoder().encode(offText(fine)), 1).sent.map((s) => s.value);
   const prepared = await Preview.prepare(sent[0].mesh);
   assert.ok(prepared.coarse.triangles.length / 3 <= fine.triangles.length / 12, 'a quarter of the faces at most');
-  const preview = Preview.open(core, prepared, sent[1].mesh.edges, sent[1].design, null);
+  const preview = Preview.open(core, prepared, sent[1].design, null);
   const snap = preview.snapshot(new SpareArrays(), {});
-  assert.equal(snap.oneForm.length, sent[1].mesh.edges.length / 2, 'the one-form lives on the exact core\'s edges');
-  assert.equal(snap.faceVectors.length, fine.triangles.length);
+  assert.equal(snap.vertexVectors.length, fine.positions.length);
+  assert.equal(snap.faceVectors, null, "a vector field's face vectors are the page's to derive");
+  assert.equal(snap.oneForm, null);
+  assert.deepEqual(snap.transfer, [snap.vertexVectors.buffer]);
   assert.ok(snap.stats.preview && snap.version < 0);
   assert.ok(snap.scale.max >= snap.scale.top && snap.scale.top >= 0);
 });

@@ -191,10 +191,10 @@ function serve(scope) {
       prepared = await Preview.prepare(mesh);
       return true;
     },
-    openPreview(edges, fineDoc, settings) {
-      preview = Preview.open(core, prepared, edges, fineDoc, settings);
+    openPreview(fineDoc, settings) {
+      preview = Preview.open(core, prepared, fineDoc, settings);
       const { fine } = preview.map;
-      spares.reset([fine.triangles.length, fine.positions.length, edges.length / 2]);
+      spares.reset([fine.triangles.length, fine.positions.length]);
       return { timings: preview.timings };
     },
 

@@ -2,8 +2,9 @@
 // progressive-core.js): the file is read, and a mesh big enough for a preview (every face brings at least 1.5
 // edges) is sent to the page at once ({phase: 'read', mesh: {positions, triangles}}), so that the preview
 // worker simplifies it while this one checks it; then it is checked and configured, and a model of at least
-// `previewEdges` edges sends its edges, design and the rest ahead of its factorization ({phase: 'opened'}, with
-// the positions and triangles too when they did not go with 'read').
+// `previewEdges` edges sends its design and the rest ahead of its factorization ({phase: 'opened'}, with the
+// positions and triangles when they did not go with 'read'; the preview needs no edges, the page has them
+// from the surface).
 //
 // Owns nothing. Imports nothing: it drives the worker's CoreClient.
 
@@ -22,8 +23,8 @@ export function openModelInSteps(core, args, progress) {
   const info = core.pendingInfo();
   const ahead = previewEdges > 0 && info.edges >= previewEdges;
   if (ahead) {
-    // With `read` sent, only the edges are new: no second copy of the positions and triangles.
-    const mesh = early ? { edges: core.designer.pendingEdges().slice() } : core.pendingMesh();
+    // With `read` sent, the mesh is not sent again.
+    const mesh = early ? {} : (({ positions, triangles }) => ({ positions, triangles }))(core.pendingMesh());
     const cornerUVs = core.designer.pendingCornerUVs().slice();
     const value = { phase: 'opened', info, mesh, ...opened, embeddedDesign: embedded, cornerUVs, design: core.pendingDesign() };
     progress(value, [...Object.values(mesh).map((a) => a.buffer), cornerUVs.buffer]);

@@ -99,7 +99,7 @@ export class ProgressiveCore {
       onPhase({ phase: 'previewStarted' });
       let exactDone = null, exactFailed = null;
       exactLoad.then((r) => (exactDone = r), (err) => (exactFailed = err));
-      const reply = await preview.call('openPreview', [mesh.edges, design, args[2]], [mesh.edges.buffer]);
+      const reply = await preview.call('openPreview', [design, args[2]]);
       this.exact.notify({ previewMade: true }); // the exact worker factors from here on (core-worker.js loadMesh)
       // The exact core refused the model while the preview was made (too large to factor, say): the load fails
       // as any other, and the previous model stays.

@@ -71,9 +71,9 @@ export const api = {
   materialPreview: (d, preset) => d.exports.materialPreview(preset),
   materialPreviewInfo: (d) => d.exports.materialPreviewInfo(),
 
-  faceVectors: read((d, s) => s.field.faceVectors.slice()),
+  faceVectors: read((d, s) => s.fieldArray('faceVectors').slice()),
   vertexVectors: read((d, s) => s.field.vertexVectors.slice()),
-  oneForm: read((d, s) => s.field.oneForm.slice()),
+  oneForm: read((d, s) => s.fieldArray('oneForm').slice()),
   singularities: read((d, s) => structuredClone(s.currentSingularities())),
   stats: read((d, s) => structuredClone(s.field.stats)),
   settled: (d) => d.session.settled(),

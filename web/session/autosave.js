@@ -22,9 +22,11 @@ export class Autosave {
     this.otherTabNoticed = null;
   }
 
-  // Computed once per field, before its arrays may go back to the worker.
+  // Computed once per field, before its arrays may go back to the worker (a preview's face vectors and
+  // one-form, derived from its vertex vectors, may never have been made).
   checkFinite(field) {
-    field.finite ??= allFinite(field.oneForm) && allFinite(field.faceVectors);
+    const arrays = field.oneForm ? [field.oneForm, field.faceVectors] : [field.vertexVectors, field.faceVectors];
+    field.finite ??= arrays.every((a) => !a || allFinite(a));
     return field.finite;
   }
 

@@ -22,6 +22,7 @@ import { CoreProxy } from '../core/core-proxy.js';
 import { ProgressiveCore } from '../core/progressive-core.js';
 import { awaitExact, exactFailed, exactLanded, revive } from './core-follow.js';
 import { findSingularities } from '../geometry/singularities.js';
+import { faceVectorsOfVertexField, oneFormOfVertexField } from '../geometry/vertex-field.js';
 
 // Weight 1e4 keeps strokes within ~0.4% of the drawn direction (paper, Sec. 6.1) while the rank-1 updates
 // stay well conditioned.
@@ -48,7 +49,8 @@ export class Session extends Emitter {
     this.meshSerial = 0;
     // {version (the worker's), symmetry (N: 1 vector, 2 line, 4 cross; for N ≥ 2 the vectors are unit
     // representatives), faceVectors, vertexVectors, oneForm, stats, singularities (null until derived)} of the
-    // last completed change.
+    // last completed change. A preview's faceVectors (of a vector field) and oneForm are null until read
+    // (fieldArray).
     this.field = null;
     this.fieldVersion = 0;
     this.retired = []; // fields replaced since the last 'change', whose arrays go back to the worker
@@ -232,8 +234,17 @@ export class Session extends Emitter {
 
   // Derived on first read, once per field: no edit waits for them.
   currentSingularities() {
-    this.field.singularities ??= findSingularities(this.surface, this.field.faceVectors, this.field.symmetry);
+    this.field.singularities ??= findSingularities(this.surface, this.fieldArray('faceVectors'), this.field.symmetry);
     return this.field.singularities;
+  }
+
+  // The current field's 'faceVectors' or 'oneForm': a preview carries its vertex vectors alone (and an
+  // N-field's face representatives), and these are derived from them on first read.
+  fieldArray(name) {
+    const f = this.field;
+    if (name === 'faceVectors') f.faceVectors ??= faceVectorsOfVertexField(this.surface, f.vertexVectors);
+    else if (name === 'oneForm') f.oneForm ??= oneFormOfVertexField(this.surface, f.vertexVectors, f.symmetry);
+    return f[name];
   }
 
   select(uid) {

@@ -73,9 +73,10 @@ export class ArrowsView {
     this.#rebuild();
   }
 
-  // faceVectors: 3 per face; vertexVectors (optional): 3 per vertex, interpolated inside each face so the
-  // arrows turn smoothly rather than in steps at face edges; scale (optional): magnitudeScale(vertexVectors),
-  // when the caller has it already; symmetry (optional): the field's N, 1 (arrows) when absent.
+  // faceVectors: 3 per face (null for a vector field given by its vertex vectors: a preview's);
+  // vertexVectors (optional): 3 per vertex, interpolated inside each face so the arrows turn smoothly rather
+  // than in steps at face edges; scale (optional): magnitudeScale(vertexVectors), when the caller has it
+  // already; symmetry (optional): the field's N, 1 (arrows) when absent.
   setField(faceVectors, vertexVectors = null, scale = null, symmetry = 1) {
     this.#setSymmetry(symmetryOf(symmetry));
     this.faceVectors = faceVectors;
@@ -142,13 +143,13 @@ export class ArrowsView {
 
   #rebuild(camera = this.camera, heightPx = this.sampledAt?.heightPx) {
     if (!this.mesh) return;
-    const F = this.faceVectors;
-    if (!F || !this.options.visible || !(this.wpp > 0)) {
+    const F = this.faceVectors, V = this.vertexVectors;
+    if (!(V || F) || (this.symmetry > 1 && !F) || !this.options.visible || !(this.wpp > 0)) {
       this.mesh.visible = false;
       return;
     }
     if (!this.samples) this.#sample(camera, heightPx);
-    const s = this.surface, V = this.vertexVectors, T = s.triangles;
+    const s = this.surface, T = s.triangles;
     const { faces, bary, points } = this.samples;
     const n = faces.length;
     if (this.mesh.instanceMatrix.count < n) this.#grow(n);

@@ -23,12 +23,10 @@ export class Preview {
     return { coarse, map, timings: { simplifyMs: t1 - t0, mapMs: performance.now() - t1, coarseFaces: coarse.triangles.length / 3 } };
   }
 
-  // core: the worker's CoreClient; prepared: prepare()'s; edges: the fine mesh's (Int32Array, 2 per edge, the
-  // exact core's order); fineDoc: the exact core's design document of the model (settings, fingerprint,
-  // constraints: normalized fine specs); settings as loadModel's.
-  static open(core, { coarse, map, timings }, edges, fineDoc, settings) {
+  // core: the worker's CoreClient; prepared: prepare()'s; fineDoc: the exact core's design document of the
+  // model (settings, fingerprint, constraints: normalized fine specs); settings as loadModel's.
+  static open(core, { coarse, map, timings }, fineDoc, settings) {
     const t0 = performance.now();
-    map.fine.edges = edges;
     const { restoreError } = core.loadModel(offBytes(coarse), 'off', settings, map.designOnCoarse(fineDoc));
     // A constraint the coarse surface cannot take would leave the two cores' ids apart: no preview then.
     if (restoreError) throw new Error(`the preview could not take the design: ${restoreError}`);
@@ -95,14 +93,16 @@ export class Preview {
 
   // The reply to a mutating op (core-worker.js's snapshot, in fine terms): the preview field on the fine
   // mesh, the coarse core's stats marked `preview`, the whole fine document. A negative version: the exact
-  // worker's read-outs (streamlines, Hodge parts) are never asked for a preview's field.
+  // worker's read-outs (streamlines, Hodge parts) are never asked for a preview's field. The field goes as its
+  // vertex vectors (and an N-field's face representatives, which the views need): the page derives the face
+  // vectors and the one-form when read (geometry/vertex-field.js, session.fieldArray).
   snapshot(spares, timing) {
     const t0 = performance.now();
     const c = this.core;
     const symmetry = c.symmetry();
-    const out = { faceVectors: spares.pop(3 * this.map.nF), vertexVectors: spares.pop(3 * this.map.nV), oneForm: spares.pop(this.map.fine.edges.length / 2) };
+    const out = { vertexVectors: spares.pop(3 * this.map.nV), faceVectors: symmetry > 1 ? spares.pop(3 * this.map.nF) : null };
     const coarseVertexVectors = c.vertexVectors();
-    const field = this.map.fieldOnFine(c.faceVectors(), coarseVertexVectors, symmetry, out);
+    const { faceVectors, vertexVectors } = this.map.fieldOnFine(c.faceVectors(), coarseVertexVectors, symmetry, out);
     // The carried vectors are the coarse ones interpolated and laid into the fine planes: the coarse lengths'
     // scale is theirs to within that, for a tiny fraction of the work.
     const scale = magnitudeScale(coarseVertexVectors);
@@ -112,11 +112,13 @@ export class Preview {
     return {
       version: -++this.version,
       symmetry,
-      ...field,
+      faceVectors,
+      vertexVectors,
+      oneForm: null,
       scale,
       stats,
       design: { ids, document: this.fineDocument(ids) },
-      transfer: [field.faceVectors.buffer, field.vertexVectors.buffer, field.oneForm.buffer],
+      transfer: faceVectors ? [vertexVectors.buffer, faceVectors.buffer] : [vertexVectors.buffer],
     };
   }
 }

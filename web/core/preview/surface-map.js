@@ -253,24 +253,18 @@ export class SurfaceMap {
 
   // ------------------------------------------------------------------------------------------ fields
 
-  // The coarse field on the fine mesh: {faceVectors, vertexVectors, oneForm} (Float64Array, fine sizes). A
-  // vector field is interpolated from the coarse vertex vectors and laid into each fine tangent plane; a line
-  // or cross field (symmetry > 1: representatives, whose signs do not interpolate) takes the coarse face's.
-  // out: arrays to refill (the page hands old ones back), or null.
-  fieldOnFine(coarseFaceVectors, coarseVertexVectors, symmetry, out = null) {
-    const faceVectors = out?.faceVectors ?? new Float64Array(3 * this.nF);
-    const vertexVectors = out?.vertexVectors ?? new Float64Array(3 * this.nV);
-    const oneForm = out?.oneForm ?? new Float64Array(this.fine.edges.length / 2);
+  // The coarse field on the fine mesh: {vertexVectors, faceVectors} (Float64Array, fine sizes). A vector field
+  // is interpolated from the coarse vertex vectors and laid into each fine tangent plane; a line or cross field
+  // (symmetry > 1: representatives, whose signs do not interpolate) takes the coarse face's. The face vectors
+  // only when out.faceVectors is given (an N-field's representatives, which the page cannot derive); the
+  // page derives a vector field's face vectors and one-form from its vertex vectors (geometry/vertex-field.js).
+  // out: {vertexVectors, faceVectors}: arrays to refill (the page hands old ones back).
+  fieldOnFine(coarseFaceVectors, coarseVertexVectors, symmetry, out) {
     const lines = symmetry > 1;
-    sampleInto(faceVectors, this.faceFace, this.faceBary, this.faceNormals, this.coarse.triangles, coarseFaceVectors, coarseVertexVectors, lines);
+    const { faceVectors, vertexVectors } = out;
+    if (faceVectors) sampleInto(faceVectors, this.faceFace, this.faceBary, this.faceNormals, this.coarse.triangles, coarseFaceVectors, coarseVertexVectors, lines);
     sampleInto(vertexVectors, this.vertexFace, this.vertexBary, this.vertexNormals, this.coarse.triangles, coarseFaceVectors, coarseVertexVectors, lines);
-    const { positions: P, edges: E } = this.fine;
-    const V = vertexVectors;
-    for (let e = 0, nE = E.length / 2; e < nE; e++) {
-      const i = 3 * E[2 * e], j = 3 * E[2 * e + 1];
-      oneForm[e] = lines ? 0 : 0.5 * ((V[i] + V[j]) * (P[j] - P[i]) + (V[i + 1] + V[j + 1]) * (P[j + 1] - P[i + 1]) + (V[i + 2] + V[j + 2]) * (P[j + 2] - P[i + 2]));
-    }
-    return { faceVectors, vertexVectors, oneForm };
+    return { faceVectors, vertexVectors };
   }
 }
 

@@ -33,8 +33,9 @@ export function torus(nu, nv, R = 1, r = 0.4) {
 // Opens a preview of a 25,600-face torus, carries its field to the fine mesh and runs a stroke's cycle on the
 // coarse core (its own warm-up). The core is left holding the torus; the model's preview replaces it.
 export async function warmUpPreview(core) {
-  const { positions, triangles, edges } = torus(160, 80);
-  const preview = Preview.open(core, await Preview.prepare({ positions, triangles }), edges, { constraints: [] }, null);
+  const { positions, triangles } = torus(160, 80);
+  const preview = Preview.open(core, await Preview.prepare({ positions, triangles }), { constraints: [] }, null);
   core.warmUp(3, 1);
-  preview.map.fieldOnFine(core.faceVectors(), core.vertexVectors(), 1);
+  const out = { vertexVectors: new Float64Array(positions.length), faceVectors: new Float64Array(triangles.length) };
+  preview.map.fieldOnFine(core.faceVectors(), core.vertexVectors(), 1, out);
 }
