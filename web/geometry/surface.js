@@ -51,6 +51,11 @@ export class Surface {
       (C[o + 4] = wx * ex + wy * ey + wz * ez), (C[o + 5] = wx * fx + wy * fy + wz * fz);
     }
     this.meanEdge = nF ? edgeSum / (3 * nF) : 1;
+    // Running sums of the face areas: the arrows draw faces by area (arrow-sampling.js), after every zoom.
+    const A = this.areas, cdf = (this.areaCdf = new Float64Array(nF));
+    let area = 0;
+    for (let f = 0; f < nF; f++) cdf[f] = area += A[f];
+    this.area = area;
     this.centre = lo.map((x, k) => (x + hi[k]) / 2);
     this.radius = Math.max(1e-12, Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2);
   }
@@ -65,12 +70,12 @@ export class Surface {
   // The per-mesh arrays, copied (the caller keeps its own Surface): the worker builds the Surface once per mesh
   // and the page takes it over with fromArrays(), so the main thread never recomputes it.
   arrays() {
-    const out = { meanEdge: this.meanEdge, centre: this.centre, radius: this.radius };
+    const out = { meanEdge: this.meanEdge, centre: this.centre, radius: this.radius, area: this.area };
     for (const key of Surface.ARRAYS) out[key] = this[key].slice();
     return out;
   }
 
-  static ARRAYS = ['positions', 'triangles', 'edges', 'normals', 'areas', 'centres', 'frames', 'corners2d', 'neighbour', 'vertexFaceStart', 'vertexFaces', 'vertexNormals'];
+  static ARRAYS = ['positions', 'triangles', 'edges', 'normals', 'areas', 'centres', 'frames', 'corners2d', 'neighbour', 'vertexFaceStart', 'vertexFaces', 'vertexNormals', 'areaCdf'];
 
   static fromArrays({ positions, triangles, edges, ...derived }) {
     return new Surface(positions, triangles, edges, derived);

@@ -127,10 +127,8 @@ export class ArrowsView {
   #sample(camera, heightPx) {
     const s = this.surface;
     const spacing = arrowSpacingPx(this.options.density) * this.wpp;
-    let area = 0;
-    for (let f = 0; f < s.nF; f++) area += s.areas[f];
     let faces = null;
-    if ((POISSON_PACKING * area) / (spacing * spacing) > MAX_SAMPLES && camera) faces = facesNearView(s, camera);
+    if ((POISSON_PACKING * s.area) / (spacing * spacing) > MAX_SAMPLES && camera) faces = facesNearView(s, camera);
     this.samples = sampleSurface(s, spacing, { faces, maxSamples: MAX_SAMPLES });
     this.sampledAt = {
       wpp: this.wpp,
