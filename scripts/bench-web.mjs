@@ -3,6 +3,7 @@
 // first: npm run build:wasm && npm run build:web).
 //
 // node scripts/bench-web.mjs --json --stroke MESH [--strokes N] [--crossings N] [--port P] [--profile FILE]
+//                             [--profile-load FILE]   (CPU profiles of the page's thread over the strokes, the load)
 //                             [--preview-edges N]   (loadModel's previewEdges: 1 forces a preview, 0 none)
 //   Edit latency: loads MESH (a path; served to the page under /bench-mesh/) through tvf.loadModel, then draws
 //   N strokes (default 15) of ~50 crossed edges each through tvf.addStroke, each on a strip of faces elsewhere
@@ -73,6 +74,14 @@ async function strokeBench(page, meshPath) {
   page.on('console', (m) => m.type() === 'warning' && !m.text().includes('GL Driver') && console.error(`page: ${m.text()}`));
   await page.goto(`http://127.0.0.1:${port}/`);
   await page.evaluate(() => window.tvf.ready);
+  // --profile-load FILE: a CPU profile of the page's main thread over the load (.cpuprofile, for DevTools).
+  const loadProfileFile = arg('--profile-load', null);
+  const loadCdp = loadProfileFile ? await page.context().newCDPSession(page) : null;
+  if (loadCdp) {
+    await loadCdp.send('Profiler.enable');
+    await loadCdp.send('Profiler.setSamplingInterval', { interval: 100 });
+    await loadCdp.send('Profiler.start');
+  }
   const load = await page.evaluate(async ({ url, previewEdges }) => {
     window.__longTasks.length = 0; // the page's own start is not the model's
     const t0 = performance.now();
@@ -83,8 +92,9 @@ async function strokeBench(page, meshPath) {
     const phases = Object.fromEntries(Object.entries(window.tvf.perf().loadPhases ?? {}).map(([k, v]) => [k, v - t0]));
     await window.tvf.settled();
     if (firstStats.preview) await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
-    return { info, phases, previewTimings, loadMs: performance.now() - t0, firstFieldMs, exactFieldMs: performance.now() - t0, preview: firstStats.preview, previewFaces: firstStats.previewFaces ?? null, previewStats: firstStats };
+    return { t0, info, phases, previewTimings, loadMs: performance.now() - t0, firstFieldMs, exactFieldMs: performance.now() - t0, preview: firstStats.preview, previewFaces: firstStats.previewFaces ?? null, previewStats: firstStats };
   }, { url: `/bench-mesh/${name}`, previewEdges: arg('--preview-edges', null) == null ? null : Number(arg('--preview-edges')) });
+  if (loadCdp) writeFileSync(loadProfileFile, JSON.stringify((await loadCdp.send('Profiler.stop')).profile));
   const loadTasks = await page.evaluate(() => window.__longTasks.splice(0));
   const starts = Array.from({ length: count }, (_, s) => (s * 104729 + 7) % load.info.faces); // spread over the mesh
   const strokes = await page.evaluate(stripStrokesInPage, { starts, crossings });
@@ -165,6 +175,8 @@ async function strokeBench(page, meshPath) {
     strokesPreviewed: runs.filter((r) => r.preview).length,
     longestTaskMs: Math.max(longest(loadTasks), longest(strokeTasks)),
     longestLoadTaskMs: longest(loadTasks),
+    // The load's long tasks: when each began (ms after loadModel was called) and how long it took.
+    loadLongTasks: loadTasks.map((t) => ({ at: Math.round(t.at - load.t0), ms: t.ms })),
     longestStrokeTaskMs: longest(strokeTasks),
     heapPeakBytes: runs.at(-1)?.stats.heapBytes ?? null,
     previewHeapBytes: load.previewStats.previewHeapBytes ?? null,

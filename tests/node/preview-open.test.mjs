@@ -75,4 +75,18 @@ test('the preview worker: warmed up on a torus, then prepared on the mesh read a
   assert.deepEqual(snap.transfer, [snap.vertexVectors.buffer]);
   assert.ok(snap.stats.preview && snap.version < 0);
   assert.ok(snap.scale.max >= snap.scale.top && snap.scale.top >= 0);
+  assert.deepEqual(snap.design.document.constraints, [], 'without the changed ids, the whole fine document');
+
+  // An edit's reply carries its own entry, in fine terms (the fine faces of the stroke's points).
+  const points = [10, 11, 12].map((face) => ({ face, bary: [0.2, 0.3, 0.5] }));
+  const spec = { type: 'stroke', points, strength: 1, weight: 1e4 };
+  const [coarseSpec] = preview.argsOnCoarse('add', [spec]);
+  const id = core.addConstraintJson(coarseSpec);
+  preview.afterOp('add', [spec], id);
+  core.solve();
+  const after = preview.snapshot(new SpareArrays(), {}, [id]);
+  assert.deepEqual(after.design.ids, [id]);
+  assert.equal(after.design.document, undefined);
+  assert.deepEqual(after.design.changed.map(([k]) => k), [id]);
+  assert.deepEqual(after.design.changed[0][1].points, points);
 });

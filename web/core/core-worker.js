@@ -363,7 +363,7 @@ function serve(scope) {
       timing.solveMs = performance.now() - t1;
       reply = { ok: true, value: out };
       if (MUTATING.has(op)) {
-        reply.snapshot = preview ? preview.snapshot(spares, timing) : snapshot(data.wholeDesign ? null : changedIds, timing);
+        reply.snapshot = preview ? preview.snapshot(spares, timing, data.wholeDesign ? null : changedIds) : snapshot(data.wholeDesign ? null : changedIds, timing);
         transfer = [...transfer, ...reply.snapshot.transfer];
       }
     } catch (err) {

@@ -92,11 +92,12 @@ export class Preview {
   }
 
   // The reply to a mutating op (core-worker.js's snapshot, in fine terms): the preview field on the fine
-  // mesh, the coarse core's stats marked `preview`, the whole fine document. A negative version: the exact
+  // mesh, the coarse core's stats marked `preview`, the fine specs of the constraints the op set (`changed`:
+  // core ids, as core-worker.js's snapshot takes them; null: the whole fine document). A negative version: the exact
   // worker's read-outs (streamlines, Hodge parts) are never asked for a preview's field. The field goes as its
   // vertex vectors (and an N-field's face representatives, which the views need): the page derives the face
   // vectors and the one-form when read (geometry/vertex-field.js, session.fieldArray).
-  snapshot(spares, timing) {
+  snapshot(spares, timing, changed = null) {
     const t0 = performance.now();
     const c = this.core;
     const symmetry = c.symmetry();
@@ -106,8 +107,15 @@ export class Preview {
     // The carried vectors are the coarse ones interpolated and laid into the fine planes: the coarse lengths'
     // scale is theirs to within that, for a tiny fraction of the work.
     const scale = magnitudeScale(coarseVertexVectors);
-    timing.transferMs = this.timings.transferMs = performance.now() - t0;
+    const t1 = performance.now();
+    timing.transferMs = this.timings.transferMs = t1 - t0;
     const ids = c.constraintIds();
+    // Each op's own entries rather than the whole document: re-reading it took ~25 ms per stroke in the worker
+    // and as much on the page once a design holds a few dozen strokes.
+    const design = changed
+      ? { ids, changed: changed.filter((id) => ids.includes(id)).map((id) => [id, this.fineSpecs.get(id)]) }
+      : { ids, document: this.fineDocument(ids) };
+    timing.designMs = performance.now() - t1;
     const stats = { ...c.stats(), preview: true, previewHeapBytes: c.Module.HEAP8.buffer.byteLength, previewFaces: this.map.coarse.triangles.length / 3, ...this.timings };
     return {
       version: -++this.version,
@@ -117,7 +125,7 @@ export class Preview {
       oneForm: null,
       scale,
       stats,
-      design: { ids, document: this.fineDocument(ids) },
+      design,
       transfer: faceVectors ? [vertexVectors.buffer, faceVectors.buffer] : [vertexVectors.buffer],
     };
   }
