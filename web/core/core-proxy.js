@@ -16,13 +16,41 @@ import { CoreError } from './core-client.js';
 
 // A module worker from another origin (a CDN) cannot be started directly; its source can, from a blob: URL
 // (CSP: worker-src blob:). The worker is told the asset base, so its own URL does not matter.
-async function workerUrl(assetBase) {
+export async function workerUrl(assetBase) {
   const url = new URL('core-worker.js', assetBase);
   if (url.origin === globalThis.location?.origin) return { href: url.href, revoke: () => {} };
   const res = await fetch(url);
   if (!res.ok) throw new CoreError(`could not fetch the core worker ${url.href}: HTTP ${res.status}`);
   const href = URL.createObjectURL(new Blob([await res.text()], { type: 'text/javascript' }));
   return { href, revoke: () => URL.revokeObjectURL(href) };
+}
+
+// A model file's bytes read on a worker thread (model-bytes.js says why). source: an absolute URL string or a
+// Blob; assetBase: the folder of core-worker.js. Resolves with {bytes (Uint8Array), digest (model-bytes.js
+// fnv1a)}, or null when no worker could be started (the caller reads on its own thread then); a read that
+// fails rejects with the worker's message.
+export async function readBytesOffThread(assetBase, source) {
+  let worker, revoke = () => {};
+  try {
+    ({ href: worker, revoke } = await workerUrl(assetBase));
+    worker = new Worker(worker, { type: 'module' });
+  } catch {
+    revoke();
+    return null;
+  }
+  try {
+    const reply = await new Promise((resolve) => {
+      worker.onmessage = ({ data }) => data.seq === 1 && resolve(data);
+      worker.onerror = (event) => (event.preventDefault?.(), resolve(null));
+      worker.postMessage({ seq: 1, op: 'readBytes', args: [source] });
+    });
+    if (!reply) return null;
+    if (!reply.ok) throw new Error(reply.error);
+    return { bytes: new Uint8Array(reply.value.bytes), digest: reply.value.digest };
+  } finally {
+    worker.terminate();
+    revoke();
+  }
 }
 
 export class CoreProxy {

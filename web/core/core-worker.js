@@ -8,6 +8,7 @@
 // One worker per <tangent-field-designer> element: its globals are that element's core and nothing else.
 import { CoreError, loadCore } from './core-client.js';
 import { CoreExport, exportOps } from './core-export.js';
+import { readOps } from './model-bytes.js';
 import { FieldParts } from './field-parts.js';
 import { settingOps } from './setting-ops.js';
 import { SpareArrays } from './spare-arrays.js';
@@ -50,9 +51,7 @@ function serve(scope) {
     return tracing.surface;
   }
 
-  function requireMesh() {
-    if (!core?.hasMesh) throw new CoreError('no mesh loaded');
-  }
+  function requireMesh() { if (!core?.hasMesh) throw new CoreError('no mesh loaded'); }
 
   // A result that carries its own transfer list.
   const transferOf = ({ value, list }) => new Transfer(value, list);
@@ -311,11 +310,12 @@ function serve(scope) {
       return true;
     },
 
-    // exportAtlasNote, exportFlowMap, exportGlb, exportRawField (core-export.js).
+    // exportAtlasNote, exportFlowMap, exportGlb, exportRawField (core-export.js); readBytes (model-bytes.js).
     ...exportOps(() => coreExport, () => exportedField(), () => JSON.parse(core.designJson())),
+    ...readOps(Transfer),
   };
 
-  const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'warmUpPreview', 'previewMesh', 'loadMesh', 'openPreview', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar']);
+  const NO_MESH_NEEDED = new Set(['init', 'warmUp', 'warmUpPreview', 'previewMesh', 'loadMesh', 'openPreview', 'setFactorMemoryLimit', 'trapForTest', 'textureAtlas', 'analyzeExemplar', 'readBytes']);
   // Ops after which the field may have changed: they solve and send a snapshot back.
   const MUTATING = new Set(['loadMesh', 'openPreview', 'add', 'remove', 'setWeight', 'setStrength', ...Object.keys(settingEdits)]);
 

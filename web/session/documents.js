@@ -3,17 +3,14 @@
 // Autosaves are keyed by the model's name, size and a content hash, so a different file that happens to
 // share a name never receives a design whose indices mean nothing on it.
 
+import { fnv1a } from '../core/model-bytes.js';
+
 const AUTOSAVE_PREFIX = 'tvf.autosave.v1:';
 
-// FNV-1a over the bytes: fast (a few ms per MB) and plenty to tell models apart.
-function fnv1a(bytes) {
-  let h = 0x811c9dc5;
-  for (let i = 0; i < bytes.length; i++) h = Math.imul(h ^ bytes[i], 0x01000193);
-  return (h >>> 0).toString(16).padStart(8, '0');
-}
-
-export function modelKey(name, bytes) {
-  return `${name}|${bytes.length}|${fnv1a(bytes)}`;
+// FNV-1a over the bytes (core/model-bytes.js): fast (a few ms per MB) and plenty to tell models apart.
+// digest: given when the bytes were read on another thread, which made it there.
+export function modelKey(name, bytes, digest = fnv1a(bytes)) {
+  return `${name}|${bytes.length}|${digest}`;
 }
 
 // Nothing to keep: no constraint and every setting at its default.

@@ -52,27 +52,25 @@ async function inlineGltfBuffers(bytes, name, fetchBuffer) {
 }
 
 // src: URL string | URL | ArrayBuffer | ArrayBufferView | Blob/File. opts: {name, format, companions: File[]}.
-// Returns {bytes: Uint8Array, format, name}.
-export async function readModel(src, opts = {}) {
-  let bytes, name = opts.name || '', fetchBuffer = async () => null;
+// offThread(source): reads a URL (absolute) or a Blob on another thread → {bytes, digest} (core-proxy.js
+// readBytesOffThread), or null when it cannot; then this thread reads it.
+// Returns {bytes: Uint8Array, format, name, digest (documents.js modelKey's, when made elsewhere), thread
+// ('worker' | 'page': where the bytes were read)}.
+export async function readModel(src, opts = {}, offThread = async () => null) {
+  let bytes, digest, thread = 'page', name = opts.name || '', fetchBuffer = async () => null;
   if (typeof src === 'string' || src instanceof URL) {
     const url = new URL(src, document.baseURI);
     name ||= baseName(url.pathname);
-    let res;
-    try {
-      res = await fetch(url);
-    } catch (err) {
-      throw new Error(`could not fetch ${url.href}: ${err.message}`);
-    }
-    if (!res.ok) throw new Error(`could not fetch ${url.href}: HTTP ${res.status} ${res.statusText}`.trim());
-    bytes = new Uint8Array(await res.arrayBuffer());
+    ({ bytes, digest } = (await offThread(url.href)) ?? { bytes: await fetchHere(url) });
+    thread = digest ? 'worker' : 'page';
     fetchBuffer = async (uri) => {
       const r = await fetch(new URL(uri, url)).catch(() => null);
       return r && r.ok ? new Uint8Array(await r.arrayBuffer()) : null;
     };
   } else if (typeof Blob !== 'undefined' && src instanceof Blob) {
     name ||= src.name || '';
-    bytes = new Uint8Array(await src.arrayBuffer());
+    ({ bytes, digest } = (await offThread(src)) ?? { bytes: new Uint8Array(await src.arrayBuffer()) });
+    thread = digest ? 'worker' : 'page';
     const companions = opts.companions || [];
     fetchBuffer = async (uri) => {
       const want = baseName(uri);
@@ -88,6 +86,22 @@ export async function readModel(src, opts = {}) {
   }
   const format = opts.format ?? formatOf(name);
   if (!bytes.length) throw new Error(`${name || 'the model'} is empty`);
-  if (format === 'gltf') bytes = await inlineGltfBuffers(bytes, name || 'the glTF file', fetchBuffer);
-  return { bytes, format, name: name || 'model' };
+  if (format === 'gltf') {
+    const inlined = await inlineGltfBuffers(bytes, name || 'the glTF file', fetchBuffer);
+    if (inlined !== bytes) digest = undefined; // the digest is of the bytes kept
+    bytes = inlined;
+  }
+  return { bytes, format, name: name || 'model', digest, thread };
+}
+
+// The same messages as the worker's read (core/model-bytes.js).
+async function fetchHere(url) {
+  let res;
+  try {
+    res = await fetch(url);
+  } catch (err) {
+    throw new Error(`could not fetch ${url.href}: ${err.message}`);
+  }
+  if (!res.ok) throw new Error(`could not fetch ${url.href}: HTTP ${res.status} ${res.statusText}`.trim());
+  return new Uint8Array(await res.arrayBuffer());
 }

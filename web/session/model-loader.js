@@ -7,6 +7,7 @@ import { modelKey } from './documents.js';
 import { readModel } from './model-files.js';
 import { Surface } from '../geometry/surface.js';
 import { PREVIEW_EDGES } from '../core/progressive-core.js';
+import { readBytesOffThread } from '../core/core-proxy.js';
 
 // The progress label through a load's phases (core-worker.js loadMesh's progress, progressive-core.js): a big
 // model is read, previewed while the exact factorization starts, then factored; a small one read and factored.
@@ -28,8 +29,9 @@ export class ModelLoader {
     this.loadsPending++;
     // The file is read at once, beside whatever the core is still doing (the previous model's warm-up, an
     // edit); only handing it to the core waits its turn. A read that fails is reported in that turn.
-    const reading = readModel(src, opts);
-    reading.catch(() => {});
+    const t0 = performance.now();
+    const reading = readModel(src, opts, (source) => readBytesOffThread(s.assetBase, source));
+    reading.then((model) => (s.perf.modelRead = { thread: model.thread, ms: performance.now() - t0 }), () => {});
     return s
       .exclusive(async () => {
         s.requireProxy();
@@ -39,7 +41,7 @@ export class ModelLoader {
         } catch (err) {
           throw s.fail('model', new Error(`Could not load model: ${err.message}`));
         }
-        const key = modelKey(model.name, model.bytes);
+        const key = modelKey(model.name, model.bytes, model.digest);
         const saved = opts.restore === false ? null : await s.autosave.load(key);
         const bytes = model.bytes.slice(); // its own buffer, transferred to the worker
         let reply;
