@@ -184,7 +184,7 @@ test('float32Arrays shares the BVH\'s buffers, and transferList lists each buffe
   assert.equal(float32.positions, bvh.positions);
   assert.equal(float32.index, bvh.index);
   assert.ok(float32.normals instanceof Float32Array && float32.normals[2] === 1);
-  assert.ok(float32.colors.length === m.positions.length && float32.colors.every((c) => c === 1));
+  assert.ok(float32.colors.length === m.positions.length && float32.colors instanceof Uint8Array && float32.colors.every((c) => c === 255));
   // A buffer listed twice makes postMessage (and structuredClone) throw; sharing must not.
   const { copy: [b, f] } = sendToPage(bvh, float32);
   assert.equal(f.positions, b.positions, 'one array on the page too, not two copies');

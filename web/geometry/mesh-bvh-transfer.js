@@ -21,7 +21,7 @@
 //
 // Float32Mesh (surface.float32, optional): { positions: Float32Array (3/vertex), normals: Float32Array
 //   (3/vertex, the Surface's area-weighted vertex normals), index: Uint32Array (3/face), colors:
-//   Float32Array (3/vertex, all 1: the colour map's attribute, written by viewer.setVertexField) }. With a bvh,
+//   Uint8Array (3/vertex, all 255, normalized: the colour map's attribute, written by viewer.setVertexField) }. With a bvh,
 //   positions and index are the bvh's own arrays (the same objects: structured cloning keeps that identity,
 //   and transferList() lists each buffer once, since a buffer listed twice makes postMessage throw).
 import { BufferAttribute, BufferGeometry, Box3, Sphere, Vector3 } from 'three';
@@ -69,9 +69,10 @@ export function float32Arrays(vertexNormals, bvh = null, positions = null, trian
     positions: bvh?.positions ?? new Float32Array(positions),
     normals: new Float32Array(vertexNormals),
     index: bvh?.index ?? new Uint32Array(triangles),
-    // The colour map's vertex colours, white until a field is shown: allocating and filling 5 MB on the page
-    // measured up to tens of ms there, here it is free for the page.
-    colors: new Float32Array(vertexNormals.length).fill(1),
+    // The colour map's vertex colours (bytes, normalized: a quarter of the upload after every field change),
+    // white until a field is shown: allocating and filling them on the page measured up to tens of ms there,
+    // here it is free for the page.
+    colors: new Uint8Array(vertexNormals.length).fill(255),
   };
 }
 
