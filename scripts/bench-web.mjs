@@ -89,10 +89,11 @@ async function strokeBench(page, meshPath) {
     const firstFieldMs = performance.now() - t0;
     const firstStats = window.tvf.stats();
     const previewTimings = window.tvf.perf().previewTimings ?? null;
+    const modelRead = window.tvf.perf().modelRead ?? null;
     const phases = Object.fromEntries(Object.entries(window.tvf.perf().loadPhases ?? {}).map(([k, v]) => [k, v - t0]));
     await window.tvf.settled();
     if (firstStats.preview) await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
-    return { t0, info, phases, previewTimings, loadMs: performance.now() - t0, firstFieldMs, exactFieldMs: performance.now() - t0, preview: firstStats.preview, previewFaces: firstStats.previewFaces ?? null, previewStats: firstStats };
+    return { t0, info, phases, modelRead, previewTimings, loadMs: performance.now() - t0, firstFieldMs, exactFieldMs: performance.now() - t0, preview: firstStats.preview, previewFaces: firstStats.previewFaces ?? null, previewStats: firstStats };
   }, { url: `/bench-mesh/${name}`, previewEdges: arg('--preview-edges', null) == null ? null : Number(arg('--preview-edges')) });
   if (loadCdp) writeFileSync(loadProfileFile, JSON.stringify((await loadCdp.send('Profiler.stop')).profile));
   const loadTasks = await page.evaluate(() => window.__longTasks.splice(0));
@@ -181,6 +182,7 @@ async function strokeBench(page, meshPath) {
     heapPeakBytes: runs.at(-1)?.stats.heapBytes ?? null,
     previewHeapBytes: load.previewStats.previewHeapBytes ?? null,
     loadPhasesMs: load.phases,
+    modelRead: load.modelRead,
     previewTimings: load.previewTimings,
     strokes: runs.length,
     crossings,

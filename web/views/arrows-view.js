@@ -45,6 +45,9 @@ export class ArrowsView {
     this.surface = surface;
     this.faceVectors = this.vertexVectors = null;
     this.samples = this.sampledAt = null;
+    // The previous surface's scale is not this one's: no arrows until the next render's updateView has the
+    // scale of this surface in view (sampling at the old one, then again at the new, cost a second sampling).
+    this.wpp = 0;
     this.mesh = new InstancedMesh(glyphGeometry(this.symmetry), new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide }), 1);
     this.mesh.instanceMatrix.setUsage(DynamicDrawUsage);
     this.mesh.frustumCulled = false;
