@@ -26,8 +26,8 @@ export async function workerUrl(assetBase) {
 }
 
 // A model file's bytes read on a worker thread (model-bytes.js says why). source: an absolute URL string or a
-// Blob; assetBase: the folder of core-worker.js. Resolves with {bytes (Uint8Array), digest (model-bytes.js
-// fnv1a)}, or null when no worker could be started (the caller reads on its own thread then); a read that
+// Blob; assetBase: the folder of core-worker.js. Resolves with {bytes, copy (Uint8Arrays: the same bytes
+// twice), digest (model-bytes.js fnv1a)}, or null when no worker could be started (the caller reads on its own thread then); a read that
 // fails rejects with the worker's message.
 export async function readBytesOffThread(assetBase, source) {
   let worker, revoke = () => {};
@@ -46,7 +46,8 @@ export async function readBytesOffThread(assetBase, source) {
     });
     if (!reply) return null;
     if (!reply.ok) throw new Error(reply.error);
-    return { bytes: new Uint8Array(reply.value.bytes), digest: reply.value.digest };
+    const { bytes, copy, digest } = reply.value;
+    return { bytes: new Uint8Array(bytes), copy: new Uint8Array(copy), digest };
   } finally {
     worker.terminate();
     revoke();

@@ -52,16 +52,16 @@ async function inlineGltfBuffers(bytes, name, fetchBuffer) {
 }
 
 // src: URL string | URL | ArrayBuffer | ArrayBufferView | Blob/File. opts: {name, format, companions: File[]}.
-// offThread(source): reads a URL (absolute) or a Blob on another thread → {bytes, digest} (core-proxy.js
+// offThread(source): reads a URL (absolute) or a Blob on another thread → {bytes, copy, digest} (core-proxy.js
 // readBytesOffThread), or null when it cannot; then this thread reads it.
-// Returns {bytes: Uint8Array, format, name, digest (documents.js modelKey's, when made elsewhere), thread
-// ('worker' | 'page': where the bytes were read)}.
+// Returns {bytes: Uint8Array, format, name, digest (documents.js modelKey's) and copy (a second copy of the
+// bytes, for the core), when made elsewhere, thread ('worker' | 'page': where the bytes were read)}.
 export async function readModel(src, opts = {}, offThread = async () => null) {
-  let bytes, digest, thread = 'page', name = opts.name || '', fetchBuffer = async () => null;
+  let bytes, copy, digest, thread = 'page', name = opts.name || '', fetchBuffer = async () => null;
   if (typeof src === 'string' || src instanceof URL) {
     const url = new URL(src, document.baseURI);
     name ||= baseName(url.pathname);
-    ({ bytes, digest } = (await offThread(url.href)) ?? { bytes: await fetchHere(url) });
+    ({ bytes, copy, digest } = (await offThread(url.href)) ?? { bytes: await fetchHere(url) });
     thread = digest ? 'worker' : 'page';
     fetchBuffer = async (uri) => {
       const r = await fetch(new URL(uri, url)).catch(() => null);
@@ -69,7 +69,7 @@ export async function readModel(src, opts = {}, offThread = async () => null) {
     };
   } else if (typeof Blob !== 'undefined' && src instanceof Blob) {
     name ||= src.name || '';
-    ({ bytes, digest } = (await offThread(src)) ?? { bytes: new Uint8Array(await src.arrayBuffer()) });
+    ({ bytes, copy, digest } = (await offThread(src)) ?? { bytes: new Uint8Array(await src.arrayBuffer()) });
     thread = digest ? 'worker' : 'page';
     const companions = opts.companions || [];
     fetchBuffer = async (uri) => {
@@ -88,10 +88,10 @@ export async function readModel(src, opts = {}, offThread = async () => null) {
   if (!bytes.length) throw new Error(`${name || 'the model'} is empty`);
   if (format === 'gltf') {
     const inlined = await inlineGltfBuffers(bytes, name || 'the glTF file', fetchBuffer);
-    if (inlined !== bytes) digest = undefined; // the digest is of the bytes kept
+    if (inlined !== bytes) digest = copy = undefined; // of the bytes read, not those kept
     bytes = inlined;
   }
-  return { bytes, format, name: name || 'model', digest, thread };
+  return { bytes, format, name: name || 'model', digest, copy, thread };
 }
 
 // The same messages as the worker's read (core/model-bytes.js).

@@ -43,7 +43,8 @@ export class ModelLoader {
         }
         const key = modelKey(model.name, model.bytes, model.digest);
         const saved = opts.restore === false ? null : await s.autosave.load(key);
-        const bytes = model.bytes.slice(); // its own buffer, transferred to the worker
+        const bytes = model.copy ?? model.bytes.slice(); // its own buffer, transferred to the worker
+        model.copy = null;
         let reply;
         const previous = this.#current();
         s.perf.loadPhases = { start: performance.now() };
