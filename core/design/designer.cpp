@@ -507,7 +507,7 @@ void Designer::reconstruct(const double* oneForm, std::vector<double>& faceVecto
                            std::vector<double>& vertexVectors) const {
   Impl& d = *impl_;
   tvf::faceVectors(d.faceMap(), d.topology, oneForm, faceVectors);
-  tvf::vertexVectors(d.vertexMap(), d.topology, oneForm, vertexVectors);
+  tvf::vertexVectors(d.vertexMap(), d.faceMap(), d.mesh, d.topology, d.geometry, oneForm, vertexVectors);
 }
 // Vertex vectors and singularities are derived on first read: the interactive loop needs only face vectors.
 const std::vector<double>& Designer::vertexVectors() const {
@@ -515,7 +515,8 @@ const std::vector<double>& Designer::vertexVectors() const {
   if (d.vertexVectorsStale && d.directions) {
     d.vertexVectors = vertexRepresentatives(d.mesh, d.topology, d.geometry, d.faceVectors, d.symmetry);
   } else if (d.vertexVectorsStale) {
-    tvf::vertexVectors(d.vertexMap(), d.topology, d.oneForm.data(), d.vertexVectors);
+    tvf::vertexVectors(d.vertexMap(), d.faceMap(), d.mesh, d.topology, d.geometry, d.oneForm.data(),
+                       d.vertexVectors);
   }
   d.vertexVectorsStale = false;
   return d.vertexVectors;

@@ -87,51 +87,45 @@ void faceVectors(const FaceVectorMap& map, const MeshTopology& t, const double* 
 
 void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
                    const double* oneForm, std::vector<double>& out) {
-  vertexVectors(vertexVectorMap(mesh, t, g), t, oneForm, out);
+  vertexVectors(vertexVectorMap(mesh, t, g), faceVectorMap(mesh, t), mesh, t, g, oneForm, out);
 }
 
 VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g) {
-  std::vector<double> weight(t.numVertices, 0.0);
-  for (int32_t f = 0; f < t.numFaces; ++f)
-    for (int k = 0; k < 3; ++k) weight[mesh.triangles[3 * f + k]] += g.cornerArea[3 * f + k];
-  // Accumulated in place per (edge, endpoint): no list of corner terms to sort and merge, whose transient
-  // size
-  // (~200 bytes per face) would outgrow the map itself on a big mesh and grow the wasm heap for good.
   VertexVectorMap map;
   map.numVertices = t.numVertices;
-  map.coefficient.assign(6 * static_cast<size_t>(t.numEdges), 0.0);
-  const auto add = [&](int32_t v, int32_t e, const Eigen::Vector3d& u) {
-    double* a = &map.coefficient[6 * static_cast<size_t>(e) + (v == t.edgeVertices[2 * e] ? 0 : 3)];
-    for (int d = 0; d < 3; ++d) a[d] += u[d];
-  };
-  for (int32_t f = 0; f < t.numFaces; ++f) {
-    Eigen::Vector3d p[3], grad[3];
-    facePositions(mesh, f, p);
-    barycentricGradients(p, grad);
-    for (int k = 0; k < 3; ++k) {
-      // Corner k: Eq. 4 at lambda_k = 1 is c_k grad(lambda_{k+1}) - c_{k+2} grad(lambda_{k+2}) (the summand
-      // of Eq. 5), c_k = sign * oneForm.
-      const int32_t v = mesh.triangles[3 * f + k];
-      if (!(weight[v] > 0)) continue;
-      const double w = g.cornerArea[3 * f + k] / weight[v];
-      const int in = (k + 2) % 3;
-      add(v, t.edgeOf(f, k), (w * t.signOf(f, k)) * grad[(k + 1) % 3]);
-      add(v, t.edgeOf(f, in), (-w * t.signOf(f, in)) * grad[in]);
-    }
-  }
+  map.inverseArea.assign(t.numVertices, 0.0);
+  for (int32_t f = 0; f < t.numFaces; ++f)
+    for (int k = 0; k < 3; ++k) map.inverseArea[mesh.triangles[3 * f + k]] += g.cornerArea[3 * f + k];
+  for (double& w : map.inverseArea) w = w > 0 ? 1.0 / w : 0.0;
   return map;
 }
 
-void vertexVectors(const VertexVectorMap& map, const MeshTopology& t, const double* oneForm,
+void vertexVectors(const VertexVectorMap& map, const FaceVectorMap& faces, const SurfaceMesh& mesh,
+                   const MeshTopology& t, const MeshGeometry& g, const double* oneForm,
                    std::vector<double>& out) {
   out.assign(3 * static_cast<size_t>(map.numVertices), 0.0);
-  const size_t numEdges = map.coefficient.size() / 6;
-  for (size_t e = 0; e < numEdges; ++e) {
-    const double c = oneForm[e];
-    const double* a = &map.coefficient[6 * e];
-    for (int end = 0; end < 2; ++end) {
-      double* o = &out[3 * static_cast<size_t>(t.edgeVertices[2 * e + end])];
-      for (int d = 0; d < 3; ++d) o[d] += c * a[3 * end + d];
+  for (int32_t f = 0; f < t.numFaces; ++f) {
+    // The face map's vector for edge k is s_k (grad_{k+1} - grad_k) / 3 (faceVectorMap: Eq. 4 at the
+    // barycentre), so D_k = 3 s_k a_k = grad_{k+1} - grad_k, and with the gradients summing to zero,
+    // grad_k = -(2 D_k + D_{k+1}) / 3.
+    const double* a = &faces.coefficient[9 * static_cast<size_t>(f)];
+    double D[3][3], grad[3][3], c[3];
+    for (int k = 0; k < 3; ++k) {
+      const double s = t.signOf(f, k);
+      for (int d = 0; d < 3; ++d) D[k][d] = 3.0 * s * a[3 * k + d];
+      c[k] = s * oneForm[t.edgeOf(f, k)];
+    }
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d) grad[k][d] = -(2.0 * D[k][d] + D[(k + 1) % 3][d]) / 3.0;
+    for (int k = 0; k < 3; ++k) {
+      // Corner k: Eq. 4 at lambda_k = 1 is c_k grad(lambda_{k+1}) - c_{k+2} grad(lambda_{k+2}) (the summand
+      // of Eq. 5), weighted by the corner's share of its vertex's area.
+      const int32_t v = mesh.triangles[3 * f + k];
+      const double w = g.cornerArea[3 * f + k] * map.inverseArea[v];
+      if (w == 0) continue;
+      const int next = (k + 1) % 3, in = (k + 2) % 3;
+      double* o = &out[3 * static_cast<size_t>(v)];
+      for (int d = 0; d < 3; ++d) o[d] += w * (c[k] * grad[next][d] - c[in] * grad[in][d]);
     }
   }
 }

@@ -33,18 +33,19 @@ void faceVectors(const FaceVectorMap& map, const MeshTopology& topology, const d
 void vertexVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& geometry,
                    const double* oneForm, std::vector<double>& out);
 
-// Eq. 5 as the linear map it is: vertex v's vector is a sum over the edges at v of the edge's 1-form value
-// times a 3-vector that depends on the geometry only. Built once per mesh, applying it reads each edge value
-// once and does no geometry (the interactive loop derives vertex vectors after every edit). The edges' ends
-// are the topology's, not copied (a map is 48 bytes per edge already).
+// Eq. 5 from the face map: each corner's Whitney vector is a combination of its face's barycentric
+// gradients, which the face map's three vectors determine (they are differences of them, and the gradients
+// sum to zero), weighted by the corner's area over its vertex's total. Per mesh only the totals are kept: a
+// map of its own (6 doubles per edge) was 60 MB at 1.25M edges, and grew the wasm heap past its peak.
 struct VertexVectorMap {
   int32_t numVertices = 0;
-  std::vector<double> coefficient;  // 6 per edge: the 3-vector for its first vertex, then for its second
-  bool empty() const { return coefficient.empty() && numVertices == 0; }
+  std::vector<double> inverseArea;  // per vertex: 1 / the sum of its corner areas (0 where that is not > 0)
+  bool empty() const { return inverseArea.empty() && numVertices == 0; }
 };
 VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& topology,
                                 const MeshGeometry& geometry);
-void vertexVectors(const VertexVectorMap& map, const MeshTopology& topology, const double* oneForm,
+void vertexVectors(const VertexVectorMap& map, const FaceVectorMap& faces, const SurfaceMesh& mesh,
+                   const MeshTopology& topology, const MeshGeometry& geometry, const double* oneForm,
                    std::vector<double>& out);
 // Texture-domain vectors at barycentres (2 per face); empty when the mesh has no UVs.
 void textureFaceVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,

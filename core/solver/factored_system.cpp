@@ -128,14 +128,6 @@ struct FactoredSystem::Impl {
   int32_t numVertices = 0;
   bool usedDissection = false;  // the mesh's dissection ordered the last analysis
 
-  // The updates' workspace (up to 8 columns of n doubles, 80 MB at 1.25M edges), allocated right after the
-  // conversion, into the room it freed, rather than at the first edit, when that room has gone to the solve's
-  // vectors and the wasm heap would have to grow for it (2.04 -> 2.00 GB at 1.25M edges).
-  void allocateUpdateWorkspace() {
-    const size_t size = static_cast<size_t>(n);
-    cholmod_allocate_work(size, size, cholmod_maxrank(size, common.get()) * size, common.get());
-  }
-
   explicit Impl(FillOrdering o) : ordering(o) {
     backward.setParts(threads);
     chooseOrdering(*common.get(), o);
@@ -344,8 +336,10 @@ bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<do
     if (s.bySupernodes()) s.backward.prepare(*s.factor);
   }
   // The factorization's workspace (the supernodal update matrices among it) would stay in the common object.
+  // The updates' workspace (up to 8 columns of n doubles, 80 MB at 1.25M edges) is allocated by the first
+  // update: by then the room the conversion freed has its place (measured at 1.25M edges: the wasm heap peaks
+  // at 1.87 GB, where allocating it here, ahead of the first field's read-outs, left it at 1.97 GB).
   cholmod_free_work(s.common.get());
-  if (ok) s.allocateUpdateWorkspace();
   s.timings.convertMs = msSince(start);
   const int* perm = static_cast<const int*>(s.factor->Perm);
   s.inversePerm.resize(s.n);

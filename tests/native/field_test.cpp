@@ -54,7 +54,7 @@ TEST(Reconstruction, PrecomputedMapsAreEquations4And5) {
         weight[v] += g.cornerArea[3 * f + k];
       }
     std::vector<double> vertexField;
-    vertexVectors(vertexVectorMap(m, t, g), t, c.data(), vertexField);
+    vertexVectors(vertexVectorMap(m, t, g), faceVectorMap(m, t), m, t, g, c.data(), vertexField);
     ASSERT_EQ(vertexField.size(), 3 * static_cast<size_t>(t.numVertices));
     double largest = 0, error = 0;
     for (int v = 0; v < t.numVertices; ++v) {
