@@ -53,7 +53,8 @@ async function inlineGltfBuffers(bytes, name, fetchBuffer) {
 
 // src: URL string | URL | ArrayBuffer | ArrayBufferView | Blob/File. opts: {name, format, companions: File[]}.
 // offThread(source): reads a URL (absolute) or a Blob on another thread → {bytes, copy, digest} (core-proxy.js
-// readBytesOffThread), or null when it cannot; then this thread reads it.
+// readBytesOffThread), or null when it cannot; then this thread reads it. Used for files of OFF_THREAD_BYTES
+// and more.
 // Returns {bytes: Uint8Array, format, name, digest (documents.js modelKey's) and copy (a second copy of the
 // bytes, for the core), when made elsewhere, thread ('worker' | 'page': where the bytes were read)}.
 export async function readModel(src, opts = {}, offThread = async () => null) {
@@ -61,7 +62,7 @@ export async function readModel(src, opts = {}, offThread = async () => null) {
   if (typeof src === 'string' || src instanceof URL) {
     const url = new URL(src, document.baseURI);
     name ||= baseName(url.pathname);
-    ({ bytes, copy, digest } = (await offThread(url.href)) ?? { bytes: await fetchHere(url) });
+    ({ bytes, copy, digest } = await fetchModel(url, offThread));
     thread = digest ? 'worker' : 'page';
     fetchBuffer = async (uri) => {
       const r = await fetch(new URL(uri, url)).catch(() => null);
@@ -69,7 +70,8 @@ export async function readModel(src, opts = {}, offThread = async () => null) {
     };
   } else if (typeof Blob !== 'undefined' && src instanceof Blob) {
     name ||= src.name || '';
-    ({ bytes, copy, digest } = (await offThread(src)) ?? { bytes: new Uint8Array(await src.arrayBuffer()) });
+    const elsewhere = src.size >= OFF_THREAD_BYTES ? await offThread(src) : null;
+    ({ bytes, copy, digest } = elsewhere ?? { bytes: new Uint8Array(await src.arrayBuffer()) });
     thread = digest ? 'worker' : 'page';
     const companions = opts.companions || [];
     fetchBuffer = async (uri) => {
@@ -94,14 +96,27 @@ export async function readModel(src, opts = {}, offThread = async () => null) {
   return { bytes, format, name: name || 'model', digest, copy, thread };
 }
 
-// The same messages as the worker's read (core/model-bytes.js).
-async function fetchHere(url) {
+// Files from this size on are read on a worker (a 33 MB body read here blocked the page for up to a second);
+// smaller ones here, where a worker's start would cost more than the read (bunny00's 2.6 MB: ~0.5 s more).
+const OFF_THREAD_BYTES = 4 << 20;
+
+// The page fetches and looks at the size: a big body is left to the worker (the request is aborted once its
+// headers are in, and made again there), a small one read here. The same messages as the worker's read
+// (core/model-bytes.js).
+async function fetchModel(url, offThread) {
+  const abort = new AbortController();
   let res;
   try {
-    res = await fetch(url);
+    res = await fetch(url, { signal: abort.signal });
   } catch (err) {
     throw new Error(`could not fetch ${url.href}: ${err.message}`);
   }
   if (!res.ok) throw new Error(`could not fetch ${url.href}: HTTP ${res.status} ${res.statusText}`.trim());
-  return new Uint8Array(await res.arrayBuffer());
+  if (Number(res.headers.get('content-length')) >= OFF_THREAD_BYTES) {
+    abort.abort();
+    const elsewhere = await offThread(url.href);
+    if (elsewhere) return elsewhere;
+    res = await fetch(url);
+  }
+  return { bytes: new Uint8Array(await res.arrayBuffer()) };
 }
