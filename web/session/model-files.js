@@ -105,18 +105,23 @@ const OFF_THREAD_BYTES = 4 << 20;
 // (core/model-bytes.js).
 async function fetchModel(url, offThread) {
   const abort = new AbortController();
-  let res;
-  try {
-    res = await fetch(url, { signal: abort.signal });
-  } catch (err) {
-    throw new Error(`could not fetch ${url.href}: ${err.message}`);
-  }
-  if (!res.ok) throw new Error(`could not fetch ${url.href}: HTTP ${res.status} ${res.statusText}`.trim());
+  let res = await fetchChecked(url, abort.signal);
   if (Number(res.headers.get('content-length')) >= OFF_THREAD_BYTES) {
     abort.abort();
     const elsewhere = await offThread(url.href);
     if (elsewhere) return elsewhere;
-    res = await fetch(url);
+    res = await fetchChecked(url);
   }
   return { bytes: new Uint8Array(await res.arrayBuffer()) };
+}
+
+async function fetchChecked(url, signal) {
+  let res;
+  try {
+    res = await fetch(url, { signal });
+  } catch (err) {
+    throw new Error(`could not fetch ${url.href}: ${err.message}`);
+  }
+  if (!res.ok) throw new Error(`could not fetch ${url.href}: HTTP ${res.status} ${res.statusText}`.trim());
+  return res;
 }

@@ -1,8 +1,8 @@
 // The correspondence between a big (fine) mesh and its coarse stand-in (coarse-mesh.js), built once per model
 // in the preview worker: every fine vertex and face centre gets the closest point of the coarse surface (a
 // coarse face and barycentric coordinates). Through it a design made on the fine mesh is posed on the coarse
-// one (designOnCoarse, specOnCoarse) and the coarse field is carried back to every fine face, vertex and edge
-// (fieldOnFine), so the page draws a preview on the mesh it shows.
+// one (designOnCoarse, specOnCoarse) and the coarse field is carried back to every fine vertex (and face, for
+// an N-field's representatives) (fieldOnFine), so the page draws a preview on the mesh it shows.
 //
 // The closest point is searched near where it must be: the coarse vertices are fine vertices, so a breadth-first
 // search over the fine faces' sides from all of them names, for each fine vertex, the nearest kept vertex, whose
@@ -12,8 +12,8 @@
 import { faceGeometry, vertexNormals } from '../../geometry/mesh-geometry.js';
 
 export class SurfaceMap {
-  // fine: {positions, triangles} (Float64Array, Int32Array) and, by the time fieldOnFine is called, edges
-  // (Int32Array, 2 per edge: the fine one-form's order); coarse: {positions, triangles, fineVertex} (coarse-mesh.js).
+  // fine: {positions, triangles} (Float64Array, Int32Array); coarse: {positions, triangles, fineVertex}
+  // (coarse-mesh.js).
   constructor(fine, coarse) {
     this.fine = fine;
     this.coarse = coarse;
