@@ -59,6 +59,16 @@ const median = (v) => {
   return s.length === 0 ? null : s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
 };
 
+// A CPU profile of the page's main thread from now until stop(), written to file (nothing when file is null).
+async function startProfile(page, file) {
+  if (!file) return { stop: async () => {} };
+  const cdp = await page.context().newCDPSession(page);
+  await cdp.send('Profiler.enable');
+  await cdp.send('Profiler.setSamplingInterval', { interval: 100 });
+  await cdp.send('Profiler.start');
+  return { stop: async () => writeFileSync(file, JSON.stringify((await cdp.send('Profiler.stop')).profile)) };
+}
+
 async function strokeBench(page, meshPath) {
   const count = Number(arg('--strokes', 15));
   const crossings = Number(arg('--crossings', 50));
@@ -75,13 +85,7 @@ async function strokeBench(page, meshPath) {
   await page.goto(`http://127.0.0.1:${port}/`);
   await page.evaluate(() => window.tvf.ready);
   // --profile-load FILE: a CPU profile of the page's main thread over the load (.cpuprofile, for DevTools).
-  const loadProfileFile = arg('--profile-load', null);
-  const loadCdp = loadProfileFile ? await page.context().newCDPSession(page) : null;
-  if (loadCdp) {
-    await loadCdp.send('Profiler.enable');
-    await loadCdp.send('Profiler.setSamplingInterval', { interval: 100 });
-    await loadCdp.send('Profiler.start');
-  }
+  const loadProfile = await startProfile(page, arg('--profile-load', null));
   const load = await page.evaluate(async ({ url, previewEdges }) => {
     window.__longTasks.length = 0; // the page's own start is not the model's
     const t0 = performance.now();
@@ -95,18 +99,12 @@ async function strokeBench(page, meshPath) {
     if (firstStats.preview) await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
     return { t0, info, phases, modelRead, previewTimings, loadMs: performance.now() - t0, firstFieldMs, exactFieldMs: performance.now() - t0, preview: firstStats.preview, previewFaces: firstStats.previewFaces ?? null, previewStats: firstStats };
   }, { url: `/bench-mesh/${name}`, previewEdges: arg('--preview-edges', null) == null ? null : Number(arg('--preview-edges')) });
-  if (loadCdp) writeFileSync(loadProfileFile, JSON.stringify((await loadCdp.send('Profiler.stop')).profile));
+  await loadProfile.stop();
   const loadTasks = await page.evaluate(() => window.__longTasks.splice(0));
   const starts = Array.from({ length: count }, (_, s) => (s * 104729 + 7) % load.info.faces); // spread over the mesh
   const strokes = await page.evaluate(stripStrokesInPage, { starts, crossings });
   // --profile FILE: a CPU profile of the page's main thread over the strokes (.cpuprofile, for DevTools).
-  const profileFile = arg('--profile', null);
-  const cdp = profileFile ? await page.context().newCDPSession(page) : null;
-  if (cdp) {
-    await cdp.send('Profiler.enable');
-    await cdp.send('Profiler.setSamplingInterval', { interval: 100 });
-    await cdp.send('Profiler.start');
-  }
+  const strokesProfile = await startProfile(page, arg('--profile', null));
   const runs = [];
   for (const points of strokes) {
     runs.push(await page.evaluate(async (pts) => {
@@ -128,7 +126,7 @@ async function strokeBench(page, meshPath) {
       return { pageMs, exactMs, preview, lastOp, refresh, stats };
     }, points));
   }
-  if (cdp) writeFileSync(profileFile, JSON.stringify((await cdp.send('Profiler.stop')).profile));
+  await strokesProfile.stop();
   const pick = (f) => median(runs.map(f));
   const m = {
     updateMs: pick((r) => r.stats.updateMs),
