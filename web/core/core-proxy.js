@@ -27,8 +27,8 @@ export async function workerUrl(assetBase) {
 
 // A model file's bytes read on a worker thread (model-bytes.js says why). source: an absolute URL string or a
 // Blob; assetBase: the folder of core-worker.js. Resolves with {bytes, copy (Uint8Arrays: the same bytes
-// twice), digest (model-bytes.js fnv1a)}, or null when no worker could be started (the caller reads on its own thread then); a read that
-// fails rejects with the worker's message.
+// twice), digest (model-bytes.js fnv1a)}, or null when no worker could be started (the caller reads on its
+// own thread then); a read that fails rejects with the worker's message.
 export async function readBytesOffThread(assetBase, source) {
   let worker, revoke = () => {};
   try {

@@ -93,10 +93,10 @@ export class Preview {
 
   // The reply to a mutating op (core-worker.js's snapshot, in fine terms): the preview field on the fine
   // mesh, the coarse core's stats marked `preview`, the fine specs of the constraints the op set (`changed`:
-  // core ids, as core-worker.js's snapshot takes them; null: the whole fine document). A negative version: the exact
-  // worker's read-outs (streamlines, Hodge parts) are never asked for a preview's field. The field goes as its
-  // vertex vectors (and an N-field's face representatives, which the views need): the page derives the face
-  // vectors and the one-form when read (geometry/vertex-field.js, session.fieldArray).
+  // core ids, as core-worker.js's snapshot takes them; null: the whole fine document). A negative version:
+  // the exact worker's read-outs (streamlines, Hodge parts) are never asked for a preview's field. The field
+  // goes as its vertex vectors (and an N-field's face representatives, which the views need): the page derives
+  // the face vectors and the one-form when read (geometry/vertex-field.js, session.fieldArray).
   snapshot(spares, timing, changed = null) {
     const t0 = performance.now();
     const c = this.core;
