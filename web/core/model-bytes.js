@@ -1,6 +1,6 @@
 // A model file's bytes, read on a worker thread. Chromium consumes a response body or a file on the thread
 // that asked for it: a 33 MB scan fetched on the page blocked its thread for 0.6–1.0 s in one task, and the
-// autosave key's digest of the bytes took ~50 ms more. A throwaway worker running core-worker.js (never
+// autosave key's digest of the bytes took 41–49 ms more (node). A throwaway worker running core-worker.js (never
 // initialized: no core, no wasm) reads the URL or the Blob, digests the bytes and hands them over.
 //
 // Worker side: readOps (core-worker.js); the page's side is core-proxy.js readBytesOffThread. fnv1a is the
@@ -14,7 +14,8 @@ export function fnv1a(bytes) {
 
 // The worker's op. source: an absolute URL (string) or a Blob. Resolves with {bytes, copy (ArrayBuffers: the
 // page keeps one and hands the other to the core, and the copy is made here: 33 MB took the page's thread
-// ~150 ms), digest}; a URL that cannot be fetched fails with the message the page's own fetch would give.
+// ~180 ms in a profile of the page, 119 ms under node), digest}; a URL that cannot be fetched fails with the
+// message the page's own fetch would give.
 export function readOps(Transfer) {
   return {
     async readBytes(source) {

@@ -110,8 +110,8 @@ export class Preview {
     const t1 = performance.now();
     timing.transferMs = this.timings.transferMs = t1 - t0;
     const ids = c.constraintIds();
-    // Each op's own entries rather than the whole document: re-reading it took ~25 ms per stroke in the worker
-    // and as much on the page once a design holds a few dozen strokes.
+    // Each op's own entries rather than the whole document, which the worker re-read and the page re-applied
+    // after every edit, at a cost growing with the design.
     const design = changed
       ? { ids, changed: changed.filter((id) => ids.includes(id)).map((id) => [id, this.fineSpecs.get(id)]) }
       : { ids, document: this.fineDocument(ids) };
