@@ -138,6 +138,11 @@ struct FactoredSystem::Impl {
     // (docs/method.md).
     std::fill(std::begin(common->zrelax), std::end(common->zrelax), 0.0);
     common->final_asis = 1;
+    // Updates take the columns two at a time: their workspace is maxrank columns of n doubles, which for
+    // CHOLMOD's default 8 (80 MB at 1.25M edges) found no room left after the conversion and grew the heap to
+    // 1.87 GB; at 2 it peaks at 1.79 GB (bench:web). A stroke's update measured 122-140 ms at 8, 134-161 ms
+    // at 2 in the page on this noisy 2-core machine.
+    common->maxrank = 2;
     common->print = 0;
     common->error_handler = nullptr;
   }
@@ -336,8 +341,8 @@ bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<do
     if (s.bySupernodes()) s.backward.prepare(*s.factor);
   }
   // The factorization's workspace (the supernodal update matrices among it) would stay in the common object.
-  // The updates' workspace (up to 8 columns of n doubles, 80 MB at 1.25M edges) is allocated by the first
-  // update: by then the room the conversion freed has its place (measured at 1.25M edges: the wasm heap peaks
+  // The updates' workspace (maxrank columns of n doubles, see Impl) is allocated by the first update: by then
+  // the room the conversion freed has its place (measured at 1.25M edges with 8 columns: the wasm heap peaked
   // at 1.87 GB, where allocating it here, ahead of the first field's read-outs, left it at 1.97 GB).
   cholmod_free_work(s.common.get());
   s.timings.convertMs = msSince(start);

@@ -123,8 +123,10 @@ export class Designer {
       this.viewSync.modelChanged(model);
       this.synthesis.modelChanged(); // the model's UVs and a fresh atlas for the new mesh
     });
-    s.on('change', (detail) => {
-      this.viewSync.refresh(detail);
+    // A big model's mesh goes to the GPU ahead of its field; perf().meshUploads counts the tasks it took.
+    s.on('surface', (staged) => (staged.ready = this.viewer.stageMesh(staged.surface).then((n) => (s.perf.meshUploads = n))));
+    s.on('change', () => {
+      this.viewSync.refresh();
       this.onSettings(s.settings());
     });
     s.on('fieldchange', () => this.exports.fieldChanged());

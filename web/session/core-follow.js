@@ -12,10 +12,12 @@ export function awaitExact(s) {
 // The exact core has caught up with every edit: its field replaces the preview.
 export function exactLanded(s, snapshot) {
   if (s.disposed) return;
+  // A model's reply waiting for its mesh's uploads (model-loader.js) is adopted first.
+  if (s.models.adopting) return void s.models.adopting.then(() => exactLanded(s, snapshot));
   s.applySnapshot(snapshot);
   s.perf.exactLandedAt = performance.now();
   s.models.previous = null;
-  s.changed({ background: true });
+  s.changed();
   s.emitChanges();
 }
 
@@ -23,6 +25,7 @@ export function exactLanded(s, snapshot) {
 // core holds (a load that failed keeps the previous model: model-loader.js).
 export function exactFailed(s, err, op, caughtUp) {
   if (s.disposed) return;
+  if (s.models.adopting) return void s.models.adopting.then(() => exactFailed(s, err, op, caughtUp));
   s.core.dropPreview();
   if (op === 'loadMesh') return void s.models.exactLoadFailed(err);
   if (caughtUp && err.reply?.snapshot) {

@@ -12,16 +12,22 @@ import { readBytesOffThread } from '../core/core-proxy.js';
 // The progress label through a load's phases (core-worker.js loadMesh's progress, progressive-core.js): a big
 // model is read, previewed while the exact factorization starts, then factored; a small one read and factored.
 const LOAD_PHASE_LABELS = {
-  opened: (p) => `Reading done; a preview of ${p.info.faces.toLocaleString('en')} faces on a coarse mesh…`,
+  opened: (p) => `Reading done; a preview of ${grouped(p.info.faces)} faces on a coarse mesh…`,
   factoring: 'Factoring…',
   previewSolved: 'Drawing the preview…',
 };
+
+// 832000 → "832,000". Not toLocaleString: its first call loads the locale's data, a 72 ms task in the middle
+// of a big model's load (a profile of the page).
+const grouped = (n) => String(n).replace(/\B(?=(\d{3})+(?!\d))/g, ',');
 
 export class ModelLoader {
   constructor(session) {
     this.session = session;
     this.loadsPending = 0; // model loads asked for and not finished
     this.warmedUp = false;
+    this.staged = null; // {arrays, surface, ready}: the Surface of a big model's mesh sent ahead (#phase)
+    this.adopting = null; // while a reply waits for its mesh's uploads: the promise it waits on
   }
 
   load(src, opts = {}) {
@@ -57,7 +63,17 @@ export class ModelLoader {
           throw s.fail('model', new Error(`Could not load ${model.name}: ${err.message.replace(/^load: /, '')}`));
         }
         const { info, settingsError, restoreError, embeddedDesign, cornerUVs } = reply.value;
-        const surface = Surface.fromArrays(reply.value.surface);
+        let staged = this.staged;
+        this.staged = null;
+        if (staged?.arrays !== reply.value.surface) staged = null;
+        // The mesh's buffers reach the GPU in tasks of their own, not in the adoption's (at 832k faces ~150 ms
+        // of uploads in one task; the field waits for them instead).
+        if (staged?.ready) {
+          this.adopting = staged.ready;
+          await staged.ready;
+          this.adopting = null;
+        }
+        const surface = staged?.surface ?? Surface.fromArrays(reply.value.surface);
         this.previous = reply.snapshot?.stats?.preview ? previous : null;
         s.adoptModel({ model, key, source: { bytes: model.bytes, format: model.format }, info, surface, cornerUVs });
         s.perf.loadPhases.adopted = performance.now();
@@ -80,7 +96,13 @@ export class ModelLoader {
   #phase(p) {
     const s = this.session;
     (s.perf.loadPhases ??= {})[p.phase] = performance.now();
-    if (p.phase === 'opened') s.flash(`Opening a big mesh (${p.info.faces.toLocaleString('en')} faces): a preview first, the exact field follows.`, 4000);
+    // A big model's mesh comes ahead of its field: the views take it on in tasks of their own ('surface': a
+    // listener may set `ready`, a promise its adoption waits for), and its adoption uses the same Surface.
+    if (p.phase === 'surface') {
+      this.staged = { arrays: p.surface, surface: Surface.fromArrays(p.surface), ready: null };
+      s.emit('surface', this.staged);
+    }
+    if (p.phase === 'opened') s.flash(`Opening a big mesh (${grouped(p.info.faces)} faces): a preview first, the exact field follows.`, 4000);
     // While a preview is made, the exact worker's factoring is not what the page waits for.
     const label = p.phase === 'factoring' && s.perf.loadPhases?.opened ? null : LOAD_PHASE_LABELS[p.phase];
     if (label) s.emit('busy', { op: 'loadMesh', phase: typeof label === 'function' ? label(p) : label });

@@ -26,6 +26,7 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { MeshBVH, acceleratedRaycast } from 'three-mesh-bvh';
 import { adoptBVH } from '../geometry/mesh-bvh-transfer.js';
 import { ArrowsView } from './arrows-view.js';
+import { MeshStaging } from './mesh-staging.js';
 import { frameModel, refitToAspect } from './camera.js';
 import { viridis } from './colormap.js';
 import { magnitudeScale } from '../geometry/magnitudes.js';
@@ -93,6 +94,7 @@ export class Viewer {
     this.handles = new HandlesView(this.scene, this.labels);
     this.lic = new LicView();
     this.afterRender = []; // callbacks (time) → void, run once after the next render
+    this.staging = new MeshStaging(this.renderer, this.camera);
     this.renderCount = 0; // frames drawn, for measuring responsiveness while the worker is busy
 
     this._renderQueued = false;
@@ -112,6 +114,7 @@ export class Viewer {
     this.controls.dispose();
     this.clearStroke();
     this.#disposeMesh();
+    this.staging.dispose();
     this.scene.traverse((o) => {
       o.geometry?.dispose();
       for (const m of [o.material].flat()) m?.dispose();
@@ -179,28 +182,7 @@ export class Viewer {
     this.clearStroke();
     this.#disposeMesh();
     this.surface = surface;
-    const { bvh = null, float32 = null } = surface;
-    const positions = bvh?.positions ?? float32?.positions ?? new Float32Array(surface.positions);
-    const normals = float32?.normals ?? new Float32Array(surface.vertexNormals);
-    const index = bvh?.index ?? float32?.index ?? new Uint32Array(surface.triangles);
-    const geom = new BufferGeometry();
-    geom.setAttribute('position', new BufferAttribute(positions, 3));
-    geom.setAttribute('normal', new BufferAttribute(normals, 3));
-    // The worker's all-white colours are handed over, not shared: setVertexField paints into them, and a later
-    // setMesh of the same Surface (a re-attached element) must start white again. Bytes, normalized: a quarter
-    // of the upload after each field change (5 → 1.25 MB at 416k vertices).
-    const colors = float32?.colors ?? new Uint8Array(positions.length).fill(255);
-    if (float32) float32.colors = null;
-    geom.setAttribute('color', new BufferAttribute(colors, 3, true));
-    geom.setIndex(new BufferAttribute(index, 1));
-    if (bvh) adoptBVH(geom, bvh); // also sets the bounding sphere the worker computed
-    else {
-      geom.computeBoundingSphere();
-      // indirect: the default build reorders the index buffer, and then hit.faceIndex no longer names the
-      // core's face. Indirect mode leaves the triangles in place and reports original indices.
-      geom.boundsTree = new MeshBVH(geom, { indirect: true });
-    }
-
+    const geom = this.staging.take(surface) ?? meshGeometry(surface);
     const material = new MeshStandardMaterial({
       color: SURFACE_GREY,
       roughness: 0.65,
@@ -224,6 +206,15 @@ export class Viewer {
     this.requestRender();
   }
 
+  // A big model's mesh, ahead of its field (session 'surface'): its buffers go to the GPU in tasks of their own
+  // (mesh-staging.js), and setMesh of the same surface draws them; the arrows warm up on it in a task of their
+  // own. Resolves with the number of uploads when they are all made.
+  stageMesh(surface) {
+    const warmUp = () => this.staging.staged?.surface === surface && this.arrows.warmUp(surface);
+    const staged = this.staging.stage(surface, () => meshGeometry(surface));
+    return staged.then((uploads) => new Promise((resolve) => setTimeout(() => (warmUp(), resolve(uploads)), 0)));
+  }
+
   #disposeMesh() {
     if (!this.surfaceMesh) return;
     this.scene.remove(this.surfaceMesh);
@@ -232,6 +223,7 @@ export class Viewer {
     this.surfaceMesh.material.dispose();
     this.surfaceMesh = null;
   }
+
 
   // The normal of the face closest to a point (for direction cues drawn in the surface).
   #normalNear(x, y, z) {
@@ -353,4 +345,31 @@ export class Viewer {
     this.strokeBand = null;
     this.requestRender();
   }
+}
+
+// The surface's BufferGeometry: position, normal and colour per vertex, the core's triangles as the index, and
+// the bounds tree for picking.
+function meshGeometry(surface) {
+  const { bvh = null, float32 = null } = surface;
+  const positions = bvh?.positions ?? float32?.positions ?? new Float32Array(surface.positions);
+  const normals = float32?.normals ?? new Float32Array(surface.vertexNormals);
+  const index = bvh?.index ?? float32?.index ?? new Uint32Array(surface.triangles);
+  const geom = new BufferGeometry();
+  geom.setAttribute('position', new BufferAttribute(positions, 3));
+  geom.setAttribute('normal', new BufferAttribute(normals, 3));
+  // The worker's all-white colours are handed over, not shared: setVertexField paints into them, and a later
+  // setMesh of the same Surface (a re-attached element) must start white again. Bytes, normalized: a quarter
+  // of the upload after each field change (5 → 1.25 MB at 416k vertices).
+  const colors = float32?.colors ?? new Uint8Array(positions.length).fill(255);
+  if (float32) float32.colors = null;
+  geom.setAttribute('color', new BufferAttribute(colors, 3, true));
+  geom.setIndex(new BufferAttribute(index, 1));
+  if (bvh) adoptBVH(geom, bvh); // also sets the bounding sphere the worker computed
+  else {
+    geom.computeBoundingSphere();
+    // indirect: the default build reorders the index buffer, and then hit.faceIndex no longer names the
+    // core's face. Indirect mode leaves the triangles in place and reports original indices.
+    geom.boundsTree = new MeshBVH(geom, { indirect: true });
+  }
+  return geom;
 }
