@@ -63,10 +63,13 @@ export class ProgressiveCore {
     let opened, surfaced;
     const ahead = new Promise((resolve) => (opened = resolve));
     const surfaceSent = new Promise((resolve) => (surfaced = resolve));
-    // A file this large may well be past the threshold (binary formats take ≥ 8 bytes per edge): the preview
-    // worker starts now, beside the exact worker's reading, rather than after it. It warms up while the exact
-    // worker reads (preview/warm-up.js), and simplifies the mesh as soon as it is read (open-steps.js).
-    const early = previewEdges > 0 && args[0].byteLength >= 4 * previewEdges ? this.#startPreview(true) : null;
+    // A file this large may well be past the threshold (binary formats take ≥ 8 bytes per edge, OFF and OBJ
+    // text over 20): the preview worker starts now, beside the exact worker's reading, rather than after it. It
+    // warms up while the exact worker reads (preview/warm-up.js), and simplifies the mesh as soon as it is read
+    // (open-steps.js). A smaller model would only have its load share the cores with that warm-up (bunny00's
+    // 2.6 MB OFF, 113k edges).
+    const bytesPerEdge = ['off', 'obj'].includes(args[1]) ? 12 : 4;
+    const early = previewEdges > 0 && args[0].byteLength >= bytesPerEdge * previewEdges ? this.#startPreview(true) : null;
     let meshed = null;
     const prepare = (mesh) =>
       (meshed ??= (async () => {
