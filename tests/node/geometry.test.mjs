@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import test from 'node:test';
 import { grid, icosphere } from './fakes.mjs';
 import { Surface } from '../../web/geometry/surface.js';
-import { halfEdgeNeighbours } from '../../web/geometry/mesh-geometry.js';
+import { areaWeightedVertexNormals, faceGeometry, halfEdgeNeighbours, vertexNormals } from '../../web/geometry/mesh-geometry.js';
 import { torus } from '../../web/core/preview/warm-up.js';
 import { POISSON_PACKING, sampleSurface } from '../../web/geometry/arrow-sampling.js';
 import { traceStreamlines } from '../../web/geometry/streamlines.js';
@@ -76,6 +76,22 @@ function twinsByScan(T) {
   }
   return out;
 }
+
+test('vertex normals straight from the positions are the area-weighted face normals: radial on a sphere', () => {
+  const { positions, triangles } = icosphere(3);
+  const nV = positions.length / 3;
+  const { normals, areas } = faceGeometry(positions, triangles);
+  const byFaces = vertexNormals(triangles, nV, normals, areas);
+  const direct = areaWeightedVertexNormals(positions, triangles);
+  let worst = 0, radial = 1;
+  for (let v = 0; v < nV; v++) {
+    const n = direct.subarray(3 * v, 3 * v + 3), p = positions.subarray(3 * v, 3 * v + 3);
+    for (let k = 0; k < 3; k++) worst = Math.max(worst, Math.abs(n[k] - byFaces[3 * v + k]));
+    radial = Math.min(radial, (n[0] * p[0] + n[1] * p[1] + n[2] * p[2]) / Math.hypot(...p));
+  }
+  assert.ok(worst < 1e-12, `differ by ${worst}`);
+  assert.ok(radial > 0.999, `a vertex normal ${Math.acos(radial)} rad off the radius`);
+});
 
 test('half-edge twins: reversed on closed meshes, none on a boundary, pairs in face order on a non-manifold edge', () => {
   for (const m of [icosphere(1), torus(12, 6), grid(5)]) {

@@ -85,7 +85,7 @@ test('preview: the coarse mesh is a manifold on the fine vertices; the map is ex
   // corners' coarse faces, within a fine edge of the centre.
   let exact = 0, far = 0;
   for (let f = 0; f < nF; f++) {
-    const q = point(coarse.positions, coarse.triangles, map.faceFace[f], map.faceBary.subarray(3 * f, 3 * f + 3));
+    const q = point(coarse.positions, coarse.triangles, map.faceOnCoarse(f), map.faceBary.subarray(3 * f, 3 * f + 3));
     const c = point(fine.positions, fine.triangles, f, [1 / 3, 1 / 3, 1 / 3]);
     const d = Math.hypot(...q.map((x, k) => x - c[k]));
     if (d < 1e-9) exact++;

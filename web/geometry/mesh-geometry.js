@@ -80,6 +80,28 @@ export function vertexNormals(triangles, nV, normals, areas) {
   return out;
 }
 
+// The same normals as vertexNormals() straight from the positions (each face's cross product is twice its area
+// times its normal), without the face arrays: the preview's map needs only these (faceGeometry's three arrays
+// for 832k faces took it 0.3-0.5 s).
+export function areaWeightedVertexNormals(positions, triangles) {
+  const P = positions, T = triangles;
+  const out = new Float64Array(positions.length);
+  for (let f = 0; f < T.length / 3; f++) {
+    const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
+    const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
+    const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
+    const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
+    (out[a] += nx), (out[a + 1] += ny), (out[a + 2] += nz);
+    (out[b] += nx), (out[b + 1] += ny), (out[b + 2] += nz);
+    (out[c] += nx), (out[c + 1] += ny), (out[c + 2] += nz);
+  }
+  for (let v = 0; v < out.length; v += 3) {
+    const l = Math.hypot(out[v], out[v + 1], out[v + 2]) || 1;
+    (out[v] /= l), (out[v + 1] /= l), (out[v + 2] /= l);
+  }
+  return out;
+}
+
 // 2π less the corner angles around each vertex (meaningful on interior vertices), as the core's geometry.
 export function angleDefects(positions, triangles, nV) {
   const P = positions, T = triangles, nF = T.length / 3;

@@ -22,9 +22,9 @@ export class Surface {
   #geometry() {
     const P = this.positions, T = this.triangles, nF = this.nF;
     ({ normals: this.normals, areas: this.areas, centres: this.centres } = faceGeometry(P, T));
-    // Per-face 2D frame: origin at corner 0, x along edge 0→1, y = n × x; corners in that frame.
-    this.frames = new Float64Array(6 * nF); // e1 (3), e2 (3)
-    this.corners2d = new Float64Array(6 * nF); // (0,0), (bx,0), (cx,cy)
+    // Each face's 2D frame (origin at corner 0, x along edge 0→1, y = n × x) is made when asked for (#frame):
+    // two arrays of 6 doubles per face were 80 MB at 832k faces, whose first writes alone took the worker
+    // ~0.35 s on the way to a big model's first field (this VM's page faults: ~4 ms per fresh MB).
     let edgeSum = 0;
     const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
     for (let v = 0; v < this.nV; v++) {
@@ -33,22 +33,12 @@ export class Surface {
         hi[k] = Math.max(hi[k], P[3 * v + k]);
       }
     }
-    const N = this.normals, F = this.frames, C = this.corners2d;
     for (let f = 0; f < nF; f++) {
       const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
       const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
       const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
       const vx = P[c] - P[b], vy = P[c + 1] - P[b + 1], vz = P[c + 2] - P[b + 2];
-      const lu = Math.sqrt(ux * ux + uy * uy + uz * uz);
-      edgeSum += lu + Math.sqrt(wx * wx + wy * wy + wz * wz) + Math.sqrt(vx * vx + vy * vy + vz * vz);
-      const nx = N[3 * f], ny = N[3 * f + 1], nz = N[3 * f + 2];
-      const ex = lu > 0 ? ux / lu : 1, ey = lu > 0 ? uy / lu : 0, ez = lu > 0 ? uz / lu : 0;
-      // e2 = n × e1
-      const fx = ny * ez - nz * ey, fy = nz * ex - nx * ez, fz = nx * ey - ny * ex;
-      const o = 6 * f;
-      (F[o] = ex), (F[o + 1] = ey), (F[o + 2] = ez), (F[o + 3] = fx), (F[o + 4] = fy), (F[o + 5] = fz);
-      (C[o] = 0), (C[o + 1] = 0), (C[o + 2] = lu), (C[o + 3] = 0);
-      (C[o + 4] = wx * ex + wy * ey + wz * ez), (C[o + 5] = wx * fx + wy * fy + wz * fz);
+      edgeSum += Math.sqrt(ux * ux + uy * uy + uz * uz) + Math.sqrt(wx * wx + wy * wy + wz * wz) + Math.sqrt(vx * vx + vy * vy + vz * vz);
     }
     this.meanEdge = nF ? edgeSum / (3 * nF) : 1;
     // Running sums of the face areas: the arrows draw faces by area (arrow-sampling.js), after every zoom.
@@ -75,7 +65,7 @@ export class Surface {
     return out;
   }
 
-  static ARRAYS = ['positions', 'triangles', 'edges', 'normals', 'areas', 'centres', 'frames', 'corners2d', 'neighbour', 'vertexFaceStart', 'vertexFaces', 'vertexNormals', 'areaCdf'];
+  static ARRAYS = ['positions', 'triangles', 'edges', 'normals', 'areas', 'centres', 'neighbour', 'vertexFaceStart', 'vertexFaces', 'vertexNormals', 'areaCdf'];
 
   static fromArrays({ positions, triangles, edges, ...derived }) {
     return new Surface(positions, triangles, edges, derived);
@@ -115,35 +105,52 @@ export class Surface {
     return [0, 1, 2].map((k) => u * P[a + k] + v * P[b + k] + w * P[c + k]);
   }
 
+  // Face f's frame: e1 (unit, along edge 0→1) and e2 = n × e1 into F[0..5], and its corners' 2D coordinates
+  // (0, 0), (bx, 0), (cx, cy) as [bx, cx, cy] into C (scratch arrays, read at once by the callers).
+  #frame(f) {
+    const P = this.positions, T = this.triangles, N = this.normals;
+    const F = (this.frameScratch ??= new Float64Array(6)), C = (this.cornerScratch ??= new Float64Array(3));
+    const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
+    const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
+    const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
+    const lu = Math.sqrt(ux * ux + uy * uy + uz * uz);
+    const nx = N[3 * f], ny = N[3 * f + 1], nz = N[3 * f + 2];
+    const ex = lu > 0 ? ux / lu : 1, ey = lu > 0 ? uy / lu : 0, ez = lu > 0 ? uz / lu : 0;
+    const fx = ny * ez - nz * ey, fy = nz * ex - nx * ez, fz = nx * ey - ny * ex;
+    (F[0] = ex), (F[1] = ey), (F[2] = ez), (F[3] = fx), (F[4] = fy), (F[5] = fz);
+    (C[0] = lu), (C[1] = wx * ex + wy * ey + wz * ez), (C[2] = wx * fx + wy * fy + wz * fz);
+    return F;
+  }
+
   // 3D point → 2D in face f's frame (no projection check: the caller knows the point is in the plane).
   to2d(f, p) {
     const a = this.vertex(this.triangles[3 * f]);
-    const F = this.frames;
+    const F = this.#frame(f);
     const d = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
-    return [d[0] * F[6 * f] + d[1] * F[6 * f + 1] + d[2] * F[6 * f + 2], d[0] * F[6 * f + 3] + d[1] * F[6 * f + 4] + d[2] * F[6 * f + 5]];
+    return [d[0] * F[0] + d[1] * F[1] + d[2] * F[2], d[0] * F[3] + d[1] * F[4] + d[2] * F[5]];
   }
 
   to3d(f, [x, y]) {
     const a = this.vertex(this.triangles[3 * f]);
-    const F = this.frames;
-    return [0, 1, 2].map((k) => a[k] + x * F[6 * f + k] + y * F[6 * f + 3 + k]);
+    const F = this.#frame(f);
+    return [0, 1, 2].map((k) => a[k] + x * F[k] + y * F[3 + k]);
   }
 
   // 3D vector → 2D components in face f's frame (drops the normal part).
   vec2d(f, v) {
-    const F = this.frames;
-    return [v[0] * F[6 * f] + v[1] * F[6 * f + 1] + v[2] * F[6 * f + 2], v[0] * F[6 * f + 3] + v[1] * F[6 * f + 4] + v[2] * F[6 * f + 5]];
+    const F = this.#frame(f);
+    return [v[0] * F[0] + v[1] * F[1] + v[2] * F[2], v[0] * F[3] + v[1] * F[4] + v[2] * F[5]];
   }
 
   vec3d(f, [x, y]) {
-    const F = this.frames;
-    return [0, 1, 2].map((k) => x * F[6 * f + k] + y * F[6 * f + 3 + k]);
+    const F = this.#frame(f);
+    return [0, 1, 2].map((k) => x * F[k] + y * F[3 + k]);
   }
 
   // Barycentric coordinates of a 2D point in face f's frame (any point of the plane; may be negative).
   bary2d(f, [x, y]) {
-    const C = this.corners2d, o = 6 * f;
-    const bx = C[o + 2], cx = C[o + 4], cy = C[o + 5];
+    this.#frame(f);
+    const [bx, cx, cy] = this.cornerScratch;
     // Corner 0 at the origin, corner 1 on the x axis: solve p = v·B + w·C directly.
     const w = cy !== 0 ? y / cy : 0;
     const v = bx !== 0 ? (x - w * cx) / bx : 0;

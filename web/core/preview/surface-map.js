@@ -9,7 +9,7 @@
 // coarse faces are the candidates (a collapse moves a vertex by about one coarse edge).
 //
 // Owns the maps; imports geometry/mesh-geometry.js (the fine normals).
-import { faceGeometry, vertexNormals } from '../../geometry/mesh-geometry.js';
+import { areaWeightedVertexNormals, faceGeometry } from '../../geometry/mesh-geometry.js';
 
 export class SurfaceMap {
   // fine: {positions, triangles} (Float64Array, Int32Array); coarse: {positions, triangles, fineVertex}
@@ -35,10 +35,15 @@ export class SurfaceMap {
       for (let k = 0; k < 3; k++) p[k] = fine.positions[3 * v + k];
       this.#closest(p, this.#aroundInto(nearest[v], this.scratch), v, this.vertexFace, this.vertexBary);
     }
-    this.faceFace = new Int32Array(this.nF);
+    // The face centres' closest points are found when asked for (faceOnCoarse): a vector field's preview needs
+    // a few, for the constraints; all of them took 0.2 s of the first field at 832k faces.
+    this.faceFace = new Int32Array(this.nF).fill(-1);
     this.faceBary = new Float64Array(3 * this.nF);
-    for (let f = 0; f < this.nF; f++) if (!this.#insideOneFace(f)) this.#closestOfCorners(f, this.#fineCentre(f, p));
-    this.#fineNormals();
+    this.allFaces = false;
+    // The planes the carried field is laid into: the area-weighted vertex normals, and the fine faces' unit
+    // normals when a line or cross field needs them (faceNormals()).
+    this.vertexNormals = areaWeightedVertexNormals(fine.positions, fine.triangles);
+    this.faceNormalsCache = null;
   }
 
   #coarseFacesAround() {
@@ -176,12 +181,14 @@ export class SurfaceMap {
     }
   }
 
-  // The planes the carried field is laid into: the fine faces' unit normals and the area-weighted vertex normals.
-  #fineNormals() {
-    const { positions: P, triangles: T } = this.fine;
-    const { normals, areas } = faceGeometry(P, T);
-    this.faceNormals = normals;
-    this.vertexNormals = vertexNormals(T, this.nV, normals, areas);
+  // The coarse face under fine face f's centre (its coordinates in faceBary[3f..]), found the first time.
+  faceOnCoarse(f) {
+    if (this.faceFace[f] < 0 && !this.#insideOneFace(f)) this.#closestOfCorners(f, this.#fineCentre(f, [0, 0, 0]));
+    return this.faceFace[f];
+  }
+
+  faceNormals() {
+    return (this.faceNormalsCache ??= faceGeometry(this.fine.positions, this.fine.triangles).normals);
   }
 
   // ------------------------------------------------------------------------------------------ designs
@@ -191,7 +198,7 @@ export class SurfaceMap {
     const { positions: P, triangles: T } = this.fine;
     const p = [0, 0, 0];
     for (let j = 0; j < 3; j++) for (let k = 0; k < 3; k++) p[k] += bary[j] * P[3 * T[3 * face + j] + k];
-    const candidates = [this.faceFace[face], ...this.#candidatesOfFace(face, --this.query)];
+    const candidates = [this.faceOnCoarse(face), ...this.#candidatesOfFace(face, --this.query)];
     const out = { face: 0, bary: [1 / 3, 1 / 3, 1 / 3] };
     const b = [0, 0, 0];
     let best = Infinity;
@@ -225,7 +232,7 @@ export class SurfaceMap {
   specOnCoarse(spec) {
     const out = { ...spec };
     if (spec.points) out.points = this.#polylineOnCoarse(spec.points);
-    if (spec.type === 'vector' || spec.type === 'vortex') out.face = this.faceFace[spec.face];
+    if (spec.type === 'vector' || spec.type === 'vortex') out.face = this.faceOnCoarse(spec.face);
     if (spec.type === 'source' || spec.type === 'sink') out.vertex = this.#nearestCorner(spec.vertex);
     if (spec.type === 'edge') {
       const P = this.fine.positions, [i, j] = spec.edge;
@@ -262,7 +269,11 @@ export class SurfaceMap {
   fieldOnFine(coarseFaceVectors, coarseVertexVectors, symmetry, out) {
     const lines = symmetry > 1;
     const { faceVectors, vertexVectors } = out;
-    if (faceVectors) sampleInto(faceVectors, this.faceFace, this.faceBary, this.faceNormals, this.coarse.triangles, coarseFaceVectors, coarseVertexVectors, lines);
+    if (faceVectors) {
+      if (!this.allFaces) for (let f = 0; f < this.nF; f++) this.faceOnCoarse(f);
+      this.allFaces = true;
+      sampleInto(faceVectors, this.faceFace, this.faceBary, this.faceNormals(), this.coarse.triangles, coarseFaceVectors, coarseVertexVectors, lines);
+    }
     sampleInto(vertexVectors, this.vertexFace, this.vertexBary, this.vertexNormals, this.coarse.triangles, coarseFaceVectors, coarseVertexVectors, lines);
     return { faceVectors, vertexVectors };
   }
