@@ -36,10 +36,16 @@ export class MeshStaging {
       let steps = null, done = 0;
       const next = () => {
         if (this.staged !== staged) return resolve(done);
-        if (!steps) {
-          staged.geometry = build();
-          steps = this.#steps(staged.geometry);
-        } else steps.shift()(), done++;
+        try {
+          if (!steps) {
+            staged.geometry = build();
+            steps = this.#steps(staged.geometry);
+          } else steps.shift()(), done++;
+        } catch {
+          // The viewer's setMesh builds and uploads as it would without staging, and reports what fails there.
+          this.#drop();
+          return resolve(done);
+        }
         if (!steps.length) return resolve(done);
         setTimeout(next, 0);
       };
