@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import test from 'node:test';
 import { grid, icosphere } from './fakes.mjs';
 import { Surface } from '../../web/geometry/surface.js';
-import { areaWeightedVertexNormals, faceGeometry, halfEdgeNeighbours, vertexNormals } from '../../web/geometry/mesh-geometry.js';
+import { faceGeometry, halfEdgeNeighbours, vertexNormals } from '../../web/geometry/mesh-geometry.js';
 import { torus } from '../../web/core/preview/warm-up.js';
 import { POISSON_PACKING, sampleSurface } from '../../web/geometry/arrow-sampling.js';
 import { traceStreamlines } from '../../web/geometry/streamlines.js';
@@ -77,12 +77,20 @@ function twinsByScan(T) {
   return out;
 }
 
-test('vertex normals straight from the positions are the area-weighted face normals: radial on a sphere', () => {
+test('vertex normals are the area-weighted sums of the face normals around them: radial on a sphere', () => {
   const { positions, triangles } = icosphere(3);
   const nV = positions.length / 3;
   const { normals, areas } = faceGeometry(positions, triangles);
-  const byFaces = vertexNormals(triangles, nV, normals, areas);
-  const direct = areaWeightedVertexNormals(positions, triangles);
+  const byFaces = new Float64Array(3 * nV);
+  for (let t = 0; t < triangles.length; t++) {
+    const f = Math.floor(t / 3);
+    for (let k = 0; k < 3; k++) byFaces[3 * triangles[t] + k] += areas[f] * normals[3 * f + k];
+  }
+  for (let v = 0; v < nV; v++) {
+    const l = Math.hypot(byFaces[3 * v], byFaces[3 * v + 1], byFaces[3 * v + 2]);
+    for (let k = 0; k < 3; k++) byFaces[3 * v + k] /= l;
+  }
+  const direct = vertexNormals(positions, triangles);
   let worst = 0, radial = 1;
   for (let v = 0; v < nV; v++) {
     const n = direct.subarray(3 * v, 3 * v + 3), p = positions.subarray(3 * v, 3 * v + 3);

@@ -66,24 +66,10 @@ export function vertexFaceMap(triangles, nV) {
   return { start, faces };
 }
 
-// Area-weighted unit vertex normals.
-export function vertexNormals(triangles, nV, normals, areas) {
-  const out = new Float64Array(3 * nV);
-  for (let t = 0; t < triangles.length; t++) {
-    const f = Math.floor(t / 3), v = triangles[t];
-    for (let c = 0; c < 3; c++) out[3 * v + c] += areas[f] * normals[3 * f + c];
-  }
-  for (let v = 0; v < nV; v++) {
-    const l = Math.hypot(out[3 * v], out[3 * v + 1], out[3 * v + 2]) || 1;
-    for (let c = 0; c < 3; c++) out[3 * v + c] /= l;
-  }
-  return out;
-}
-
-// The same normals as vertexNormals() straight from the positions (each face's cross product is twice its area
-// times its normal), without the face arrays: the preview's map needs only these (faceGeometry's three arrays
-// for 832k faces took it 0.3-0.5 s).
-export function areaWeightedVertexNormals(positions, triangles) {
+// Area-weighted unit vertex normals, straight from the positions (each face's cross product is twice its area
+// times its normal): the preview's map needs no face arrays (faceGeometry's three for 832k faces took it
+// 0.3-0.5 s).
+export function vertexNormals(positions, triangles) {
   const P = positions, T = triangles;
   const out = new Float64Array(positions.length);
   for (let f = 0; f < T.length / 3; f++) {

@@ -54,7 +54,7 @@ export class Surface {
     this.neighbour = halfEdgeNeighbours(this.triangles, this.nV);
     ({ start: this.vertexFaceStart, faces: this.vertexFaces } = vertexFaceMap(this.triangles, this.nV));
     // For lifting markers off the surface.
-    this.vertexNormals = vertexNormals(this.triangles, this.nV, this.normals, this.areas);
+    this.vertexNormals = vertexNormals(this.positions, this.triangles);
   }
 
   // The per-mesh arrays, copied (the caller keeps its own Surface): the worker builds the Surface once per mesh

@@ -9,7 +9,7 @@
 // coarse faces are the candidates (a collapse moves a vertex by about one coarse edge).
 //
 // Owns the maps; imports geometry/mesh-geometry.js (the fine normals).
-import { areaWeightedVertexNormals, faceGeometry } from '../../geometry/mesh-geometry.js';
+import { faceGeometry, vertexNormals } from '../../geometry/mesh-geometry.js';
 
 export class SurfaceMap {
   // fine: {positions, triangles} (Float64Array, Int32Array); coarse: {positions, triangles, fineVertex}
@@ -42,7 +42,7 @@ export class SurfaceMap {
     this.allFaces = false;
     // The planes the carried field is laid into: the area-weighted vertex normals, and the fine faces' unit
     // normals when a line or cross field needs them (faceNormals()).
-    this.vertexNormals = areaWeightedVertexNormals(fine.positions, fine.triangles);
+    this.vertexNormals = vertexNormals(fine.positions, fine.triangles);
     this.faceNormalsCache = null;
   }
 
