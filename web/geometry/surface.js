@@ -110,6 +110,9 @@ export class Surface {
   #frame(f) {
     const P = this.positions, T = this.triangles, N = this.normals;
     const F = (this.frameScratch ??= new Float64Array(6)), C = (this.cornerScratch ??= new Float64Array(3));
+    // A walk asks for the same face's frame several times in a row (to2d, then bary2d twice per step).
+    if (this.frameFace === f) return F;
+    this.frameFace = f;
     const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
     const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
     const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];

@@ -145,9 +145,10 @@ export class Session extends Emitter {
   // replaced fields' arrays go back to the worker, which refills them instead of allocating (the views keep
   // nothing of a field but what they made of it; the read API hands out copies).
   // The exact field landing behind its preview is drawn at once too: a draw issued while the GPU process still
-  // rasterizes the preview's frame does not hold the page's thread (a million triangles in software GL: the
-  // strokes' longest task stays under 60 ms), and waiting for the next frame held the exact field back by a
-  // whole frame of that rasterization (1.9 s against 0.43 s to its draw, bench:web).
+  // rasterizes the preview's frame does not wait for it (the strokes' long tasks in a profile of a million
+  // triangles in software GL were garbage collections, not this draw), and waiting for the next frame held the
+  // exact field back by a whole frame of that rasterization (1.96 s against 0.38–0.52 s to its draw,
+  // bench:web).
   changed() {
     this.emit('change');
     for (const field of this.retired) {
