@@ -68,6 +68,11 @@ bool attempt(std::string& error, F&& f) {
   return false;
 }
 
+// A model's info report from what its Designer derived when it was made (no second check of the mesh).
+nlohmann::json designerInfo(const tvf::Designer& d) {
+  return tvf::meshInfoJson(d.mesh(), d.meshNotes(), &d.topology());
+}
+
 bool parseFormat(std::string name, const uint8_t* data, std::size_t size, tvf::MeshFormat& out) {
   for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (!name.empty() && name[0] == '.') name.erase(0, 1);
@@ -190,7 +195,7 @@ class DesignerBinding {
     return nlohmann::json{{"ok", false}, {"error", error}}.dump();
   }
   std::string pendingInfoJson() const {
-    return pending_ ? tvf::meshInfoJson(pending_->mesh()).dump() : "null";
+    return pending_ ? designerInfo(*pending_).dump() : "null";
   }
   std::string pendingDesignJson() const {
     return json([&] { return pending_ ? tvf::designDocument(*pending_) : nlohmann::json(); });
@@ -211,7 +216,7 @@ class DesignerBinding {
 
   std::string infoJson() const {
     std::string out, error;
-    if (!attempt(error, [&] { out = designer_ ? tvf::meshInfoJson(designer_->mesh()).dump() : tvf::meshInfoJson(tvf::SurfaceMesh{}).dump(); }))
+    if (!attempt(error, [&] { out = designer_ ? designerInfo(*designer_).dump() : tvf::meshInfoJson(tvf::SurfaceMesh{}).dump(); }))
       return "null";
     return out;
   }

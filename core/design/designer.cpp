@@ -41,6 +41,7 @@ std::vector<uint8_t> kernelEdges(const MeshTopology& topology) {
 struct Designer::Impl {
   SurfaceMesh mesh;
   MeshTopology topology;
+  std::vector<MeshProblem> meshNotes;  // the check's non-fatal problems
   MeshGeometry geometry;
   BoundaryCondition boundary;
   double gamma = 0;
@@ -232,6 +233,7 @@ Designer::Designer(SurfaceMesh mesh) {
   MeshReport report = checkMesh(mesh);
   if (!report.usable()) throw InputError(report.firstFatal());
   impl_ = std::make_unique<Impl>(std::move(mesh), std::move(*report.topology));
+  impl_->meshNotes = std::move(report.problems);
 }
 Designer::~Designer() = default;
 Designer::Designer(Designer&&) noexcept = default;
@@ -556,6 +558,10 @@ const SurfaceMesh& Designer::mesh() const {
 const std::vector<int32_t>& Designer::edgeVertices() const {
   return impl_->topology.edgeVertices;
 }
+const std::vector<MeshProblem>& Designer::meshNotes() const {
+  return impl_->meshNotes;
+}
+
 const MeshTopology& Designer::topology() const {
   return impl_->topology;
 }

@@ -16,6 +16,7 @@
 #include "dec/hodge_star.h"
 #include "field/hodge_decomposition.h"
 #include "field/singularities.h"
+#include "mesh/mesh_checks.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
 
@@ -136,6 +137,8 @@ class Designer {
   const std::vector<int32_t>& edgeVertices() const;  // 2 per edge, lower index first
   // Derived from the mesh once, at construction; exports and benchmarks read them rather than derive again.
   const MeshTopology& topology() const;
+  // What the construction's check noted but did not refuse (unused vertices, say), for the info report.
+  const std::vector<MeshProblem>& meshNotes() const;
   const MeshGeometry& geometry() const;
 
   struct Impl;

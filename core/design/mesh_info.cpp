@@ -6,16 +6,25 @@ namespace tvf {
 
 nlohmann::json meshInfoJson(const SurfaceMesh& mesh) {
   const MeshReport report = checkMesh(mesh);
+  return meshInfoJson(mesh, report.problems, report.topology ? &*report.topology : nullptr);
+}
+
+nlohmann::json meshInfoJson(const SurfaceMesh& mesh, const std::vector<MeshProblem>& problems,
+                            const MeshTopology* topology) {
   nlohmann::json info;
   info["vertices"] = mesh.numVertices();
   info["faces"] = mesh.numFaces();
   info["hasUVs"] = mesh.hasUVs();
-  nlohmann::json problems = nlohmann::json::array();
-  for (const auto& p : report.problems) problems.push_back(p.message);
-  info["problems"] = problems;
-  info["usable"] = report.usable();
-  if (!report.topology) return info;
-  const MeshTopology& t = *report.topology;
+  nlohmann::json messages = nlohmann::json::array();
+  bool usable = true;
+  for (const auto& p : problems) {
+    messages.push_back(p.message);
+    usable = usable && !p.fatal;
+  }
+  info["problems"] = messages;
+  info["usable"] = usable;
+  if (!topology) return info;
+  const MeshTopology& t = *topology;
   info["edges"] = t.numEdges;
   info["components"] = t.components.size();
   info["boundaryLoops"] = t.boundaryLoops.size();

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 
+#include "design/designer.h"
 #include "design/mesh_info.h"
 #include "mesh/mesh_checks.h"
 #include "test_meshes.h"
@@ -159,4 +160,14 @@ TEST(MeshInfo, ReportsCountsAndProblems) {
   EXPECT_TRUE(withNote["usable"].get<bool>());
   ASSERT_EQ(withNote["problems"].size(), 1u);
   EXPECT_NE(withNote["problems"][0].get<std::string>().find("not used"), std::string::npos);
+}
+
+// A Designer's report, made from the topology and notes it kept, is the report of a fresh check.
+TEST(MeshInfo, DesignerKeepsTheCheckItWasMadeWith) {
+  for (SurfaceMesh mesh : {disjointUnion(torus(8, 6, 2, 0.7), flatAnnulus(2, 10, 1, 2)), flatGrid(2)}) {
+    if (mesh.numFaces() < 10) mesh.positions.insert(mesh.positions.end(), {5, 5, 5});  // an unused vertex
+    const nlohmann::json fresh = meshInfoJson(mesh);
+    const Designer d(mesh);
+    EXPECT_EQ(meshInfoJson(d.mesh(), d.meshNotes(), &d.topology()), fresh);
+  }
 }

@@ -13,8 +13,11 @@ import {
   adoptBVH,
   buildSerializedBVH,
   float32Arrays,
+  pageSurface,
+  pickingParts,
   transferList,
 } from '../../web/geometry/mesh-bvh-transfer.js';
+import { Surface } from '../../web/geometry/surface.js';
 
 // Deterministic (mulberry32), so a failure reproduces.
 function random(seed) {
@@ -218,4 +221,44 @@ test('built in a worker thread and posted with its transfer list, the BVH works 
   const rayList = rays(100, 23);
   const expected = castAll(meshOf(brute, false), rayList, false).map((h) => h.slice(0, 1));
   assertSameHits(castAll(meshOf(geometry, true), rayList, true), expected, 'worker-built vs brute force');
+});
+
+// A big model's surface goes in two messages (core-worker.js loadMesh): drawable first, then the adjacency and
+// the BVH (pickingParts), which the page adopts onto the geometry it already draws, without sending positions
+// or index again. The adopted tree must hit what brute force hits, and the adjacency be what a Surface builds.
+test('a surface sent without picking, then its picking parts: the same adjacency, and a tree that hits right', () => {
+  const m = bumpySphere();
+  const { arrays, list } = pageSurface(new Surface(m.positions.slice(), m.triangles.slice(), m.edges.slice()), true, { picking: false });
+  assert.equal(arrays.bvh, undefined);
+  assert.equal(arrays.neighbour, undefined, 'no adjacency in the first message');
+  assert.ok(arrays.pickingFollows);
+  const { copy: [sent] } = sendToPage(arrays);
+  assert.equal(new Set(list).size, list.length);
+  const surface = Surface.fromArrays(sent);
+
+  const parts = pickingParts(m.positions, m.triangles);
+  assert.equal(parts.value.bvh.positions, null, 'positions are not sent twice');
+  assert.equal(parts.value.bvh.index, null, 'nor the index');
+  const { copy: [picking] } = sendToPage(parts.value);
+  surface.adoptPicking(picking);
+  assert.equal(surface.pickingFollows, false);
+  const reference = new Surface(m.positions, m.triangles, m.edges);
+  for (const key of Surface.ADJACENCY) assert.deepEqual(Array.from(surface[key]), Array.from(reference[key]), key);
+
+  // The page's geometry, drawn from the first message's arrays; the tree adopted onto it later.
+  const page = new BufferGeometry();
+  page.setAttribute('position', new BufferAttribute(sent.float32.positions, 3));
+  page.setIndex(new BufferAttribute(sent.float32.index, 1));
+  const index = page.index;
+  adoptBVH(page, surface.bvh);
+  assert.equal(page.index, index, 'the index drawn from is kept (no second upload)');
+  const brute = new BufferGeometry();
+  brute.setAttribute('position', new BufferAttribute(new Float32Array(m.positions), 3));
+  brute.setIndex(new BufferAttribute(new Uint32Array(m.triangles), 1));
+  brute.computeBoundingSphere();
+  const [x, y, z, r] = sent.float32.boundingSphere;
+  assert.ok(brute.boundingSphere.center.distanceTo(new Vector3(x, y, z)) < 1e-7 && Math.abs(brute.boundingSphere.radius - r) < 1e-7);
+  const rayList = rays(200, 13);
+  assertSameHits(castAll(meshOf(page, true), rayList, false), castAll(meshOf(brute, false), rayList, false), 'all hits vs brute force');
+  assert.throws(() => adoptBVH(new BufferGeometry(), surface.bvh), /counts/, 'without positions and index the geometry must have its own');
 });

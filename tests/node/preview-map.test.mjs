@@ -5,7 +5,8 @@
 // field's line integral along every fine edge; a stroke's points land on the coarse surface where they were.
 import assert from 'node:assert/strict';
 import test from 'node:test';
-import { coarseMesh } from '../../web/core/preview/coarse-mesh.js';
+import { COARSE_FACES, coarseMesh } from '../../web/core/preview/coarse-mesh.js';
+import { torus } from '../../web/core/preview/warm-up.js';
 import { SurfaceMap } from '../../web/core/preview/surface-map.js';
 
 // An n × n grid of squares on z = 0, jittered inside, split into triangles along alternating diagonals.
@@ -117,4 +118,51 @@ test('preview: the coarse mesh is a manifold on the fine vertices; the map is ex
   assert.deepEqual(spec.points[0], map.pointOnCoarse(points[0]));
   assert.deepEqual(spec.points.at(-1), map.pointOnCoarse(points.at(-1)));
   for (let i = 1; i < spec.points.length; i++) assert.notEqual(spec.points[i].face, spec.points[i - 1].face);
+});
+
+// Edges, edges with one face, and the loops those form.
+function boundaryOf(triangles) {
+  const count = new Map();
+  for (let f = 0; f < triangles.length / 3; f++)
+    for (let k = 0; k < 3; k++) {
+      const a = triangles[3 * f + k], b = triangles[3 * f + ((k + 1) % 3)];
+      const key = `${Math.min(a, b)},${Math.max(a, b)}`;
+      count.set(key, (count.get(key) ?? 0) + 1);
+    }
+  const parent = new Map();
+  const find = (v) => (parent.get(v) === v ? v : (parent.set(v, find(parent.get(v))), parent.get(v)));
+  let boundaryEdges = 0;
+  for (const [key, n] of count) {
+    if (n !== 1) continue;
+    boundaryEdges++;
+    const [a, b] = key.split(',').map(Number);
+    for (const v of [a, b]) if (!parent.has(v)) parent.set(v, v);
+    parent.set(find(a), find(b));
+  }
+  const boundaryLoops = new Set([...parent.keys()].map(find)).size;
+  return { edges: count.size, boundaryEdges, boundaryLoops };
+}
+
+// A scan-sized mesh is clustered before the collapses (coarse-mesh.js): the result must still be a manifold on
+// the fine vertices, of the fine surface's genus (pinched faces dropped leave small holes), near the target size, and on the
+// surface: every coarse face centre within a small distance of the exact torus.
+test('preview: a mesh past five times the target is clustered first, and stays a manifold torus on the surface', async () => {
+  const R = 1, r = 0.4;
+  const fine = torus(480, 240, R, r); // 230,400 faces
+  const coarse = await coarseMesh(fine.positions, fine.triangles);
+  const nC = coarse.triangles.length / 3;
+  assert.ok(nC <= COARSE_FACES && nC > 0.8 * COARSE_FACES, `${nC} coarse faces`);
+  assertManifold(coarse.triangles);
+  coarse.fineVertex.forEach((v, c) => assert.deepEqual([...coarse.positions.subarray(3 * c, 3 * c + 3)], [...fine.positions.subarray(3 * v, 3 * v + 3)]));
+  // Clustering can pinch a few faces, which the repairs drop: small holes, never a change of genus.
+  const { edges, boundaryEdges, boundaryLoops } = boundaryOf(coarse.triangles);
+  const chi = coarse.positions.length / 3 - edges + nC;
+  assert.equal((2 - chi - boundaryLoops) / 2, 1, `genus 1 (χ ${chi}, ${boundaryLoops} holes)`);
+  assert.ok(boundaryEdges <= 1e-3 * edges, `${boundaryEdges} of ${edges} edges on holes`);
+  let worst = 0;
+  for (let f = 0; f < nC; f++) {
+    const [x, y, z] = point(coarse.positions, coarse.triangles, f, [1 / 3, 1 / 3, 1 / 3]);
+    worst = Math.max(worst, Math.abs(Math.hypot(Math.hypot(x, y) - R, z) - r));
+  }
+  assert.ok(worst < 0.02, `a coarse face centre ${worst} off the torus (its tube's radius is ${r})`);
 });

@@ -19,7 +19,7 @@ import { traceStreamlines } from '../geometry/streamlines.js';
 import { chooseAtlas } from '../synthesis/atlas.js';
 import { analyzeExemplar, exemplarBuffers } from '../synthesis/exemplar.js';
 import { Surface } from '../geometry/surface.js';
-import { pageSurface } from '../geometry/mesh-bvh-transfer.js';
+import { pageSurface, pickingParts } from '../geometry/mesh-bvh-transfer.js';
 import { magnitudeScale } from '../geometry/magnitudes.js';
 
 // The worker's whole state lives in this closure: one served core per worker, one worker per element.
@@ -139,11 +139,10 @@ function serve(scope) {
     // settings: {boundary, gamma, symmetry, curvatureAlignment} carried over from the previous model; design: an
     // autosaved document to restore (its failure is reported, not fatal: the mesh still loads with the settings).
     // One transaction in the core: the new mesh is read, checked, configured, factored and solved aside and
-    // replaces the current model only when all of that succeeded; a failure leaves the core and the page on the
-    // previous model.
-    // options.previewEdges: a mesh with at least this many edges is read and opened first, its mesh and design
-    // sent ahead as `progress` {phase: 'read'} and {phase: 'opened'} (open-steps.js) for a preview core
-    // (progressive-core.js), before the long factorization; the page's surface is then built there.
+    // replaces the current model only when all of that succeeded, or the core and page keep the previous one.
+    // options.previewEdges: a mesh this big sends its mesh and design ahead as `progress` 'read' and 'opened'
+    // (open-steps.js) for a preview core (progressive-core.js), then the page's surface ('surface'), and once
+    // the preview is made its adjacency and BVH ('picking': the first field needs neither), then factors.
     async loadMesh(bytes, format, settings, design, options = {}) {
       preview = null;
       // A GLB exported with its design (docs/export.md) reopens with it, unless an autosave is newer.
@@ -151,16 +150,17 @@ function serve(scope) {
       const steps = { bytes, format, settings, design: design ?? embedded, embedded: embedded != null, previewEdges: options.previewEdges };
       const { opened, info: pendingInfo, ahead } = openModelInSteps(core, steps, progress);
       if (ahead) {
-        // The page's surface and BVH, built here while the preview worker simplifies (two cores at work).
         const m = core.pendingMesh();
-        const { arrays, list } = pageSurface(new Surface(m.positions, m.triangles, m.edges), true);
+        const { arrays, list } = pageSurface(new Surface(m.positions, m.triangles, m.edges), true, { picking: false });
         progress({ phase: 'surface', surface: arrays }, list);
-        // The factorization's two threads would take the cores from the preview: they wait for the page's word
-        // that it is made (or failed), 20 s at most.
+        // The picking parts and the factorization's two threads would take the cores from the preview: they
+        // wait for the page's word that it is made (or failed), 20 s at most.
         await new Promise((resolve) => {
           previewMade = resolve;
           setTimeout(resolve, 20_000);
         });
+        const picking = pickingParts(core.designer.pendingPositions(), core.designer.pendingTriangles());
+        progress({ phase: 'picking', picking: picking.value }, picking.list);
       }
       progress({ phase: 'factoring', info: pendingInfo });
       // Tests: an exact factorization that takes at least this long, so the preview surely leads.

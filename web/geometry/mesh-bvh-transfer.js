@@ -26,6 +26,7 @@
 //   and transferList() lists each buffer once, since a buffer listed twice makes postMessage throw).
 import { BufferAttribute, BufferGeometry, Box3, Sphere, Vector3 } from 'three';
 import { MeshBVH } from 'three-mesh-bvh';
+import { halfEdgeNeighbours, vertexFaceMap } from './mesh-geometry.js';
 
 // Bumped when the object's shape changes; adoptBVH refuses others (a stale cache would otherwise mis-hit).
 export const SERIALIZED_MESH_BVH_VERSION = 1;
@@ -102,15 +103,17 @@ export function adoptBVH(geometry, serialized) {
   if (serialized?.format !== SERIALIZED_MESH_BVH_VERSION || !serialized.indirectBuffer)
     throw new Error('adoptBVH: not an indirect SerializedMeshBVH of this version');
   const { positions, index, faces, vertices } = serialized;
-  if (index.length !== 3 * faces || positions.length !== 3 * vertices)
+  // Without positions and index (pickingParts): the geometry's own, which must then be there.
+  const own = positions == null && index == null;
+  if (own ? !geometry.index || geometry.index.count !== 3 * faces : index.length !== 3 * faces || positions.length !== 3 * vertices)
     throw new Error('adoptBVH: serialized arrays do not match their counts');
   const position = geometry.getAttribute('position');
-  if (!position) geometry.setAttribute('position', new BufferAttribute(positions, 3));
-  else if (position.count !== vertices || position.itemSize !== 3)
-    throw new Error(`adoptBVH: the geometry has ${position.count} vertices, the BVH ${vertices}`);
-  if (geometry.index?.array !== index) geometry.setIndex(new BufferAttribute(index, 1));
+  if (!position && !own) geometry.setAttribute('position', new BufferAttribute(positions, 3));
+  else if (position?.count !== vertices || position.itemSize !== 3)
+    throw new Error(`adoptBVH: the geometry has ${position?.count ?? 0} vertices, the BVH ${vertices}`);
+  if (!own && geometry.index?.array !== index) geometry.setIndex(new BufferAttribute(index, 1));
   // indirect follows from indirectBuffer; setIndex finds geometry.index.array === index and copies nothing.
-  const bvh = MeshBVH.deserialize(serialized, geometry, { setIndex: true });
+  const bvh = MeshBVH.deserialize(serialized, geometry, { setIndex: !own });
   geometry.boundsTree = bvh;
   // Both as a fresh build would leave them: MeshBVH's build sets the box from its root bounds.
   geometry.boundingBox ??= bvh.getBoundingBox(new Box3());
@@ -124,12 +127,41 @@ export function adoptBVH(geometry, serialized) {
 // A Surface's arrays for the page (Surface.fromArrays), with what the page would otherwise build on its own
 // thread: the ray-casting BVH (~0.5 s at 800k faces) and the Float32 drawing arrays. Returns {arrays, list (the
 // buffers to transfer)}. own: the caller keeps no use of the surface, so its own arrays go rather than copies
-// (~0.7 s at 800k faces).
-export function pageSurface(surface, own = false) {
-  const keys = surface.constructor.ARRAYS;
-  const arrays = own ? { meanEdge: surface.meanEdge, centre: surface.centre, radius: surface.radius } : surface.arrays();
-  if (own) for (const key of keys) arrays[key] = surface[key];
-  arrays.bvh = buildSerializedBVH(surface.positions, surface.triangles);
-  arrays.float32 = float32Arrays(surface.vertexNormals, arrays.bvh);
+// (~0.7 s at 800k faces). picking false: without the adjacency and the BVH (~1.2 s at 832k faces in the
+// worker), which follow with pickingParts(): a big model's first field needs neither, only its strokes do;
+// arrays.pickingFollows says so, and float32.boundingSphere stands in for the BVH's.
+export function pageSurface(surface, own = false, { picking = true } = {}) {
+  const keys = surface.constructor.ARRAYS.filter((key) => picking || !surface.constructor.ADJACENCY.includes(key));
+  const arrays = { meanEdge: surface.meanEdge, centre: surface.centre, radius: surface.radius, area: surface.area };
+  for (const key of keys) arrays[key] = own ? surface[key] : surface[key].slice();
+  if (picking) {
+    arrays.bvh = buildSerializedBVH(surface.positions, surface.triangles);
+    arrays.float32 = float32Arrays(surface.vertexNormals, arrays.bvh);
+  } else {
+    arrays.float32 = float32Arrays(surface.vertexNormals, null, surface.positions, surface.triangles);
+    arrays.float32.boundingSphere = boundingSphereOf(arrays.float32.positions);
+    arrays.pickingFollows = true;
+  }
   return { arrays, list: [...keys.map((key) => arrays[key].buffer), ...transferList(arrays.bvh, arrays.float32)] };
+}
+
+// What a surface sent with picking false lacks (Surface.adoptPicking): the adjacency and the serialized BVH,
+// without the positions and index the page already draws from (adoptBVH takes the geometry's own). positions,
+// triangles: the mesh's (views of the wasm heap will do: nothing here calls into it). Returns {value, list}.
+export function pickingParts(positions, triangles) {
+  const nV = positions.length / 3;
+  const neighbour = halfEdgeNeighbours(triangles, nV);
+  const { start: vertexFaceStart, faces: vertexFaces } = vertexFaceMap(triangles, nV);
+  const bvh = { ...buildSerializedBVH(positions, triangles), positions: null, index: null };
+  const value = { neighbour, vertexFaceStart, vertexFaces, bvh };
+  return { value, list: transferList(value) };
+}
+
+// three's computeBoundingSphere() of a position array (the box's centre, the farthest point's distance).
+function boundingSphereOf(positions) {
+  const geometry = new BufferGeometry();
+  geometry.setAttribute('position', new BufferAttribute(positions, 3));
+  geometry.computeBoundingSphere();
+  const { center, radius } = geometry.boundingSphere;
+  return [center.x, center.y, center.z, radius];
 }

@@ -16,7 +16,45 @@ export class Surface {
     this.angleDefect = null;
     if (derived) return void Object.assign(this, derived);
     this.#geometry();
-    this.#adjacency();
+    this.vertexNormals = vertexNormals(this.positions, this.triangles); // for lifting markers off the surface
+  }
+
+  // The adjacency (tracing, singularities, N-field combing, texture seams): built on first use, or taken from
+  // another thread (a big model's page surface comes without it and receives it, with the picking BVH, after
+  // its first field: adoptPicking).
+  #neighbour = null;
+  #vertexFaceStart = null;
+  #vertexFaces = null;
+  get neighbour() {
+    if (!this.#neighbour) this.#adjacency();
+    return this.#neighbour;
+  }
+  set neighbour(a) {
+    this.#neighbour = a;
+  }
+  get vertexFaceStart() {
+    if (!this.#vertexFaceStart) this.#adjacency();
+    return this.#vertexFaceStart;
+  }
+  set vertexFaceStart(a) {
+    this.#vertexFaceStart = a;
+  }
+  get vertexFaces() {
+    if (!this.#vertexFaces) this.#adjacency();
+    return this.#vertexFaces;
+  }
+  set vertexFaces(a) {
+    this.#vertexFaces = a;
+  }
+  get hasAdjacency() {
+    return this.#neighbour !== null;
+  }
+
+  // A big model's picking part, built in the worker after the surface was sent (mesh-bvh-transfer.js
+  // pickingParts): the adjacency, and the serialized BVH the viewer adopts at its first pick.
+  adoptPicking({ neighbour, vertexFaceStart, vertexFaces, bvh }) {
+    Object.assign(this, { neighbour, vertexFaceStart, vertexFaces, bvh });
+    this.pickingFollows = false;
   }
 
   #geometry() {
@@ -51,10 +89,8 @@ export class Surface {
   }
 
   #adjacency() {
-    this.neighbour = halfEdgeNeighbours(this.triangles, this.nV);
-    ({ start: this.vertexFaceStart, faces: this.vertexFaces } = vertexFaceMap(this.triangles, this.nV));
-    // For lifting markers off the surface.
-    this.vertexNormals = vertexNormals(this.positions, this.triangles);
+    this.#neighbour = halfEdgeNeighbours(this.triangles, this.nV);
+    ({ start: this.#vertexFaceStart, faces: this.#vertexFaces } = vertexFaceMap(this.triangles, this.nV));
   }
 
   // The per-mesh arrays, copied (the caller keeps its own Surface): the worker builds the Surface once per mesh
@@ -66,6 +102,7 @@ export class Surface {
   }
 
   static ARRAYS = ['positions', 'triangles', 'edges', 'normals', 'areas', 'centres', 'neighbour', 'vertexFaceStart', 'vertexFaces', 'vertexNormals', 'areaCdf'];
+  static ADJACENCY = ['neighbour', 'vertexFaceStart', 'vertexFaces'];
 
   static fromArrays({ positions, triangles, edges, ...derived }) {
     return new Surface(positions, triangles, edges, derived);

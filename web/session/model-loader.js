@@ -28,6 +28,7 @@ export class ModelLoader {
     this.warmedUp = false;
     this.staged = null; // {arrays, surface, ready}: the Surface of a big model's mesh sent ahead (#phase)
     this.adopting = null; // while a reply waits for its mesh's uploads: the promise it waits on
+    this.picking = null; // the Surface sent ahead whose adjacency and BVH are still to come
   }
 
   load(src, opts = {}) {
@@ -100,8 +101,11 @@ export class ModelLoader {
     // listener may set `ready`, a promise its adoption waits for), and its adoption uses the same Surface.
     if (p.phase === 'surface') {
       this.staged = { arrays: p.surface, surface: Surface.fromArrays(p.surface), ready: null };
+      this.picking = this.staged.surface;
       s.emit('surface', this.staged);
     }
+    // Its adjacency and BVH follow, before or after its first field (the viewer picks nothing until then).
+    if (p.phase === 'picking') this.picking?.adoptPicking(p.picking), (this.picking = null);
     if (p.phase === 'opened') s.flash(`Opening a big mesh (${grouped(p.info.faces)} faces): a preview first, the exact field follows.`, 4000);
     // While a preview is made, the exact worker's factoring is not what the page waits for.
     const label = p.phase === 'factoring' && s.perf.loadPhases?.opened ? null : LOAD_PHASE_LABELS[p.phase];

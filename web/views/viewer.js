@@ -17,6 +17,7 @@ import {
   Plane,
   Raycaster,
   Scene,
+  Sphere,
   SRGBColorSpace,
   Vector2,
   Vector3,
@@ -227,8 +228,16 @@ export class Viewer {
 
   // The normal of the face closest to a point (for direction cues drawn in the surface).
   #normalNear(x, y, z) {
-    const hit = this.surfaceMesh?.geometry.boundsTree.closestPointToPoint(new Vector3(x, y, z));
+    const hit = this.#boundsTree()?.closestPointToPoint(new Vector3(x, y, z));
     return hit ? this.surface.normal(hit.faceIndex) : [0, 0, 1];
+  }
+
+  // The surface's bounds tree; a big model's is adopted here once it has come (Surface.adoptPicking), and
+  // until then there is none: no pick hits (a ray cast through 832k triangles one by one would hold the page).
+  #boundsTree() {
+    const geom = this.surfaceMesh?.geometry;
+    if (geom && !geom.boundsTree && this.surface?.bvh && !this.surface.pickingFollows) adoptBVH(geom, this.surface.bvh);
+    return geom?.boundsTree ?? null;
   }
 
   // Puts the whole model in view (camera.js): on load, Frame/Home/F, and the view presets.
@@ -276,7 +285,7 @@ export class Viewer {
 
   // Client pixel coordinates → {face, bary, point} on the surface, or null.
   pick(clientX, clientY) {
-    if (!this.surfaceMesh) return null;
+    if (!this.#boundsTree()) return null;
     this.raycaster.setFromCamera(this.#ndc(clientX, clientY), this.camera);
     const hit = this.raycaster.intersectObject(this.surfaceMesh, false)[0];
     if (!hit || hit.faceIndex == null) return null;
@@ -365,7 +374,11 @@ function meshGeometry(surface) {
   geom.setAttribute('color', new BufferAttribute(colors, 3, true));
   geom.setIndex(new BufferAttribute(index, 1));
   if (bvh) adoptBVH(geom, bvh); // also sets the bounding sphere the worker computed
-  else {
+  else if (surface.pickingFollows) {
+    // A big model's BVH comes after its first field (Surface.adoptPicking); #boundsTree adopts it then.
+    const [x, y, z, r] = float32.boundingSphere;
+    geom.boundingSphere = new Sphere(new Vector3(x, y, z), r);
+  } else {
     geom.computeBoundingSphere();
     // indirect: the default build reorders the index buffer, and then hit.faceIndex no longer names the
     // core's face. Indirect mode leaves the triangles in place and reports original indices.
