@@ -218,4 +218,35 @@ test.describe.serial('progressive loading of big meshes', () => {
     expect(r.model).toBeGreaterThan(0.1 * r.pixels); // the model is in the picture
     expect(r.differing).toBeLessThan(0.002 * r.pixels);
   });
+
+  test("a big model's picking comes after its first field, and then hits what a plain load's hits", async () => {
+    const r = await page.evaluate(async (off) => {
+      const t = window.tvf;
+      const bytes = new TextEncoder().encode(off);
+      const view = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
+      const grid = () => {
+        const out = [];
+        for (let i = 1; i < 12; i++)
+          for (let j = 1; j < 12; j++) out.push(t.pick(view.left + (view.width * i) / 12, view.top + (view.height * j) / 12)?.face ?? -1);
+        return out;
+      };
+      t.debugDelayExact(3000); // the exact core factors after the picking parts are sent, and later than this
+      await t.loadModel(bytes, { name: 'bunny-sub1.off', format: 'off', previewEdges: 1, restore: false });
+      const preview = t.stats().preview;
+      for (let k = 0; k < 100 && !('picking' in t.perf().loadPhases); k++) await new Promise((r) => setTimeout(r, 50));
+      const pickingBeforeExact = 'picking' in t.perf().loadPhases && t.stats().preview;
+      const progressive = grid();
+      await t.settled();
+      t.debugDelayExact(0);
+      await t.loadModel(bytes, { name: 'bunny-sub1.off', format: 'off', previewEdges: 0, restore: false });
+      const plain = grid();
+      return { preview, pickingBeforeExact, progressive, plain, hits: plain.filter((f) => f >= 0).length };
+    }, off);
+    console.log('picking:', JSON.stringify({ ...r, progressive: undefined, plain: undefined }));
+    expect(r.preview).toBe(true);
+    expect(r.pickingBeforeExact).toBe(true);
+    expect(r.hits).toBeGreaterThan(20); // the grid has hits and misses
+    expect(r.hits).toBeLessThan(121);
+    expect(r.progressive).toEqual(r.plain);
+  });
 });
