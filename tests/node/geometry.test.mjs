@@ -477,7 +477,7 @@ test("a preview's face vectors and one-form, derived from its vertex vectors, ar
   const V = vertexField(m, ([x, y]) => [0.3 * x - 1.2 * y, 0.9 * x + 0.5 * y, 0]);
   const faces = faceVectorsOfVertexField(s, V);
   for (let f = 0; f < s.nF; f++) {
-    const [cx, cy] = [0, 1].map((k) => s.centres[3 * f + k]);
+    const [cx, cy] = s.centroid(f);
     const want = [0.3 * cx - 1.2 * cy, 0.9 * cx + 0.5 * cy, 0];
     assert.ok(dist(Array.from(faces.subarray(3 * f, 3 * f + 3)), want) < 1e-12, `face ${f}`);
   }

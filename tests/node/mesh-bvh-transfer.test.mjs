@@ -18,6 +18,7 @@ import {
   transferList,
 } from '../../web/geometry/mesh-bvh-transfer.js';
 import { Surface } from '../../web/geometry/surface.js';
+import { faceGeometry } from '../../web/geometry/mesh-geometry.js';
 
 // Deterministic (mulberry32), so a failure reproduces.
 function random(seed) {
@@ -231,10 +232,18 @@ test('a surface sent without picking, then its picking parts: the same adjacency
   const { arrays, list } = pageSurface(new Surface(m.positions.slice(), m.triangles.slice(), m.edges.slice()), true, { picking: false });
   assert.equal(arrays.bvh, undefined);
   assert.equal(arrays.neighbour, undefined, 'no adjacency in the first message');
+  assert.equal(arrays.normals, undefined, 'nor face normals');
   assert.ok(arrays.pickingFollows);
   const { copy: [sent] } = sendToPage(arrays);
   assert.equal(new Set(list).size, list.length);
   const surface = Surface.fromArrays(sent);
+
+  const reference = new Surface(m.positions, m.triangles, m.edges);
+  const { normals } = faceGeometry(m.positions, m.triangles);
+  for (let f = 0; f < surface.nF; f++) {
+    const [a, b] = [surface.normal(f), normals.subarray(3 * f, 3 * f + 3)];
+    assert.ok(Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]) < 1e-12, `face ${f}'s normal, made when asked`);
+  }
 
   const parts = pickingParts(m.positions, m.triangles);
   assert.equal(parts.value.bvh.positions, null, 'positions are not sent twice');
@@ -242,8 +251,7 @@ test('a surface sent without picking, then its picking parts: the same adjacency
   const { copy: [picking] } = sendToPage(parts.value);
   surface.adoptPicking(picking);
   assert.equal(surface.pickingFollows, false);
-  const reference = new Surface(m.positions, m.triangles, m.edges);
-  for (const key of Surface.ADJACENCY) assert.deepEqual(Array.from(surface[key]), Array.from(reference[key]), key);
+  for (const key of Surface.PICKING) assert.deepEqual(Array.from(surface[key]), Array.from(reference[key]), key);
 
   // The page's geometry, drawn from the first message's arrays; the tree adopted onto it later.
   const page = new BufferGeometry();

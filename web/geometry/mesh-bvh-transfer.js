@@ -26,7 +26,7 @@
 //   and transferList() lists each buffer once, since a buffer listed twice makes postMessage throw).
 import { BufferAttribute, BufferGeometry, Box3, Sphere, Vector3 } from 'three';
 import { MeshBVH } from 'three-mesh-bvh';
-import { halfEdgeNeighbours, vertexFaceMap } from './mesh-geometry.js';
+import { faceNormals, halfEdgeNeighbours, vertexFaceMap } from './mesh-geometry.js';
 
 // Bumped when the object's shape changes; adoptBVH refuses others (a stale cache would otherwise mis-hit).
 export const SERIALIZED_MESH_BVH_VERSION = 1;
@@ -127,11 +127,11 @@ export function adoptBVH(geometry, serialized) {
 // A Surface's arrays for the page (Surface.fromArrays), with what the page would otherwise build on its own
 // thread: the ray-casting BVH (~0.5 s at 800k faces) and the Float32 drawing arrays. Returns {arrays, list (the
 // buffers to transfer)}. own: the caller keeps no use of the surface, so its own arrays go rather than copies
-// (~0.7 s at 800k faces). picking false: without the adjacency and the BVH (~1.2 s at 832k faces in the
-// worker), which follow with pickingParts(): a big model's first field needs neither, only its strokes do;
-// arrays.pickingFollows says so, and float32.boundingSphere stands in for the BVH's.
+// (~0.7 s at 800k faces). picking false: without the adjacency, the face normals and the BVH (~1.2 s at 832k
+// faces in the worker), which follow with pickingParts(): a big model's first field needs none of them, only
+// its strokes do; arrays.pickingFollows says so, and float32.boundingSphere stands in for the BVH's.
 export function pageSurface(surface, own = false, { picking = true } = {}) {
-  const keys = surface.constructor.ARRAYS.filter((key) => picking || !surface.constructor.ADJACENCY.includes(key));
+  const keys = surface.constructor.ARRAYS.filter((key) => picking || !surface.constructor.PICKING.includes(key));
   const arrays = { meanEdge: surface.meanEdge, centre: surface.centre, radius: surface.radius, area: surface.area };
   for (const key of keys) arrays[key] = own ? surface[key] : surface[key].slice();
   if (picking) {
@@ -145,15 +145,17 @@ export function pageSurface(surface, own = false, { picking = true } = {}) {
   return { arrays, list: [...keys.map((key) => arrays[key].buffer), ...transferList(arrays.bvh, arrays.float32)] };
 }
 
-// What a surface sent with picking false lacks (Surface.adoptPicking): the adjacency and the serialized BVH,
-// without the positions and index the page already draws from (adoptBVH takes the geometry's own). positions,
-// triangles: the mesh's (views of the wasm heap will do: nothing here calls into it). Returns {value, list}.
+// What a surface sent with picking false lacks (Surface.adoptPicking): the adjacency, the face normals and the
+// serialized BVH without the positions and index the page already draws from (adoptBVH takes the geometry's
+// own). positions, triangles: the mesh's (views of the wasm heap will do: nothing here calls into it).
+// Returns {value, list}.
 export function pickingParts(positions, triangles) {
   const nV = positions.length / 3;
   const neighbour = halfEdgeNeighbours(triangles, nV);
   const { start: vertexFaceStart, faces: vertexFaces } = vertexFaceMap(triangles, nV);
+  const normals = faceNormals(positions, triangles);
   const bvh = { ...buildSerializedBVH(positions, triangles), positions: null, index: null };
-  const value = { neighbour, vertexFaceStart, vertexFaces, bvh };
+  const value = { neighbour, vertexFaceStart, vertexFaces, normals, bvh };
   return { value, list: transferList(value) };
 }
 

@@ -2,11 +2,13 @@
 // texture synthesis. Flat typed arrays, face f = triangles[3f..3f+2]; local edge k of a face runs from corner
 // k to corner k+1.
 
-// Unit normals (3 per face; [0, 0, 1] for a degenerate face), areas and centroids. Scalars only in the loops
-// here and below: they run once per face of 800k-face scans, where a small array per face cost seconds of GC.
+// Unit normals (3 per face; [0, 0, 1] for a degenerate face) and areas. Scalars only in the loops here and
+// below: they run once per face of 800k-face scans, where a small array per face cost seconds of GC. (No
+// centroids: three per face are read from the positions when wanted; an array of them was 20 MB of fresh
+// memory at 832k faces, ~80 ms of page faults on a big model's way to its first field.)
 export function faceGeometry(positions, triangles) {
   const P = positions, T = triangles, nF = T.length / 3;
-  const normals = new Float64Array(3 * nF), areas = new Float64Array(nF), centres = new Float64Array(3 * nF);
+  const normals = new Float64Array(3 * nF), areas = new Float64Array(nF);
   for (let f = 0; f < nF; f++) {
     const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
     const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
@@ -16,9 +18,24 @@ export function faceGeometry(positions, triangles) {
     areas[f] = l / 2;
     if (l > 0) (normals[3 * f] = nx / l), (normals[3 * f + 1] = ny / l), (normals[3 * f + 2] = nz / l);
     else normals[3 * f + 2] = 1;
-    for (let k = 0; k < 3; k++) centres[3 * f + k] = (P[a + k] + P[b + k] + P[c + k]) / 3;
   }
-  return { normals, areas, centres };
+  return { normals, areas };
+}
+
+// The unit normals alone (faceGeometry's, without the areas).
+export function faceNormals(positions, triangles) {
+  const P = positions, T = triangles, nF = T.length / 3;
+  const normals = new Float64Array(3 * nF);
+  for (let f = 0; f < nF; f++) {
+    const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
+    const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
+    const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
+    const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
+    const l = Math.sqrt(nx * nx + ny * ny + nz * nz);
+    if (l > 0) (normals[3 * f] = nx / l), (normals[3 * f + 1] = ny / l), (normals[3 * f + 2] = nz / l);
+    else normals[3 * f + 2] = 1;
+  }
+  return normals;
 }
 
 // Edge → face map as half-edge pairing: neighbour[3f+k] = 3g+kk when local edge k of face f is local edge kk

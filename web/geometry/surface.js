@@ -1,7 +1,7 @@
 // Main-thread geometry and topology of the core's welded mesh, for drawing and for tracing on the surface.
 // Face f here is face f of the core; local edge k of a face runs from corner k to corner k+1. Normals, areas
 // and the edge→face maps come from mesh-geometry.js.
-import { angleDefects, faceGeometry, halfEdgeNeighbours, vertexFaceMap, vertexNormals } from './mesh-geometry.js';
+import { angleDefects, faceNormals, halfEdgeNeighbours, vertexFaceMap, vertexNormals } from './mesh-geometry.js';
 
 export class Surface {
   // positions: Float64Array (3 per vertex), triangles: Int32Array (3 per face), edges: Int32Array (2 per edge,
@@ -17,6 +17,16 @@ export class Surface {
     if (derived) return void Object.assign(this, derived);
     this.#geometry();
     this.vertexNormals = vertexNormals(this.positions, this.triangles); // for lifting markers off the surface
+  }
+
+  // The faces' unit normals (tracing, singularities, N-fields), likewise: normal(f) needs none of them.
+  #normals = null;
+  get normals() {
+    this.#normals ??= faceNormals(this.positions, this.triangles);
+    return this.#normals;
+  }
+  set normals(a) {
+    this.#normals = a;
   }
 
   // The adjacency (tracing, singularities, N-field combing, texture seams): built on first use, or taken from
@@ -52,14 +62,14 @@ export class Surface {
 
   // A big model's picking part, built in the worker after the surface was sent (mesh-bvh-transfer.js
   // pickingParts): the adjacency, and the serialized BVH the viewer adopts at its first pick.
-  adoptPicking({ neighbour, vertexFaceStart, vertexFaces, bvh }) {
-    Object.assign(this, { neighbour, vertexFaceStart, vertexFaces, bvh });
+  adoptPicking({ neighbour, vertexFaceStart, vertexFaces, normals, bvh }) {
+    Object.assign(this, { neighbour, vertexFaceStart, vertexFaces, normals, bvh });
     this.pickingFollows = false;
   }
 
   #geometry() {
     const P = this.positions, T = this.triangles, nF = this.nF;
-    ({ normals: this.normals, areas: this.areas, centres: this.centres } = faceGeometry(P, T));
+    const A = (this.areas = new Float64Array(nF));
     // Each face's 2D frame (origin at corner 0, x along edge 0→1, y = n × x) is made when asked for (#frame):
     // two arrays of 6 doubles per face were 80 MB at 832k faces, whose first writes alone took the worker
     // ~0.35 s on the way to a big model's first field (this VM's page faults: ~4 ms per fresh MB).
@@ -77,10 +87,12 @@ export class Surface {
       const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
       const vx = P[c] - P[b], vy = P[c + 1] - P[b + 1], vz = P[c + 2] - P[b + 2];
       edgeSum += Math.sqrt(ux * ux + uy * uy + uz * uz) + Math.sqrt(wx * wx + wy * wy + wz * wz) + Math.sqrt(vx * vx + vy * vy + vz * vz);
+      const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
+      A[f] = Math.sqrt(nx * nx + ny * ny + nz * nz) / 2;
     }
     this.meanEdge = nF ? edgeSum / (3 * nF) : 1;
     // Running sums of the face areas: the arrows draw faces by area (arrow-sampling.js), after every zoom.
-    const A = this.areas, cdf = (this.areaCdf = new Float64Array(nF));
+    const cdf = (this.areaCdf = new Float64Array(nF));
     let area = 0;
     for (let f = 0; f < nF; f++) cdf[f] = area += A[f];
     this.area = area;
@@ -101,8 +113,10 @@ export class Surface {
     return out;
   }
 
-  static ARRAYS = ['positions', 'triangles', 'edges', 'normals', 'areas', 'centres', 'neighbour', 'vertexFaceStart', 'vertexFaces', 'vertexNormals', 'areaCdf'];
+  static ARRAYS = ['positions', 'triangles', 'edges', 'normals', 'areas', 'neighbour', 'vertexFaceStart', 'vertexFaces', 'vertexNormals', 'areaCdf'];
   static ADJACENCY = ['neighbour', 'vertexFaceStart', 'vertexFaces'];
+  // What a big model's surface sends after its first field (mesh-bvh-transfer.js pickingParts).
+  static PICKING = [...Surface.ADJACENCY, 'normals'];
 
   static fromArrays({ positions, triangles, edges, ...derived }) {
     return new Surface(positions, triangles, edges, derived);
@@ -125,11 +139,18 @@ export class Surface {
   }
 
   normal(f) {
-    return [this.normals[3 * f], this.normals[3 * f + 1], this.normals[3 * f + 2]];
+    const N = this.#normals;
+    if (N) return [N[3 * f], N[3 * f + 1], N[3 * f + 2]];
+    const P = this.positions, T = this.triangles, a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
+    const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
+    const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
+    const n = [uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx], l = Math.hypot(...n);
+    return l > 0 ? n.map((x) => x / l) : [0, 0, 1];
   }
 
   centroid(f) {
-    return [this.centres[3 * f], this.centres[3 * f + 1], this.centres[3 * f + 2]];
+    const P = this.positions, T = this.triangles, a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
+    return [(P[a] + P[b] + P[c]) / 3, (P[a + 1] + P[b + 1] + P[c + 1]) / 3, (P[a + 2] + P[b + 2] + P[c + 2]) / 3];
   }
 
   facesAround(v) {

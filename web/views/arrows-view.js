@@ -177,7 +177,7 @@ export class ArrowsView {
     let k = 0;
     for (let i = 0; i < n; i++) {
       const f = faces[i];
-      z.set(s.normals[3 * f], s.normals[3 * f + 1], s.normals[3 * f + 2]);
+      z.fromArray(s.normal(f));
       if (V && N > 1) {
         // The face's representative is the reference the three corners are turned to before they mix.
         matchedAt(s, V, f, bary.subarray(3 * i, 3 * i + 3), [F[3 * f], F[3 * f + 1], F[3 * f + 2]], N, matched);
@@ -243,8 +243,10 @@ export class ArrowsView {
 // now or after a small orbit.
 function facesNearView(s, camera) {
   const v = new Vector3(), out = [];
+  const P = s.positions, T = s.triangles;
   for (let f = 0; f < s.nF; f++) {
-    v.set(s.centres[3 * f], s.centres[3 * f + 1], s.centres[3 * f + 2]).project(camera);
+    const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
+    v.set((P[a] + P[b] + P[c]) / 3, (P[a + 1] + P[b + 1] + P[c + 1]) / 3, (P[a + 2] + P[b + 2] + P[c + 2]) / 3).project(camera);
     if (Math.abs(v.x) <= 2 && Math.abs(v.y) <= 2 && v.z <= 1 && v.z >= -1) out.push(f);
   }
   return Int32Array.from(out);
