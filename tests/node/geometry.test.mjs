@@ -8,7 +8,7 @@ import { grid, icosphere } from './fakes.mjs';
 import { Surface } from '../../web/geometry/surface.js';
 import { faceGeometry, halfEdgeNeighbours, vertexNormals } from '../../web/geometry/mesh-geometry.js';
 import { torus } from '../../web/core/preview/warm-up.js';
-import { POISSON_PACKING, sampleSurface } from '../../web/geometry/arrow-sampling.js';
+import { POISSON_PACKING, SurfaceSampler, sampleSurface } from '../../web/geometry/arrow-sampling.js';
 import { traceStreamlines } from '../../web/geometry/streamlines.js';
 import { findSingularities } from '../../web/geometry/singularities.js';
 import { faceVectorsOfVertexField, oneFormOfVertexField } from '../../web/geometry/vertex-field.js';
@@ -206,6 +206,20 @@ test('arrow samples are a Poisson-disc set: no two closer than the spacing, no h
     // face centre has a sample nearby.
     const probes = [...Array.from({ length: s.nV }, (_, v) => vertexOf(m, v)), ...Array.from({ length: s.nF }, (_, f) => s.centroid(f))];
     for (const q of probes) assert.ok(points.some((p) => dist(p, q) < 2 * spacing), `a hole around ${q}`);
+  }
+});
+
+test('arrow sampling in steps gives exactly the samples of one call, on the whole surface and on a region', () => {
+  const s = surfaceOf(icosphere(3));
+  const region = Int32Array.from({ length: 200 }, (_, k) => (k * 7) % s.nF);
+  for (const [spacing, options] of [[0.05, {}], [0.1, { seed: 9 }], [0.02, { faces: region, maxSamples: 300 }]]) {
+    const whole = sampleSurface(s, spacing, options);
+    const sampler = new SurfaceSampler(s, spacing, options);
+    let steps = 0;
+    while (!sampler.step(37)) steps++;
+    assert.ok(steps > 3, `${steps} steps`);
+    assert.deepEqual(sampler.result(), whole);
+    assert.ok(whole.faces.length > 50);
   }
 });
 

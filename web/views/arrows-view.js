@@ -4,7 +4,7 @@
 // N ≥ 2) is drawn with N spokes per sample instead of an arrow (a segment for a line field, a cross for a
 // cross field), its vertex representatives matched to the face's before they are interpolated.
 import { Color, DoubleSide, DynamicDrawUsage, InstancedMesh, Matrix4, MeshBasicMaterial, Vector3 } from 'three';
-import { POISSON_PACKING, sampleSurface, worldPerPixel } from '../geometry/arrow-sampling.js';
+import { POISSON_PACKING, SurfaceSampler, sampleSurface, worldPerPixel } from '../geometry/arrow-sampling.js';
 import { matchedAt, symmetryOf } from '../geometry/nfield.js';
 import { viridis } from './colormap.js';
 import { magnitudeScale } from '../geometry/magnitudes.js';
@@ -23,6 +23,8 @@ const ARROW_LENGTH = 0.8; // × the spacing: neighbours never touch
 const RESAMPLE_RATIO = 1.25;
 // Beyond this many samples over the whole surface (zoomed far in), sample only the faces near the view.
 const MAX_SAMPLES = 12_000;
+// Darts thrown per task when the samples are made ahead (prepare): ~10 ms of a scan's.
+const DARTS_PER_TASK = 8000;
 
 export class ArrowsView {
   constructor(scene) {
@@ -38,6 +40,7 @@ export class ArrowsView {
     this.top = 0; // magnitude at the top of the colour map
     this.scale = null; // magnitudeScale of the field drawn
     this.symmetry = 1; // N of the field drawn: the glyph and how vertex vectors are interpolated
+    this.prepared = null; // {surface, spacing, samples} made ahead by prepare()
   }
 
   setSurface(surface) {
@@ -55,12 +58,17 @@ export class ArrowsView {
     this.scene.add(this.mesh);
   }
 
-  // A few thousand samples of a surface about to be drawn, thrown away: the first sampling of a big surface ran
-  // on unoptimized code (~70 ms of the task that adopts an 832k-face model, a profile of the page); this one,
-  // in a task of its own, lets V8 optimize it first.
-  warmUp(surface) {
-    const spacing = Math.sqrt((POISSON_PACKING * surface.area) / 4000);
-    sampleSurface(surface, spacing, { maxSamples: 4000 });
+  // The samples of a surface about to be drawn, made ahead at the scale its framed view will have (wpp: model
+  // units per pixel at the pivot), a slice of darts per task: at 832k faces the sampling took ~100–190 ms of
+  // the task that adopted the model. #sample takes them if the view's scale is the one foreseen. yieldToPage():
+  // a promise that resolves in a later task.
+  async prepare(surface, wpp, yieldToPage) {
+    this.prepared = null;
+    const spacing = arrowSpacingPx(this.options.density) * wpp;
+    if (!(spacing > 0) || (POISSON_PACKING * surface.area) / (spacing * spacing) > MAX_SAMPLES) return; // a local set: the view's own
+    const sampler = new SurfaceSampler(surface, spacing, { maxSamples: MAX_SAMPLES });
+    while (!sampler.step(DARTS_PER_TASK)) await yieldToPage();
+    this.prepared = { surface, spacing, samples: sampler.result() };
   }
 
   #dispose() {
@@ -140,7 +148,11 @@ export class ArrowsView {
     const spacing = arrowSpacingPx(this.options.density) * this.wpp;
     let faces = null;
     if ((POISSON_PACKING * s.area) / (spacing * spacing) > MAX_SAMPLES && camera) faces = facesNearView(s, camera);
-    this.samples = sampleSurface(s, spacing, { faces, maxSamples: MAX_SAMPLES });
+    const p = this.prepared;
+    this.prepared = null;
+    // Made ahead for this surface at this scale (up to the rounding of the camera's placement): the same darts.
+    const ready = !faces && p?.surface === s && Math.abs(p.spacing / spacing - 1) < 1e-9;
+    this.samples = ready ? p.samples : sampleSurface(s, spacing, { faces, maxSamples: MAX_SAMPLES });
     this.sampledAt = {
       wpp: this.wpp,
       local: !!faces,

@@ -16,15 +16,21 @@ export const VIEW_PRESETS = {
 // Puts the whole model (its bounding sphere) in view from `preset` (a VIEW_PRESETS name) and makes its centre
 // the orbit pivot. The distance fits the sphere in the narrower of the two fields of view, so a tall
 // phone viewport frames as well as a wide one.
+// How far from the centre of a bounding sphere of this radius frameModel puts the camera: the sphere fills the
+// narrower field of view, with a margin.
+export function framingDistance(camera, radius) {
+  const r = Math.max(radius, 1e-9);
+  const vHalf = (camera.fov * Math.PI) / 360;
+  const hHalf = Math.atan(Math.tan(vHalf) * camera.aspect);
+  return (r / Math.sin(Math.min(vHalf, hHalf))) * 1.05;
+}
+
 export function frameModel(viewer, preset = 'home') {
   const mesh = viewer.surfaceMesh;
   if (!mesh) return false;
   const { camera, controls } = viewer;
   const s = mesh.geometry.boundingSphere;
-  const r = Math.max(s.radius, 1e-9);
-  const vHalf = (camera.fov * Math.PI) / 360;
-  const hHalf = Math.atan(Math.tan(vHalf) * camera.aspect);
-  const dist = (r / Math.sin(Math.min(vHalf, hHalf))) * 1.05;
+  const dist = framingDistance(camera, s.radius);
   const dir = new Vector3(...(VIEW_PRESETS[preset] ?? VIEW_PRESETS.home)).normalize();
   camera.position.copy(s.center).addScaledVector(dir, dist);
   camera.near = dist / 100;

@@ -28,7 +28,8 @@ import { MeshBVH, acceleratedRaycast } from 'three-mesh-bvh';
 import { adoptBVH } from '../geometry/mesh-bvh-transfer.js';
 import { ArrowsView } from './arrows-view.js';
 import { MeshStaging } from './mesh-staging.js';
-import { frameModel, refitToAspect } from './camera.js';
+import { frameModel, framingDistance, refitToAspect } from './camera.js';
+import { worldPerPixelAt } from '../geometry/arrow-sampling.js';
 import { viridis } from './colormap.js';
 import { magnitudeScale } from '../geometry/magnitudes.js';
 import { HandlesView, RIBBON_PX } from './handles.js';
@@ -208,12 +209,19 @@ export class Viewer {
   }
 
   // A big model's mesh, ahead of its field (session 'surface'): its buffers go to the GPU in tasks of their own
-  // (mesh-staging.js), and setMesh of the same surface draws them; the arrows warm up on it in a task of their
-  // own. Resolves with the number of uploads when they are all made.
+  // (mesh-staging.js), and setMesh of the same surface draws them; the arrows' samples for its framed view are
+  // made ahead, a slice per task (arrows-view.js prepare). Resolves with the number of uploads when all is done.
   stageMesh(surface) {
-    const warmUp = () => this.staging.staged?.surface === surface && this.arrows.warmUp(surface);
     const staged = this.staging.stage(surface, () => meshGeometry(surface));
-    return staged.then((uploads) => new Promise((resolve) => setTimeout(() => (warmUp(), resolve(uploads)), 0)));
+    return staged.then(async (uploads) => {
+      const radius = surface.float32?.boundingSphere?.[3];
+      if (this.staging.staged?.surface === surface && radius > 0) {
+        const height = this.canvas.clientHeight || this.canvas.height;
+        const wpp = worldPerPixelAt(this.camera, framingDistance(this.camera, radius), height);
+        await this.arrows.prepare(surface, wpp, () => new Promise((resolve) => setTimeout(resolve, 0)));
+      }
+      return uploads;
+    });
   }
 
   #disposeMesh() {
