@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import test from 'node:test';
 import { grid, icosphere } from './fakes.mjs';
 import { Surface } from '../../web/geometry/surface.js';
-import { faceGeometry, halfEdgeNeighbours, vertexNormals } from '../../web/geometry/mesh-geometry.js';
+import { halfEdgeNeighbours, vertexNormals } from '../../web/geometry/mesh-geometry.js';
 import { torus } from '../../web/core/preview/warm-up.js';
 import { POISSON_PACKING, SurfaceSampler, sampleSurface } from '../../web/geometry/arrow-sampling.js';
 import { traceStreamlines } from '../../web/geometry/streamlines.js';
@@ -80,11 +80,14 @@ function twinsByScan(T) {
 test('vertex normals are the area-weighted sums of the face normals around them: radial on a sphere', () => {
   const { positions, triangles } = icosphere(3);
   const nV = positions.length / 3;
-  const { normals, areas } = faceGeometry(positions, triangles);
+  // Area times unit normal: half the cross product of two edges.
   const byFaces = new Float64Array(3 * nV);
   for (let t = 0; t < triangles.length; t++) {
     const f = Math.floor(t / 3);
-    for (let k = 0; k < 3; k++) byFaces[3 * triangles[t] + k] += areas[f] * normals[3 * f + k];
+    const [a, b, c] = [0, 1, 2].map((k) => Array.from(positions.subarray(3 * triangles[3 * f + k], 3 * triangles[3 * f + k] + 3)));
+    const u = [0, 1, 2].map((k) => b[k] - a[k]), w = [0, 1, 2].map((k) => c[k] - a[k]);
+    const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+    for (let k = 0; k < 3; k++) byFaces[3 * triangles[t] + k] += n[k] / 2;
   }
   for (let v = 0; v < nV; v++) {
     const l = Math.hypot(byFaces[3 * v], byFaces[3 * v + 1], byFaces[3 * v + 2]);

@@ -8,6 +8,9 @@
 //   post { …, surface: { ...surface.arrays(), bvh, float32 } } with transferList(bvh, float32) added to the
 //   transfer list. Surface.fromArrays() keeps unknown keys, so the page's Surface carries `bvh` and `float32`.
 // Page side: viewer.setMesh(surface) draws from those arrays and calls adoptBVH() instead of building.
+// A big model's surface comes in two messages (pageSurface with picking false, then pickingParts): drawable
+// first, its adjacency, face normals and BVH (without positions or index, adopted onto the drawn geometry)
+// after its first field.
 //
 // SerializedMeshBVH (what buildSerializedBVH returns; a plain, structured-cloneable object):
 //   version, roots, index, indirectBuffer  three-mesh-bvh's SerializedBVH (MeshBVH.serialize, indirect mode):

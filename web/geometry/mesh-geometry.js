@@ -2,27 +2,9 @@
 // texture synthesis. Flat typed arrays, face f = triangles[3f..3f+2]; local edge k of a face runs from corner
 // k to corner k+1.
 
-// Unit normals (3 per face; [0, 0, 1] for a degenerate face) and areas. Scalars only in the loops here and
-// below: they run once per face of 800k-face scans, where a small array per face cost seconds of GC. (No
-// centroids: three per face are read from the positions when wanted; an array of them was 20 MB of fresh
-// memory at 832k faces, ~80 ms of page faults on a big model's way to its first field.)
-export function faceGeometry(positions, triangles) {
-  const P = positions, T = triangles, nF = T.length / 3;
-  const normals = new Float64Array(3 * nF), areas = new Float64Array(nF);
-  for (let f = 0; f < nF; f++) {
-    const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
-    const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
-    const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
-    const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
-    const l = Math.sqrt(nx * nx + ny * ny + nz * nz);
-    areas[f] = l / 2;
-    if (l > 0) (normals[3 * f] = nx / l), (normals[3 * f + 1] = ny / l), (normals[3 * f + 2] = nz / l);
-    else normals[3 * f + 2] = 1;
-  }
-  return { normals, areas };
-}
-
-// The unit normals alone (faceGeometry's, without the areas).
+// Unit normals (3 per face; [0, 0, 1] for a degenerate face). Scalars only in the loops here and below: they
+// run once per face of 800k-face scans, where a small array per face cost seconds of GC. (The page's surface
+// sums the areas with its other per-face pass, and reads a face's centroid from the positions when wanted.)
 export function faceNormals(positions, triangles) {
   const P = positions, T = triangles, nF = T.length / 3;
   const normals = new Float64Array(3 * nF);
@@ -84,8 +66,8 @@ export function vertexFaceMap(triangles, nV) {
 }
 
 // Area-weighted unit vertex normals, straight from the positions (each face's cross product is twice its area
-// times its normal): the preview's map needs no face arrays (faceGeometry's three for 832k faces took it
-// 0.3-0.5 s).
+// times its normal): the preview's map needs no face arrays (three of them, normals, areas and centroids, took
+// it 0.3-0.5 s at 832k faces).
 export function vertexNormals(positions, triangles) {
   const P = positions, T = triangles;
   const out = new Float64Array(positions.length);

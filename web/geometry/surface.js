@@ -29,35 +29,21 @@ export class Surface {
     this.#normals = a;
   }
 
-  // The adjacency (tracing, singularities, N-field combing, texture seams): built on first use, or taken from
-  // another thread (a big model's page surface comes without it and receives it, with the picking BVH, after
-  // its first field: adoptPicking).
-  #neighbour = null;
-  #vertexFaceStart = null;
-  #vertexFaces = null;
-  get neighbour() {
-    if (!this.#neighbour) this.#adjacency();
-    return this.#neighbour;
-  }
-  set neighbour(a) {
-    this.#neighbour = a;
-  }
-  get vertexFaceStart() {
-    if (!this.#vertexFaceStart) this.#adjacency();
-    return this.#vertexFaceStart;
-  }
-  set vertexFaceStart(a) {
-    this.#vertexFaceStart = a;
-  }
-  get vertexFaces() {
-    if (!this.#vertexFaces) this.#adjacency();
-    return this.#vertexFaces;
-  }
-  set vertexFaces(a) {
-    this.#vertexFaces = a;
-  }
-  get hasAdjacency() {
-    return this.#neighbour !== null;
+  // The adjacency (tracing, singularities, N-field combing, texture seams): neighbour, vertexFaceStart and
+  // vertexFaces, built on first use, or taken from another thread (a big model's page surface comes without
+  // them and receives them, with the picking BVH, after its first field: adoptPicking).
+  #adjacent = {};
+  static {
+    for (const key of ['neighbour', 'vertexFaceStart', 'vertexFaces'])
+      Object.defineProperty(Surface.prototype, key, {
+        get() {
+          if (!this.#adjacent[key]) this.#adjacency();
+          return this.#adjacent[key];
+        },
+        set(array) {
+          this.#adjacent[key] = array;
+        },
+      });
   }
 
   // A big model's picking part, built in the worker after the surface was sent (mesh-bvh-transfer.js
@@ -101,8 +87,9 @@ export class Surface {
   }
 
   #adjacency() {
-    this.#neighbour = halfEdgeNeighbours(this.triangles, this.nV);
-    ({ start: this.#vertexFaceStart, faces: this.#vertexFaces } = vertexFaceMap(this.triangles, this.nV));
+    const a = this.#adjacent;
+    a.neighbour = halfEdgeNeighbours(this.triangles, this.nV);
+    ({ start: a.vertexFaceStart, faces: a.vertexFaces } = vertexFaceMap(this.triangles, this.nV));
   }
 
   // The per-mesh arrays, copied (the caller keeps its own Surface): the worker builds the Surface once per mesh

@@ -9,7 +9,7 @@
 // coarse faces are the candidates (a collapse moves a vertex by about one coarse edge).
 //
 // Owns the maps; imports geometry/mesh-geometry.js (the fine normals).
-import { faceGeometry, vertexNormals } from '../../geometry/mesh-geometry.js';
+import { faceNormals, vertexNormals } from '../../geometry/mesh-geometry.js';
 
 export class SurfaceMap {
   // fine: {positions, triangles} (Float64Array, Int32Array); coarse: {positions, triangles, fineVertex}
@@ -188,7 +188,7 @@ export class SurfaceMap {
   }
 
   faceNormals() {
-    return (this.faceNormalsCache ??= faceGeometry(this.fine.positions, this.fine.triangles).normals);
+    return (this.faceNormalsCache ??= faceNormals(this.fine.positions, this.fine.triangles));
   }
 
   // ------------------------------------------------------------------------------------------ designs
