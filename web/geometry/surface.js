@@ -126,13 +126,24 @@ export class Surface {
   }
 
   normal(f) {
+    return this.normalInto(f, [0, 0, 0]);
+  }
+
+  // normal(f) written into out, allocating nothing (the arrows ask for thousands per field).
+  normalInto(f, out) {
     const N = this.#normals;
-    if (N) return [N[3 * f], N[3 * f + 1], N[3 * f + 2]];
+    if (N) {
+      (out[0] = N[3 * f]), (out[1] = N[3 * f + 1]), (out[2] = N[3 * f + 2]);
+      return out;
+    }
     const P = this.positions, T = this.triangles, a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
     const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
     const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
-    const n = [uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx], l = Math.hypot(...n);
-    return l > 0 ? n.map((x) => x / l) : [0, 0, 1];
+    const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
+    const l = Math.sqrt(nx * nx + ny * ny + nz * nz);
+    if (l > 0) (out[0] = nx / l), (out[1] = ny / l), (out[2] = nz / l);
+    else (out[0] = 0), (out[1] = 0), (out[2] = 1);
+    return out;
   }
 
   centroid(f) {

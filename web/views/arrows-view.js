@@ -182,14 +182,14 @@ export class ArrowsView {
     const len = ARROW_LENGTH * arrowSpacingPx(this.options.density) * this.wpp;
     const lift = ARROW_LIFT * s.meanEdge;
     const m4 = new Matrix4();
-    const x = new Vector3(), y = new Vector3(), z = new Vector3(), color = new Color(0xf4f4f5);
+    const x = new Vector3(), y = new Vector3(), z = new Vector3(), color = new Color(0xf4f4f5), nrm = [0, 0, 0];
     // Samples whose vector is negligible next to the largest get no arrow rather than a noisy direction.
     const floor = max * 1e-6;
     const N = this.symmetry, matched = [0, 0, 0];
     let k = 0;
     for (let i = 0; i < n; i++) {
       const f = faces[i];
-      z.fromArray(s.normal(f));
+      z.fromArray(s.normalInto(f, nrm));
       if (V && N > 1) {
         // The face's representative is the reference the three corners are turned to before they mix.
         matchedAt(s, V, f, bary.subarray(3 * i, 3 * i + 3), [F[3 * f], F[3 * f + 1], F[3 * f + 2]], N, matched);
