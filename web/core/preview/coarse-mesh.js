@@ -16,8 +16,7 @@ const CLUSTER_ABOVE = 5;
 // positions: Float64Array (3 per vertex), triangles: Int32Array (3 per face). Returns {positions (Float64Array),
 // triangles (Int32Array, coarse vertex indices), fineVertex (Int32Array: coarse vertex → fine vertex), ms}.
 // At most COARSE_FACES, and a quarter of the mesh (a preview forced on a small mesh is still coarser).
-// options.clusterFirst: false keeps the quadric simplifier alone on every mesh (tests compare the two).
-export async function coarseMesh(positions, triangles, { clusterFirst = true } = {}) {
+export async function coarseMesh(positions, triangles) {
   await MeshoptSimplifier.ready;
   const t0 = performance.now();
   const nF = triangles.length / 3;
@@ -25,7 +24,7 @@ export async function coarseMesh(positions, triangles, { clusterFirst = true } =
   // The engine's bulk conversions (Float32Array.from walks an iterator).
   const P32 = new Float32Array(positions);
   let indices = new Uint32Array(triangles);
-  if (clusterFirst && nF > CLUSTER_ABOVE * targetFaces) {
+  if (nF > CLUSTER_ABOVE * targetFaces) {
     // Vertex clustering down to a few times the target, then the quadric collapses: at 832k faces 0.47 s in
     // place of 1.13–1.6 s (node), the coarse mesh's error 6.2e-4 of the extent in place of 5.2e-4. Clustering
     // keeps fine vertices as the collapses do, so the map's premise holds; what it pinches, the repairs drop.
