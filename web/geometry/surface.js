@@ -33,21 +33,9 @@ export class Surface {
   // vertexFaces, built on first use, or taken from another thread (a big model's page surface comes without
   // them and receives them, with the picking BVH, after its first field: adoptPicking).
   #adjacent = {};
-  static {
-    for (const key of ['neighbour', 'vertexFaceStart', 'vertexFaces'])
-      Object.defineProperty(Surface.prototype, key, {
-        get() {
-          if (!this.#adjacent[key]) this.#adjacency();
-          return this.#adjacent[key];
-        },
-        set(array) {
-          this.#adjacent[key] = array;
-        },
-      });
-  }
 
   // A big model's picking part, built in the worker after the surface was sent (mesh-bvh-transfer.js
-  // pickingParts): the adjacency, and the serialized BVH the viewer adopts at its first pick.
+  // pickingParts): the adjacency, the face normals, and the serialized BVH the viewer adopts at its first pick.
   adoptPicking({ neighbour, vertexFaceStart, vertexFaces, normals, bvh }) {
     Object.assign(this, { neighbour, vertexFaceStart, vertexFaces, normals, bvh });
     this.pickingFollows = false;
@@ -104,15 +92,25 @@ export class Surface {
   static ADJACENCY = ['neighbour', 'vertexFaceStart', 'vertexFaces'];
   // What a big model's surface sends after its first field (mesh-bvh-transfer.js pickingParts).
   static PICKING = [...Surface.ADJACENCY, 'normals'];
+  // The adjacency's accessors (#adjacent above).
+  static {
+    for (const key of Surface.ADJACENCY)
+      Object.defineProperty(Surface.prototype, key, {
+        get() {
+          if (!this.#adjacent[key]) this.#adjacency();
+          return this.#adjacent[key];
+        },
+        set(array) {
+          this.#adjacent[key] = array;
+        },
+      });
+  }
+
 
   static fromArrays({ positions, triangles, edges, ...derived }) {
     return new Surface(positions, triangles, edges, derived);
   }
 
-  // Buffers of arrays() to transfer rather than copy.
-  static transferList(arrays) {
-    return Surface.ARRAYS.map((key) => arrays[key].buffer);
-  }
 
   // 2π less the corner angles per vertex; computed on first use (the singularities need it).
   angleDefects() {
