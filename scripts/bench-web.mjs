@@ -142,7 +142,9 @@ async function strokeBench(page, meshPath) {
       }
       const exactOnScreenMs = preview ? performance.now() - t0 : pageMs;
       const stats = window.tvf.stats();
-      return { pageMs, exactMs, exactOnScreenMs, preview, lastOp, refresh, stats };
+      const last = window.tvf.perf().lastExact;
+      const exact = preview && last ? { workerMs: last.workerMs, ...last.workerParts, receivedMs: last.receivedAt - t0, applyMs: last.applyMs } : null;
+      return { pageMs, exactMs, exactOnScreenMs, preview, lastOp, refresh, stats, exact };
     }, points));
   }
   await strokesProfile.stop();
@@ -191,6 +193,9 @@ async function strokeBench(page, meshPath) {
     strokePreviewMs: median(runs.map((r) => r.pageMs)),
     strokeExactMs: median(runs.map((r) => r.exactMs)),
     strokeExactOnScreenMs: median(runs.map((r) => r.exactOnScreenMs)),
+    // Where a stroke's exact field spends its time (medians): the exact worker's parts (as workerParts below),
+    // its reply received on the page (ms after addStroke), and the page applying it up to the draw.
+    strokeExactParts: runs.some((r) => r.exact) ? Object.fromEntries(['workerMs', 'opMs', 'solveMs', 'copyMs', 'deriveMs', 'designMs', 'statsMs', 'receivedMs', 'applyMs'].map((k) => [k, median(runs.map((r) => r.exact?.[k]))])) : null,
     strokesPreviewed: runs.filter((r) => r.preview).length,
     longestTaskMs: Math.max(longest(loadTasks), longest(strokeTasks)),
     longestLoadTaskMs: longest(loadTasks),

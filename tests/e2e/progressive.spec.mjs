@@ -249,4 +249,61 @@ test.describe.serial('progressive loading of big meshes', () => {
     expect(r.hits).toBeLessThan(121);
     expect(r.progressive).toEqual(r.plain);
   });
+
+  // A big surface is drawn once per view and copied under the field (views/surface-layer.js): an edit that
+  // changes only the field must not draw the surface again, an orbit must, and the picture, field included,
+  // must be the one the scene draws directly. Forced here on a small mesh by lowering the layer's size.
+  test('a big surface is drawn once per view; an edit draws only the field over it, as a direct render would', async () => {
+    const r = await page.evaluate(async (off) => {
+      const t = window.tvf;
+      const pixels = async () => {
+        const bitmap = await createImageBitmap(await t.screenshot({ width: 320, height: 240 }));
+        const ctx = new OffscreenCanvas(bitmap.width, bitmap.height).getContext('2d');
+        ctx.drawImage(bitmap, 0, 0);
+        return ctx.getImageData(0, 0, bitmap.width, bitmap.height).data;
+      };
+      // Pixels that differ by more than 8 levels: all of them, and those inside a smooth part of the direct
+      // picture (its four neighbours within 24 levels). The layer is multisampled in linear light, the canvas
+      // in sRGB, so a silhouette's antialiased pixels differ by a few levels; nothing else may.
+      const compare = (a, b, width = 320) => {
+        const far = (i, j, to) => Math.abs(a[i] - to[j]) + Math.abs(a[i + 1] - to[j + 1]) + Math.abs(a[i + 2] - to[j + 2]);
+        let differing = 0, inside = 0, model = 0;
+        for (let i = 0; i < a.length; i += 4) {
+          if (far(i, 0, a) > 24) model++;
+          if (Math.max(...[0, 1, 2].map((c) => Math.abs(a[i + c] - b[i + c]))) <= 8) continue;
+          differing++;
+          if ([-4, 4, -4 * width, 4 * width].every((o) => a[i + o] !== undefined && far(i, i + o, a) <= 24)) inside++;
+        }
+        return { differing, inside, model, pixels: a.length / 4 };
+      };
+      // Both pictures of one state: the surface in the scene, then from the layer.
+      const both = async () => {
+        t.debugSurfaceLayer(Infinity);
+        const direct = await pixels();
+        t.debugSurfaceLayer(1);
+        return compare(direct, await pixels());
+      };
+      await t.loadModel(new TextEncoder().encode(off), { name: 'bunny-sub1.off', format: 'off', previewEdges: 0, restore: false });
+      await t.addSource(40);
+      const before = await both();
+      const on = t.debugSurfaceLayer(1);
+      await t.addVector(900, [1, 0.2, 0]);
+      const afterEdit = t.debugSurfaceLayer();
+      t.setCamera({ ...t.camera(), position: t.camera().position.map((x, i) => (i === 0 ? x + 0.3 : x)) });
+      await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+      const afterOrbit = t.debugSurfaceLayer();
+      const edited = await both();
+      t.debugSurfaceLayer(Infinity);
+      return { before, edited, on, afterEdit, afterOrbit };
+    }, off);
+    console.log('surface layer:', JSON.stringify(r));
+    for (const c of [r.before, r.edited]) {
+      expect(c.model).toBeGreaterThan(0.1 * c.pixels); // the model is in the picture
+      expect(c.differing).toBeLessThan(0.01 * c.pixels);
+      expect(c.inside).toBeLessThan(0.0005 * c.pixels);
+    }
+    expect(r.afterEdit.drawn).toBe(r.on.drawn); // the edit's frames copied the layer
+    expect(r.afterEdit.copied).toBeGreaterThan(r.on.copied);
+    expect(r.afterOrbit.drawn).toBeGreaterThan(r.afterEdit.drawn); // the orbit drew the surface again
+  });
 });

@@ -24,7 +24,7 @@ export const PREVIEW_EDGES = 300_000;
 const isEdit = (op) => ['add', 'remove', 'setWeight', 'setStrength', 'setBoundary', 'setGamma', 'setSymmetry', 'setCurvatureAlignment', 'applyDesign'].includes(op);
 
 export class ProgressiveCore {
-  // exact: the session's CoreProxy. onExact(snapshot): the exact field has caught up with the design; onExactError
+  // exact: the session's CoreProxy. onExact(snapshot, reply): the exact field has caught up with the design; onExactError
   // (err, op): an exact op failed after the preview had answered for it; onPhase({phase, ...}): load progress.
   constructor(exact, { assetBase, onExact, onExactError }) {
     this.exact = exact;
@@ -173,7 +173,7 @@ export class ProgressiveCore {
       (reply) => {
         const caughtUp = this.outstanding === 1;
         done();
-        if (caughtUp && !entry.answered && reply.snapshot) this.onExact(reply.snapshot);
+        if (caughtUp && !entry.answered && reply.snapshot) this.onExact(reply.snapshot, reply);
       },
       (err) => {
         done();

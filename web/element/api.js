@@ -127,6 +127,12 @@ export const api = {
   debugCoreReadout: (d) => d.session.exclusive(async () => (d.session.requireReady(), (await d.session.proxy.call('read')).value)),
   debugTraceStreamlines: read((d) => d.viewSync.traceStreamlinesHere().map((l) => Array.from(l))),
   debugGlPrograms: (d) => d.viewer.renderer.info.programs.length,
+  // The big-surface layer (views/surface-layer.js) from minFaces faces on (when given), and its counts.
+  debugSurfaceLayer: (d, minFaces) => {
+    const layer = d.viewer.surfaceLayer;
+    if (minFaces != null) (layer.minFaces = minFaces), layer.invalidate(), d.viewer.renderNow();
+    return { minFaces: layer.minFaces, drawn: layer.drawn, copied: layer.copied };
+  },
   // The worker's `component` op for the current field: {oneForm, faceVectors, vertexVectors} of 'whole' |
   // 'exact' | 'coexact' | 'harmonic'.
   debugComponent: (d, name) => d.session.exclusive(() => (d.session.requireReady(), workerRead(d, 'component', name))),

@@ -10,12 +10,15 @@ export function awaitExact(s) {
 }
 
 // The exact core has caught up with every edit: its field replaces the preview.
-export function exactLanded(s, snapshot) {
+// reply: the exact core's reply, whose worker-side timings perf keeps (lastExact) beside the preview's (lastOp).
+export function exactLanded(s, snapshot, reply = {}) {
   if (s.disposed) return;
   // A model's reply waiting for its mesh's uploads (model-loader.js) is adopted first.
-  if (s.models.adopting) return void s.models.adopting.then(() => exactLanded(s, snapshot));
+  if (s.models.adopting) return void s.models.adopting.then(() => exactLanded(s, snapshot, reply));
+  const receivedAt = performance.now();
   s.applySnapshot(snapshot);
   s.perf.exactLandedAt = performance.now();
+  s.perf.lastExact = { workerMs: reply.workerMs, workerParts: reply.timing, receivedAt, applyMs: s.perf.exactLandedAt - receivedAt };
   s.models.previous = null;
   s.changed();
   s.emitChanges();

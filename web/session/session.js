@@ -74,7 +74,7 @@ export class Session extends Emitter {
     if (this.proxy && this.#core?.exact !== this.proxy) {
       this.#core = new ProgressiveCore(this.proxy, {
         assetBase: this.assetBase,
-        onExact: (snapshot) => exactLanded(this, snapshot),
+        onExact: (snapshot, reply) => exactLanded(this, snapshot, reply),
         onExactError: (err, op, caughtUp) => exactFailed(this, err, op, caughtUp),
       });
     }

@@ -38,6 +38,7 @@ import { LabelTextures } from './markers.js';
 import { BandMaterial, GrowingBand } from './screen-ribbon.js';
 import { SingularitiesView } from './singularities-view.js';
 import { StreamlinesView } from './streamlines-view.js';
+import { SurfaceLayer } from './surface-layer.js';
 import { warmUpShaders } from './shader-warm-up.js';
 
 const BACKGROUND = 0x1b1d21;
@@ -52,6 +53,7 @@ export class Viewer {
     // this the canvas stays blank until the next interaction.
     this.renderer.domElement.addEventListener('webglcontextrestored', () => {
       this._renderQueued = false;
+      this.surfaceLayer.invalidate();
       this.requestRender();
     });
     // Checking a new program's compile log is a synchronous round trip to the GPU process, which waits for every
@@ -95,6 +97,7 @@ export class Viewer {
     this.singularities = new SingularitiesView(this.scene, this.labels);
     this.handles = new HandlesView(this.scene, this.labels);
     this.lic = new LicView();
+    this.surfaceLayer = new SurfaceLayer(); // a big surface drawn once per view (surface-layer.js)
     this.afterRender = []; // callbacks (time) → void, run once after the next render
     this.staging = new MeshStaging(this.renderer, this.camera);
     this.renderCount = 0; // frames drawn, for measuring responsiveness while the worker is busy
@@ -123,6 +126,7 @@ export class Viewer {
     });
     this.labels.dispose();
     this.lic.dispose();
+    this.surfaceLayer.dispose();
     this.renderer.dispose();
     this.renderer.forceContextLoss();
     this.canvas.remove();
@@ -157,7 +161,7 @@ export class Viewer {
     this.arrows.updateView(this.camera, this.controls.target, this.canvas.clientHeight || this.canvas.height);
     this.singularities.updateScale(this.camera, this.renderer);
     this.handles.updateScale(this.camera, this.renderer);
-    this.renderer.render(this.scene, this.camera);
+    this.surfaceLayer.render(this.renderer, this.scene, this.camera, this.surfaceMesh, this.lic.visible);
     this.lic.render(this.renderer, this.camera);
     this.renderCount++;
     if (this.afterRender.length) {

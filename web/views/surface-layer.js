@@ -1,0 +1,155 @@
+// The big surface drawn once per view, not once per frame. With software GL (SwiftShader) a frame of an
+// 832k-face scan costs the GPU process ~0.85 s of CPU, and every stroke draws two (its preview, its exact
+// field) on the cores the exact solve needs. The field's layers (arrows, lines, handles, markers) change far
+// more often than the surface's own picture, which depends only on the camera, the drawing buffer and the
+// surface's geometry and material: so on a mesh this big the surface is drawn into a target (colour and depth,
+// multisampled like the canvas) when one of those changes, and every frame copies that target onto the
+// canvas, depth included, before the scene is drawn over it without the surface. The depth copy keeps the
+// layers lying in the face planes (polygon offset) and the surface hiding what is behind it exactly as before.
+// A surface whose colours follow the field (the magnitude colour map), that another view replaces (texture,
+// material preview) or that the flow texture draws over is drawn in the scene as usual.
+//
+// Owns its render target and copy pass. Imports three.js only.
+import {
+  AlwaysDepth,
+  Color,
+  DepthTexture,
+  Mesh,
+  NoBlending,
+  OrthographicCamera,
+  PlaneGeometry,
+  Scene,
+  ShaderMaterial,
+  SRGBColorSpace,
+  UnsignedIntType,
+  Vector2,
+  WebGLRenderTarget,
+} from 'three';
+
+// Above this many faces the surface is drawn into the layer (bunny00's 70k faces draw in a few ms; the cached
+// path costs a full-screen copy per frame and a target the size of the canvas).
+export const SURFACE_LAYER_FACES = 200_000;
+
+const COPY_VERTEX = /* glsl */ `
+varying vec2 vUv;
+void main() {
+  vUv = uv;
+  gl_Position = vec4(position.xy, 0.0, 1.0);
+}`;
+
+// The target's colour is linear (sRGB-encoded storage, decoded when sampled): the copy encodes it for the
+// canvas as the renderer would have.
+const COPY_FRAGMENT = /* glsl */ `
+uniform sampler2D uColor;
+uniform sampler2D uDepth;
+varying vec2 vUv;
+void main() {
+  gl_FragColor = texture2D(uColor, vUv);
+  gl_FragDepth = texture2D(uDepth, vUv).r;
+  #include <colorspace_fragment>
+}`;
+
+export class SurfaceLayer {
+  constructor() {
+    this.minFaces = SURFACE_LAYER_FACES;
+    this.target = null;
+    this.key = null;
+    this.size = new Vector2();
+    this.clearColor = new Color();
+    this.drawn = 0; // times the surface was drawn into the layer
+    this.copied = 0; // frames that copied it instead
+    this.material = new ShaderMaterial({
+      uniforms: { uColor: { value: null }, uDepth: { value: null } },
+      vertexShader: COPY_VERTEX,
+      fragmentShader: COPY_FRAGMENT,
+      blending: NoBlending,
+      depthTest: true, // depth is only written where the test is on: Always passes
+      depthFunc: AlwaysDepth,
+      depthWrite: true,
+    });
+    this.copyScene = new Scene();
+    this.copyScene.add(new Mesh(new PlaneGeometry(2, 2), this.material));
+    this.copyCamera = new OrthographicCamera(-1, 1, 1, -1, 0, 1);
+  }
+
+  // Whether the surface's picture depends on nothing but the view, and the mesh is big enough to gain.
+  applies(surfaceMesh, licVisible) {
+    const m = surfaceMesh?.material;
+    if (!m || licVisible || !surfaceMesh.visible || !m.visible || m.vertexColors || m.map) return false;
+    return surfaceMesh.geometry.index ? surfaceMesh.geometry.index.count / 3 >= this.minFaces : false;
+  }
+
+  // Draws scene with camera, the surface from the layer where that applies (else as part of the scene).
+  render(renderer, scene, camera, surfaceMesh, licVisible) {
+    if (!this.applies(surfaceMesh, licVisible)) {
+      renderer.render(scene, camera);
+      return;
+    }
+    renderer.getDrawingBufferSize(this.size);
+    const key = this.#keyOf(renderer, camera, surfaceMesh);
+    if (key !== this.key) this.#drawSurface(renderer, camera, surfaceMesh, key);
+    else this.copied++;
+    const autoClear = renderer.autoClear;
+    renderer.clear();
+    renderer.autoClear = false;
+    renderer.render(this.copyScene, this.copyCamera);
+    surfaceMesh.visible = false;
+    try {
+      renderer.render(scene, camera);
+    } finally {
+      surfaceMesh.visible = true;
+      renderer.autoClear = autoClear;
+    }
+  }
+
+  // What the surface's picture depends on, as a string: the drawing buffer, the camera (the headlight rides
+  // on it), the surface's transform, geometry and material.
+  #keyOf(renderer, camera, mesh) {
+    camera.updateMatrixWorld();
+    mesh.updateMatrixWorld();
+    const g = mesh.geometry;
+    const versions = ['position', 'normal'].map((n) => g.getAttribute(n)?.version ?? -1);
+    return [this.size.x, this.size.y, renderer.getPixelRatio(), renderer.getClearColor(this.clearColor).getHex(), renderer.getClearAlpha(), ...camera.matrixWorld.elements, ...camera.projectionMatrix.elements,
+      ...mesh.matrixWorld.elements, mesh.id, g.id, g.index.version, ...versions, mesh.material.id, mesh.material.version].join(' ');
+  }
+
+  #drawSurface(renderer, camera, mesh, key) {
+    const { x, y } = this.size;
+    if (!this.target || this.target.width !== x || this.target.height !== y) this.#makeTarget(x, y);
+    const previous = renderer.getRenderTarget();
+    // The surface alone, in the scene it belongs to (its lights), everything else hidden for the pass.
+    const scene = mesh.parent;
+    const hidden = scene.children.filter((o) => o !== mesh && o.visible && !o.isLight && o !== camera);
+    for (const o of hidden) o.visible = false;
+    try {
+      renderer.setRenderTarget(this.target);
+      renderer.clear();
+      renderer.render(scene, camera);
+    } finally {
+      for (const o of hidden) o.visible = true;
+      renderer.setRenderTarget(previous);
+    }
+    this.key = key;
+    this.drawn++;
+  }
+
+  #makeTarget(width, height) {
+    this.target?.dispose();
+    const depthTexture = new DepthTexture(width, height, UnsignedIntType);
+    this.target = new WebGLRenderTarget(width, height, { samples: 4, depthTexture, colorSpace: SRGBColorSpace });
+    this.material.uniforms.uColor.value = this.target.texture;
+    this.material.uniforms.uDepth.value = depthTexture;
+  }
+
+  // The view changed in a way the key does not see (a lost context): draw the surface again.
+  invalidate() {
+    this.key = null;
+  }
+
+  dispose() {
+    this.target?.dispose();
+    this.target = null;
+    this.material.dispose();
+    this.copyScene.children[0].geometry.dispose();
+  }
+}
