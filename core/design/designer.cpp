@@ -62,6 +62,9 @@ struct Designer::Impl {
 
   Eigen::VectorXd solution;
   std::vector<double> oneForm, faceVectors, vertexVectors;
+  // The solve's reconstruction, swapped in once it is known finite; between solves, scratch
+  // (vertexVectors()).
+  std::vector<double> nextFaceVectors;
   std::vector<Singularity> singularities;
   // Derived on first read, each on its own: the page's default view needs the vertex vectors only.
   bool vertexVectorsStale = false, singularitiesStale = false;
@@ -485,7 +488,7 @@ void Designer::solve() {
         "the field is not finite (the system is too badly conditioned for these constraints); "
         "the previous field is kept");
   start = Clock::now();
-  std::vector<double> faceVectors;
+  std::vector<double>& faceVectors = d.nextFaceVectors;
   tvf::faceVectors(d.faceMap(), d.topology, x.data(), faceVectors);
   for (const double v : faceVectors)
     if (!std::isfinite(v))
@@ -494,7 +497,7 @@ void Designer::solve() {
           "the previous field is kept");
   d.solution = std::move(x);
   d.oneForm.assign(d.solution.data(), d.solution.data() + d.solution.size());
-  d.faceVectors = std::move(faceVectors);
+  std::swap(d.faceVectors, faceVectors);
   d.stats.reconstructMs = msSince(start);
   d.vertexVectorsStale = d.singularitiesStale = true;
 }
@@ -517,8 +520,10 @@ const std::vector<double>& Designer::vertexVectors() const {
   if (d.vertexVectorsStale && d.directions) {
     d.vertexVectors = vertexRepresentatives(d.mesh, d.topology, d.geometry, d.faceVectors, d.symmetry);
   } else if (d.vertexVectorsStale) {
+    // The solve's spare face array (the previous field's, 3 doubles per face) holds the threads' partial
+    // sums.
     tvf::vertexVectors(d.vertexMap(), d.faceMap(), d.mesh, d.topology, d.geometry, d.oneForm.data(),
-                       d.vertexVectors);
+                       d.vertexVectors, d.nextFaceVectors);
   }
   d.vertexVectorsStale = false;
   return d.vertexVectors;

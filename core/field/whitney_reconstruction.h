@@ -47,6 +47,12 @@ VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& top
 void vertexVectors(const VertexVectorMap& map, const FaceVectorMap& faces, const SurfaceMesh& mesh,
                    const MeshTopology& topology, const MeshGeometry& geometry, const double* oneForm,
                    std::vector<double>& out);
+// The same, its threads' partial sums in scratch (contents ignored; on one thread when it is too small): a
+// caller with a spare array lends it, where a new one (10 MB at 416k vertices, made just after the
+// factorization) would grow the wasm heap past its peak.
+void vertexVectors(const VertexVectorMap& map, const FaceVectorMap& faces, const SurfaceMesh& mesh,
+                   const MeshTopology& topology, const MeshGeometry& geometry, const double* oneForm,
+                   std::vector<double>& out, std::vector<double>& scratch);
 // Texture-domain vectors at barycentres (2 per face); empty when the mesh has no UVs.
 void textureFaceVectors(const SurfaceMesh& mesh, const MeshTopology& topology, const double* oneForm,
                         std::vector<double>& out);
