@@ -5,6 +5,8 @@
 #include <cstring>
 #include <set>
 
+#include "mesh/mesh_hash.h"
+
 namespace tvf {
 namespace {
 
@@ -68,14 +70,11 @@ json vec3List(const std::vector<double>& flat) {
   return out;
 }
 
-// FNV-1a over 32-bit words (not bytes): a fingerprint of a 100k-face mesh stays well under a millisecond.
-struct Fnv1a64 {
-  uint64_t h = 0xcbf29ce484222325ull;
-  void word(uint32_t w) {
-    h ^= w;
-    h *= 0x100000001b3ull;
-  }
-};
+json fingerprintJson(int32_t vertices, int32_t faces, uint64_t hash) {
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  return {{"vertices", vertices}, {"faces", faces}, {"hash", hex}};
+}
 
 std::string describeFingerprint(const json& f) {
   return std::to_string(f.value("vertices", 0)) + " vertices, " + std::to_string(f.value("faces", 0)) +
@@ -99,14 +98,15 @@ void checkSchema(const json& doc) {
   if (!doc.contains("constraints")) throw InputError("not a design file: it has no \"constraints\" list");
 }
 
-void checkFingerprint(const SurfaceMesh& mesh, const json& doc) {
+void checkFingerprint(const Designer& designer, const json& doc) {
   if (!doc.contains("mesh")) return;  // older files carry none: indices are still range-checked
   const json& saved = doc["mesh"];
   if (!saved.is_object() || !saved.contains("hash") || !saved["hash"].is_string() ||
       !saved.value("vertices", json()).is_number_integer() ||
       !saved.value("faces", json()).is_number_integer())
     throw InputError("design: \"mesh\" must be {\"vertices\", \"faces\", \"hash\"}");
-  const json current = meshFingerprint(mesh);
+  const json current =
+      fingerprintJson(designer.mesh().numVertices(), designer.mesh().numFaces(), designer.meshHash());
   if (saved["vertices"] != current["vertices"] || saved["faces"] != current["faces"] ||
       saved["hash"] != current["hash"])
     throw InputError("this design was made for another mesh (" + describeFingerprint(saved) +
@@ -116,17 +116,7 @@ void checkFingerprint(const SurfaceMesh& mesh, const json& doc) {
 }  // namespace
 
 json meshFingerprint(const SurfaceMesh& mesh) {
-  Fnv1a64 h;
-  for (const double x : mesh.positions) {
-    const float f = static_cast<float>(x);
-    uint32_t bits;
-    std::memcpy(&bits, &f, sizeof bits);
-    h.word(bits);
-  }
-  for (const int32_t v : mesh.triangles) h.word(static_cast<uint32_t>(v));
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.h));
-  return {{"vertices", mesh.numVertices()}, {"faces", mesh.numFaces()}, {"hash", hex}};
+  return fingerprintJson(mesh.numVertices(), mesh.numFaces(), meshHash(mesh));
 }
 
 ConstraintSpec constraintFromJson(const json& c, size_t index) {
@@ -248,7 +238,7 @@ json boundaryToJson(const BoundaryCondition& bc) {
 void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) {
   if (!doc.is_object()) throw InputError("a design must be a JSON object");
   checkSchema(doc);
-  if (fingerprint) checkFingerprint(designer.mesh(), doc);
+  if (fingerprint) checkFingerprint(designer, doc);
   const BoundaryCondition bc = boundaryFromJson(doc.value("boundary", json()));
   const double gamma = number(doc, "gamma", 0.0, "design");
   const double symmetryValue = number(doc, "symmetry", 1.0, "design");
@@ -297,7 +287,8 @@ json designDocument(const Designer& designer) {
   json constraints = json::array();
   for (const auto& s : designer.constraints()) constraints.push_back(constraintToJson(s));
   json doc = {{"schema", kDesignSchema},
-              {"mesh", meshFingerprint(designer.mesh())},
+              {"mesh", fingerprintJson(designer.mesh().numVertices(), designer.mesh().numFaces(),
+                                       designer.meshHash())},
               {"boundary", boundaryToJson(designer.boundary())},
               {"gamma", designer.gamma()},
               {"constraints", constraints}};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "constraints/constraint_set.h"
@@ -12,6 +13,7 @@
 #include "direction/representative_directions.h"
 #include "field/whitney_reconstruction.h"
 #include "mesh/mesh_checks.h"
+#include "mesh/mesh_hash.h"
 #include "solver/shifted_factor.h"
 
 namespace tvf {
@@ -40,6 +42,7 @@ std::vector<uint8_t> kernelEdges(const MeshTopology& topology) {
 
 struct Designer::Impl {
   SurfaceMesh mesh;
+  std::optional<uint64_t> meshHash;  // made on first use
   MeshTopology topology;
   std::vector<MeshProblem> meshNotes;  // the check's non-fatal problems
   MeshGeometry geometry;
@@ -559,6 +562,10 @@ double Designer::gamma() const {
 }
 const SurfaceMesh& Designer::mesh() const {
   return impl_->mesh;
+}
+uint64_t Designer::meshHash() const {
+  if (!impl_->meshHash) impl_->meshHash = tvf::meshHash(impl_->mesh);
+  return *impl_->meshHash;
 }
 const std::vector<int32_t>& Designer::edgeVertices() const {
   return impl_->topology.edgeVertices;

@@ -134,6 +134,9 @@ class Designer {
   Eigen::VectorXd textureFaceVectors() const;  // 2 per face when the mesh has UVs
 
   const SurfaceMesh& mesh() const;
+  // meshHash(mesh()) (mesh/mesh_hash.h), made on first use: every saved design carries it, and the page saves
+  // one after each edit (7 ms at 832k faces in wasm).
+  uint64_t meshHash() const;
   const std::vector<int32_t>& edgeVertices() const;  // 2 per edge, lower index first
   // Derived from the mesh once, at construction; exports and benchmarks read them rather than derive again.
   const MeshTopology& topology() const;

@@ -9,9 +9,10 @@
 // streamlines-view.js, viewer.js): a setting that drifts only costs that program its head start.
 //
 // Owns nothing past the call. Imports three and the views' band and marker makers.
-import { BufferAttribute, BufferGeometry, CircleGeometry, Color, DoubleSide, Group, InstancedMesh, LineBasicMaterial, LineSegments, Mesh, MeshBasicMaterial, MeshStandardMaterial } from 'three';
+import { BufferAttribute, BufferGeometry, CircleGeometry, Color, DoubleSide, Group, InstancedMesh, LineBasicMaterial, LineSegments, Mesh, MeshBasicMaterial, MeshStandardMaterial, PlaneGeometry } from 'three';
 import { arrowGeometry, glyphGeometry, markerSprite } from './markers.js';
 import { BandMaterial, bandGeometry, bandMesh } from './screen-ribbon.js';
+import { copyMaterial, layerTarget } from './surface-layer.js';
 
 // A triangle with the given attributes: a program depends on which attributes the geometry has.
 function triangle(...names) {
@@ -33,17 +34,43 @@ function samples(labels) {
   arrows.setColorAt(0, new Color(1, 1, 1));
   group.add(arrows);
   group.add(new LineSegments(triangle('position'), new LineBasicMaterial({ color: 0x111827 })));
-  for (const vertexColors of [false, true]) {
-    const surface = new MeshStandardMaterial({ roughness: 0.65, metalness: 0, side: DoubleSide, polygonOffset: true, vertexColors });
-    group.add(new Mesh(triangle('position', 'normal', 'color'), surface));
-  }
+  group.add(new Mesh(new PlaneGeometry(2, 2), copyMaterial()));
+  group.add(...surfaces());
   for (const object of group.children) object.frustumCulled = false;
   return group;
+}
+
+function surfaces() {
+  return [false, true].map((vertexColors) => {
+    const surface = new MeshStandardMaterial({ roughness: 0.65, metalness: 0, side: DoubleSide, polygonOffset: true, vertexColors });
+    const mesh = new Mesh(triangle('position', 'normal', 'color'), surface);
+    mesh.frustumCulled = false;
+    return mesh;
+  });
+}
+
+// The surface's programs as a big surface draws them into its layer (surface-layer.js): linear output, another
+// program than the canvas's. compile() makes them at once; the GPU process links them in the background.
+function warmUpLayer(renderer, scene, camera) {
+  const group = new Group();
+  group.add(...surfaces());
+  scene.add(group);
+  const target = layerTarget(1, 1);
+  const previous = renderer.getRenderTarget();
+  try {
+    renderer.setRenderTarget(target);
+    renderer.compile(scene, camera);
+  } finally {
+    renderer.setRenderTarget(previous);
+    scene.remove(group);
+    target.dispose();
+  }
 }
 
 // Resolves when the programs are linked (or at once where compiling in the background is not offered). The
 // samples' materials are left undisposed: disposing the last material of a program deletes the program.
 export async function warmUpShaders(renderer, scene, camera, labels) {
+  warmUpLayer(renderer, scene, camera);
   const group = samples(labels);
   scene.add(group);
   try {

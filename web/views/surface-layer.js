@@ -49,6 +49,25 @@ void main() {
   #include <colorspace_fragment>
 }`;
 
+// The pass that copies the layer onto the canvas (also compiled ahead: shader-warm-up.js).
+export function copyMaterial() {
+  return new ShaderMaterial({
+    uniforms: { uColor: { value: null }, uDepth: { value: null } },
+    vertexShader: COPY_VERTEX,
+    fragmentShader: COPY_FRAGMENT,
+    blending: NoBlending,
+    depthTest: true, // depth is only written where the test is on: Always passes
+    depthFunc: AlwaysDepth,
+    depthWrite: true,
+  });
+}
+
+// A target like the layer's, for compiling the surface's programs as they draw into it (linear output).
+export function layerTarget(width, height) {
+  const depthTexture = new DepthTexture(width, height, UnsignedIntType);
+  return new WebGLRenderTarget(width, height, { samples: 4, depthTexture, colorSpace: SRGBColorSpace });
+}
+
 export class SurfaceLayer {
   constructor() {
     this.minFaces = SURFACE_LAYER_FACES;
@@ -58,15 +77,7 @@ export class SurfaceLayer {
     this.clearColor = new Color();
     this.drawn = 0; // times the surface was drawn into the layer
     this.copied = 0; // frames that copied it instead
-    this.material = new ShaderMaterial({
-      uniforms: { uColor: { value: null }, uDepth: { value: null } },
-      vertexShader: COPY_VERTEX,
-      fragmentShader: COPY_FRAGMENT,
-      blending: NoBlending,
-      depthTest: true, // depth is only written where the test is on: Always passes
-      depthFunc: AlwaysDepth,
-      depthWrite: true,
-    });
+    this.material = copyMaterial();
     this.copyScene = new Scene();
     this.copyScene.add(new Mesh(new PlaneGeometry(2, 2), this.material));
     this.copyCamera = new OrthographicCamera(-1, 1, 1, -1, 0, 1);
@@ -135,10 +146,9 @@ export class SurfaceLayer {
 
   #makeTarget(width, height) {
     this.target?.dispose();
-    const depthTexture = new DepthTexture(width, height, UnsignedIntType);
-    this.target = new WebGLRenderTarget(width, height, { samples: 4, depthTexture, colorSpace: SRGBColorSpace });
+    this.target = layerTarget(width, height);
     this.material.uniforms.uColor.value = this.target.texture;
-    this.material.uniforms.uDepth.value = depthTexture;
+    this.material.uniforms.uDepth.value = this.target.depthTexture;
   }
 
   // The view changed in a way the key does not see (a lost context): draw the surface again.
