@@ -47,9 +47,10 @@ VertexVectorMap vertexVectorMap(const SurfaceMesh& mesh, const MeshTopology& top
 void vertexVectors(const VertexVectorMap& map, const FaceVectorMap& faces, const SurfaceMesh& mesh,
                    const MeshTopology& topology, const MeshGeometry& geometry, const double* oneForm,
                    std::vector<double>& out);
-// The same, its threads' partial sums in scratch (contents ignored; on one thread when it is too small): a
-// caller with a spare array lends it, where a new one (10 MB at 416k vertices, made just after the
-// factorization) would grow the wasm heap past its peak.
+// The same, with the partial sums of its parts (two above 50k faces, on the solver's helper threads) in
+// scratch (contents ignored; in one part, summed in face order, when it is too small): a caller with a spare
+// array lends it, where a new one (10 MB at 416k vertices, made just after the factorization) would grow the
+// wasm heap past its peak.
 void vertexVectors(const VertexVectorMap& map, const FaceVectorMap& faces, const SurfaceMesh& mesh,
                    const MeshTopology& topology, const MeshGeometry& geometry, const double* oneForm,
                    std::vector<double>& out, std::vector<double>& scratch);

@@ -37,8 +37,8 @@ TEST(Reconstruction, ConstantFieldIsReproducedExactlyEverywhereInEveryTriangle) 
 // The precomputed maps against Eq. 5 written out (the Whitney vector at each corner, whitneyVector at bary =
 // that corner, averaged with the corner areas) and Eq. 4 at the barycentre. A torus (curved, every vertex
 // interior), an annulus (boundary vertices), with an arbitrary 1-form, and a torus big enough (52k faces) for
-// the maps to run on the helper threads, where the vertex sums are also made on one thread (a scratch array
-// too small for the threads' partial sums) and must agree.
+// the maps to run in two parts (on the helper threads), where the vertex sums are also made in one part (a
+// scratch array too small for the parts' partial sums) and must agree.
 TEST(Reconstruction, PrecomputedMapsAreEquations4And5) {
   for (const SurfaceMesh& m :
        {torus(14, 9, 1.0, 0.35), flatAnnulus(4, 24, 0.5, 1.0), torus(200, 130, 1.0, 0.35)}) {
@@ -67,10 +67,10 @@ TEST(Reconstruction, PrecomputedMapsAreEquations4And5) {
     }
     EXPECT_GT(largest, 0.1);
     EXPECT_LT(error, 1e-12 * largest);
-    std::vector<double> oneThread, noScratch;
-    vertexVectors(vertexVectorMap(m, t, g), faceVectorMap(m, t), m, t, g, c.data(), oneThread, noScratch);
-    ASSERT_EQ(oneThread.size(), vertexField.size());
-    for (size_t i = 0; i < oneThread.size(); ++i) EXPECT_NEAR(oneThread[i], vertexField[i], 1e-13 * largest);
+    std::vector<double> onePart, noScratch;
+    vertexVectors(vertexVectorMap(m, t, g), faceVectorMap(m, t), m, t, g, c.data(), onePart, noScratch);
+    ASSERT_EQ(onePart.size(), vertexField.size());
+    for (size_t i = 0; i < onePart.size(); ++i) EXPECT_NEAR(onePart[i], vertexField[i], 1e-13 * largest);
     // Face vectors through their map: Eq. 4 at the barycentre.
     const double centre[3] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
     std::vector<double> faceField;
