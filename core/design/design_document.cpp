@@ -76,6 +76,11 @@ json fingerprintJson(int32_t vertices, int32_t faces, uint64_t hash) {
   return {{"vertices", vertices}, {"faces", faces}, {"hash", hex}};
 }
 
+// The open mesh's fingerprint, from the hash the designer keeps.
+json designerFingerprint(const Designer& designer) {
+  return fingerprintJson(designer.mesh().numVertices(), designer.mesh().numFaces(), designer.meshHash());
+}
+
 std::string describeFingerprint(const json& f) {
   return std::to_string(f.value("vertices", 0)) + " vertices, " + std::to_string(f.value("faces", 0)) +
          " faces, hash " + f.value("hash", std::string("?"));
@@ -105,8 +110,7 @@ void checkFingerprint(const Designer& designer, const json& doc) {
       !saved.value("vertices", json()).is_number_integer() ||
       !saved.value("faces", json()).is_number_integer())
     throw InputError("design: \"mesh\" must be {\"vertices\", \"faces\", \"hash\"}");
-  const json current =
-      fingerprintJson(designer.mesh().numVertices(), designer.mesh().numFaces(), designer.meshHash());
+  const json current = designerFingerprint(designer);
   if (saved["vertices"] != current["vertices"] || saved["faces"] != current["faces"] ||
       saved["hash"] != current["hash"])
     throw InputError("this design was made for another mesh (" + describeFingerprint(saved) +
@@ -287,8 +291,7 @@ json designDocument(const Designer& designer) {
   json constraints = json::array();
   for (const auto& s : designer.constraints()) constraints.push_back(constraintToJson(s));
   json doc = {{"schema", kDesignSchema},
-              {"mesh", fingerprintJson(designer.mesh().numVertices(), designer.mesh().numFaces(),
-                                       designer.meshHash())},
+              {"mesh", designerFingerprint(designer)},
               {"boundary", boundaryToJson(designer.boundary())},
               {"gamma", designer.gamma()},
               {"constraints", constraints}};
