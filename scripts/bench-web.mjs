@@ -5,6 +5,8 @@
 // node scripts/bench-web.mjs --json --stroke MESH [--strokes N] [--crossings N] [--port P] [--profile FILE]
 //                             [--profile-load FILE]   (CPU profiles of the page's thread over the strokes, the load)
 //                             [--preview-edges N]   (loadModel's previewEdges: 1 forces a preview, 0 none)
+//                             [--texture N]   (then the texture: its first synthesis and N strokes' updates)
+//                             [--profile-texture FILE]   (a CPU profile of the page's thread over the texture's runs)
 //   Edit latency: loads MESH (a path; served to the page under /bench-mesh/) through tvf.loadModel, then draws
 //   N strokes (default 15) of ~50 crossed edges each through tvf.addStroke, each on a strip of faces elsewhere
 //   on the mesh. Prints one JSON object {mesh, edges, strokes, loadMs, median: {...}, ratios} whose medians are
@@ -148,6 +150,7 @@ async function strokeBench(page, meshPath) {
     }, points));
   }
   await strokesProfile.stop();
+  const texture = arg('--texture', null) == null ? null : await textureBench(page, strokes.slice(0, Number(arg('--texture'))));
   const pick = (f) => median(runs.map(f));
   const m = {
     updateMs: pick((r) => r.stats.updateMs),
@@ -203,6 +206,8 @@ async function strokeBench(page, meshPath) {
     loadLongTasks: loadTasks.map((t) => ({ at: Math.round(t.at - load.t0), ms: t.ms })),
     longestStrokeTaskMs: longest(strokeTasks),
     heapPeakBytes: runs.at(-1)?.stats.heapBytes ?? null,
+    // --texture N: the texture synthesized on the field, then N of the strokes again with the texture shown.
+    ...(texture ?? {}),
     previewHeapBytes: load.previewStats.previewHeapBytes ?? null,
     loadPhasesMs: load.phases,
     modelRead: load.modelRead,
@@ -228,6 +233,48 @@ async function strokeBench(page, meshPath) {
   mkdirSync(resolve(ROOT, 'bench-data'), { recursive: true });
   writeFileSync(resolve(ROOT, 'bench-data/web-stroke-bench.json'), JSON.stringify({ date: new Date().toISOString(), ...result }, null, 1));
   rmSync(resolve(ROOT, 'dist/bench-mesh'), { recursive: true, force: true });
+}
+
+// The texture's first synthesis (the atlas generated, the exemplar analysed) and its updates after strokes
+// (auto-update: each stroke's preview, then its exact field): the time to the texture done, and the main
+// thread's longest task during each phase.
+async function textureBench(page, strokes) {
+  await page.evaluate(() => window.__longTasks.splice(0));
+  const profile = await startProfile(page, arg('--profile-texture', null));
+  const firstMs = await page.evaluate(async () => {
+    const t0 = performance.now();
+    await window.tvf.synthesize();
+    await window.tvf.synthesisIdle();
+    return performance.now() - t0;
+  });
+  const firstTasks = await page.evaluate(() => window.__longTasks.splice(0));
+  const updates = [];
+  for (const points of strokes) {
+    updates.push(await page.evaluate(async (pts) => {
+      await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+      const t0 = performance.now();
+      await window.tvf.addStroke(pts);
+      await window.tvf.settled();
+      await window.tvf.synthesisIdle();
+      return performance.now() - t0;
+    }, points));
+  }
+  const updateTasks = await page.evaluate(() => window.__longTasks.splice(0));
+  await profile.stop();
+  const longest = (tasks) => tasks.reduce((m, t) => Math.max(m, t.ms), 0);
+  return {
+    textureFirstMs: firstMs,
+    textureUpdateMs: median(updates),
+    textureUpdates: updates.length,
+    longestTextureFirstTaskMs: longest(firstTasks),
+    longestTextureUpdateTaskMs: longest(updateTasks),
+    textureUpdateLongTasks: updateTasks.map((t) => Math.round(t.ms)),
+    textureFirstLongTasks: firstTasks.map((t) => Math.round(t.ms)),
+    textureStats: await page.evaluate(() => {
+      const s = window.tvf.synthesisStats();
+      return s && { resolution: s.resolution, totalMs: s.totalMs, atlasMs: s.atlas?.ms, chartMs: s.atlas?.chartMs };
+    }),
+  };
 }
 
 const server = spawn(process.execPath, [resolve(ROOT, 'scripts/serve.mjs')], { env: { ...process.env, PORT: String(port) }, stdio: ['ignore', 'pipe', 'inherit'] });

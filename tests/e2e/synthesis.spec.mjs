@@ -185,6 +185,39 @@ test.describe.serial('texture synthesis on a flat square', () => {
     expect(Math.max(...periods[0]) / Math.min(...periods[0]), 'direction only: one scale everywhere').toBeLessThan(1.3);
   });
 
+  test('the field goes to the GPU a slice of faces per task: any slice gives the same texture', async () => {
+    // The field changes between the runs with automatic updates off, so that a slice left unwritten would keep
+    // the previous field's values and show.
+    const design = { boundary: 'free', gamma: 0, constraints: [{ type: 'vector', face: faceNear(mesh, 0.5, 0.5), vector: [0.6, 0.8, 0], weight: 1e4 }] };
+    const diff = await page.evaluate(async ({ R, design }) => {
+      const run = async (extra) => {
+        await window.tvf.synthesize({ resolution: R, featureScale: 1, magnitudeExponent: 1, ...extra });
+        return window.tvf.synthesisReadback();
+      };
+      const before = await run({});
+      window.tvf.setTextureAutoUpdate(false);
+      await window.tvf.loadDesign(design);
+      // 512 faces: 74 slices of 7, the last one short.
+      const sliced = await run({ sliceFaces: 7 });
+      const whole = await run({ sliceFaces: 1 << 15 });
+      window.tvf.setTextureAutoUpdate(true);
+      const count = (a, b) => a.reduce((n, v, k) => n + (v !== b[k]), 0);
+      return {
+        faces: window.tvf.mesh().triangles.length / 3,
+        covered: whole.jacobian.reduce((n, v) => n + (v !== 0), 0),
+        changed: count(before.jacobian, whole.jacobian),
+        jacobian: count(whole.jacobian, sliced.jacobian),
+        coords: count(whole.coords, sliced.coords),
+      };
+    }, { R: RESOLUTION, design });
+    expect(diff.faces % 7).not.toBe(0);
+    expect(diff.covered, 'the Jacobian covers the atlas').toBeGreaterThan(0.5 * RESOLUTION * RESOLUTION);
+    expect(diff.changed, 'the new field changed the Jacobian').toBeGreaterThan(0.5 * RESOLUTION * RESOLUTION);
+    expect(diff.jacobian, 'Jacobian texels that differ').toBe(0);
+    expect(diff.coords, 'synthesized coordinates that differ').toBe(0);
+    await expect(page.evaluate(() => window.tvf.synthesize({ sliceFaces: 0 }))).rejects.toThrow(/sliceFaces/);
+  });
+
   test('exports: the atlas texture as PNG, the textured model in the one GLB that loads back with its UVs', async ({}, testInfo) => {
     const out = await page.evaluate(async () => {
       const png = await window.tvf.exportTexturePNG({ magnification: 2 });

@@ -82,6 +82,7 @@ export class Designer {
         await s.coreStarted;
         return s.request('analyzeExemplar', [spec]);
       },
+      getFieldVersion: () => (s.surface && s.field ? this.viewSync.drawnVersion() : undefined),
       getModel: () =>
         s.surface && s.field
           ? {

@@ -6,8 +6,10 @@
 import { FloatTarget, GLError, drawFullscreen, isPow2 } from './gl.js';
 import { coarserIndirection, seamIndirection } from './seams.js';
 
-// Floats per corner: uv (2), field (3, filled per synthesis), G1 (3), G2 (3), unit normal (3).
-const STRIDE = 14;
+// Floats per corner of the fixed data: uv (2), G1 (3), G2 (3), unit normal (3). The field (3 per corner) has
+// a buffer of its own, the only one a synthesis fills.
+const STRIDE = 11;
+
 
 export class AtlasRaster {
   // positions (3 per vertex), triangles (3 per face), cornerUVs (6 per face, in [0, 1]), resolution a power of
@@ -23,6 +25,7 @@ export class AtlasRaster {
     const { data, faceArea, used, area3, areaUV } = cornerData(positions, triangles, cornerUVs);
     if (!used) throw new GLError('the atlas has no usable triangle (all degenerate in UV or 3D)');
     this.data = data;
+    this.fieldData = new Float32Array(9 * nF);
     this.faceArea = faceArea;
     this.vertexCount = 3 * nF;
     this.usedFaces = used;
@@ -56,21 +59,24 @@ export class AtlasRaster {
   #vertexArray(program) {
     const gl = this.gl;
     this.buffer = gl.createBuffer();
+    this.fieldBuffer = gl.createBuffer();
     this.vao = gl.createVertexArray();
     gl.bindVertexArray(this.vao);
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
-    gl.bufferData(gl.ARRAY_BUFFER, this.data, gl.DYNAMIC_DRAW);
-    const attrib = (name, size, offset) => {
+    const attrib = (name, size, stride, offset) => {
       const loc = gl.getAttribLocation(program, name);
       if (loc < 0) return;
       gl.enableVertexAttribArray(loc);
-      gl.vertexAttribPointer(loc, size, gl.FLOAT, false, STRIDE * 4, offset * 4);
+      gl.vertexAttribPointer(loc, size, gl.FLOAT, false, stride * 4, offset * 4);
     };
-    attrib('aUV', 2, 0);
-    attrib('aField', 3, 2);
-    attrib('aG1', 3, 5);
-    attrib('aG2', 3, 8);
-    attrib('aNormal', 3, 11);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
+    gl.bufferData(gl.ARRAY_BUFFER, this.data, gl.STATIC_DRAW);
+    attrib('aUV', 2, STRIDE, 0);
+    attrib('aG1', 3, STRIDE, 2);
+    attrib('aG2', 3, STRIDE, 5);
+    attrib('aNormal', 3, STRIDE, 8);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.fieldBuffer);
+    gl.bufferData(gl.ARRAY_BUFFER, this.fieldData.byteLength, gl.DYNAMIC_DRAW);
+    attrib('aField', 3, 3, 0);
     gl.bindVertexArray(null);
     gl.bindBuffer(gl.ARRAY_BUFFER, null);
   }
@@ -78,12 +84,29 @@ export class AtlasRaster {
   // The Jacobian of every level for the field: the per-vertex `vertexVectors` (3 per vertex) or, for a combed
   // line or cross field, {cornerVectors} (9 per face, corner k of face f at 9f + 3k: geometry/chart-comb.js);
   // rasterized at the finest level, dilated `o.gutter` texels past the charts, then averaged down. programs:
-  // the synthesizer's; vao: its full-screen one. Returns the reference magnitude (area-weighted mean |field|).
-  raster(programs, vao, field, o) {
+  // the synthesizer's; vao: its full-screen one. A generator: the field is filled and uploaded a slice of
+  // faces at a time, and it yields between slices so that the caller can give the page its frames (a
+  // synthesis run step by step, synthesizer.js). Returns the reference magnitude (area-weighted mean |field|).
+  *rasterSteps(programs, vao, field, o) {
     const gl = this.gl;
-    const magRef = field?.cornerVectors ? this.#fillCorners(field.cornerVectors) : this.#fillField(field);
-    const finest = this.levels[0];
+    const nF = this.triangles.length / 3;
+    const sums = { mag: 0, area: 0 };
+    const corners = field?.cornerVectors ?? null;
+    if (corners && corners.length !== 9 * nF) throw new GLError(`cornerVectors must hold 9 numbers per face (${9 * nF}), got ${corners.length}`);
+    // A slice of o.sliceFaces faces per task: at 832k faces the whole field in one bufferSubData (with the fixed
+    // data beside it, 140 MB) held the page for 5-7 s while the GPU process caught up; 32k faces are ~1 MB.
+    for (let f0 = 0; f0 < nF; f0 += o.sliceFaces) {
+      const f1 = Math.min(nF, f0 + o.sliceFaces);
+      if (corners) this.#fillCorners(corners, f0, f1, sums);
+      else this.#fillField(field, f0, f1, sums);
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.fieldBuffer);
+      gl.bufferSubData(gl.ARRAY_BUFFER, 36 * f0, this.fieldData, 9 * f0, 9 * (f1 - f0));
+      gl.bindBuffer(gl.ARRAY_BUFFER, null);
+      if (f1 < nF) yield;
+    }
+    const magRef = sums.mag > 0 ? sums.mag / sums.area : 1;
     // Raster into the scratch target, dilate into the level-0 Jacobian (ping-pong for more than one ring).
+    const finest = this.levels[0];
     const rho = o.featureScale * this.texelLength;
     let dst = o.gutter % 2 === 0 ? finest.jac : this.jacScratch;
     let other = dst === finest.jac ? this.jacScratch : finest.jac;
@@ -114,60 +137,40 @@ export class AtlasRaster {
     return magRef;
   }
 
-  // The field per corner into the vertex data, and the reference magnitude (area-weighted mean over faces of
-  // the corner mean).
-  #fillField(vertexVectors) {
-    const T = this.triangles, data = this.data;
-    const nF = T.length / 3;
-    let magSum = 0, areaSum = 0;
-    for (let f = 0; f < nF; f++) {
+  // The field per corner of faces f0 .. f1 - 1 from the vertices', and their part of the reference magnitude
+  // (area-weighted mean over faces of the corner mean).
+  #fillField(vertexVectors, f0, f1, sums) {
+    const T = this.triangles, out = this.fieldData;
+    for (let f = f0; f < f1; f++) {
       let mag = 0;
       for (let k = 0; k < 3; k++) {
-        const v = 3 * T[3 * f + k];
-        const off = (3 * f + k) * STRIDE + 2;
-        data[off] = vertexVectors[v];
-        data[off + 1] = vertexVectors[v + 1];
-        data[off + 2] = vertexVectors[v + 2];
+        const v = 3 * T[3 * f + k], o = 9 * f + 3 * k;
+        out[o] = vertexVectors[v];
+        out[o + 1] = vertexVectors[v + 1];
+        out[o + 2] = vertexVectors[v + 2];
         mag += Math.hypot(vertexVectors[v], vertexVectors[v + 1], vertexVectors[v + 2]) / 3;
       }
-      magSum += mag * this.faceArea[f];
-      areaSum += this.faceArea[f];
+      sums.mag += mag * this.faceArea[f];
+      sums.area += this.faceArea[f];
     }
-    return this.#upload(magSum, areaSum);
   }
 
   // The same from a per-corner field (9 per face).
-  #fillCorners(cornerVectors) {
-    const data = this.data, C = cornerVectors;
-    const nF = this.triangles.length / 3;
-    if (C.length !== 9 * nF) throw new GLError(`cornerVectors must hold 9 numbers per face (${9 * nF}), got ${C.length}`);
-    let magSum = 0, areaSum = 0;
-    for (let f = 0; f < nF; f++) {
+  #fillCorners(C, f0, f1, sums) {
+    const out = this.fieldData;
+    out.set(C.subarray ? C.subarray(9 * f0, 9 * f1) : C.slice(9 * f0, 9 * f1), 9 * f0);
+    for (let f = f0; f < f1; f++) {
       let mag = 0;
-      for (let k = 0; k < 3; k++) {
-        const c = 9 * f + 3 * k, off = (3 * f + k) * STRIDE + 2;
-        data[off] = C[c];
-        data[off + 1] = C[c + 1];
-        data[off + 2] = C[c + 2];
-        mag += Math.hypot(C[c], C[c + 1], C[c + 2]) / 3;
-      }
-      magSum += mag * this.faceArea[f];
-      areaSum += this.faceArea[f];
+      for (let c = 9 * f; c < 9 * f + 9; c += 3) mag += Math.hypot(C[c], C[c + 1], C[c + 2]) / 3;
+      sums.mag += mag * this.faceArea[f];
+      sums.area += this.faceArea[f];
     }
-    return this.#upload(magSum, areaSum);
-  }
-
-  #upload(magSum, areaSum) {
-    const gl = this.gl;
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
-    gl.bufferSubData(gl.ARRAY_BUFFER, 0, this.data);
-    gl.bindBuffer(gl.ARRAY_BUFFER, null);
-    return magSum > 0 ? magSum / areaSum : 1;
   }
 
   dispose() {
     const gl = this.gl;
     gl.deleteBuffer(this.buffer);
+    gl.deleteBuffer(this.fieldBuffer);
     gl.deleteVertexArray(this.vao);
     for (const L of this.levels) for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, ...L.quarters]) t?.dispose();
     this.jacScratch.dispose();
@@ -202,9 +205,9 @@ function cornerData(positions, triangles, cornerUVs) {
       const o = (3 * f + k) * STRIDE;
       data[o] = u[2 * k];
       data[o + 1] = u[2 * k + 1];
-      data.set(G1, o + 5);
-      data.set(G2, o + 8);
-      data.set([n[0] / nl, n[1] / nl, n[2] / nl], o + 11);
+      data.set(G1, o + 2);
+      data.set(G2, o + 5);
+      data.set([n[0] / nl, n[1] / nl, n[2] / nl], o + 8);
     }
   }
   return { data, faceArea, used, area3, areaUV };

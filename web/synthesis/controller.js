@@ -14,7 +14,7 @@ import { TEXTURE_SYMMETRIES, textureRefusal } from '../core/symmetry.js';
 import { atlasCombedCorners } from '../geometry/chart-comb.js';
 
 const MAX_RESOLUTION = 2048;
-const OPTION_KEYS = ['featureScale', 'magnitudeExponent', 'jitter', 'finestJitter', 'passes', 'kappa', 'seed', 'gutter', 'seams', 'timing'];
+const OPTION_KEYS = ['featureScale', 'magnitudeExponent', 'jitter', 'finestJitter', 'passes', 'kappa', 'seed', 'gutter', 'seams', 'timing', 'sliceFaces'];
 const CONTROLLER_KEYS = ['resolution', 'autoUpdate', 'interleave'];
 // Field changes closer together than this count as quick edits: the texture follows them with a preview (one
 // level short of the finest, a quarter of the work) and is synthesized in full once they stop for this long.
@@ -26,10 +26,13 @@ export class SynthesisController {
   // current model and field (surface: geometry/surface.js, with normals and the half-edge map).
   // computeAtlas(model, {resolution, gutter}) and analyzeExemplar(spec): chooseAtlas (atlas.js) and
   // analyzeExemplar (exemplar.js) off the page's thread (the element's core worker), resolving with their results.
-  constructor({ viewer, getModel, computeAtlas, analyzeExemplar, onChange = () => {}, onError = () => {} }) {
+  // getFieldVersion(): the model's fieldVersion without the copies getModel() makes (tens of ms at 400k
+  // vertices, at every field change).
+  constructor({ viewer, getModel, getFieldVersion = () => getModel()?.fieldVersion, computeAtlas, analyzeExemplar, onChange = () => {}, onError = () => {} }) {
     this.computeAtlas = computeAtlas;
     this.viewer = viewer;
     this.getModel = getModel;
+    this.getFieldVersion = getFieldVersion;
     this.onChange = onChange;
     this.onError = onError;
     this.library = new ExemplarLibrary(analyzeExemplar);
@@ -127,6 +130,7 @@ export class SynthesisController {
         if (!CONTROLLER_KEYS.includes(k) && !OPTION_KEYS.includes(k)) throw new Error(`unknown synthesis option '${k}'`);
       }
       if (options.featureScale !== undefined && options.featureScale !== 'auto' && !(options.featureScale > 0)) throw new Error("featureScale must be 'auto' or > 0");
+      if (options.sliceFaces !== undefined && !(Number.isInteger(options.sliceFaces) && options.sliceFaces > 0)) throw new Error(`sliceFaces must be a positive integer (got ${options.sliceFaces})`);
       this.options = { ...this.options, ...options };
       if (!this.exemplar) {
         const r = await this.library.procedural('stripes', PROCEDURAL_SIZE, 1);
@@ -222,8 +226,8 @@ export class SynthesisController {
   // e.g. while a stroke is dragged) get a preview, and a full synthesis once they stop.
   fieldChanged({ interactive = false } = {}) {
     if (!this.active) return;
-    const model = this.getModel();
-    if (model && this.atlas && model.fieldVersion !== undefined && model.fieldVersion === this.lastFieldVersion) return;
+    const version = this.getFieldVersion();
+    if (this.atlas && version !== undefined && version === this.lastFieldVersion) return;
     if (!this.options.autoUpdate) {
       this.stale = true;
       this.onChange();

@@ -56,9 +56,14 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
     magnitudeExponent: byMagnitude.checked ? 1 : 0,
   });
 
+  // The exemplar's thumbnail is drawn when the exemplar changes, not at every refresh: a 2D canvas is drawn by
+  // the GPU process, and while a synthesis keeps that busy a drawImage waited for it (0.3-0.6 s with software
+  // GL on an 832k-face model, at each field change).
+  let shownExemplar = null;
   function showPreview() {
     const info = controller.exemplar?.tables;
-    if (!info) return;
+    if (!info || info === shownExemplar) return;
+    shownExemplar = info;
     // The picker shows the exemplar in use, also when it was set through the API.
     const label = controller.exemplar.label;
     if (controller.proceduralNames().includes(label)) exemplar.value = label;

@@ -40,6 +40,7 @@ export const DEFAULTS = Object.freeze({
   gutter: 2, // texels of Jacobian dilation around the charts
   seams: true, // follow the seam indirection across chart boundaries (atlases with seams only)
   timing: 'levels', // 'levels': wait for the GPU after each level (per-level times); 'total': only at the end
+  sliceFaces: 1 << 15, // faces whose field goes to the GPU per task (atlas-raster.js)
 });
 
 const defaultNextFrame = () =>
@@ -85,7 +86,7 @@ export class Synthesizer {
   }
 
   // Runs the whole pyramid for the per-vertex field `vertexVectors` (3 per vertex, the core's vertexVectors), or
-  // for {cornerVectors} (9 per face: a line or cross field combed for the atlas, AtlasRaster.raster).
+  // for {cornerVectors} (9 per face: a line or cross field combed for the atlas, AtlasRaster.rasterSteps).
   // Returns {levels: [{size, stackLevel, spacing, ms}], jacobianMs, totalMs, ...}.
   synthesize(vertexVectors, options = {}) {
     const steps = this.#steps(vertexVectors, options);
@@ -108,12 +109,27 @@ export class Synthesizer {
       if (pending >= budgetTexels) {
         pending = 0;
         this.gl.flush();
-        await nextFrame();
+        await (r.value.gpuIdle ? this.#gpuIdle(nextFrame, cancelled) : nextFrame());
         if (cancelled()) {
           this.gl.bindFramebuffer(this.gl.FRAMEBUFFER, null);
           return null;
         }
       }
+    }
+  }
+
+  // Resolves once the GPU has done everything issued so far (a fence, looked at once per frame) or the run
+  // is cancelled.
+  async #gpuIdle(nextFrame, cancelled) {
+    const gl = this.gl;
+    const fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+    if (!fence) return nextFrame();
+    gl.flush();
+    try {
+      do await nextFrame();
+      while (!cancelled() && gl.getSyncParameter(fence, gl.SYNC_STATUS) !== gl.SIGNALED);
+    } finally {
+      gl.deleteSync(fence);
     }
   }
 
@@ -128,9 +144,17 @@ export class Synthesizer {
     const stackTop = this.exemplar.levels.length - 1;
 
     const finestLevel = Math.min(o.finestLevel ?? 0, this.levels.length - 1);
-    this.magRef = this.atlas.raster(this.programs, this.vao, vertexVectors, o);
     let done = 0;
     const work = (texels) => ({ texels, progress: Math.min(1, (done += texels) / total) });
+    // The field's upload, a slice per task: each slice ends the task (a frame between), progress unchanged.
+    const raster = this.atlas.rasterSteps(this.programs, this.vao, vertexVectors, o);
+    for (let r = raster.next(); ; r = raster.next()) {
+      if (r.done) {
+        this.magRef = r.value;
+        break;
+      }
+      yield { texels: Infinity, progress: 0 };
+    }
     // Total shading work: the Jacobian and per level 4 upsample quarters, 4 x passes correction quarters
     // (weighted x8: they read ~90 texels each) and the unpack.
     let total = resolution * resolution * (1 + o.gutter);
@@ -220,6 +244,9 @@ export class Synthesizer {
       levelStats.push({ size: L.size, stackLevel: step.stackLevel, spacing: step.spacing, jitter: step.jitter, ms: now - tLevel });
       tLevel = now;
     }
+    // Interleaved, the page waits for the GPU between frames (the queue lags the draws by up to seconds with
+    // software GL), so that the read-back that times the run does not hold the page's thread.
+    yield { texels: Infinity, progress: 1, gpuIdle: true };
     if (o.timing !== 'levels') sync(gl, parent);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     const t1 = performance.now();
