@@ -4,25 +4,23 @@
 // seam indirection (seams.js) per level. One per atlas (resolution and UVs); the synthesizer works in its
 // levels. Kept apart from the level loop because it changes only when the model or the atlas does.
 import { FloatTarget, GLError, drawFullscreen, isPow2 } from './gl.js';
+import { CORNER_FLOATS as STRIDE, cornerData } from './atlas-corners.js';
 import { coarserIndirection, seamIndirection } from './seams.js';
-
-// Floats per corner of the fixed data: uv (2), G1 (3), G2 (3), unit normal (3). The field (3 per corner) has
-// a buffer of its own, the only one a synthesis fills.
-const STRIDE = 11;
 
 
 export class AtlasRaster {
   // positions (3 per vertex), triangles (3 per face), cornerUVs (6 per face, in [0, 1]), resolution a power of
   // two; neighbour: the half-edge map of geometry/mesh-geometry.js when the caller holds one (the model's
-  // Surface), else it is derived for the seams.
-  constructor(gl, jacobianProgram, { resolution, positions, triangles, cornerUVs, neighbour = null }) {
+  // Surface), else it is derived for the seams. corners and seams: cornerData() and seamIndirection() of this
+  // mesh and atlas when made elsewhere (the core's worker, atlas-prepared.js), else made here.
+  constructor(gl, jacobianProgram, { resolution, positions, triangles, cornerUVs, neighbour = null, corners = null, seams = null }) {
     if (!isPow2(resolution) || resolution < 4 || resolution > 4096) throw new GLError(`atlas resolution must be a power of two in [4, 4096] (got ${resolution})`);
     const nF = triangles.length / 3;
     if (cornerUVs.length !== 6 * nF) throw new GLError(`cornerUVs must hold 6 numbers per face (${6 * nF}), got ${cornerUVs.length}`);
     this.gl = gl;
     this.resolution = resolution;
     this.triangles = Int32Array.from(triangles);
-    const { data, faceArea, used, area3, areaUV } = cornerData(positions, triangles, cornerUVs);
+    const { data, faceArea, used, area3, areaUV } = corners ?? cornerData(positions, triangles, cornerUVs);
     if (!used) throw new GLError('the atlas has no usable triangle (all degenerate in UV or 3D)');
     this.data = data;
     this.fieldData = new Float32Array(9 * nF);
@@ -49,11 +47,11 @@ export class AtlasRaster {
     this.jacScratch = new FloatTarget(gl, resolution, resolution);
     // Seam indirection per level (an all-zero map where the atlas has no seams).
     const t0 = performance.now();
-    const seams = seamIndirection({ positions, triangles, neighbour }, cornerUVs, resolution);
+    const made = seams ?? seamIndirection({ positions, triangles, neighbour }, cornerUVs, resolution);
     this.levels.forEach((L, k) => {
-      L.indirection = new FloatTarget(gl, L.size, L.size, k === 0 ? seams.map : coarserIndirection(seams.map, resolution, k), { target: false });
+      L.indirection = new FloatTarget(gl, L.size, L.size, k === 0 ? made.map : coarserIndirection(made.map, resolution, k), { target: false });
     });
-    this.seams = { edges: seams.seamEdges, redirectedTexels: seams.redirected, ms: performance.now() - t0 };
+    this.seams = { edges: made.seamEdges, redirectedTexels: made.redirected, ms: (made.ms ?? 0) + performance.now() - t0 };
   }
 
   #vertexArray(program) {
@@ -69,7 +67,9 @@ export class AtlasRaster {
       gl.vertexAttribPointer(loc, size, gl.FLOAT, false, stride * 4, offset * 4);
     };
     gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
-    gl.bufferData(gl.ARRAY_BUFFER, this.data, gl.STATIC_DRAW);
+    // Allocated here, filled by the first synthesis a slice per task (rasterSteps): 110 MB at 832k faces.
+    gl.bufferData(gl.ARRAY_BUFFER, this.data.byteLength, gl.STATIC_DRAW);
+    this.facesUploaded = 0;
     attrib('aUV', 2, STRIDE, 0);
     attrib('aG1', 3, STRIDE, 2);
     attrib('aG2', 3, STRIDE, 5);
@@ -91,6 +91,7 @@ export class AtlasRaster {
     const gl = this.gl;
     const nF = this.triangles.length / 3;
     const sums = { mag: 0, area: 0 };
+    yield* this.#uploadFixed(Math.max(1, o.sliceFaces >> 2)); // 11 floats a corner against the field's 3
     const corners = field?.cornerVectors ?? null;
     if (corners && corners.length !== 9 * nF) throw new GLError(`cornerVectors must hold 9 numbers per face (${9 * nF}), got ${corners.length}`);
     // A slice of o.sliceFaces faces per task: at 832k faces the whole field in one bufferSubData (with the fixed
@@ -137,6 +138,20 @@ export class AtlasRaster {
     return magRef;
   }
 
+  // The fixed data still to go to the GPU, `slice` faces per task; the array is let go once all is there.
+  *#uploadFixed(slice) {
+    const gl = this.gl, nF = this.vertexCount / 3, floats = 3 * STRIDE;
+    while (this.facesUploaded < nF) {
+      const f0 = this.facesUploaded, f1 = Math.min(nF, f0 + slice);
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
+      gl.bufferSubData(gl.ARRAY_BUFFER, 4 * floats * f0, this.data, floats * f0, floats * (f1 - f0));
+      gl.bindBuffer(gl.ARRAY_BUFFER, null);
+      this.facesUploaded = f1;
+      if (f1 === nF) this.data = null;
+      else yield;
+    }
+  }
+
   // The field per corner of faces f0 .. f1 - 1 from the vertices', and their part of the reference magnitude
   // (area-weighted mean over faces of the corner mean).
   #fillField(vertexVectors, f0, f1, sums) {
@@ -176,39 +191,4 @@ export class AtlasRaster {
     this.jacScratch.dispose();
     this.levels = [];
   }
-}
-
-// Per corner: UV, the face's 3D-to-UV frame G = [e1 e2] [[du1 du2] [dv1 dv2]]^-1 (columns G1, G2) and unit
-// normal; faces degenerate in UV or in 3D keep zeros and draw nothing.
-function cornerData(positions, triangles, cornerUVs) {
-  const nF = triangles.length / 3;
-  const data = new Float32Array(3 * nF * STRIDE);
-  const faceArea = new Float64Array(nF);
-  let area3 = 0, areaUV = 0, used = 0;
-  for (let f = 0; f < nF; f++) {
-    const a = 3 * triangles[3 * f], b = 3 * triangles[3 * f + 1], c = 3 * triangles[3 * f + 2];
-    const e1 = [positions[b] - positions[a], positions[b + 1] - positions[a + 1], positions[b + 2] - positions[a + 2]];
-    const e2 = [positions[c] - positions[a], positions[c + 1] - positions[a + 1], positions[c + 2] - positions[a + 2]];
-    const u = cornerUVs.subarray(6 * f, 6 * f + 6);
-    const du1 = u[2] - u[0], dv1 = u[3] - u[1], du2 = u[4] - u[0], dv2 = u[5] - u[1];
-    const det = du1 * dv2 - du2 * dv1;
-    const n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
-    const nl = Math.hypot(n[0], n[1], n[2]);
-    faceArea[f] = nl / 2;
-    if (!(Math.abs(det) > 1e-14) || !(nl > 0)) continue;
-    used++;
-    area3 += nl / 2;
-    areaUV += Math.abs(det) / 2;
-    const G1 = [0, 1, 2].map((k) => (e1[k] * dv2 - e2[k] * dv1) / det);
-    const G2 = [0, 1, 2].map((k) => (e2[k] * du1 - e1[k] * du2) / det);
-    for (let k = 0; k < 3; k++) {
-      const o = (3 * f + k) * STRIDE;
-      data[o] = u[2 * k];
-      data[o + 1] = u[2 * k + 1];
-      data.set(G1, o + 2);
-      data.set(G2, o + 5);
-      data.set([n[0] / nl, n[1] / nl, n[2] / nl], o + 8);
-    }
-  }
-  return { data, faceArea, used, area3, areaUV };
 }

@@ -24,7 +24,7 @@ export class SynthesisController {
   // viewer: the page's Viewer (scene, surfaceMesh, requestRender).
   // getModel(): {key, name, positions, triangles, surface, cornerUVs | null, vertexVectors, fieldVersion} of the
   // current model and field (surface: geometry/surface.js, with normals and the half-edge map).
-  // computeAtlas(model, {resolution, gutter}) and analyzeExemplar(spec): chooseAtlas (atlas.js) and
+  // computeAtlas(model, {resolution, gutter}) and analyzeExemplar(spec): preparedAtlas (atlas-prepared.js) and
   // analyzeExemplar (exemplar.js) off the page's thread (the element's core worker), resolving with their results.
   // getFieldVersion(): the model's fieldVersion without the copies getModel() makes (tens of ms at 400k
   // vertices, at every field change).
@@ -111,9 +111,13 @@ export class SynthesisController {
     const chosen = await this.computeAtlas(model, { resolution, gutter });
     this.atlas = { key: model.key, resolution, gutter, ...chosen };
     const { positions, triangles, neighbour } = model.surface;
-    this.#ensureSynth().setAtlas({ resolution, positions, triangles, neighbour, cornerUVs: this.atlas.cornerUVs });
+    const { corners = null, seams = null } = this.atlas;
+    this.#ensureSynth().setAtlas({ resolution, positions, triangles, neighbour, cornerUVs: this.atlas.cornerUVs, corners, seams });
+    // The raster holds them now; the atlas kept here is the one the exports and stats read.
+    delete this.atlas.corners;
+    delete this.atlas.seams;
     if (!this.render) this.render = new TexturedModel(this.viewer);
-    this.render.setGeometry(model.surface, this.atlas.cornerUVs);
+    await this.render.setGeometry(model.surface, this.atlas.cornerUVs);
     return this.atlas;
   }
 
