@@ -33,18 +33,15 @@ export class AtlasRaster {
     this.#vertexArray(jacobianProgram.program);
     // Per level (finest first, down to 2x2): the Jacobian, the state as four parity-class quarters plus a spare
     // (sub-passes write a quarter into the spare, which then takes its place), and the unpacked result.
+    // Not checked for completeness: the context has float render targets (createContext), and a check waits for
+    // the GPU process (0.5 s behind an 832k-face view with software GL).
+    const target = (size) => new FloatTarget(gl, size, size, null, { check: false });
+    this.jacScratch = target(resolution);
     this.levels = [];
     for (let r = resolution; r >= 2; r >>= 1) {
       const h = r / 2;
-      this.levels.push({
-        size: r,
-        jac: new FloatTarget(gl, r, r),
-        result: new FloatTarget(gl, r, r),
-        quarters: [0, 1, 2, 3].map(() => new FloatTarget(gl, h, h)),
-        spare: new FloatTarget(gl, h, h),
-      });
+      this.levels.push({ size: r, jac: target(r), result: target(r), quarters: [0, 1, 2, 3].map(() => target(h)), spare: target(h) });
     }
-    this.jacScratch = new FloatTarget(gl, resolution, resolution);
     // Seam indirection per level (an all-zero map where the atlas has no seams).
     const t0 = performance.now();
     const made = seams ?? seamIndirection({ positions, triangles, neighbour }, cornerUVs, resolution);

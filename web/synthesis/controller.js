@@ -191,8 +191,8 @@ export class SynthesisController {
       s = this.synth.synthesize(field.input, synthOptions);
     }
     const t1 = performance.now();
-    const coords = this.synth.readCoordinates();
-    const jacobian = this.synth.readJacobian();
+    const { coords, jacobian } = this.options.interleave ? await this.synth.readResultAsync() : { coords: this.synth.readCoordinates(), jacobian: this.synth.readJacobian() };
+    if (token !== this.runToken || !this.render) return this.synthesisStats(); // superseded while it was read
     this.render.setTexture({ resolution: s.resolution, coords, jacobian, exemplar: this.exemplar.tables.rgba8, exemplarSize: this.exemplar.tables.size });
     this.viewer.requestRender?.();
     this.stale = false;

@@ -106,7 +106,9 @@ export class Program {
 
 // An RGBA32F texture (optionally a render target) of width x height.
 export class FloatTarget {
-  constructor(gl, width, height, data = null, { target = true } = {}) {
+  // check: ask the driver whether the target is complete. That call waits for the GPU process, which with
+  // software GL may be seconds behind the page: a caller making many targets of one kind checks the first.
+  constructor(gl, width, height, data = null, { target = true, check = true } = {}) {
     this.gl = gl;
     this.width = width;
     this.height = height;
@@ -125,7 +127,7 @@ export class FloatTarget {
       this.framebuffer = gl.createFramebuffer();
       gl.bindFramebuffer(gl.FRAMEBUFFER, this.framebuffer);
       gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, this.texture, 0);
-      const status = gl.checkFramebufferStatus(gl.FRAMEBUFFER);
+      const status = check ? gl.checkFramebufferStatus(gl.FRAMEBUFFER) : gl.FRAMEBUFFER_COMPLETE;
       gl.bindFramebuffer(gl.FRAMEBUFFER, null);
       if (status !== gl.FRAMEBUFFER_COMPLETE) throw new GLError(`RGBA32F render target ${width}x${height} is incomplete (0x${status.toString(16)})`);
     }
@@ -196,6 +198,41 @@ export function drawFullscreen(gl, vao) {
   gl.bindVertexArray(vao);
   gl.drawArrays(gl.TRIANGLES, 0, 3);
   gl.bindVertexArray(null);
+}
+
+// The float targets' contents, read without holding the page's thread: each readPixels goes into a pixel
+// buffer, and the copies out are made once a fence says the GPU is done, looked at once per nextFrame(). A
+// plain readPixels waits for the GPU process, with software GL behind by up to seconds (0.2-0.6 s a read at
+// 832k faces).
+export async function readTargetsAsync(gl, targets, nextFrame) {
+  const reads = targets.map((t) => {
+    const out = new Float32Array(4 * t.width * t.height);
+    const buffer = gl.createBuffer();
+    gl.bindBuffer(gl.PIXEL_PACK_BUFFER, buffer);
+    gl.bufferData(gl.PIXEL_PACK_BUFFER, out.byteLength, gl.STREAM_READ);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, t.framebuffer);
+    gl.readPixels(0, 0, t.width, t.height, gl.RGBA, gl.FLOAT, 0);
+    return { out, buffer };
+  });
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  gl.bindBuffer(gl.PIXEL_PACK_BUFFER, null);
+  const fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+  gl.flush();
+  try {
+    do await nextFrame();
+    while (gl.getSyncParameter(fence, gl.SYNC_STATUS) !== gl.SIGNALED);
+  } finally {
+    gl.deleteSync(fence);
+  }
+  // One copy per task (16 MB each for a 1024 atlas).
+  for (const [k, { out, buffer }] of reads.entries()) {
+    if (k > 0) await nextFrame();
+    gl.bindBuffer(gl.PIXEL_PACK_BUFFER, buffer);
+    gl.getBufferSubData(gl.PIXEL_PACK_BUFFER, 0, out);
+    gl.bindBuffer(gl.PIXEL_PACK_BUFFER, null);
+    gl.deleteBuffer(buffer);
+  }
+  return reads.map((r) => r.out);
 }
 
 // Waits for the GPU: a 1x1 readPixels from the current framebuffer (gl.finish() does not wait in Chromium).

@@ -13,7 +13,7 @@
 //   const stats = syn.synthesize(vertexVectors, {featureScale, magnitudeExponent, seed, ...});
 //   syn.readCoordinates(), syn.readJacobian(), syn.readColour({magnification, nearest})
 import { AtlasRaster } from './atlas-raster.js';
-import { ByteTarget, FloatTarget, FULLSCREEN_VS, GLError, Program, createContext, drawFullscreen, sync } from './gl.js';
+import { ByteTarget, FloatTarget, FULLSCREEN_VS, GLError, Program, createContext, drawFullscreen, readTargetsAsync, sync } from './gl.js';
 import { disposeExemplar, uploadExemplar } from './gpu-exemplar.js';
 import { levelPlan } from './level-plan.js';
 import {
@@ -231,7 +231,7 @@ export class Synthesizer {
       parent = L.result;
       if (step.k === finestLevel && o.seams) {
         // Gutter texels next to seams take the coordinates across the seam (for the magnified rendering).
-        L.spare2 ??= new FloatTarget(gl, L.size, L.size);
+        L.spare2 ??= new FloatTarget(gl, L.size, L.size, null, { check: false }); // as the atlas's (atlas-raster.js)
         L.spare2.bindAsTarget();
         this.programs.seamResolve.use().texture('uCoord', L.result).texture('uJac', L.jac).texture('uIndir', L.indirection).float('uM', m);
         drawFullscreen(gl, this.vao);
@@ -277,6 +277,12 @@ export class Synthesizer {
 
   readJacobian(level = this.resultLevel ?? 0) {
     return this.levels[level].jac.read();
+  }
+
+  // Both, without holding the page's thread while the GPU catches up (gl.js readTargetsAsync).
+  async readResultAsync(nextFrame = defaultNextFrame) {
+    const [coords, jacobian] = await readTargetsAsync(this.gl, [this.result, this.levels[this.resultLevel ?? 0].jac], nextFrame);
+    return { coords, jacobian };
   }
 
   // The exemplar's colours at the synthesized coordinates: RGBA8, (resolution * magnification)^2, row 0 = v 0.
