@@ -22,8 +22,8 @@ import {
 import { MeshStaging } from '../views/mesh-staging.js';
 import { MAGNIFY_GLSL } from './shaders.js';
 
-// Faces per task while the textured geometry is built.
-const BUILD_SLICE = 1 << 16;
+// Faces per task while the textured geometry is built (~20 ms).
+const BUILD_SLICE = 1 << 15;
 
 // The model's corners, each with its position, smooth normal and atlas UV. bounds: the surface's bounding
 // sphere (the same points), when it has one.
@@ -31,7 +31,8 @@ async function cornerGeometry({ positions, triangles, vertexNormals }, cornerUVs
   const nF = triangles.length / 3;
   const pos = new Float32Array(9 * nF), nor = new Float32Array(9 * nF), uv = new Float32Array(6 * nF);
   for (let f0 = 0; f0 < nF; f0 += BUILD_SLICE) {
-    if (f0 > 0) await new Promise((resolve) => setTimeout(resolve, 0));
+    // Each slice in a task of its own, the first too (the atlas was set up in the caller's).
+    await new Promise((resolve) => setTimeout(resolve, 0));
     for (let f = f0; f < Math.min(nF, f0 + BUILD_SLICE); f++)
       for (let k = 0; k < 3; k++) {
         const v = 3 * triangles[3 * f + k];
