@@ -7,7 +7,6 @@ import { FloatTarget, GLError, drawFullscreen, isPow2 } from './gl.js';
 import { CORNER_FLOATS as STRIDE, cornerData } from './atlas-corners.js';
 import { coarserIndirection, seamIndirection } from './seams.js';
 
-
 export class AtlasRaster {
   // positions (3 per vertex), triangles (3 per face), cornerUVs (6 per face, in [0, 1]), resolution a power of
   // two; neighbour: the half-edge map of geometry/mesh-geometry.js when the caller holds one (the model's
@@ -170,7 +169,7 @@ export class AtlasRaster {
   // The same from a per-corner field (9 per face).
   #fillCorners(C, f0, f1, sums) {
     const out = this.fieldData;
-    out.set(C.subarray ? C.subarray(9 * f0, 9 * f1) : C.slice(9 * f0, 9 * f1), 9 * f0);
+    out.set(C.subarray(9 * f0, 9 * f1), 9 * f0);
     for (let f = f0; f < f1; f++) {
       let mag = 0;
       for (let c = 9 * f; c < 9 * f + 9; c += 3) mag += Math.hypot(C[c], C[c + 1], C[c + 2]) / 3;
