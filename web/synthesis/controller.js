@@ -107,8 +107,11 @@ export class SynthesisController {
     const gutter = this.options.gutter ?? DEFAULTS.gutter;
     if (this.atlas && this.atlas.key === model.key && this.atlas.resolution === resolution && this.atlas.gutter === gutter) return this.atlas;
     // Generating an atlas takes up to seconds on a big model: the element's core worker does it, so the page
-    // keeps drawing and taking input.
+    // keeps drawing and taking input; the synthesis programs compile meanwhile (Synthesizer.programsReady).
+    const programs = this.#ensureSynth().programsReady();
+    programs.catch(() => {}); // a failure is thrown by the await below
     const chosen = await this.computeAtlas(model, { resolution, gutter });
+    await programs;
     this.atlas = { key: model.key, resolution, gutter, ...chosen };
     const { positions, triangles, neighbour } = model.surface;
     const { corners = null, seams = null } = this.atlas;

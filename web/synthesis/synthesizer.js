@@ -66,6 +66,19 @@ export class Synthesizer {
     this.lastStats = null;
   }
 
+  // Every program checked (compiled and linked, or a GLError): waits for the driver where it is not done yet.
+  checkPrograms() {
+    for (const p of Object.values(this.programs)) p.check();
+  }
+
+  // Resolves once the driver has compiled and linked every program, looked at once per nextFrame() (the
+  // compilation goes on beside the page: KHR_parallel_shader_compile), then checks them.
+  async programsReady(nextFrame = defaultNextFrame) {
+    const parallel = this.gl.getExtension('KHR_parallel_shader_compile');
+    while (!Object.values(this.programs).every((p) => p.ready(parallel))) await nextFrame();
+    this.checkPrograms();
+  }
+
   // The pyramid levels of the current atlas, finest first.
   get levels() {
     return this.atlas?.levels ?? [];
@@ -80,6 +93,7 @@ export class Synthesizer {
 
   // The mesh in the atlas: {resolution, positions, triangles, cornerUVs, neighbour?} (atlas-raster.js).
   setAtlas(spec) {
+    this.programs.jacobian.check();
     const atlas = new AtlasRaster(this.gl, this.programs.jacobian, spec);
     this.#disposeAtlas();
     this.atlas = atlas;
@@ -136,6 +150,7 @@ export class Synthesizer {
   *#steps(vertexVectors, options) {
     if (!this.exemplar) throw new GLError('no exemplar set');
     if (!this.atlas) throw new GLError('no atlas set');
+    this.checkPrograms();
     const o = { ...DEFAULTS, ...options };
     const gl = this.gl;
     const t0 = performance.now();
@@ -289,6 +304,7 @@ export class Synthesizer {
   // magnification: output pixels per atlas texel (any positive number; the output is resolution * magnification
   // rounded). The same magnification as the page's renderer unless nearest.
   readColour({ magnification = 1, nearest = true } = {}) {
+    this.programs.resolve.check();
     const gl = this.gl;
     const level = this.levels[this.resultLevel ?? 0];
     const size = Math.round(level.size * magnification);
@@ -313,6 +329,7 @@ export class Synthesizer {
   // Milliseconds of one plain full-screen pass (one fetch, one RGBA32F write per texel) at size^2, averaged
   // over `repeats` after a warm-up: the unit synthesis times are compared with.
   plainPassMs(size, repeats = 5) {
+    this.programs.copy.check();
     const gl = this.gl;
     const a = new FloatTarget(gl, size, size), b = new FloatTarget(gl, size, size);
     const run = (n) => {
