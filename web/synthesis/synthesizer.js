@@ -73,10 +73,11 @@ export class Synthesizer {
 
   // Resolves once the driver has compiled and linked every program, looked at once per nextFrame() (the
   // compilation goes on beside the page: KHR_parallel_shader_compile), then checks them.
+  // A context lost meanwhile (dispose()) ends the wait unchecked.
   async programsReady(nextFrame = defaultNextFrame) {
-    const parallel = this.gl.getExtension('KHR_parallel_shader_compile');
-    while (!Object.values(this.programs).every((p) => p.ready(parallel))) await nextFrame();
-    this.checkPrograms();
+    const gl = this.gl, parallel = gl.getExtension('KHR_parallel_shader_compile');
+    while (!gl.isContextLost() && !Object.values(this.programs).every((p) => p.ready(parallel))) await nextFrame();
+    if (!gl.isContextLost()) this.checkPrograms();
   }
 
   // The pyramid levels of the current atlas, finest first.
