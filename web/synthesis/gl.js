@@ -31,7 +31,7 @@ function compile(gl, type, source) {
 }
 
 // A linked program with its uniform locations looked up lazily. Compiled and linked without asking how it went:
-// each such question waits for the driver (with software GL ~45 ms a program, the synthesis's nine in one task
+// each such question waits for the driver (with software GL, the synthesis's nine in one task
 // of 0.4 s at the first synthesis). ready() tells, without waiting, whether the driver is done
 // (KHR_parallel_shader_compile; without it, the next question waits); check() asks, throwing on failure.
 export class Program {
@@ -216,6 +216,20 @@ export function drawFullscreen(gl, vao) {
   gl.bindVertexArray(null);
 }
 
+// Resolves once the GPU has done everything issued so far (a fence, looked at once per nextFrame()) or
+// cancelled() turns true: waiting without holding the page's thread, which a read-back would.
+export async function gpuDone(gl, nextFrame, cancelled = () => false) {
+  const fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+  if (!fence) return nextFrame(); // a lost context
+  gl.flush();
+  try {
+    do await nextFrame();
+    while (!cancelled() && gl.getSyncParameter(fence, gl.SYNC_STATUS) !== gl.SIGNALED);
+  } finally {
+    gl.deleteSync(fence);
+  }
+}
+
 // The float targets' contents, read without holding the page's thread: each readPixels goes into a pixel
 // buffer, and the copies out are made once a fence says the GPU is done, looked at once per nextFrame(). A
 // plain readPixels waits for the GPU process, with software GL behind by up to seconds (0.2-0.6 s a read at
@@ -232,14 +246,7 @@ export async function readTargetsAsync(gl, targets, nextFrame) {
   });
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   gl.bindBuffer(gl.PIXEL_PACK_BUFFER, null);
-  const fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
-  gl.flush();
-  try {
-    do await nextFrame();
-    while (gl.getSyncParameter(fence, gl.SYNC_STATUS) !== gl.SIGNALED);
-  } finally {
-    gl.deleteSync(fence);
-  }
+  await gpuDone(gl, nextFrame);
   // One copy per task (16 MB each for a 1024 atlas).
   for (const [k, { out, buffer }] of reads.entries()) {
     if (k > 0) await nextFrame();

@@ -57,8 +57,8 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
   });
 
   // The exemplar's thumbnail is drawn when the exemplar changes, not at every refresh: a 2D canvas is drawn by
-  // the GPU process, and while a synthesis keeps that busy a drawImage waited for it (0.3-0.6 s with software
-  // GL on an 832k-face model, at each field change).
+  // the GPU process, and while a synthesis keeps that busy a drawImage waited for it (923 ms over three
+  // texture updates of an 832k-face model with software GL).
   let shownExemplar = null;
   function showPreview() {
     const info = controller.exemplar?.tables;

@@ -13,7 +13,7 @@
 //   const stats = syn.synthesize(vertexVectors, {featureScale, magnitudeExponent, seed, ...});
 //   syn.readCoordinates(), syn.readJacobian(), syn.readColour({magnification, nearest})
 import { AtlasRaster } from './atlas-raster.js';
-import { ByteTarget, FloatTarget, FULLSCREEN_VS, GLError, Program, createContext, drawFullscreen, readTargetsAsync, sync } from './gl.js';
+import { ByteTarget, FloatTarget, FULLSCREEN_VS, GLError, Program, createContext, drawFullscreen, gpuDone, readTargetsAsync, sync } from './gl.js';
 import { disposeExemplar, uploadExemplar } from './gpu-exemplar.js';
 import { levelPlan } from './level-plan.js';
 import {
@@ -124,27 +124,12 @@ export class Synthesizer {
       if (pending >= budgetTexels) {
         pending = 0;
         this.gl.flush();
-        await (r.value.gpuIdle ? this.#gpuIdle(nextFrame, cancelled) : nextFrame());
+        await (r.value.gpuIdle ? gpuDone(this.gl, nextFrame, cancelled) : nextFrame());
         if (cancelled()) {
           this.gl.bindFramebuffer(this.gl.FRAMEBUFFER, null);
           return null;
         }
       }
-    }
-  }
-
-  // Resolves once the GPU has done everything issued so far (a fence, looked at once per frame) or the run
-  // is cancelled.
-  async #gpuIdle(nextFrame, cancelled) {
-    const gl = this.gl;
-    const fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
-    if (!fence) return nextFrame();
-    gl.flush();
-    try {
-      do await nextFrame();
-      while (!cancelled() && gl.getSyncParameter(fence, gl.SYNC_STATUS) !== gl.SIGNALED);
-    } finally {
-      gl.deleteSync(fence);
     }
   }
 
