@@ -254,35 +254,10 @@ test.describe.serial('progressive loading of big meshes', () => {
   // changes only the field must not draw the surface again, an orbit must, and the picture, field included,
   // must be the one the scene draws directly. Forced here on a small mesh by lowering the layer's size.
   test('a big surface is drawn once per view; an edit draws only the field over it, as a direct render would', async () => {
+    await page.evaluate(installLayerComparison);
     const r = await page.evaluate(async (off) => {
       const t = window.tvf;
-      const pixels = async () => {
-        const bitmap = await createImageBitmap(await t.screenshot({ width: 320, height: 240 }));
-        const ctx = new OffscreenCanvas(bitmap.width, bitmap.height).getContext('2d');
-        ctx.drawImage(bitmap, 0, 0);
-        return ctx.getImageData(0, 0, bitmap.width, bitmap.height).data;
-      };
-      // Pixels that differ by more than 8 levels: all of them, and those inside a smooth part of the direct
-      // picture (its four neighbours within 24 levels). The layer is multisampled in linear light, the canvas
-      // in sRGB, so a silhouette's antialiased pixels differ by a few levels; nothing else may.
-      const compare = (a, b, width = 320) => {
-        const far = (i, j, to) => Math.abs(a[i] - to[j]) + Math.abs(a[i + 1] - to[j + 1]) + Math.abs(a[i + 2] - to[j + 2]);
-        let differing = 0, inside = 0, model = 0;
-        for (let i = 0; i < a.length; i += 4) {
-          if (far(i, 0, a) > 24) model++;
-          if (Math.max(...[0, 1, 2].map((c) => Math.abs(a[i + c] - b[i + c]))) <= 8) continue;
-          differing++;
-          if ([-4, 4, -4 * width, 4 * width].every((o) => a[i + o] !== undefined && far(i, i + o, a) <= 24)) inside++;
-        }
-        return { differing, inside, model, pixels: a.length / 4 };
-      };
-      // Both pictures of one state: the surface in the scene, then from the layer.
-      const both = async () => {
-        t.debugSurfaceLayer(Infinity);
-        const direct = await pixels();
-        t.debugSurfaceLayer(1);
-        return compare(direct, await pixels());
-      };
+      const both = window.layerComparison;
       await t.loadModel(new TextEncoder().encode(off), { name: 'bunny-sub1.off', format: 'off', previewEdges: 0, restore: false });
       await t.addSource(40);
       const before = await both();
@@ -306,4 +281,107 @@ test.describe.serial('progressive loading of big meshes', () => {
     expect(r.afterEdit.copied).toBeGreaterThan(r.on.copied);
     expect(r.afterOrbit.drawn).toBeGreaterThan(r.afterEdit.drawn); // the orbit drew the surface again
   });
+
+  // The synthesized texture's model: its geometry staged ahead of its first frame, its texture sent a slice
+  // of rows per task (the picture of one upload), and drawn as the surface in the layer (a big textured frame
+  // rasterized at every field change keeps the GPU process, and through it the page, busy): its picture is
+  // drawn again when its texture changes, and not for frames that change the field alone, and it equals the
+  // direct one.
+  test('the synthesized texture: its geometry staged, and drawn in the layer once per texture and view', async () => {
+    const bunny = subdividedOff(await readMesh(page), 0);
+    await page.evaluate(installLayerComparison);
+    const r = await page.evaluate(async (off) => {
+      const t = window.tvf;
+      const frames = () => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+      await t.loadModel(new TextEncoder().encode(off), { name: 'bunny.off', format: 'off', previewEdges: 0, restore: false });
+      await t.addSource(40);
+      // The textured model's geometry goes to the GPU ahead of its first frame, allocated and then filled a
+      // slice per task (views/mesh-staging.js): no upload of a whole corner array, in the synthesis or after.
+      const nF = t.mesh().triangles.length / 3;
+      const wholeUploads = [], gl2 = WebGL2RenderingContext.prototype, bufferData = gl2.bufferData;
+      gl2.bufferData = function (target, data, usage) {
+        if (typeof data !== 'number' && data?.byteLength >= 24 * nF) wholeUploads.push(data.byteLength);
+        return bufferData.call(this, target, data, usage);
+      };
+      try {
+        await t.synthesize({ resolution: 512 });
+        await frames();
+      } finally {
+        gl2.bufferData = bufferData;
+      }
+      const textured = await window.layerComparison();
+      // The texture went to the view two slices of rows per texture (2 MB each); a blocking synthesis sends it
+      // at once: the same texture, the same picture.
+      const sliced = await window.viewPixels();
+      await t.synthesize({ interleave: false });
+      const whole = await window.viewPixels();
+      await t.synthesize({ interleave: true });
+      let slicedDiffers = 0;
+      for (let i = 0; i < whole.length; i++) if (whole[i] !== sliced[i]) slicedDiffers++;
+      t.setTextureAutoUpdate(false);
+      const on = t.debugSurfaceLayer(1);
+      await t.addVector(900, [1, 0.2, 0]); // the field alone changes: the texture waits (no auto update)
+      await frames();
+      const afterEdit = t.debugSurfaceLayer();
+      const version = t.synthesisStats().fieldVersion;
+      t.setTextureAutoUpdate(true); // the texture follows the edit
+      const stats = await t.synthesisIdle();
+      await frames();
+      const afterTexture = t.debugSurfaceLayer();
+      const retextured = await window.layerComparison();
+      t.debugSurfaceLayer(Infinity);
+      return { wholeUploads, whole: whole.length, slicedDiffers, textured, on, afterEdit, afterTexture, retextured, resynthesized: stats.fieldVersion !== version, uploadMs: stats.uploadMs };
+    }, bunny);
+    console.log('textured surface layer:', JSON.stringify(r));
+    expect(r.wholeUploads).toEqual([]);
+    expect(r.whole).toBeGreaterThan(0);
+    expect(r.slicedDiffers).toBe(0);
+    // The stripes' edges are antialiased edges too (triangle edges cross them), resolved in linear light in the
+    // layer: 1.2-1.5 % of the pixels, against 0.5 % for the plain surface; inside smooth parts nothing may differ.
+    for (const c of [r.textured, r.retextured]) {
+      expect(c.model).toBeGreaterThan(0.1 * c.pixels);
+      expect(c.differing).toBeLessThan(0.02 * c.pixels);
+      expect(c.inside).toBeLessThan(0.0005 * c.pixels);
+    }
+    expect(r.afterEdit.drawn).toBe(r.on.drawn); // the field's frames copied the textured picture
+    expect(r.afterEdit.copied).toBeGreaterThan(r.on.copied);
+    expect(r.resynthesized).toBe(true);
+    expect(r.afterTexture.drawn).toBeGreaterThan(r.afterEdit.drawn); // the new texture drew it again
+    expect(r.uploadMs).toBeGreaterThan(0);
+  });
 });
+
+// window.layerComparison(): a picture of the view drawn directly and one with the surface from the layer
+// (views/surface-layer.js), compared. Pixels that differ by more than 8 levels: all of them, and those inside a
+// smooth part of the direct picture (its four neighbours within 24 levels). The layer is multisampled in
+// linear light, the canvas in sRGB, so a silhouette's antialiased pixels differ by a few levels; nothing else
+// may. Leaves the layer off. window.viewPixels(): the view's RGBA at 320x240.
+function installLayerComparison() {
+  const t = window.tvf;
+  const pixels = async () => {
+    const bitmap = await createImageBitmap(await t.screenshot({ width: 320, height: 240 }));
+    const ctx = new OffscreenCanvas(bitmap.width, bitmap.height).getContext('2d');
+    ctx.drawImage(bitmap, 0, 0);
+    return ctx.getImageData(0, 0, bitmap.width, bitmap.height).data;
+  };
+  const compare = (a, b, width = 320) => {
+    const far = (i, j, to) => Math.abs(a[i] - to[j]) + Math.abs(a[i + 1] - to[j + 1]) + Math.abs(a[i + 2] - to[j + 2]);
+    let differing = 0, inside = 0, model = 0;
+    for (let i = 0; i < a.length; i += 4) {
+      if (far(i, 0, a) > 24) model++;
+      if (Math.max(...[0, 1, 2].map((c) => Math.abs(a[i + c] - b[i + c]))) <= 8) continue;
+      differing++;
+      if ([-4, 4, -4 * width, 4 * width].every((o) => a[i + o] !== undefined && far(i, i + o, a) <= 24)) inside++;
+    }
+    return { differing, inside, model, pixels: a.length / 4 };
+  };
+  window.viewPixels = pixels;
+  window.layerComparison = async () => {
+    t.debugSurfaceLayer(Infinity);
+    const direct = await pixels();
+    t.debugSurfaceLayer(1);
+    const layered = await pixels();
+    t.debugSurfaceLayer(Infinity);
+    return compare(direct, layered);
+  };
+}

@@ -196,8 +196,9 @@ export class SynthesisController {
     const t1 = performance.now();
     const { coords, jacobian } = this.options.interleave ? await this.synth.readResultAsync() : { coords: this.synth.readCoordinates(), jacobian: this.synth.readJacobian() };
     if (token !== this.runToken || !this.render) return this.synthesisStats(); // superseded while it was read
-    this.render.setTexture({ resolution: s.resolution, coords, jacobian, exemplar: this.exemplar.tables.rgba8, exemplarSize: this.exemplar.tables.size });
-    this.viewer.requestRender?.();
+    const t2 = performance.now();
+    const shown = await this.render.setTexture({ resolution: s.resolution, coords, jacobian, exemplar: this.exemplar.tables.rgba8, exemplarSize: this.exemplar.tables.size }, { sliced: this.options.interleave });
+    if (!shown) return this.synthesisStats(); // the model changed while the texture went to the GPU
     this.stale = false;
     this.stats = {
       ...s,
@@ -206,7 +207,8 @@ export class SynthesisController {
       autoResolution: this.options.resolution === 'auto',
       exemplar: this.exemplarInfo(),
       atlas: { source: atlas.source, reason: atlas.reason, resolution: atlas.resolution, ...atlas.stats, ms: tAtlas },
-      readbackMs: performance.now() - t1,
+      readbackMs: t2 - t1,
+      uploadMs: performance.now() - t2,
       wallMs: performance.now() - t0,
       fieldVersion: model.fieldVersion,
       symmetry: field.symmetry,

@@ -76,7 +76,7 @@ export class MeshStaging {
   // One function per task: each buffer allocated, then filled slice by slice.
   #steps(geometry) {
     const steps = [];
-    for (const attribute of [geometry.index, ...Object.values(geometry.attributes)]) {
+    for (const attribute of [geometry.index, ...Object.values(geometry.attributes)].filter(Boolean)) {
       const { array } = attribute;
       steps.push(() => this.#draw(geometry, attribute, array.byteLength));
       const slice = Math.max(1, Math.floor(SLICE_BYTES / array.BYTES_PER_ELEMENT));

@@ -6,8 +6,10 @@
 // multisampled like the canvas) when one of those changes, and every frame copies that target onto the
 // canvas, depth included, before the scene is drawn over it without the surface. The depth copy keeps the
 // layers lying in the face planes (polygon offset) and the surface hiding what is behind it exactly as before.
-// A surface whose colours follow the field (the magnitude colour map), that another view replaces (texture,
-// material preview) or that the flow texture draws over is drawn in the scene as usual.
+// A surface whose colours follow the field (the magnitude colour map), that another view replaces (material
+// preview) or that the flow texture draws over is drawn in the scene as usual. The synthesized texture's model
+// stands in for the surface (viewer.surfaceStandIn): its picture too depends on the view alone, and on the
+// textures it shows, which it counts in userData.pictureVersion.
 //
 // Owns its render target and copy pass. Imports three.js only.
 import {
@@ -87,7 +89,34 @@ export class SurfaceLayer {
   applies(surfaceMesh, licVisible) {
     const m = surfaceMesh?.material;
     if (!m || licVisible || !surfaceMesh.visible || !m.visible || m.vertexColors || m.map) return false;
-    return surfaceMesh.geometry.index ? surfaceMesh.geometry.index.count / 3 >= this.minFaces : false;
+    return this.#bigEnough(surfaceMesh);
+  }
+
+  #bigEnough(mesh) {
+    const g = mesh.geometry;
+    return (g.index ?? g.getAttribute('position')).count / 3 >= this.minFaces;
+  }
+
+  // Compiles a stand-in's program ahead of its first frame, for where render() will draw it (the layer's
+  // linear output or the canvas): three.js's first draw of a new program asks for its link status and its
+  // uniforms, which wait for the GPU process (~125 ms at 832k faces with software GL). Resolves when linked
+  // (at once without KHR_parallel_shader_compile: then the GPU process links it while the page goes on).
+  async compile(renderer, scene, camera, mesh) {
+    const target = this.#bigEnough(mesh) ? layerTarget(1, 1) : null;
+    const previous = renderer.getRenderTarget();
+    let linked = null;
+    try {
+      renderer.setRenderTarget(target);
+      if (renderer.extensions.has('KHR_parallel_shader_compile')) linked = renderer.compileAsync(mesh, camera, scene);
+      else renderer.compile(mesh, camera, scene);
+    } finally {
+      renderer.setRenderTarget(previous);
+      target?.dispose();
+    }
+    await linked;
+    // Its first draw would then fetch the program's uniforms, another round trip to the GPU process, which
+    // behind a synthesis is busy for a while: fetched now, right after the link.
+    renderer.properties.get(mesh.material).currentProgram?.getUniforms();
   }
 
   // Draws scene with camera, the surface from the layer where that applies (else as part of the scene).
@@ -114,14 +143,14 @@ export class SurfaceLayer {
   }
 
   // What the surface's picture depends on, as a string: the drawing buffer, the camera (the headlight rides
-  // on it), the surface's transform, geometry and material.
+  // on it), the surface's transform, geometry, material and the textures a stand-in shows.
   #keyOf(renderer, camera, mesh) {
     camera.updateMatrixWorld();
     mesh.updateMatrixWorld();
     const g = mesh.geometry;
     const versions = ['position', 'normal'].map((n) => g.getAttribute(n)?.version ?? -1);
     return [this.size.x, this.size.y, renderer.getPixelRatio(), renderer.getClearColor(this.clearColor).getHex(), renderer.getClearAlpha(), ...camera.matrixWorld.elements, ...camera.projectionMatrix.elements,
-      ...mesh.matrixWorld.elements, mesh.id, g.id, g.index.version, ...versions, mesh.material.id, mesh.material.version].join(' ');
+      ...mesh.matrixWorld.elements, mesh.id, g.id, g.index?.version ?? -1, ...versions, mesh.material.id, mesh.material.version, mesh.userData.pictureVersion ?? 0].join(' ');
   }
 
   #drawSurface(renderer, camera, mesh, key) {

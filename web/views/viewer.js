@@ -89,6 +89,7 @@ export class Viewer {
 
     this.surface = null; // Surface (geometry/topology), set by setMesh
     this.surfaceMesh = null; // the three.js mesh
+    this.surfaceStandIn = null; // a mesh shown in the surface's place when visible (the synthesized texture's)
     this.strokeBand = null; // the live stroke (GrowingBand) while it is drawn
     this.colorMapOn = false;
     this.arrows = new ArrowsView(this.scene);
@@ -101,7 +102,6 @@ export class Viewer {
     this.afterRender = []; // callbacks (time) → void, run once after the next render
     this.staging = new MeshStaging(this.renderer, this.camera);
     this.renderCount = 0; // frames drawn, for measuring responsiveness while the worker is busy
-
     this._renderQueued = false;
     this.disposed = false;
     warmUpShaders(this.renderer, this.scene, this.camera, this.labels).catch(() => {});
@@ -161,7 +161,7 @@ export class Viewer {
     this.arrows.updateView(this.camera, this.controls.target, this.canvas.clientHeight || this.canvas.height);
     this.singularities.updateScale(this.camera, this.renderer);
     this.handles.updateScale(this.camera, this.renderer);
-    this.surfaceLayer.render(this.renderer, this.scene, this.camera, this.surfaceMesh, this.lic.visible);
+    this.surfaceLayer.render(this.renderer, this.scene, this.camera, this.surfaceStandIn?.visible ? this.surfaceStandIn : this.surfaceMesh, this.lic.visible);
     this.lic.render(this.renderer, this.camera);
     this.renderCount++;
     if (this.afterRender.length) {
