@@ -81,7 +81,7 @@ async function cornerGeometry({ positions, triangles, vertexNormals }, cornerUVs
   const pos = new Float32Array(9 * nF), nor = new Float32Array(9 * nF), uv = new Float32Array(6 * nF);
   for (let f0 = 0; f0 < nF; f0 += BUILD_SLICE) {
     // Each slice in a task of its own, the first too (the atlas was set up in the caller's).
-    await new Promise((resolve) => setTimeout(resolve, 0));
+    await nextTask();
     for (let f = f0; f < Math.min(nF, f0 + BUILD_SLICE); f++)
       for (let k = 0; k < 3; k++) {
         const v = 3 * triangles[3 * f + k];
