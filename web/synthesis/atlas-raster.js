@@ -30,24 +30,38 @@ export class AtlasRaster {
     // Surface length per atlas texel at the atlas's mean density.
     this.texelLength = Math.sqrt(area3 / areaUV) / resolution;
     this.#vertexArray(jacobianProgram.program);
-    // Per level (finest first, down to 2x2): the Jacobian, the state as four parity-class quarters plus a spare
-    // (sub-passes write a quarter into the spare, which then takes its place), and the unpacked result.
-    // Not checked for completeness: the context has float render targets (createContext), and a check waits for
-    // the GPU process (0.5 s behind an 832k-face view with software GL).
+    this.jacScratch = null;
+    this.levels = [];
+    const t0 = performance.now();
+    this.seamMaps = seams ?? seamIndirection({ positions, triangles, neighbour }, cornerUVs, resolution);
+    this.seams = { edges: this.seamMaps.seamEdges, redirectedTexels: this.seamMaps.redirected, ms: (this.seamMaps.ms ?? 0) + performance.now() - t0 };
+  }
+
+  // The GPU textures, one per step, for a caller to yield between them: each allocation can wait for the GPU
+  // process (a 16 MB target took 55-88 ms behind an 832k-face view with software GL). Per level (finest first,
+  // down to 2x2): the Jacobian, the state as four parity-class quarters plus a spare (sub-passes write a quarter
+  // into the spare, which then takes its place), the unpacked result, and the seam indirection (an all-zero map
+  // where the atlas has no seams). Not checked for completeness: the context has float render targets
+  // (createContext), and a check waits for the GPU process.
+  *allocate() {
+    const { gl, resolution } = this;
     const target = (size) => new FloatTarget(gl, size, size, null, { check: false });
     this.jacScratch = target(resolution);
-    this.levels = [];
-    for (let r = resolution; r >= 2; r >>= 1) {
-      const h = r / 2;
-      this.levels.push({ size: r, jac: target(r), result: target(r), quarters: [0, 1, 2, 3].map(() => target(h)), spare: target(h) });
+    yield;
+    for (let r = resolution, k = 0; r >= 2; r >>= 1, k++) {
+      const L = { size: r, quarters: [] };
+      this.levels.push(L);
+      for (const name of ['jac', 'result', 'spare']) {
+        L[name] = target(name === 'spare' ? r / 2 : r);
+        yield;
+      }
+      for (let q = 0; q < 4; q++) L.quarters.push(target(r / 2));
+      yield;
+      const map = k === 0 ? this.seamMaps.map : coarserIndirection(this.seamMaps.map, resolution, k);
+      L.indirection = new FloatTarget(gl, r, r, map, { target: false });
+      yield;
     }
-    // Seam indirection per level (an all-zero map where the atlas has no seams).
-    const t0 = performance.now();
-    const made = seams ?? seamIndirection({ positions, triangles, neighbour }, cornerUVs, resolution);
-    this.levels.forEach((L, k) => {
-      L.indirection = new FloatTarget(gl, L.size, L.size, k === 0 ? made.map : coarserIndirection(made.map, resolution, k), { target: false });
-    });
-    this.seams = { edges: made.seamEdges, redirectedTexels: made.redirected, ms: (made.ms ?? 0) + performance.now() - t0 };
+    this.seamMaps = null;
   }
 
   #vertexArray(program) {
@@ -184,7 +198,7 @@ export class AtlasRaster {
     gl.deleteBuffer(this.fieldBuffer);
     gl.deleteVertexArray(this.vao);
     for (const L of this.levels) for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, ...L.quarters]) t?.dispose();
-    this.jacScratch.dispose();
+    this.jacScratch?.dispose();
     this.levels = [];
   }
 }

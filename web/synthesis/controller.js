@@ -65,6 +65,12 @@ export class SynthesisController {
     return this.synth;
   }
 
+  // A new one in a task of its own (its WebGL context alone took 64-103 ms); null if disposed meanwhile.
+  async #synthesizer() {
+    if (!this.synth) this.#ensureSynth(), await new Promise((resolve) => setTimeout(resolve, 0));
+    return this.synth;
+  }
+
   // 'brushed' (exemplar.js) reads as lines: for line fields, as stripes do.
   proceduralNames() {
     return ['stripes', 'scales', 'weave', 'brushed'];
@@ -89,7 +95,7 @@ export class SynthesisController {
         label = img.label;
       }
       this.exemplar = { tables: result.tables, label, cached: result.cached, analysisMs: performance.now() - t0 };
-      this.#ensureSynth().setExemplar(result.tables);
+      (await this.#synthesizer())?.setExemplar(result.tables);
       this.onChange();
       if (this.active) await this.#run();
       return this.exemplarInfo();
@@ -112,13 +118,14 @@ export class SynthesisController {
     programs.catch(() => {}); // a failure is thrown by the await below
     const chosen = await this.computeAtlas(model, { resolution, gutter });
     await programs;
-    this.atlas = { key: model.key, resolution, gutter, ...chosen };
+    // The raster takes the corners and seams; the atlas kept here is the one the exports and stats read.
+    const { corners = null, seams = null, ...atlas } = chosen;
     const { positions, triangles, neighbour } = model.surface;
-    const { corners = null, seams = null } = this.atlas;
-    this.#ensureSynth().setAtlas({ resolution, positions, triangles, neighbour, cornerUVs: this.atlas.cornerUVs, corners, seams });
-    // The raster holds them now; the atlas kept here is the one the exports and stats read.
-    delete this.atlas.corners;
-    delete this.atlas.seams;
+    const spec = { resolution, positions, triangles, neighbour, cornerUVs: atlas.cornerUVs, corners, seams };
+    let task = performance.now(); // a new task once the steps took the page a while (none for a blocking synthesis)
+    for (const _ of this.#ensureSynth().setAtlasSteps(spec))
+      if (this.options.interleave && performance.now() - task > 16) await new Promise((resolve) => setTimeout(resolve, 0)), (task = performance.now());
+    this.atlas = { key: model.key, resolution, gutter, ...atlas };
     if (!this.render) this.render = new TexturedModel(this.viewer);
     await this.render.setGeometry(model.surface, this.atlas.cornerUVs);
     return this.atlas;
@@ -142,7 +149,7 @@ export class SynthesisController {
       if (!this.exemplar) {
         const r = await this.library.procedural('stripes', PROCEDURAL_SIZE, 1);
         this.exemplar = { tables: r.tables, label: 'stripes', cached: r.cached, analysisMs: 0 };
-        this.#ensureSynth().setExemplar(r.tables);
+        (await this.#synthesizer())?.setExemplar(r.tables);
       }
       this.active = true;
       return this.#run();

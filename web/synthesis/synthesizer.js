@@ -94,8 +94,21 @@ export class Synthesizer {
 
   // The mesh in the atlas: {resolution, positions, triangles, cornerUVs, neighbour?} (atlas-raster.js).
   setAtlas(spec) {
+    for (const _ of this.setAtlasSteps(spec));
+  }
+
+  // The same a GPU allocation per step (AtlasRaster.allocate), for a caller that yields to the page between
+  // them; the previous atlas stays until the last step.
+  *setAtlasSteps(spec) {
     this.programs.jacobian.check();
     const atlas = new AtlasRaster(this.gl, this.programs.jacobian, spec);
+    let done = false;
+    try {
+      yield* atlas.allocate();
+      done = true;
+    } finally {
+      if (!done) atlas.dispose();
+    }
     this.#disposeAtlas();
     this.atlas = atlas;
   }
