@@ -60,7 +60,7 @@ namespace {
 // Timings of one ordering over the repeats.
 struct Samples {
   std::vector<double> analyze, factor, solve, update, stroke, strokeUpdate, strokeRows, strokeRhs,
-      strokeSolve, reconstruct, smoothest;
+      strokeSolve, reconstruct, smoothest, deferredStroke, deferredCorrection, deferredUpdate;
   double nnzPerRowM = 0, nnzPerRowL = 0;
   int strokeEdges = 0;      // edges the benchmark stroke crosses (one per step between adjacent faces)
   int strokeRefactors = 0;  // stroke solves that refactored (an updated factor found wanting): timings void
@@ -104,8 +104,9 @@ void runRepeat(Designer& designer, int r, bool metis, Samples& s) {
   const int64_t incrementalBefore = designer.stats().incrementalSolves;
   // Mouse-up to new one-form: the surface walk, the rank-k update, the right-hand side and the solve
   // (reconstruction is reported on its own).
+  int32_t strokeId = 0;
   const double total = timeMs([&] {
-    designer.addStroke(points, 1.0, 1.0);
+    strokeId = designer.addStroke(points, 1.0, 1.0);
     designer.solve();
   });
   s.stroke.push_back(total - designer.stats().reconstructMs);
@@ -116,6 +117,23 @@ void runRepeat(Designer& designer, int r, bool metis, Samples& s) {
   s.strokeSolve.push_back(designer.stats().solveMs);
   s.strokeRefactors += designer.stats().precisionRefactors - refactorsBefore;
   s.strokeIncrementalSolves += static_cast<int>(designer.stats().incrementalSolves - incrementalBefore);
+  if (!directions) {
+    // The same stroke again with its update held beside the factor (Designer::setDeferredUpdates): what the
+    // worker does before the field goes to the page (the correction and the solve through it), and the
+    // update put into the factor after.
+    designer.remove(strokeId);
+    designer.solve();
+    designer.setDeferredUpdates(true);
+    s.deferredStroke.push_back(timeMs([&] {
+                                 designer.addStroke(points, 1.0, 1.0);
+                                 designer.solve();
+                               }) -
+                               designer.stats().reconstructMs);
+    s.deferredCorrection.push_back(designer.stats().updateMs);
+    designer.applyDeferredUpdates();
+    s.deferredUpdate.push_back(designer.stats().deferredUpdateMs);
+    designer.setDeferredUpdates(false);
+  }
   s.nnzPerRowM = designer.stats().nnzPerRowM;
   s.nnzPerRowL = designer.stats().nnzPerRowL;
   s.factorKind = designer.stats().factorKind;
@@ -134,6 +152,9 @@ nlohmann::json summary(const Samples& s, bool metis) {
           {"strokeRhsMs", median(s.strokeRhs)},
           {"strokeSolveMs", median(s.strokeSolve)},
           {"strokeEdges", s.strokeEdges},
+          {"deferredStrokeSolveMs", median(s.deferredStroke)},
+          {"deferredStrokeCorrectionMs", median(s.deferredCorrection)},
+          {"deferredStrokeUpdateMs", median(s.deferredUpdate)},
           {"strokeRefactors", s.strokeRefactors},
           {"strokeIncrementalSolves", s.strokeIncrementalSolves},
           {"reconstructMs", median(s.reconstruct)},

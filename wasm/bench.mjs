@@ -157,7 +157,7 @@ async function measureWasm(mesh, opts) {
   const orderings = opts.compare ? [true, false] : [!opts.amd];
   const samples = orderings.map(() => ({ analyze: [], factor: [], solve: [], update: [], stroke: [], strokeUpdate: [],
     strokeRows: [], strokeRhs: [], strokeSolve: [], reconstruct: [], factorCall: [], solveCall: [], updateCall: [],
-    strokeRefactors: 0, strokeIncrementalSolves: 0, smoothest: [] }));
+    strokeRefactors: 0, strokeIncrementalSolves: 0, smoothest: [], deferredStroke: [], deferredCorrection: [], deferredUpdate: [] }));
   const last = [];
   const statsNow = () => JSON.parse(d.statsJson());
   // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
@@ -204,7 +204,8 @@ async function measureWasm(mesh, opts) {
       // Mouse-up to new one-form: the walk, the rank-k update, the right-hand side and the solve
       // (reconstruction reported on its own).
       t = performance.now();
-      if (d.addStroke(strip, 1.0, 1.0) < 0) fail('stroke', d.lastError());
+      const strokeId = d.addStroke(strip, 1.0, 1.0);
+      if (strokeId < 0) fail('stroke', d.lastError());
       ok('solve', d.solve());
       const total = performance.now() - t;
       stats = statsNow();
@@ -216,6 +217,20 @@ async function measureWasm(mesh, opts) {
       s.strokeEdges = strip.length / 4 - 1;
       s.strokeRefactors += stats.precisionRefactors - refactorsBefore;
       s.strokeIncrementalSolves += stats.incrementalSolves - incrementalBefore;
+      if (!directions) {
+        // The same stroke with its update held beside the factor, as the page's worker does (tvf bench).
+        if (!d.remove(strokeId)) fail('remove', d.lastError());
+        ok('solve', d.solve());
+        ok('defer', d.setDeferredUpdates(true));
+        t = performance.now();
+        if (d.addStroke(strip, 1.0, 1.0) < 0) fail('stroke', d.lastError());
+        ok('solve', d.solve());
+        s.deferredStroke.push(performance.now() - t - statsNow().reconstructMs);
+        s.deferredCorrection.push(statsNow().updateMs);
+        ok('update', d.applyDeferredUpdates());
+        s.deferredUpdate.push(statsNow().deferredUpdateMs);
+        ok('defer', d.setDeferredUpdates(false));
+      }
       last[o] = stats;
     });
   d.delete();
@@ -226,6 +241,8 @@ async function measureWasm(mesh, opts) {
     strokeUpdateSolveMs: median(s.stroke), strokeUpdateMs: median(s.strokeUpdate), strokeRowsMs: median(s.strokeRows),
     strokeRhsMs: median(s.strokeRhs), strokeSolveMs: median(s.strokeSolve), strokeEdges: s.strokeEdges,
     strokeRefactors: s.strokeRefactors,
+    deferredStrokeSolveMs: median(s.deferredStroke), deferredStrokeCorrectionMs: median(s.deferredCorrection),
+    deferredStrokeUpdateMs: median(s.deferredUpdate),
     strokeIncrementalSolves: s.strokeIncrementalSolves,
     reconstructMs: median(s.reconstruct), symmetry: Number(opts.symmetry ?? 1), smoothestMs: median(s.smoothest),
     factorCallMs: median(s.factorCall), solveCallMs: median(s.solveCall), updateCallMs: median(s.updateCall),

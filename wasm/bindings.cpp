@@ -235,6 +235,19 @@ class DesignerBinding {
   // METIS nested dissection (the default) or AMD; the next factorization orders again.
   std::string setMetisOrdering(bool metis) { return run([&] { need().setMetisOrdering(metis); }); }
   // Threads of the backward substitution (1 .. solverThreadsAvailable()); the next solve refactors.
+  // Whether every model from here on holds an added constraint's update beside its factor until
+  // applyDeferredUpdates() (tvf::Designer::setDeferredUpdates): the worker replies with the field first.
+  std::string setDeferredUpdates(bool defer) {
+    return run([&] {
+      deferUpdates_ = defer;
+      if (designer_) designer_->setDeferredUpdates(defer);
+    });
+  }
+  std::string applyDeferredUpdates() {
+    return run([&] {
+      if (designer_) designer_->applyDeferredUpdates();
+    });
+  }
   std::string setSolverThreads(int threads) {
     return run([&] { need().setSolverThreads(threads); });
   }
@@ -459,6 +472,7 @@ class DesignerBinding {
                                             const std::string& design, std::string* settingsError,
                                             Restored* restored) const {
     auto next = std::make_unique<tvf::Designer>(std::move(mesh));
+    next->setDeferredUpdates(deferUpdates_);
     if (!settings.empty()) {
       std::string error;
       if (!attempt(error, [&] {
@@ -539,6 +553,7 @@ class DesignerBinding {
   Restored pendingRestored_;
   // reconstruct()'s Whitney maps for designer_'s mesh (built on first use; dropped when the model changes).
   double memoryLimit_ = 0;  // 0: what is left of the wasm address space
+  bool deferUpdates_ = false;
   mutable std::string lastError_;
   std::vector<double> emptyD_;
   std::vector<int32_t> emptyI_;
@@ -569,6 +584,13 @@ double warmUp(int levels, int rounds) {
       d.setWeight(s, 2.0);
       d.solve();
       d.remove(s);
+      // The same stroke as the page's worker takes it: its update held beside the factor, put in after.
+      d.setDeferredUpdates(true);
+      const int32_t held = d.addStroke(points, 1.0, 1.0);
+      d.solve();
+      d.applyDeferredUpdates();
+      d.remove(held);
+      d.setDeferredUpdates(false);
     }
   });
   if (!ok) return -1;
@@ -605,6 +627,8 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("setCurvatureAlignment", &DesignerBinding::setCurvatureAlignment)
       .function("curvatureAlignment", &DesignerBinding::curvatureAlignment)
       .function("setMetisOrdering", &DesignerBinding::setMetisOrdering)
+      .function("setDeferredUpdates", &DesignerBinding::setDeferredUpdates)
+      .function("applyDeferredUpdates", &DesignerBinding::applyDeferredUpdates)
       .function("setSolverThreads", &DesignerBinding::setSolverThreads)
       .function("solverThreads", &DesignerBinding::solverThreads)
       .function("factor", &DesignerBinding::factor)

@@ -305,6 +305,7 @@ json statsJson(const DesignStats& s) {
   return {{"analyzeMs", s.analyzeMs},
           {"factorMs", s.factorMs},
           {"updateMs", s.updateMs},
+          {"deferredUpdateMs", s.deferredUpdateMs},
           {"solveMs", s.solveMs},
           {"reconstructMs", s.reconstructMs},
           {"rowsMs", s.rowsMs},

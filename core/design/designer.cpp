@@ -362,6 +362,15 @@ int Designer::solverThreads() const {
   return impl_->factor.threads();
 }
 
+void Designer::setDeferredUpdates(bool defer) {
+  impl_->factor.setDeferredUpdates(defer);
+}
+
+void Designer::applyDeferredUpdates() {
+  impl_->factor.applyDeferred();
+  impl_->stats.deferredUpdateMs = impl_->factor.lastDeferredUpdateMs();
+}
+
 void Designer::factor() {
   if (impl_->directions) {
     impl_->directions->factor().invalidate();

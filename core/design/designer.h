@@ -24,6 +24,9 @@ namespace tvf {
 
 struct DesignStats {
   double analyzeMs = 0, factorMs = 0, updateMs = 0, solveMs = 0, reconstructMs = 0;
+  // The last deferred update put into the factor after its solve (setDeferredUpdates); updateMs is then
+  // what the edit itself took: the update's correction for the solves.
+  double deferredUpdateMs = 0;
   double rowsMs = 0;            // the last added constraint's rows (a stroke's surface walk)
   double rhsMs = 0;             // the last solve's right-hand side
   bool analysisReused = false;  // the last factorization reused the ordering (unchanged sparsity pattern)
@@ -83,6 +86,14 @@ class Designer {
   // machine's physical memory (the default). The wasm bindings pass what is left of the 4 GB address space.
   void setFactorMemoryLimit(double bytes);
   double factorMemoryLimit() const;
+  // Whether an added constraint's rows are held beside the vector field's factor and applied to the solves by
+  // the Woodbury identity (solver/woodbury_correction.h) rather than updated into it first: the field after
+  // an edit is ready without waiting for the factor's update, which applyDeferredUpdates() then does (the
+  // worker, once the field has gone to the page). Any other change of the factor applies it first. Off by
+  // default.
+  void setDeferredUpdates(bool defer);
+  // Puts a held update into the factor (nothing when there is none); stats().deferredUpdateMs times it.
+  void applyDeferredUpdates();
   void factor();
 
   // Each returns a stable id (> 0). Throws InputError for an impossible constraint (bad face, NaN, ...).

@@ -14,6 +14,7 @@
 #include "solver/cholmod_handles.h"
 #include "solver/edge_dissection.h"
 #include "solver/forward_solution.h"
+#include "solver/woodbury_correction.h"
 
 namespace tvf {
 namespace {
@@ -122,7 +123,13 @@ struct FactoredSystem::Impl {
   // symbolic analysis with a given permutation is a small part of the analysis.
   std::vector<int> orderingPerm;
   uint64_t orderingPattern = 0;
-  std::vector<int> updateOrder;  // update columns by position in L (see updateDiagonal)
+  std::vector<int> updateOrder;  // update columns by position in L (see sortColumns)
+  // The update columns of the last edit: positions in L, ascending, and weights.
+  std::vector<int> positions;
+  std::vector<double> weights;
+  // An update held beside the factor (deferUpdate) until applyDeferred; its G lies in CHOLMOD's update
+  // workspace (Common->Xwork), which cholmod_updown would allocate anyway.
+  WoodburyCorrection deferred;
   double memoryLimit = 0, estimatedBytes = 0;
   std::vector<int32_t> edgeVertices;
   int32_t numVertices = 0;
@@ -208,10 +215,56 @@ struct FactoredSystem::Impl {
     return xPermuted.data();
   }
 
-  // L^-T D^-1 y for the kept forward substitution y.
-  const double* substituteBackward() {
-    if (!bySupernodes()) return solveSystem(CHOLMOD_DLt, forward.y().data(), solution);
-    return substituteBackwardBySupernodes(forward.y().data());
+  // L^-T D^-1 y.
+  const double* substituteBackward(const double* y) {
+    if (!bySupernodes()) return solveSystem(CHOLMOD_DLt, y, solution);
+    return substituteBackwardBySupernodes(y);
+  }
+
+  // The update columns sqrt(w) e_row into `positions` and `weights`. L factors P A P', so each enters at the
+  // permuted position of its row. Columns go in the order of those positions: cholmod_updown takes them a
+  // few at a time (Common->maxrank), and columns close in the postordered elimination tree share most of
+  // their path to the root, which each group walks once.
+  void sortColumns(const std::vector<int32_t>& rows, const std::vector<double>& w) {
+    const int k = static_cast<int>(rows.size());
+    updateOrder.resize(k);
+    std::iota(updateOrder.begin(), updateOrder.end(), 0);
+    std::sort(updateOrder.begin(), updateOrder.end(),
+              [&](int a, int b) { return inversePerm[rows[a]] < inversePerm[rows[b]]; });
+    positions.resize(k);
+    weights.resize(k);
+    for (int c = 0; c < k; ++c) {
+      positions[c] = inversePerm[rows[updateOrder[c]]];
+      weights[c] = w[updateOrder[c]];
+    }
+  }
+
+  // L L' +/- the columns in `positions` and `weights`, in one cholmod_updown call.
+  void updown(bool downdate) {
+    const int k = static_cast<int>(positions.size());
+    CholmodSparsePtr C(cholmod_allocate_sparse(n, k, k, 1, 1, 0, CHOLMOD_REAL, common.get()), {common.get()});
+    if (!C) throw std::runtime_error("CHOLMOD could not allocate an update");
+    int* p = static_cast<int*>(C->p);
+    int* i = static_cast<int*>(C->i);
+    double* x = static_cast<double*>(C->x);
+    for (int c = 0; c < k; ++c) {
+      p[c] = c;
+      i[c] = positions[c];
+      x[c] = std::sqrt(weights[c]);
+    }
+    p[k] = k;
+    forward.beforeUpdate(*factor, i, k);
+    if (!cholmod_updown(downdate ? 0 : 1, C.get(), factor.get(), common.get())) {
+      forward.invalidate();
+      throw std::runtime_error("CHOLMOD update/downdate failed");
+    }
+  }
+
+  // Into the factor: the update held beside it.
+  void applyDeferred() {
+    if (deferred.empty()) return;
+    deferred.clear();  // zeroes the workspace cholmod_updown is about to take
+    updown(false);
   }
 
   // The symbolic factor of A, ordered by the kept permutation when A's pattern is unchanged, else by a new
@@ -289,6 +342,7 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
 
 bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<double>& diagonal) {
   Impl& s = *impl_;
+  s.deferred.clear();  // the matrix given holds whatever was deferred
   s.factor.reset();  // the previous factor goes before the new one is made
   s.n = static_cast<int>(upper.rows());
   std::vector<double> values;
@@ -356,34 +410,36 @@ void FactoredSystem::updateDiagonal(const std::vector<int32_t>& rows, const std:
                                     bool downdate) {
   Impl& s = *impl_;
   if (rows.empty()) return;
-  const int k = static_cast<int>(rows.size());
-  // One column per row: sqrt(w) e_row. Columns must be sorted and packed; each has one entry.
-  CholmodSparsePtr C(cholmod_allocate_sparse(s.n, k, k, 1, 1, 0, CHOLMOD_REAL, s.common.get()),
-                     {s.common.get()});
-  if (!C) throw std::runtime_error("CHOLMOD could not allocate an update");
-  int* p = static_cast<int*>(C->p);
-  int* i = static_cast<int*>(C->i);
-  double* x = static_cast<double*>(C->x);
-  // L factors P A P', so each column sqrt(w) e_row enters at the permuted position of its row. Columns go in
-  // the order of those positions: cholmod_updown takes them a few at a time (Common->maxrank), and columns
-  // close in the postordered elimination tree share most of their path to the root, which each group walks
-  // once.
-  std::vector<int>& order = s.updateOrder;
-  order.resize(k);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return s.inversePerm[rows[a]] < s.inversePerm[rows[b]]; });
-  for (int c = 0; c < k; ++c) {
-    p[c] = c;
-    i[c] = s.inversePerm[rows[order[c]]];
-    x[c] = std::sqrt(weights[order[c]]);
-  }
-  p[k] = k;
-  s.forward.beforeUpdate(*s.factor, i, k);
-  if (!cholmod_updown(downdate ? 0 : 1, C.get(), s.factor.get(), s.common.get())) {
-    s.forward.invalidate();
-    throw std::runtime_error("CHOLMOD update/downdate failed");
-  }
+  s.applyDeferred();
+  s.sortColumns(rows, weights);
+  s.updown(downdate);
+}
+
+bool FactoredSystem::deferUpdate(const std::vector<int32_t>& rows, const std::vector<double>& weights) {
+  Impl& s = *impl_;
+  if (rows.empty()) return true;
+  s.applyDeferred();
+  s.sortColumns(rows, weights);
+  // G goes where cholmod_updown keeps its workspace (maxrank columns of n doubles, and n ints of which the
+  // correction borrows the slots of Q), allocated here as the update would: the wasm heap does not grow
+  // for it (see Impl).
+  const size_t n = static_cast<size_t>(s.n);
+  cholmod_common& c = *s.common.get();
+  const bool room = cholmod_allocate_work(n, n, static_cast<size_t>(c.maxrank) * n, &c) && c.status == CHOLMOD_OK;
+  if (room && s.deferred.prepare(*s.factor, s.positions.data(), s.weights.data(),
+                                 static_cast<int>(s.positions.size()), static_cast<double*>(c.Xwork),
+                                 c.xworksize, static_cast<int*>(c.Iwork), s.threads))
+    return true;
+  s.updown(false);
+  return false;
+}
+
+void FactoredSystem::applyDeferred() {
+  impl_->applyDeferred();
+}
+
+bool FactoredSystem::hasDeferred() const {
+  return !impl_->deferred.empty();
 }
 
 void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
@@ -391,18 +447,25 @@ void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   s.permute(b, s.bPermuted);
   if (!s.forward.substituteIncrementally(*s.factor, s.bPermuted.data()))
     s.forward.setFull(s.bPermuted.data(), s.substituteForward(), s.n);
-  s.unpermute(s.substituteBackward(), x);
+  if (s.deferred.empty()) return s.unpermute(s.substituteBackward(s.forward.y().data()), x);
+  // The forward substitution is kept for the factor without the deferred update; the corrected copy goes
+  // where P b was, which the substitution no longer needs.
+  std::copy(s.forward.y().begin(), s.forward.y().end(), s.bPermuted.begin());
+  s.deferred.correct(*s.factor, s.bPermuted.data());
+  s.unpermute(s.substituteBackward(s.bPermuted.data()), x);
 }
 
 void FactoredSystem::solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Impl& s = *impl_;
-  if (!s.bySupernodes()) {
+  if (!s.bySupernodes() && s.deferred.empty()) {
     const double* z = s.solveSystem(CHOLMOD_A, b.data(), s.solution);
     x = Eigen::Map<const Eigen::VectorXd>(z, b.size());
     return;
   }
   s.permute(b, s.bPermuted);
-  s.unpermute(s.substituteBackwardBySupernodes(s.substituteForward()), x);
+  double* y = const_cast<double*>(s.substituteForward());  // forwardFull: this solve's own
+  if (!s.deferred.empty()) s.deferred.correct(*s.factor, y);
+  s.unpermute(s.substituteBackward(y), x);
 }
 
 int64_t FactoredSystem::incrementalSolves() const {

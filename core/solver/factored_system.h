@@ -67,7 +67,15 @@ class FactoredSystem {
   void setBackwardKernel(BackwardKernel kernel);
   double estimatedBytes() const;  // the last analysis' estimate of the factor's peak memory
   // L L' +/- sum_k w_k e_{row_k} e_{row_k}' in one cholmod_updown call; weights must be positive.
+  // Applies any deferred update first.
   void updateDiagonal(const std::vector<int32_t>& rows, const std::vector<double>& weights, bool downdate);
+  // The same update (positive weights) held beside the factor: solves apply it by the Woodbury identity
+  // (solver/woodbury_correction.h) until applyDeferred() puts it into the factor, which every other change of
+  // the factor does first and factor() makes moot. Applies it at once, returning false, when its columns'
+  // paths to the root are too many for the update's workspace.
+  bool deferUpdate(const std::vector<int32_t>& rows, const std::vector<double>& weights);
+  void applyDeferred();
+  bool hasDeferred() const;
   // Solves A x = b. The forward substitution L^-1 P b is kept: after updates and a change of b on a few
   // rows (a stroke's), the next solve redoes it only on the elimination-tree paths they changed, then
   // substitutes backward (solver/forward_solution.h).

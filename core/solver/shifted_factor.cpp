@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <utility>
 
 #include "common/input_error.h"
@@ -157,8 +158,27 @@ void ShiftedFactor::update(const DiagonalTerms& change, double scale, bool downd
   }
   updatedSinceFactor_ = true;
   const auto start = std::chrono::steady_clock::now();
-  system_.updateDiagonal(change.rows, change.weights, downdate);
+  if (deferUpdates_ && !downdate)
+    system_.deferUpdate(change.rows, change.weights);
+  else
+    system_.updateDiagonal(change.rows, change.weights, downdate);
   updateMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void ShiftedFactor::setDeferredUpdates(bool defer) {
+  deferUpdates_ = defer;
+  if (!defer) applyDeferred();
+}
+
+void ShiftedFactor::applyDeferred() {
+  if (!system_.hasDeferred()) return;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    system_.applyDeferred();
+  } catch (const std::exception&) {
+    stale_ = true;  // a failed update leaves the factor unusable: the next solve refactors
+  }
+  deferredUpdateMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 // The shift biases the solution by O(shift / smallest nonzero eigenvalue), and fully for fields that only
@@ -230,6 +250,10 @@ const FactorReport& ShiftedFactor::report() const {
 
 double ShiftedFactor::lastUpdateMs() const {
   return updateMs_;
+}
+
+double ShiftedFactor::lastDeferredUpdateMs() const {
+  return deferredUpdateMs_;
 }
 
 int64_t ShiftedFactor::incrementalSolves() const {

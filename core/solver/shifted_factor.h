@@ -64,6 +64,10 @@ class ShiftedFactor {
   // A downdate that would take the weight removed since the factorization past the budget is not done: the
   // factor is then no longer current, and the next solve refactors.
   void update(const DiagonalTerms& change, double scale, bool downdate);
+  // Whether update() holds an addition beside the factor (FactoredSystem::deferUpdate), for
+  // applyDeferred() to put into it after the solve that needed it; downdates are always done at once.
+  void setDeferredUpdates(bool defer);
+  void applyDeferred();
   // Solves (base + terms) x = b: with the factor, plus one step of iterative refinement against the
   // unshifted matrix. After updates, a solution that is not finite, or after downdates one whose backward
   // error is beyond round-off, makes it refactor and solve again, once. base, scale and terms must be those
@@ -72,7 +76,8 @@ class ShiftedFactor {
              Eigen::VectorXd& x);
 
   const FactorReport& report() const;
-  double lastUpdateMs() const;         // the last rank update that was done
+  double lastUpdateMs() const;  // the last rank update that was done (or held beside the factor)
+  double lastDeferredUpdateMs() const;  // the last deferred update put into the factor
   int32_t precisionRefactors() const;  // how many times solve() found an updated factor wanting
   int64_t incrementalSolves() const;   // FactoredSystem::incrementalSolves
   int64_t supernodalSolves() const;    // FactoredSystem::supernodalSolves
@@ -101,7 +106,8 @@ class ShiftedFactor {
   double baseNorm_ = 0;               // infinity norm of the base matrix last factored
   Eigen::VectorXd termSums_;          // scratch: the terms summed per row
   int32_t precisionRefactors_ = 0;
-  double updateMs_ = 0;
+  double updateMs_ = 0, deferredUpdateMs_ = 0;
+  bool deferUpdates_ = false;
   FactorReport report_;
 };
 

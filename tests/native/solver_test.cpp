@@ -372,6 +372,138 @@ TEST(FactoredSystem, IncrementalForwardSubstitutionEqualsAFreshSolve) {
   EXPECT_GE(kept.incrementalSolves(), solves - solves / 65 - 1);
 }
 
+// An update held beside the factor (FactoredSystem::deferUpdate, solved through by the Woodbury identity) in
+// a session like a designer's: strokes of ranks 1 to 60, removals (downdates, which put a held update into the
+// factor first), several edits before a solve, the held update put into the factor at some steps and not at
+// others. After each edit, solve() (kept forward substitution) and solveOnce() must equal a fresh
+// factorization of the held matrix, by both backward kernels and on one thread and two. A stroke whose paths
+// do not fit the update's workspace is updated at once.
+TEST(FactoredSystem, DeferredUpdatesSolveTheUpdatedMatrix) {
+  Designer d(icosphere(4));
+  const SparseMatrix base = d.baseMatrix();
+  const double scale = d.weightScale();
+  const int32_t n = static_cast<int32_t>(base.rows());
+  struct Variant {
+    BackwardKernel kernel;
+    int threads;
+  };
+  for (const Variant v : {Variant{BackwardKernel::Supernodes, 2}, Variant{BackwardKernel::Columns, 1},
+                          Variant{BackwardKernel::Supernodes, 1}}) {
+    const std::string where = std::string(v.kernel == BackwardKernel::Supernodes ? "supernodes" : "columns") +
+                              ", " + std::to_string(v.threads) + " thread(s)";
+    FactoredSystem kept;
+    kept.setThreads(v.threads);
+    kept.setBackwardKernel(v.kernel);
+    kept.setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
+    ASSERT_TRUE(kept.factor(base));
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n), x, once, fresh;
+    b[17] = 1.0;
+    kept.solve(b, x);
+    std::mt19937 random(23);
+    std::uniform_real_distribution<double> weight(0.1, 10.0), value(-1.0, 1.0);
+    std::vector<std::pair<DiagonalTerms, std::vector<double>>> held;
+    int deferred = 0;
+    for (int step = 0; step < 60; ++step) {
+      const int edits = 1 + step % 2;
+      for (int e = 0; e < edits; ++e) {
+        if (step % 5 == 4 && !held.empty()) {
+          const auto [t, added] = held[random() % held.size()];
+          kept.updateDiagonal(t.rows, t.weights, true);
+          EXPECT_FALSE(kept.hasDeferred()) << where;
+          for (size_t k = 0; k < t.rows.size(); ++k) b[t.rows[k]] -= added[k];
+          held.erase(
+              std::find_if(held.begin(), held.end(), [&](const auto& h) { return h.first.rows == t.rows; }));
+          continue;
+        }
+        DiagonalTerms t;
+        std::vector<double> added;
+        const int k = 1 + static_cast<int>(random() % 60);
+        const int32_t start = static_cast<int32_t>(random() % n);
+        for (int c = 0; c < k; ++c) {
+          // A run of neighbouring edges with a repeat now and then (a stroke crossing an edge twice).
+          t.rows.push_back(c % 7 == 6 ? t.rows.front() : (start + c) % n);
+          t.weights.push_back(weight(random) * scale);
+          added.push_back(t.weights.back() * value(random));
+          b[t.rows.back()] += added.back();
+        }
+        const bool held_ = kept.deferUpdate(t.rows, t.weights);
+        EXPECT_EQ(kept.hasDeferred(), held_) << where;
+        deferred += held_;
+        held.emplace_back(t, added);
+      }
+      kept.solve(b, x);
+      kept.solveOnce(b, once);
+      DiagonalTerms all;
+      for (const auto& h : held) all = concatenate(all, h.first);
+      const SparseMatrix A = plusDiagonal(base, all);
+      factorOnMesh(d, A).solve(b, fresh);
+      ASSERT_LT((x - fresh).norm() / fresh.norm(), 1e-11) << where << ", step " << step;
+      ASSERT_LT((once - fresh).norm() / fresh.norm(), 1e-11) << where << ", step " << step;
+      ASSERT_LT((A * x - b).norm() / b.norm(), 1e-11) << where << ", step " << step;
+      if (step % 3 == 0) {
+        kept.applyDeferred();
+        EXPECT_FALSE(kept.hasDeferred());
+        kept.solve(b, x);
+        ASSERT_LT((x - fresh).norm() / fresh.norm(), 1e-11) << where << ", step " << step << ", applied";
+      }
+    }
+    EXPECT_GT(deferred, 15) << where;  // of ~75 strokes: the rest of ranks past what a 7680-edge workspace holds
+    // A stroke across the whole mesh: its paths cover more of the tree than maxrank x n doubles hold for so
+    // many right-hand sides, so it goes into the factor at once.
+    DiagonalTerms wide;
+    for (int32_t c = 0; c < 600; ++c) {
+      wide.rows.push_back(static_cast<int32_t>((c * 7919) % n));
+      wide.weights.push_back(scale);
+    }
+    EXPECT_FALSE(kept.deferUpdate(wide.rows, wide.weights)) << where;
+    EXPECT_FALSE(kept.hasDeferred()) << where;
+    held.emplace_back(wide, std::vector<double>(wide.rows.size(), 0.0));
+    kept.solve(b, x);
+    DiagonalTerms all;
+    for (const auto& h : held) all = concatenate(all, h.first);
+    factorOnMesh(d, plusDiagonal(base, all)).solve(b, fresh);
+    EXPECT_LT((x - fresh).norm() / fresh.norm(), 1e-11) << where;
+    // A factorization takes in whatever was held: nothing is left to apply after it.
+    ASSERT_TRUE(kept.deferUpdate({3, 4}, {scale, scale}));
+    ASSERT_TRUE(kept.factor(plusDiagonal(base, concatenate(all, DiagonalTerms{{3, 4}, {scale, scale}}))));
+    EXPECT_FALSE(kept.hasDeferred()) << where;
+  }
+}
+
+// A designer that defers its updates gives the field of one that does not, edit for edit, on surfaces whose
+// kernel is shifted and refined against (a torus, a grid with a free boundary), with strokes, their removal
+// and weight changes, and the held update applied at some edits and not at others.
+TEST(Designer, DeferredUpdatesGiveTheSameFields) {
+  for (const bool closed : {true, false}) {
+    const SurfaceMesh mesh = closed ? torus(24, 12, 1.0, 0.35) : flatGrid(20);
+    Designer now(mesh), later(mesh);
+    later.setDeferredUpdates(true);
+    const int32_t nF = now.mesh().numFaces();
+    std::vector<int32_t> ids[2];
+    for (int step = 0; step < 12; ++step) {
+      std::vector<SurfacePoint> points;
+      for (int32_t f = 0; f < 6; ++f) points.push_back({(step * 37 + f * 2) % nF, {0.3, 0.3, 0.4}});
+      for (int s = 0; s < 2; ++s) {
+        Designer& d = s == 0 ? now : later;
+        if (step % 4 == 3) {
+          d.remove(ids[s][0]);
+          ids[s].erase(ids[s].begin());
+        } else if (step % 4 == 2) {
+          d.setWeight(ids[s].back(), 3.0);
+        } else {
+          ids[s].push_back(d.addStroke(points, 1.0, 1.0));
+        }
+        d.solve();
+      }
+      const Eigen::Map<const Eigen::VectorXd> a(now.oneForm().data(), now.oneForm().size());
+      const Eigen::Map<const Eigen::VectorXd> b(later.oneForm().data(), later.oneForm().size());
+      ASSERT_LT((a - b).norm() / a.norm(), 1e-10) << (closed ? "torus" : "grid") << ", step " << step;
+      if (step % 2 == 1) later.applyDeferredUpdates();
+    }
+    EXPECT_EQ(later.stats().factorizations, now.stats().factorizations);
+  }
+}
+
 // The backward substitution by supernodes (the wasm build's, solver/backward_substitution.h) against
 // CHOLMOD's column by column (the native build's), on a closed surface and on a grid with a boundary, in both
 // orderings: after the factorization and after strokes and removals, which keep L's pattern and so the

@@ -225,6 +225,16 @@ export class CoreClient {
     check('solve', guard('solve', () => this.designer.solve()));
   }
 
+  // An added constraint's update held beside the factor, the solve applying it (Designer::setDeferredUpdates),
+  // until applyDeferredUpdates() puts it into the factor: the worker does that after its reply has gone.
+  setDeferredUpdates(defer) {
+    check('deferred updates', guard('deferred updates', () => this.designer.setDeferredUpdates(!!defer)));
+  }
+
+  applyDeferredUpdates() {
+    check('update', guard('update', () => this.designer.applyDeferredUpdates()));
+  }
+
   #id(what, id) {
     if (typeof id !== 'number' || id < 0) {
       const msg = guard(what, () => this.designer.lastError()) || 'rejected by the core';

@@ -56,7 +56,7 @@ export async function readBytesOffThread(assetBase, source) {
 
 export class CoreProxy {
   // assetBase: URL of the folder holding core-worker.js and wasm/.
-  // options: {onRestart({kind, detail, call}) → Promise, onStatus(text), heartbeatMs, silentMs}
+  // options: {onRestart({kind, detail, call}) → Promise, onStatus(text), onDeferredUpdate, heartbeatMs, silentMs}
   static async start(assetBase, options = {}) {
     const proxy = new CoreProxy(options);
     proxy.assetBase = assetBase;
@@ -71,6 +71,7 @@ export class CoreProxy {
     this.failure = null; // set by terminate(): the proxy is done for good
     this.onRestart = options.onRestart ?? null;
     this.onStatus = options.onStatus ?? (() => {});
+    this.onDeferredUpdate = options.onDeferredUpdate ?? null; // ({seq, ms, at}): the worker's update after a reply
     this.heartbeatMs = options.heartbeatMs ?? 2000;
     this.silentMs = options.silentMs ?? 10_000;
     this.restarts = 0;
@@ -199,6 +200,7 @@ export class CoreProxy {
     this.lastPong = performance.now();
     if (reply.pong) return;
     if (reply.locked) return void this.#watchLock(worker, lockName);
+    if (reply.deferredUpdate) return void this.onDeferredUpdate?.({ ...reply.deferredUpdate, at: this.lastPong });
     const p = this.pending.get(reply.seq);
     if (!p) return;
     if (reply.progress) return void p.onProgress?.(reply.progress);

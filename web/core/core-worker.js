@@ -42,7 +42,6 @@ function serve(scope) {
   let seqNow = 0;
   const progress = (value, list = []) => scope.postMessage({ seq: seqNow, progress: value }, list);
 
-  // The mesh's surface, for tracing: built on first use.
   function surfaceOf() {
     if (!tracing.surface) {
       const mesh = core.mesh();
@@ -54,14 +53,12 @@ function serve(scope) {
   function requireMesh() { if (!core?.hasMesh) throw new CoreError('no mesh loaded'); }
 
   // A result that carries its own transfer list.
-  const transferOf = ({ value, list }) => new Transfer(value, list);
-
   class Transfer {
     constructor(value, list) {
-      this.value = value;
-      this.list = list;
+      Object.assign(this, { value, list });
     }
   }
+  const transferOf = ({ value, list }) => new Transfer(value, list);
 
   const spares = new SpareArrays(); // earlier field arrays the page handed back, refilled rather than allocated
 
@@ -129,6 +126,7 @@ function serve(scope) {
           .catch(() => {});
       }
       coreExport = new CoreExport(core);
+      core.setDeferredUpdates(true); // an edit's field is replied before the factor takes its update (below)
       if (core.threadsUnavailable)
         console.warn(`tangent-field-designer: the core with threads did not start (${core.threadsUnavailable}); solving on one thread`);
       return { crossOriginIsolated: self.crossOriginIsolated === true };
@@ -305,10 +303,7 @@ function serve(scope) {
 
     // 0: the wasm address space left (default); a number: a fixed limit (tests scale it down instead of
     // building a multi-million-edge mesh).
-    setFactorMemoryLimit(bytes) {
-      core.setFactorMemoryLimit(bytes);
-      return true;
-    },
+    setFactorMemoryLimit: (bytes) => (core.setFactorMemoryLimit(bytes), true),
 
     // exportAtlasNote, exportFlowMap, exportGlb, exportRawField (core-export.js); readBytes (model-bytes.js).
     ...exportOps(() => coreExport, () => exportedField(), () => JSON.parse(core.designJson())),
@@ -394,6 +389,11 @@ function serve(scope) {
     reply.workerMs = performance.now() - t0;
     reply.timing = timing;
     scope.postMessage(reply, transfer);
+    // The update the solve went through (Designer::setDeferredUpdates) goes into the factor once the field has gone.
+    if (!MUTATING.has(op) || !core?.hasMesh) return;
+    const t = performance.now();
+    core.applyDeferredUpdates();
+    scope.postMessage({ deferredUpdate: { seq, ms: performance.now() - t } });
   };
 }
 

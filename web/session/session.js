@@ -96,6 +96,7 @@ export class Session extends Emitter {
       const proxy = await CoreProxy.start(this.assetBase, {
         onRestart: (reason) => revive(this, reason),
         onStatus: (text) => this.flash(text, 4000),
+        onDeferredUpdate: (update) => (this.perf.deferredUpdate = update), // the factor's, after an edit's field
       });
       if (this.disposed) return proxy.terminate();
       this.proxy = proxy;
