@@ -463,6 +463,22 @@ TEST(FactoredSystem, DeferredUpdatesSolveTheUpdatedMatrix) {
     for (const auto& h : held) all = concatenate(all, h.first);
     factorOnMesh(d, plusDiagonal(base, all)).solve(b, fresh);
     EXPECT_LT((x - fresh).norm() / fresh.norm(), 1e-11) << where;
+    // A stroke whose weights dwarf the matrix (1e8 x its scale) would lose ~1e-8 of precision to the
+    // correction: it goes into the factor at once, and the solve is backward stable (the system's own
+    // conditioning, ~1e8 now, is what any solve of it loses).
+    const DiagonalTerms heavy{{5, 6, 7}, {1e8 * scale, 1e8 * scale, 1e8 * scale}};
+    EXPECT_FALSE(kept.deferUpdate(heavy.rows, heavy.weights)) << where;
+    EXPECT_FALSE(kept.hasDeferred()) << where;
+    held.emplace_back(heavy, std::vector<double>(3, 0.0));
+    b[6] += 1e8 * scale;
+    kept.solve(b, x);
+    all = DiagonalTerms();
+    for (const auto& h : held) all = concatenate(all, h.first);
+    const SparseMatrix heavyA = plusDiagonal(base, all);
+    const double normA = (heavyA.cwiseAbs() * Eigen::VectorXd::Ones(n)).maxCoeff();
+    const double backwardError = (heavyA * x - b).lpNorm<Eigen::Infinity>() /
+                                 (normA * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>());
+    EXPECT_LT(backwardError, 1e-14) << where;
     // A factorization takes in whatever was held: nothing is left to apply after it.
     ASSERT_TRUE(kept.deferUpdate({3, 4}, {scale, scale}));
     ASSERT_TRUE(kept.factor(plusDiagonal(base, concatenate(all, DiagonalTerms{{3, 4}, {scale, scale}}))));

@@ -376,7 +376,7 @@ function serve(scope) {
       // design, whatever the edit had got to).
       if (MUTATING.has(op) && core?.hasMesh && !reply.fatal) {
         try {
-          core.solve();
+          if (op !== 'loadMesh') core.solve(); // a load is one transaction: the model it leaves is solved
           reply.snapshot = preview ? preview.snapshot(spares, timing) : snapshot(null);
           transfer = reply.snapshot.transfer;
         } catch {
