@@ -24,7 +24,7 @@ class WoodburyCorrection {
   // G and the Cholesky factor of K for the update columns sqrt(weights[m]) e_{positions[m]} (positions in L's
   // order, ascending). storage: zero on entry, `capacity` doubles; slot: L.n ints of scratch. Returns false,
   // keeping nothing and leaving storage zero, when G does not fit in storage, or when the weights are so
-  // heavy against A that the correction would lose precision the update keeps (K's diagonal past 1e4).
+  // heavy against A that the correction would lose precision the update keeps (K's diagonal past 1e6).
   bool prepare(const cholmod_factor& L, const int* positions, const double* weights, int k, double* storage,
                size_t capacity, int* slot, int parts);
   // y <- y - G K^-1 G' D^-1 y, which changes y on Q only (y: L^-1 b, n values in L's order).

@@ -447,7 +447,25 @@ TEST(FactoredSystem, DeferredUpdatesSolveTheUpdatedMatrix) {
         ASSERT_LT((x - fresh).norm() / fresh.norm(), 1e-11) << where << ", step " << step << ", applied";
       }
     }
-    EXPECT_GT(deferred, 15) << where;  // of ~75 strokes: the rest of ranks past what a 7680-edge workspace holds
+    EXPECT_GT(deferred, 15) << where;
+    // Strokes of the page's default weight (1e4 x the scale): held, each within the 1e-9 to which the page's
+    // field equals a fresh solve (the correction loses ~eps x K's diagonal, here ~1e5).
+    for (int s = 0; s < 4; ++s) {
+      DiagonalTerms t;
+      for (int c = 0; c < 8; ++c) {
+        t.rows.push_back((1000 * s + 37 + c) % n);
+        t.weights.push_back(1e4 * scale);
+      }
+      b[t.rows[3]] += 1e4 * scale;
+      EXPECT_TRUE(kept.deferUpdate(t.rows, t.weights)) << where << ", default weight " << s;
+      held.emplace_back(t, std::vector<double>(t.rows.size(), 0.0));
+      held.back().second[3] = 1e4 * scale;
+      kept.solve(b, x);
+      DiagonalTerms all;
+      for (const auto& h : held) all = concatenate(all, h.first);
+      factorOnMesh(d, plusDiagonal(base, all)).solve(b, fresh);
+      EXPECT_LT((x - fresh).lpNorm<Eigen::Infinity>() / fresh.lpNorm<Eigen::Infinity>(), 1e-9) << where;
+    }  // of ~75 strokes: the rest of ranks past what a 7680-edge workspace holds
     // A stroke across the whole mesh: its paths cover more of the tree than maxrank x n doubles hold for so
     // many right-hand sides, so it goes into the factor at once.
     DiagonalTerms wide;
