@@ -221,6 +221,22 @@ struct FactoredSystem::Impl {
     return substituteBackwardBySupernodes(y);
   }
 
+  // L^-T D^-1 of y corrected for the held update. y stays as it is: the forward substitution kept is the
+  // factor's, without the update. By supernodes the copy the backward substitution works in is corrected in
+  // place; CHOLMOD's takes a corrected copy where P b was, which the forward substitution no longer needs.
+  const double* substituteBackwardCorrected(const double* y) {
+    if (!bySupernodes()) {
+      std::copy(y, y + n, bPermuted.begin());
+      deferred.correct(*factor, bPermuted.data());
+      return solveSystem(CHOLMOD_DLt, bPermuted.data(), solution);
+    }
+    ++supernodalSolves;
+    xPermuted.assign(y, y + n);
+    deferred.correct(*factor, xPermuted.data());
+    backward.solve(*factor, xPermuted.data(), xPermuted.data());
+    return xPermuted.data();
+  }
+
   // The update columns sqrt(w) e_row into `positions` and `weights`. L factors P A P', so each enters at the
   // permuted position of its row. Columns go in the order of those positions: cholmod_updown takes them a
   // few at a time (Common->maxrank), and columns close in the postordered elimination tree share most of
@@ -448,11 +464,7 @@ void FactoredSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (!s.forward.substituteIncrementally(*s.factor, s.bPermuted.data()))
     s.forward.setFull(s.bPermuted.data(), s.substituteForward(), s.n);
   if (s.deferred.empty()) return s.unpermute(s.substituteBackward(s.forward.y().data()), x);
-  // The forward substitution is kept for the factor without the deferred update; the corrected copy goes
-  // where P b was, which the substitution no longer needs.
-  std::copy(s.forward.y().begin(), s.forward.y().end(), s.bPermuted.begin());
-  s.deferred.correct(*s.factor, s.bPermuted.data());
-  s.unpermute(s.substituteBackward(s.bPermuted.data()), x);
+  s.unpermute(s.substituteBackwardCorrected(s.forward.y().data()), x);
 }
 
 void FactoredSystem::solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {

@@ -11,6 +11,10 @@ import { icosphereOff } from '../icosphere.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const TVF = resolve(ROOT, 'build/tvf');
+// A design solved again from scratch (a replaced worker) against the field shown before: that field may be a
+// stroke's solved through its update held beside the factor, within ~1.4 eps x K of a fresh factorization's
+// (docs/method.md, "A stroke's update held beside the factor"; 2e-12 here at the default weight).
+const RESOLVED = 1e-10;
 const BUNNY_GLB = resolve(ROOT, 'dist/models/bunny.glb');
 const EMPTY = { boundary: 'free', gamma: 0, constraints: [] };
 
@@ -139,7 +143,7 @@ test.describe.serial('nothing a user does or loads loses their work', () => {
     const restart = await evaluate(() => window.tvf.perf().lastRestart);
     expect(restart.kind).toBe('ended');
     expect(await evaluate(() => window.tvf.saveDesign())).toEqual(design);
-    expect(relativeDifference(await oneForm(), before)).toBeLessThan(1e-12);
+    expect(relativeDifference(await oneForm(), before)).toBeLessThan(RESOLVED);
     expect(await strokeWorks()).toBeGreaterThan(0);
     await expect(page.locator('body')).toContainText(/restarted/);
     console.log(`restore after a worker death: ${restart.restoreMs.toFixed(0)} ms (${restart.constraints} constraints)`);
@@ -153,7 +157,7 @@ test.describe.serial('nothing a user does or loads loses their work', () => {
     expect(trap).toMatch(/unreachable/);
     await page.waitForFunction((n) => window.tvf.supervision().restarts > n && window.tvf.perf().lastRestart?.kind === 'trap', restarts, { timeout: 30_000 });
     expect(await evaluate(() => window.tvf.saveDesign())).toEqual(design);
-    expect(relativeDifference(await oneForm(), before)).toBeLessThan(1e-12);
+    expect(relativeDifference(await oneForm(), before)).toBeLessThan(RESOLVED);
     // Alive but silent with nothing in flight: the heartbeat (10 s) gives up on it.
     await evaluate(() => window.tvf.debugHangCore(30_000));
     await page.waitForFunction((n) => window.tvf.supervision().restarts > n + 1 && window.tvf.perf().lastRestart?.kind === 'silent', restarts, { timeout: 40_000 });
