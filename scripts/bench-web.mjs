@@ -146,8 +146,9 @@ async function strokeBench(page, meshPath) {
       // The exact worker puts the stroke's update into its factor after its reply (Designer::setDeferredUpdates):
       // a user's next stroke, which takes longer than that to draw, finds it done, and so does the bench's.
       const deferredAt = performance.now();
-      while (!(window.tvf.perf().deferredUpdate?.at > t0) && performance.now() - deferredAt < 10_000) await frame();
-      const deferredUpdateMs = window.tvf.perf().deferredUpdate?.ms ?? null;
+      const held = () => window.tvf.perf().deferredUpdate;
+      while (held() && !(held().at > t0) && performance.now() - deferredAt < 10_000) await frame();
+      const deferredUpdateMs = held()?.ms ?? null;
       const stats = window.tvf.stats();
       const last = window.tvf.perf().lastExact;
       const exact = preview && last ? { workerMs: last.workerMs, ...last.workerParts, receivedMs: last.receivedAt - t0, applyMs: last.applyMs } : null;
