@@ -1,6 +1,7 @@
 #pragma once
 // A sparse SPD matrix factored once by CHOLMOD and then modified only by rank-1 updates/downdates of its
-// factor (cholmod_updown), as constraint rows with a single nonzero come and go.
+// factor (cholmod_updown), as constraint rows with a single nonzero come and go. An addition may be held
+// beside the factor for the solves after it (deferUpdate) and put into it later.
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
