@@ -1,21 +1,13 @@
 #include "solver/backward_substitution.h"
 
 #include <algorithm>
-#include <cstring>
 
+#include "common/simd_lanes.h"
 #include "common/thread_team.h"
+#include "solver/factor_columns.h"
 
 namespace tvf {
 namespace {
-
-// Two doubles in one vector register: SSE2 natively, simd128 in wasm (GCC and Clang vector extension).
-typedef double Lanes2 __attribute__((vector_size(16)));
-
-Lanes2 load2(const double* p) {
-  Lanes2 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
 
 // The K sums a_c(k) t(k), c < K, in one pass over t: the columns of a supernode share t.
 template <int K>
@@ -62,14 +54,12 @@ void BackwardSubstitution::setParts(int parts) {
 // diagonal): a column's rows below its diagonal are its ancestors, so then they are j + 1's rows.
 void BackwardSubstitution::findSupernodes(const cholmod_factor& L) {
   const int n = static_cast<int>(L.n);
-  const int* Lp = static_cast<const int*>(L.p);
-  const int* Li = static_cast<const int*>(L.i);
-  const int* Lnz = static_cast<const int*>(L.nz);
+  const FactorColumns columns = factorColumns(L);
   first_.clear();
   int widest = 0;
   for (int j = 0; j < n; ++j) {
-    if (j == 0 || !(Lnz[j - 1] == Lnz[j] + 1 && Li[Lp[j - 1] + 1] == j)) first_.push_back(j);
-    widest = std::max(widest, Lnz[j] - 1);
+    if (j == 0 || !continuesSupernode(columns, j - 1)) first_.push_back(j);
+    widest = std::max(widest, columns.nz[j] - 1);
   }
   first_.push_back(n);
   partitionSupernodes(L);

@@ -359,7 +359,7 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
 bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<double>& diagonal) {
   Impl& s = *impl_;
   s.deferred.clear();  // the matrix given holds whatever was deferred
-  s.factor.reset();  // the previous factor goes before the new one is made
+  s.factor.reset();    // the previous factor goes before the new one is made
   s.n = static_cast<int>(upper.rows());
   std::vector<double> values;
   if (!diagonal.empty()) {
@@ -441,7 +441,8 @@ bool FactoredSystem::deferUpdate(const std::vector<int32_t>& rows, const std::ve
   // for it (see Impl).
   const size_t n = static_cast<size_t>(s.n);
   cholmod_common& c = *s.common.get();
-  const bool room = cholmod_allocate_work(n, n, static_cast<size_t>(c.maxrank) * n, &c) && c.status == CHOLMOD_OK;
+  const bool room =
+      cholmod_allocate_work(n, n, static_cast<size_t>(c.maxrank) * n, &c) && c.status == CHOLMOD_OK;
   if (room && s.deferred.prepare(*s.factor, s.positions.data(), s.weights.data(),
                                  static_cast<int>(s.positions.size()), static_cast<double*>(c.Xwork),
                                  c.xworksize, static_cast<int*>(c.Iwork), s.threads))

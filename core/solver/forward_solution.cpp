@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/factor_columns.h"
+
 namespace tvf {
 namespace {
 
@@ -16,24 +18,6 @@ constexpr int kChangedRowsFraction = 64;
 // b has shrunk below the largest of them by more than this, y is redone in full (clearing a design would
 // otherwise leave round-off of the old field where the new one is zero, amplified along a shifted kernel).
 constexpr double kShrinkBeforeFull = 16;
-
-struct ColumnView {
-  const int* p;
-  const int* i;
-  const int* nz;
-  const double* x;
-};
-
-ColumnView columns(const cholmod_factor& L) {
-  return {static_cast<const int*>(L.p), static_cast<const int*>(L.i), static_cast<const int*>(L.nz),
-          static_cast<const double*>(L.x)};
-}
-
-// The parent of column j in the elimination tree: the row of its first entry below the diagonal (the
-// simplicial pattern is exact, CHOLMOD keeps each column's rows sorted).
-int parent(const ColumnView& L, int j) {
-  return L.nz[j] > 1 ? L.i[L.p[j] + 1] : -1;
-}
 
 }  // namespace
 
@@ -62,9 +46,9 @@ void ForwardSolution::clearPending() {
 // exact: its contribution y(j) e_j + (L - I)(:, j) y(j) moves into r, on rows that are its ancestors and so
 // in Q too.
 void ForwardSolution::addPaths(const cholmod_factor& factor, const int* start, int count) {
-  const ColumnView L = columns(factor);
+  const FactorColumns L = factorColumns(factor);
   for (int c = 0; c < count; ++c) {
-    for (int j = start[c]; j >= 0 && !inSet_[j]; j = parent(L, j)) {
+    for (int j = start[c]; j >= 0 && !inSet_[j]; j = parentColumn(L, j)) {
       inSet_[j] = 1;
       pending_.push_back(j);
       const double yj = y_[j];
@@ -81,7 +65,7 @@ void ForwardSolution::beforeUpdate(const cholmod_factor& L, const int* columns, 
 
 // Forward substitution on Q with the current L; children before parents, which ascending order is.
 void ForwardSolution::substituteOnPending(const cholmod_factor& factor) {
-  const ColumnView L = columns(factor);
+  const FactorColumns L = factorColumns(factor);
   std::sort(pending_.begin(), pending_.end());
   for (const int j : pending_) {
     const double yj = r_[j];

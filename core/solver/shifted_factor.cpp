@@ -178,7 +178,8 @@ void ShiftedFactor::applyDeferred() {
   } catch (const std::exception&) {
     stale_ = true;  // a failed update leaves the factor unusable: the next solve refactors
   }
-  deferredUpdateMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  deferredUpdateMs_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 // The shift biases the solution by O(shift / smallest nonzero eigenvalue), and fully for fields that only

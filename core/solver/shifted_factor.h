@@ -76,11 +76,11 @@ class ShiftedFactor {
              Eigen::VectorXd& x);
 
   const FactorReport& report() const;
-  double lastUpdateMs() const;  // the last rank update that was done (or held beside the factor)
+  double lastUpdateMs() const;          // the last rank update that was done (or held beside the factor)
   double lastDeferredUpdateMs() const;  // the last deferred update put into the factor
-  int32_t precisionRefactors() const;  // how many times solve() found an updated factor wanting
-  int64_t incrementalSolves() const;   // FactoredSystem::incrementalSolves
-  int64_t supernodalSolves() const;    // FactoredSystem::supernodalSolves
+  int32_t precisionRefactors() const;   // how many times solve() found an updated factor wanting
+  int64_t incrementalSolves() const;    // FactoredSystem::incrementalSolves
+  int64_t supernodalSolves() const;     // FactoredSystem::supernodalSolves
 
  private:
   // The shift and the terms, summed per row.

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstring>
 
+#include "common/simd_lanes.h"
 #include "common/thread_team.h"
+#include "solver/factor_columns.h"
 
 namespace tvf {
 namespace {
@@ -14,34 +16,9 @@ constexpr int kLineDoubles = 8;  // a 64-byte cache line
 // The largest diagonal of K a held update may have (see prepare).
 constexpr double kMostGrowth = 1e6;
 
-struct Columns {
-  const int* p;
-  const int* i;
-  const int* nz;
-  const double* x;
-};
-
-Columns columns(const cholmod_factor& L) {
-  return {static_cast<const int*>(L.p), static_cast<const int*>(L.i), static_cast<const int*>(L.nz),
-          static_cast<const double*>(L.x)};
-}
-
 // Up to this many columns of a supernode go together: each row of G they reach below is loaded and stored
-// once for all of them (natively ~4x fewer cache lines moved than column by column).
+// once for all of them.
 constexpr int kBlock = 4;
-
-// Two doubles in one vector register: SSE2 natively, simd128 in wasm (as solver/backward_substitution.cpp).
-typedef double Lanes2 __attribute__((vector_size(16)));
-
-Lanes2 load2(const double* p) {
-  Lanes2 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-void store2(double* p, Lanes2 v) {
-  std::memcpy(p, &v, sizeof v);
-}
 
 // to[m] -= sum_c a[c] from[c][m] on [lo, hi): W columns' entries of L on one row, on every right-hand side
 // whose path passes there. Four doubles a step, in two independent vector registers.
@@ -81,8 +58,8 @@ void subtractColumns(int w, double* to, const double* const* from, const double*
 
 // The same on two rows at once: each load of a column's right-hand sides serves both.
 template <int W>
-void subtractColumnsTwice(double* to0, double* to1, const double* const* from, const double* a0, const double* a1,
-                          int lo, int hi) {
+void subtractColumnsTwice(double* to0, double* to1, const double* const* from, const double* a0,
+                          const double* a1, int lo, int hi) {
   Lanes2 scale0[W], scale1[W];
   for (int c = 0; c < W; ++c) {
     scale0[c] = Lanes2{a0[c], a0[c]};
@@ -124,26 +101,20 @@ void subtractColumnsTwice(int w, double* to0, double* to1, const double* const* 
   }
 }
 
-// Whether column j + 1 continues j's supernode: j's parent, with j's rows below it (Columns in
-// solver/backward_substitution.cpp).
-bool continuesSupernode(const Columns& L, int j) {
-  return L.nz[j] == L.nz[j + 1] + 1 && L.i[L.p[j] + 1] == j + 1;
-}
-
 }  // namespace
 
 bool WoodburyCorrection::prepare(const cholmod_factor& factor, const int* positions, const double* weights,
                                  int k, double* storage, size_t capacity, int* slot, int parts) {
   clear();
   if (k <= 0) return false;
-  const Columns L = columns(factor);
+  const FactorColumns L = factorColumns(factor);
   const int n = static_cast<int>(factor.n);
   // Q: the paths to the root, each walked until it meets one already taken. slot[j] is j's row in G; -1
   // outside Q, which the substitution checks for every row it reaches (a column's rows are its ancestors,
   // which a simplicial factor's exact pattern guarantees; anything else would write outside G).
   std::fill(slot, slot + n, -1);
   for (int m = 0; m < k; ++m)
-    for (int j = positions[m]; j >= 0 && slot[j] < 0; j = L.nz[j] > 1 ? L.i[L.p[j] + 1] : -1) {
+    for (int j = positions[m]; j >= 0 && slot[j] < 0; j = parentColumn(L, j)) {
       slot[j] = 0;
       path_.push_back(j);
     }
@@ -179,7 +150,8 @@ bool WoodburyCorrection::prepare(const cholmod_factor& factor, const int* positi
   parts = std::clamp(parts, 1, lines);
   std::atomic<bool> outside{false};
   ThreadTeam::shared().run(parts, [&](int t) {
-    const int first = lines * t / parts * kLineDoubles, last = std::min(k, lines * (t + 1) / parts * kLineDoubles);
+    const int first = lines * t / parts * kLineDoubles,
+              last = std::min(k, lines * (t + 1) / parts * kLineDoubles);
     int w = 1;
     for (int r = 0; r < rows && !outside.load(std::memory_order_relaxed); r += w) {
       // Columns j .. j + w - 1 of one supernode, all in Q (each is the next one's child). Every right-hand
@@ -196,7 +168,8 @@ bool WoodburyCorrection::prepare(const cholmod_factor& factor, const int* positi
       for (int c = 0; c < w; ++c) {
         g[c] = g_ + static_cast<size_t>(r + c) * stride_;
         const double* inside = L.x + L.p[j + c] + 1;
-        for (int q = 1; q < w - c; ++q) subtractColumns<1>(g_ + static_cast<size_t>(r + c + q) * stride_, &g[c], inside + q - 1, lo, hi);
+        for (int q = 1; q < w - c; ++q)
+          subtractColumns<1>(g_ + static_cast<size_t>(r + c + q) * stride_, &g[c], inside + q - 1, lo, hi);
       }
       // Below it: the rows of its last column, which every column of the block shares.
       const int l = j + w - 1;
@@ -216,8 +189,8 @@ bool WoodburyCorrection::prepare(const cholmod_factor& factor, const int* positi
           a[c] = values[c][q];
           a1[c] = values[c][q + 1];
         }
-        subtractColumnsTwice(w, g_ + static_cast<size_t>(s0) * stride_, g_ + static_cast<size_t>(s1) * stride_, g,
-                             a, a1, lo, hi);
+        subtractColumnsTwice(w, g_ + static_cast<size_t>(s0) * stride_,
+                             g_ + static_cast<size_t>(s1) * stride_, g, a, a1, lo, hi);
       }
       if (q < below) {
         const int s = slot[rowsBelow[q]];
@@ -284,7 +257,7 @@ bool WoodburyCorrection::prepare(const cholmod_factor& factor, const int* positi
 }
 
 void WoodburyCorrection::correct(const cholmod_factor& factor, double* y) const {
-  const Columns L = columns(factor);
+  const FactorColumns L = factorColumns(factor);
   const int rows = static_cast<int>(path_.size());
   Eigen::VectorXd t = Eigen::VectorXd::Zero(k_);
   for (int r = 0; r < rows; ++r) {

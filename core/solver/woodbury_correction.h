@@ -39,8 +39,8 @@ class WoodburyCorrection {
   int k_ = 0;
   int stride_ = 0;  // doubles per row of G: k rounded up to whole cache lines, so parts never share one
   double* g_ = nullptr;
-  std::vector<int> path_;      // Q, ascending (children before parents)
-  std::vector<int> low_, high_;  // per row of Q: the range of right-hand sides nonzero there
+  std::vector<int> path_;                 // Q, ascending (children before parents)
+  std::vector<int> low_, high_;           // per row of Q: the range of right-hand sides nonzero there
   Eigen::LLT<Eigen::MatrixXd> cholesky_;  // of K
 };
 

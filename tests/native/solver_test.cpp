@@ -373,9 +373,9 @@ TEST(FactoredSystem, IncrementalForwardSubstitutionEqualsAFreshSolve) {
 }
 
 // An update held beside the factor (FactoredSystem::deferUpdate, solved through by the Woodbury identity) in
-// a session like a designer's: strokes of ranks 1 to 60, removals (downdates, which put a held update into the
-// factor first), several edits before a solve, the held update put into the factor at some steps and not at
-// others. After each edit, solve() (kept forward substitution) and solveOnce() must equal a fresh
+// a session like a designer's: strokes of ranks 1 to 60, removals (downdates, which put a held update into
+// the factor first), several edits before a solve, the held update put into the factor at some steps and not
+// at others. After each edit, solve() (kept forward substitution) and solveOnce() must equal a fresh
 // factorization of the held matrix, by both backward kernels and on one thread and two. A stroke whose paths
 // do not fit the update's workspace is updated at once.
 TEST(FactoredSystem, DeferredUpdatesSolveTheUpdatedMatrix) {
