@@ -17,6 +17,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "solver/factor_columns.h"
+
 namespace tvf {
 
 class WoodburyCorrection {
@@ -32,10 +34,13 @@ class WoodburyCorrection {
   // Zeroes the storage G used and forgets the update.
   void clear();
   bool empty() const { return k_ == 0; }
-  int rank() const { return k_; }
-  size_t pathColumns() const { return path_.size(); }
 
  private:
+  bool collectPaths(const FactorColumns& L, int n, const int* positions, int k, size_t capacity, int* slot);
+  void spreadRanges(const FactorColumns& L, const int* positions, const double* weights, const int* slot);
+  bool substituteForward(const FactorColumns& L, const int* slot, int parts);
+  Eigen::MatrixXd identityPlusGram(const FactorColumns& L, int parts) const;
+
   int k_ = 0;
   int stride_ = 0;  // doubles per row of G: k rounded up to whole cache lines, so parts never share one
   double* g_ = nullptr;
