@@ -7,6 +7,8 @@
 //                             [--preview-edges N]   (loadModel's previewEdges: 1 forces a preview, 0 none)
 //                             [--texture N]   (then the texture: its first synthesis and N strokes' updates)
 //                             [--profile-texture FILE]   (a CPU profile of the page's thread over the texture's runs)
+//                             [--trace FILE]   (a Chromium trace of every process and thread over the strokes:
+//                             the exact worker, the preview worker and the GPU process side by side)
 //   Edit latency: loads MESH (a path; served to the page under /bench-mesh/) through tvf.loadModel, then draws
 //   N strokes (default 15) of ~50 crossed edges each through tvf.addStroke, each on a strip of faces elsewhere
 //   on the mesh. Prints one JSON object {mesh, edges, strokes, loadMs, median: {...}, ratios} whose medians are
@@ -116,6 +118,9 @@ async function strokeBench(page, meshPath) {
   await page.evaluate(() => window.__longTasks.splice(0));
   // --profile FILE: a CPU profile of the page's main thread over the strokes (.cpuprofile, for DevTools).
   const strokesProfile = await startProfile(page, arg('--profile', null));
+  // --trace FILE: a Chromium trace of every process and thread over the strokes (chrome://tracing, Perfetto).
+  const traceFile = arg('--trace', null);
+  if (traceFile) await page.context().browser().startTracing(page, { path: traceFile, categories: ['toplevel', 'v8', 'gpu', 'gpu.angle', 'disabled-by-default-gpu.service', 'disabled-by-default-devtools.timeline', 'devtools.timeline'] });
   const runs = [];
   for (const points of strokes) {
     runs.push(await page.evaluate(async (pts) => {
@@ -156,6 +161,7 @@ async function strokeBench(page, meshPath) {
     }, points));
   }
   await strokesProfile.stop();
+  if (traceFile) await page.context().browser().stopTracing();
   const texture = arg('--texture', null) == null ? null : await textureBench(page, strokes.slice(0, Number(arg('--texture'))));
   const pick = (f) => median(runs.map(f));
   const m = {
