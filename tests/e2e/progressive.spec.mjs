@@ -269,7 +269,8 @@ test.describe.serial('progressive loading of big meshes', () => {
       const afterOrbit = t.debugSurfaceLayer();
       const edited = await both();
       t.debugSurfaceLayer(Infinity);
-      return { before, edited, on, afterEdit, afterOrbit };
+      const canvas = t.shadowRoot.querySelector('canvas');
+      return { before, edited, on, afterEdit, afterOrbit, canvas: [canvas.width, canvas.height] };
     }, off);
     console.log('surface layer:', JSON.stringify(r));
     for (const c of [r.before, r.edited]) {
@@ -277,6 +278,12 @@ test.describe.serial('progressive loading of big meshes', () => {
       expect(c.differing).toBeLessThan(0.01 * c.pixels);
       expect(c.inside).toBeLessThan(0.0005 * c.pixels);
     }
+    // The copy covers the surface's rectangle, not the whole canvas (the comparisons above include what lies
+    // outside it).
+    const [width, height] = r.canvas;
+    expect(r.on.rect).not.toBeNull();
+    expect(r.on.rect.width * r.on.rect.height).toBeLessThan(0.9 * width * height);
+    expect(r.on.rect.width * r.on.rect.height).toBeGreaterThan((r.before.model / r.before.pixels) * width * height);
     expect(r.afterEdit.drawn).toBe(r.on.drawn); // the edit's frames copied the layer
     expect(r.afterEdit.copied).toBeGreaterThan(r.on.copied);
     expect(r.afterOrbit.drawn).toBeGreaterThan(r.afterEdit.drawn); // the orbit drew the surface again

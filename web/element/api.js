@@ -131,7 +131,7 @@ export const api = {
   debugSurfaceLayer: (d, minFaces) => {
     const layer = d.viewer.surfaceLayer;
     if (minFaces != null) (layer.minFaces = minFaces), layer.invalidate(), d.viewer.renderNow();
-    return { minFaces: layer.minFaces, drawn: layer.drawn, copied: layer.copied };
+    return { minFaces: layer.minFaces, drawn: layer.drawn, copied: layer.copied, rect: layer.rect && { ...layer.rect } };
   },
   // The worker's `component` op for the current field: {oneForm, faceVectors, vertexVectors} of 'whole' |
   // 'exact' | 'coexact' | 'harmonic'.

@@ -353,7 +353,7 @@ export const METHODS = [
   { name: 'debugCoreReadout', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'Promise<CoreReadout>']], description: 'What the core itself holds now, derived by the core on request.' },
   { name: 'debugTraceStreamlines', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'number[][]']], description: 'The streamlines traced on the page now, whatever the view holds.' },
   { name: 'debugGlPrograms', source: 'api', group: 'Test hooks', internal: true, signatures: [['', 'number']], description: "How many shader programs the viewer's renderer holds (views/shader-warm-up.js makes them all at the start)." },
-  { name: 'debugSurfaceLayer', source: 'api', group: 'Test hooks', internal: true, signatures: [['minFaces?: number', '{ minFaces: number; drawn: number; copied: number }']], description: 'Draws a surface of at least minFaces faces once per view and copies it under the field (views/surface-layer.js); how often it was drawn and copied.' },
+  { name: 'debugSurfaceLayer', source: 'api', group: 'Test hooks', internal: true, signatures: [['minFaces?: number', '{ minFaces: number; drawn: number; copied: number; rect: { x: number; y: number; width: number; height: number } | null }']], description: 'Draws a surface of at least minFaces faces once per view and copies it under the field (views/surface-layer.js); how often it was drawn and copied, and the drawing-buffer pixels the copy covers (null: all).' },
   { name: 'debugComponent', source: 'api', group: 'Test hooks', internal: true, signatures: [["name: 'whole' | 'exact' | 'coexact' | 'harmonic'", 'Promise<FieldComponent>']], description: "The worker's component op: one part of the current field with its reconstructed vectors." },
 ];
 

@@ -9,7 +9,10 @@
 // A surface whose colours follow the field (the magnitude colour map), that another view replaces (material
 // preview) or that the flow texture draws over is drawn in the scene as usual. The synthesized texture's model
 // stands in for the surface (viewer.surfaceStandIn): its picture too depends on the view alone, and on the
-// textures it shows, which it counts in userData.pictureVersion.
+// textures it shows, which it counts in userData.pictureVersion. The copy covers only the rectangle the
+// surface's bounding box projects to: outside it the layer holds the clear colour at the far depth, which the
+// canvas's clear already gives, and with software GL the copy costs by the pixel (a full-screen copy into the
+// multisampled canvas was 20-30 of a field frame's 37-44 ms, drawn while the exact solve runs).
 //
 // Owns its render target and copy pass. Imports three.js only.
 import {
@@ -25,6 +28,7 @@ import {
   SRGBColorSpace,
   UnsignedIntType,
   Vector2,
+  Vector4,
   WebGLRenderTarget,
 } from 'three';
 
@@ -70,6 +74,37 @@ export function layerTarget(width, height) {
   return new WebGLRenderTarget(width, height, { samples: 4, depthTexture, colorSpace: SRGBColorSpace });
 }
 
+// The pixels (x, y from the bottom left, width, height) of a width x height drawing buffer that `mesh` can
+// cover seen by `camera`: the projection of its bounding box (computed once per positions), widened by two
+// pixels for the multisampled edges; null when the box reaches behind the camera's near plane (then all of it).
+export function screenRectOf(mesh, camera, width, height) {
+  const g = mesh.geometry;
+  const version = g.getAttribute('position')?.version;
+  if (!g.boundingBox || g.userData.boundingBoxVersion !== version) {
+    g.computeBoundingBox();
+    g.userData.boundingBoxVersion = version;
+  }
+  const box = g.boundingBox;
+  if (box.isEmpty() || ![box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z].every(Number.isFinite)) return null;
+  camera.updateMatrixWorld();
+  const toClip = camera.projectionMatrix.clone().multiply(camera.matrixWorldInverse).multiply(mesh.matrixWorld);
+  let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+  const corner = new Vector4();
+  for (let k = 0; k < 8; k++) {
+    const { min, max } = box;
+    corner.set(k & 1 ? max.x : min.x, k & 2 ? max.y : min.y, k & 4 ? max.z : min.z, 1).applyMatrix4(toClip);
+    if (!(corner.w > 0) || corner.z < -corner.w) return null;
+    x0 = Math.min(x0, corner.x / corner.w);
+    x1 = Math.max(x1, corner.x / corner.w);
+    y0 = Math.min(y0, corner.y / corner.w);
+    y1 = Math.max(y1, corner.y / corner.w);
+  }
+  const px = (v, size) => ((v + 1) / 2) * size;
+  const left = Math.max(0, Math.floor(px(x0, width)) - 2), right = Math.min(width, Math.ceil(px(x1, width)) + 2);
+  const bottom = Math.max(0, Math.floor(px(y0, height)) - 2), top = Math.min(height, Math.ceil(px(y1, height)) + 2);
+  return { x: left, y: bottom, width: Math.max(0, right - left), height: Math.max(0, top - bottom) };
+}
+
 export class SurfaceLayer {
   constructor() {
     this.minFaces = SURFACE_LAYER_FACES;
@@ -79,10 +114,12 @@ export class SurfaceLayer {
     this.clearColor = new Color();
     this.drawn = 0; // times the surface was drawn into the layer
     this.copied = 0; // frames that copied it instead
+    this.rect = null; // the drawing buffer's pixels the copy covers (screenRectOf; null: all)
     this.material = copyMaterial();
     this.copyScene = new Scene();
     this.copyScene.add(new Mesh(new PlaneGeometry(2, 2), this.material));
     this.copyCamera = new OrthographicCamera(-1, 1, 1, -1, 0, 1);
+    this.emptyScene = new Scene();
   }
 
   // Whether the surface's picture depends on nothing but the view, and the mesh is big enough to gain.
@@ -130,15 +167,33 @@ export class SurfaceLayer {
     if (key !== this.key) this.#drawSurface(renderer, camera, surfaceMesh, key);
     else this.copied++;
     const autoClear = renderer.autoClear;
-    renderer.clear();
+    // Cleared as a direct render clears (three.js converts the clear colour for the canvas there; a bare clear
+    // would take the colour last set, the layer's linear one): outside the copy's rectangle this is the picture.
+    renderer.autoClear = true;
+    renderer.render(this.emptyScene, this.copyCamera);
     renderer.autoClear = false;
-    renderer.render(this.copyScene, this.copyCamera);
+    this.#copy(renderer);
     surfaceMesh.visible = false;
     try {
       renderer.render(scene, camera);
     } finally {
       surfaceMesh.visible = true;
       renderer.autoClear = autoClear;
+    }
+  }
+
+  // The layer onto the canvas, within its rectangle (three.js takes the scissor in CSS pixels).
+  #copy(renderer) {
+    const r = this.rect;
+    if (r) {
+      const ratio = renderer.getPixelRatio();
+      renderer.setScissor(r.x / ratio, r.y / ratio, r.width / ratio, r.height / ratio);
+      renderer.setScissorTest(true);
+    }
+    try {
+      renderer.render(this.copyScene, this.copyCamera);
+    } finally {
+      if (r) renderer.setScissorTest(false);
     }
   }
 
@@ -170,6 +225,7 @@ export class SurfaceLayer {
       renderer.setRenderTarget(previous);
     }
     this.key = key;
+    this.rect = screenRectOf(mesh, camera, x, y);
     this.drawn++;
   }
 
