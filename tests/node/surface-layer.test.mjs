@@ -3,7 +3,7 @@
 // (null) when the camera is inside the bounds or the model lies behind it.
 import assert from 'node:assert/strict';
 import test from 'node:test';
-import { Mesh, MeshBasicMaterial, PerspectiveCamera, SphereGeometry, TorusKnotGeometry, Vector3 } from 'three';
+import { Box3, Mesh, MeshBasicMaterial, PerspectiveCamera, SphereGeometry, TorusKnotGeometry, Vector3 } from 'three';
 import { screenRectOf } from '../../web/views/surface-layer.js';
 
 const W = 1024, H = 656;
@@ -69,4 +69,19 @@ test('positions changed in place move the rectangle with them', () => {
   p.needsUpdate = true;
   const after = screenRectOf(mesh, camera, W, H);
   assert.ok(after.x > before.x + 50, `${JSON.stringify(before)} -> ${JSON.stringify(after)}`);
+});
+
+test('a box the geometry came with is used as it is, until its positions change', () => {
+  const mesh = new Mesh(new SphereGeometry(1, 16, 8), new MeshBasicMaterial());
+  mesh.updateMatrixWorld();
+  const camera = cameraAt(new Vector3(0, 0, 10), new Vector3(0, 0, 0));
+  // A box wider than the positions (as a BVH's root bounds may be): the rectangle follows it, not the vertices.
+  const given = new Box3(new Vector3(-2, -1, -1), new Vector3(2, 1, 1));
+  mesh.geometry.boundingBox = given;
+  const wide = screenRectOf(mesh, camera, W, H);
+  assert.equal(mesh.geometry.boundingBox, given);
+  assert.deepEqual(given.max.toArray(), [2, 1, 1]);
+  mesh.geometry.getAttribute('position').needsUpdate = true;
+  const own = screenRectOf(mesh, camera, W, H);
+  assert.ok(own.width < wide.width - 50, `${JSON.stringify(wide)} -> ${JSON.stringify(own)}`);
 });

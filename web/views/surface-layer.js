@@ -75,11 +75,14 @@ export function layerTarget(width, height) {
 }
 
 // The pixels (x, y from the bottom left, width, height) of a width x height drawing buffer that `mesh` can
-// cover seen by `camera`: the projection of its bounding box (computed once per positions), widened by two
-// pixels for the multisampled edges; null when the box reaches behind the camera's near plane (then all of it).
+// cover seen by `camera`: the projection of its bounding box, widened by two pixels for the multisampled
+// edges; null when the box reaches behind the camera's near plane (then all of it).
 export function screenRectOf(mesh, camera, width, height) {
   const g = mesh.geometry;
   const version = g.getAttribute('position')?.version;
+  // A box the geometry came with (a big surface's, from its BVH's root) is taken as it is: computing it here
+  // is a pass over every vertex on the page's thread. It is computed again when the positions change after.
+  g.userData.boundingBoxVersion ??= g.boundingBox ? version : undefined;
   if (!g.boundingBox || g.userData.boundingBoxVersion !== version) {
     g.computeBoundingBox();
     g.userData.boundingBoxVersion = version;
