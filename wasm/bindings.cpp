@@ -234,7 +234,6 @@ class DesignerBinding {
   double curvatureAlignment() const { return designer_ ? designer_->curvatureAlignment() : 0.0; }
   // METIS nested dissection (the default) or AMD; the next factorization orders again.
   std::string setMetisOrdering(bool metis) { return run([&] { need().setMetisOrdering(metis); }); }
-  // Threads of the backward substitution (1 .. solverThreadsAvailable()); the next solve refactors.
   // Whether every model from here on holds an added constraint's update beside its factor until
   // applyDeferredUpdates() (tvf::Designer::setDeferredUpdates): the worker replies with the field first.
   std::string setDeferredUpdates(bool defer) {
@@ -248,6 +247,7 @@ class DesignerBinding {
       if (designer_) designer_->applyDeferredUpdates();
     });
   }
+  // Threads of the backward substitution (1 .. solverThreadsAvailable()); the next solve refactors.
   std::string setSolverThreads(int threads) {
     return run([&] { need().setSolverThreads(threads); });
   }

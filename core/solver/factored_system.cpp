@@ -199,12 +199,12 @@ struct FactoredSystem::Impl {
     return backwardKernel == BackwardKernel::Supernodes && !factor->is_super && !factor->is_ll;
   }
 
-  // L^-1 bPermuted in full (CHOLMOD), into forwardFull.
-  const double* substituteForward() {
+  // L^-1 bPermuted in full (CHOLMOD), into forwardFull, which is the caller's to change until the next call.
+  double* substituteForward() {
     CholmodDensePtr full(std::exchange(forwardFull, nullptr), {common.get()});
-    const double* y = solveSystem(CHOLMOD_L, bPermuted.data(), full);
+    solveSystem(CHOLMOD_L, bPermuted.data(), full);
     forwardFull = full.release();
-    return y;
+    return static_cast<double*>(forwardFull->x);
   }
 
   // L^-T D^-1 y by supernodes, into xPermuted.
@@ -476,7 +476,7 @@ void FactoredSystem::solveOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     return;
   }
   s.permute(b, s.bPermuted);
-  double* y = const_cast<double*>(s.substituteForward());  // forwardFull: this solve's own
+  double* y = s.substituteForward();
   if (!s.deferred.empty()) s.deferred.correct(*s.factor, y);
   s.unpermute(s.substituteBackward(y), x);
 }
