@@ -1,10 +1,11 @@
 #pragma once
 // Appearance space (Lefebvre & Hoppe 2006, Sec. 4): every exemplar pixel of a Gaussian-stack level is described by
 // its 5x5 colour neighbourhood (75 numbers, taps max(1, h_s / 2) pixels apart on the torus, h_s = 2^s,
-// Gaussian-weighted towards the centre with sigma = 1 tap; level s is blurred to sigma ~ 0.58 h_s, so half-spacing taps sample it
-// without aliasing and the 5x5 footprint, 2.5 h_s, still spans the synthesis neighbourhood's spacing), reduced by PCA to a few dimensions (8 by default). The basis comes from the 75x75 covariance
-// (Eigen's SelfAdjointEigenSolver), with a fixed sign per eigenvector (its largest entry positive) so that the
-// result does not depend on summation order.
+// Gaussian-weighted towards the centre with sigma = 1 tap; level s is blurred to sigma ~ 0.58 h_s, so
+// half-spacing taps sample it without aliasing and the 5x5 footprint, 2.5 h_s, still spans the synthesis
+// neighbourhood's spacing), reduced by PCA to a few dimensions (8 by default). The basis comes from the 75x75
+// covariance (Eigen's SelfAdjointEigenSolver), with a fixed sign per eigenvector (its largest entry positive) so
+// that the result does not depend on summation order.
 //
 // PCA of vectors (the same machinery reduces the synthesis neighbourhoods, see neighbourhood_space.h) lives here
 // too: `PcaBasis`.

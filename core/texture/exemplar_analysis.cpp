@@ -39,7 +39,8 @@ ExemplarAnalysis analyzeExemplar(const ExemplarImage& exemplar, const AnalysisOp
     KCoherenceOptions ko;
     ko.k = options.k;
     const int h = GaussianStack::spacing(s);
-    ko.radius = options.exclusionRadius >= 0 ? options.exclusionRadius : std::min(std::max(2, h / 2), std::max(2, m / 8));
+    ko.radius = options.exclusionRadius >= 0 ? options.exclusionRadius
+                                             : std::min(std::max(2, h / 2), std::max(2, m / 8));
     ko.step = std::max(1, h / 2);
     level.candidates = kCoherence(level.neighbourhood.vectors, m, ko);
     out.timings.kCoherenceMs += msSince(t);

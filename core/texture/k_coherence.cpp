@@ -8,7 +8,9 @@
 
 namespace tvf {
 
-KCoherenceLevel kCoherence(const Eigen::Ref<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>& features, int size, const KCoherenceOptions& options) {
+KCoherenceLevel kCoherence(
+    const Eigen::Ref<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>& features,
+    int size, const KCoherenceOptions& options) {
   const int n = size * size;
   if (features.rows() != n) throw InputError("k-coherence: feature rows must equal size * size");
   if (options.k < 1) throw InputError("k-coherence: k must be >= 1");

@@ -37,6 +37,8 @@ inline int toroidalChebyshev(int32_t a, int32_t b, int size) {
 }
 
 // `features`: pixels x D (row = y * size + x).
-KCoherenceLevel kCoherence(const Eigen::Ref<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>& features, int size, const KCoherenceOptions& options = {});
+KCoherenceLevel kCoherence(
+    const Eigen::Ref<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>& features,
+    int size, const KCoherenceOptions& options = {});
 
 }  // namespace tvf
