@@ -1,6 +1,7 @@
 // The shape of web/ (docs/architecture.md), checked on the source: every module imports only its own layer or
 // the layers below it, there is no import cycle, no module keeps mutable state at the top level (each
-// <tangent-field-designer> owns its state), and no file grows past 400 lines.
+// <tangent-field-designer> owns its state), no file grows past 400 lines, and no line of web/ or core/ past 120
+// columns (clang-format's ColumnLimit for core/ is 110; 120 leaves room for what it cannot break).
 import assert from 'node:assert/strict';
 import { readdirSync, readFileSync } from 'node:fs';
 import { dirname, join, relative, resolve } from 'node:path';
@@ -8,16 +9,19 @@ import test from 'node:test';
 import { fileURLToPath } from 'node:url';
 
 const WEB = resolve(dirname(fileURLToPath(import.meta.url)), '../../web');
+const CORE = resolve(WEB, '../core');
+const MAX_COLUMNS = 120;
 
 // Higher imports lower, never the reverse. Entry points (the page, the package entries, the core's worker)
 // compose a whole program and may import any layer.
 export const LAYERS = { element: 7, export: 6, synthesis: 6, tools: 6, views: 5, session: 4, core: 3, geometry: 2, '.': 1 };
 const ENTRY_POINTS = new Set(['index.js', 'main.js', 'element-entry.js', 'core/core-worker.js']);
 
-function sources(dir = WEB) {
-  return readdirSync(dir, { withFileTypes: true }).flatMap((e) =>
-    e.isDirectory() ? sources(join(dir, e.name)) : e.name.endsWith('.js') ? [join(dir, e.name)] : [],
-  );
+function sources(dir = WEB, extensions = ['.js']) {
+  return readdirSync(dir, { withFileTypes: true }).flatMap((e) => {
+    if (e.isDirectory()) return sources(join(dir, e.name), extensions);
+    return extensions.some((x) => e.name.endsWith(x)) ? [join(dir, e.name)] : [];
+  });
 }
 
 const layerOf = (file) => {
@@ -81,8 +85,16 @@ test('no JS file over 400 lines', () => {
   assert.deepEqual(long, []);
 });
 
-test('the session knows no element, panel, view or tool', () => {
-  for (const f of files.filter((f) => layerOf(f) === 'session')) {
-    for (const target of localImports(f)) assert.ok(!['element', 'views', 'tools', 'synthesis', 'export'].includes(layerOf(target)), `${relative(WEB, f)} imports ${relative(WEB, target)}`);
+test(`no line over ${MAX_COLUMNS} columns in web/ (.js, .css) or core/ (.cpp, .h)`, () => {
+  const wide = [];
+  for (const f of [...sources(WEB, ['.js', '.css']), ...sources(CORE, ['.cpp', '.h'])]) {
+    readFileSync(f, 'utf8')
+      .split('\n')
+      .forEach((line, k) => {
+        // Columns are characters (code points), not UTF-16 units: 'γ' and '→' take one column each.
+        const columns = [...line].length;
+        if (columns > MAX_COLUMNS) wide.push(`${relative(resolve(WEB, '..'), f)}:${k + 1}: ${columns} columns`);
+      });
   }
+  assert.deepEqual(wide, []);
 });
