@@ -27,7 +27,10 @@ export interface ExportOptions {
   embedFlowMap?: boolean;
   /** GLB: embed the design, so loadModel() reopens it with its design (default true). */
   embedDesign?: boolean;
-  /** GLB: the synthesized texture as base colour — 'auto' (default): when one is shown; true: required; false: never. */
+  /**
+   * GLB: the synthesized texture as base colour — 'auto' (default): when one is shown; true: required; false:
+   * never.
+   */
   texture?: 'auto' | boolean;
   /** GLB: the texture image's size in pixels per side (default: 2 pixels per atlas texel). */
   textureResolution?: number;
@@ -90,7 +93,10 @@ export interface Views {
   lic: boolean;
   colorMap: boolean;
   singularities: boolean;
-  /** The part of the Hodge decomposition every view draws (singularity markers stay the whole field's): 'exact' curl-free, 'coexact' divergence-free. */
+  /**
+   * The part of the Hodge decomposition every view draws (singularity markers stay the whole field's): 'exact'
+   * curl-free, 'coexact' divergence-free.
+   */
   component: 'whole' | 'exact' | 'coexact' | 'harmonic';
 }
 
@@ -100,7 +106,10 @@ export interface LoadModelOptions {
   companions?: File[];
   /** false: do not restore the autosaved design (autosave is only ever on with the `autosave` attribute). */
   restore?: boolean;
-  /** A mesh with at least this many edges opens with a preview field solved on a coarse copy, the exact field following (default 300000; 0: never). */
+  /**
+   * A mesh with at least this many edges opens with a preview field solved on a coarse copy, the exact field
+   * following (default 300000; 0: never).
+   */
   previewEdges?: number;
 }
 

@@ -26,8 +26,8 @@ register(
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const read = (path) => readFileSync(join(ROOT, path), 'utf8');
 
-const decl = await import('../../web/element/declaration.js');
 const gen = await import('../../scripts/gen-api.mjs');
+const decl = gen.declaration;
 const { api, TEXTURE_METHODS } = await import('../../web/element/api.js');
 const { TangentFieldDesigner } = await import('../../web/element/element.js');
 const { installSynthesis } = await import('../../web/synthesis/index.js');

@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The types the signatures of declaration.js use, in TypeScript: scripts/gen-api.mjs copies what follows this
+// comment into types/element.d.ts as it is, after the string unions of declaration.js's ENUMS (CoreFailureKind
+// and the others), which these types refer to by name.
+
+/** A point on the surface: barycentric coordinates in a face of the core's welded mesh. */
+export interface SurfacePoint {
+  face: number;
+  bary: [number, number, number];
+}
+
+/** Flow map and GLB export options (docs/export.md). */
+export interface ExportOptions {
+  /** Flow map texels per side (1–8192, default 1024). */
+  size: number;
+  convention: 'gltf' | 'opengl';
+  bits: 8 | 16;
+  /** KHR_materials_anisotropy strength and rotation (radians). */
+  strength: number;
+  rotation: number;
+  /** GLB: embed the flow map and the anisotropy material (default true). */
+  embedFlowMap?: boolean;
+  /** GLB: embed the design, so loadModel() reopens it with its design (default true). */
+  embedDesign?: boolean;
+  /**
+   * GLB: the synthesized texture as base colour — 'auto' (default): when one is shown; true: required; false:
+   * never.
+   */
+  texture?: 'auto' | boolean;
+  /** GLB: the texture image's size in pixels per side (default: 2 pixels per atlas texel). */
+  textureResolution?: number;
+  /** GLB: pixels per atlas texel of the texture image (default 2). */
+  textureMagnification?: number;
+}
+
+export type Boundary = 'free' | 'tangential' | 'normal' | { angle: number };
+
+/** The design's settings (settings()). */
+export interface Settings {
+  boundary: Boundary;
+  gamma: number;
+  /** 1 a vector field, 2 a line field, 4 a cross field (1–6). */
+  symmetry: number;
+  /** 0: off. */
+  curvatureAlignment: number;
+}
+
+export interface MeshInfo {
+  vertices: number;
+  edges: number;
+  faces: number;
+  components: number;
+  boundaryLoops: number;
+  eulerCharacteristic: number;
+  genus: number;
+  problems: unknown[];
+  [key: string]: unknown;
+}
+
+export type ConstraintSpec =
+  | { type: 'stroke'; points: SurfacePoint[]; strength: number; weight: number }
+  | { type: 'vector'; face: number; vector: [number, number, number]; weight: number }
+  | { type: 'edge'; edge: [number, number]; value: number; weight: number }
+  | { type: 'source' | 'sink'; vertex: number; strength: number }
+  | { type: 'vortex'; face: number; strength: number };
+
+/** A constraint with the element's id for it (kept across delete and undo). */
+export type Constraint = ConstraintSpec & { id: number };
+
+export interface Design {
+  boundary: Boundary;
+  gamma: number;
+  /** The field's symmetry N: 1 a vector field, 2 a line field, 4 a cross field (1–6; 1 when absent). */
+  symmetry?: number;
+  /** Pull toward the principal curvature directions, ≥ 0 (0 or absent: off; even N only). */
+  curvatureAlignment?: number;
+  constraints: ConstraintSpec[];
+  [key: string]: unknown;
+}
+
+export interface Views {
+  arrows: boolean;
+  arrowDensity: number;
+  arrowsScaled: boolean;
+  streamlines: boolean;
+  streamlineSpacing: number;
+  /** Flow texture: line integral convolution of white noise along the field (screen space, GPU). */
+  lic: boolean;
+  colorMap: boolean;
+  singularities: boolean;
+  /**
+   * The part of the Hodge decomposition every view draws (singularity markers stay the whole field's): 'exact'
+   * curl-free, 'coexact' divergence-free.
+   */
+  component: 'whole' | 'exact' | 'coexact' | 'harmonic';
+}
+
+export interface LoadModelOptions {
+  name?: string;
+  format?: 'glb' | 'gltf' | 'obj' | 'off' | 'ply' | '';
+  companions?: File[];
+  /** false: do not restore the autosaved design (autosave is only ever on with the `autosave` attribute). */
+  restore?: boolean;
+  /**
+   * A mesh with at least this many edges opens with a preview field solved on a coarse copy, the exact field
+   * following (default 300000; 0: never).
+   */
+  previewEdges?: number;
+}
+
+export type ModelSource = string | URL | Blob | ArrayBuffer | ArrayBufferView;
+
+/** One stored autosave version of the current model's design. */
+export interface AutosaveVersion {
+  id: number;
+  /** ISO 8601 time of the save. */
+  savedAt: string;
+  /** The tab that saved it; `mine`: this tab. */
+  tab: string;
+  mine: boolean;
+  /** How many constraints the design has. */
+  constraints: number;
+}
+
+export interface Supervision {
+  /** How often the core's worker was replaced. */
+  restarts: number;
+  lastFailure: { kind: CoreFailureKind; detail: string; at: number } | null;
+}
+
+/** What the core itself holds now, each derived by the core on request (the reference for the page's reads). */
+export interface CoreReadout {
+  version: number;
+  oneForm: Float64Array;
+  faceVectors: Float64Array;
+  vertexVectors: Float64Array;
+  singularities: { vertex: number; index: number }[];
+  design: Design;
+}
+
+/** The Hodge decomposition c = dα + δβ + h (Eq. 3) of the field; per-edge arrays in oneForm()'s edge order. */
+export interface HodgeDecomposition {
+  /** dα: the curl-free part, per edge. */
+  exact: Float64Array;
+  /** δβ: the divergence-free part, per edge. */
+  coexact: Float64Array;
+  /** h: the rest, both curl- and divergence-free (zero on a sphere), per edge. */
+  harmonic: Float64Array;
+  /** α per vertex (exact = dα), zero mean per connected component. */
+  potential0: Float64Array;
+  /** The 2-form potential per face (coexact = P⁻¹ d₁ᵀ potential2), zero mean per closed component. */
+  potential2: Float64Array;
+  /** |part|² / |c|² in the inner product; they sum to 1 (all 0 for a zero field). */
+  energyShares: { exact: number; coexact: number; harmonic: number };
+  /** The diagonal inner product P the parts are orthogonal in: one weight per edge. */
+  innerProduct: Float64Array;
+  /** Which one: 'star1' (the Hodge star ⋆1, when positive on every edge) or 'whitney-mass'. */
+  metric: string;
+  /** How long the decomposition took in the core's worker, in ms. */
+  decomposeMs: number;
+}
+
+/** One part of the field as the worker's `component` op returns it. */
+export interface FieldComponent {
+  oneForm: Float64Array;
+  faceVectors: Float64Array;
+  vertexVectors: Float64Array;
+}
+
+export interface SynthesisOptions {
+  /** Atlas side, a power of two, or 'auto' (256–1024 by face count). */
+  resolution?: number | 'auto';
+  /** Texture size on the surface; 'auto': 6–16 exemplar tiles across sqrt(surface area). */
+  featureScale?: number | 'auto';
+  /** Resynthesize on field changes (default true). */
+  autoUpdate?: boolean;
+  /** Yield to the page's frames between draws, with progress (default true). */
+  interleave?: boolean;
+  magnitudeExponent?: number;
+  jitter?: number;
+  passes?: number;
+  kappa?: number;
+  seed?: number;
+  seams?: boolean;
+  gutter?: number;
+  timing?: 'levels' | 'total';
+  /** Faces whose field goes to the GPU per task (default 32768): a big model's field is uploaded a slice per frame. */
+  sliceFaces?: number;
+}
+
+export type ExemplarSource =
+  | string
+  | URL
+  | Blob
+  | ImageData
+  | ImageBitmap
+  | { procedural: string; size?: number; seed?: number };
