@@ -130,7 +130,11 @@ export const api = {
   // The big-surface layer (views/surface-layer.js) from minFaces faces on (when given), and its counts.
   debugSurfaceLayer: (d, minFaces) => {
     const layer = d.viewer.surfaceLayer;
-    if (minFaces != null) (layer.minFaces = minFaces), layer.invalidate(), d.viewer.renderNow();
+    if (minFaces != null) {
+      layer.minFaces = minFaces;
+      layer.invalidate();
+      d.viewer.renderNow();
+    }
     return { minFaces: layer.minFaces, drawn: layer.drawn, copied: layer.copied, rect: layer.rect && { ...layer.rect } };
   },
   // The worker's `component` op for the current field: {oneForm, faceVectors, vertexVectors} of 'whole' |

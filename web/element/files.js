@@ -48,7 +48,10 @@ export function bindFiles($, actions) {
     e.dataTransfer.dropEffect = 'copy';
   });
   viewport.addEventListener('dragleave', () => {
-    if (--dragDepth <= 0) (dragDepth = 0), (dropOverlay.hidden = true);
+    if (--dragDepth <= 0) {
+      dragDepth = 0;
+      dropOverlay.hidden = true;
+    }
   });
   viewport.addEventListener('drop', (e) => {
     e.preventDefault();

@@ -61,7 +61,10 @@ export function bindHelp(overlay, hint, hintKey) {
   };
   overlay.querySelector('.close').addEventListener('click', close);
   overlay.addEventListener('keydown', (e) => {
-    if (e.key === 'Escape') e.stopPropagation(), close();
+    if (e.key === 'Escape') {
+      e.stopPropagation();
+      close();
+    }
   });
 
   let seen = false;

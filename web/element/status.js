@@ -60,7 +60,10 @@ export function bindStatus($, host, { onCancel }) {
   $('#confirm-ok').addEventListener('click', () => confirmDone?.(true));
   $('#confirm-cancel').addEventListener('click', () => confirmDone?.(false));
   confirmBox.addEventListener('keydown', (e) => {
-    if (e.key === 'Escape') e.stopPropagation(), confirmDone?.(false);
+    if (e.key === 'Escape') {
+      e.stopPropagation();
+      confirmDone?.(false);
+    }
   });
 
   // ---- status line

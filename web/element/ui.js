@@ -53,7 +53,10 @@ export function bindUi(root, host, actions) {
     else if (TOOL_KEYS[key]) toolbar.setTool(TOOL_KEYS[key]);
     else if (key === 'escape' && status.busy) actions.onCancel?.();
     else if (key === 'escape') selected != null ? actions.onSelect(null) : toolbar.setTool('orbit');
-    else if (key === 'f' || e.key === 'Home') e.preventDefault(), actions.onFrame('home');
+    else if (key === 'f' || e.key === 'Home') {
+      e.preventDefault();
+      actions.onFrame('home');
+    }
     else if (PRESET_KEYS[e.key]) actions.onFrame(PRESET_KEYS[e.key]);
     else if (key === 'x') toolbar.flipOrientation();
     else if ((key === 'delete' || key === 'backspace') && selected != null) {

@@ -82,7 +82,10 @@ export class SurfaceSampler {
       const at = search.upperBound(random() * area);
       const f = list ? list[at] : at;
       let u = random(), v = random();
-      if (u + v > 1) (u = 1 - u), (v = 1 - v);
+      if (u + v > 1) {
+        u = 1 - u;
+        v = 1 - v;
+      }
       const w = 1 - u - v;
       const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], d = 3 * T[3 * f + 2];
       const x = w * P[a] + u * P[b] + v * P[d];
@@ -94,8 +97,12 @@ export class SurfaceSampler {
       grid.next[count] = grid.head[k];
       grid.head[k] = count;
       outF[count] = f;
-      (outB[3 * count] = w), (outB[3 * count + 1] = u), (outB[3 * count + 2] = v);
-      (outP[3 * count] = x), (outP[3 * count + 1] = y), (outP[3 * count + 2] = z);
+      outB[3 * count] = w;
+      outB[3 * count + 1] = u;
+      outB[3 * count + 2] = v;
+      outP[3 * count] = x;
+      outP[3 * count + 1] = y;
+      outP[3 * count + 2] = z;
       count++;
     }
     this.count = count;

@@ -116,7 +116,9 @@ export function combForAtlas(surface, faceDirs, N, cornerUVs = null) {
     const a = 3 * T[3 * f + k], b = 3 * T[3 * f + ((k + 1) % 3)];
     let ex = P[b] - P[a], ey = P[b + 1] - P[a + 1], ez = P[b + 2] - P[a + 2];
     const l = Math.hypot(ex, ey, ez) || 1;
-    (ex /= l), (ey /= l), (ez /= l);
+    ex /= l;
+    ey /= l;
+    ez /= l;
     const ux = out[3 * f], uy = out[3 * f + 1], uz = out[3 * f + 2];
     const fx = Nm[3 * f], fy = Nm[3 * f + 1], fz = Nm[3 * f + 2], gx = Nm[3 * g], gy = Nm[3 * g + 1], gz = Nm[3 * g + 2];
     const along = ux * ex + uy * ey + uz * ez;

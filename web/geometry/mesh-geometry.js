@@ -14,7 +14,11 @@ export function faceNormals(positions, triangles) {
     const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
     const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
     const l = Math.sqrt(nx * nx + ny * ny + nz * nz);
-    if (l > 0) (normals[3 * f] = nx / l), (normals[3 * f + 1] = ny / l), (normals[3 * f + 2] = nz / l);
+    if (l > 0) {
+      normals[3 * f] = nx / l;
+      normals[3 * f + 1] = ny / l;
+      normals[3 * f + 2] = nz / l;
+    }
     else normals[3 * f + 2] = 1;
   }
   return normals;
@@ -76,13 +80,21 @@ export function vertexNormals(positions, triangles) {
     const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
     const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
     const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
-    (out[a] += nx), (out[a + 1] += ny), (out[a + 2] += nz);
-    (out[b] += nx), (out[b + 1] += ny), (out[b + 2] += nz);
-    (out[c] += nx), (out[c + 1] += ny), (out[c + 2] += nz);
+    out[a] += nx;
+    out[a + 1] += ny;
+    out[a + 2] += nz;
+    out[b] += nx;
+    out[b + 1] += ny;
+    out[b + 2] += nz;
+    out[c] += nx;
+    out[c + 1] += ny;
+    out[c + 2] += nz;
   }
   for (let v = 0; v < out.length; v += 3) {
     const l = Math.hypot(out[v], out[v + 1], out[v + 2]) || 1;
-    (out[v] /= l), (out[v + 1] /= l), (out[v + 2] /= l);
+    out[v] /= l;
+    out[v + 1] /= l;
+    out[v + 2] /= l;
   }
   return out;
 }

@@ -73,7 +73,11 @@ export function matchedCorners(surface, vertexVectors, reference, N) {
       const v = 3 * T[3 * f + k], o = 9 * f + 3 * k;
       const d = V[v] * nx + V[v + 1] * ny + V[v + 2] * nz;
       const tx = V[v] - d * nx, ty = V[v + 1] - d * ny, tz = V[v + 2] - d * nz;
-      if (rx === 0 && ry === 0 && rz === 0) (rx = tx), (ry = ty), (rz = tz);
+      if (rx === 0 && ry === 0 && rz === 0) {
+        rx = tx;
+        ry = ty;
+        rz = tz;
+      }
       // Angle from t to the reference about n, in steps of 2π/N: k = round(N · angle / 2π).
       const sin = (ty * rz - tz * ry) * nx + (tz * rx - tx * rz) * ny + (tx * ry - ty * rx) * nz;
       const steps = N === 1 ? 0 : Math.round((N * Math.atan2(sin, tx * rx + ty * ry + tz * rz)) / TWO_PI);

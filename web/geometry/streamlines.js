@@ -124,7 +124,10 @@ function faceCornerField(surface, V, N = 1, reference = null) {
       if (lengths) lengths[3 * f + k] = Math.hypot(c[0], c[1]);
     }
     weak[f] = s < 3e-3 * max ? 1 : 0;
-    if (s > strongest) (strongest = s), (strongestFace = f);
+    if (s > strongest) {
+      strongest = s;
+      strongestFace = f;
+    }
   }
   return { corners, lengths, weak, strongestFace, floor: 1e-3 * max };
 }

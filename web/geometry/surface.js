@@ -131,7 +131,9 @@ export class Surface {
   normalInto(f, out) {
     const N = this.#normals;
     if (N) {
-      (out[0] = N[3 * f]), (out[1] = N[3 * f + 1]), (out[2] = N[3 * f + 2]);
+      out[0] = N[3 * f];
+      out[1] = N[3 * f + 1];
+      out[2] = N[3 * f + 2];
       return out;
     }
     const P = this.positions, T = this.triangles, a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
@@ -139,8 +141,15 @@ export class Surface {
     const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
     const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
     const l = Math.sqrt(nx * nx + ny * ny + nz * nz);
-    if (l > 0) (out[0] = nx / l), (out[1] = ny / l), (out[2] = nz / l);
-    else (out[0] = 0), (out[1] = 0), (out[2] = 1);
+    if (l > 0) {
+      out[0] = nx / l;
+      out[1] = ny / l;
+      out[2] = nz / l;
+    } else {
+      out[0] = 0;
+      out[1] = 0;
+      out[2] = 1;
+    }
     return out;
   }
 
@@ -174,8 +183,15 @@ export class Surface {
     const nx = N[3 * f], ny = N[3 * f + 1], nz = N[3 * f + 2];
     const ex = lu > 0 ? ux / lu : 1, ey = lu > 0 ? uy / lu : 0, ez = lu > 0 ? uz / lu : 0;
     const fx = ny * ez - nz * ey, fy = nz * ex - nx * ez, fz = nx * ey - ny * ex;
-    (F[0] = ex), (F[1] = ey), (F[2] = ez), (F[3] = fx), (F[4] = fy), (F[5] = fz);
-    (C[0] = lu), (C[1] = wx * ex + wy * ey + wz * ez), (C[2] = wx * fx + wy * fy + wz * fz);
+    F[0] = ex;
+    F[1] = ey;
+    F[2] = ez;
+    F[3] = fx;
+    F[4] = fy;
+    F[5] = fz;
+    C[0] = lu;
+    C[1] = wx * ex + wy * ey + wz * ez;
+    C[2] = wx * fx + wy * fy + wz * fz;
     return F;
   }
 
@@ -228,7 +244,10 @@ export class Surface {
       const v = this.triangles[3 * f + k];
       const q = this.vertex(v);
       const d = Math.hypot(q[0] - p[0], q[1] - p[1], q[2] - p[2]);
-      if (d < bestD) (bestD = d), (best = v);
+      if (d < bestD) {
+        bestD = d;
+        best = v;
+      }
     }
     return best;
   }
@@ -259,7 +278,10 @@ export class Surface {
       if (b1[k] < 0 && db < 0) {
         // Barycentric k vanishes on the edge opposite corner k, which is local edge k+1.
         const t = Math.max(0, b0[k] / -db);
-        if (t < tMin) (tMin = t), (edge = (k + 1) % 3);
+        if (t < tMin) {
+          tMin = t;
+          edge = (k + 1) % 3;
+        }
       }
     }
     return edge < 0 ? null : { t: tMin, edge };

@@ -179,7 +179,10 @@ export class HandlesView {
       for (const a of item.anchors) {
         const q = viewer.projectToScreen(a);
         const d = Math.hypot(q.x - clientX, q.y - clientY);
-        if (d < best) (best = d), (bestAnchor = a);
+        if (d < best) {
+          best = d;
+          bestAnchor = a;
+        }
       }
       if (best <= PICK_PX) candidates.push({ uid, d: best, anchor: bestAnchor, marker: !!item.marker });
     }
