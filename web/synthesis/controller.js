@@ -67,7 +67,10 @@ export class SynthesisController {
 
   // A new one in a task of its own (its WebGL context alone took 64-103 ms); null if disposed meanwhile.
   async #synthesizer() {
-    if (!this.synth) this.#ensureSynth(), await new Promise((resolve) => setTimeout(resolve, 0));
+    if (!this.synth) {
+      this.#ensureSynth();
+      await new Promise((resolve) => setTimeout(resolve, 0));
+    }
     return this.synth;
   }
 
@@ -124,7 +127,10 @@ export class SynthesisController {
     const spec = { resolution, positions, triangles, neighbour, cornerUVs: atlas.cornerUVs, corners, seams };
     let task = performance.now(); // a new task once the steps took the page a while (none for a blocking synthesis)
     for (const _ of this.#ensureSynth().setAtlasSteps(spec))
-      if (this.options.interleave && performance.now() - task > 16) await new Promise((resolve) => setTimeout(resolve, 0)), (task = performance.now());
+      if (this.options.interleave && performance.now() - task > 16) {
+        await new Promise((resolve) => setTimeout(resolve, 0));
+        task = performance.now();
+      }
     this.atlas = { key: model.key, resolution, gutter, ...atlas };
     if (!this.render) this.render = new TexturedModel(this.viewer);
     await this.render.setGeometry(model.surface, this.atlas.cornerUVs);
@@ -192,7 +198,10 @@ export class SynthesisController {
         cancelled: () => token !== this.runToken,
         onProgress: (f) => {
           this.progress = { fraction: f, preview };
-          if (Math.floor(100 * f) !== shown) (shown = Math.floor(100 * f)), this.onChange();
+          if (Math.floor(100 * f) !== shown) {
+            shown = Math.floor(100 * f);
+            this.onChange();
+          }
         },
       });
       this.progress = null;
