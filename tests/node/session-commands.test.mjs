@@ -342,72 +342,67 @@ test('deserialized commands replayed on another session rebuild the same design,
 
 // ------------------------------------------------------------------------------------------ History alone
 
-function command(n, { failExecute = false, failUndo = false, changes } = {}) {
-  return {
-    n,
-    label: `c${n}`,
-    changes,
-    async execute(log) {
-      if (failExecute) throw new Error(`execute ${n} failed`);
-      log.push(`do ${n}`);
-    },
-    async undo(log) {
-      if (failUndo) throw new Error(`undo ${n} failed`);
-      log.push(`undo ${n}`);
-    },
-    serialize: () => ({ n }),
-  };
-}
+const record = (n) => ({ n, label: `c${n}`, serialize: () => ({ n }) });
 
-test('history: undo/redo run the commands in stack order; labels list the next undo last and the next redo first', async () => {
+test('history: a plain record of the steps; labels list the next undo last and the next redo first', () => {
   let changes = 0;
   const h = new History(() => changes++);
-  const log = [];
-  for (const n of [1, 2, 3]) await h.execute(command(n), log);
-  await h.undo(log);
-  await h.undo(log);
-  assert.deepEqual(log, ['do 1', 'do 2', 'do 3', 'undo 3', 'undo 2']);
+  for (const n of [1, 2, 3]) h.push(record(n));
+  h.undone();
+  h.undone();
   assert.deepEqual(h.labels(), { undo: ['c1'], redo: ['c2', 'c3'] });
-  await h.redo(log);
-  assert.equal(log.at(-1), 'do 2');
+  assert.equal(h.peekUndo().n, 1);
+  assert.equal(h.peekRedo().n, 2);
+  h.redone();
+  assert.equal(h.peekUndo().n, 2);
   assert.equal(changes, 6);
-  await h.execute(command(4), log);
+  h.push(record(4));
   assert.equal(h.peekRedo(), null, 'a new command drops the redo stack');
   assert.deepEqual(h.serialize(), { undo: [{ n: 1 }, { n: 2 }, { n: 4 }], redo: [] });
   h.clear();
-  assert.equal(await h.undo(log), false);
-  assert.equal(await h.redo(log), false);
+  assert.equal(h.peekUndo(), null);
+  assert.equal(h.peekRedo(), null);
 });
 
-test('history: a command that fails stays where it was', async () => {
+test('history: the undo stack is bounded and forgets the oldest commands first', () => {
   const h = new History();
-  const log = [];
-  await h.execute(command(1), log);
-  await h.execute(command(2, { failUndo: true }), log);
-  await h.execute(command(3), log);
-  await h.undo(log); // 3 to the redo stack
-  await assert.rejects(h.execute(command(4, { failExecute: true }), log), /execute 4 failed/);
-  assert.deepEqual(h.labels(), { undo: ['c1', 'c2'], redo: ['c3'] }, 'a failed execute records nothing and keeps the redo stack');
-  await assert.rejects(h.undo(log), /undo 2 failed/);
-  assert.deepEqual(h.labels(), { undo: ['c1', 'c2'], redo: ['c3'] }, 'a failed undo stays on the undo stack');
-});
-
-test('history: commands that change nothing are run but not recorded', async () => {
-  const h = new History();
-  const log = [];
-  await h.execute(command(1, { changes: false }), log);
-  await h.execute(command(2, { changes: true }), log);
-  assert.deepEqual(log, ['do 1', 'do 2']);
-  assert.deepEqual(h.labels().undo, ['c2']);
-});
-
-test('history: the undo stack is bounded and forgets the oldest commands first', async () => {
-  const h = new History();
-  const log = [];
-  for (let n = 0; n < 520; n++) await h.execute(command(n), log);
+  for (let n = 0; n < 520; n++) h.push(record(n));
   assert.equal(h.undoStack.length, 500);
   assert.equal(h.undoStack[0].n, 20);
   assert.equal(h.peekUndo().n, 519);
+});
+
+// ------------------------------------------------------------------------------------------ one request a step
+
+test('each edit, undo and redo is one request to the core, the one its command names', async () => {
+  const { s, core } = await withThree();
+  const ops = async (step) => {
+    const from = core.log.length;
+    await step();
+    return core.log.slice(from).map(([op]) => op);
+  };
+  assert.deepEqual(await ops(() => s.addConstraint(specs.vector)), ['add']);
+  assert.deepEqual(await ops(() => s.step(false)), ['remove']);
+  assert.deepEqual(await ops(() => s.step(true)), ['add']);
+  assert.deepEqual(await ops(() => s.remove(2)), ['remove']);
+  assert.deepEqual(await ops(() => s.setParameter('weight', 1, 3)), ['setWeight']);
+  assert.deepEqual(await ops(() => s.setSetting('gamma', 1)), ['setGamma']);
+  assert.deepEqual(await ops(() => s.setSetting('symmetry', 1)), [], 'a symmetry that changes nothing asks nothing');
+  assert.deepEqual(await ops(() => s.replaceDesign({ constraints: [] }, 'clear')), ['applyDesign']);
+  assert.deepEqual(await ops(() => s.step(false)), ['applyDesign']);
+  assertMirrorsCore(s, core);
+  s.dispose();
+});
+
+test('an undo the core refuses leaves the command on the undo stack', async () => {
+  const core = new FakeCore();
+  const s = await open(core);
+  await s.addConstraint(specs.vector);
+  await s.addConstraint(specs.source);
+  core.specs.delete(s.table.coreIdOf(2)); // the core lost it: its removal will be refused
+  await assert.rejects(s.step(false), /no constraint with id/);
+  assert.deepEqual(s.history.labels(), { undo: ['add vector #1', 'add source #2'], redo: [] });
+  s.dispose();
 });
 
 // ------------------------------------------------------------------------------------------ the table alone

@@ -76,7 +76,8 @@ export class Designer {
       onError: (err) => s.fail('texture', err),
       // The Texture panel's GLB button is the Export panel's download (set up just after this).
       downloadGlb: () => this.exports.downloadGlb(),
-      computeAtlas: ({ positions, triangles, cornerUVs }, options) => s.request('textureAtlas', [positions, triangles, cornerUVs ?? null, options]),
+      computeAtlas: ({ positions, triangles, cornerUVs }, options) =>
+        s.request('textureAtlas', [positions, triangles, cornerUVs ?? null, options]),
       // An exemplar may be chosen before the core has started: the analysis waits for it.
       analyzeExemplar: async (spec) => {
         await s.coreStarted;
@@ -125,7 +126,9 @@ export class Designer {
       this.synthesis.modelChanged(); // the model's UVs and a fresh atlas for the new mesh
     });
     // A big model's mesh goes to the GPU ahead of its field; perf().meshUploads counts the tasks it took.
-    s.on('surface', (staged) => (staged.ready = this.viewer.stageMesh(staged.surface).then((n) => (s.perf.meshUploads = n))));
+    s.on('surface', (staged) => {
+      staged.ready = this.viewer.stageMesh(staged.surface).then((n) => (s.perf.meshUploads = n));
+    });
     s.on('change', () => {
       this.viewSync.refresh();
       this.onSettings(s.settings());
@@ -142,7 +145,8 @@ export class Designer {
       ends.delete(op);
       started?.end();
       // Frames the page drew while the worker computed: the page never waits for the core.
-      if (started && s.perf.lastOp?.op === op) s.perf.lastOp.framesDrawnMeanwhile = viewer.renderCount - started.renders;
+      if (started && s.perf.lastOp?.op === op)
+        s.perf.lastOp.framesDrawnMeanwhile = viewer.renderCount - started.renders;
       this.#dispatch('progress', { phase: op, fraction: 1 });
     });
   }
@@ -183,7 +187,8 @@ export class Designer {
     // The redraw was synchronous; the next animation frame puts it on screen.
     const shown = await new Promise((resolve) => requestAnimationFrame(() => resolve(performance.now())));
     const perf = this.session.perf, op = perf.lastOp ?? {};
-    perf[name] = { toFrameMs: shown - t0, workerMs: op.workerMs, workerParts: op.workerParts, roundTripMs: op.roundTripMs, refresh: perf.refresh };
+    const { workerMs, workerParts, roundTripMs } = op;
+    perf[name] = { toFrameMs: shown - t0, workerMs, workerParts, roundTripMs, refresh: perf.refresh };
     return result;
   }
 

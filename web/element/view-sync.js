@@ -1,13 +1,15 @@
 // Session → views: after every 'change' the field, the constraints and the settings go to the viewer and the
 // panels, drawn synchronously; the views that are off get nothing. Owns the view options (which views are on,
-// arrow density, streamline spacing, the Hodge component drawn) and what is derived per field for them: the
-// magnitude scale, the singularity markers, the streamlines (traced in the worker, on the page only when read
-// before they arrive), the component of the decomposition c = dα + δβ + h and its energy shares.
+// arrow density, streamline spacing, the Hodge component drawn) and what was drawn; what is derived from a
+// field for them (the magnitude scale, the singularities, the streamlines, traced in the worker and on the page
+// only when read before they arrive, the component of the decomposition c = dα + δβ + h and its energy shares)
+// is asked of the field itself (session.field, session/derived-field.js), which keeps it.
 //
 // The component (views.component, 'whole' by default): with 'whole' the views draw the session's field and
 // nothing more is asked of the worker. Otherwise, after each change, the worker is asked in the background for
-// `component(version, name)` (and `hodge(version)` for the energy shares, shown while a part is chosen); one
-// request of each kind is in flight at a time, and a reply for a field that is no longer current is dropped.
+// `component(version, name)` (and `hodgeShares(version)` for the energy shares, shown while a part is chosen);
+// one request of each kind is in flight at a time, and a reply for a field that is no longer current is not
+// drawn.
 // Until the part of the current field arrives the arrows, colours, flow texture and streamlines keep showing
 // what they showed (never a mix of versions); then they all draw it, in the whole field's magnitude scale
 // (a small part looks small). The singularity markers stay the whole field's.
@@ -15,10 +17,7 @@
 // Every view is told the field's symmetry N (session.field.symmetry: 1 a vector field, 2 a line field, 4 a cross
 // field): for N ≥ 2 the vectors are unit representatives, one of N directions, which the views draw as such.
 // Such a field has no 1-form and so no decomposition: the views draw the whole field whatever component is chosen.
-import { magnitudeScale } from '../geometry/magnitudes.js';
 import { COMPONENTS } from '../core/field-parts.js';
-import { traceStreamlines } from '../geometry/streamlines.js';
-
 
 export class ViewSync {
   constructor({ session, viewer, ui }) {
@@ -26,11 +25,11 @@ export class ViewSync {
     this.viewer = viewer;
     this.ui = ui;
     this.views = { component: 'whole' };
-    this.streamlineCache = null; // {key, spacing, surface, lines, source: 'worker' | 'page'}
     this.shown = { singularities: -1, vertexField: null }; // what those views were last given (version / key)
-    this.drawn = null; // {key, name, fieldVersion, field: {faceVectors, vertexVectors, scale}}: the field drawn now
-    this.parts = null; // {fieldVersion, surface, byName: {name: field}}: the parts of the current field received
-    this.shares = null; // {fieldVersion, surface, energyShares}
+    // The field drawn now: {key, name, fieldVersion, derived (its DerivedField), field: {faceVectors,
+    // vertexVectors, scale}}.
+    this.drawn = null;
+    this.sharesShown = null; // the energy shares last received, which the panel shows until newer ones come
     this.inFlight = { component: false, hodgeShares: false };
     this.requests = { component: 0, hodgeShares: 0 }; // requests sent to the worker (perf().hodgeViews)
     this.onRefreshed = () => {}; // after each redraw (texture synthesis follows the field)
@@ -40,10 +39,14 @@ export class ViewSync {
 
   // The field of the current version and component, or null while the part is still to come.
   #target() {
-    const s = this.session, name = this.#component();
-    if (name === 'whole') return { key: s.fieldVersion, name, fieldVersion: s.fieldVersion, field: { ...s.field, scale: this.#fieldScale() } };
-    const p = this.parts, field = p && p.fieldVersion === s.fieldVersion && p.surface === s.surface ? p.byName[name] : null;
-    return field ? { key: `${s.fieldVersion}:${name}`, name, fieldVersion: s.fieldVersion, field } : null;
+    const s = this.session, name = this.#component(), derived = s.field, fieldVersion = s.fieldVersion;
+    if (name === 'whole') {
+      const { faceVectors, vertexVectors } = derived;
+      const field = { faceVectors, vertexVectors, scale: derived.requireMagnitudes() };
+      return { key: fieldVersion, name, fieldVersion, derived, field };
+    }
+    const field = derived.hodgePart(name);
+    return field ? { key: `${fieldVersion}:${name}`, name, fieldVersion, derived, field } : null;
   }
 
   // What the views draw now (the synthesized texture follows it): its per-vertex vectors and a key that changes
@@ -78,46 +81,49 @@ export class ViewSync {
   // ---- the decomposition, asked of the worker only while a part or the shares are shown
 
   #requestParts() {
-    const s = this.session, name = this.#component();
-    if (name === 'whole' || !s.field || s.disposed) return;
-    if (!this.#target() && !this.inFlight.component) this.#ask('component', [s.field.version, name], (value, t) => this.#partArrived(value, t));
-    const sh = this.shares;
-    if (!(sh && sh.fieldVersion === s.fieldVersion && sh.surface === s.surface) && !this.inFlight.hodgeShares) {
-      this.#ask('hodgeShares', [s.field.version], (value, t) => {
-        this.shares = { fieldVersion: t.fieldVersion, surface: t.surface, energyShares: value.energyShares };
-        s.perf.hodge = { decomposeMs: value.decomposeMs, roundTripMs: performance.now() - t.t0, fieldVersion: t.fieldVersion };
+    const s = this.session, name = this.#component(), field = s.field;
+    if (name === 'whole' || !field || s.disposed) return;
+    if (!field.hodgePart(name) && !this.inFlight.component) {
+      const ask = () => s.request('component', [field.version, name]);
+      this.#ask('component', () => field.requireHodgePart(name, ask), (_, t) => this.#partArrived(t));
+    }
+    if (!field.energyShares() && !this.inFlight.hodgeShares) {
+      const ask = () => s.request('hodgeShares', [field.version]);
+      this.#ask('hodgeShares', () => field.requireEnergyShares(ask), (value, t) => {
+        this.sharesShown = value.energyShares;
+        const roundTripMs = performance.now() - t.t0;
+        s.perf.hodge = { decomposeMs: value.decomposeMs, roundTripMs, fieldVersion: t.fieldVersion };
         this.#showShares();
       });
     }
   }
 
-  // One background request; the reply is used only when it is for the field still current.
-  #ask(op, args, use) {
+  // One background request (request(): the field's promise of what it asked the worker for); the reply is
+  // used only when it is for the field still current.
+  #ask(op, request, use) {
     const s = this.session, name = this.views.component;
-    const t = { fieldVersion: s.fieldVersion, surface: s.surface, name, t0: performance.now() };
+    const t = { field: s.field, fieldVersion: s.fieldVersion, surface: s.surface, name, t0: performance.now() };
     this.inFlight[op] = true;
     this.requests[op]++;
     s.perf.hodgeViews = { ...s.perf.hodgeViews, requests: { ...this.requests } };
-    s.request(op, args)
+    request()
       .then((value) => {
-        if (value && !s.disposed && s.fieldVersion === t.fieldVersion && s.surface === t.surface) use(value, t);
+        if (value && !s.disposed && s.field === t.field && s.surface === t.surface) use(value, t);
       })
       // A restarted worker: the refresh after the restart asks again.
       .catch((err) => void (s.perf.hodgeViews = { ...s.perf.hodgeViews, lastError: `${op}: ${err?.message ?? err}` }))
       .finally(() => {
         this.inFlight[op] = false;
         // Asked meanwhile for another field or part: asked now (not again for the same, should it have failed).
-        const moved = s.fieldVersion !== t.fieldVersion || s.surface !== t.surface || (op === 'component' && this.views.component !== name);
+        const otherPart = op === 'component' && this.views.component !== name;
+        const moved = s.field !== t.field || s.surface !== t.surface || otherPart;
         if (moved && !s.disposed && s.field) this.#requestParts();
       });
   }
 
-  #partArrived(value, { name, ...t }) {
+  // The part is the field's now (DerivedField.requireHodgePart).
+  #partArrived({ name, ...t }) {
     const s = this.session;
-    if (!(this.parts && this.parts.fieldVersion === t.fieldVersion && this.parts.surface === t.surface))
-      this.parts = { fieldVersion: t.fieldVersion, surface: t.surface, byName: {} };
-    // In the whole field's scale: the parts compare with it and with each other.
-    this.parts.byName[name] = { faceVectors: value.faceVectors, vertexVectors: value.vertexVectors, oneForm: value.oneForm, scale: this.#fieldScale() };
     s.perf.component = { name, roundTripMs: performance.now() - t.t0, fieldVersion: t.fieldVersion };
     if (this.#component() !== name) return;
     this.#draw(this.#target());
@@ -127,10 +133,10 @@ export class ViewSync {
   }
 
   #showShares() {
-    const s = this.session, sh = this.shares, on = this.#component() !== 'whole';
-    const current = sh && sh.fieldVersion === s.fieldVersion && sh.surface === s.surface;
+    const sh = this.sharesShown, on = this.#component() !== 'whole';
+    const current = !!sh && sh === this.session.field?.energyShares();
     // The last shares known stay until the new ones come (the panel marks them as of an earlier field).
-    this.ui.setViews({ shares: on && sh ? { ...sh.energyShares, current } : null });
+    this.ui.setViews({ shares: on && sh ? { ...sh, current } : null });
   }
 
   // ---- streamlines
@@ -143,22 +149,28 @@ export class ViewSync {
     return 0.03 * this.session.surface.meanEdge;
   }
 
-  // Cached per field drawn and spacing; the view and streamlines() share them.
-  currentStreamlines() {
-    const s = this.session, spacing = this.#streamlineSpacing(), c = this.streamlineCache, key = this.drawnVersion();
-    if (c && c.key === key && c.spacing === spacing && c.surface === s.surface) return c.lines;
-    const lines = this.traceStreamlinesHere();
-    this.streamlineCache = { key, spacing, surface: s.surface, lines, source: 'page' };
-    return lines;
+  // The field drawn (a part of the current field may still be to come) and its streamlines' options.
+  #streamlineTarget() {
+    const d = this.drawn, s = this.session;
+    const options = { component: d?.name ?? 'whole', spacing: this.#streamlineSpacing(), lift: this.#streamlineLift() };
+    return { field: d?.derived ?? s.field, options };
   }
 
-  // Traces the field drawn on the page, now, whatever the cache holds. An N-field's corners are matched to its
-  // face representatives before they are interpolated, as in the worker.
+  // Kept by the field drawn, per component and spacing; the view and streamlines() share them.
+  currentStreamlines() {
+    const { field, options } = this.#streamlineTarget();
+    return field.streamlines(options) ?? this.#tracedHere(field, options, () => field.requireStreamlines(options));
+  }
+
+  // Traces the field drawn on the page, now, whatever the field keeps.
   traceStreamlinesHere() {
+    const { field, options } = this.#streamlineTarget();
+    return this.#tracedHere(field, options, () => field.traceStreamlines(options));
+  }
+
+  #tracedHere(field, options, trace) {
     const s = this.session, t0 = performance.now();
-    const faceVectors = this.drawn?.field.faceVectors ?? s.field.faceVectors;
-    const options = { spacing: this.#streamlineSpacing(), lift: this.#streamlineLift(), symmetry: this.#symmetry(), faceVectors };
-    const lines = traceStreamlines(s.surface, this.drawnVertexVectors(), options);
+    const lines = trace();
     s.perf.streamlines = { ms: performance.now() - t0, source: 'page', fieldVersion: s.fieldVersion };
     return lines;
   }
@@ -170,28 +182,25 @@ export class ViewSync {
     if (!this.views.streamlines) return void viewer.streamlines.setLines([]);
     if (!d || d.fieldVersion !== s.fieldVersion) return; // the part of this field is still to come
     const spacing = this.#streamlineSpacing(), surface = s.surface, fieldVersion = s.fieldVersion, key = d.key;
-    const c = this.streamlineCache;
-    const current = () =>
-      !s.disposed && this.views.streamlines && this.drawn?.key === key && s.surface === surface && this.#streamlineSpacing() === spacing;
-    if (c && c.key === key && c.spacing === spacing && c.surface === surface) return void viewer.streamlines.setLines(c.lines, this.#symmetry());
+    const field = d.derived, options = { component: d.name, spacing };
+    const current = () => {
+      const same = this.drawn?.key === key && s.surface === surface && this.#streamlineSpacing() === spacing;
+      return !s.disposed && this.views.streamlines && same;
+    };
+    const known = field.streamlines(options);
+    if (known) return void viewer.streamlines.setLines(known, this.#symmetry());
     const t0 = performance.now();
     s.proxy
-      ?.call('streamlines', [s.field.version, spacing, this.#streamlineLift(), d.name], [], { background: true })
+      ?.call('streamlines', [field.version, spacing, this.#streamlineLift(), d.name], [], { background: true })
       .then(({ value: lines, workerMs }) => {
         if (!lines || !current()) return;
-        this.streamlineCache = { key, spacing, surface, lines, source: 'worker' };
-        s.perf.streamlines = { ms: performance.now() - t0, workerMs, source: 'worker', fieldVersion, component: d.name };
+        field.keepStreamlines(options, lines);
+        const component = d.name;
+        s.perf.streamlines = { ms: performance.now() - t0, workerMs, source: 'worker', fieldVersion, component };
         viewer.streamlines.setLines(lines, this.#symmetry());
         viewer.requestRender();
       })
       .catch(() => {}); // a restarted worker: the refresh after the restart asks again
-  }
-
-  // One magnitude scale per field for the arrows, the surface colours and the legend.
-  #fieldScale() {
-    const field = this.session.field;
-    field.scale ??= magnitudeScale(field.vertexVectors);
-    return field.scale;
   }
 
   // The views that are on get the current field, once per field version; the others get nothing.
@@ -204,7 +213,8 @@ export class ViewSync {
     const d = this.drawn;
     if (!d) return;
     if ((views.colorMap || views.lic) && shown.vertexField !== d.key) {
-      viewer.setVertexField(d.field.vertexVectors, d.field.scale, { symmetry: this.#symmetry(), faceVectors: d.field.faceVectors });
+      const options = { symmetry: this.#symmetry(), faceVectors: d.field.faceVectors };
+      viewer.setVertexField(d.field.vertexVectors, d.field.scale, options);
       shown.vertexField = d.key;
     }
     this.ui.setLegend(views.colorMap || views.arrows ? d.field.scale.top : null);
@@ -212,8 +222,8 @@ export class ViewSync {
 
   // A new mesh: the surface, before its first field is shown.
   modelChanged({ info, surface }) {
-    this.streamlineCache = null;
-    this.drawn = this.parts = this.shares = null;
+    this.drawn = null;
+    this.sharesShown = null;
     this.viewer.setMesh(surface);
     this.ui.setHasBoundary(info.boundaryLoops > 0);
   }
@@ -245,7 +255,9 @@ export class ViewSync {
 
   refreshHistory() {
     const h = this.session.history;
-    this.ui.setHistory({ canUndo: !!h.peekUndo(), canRedo: !!h.peekRedo(), undoLabel: h.peekUndo()?.label ?? '', redoLabel: h.peekRedo()?.label ?? '' });
+    const undo = h.peekUndo(), redo = h.peekRedo();
+    const labels = { undoLabel: undo?.label ?? '', redoLabel: redo?.label ?? '' };
+    this.ui.setHistory({ canUndo: !!undo, canRedo: !!redo, ...labels });
   }
 
   selectionChanged(selected) {
@@ -284,8 +296,10 @@ export class ViewSync {
   set(views) {
     const rest = { ...views };
     delete rest.shares; // the panel's read-out, not an option
-    if ('component' in rest && !COMPONENTS.includes(rest.component))
-      throw new Error(`setViews: unknown component ${JSON.stringify(rest.component)}; one of ${COMPONENTS.map((c) => `'${c}'`).join(', ')}`);
+    if ('component' in rest && !COMPONENTS.includes(rest.component)) {
+      const known = COMPONENTS.map((c) => `'${c}'`).join(', ');
+      throw new Error(`setViews: unknown component ${JSON.stringify(rest.component)}; one of ${known}`);
+    }
     this.ui.setViews(rest);
     this.apply(this.ui.views());
     return { ...this.views };

@@ -70,7 +70,8 @@ export class Autosave {
         },
         (err) => {
           this.error = err.message || String(err);
-          s.fail('autosave', new Error(`Autosave failed (${this.error}): the latest edits are not saved in this browser; use Save to download the design.`));
+          const advice = 'the latest edits are not saved in this browser; use Save to download the design.';
+          s.fail('autosave', new Error(`Autosave failed (${this.error}): ${advice}`));
         },
       );
     });

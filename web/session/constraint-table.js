@@ -40,7 +40,8 @@ export class ConstraintTable {
     } else {
       for (const [id, spec] of changed) this.specByCore.set(id, spec);
       const missing = ids.find((id) => !this.specByCore.has(id));
-      if (missing !== undefined) throw new Error(`internal error: the core has constraint ${missing}, which the page never saw`);
+      if (missing !== undefined)
+        throw new Error(`internal error: the core has constraint ${missing}, which the page never saw`);
       this.specByCore = new Map(ids.map((id) => [id, this.specByCore.get(id)]));
       this.design = { ...this.design, constraints: ids.map((id) => this.specByCore.get(id)) };
     }
@@ -81,7 +82,8 @@ export class ConstraintTable {
 
   // Every constraint with its page id, in page-id order (copies).
   list() {
-    return [...this.uids.keys()].sort((a, b) => a - b).map((uid) => ({ id: uid, ...structuredClone(this.specOf(uid)) }));
+    const uids = [...this.uids.keys()].sort((a, b) => a - b);
+    return uids.map((uid) => ({ id: uid, ...structuredClone(this.specOf(uid)) }));
   }
 
   // [{uid, spec}] for the views (the specs themselves, not copies).

@@ -18,7 +18,8 @@ export function exactLanded(s, snapshot, reply = {}) {
   const receivedAt = performance.now();
   s.applySnapshot(snapshot);
   s.perf.exactLandedAt = performance.now();
-  s.perf.lastExact = { workerMs: reply.workerMs, workerParts: reply.timing, receivedAt, applyMs: s.perf.exactLandedAt - receivedAt };
+  const applyMs = s.perf.exactLandedAt - receivedAt;
+  s.perf.lastExact = { workerMs: reply.workerMs, workerParts: reply.timing, receivedAt, applyMs };
   s.models.previous = null;
   s.changed();
   s.emitChanges();
@@ -36,7 +37,8 @@ export function exactFailed(s, err, op, caughtUp) {
     s.changed();
     s.emitChanges();
   }
-  s.fail('core', new Error(`The exact solve did not take an edit made during the preview (${err.message}); the design shown is the exact core's.`));
+  const what = `The exact solve did not take an edit made during the preview (${err.message})`;
+  s.fail('core', new Error(`${what}; the design shown is the exact core's.`));
 }
 
 // The proxy replaced a dead, trapped or cancelled worker: the current model and design go to the new one, the

@@ -15,7 +15,8 @@ export function modelKey(name, bytes, digest = fnv1a(bytes)) {
 
 // Nothing to keep: no constraint and every setting at its default.
 export function isEmptyDesign(design) {
-  const defaults = (design.boundary ?? 'free') === 'free' && !design.gamma && (design.symmetry ?? 1) === 1 && !design.curvatureAlignment;
+  const vectorField = (design.symmetry ?? 1) === 1 && !design.curvatureAlignment;
+  const defaults = (design.boundary ?? 'free') === 'free' && !design.gamma && vectorField;
   return !design.constraints?.length && defaults;
 }
 
@@ -50,7 +51,8 @@ export function baseName(name) {
 
 // text: a JSON string or an object.
 export function downloadJson(filename, text) {
-  downloadBlob(filename, new Blob([typeof text === 'string' ? text : JSON.stringify(text, null, 1)], { type: 'application/json' }));
+  const json = typeof text === 'string' ? text : JSON.stringify(text, null, 1);
+  downloadBlob(filename, new Blob([json], { type: 'application/json' }));
 }
 
 export function downloadBlob(filename, blob) {

@@ -1,6 +1,6 @@
-// Undo/redo stacks of command objects (commands/): execute() runs a command and records it, undo() takes the
-// newest back (the inverse factor update), redo() runs it again. A command that fails stays where it was.
-// The history only stacks; each command knows its own change.
+// Undo/redo stacks of command objects (commands/), as plain records: the session runs a command and pushes it
+// here once it took, and moves it between the stacks once its undo or redo took. A command that fails is not
+// moved. The history runs nothing itself.
 
 const LIMIT = 500;
 
@@ -11,32 +11,24 @@ export class History {
     this.onChange = onChange;
   }
 
-  // Applies the command; records it unless it changed nothing (command.changes === false).
-  async execute(command, session) {
-    await command.execute(session);
-    if (command.changes === false) return;
+  // A command that took; a new edit drops what could be redone.
+  push(command) {
     this.undoStack.push(command);
     if (this.undoStack.length > LIMIT) this.undoStack.shift();
     this.redoStack.length = 0;
     this.onChange();
   }
 
-  async undo(session) {
-    const command = this.peekUndo();
-    if (!command) return false;
-    await command.undo(session);
+  // The newest command was taken back (peekUndo()).
+  undone() {
     this.redoStack.push(this.undoStack.pop());
     this.onChange();
-    return true;
   }
 
-  async redo(session) {
-    const command = this.peekRedo();
-    if (!command) return false;
-    await command.execute(session);
+  // The next command to redo was run again (peekRedo()).
+  redone() {
     this.undoStack.push(this.redoStack.pop());
     this.onChange();
-    return true;
   }
 
   clear() {

@@ -43,7 +43,8 @@ async function inlineGltfBuffers(bytes, name, fetchBuffer) {
     if (!data) {
       throw new Error(
         `${name} refers to the external buffer "${buf.uri}", which a single .gltf file cannot bring along. ` +
-          'Load a .glb instead, a .gltf with embedded (data: URI) buffers, or drop the .gltf together with its .bin files.',
+          'Load a .glb instead, a .gltf with embedded (data: URI) buffers, ' +
+          'or drop the .gltf together with its .bin files.',
       );
     }
     buf.uri = `data:application/octet-stream;base64,${toBase64(data)}`;
@@ -119,7 +120,8 @@ async function fetchModel(url, offThread) {
 // 2.6 MB in one task of 130–230 ms (bench:web's long tasks), and so did a reader whose chunks were all there
 // (each read() resolves at once, in the same task).
 const YIELD_BYTES = 512 << 10;
-const yieldToPage = () => (globalThis.scheduler?.yield ? globalThis.scheduler.yield() : new Promise((resolve) => setTimeout(resolve, 0)));
+const yieldToPage = () =>
+  globalThis.scheduler?.yield ? globalThis.scheduler.yield() : new Promise((resolve) => setTimeout(resolve, 0));
 
 export async function bodyBytes(res) {
   if (!res.body) return new Uint8Array(await res.arrayBuffer());

@@ -2,14 +2,15 @@
 // (loaded, checked, factored and solved aside; a failure keeps the previous model), then adopt the new mesh.
 // Tool input made meanwhile is refused (loadsPending), and one made on the previous model is dropped. A big model
 // (opts.previewEdges, default core/progressive-core.js PREVIEW_EDGES) is adopted with its preview field, the
-// exact one following (session/core-follow.js exactLanded); should the exact load then fail, the previous model comes back.
+// exact one following (session/core-follow.js exactLanded); should the exact load then fail, the previous model
+// comes back.
 import { modelKey } from './documents.js';
 import { readModel } from './model-files.js';
 import { Surface } from '../geometry/surface.js';
 import { PREVIEW_EDGES } from '../core/progressive-core.js';
 import { readBytesOffThread } from '../core/core-proxy.js';
 
-// The progress label through a load's phases (core-worker.js loadMesh's progress, progressive-core.js): a big
+// The progress label through a load's phases (core/worker/load-ops.js loadMesh's progress, progressive-core.js): a big
 // model is read, previewed while the exact factorization starts, then factored; a small one read and factored.
 const LOAD_PHASE_LABELS = {
   opened: (p) => `Reading done; a preview of ${grouped(p.info.faces)} faces on a coarse mesh…`,
@@ -55,9 +56,11 @@ export class ModelLoader {
         let reply;
         const previous = this.#current();
         s.perf.loadPhases = { start: performance.now() };
-        const load = { previewEdges: opts.previewEdges ?? PREVIEW_EDGES, delayForTestMs: s.debugExactDelayMs ?? 0, onPhase: (p) => this.#phase(p) };
+        const previewEdges = opts.previewEdges ?? PREVIEW_EDGES;
+        const load = { previewEdges, delayForTestMs: s.debugExactDelayMs ?? 0, onPhase: (p) => this.#phase(p) };
+        const args = [bytes, model.format, s.settings(), saved?.design ?? null];
         try {
-          reply = await s.call('loadMesh', [bytes, model.format, s.settings(), saved?.design ?? null], [bytes.buffer], load);
+          reply = await s.call('loadMesh', args, [bytes.buffer], load);
         } catch (err) {
           // The core kept its previous mesh and everything on it.
           if (s.info) s.changed();
@@ -76,22 +79,52 @@ export class ModelLoader {
         }
         const surface = staged?.surface ?? Surface.fromArrays(reply.value.surface);
         this.previous = reply.snapshot?.stats?.preview ? previous : null;
-        s.adoptModel({ model, key, source: { bytes: model.bytes, format: model.format }, info, surface, cornerUVs });
+        this.#adopt({ model, key, source: { bytes: model.bytes, format: model.format }, info, surface, cornerUVs });
         s.perf.loadPhases.adopted = performance.now();
         s.perf.previewTimings = reply.value.previewTimings ?? null;
         this.#tellRestored(model, saved, restoreError, embeddedDesign, settingsError);
-        s.announceModel();
+        this.#announce();
         this.#warmUpLater();
         return structuredClone(info);
       })
       .finally(() => this.loadsPending--);
   }
 
-  // What adoptModel needs to bring the current model back, and its design.
+  // A model the core has just taken on: the session's copies, then the signals.
+  #adopt({ model, key, source, info, surface, cornerUVs }) {
+    const s = this.session;
+    s.surface = surface;
+    s.info = info;
+    s.modelName = model.name;
+    s.modelKey = key;
+    s.modelSource = source;
+    s.selected = null;
+    s.table.restart();
+    s.markSaved();
+    s.history.clear();
+    s.cornerUVs = cornerUVs.length ? cornerUVs : null;
+    s.meshSerial++;
+    s.emit('banner-clear');
+    const t0 = performance.now();
+    s.emit('model', { info, surface });
+    s.changed();
+    // Main-thread cost of taking a new mesh on (adjacency, BVH, buffers, first draw): the one pause left.
+    s.perf.meshSetupMs = performance.now() - t0;
+  }
+
+  #announce() {
+    const s = this.session;
+    s.emit('load', { info: structuredClone(s.info) });
+    s.emitChanges();
+  }
+
+  // What #adopt needs to bring the current model back, and its design.
   #current() {
     const s = this.session;
     if (!s.info) return null;
-    return { model: { name: s.modelName }, key: s.modelKey, source: s.modelSource, info: s.info, surface: s.surface, cornerUVs: s.cornerUVs ?? new Float32Array(0), design: s.design };
+    const { modelKey: key, modelSource: source, info, surface, design } = s;
+    const cornerUVs = s.cornerUVs ?? new Float32Array(0);
+    return { model: { name: s.modelName }, key, source, info, surface, cornerUVs, design };
   }
 
   #phase(p) {
@@ -106,7 +139,10 @@ export class ModelLoader {
     }
     // Its adjacency and BVH follow, before or after its first field (the viewer picks nothing until then).
     if (p.phase === 'picking') this.picking?.adoptPicking(p.picking), (this.picking = null);
-    if (p.phase === 'opened') s.flash(`Opening a big mesh (${grouped(p.info.faces)} faces): a preview first, the exact field follows.`, 4000);
+    if (p.phase === 'opened') {
+      const faces = grouped(p.info.faces);
+      s.flash(`Opening a big mesh (${faces} faces): a preview first, the exact field follows.`, 4000);
+    }
     // While a preview is made, the exact worker's factoring is not what the page waits for.
     const label = p.phase === 'factoring' && s.perf.loadPhases?.opened ? null : LOAD_PHASE_LABELS[p.phase];
     if (label) s.emit('busy', { op: 'loadMesh', phase: typeof label === 'function' ? label(p) : label });
@@ -122,10 +158,10 @@ export class ModelLoader {
     this.previous = null;
     if (!previous) return;
     s.exclusive(async () => {
-      s.adoptModel(previous);
+      this.#adopt(previous);
       await s.call('applyDesign', [previous.design]);
       s.changed();
-      s.announceModel();
+      this.#announce();
     }).catch((e) => s.fail('model', e));
   }
 
@@ -133,8 +169,12 @@ export class ModelLoader {
     const s = this.session;
     const restored = saved?.design ? 'autosaved' : 'embedded';
     if (restoreError) s.flash(`The ${restored} design could not be restored: ${restoreError}`, 6000);
-    else if ((saved?.design || embeddedDesign) && s.table.size) s.flash(`Restored the ${restored} design (${s.table.size} constraints).`);
-    if (settingsError) s.emit('banner', { message: `The field settings (boundary, γ, symmetry, curvature alignment) did not apply to ${model.name}: ${settingsError}` });
+    else if ((saved?.design || embeddedDesign) && s.table.size)
+      s.flash(`Restored the ${restored} design (${s.table.size} constraints).`);
+    if (settingsError) {
+      const settings = 'The field settings (boundary, γ, symmetry, curvature alignment)';
+      s.emit('banner', { message: `${settings} did not apply to ${model.name}: ${settingsError}` });
+    }
   }
 
   // After the first frame, not before: on the small default model warming up costs more than it saves

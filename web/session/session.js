@@ -4,9 +4,10 @@
 //
 // The session imports nothing of the element, its panels, views or tools: it emits change signals
 // (emitter.js) and the element subscribes them. Every edit is a command object (commands/) run by execute(),
-// one at a time in call order; each ends in one request to the worker that solves and replies with a
-// snapshot of what changed (field arrays, stats, the touched constraints), which becomes the session's state,
-// so reads stay synchronous.
+// one at a time in call order: the session sends the one request the command names to the worker, which solves
+// and replies with a snapshot of what changed (field arrays, stats, the touched constraints); that becomes the
+// session's state (the field a DerivedField, derived-field.js), so reads stay synchronous, and the command,
+// once it took, goes onto the history as a record.
 //
 // Signals: 'change' (new field or design: redraw), 'model' (a new mesh: before its 'change'), 'surface' {surface,
 // ready} (a big model's Surface, ahead of its 'model': the views may take it on, setting `ready` to a promise
@@ -14,21 +15,28 @@
 // 'history', 'settings' (after a refused edit), 'busy' {op, done} or {op, phase} (a label naming the op's phase
 // now), 'flash' {text, ms}, 'banner' {message, action}, 'banner-clear', and the element's public events: 'error'
 // {code, message}, 'load', 'fieldchange', 'constraintschange', 'corerestart', 'autosaveconflict'.
-import { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting, SetSymmetry } from './commands/index.js';
+import {
+  AddConstraint,
+  RemoveConstraint,
+  ReplaceDesign,
+  SetParameter,
+  SetSetting,
+  SetSymmetry,
+} from './commands/index.js';
 import { Autosave } from './autosave.js';
 import { ConstraintTable } from './constraint-table.js';
+import { DerivedField } from './derived-field.js';
 import { Emitter } from './emitter.js';
 import { History } from './history.js';
 import { ModelLoader } from './model-loader.js';
 import { CoreProxy } from '../core/core-proxy.js';
 import { ProgressiveCore } from '../core/progressive-core.js';
 import { awaitExact, exactFailed, exactLanded, revive } from './core-follow.js';
-import { findSingularities } from '../geometry/singularities.js';
-import { faceVectorsOfVertexField, oneFormOfVertexField } from '../geometry/vertex-field.js';
 
 // Weight 1e4 keeps strokes within ~0.4% of the drawn direction (paper, Sec. 6.1) while the rank-1 updates
 // stay well conditioned.
 export const DEFAULT_WEIGHT = 1e4;
+const NOTICE_MS = 6000; // a command's notice (what a new symmetry took with it) stays that long
 
 export class Session extends Emitter {
   #coreStartSettled;
@@ -49,10 +57,7 @@ export class Session extends Emitter {
     this.surface = null;
     this.cornerUVs = null;
     this.meshSerial = 0;
-    // {version (the worker's), symmetry (N: 1 vector, 2 line, 4 cross; for N ≥ 2 the vectors are unit
-    // representatives), faceVectors, vertexVectors, oneForm, stats, singularities (null until derived)} of the
-    // last completed change. A preview's faceVectors (of a vector field) and oneForm are null until read
-    // (fieldArray).
+    // The field of the last completed change, with what is derived from it (derived-field.js).
     this.field = null;
     this.fieldVersion = 0;
     this.retired = []; // fields replaced since the last 'change', whose arrays go back to the worker
@@ -174,7 +179,8 @@ export class Session extends Emitter {
 
   requireReady() {
     if (this.disposed) throw new Error('the designer was disposed');
-    if (!this.proxy || !this.info || !this.field) throw new Error('the designer is not ready yet; await its ready promise first');
+    if (!this.proxy || !this.info || !this.field)
+      throw new Error('the designer is not ready yet; await its ready promise first');
   }
 
   // One request to the worker; the snapshot it returns (also with a failure) becomes the session's state. On a
@@ -189,7 +195,9 @@ export class Session extends Emitter {
       if (load) ({ reply, progressive } = await this.core.load(args, transfer, load));
       else reply = await this.core.call(op, args, transfer);
       const t1 = performance.now();
-      this.perf.lastOp = { op, workerMs: reply.workerMs, workerParts: reply.timing, roundTripMs: t1 - t0, sentAt: t0, receivedAt: t1, preview: !!reply.snapshot?.stats?.preview };
+      const preview = !!reply.snapshot?.stats?.preview;
+      const { workerMs, timing: workerParts } = reply;
+      this.perf.lastOp = { op, workerMs, workerParts, roundTripMs: t1 - t0, sentAt: t0, receivedAt: t1, preview };
       if (reply.snapshot) this.applySnapshot(reply.snapshot);
       this.perf.lastOp.applyMs = performance.now() - t1;
       if (progressive) awaitExact(this);
@@ -219,12 +227,13 @@ export class Session extends Emitter {
     return (await this.requireProxy().call(op, args, transfer, { background: true })).value;
   }
 
-  // scale: the field's magnitudeScale (geometry/magnitudes.js), made by the worker; the views derive it if absent.
-  applySnapshot({ version, symmetry, faceVectors, vertexVectors, oneForm, scale, stats, design }) {
+  // The snapshot's field arrays (and its magnitude scale, geometry/magnitudes.js, made by the worker) start a new
+  // DerivedField; its design changes go to the table.
+  applySnapshot(snapshot) {
     if (this.field) this.retired.push(this.field);
-    this.field = { version, symmetry, faceVectors, vertexVectors, oneForm, stats, singularities: null, ...(scale ? { scale } : {}) };
+    this.field = new DerivedField(snapshot, () => this.surface);
     this.fieldVersion++;
-    this.table.apply(design);
+    this.table.apply(snapshot.design);
     if (this.selected != null && !this.table.has(this.selected)) this.selected = null;
   }
 
@@ -240,17 +249,14 @@ export class Session extends Emitter {
 
   // Derived on first read, once per field: no edit waits for them.
   currentSingularities() {
-    this.field.singularities ??= findSingularities(this.surface, this.fieldArray('faceVectors'), this.field.symmetry);
-    return this.field.singularities;
+    return this.field.requireSingularities();
   }
 
-  // The current field's 'faceVectors' or 'oneForm': a preview carries its vertex vectors alone (and an
-  // N-field's face representatives), and these are derived from them on first read.
+  // The current field's 'faceVectors', 'oneForm' or 'vertexVectors' (a preview's first two derived on first read).
   fieldArray(name) {
-    const f = this.field;
-    if (name === 'faceVectors') f.faceVectors ??= faceVectorsOfVertexField(this.surface, f.vertexVectors);
-    else if (name === 'oneForm') f.oneForm ??= oneFormOfVertexField(this.surface, f.vertexVectors, f.symmetry);
-    return f[name];
+    if (name === 'faceVectors') return this.field.requireFaceVectors();
+    if (name === 'oneForm') return this.field.requireOneForm();
+    return this.field.requireVertexVectors();
   }
 
   select(uid) {
@@ -260,20 +266,41 @@ export class Session extends Emitter {
 
   // ------------------------------------------------------------------------------------------ edits
 
-  // Runs the command made by makeCommand() (inside the queue, once the session is ready) and records it.
+  // Runs the command made by makeCommand(table) (inside the queue, once the session is ready) and records it
+  // unless it changed nothing (command.changes === false).
   execute(makeCommand) {
     return this.exclusive(async () => {
       this.requireReady();
-      const command = makeCommand();
+      const command = makeCommand(this.table);
       try {
-        await this.history.execute(command, this);
+        await this.#perform(command, true);
       } catch (err) {
         this.emit('settings', this.settings()); // what the core holds, also after a refusal
         throw err;
       }
+      if (command.changes !== false) this.history.push(command);
       this.afterEdit();
       return command.result;
     });
+  }
+
+  // One step of a command, forward (do, redo) or back (undo): the one request it names, the reply's snapshot
+  // taken on (call), then the command's own bookkeeping of page ids, and its notice if it has one.
+  async #perform(command, forward) {
+    const table = this.table;
+    const request = forward ? command.request(table) : command.undoRequest(table);
+    let reply = null;
+    if (request) {
+      try {
+        reply = await this.call(request.op, request.args);
+      } catch (err) {
+        command.refused?.(table, forward);
+        throw err;
+      }
+    }
+    const notice = forward ? command.applied?.(reply, table) : command.undone?.(reply, table);
+    if (forward && command.clearsSelection) this.selected = null;
+    if (notice) this.flash(notice, NOTICE_MS);
   }
 
   // spec: a design-format constraint; meshSerial: the model the edit was made on (tool input), dropped when
@@ -287,43 +314,41 @@ export class Session extends Emitter {
   }
 
   remove(uid) {
-    return this.execute(() => RemoveConstraint.of(this, uid));
+    return this.execute((table) => RemoveConstraint.of(table, uid));
   }
 
   // kind: 'weight' | 'strength'.
   setParameter(kind, uid, value) {
-    return this.execute(() => SetParameter.of(this, kind, uid, value));
+    return this.execute((table) => SetParameter.of(table, kind, uid, value));
   }
 
   // kind: 'boundary' | 'gamma' | 'symmetry' | 'curvatureAlignment'; the core checks the value. A new symmetry
   // takes the constraints it cannot keep with it, in the same step, and resolves with them ({id, ...spec}).
   setSetting(kind, value) {
-    return this.execute(() => (kind === 'symmetry' ? SetSymmetry.of(this, value) : SetSetting.of(this, kind, value)));
+    return this.execute((table) =>
+      kind === 'symmetry' ? SetSymmetry.of(table, value) : SetSetting.of(table, kind, value),
+    );
   }
 
   // ignoreFingerprint: apply a design saved for another mesh anyway (its indices taken as they are).
   replaceDesign(design, label, { ignoreFingerprint = false } = {}) {
-    return this.execute(() => {
-      if (!design || typeof design !== 'object' || Array.isArray(design)) throw new Error('a design must be a JSON object');
-      if (ignoreFingerprint) {
-        design = { ...design };
-        delete design.mesh;
-      }
-      return ReplaceDesign.of(this, design, label);
-    });
+    return this.execute((table) => ReplaceDesign.of(table, design, label, { ignoreFingerprint }));
   }
 
   step(forward) {
     return this.exclusive(async () => {
       this.requireReady();
-      let done;
+      const command = forward ? this.history.peekRedo() : this.history.peekUndo();
+      if (!command) return false;
       try {
-        done = forward ? await this.history.redo(this) : await this.history.undo(this);
+        await this.#perform(command, forward);
       } finally {
         if (this.selected != null && !this.table.has(this.selected)) this.selected = null;
       }
-      if (done) this.afterEdit();
-      return done;
+      if (forward) this.history.redone();
+      else this.history.undone();
+      this.afterEdit();
+      return true;
     });
   }
 
@@ -356,32 +381,6 @@ export class Session extends Emitter {
   // opts: {name, format, companions, restore}. The autosaved design is restored only when autosave is on.
   loadModel(src, opts = {}) {
     return this.models.load(src, opts);
-  }
-
-  // A model the core has just taken on (model-loader.js): the session's copies, then the signals.
-  adoptModel({ model, key, source, info, surface, cornerUVs }) {
-    this.surface = surface;
-    this.info = info;
-    this.modelName = model.name;
-    this.modelKey = key;
-    this.modelSource = source;
-    this.selected = null;
-    this.table.restart();
-    this.markSaved();
-    this.history.clear();
-    this.cornerUVs = cornerUVs.length ? cornerUVs : null;
-    this.meshSerial++;
-    this.emit('banner-clear');
-    const t0 = performance.now();
-    this.emit('model', { info, surface });
-    this.changed();
-    // Main-thread cost of taking a new mesh on (adjacency, BVH, buffers, first draw): the one pause left.
-    this.perf.meshSetupMs = performance.now() - t0;
-  }
-
-  announceModel() {
-    this.emit('load', { info: structuredClone(this.info) });
-    this.emitChanges();
   }
 
   // ------------------------------------------------------------------------------------------ supervision

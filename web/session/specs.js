@@ -1,7 +1,8 @@
 // Constraint specs in the design format (docs/design-format.md, the one schema) from the public API's and the
 // tools' arguments. Nothing here checks a value: the core validates every spec once, with the mesh at hand,
 // and its refusal names the bad field. Arrays are made plain (a Float64Array would not survive JSON).
-const list = (v) => (v != null && typeof v === 'object' && typeof v[Symbol.iterator] === 'function' ? Array.from(v) : v);
+const iterable = (v) => v != null && typeof v === 'object' && typeof v[Symbol.iterator] === 'function';
+const list = (v) => (iterable(v) ? Array.from(v) : v);
 
 const point = (p) => ({ face: p?.face, bary: list(p?.bary) });
 
@@ -17,4 +18,8 @@ export const vectorSpec = (face, vector, { weight }) => ({ type: 'vector', face,
 export const edgeSpec = (edge, value, { weight }) => ({ type: 'edge', edge: list(edge), value, weight });
 
 // type: 'source' | 'sink' (at a vertex) or 'vortex' (in a face).
-export const pointSpec = (type, where, strength) => ({ type, ...(type === 'vortex' ? { face: where } : { vertex: where }), strength });
+export const pointSpec = (type, where, strength) => ({
+  type,
+  ...(type === 'vortex' ? { face: where } : { vertex: where }),
+  strength,
+});

@@ -1,5 +1,5 @@
 // Adds one constraint (a design-format spec, docs/design-format.md, passed through as it is: the core
-// validates it). The first execute records the spec as the core stored it, so that a redo (or the undo of a
+// validates it). The first execution records the spec as the core stored it, so that a redo (or the undo of a
 // later delete) re-adds exactly that. Page ids ("uids") survive a delete and its undo, although the core
 // hands out a fresh id whenever it re-adds the constraint.
 export class AddConstraint {
@@ -18,17 +18,24 @@ export class AddConstraint {
     return this.uid;
   }
 
-  async execute(s) {
-    const reply = await s.call('add', [this.spec]);
-    this.uid ??= s.table.nextUid++;
-    s.table.uids.set(this.uid, reply.value);
-    s.table.nextUid = Math.max(s.table.nextUid, this.uid + 1); // a deserialized command brings its own page id
-    this.spec = s.table.specOf(this.uid);
+  request() {
+    return { op: 'add', args: [this.spec] };
   }
 
-  async undo(s) {
-    await s.call('remove', [s.table.coreIdOf(this.uid)]);
-    s.table.uids.delete(this.uid);
+  // The reply's design is the table's now: the core's new id gets the page id.
+  applied(reply, table) {
+    this.uid ??= table.nextUid++;
+    table.uids.set(this.uid, reply.value);
+    table.nextUid = Math.max(table.nextUid, this.uid + 1); // a deserialized command brings its own page id
+    this.spec = table.specOf(this.uid);
+  }
+
+  undoRequest(table) {
+    return { op: 'remove', args: [table.coreIdOf(this.uid)] };
+  }
+
+  undone(reply, table) {
+    table.uids.delete(this.uid);
   }
 
   serialize() {

@@ -8,8 +8,8 @@ export class RemoveConstraint {
     this.spec = spec;
   }
 
-  static of(s, uid) {
-    return new RemoveConstraint(uid, s.table.specOf(Number(uid)));
+  static of(table, uid) {
+    return new RemoveConstraint(uid, table.specOf(Number(uid)));
   }
 
   get label() {
@@ -20,14 +20,20 @@ export class RemoveConstraint {
     return true;
   }
 
-  async execute(s) {
-    await s.call('remove', [s.table.coreIdOf(this.uid)]);
-    s.table.uids.delete(this.uid);
+  request(table) {
+    return { op: 'remove', args: [table.coreIdOf(this.uid)] };
   }
 
-  async undo(s) {
-    const reply = await s.call('add', [this.spec]);
-    s.table.uids.set(this.uid, reply.value);
+  applied(reply, table) {
+    table.uids.delete(this.uid);
+  }
+
+  undoRequest() {
+    return { op: 'add', args: [this.spec] };
+  }
+
+  undone(reply, table) {
+    table.uids.set(this.uid, reply.value);
   }
 
   serialize() {

@@ -9,36 +9,52 @@ export class ReplaceDesign {
     this.after = after;
   }
 
-  static of(s, design, label) {
-    return new ReplaceDesign(label, { design: structuredClone(s.table.design), uids: s.table.uidsInCoreOrder() }, { design, uids: null });
+  // ignoreFingerprint: apply a design saved for another mesh anyway (its indices taken as they are).
+  static of(table, design, label, { ignoreFingerprint = false } = {}) {
+    if (!design || typeof design !== 'object' || Array.isArray(design))
+      throw new Error('a design must be a JSON object');
+    if (ignoreFingerprint) {
+      design = { ...design };
+      delete design.mesh;
+    }
+    const before = { design: structuredClone(table.design), uids: table.uidsInCoreOrder() };
+    return new ReplaceDesign(label, before, { design, uids: null });
   }
 
   get result() {
     return undefined;
   }
 
-  async #go(s, target, other) {
-    try {
-      await s.call('applyDesign', [target.design]);
-    } catch (err) {
-      s.table.mapDocument(other.uids); // the core put the previous design back, under fresh core ids
-      throw err;
-    }
-    s.table.mapDocument(target.uids);
+  // A new design: what was selected is gone (its page id may be reused).
+  get clearsSelection() {
+    return true;
   }
 
-  async execute(s) {
-    await this.#go(s, this.after, this.before);
-    s.selected = null;
-    this.after = { design: structuredClone(s.table.design), uids: s.table.uidsInCoreOrder() };
+  request() {
+    return { op: 'applyDesign', args: [this.after.design] };
   }
 
-  undo(s) {
-    return this.#go(s, this.before, this.after);
+  applied(reply, table) {
+    table.mapDocument(this.after.uids);
+    this.after = { design: structuredClone(table.design), uids: table.uidsInCoreOrder() };
+  }
+
+  undoRequest() {
+    return { op: 'applyDesign', args: [this.before.design] };
+  }
+
+  undone(reply, table) {
+    table.mapDocument(this.before.uids);
+  }
+
+  // The core put the previous design back, under fresh core ids.
+  refused(table, forward) {
+    table.mapDocument((forward ? this.before : this.after).uids);
   }
 
   serialize() {
-    return { type: ReplaceDesign.type, label: this.label, before: structuredClone(this.before), after: structuredClone(this.after) };
+    const { label, before, after } = this;
+    return { type: ReplaceDesign.type, label, before: structuredClone(before), after: structuredClone(after) };
   }
 
   static deserialize({ label, before, after }) {

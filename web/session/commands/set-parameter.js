@@ -10,8 +10,8 @@ export class SetParameter {
     this.to = to;
   }
 
-  static of(s, kind, uid, to) {
-    const spec = s.table.specOf(Number(uid));
+  static of(table, kind, uid, to) {
+    const spec = table.specOf(Number(uid));
     if (spec[kind] === undefined) throw new Error(`a ${spec.type} has no ${kind}`);
     return new SetParameter(kind, uid, spec[kind], to);
   }
@@ -28,16 +28,16 @@ export class SetParameter {
     return this.from !== this.to;
   }
 
-  #set(s, value) {
-    return s.call(this.kind === 'weight' ? 'setWeight' : 'setStrength', [s.table.coreIdOf(this.uid), value]);
+  #set(table, value) {
+    return { op: this.kind === 'weight' ? 'setWeight' : 'setStrength', args: [table.coreIdOf(this.uid), value] };
   }
 
-  execute(s) {
-    return this.#set(s, this.to);
+  request(table) {
+    return this.#set(table, this.to);
   }
 
-  undo(s) {
-    return this.#set(s, this.from);
+  undoRequest(table) {
+    return this.#set(table, this.from);
   }
 
   serialize() {

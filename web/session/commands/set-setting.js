@@ -13,9 +13,12 @@ export class SetSetting {
     this.to = to;
   }
 
-  static of(s, kind, to) {
-    if (!OPS[kind]) throw new Error(`unknown setting ${JSON.stringify(kind)} (settings: ${Object.keys(OPS).join(', ')}, symmetry)`);
-    return new SetSetting(kind, structuredClone(s.table.settings()[kind]), to);
+  static of(table, kind, to) {
+    if (!OPS[kind]) {
+      const known = Object.keys(OPS).join(', ');
+      throw new Error(`unknown setting ${JSON.stringify(kind)} (settings: ${known}, symmetry)`);
+    }
+    return new SetSetting(kind, structuredClone(table.settings()[kind]), to);
   }
 
   get label() {
@@ -30,17 +33,21 @@ export class SetSetting {
     return true;
   }
 
-  async execute(s) {
-    await s.call(OPS[this.kind], [this.to]);
-    this.to = structuredClone(s.table.settings()[this.kind]); // as the core holds it
+  request() {
+    return { op: OPS[this.kind], args: [this.to] };
   }
 
-  undo(s) {
-    return s.call(OPS[this.kind], [this.from]);
+  applied(reply, table) {
+    this.to = structuredClone(table.settings()[this.kind]); // as the core holds it
+  }
+
+  undoRequest() {
+    return { op: OPS[this.kind], args: [this.from] };
   }
 
   serialize() {
-    return { type: SetSetting.type, kind: this.kind, from: structuredClone(this.from), to: structuredClone(this.to) };
+    const { kind, from, to } = this;
+    return { type: SetSetting.type, kind, from: structuredClone(from), to: structuredClone(to) };
   }
 
   static deserialize({ kind, from, to }) {

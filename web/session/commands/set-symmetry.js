@@ -3,12 +3,11 @@
 // line or cross field has no notion of (the core refuses N ≥ 2 while they are there), and the curvature
 // alignment an odd N has none of. Strokes and vectors carry over. Undo brings back N, the alignment and the
 // removed constraints, under their page ids and with the specs the core held.
-import { alignsToCurvature, countedTypes, fieldTitle, keepsConstraint, symmetryName } from '../../core/symmetry.js';
-
-const FLASH_MS = 6000;
+import { alignsToCurvature, countedTypes, fieldTitle, keepsConstraint, symmetryName } from '../symmetry.js';
 
 export class SetSymmetry {
   static type = 'SetSymmetry';
+  #uids = null; // the page ids in the core's order when the request went: a refusal puts them back
 
   // from, to: {symmetry, curvatureAlignment}; removed: [{uid, spec}] in page-id order.
   constructor(from, to, removed) {
@@ -17,9 +16,9 @@ export class SetSymmetry {
     this.removed = removed;
   }
 
-  static of(s, n) {
-    const { symmetry, curvatureAlignment } = s.table.settings();
-    const removed = s.table
+  static of(table, n) {
+    const { symmetry, curvatureAlignment } = table.settings();
+    const removed = table
       .entries()
       .filter(({ spec }) => !keepsConstraint(spec.type, n))
       .sort((a, b) => a.uid - b.uid)
@@ -38,35 +37,45 @@ export class SetSymmetry {
   }
 
   get changes() {
-    return this.to.symmetry !== this.from.symmetry || this.to.curvatureAlignment !== this.from.curvatureAlignment || this.removed.length > 0;
+    const { from, to } = this;
+    const settingMoves = to.symmetry !== from.symmetry || to.curvatureAlignment !== from.curvatureAlignment;
+    return settingMoves || this.removed.length > 0;
   }
 
-  // One worker request (core/setting-ops.js setSymmetry); the reply's whole document drops the page ids of the
+  // One worker request (the worker's setSymmetry); the reply's whole document drops the page ids of the
   // removed constraints. Should the core refuse, it puts the whole design back under fresh core ids, which get
-  // the page ids they had.
-  async #go(s, target, plan) {
-    const uids = s.table.uidsInCoreOrder();
-    try {
-      return await s.call('setSymmetry', [target.symmetry, { curvatureAlignment: target.curvatureAlignment, ...plan }]);
-    } catch (err) {
-      s.table.mapDocument(uids);
-      throw err;
-    }
+  // the page ids they had (refused).
+  #go(table, target, plan) {
+    this.#uids = table.uidsInCoreOrder();
+    return { op: 'setSymmetry', args: [target.symmetry, { curvatureAlignment: target.curvatureAlignment, ...plan }] };
   }
 
-  async execute(s) {
-    if (!this.changes) return; // nothing to refactor for
-    await this.#go(s, this.to, { remove: this.removed.map(({ uid }) => s.table.coreIdOf(uid)) });
-    const { symmetry, curvatureAlignment } = s.table.settings(); // as the core holds them
+  // Nothing to refactor for when nothing changes: no request.
+  request(table) {
+    if (!this.changes) return null;
+    return this.#go(table, this.to, { remove: this.removed.map(({ uid }) => table.coreIdOf(uid)) });
+  }
+
+  // Returns the notice the user is shown, if any.
+  applied(reply, table) {
+    if (!reply) return undefined;
+    const { symmetry, curvatureAlignment } = table.settings(); // as the core holds them
     this.to = { symmetry, curvatureAlignment };
-    const notice = this.#notice();
-    if (notice) s.flash(notice, FLASH_MS);
+    return this.#notice();
   }
 
-  async undo(s) {
-    const reply = await this.#go(s, this.from, { add: this.removed.map(({ spec }) => spec) });
-    this.removed.forEach(({ uid }, k) => s.table.uids.set(uid, reply.value[k]));
-    if (this.removed.length) s.flash(`Undo: restored ${countedTypes(this.removed.map(({ spec }) => spec))}`, FLASH_MS);
+  undoRequest(table) {
+    return this.#go(table, this.from, { add: this.removed.map(({ spec }) => spec) });
+  }
+
+  undone(reply, table) {
+    this.removed.forEach(({ uid }, k) => table.uids.set(uid, reply.value[k]));
+    if (this.removed.length) return `Undo: restored ${countedTypes(this.removed.map(({ spec }) => spec))}`;
+    return undefined;
+  }
+
+  refused(table) {
+    table.mapDocument(this.#uids);
   }
 
   // 'Line field: removed 2 sources and 1 vortex (undo restores them)'; null when nothing went.
@@ -81,7 +90,8 @@ export class SetSymmetry {
   }
 
   serialize() {
-    return { type: SetSymmetry.type, from: { ...this.from }, to: { ...this.to }, removed: structuredClone(this.removed) };
+    const { from, to, removed } = this;
+    return { type: SetSymmetry.type, from: { ...from }, to: { ...to }, removed: structuredClone(removed) };
   }
 
   static deserialize({ from, to, removed }) {
