@@ -73,7 +73,11 @@ const standalone = await esbuild.build({
   splitting: true,
   chunkNames: 'standalone-chunk-[hash]',
 });
-const worker = await esbuild.build({ ...common, entryPoints: { 'core-worker': resolve(ROOT, 'web/core/core-worker.js') }, outdir: LIB });
+const worker = await esbuild.build({
+  ...common,
+  entryPoints: { 'core-worker': resolve(ROOT, 'web/core-worker.js') },
+  outdir: LIB,
+});
 
 // The peer build must not carry a copy of a peer, and the standalone one must not import anything.
 const fail = (msg) => {
@@ -85,17 +89,27 @@ if (bundled(peer).length) fail(`the peer build bundled ${bundled(peer)[0]}`);
 // The worker is a realm of its own (no import map reaches it, and no copy there meets the page's three): it
 // bundles the parts of three and three-mesh-bvh it builds the page's ray-casting BVH with
 // (web/geometry/mesh-bvh-transfer.js), and nothing else of the peers.
-const workerPeers = bundled(worker).filter((f) => !/node_modules\/(three\/build\/three\.(core|module)\.js|three-mesh-bvh\/)/.test(f));
-if (workerPeers.length) fail(`core-worker.js bundled ${workerPeers[0]} (the worker uses three only to build the BVH)`);
+const BVH_PARTS = /node_modules\/(three\/build\/three\.(core|module)\.js|three-mesh-bvh\/)/;
+const workerPeers = bundled(worker).filter((f) => !BVH_PARTS.test(f));
+if (workerPeers.length) {
+  fail(`core-worker.js bundled ${workerPeers[0]} (the worker uses three only to build the BVH)`);
+}
 for (const [file, out] of Object.entries({ ...standalone.metafile.outputs, ...worker.metafile.outputs })) {
   const bare = (out.imports || []).find((i) => i.external);
   if (bare) fail(`${file} imports ${bare.path}`);
 }
 for (const [file, out] of Object.entries(peer.metafile.outputs)) {
-  const other = (out.imports || []).find((i) => i.external && !PEERS.some((p) => i.path === p || i.path.startsWith(`${p}/`)));
+  const isPeer = (path) => PEERS.some((p) => path === p || path.startsWith(`${p}/`));
+  const other = (out.imports || []).find((i) => i.external && !isPeer(i.path));
   if (other) fail(`${file} imports ${other.path}, which is not a peer dependency`);
 }
 
 for (const f of coreFiles) copyFileSync(f, resolve(LIB, 'wasm', f.split('/').pop()));
-const size = (result) => Object.entries(result.metafile.outputs).filter(([f]) => f.endsWith('.js')).reduce((n, [, o]) => n + o.bytes, 0);
-console.log(`build-package: lib/ ready (peer build ${size(peer)} bytes, standalone ${size(standalone)} bytes, worker ${size(worker)} bytes of JS)`);
+const size = (result) =>
+  Object.entries(result.metafile.outputs)
+    .filter(([f]) => f.endsWith('.js'))
+    .reduce((n, [, o]) => n + o.bytes, 0);
+console.log(
+  `build-package: lib/ ready (peer build ${size(peer)} bytes, standalone ${size(standalone)} bytes, ` +
+    `worker ${size(worker)} bytes of JS)`,
+);

@@ -18,7 +18,7 @@ mkdirSync(DIST, { recursive: true });
 
 // The core runs in a module worker: a second entry point, loaded by the page as dist/core-worker.js.
 await esbuild.build({
-  entryPoints: { main: resolve(ROOT, 'web/main.js'), 'core-worker': resolve(ROOT, 'web/core/core-worker.js') },
+  entryPoints: { main: resolve(ROOT, 'web/main.js'), 'core-worker': resolve(ROOT, 'web/core-worker.js') },
   outdir: DIST,
   bundle: true,
   format: 'esm',
@@ -45,7 +45,9 @@ if (coreFiles.every((f) => existsSync(resolve(wasmDir, f)))) {
     for (const f of threadedFiles) copyFileSync(resolve(wasmDir, f), resolve(DIST, 'wasm', f));
   else console.warn('build-web: build-wasm/tvf_core_threads.* not found; isolated pages will run the plain core');
 } else {
-  console.warn('build-web: build-wasm/tvf_core.{mjs,wasm} not found; run `npm run build:wasm` (the page needs the core)');
+  console.warn(
+    'build-web: build-wasm/tvf_core.{mjs,wasm} not found; run `npm run build:wasm` (the page needs the core)',
+  );
 }
 
 const model = makeDefaultModel(resolve(DIST, 'models/bunny.glb'));

@@ -11,7 +11,7 @@ import { deserializeCommand, SetSymmetry } from '../../web/session/commands/inde
 import { ConstraintTable } from '../../web/session/constraint-table.js';
 import { isEmptyDesign } from '../../web/session/documents.js';
 import { edgeSpec, pointSpec, strokeSpec, vectorSpec } from '../../web/session/specs.js';
-import { countedTypes, symmetryName } from '../../web/core/symmetry.js';
+import { countedTypes, symmetryName } from '../../web/session/symmetry.js';
 
 const MODEL = new TextEncoder().encode(icosphereOff(1)); // 42 vertices, 80 faces
 

@@ -126,7 +126,7 @@ export class CoreClient {
     return { settingsError: out.settingsError, restoreError: out.restoreError };
   }
 
-  // loadModel in steps (core-worker.js, open-steps.js; big meshes): readModel parses the file ({vertices,
+  // loadModel in steps (worker/load-ops.js, open-steps.js; big meshes): readModel parses the file ({vertices,
   // faces}) and parsedMesh copies its positions and triangles, so that a preview can start on them; openParsed
   // checks and configures it as the next model, aside ({settingsError, restoreError}); pendingInfo/pendingMesh/
   // pendingDesign read it; commitModel factors, solves and makes it current ({restoreError}: a design the solve
@@ -142,7 +142,9 @@ export class CoreClient {
   }
 
   openParsed(settings = null, design = null) {
-    const out = JSON.parse(guard('load', () => this.designer.openParsed(settings ? JSON.stringify(settings) : '', design ? JSON.stringify(design) : '')));
+    const settingsJson = settings ? JSON.stringify(settings) : '';
+    const designJson = design ? JSON.stringify(design) : '';
+    const out = JSON.parse(guard('load', () => this.designer.openParsed(settingsJson, designJson)));
     if (!out.ok) throw new CoreError(prefixed('load', out.error));
     return { settingsError: out.settingsError, restoreError: out.restoreError };
   }
@@ -165,7 +167,11 @@ export class CoreClient {
   // Copies (transferable) of the opened model's welded mesh.
   pendingMesh() {
     const d = this.designer;
-    return { positions: d.pendingPositions().slice(), triangles: d.pendingTriangles().slice(), edges: d.pendingEdges().slice() };
+    return {
+      positions: d.pendingPositions().slice(),
+      triangles: d.pendingTriangles().slice(),
+      edges: d.pendingEdges().slice(),
+    };
   }
 
   // bytes: a fixed limit for the factor's memory; 0: what is left of the wasm address space (default).

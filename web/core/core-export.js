@@ -3,7 +3,10 @@
 // again). Of a glTF/GLB file only its document is kept, so a GLB keeps the model's own glTF and a field-only
 // export matches `tvf export` byte for byte. One per worker, i.e. per <tangent-field-designer> element.
 import { CoreError } from './core-client.js';
-import { NOT_YET } from './symmetry.js';
+
+// What only a line or cross field can be exported as (the export panel offers it for N ≥ 2 alone).
+const RAW_FIELD_REFUSAL =
+  'a cross-field file (raw field) holds line and cross fields; this is a vector field: choose Line or Cross';
 
 const isGltf = (format) => format === 'glb' || format === 'gltf';
 
@@ -35,7 +38,8 @@ export class CoreExport {
     const d = this.core.designer;
     const exporter = new this.Module.FieldExporter();
     // Copies first: the views point into wasm memory, which the exporter's own allocations may move.
-    let error = exporter.setMesh(d.positions().slice(), d.triangles().slice(), d.cornerUVs().slice(), d.sourceToWelded().slice());
+    const mesh = [d.positions().slice(), d.triangles().slice(), d.cornerUVs().slice(), d.sourceToWelded().slice()];
+    let error = exporter.setMesh(...mesh);
     if (!error && this.source) error = exporter.setSource(this.source.bytes, this.source.format);
     if (error) {
       exporter.delete();
@@ -94,28 +98,37 @@ function sniffFormat(bytes) {
   return '';
 }
 
-// The worker's export ops (core-worker.js): the same bytes as `tvf export` for this model file (docs/export.md).
-// coreExport(), field() (core-worker.js exportedField), design(): the current ones, read at each call.
-export function exportOps(coreExport, field, design) {
-  return {
+// The worker's export ops (worker/dispatch.js files them as `onMesh`): the same bytes as `tvf export` for this
+// model file (docs/export.md), of the field and design the core holds now.
+export function exportOps(state) {
+  // What the exports read of the field: a vector field's one-form, or a line or cross field's directions.
+  const field = () => {
+    const symmetry = state.core.symmetry();
+    if (symmetry > 1) return { symmetry, faceDirections: state.core.faceVectors() };
+    return { symmetry, oneForm: state.core.oneForm() };
+  };
+  const design = () => JSON.parse(state.core.designJson());
+
+  const onMesh = {
     exportAtlasNote() {
-      return coreExport().atlasNote();
+      return state.coreExport.atlasNote();
     },
 
     exportFlowMap(options) {
-      return coreExport().flowMapPng(field(), options);
+      return state.coreExport.flowMapPng(field(), options);
     },
 
     // texture: null or {png, cornerUVs}, the synthesized texture (web/export/index.js).
     exportGlb(options, texture) {
-      return coreExport().glb(field(), design(), options, texture);
+      return state.coreExport.glb(field(), design(), options, texture);
     },
 
     // A line or cross field as Directional's raw field text (docs/export.md).
     exportRawField() {
       const f = field();
-      if (f.symmetry < 2) throw new CoreError(NOT_YET.rawField);
-      return coreExport().rawField(f);
+      if (f.symmetry < 2) throw new CoreError(RAW_FIELD_REFUSAL);
+      return state.coreExport.rawField(f);
     },
   };
+  return { onMesh };
 }

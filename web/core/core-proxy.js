@@ -1,6 +1,6 @@
-// Page side of the core worker (core-worker.js): request/reply over postMessage, and supervision of the worker.
-// The session serialises its mutations itself (session.js), so replies come back in request order; each carries
-// the worker's timing. One proxy (one worker at a time) per element; terminate() ends it for good.
+// Page side of the core worker (core/worker/dispatch.js): request/reply over postMessage, and supervision of the
+// worker. The session serialises its mutations itself (session.js), so replies come back in request order; each
+// carries the worker's timing. One proxy (one worker at a time) per element; terminate() ends it for good.
 //
 // Supervision: a worker that dies or can no longer be trusted is replaced, never waited on forever.
 // * death, even in the middle of a long factorization: the worker holds a Web Lock for its whole life; the
@@ -81,7 +81,7 @@ export class CoreProxy {
   }
 
   // Field arrays the page no longer uses (a field replaced by a newer one): their buffers go back to the worker
-  // with the next request, to be refilled instead of allocated (core-worker.js). They are detached here then.
+  // with the next request, to be refilled instead of allocated (worker/snapshot.js). They are detached here then.
   recycle(arrays) {
     for (const a of arrays) if (a?.buffer?.byteLength > 0 && !this.spare.includes(a.buffer)) this.spare.push(a.buffer);
   }
@@ -113,7 +113,7 @@ export class CoreProxy {
   // Resolves with the whole reply ({value, snapshot?, workerMs, timing}); rejects with the core's message.
   // A rejection may still carry the state the core is left in: err.reply.snapshot. background: a read-out the
   // page can do without (the streamlines view), which cancel() does not count as an operation in flight.
-  // onProgress(progress): the worker's word on a long op before its reply (core-worker.js `progress`).
+  // onProgress(progress): the worker's word on a long op before its reply (worker/state.js `progress`).
   // wholeDesign: the reply's snapshot carries the whole design document, not the change (progressive-core.js).
   async call(op, args = [], transfer = [], { background = false, onProgress = null, wholeDesign = false } = {}) {
     await this.ready; // a restart in progress finishes (model and design back) first
@@ -137,7 +137,7 @@ export class CoreProxy {
     });
   }
 
-  // A word for the worker outside the request sequence (core-worker.js onmessage: previewMade).
+  // A word for the worker outside the request sequence (worker/dispatch.js: a group's notes).
   notify(message) {
     this.worker?.postMessage(message);
   }
@@ -237,7 +237,9 @@ export class CoreProxy {
       p.reject(err);
     }
     this.pending.clear();
-    this.onStatus(kind === 'cancelled' ? 'Cancelled; restoring the design…' : `The core stopped (${detail}); restarting…`);
+    this.onStatus(kind === 'cancelled'
+      ? 'Cancelled; restoring the design…'
+      : `The core stopped (${detail}); restarting…`);
     this.ready = this.#restart(kind, detail);
     this.ready.catch(() => {});
   }

@@ -1,52 +1,50 @@
-// The parts of the worker's current field (core-worker.js): its Hodge decomposition c = dα + δβ + h (Eq. 3),
-// made by the core on the first request for a field version and kept for every later request on that version,
-// and each part's vectors, reconstructed by the core from the part's 1-form exactly as the field's are. Nothing
-// is computed unless asked (edits never pay for it); the worker calls drop() at every solve.
+// The parts of one version of the worker's field: its Hodge decomposition c = dα + δβ + h (Eq. 3), made by the
+// core on the first request and kept for every later one, and each part's vectors, reconstructed by the core
+// from the part's 1-form exactly as the field's are. Nothing is computed unless asked (edits never pay for it).
+// Owned by the field version's derived-field object (worker/derived-field.js), which makes one on first request
+// and is replaced, parts and all, at every solve. COMPONENTS is also the page's list of the parts it may show.
 import { CoreError } from './core-client.js';
 
 export const COMPONENTS = ['whole', 'exact', 'coexact', 'harmonic'];
 
 export class FieldParts {
-  // core(): the worker's CoreClient now.
+  // core: the worker's CoreClient, holding the field version these parts are of.
   constructor(core) {
     this.core = core;
-    this.kept = null; // {version, value (core.hodge() plus decomposeMs), parts: Map name -> arrays}
+    this.kept = null; // core.hodge() plus decomposeMs
+    this.parts = new Map(); // name -> {oneForm, faceVectors, vertexVectors}
   }
 
-  drop() {
-    this.kept = null;
-  }
-
-  // The decomposition of field `version` (the current one), computed now when it has none yet.
-  decomposition(version) {
-    if (this.kept?.version !== version) {
+  // The decomposition, computed now when it has none yet.
+  decomposition() {
+    if (!this.kept) {
       const t = performance.now();
-      const h = this.core().hodge();
-      this.kept = { version, value: { ...h, decomposeMs: performance.now() - t }, parts: new Map() };
+      const h = this.core.hodge();
+      this.kept = { ...h, decomposeMs: performance.now() - t };
     }
     return this.kept;
   }
 
   // {oneForm, faceVectors, vertexVectors} of a part; 'whole': the field's own arrays (fresh copies). A part's
   // arrays are the kept ones: copy them before transferring.
-  component(version, name) {
+  component(name) {
     if (!COMPONENTS.includes(name))
       throw new CoreError(`component: unknown component ${JSON.stringify(name)} (expected ${COMPONENTS.join(', ')})`);
-    const core = this.core();
-    if (name === 'whole') return { oneForm: core.oneForm(), faceVectors: core.faceVectors(), vertexVectors: core.vertexVectors() };
-    const kept = this.decomposition(version);
-    let part = kept.parts.get(name);
+    const core = this.core;
+    if (name === 'whole')
+      return { oneForm: core.oneForm(), faceVectors: core.faceVectors(), vertexVectors: core.vertexVectors() };
+    let part = this.parts.get(name);
     if (!part) {
-      const oneForm = kept.value[name];
+      const oneForm = this.decomposition()[name];
       part = { oneForm, ...core.reconstruct(oneForm) };
-      kept.parts.set(name, part);
+      this.parts.set(name, part);
     }
     return part;
   }
 
   // The `hodge` op's reply: copies of the kept arrays, and their buffers to transfer.
-  hodgeReply(version) {
-    const h = this.decomposition(version).value;
+  hodgeReply() {
+    const h = this.decomposition();
     const value = {
       exact: h.exact.slice(),
       coexact: h.coexact.slice(),
@@ -63,14 +61,14 @@ export class FieldParts {
   }
 
   // The `hodgeShares` op's reply: what the shares line needs, without the per-edge arrays.
-  sharesReply(version) {
-    const { energyShares, decomposeMs } = this.decomposition(version).value;
+  sharesReply() {
+    const { energyShares, decomposeMs } = this.decomposition();
     return { energyShares: { ...energyShares }, decomposeMs };
   }
 
   // The `component` op's reply, likewise.
-  componentReply(version, name) {
-    const part = this.component(version, name);
+  componentReply(name) {
+    const part = this.component(name);
     const value = name === 'whole' ? part : {
       oneForm: part.oneForm.slice(),
       faceVectors: part.faceVectors.slice(),

@@ -1,10 +1,12 @@
 // A model file's bytes, read on a worker thread. Chromium consumes a response body or a file on the thread
 // that asked for it: a 33 MB scan fetched on the page blocked its thread for 0.6–1.0 s in one task, and the
-// autosave key's digest of the bytes took 41–49 ms more (node). A throwaway worker running core-worker.js (never
-// initialized: no core, no wasm) reads the URL or the Blob, digests the bytes and hands them over.
+// autosave key's digest of the bytes took 41–49 ms more (node). A throwaway core worker (never initialized: no
+// core, no wasm) reads the URL or the Blob, digests the bytes and hands them over.
 //
-// Worker side: readOps (core-worker.js); the page's side is core-proxy.js readBytesOffThread. fnv1a is the
-// digest the autosave keys use (session/documents.js modelKey), the same on both sides. Imports nothing.
+// Worker side: bytesOps (composed by web/core-worker.js); the page's side is core-proxy.js readBytesOffThread.
+// fnv1a is the digest the autosave keys use (session/documents.js modelKey), the same on both sides. Imports
+// the worker's Transfer.
+import { Transfer } from './worker/transfer.js';
 
 export function fnv1a(bytes) {
   let h = 0x811c9dc5;
@@ -16,8 +18,8 @@ export function fnv1a(bytes) {
 // page keeps one and hands the other to the core, and the copy is made here: 33 MB took the page's thread
 // ~180 ms in a profile of the page, 119 ms under node), digest}; a URL that cannot be fetched fails with the
 // message the page's own fetch would give.
-export function readOps(Transfer) {
-  return {
+export function bytesOps() {
+  const anytime = {
     async readBytes(source) {
       let buffer;
       if (typeof source === 'string') {
@@ -34,4 +36,5 @@ export function readOps(Transfer) {
       return new Transfer({ bytes: buffer, copy, digest: fnv1a(new Uint8Array(buffer)) }, [buffer, copy]);
     },
   };
+  return { anytime };
 }

@@ -1,4 +1,4 @@
-// How the exact worker opens a model that may take a preview (core-worker.js loadMesh; the page's side is
+// How the exact worker opens a model that may take a preview (worker/load-ops.js loadMesh; the page's side is
 // progressive-core.js): the file is read, and a mesh big enough for a preview (every face brings at least 1.5
 // edges) is sent to the page at once ({phase: 'read', mesh: {positions, triangles}}), so that the preview
 // worker simplifies it while this one checks it; then it is checked and configured, and a model of at least
@@ -26,7 +26,8 @@ export function openModelInSteps(core, args, progress) {
     // With `read` sent, the mesh is not sent again.
     const mesh = early ? {} : (({ positions, triangles }) => ({ positions, triangles }))(core.pendingMesh());
     const cornerUVs = core.designer.pendingCornerUVs().slice();
-    const value = { phase: 'opened', info, mesh, ...opened, embeddedDesign: embedded, cornerUVs, design: core.pendingDesign() };
+    const design = core.pendingDesign();
+    const value = { phase: 'opened', info, mesh, ...opened, embeddedDesign: embedded, cornerUVs, design };
     progress(value, [...Object.values(mesh).map((a) => a.buffer), cornerUVs.buffer]);
   }
   return { opened, info, ahead };

@@ -21,11 +21,14 @@ import { CoreProxy } from './core-proxy.js';
 export const PREVIEW_EDGES = 300_000;
 
 // Ops that change the design or the field: the preview takes them too.
-const isEdit = (op) => ['add', 'remove', 'setWeight', 'setStrength', 'setBoundary', 'setGamma', 'setSymmetry', 'setCurvatureAlignment', 'applyDesign'].includes(op);
+const EDITS = ['add', 'remove', 'setWeight', 'setStrength', 'setBoundary', 'setGamma', 'setSymmetry',
+  'setCurvatureAlignment', 'applyDesign'];
+const isEdit = (op) => EDITS.includes(op);
 
 export class ProgressiveCore {
-  // exact: the session's CoreProxy. onExact(snapshot, reply): the exact field has caught up with the design; onExactError
-  // (err, op): an exact op failed after the preview had answered for it; onPhase({phase, ...}): load progress.
+  // exact: the session's CoreProxy. onExact(snapshot, reply): the exact field has caught up with the design;
+  // onExactError(err, op): an exact op failed after the preview had answered for it; onPhase({phase, ...}): load
+  // progress.
   constructor(exact, { assetBase, onExact, onExactError }) {
     this.exact = exact;
     this.assetBase = assetBase;
@@ -69,12 +72,14 @@ export class ProgressiveCore {
     // (open-steps.js). A smaller model would only have its load share the cores with that warm-up (bunny00's
     // 2.6 MB OFF, 113k edges).
     const bytesPerEdge = ['off', 'obj'].includes(args[1]) ? 12 : 4;
-    const early = previewEdges > 0 && args[0].byteLength >= bytesPerEdge * previewEdges ? this.#startPreview(true) : null;
+    const big = previewEdges > 0 && args[0].byteLength >= bytesPerEdge * previewEdges;
+    const early = big ? this.#startPreview(true) : null;
     let meshed = null;
     const prepare = (mesh) =>
       (meshed ??= (async () => {
         const proxy = await (early ?? this.#startPreview());
-        await proxy.call('previewMesh', [{ positions: mesh.positions, triangles: mesh.triangles }], [mesh.positions.buffer, mesh.triangles.buffer]);
+        const { positions, triangles } = mesh;
+        await proxy.call('previewMesh', [{ positions, triangles }], [positions.buffer, triangles.buffer]);
         return proxy;
       })());
     const endWorkers = () => [early, meshed].forEach((p) => p?.then((proxy) => proxy.terminate(), () => {}));
@@ -103,13 +108,21 @@ export class ProgressiveCore {
       let exactDone = null, exactFailed = null;
       exactLoad.then((r) => (exactDone = r), (err) => (exactFailed = err));
       const reply = await preview.call('openPreview', [design, args[2]]);
-      this.exact.notify({ previewMade: true }); // the exact worker factors from here on (core-worker.js loadMesh)
+      this.exact.notify({ previewMade: true }); // the exact worker factors from here on (worker/load-ops.js)
       // The exact core refused the model while the preview was made (too large to factor, say): the load fails
       // as any other, and the previous model stays.
       if (exactFailed) throw Object.assign(exactFailed, { exactLoad: true });
       this.preview = preview; // kept for the strokes' previews, even when the exact field came first
       onPhase({ phase: 'previewSolved' });
-      const value = { info: first.info, settingsError: first.settingsError, restoreError: first.restoreError, embeddedDesign: first.embeddedDesign, cornerUVs: first.cornerUVs, surface: await surface, previewTimings: reply.value.timings };
+      const value = {
+        info: first.info,
+        settingsError: first.settingsError,
+        restoreError: first.restoreError,
+        embeddedDesign: first.embeddedDesign,
+        cornerUVs: first.cornerUVs,
+        surface: await surface,
+        previewTimings: reply.value.timings,
+      };
       if (exactDone) return { reply: { ...exactDone, value }, progressive: false };
       this.#track(exactLoad, 'loadMesh');
       return { reply: { ...reply, value }, progressive: true };

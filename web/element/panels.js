@@ -2,7 +2,7 @@
 // list with the selection editor. Reports user intent through `actions` and renders the state it is handed;
 // a box the user is typing in is never overwritten.
 import { checkedNumber, fmtNum, guarded } from './numbers.js';
-import { alignsToCurvature } from '../core/symmetry.js';
+import { alignsToCurvature } from '../session/symmetry.js';
 
 const SWATCH = { stroke: '#ff7a1a', vector: '#fbbf24', edge: '#ff7a1a', source: '#ef4444', sink: '#22c55e', vortex: '#3b82f6' };
 const VIEW_INPUTS = ['show-arrows', 'arrow-density', 'arrow-scaled', 'show-streamlines', 'streamline-spacing', 'show-lic', 'show-colormap', 'show-singularities', 'view-component'];

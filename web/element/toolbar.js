@@ -2,7 +2,7 @@
 // redo, the camera buttons and the ☰ Panels toggle of small screens. The file buttons are files.js's; what
 // does not fit in one row goes into the ⋯ menu (toolbar-overflow.js).
 import { VIEW_PRESETS } from '../views/camera.js';
-import { fieldPhrase, keepsConstraint } from '../core/symmetry.js';
+import { fieldPhrase, keepsConstraint } from '../session/symmetry.js';
 import { checkedNumber } from './numbers.js';
 import { bindOverflow } from './toolbar-overflow.js';
 

@@ -1,5 +1,5 @@
 // A field's magnitude scale, shared by the arrows, the surface colours and the legend (views/), and computed
-// where the field is made (core/core-worker.js, core/preview/preview.js) so that the page's thread does not
+// where the field is made (core/worker/derived-field.js, core/preview/preview.js) so that the page's thread does not
 // walk every vertex again after each edit (~40 ms per field at 400k vertices).
 //
 // Owns nothing. Imports nothing.

@@ -1,7 +1,8 @@
 // The symmetry N of the designed field — 1 a vector field, 2 a line field, 4 a cross field (the core takes 1..6)
 // — in the page's words: what each is called, which constraints only a vector field can have, and the refusals
-// of what is not made for N ≥ 2 yet. One place for them: the worker, the session's SetSymmetry command, the
-// panels, the export and the synthesis all say the same.
+// of what is not made for N ≥ 2 yet. One place for them: the session's SetSymmetry command, the panels and the
+// synthesis all say the same. (The core's worker has its own words for its one refusal: core/core-export.js.)
+// Imports nothing.
 
 // A source, sink or vortex has a sign and a flux, an edge value is a line integral: notions of a vector field,
 // which a line or cross field (directions without sign) has none of. The core refuses them for N ≥ 2.
@@ -29,17 +30,14 @@ const SINGULAR = { edge: 'edge constraint' };
 export function countedTypes(constraints) {
   const counts = new Map();
   for (const { type } of constraints) counts.set(type, (counts.get(type) ?? 0) + 1);
-  const parts = [...counts].map(([type, n]) => `${n} ${n === 1 ? (SINGULAR[type] ?? type) : (PLURAL[type] ?? `${type}s`)}`);
+  const counted = (type, n) => (n === 1 ? (SINGULAR[type] ?? type) : (PLURAL[type] ?? `${type}s`));
+  const parts = [...counts].map(([type, n]) => `${n} ${counted(type, n)}`);
   return parts.length > 1 ? `${parts.slice(0, -1).join(', ')} and ${parts.at(-1)}` : (parts[0] ?? '');
 }
-
-// What only a line or cross field can be exported as.
-export const NOT_YET = {
-  rawField: 'a cross-field file (raw field) holds line and cross fields; this is a vector field: choose Line or Cross',
-};
 
 // Texture synthesis follows a vector field, and a line or cross field combed for the atlas (one sign, or one of
 // the cross's two families, per region: geometry/chart-comb.js); other N it refuses with this reason.
 export const TEXTURE_SYMMETRIES = [1, 2, 4];
 export const textureRefusal = (n) =>
-  `texture synthesis follows vector, line and cross fields (N = 1, 2, 4), not ${fieldPhrase(n)}; switch to Vector, Line or Cross`;
+  `texture synthesis follows vector, line and cross fields (N = 1, 2, 4), not ${fieldPhrase(n)}; ` +
+  'switch to Vector, Line or Cross';

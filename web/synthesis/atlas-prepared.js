@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// The atlas with what drawing into it needs, made in the core's worker (core-worker.js textureAtlas): the atlas
+// The atlas with what drawing into it needs, made in the core's worker (worker-ops.js textureAtlas): the atlas
 // itself (atlas.js), the per-corner data of its raster (atlas-corners.js), its seam indirection (seams.js) and
 // the shape complexity the default feature size follows (auto-settings.js). At 832k faces these took the
 // page's thread 1.7 s in the task that set the atlas up, and 0.17 s in the next.

@@ -10,7 +10,7 @@ import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8 } fr
 import { TexturedModel } from './render.js';
 import { DEFAULTS, Synthesizer } from './synthesizer.js';
 import { exportMagnification, pngBlob } from './texture-image.js';
-import { TEXTURE_SYMMETRIES, textureRefusal } from '../core/symmetry.js';
+import { TEXTURE_SYMMETRIES, textureRefusal } from '../session/symmetry.js';
 import { atlasCombedCorners } from '../geometry/chart-comb.js';
 
 const MAX_RESOLUTION = 2048;

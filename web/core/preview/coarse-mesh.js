@@ -62,7 +62,11 @@ function dropDegenerate(indices, P) {
     const w = [P[c] - P[a], P[c + 1] - P[a + 1], P[c + 2] - P[a + 2]];
     const v = [w[0] - u[0], w[1] - u[1], w[2] - u[2]];
     const n = Math.hypot(u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]);
-    const longest = Math.max(u[0] ** 2 + u[1] ** 2 + u[2] ** 2, w[0] ** 2 + w[1] ** 2 + w[2] ** 2, v[0] ** 2 + v[1] ** 2 + v[2] ** 2);
+    const longest = Math.max(
+      u[0] ** 2 + u[1] ** 2 + u[2] ** 2,
+      w[0] ** 2 + w[1] ** 2 + w[2] ** 2,
+      v[0] ** 2 + v[1] ** 2 + v[2] ** 2,
+    );
     if (n > 1e-6 * longest) out.push(a / 3, b / 3, c / 3);
   }
   return out;

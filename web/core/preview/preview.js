@@ -7,7 +7,8 @@
 // give it (they take the same edits in the same order, so their ids agree; an edit the coarse core refuses
 // ends the preview, see progressive-core.js), and replies carry the fine design document, never the coarse one.
 //
-// Owned by core-worker.js (one per preview worker). Imports geometry/ for the fine surface it hands the page.
+// Owned by the worker's state (worker/preview-ops.js; one per preview worker). Imports geometry/ for the fine
+// surface it hands the page.
 import { coarseMesh, offBytes } from './coarse-mesh.js';
 import { SurfaceMap } from './surface-map.js';
 import { magnitudeScale } from '../../geometry/magnitudes.js';
@@ -20,7 +21,8 @@ export class Preview {
     const coarse = await coarseMesh(fine.positions, fine.triangles);
     const t1 = performance.now();
     const map = new SurfaceMap(fine, coarse);
-    return { coarse, map, timings: { simplifyMs: t1 - t0, mapMs: performance.now() - t1, coarseFaces: coarse.triangles.length / 3 } };
+    const timings = { simplifyMs: t1 - t0, mapMs: performance.now() - t1, coarseFaces: coarse.triangles.length / 3 };
+    return { coarse, map, timings };
   }
 
   // core: the worker's CoreClient; prepared: prepare()'s; fineDoc: the exact core's design document of the
@@ -62,12 +64,13 @@ export class Preview {
     return sortedKeys(out);
   }
 
-  // An op's arguments as the coarse core takes them (the ops of core-worker.js and setting-ops.js).
+  // An op's arguments as the coarse core takes them (the ops of worker/edit-ops.js and worker/setting-ops.js).
   argsOnCoarse(op, args) {
     const m = this.map;
     if (op === 'add') return [m.specOnCoarse(args[0])];
     if (op === 'applyDesign') return [m.designOnCoarse(args[0])];
-    if (op === 'setSymmetry' && args[1]?.add) return [args[0], { ...args[1], add: args[1].add.map((s) => m.specOnCoarse(s)) }];
+    if (op === 'setSymmetry' && args[1]?.add)
+      return [args[0], { ...args[1], add: args[1].add.map((s) => m.specOnCoarse(s)) }];
     return args;
   }
 
@@ -79,7 +82,8 @@ export class Preview {
       const spec = this.fineSpecs.get(args[0]);
       if (spec) this.fineSpecs.set(args[0], this.#normal(args[0], spec));
     } else if (op === 'applyDesign') this.#adoptDocument(args[0]);
-    else if (op === 'setSymmetry') (args[1]?.add ?? []).forEach((spec, k) => this.fineSpecs.set(result[k], this.#normal(result[k], spec)));
+    else if (op === 'setSymmetry')
+      (args[1]?.add ?? []).forEach((spec, k) => this.fineSpecs.set(result[k], this.#normal(result[k], spec)));
   }
 
   // The fine design document: the coarse core's settings, the fine mesh's fingerprint, the fine specs.
@@ -91,9 +95,9 @@ export class Preview {
     return doc;
   }
 
-  // The reply to a mutating op (core-worker.js's snapshot, in fine terms): the preview field on the fine
+  // The reply to a mutating op (worker/snapshot.js, in fine terms): the preview field on the fine
   // mesh, the coarse core's stats marked `preview`, the fine specs of the constraints the op set (`changed`:
-  // core ids, as core-worker.js's snapshot takes them; null: the whole fine document). A negative version:
+  // core ids, as worker/snapshot.js takes them; null: the whole fine document). A negative version:
   // the exact worker's read-outs (streamlines, Hodge parts) are never asked for a preview's field. The field
   // goes as its vertex vectors (and an N-field's face representatives, which the views need): the page derives
   // the face vectors and the one-form when read (geometry/vertex-field.js, session.fieldArray).
@@ -101,7 +105,10 @@ export class Preview {
     const t0 = performance.now();
     const c = this.core;
     const symmetry = c.symmetry();
-    const out = { vertexVectors: spares.pop(3 * this.map.nV), faceVectors: symmetry > 1 ? spares.pop(3 * this.map.nF) : null };
+    const out = {
+      vertexVectors: spares.pop(3 * this.map.nV),
+      faceVectors: symmetry > 1 ? spares.pop(3 * this.map.nF) : null,
+    };
     const coarseVertexVectors = c.vertexVectors();
     const { faceVectors, vertexVectors } = this.map.fieldOnFine(c.faceVectors(), coarseVertexVectors, symmetry, out);
     // The carried vectors are the coarse ones interpolated and laid into the fine planes: the coarse lengths'
@@ -116,7 +123,13 @@ export class Preview {
       ? { ids, changed: changed.filter((id) => ids.includes(id)).map((id) => [id, this.fineSpecs.get(id)]) }
       : { ids, document: this.fineDocument(ids) };
     timing.designMs = performance.now() - t1;
-    const stats = { ...c.stats(), preview: true, previewHeapBytes: c.Module.HEAP8.buffer.byteLength, previewFaces: this.map.coarse.triangles.length / 3, ...this.timings };
+    const stats = {
+      ...c.stats(),
+      preview: true,
+      previewHeapBytes: c.Module.HEAP8.buffer.byteLength,
+      previewFaces: this.map.coarse.triangles.length / 3,
+      ...this.timings,
+    };
     return {
       version: -++this.version,
       symmetry,

@@ -118,7 +118,8 @@ export class SurfaceMap {
     const face = this.vertexFace[a];
     if (this.vertexFace[b] !== face || this.vertexFace[c] !== face) return false;
     this.faceFace[f] = face;
-    for (let k = 0; k < 3; k++) this.faceBary[3 * f + k] = (this.vertexBary[3 * a + k] + this.vertexBary[3 * b + k] + this.vertexBary[3 * c + k]) / 3;
+    const bary = this.vertexBary;
+    for (let k = 0; k < 3; k++) this.faceBary[3 * f + k] = (bary[3 * a + k] + bary[3 * b + k] + bary[3 * c + k]) / 3;
     return true;
   }
 
@@ -272,9 +273,27 @@ export class SurfaceMap {
     if (faceVectors) {
       if (!this.allFaces) for (let f = 0; f < this.nF; f++) this.faceOnCoarse(f);
       this.allFaces = true;
-      sampleInto(faceVectors, this.faceFace, this.faceBary, this.faceNormals(), this.coarse.triangles, coarseFaceVectors, coarseVertexVectors, lines);
+      sampleInto(
+        faceVectors,
+        this.faceFace,
+        this.faceBary,
+        this.faceNormals(),
+        this.coarse.triangles,
+        coarseFaceVectors,
+        coarseVertexVectors,
+        lines,
+      );
     }
-    sampleInto(vertexVectors, this.vertexFace, this.vertexBary, this.vertexNormals, this.coarse.triangles, coarseFaceVectors, coarseVertexVectors, lines);
+    sampleInto(
+      vertexVectors,
+      this.vertexFace,
+      this.vertexBary,
+      this.vertexNormals,
+      this.coarse.triangles,
+      coarseFaceVectors,
+      coarseVertexVectors,
+      lines,
+    );
     return { faceVectors, vertexVectors };
   }
 }

@@ -3,7 +3,7 @@
 // simplifier's wasm, the surface map and the core's load, factor, update and solve with its optimizing tier
 // when the model arrives. Cold, they took about twice as long on the first (and only) preview of the load.
 //
-// Owned by core-worker.js. Imports preview.js.
+// Owned by the preview worker (worker/preview-ops.js). Imports preview.js.
 import { Preview } from './preview.js';
 
 // A torus of nu × nv quads, each split in two: {positions (Float64Array), triangles, edges (Int32Array, lower
@@ -14,7 +14,8 @@ export function torus(nu, nv, R = 1, r = 0.4) {
   for (let i = 0; i < nu; i++) {
     for (let j = 0; j < nv; j++) {
       const u = (2 * Math.PI * i) / nu, v = (2 * Math.PI * j) / nv;
-      positions.set([(R + r * Math.cos(v)) * Math.cos(u), (R + r * Math.cos(v)) * Math.sin(u), r * Math.sin(v)], 3 * id(i, j));
+      const point = [(R + r * Math.cos(v)) * Math.cos(u), (R + r * Math.cos(v)) * Math.sin(u), r * Math.sin(v)];
+      positions.set(point, 3 * id(i, j));
     }
   }
   const triangles = new Int32Array(6 * nu * nv);

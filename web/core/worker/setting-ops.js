@@ -1,12 +1,13 @@
 // The worker's ops that change the design as a whole rather than one constraint: the boundary condition, γ, the
 // symmetry N, the curvature alignment and a whole design document. After each the worker solves (refactoring:
-// each changes the system or its right-hand side) and sends the whole document back. core-worker.js composes
-// them with its other ops; they are here so that it stays one screenful of protocol.
-//
-// core(): the served CoreClient (core-client.js); onUndo(fn): how to take the edit back should the solve after
-// it fail, so that the core never keeps a state it cannot solve.
+// each changes the system or its right-hand side) and sends the whole document back: dispatch.js files them as
+// `edits`, with no changed ids. Each sets state.undoEdit: how to take the edit back should the solve after it
+// fail, so that the core never keeps a state it cannot solve. Imports nothing.
 
-export function settingOps(core, onUndo) {
+export function settingOps(state) {
+  const core = () => state.core;
+  const onUndo = (undo) => (state.undoEdit = undo);
+
   // The whole design put back as it is now; its constraints come back under fresh core ids, which the page maps
   // onto its own (session/commands/).
   const restoreNow = () => {
@@ -14,7 +15,7 @@ export function settingOps(core, onUndo) {
     return () => core().applyDesignJson(before);
   };
 
-  return {
+  const edits = {
     setBoundary(bc) {
       const before = JSON.parse(core().designJson()).boundary;
       onUndo(() => core().setBoundary(before));
@@ -60,4 +61,5 @@ export function settingOps(core, onUndo) {
       return true;
     },
   };
+  return { edits };
 }

@@ -1,4 +1,4 @@
-// The symmetry N of the field (1 vector, 2 line, 4 cross: core/symmetry.js) as one step. What the new N cannot
+// The symmetry N of the field (1 vector, 2 line, 4 cross: symmetry.js) as one step. What the new N cannot
 // keep goes in the same step, and the user is told what: the sources, sinks, vortices and edge constraints a
 // line or cross field has no notion of (the core refuses N ≥ 2 while they are there), and the curvature
 // alignment an odd N has none of. Strokes and vectors carry over. Undo brings back N, the alignment and the

@@ -1,0 +1,192 @@
+// The core worker's dispatch and derived-field object without a browser or the wasm core (web/core/worker/):
+// op groups composed, each op served as its group files it (an edit solved and snapshotted, a failed edit
+// taken back, a read-out without either, notes outside the sequence), and one version's derived data made once
+// and dropped with the version. The real core behind the real entry: core-worker.test.mjs.
+import assert from 'node:assert/strict';
+import test from 'node:test';
+import { composeOps, serve } from '../../web/core/worker/dispatch.js';
+import { WorkerState } from '../../web/core/worker/state.js';
+import { editOps } from '../../web/core/worker/edit-ops.js';
+import { readOps } from '../../web/core/worker/read-ops.js';
+import { testHooks } from '../../web/core/worker/hooks.js';
+import { icosphere } from './fakes.mjs';
+
+// A core of one constraint (id 1) over a fixed field; its solve fails while any weight is negative, as a
+// factorization that does not fit would.
+class TinyCore {
+  constructor(mesh) {
+    this.hasMesh = true;
+    this.calls = [];
+    this.weights = new Map([[1, 1]]);
+    this.Module = { HEAP8: { buffer: { byteLength: 1 << 20 } } };
+    this.meshArrays = mesh;
+    const nV = mesh.positions.length / 3;
+    // A rotation field about z: tangent to the sphere off the poles.
+    this.vertex = new Float64Array(3 * nV);
+    for (let v = 0; v < nV; v++) this.vertex.set([-mesh.positions[3 * v + 1], mesh.positions[3 * v], 0], 3 * v);
+  }
+  faceVectors(copy = (a) => a.slice()) {
+    this.calls.push('faceVectors');
+    return copy(new Float64Array(this.meshArrays.triangles.length));
+  }
+  oneForm(copy = (a) => a.slice()) {
+    return copy(new Float64Array(this.meshArrays.edges.length / 2));
+  }
+  vertexVectors(copy = (a) => a.slice()) {
+    this.calls.push('vertexVectors');
+    return copy(this.vertex);
+  }
+  symmetry() {
+    return 1;
+  }
+  constraintIds() {
+    return [...this.weights.keys()];
+  }
+  constraint(id) {
+    return this.weights.has(id) ? { type: 'vortex', weight: this.weights.get(id) } : undefined;
+  }
+  designJson() {
+    return JSON.stringify({ constraints: this.constraintIds().map((id) => this.constraint(id)) });
+  }
+  stats() {
+    return { solves: this.calls.filter((c) => c === 'solve').length };
+  }
+  setWeight(id, w) {
+    this.weights.set(id, w);
+  }
+  solve() {
+    this.calls.push('solve');
+    if ([...this.weights.values()].some((w) => w < 0)) throw new Error('solve: the field is not finite');
+  }
+  applyDeferredUpdates() {
+    this.calls.push('deferred');
+  }
+  hodge() {
+    this.calls.push('hodge');
+    const n = this.meshArrays.edges.length / 2;
+    const arrays = ['exact', 'coexact', 'harmonic', 'metric', 'potential0', 'potential2'];
+    return { ...Object.fromEntries(arrays.map((k) => [k, new Float64Array(n)])), energyShares: { exact: 1 }, metricName: 'M' };
+  }
+  reconstruct(oneForm) {
+    this.calls.push('reconstruct');
+    return { faceVectors: new Float64Array(this.meshArrays.triangles.length), vertexVectors: this.vertex.slice() };
+  }
+  mesh() {
+    return { positions: this.meshArrays.positions, triangles: this.meshArrays.triangles };
+  }
+  edges() {
+    return this.meshArrays.edges;
+  }
+}
+
+// A worker stand-in: the entry's composition over TinyCore, and the messages it posts.
+function worker() {
+  const posted = [];
+  const scope = { postMessage: (data, list = []) => posted.push({ data, list }) };
+  const state = new WorkerState(scope);
+  state.core = new TinyCore(icosphere(2));
+  serve(scope, state, [editOps(state), readOps(state), testHooks(state)]);
+  let seq = 0;
+  const call = async (op, args = [], extra = {}) => {
+    const mine = ++seq;
+    await scope.onmessage({ data: { seq: mine, op, args, ...extra } });
+    return posted.find((p) => p.data.seq === mine && !p.data.progress);
+  };
+  return { scope, state, posted, call };
+}
+
+test('composing op groups: every op filed under one kind, a name defined twice refused', () => {
+  const { ops, notes } = composeOps([{ edits: { a() {} }, onMesh: { b() {} } }, { anytime: { c() {} }, notes: { d() {} } }]);
+  assert.deepEqual([...ops].map(([name, { kind }]) => [name, kind]), [['a', 'edits'], ['b', 'onMesh'], ['c', 'anytime']]);
+  assert.deepEqual([...notes.keys()], ['d']);
+  assert.throws(() => composeOps([{ edits: { a() {} } }, { onMesh: { a() {} } }]), /op a is defined twice/);
+  assert.throws(() => composeOps([{ notes: { hang() {} } }, { notes: { hang() {} } }]), /hang is defined twice/);
+});
+
+test('an edit is solved and answered with a snapshot of what it changed, then the factor takes its update', async () => {
+  const { state, posted, call } = worker();
+  const reply = await call('setWeight', [1, 5]);
+  assert.equal(reply.data.ok, true);
+  assert.deepEqual(state.core.calls.filter((c) => c === 'solve' || c === 'deferred'), ['solve', 'deferred']);
+  const snap = reply.data.snapshot;
+  assert.equal(snap.version, 1);
+  assert.equal(snap.transfer, undefined, 'the transfer list travels beside the reply, not in it');
+  assert.deepEqual(snap.design, { ids: [1], changed: [[1, { type: 'vortex', weight: 5 }]] });
+  assert.deepEqual(reply.list, [snap.faceVectors.buffer, snap.vertexVectors.buffer, snap.oneForm.buffer]);
+  assert.ok(snap.scale.max > 0 && snap.scale.top <= snap.scale.max);
+  assert.deepEqual(posted.at(-1).data.deferredUpdate.seq, reply.data.seq);
+  // wholeDesign: the whole document instead of the change (the progressive core's exact replies).
+  const whole = await call('setWeight', [1, 6], { wholeDesign: true });
+  assert.deepEqual(whole.data.snapshot.design.document, { constraints: [{ type: 'vortex', weight: 6 }] });
+  assert.equal(whole.data.snapshot.version, 2);
+});
+
+test('an edit whose solve fails is taken back, and the reply shows the whole design the core holds', async () => {
+  const { state, call } = worker();
+  const reply = await call('setWeight', [1, -1]);
+  assert.equal(reply.data.ok, false);
+  assert.match(reply.data.error, /not finite/);
+  assert.equal(reply.data.fatal, false);
+  assert.equal(state.core.weights.get(1), 1, 'the weight before the edit');
+  assert.deepEqual(reply.data.snapshot.design.document, { constraints: [{ type: 'vortex', weight: 1 }] });
+  assert.deepEqual(state.core.calls.filter((c) => c === 'solve' || c === 'deferred'), ['solve', 'solve', 'deferred']);
+});
+
+test('read-outs, unknown ops, a missing mesh, a trap, notes and the heartbeat', async () => {
+  const { state, posted, scope, call } = worker();
+  const json = await call('hodgeShares', [0]);
+  assert.deepEqual(json.data.value, { energyShares: { exact: 1 }, decomposeMs: json.data.value.decomposeMs });
+  assert.equal(json.data.snapshot, undefined, 'a read-out changes no field');
+  assert.ok(!state.core.calls.includes('solve'));
+  assert.equal((await call('hodgeShares', [7])).data.value, null, "another version's read-out: null");
+  assert.match((await call('nonsense')).data.error, /unknown operation nonsense/);
+  const trap = await call('trapForTest');
+  assert.equal(trap.data.fatal, true);
+  assert.equal(trap.data.snapshot, undefined);
+  state.core.hasMesh = false;
+  assert.match((await call('setWeight', [1, 2])).data.error, /no mesh loaded/);
+  assert.match((await call('streamlines', [0, 0.1, 0])).data.error, /no mesh loaded/);
+  const before = posted.length;
+  const t0 = performance.now();
+  await scope.onmessage({ data: { hangForTest: 30 } });
+  assert.ok(performance.now() - t0 >= 30, 'the hang holds the thread');
+  assert.equal(posted.length, before, 'a note is not answered');
+  await scope.onmessage({ data: { ping: true } });
+  assert.deepEqual(posted.at(-1).data, { pong: true });
+});
+
+test("one derived-field object per field version: each read-out made on first request, gone with the version", async () => {
+  const { state, call } = worker();
+  await call('setWeight', [1, 2]);
+  const field = state.field;
+  assert.equal(field.version, 1);
+  const calls = () => state.core.calls.filter((c) => c === 'hodge' || c === 'reconstruct' || c === 'vertexVectors');
+  const baseline = calls().length;
+  const first = await call('streamlines', [1, 0.3, 0]);
+  assert.ok(first.data.value.length > 0, 'the rotation field has streamlines');
+  const again = await call('streamlines', [1, 0.3, 0]);
+  assert.deepEqual(again.data.value, first.data.value);
+  assert.equal(calls().length, baseline + 1, 'traced once: one read of the vertex vectors');
+  assert.notEqual(first.data.value[0].buffer, field.traces.get('0.3 0 whole')[0].buffer, 'the kept lines are not handed over');
+
+  await call('hodge', [1]);
+  await call('hodgeShares', [1]);
+  await call('component', [1, 'exact']);
+  await call('component', [1, 'exact']);
+  await call('streamlines', [1, 0.3, 0, 'exact']);
+  assert.deepEqual(calls().slice(baseline + 1), ['hodge', 'reconstruct'], 'one decomposition, one reconstruction');
+  assert.match((await call('component', [1, 'curl'])).data.error, /unknown component "curl"/);
+
+  // Four sets of options are kept; a fifth pushes out the oldest.
+  for (const spacing of [0.31, 0.32, 0.33]) await call('streamlines', [1, spacing, 0]);
+  assert.deepEqual([...field.traces.keys()], ['0.3 0 exact', '0.31 0 whole', '0.32 0 whole', '0.33 0 whole']);
+
+  await call('setWeight', [1, 3]);
+  assert.notEqual(state.field, field, 'a new version, a new object');
+  assert.equal(state.field.version, 2);
+  assert.equal((await call('hodge', [1])).data.value, null);
+  assert.equal((await call('streamlines', [1, 0.3, 0])).data.value, null);
+  const hodgeBefore = state.core.calls.filter((c) => c === 'hodge').length;
+  await call('hodgeShares', [2]);
+  assert.equal(state.core.calls.filter((c) => c === 'hodge').length, hodgeBefore + 1, 'the new version decomposes anew');
+});

@@ -1,0 +1,117 @@
+// The core worker's protocol (the page's side is core-proxy.js): one request at a time, {seq, op, args}, and
+// one reply {seq, ok, value | error, fatal, snapshot?, workerMs, timing}. Every op that may change the field
+// ends with a solve and replies with a snapshot of what changed (snapshot.js); an edit whose solve fails is
+// taken back. Messages outside the sequence: `ping` (the page's heartbeat) and each group's notes.
+//
+// The ops come in groups (edit-ops.js, load-ops.js, preview-ops.js, read-ops.js, hooks.js, setting-ops.js,
+// core-export.js, model-bytes.js, synthesis/worker-ops.js), composed by the worker's entry (web/core-worker.js).
+// A group files each op under what the dispatch does around it:
+//   edits    need a mesh; the core solves after them and the reply carries a snapshot
+//   opens    make a model current, solved by the op itself (one transaction); the reply carries a snapshot
+//   onMesh   need a mesh; the reply carries the op's value only
+//   anytime  need no mesh
+//   notes    {key: fn(value)}: a message {key: value} outside the request sequence
+// Imports the worker's state's parts it drives.
+import { CoreError } from '../core-client.js';
+import { snapshot } from './snapshot.js';
+import { isFatal } from './supervision.js';
+import { Transfer } from './transfer.js';
+
+const KINDS = ['edits', 'opens', 'onMesh', 'anytime'];
+
+// groups: op groups as above. Returns {ops: Map name -> {run, kind}, notes: Map key -> fn}; an op or a note
+// that two groups define is an error (one would silently shadow the other).
+export function composeOps(groups) {
+  const ops = new Map();
+  const notes = new Map();
+  const claim = (table, name, entry) => {
+    if (table.has(name)) throw new Error(`the worker's op ${name} is defined twice`);
+    table.set(name, entry);
+  };
+  for (const group of groups) {
+    for (const kind of KINDS)
+      for (const [name, run] of Object.entries(group[kind] ?? {})) claim(ops, name, { run, kind });
+    for (const [key, fn] of Object.entries(group.notes ?? {})) claim(notes, key, fn);
+  }
+  return { ops, notes };
+}
+
+// Serves the composed groups on scope (the worker's global, or a stand-in with postMessage in tests).
+export function serve(scope, state, groups) {
+  const { ops, notes } = composeOps(groups);
+  scope.onmessage = async ({ data }) => {
+    if (data.ping) return void scope.postMessage({ pong: true });
+    for (const [key, note] of notes) if (data[key]) return void note(data[key]);
+    const entry = ops.get(data.op);
+    const mutating = entry?.kind === 'edits' || entry?.kind === 'opens';
+    const t0 = performance.now();
+    const { reply, transfer } = await answer(state, data, entry, mutating);
+    if (reply.snapshot) delete reply.snapshot.transfer;
+    reply.seq = data.seq;
+    reply.workerMs = performance.now() - t0;
+    scope.postMessage(reply, transfer);
+    // The update the solve went through (Designer::setDeferredUpdates) goes into the factor once the field has
+    // gone.
+    if (!mutating || !state.core?.hasMesh) return;
+    const t = performance.now();
+    state.core.applyDeferredUpdates();
+    scope.postMessage({ deferredUpdate: { seq: data.seq, ms: performance.now() - t } });
+  };
+}
+
+async function answer(state, data, entry, mutating) {
+  const { seq, op } = data;
+  state.beginRequest(seq);
+  state.spares.take(data.spare);
+  const t0 = performance.now();
+  const timing = {};
+  try {
+    if (!entry) throw new CoreError(`unknown operation ${op}`);
+    if (entry.kind === 'edits' || entry.kind === 'onMesh') state.requireMesh();
+    // A preview worker takes each edit posed on its coarse mesh (preview/preview.js), and keeps the fine specs.
+    const args = state.preview && mutating ? state.preview.argsOnCoarse(op, data.args) : data.args;
+    let value = await entry.run(...args);
+    let transfer = [];
+    if (state.preview && mutating)
+      state.preview.afterOp(op, data.args, value instanceof Transfer ? value.value : value);
+    if (value instanceof Transfer) {
+      transfer = value.list;
+      value = value.value;
+    }
+    const t1 = performance.now();
+    timing.opMs = t1 - t0;
+    if (entry.kind === 'edits') state.core.solve();
+    timing.solveMs = performance.now() - t1;
+    const reply = { ok: true, value, timing };
+    if (mutating) {
+      reply.snapshot = snapshot(state, data.wholeDesign ? null : state.changedIds, timing);
+      transfer = [...transfer, ...reply.snapshot.transfer];
+    }
+    return { reply, transfer };
+  } catch (err) {
+    return failed(state, err, entry, mutating, timing);
+  }
+}
+
+// An edit whose factor or solve failed is taken back, so the core never keeps a state it cannot solve; and the
+// page mirrors the core: after a failed edit it must still see what the core now holds (the whole design,
+// whatever the edit had got to).
+function failed(state, err, entry, mutating, timing) {
+  const reply = { ok: false, error: err?.message || String(err), fatal: isFatal(err), timing };
+  if (reply.fatal) return { reply, transfer: [] };
+  if (state.undoEdit) {
+    try {
+      state.undoEdit();
+    } catch {
+      // the snapshot below shows whatever the core holds
+    }
+  }
+  if (!mutating || !state.core?.hasMesh) return { reply, transfer: [] };
+  try {
+    if (entry.kind === 'edits') state.core.solve(); // an open is one transaction: the model it leaves is solved
+    reply.snapshot = snapshot(state, null, timing);
+    return { reply, transfer: reply.snapshot.transfer };
+  } catch {
+    return { reply, transfer: [] }; // no field to show; the page keeps its previous copies
+  }
+}

@@ -1,0 +1,41 @@
+// The worker's edits of one constraint (dispatch.js files them as `edits`: the core solves after each and the
+// reply carries a snapshot). Each says how to take itself back should that solve fail (state.undoEdit) and
+// which design entries it changed (state.changedIds), so that the snapshot carries only those. The edits of
+// the design as a whole are setting-ops.js's. Imports nothing.
+
+export function editOps(state) {
+  return {
+    edits: {
+      // One constraint in the design format: new ones and re-added ones (undo of a delete) alike go through the
+      // core's own design-file parser.
+      add(spec) {
+        const id = state.core.addConstraintJson(spec);
+        state.undoEdit = () => state.core.remove(id);
+        state.changedIds = [id];
+        return id;
+      },
+
+      remove(id) {
+        state.core.remove(id);
+        state.changedIds = [];
+        return true;
+      },
+
+      setWeight(id, w) {
+        const before = state.core.constraint(id)?.weight;
+        state.core.setWeight(id, w);
+        if (before !== undefined) state.undoEdit = () => state.core.setWeight(id, before);
+        state.changedIds = [id];
+        return true;
+      },
+
+      setStrength(id, s) {
+        const before = state.core.constraint(id)?.strength;
+        state.core.setStrength(id, s);
+        if (before !== undefined) state.undoEdit = () => state.core.setStrength(id, before);
+        state.changedIds = [id];
+        return true;
+      },
+    },
+  };
+}
