@@ -118,7 +118,7 @@ check('cornerUVs view (empty for OFF)', d.cornerUVs() instanceof Float32Array &&
 const keep = d.loadMesh(new TextEncoder().encode('OFF\n1 1 0\n0 0 0\n3 0 0 0\n'), '');
 check('failed load keeps the previous mesh', keep !== '' && d.positions().length === 3 * nV, keep);
 
-// A load in steps (big meshes, web/core/core-worker.js): read, then open (checks, settings), then commit; the
+// A load in steps (big meshes, web/core/worker/load-ops.js): read, then open (checks, settings), then commit; the
 // mesh read is the mesh opened, vertex for vertex, and every step's failure keeps the current model.
 {
   const before = Float64Array.from(d.oneForm());

@@ -1,5 +1,5 @@
 // Stand-ins for what the node unit tests (tests/node/*.test.mjs) have no browser or wasm build for: meshes
-// made here, a core link that speaks the worker's protocol (web/core/core-worker.js), an in-memory IndexedDB
+// made here, a core link that speaks the worker's protocol (web/core/worker/dispatch.js), an in-memory IndexedDB
 // and localStorage. Each fake keeps only the behaviour the page relies on, written from the protocol and the
 // IndexedDB spec rather than from the code under test.
 import { icosphereOff } from '../icosphere.mjs';
