@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The one element builder the panels that build their own markup share (export/panel.js,
-// synthesis/panel.js): at the root of web/ so that every layer may use it.
+// synthesis/panel.js), and the canvases synthesis draws into off screen: at the root of web/ so that every layer
+// may use them. Imports nothing.
 
 // el('button', {id, text, class, ...attributes}, ...children): `text` sets the text, `class` the class list,
 // everything else is an attribute.
@@ -13,4 +14,18 @@ export function el(tag, attrs = {}, ...children) {
   }
   e.append(...children);
   return e;
+}
+
+// A <canvas> element of width × height pixels.
+export function canvasElement(width, height) {
+  const c = document.createElement('canvas');
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
+// A canvas of width × height pixels for drawing off screen: an OffscreenCanvas where there is one (a worker has
+// no document), a <canvas> element otherwise.
+export function scratchCanvas(width, height) {
+  return typeof OffscreenCanvas !== 'undefined' ? new OffscreenCanvas(width, height) : canvasElement(width, height);
 }

@@ -10,7 +10,12 @@ import { cameraState, setCameraState } from '../views/camera.js';
 import { captureScreenshot } from '../views/screenshot.js';
 
 // Synchronous reads: copies of what the session holds after the last completed change.
-const read = (fn) => (d, ...args) => (d.session.requireReady(), fn(d, d.session, ...args));
+const read =
+  (fn) =>
+  (d, ...args) => {
+    d.session.requireReady();
+    return fn(d, d.session, ...args);
+  };
 const add = (d, spec) => d.session.addConstraint(spec);
 // A worker read-out of the session's current field (an op taking the field's version first); called in the
 // session's queue, where no edit can change the field before it answers.
@@ -27,7 +32,8 @@ export const api = {
   mesh: read((d, s) => ({ positions: s.surface.positions.slice(), triangles: s.surface.triangles.slice() })),
   edges: read((d, s) => s.surface.edges.slice()),
 
-  addStroke: (d, points, { strength = 1, weight = DEFAULT_WEIGHT } = {}) => add(d, strokeSpec(points, { strength, weight })),
+  addStroke: (d, points, { strength = 1, weight = DEFAULT_WEIGHT } = {}) =>
+    add(d, strokeSpec(points, { strength, weight })),
   addVector: (d, face, vector, { weight = DEFAULT_WEIGHT } = {}) => add(d, vectorSpec(face, vector, { weight })),
   addEdge: (d, edge, value, { weight = DEFAULT_WEIGHT } = {}) => add(d, edgeSpec(edge, value, { weight })),
   addSource: (d, vertex, { strength = 1 } = {}) => add(d, pointSpec('source', vertex, strength)),
@@ -52,7 +58,10 @@ export const api = {
   frame: read((d, s, view = 'home') => d.viewer.frame(view)),
   camera: (d) => cameraState(d.viewer),
   // A PNG Blob of the view at {width, height} pixels (default: the canvas), {transparent} background.
-  screenshot: (d, options) => (d.session.requireReady(), captureScreenshot(d.viewer, options)),
+  screenshot: (d, options) => {
+    d.session.requireReady();
+    return captureScreenshot(d.viewer, options);
+  },
   setCamera: (d, state) => setCameraState(d.viewer, state),
   hasUnsavedEdits: (d) => d.session.hasUnsavedEdits(),
   // options.ignoreFingerprint: apply a design saved for another mesh anyway.
@@ -115,16 +124,23 @@ export const api = {
   supervision: (d) => d.session.supervision(),
   // What a crash of the core's worker does, on purpose (tests, demonstrations); a memory limit for the factor
   // (0: the wasm address space left) so tests need no multi-million-edge mesh.
-  debugDelayExact: (d, ms) => void (d.session.debugExactDelayMs = ms),
+  debugDelayExact: (d, ms) => {
+    d.session.debugExactDelayMs = ms;
+  },
   debugTerminateCore: (d) => d.session.proxy?.terminateForTest(),
   debugHangCore: (d, ms) => d.session.proxy?.hangForTest(ms),
   debugTrapCore: (d) => d.session.exclusive(() => d.session.proxy.call('trapForTest')),
-  debugSetFactorMemoryLimit: (d, bytes) => d.session.exclusive(() => d.session.proxy.call('setFactorMemoryLimit', [bytes])).then(() => true),
+  debugSetFactorMemoryLimit: (d, bytes) =>
+    d.session.exclusive(() => d.session.proxy.call('setFactorMemoryLimit', [bytes])).then(() => true),
   // The tests' references for what the page derives lazily or keeps incrementally: the core's own read-outs
   // ({oneForm, faceVectors, vertexVectors, singularities, design}, derived by the core now), and streamlines
   // traced on the page now for the current field and spacing (whatever the view's cache, traced in the worker,
   // holds).
-  debugCoreReadout: (d) => d.session.exclusive(async () => (d.session.requireReady(), (await d.session.proxy.call('read')).value)),
+  debugCoreReadout: (d) =>
+    d.session.exclusive(async () => {
+      d.session.requireReady();
+      return (await d.session.proxy.call('read')).value;
+    }),
   debugTraceStreamlines: read((d) => d.viewSync.traceStreamlinesHere().map((l) => Array.from(l))),
   debugGlPrograms: (d) => d.viewer.renderer.info.programs.length,
   // The big-surface layer (views/surface-layer.js) from minFaces faces on (when given), and its counts.
@@ -135,11 +151,20 @@ export const api = {
       layer.invalidate();
       d.viewer.renderNow();
     }
-    return { minFaces: layer.minFaces, drawn: layer.drawn, copied: layer.copied, rect: layer.rect && { ...layer.rect } };
+    return {
+      minFaces: layer.minFaces,
+      drawn: layer.drawn,
+      copied: layer.copied,
+      rect: layer.rect && { ...layer.rect },
+    };
   },
   // The worker's `component` op for the current field: {oneForm, faceVectors, vertexVectors} of 'whole' |
   // 'exact' | 'coexact' | 'harmonic'.
-  debugComponent: (d, name) => d.session.exclusive(() => (d.session.requireReady(), workerRead(d, 'component', name))),
+  debugComponent: (d, name) =>
+    d.session.exclusive(() => {
+      d.session.requireReady();
+      return workerRead(d, 'component', name);
+    }),
 };
 
 // The texture-synthesis calls (web/synthesis/index.js installs them on the designer's synthesis controller).

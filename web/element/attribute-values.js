@@ -17,7 +17,8 @@ export function parseBoundary(text) {
 // core takes; the panel names 1, 2 and 4), gamma and curvature-alignment ≥ 0.
 export function parseSetting(kind, attr, text) {
   const x = Number(text);
-  if (kind === 'symmetry' && !(Number.isInteger(x) && x >= 1 && x <= 6)) throw new Error(`symmetry must be a whole number from 1 to 6 (got "${text}")`);
+  if (kind === 'symmetry' && !(Number.isInteger(x) && x >= 1 && x <= 6))
+    throw new Error(`symmetry must be a whole number from 1 to 6 (got "${text}")`);
   if (kind !== 'symmetry' && !(x >= 0)) throw new Error(`${attr} must be a number ≥ 0 (got "${text}")`);
   return x;
 }

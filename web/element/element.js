@@ -36,7 +36,8 @@ const NUMBER_DEFAULTS = Object.freeze({ gamma: 0, symmetry: 1, curvatureAlignmen
 // The settings the element writes back into their attributes whenever the design's change (the panel, the API,
 // an undo, a loaded design), as it does the tool into `tool`: the attribute and the selector always agree.
 const REFLECTED_SETTINGS = ['symmetry', 'curvatureAlignment'];
-const propertyOf = (attr) => Object.entries({ ...STRING_ATTRIBUTES, ...NUMBER_ATTRIBUTES }).find(([, a]) => a === attr)?.[0] ?? attr;
+const propertyOf = (attr) =>
+  Object.entries({ ...STRING_ATTRIBUTES, ...NUMBER_ATTRIBUTES }).find(([, a]) => a === attr)?.[0] ?? attr;
 // Tells the element it is the app page's designer (index.html): the page's keyboard shortcuts and the
 // ?bench=1 benchmark. Not for embedding pages.
 export const APP_PAGE = Symbol('tangent-field-designer app page');
@@ -119,7 +120,8 @@ export class TangentFieldDesigner extends Base {
   }
 
   #assetBase() {
-    const base = this.getAttribute('asset-base') ?? TangentFieldDesigner.assetBase ?? new URL('./', import.meta.url).href;
+    const base =
+      this.getAttribute('asset-base') ?? TangentFieldDesigner.assetBase ?? new URL('./', import.meta.url).href;
     const url = new URL(base, document.baseURI);
     if (!url.pathname.endsWith('/')) url.pathname += '/';
     return url;
@@ -135,7 +137,8 @@ export class TangentFieldDesigner extends Base {
       autosave: this.getAttribute('autosave'),
       bench: this.#appPage,
       onTool: (tool) => {
-        if (this.getAttribute('tool') !== tool && (tool !== 'orbit' || this.hasAttribute('tool'))) this.setAttribute('tool', tool);
+        if (this.getAttribute('tool') !== tool && (tool !== 'orbit' || this.hasAttribute('tool')))
+          this.setAttribute('tool', tool);
       },
       onSettings: (settings) => this.#reflectSettings(settings),
     });
@@ -215,7 +218,10 @@ export class TangentFieldDesigner extends Base {
     if (value === null) return;
     const setting = kind === 'boundary' ? parseBoundary(value) : parseSetting(kind, NUMBER_ATTRIBUTES[kind], value);
     // Before the first model, the setting waits in the session's design and goes in with the mesh.
-    if (!s.info) return void (s.design = { ...s.design, [kind]: setting });
+    if (!s.info) {
+      s.design = { ...s.design, [kind]: setting };
+      return;
+    }
     // The value in force already (also: the element's own reflection of a change made elsewhere).
     if (kind !== 'boundary' && s.settings()[kind] === setting) return;
     s.setSetting(kind, setting).catch((err) => s.fail('setting', err));
@@ -233,7 +239,13 @@ export class TangentFieldDesigner extends Base {
 
   #applyViews(d, on) {
     const s = d.session;
-    d.viewSync.set({ arrows: on.has('arrows'), streamlines: on.has('streamlines'), lic: on.has('lic'), colorMap: on.has('magnitude'), singularities: on.has('singularities') });
+    d.viewSync.set({
+      arrows: on.has('arrows'),
+      streamlines: on.has('streamlines'),
+      lic: on.has('lic'),
+      colorMap: on.has('magnitude'),
+      singularities: on.has('singularities'),
+    });
     const texture = on.has('texture');
     if (texture === d.textureView) return;
     d.textureView = texture;

@@ -7,7 +7,11 @@ export const HELP_TOOLS = [
   ['Vector', 'V', 'Drag on a triangle: the field’s direction and size there.'],
   ['Source', 'R', 'Click: the field flows out of the nearest vertex. Vector fields only.'],
   ['Sink', 'G', 'Click: the field flows into the nearest vertex. Vector fields only.'],
-  ['Vortex', 'B', 'Click: the field turns around the triangle (X flips counter-clockwise / clockwise). Vector fields only.'],
+  [
+    'Vortex',
+    'B',
+    'Click: the field turns around the triangle (X flips counter-clockwise / clockwise). Vector fields only.',
+  ],
 ];
 
 export const HELP_SHORTCUTS = [
@@ -28,7 +32,10 @@ export const HELP_GESTURES = [
   ['Double-click / double-tap on the model', 'Orbit around that point'],
   ['Drop a file on the view', 'Open a mesh (.glb, .gltf, .obj, .off, .ply) or load a design (.json)'],
   ['☰ Panels (small screens)', 'Open or close the settings and constraint drawers (a bottom sheet on phones)'],
-  ['⋯ (narrower windows)', 'The toolbar buttons that do not fit in its row: ↑ ↓ to move, Enter to choose, Escape to close'],
+  [
+    '⋯ (narrower windows)',
+    'The toolbar buttons that do not fit in its row: ↑ ↓ to move, Enter to choose, Escape to close',
+  ],
 ];
 
 function table(caption, rows) {
@@ -52,7 +59,11 @@ function table(caption, rows) {
 // overlay: the empty #help element; hint: #hint; storage key for "the hint was seen" (null: never stored).
 export function bindHelp(overlay, hint, hintKey) {
   const body = overlay.querySelector('.help-body');
-  body.replaceChildren(table('Tools', HELP_TOOLS), table('Shortcuts', HELP_SHORTCUTS), table('Mouse and touch', HELP_GESTURES));
+  body.replaceChildren(
+    table('Tools', HELP_TOOLS),
+    table('Shortcuts', HELP_SHORTCUTS),
+    table('Mouse and touch', HELP_GESTURES),
+  );
   const close = () => (overlay.hidden = true);
   const open = () => {
     overlay.hidden = false;

@@ -14,17 +14,26 @@ export function fmtNum(x) {
 
 // Whether a key press is typing into a box (which keeps its keys) rather than a shortcut.
 export function isTyping(target) {
-  return target instanceof HTMLInputElement || target instanceof HTMLSelectElement || target instanceof HTMLTextAreaElement;
+  return (
+    target instanceof HTMLInputElement || target instanceof HTMLSelectElement || target instanceof HTMLTextAreaElement
+  );
 }
 
 function invalid(input) {
   const v = input.validity;
-  return v.badInput || v.rangeUnderflow || v.rangeOverflow || input.value.trim() === '' || !Number.isFinite(Number(input.value));
+  return (
+    v.badInput ||
+    v.rangeUnderflow ||
+    v.rangeOverflow ||
+    input.value.trim() === '' ||
+    !Number.isFinite(Number(input.value))
+  );
 }
 
 // Marks each number box invalid (aria-invalid) as it is typed in.
 export function watchNumbers(inputs) {
-  for (const input of inputs) input.addEventListener('input', () => input.setAttribute('aria-invalid', String(invalid(input))));
+  for (const input of inputs)
+    input.addEventListener('input', () => input.setAttribute('aria-invalid', String(invalid(input))));
 }
 
 // The number in `input`, or an Error naming the box and the value when it is not a valid one.

@@ -10,7 +10,8 @@ async function mayDiscard(d, what, confirmLabel) {
   if (!s.hasUnsavedEdits()) return true;
   const n = s.table.size;
   return d.ui.confirm(
-    `${what} replaces the current design (${n} constraint${n === 1 ? '' : 's'}), which has unsaved edits. Save it first with Save (Ctrl+S), or go ahead.`,
+    `${what} replaces the current design (${n} constraint${n === 1 ? '' : 's'}), which has unsaved edits. ` +
+      'Save it first with Save (Ctrl+S), or go ahead.',
     confirmLabel,
   );
 }
@@ -28,14 +29,18 @@ async function loadDesignFile(d, file) {
   const apply = (ignoreFingerprint) =>
     s.replaceDesign(design, 'load design', { ignoreFingerprint }).then(() => {
       s.markSaved();
-      d.ui.flash(`Loaded ${file.name} (${s.table.size} constraints). Undo (Ctrl+Z) brings the previous design back.`, 5000);
+      d.ui.flash(
+        `Loaded ${file.name} (${s.table.size} constraints). Undo (Ctrl+Z) brings the previous design back.`,
+        5000,
+      );
     });
   try {
     await apply(false);
   } catch (err) {
     const message = `Could not load ${file.name}: ${err.message}`;
     s.emit('error', { code: 'design', message });
-    if (/another mesh/.test(err.message)) d.ui.showError(message, { label: 'Apply anyway', run: () => d.report(apply(true)) });
+    if (/another mesh/.test(err.message))
+      d.ui.showError(message, { label: 'Apply anyway', run: () => d.report(apply(true)) });
   }
 }
 
@@ -64,7 +69,10 @@ export function panelActions(d) {
       if (await mayDiscard(d, 'Loading a design', 'Load anyway')) d.report(loadDesignFile(d, file));
     }),
     onSaveDesign: () => saveDesign(d),
-    onExportField: () => d.report(s().exportField().then((text) => downloadJson(`${baseName(s().modelName)}.field.json`, text))),
+    onExportField: () => {
+      const download = (text) => downloadJson(`${baseName(s().modelName)}.field.json`, text);
+      return d.report(s().exportField().then(download));
+    },
     onTool: (tool) => {
       d.tools?.setTool(tool); // bindUi selects orbit before the tools exist
       d.onTool(tool);
@@ -90,6 +98,8 @@ export function panelActions(d) {
     onEditWeight: editable((uid, w) => d.report(s().setParameter('weight', uid, w))),
     onEditStrength: editable((uid, v) => d.report(s().setParameter('strength', uid, v))),
     onCancel: () => s().cancel(),
-    onClear: editable(() => s().table.size && d.report(s().replaceDesign({ ...s().settings(), constraints: [] }, 'clear'))),
+    onClear: editable(
+      () => s().table.size && d.report(s().replaceDesign({ ...s().settings(), constraints: [] }, 'clear')),
+    ),
   };
 }

@@ -1,11 +1,28 @@
-// The side panels: field settings (symmetry, curvature alignment, boundary, smoothness), the views and their legend, and the constraint
-// list with the selection editor. Reports user intent through `actions` and renders the state it is handed;
-// a box the user is typing in is never overwritten.
+// The side panels: field settings (symmetry, curvature alignment, boundary, smoothness), the views and their legend,
+// and the constraint list with the selection editor. Reports user intent through `actions` and renders the state it
+// is handed; a box the user is typing in is never overwritten.
 import { checkedNumber, fmtNum, guarded } from './numbers.js';
 import { alignsToCurvature } from '../session/symmetry.js';
 
-const SWATCH = { stroke: '#ff7a1a', vector: '#fbbf24', edge: '#ff7a1a', source: '#ef4444', sink: '#22c55e', vortex: '#3b82f6' };
-const VIEW_INPUTS = ['show-arrows', 'arrow-density', 'arrow-scaled', 'show-streamlines', 'streamline-spacing', 'show-lic', 'show-colormap', 'show-singularities', 'view-component'];
+const SWATCH = {
+  stroke: '#ff7a1a',
+  vector: '#fbbf24',
+  edge: '#ff7a1a',
+  source: '#ef4444',
+  sink: '#22c55e',
+  vortex: '#3b82f6',
+};
+const VIEW_INPUTS = [
+  'show-arrows',
+  'arrow-density',
+  'arrow-scaled',
+  'show-streamlines',
+  'streamline-spacing',
+  'show-lic',
+  'show-colormap',
+  'show-singularities',
+  'view-component',
+];
 const SHARE_PARTS = ['exact', 'coexact', 'harmonic'];
 
 const title = (type) => `${type[0].toUpperCase()}${type.slice(1)}`;
@@ -63,7 +80,13 @@ export function bindPanels($, focused, actions, showError) {
     $('#boundary-angle-row').hidden = boundarySelect.value !== 'angle';
     actions.onBoundary(boundaryChoice());
   });
-  angleInput.addEventListener('change', guard(() => (checkedNumber(angleInput, 'The boundary angle'), actions.onBoundary(boundaryChoice()))));
+  angleInput.addEventListener(
+    'change',
+    guard(() => {
+      checkedNumber(angleInput, 'The boundary angle');
+      return actions.onBoundary(boundaryChoice());
+    }),
+  );
   gamma.addEventListener('change', guard((e) => actions.onGamma(checkedNumber(e.target, 'Smoothness γ'))));
 
   // ---- symmetry and curvature alignment: the checkbox turns the alignment on at the strength in the box.
@@ -84,10 +107,12 @@ export function bindPanels($, focused, actions, showError) {
     symmetry.value = String(n);
     const available = alignsToCurvature(n);
     const row = $('#curvature-row');
-    align.disabled = alignStrength.disabled = !available;
+    align.disabled = !available;
+    alignStrength.disabled = !available;
     row.title = available
       ? 'Pulls the field toward principal curvature directions: the usual start for quad remeshing and hatching'
-      : 'Only for line and cross fields (an even symmetry): principal curvature directions have no sign and come in pairs at right angles';
+      : 'Only for line and cross fields (an even symmetry): principal curvature directions have no sign and come ' +
+        'in pairs at right angles';
     align.checked = strength > 0;
     if (strength > 0 && focused() !== alignStrength) alignStrength.value = String(strength);
   }
@@ -96,10 +121,12 @@ export function bindPanels($, focused, actions, showError) {
   // Their controls stay, greyed, with the reason, and come back with a vector field.
   const VECTOR_ONLY = ['#boundary', '#boundary-angle', '#gamma', '#view-component'];
   const vectorTitles = new Map(VECTOR_ONLY.map((sel) => [sel, $(sel).closest('label').title]));
+  const VECTOR_ONLY_REASON =
+    'For vector fields only: a line or cross field has a free boundary, no γ and no Hodge decomposition.';
   function setVectorOnly(n) {
     for (const sel of VECTOR_ONLY) {
       $(sel).disabled = n > 1;
-      $(sel).closest('label').title = n > 1 ? `For vector fields only: a line or cross field has a free boundary, no γ and no Hodge decomposition. ${vectorTitles.get(sel)}` : vectorTitles.get(sel);
+      $(sel).closest('label').title = n > 1 ? `${VECTOR_ONLY_REASON} ${vectorTitles.get(sel)}` : vectorTitles.get(sel);
     }
   }
 
@@ -174,8 +201,14 @@ export function bindPanels($, focused, actions, showError) {
   });
   $('#clear-all').addEventListener('click', () => actions.onClear());
   $('#sel-delete').addEventListener('click', () => selectedUid != null && actions.onRemove(selectedUid));
-  $('#sel-weight').addEventListener('change', guard((e) => selectedUid != null && actions.onEditWeight(selectedUid, checkedNumber(e.target, 'The weight'))));
-  $('#sel-strength').addEventListener('change', guard((e) => selectedUid != null && actions.onEditStrength(selectedUid, checkedNumber(e.target, 'The strength'))));
+  $('#sel-weight').addEventListener(
+    'change',
+    guard((e) => selectedUid != null && actions.onEditWeight(selectedUid, checkedNumber(e.target, 'The weight'))),
+  );
+  $('#sel-strength').addEventListener(
+    'change',
+    guard((e) => selectedUid != null && actions.onEditStrength(selectedUid, checkedNumber(e.target, 'The strength'))),
+  );
 
   // constraints: [{id, type, ...spec}] in the page's order; selected: id or null.
   function setConstraints(constraints, selected) {

@@ -113,7 +113,11 @@ export function bindStatus($, host, { onCancel }) {
     const t0 = performance.now();
     let ticker = 0;
     let shown = false;
-    const update = () => shown && (progress.querySelector('.label').textContent = `${label} ${Math.round((performance.now() - t0) / 1000)} s`);
+    const update = () => {
+      if (!shown) return;
+      const seconds = Math.round((performance.now() - t0) / 1000);
+      progress.querySelector('.label').textContent = `${label} ${seconds} s`;
+    };
     const show = setTimeout(() => {
       shown = true;
       progress.hidden = false;

@@ -10,7 +10,9 @@
 export function bindOverflow(toolbar) {
   const button = toolbar.querySelector('#more-button');
   const menu = toolbar.querySelector('#more-menu');
-  const ranked = [...toolbar.querySelectorAll('[data-overflow]')].sort((a, b) => a.dataset.overflow - b.dataset.overflow);
+  const ranked = [...toolbar.querySelectorAll('[data-overflow]')].sort(
+    (a, b) => a.dataset.overflow - b.dataset.overflow,
+  );
   const seps = [...toolbar.children].filter((el) => el.classList.contains('sep'));
   const groups = [...toolbar.querySelectorAll('.group')];
   let scheduled = 0;
@@ -20,7 +22,8 @@ export function bindOverflow(toolbar) {
   function over(reserve = 0) {
     const box = toolbar.getBoundingClientRect();
     let right = box.left;
-    for (const el of toolbar.children) if (el !== menu && shown(el)) right = Math.max(right, el.getBoundingClientRect().right);
+    for (const el of toolbar.children)
+      if (el !== menu && shown(el)) right = Math.max(right, el.getBoundingClientRect().right);
     return right + reserve + parseFloat(getComputedStyle(toolbar).paddingRight) > box.left + toolbar.clientWidth + 0.5;
   }
   const options = toolbar.querySelector('.tool-options');
@@ -129,7 +132,10 @@ export function bindOverflow(toolbar) {
   const outside = (e) => !e.composedPath().some((n) => n === menu || n === button) && close(false);
   const doc = toolbar.ownerDocument;
   doc.addEventListener('pointerdown', outside, true);
-  menu.addEventListener('focusout', (e) => e.relatedTarget && e.relatedTarget !== button && !menu.contains(e.relatedTarget) && close(false));
+  menu.addEventListener(
+    'focusout',
+    (e) => e.relatedTarget && e.relatedTarget !== button && !menu.contains(e.relatedTarget) && close(false),
+  );
 
   const schedule = () => (scheduled ||= requestAnimationFrame(fit));
   // Sizes change with the element, with the readonly and controls attributes, and with the tool options; a

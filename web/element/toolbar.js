@@ -36,7 +36,8 @@ export function bindToolbar($, $$, actions, flash) {
     overflow.fit(); // this tool's options may need room: refit now, not a frame later
     actions.onTool(tool);
   }
-  for (const btn of $$('[data-orientation]')) btn.addEventListener('click', () => setOrientation(btn.dataset.orientation));
+  for (const btn of $$('[data-orientation]'))
+    btn.addEventListener('click', () => setOrientation(btn.dataset.orientation));
   function setOrientation(o) {
     orientation = o;
     for (const b of $$('[data-orientation]')) b.setAttribute('aria-pressed', String(b.dataset.orientation === o));
@@ -50,7 +51,8 @@ export function bindToolbar($, $$, actions, flash) {
       const btn = toolButton(tool), off = !keepsConstraint(tool, n);
       btn.disabled = off;
       btn.title = off
-        ? `${btn.textContent}: not for ${fieldPhrase(n)} — its directions have no sign, so it has no sources, sinks or vortices (switch Symmetry to Vector)`
+        ? `${btn.textContent}: not for ${fieldPhrase(n)} — its directions have no sign, so it has no sources, ` +
+          'sinks or vortices (switch Symmetry to Vector)'
         : baseTitles.get(tool);
       if (off && btn.getAttribute('aria-pressed') === 'true') setTool('orbit');
     }

@@ -31,7 +31,8 @@ export function bindUi(root, host, actions) {
     const mod = e.ctrlKey || e.metaKey;
     const key = e.key.toLowerCase();
     if (mod && !e.altKey && (key === 'z' || key === 'y')) {
-      if (isTyping(e.target) && e.target.type !== 'checkbox' && e.target.type !== 'range') return; // the field's own undo
+      // A text box's own undo.
+      if (isTyping(e.target) && e.target.type !== 'checkbox' && e.target.type !== 'range') return;
       e.preventDefault();
       if (key === 'y' || e.shiftKey) actions.onRedo();
       else actions.onUndo();

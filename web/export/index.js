@@ -12,7 +12,14 @@ import { mountExportPanel } from './panel.js';
 // The export options the page starts with (the CLI's defaults, docs/export.md). texture: 'auto' embeds the
 // synthesized texture when one is shown, true requires one (the last one made), false leaves it out;
 // textureResolution / textureMagnification size its image (default 2 pixels per atlas texel).
-export const DEFAULT_EXPORT_OPTIONS = { size: 1024, convention: 'gltf', bits: 8, strength: 1, rotation: 0, texture: 'auto' };
+export const DEFAULT_EXPORT_OPTIONS = {
+  size: 1024,
+  convention: 'gltf',
+  bits: 8,
+  strength: 1,
+  rotation: 0,
+  texture: 'auto',
+};
 // The preview needs no flow map, and its anisotropy texture (normal-mapped models) can be coarser; it shows the
 // field's material, not the texture.
 const PREVIEW_OPTIONS = { embedFlowMap: false, embedDesign: false, size: 512, texture: false };
@@ -31,11 +38,16 @@ export function setupExport({ viewer, panel, call, modelName, onError, texture =
 
   async function exportGlb(opts = {}) {
     const o = { ...options, ...opts };
-    if (![true, false, 'auto'].includes(o.texture)) throw new Error(`exportGlb: texture must be true, false or 'auto' (got ${JSON.stringify(o.texture)})`);
+    if (![true, false, 'auto'].includes(o.texture))
+      throw new Error(`exportGlb: texture must be true, false or 'auto' (got ${JSON.stringify(o.texture)})`);
     const image =
       o.texture === false || (!texture && o.texture === 'auto')
         ? null
-        : await requireTexture().exportTexture({ resolution: o.textureResolution, magnification: o.textureMagnification, required: o.texture === true });
+        : await requireTexture().exportTexture({
+            resolution: o.textureResolution,
+            magnification: o.textureMagnification,
+            required: o.texture === true,
+          });
     return call('exportGlb', [coreOptions(o), image]);
   }
 
@@ -49,7 +61,10 @@ export function setupExport({ viewer, panel, call, modelName, onError, texture =
   const downloadRawField = () =>
     exportRawField().then((text) => downloadBlob(`${modelName()}.rawfield`, new Blob([text], { type: 'text/plain' })));
 
-  const downloadGlb = (opts) => exportGlb(opts).then((glb) => downloadBlob(`${modelName()}.field.glb`, new Blob([glb], { type: 'model/gltf-binary' })));
+  const downloadGlb = (opts) =>
+    exportGlb(opts).then((glb) =>
+      downloadBlob(`${modelName()}.field.glb`, new Blob([glb], { type: 'model/gltf-binary' })),
+    );
 
   // Re-export and show; concurrent requests collapse into the latest (MaterialPreview drops stale loads).
   function showPreview() {
@@ -82,7 +97,12 @@ export function setupExport({ viewer, panel, call, modelName, onError, texture =
     onOptions: (next) => setOptions(next),
     onFlowMap: () =>
       exportFlowMap()
-        .then((png) => downloadBlob(`${modelName()}.flow-${options.convention}-${options.size}.png`, new Blob([png], { type: 'image/png' })))
+        .then((png) =>
+          downloadBlob(
+            `${modelName()}.flow-${options.convention}-${options.size}.png`,
+            new Blob([png], { type: 'image/png' }),
+          ),
+        )
         .catch(onError),
     onGlb: () => downloadGlb().catch(onError),
     onRawField: () => downloadRawField().catch(onError),

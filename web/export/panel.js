@@ -12,25 +12,61 @@ function select(id, title, values, value) {
 }
 
 export function mountExportPanel(container, { options, presets, onOptions, onFlowMap, onGlb, onRawField, onPreview }) {
-  const size = select('export-size', 'Flow map texels per side', [256, 512, 1024, 2048, 4096].map((n) => [n, String(n)]), options.size);
+  const size = select(
+    'export-size',
+    'Flow map texels per side',
+    [256, 512, 1024, 2048, 4096].map((n) => [n, String(n)]),
+    options.size,
+  );
   const convention = select(
     'export-convention',
-    'gltf: G = 0.5 + 0.5·dv (three.js, Babylon.js, Unreal through glTF). opengl: G = 0.5 − 0.5·dv (Unity, Blender, Godot flip v on import)',
+    'gltf: G = 0.5 + 0.5·dv (three.js, Babylon.js, Unreal through glTF). ' +
+      'opengl: G = 0.5 − 0.5·dv (Unity, Blender, Godot flip v on import)',
     [['gltf', 'glTF'], ['opengl', 'OpenGL (v flipped)']],
     options.convention,
   );
   const bits = select('export-bits', 'Bits per channel', [[8, '8-bit'], [16, '16-bit']], options.bits);
-  const strength = el('input', { id: 'export-strength', type: 'number', min: '0', max: '1', step: '0.05', value: String(options.strength) });
-  const rotation = el('input', { id: 'export-rotation', type: 'number', step: '15', value: String((options.rotation * 180) / Math.PI) });
-  const flowMap = el('button', { id: 'export-flowmap', type: 'button', text: 'Flow map', title: 'Download the flow map PNG (the field in the model\'s UV square)' });
-  const glbTitle = 'Download the model with the field: TANGENT along it, _FIELD, KHR_materials_anisotropy, flow map, design and the synthesized texture (when one is shown) inside';
+  const strength = el('input', {
+    id: 'export-strength',
+    type: 'number',
+    min: '0',
+    max: '1',
+    step: '0.05',
+    value: String(options.strength),
+  });
+  const rotation = el('input', {
+    id: 'export-rotation',
+    type: 'number',
+    step: '15',
+    value: String((options.rotation * 180) / Math.PI),
+  });
+  const flowMap = el('button', {
+    id: 'export-flowmap',
+    type: 'button',
+    text: 'Flow map',
+    title: "Download the flow map PNG (the field in the model's UV square)",
+  });
+  const glbTitle =
+    'Download the model with the field: TANGENT along it, _FIELD, KHR_materials_anisotropy, flow map, design ' +
+    'and the synthesized texture (when one is shown) inside';
   const glb = el('button', { id: 'export-glb', type: 'button', text: 'GLB', title: glbTitle });
   // Line and cross fields only: all N directions per face, as Directional's tools (and quad remeshers fed by
   // them) read them (docs/export.md).
-  const rawField = el('button', { id: 'export-rawfield', type: 'button', text: 'Cross-field file', hidden: true,
-    title: 'Download the field as a raw field (.rawfield: "N numF", then the N directions of each face), the format Directional reads, for quad remeshing' });
-  const preview = select('export-preview', 'Show the exported material (physical, anisotropic along the field) under a studio environment',
-    [['', 'off'], ...presets.map((p) => [p, p])], '');
+  const rawField = el('button', {
+    id: 'export-rawfield',
+    type: 'button',
+    text: 'Cross-field file',
+    hidden: true,
+    title:
+      'Download the field as a raw field (.rawfield: "N numF", then the N directions of each face), the format ' +
+      'Directional reads, for quad remeshing',
+  });
+  const preview = select(
+    'export-preview',
+    'Show the exported material (physical, anisotropic along the field) under a studio environment',
+    [['', 'off'], ...presets.map((p) => [p, p])],
+    '',
+  );
 
   const section = el(
     'details',
@@ -72,9 +108,10 @@ export function mountExportPanel(container, { options, presets, onOptions, onFlo
     setSymmetry(n) {
       rawField.hidden = n < 2;
       glb.textContent = n === 2 ? 'Anisotropy GLB' : 'GLB';
-      glb.title = n >= 2
-        ? `${glbTitle}; the ${n === 2 ? 'line' : 'cross'} field combed to one direction per region (KHR_materials_anisotropy does not see its sign)`
-        : glbTitle;
+      const combed =
+        `the ${n === 2 ? 'line' : 'cross'} field combed to one direction per region ` +
+        '(KHR_materials_anisotropy does not see its sign)';
+      glb.title = n >= 2 ? `${glbTitle}; ${combed}` : glbTitle;
     },
     setPreview(preset) {
       preview.value = preset ?? '';

@@ -116,7 +116,8 @@ export class SurfaceSampler {
   }
 }
 
-const bucketOf = (grid, ix, iy, iz) => (Math.imul(ix, 73856093) ^ Math.imul(iy, 19349663) ^ Math.imul(iz, 83492791)) & grid.mask;
+const bucketOf = (grid, ix, iy, iz) =>
+  (Math.imul(ix, 73856093) ^ Math.imul(iy, 19349663) ^ Math.imul(iz, 83492791)) & grid.mask;
 
 function occupied(grid, points, ix, iy, iz, x, y, z, r2) {
   for (let dx = -1; dx <= 1; dx++)

@@ -25,7 +25,8 @@ export function faceDirections(surface, vertexVectors, N) {
     let re = 0, im = 0, first = null;
     for (let k = 0; k < 3; k++) {
       const v = 3 * T[3 * f + k];
-      const x = V[v] * t1[0] + V[v + 1] * t1[1] + V[v + 2] * t1[2], y = V[v] * t2[0] + V[v + 1] * t2[1] + V[v + 2] * t2[2];
+      const x = V[v] * t1[0] + V[v + 1] * t1[1] + V[v + 2] * t1[2];
+      const y = V[v] * t2[0] + V[v + 1] * t2[1] + V[v + 2] * t2[2];
       const th = Math.atan2(y, x);
       first ??= th;
       re += Math.cos(N * th);
@@ -41,8 +42,14 @@ export function faceDirections(surface, vertexVectors, N) {
 // Whether the edge between half-edge h (local edge k of face f) and its twin (local edge kk of face g) is a
 // seam of the atlas: its two ends have different UVs in the two faces (cornerUVs: 6 per face).
 function isSeam(cornerUVs, f, k, g, kk) {
-  const U = cornerUVs, fi = 6 * f + 2 * k, fj = 6 * f + 2 * ((k + 1) % 3), gi = 6 * g + 2 * ((kk + 1) % 3), gj = 6 * g + 2 * kk;
-  return Math.hypot(U[fi] - U[gi], U[fi + 1] - U[gi + 1]) >= 1e-7 || Math.hypot(U[fj] - U[gj], U[fj + 1] - U[gj + 1]) >= 1e-7;
+  const U = cornerUVs;
+  const fi = 6 * f + 2 * k;
+  const fj = 6 * f + 2 * ((k + 1) % 3);
+  const gi = 6 * g + 2 * ((kk + 1) % 3);
+  const gj = 6 * g + 2 * kk;
+  return (
+    Math.hypot(U[fi] - U[gi], U[fi + 1] - U[gi + 1]) >= 1e-7 || Math.hypot(U[fj] - U[gj], U[fj + 1] - U[gj + 1]) >= 1e-7
+  );
 }
 
 // Binary min-heap of (cost, item) pairs in parallel arrays.
@@ -120,7 +127,12 @@ export function combForAtlas(surface, faceDirs, N, cornerUVs = null) {
     ey /= l;
     ez /= l;
     const ux = out[3 * f], uy = out[3 * f + 1], uz = out[3 * f + 2];
-    const fx = Nm[3 * f], fy = Nm[3 * f + 1], fz = Nm[3 * f + 2], gx = Nm[3 * g], gy = Nm[3 * g + 1], gz = Nm[3 * g + 2];
+    const fx = Nm[3 * f];
+    const fy = Nm[3 * f + 1];
+    const fz = Nm[3 * f + 2];
+    const gx = Nm[3 * g];
+    const gy = Nm[3 * g + 1];
+    const gz = Nm[3 * g + 2];
     const along = ux * ex + uy * ey + uz * ez;
     const across = ux * (fy * ez - fz * ey) + uy * (fz * ex - fx * ez) + uz * (fx * ey - fy * ex);
     c[0] = along * ex + across * (gy * ez - gz * ey);
@@ -163,7 +175,10 @@ export function combForAtlas(surface, faceDirs, N, cornerUVs = null) {
     const f = (h / 3) | 0, g = (o / 3) | 0;
     carry(f, h % 3, g);
     const u = 3 * g, cos = c[0] * out[u] + c[1] * out[u + 1] + c[2] * out[u + 2];
-    const sin = (c[1] * out[u + 2] - c[2] * out[u + 1]) * Nm[u] + (c[2] * out[u] - c[0] * out[u + 2]) * Nm[u + 1] + (c[0] * out[u + 1] - c[1] * out[u]) * Nm[u + 2];
+    const sin =
+      (c[1] * out[u + 2] - c[2] * out[u + 1]) * Nm[u] +
+      (c[2] * out[u] - c[0] * out[u + 2]) * Nm[u + 1] +
+      (c[0] * out[u + 1] - c[1] * out[u]) * Nm[u + 2];
     if (Math.abs(Math.atan2(sin, cos)) > limit) flips.push([f, g]);
   }
   return { faces: out, flips };

@@ -24,8 +24,8 @@
 //
 // Float32Mesh (surface.float32, optional): { positions: Float32Array (3/vertex), normals: Float32Array
 //   (3/vertex, the Surface's area-weighted vertex normals), index: Uint32Array (3/face), colors:
-//   Uint8Array (3/vertex, all 255, normalized: the colour map's attribute, written by viewer.setVertexField) }. With a bvh,
-//   positions and index are the bvh's own arrays (the same objects: structured cloning keeps that identity,
+//   Uint8Array (3/vertex, all 255, normalized: the colour map's attribute, written by viewer.setVertexField) }.
+//   With a bvh, positions and index are the bvh's own arrays (the same objects: structured cloning keeps that identity,
 //   and transferList() lists each buffer once, since a buffer listed twice makes postMessage throw).
 import { BufferAttribute, BufferGeometry, Box3, Sphere, Vector3 } from 'three';
 import { MeshBVH } from 'three-mesh-bvh';
@@ -108,7 +108,11 @@ export function adoptBVH(geometry, serialized) {
   const { positions, index, faces, vertices } = serialized;
   // Without positions and index (pickingParts): the geometry's own, which must then be there.
   const own = positions == null && index == null;
-  if (own ? !geometry.index || geometry.index.count !== 3 * faces : index.length !== 3 * faces || positions.length !== 3 * vertices)
+  if (
+    own
+      ? !geometry.index || geometry.index.count !== 3 * faces
+      : index.length !== 3 * faces || positions.length !== 3 * vertices
+  )
     throw new Error('adoptBVH: serialized arrays do not match their counts');
   const position = geometry.getAttribute('position');
   if (!position && !own) geometry.setAttribute('position', new BufferAttribute(positions, 3));

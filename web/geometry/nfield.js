@@ -68,7 +68,9 @@ export function matchedCorners(surface, vertexVectors, reference, N) {
   const out = new Float64Array(9 * nF);
   for (let f = 0; f < nF; f++) {
     const nx = Nm[3 * f], ny = Nm[3 * f + 1], nz = Nm[3 * f + 2];
-    let rx = reference ? reference[3 * f] : 0, ry = reference ? reference[3 * f + 1] : 0, rz = reference ? reference[3 * f + 2] : 0;
+    let rx = reference ? reference[3 * f] : 0;
+    let ry = reference ? reference[3 * f + 1] : 0;
+    let rz = reference ? reference[3 * f + 2] : 0;
     for (let k = 0; k < 3; k++) {
       const v = 3 * T[3 * f + k], o = 9 * f + 3 * k;
       const d = V[v] * nx + V[v + 1] * ny + V[v + 2] * nz;

@@ -50,7 +50,8 @@ export function findSingularities(surface, faceVectors, symmetry = 1) {
       const fi = (ey * uz - ez * uy) * nx + (ez * ux - ex * uz) * ny + (ex * uy - ey * ux) * nz;
       const vx = F[3 * g], vy = F[3 * g + 1], vz = F[3 * g + 2];
       const gr = ex * vx + ey * vy + ez * vz;
-      const gi = (ey * vz - ez * vy) * N[3 * g] + (ez * vx - ex * vz) * N[3 * g + 1] + (ex * vy - ey * vx) * N[3 * g + 2];
+      const gi =
+        (ey * vz - ez * vy) * N[3 * g] + (ez * vx - ex * vz) * N[3 * g + 1] + (ex * vy - ey * vx) * N[3 * g + 2];
       let jump = Math.atan2(gi * fr - gr * fi, gr * fr + gi * fi); // arg(g · conj(f))
       if (sym > 1) jump -= (TWO_PI / sym) * Math.round((sym * jump) / TWO_PI);
       turning[b] += jump;
@@ -61,7 +62,10 @@ export function findSingularities(surface, faceVectors, symmetry = 1) {
   const out = [];
   for (let v = 0; v < nV; v++) {
     if (!counted[v]) continue;
-    const index = sym > 1 ? Math.round((sym * (turning[v] + defect[v])) / TWO_PI) / sym : Math.round((turning[v] + defect[v]) / TWO_PI);
+    const index =
+      sym > 1
+        ? Math.round((sym * (turning[v] + defect[v])) / TWO_PI) / sym
+        : Math.round((turning[v] + defect[v]) / TWO_PI);
     if (index !== 0) out.push({ vertex: v, index });
   }
   return out;

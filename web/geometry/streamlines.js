@@ -41,7 +41,8 @@ export function traceStreamlines(surface, vertexVectors, options = {}) {
       const s = line.samples[k];
       const n = Math.hypot(s.dir[0], s.dir[1]);
       if (!n) continue;
-      for (const side of [1, -1]) seeds.push({ face: s.face, p: s.p, dir: [(-side * s.dir[1]) / n, (side * s.dir[0]) / n] });
+      for (const side of [1, -1])
+        seeds.push({ face: s.face, p: s.p, dir: [(-side * s.dir[1]) / n, (side * s.dir[0]) / n] });
     }
   };
 
@@ -70,7 +71,19 @@ export function traceStreamlines(surface, vertexVectors, options = {}) {
       const c = Math.cos(a), s = Math.sin(a), heading = [c * d0[0] - s * d0[1], s * d0[0] + c * d0[1]];
       if (grid.near(x, nrm, dSep * 0.99, -1, 0, 0, surface.vec3d(face, heading), turn.familyCos)) continue;
       const id = nextId++;
-      keep(traceLineN(surface, field, face, p, heading, { h, dTest, dSep, grid, id, lift, bothWays: families.bothWays, ...turn }), id);
+      keep(
+        traceLineN(surface, field, face, p, heading, {
+          h,
+          dTest,
+          dSep,
+          grid,
+          id,
+          lift,
+          bothWays: families.bothWays,
+          ...turn,
+        }),
+        id,
+      );
     }
   };
 
@@ -141,7 +154,10 @@ function direction(surface, field, f, p) {
   const x = b[0] * C[o] + b[1] * C[o + 2] + b[2] * C[o + 4];
   const y = b[0] * C[o + 1] + b[1] * C[o + 3] + b[2] * C[o + 5];
   const l = Math.hypot(x, y);
-  if (field.lengths && !(l > COHERENCE * (b[0] * field.lengths[3 * f] + b[1] * field.lengths[3 * f + 1] + b[2] * field.lengths[3 * f + 2])))
+  if (
+    field.lengths &&
+    !(l > COHERENCE * (b[0] * field.lengths[3 * f] + b[1] * field.lengths[3 * f + 1] + b[2] * field.lengths[3 * f + 2]))
+  )
     return null;
   return l > field.floor ? [x / l, y / l] : null;
 }
@@ -152,7 +168,11 @@ function traceLine(surface, field, face, p, opts) {
   opts.grid.add(surface.to3d(face, p), surface.normal(face), opts.id, 0);
   const fwd = traceHalf(surface, field, face, p, 1, opts);
   const bwd = traceHalf(surface, field, face, p, -1, opts);
-  const samples = [...bwd.samples.reverse(), { face, p, dir: direction(surface, field, face, p) ?? [0, 0] }, ...fwd.samples];
+  const samples = [
+    ...bwd.samples.reverse(),
+    { face, p, dir: direction(surface, field, face, p) ?? [0, 0] },
+    ...fwd.samples,
+  ];
   return polyline(surface, samples, bwd.length + fwd.length, opts.lift);
 }
 
@@ -172,7 +192,9 @@ function polyline(surface, samples, length, lift) {
 function traceLineN(surface, field, face, p, heading, opts) {
   opts.grid.add(surface.to3d(face, p), surface.normal(face), opts.id, 0, surface.vec3d(face, heading));
   const fwd = traceHalfN(surface, field, face, p, heading, 1, opts);
-  const bwd = opts.bothWays ? traceHalfN(surface, field, face, p, [-heading[0], -heading[1]], -1, opts) : { samples: [], length: 0 };
+  const bwd = opts.bothWays
+    ? traceHalfN(surface, field, face, p, [-heading[0], -heading[1]], -1, opts)
+    : { samples: [], length: 0 };
   const samples = [...bwd.samples.reverse(), { face, p, dir: heading }, ...fwd.samples];
   return polyline(surface, samples, bwd.length + fwd.length, opts.lift);
 }
@@ -285,7 +307,12 @@ class PointGrid {
             if (id === self ? Math.abs(list[k + 7] - arc) <= arcGap : this.dead.has(id)) continue;
             const ex = list[k] - x[0], ey = list[k + 1] - x[1], ez = list[k + 2] - x[2];
             if (ex * ex + ey * ey + ez * ez >= r2) continue;
-            if (t && familyCos > -1 && Math.abs(list[k + 8] * t[0] + list[k + 9] * t[1] + list[k + 10] * t[2]) < familyCos) continue;
+            if (
+              t &&
+              familyCos > -1 &&
+              Math.abs(list[k + 8] * t[0] + list[k + 9] * t[1] + list[k + 10] * t[2]) < familyCos
+            )
+              continue;
             if (list[k + 3] * n[0] + list[k + 4] * n[1] + list[k + 5] * n[2] > 0) return true;
           }
         }

@@ -60,7 +60,10 @@ export class Surface {
       const ux = P[b] - P[a], uy = P[b + 1] - P[a + 1], uz = P[b + 2] - P[a + 2];
       const wx = P[c] - P[a], wy = P[c + 1] - P[a + 1], wz = P[c + 2] - P[a + 2];
       const vx = P[c] - P[b], vy = P[c + 1] - P[b + 1], vz = P[c + 2] - P[b + 2];
-      edgeSum += Math.sqrt(ux * ux + uy * uy + uz * uz) + Math.sqrt(wx * wx + wy * wy + wz * wz) + Math.sqrt(vx * vx + vy * vy + vz * vz);
+      edgeSum +=
+        Math.sqrt(ux * ux + uy * uy + uz * uz) +
+        Math.sqrt(wx * wx + wy * wy + wz * wz) +
+        Math.sqrt(vx * vx + vy * vy + vz * vz);
       const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
       A[f] = Math.sqrt(nx * nx + ny * ny + nz * nz) / 2;
     }
@@ -88,7 +91,18 @@ export class Surface {
     return out;
   }
 
-  static ARRAYS = ['positions', 'triangles', 'edges', 'normals', 'areas', 'neighbour', 'vertexFaceStart', 'vertexFaces', 'vertexNormals', 'areaCdf'];
+  static ARRAYS = [
+    'positions',
+    'triangles',
+    'edges',
+    'normals',
+    'areas',
+    'neighbour',
+    'vertexFaceStart',
+    'vertexFaces',
+    'vertexNormals',
+    'areaCdf',
+  ];
   static ADJACENCY = ['neighbour', 'vertexFaceStart', 'vertexFaces'];
   // What a big model's surface sends after its first field (mesh-bvh-transfer.js pickingParts).
   static PICKING = [...Surface.ADJACENCY, 'normals'];
@@ -258,7 +272,8 @@ export class Surface {
     let face = f, pos = p, d = dir, left = length;
     for (let n = 0; n < maxCrossings; n++) {
       const exit = this.exitOf(face, pos, [d[0] * left, d[1] * left]);
-      if (!exit) return { face, p: [pos[0] + d[0] * left, pos[1] + d[1] * left], dir: d, hitBoundary: false, travelled: length };
+      if (!exit)
+        return { face, p: [pos[0] + d[0] * left, pos[1] + d[1] * left], dir: d, hitBoundary: false, travelled: length };
       const q = [pos[0] + d[0] * left * exit.t, pos[1] + d[1] * left * exit.t];
       left *= 1 - exit.t;
       const next = this.cross(face, exit.edge, q, d);

@@ -15,14 +15,23 @@ export function preparedAtlas(Module, { positions, triangles, cornerUVs }, optio
   const surface = new Surface(positions, triangles, null);
   atlas.complexity = shapeComplexity(surface);
   const t0 = performance.now();
-  atlas.seams = seamIndirection({ positions, triangles, neighbour: surface.neighbour }, atlas.cornerUVs, options.resolution);
+  atlas.seams = seamIndirection(
+    { positions, triangles, neighbour: surface.neighbour },
+    atlas.cornerUVs,
+    options.resolution,
+  );
   atlas.seams.ms = performance.now() - t0;
   return atlas;
 }
 
 // The arrays a prepared atlas hands over (transferred, not copied).
 export function preparedBuffers(atlas) {
-  const out = [atlas.cornerUVs.buffer, atlas.corners.data.buffer, atlas.corners.faceArea.buffer, atlas.seams.map.buffer];
+  const out = [
+    atlas.cornerUVs.buffer,
+    atlas.corners.data.buffer,
+    atlas.corners.faceArea.buffer,
+    atlas.seams.map.buffer,
+  ];
   if (atlas.faceCharts) out.push(atlas.faceCharts.buffer);
   return out;
 }

@@ -12,10 +12,16 @@ export class AtlasRaster {
   // two; neighbour: the half-edge map of geometry/mesh-geometry.js when the caller holds one (the model's
   // Surface), else it is derived for the seams. corners and seams: cornerData() and seamIndirection() of this
   // mesh and atlas when made elsewhere (the core's worker, atlas-prepared.js), else made here.
-  constructor(gl, jacobianProgram, { resolution, positions, triangles, cornerUVs, neighbour = null, corners = null, seams = null }) {
-    if (!isPow2(resolution) || resolution < 4 || resolution > 4096) throw new GLError(`atlas resolution must be a power of two in [4, 4096] (got ${resolution})`);
+  constructor(
+    gl,
+    jacobianProgram,
+    { resolution, positions, triangles, cornerUVs, neighbour = null, corners = null, seams = null },
+  ) {
+    if (!isPow2(resolution) || resolution < 4 || resolution > 4096)
+      throw new GLError(`atlas resolution must be a power of two in [4, 4096] (got ${resolution})`);
     const nF = triangles.length / 3;
-    if (cornerUVs.length !== 6 * nF) throw new GLError(`cornerUVs must hold 6 numbers per face (${6 * nF}), got ${cornerUVs.length}`);
+    if (cornerUVs.length !== 6 * nF)
+      throw new GLError(`cornerUVs must hold 6 numbers per face (${6 * nF}), got ${cornerUVs.length}`);
     this.gl = gl;
     this.resolution = resolution;
     this.triangles = Int32Array.from(triangles);
@@ -34,7 +40,11 @@ export class AtlasRaster {
     this.levels = [];
     const t0 = performance.now();
     this.seamMaps = seams ?? seamIndirection({ positions, triangles, neighbour }, cornerUVs, resolution);
-    this.seams = { edges: this.seamMaps.seamEdges, redirectedTexels: this.seamMaps.redirected, ms: (this.seamMaps.ms ?? 0) + performance.now() - t0 };
+    this.seams = {
+      edges: this.seamMaps.seamEdges,
+      redirectedTexels: this.seamMaps.redirected,
+      ms: (this.seamMaps.ms ?? 0) + performance.now() - t0,
+    };
   }
 
   // The GPU textures, one per step, for a caller to yield between them: each allocation can wait for the GPU
@@ -103,7 +113,8 @@ export class AtlasRaster {
     const sums = { mag: 0, area: 0 };
     yield* this.#uploadFixed(Math.max(1, o.sliceFaces >> 2)); // 11 floats a corner against the field's 3
     const corners = field?.cornerVectors ?? null;
-    if (corners && corners.length !== 9 * nF) throw new GLError(`cornerVectors must hold 9 numbers per face (${9 * nF}), got ${corners.length}`);
+    if (corners && corners.length !== 9 * nF)
+      throw new GLError(`cornerVectors must hold 9 numbers per face (${9 * nF}), got ${corners.length}`);
     // A slice of o.sliceFaces faces per task: at 832k faces the whole field in one bufferSubData (with the fixed
     // data beside it, 140 MB) held the page for 5-7 s while the GPU process caught up; 32k faces are ~1 MB.
     for (let f0 = 0; f0 < nF; f0 += o.sliceFaces) {
@@ -197,7 +208,8 @@ export class AtlasRaster {
     gl.deleteBuffer(this.buffer);
     gl.deleteBuffer(this.fieldBuffer);
     gl.deleteVertexArray(this.vao);
-    for (const L of this.levels) for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, ...L.quarters]) t?.dispose();
+    for (const L of this.levels)
+      for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, ...L.quarters]) t?.dispose();
     this.jacScratch?.dispose();
     this.levels = [];
   }

@@ -17,8 +17,10 @@ export function rasterCoverage(cornerUVs, n, faces = null) {
     let area = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
     if (!(Math.abs(area) > 1e-12)) continue;
     if (area < 0) [bx, by, cx, cy, area] = [cx, cy, bx, by, -area];
-    const x0 = Math.max(0, Math.floor(Math.min(ax, bx, cx) - 0.5)), x1 = Math.min(n - 1, Math.ceil(Math.max(ax, bx, cx) - 0.5));
-    const y0 = Math.max(0, Math.floor(Math.min(ay, by, cy) - 0.5)), y1 = Math.min(n - 1, Math.ceil(Math.max(ay, by, cy) - 0.5));
+    const x0 = Math.max(0, Math.floor(Math.min(ax, bx, cx) - 0.5));
+    const x1 = Math.min(n - 1, Math.ceil(Math.max(ax, bx, cx) - 0.5));
+    const y0 = Math.max(0, Math.floor(Math.min(ay, by, cy) - 0.5));
+    const y1 = Math.min(n - 1, Math.ceil(Math.max(ay, by, cy) - 0.5));
     // Edge function of p against edge (p0 -> p1); top-left rule for ties.
     const edge = (x0e, y0e, x1e, y1e, px, py) => {
       const e = (x1e - x0e) * (py - y0e) - (y1e - y0e) * (px - x0e);
@@ -39,7 +41,8 @@ export function rasterCoverage(cornerUVs, n, faces = null) {
 }
 
 function withBuilder(Module, fn) {
-  if (typeof Module?.TextureAtlasBuilder !== 'function') throw new Error('this build of the core has no TextureAtlasBuilder; rebuild it (npm run build:wasm)');
+  if (typeof Module?.TextureAtlasBuilder !== 'function')
+    throw new Error('this build of the core has no TextureAtlasBuilder; rebuild it (npm run build:wasm)');
   const builder = new Module.TextureAtlasBuilder();
   try {
     return fn(builder);
@@ -63,14 +66,19 @@ export function generateAtlas(Module, positions, triangles, { resolution = 512, 
   return withBuilder(Module, (b) => {
     const err = b.generate(positions, triangles, resolution, gutter);
     if (err) throw new Error(`atlas generation failed: ${err}`);
-    return { cornerUVs: Float32Array.from(b.cornerUVs()), faceCharts: Int32Array.from(b.faceCharts()), stats: JSON.parse(b.statsJson()) };
+    return {
+      cornerUVs: Float32Array.from(b.cornerUVs()),
+      faceCharts: Int32Array.from(b.faceCharts()),
+      stats: JSON.parse(b.statsJson()),
+    };
   });
 }
 
 // The atlas synthesis will use for a model: its TEXCOORD_0 when usable, else a generated one.
 export function chooseAtlas(Module, { positions, triangles, cornerUVs }, { resolution = 512, gutter = 3 } = {}) {
   const check = checkAtlasUVs(Module, triangles, cornerUVs, { resolution });
-  if (check.ok) return { cornerUVs: Float32Array.from(cornerUVs), source: 'TEXCOORD_0', reason: check.reason, stats: check.stats };
+  if (check.ok)
+    return { cornerUVs: Float32Array.from(cornerUVs), source: 'TEXCOORD_0', reason: check.reason, stats: check.stats };
   const t0 = performance.now();
   const gen = generateAtlas(Module, positions, triangles, { resolution, gutter });
   return {

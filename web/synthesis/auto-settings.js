@@ -42,8 +42,15 @@ export function shapeComplexity({ positions, triangles, normals, areas, neighbou
     const f = Math.floor(h / 3), g = Math.floor(other / 3);
     if (!(areas[f] > 0 && areas[g] > 0)) continue;
     const i = 3 * triangles[h], j = 3 * triangles[3 * f + ((h + 1) % 3)];
-    const d = normals[3 * f] * normals[3 * g] + normals[3 * f + 1] * normals[3 * g + 1] + normals[3 * f + 2] * normals[3 * g + 2];
-    const len = Math.hypot(positions[i] - positions[j], positions[i + 1] - positions[j + 1], positions[i + 2] - positions[j + 2]);
+    const d =
+      normals[3 * f] * normals[3 * g] +
+      normals[3 * f + 1] * normals[3 * g + 1] +
+      normals[3 * f + 2] * normals[3 * g + 2];
+    const len = Math.hypot(
+      positions[i] - positions[j],
+      positions[i + 1] - positions[j + 1],
+      positions[i + 2] - positions[j + 2],
+    );
     bend += Math.acos(Math.min(1, Math.max(-1, d))) * len;
   }
   return area > 0 ? (bend / (2 * area)) * Math.sqrt(area) : 0;

@@ -20,12 +20,19 @@ function flatSquare(n = 16) {
         for (const v of t) cornerUVs.push(...uv(v));
       }
     }
-  return { positions: Float64Array.from(positions), triangles: Int32Array.from(triangles), cornerUVs: Float32Array.from(cornerUVs) };
+  return {
+    positions: Float64Array.from(positions),
+    triangles: Int32Array.from(triangles),
+    cornerUVs: Float32Array.from(cornerUVs),
+  };
 }
 
 // library: an ExemplarLibrary (exemplar.js). Returns {device, exemplar, runs: [{size, levels, totalMs, plainMs,
 // ratio, ...}]}; `repeats` measured runs per size after one warm-up run (shader compilation), best one reported.
-export async function runSynthesisBench(library, { sizes = [256, 512, 1024], exemplar = 'scales', repeats = 2, featureScale = 1 } = {}) {
+export async function runSynthesisBench(
+  library,
+  { sizes = [256, 512, 1024], exemplar = 'scales', repeats = 2, featureScale = 1 } = {},
+) {
   const { tables } = await library.procedural(exemplar, 64, 1);
   const synth = new Synthesizer();
   const gl = synth.gl;
@@ -35,7 +42,10 @@ export async function runSynthesisBench(library, { sizes = [256, 512, 1024], exe
   const sq = flatSquare(16);
   const t = Math.PI / 6;
   const vv = new Float64Array(sq.positions.length);
-  for (let v = 0; v < vv.length; v += 3) (vv[v] = Math.cos(t)), (vv[v + 1] = Math.sin(t));
+  for (let v = 0; v < vv.length; v += 3) {
+    vv[v] = Math.cos(t);
+    vv[v + 1] = Math.sin(t);
+  }
   const runs = [];
   try {
     for (const size of sizes) {
@@ -66,11 +76,14 @@ export async function runSynthesisBench(library, { sizes = [256, 512, 1024], exe
 
 // The bench as a text table.
 export function formatBench(result) {
-  const lines = [`texture synthesis bench on ${result.device}; exemplar ${result.exemplar}, analysis ${result.analysis.totalMs.toFixed(0)} ms (wasm)`];
+  const analysisMs = result.analysis.totalMs.toFixed(0);
+  const head = `texture synthesis bench on ${result.device}; exemplar ${result.exemplar}`;
+  const lines = [`${head}, analysis ${analysisMs} ms (wasm)`];
   for (const r of result.runs) {
+    const levels = r.levels.map((l) => `${l.size}²:${l.ms}`).join(' ');
     lines.push(
-      `${r.size}²: total ${r.totalMs} ms (${r.totalNoLevelSyncMs} ms without per-level waits), plain pass ${r.plainPassMs} ms, ratio ${r.ratioToPlainPass}; levels ` +
-        r.levels.map((l) => `${l.size}²:${l.ms}`).join(' '),
+      `${r.size}²: total ${r.totalMs} ms (${r.totalNoLevelSyncMs} ms without per-level waits), ` +
+        `plain pass ${r.plainPassMs} ms, ratio ${r.ratioToPlainPass}; levels ${levels}`,
     );
   }
   return lines.join('\n');

@@ -5,6 +5,7 @@
 //
 // The analysis (~0.1-0.5 s for a 128^2 exemplar) runs in the element's core worker (analyzeExemplar there), so
 // the page keeps drawing and taking input; the page keeps the cache.
+import { scratchCanvas } from '../dom.js';
 
 export const USER_EXEMPLAR_SIZE = 128;
 export const PROCEDURAL_SIZE = 64;
@@ -22,16 +23,25 @@ function tablesOf(analysis) {
       projectionOffset: Float32Array.from(analysis.projectionOffset(s)),
     });
   }
-  return { size: analysis.size(), levels, rgba8: Uint8Array.from(analysis.rgba8()), stats: JSON.parse(analysis.statsJson()) };
+  return {
+    size: analysis.size(),
+    levels,
+    rgba8: Uint8Array.from(analysis.rgba8()),
+    stats: JSON.parse(analysis.statsJson()),
+  };
 }
 
 // spec: {procedural, size, seed} or {rgba (Uint8Array of size*size*4), size}. Returns the tables: {size,
 // levels, rgba8, stats}.
 export function analyzeExemplar(Module, spec) {
-  if (typeof Module?.ExemplarAnalysis !== 'function') throw new Error('this build of the core has no ExemplarAnalysis; rebuild it (npm run build:wasm)');
+  if (typeof Module?.ExemplarAnalysis !== 'function')
+    throw new Error('this build of the core has no ExemplarAnalysis; rebuild it (npm run build:wasm)');
   const a = new Module.ExemplarAnalysis();
   try {
-    const err = typeof spec.procedural === 'string' ? a.analyzeProcedural(spec.procedural, spec.size, spec.seed ?? 1) : a.analyzeRGBA8(spec.rgba, spec.size);
+    const err =
+      typeof spec.procedural === 'string'
+        ? a.analyzeProcedural(spec.procedural, spec.size, spec.seed ?? 1)
+        : a.analyzeRGBA8(spec.rgba, spec.size);
     if (err) throw new Error(`exemplar analysis: ${err}`);
     return tablesOf(a);
   } finally {
@@ -66,7 +76,8 @@ export class ExemplarLibrary {
   }
 
   procedural(name, size = PROCEDURAL_SIZE, seed = 1) {
-    if (name === 'brushed') return this.#cached(`procedural:${name}:${size}:${seed}`, name, { rgba: brushedRGBA8(size, seed), size });
+    if (name === 'brushed')
+      return this.#cached(`procedural:${name}:${size}:${seed}`, name, { rgba: brushedRGBA8(size, seed), size });
     return this.#cached(`procedural:${name}:${size}:${seed}`, name, { procedural: name, size, seed });
   }
 
@@ -88,8 +99,7 @@ export function contentHash(bytes) {
 }
 
 function canvas2d(size) {
-  const c = typeof OffscreenCanvas !== 'undefined' ? new OffscreenCanvas(size, size) : Object.assign(document.createElement('canvas'), { width: size, height: size });
-  return c.getContext('2d', { willReadFrequently: true });
+  return scratchCanvas(size, size).getContext('2d', { willReadFrequently: true });
 }
 
 // Any image source (URL string/URL, Blob/File, ImageData, ImageBitmap, HTMLImageElement/Canvas) as RGBA8 of
@@ -135,7 +145,11 @@ export function brushedRGBA8(size, seed = 1) {
   let state = (seed * 2654435761) >>> 0 || 1;
   const rand = () => ((state = (Math.imul(state, 1664525) + 1013904223) >>> 0) / 4294967296);
   const H = 4;
-  const rows = Array.from({ length: size }, () => ({ base: rand() - 0.5, a: Array.from({ length: H }, () => rand() / (1 + rand())), p: Array.from({ length: H }, () => 2 * Math.PI * rand()) }));
+  const rows = Array.from({ length: size }, () => ({
+    base: rand() - 0.5,
+    a: Array.from({ length: H }, () => rand() / (1 + rand())),
+    p: Array.from({ length: H }, () => 2 * Math.PI * rand()),
+  }));
   const raw = new Float64Array(size * size);
   for (let y = 0; y < size; y++)
     for (let x = 0; x < size; x++) {

@@ -2,6 +2,7 @@
 // Small raw-WebGL2 helpers for the synthesizer: programs, float textures and render targets, full-screen passes.
 // Every texture here is read with texelFetch (integer texel addresses), so all use NEAREST filtering and need only
 // EXT_color_buffer_float to be rendered into.
+import { scratchCanvas } from '../dom.js';
 
 // Texture and atlas sizes are powers of two (the pyramid halves them down to 2x2).
 export const isPow2 = (n) => Number.isInteger(n) && n > 0 && (n & (n - 1)) === 0;
@@ -15,11 +16,18 @@ export class GLError extends Error {
 
 // A WebGL2 context of our own (synthesis never touches three.js's GL state) with float render targets.
 export function createContext() {
-  const canvas =
-    typeof OffscreenCanvas !== 'undefined' ? new OffscreenCanvas(1, 1) : Object.assign(document.createElement('canvas'), { width: 1, height: 1 });
-  const gl = canvas.getContext('webgl2', { antialias: false, depth: false, stencil: false, alpha: true, premultipliedAlpha: false, preserveDrawingBuffer: false });
+  const canvas = scratchCanvas(1, 1);
+  const gl = canvas.getContext('webgl2', {
+    antialias: false,
+    depth: false,
+    stencil: false,
+    alpha: true,
+    premultipliedAlpha: false,
+    preserveDrawingBuffer: false,
+  });
   if (!gl) throw new GLError('texture synthesis needs WebGL2, which this browser does not provide');
-  if (!gl.getExtension('EXT_color_buffer_float')) throw new GLError('texture synthesis needs float render targets (EXT_color_buffer_float)');
+  if (!gl.getExtension('EXT_color_buffer_float'))
+    throw new GLError('texture synthesis needs float render targets (EXT_color_buffer_float)');
   return gl;
 }
 
@@ -57,8 +65,14 @@ export class Program {
     if (this.checked) return this;
     const gl = this.gl;
     if (!gl.getProgramParameter(this.program, gl.LINK_STATUS)) {
-      const compileLog = [this.vs, this.fs].map((sh) => (gl.getShaderParameter(sh, gl.COMPILE_STATUS) ? '' : gl.getShaderInfoLog(sh))).join('');
-      throw new GLError(compileLog ? `${this.label}: shader compile failed: ${compileLog}` : `${this.label}: link failed: ${gl.getProgramInfoLog(this.program)}`);
+      const compileLog = [this.vs, this.fs]
+        .map((sh) => (gl.getShaderParameter(sh, gl.COMPILE_STATUS) ? '' : gl.getShaderInfoLog(sh)))
+        .join('');
+      throw new GLError(
+        compileLog
+          ? `${this.label}: shader compile failed: ${compileLog}`
+          : `${this.label}: link failed: ${gl.getProgramInfoLog(this.program)}`,
+      );
     }
     gl.deleteShader(this.vs);
     gl.deleteShader(this.fs);
@@ -145,7 +159,8 @@ export class FloatTarget {
       gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, this.texture, 0);
       const status = check ? gl.checkFramebufferStatus(gl.FRAMEBUFFER) : gl.FRAMEBUFFER_COMPLETE;
       gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-      if (status !== gl.FRAMEBUFFER_COMPLETE) throw new GLError(`RGBA32F render target ${width}x${height} is incomplete (0x${status.toString(16)})`);
+      if (status !== gl.FRAMEBUFFER_COMPLETE)
+        throw new GLError(`RGBA32F render target ${width}x${height} is incomplete (0x${status.toString(16)})`);
     }
   }
 

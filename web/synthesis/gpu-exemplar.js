@@ -23,7 +23,8 @@ function packProjection(projection) {
   for (let k = 0; k < 8; k++)
     for (let b = 0; b < 4; b++)
       for (let c = 0; c < 4; c++)
-        for (let r = 0; r < 4; r++) proj[16 * (4 * k + b) + 4 * c + r] = projection[64 * k + 8 * (4 * (b & 1) + c) + 4 * (b >> 1) + r];
+        for (let r = 0; r < 4; r++)
+          proj[16 * (4 * k + b) + 4 * c + r] = projection[64 * k + 8 * (4 * (b & 1) + c) + 4 * (b >> 1) + r];
   return proj;
 }
 

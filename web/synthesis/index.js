@@ -41,7 +41,9 @@ function scheduleBench(tvf, controller, viewport) {
       window.tvfBench = result;
       const pre = document.createElement('pre');
       pre.id = 'synthesis-bench';
-      pre.style.cssText = 'position:absolute;left:220px;bottom:40px;z-index:10;background:#000c;color:#dfe;padding:8px;font:12px monospace;white-space:pre-wrap;max-width:70vw';
+      pre.style.cssText =
+        'position:absolute;left:220px;bottom:40px;z-index:10;background:#000c;color:#dfe;padding:8px;' +
+        'font:12px monospace;white-space:pre-wrap;max-width:70vw';
       pre.textContent = formatBench(result);
       viewport?.append(pre);
       console.log(pre.textContent);
@@ -62,7 +64,10 @@ export function setupSynthesis(api, { panel = null, bench = null, downloadGlb = 
     const modelName = () => baseName(deps.getModel()?.name);
     const view = mountSynthesisPanel(controller, panel, { onError: deps.onError, modelName, downloadGlb });
     const notify = controller.onChange;
-    controller.onChange = () => (notify(), view.refresh());
+    controller.onChange = () => {
+      notify();
+      view.refresh();
+    };
   }
   return controller;
 }

@@ -3,12 +3,16 @@
 // scale, atlas resolution, magnitude-driven scale, synthesize / off, PNG and GLB export, and a status line with
 // the last synthesis times. Built here (no markup in index.html) and appended to the given container. The GLB
 // button is the one GLB export's (downloadGlb, export/index.js): the model with the field and this texture.
-import { el } from '../dom.js';
+import { canvasElement, el } from '../dom.js';
 import { downloadBlob } from '../session/documents.js';
 
 const fmt = (ms) => (ms < 10 ? ms.toFixed(1) : ms.toFixed(0));
 
-export function mountSynthesisPanel(controller, container, { onError = (e) => console.error(e), modelName = () => 'model', downloadGlb = null } = {}) {
+export function mountSynthesisPanel(
+  controller,
+  container,
+  { onError = (e) => console.error(e), modelName = () => 'model', downloadGlb = null } = {},
+) {
   const exemplar = el('select', { id: 'tex-exemplar', title: 'The exemplar the texture is synthesized from' });
   for (const name of controller.proceduralNames()) exemplar.append(el('option', { value: name, text: name }));
   exemplar.append(el('option', { value: 'image', text: 'Image…' }));
@@ -25,10 +29,26 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
   const progress = el('progress', { id: 'tex-progress', max: '1', value: '0', hidden: '' });
   progress.style.cssText = 'width:100%;height:6px';
   const byMagnitude = el('input', { id: 'tex-magnitude', type: 'checkbox' });
-  const go = el('button', { id: 'tex-synthesize', type: 'button', text: 'Synthesize', title: 'Synthesize the texture along the field; it follows every later field change' });
+  const go = el('button', {
+    id: 'tex-synthesize',
+    type: 'button',
+    text: 'Synthesize',
+    title: 'Synthesize the texture along the field; it follows every later field change',
+  });
   const off = el('button', { id: 'tex-off', type: 'button', text: 'Off', title: 'Back to the plain surface' });
-  const png = el('button', { id: 'tex-png', type: 'button', text: 'PNG', title: 'Download the synthesized atlas texture' });
-  const glb = el('button', { id: 'tex-glb', type: 'button', text: 'GLB', title: 'Download the model with the texture, the field and its flow map (binary glTF; the same file as Export › GLB)' });
+  const png = el('button', {
+    id: 'tex-png',
+    type: 'button',
+    text: 'PNG',
+    title: 'Download the synthesized atlas texture',
+  });
+  const glb = el('button', {
+    id: 'tex-glb',
+    type: 'button',
+    text: 'GLB',
+    title:
+      'Download the model with the texture, the field and its flow map (binary glTF; the same file as Export › GLB)',
+  });
   glb.hidden = !downloadGlb;
   const status = el('p', { id: 'tex-status', class: 'note', text: 'No texture yet.' });
 
@@ -39,11 +59,31 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
     el('label', { title: 'Exemplar' }, 'Exemplar ', exemplar),
     preview,
     file,
-    el('label', { title: 'Texture feature size on the surface (log2; 0 = one exemplar pixel per atlas texel)' }, 'Scale ', scale),
-    el('label', { class: 'check', title: 'Feature size chosen from the model and the exemplar' }, autoScale, ' auto scale'),
+    el(
+      'label',
+      { title: 'Texture feature size on the surface (log2; 0 = one exemplar pixel per atlas texel)' },
+      'Scale ',
+      scale,
+    ),
+    el(
+      'label',
+      { class: 'check', title: 'Feature size chosen from the model and the exemplar' },
+      autoScale,
+      ' auto scale',
+    ),
     el('label', {}, 'Atlas ', resolution),
-    el('label', { class: 'check', title: 'Larger features where the field is stronger (paper, Sec. 6.3)' }, byMagnitude, ' scale by magnitude'),
-    el('label', { class: 'check', title: 'Resynthesize after every field change (a quick preview while edits come fast)' }, autoUpdate, ' update texture automatically'),
+    el(
+      'label',
+      { class: 'check', title: 'Larger features where the field is stronger (paper, Sec. 6.3)' },
+      byMagnitude,
+      ' scale by magnitude',
+    ),
+    el(
+      'label',
+      { class: 'check', title: 'Resynthesize after every field change (a quick preview while edits come fast)' },
+      autoUpdate,
+      ' update texture automatically',
+    ),
     el('div', { class: 'buttons' }, go, ' ', off, ' ', png, ' ', glb),
     progress,
     status,
@@ -79,7 +119,7 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
     }
     const ctx = preview.getContext('2d');
     const img = new ImageData(new Uint8ClampedArray(info.rgba8), info.size, info.size);
-    const c = Object.assign(document.createElement('canvas'), { width: info.size, height: info.size });
+    const c = canvasElement(info.size, info.size);
     c.getContext('2d').putImageData(img, 0, 0);
     ctx.imageSmoothingEnabled = true;
     ctx.drawImage(c, 0, 0, 48, 48);
@@ -96,19 +136,24 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
     const s = controller.synthesisStats();
     if (!s) {
       // Active but stale with nothing running: a new model while automatic updates are off.
-      if (controller.active && controller.stale) status.textContent = 'No texture for this model yet: Synthesize makes one.';
+      if (controller.active && controller.stale)
+        status.textContent = 'No texture for this model yet: Synthesize makes one.';
       else status.textContent = controller.active ? 'Synthesizing…' : 'No texture yet.';
       return;
     }
     // The controls show the options in use, also when they were set through the API.
-    if (!s.autoResolution && [256, 512, 1024].includes(s.atlas.resolution)) resolution.value = String(s.atlas.resolution);
+    if (!s.autoResolution && [256, 512, 1024].includes(s.atlas.resolution))
+      resolution.value = String(s.atlas.resolution);
     autoScale.checked = !!s.autoFeatureScale;
     const log2Scale = Math.log2(s.featureScale);
     if (log2Scale >= Number(scale.min) && log2Scale <= Number(scale.max)) scale.value = String(log2Scale);
     byMagnitude.checked = s.magnitudeExponent > 0;
     const levels = s.levels.map((l) => `${l.size}²:${fmt(l.ms)}`).join(' ');
-    status.textContent = `${s.exemplar?.label ?? ''} · ${s.atlas.resolution}² ${s.atlas.source} atlas · ${fmt(s.totalMs)} ms (${levels})${s.preview ? ' · preview' : ''}${controller.stale ? ' · field changed' : ''}`;
-    status.title = `atlas: ${s.atlas.reason}\nanalysis: ${fmt(s.exemplar?.analysisMs ?? 0)} ms${s.exemplar?.cached ? ' (cached)' : ''}`;
+    const notes = `${s.preview ? ' · preview' : ''}${controller.stale ? ' · field changed' : ''}`;
+    const atlas = `${s.atlas.resolution}² ${s.atlas.source} atlas`;
+    status.textContent = `${s.exemplar?.label ?? ''} · ${atlas} · ${fmt(s.totalMs)} ms (${levels})${notes}`;
+    const analysisMs = fmt(s.exemplar?.analysisMs ?? 0);
+    status.title = `atlas: ${s.atlas.reason}\nanalysis: ${analysisMs} ms${s.exemplar?.cached ? ' (cached)' : ''}`;
   }
 
   const busy = (on) => {
@@ -147,8 +192,16 @@ export function mountSynthesisPanel(controller, container, { onError = (e) => co
       if (controller.active) run(() => controller.synthesize(options()));
     });
   }
-  png.addEventListener('click', () => run(async () => downloadBlob(`${modelName()}-texture.png`, await controller.exportTexturePNG({ magnification: 2 }))));
+  png.addEventListener('click', () =>
+    run(async () =>
+      downloadBlob(`${modelName()}-texture.png`, await controller.exportTexturePNG({ magnification: 2 })),
+    ),
+  );
   glb.addEventListener('click', () => run(() => downloadGlb()));
 
-  return { refresh: () => (showStats(), showPreview()) };
+  const refresh = () => {
+    showStats();
+    showPreview();
+  };
+  return { refresh };
 }

@@ -118,7 +118,8 @@ const FRAGMENT_MAP = `
 {
   vec2 atlasPos = vUv * uAtlasSize;
   float found;
-  vec3 texel = magnifiedColour(uSynthCoord, uSynthJac, uExemplarMap, atlasPos, uExemplarSize, dFdx(atlasPos), dFdy(atlasPos), found);
+  vec3 texel = magnifiedColour(uSynthCoord, uSynthJac, uExemplarMap, atlasPos, uExemplarSize, dFdx(atlasPos),
+                               dFdy(atlasPos), found);
   diffuseColor.rgb *= texel;
 }
 `;

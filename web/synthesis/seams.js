@@ -52,7 +52,8 @@ export function seamIndirection({ positions, triangles, neighbour = null }, corn
   const covered = rasterCoverage(cornerUVs, R);
   const out = new Float32Array(4 * R * R);
   const frames = new Array(nF);
-  const frame = (f) => (frames[f] === undefined ? (frames[f] = faceFrame(positions, triangles, cornerUVs, f)) : frames[f]);
+  const frame = (f) =>
+    frames[f] === undefined ? (frames[f] = faceFrame(positions, triangles, cornerUVs, f)) : frames[f];
   const uv = (f, k) => [cornerUVs[6 * f + 2 * k], cornerUVs[6 * f + 2 * k + 1]];
   let redirected = 0, seamEdges = 0;
   // Each interior edge once, from its lower half-edge: local edge k of face f runs i -> j, and is local edge kk
@@ -133,8 +134,10 @@ export function seamIndirection({ positions, triangles, neighbour = null }, corn
     const [a, b, c] = src;
     const area = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
     if (!(Math.abs(area) > 1e-12)) return 0;
-    const x0 = Math.max(0, Math.floor(Math.min(a[0], b[0], c[0]) - 0.5)), x1 = Math.min(R - 1, Math.ceil(Math.max(a[0], b[0], c[0]) - 0.5));
-    const y0 = Math.max(0, Math.floor(Math.min(a[1], b[1], c[1]) - 0.5)), y1 = Math.min(R - 1, Math.ceil(Math.max(a[1], b[1], c[1]) - 0.5));
+    const x0 = Math.max(0, Math.floor(Math.min(a[0], b[0], c[0]) - 0.5));
+    const x1 = Math.min(R - 1, Math.ceil(Math.max(a[0], b[0], c[0]) - 0.5));
+    const y0 = Math.max(0, Math.floor(Math.min(a[1], b[1], c[1]) - 0.5));
+    const y1 = Math.min(R - 1, Math.ceil(Math.max(a[1], b[1], c[1]) - 0.5));
     let count = 0;
     for (let y = y0; y <= y1; y++)
       for (let x = x0; x <= x1; x++) {

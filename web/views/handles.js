@@ -79,7 +79,10 @@ export class HandlesView {
         // Chevrons along the ribbon, in the stroke's direction (the direction it asks of the field).
         const cues = chevronsAlong(pts, normals, CHEVRON_SPACING * s.radius);
         if (cues.length) {
-          const marks = bandMesh(chevronGeometry(cues, CHEVRON), new BandMaterial({ color: COLORS.chevron, widthPx: RIBBON_PX, liftPx: 3 }));
+          const marks = bandMesh(
+            chevronGeometry(cues, CHEVRON),
+            new BandMaterial({ color: COLORS.chevron, widthPx: RIBBON_PX, liftPx: 3 }),
+          );
           marks.renderOrder = 3;
           mesh.add(marks);
         }
@@ -92,9 +95,14 @@ export class HandlesView {
         const v = projectOut(spec.vector, n);
         const l = Math.hypot(...v);
         const len = 3 * s.meanEdge;
-        const mesh = new Mesh(arrowGeometry({ shaftW: 0.07, headW: 0.22, headL: 0.35, centred: false }), basic(COLORS.vector));
+        const mesh = new Mesh(
+          arrowGeometry({ shaftW: 0.07, headW: 0.22, headL: 0.35, centred: false }),
+          basic(COLORS.vector),
+        );
         if (l > 0) {
-          const x = new Vector3(...v).multiplyScalar(len / l), z = new Vector3(...n), y = new Vector3().crossVectors(z, x);
+          const x = new Vector3(...v).multiplyScalar(len / l);
+          const z = new Vector3(...n);
+          const y = new Vector3().crossVectors(z, x);
           mesh.applyMatrix4(new Matrix4().makeBasis(x, y, z).setPosition(...c));
         }
         mesh.renderOrder = 2;
@@ -157,7 +165,9 @@ export class HandlesView {
     for (const [uid, item] of this.items) {
       if (!item.cues) continue;
       const cues = item.cues.map(({ centre, tangent }) => {
-        const wpp = this.view ? worldPerPixel(this.view.camera, new Vector3(...centre), this.view.heightPx) : this.surface.meanEdge / RIBBON_PX;
+        const wpp = this.view
+          ? worldPerPixel(this.view.camera, new Vector3(...centre), this.view.heightPx)
+          : this.surface.meanEdge / RIBBON_PX;
         const half = (0.5 * CHEVRON.length * RIBBON_PX * wpp) / (Math.hypot(...tangent) || 1);
         return { tip: centre.map((x, c) => x + half * tangent[c]), back: centre.map((x, c) => x - half * tangent[c]) };
       });
@@ -200,7 +210,10 @@ export class HandlesView {
     const v = projectOut([to[0] - from[0], to[1] - from[1], to[2] - from[2]], n);
     const l = Math.hypot(...v);
     if (!this.preview) {
-      this.preview = new Mesh(arrowGeometry({ shaftW: 0.06, headW: 0.2, headL: 0.3, centred: false }), basic(COLORS.preview));
+      this.preview = new Mesh(
+        arrowGeometry({ shaftW: 0.06, headW: 0.2, headL: 0.3, centred: false }),
+        basic(COLORS.preview),
+      );
       this.preview.renderOrder = 4;
       this.preview.matrixAutoUpdate = false;
       this.scene.add(this.preview);
@@ -208,8 +221,12 @@ export class HandlesView {
     this.preview.visible = l > 0;
     if (!(l > 0)) return;
     const lift = 2 * LIFT * s.meanEdge;
-    const x = new Vector3(...v), z = new Vector3(...n), y = new Vector3().crossVectors(z, x).normalize().multiplyScalar(2.5 * s.meanEdge);
-    this.preview.matrix.makeBasis(x, y, z).setPosition(from[0] + lift * n[0], from[1] + lift * n[1], from[2] + lift * n[2]);
+    const x = new Vector3(...v);
+    const z = new Vector3(...n);
+    const y = new Vector3().crossVectors(z, x).normalize().multiplyScalar(2.5 * s.meanEdge);
+    this.preview.matrix
+      .makeBasis(x, y, z)
+      .setPosition(from[0] + lift * n[0], from[1] + lift * n[1], from[2] + lift * n[2]);
   }
 
   hidePreview() {

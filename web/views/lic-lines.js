@@ -1,11 +1,11 @@
 // The flow texture of an N-field (N ≥ 2, lic.js): what differs from a vector field's.
 //
-// The vertex representatives cannot be interpolated as they come (a line field's two ends of a face may
-// point opposite ways), so the direction pass draws its own, unindexed copy of the surface whose corners carry
-// each face's matched representatives (geometry/chart-comb.js atlasCombedCorners): matched within a face before they reach the
-// GPU, combed across faces so that "the representative turned by 2πk/N" is one family of lines over whole
-// regions. Each family (lineFamilies: a line field one, a cross field two at 90°) is one direction pass and
-// one convolution, and the convolutions are averaged on screen.
+// The vertex representatives cannot be interpolated as they come (a line field's two ends of a face may point
+// opposite ways), so the direction pass draws its own, unindexed copy of the surface whose corners carry each face's
+// matched representatives (geometry/chart-comb.js atlasCombedCorners): matched within a face before they reach the
+// GPU, combed across faces so that "the representative turned by 2πk/N" is one family of lines over whole regions.
+// Each family (lineFamilies: a line field one, a cross field two at 90°) is one direction pass and one convolution,
+// and the convolutions are averaged on screen.
 import { BufferAttribute, BufferGeometry } from 'three';
 import { atlasCombedCorners } from '../geometry/chart-comb.js';
 import { familyCosine, lineFamilies } from '../geometry/nfield.js';

@@ -161,7 +161,10 @@ export class LicView {
     this.visible = false;
     this.size = new Vector2(1, 1);
     this.directionScene = new Scene();
-    this.directionMaterial = directionMaterial(DIRECTION_VERTEX, { resolution: { value: this.size }, eps: { value: 1e-3 } });
+    this.directionMaterial = directionMaterial(DIRECTION_VERTEX, {
+      resolution: { value: this.size },
+      eps: { value: 1e-3 },
+    });
     this.target = new WebGLRenderTarget(1, 1, { type: HalfFloatType, depthTexture: new DepthTexture(1, 1) });
     this.target.texture.minFilter = this.target.texture.magFilter = NearestFilter;
     this.noise = noiseTexture();
@@ -186,8 +189,17 @@ export class LicView {
   #initLines() {
     // The uniforms they share with the vector field's passes are the same objects (size, eps, textures).
     const d = this.directionMaterial.uniforms, c = this.convolveMaterial.uniforms;
-    this.lineDirectionMaterial = directionMaterial(LINE_DIRECTION_VERTEX, { resolution: d.resolution, eps: d.eps, angle: { value: 0 } });
-    this.lineConvolveMaterial = convolveMaterial(true, { ...c, contrast: { value: c.contrast.value }, passAlpha: { value: 1 }, minCos: { value: 0 } });
+    this.lineDirectionMaterial = directionMaterial(LINE_DIRECTION_VERTEX, {
+      resolution: d.resolution,
+      eps: d.eps,
+      angle: { value: 0 },
+    });
+    this.lineConvolveMaterial = convolveMaterial(true, {
+      ...c,
+      contrast: { value: c.contrast.value },
+      passAlpha: { value: 1 },
+      minCos: { value: 0 },
+    });
     this.lineScene = new Scene();
     this.lineMesh = null;
     this.meshSurface = null; // the Surface the copy is made from
@@ -253,7 +265,8 @@ export class LicView {
   // One direction pass into the target, then one convolution over the screen.
   #pass(renderer, camera, scene, convolve) {
     renderer.getDrawingBufferSize(this.size);
-    if (this.target.width !== this.size.x || this.target.height !== this.size.y) this.target.setSize(this.size.x, this.size.y);
+    if (this.target.width !== this.size.x || this.target.height !== this.size.y)
+      this.target.setSize(this.size.x, this.size.y);
     const previous = renderer.getRenderTarget();
     const clearAlpha = renderer.getClearAlpha();
     const autoClear = renderer.autoClear;
@@ -278,7 +291,8 @@ export class LicView {
         this.lineScene.add(this.lineMesh);
       }
       const { vertexVectors, faceVectors } = this.pendingLines;
-      if (vertexVectors.length === 3 * this.meshSurface.nV) setLineField(this.lineMesh.geometry, this.meshSurface, vertexVectors, faceVectors, this.symmetry);
+      if (vertexVectors.length === 3 * this.meshSurface.nV)
+        setLineField(this.lineMesh.geometry, this.meshSurface, vertexVectors, faceVectors, this.symmetry);
       this.pendingLines = null;
     }
     if (!this.lineMesh?.geometry.getAttribute('licField')) return;

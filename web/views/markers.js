@@ -119,7 +119,9 @@ function tagTexture(color, text) {
 }
 
 export function markerSprite(texture, px = MARKER_PX) {
-  const s = new Sprite(new SpriteMaterial({ map: texture, sizeAttenuation: false, depthTest: true, transparent: true }));
+  const s = new Sprite(
+    new SpriteMaterial({ map: texture, sizeAttenuation: false, depthTest: true, transparent: true }),
+  );
   s.userData.px = px;
   s.renderOrder = 3;
   return s;

@@ -10,7 +10,15 @@ import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 export const MATERIAL_PRESETS = {
   // Anisotropic highlights read best at medium roughness: too smooth and there is nothing to stretch.
   'brushed metal': { color: 0x8d9299, metalness: 1.0, roughness: 0.45, envMapIntensity: 0.5 },
-  satin: { color: 0x6e1530, metalness: 0.0, roughness: 0.55, sheen: 0.8, sheenRoughness: 0.3, sheenColor: 0xff9fbf, envMapIntensity: 0.7 },
+  satin: {
+    color: 0x6e1530,
+    metalness: 0.0,
+    roughness: 0.55,
+    sheen: 0.8,
+    sheenRoughness: 0.3,
+    sheenColor: 0xff9fbf,
+    envMapIntensity: 0.7,
+  },
 };
 
 export class MaterialPreview {
@@ -56,7 +64,8 @@ export class MaterialPreview {
   }
 
   setPreset(preset) {
-    if (!MATERIAL_PRESETS[preset]) throw new Error(`unknown material preset "${preset}" (${Object.keys(MATERIAL_PRESETS).join(', ')})`);
+    if (!MATERIAL_PRESETS[preset])
+      throw new Error(`unknown material preset "${preset}" (${Object.keys(MATERIAL_PRESETS).join(', ')})`);
     this.preset = preset;
     if (this.root) {
       this.#applyPreset();

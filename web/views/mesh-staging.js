@@ -110,7 +110,9 @@ export class MeshStaging {
     const { renderer } = this;
     const gl = renderer.getContext();
     const bufferData = Object.getPrototypeOf(gl).bufferData;
-    if (allocate) gl.bufferData = (target, data, usage) => bufferData.call(gl, target, data === attribute.array ? allocate : data, usage);
+    if (allocate)
+      gl.bufferData = (target, data, usage) =>
+        bufferData.call(gl, target, data === attribute.array ? allocate : data, usage);
     const before = renderer.getRenderTarget();
     try {
       renderer.setRenderTarget(this.target);

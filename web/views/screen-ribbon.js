@@ -86,7 +86,10 @@ export function bandMesh(geometry, material) {
 // tangents by central differences.
 export function bandGeometry(points, normals) {
   const n = points.length;
-  const pos = new Float32Array(6 * n), nrm = new Float32Array(6 * n), tan = new Float32Array(6 * n), off = new Float32Array(4 * n);
+  const pos = new Float32Array(6 * n);
+  const nrm = new Float32Array(6 * n);
+  const tan = new Float32Array(6 * n);
+  const off = new Float32Array(4 * n);
   for (let k = 0; k < n; k++) {
     const a = points[Math.max(0, k - 1)], b = points[Math.min(n - 1, k + 1)];
     for (let s = 0; s < 2; s++) {
@@ -124,7 +127,12 @@ export function chevronGeometry(cues, { length = 1.5, width = 0.84 } = {}) {
   for (const { centre, normal, tangent } of cues) {
     for (const c of corners) pos.push(...centre), nrm.push(...normal), tan.push(...tangent), off.push(...c);
   }
-  return attributes({ pos: new Float32Array(pos), nrm: new Float32Array(nrm), tan: new Float32Array(tan), off: new Float32Array(off) });
+  return attributes({
+    pos: new Float32Array(pos),
+    nrm: new Float32Array(nrm),
+    tan: new Float32Array(tan),
+    off: new Float32Array(off),
+  });
 }
 
 // A band that grows a point at a time (the live stroke): the buffers double when full.
@@ -138,7 +146,12 @@ export class GrowingBand {
 
   #allocate(capacity) {
     const old = this.geometry.attributes;
-    const arrays = { pos: new Float32Array(6 * capacity), nrm: new Float32Array(6 * capacity), tan: new Float32Array(6 * capacity), off: new Float32Array(4 * capacity) };
+    const arrays = {
+      pos: new Float32Array(6 * capacity),
+      nrm: new Float32Array(6 * capacity),
+      tan: new Float32Array(6 * capacity),
+      off: new Float32Array(4 * capacity),
+    };
     if (old.position) {
       arrays.pos.set(old.position.array);
       arrays.nrm.set(old.normal.array);

@@ -7,7 +7,8 @@ export async function captureScreenshot(viewer, { width, height, transparent = f
   const canvas = viewer.canvas;
   const w = width ?? canvas.width, h = height ?? canvas.height;
   for (const [name, v] of [['width', w], ['height', h]]) {
-    if (!Number.isInteger(v) || v < 1 || v > MAX_SIDE) throw new Error(`screenshot: ${name} must be a whole number of pixels from 1 to ${MAX_SIDE} (got ${v})`);
+    if (!Number.isInteger(v) || v < 1 || v > MAX_SIDE)
+      throw new Error(`screenshot: ${name} must be a whole number of pixels from 1 to ${MAX_SIDE} (got ${v})`);
   }
   const { renderer, camera } = viewer;
   const ratio = renderer.getPixelRatio(), aspect = camera.aspect;
@@ -22,7 +23,10 @@ export async function captureScreenshot(viewer, { width, height, transparent = f
     viewer.renderNow();
     // toBlob reads the drawing buffer (kept: preserveDrawingBuffer) before anything else draws into it.
     return await new Promise((resolve, reject) =>
-      canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('screenshot: the browser could not encode the PNG'))), 'image/png'),
+      canvas.toBlob(
+        (blob) => (blob ? resolve(blob) : reject(new Error('screenshot: the browser could not encode the PNG'))),
+        'image/png',
+      ),
     );
   } finally {
     renderer.setPixelRatio(ratio);

@@ -9,7 +9,21 @@
 // streamlines-view.js, viewer.js): a setting that drifts only costs that program its head start.
 //
 // Owns nothing past the call. Imports three and the views' band and marker makers.
-import { BufferAttribute, BufferGeometry, CircleGeometry, Color, DoubleSide, Group, InstancedMesh, LineBasicMaterial, LineSegments, Mesh, MeshBasicMaterial, MeshStandardMaterial, PlaneGeometry } from 'three';
+import {
+  BufferAttribute,
+  BufferGeometry,
+  CircleGeometry,
+  Color,
+  DoubleSide,
+  Group,
+  InstancedMesh,
+  LineBasicMaterial,
+  LineSegments,
+  Mesh,
+  MeshBasicMaterial,
+  MeshStandardMaterial,
+  PlaneGeometry,
+} from 'three';
 import { arrowGeometry, glyphGeometry, markerSprite } from './markers.js';
 import { BandMaterial, bandGeometry, bandMesh } from './screen-ribbon.js';
 import { copyMaterial, layerTarget } from './surface-layer.js';
@@ -17,7 +31,11 @@ import { copyMaterial, layerTarget } from './surface-layer.js';
 // A triangle with the given attributes: a program depends on which attributes the geometry has.
 function triangle(...names) {
   const g = new BufferGeometry();
-  const data = { position: [0, 0, 0, 1, 0, 0, 0, 1, 0], normal: [0, 0, 1, 0, 0, 1, 0, 0, 1], color: new Array(9).fill(1) };
+  const data = {
+    position: [0, 0, 0, 1, 0, 0, 0, 1, 0],
+    normal: [0, 0, 1, 0, 0, 1, 0, 0, 1],
+    color: new Array(9).fill(1),
+  };
   for (const name of names) g.setAttribute(name, new BufferAttribute(new Float32Array(data[name]), 3));
   return g;
 }
@@ -28,7 +46,12 @@ function samples(labels) {
   group.add(bandMesh(bandGeometry(points, normals), new BandMaterial({ color: 0xffffff, widthPx: 6 })));
   group.add(new Mesh(arrowGeometry(), new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide })));
   const map = labels.get('warm-up', '#ffffff', '');
-  group.add(new Mesh(new CircleGeometry(0.5, 8), new MeshBasicMaterial({ map, transparent: true, side: DoubleSide, polygonOffset: true })));
+  group.add(
+    new Mesh(
+      new CircleGeometry(0.5, 8),
+      new MeshBasicMaterial({ map, transparent: true, side: DoubleSide, polygonOffset: true }),
+    ),
+  );
   group.add(markerSprite(map));
   const arrows = new InstancedMesh(glyphGeometry(1), new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide }), 1);
   arrows.setColorAt(0, new Color(1, 1, 1));
@@ -42,7 +65,13 @@ function samples(labels) {
 
 function surfaces() {
   return [false, true].map((vertexColors) => {
-    const surface = new MeshStandardMaterial({ roughness: 0.65, metalness: 0, side: DoubleSide, polygonOffset: true, vertexColors });
+    const surface = new MeshStandardMaterial({
+      roughness: 0.65,
+      metalness: 0,
+      side: DoubleSide,
+      polygonOffset: true,
+      vertexColors,
+    });
     const mesh = new Mesh(triangle('position', 'normal', 'color'), surface);
     mesh.frustumCulled = false;
     return mesh;

@@ -2,7 +2,17 @@
 // vertex. Built only while the view is shown. An N-field's (N ≥ 2) indices are fractions: the disc is then
 // coloured on the ramp of singularity-style.js and the index, as a fraction, is a tag beside it that faces
 // the viewer (a disc 22 px across has no room for "−1/4").
-import { CircleGeometry, DoubleSide, Group, Matrix4, Mesh, MeshBasicMaterial, Sprite, SpriteMaterial, Vector3 } from 'three';
+import {
+  CircleGeometry,
+  DoubleSide,
+  Group,
+  Matrix4,
+  Mesh,
+  MeshBasicMaterial,
+  Sprite,
+  SpriteMaterial,
+  Vector3,
+} from 'three';
 import { worldPerPixel } from '../geometry/arrow-sampling.js';
 import { symmetryOf } from '../geometry/nfield.js';
 import { TAG_ASPECT } from './markers.js';
@@ -136,7 +146,8 @@ export class SingularitiesView {
     return this.group.children.map((m) => {
       m.updateMatrixWorld();
       const P = m.geometry.getAttribute('position'), v = new Vector3(), corners = [];
-      for (let i = 0; i < P.count; i++) corners.push(...v.fromBufferAttribute(P, i).applyMatrix4(m.matrixWorld).toArray());
+      for (let i = 0; i < P.count; i++)
+        corners.push(...v.fromBufferAttribute(P, i).applyMatrix4(m.matrixWorld).toArray());
       return { vertex: m.userData.vertex, corners };
     });
   }

@@ -88,7 +88,8 @@ export function screenRectOf(mesh, camera, width, height) {
     g.userData.boundingBoxVersion = version;
   }
   const box = g.boundingBox;
-  if (box.isEmpty() || ![box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z].every(Number.isFinite)) return null;
+  if (box.isEmpty() || ![box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z].every(Number.isFinite))
+    return null;
   camera.updateMatrixWorld();
   const toClip = camera.projectionMatrix.clone().multiply(camera.matrixWorldInverse).multiply(mesh.matrixWorld);
   let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
@@ -207,8 +208,23 @@ export class SurfaceLayer {
     mesh.updateMatrixWorld();
     const g = mesh.geometry;
     const versions = ['position', 'normal'].map((n) => g.getAttribute(n)?.version ?? -1);
-    return [this.size.x, this.size.y, renderer.getPixelRatio(), renderer.getClearColor(this.clearColor).getHex(), renderer.getClearAlpha(), ...camera.matrixWorld.elements, ...camera.projectionMatrix.elements,
-      ...mesh.matrixWorld.elements, mesh.id, g.id, g.index?.version ?? -1, ...versions, mesh.material.id, mesh.material.version, mesh.userData.pictureVersion ?? 0].join(' ');
+    return [
+      this.size.x,
+      this.size.y,
+      renderer.getPixelRatio(),
+      renderer.getClearColor(this.clearColor).getHex(),
+      renderer.getClearAlpha(),
+      ...camera.matrixWorld.elements,
+      ...camera.projectionMatrix.elements,
+      ...mesh.matrixWorld.elements,
+      mesh.id,
+      g.id,
+      g.index?.version ?? -1,
+      ...versions,
+      mesh.material.id,
+      mesh.material.version,
+      mesh.userData.pictureVersion ?? 0,
+    ].join(' ');
   }
 
   #drawSurface(renderer, camera, mesh, key) {
