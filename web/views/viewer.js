@@ -1,12 +1,10 @@
 // three.js view of the core's welded mesh. Face i of the rendered geometry is face i of the core, so picks
 // translate to core surface points without any remapping. The field views live in arrows-view.js,
 // streamlines-view.js and singularities-view.js, the constraint handles in handles.js; this module owns the
-// scene, the camera, picking and the surface itself. Normals come from the Surface (geometry/surface.js),
-// computed once per mesh.
+// scene, the camera, picking and the surface itself (its geometry made by surface-geometry.js). Normals come from
+// the Surface (geometry/surface.js), computed once per mesh.
 import {
   AmbientLight,
-  BufferAttribute,
-  BufferGeometry,
   Color,
   DirectionalLight,
   DoubleSide,
@@ -17,14 +15,13 @@ import {
   Plane,
   Raycaster,
   Scene,
-  Sphere,
   SRGBColorSpace,
   Vector2,
   Vector3,
   WebGLRenderer,
 } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { MeshBVH, acceleratedRaycast } from 'three-mesh-bvh';
+import { acceleratedRaycast } from 'three-mesh-bvh';
 import { adoptBVH } from '../geometry/mesh-bvh-transfer.js';
 import { ArrowsView } from './arrows-view.js';
 import { MeshStaging } from './mesh-staging.js';
@@ -38,6 +35,7 @@ import { LabelTextures } from './markers.js';
 import { BandMaterial, GrowingBand } from './screen-ribbon.js';
 import { SingularitiesView } from './singularities-view.js';
 import { StreamlinesView } from './streamlines-view.js';
+import { meshGeometry } from './surface-geometry.js';
 import { SurfaceLayer } from './surface-layer.js';
 import { warmUpShaders } from './shader-warm-up.js';
 
@@ -161,7 +159,8 @@ export class Viewer {
     this.arrows.updateView(this.camera, this.controls.target, this.canvas.clientHeight || this.canvas.height);
     this.singularities.updateScale(this.camera, this.renderer);
     this.handles.updateScale(this.camera, this.renderer);
-    this.surfaceLayer.render(this.renderer, this.scene, this.camera, this.surfaceStandIn?.visible ? this.surfaceStandIn : this.surfaceMesh, this.lic.visible);
+    const surface = this.surfaceStandIn?.visible ? this.surfaceStandIn : this.surfaceMesh;
+    this.surfaceLayer.render(this.renderer, this.scene, this.camera, surface, this.lic.visible);
     this.lic.render(this.renderer, this.camera);
     this.renderCount++;
     if (this.afterRender.length) {
@@ -236,7 +235,6 @@ export class Viewer {
     this.surfaceMesh.material.dispose();
     this.surfaceMesh = null;
   }
-
 
   // The normal of the face closest to a point (for direction cues drawn in the surface).
   #normalNear(x, y, z) {
@@ -366,35 +364,4 @@ export class Viewer {
     this.strokeBand = null;
     this.requestRender();
   }
-}
-
-// The surface's BufferGeometry: position, normal and colour per vertex, the core's triangles as the index, and
-// the bounds tree for picking.
-function meshGeometry(surface) {
-  const { bvh = null, float32 = null } = surface;
-  const positions = bvh?.positions ?? float32?.positions ?? new Float32Array(surface.positions);
-  const normals = float32?.normals ?? new Float32Array(surface.vertexNormals);
-  const index = bvh?.index ?? float32?.index ?? new Uint32Array(surface.triangles);
-  const geom = new BufferGeometry();
-  geom.setAttribute('position', new BufferAttribute(positions, 3));
-  geom.setAttribute('normal', new BufferAttribute(normals, 3));
-  // The worker's all-white colours are handed over, not shared: setVertexField paints into them, and a later
-  // setMesh of the same Surface (a re-attached element) must start white again. Bytes, normalized: a quarter
-  // of the upload after each field change (5 → 1.25 MB at 416k vertices).
-  const colors = float32?.colors ?? new Uint8Array(positions.length).fill(255);
-  if (float32) float32.colors = null;
-  geom.setAttribute('color', new BufferAttribute(colors, 3, true));
-  geom.setIndex(new BufferAttribute(index, 1));
-  if (bvh) adoptBVH(geom, bvh); // also sets the bounding sphere the worker computed
-  else if (surface.pickingFollows) {
-    // A big model's BVH comes after its first field (Surface.adoptPicking); #boundsTree adopts it then.
-    const [x, y, z, r] = float32.boundingSphere;
-    geom.boundingSphere = new Sphere(new Vector3(x, y, z), r);
-  } else {
-    geom.computeBoundingSphere();
-    // indirect: the default build reorders the index buffer, and then hit.faceIndex no longer names the
-    // core's face. Indirect mode leaves the triangles in place and reports original indices.
-    geom.boundsTree = new MeshBVH(geom, { indirect: true });
-  }
-  return geom;
 }
