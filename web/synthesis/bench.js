@@ -4,6 +4,7 @@
 // after each level), and the ratio of the total to one plain full-screen pass of the same size — the number that
 // carries over between machines, since this machine may render in software (SwiftShader).
 
+import { FloatTarget, drawFullscreen, sync } from './gl.js';
 import { Synthesizer } from './synthesizer.js';
 
 // A flat square grid like the synthesis tests' (tests/node/export-fixtures.mjs flatSquareGlb), straight as arrays
@@ -29,6 +30,35 @@ function flatSquare(n = 16) {
 
 // library: an ExemplarLibrary (exemplar.js). Returns {device, exemplar, runs: [{size, levels, totalMs, plainMs,
 // ratio, ...}]}; `repeats` measured runs per size after one warm-up run (shader compilation), best one reported.
+// Milliseconds of one plain full-screen pass (one fetch, one RGBA32F write per texel) at size^2 on the
+// synthesizer's context, averaged over `repeats` after a warm-up: the unit synthesis times are compared with.
+function plainPassMs(synth, size, repeats = 5) {
+  const { gl, vao } = synth;
+  const copy = synth.programs.copy;
+  copy.check();
+  const a = new FloatTarget(gl, size, size);
+  const b = new FloatTarget(gl, size, size);
+  const run = (n) => {
+    let src = a;
+    let dst = b;
+    for (let i = 0; i < n; i++) {
+      dst.bindAsTarget();
+      copy.use().texture('uSource', src);
+      drawFullscreen(gl, vao);
+      [src, dst] = [dst, src];
+    }
+    sync(gl, src);
+  };
+  run(1);
+  const t0 = performance.now();
+  run(repeats);
+  const ms = (performance.now() - t0) / repeats;
+  a.dispose();
+  b.dispose();
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  return ms;
+}
+
 export async function runSynthesisBench(
   library,
   { sizes = [256, 512, 1024], exemplar = 'scales', repeats = 2, featureScale = 1 } = {},
@@ -57,7 +87,7 @@ export async function runSynthesisBench(
         if (!best || s.totalMs < best.totalMs) best = s;
       }
       const total = synth.synthesize(vv, { featureScale, timing: 'total' });
-      const plainMs = synth.plainPassMs(size, 10);
+      const plainMs = plainPassMs(synth, size, 10);
       runs.push({
         size,
         levels: best.levels.map((l) => ({ size: l.size, stackLevel: l.stackLevel, ms: +l.ms.toFixed(2) })),

@@ -3,19 +3,18 @@
 // (re)synthesize as the field changes (quick edits get a preview, bursts coalesce, stale runs are cancelled),
 // the textured model in the view, and the texture handed to the exports. Everything runs in order through one
 // queue, so an export never reads a half-made texture. The GPU work is synthesizer.js's; the settings chosen
-// for the user are auto-settings.js's.
+// for the user are auto-settings.js's; which options synthesize() takes, options.js's; what a run hands the
+// synthesizer (its options, the field it follows), run-inputs.js's; the texture read out, texture-exports.js's.
 import { runSynthesisBench } from './bench.js';
-import { defaultFeatureScale, defaultResolution, shapeComplexity } from './auto-settings.js';
+import { defaultResolution } from './auto-settings.js';
 import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8 } from './exemplar.js';
 import { TexturedModel } from './render.js';
 import { DEFAULTS, Synthesizer } from './synthesizer.js';
-import { exportMagnification, pngBlob } from './texture-image.js';
+import { glbTexture, texturePng, textureReadback } from './texture-exports.js';
 import { TEXTURE_SYMMETRIES, textureRefusal } from '../session/symmetry.js';
-import { atlasCombedCorners } from '../geometry/chart-comb.js';
+import { checkSynthesisOptions } from './options.js';
+import { fieldInput, runOptions } from './run-inputs.js';
 
-const MAX_RESOLUTION = 2048;
-const OPTION_KEYS = ['featureScale', 'magnitudeExponent', 'jitter', 'finestJitter', 'passes', 'kappa', 'seed', 'gutter', 'seams', 'timing', 'sliceFaces'];
-const CONTROLLER_KEYS = ['resolution', 'autoUpdate', 'interleave'];
 // Field changes closer together than this count as quick edits: the texture follows them with a preview (one
 // level short of the finest, a quarter of the work) and is synthesized in full once they stop for this long.
 const QUICK_EDIT_MS = 400;
@@ -28,7 +27,15 @@ export class SynthesisController {
   // analyzeExemplar (exemplar.js) off the page's thread (the element's core worker), resolving with their results.
   // getFieldVersion(): the model's fieldVersion without the copies getModel() makes (tens of ms at 400k
   // vertices, at every field change).
-  constructor({ viewer, getModel, getFieldVersion = () => getModel()?.fieldVersion, computeAtlas, analyzeExemplar, onChange = () => {}, onError = () => {} }) {
+  constructor({
+    viewer,
+    getModel,
+    getFieldVersion = () => getModel()?.fieldVersion,
+    computeAtlas,
+    analyzeExemplar,
+    onChange = () => {},
+    onError = () => {},
+  }) {
     this.computeAtlas = computeAtlas;
     this.viewer = viewer;
     this.getModel = getModel;
@@ -54,7 +61,8 @@ export class SynthesisController {
     this.pendingField = false;
   }
 
-  #exclusive(fn) {
+  // Runs fn after everything queued before it (texture-exports.js reads through this too).
+  exclusive(fn) {
     const run = this.queue.then(fn);
     this.queue = run.catch(() => {});
     return run;
@@ -79,10 +87,11 @@ export class SynthesisController {
     return ['stripes', 'scales', 'weave', 'brushed'];
   }
 
-  // src: a procedural name ('stripes' | 'scales' | 'weave' | 'brushed'), {procedural, size, seed}, a URL (string or URL),
-  // a Blob/File (PNG or JPEG), ImageData or an ImageBitmap. Options: {size} for images (power of two, default 128).
+  // src: a procedural name ('stripes' | 'scales' | 'weave' | 'brushed'), {procedural, size, seed}, a URL (string or
+  // URL), a Blob/File (PNG or JPEG), ImageData or an ImageBitmap. Options: {size} for images (power of two, default
+  // 128).
   setExemplar(src, { size } = {}) {
-    return this.#exclusive(async () => {
+    return this.exclusive(async () => {
       const t0 = performance.now();
       let result, label;
       const spec = typeof src === 'string' && this.proceduralNames().includes(src) ? { procedural: src } : src;
@@ -92,7 +101,8 @@ export class SynthesisController {
         label = spec.procedural;
       } else {
         const n = size ?? USER_EXEMPLAR_SIZE;
-        if (!Number.isInteger(n) || n < 16 || n > 256 || (n & (n - 1))) throw new Error(`exemplar size must be a power of two in [16, 256] (got ${n})`);
+        if (!Number.isInteger(n) || n < 16 || n > 256 || n & (n - 1))
+          throw new Error(`exemplar size must be a power of two in [16, 256] (got ${n})`);
         const img = await imageToRGBA8(spec, n);
         result = await this.library.image(img.rgba, img.size, img.label);
         label = img.label;
@@ -114,7 +124,13 @@ export class SynthesisController {
   // The atlas for the current model at `resolution` (cached per model and resolution).
   async #atlasFor(model, resolution) {
     const gutter = this.options.gutter ?? DEFAULTS.gutter;
-    if (this.atlas && this.atlas.key === model.key && this.atlas.resolution === resolution && this.atlas.gutter === gutter) return this.atlas;
+    if (
+      this.atlas &&
+      this.atlas.key === model.key &&
+      this.atlas.resolution === resolution &&
+      this.atlas.gutter === gutter
+    )
+      return this.atlas;
     // Generating an atlas takes up to seconds on a big model: the element's core worker does it, so the page
     // keeps drawing and taking input; the synthesis programs compile meanwhile (Synthesizer.programsReady).
     const programs = this.#ensureSynth().programsReady();
@@ -141,16 +157,8 @@ export class SynthesisController {
   // options until clearTexture(). Options: resolution (power of two, default 256) and the synthesizer's
   // (featureScale, magnitudeExponent, jitter, passes, kappa, seed, gutter, timing).
   synthesize(options = {}) {
-    return this.#exclusive(async () => {
-      if (options.resolution !== undefined && options.resolution !== 'auto') {
-        const r = options.resolution;
-        if (!Number.isInteger(r) || r < 16 || r > MAX_RESOLUTION || (r & (r - 1))) throw new Error(`resolution must be 'auto' or a power of two in [16, ${MAX_RESOLUTION}] (got ${r})`);
-      }
-      for (const k of Object.keys(options)) {
-        if (!CONTROLLER_KEYS.includes(k) && !OPTION_KEYS.includes(k)) throw new Error(`unknown synthesis option '${k}'`);
-      }
-      if (options.featureScale !== undefined && options.featureScale !== 'auto' && !(options.featureScale > 0)) throw new Error("featureScale must be 'auto' or > 0");
-      if (options.sliceFaces !== undefined && !(Number.isInteger(options.sliceFaces) && options.sliceFaces > 0)) throw new Error(`sliceFaces must be a positive integer (got ${options.sliceFaces})`);
+    return this.exclusive(async () => {
+      checkSynthesisOptions(options);
       this.options = { ...this.options, ...options };
       if (!this.exemplar) {
         const r = await this.library.procedural('stripes', PROCEDURAL_SIZE, 1);
@@ -177,18 +185,12 @@ export class SynthesisController {
     }
     const token = ++this.runToken;
     const t0 = performance.now();
-    const resolution = this.options.resolution === 'auto' ? defaultResolution(model.triangles.length / 3) : this.options.resolution;
+    const resolution =
+      this.options.resolution === 'auto' ? defaultResolution(model.triangles.length / 3) : this.options.resolution;
     const atlas = await this.#atlasFor(model, resolution);
     const tAtlas = performance.now() - t0;
-    const synthOptions = {};
-    for (const k of OPTION_KEYS) if (this.options[k] !== undefined) synthOptions[k] = this.options[k];
-    const coverage = atlas.stats.coverage ?? atlas.stats.check?.coverage ?? 0.5;
-    if (synthOptions.featureScale === 'auto') {
-      atlas.complexity ??= shapeComplexity(model.surface);
-      synthOptions.featureScale = defaultFeatureScale(atlas.resolution, coverage, this.exemplar.tables.size, atlas.complexity);
-    }
-    if (preview) synthOptions.finestLevel = 1;
-    const field = this.#fieldFor(model, atlas);
+    const synthOptions = runOptions(this.options, model, atlas, this.exemplar.tables.size, preview);
+    const field = fieldInput(model, atlas);
     let s;
     if (this.options.interleave) {
       let shown = -1;
@@ -210,10 +212,14 @@ export class SynthesisController {
       s = this.synth.synthesize(field.input, synthOptions);
     }
     const t1 = performance.now();
-    const { coords, jacobian } = this.options.interleave ? await this.synth.readResultAsync() : { coords: this.synth.readCoordinates(), jacobian: this.synth.readJacobian() };
+    const { coords, jacobian } = this.options.interleave
+      ? await this.synth.readResultAsync()
+      : { coords: this.synth.readCoordinates(), jacobian: this.synth.readJacobian() };
     if (token !== this.runToken || !this.render) return this.synthesisStats(); // superseded while it was read
     const t2 = performance.now();
-    const shown = await this.render.setTexture({ resolution: s.resolution, coords, jacobian, exemplar: this.exemplar.tables.rgba8, exemplarSize: this.exemplar.tables.size }, { sliced: this.options.interleave });
+    const { rgba8: exemplar, size: exemplarSize } = this.exemplar.tables;
+    const texture = { resolution: s.resolution, coords, jacobian, exemplar, exemplarSize };
+    const shown = await this.render.setTexture(texture, { sliced: this.options.interleave });
     if (!shown) return this.synthesisStats(); // the model changed while the texture went to the GPU
     this.stale = false;
     this.stats = {
@@ -233,17 +239,6 @@ export class SynthesisController {
     this.lastFieldVersion = model.fieldVersion;
     this.onChange();
     return structuredClone(this.stats);
-  }
-
-  // What the synthesizer follows: a vector field's vertexVectors as they are; a line or cross field's
-  // representatives combed per corner for the atlas (geometry/chart-comb.js), its cuts along the chart seams
-  // where it can (model.faceVectors, the field's own face representatives, when the model hands them in).
-  #fieldFor(model, atlas) {
-    const symmetry = model.symmetry ?? 1;
-    if (symmetry === 1) return { symmetry, input: model.vertexVectors };
-    const t0 = performance.now();
-    const comb = atlasCombedCorners(model.surface, model.vertexVectors, model.faceVectors ?? null, symmetry, atlas.cornerUVs);
-    return { symmetry, input: { cornerVectors: comb.corners }, ms: performance.now() - t0, cutEdges: comb.flips.length };
   }
 
   // The field changed: resynthesize while a texture is shown (autoUpdate), coalescing bursts of changes into
@@ -283,7 +278,8 @@ export class SynthesisController {
     setTimeout(() => {
       this.pendingField = false;
       const p = this.pendingPreview;
-      this.#exclusive(() => (this.active ? this.#run({ preview: p }) : null)).catch((err) => this.onError(err));
+      const run = () => (this.active ? this.#run({ preview: p }) : null);
+      this.exclusive(run).catch((err) => this.onError(err));
     }, 0);
   }
 
@@ -315,7 +311,7 @@ export class SynthesisController {
   }
 
   clearTexture() {
-    return this.#exclusive(() => {
+    return this.exclusive(() => {
       this.active = false;
       this.render?.setVisible(false);
       this.onChange();
@@ -330,65 +326,23 @@ export class SynthesisController {
     return this.stats ? structuredClone(this.stats) : null;
   }
 
-  #requireResult() {
-    if (!this.stats || !this.synth?.result) throw new Error('nothing synthesized yet: call synthesize() first');
-  }
-
-  // The synthesized texture as a PNG Blob, rendered as the page renders it (magnification: the four nearest
-  // texels' patches blended) at {resolution} pixels per side or {magnification} pixels per atlas texel; the top
-  // row is atlas v = 0 (texture-image.js).
+  // The texture read out for files and tests (texture-exports.js): a PNG as the page renders it, the texture a
+  // GLB export embeds (or null), the raw result.
   exportTexturePNG(options = {}) {
-    return this.#exclusive(async () => {
-      this.#requireResult();
-      return this.#image(exportMagnification(options, this.stats.resolution, 1));
-    });
+    return texturePng(this, options);
   }
 
-  // The texture a GLB export embeds (export/index.js): {png (Uint8Array), cornerUVs (the atlas, 6 per face of
-  // the model)} at {resolution} or {magnification} (default 2 pixels per atlas texel), or null when none is
-  // shown. required: the last texture even when switched off, and an error when there is none. Waits for the
-  // synthesis in flight, so the file has the texture of the field it carries.
-  async exportTexture({ resolution, magnification, required = false } = {}) {
-    if (this.active) await this.whenIdle();
-    return this.#exclusive(async () => {
-      if (!required && !this.active) return null;
-      if (!this.stats || !this.synth?.result) {
-        if (required) throw new Error('no synthesized texture to export: call synthesize() first');
-        return null;
-      }
-      const blob = await this.#image(exportMagnification({ resolution, magnification }, this.stats.resolution, 2));
-      return { png: new Uint8Array(await blob.arrayBuffer()), cornerUVs: this.atlas.cornerUVs.slice() };
-    });
+  exportTexture(options = {}) {
+    return glbTexture(this, options);
   }
 
-  #image(magnification) {
-    const { width, height, pixels } = this.synth.readColour({ magnification, nearest: false });
-    return pngBlob(pixels, width, height);
-  }
-
-  // For tests and tools: the raw result (copies). coords/jacobian: RGBA32F per atlas texel; colour: RGBA8
-  // (nearest exemplar pixel); exemplar: RGBA8; rows start at v = 0.
   readback() {
-    return this.#exclusive(async () => {
-      this.#requireResult();
-      const r = this.stats.resolution;
-      return {
-        resolution: r,
-        coords: this.synth.readCoordinates(),
-        jacobian: this.synth.readJacobian(),
-        colour: this.synth.readColour({ nearest: true }).pixels,
-        exemplar: this.exemplar.tables.rgba8.slice(),
-        exemplarSize: this.exemplar.tables.size,
-        cornerUVs: this.atlas.cornerUVs.slice(),
-        // The chart of every face of a generated atlas (null for the model's own UVs).
-        faceCharts: this.atlas.faceCharts?.slice() ?? null,
-      };
-    });
+    return textureReadback(this);
   }
 
   // The synthesis benchmark (bench.js) on a synthesizer of its own.
   bench(options = {}) {
-    return this.#exclusive(async () => {
+    return this.exclusive(async () => {
       return runSynthesisBench(this.library, options);
     });
   }
@@ -400,10 +354,5 @@ export class SynthesisController {
     this.render = null;
     this.synth?.dispose();
     this.synth = null;
-  }
-
-  // Milliseconds of one plain full-screen pass at size^2 on the synthesis context (the bench's unit).
-  plainPassMs(size, repeats) {
-    return this.#ensureSynth().plainPassMs(size, repeats);
   }
 }

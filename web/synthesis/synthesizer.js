@@ -13,7 +13,18 @@
 //   const stats = syn.synthesize(vertexVectors, {featureScale, magnitudeExponent, seed, ...});
 //   syn.readCoordinates(), syn.readJacobian(), syn.readColour({magnification, nearest})
 import { AtlasRaster } from './atlas-raster.js';
-import { ByteTarget, FloatTarget, FULLSCREEN_VS, GLError, Program, createContext, drawFullscreen, gpuDone, readTargetsAsync, sync } from './gl.js';
+import {
+  ByteTarget,
+  FloatTarget,
+  FULLSCREEN_VS,
+  GLError,
+  Program,
+  createContext,
+  drawFullscreen,
+  gpuDone,
+  readTargetsAsync,
+  sync,
+} from './gl.js';
 import { disposeExemplar, uploadExemplar } from './gpu-exemplar.js';
 import { levelPlan } from './level-plan.js';
 import {
@@ -44,7 +55,9 @@ export const DEFAULTS = Object.freeze({
 });
 
 const defaultNextFrame = () =>
-  new Promise((resolve) => (typeof requestAnimationFrame === 'function' ? requestAnimationFrame(() => resolve()) : setTimeout(resolve, 0)));
+  new Promise((resolve) =>
+    typeof requestAnimationFrame === 'function' ? requestAnimationFrame(() => resolve()) : setTimeout(resolve, 0),
+  );
 
 export class Synthesizer {
   constructor(gl = createContext()) {
@@ -127,7 +140,11 @@ export class Synthesizer {
   // the share done (0..1); when cancelled() turns true the run stops and resolves to null (the previous result
   // stays). Options as synthesize(), plus `finestLevel` (0, or 1 for a quarter-cost preview that stops one level
   // short: the result then lives at half the atlas resolution, see resultLevel).
-  async synthesizeInterleaved(vertexVectors, options = {}, { onProgress = () => {}, cancelled = () => false, budgetTexels = 1 << 15, nextFrame = defaultNextFrame } = {}) {
+  async synthesizeInterleaved(
+    vertexVectors,
+    options = {},
+    { onProgress = () => {}, cancelled = () => false, budgetTexels = 1 << 15, nextFrame = defaultNextFrame } = {},
+  ) {
     const steps = this.#steps(vertexVectors, options);
     let pending = 0;
     for (let r = steps.next(); ; r = steps.next()) {
@@ -247,7 +264,12 @@ export class Synthesizer {
         // Gutter texels next to seams take the coordinates across the seam (for the magnified rendering).
         L.spare2 ??= new FloatTarget(gl, L.size, L.size, null, { check: false }); // as the atlas's (atlas-raster.js)
         L.spare2.bindAsTarget();
-        this.programs.seamResolve.use().texture('uCoord', L.result).texture('uJac', L.jac).texture('uIndir', L.indirection).float('uM', m);
+        this.programs.seamResolve
+          .use()
+          .texture('uCoord', L.result)
+          .texture('uJac', L.jac)
+          .texture('uIndir', L.indirection)
+          .float('uM', m);
         drawFullscreen(gl, this.vao);
         [L.result, L.spare2] = [L.spare2, L.result];
         parent = L.result;
@@ -255,7 +277,13 @@ export class Synthesizer {
       yield work(L.size * L.size);
       if (o.timing === 'levels') sync(gl, L.result);
       const now = performance.now();
-      levelStats.push({ size: L.size, stackLevel: step.stackLevel, spacing: step.spacing, jitter: step.jitter, ms: now - tLevel });
+      levelStats.push({
+        size: L.size,
+        stackLevel: step.stackLevel,
+        spacing: step.spacing,
+        jitter: step.jitter,
+        ms: now - tLevel,
+      });
       tLevel = now;
     }
     // Interleaved, the page waits for the GPU between frames (the queue lags the draws by up to seconds with
@@ -295,7 +323,11 @@ export class Synthesizer {
 
   // Both, without holding the page's thread while the GPU catches up (gl.js readTargetsAsync).
   async readResultAsync(nextFrame = defaultNextFrame) {
-    const [coords, jacobian] = await readTargetsAsync(this.gl, [this.result, this.levels[this.resultLevel ?? 0].jac], nextFrame);
+    const [coords, jacobian] = await readTargetsAsync(
+      this.gl,
+      [this.result, this.levels[this.resultLevel ?? 0].jac],
+      nextFrame,
+    );
     return { coords, jacobian };
   }
 
@@ -323,32 +355,6 @@ export class Synthesizer {
     target.dispose();
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     return { width: size, height: size, pixels };
-  }
-
-  // Milliseconds of one plain full-screen pass (one fetch, one RGBA32F write per texel) at size^2, averaged
-  // over `repeats` after a warm-up: the unit synthesis times are compared with.
-  plainPassMs(size, repeats = 5) {
-    this.programs.copy.check();
-    const gl = this.gl;
-    const a = new FloatTarget(gl, size, size), b = new FloatTarget(gl, size, size);
-    const run = (n) => {
-      let src = a, dst = b;
-      for (let i = 0; i < n; i++) {
-        dst.bindAsTarget();
-        this.programs.copy.use().texture('uSource', src);
-        drawFullscreen(gl, this.vao);
-        [src, dst] = [dst, src];
-      }
-      sync(gl, src);
-    };
-    run(1);
-    const t0 = performance.now();
-    run(repeats);
-    const ms = (performance.now() - t0) / repeats;
-    a.dispose();
-    b.dispose();
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    return ms;
   }
 
   #disposeExemplar() {

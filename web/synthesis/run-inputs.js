@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// What one synthesis run (controller.js) hands the synthesizer, made from the model, its atlas and the
+// controller's options: the synthesizer's options, an 'auto' feature scale chosen from the model and the exemplar
+// (auto-settings.js), and the field it follows, a line or cross field combed per corner for the atlas
+// (geometry/chart-comb.js). Owns nothing.
+import { atlasCombedCorners } from '../geometry/chart-comb.js';
+import { defaultFeatureScale, shapeComplexity } from './auto-settings.js';
+import { OPTION_KEYS } from './options.js';
+
+// The synthesizer's options for one run. preview: stop one level short of the finest (quick edits). The
+// model's shape complexity, once computed, stays with its atlas (atlas.complexity).
+export function runOptions(options, model, atlas, exemplarSize, preview) {
+  const synthOptions = {};
+  for (const k of OPTION_KEYS) if (options[k] !== undefined) synthOptions[k] = options[k];
+  const coverage = atlas.stats.coverage ?? atlas.stats.check?.coverage ?? 0.5;
+  if (synthOptions.featureScale === 'auto') {
+    atlas.complexity ??= shapeComplexity(model.surface);
+    synthOptions.featureScale = defaultFeatureScale(atlas.resolution, coverage, exemplarSize, atlas.complexity);
+  }
+  if (preview) synthOptions.finestLevel = 1;
+  return synthOptions;
+}
+
+// What the synthesizer follows: a vector field's vertexVectors as they are; a line or cross field's
+// representatives combed per corner for the atlas (geometry/chart-comb.js), its cuts along the chart seams
+// where it can (model.faceVectors, the field's own face representatives, when the model hands them in).
+export function fieldInput(model, atlas) {
+  const symmetry = model.symmetry ?? 1;
+  if (symmetry === 1) return { symmetry, input: model.vertexVectors };
+  const t0 = performance.now();
+  const faceVectors = model.faceVectors ?? null;
+  const comb = atlasCombedCorners(model.surface, model.vertexVectors, faceVectors, symmetry, atlas.cornerUVs);
+  return { symmetry, input: { cornerVectors: comb.corners }, ms: performance.now() - t0, cutEdges: comb.flips.length };
+}
