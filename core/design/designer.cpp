@@ -1,239 +1,71 @@
 #include "design/designer.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <optional>
+#include <string>
 #include <utility>
 
+#include "common/input_error.h"
 #include "constraints/constraint_set.h"
 #include "dec/exterior_derivative.h"
-#include "dec/one_form_laplacian.h"
-#include "direction/power_field_system.h"
-#include "direction/representative_directions.h"
+#include "design/derived_field.h"
+#include "design/design_mesh.h"
+#include "design/field_system.h"
 #include "field/whitney_reconstruction.h"
 #include "mesh/mesh_checks.h"
-#include "mesh/mesh_hash.h"
-#include "solver/shifted_factor.h"
 
 namespace tvf {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-// Fixed-angle boundary rows are enforced this strongly relative to the mean diagonal.
-constexpr double kBoundaryWeight = 1e4;
-
-// Closed genus-0 components have no kernel; every other component (handles, boundary loops, and the extra
-// modes of free boundaries) gets the shift.
-std::vector<uint8_t> kernelEdges(const MeshTopology& topology) {
-  std::vector<uint8_t> out(topology.numEdges);
-  for (int32_t e = 0; e < topology.numEdges; ++e) {
-    const ComponentInfo& c = topology.components[topology.edgeComponent[e]];
-    out[e] = c.genus > 0 || c.boundaryLoops > 0;
-  }
-  return out;
+// Read-outs that only a vector field has (a 1-form): refused by name for an N-direction field.
+void requireVectorField(int symmetry, const char* what) {
+  if (symmetry != 1)
+    throw InputError(std::string(what) + " of vector fields (symmetry 1); this field has symmetry " +
+                     std::to_string(symmetry));
 }
 
 }  // namespace
 
 struct Designer::Impl {
-  SurfaceMesh mesh;
-  std::optional<uint64_t> meshHash;  // made on first use
-  MeshTopology topology;
+  DesignMesh mesh;
   std::vector<MeshProblem> meshNotes;  // the check's non-fatal problems
-  MeshGeometry geometry;
-  BoundaryCondition boundary;
-  double gamma = 0;
-
-  // Base system, rebuilt when the boundary condition or gamma change; its upper triangle only.
-  bool baseStale = true;
-  OneFormOperators ops;
-  SparseMatrix base;
-  double scale = 1;
-
   ConstraintSet constraints;
-  ShiftedFactor factor;
-  // N >= 2: the power-field system that replaces the 1-form's (built when the symmetry is set).
-  int symmetry = 1;
-  double curvatureAlignment = 0;
-  bool metis = true;
-  std::unique_ptr<PowerFieldSystem> directions;
-
-  Eigen::VectorXd solution;
-  std::vector<double> oneForm, faceVectors, vertexVectors;
-  // The solve's reconstruction, swapped in once it is known finite; between solves, scratch
-  // (vertexVectors()).
-  std::vector<double> nextFaceVectors;
-  std::vector<Singularity> singularities;
-  // Derived on first read, each on its own: the page's default view needs the vertex vectors only.
-  bool vertexVectorsStale = false, singularitiesStale = false;
-  VertexVectorMap vertexVectorMap;  // built on first use (geometry only): vertexMap()
-  FaceVectorMap faceVectorMap;      // likewise: faceMap()
-  const FaceVectorMap& faceMap() {
-    if (faceVectorMap.coefficient.empty()) faceVectorMap = tvf::faceVectorMap(mesh, topology);
-    return faceVectorMap;
-  }
-  const VertexVectorMap& vertexMap() {
-    if (vertexVectorMap.empty()) vertexVectorMap = tvf::vertexVectorMap(mesh, topology, geometry);
-    return vertexVectorMap;
-  }
+  FieldSettings settings;
+  std::unique_ptr<FieldSystem> system;
+  // The system in use before the last symmetry change, resumed when that symmetry comes back: its factor's
+  // ordering (the analysis) is kept, as one factor kept across a round trip through a line field would be.
+  std::unique_ptr<FieldSystem> retired;
+  DerivedField field;
   DesignStats stats;
 
   Impl(SurfaceMesh m, MeshTopology t)
-      : mesh(std::move(m)),
-        topology(std::move(t)),
-        geometry(computeMeshGeometry(mesh, topology)),
-        constraints(mesh, topology, geometry),
-        factor(kernelEdges(topology)) {
-    factor.setEdgeGraph(topology.edgeVertices, topology.numVertices);
-    stats.positiveAreaFallbackVertices = geometry.positiveAreaFallbackVertices;
+      : mesh(std::move(m), std::move(t)), constraints(mesh.mesh(), mesh.topology(), mesh.geometry()) {
+    system = makeFieldSystem(1, mesh, constraints, settings);
+    stats.positiveAreaFallbackVertices = mesh.geometry().positiveAreaFallbackVertices;
   }
 
-  void rebuildBase() {
-    const std::vector<double> angles = boundaryEdgeAngles(topology, boundary);
-    ops = buildOneFormOperators(mesh, topology, geometry, angles);
-    constraints.operatorsChanged();
-    base = SparseMatrix();  // the old one goes before the new one is assembled
-    base = gamma > 0 ? upperTriangle(
-                           biLaplacian(oneFormLaplacian(ops, geometry), geometry, gamma * geometry.totalArea))
-                     : oneFormLaplacianUpper(ops, geometry);
-    ops.d0 = SparseMatrix();  // it made the divergence; nothing reads it after (35 MB at 1.25M edges)
-    scale = meanDiagonal(base);
-    if (ops.boundaryRows.rows() > 0) {
-      const SparseMatrix Zt = ops.boundaryRows.transpose();
-      base += upperTriangle((kBoundaryWeight * scale) * (Zt * ops.boundaryRows));
-      base.makeCompressed();
+  int symmetry() const { return system->symmetry(); }
+
+  // A setting every system follows, the retired one too, so that resuming it needs no catching up.
+  template <typename Apply>
+  void eachSystem(Apply apply) {
+    apply(*system);
+    if (retired) apply(*retired);
+  }
+
+  void switchTo(int symmetry) {
+    std::unique_ptr<FieldSystem> next;
+    if (retired && retired->symmetry() == symmetry) {
+      retired->resume();  // throws, retired unchanged, for constraints it cannot take
+      next = std::move(retired);
+    } else {
+      next = makeFieldSystem(symmetry, mesh, constraints, settings);
     }
-    const double nonZeros = 2.0 * static_cast<double>(base.nonZeros()) - static_cast<double>(base.rows());
-    stats.nnzPerRowM = nonZeros / std::max<Eigen::Index>(1, base.rows());
-    baseStale = false;
-    factor.invalidate();
-  }
-
-  DiagonalTerms constraintTerms() const {
-    DiagonalTerms terms;
-    constraints.allWeightedRows(scale, terms.rows, terms.weights);
-    return terms;
-  }
-
-  // The factorization's figures; after every factorization, including the one a solve may redo.
-  void copyFactorReport() {
-    const FactorReport& r = factor.report();
-    stats.analyzeMs = r.analyzeMs;
-    stats.analysisReused = r.analysisReused;
-    stats.factorMs = r.factorMs;
-    stats.nnzPerRowL = static_cast<double>(r.factorNonzeros) / std::max(1, topology.numEdges);
-    stats.kernelShift = r.kernelShift;
-    stats.kernelHandling = r.kernelHandling;
-    stats.factorKind = r.factorKind;
-    stats.factorizations = r.factorizations;
-  }
-
-  void factorNow() {
-    if (baseStale) rebuildBase();
-    factor.factor(base, scale, constraintTerms());
-    copyFactorReport();
-  }
-
-  // Constraint id's rows at relative weight `weight` into (or out of) the factor.
-  void updateRows(int32_t id, double weight, bool downdate) {
-    DiagonalTerms change;
-    constraints.weightedRows(id, weight, scale, change.rows, change.weights);
-    factor.update(change, scale, downdate);
-    stats.updateMs = factor.lastUpdateMs();
-  }
-
-  int32_t add(const ConstraintSpec& spec) {
-    if (directions) {
-      // Checked (and a stroke walked) before the set changes: a refused constraint leaves nothing behind.
-      std::vector<FaceDirectionTerm> terms;
-      if (spec.kind == ConstraintKind::Stroke || spec.kind == ConstraintKind::Vector) {
-        ConstraintSpec probe = spec;
-        probe.id = 0;
-        constraints.validate(probe);
-        const auto start = Clock::now();
-        terms = directionTerms(mesh, topology, directions->frames(), spec, symmetry);
-        stats.rowsMs = msSince(start);
-      } else {
-        directionTerms(mesh, topology, directions->frames(), spec, symmetry);  // throws naming the kind
-      }
-      const int32_t id = constraints.add(spec);
-      directions->add(id, std::move(terms), spec.weight);
-      stats.updateMs = directions->lastUpdateMs();
-      return id;
-    }
-    const int32_t id = constraints.add(spec);
-    stats.rowsMs = constraints.lastRowsMs();
-    if (isEdgeKind(spec.kind)) updateRows(id, spec.weight, false);
-    return id;
-  }
-
-  void buildDirections() {
-    directions.reset();
-    if (symmetry == 1) return;
-    auto system = std::make_unique<PowerFieldSystem>(mesh, topology, geometry, symmetry);
-    system->factor().setOrdering(metis ? FillOrdering::Metis : FillOrdering::Amd);
-    system->factor().setThreads(factor.threads());
-    system->factor().setMemoryLimit(factor.memoryLimit());
-    system->setCurvatureAlignment(curvatureAlignment);
-    applyBoundary(*system);
-    for (const ConstraintSpec& spec : constraints.specs())
-      system->add(spec.id, directionTerms(mesh, topology, system->frames(), spec, symmetry), spec.weight);
-    directions = std::move(system);
-  }
-
-  void solveDirections();
-
-  // A fixed-angle boundary as strongly weighted directions at the boundary faces (the weight of the 1-form's
-  // fixed-angle rows); a free boundary adds none.
-  void applyBoundary(PowerFieldSystem& system) {
-    const std::vector<double> angles =
-        boundary.free ? std::vector<double>{} : boundaryEdgeAngles(topology, boundary);
-    system.setBoundaryTerms(boundaryDirectionTerms(mesh, topology, system.frames(), angles, symmetry),
-                            kBoundaryWeight);
+    retired = std::move(system);
+    system = std::move(next);
+    field.clear();
   }
 };
-
-void Designer::Impl::solveDirections() {
-  auto start = Clock::now();
-  Eigen::VectorXd u;
-  directions->solve(u);
-  stats.solveMs = msSince(start);
-  ShiftedFactor& f = directions->factor();
-  const FactorReport& r = f.report();
-  stats.analyzeMs = r.analyzeMs;
-  stats.analysisReused = r.analysisReused;
-  stats.factorMs = r.factorMs;
-  stats.nnzPerRowL = static_cast<double>(r.factorNonzeros) / std::max(1, 2 * topology.numFaces);
-  stats.kernelShift = r.kernelShift;
-  stats.kernelHandling = r.kernelHandling;
-  stats.factorKind = r.factorKind;
-  stats.factorizations = r.factorizations;
-  stats.precisionRefactors = f.precisionRefactors();
-  stats.incrementalSolves = f.incrementalSolves();
-  stats.supernodalSolves = f.supernodalSolves();
-  stats.inverseIterations = directions->report().inverseIterations;
-  stats.smoothestEigenvalue = directions->report().eigenvalue;
-  stats.rhsMs = 0;
-  stats.warnings.clear();
-  if (gamma > 0)
-    stats.warnings.push_back("gamma applies to vector fields (symmetry 1); this field ignores it");
-  if (!u.allFinite())
-    throw InputError(
-        "the field is not finite (the system is too badly conditioned for these constraints); "
-        "the previous field is kept");
-  start = Clock::now();
-  faceVectors = faceRepresentatives(directions->frames(), u, symmetry);
-  solution = std::move(u);
-  oneForm.clear();
-  stats.reconstructMs = msSince(start);
-  stats.symmetry = symmetry;
-  vertexVectorsStale = singularitiesStale = true;
-}
 
 Designer::Designer(SurfaceMesh mesh) {
   MeshReport report = checkMesh(mesh);
@@ -246,23 +78,22 @@ Designer::Designer(Designer&&) noexcept = default;
 Designer& Designer::operator=(Designer&&) noexcept = default;
 
 void Designer::setBoundary(const BoundaryCondition& bc) {
+  Impl& d = *impl_;
   if (!bc.free) {
     requireFinite(bc.angle, "boundary angle");
-    boundaryEdgeAngles(impl_->topology, bc);  // validates overrides before anything changes
+    boundaryEdgeAngles(d.mesh.topology(), bc);  // validates overrides before anything changes
   }
-  if (sameBoundaryCondition(bc, impl_->boundary)) return;  // re-applying a design must not refactor
-  impl_->boundary = bc;
-  impl_->baseStale = true;
-  impl_->factor.invalidate();
-  if (impl_->directions) impl_->applyBoundary(*impl_->directions);
+  if (sameBoundaryCondition(bc, d.settings.boundary)) return;  // re-applying a design must not refactor
+  d.settings.boundary = bc;
+  d.eachSystem([&](FieldSystem& s) { s.setBoundary(bc); });
 }
 
 void Designer::setGamma(double gamma) {
+  Impl& d = *impl_;
   requireGamma(gamma);
-  if (gamma == impl_->gamma) return;
-  impl_->gamma = gamma;
-  impl_->baseStale = true;
-  impl_->factor.invalidate();
+  if (gamma == d.settings.gamma) return;
+  d.settings.gamma = gamma;
+  d.eachSystem([&](FieldSystem& s) { s.setGamma(gamma); });
 }
 
 void Designer::setSymmetry(int symmetry) {
@@ -270,118 +101,83 @@ void Designer::setSymmetry(int symmetry) {
   if (symmetry < 1 || symmetry > 6)
     throw InputError("the symmetry must be an integer from 1 to 6 (1 vector, 2 line, 4 cross field); got " +
                      std::to_string(symmetry));
-  if (symmetry == d.symmetry) return;
-  if (symmetry > 1) {
-    int sources = 0, sinks = 0, vortices = 0, edges = 0;
-    for (const ConstraintSpec& spec : d.constraints.specs()) {
-      sources += spec.kind == ConstraintKind::Source;
-      sinks += spec.kind == ConstraintKind::Sink;
-      vortices += spec.kind == ConstraintKind::Vortex;
-      edges += spec.kind == ConstraintKind::Edge;
-    }
-    std::string named;
-    auto name = [&](int count, const char* one, const char* many) {
-      if (count == 0) return;
-      named += (named.empty() ? "" : ", ") + std::to_string(count) + " " + (count == 1 ? one : many);
-    };
-    name(sources, "source", "sources");
-    name(sinks, "sink", "sinks");
-    name(vortices, "vortex", "vortices");
-    name(edges, "edge value", "edge values");
-    if (!named.empty())
-      throw InputError("a field of symmetry " + std::to_string(symmetry) +
-                       " takes strokes and directions only; the design has " + named +
-                       " (vector-field notions): remove them first");
-  }
-  if (symmetry > 1 && symmetry % 2 != 0 && d.curvatureAlignment > 0)
+  if (symmetry == d.symmetry()) return;
+  if (symmetry > 1 && symmetry % 2 != 0 && d.settings.curvatureAlignment > 0)
     throw InputError("curvature alignment needs an even symmetry; turn it off before choosing symmetry " +
                      std::to_string(symmetry));
-  const int previous = d.symmetry;
-  d.symmetry = symmetry;
-  try {
-    d.buildDirections();
-  } catch (...) {
-    d.symmetry = previous;
-    d.buildDirections();
-    throw;
-  }
-  if (symmetry == 1) d.factor.invalidate();  // rows may have come and gone while it was not in use
-  d.oneForm.clear();
-  d.faceVectors.clear();
-  d.vertexVectors.clear();
-  d.singularities.clear();
-  d.vertexVectorsStale = d.singularitiesStale = false;
+  d.switchTo(symmetry);
 }
 
 int Designer::symmetry() const {
-  return impl_->symmetry;
+  return impl_->symmetry();
 }
 
 void Designer::setCurvatureAlignment(double s) {
   Impl& d = *impl_;
   if (!std::isfinite(s) || s < 0 || s > 1e6)
     throw InputError("the curvature alignment must be a number from 0 to 1e6 (0: off)");
-  if (s > 0 && (d.symmetry == 1 || d.symmetry % 2 != 0))
+  if (s > 0 && (d.symmetry() == 1 || d.symmetry() % 2 != 0))
     throw InputError("curvature alignment is for line and cross fields (an even symmetry); the symmetry is " +
-                     std::to_string(d.symmetry));
-  if (d.directions) d.directions->setCurvatureAlignment(s);
-  d.curvatureAlignment = s;
+                     std::to_string(d.symmetry()));
+  d.settings.curvatureAlignment = s;
+  // A retired odd symmetry cannot come back with the alignment on (setSymmetry refuses it): it needs none.
+  d.eachSystem([&](FieldSystem& f) {
+    if (s == 0 || f.symmetry() % 2 == 0) f.setCurvatureAlignment(s);
+  });
 }
 
 double Designer::curvatureAlignment() const {
-  return impl_->curvatureAlignment;
+  return impl_->settings.curvatureAlignment;
 }
 
 void Designer::setFactorMemoryLimit(double bytes) {
   if (!std::isfinite(bytes) || bytes < 0) throw InputError("the factor memory limit must be a number >= 0");
-  impl_->factor.setMemoryLimit(bytes);
-  if (impl_->directions) impl_->directions->factor().setMemoryLimit(bytes);
+  impl_->settings.memoryLimit = bytes;
+  impl_->eachSystem([&](FieldSystem& s) { s.factor().setMemoryLimit(bytes); });
 }
 
 double Designer::factorMemoryLimit() const {
-  return impl_->factor.memoryLimit();
+  return impl_->system->factor().memoryLimit();
 }
 
 int32_t Designer::precisionRefactors() const {
-  return impl_->factor.precisionRefactors();
+  return impl_->system->factor().precisionRefactors();
 }
 
 void Designer::setMetisOrdering(bool metis) {
-  impl_->factor.setOrdering(metis ? FillOrdering::Metis : FillOrdering::Amd);
-  impl_->metis = metis;
-  if (impl_->directions)
-    impl_->directions->factor().setOrdering(metis ? FillOrdering::Metis : FillOrdering::Amd);
+  const FillOrdering ordering = metis ? FillOrdering::Metis : FillOrdering::Amd;
+  impl_->settings.ordering = ordering;
+  impl_->eachSystem([&](FieldSystem& s) { s.factor().setOrdering(ordering); });
 }
 
 void Designer::setSolverThreads(int threads) {
-  impl_->factor.setThreads(threads);
-  if (impl_->directions) impl_->directions->factor().setThreads(threads);
+  impl_->settings.threads = threads;
+  impl_->eachSystem([&](FieldSystem& s) { s.factor().setThreads(threads); });
 }
 
 int Designer::solverThreads() const {
-  return impl_->factor.threads();
+  return impl_->system->factor().threads();
 }
 
 void Designer::setDeferredUpdates(bool defer) {
-  impl_->factor.setDeferredUpdates(defer);
+  impl_->settings.deferUpdates = defer;
+  impl_->eachSystem([&](FieldSystem& s) { s.factor().setDeferredUpdates(defer); });
 }
 
 void Designer::applyDeferredUpdates() {
-  impl_->factor.applyDeferred();
-  impl_->stats.deferredUpdateMs = impl_->factor.lastDeferredUpdateMs();
+  ShiftedFactor& factor = impl_->system->factor();
+  factor.applyDeferred();
+  impl_->stats.deferredUpdateMs = factor.lastDeferredUpdateMs();
 }
 
 void Designer::factor() {
-  if (impl_->directions) {
-    impl_->directions->factor().invalidate();
-    impl_->solveDirections();  // factors; the solve after it is what a caller wants next anyway
-    return;
-  }
-  impl_->factorNow();
+  Impl& d = *impl_;
+  d.system->factorNow(d.stats);
+  reportFactor(d.system->factor(), d.system->unknowns(), d.stats);
 }
 
 int32_t Designer::add(const ConstraintSpec& spec) {
-  return impl_->add(spec);
+  return impl_->system->add(spec, impl_->stats);
 }
 
 int32_t Designer::addStroke(const std::vector<SurfacePoint>& points, double strength, double weight) {
@@ -390,7 +186,7 @@ int32_t Designer::addStroke(const std::vector<SurfacePoint>& points, double stre
   s.points = points;
   s.strength = strength;
   s.weight = weight;
-  return impl_->add(s);
+  return add(s);
 }
 
 int32_t Designer::addVector(int32_t face, const double vector[3], double weight) {
@@ -399,7 +195,7 @@ int32_t Designer::addVector(int32_t face, const double vector[3], double weight)
   s.element = face;
   std::copy(vector, vector + 3, s.vector);
   s.weight = weight;
-  return impl_->add(s);
+  return add(s);
 }
 
 int32_t Designer::addEdge(int32_t i, int32_t j, double value, double weight) {
@@ -409,7 +205,7 @@ int32_t Designer::addEdge(int32_t i, int32_t j, double value, double weight) {
   s.edge[1] = j;
   s.value = value;
   s.weight = weight;
-  return impl_->add(s);
+  return add(s);
 }
 
 int32_t Designer::addSource(int32_t vertex, double strength) {
@@ -417,7 +213,7 @@ int32_t Designer::addSource(int32_t vertex, double strength) {
   s.kind = ConstraintKind::Source;
   s.element = vertex;
   s.strength = strength;
-  return impl_->add(s);
+  return add(s);
 }
 
 int32_t Designer::addSink(int32_t vertex, double strength) {
@@ -425,7 +221,7 @@ int32_t Designer::addSink(int32_t vertex, double strength) {
   s.kind = ConstraintKind::Sink;
   s.element = vertex;
   s.strength = strength;
-  return impl_->add(s);
+  return add(s);
 }
 
 int32_t Designer::addVortex(int32_t face, double strength) {
@@ -433,28 +229,20 @@ int32_t Designer::addVortex(int32_t face, double strength) {
   s.kind = ConstraintKind::Vortex;
   s.element = face;
   s.strength = strength;
-  return impl_->add(s);
+  return add(s);
 }
 
 void Designer::remove(int32_t id) {
   Impl& d = *impl_;
-  const ConstraintSpec& spec = d.constraints.spec(id);  // throws for an unknown id
-  if (d.directions) {
-    d.directions->remove(id);
-    d.stats.updateMs = d.directions->lastUpdateMs();
-  } else if (isEdgeKind(spec.kind)) {
-    d.updateRows(id, spec.weight, true);
-  }
+  d.system->remove(d.constraints.spec(id), d.stats);  // spec() throws for an unknown id
   d.constraints.remove(id);
 }
 
 void Designer::setWeight(int32_t id, double weight) {
   Impl& d = *impl_;
   const double previous = d.constraints.setWeight(id, weight);  // validates
-  const double change = weight - previous;
-  if (change == 0) return;
-  if (d.directions) return d.directions->setWeight(id, weight);
-  d.updateRows(id, std::abs(change), change < 0);
+  if (weight == previous) return;
+  d.system->reweight(d.constraints.spec(id), previous, d.stats);
 }
 
 void Designer::setStrength(int32_t id, double strength) {
@@ -463,157 +251,94 @@ void Designer::setStrength(int32_t id, double strength) {
 
 void Designer::clearConstraints() {
   Impl& d = *impl_;
-  if (d.directions) {
-    d.directions->clear();
-    d.stats.updateMs = d.directions->lastUpdateMs();
-    d.constraints.clear();
-    d.factor.invalidate();  // the 1-form factor no longer holds these rows
-    return;
-  }
-  d.factor.update(d.constraintTerms(), d.scale, true);  // one multi-column downdate: the base is unchanged
-  d.stats.updateMs = d.factor.lastUpdateMs();
+  d.system->clear(d.stats);
   d.constraints.clear();
 }
 
 void Designer::solve() {
   Impl& d = *impl_;
-  if (d.directions) return d.solveDirections();
-  d.stats.symmetry = 1;
-  d.stats.inverseIterations = 0;
-  d.stats.smoothestEigenvalue = 0;
-  if (d.baseStale || !d.factor.current()) d.factorNow();
-  auto start = Clock::now();
-  const Eigen::VectorXd b = d.constraints.rightHandSide(d.ops, d.scale);
-  d.stats.rhsMs = msSince(start);
-  if (!b.allFinite()) throw InputError("the constraints give a right-hand side that is not finite");
-  d.stats.warnings = d.constraints.warnings(d.boundary);
-  start = Clock::now();
-  Eigen::VectorXd x;
-  d.factor.solve(d.base, d.scale, d.constraintTerms(), b, x);
-  d.stats.solveMs = msSince(start);
-  d.stats.precisionRefactors = d.factor.precisionRefactors();
-  d.stats.incrementalSolves = d.factor.incrementalSolves();
-  d.stats.supernodalSolves = d.factor.supernodalSolves();
-  d.copyFactorReport();  // the solve refactors when an updated factor lost precision
-  if (!x.allFinite())
-    throw InputError(
-        "the field is not finite (the system is too badly conditioned for these constraints); "
-        "the previous field is kept");
-  start = Clock::now();
-  std::vector<double>& faceVectors = d.nextFaceVectors;
-  tvf::faceVectors(d.faceMap(), d.topology, x.data(), faceVectors);
-  for (const double v : faceVectors)
-    if (!std::isfinite(v))
-      throw InputError(
-          "the field's vectors are not finite (magnitudes beyond double range on this mesh); "
-          "the previous field is kept");
-  d.solution = std::move(x);
-  d.oneForm.assign(d.solution.data(), d.solution.data() + d.solution.size());
-  std::swap(d.faceVectors, faceVectors);
-  d.stats.reconstructMs = msSince(start);
-  d.vertexVectorsStale = d.singularitiesStale = true;
+  d.stats.symmetry = d.symmetry();
+  d.system->solve(d.field.solution(), d.stats);
+  d.field.solved();
 }
 
 const std::vector<double>& Designer::oneForm() const {
-  return impl_->oneForm;
+  return impl_->field.solution().oneForm;
 }
 const std::vector<double>& Designer::faceVectors() const {
-  return impl_->faceVectors;
+  return impl_->field.solution().faceVectors;
 }
 void Designer::reconstruct(const double* oneForm, std::vector<double>& faceVectors,
                            std::vector<double>& vertexVectors) const {
-  Impl& d = *impl_;
-  tvf::faceVectors(d.faceMap(), d.topology, oneForm, faceVectors);
-  tvf::vertexVectors(d.vertexMap(), d.faceMap(), d.mesh, d.topology, d.geometry, oneForm, vertexVectors);
+  const DesignMesh& m = impl_->mesh;
+  tvf::faceVectors(m.faceVectorMap(), m.topology(), oneForm, faceVectors);
+  tvf::vertexVectors(m.vertexVectorMap(), m.faceVectorMap(), m.mesh(), m.topology(), m.geometry(), oneForm,
+                     vertexVectors);
 }
-// Vertex vectors and singularities are derived on first read: the interactive loop needs only face vectors.
 const std::vector<double>& Designer::vertexVectors() const {
-  Impl& d = *impl_;
-  if (d.vertexVectorsStale && d.directions) {
-    d.vertexVectors = vertexRepresentatives(d.mesh, d.topology, d.geometry, d.faceVectors, d.symmetry);
-  } else if (d.vertexVectorsStale) {
-    // The solve's spare face array (the previous field's, 3 doubles per face) holds the threads' partial
-    // sums.
-    tvf::vertexVectors(d.vertexMap(), d.faceMap(), d.mesh, d.topology, d.geometry, d.oneForm.data(),
-                       d.vertexVectors, d.nextFaceVectors);
-  }
-  d.vertexVectorsStale = false;
-  return d.vertexVectors;
+  return impl_->field.requireVertexVectors(*impl_->system);
 }
 const std::vector<Singularity>& Designer::singularities() const {
-  Impl& d = *impl_;
-  if (d.singularitiesStale)
-    d.singularities = findSingularities(d.mesh, d.topology, d.geometry, d.faceVectors, d.symmetry);
-  d.singularitiesStale = false;
-  return d.singularities;
+  return impl_->field.requireSingularities(impl_->mesh);
 }
 const DesignStats& Designer::stats() const {
   return impl_->stats;
 }
 HodgeDecomposition Designer::hodgeDecomposition() const {
   const Impl& d = *impl_;
-  if (d.directions)
-    throw InputError("the Hodge decomposition is of vector fields (symmetry 1); this field has symmetry " +
-                     std::to_string(d.symmetry));
-  if (d.oneForm.size() != static_cast<size_t>(d.topology.numEdges))
+  requireVectorField(d.symmetry(), "the Hodge decomposition is");
+  const std::vector<double>& oneForm = d.field.solution().oneForm;
+  const MeshTopology& topology = d.mesh.topology();
+  if (oneForm.size() != static_cast<size_t>(topology.numEdges))
     throw InputError("no field to decompose: solve first");
-  return hodgeDecompose(exteriorDerivative0(d.topology), exteriorDerivative1(d.topology), d.geometry,
-                        Eigen::Map<const Eigen::VectorXd>(d.oneForm.data(), d.topology.numEdges));
+  return hodgeDecompose(exteriorDerivative0(topology), exteriorDerivative1(topology), d.mesh.geometry(),
+                        Eigen::Map<const Eigen::VectorXd>(oneForm.data(), topology.numEdges));
 }
 std::vector<ConstraintSpec> Designer::constraints() const {
   return impl_->constraints.specs();
 }
 const BoundaryCondition& Designer::boundary() const {
-  return impl_->boundary;
+  return impl_->settings.boundary;
 }
 double Designer::gamma() const {
-  return impl_->gamma;
+  return impl_->settings.gamma;
 }
 const SurfaceMesh& Designer::mesh() const {
-  return impl_->mesh;
+  return impl_->mesh.mesh();
 }
 uint64_t Designer::meshHash() const {
-  if (!impl_->meshHash) impl_->meshHash = tvf::meshHash(impl_->mesh);
-  return *impl_->meshHash;
+  return impl_->mesh.hash();
 }
 const std::vector<int32_t>& Designer::edgeVertices() const {
-  return impl_->topology.edgeVertices;
+  return impl_->mesh.topology().edgeVertices;
 }
 const std::vector<MeshProblem>& Designer::meshNotes() const {
   return impl_->meshNotes;
 }
-
 const MeshTopology& Designer::topology() const {
-  return impl_->topology;
+  return impl_->mesh.topology();
 }
 const MeshGeometry& Designer::geometry() const {
-  return impl_->geometry;
+  return impl_->mesh.geometry();
 }
 
 void Designer::assembleSystem(SparseMatrix& A, Eigen::VectorXd& b) {
-  Impl& d = *impl_;
-  if (d.directions) return d.directions->assemble(A, b);
-  if (d.baseStale) d.rebuildBase();
-  A = plusDiagonal(fullFromUpper(d.base), d.constraintTerms());
-  b = d.constraints.rightHandSide(d.ops, d.scale);
+  impl_->system->assemble(A, b);
 }
 
 SparseMatrix Designer::baseMatrix() {
-  if (impl_->baseStale) impl_->rebuildBase();
-  return fullFromUpper(impl_->base);
+  return impl_->system->baseMatrix();
 }
 
 double Designer::weightScale() {
-  if (impl_->baseStale) impl_->rebuildBase();
-  return impl_->scale;
+  return impl_->system->weightScale();
 }
 
 Eigen::VectorXd Designer::textureFaceVectors() const {
-  if (impl_->directions)
-    throw InputError("texture vectors are of vector fields (symmetry 1); this field has symmetry " +
-                     std::to_string(impl_->symmetry));
+  const Impl& d = *impl_;
+  requireVectorField(d.symmetry(), "texture vectors are");
   std::vector<double> out;
-  tvf::textureFaceVectors(impl_->mesh, impl_->topology, impl_->oneForm.data(), out);
+  tvf::textureFaceVectors(d.mesh.mesh(), d.mesh.topology(), d.field.solution().oneForm.data(), out);
   return Eigen::Map<Eigen::VectorXd>(out.data(), out.size());
 }
 

@@ -1,8 +1,10 @@
 #pragma once
-// The field-design session: one mesh with its topology, geometry and base matrix (boundary condition and
-// gamma), a set of constraints (constraints/constraint_set.h) and the shifted factor of the system they make
-// (solver/shifted_factor.h), edited through rank updates of that factor. This is the object the CLI and the
-// wasm bindings drive; it holds no UI state.
+// The field-design session: one mesh with what is derived from it (design/design_mesh.h), a set of
+// constraints (constraints/constraint_set.h) and the field system of the chosen symmetry
+// (design/field_system.h: the vector field's 1-form system or an N-direction field's power-field system),
+// whose factor every edit changes by rank updates. The Designer checks its inputs and dispatches to that
+// system; it never asks which kind it is. This is the object the CLI and the wasm bindings drive; it holds
+// no UI state.
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
@@ -14,6 +16,7 @@
 #include "constraints/constraint_spec.h"
 #include "dec/boundary_condition.h"
 #include "dec/hodge_star.h"
+#include "design/design_stats.h"
 #include "field/hodge_decomposition.h"
 #include "field/singularities.h"
 #include "mesh/mesh_checks.h"
@@ -21,38 +24,6 @@
 #include "mesh/surface_mesh.h"
 
 namespace tvf {
-
-struct DesignStats {
-  double analyzeMs = 0, factorMs = 0, updateMs = 0, solveMs = 0, reconstructMs = 0;
-  // The last deferred update put into the factor after its solve (setDeferredUpdates); updateMs is then
-  // what the edit itself took: the update's correction for the solves.
-  double deferredUpdateMs = 0;
-  double rowsMs = 0;            // the last added constraint's rows (a stroke's surface walk)
-  double rhsMs = 0;             // the last solve's right-hand side
-  bool analysisReused = false;  // the last factorization reused the ordering (unchanged sparsity pattern)
-  // Solves that found the updated factor wanting (backward error beyond round-off) and refactored: a
-  // benchmark that times updates must see none.
-  int32_t precisionRefactors = 0;
-  // Solves whose forward substitution was redone only on the paths the edits changed (all since the mesh
-  // was loaded; solver/forward_solution.h).
-  int64_t incrementalSolves = 0;
-  // Solves (and refinement steps) whose backward substitution went by supernodes (the wasm build's;
-  // solver/backward_substitution.h), since the factored system was made.
-  int64_t supernodalSolves = 0;
-  double nnzPerRowM = 0, nnzPerRowL = 0;
-  int32_t positiveAreaFallbackVertices = 0;
-  std::string kernelHandling;  // how the kernel of M was made definite
-  double kernelShift = 0;      // the relative diagonal shift that made the factorization succeed
-  std::vector<std::string> warnings;
-  std::string factorKind;  // e.g. "supernodal LL' (AMD)"
-  int32_t symmetry = 1;    // N of the field solved last (1: a vector field, the paper's 1-form)
-  // Numeric factorizations of the system in use since it was made: a constraint edit adds none (rank
-  // updates).
-  int64_t factorizations = 0;
-  // The smoothest unconstrained N-field's inverse iterations and eigenvalue (0 for any other solve).
-  int32_t inverseIterations = 0;
-  double smoothestEigenvalue = 0;
-};
 
 class Designer {
  public:
@@ -86,11 +57,11 @@ class Designer {
   // machine's physical memory (the default). The wasm bindings pass what is left of the 4 GB address space.
   void setFactorMemoryLimit(double bytes);
   double factorMemoryLimit() const;
-  // Whether an added constraint's rows are held beside the vector field's factor and applied to the solves by
-  // the Woodbury identity (solver/woodbury_correction.h) rather than updated into it first: the field after
-  // an edit is ready without waiting for the factor's update, which applyDeferredUpdates() then does (the
-  // worker, once the field has gone to the page). Any other change of the factor applies it first. Off by
-  // default.
+  // Whether an added constraint's terms are held beside the field system's factor (vector, line or cross
+  // field alike) and applied to the solves by the Woodbury identity (solver/woodbury_correction.h) rather
+  // than updated into it first: the field after an edit is ready without waiting for the factor's update,
+  // which applyDeferredUpdates() then does (the worker, once the field has gone to the page). Any other
+  // change of the factor applies it first. Off by default.
   void setDeferredUpdates(bool defer);
   // Puts a held update into the factor (nothing when there is none); stats().deferredUpdateMs times it.
   void applyDeferredUpdates();
@@ -139,7 +110,8 @@ class Designer {
   // The system the design means (base + constraint rows, without the kernel shift) and its right-hand side,
   // for checking the update path against an independent solve.
   void assembleSystem(SparseMatrix& A, Eigen::VectorXd& b);
-  // The plain boundary-modified Laplacian (or bi-Laplacian) without shift or constraints.
+  // The field system's base matrix without shift or constraints: for a vector field the boundary-modified
+  // Laplacian (or bi-Laplacian), for N >= 2 the connection Laplacian with the boundary's terms.
   SparseMatrix baseMatrix();
   double weightScale();  // weights are multiplied by this (the mean diagonal of the base matrix)
   Eigen::VectorXd textureFaceVectors() const;  // 2 per face when the mesh has UVs

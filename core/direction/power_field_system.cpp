@@ -207,6 +207,19 @@ void PowerFieldSystem::solve(Eigen::VectorXd& u) {
   factor_.solve(base_, scale_, terms, rightHandSide(), u);
 }
 
+SparseMatrix PowerFieldSystem::baseMatrix() const {
+  return fullFromUpper(base_);
+}
+
+double PowerFieldSystem::scale() const {
+  return scale_;
+}
+
+double PowerFieldSystem::nonZerosPerRow() const {
+  const double nonZeros = 2.0 * static_cast<double>(base_.nonZeros()) - static_cast<double>(base_.rows());
+  return nonZeros / std::max<Eigen::Index>(1, base_.rows());
+}
+
 const PowerFieldReport& PowerFieldSystem::report() const {
   return report_;
 }

@@ -54,6 +54,9 @@ class PowerFieldSystem {
   const PowerFieldReport& report() const;
   // The system the design means (H + constraint terms) and its right-hand side, for independent checks.
   void assemble(SparseMatrix& A, Eigen::VectorXd& b);
+  SparseMatrix baseMatrix() const;  // H + the boundary terms, full
+  double scale() const;             // relative weights are multiplied by this (H's mean diagonal)
+  double nonZerosPerRow() const;    // of the base matrix
 
  private:
   struct Entry {

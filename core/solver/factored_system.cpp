@@ -52,6 +52,9 @@ void chooseOrdering(cholmod_common& c, FillOrdering ordering) {
 // NESDIS to 20000-edge leaves at ~3x, 58.6 for AMD; README).
 constexpr int32_t kDissectionLeafEdges = 1000;
 
+// The least room for a held update's G (solver/woodbury_correction.h), in doubles: 8 MB.
+constexpr size_t kLeastHeldDoubles = size_t{1} << 20;
+
 // A 64-bit FNV-1a hash of a sparse pattern, with its size: what decides whether the saved analysis fits the
 // next matrix (a copy of the pattern to compare with took 36 MB at 1.25M edges).
 uint64_t patternHash(const cholmod_sparse& A) {
@@ -441,8 +444,11 @@ bool FactoredSystem::deferUpdate(const std::vector<int32_t>& rows, const std::ve
   // for it (see Impl).
   const size_t n = static_cast<size_t>(s.n);
   cholmod_common& c = *s.common.get();
-  const bool room =
-      cholmod_allocate_work(n, n, static_cast<size_t>(c.maxrank) * n, &c) && c.status == CHOLMOD_OK;
+  // On a small mesh the paths to the root are most of the columns, and a stroke of an N-direction field has
+  // two columns a face: G gets at least kLeastHeldDoubles there (the updates' own workspace is larger on a
+  // mesh past half a million unknowns).
+  const size_t xwork = std::max(static_cast<size_t>(c.maxrank) * n, kLeastHeldDoubles);
+  const bool room = cholmod_allocate_work(n, n, xwork, &c) && c.status == CHOLMOD_OK;
   if (room && s.deferred.prepare(*s.factor, s.positions.data(), s.weights.data(),
                                  static_cast<int>(s.positions.size()), static_cast<double*>(c.Xwork),
                                  c.xworksize, static_cast<int*>(c.Iwork), s.threads))

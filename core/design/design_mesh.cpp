@@ -1,0 +1,29 @@
+#include "design/design_mesh.h"
+
+#include <utility>
+
+#include "mesh/mesh_hash.h"
+
+namespace tvf {
+
+DesignMesh::DesignMesh(SurfaceMesh mesh, MeshTopology topology)
+    : mesh_(std::move(mesh)),
+      topology_(std::move(topology)),
+      geometry_(computeMeshGeometry(mesh_, topology_)) {}
+
+const FaceVectorMap& DesignMesh::faceVectorMap() const {
+  if (faceVectorMap_.coefficient.empty()) faceVectorMap_ = tvf::faceVectorMap(mesh_, topology_);
+  return faceVectorMap_;
+}
+
+const VertexVectorMap& DesignMesh::vertexVectorMap() const {
+  if (vertexVectorMap_.empty()) vertexVectorMap_ = tvf::vertexVectorMap(mesh_, topology_, geometry_);
+  return vertexVectorMap_;
+}
+
+uint64_t DesignMesh::hash() const {
+  if (!hash_) hash_ = meshHash(mesh_);
+  return *hash_;
+}
+
+}  // namespace tvf

@@ -1,0 +1,39 @@
+#pragma once
+// The mesh a design is made on and what is derived from it alone, computed once and shared by the field
+// systems, the read-outs and the exports: topology and geometry at construction, the Whitney maps and the
+// fingerprint on first use. Nothing here depends on a field or a constraint.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "dec/hodge_star.h"
+#include "field/whitney_reconstruction.h"
+#include "mesh/mesh_checks.h"
+#include "mesh/mesh_topology.h"
+#include "mesh/surface_mesh.h"
+
+namespace tvf {
+
+class DesignMesh {
+ public:
+  // A mesh that checkMesh() found usable, with the topology that check built.
+  DesignMesh(SurfaceMesh mesh, MeshTopology topology);
+
+  const SurfaceMesh& mesh() const { return mesh_; }
+  const MeshTopology& topology() const { return topology_; }
+  const MeshGeometry& geometry() const { return geometry_; }
+  // The Whitney maps of Eq. 4 and 5 (geometry only), built on first use.
+  const FaceVectorMap& faceVectorMap() const;
+  const VertexVectorMap& vertexVectorMap() const;
+  uint64_t hash() const;  // meshHash(mesh()), made on first use
+
+ private:
+  SurfaceMesh mesh_;
+  MeshTopology topology_;
+  MeshGeometry geometry_;
+  mutable FaceVectorMap faceVectorMap_;
+  mutable VertexVectorMap vertexVectorMap_;
+  mutable std::optional<uint64_t> hash_;
+};
+
+}  // namespace tvf

@@ -1,0 +1,42 @@
+#pragma once
+// What the design's last edits, factorization and solve took and found: the session's stats() read-out, the
+// benchmarks' figures and the tests' checks (no edit refactors, no solve lost precision).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tvf {
+
+struct DesignStats {
+  double analyzeMs = 0, factorMs = 0, updateMs = 0, solveMs = 0, reconstructMs = 0;
+  // The last deferred update put into the factor after its solve (setDeferredUpdates); updateMs is then
+  // what the edit itself took: the update's correction for the solves.
+  double deferredUpdateMs = 0;
+  double rowsMs = 0;            // the last added constraint's rows (a stroke's surface walk)
+  double rhsMs = 0;             // the last solve's right-hand side
+  bool analysisReused = false;  // the last factorization reused the ordering (unchanged sparsity pattern)
+  // Solves that found the updated factor wanting (backward error beyond round-off) and refactored: a
+  // benchmark that times updates must see none.
+  int32_t precisionRefactors = 0;
+  // Solves whose forward substitution was redone only on the paths the edits changed (all since the mesh
+  // was loaded; solver/forward_solution.h).
+  int64_t incrementalSolves = 0;
+  // Solves (and refinement steps) whose backward substitution went by supernodes (the wasm build's;
+  // solver/backward_substitution.h), since the factored system was made.
+  int64_t supernodalSolves = 0;
+  double nnzPerRowM = 0, nnzPerRowL = 0;
+  int32_t positiveAreaFallbackVertices = 0;
+  std::string kernelHandling;  // how the kernel of M was made definite
+  double kernelShift = 0;      // the relative diagonal shift that made the factorization succeed
+  std::vector<std::string> warnings;
+  std::string factorKind;  // e.g. "supernodal LL' (AMD)"
+  int32_t symmetry = 1;    // N of the field solved last (1: a vector field, the paper's 1-form)
+  // Numeric factorizations of the system in use since it was made: a constraint edit adds none (rank
+  // updates).
+  int64_t factorizations = 0;
+  // The smoothest unconstrained N-field's inverse iterations and eigenvalue (0 for any other solve).
+  int32_t inverseIterations = 0;
+  double smoothestEigenvalue = 0;
+};
+
+}  // namespace tvf

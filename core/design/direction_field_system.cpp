@@ -1,0 +1,156 @@
+#include "design/direction_field_system.h"
+
+#include <chrono>
+#include <string>
+#include <utility>
+
+#include "common/input_error.h"
+#include "direction/direction_constraints.h"
+#include "direction/representative_directions.h"
+
+namespace tvf {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Sources, sinks, vortices and edge values are vector-field notions: the refusal names how many of each the
+// design holds, so the user knows what to remove.
+void refuseVectorNotions(const std::vector<ConstraintSpec>& specs, int symmetry) {
+  int sources = 0, sinks = 0, vortices = 0, edges = 0;
+  for (const ConstraintSpec& spec : specs) {
+    sources += spec.kind == ConstraintKind::Source;
+    sinks += spec.kind == ConstraintKind::Sink;
+    vortices += spec.kind == ConstraintKind::Vortex;
+    edges += spec.kind == ConstraintKind::Edge;
+  }
+  std::string named;
+  auto name = [&](int count, const char* one, const char* many) {
+    if (count == 0) return;
+    named += (named.empty() ? "" : ", ") + std::to_string(count) + " " + (count == 1 ? one : many);
+  };
+  name(sources, "source", "sources");
+  name(sinks, "sink", "sinks");
+  name(vortices, "vortex", "vortices");
+  name(edges, "edge value", "edge values");
+  if (!named.empty())
+    throw InputError("a field of symmetry " + std::to_string(symmetry) +
+                     " takes strokes and directions only; the design has " + named +
+                     " (vector-field notions): remove them first");
+}
+
+}  // namespace
+
+DirectionFieldSystem::DirectionFieldSystem(int symmetry, const DesignMesh& mesh, ConstraintSet& constraints,
+                                           const FieldSettings& settings)
+    : symmetry_(symmetry),
+      mesh_(mesh),
+      constraints_(constraints),
+      gamma_(settings.gamma),
+      system_(mesh.mesh(), mesh.topology(), mesh.geometry(), symmetry) {
+  refuseVectorNotions(constraints.specs(), symmetry);
+  configureFactor(system_.factor(), settings);
+  system_.setCurvatureAlignment(settings.curvatureAlignment);
+  setBoundary(settings.boundary);
+  addAll();
+}
+
+int64_t DirectionFieldSystem::unknowns() const {
+  return 2 * static_cast<int64_t>(mesh_.topology().numFaces);
+}
+
+// A fixed-angle boundary as strongly weighted directions at the boundary faces (the weight of the 1-form's
+// fixed-angle rows); a free boundary adds none.
+void DirectionFieldSystem::setBoundary(const BoundaryCondition& bc) {
+  const std::vector<double> angles =
+      bc.free ? std::vector<double>{} : boundaryEdgeAngles(mesh_.topology(), bc);
+  system_.setBoundaryTerms(
+      boundaryDirectionTerms(mesh_.mesh(), mesh_.topology(), system_.frames(), angles, symmetry_),
+      kBoundaryWeight);
+}
+
+void DirectionFieldSystem::addAll() {
+  for (const ConstraintSpec& spec : constraints_.specs())
+    system_.add(spec.id, directionTerms(mesh_.mesh(), mesh_.topology(), system_.frames(), spec, symmetry_),
+                spec.weight);
+}
+
+void DirectionFieldSystem::resume() {
+  refuseVectorNotions(constraints_.specs(), symmetry_);
+  system_.factor().invalidate();  // so that forgetting the old terms downdates nothing
+  system_.clear();
+  addAll();
+}
+
+int32_t DirectionFieldSystem::add(const ConstraintSpec& spec, DesignStats& stats) {
+  // Checked (and a stroke walked) before the set changes: a refused constraint leaves nothing behind.
+  std::vector<FaceDirectionTerm> terms;
+  if (spec.kind == ConstraintKind::Stroke || spec.kind == ConstraintKind::Vector) {
+    ConstraintSpec probe = spec;
+    probe.id = 0;
+    constraints_.validate(probe);
+    const auto start = Clock::now();
+    terms = directionTerms(mesh_.mesh(), mesh_.topology(), system_.frames(), spec, symmetry_);
+    stats.rowsMs = msSince(start);
+  } else {
+    directionTerms(mesh_.mesh(), mesh_.topology(), system_.frames(), spec,
+                   symmetry_);  // throws naming the kind
+  }
+  const int32_t id = constraints_.add(spec);
+  system_.add(id, std::move(terms), spec.weight);
+  stats.updateMs = system_.lastUpdateMs();
+  return id;
+}
+
+void DirectionFieldSystem::remove(const ConstraintSpec& spec, DesignStats& stats) {
+  system_.remove(spec.id);
+  stats.updateMs = system_.lastUpdateMs();
+}
+
+void DirectionFieldSystem::reweight(const ConstraintSpec& spec, double, DesignStats&) {
+  system_.setWeight(spec.id, spec.weight);
+}
+
+void DirectionFieldSystem::clear(DesignStats& stats) {
+  system_.clear();
+  stats.updateMs = system_.lastUpdateMs();
+}
+
+void DirectionFieldSystem::factorNow(DesignStats& stats) {
+  system_.factor().invalidate();
+  FieldSolution discarded;
+  solve(discarded, stats);  // factors; the solve after it is what a caller wants next anyway
+}
+
+void DirectionFieldSystem::solve(FieldSolution& field, DesignStats& stats) {
+  auto start = Clock::now();
+  Eigen::VectorXd u;
+  system_.solve(u);
+  stats.solveMs = msSince(start);
+  reportFactor(system_.factor(), unknowns(), stats);
+  stats.nnzPerRowM = system_.nonZerosPerRow();
+  stats.inverseIterations = system_.report().inverseIterations;
+  stats.smoothestEigenvalue = system_.report().eigenvalue;
+  stats.rhsMs = 0;
+  stats.warnings.clear();
+  if (gamma_ > 0)
+    stats.warnings.push_back("gamma applies to vector fields (symmetry 1); this field ignores it");
+  if (!u.allFinite())
+    throw InputError(
+        "the field is not finite (the system is too badly conditioned for these constraints); "
+        "the previous field is kept");
+  start = Clock::now();
+  field.faceVectors = faceRepresentatives(system_.frames(), u, symmetry_);
+  field.unknowns = std::move(u);
+  field.oneForm.clear();
+  field.symmetry = symmetry_;
+  stats.reconstructMs = msSince(start);
+}
+
+void DirectionFieldSystem::vertexVectors(const FieldSolution& field, std::vector<double>& out) const {
+  out = vertexRepresentatives(mesh_.mesh(), mesh_.topology(), mesh_.geometry(), field.faceVectors, symmetry_);
+}
+
+}  // namespace tvf

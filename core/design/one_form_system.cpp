@@ -1,0 +1,184 @@
+#include "design/one_form_system.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+#include "common/input_error.h"
+#include "field/whitney_reconstruction.h"
+
+namespace tvf {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Closed genus-0 components have no kernel; every other component (handles, boundary loops, and the extra
+// modes of free boundaries) gets the shift.
+std::vector<uint8_t> kernelEdges(const MeshTopology& topology) {
+  std::vector<uint8_t> out(topology.numEdges);
+  for (int32_t e = 0; e < topology.numEdges; ++e) {
+    const ComponentInfo& c = topology.components[topology.edgeComponent[e]];
+    out[e] = c.genus > 0 || c.boundaryLoops > 0;
+  }
+  return out;
+}
+
+}  // namespace
+
+OneFormSystem::OneFormSystem(const DesignMesh& mesh, ConstraintSet& constraints,
+                             const FieldSettings& settings)
+    : mesh_(mesh),
+      constraints_(constraints),
+      boundary_(settings.boundary),
+      gamma_(settings.gamma),
+      factor_(kernelEdges(mesh.topology()), settings.ordering) {
+  factor_.setEdgeGraph(mesh.topology().edgeVertices, mesh.topology().numVertices);
+  configureFactor(factor_, settings);
+}
+
+int64_t OneFormSystem::unknowns() const {
+  return mesh_.topology().numEdges;
+}
+
+void OneFormSystem::setBoundary(const BoundaryCondition& bc) {
+  boundary_ = bc;
+  baseStale_ = true;
+  factor_.invalidate();
+}
+
+void OneFormSystem::setGamma(double gamma) {
+  gamma_ = gamma;
+  baseStale_ = true;
+  factor_.invalidate();
+}
+
+void OneFormSystem::resume() {
+  factor_.invalidate();  // rows may have come and gone while it was not in use
+}
+
+void OneFormSystem::rebuildBase() {
+  const MeshTopology& topology = mesh_.topology();
+  const MeshGeometry& geometry = mesh_.geometry();
+  const std::vector<double> angles = boundaryEdgeAngles(topology, boundary_);
+  ops_ = buildOneFormOperators(mesh_.mesh(), topology, geometry, angles);
+  constraints_.operatorsChanged();
+  base_ = SparseMatrix();  // the old one goes before the new one is assembled
+  base_ = gamma_ > 0 ? upperTriangle(biLaplacian(oneFormLaplacian(ops_, geometry), geometry,
+                                                 gamma_ * geometry.totalArea))
+                     : oneFormLaplacianUpper(ops_, geometry);
+  ops_.d0 = SparseMatrix();  // it made the divergence; nothing reads it after (35 MB at 1.25M edges)
+  scale_ = meanDiagonal(base_);
+  if (ops_.boundaryRows.rows() > 0) {
+    const SparseMatrix Zt = ops_.boundaryRows.transpose();
+    base_ += upperTriangle((kBoundaryWeight * scale_) * (Zt * ops_.boundaryRows));
+    base_.makeCompressed();
+  }
+  const double nonZeros = 2.0 * static_cast<double>(base_.nonZeros()) - static_cast<double>(base_.rows());
+  nnzPerRowM_ = nonZeros / std::max<Eigen::Index>(1, base_.rows());
+  baseStale_ = false;
+  factor_.invalidate();
+}
+
+void OneFormSystem::requireBase() {
+  if (baseStale_) rebuildBase();
+}
+
+DiagonalTerms OneFormSystem::constraintTerms() const {
+  DiagonalTerms terms;
+  constraints_.allWeightedRows(scale_, terms.rows, terms.weights);
+  return terms;
+}
+
+void OneFormSystem::updateRows(int32_t id, double weight, bool downdate, DesignStats& stats) {
+  DiagonalTerms change;
+  constraints_.weightedRows(id, weight, scale_, change.rows, change.weights);
+  factor_.update(change, scale_, downdate);
+  stats.updateMs = factor_.lastUpdateMs();
+}
+
+int32_t OneFormSystem::add(const ConstraintSpec& spec, DesignStats& stats) {
+  const int32_t id = constraints_.add(spec);
+  stats.rowsMs = constraints_.lastRowsMs();
+  if (isEdgeKind(spec.kind)) updateRows(id, spec.weight, false, stats);
+  return id;
+}
+
+void OneFormSystem::remove(const ConstraintSpec& spec, DesignStats& stats) {
+  if (isEdgeKind(spec.kind)) updateRows(spec.id, spec.weight, true, stats);
+}
+
+void OneFormSystem::reweight(const ConstraintSpec& spec, double previousWeight, DesignStats& stats) {
+  const double change = spec.weight - previousWeight;
+  updateRows(spec.id, std::abs(change), change < 0, stats);
+}
+
+void OneFormSystem::clear(DesignStats& stats) {
+  factor_.update(constraintTerms(), scale_, true);  // one multi-column downdate: the base is unchanged
+  stats.updateMs = factor_.lastUpdateMs();
+}
+
+void OneFormSystem::factorNow(DesignStats& stats) {
+  requireBase();
+  factor_.factor(base_, scale_, constraintTerms());
+  stats.nnzPerRowM = nnzPerRowM_;
+}
+
+void OneFormSystem::solve(FieldSolution& field, DesignStats& stats) {
+  stats.inverseIterations = 0;
+  stats.smoothestEigenvalue = 0;
+  if (baseStale_ || !factor_.current()) factorNow(stats);
+  auto start = Clock::now();
+  const Eigen::VectorXd b = constraints_.rightHandSide(ops_, scale_);
+  stats.rhsMs = msSince(start);
+  if (!b.allFinite()) throw InputError("the constraints give a right-hand side that is not finite");
+  stats.warnings = constraints_.warnings(boundary_);
+  start = Clock::now();
+  Eigen::VectorXd x;
+  factor_.solve(base_, scale_, constraintTerms(), b, x);
+  stats.solveMs = msSince(start);
+  reportFactor(factor_, unknowns(), stats);  // the solve refactors when an updated factor lost precision
+  if (!x.allFinite())
+    throw InputError(
+        "the field is not finite (the system is too badly conditioned for these constraints); "
+        "the previous field is kept");
+  start = Clock::now();
+  tvf::faceVectors(mesh_.faceVectorMap(), mesh_.topology(), x.data(), faceScratch_);
+  for (const double v : faceScratch_)
+    if (!std::isfinite(v))
+      throw InputError(
+          "the field's vectors are not finite (magnitudes beyond double range on this mesh); "
+          "the previous field is kept");
+  field.symmetry = 1;
+  field.unknowns = std::move(x);
+  field.oneForm.assign(field.unknowns.data(), field.unknowns.data() + field.unknowns.size());
+  std::swap(field.faceVectors, faceScratch_);
+  stats.reconstructMs = msSince(start);
+}
+
+void OneFormSystem::vertexVectors(const FieldSolution& field, std::vector<double>& out) const {
+  // The spare face array (the previous field's, 3 doubles per face) holds the threads' partial sums.
+  tvf::vertexVectors(mesh_.vertexVectorMap(), mesh_.faceVectorMap(), mesh_.mesh(), mesh_.topology(),
+                     mesh_.geometry(), field.oneForm.data(), out, faceScratch_);
+}
+
+void OneFormSystem::assemble(SparseMatrix& A, Eigen::VectorXd& b) {
+  requireBase();
+  A = plusDiagonal(fullFromUpper(base_), constraintTerms());
+  b = constraints_.rightHandSide(ops_, scale_);
+}
+
+SparseMatrix OneFormSystem::baseMatrix() {
+  requireBase();
+  return fullFromUpper(base_);
+}
+
+double OneFormSystem::weightScale() {
+  requireBase();
+  return scale_;
+}
+
+}  // namespace tvf
