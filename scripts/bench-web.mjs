@@ -5,6 +5,7 @@
 // node scripts/bench-web.mjs --json --stroke MESH [--strokes N] [--crossings N] [--port P] [--profile FILE]
 //                             [--profile-load FILE]   (CPU profiles of the page's thread over the strokes, the load)
 //                             [--preview-edges N]   (loadModel's previewEdges: 1 forces a preview, 0 none)
+//                             [--symmetry N]   (the strokes on an N-direction field: 2 line, 4 cross; default 1)
 //                             [--texture N]   (then the texture: its first synthesis and N strokes' updates)
 //                             [--profile-texture FILE]   (a CPU profile of the page's thread over the texture's runs)
 //                             [--trace FILE]   (a Chromium trace of every process and thread over the strokes:
@@ -107,6 +108,9 @@ async function strokeBench(page, meshPath) {
   await loadProfile.stop();
   // A task that began before loadModel was called (the page's own start, reported late) is not the load's.
   const loadTasks = (await page.evaluate(() => window.__longTasks.splice(0))).filter((t) => t.at >= load.t0);
+  // --symmetry N: the field the strokes are drawn on (its smoothest field solved and drawn before the first).
+  const symmetry = Number(arg('--symmetry', 1));
+  if (symmetry !== 1) await page.evaluate(async (n) => { await window.tvf.setSymmetry(n); await window.tvf.settled(); }, symmetry);
   const starts = Array.from({ length: count }, (_, s) => (s * 104729 + 7) % load.info.faces); // spread over the mesh
   const strokes = await page.evaluate(stripStrokesInPage, { starts, crossings });
   // Making the strokes filled the page's heap with a map of every edge (~180 MB at 1.25M edges), garbage whose
@@ -228,6 +232,7 @@ async function strokeBench(page, meshPath) {
     modelRead: load.modelRead,
     previewTimings: load.previewTimings,
     strokes: runs.length,
+    symmetry,
     crossings,
     loadMs: load.loadMs,
     factorKind: runs.at(-1)?.stats.factorKind,
