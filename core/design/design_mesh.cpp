@@ -21,6 +21,11 @@ const VertexVectorMap& DesignMesh::vertexVectorMap() const {
   return vertexVectorMap_;
 }
 
+const VertexTangentAxes& DesignMesh::vertexTangentAxes() const {
+  if (vertexTangentAxes_.a.empty()) vertexTangentAxes_ = tvf::vertexTangentAxes(mesh_);
+  return vertexTangentAxes_;
+}
+
 uint64_t DesignMesh::hash() const {
   if (!hash_) hash_ = meshHash(mesh_);
   return *hash_;

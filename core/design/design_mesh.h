@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dec/hodge_star.h"
+#include "direction/representative_directions.h"
 #include "field/whitney_reconstruction.h"
 #include "mesh/mesh_checks.h"
 #include "mesh/mesh_topology.h"
@@ -25,6 +26,8 @@ class DesignMesh {
   // The Whitney maps of Eq. 4 and 5 (geometry only), built on first use.
   const FaceVectorMap& faceVectorMap() const;
   const VertexVectorMap& vertexVectorMap() const;
+  // Each vertex's tangent axes (direction/representative_directions.h), built on first use.
+  const VertexTangentAxes& vertexTangentAxes() const;
   uint64_t hash() const;  // meshHash(mesh()), made on first use
 
  private:
@@ -33,6 +36,7 @@ class DesignMesh {
   MeshGeometry geometry_;
   mutable FaceVectorMap faceVectorMap_;
   mutable VertexVectorMap vertexVectorMap_;
+  mutable VertexTangentAxes vertexTangentAxes_;
   mutable std::optional<uint64_t> hash_;
 };
 

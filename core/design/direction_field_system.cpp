@@ -150,7 +150,8 @@ void DirectionFieldSystem::solve(FieldSolution& field, DesignStats& stats) {
 }
 
 void DirectionFieldSystem::vertexVectors(const FieldSolution& field, std::vector<double>& out) const {
-  out = vertexRepresentatives(mesh_.mesh(), mesh_.topology(), mesh_.geometry(), field.faceVectors, symmetry_);
+  vertexRepresentatives(mesh_.vertexTangentAxes(), mesh_.mesh(), mesh_.topology(), mesh_.geometry(),
+                        field.faceVectors, symmetry_, out);
 }
 
 }  // namespace tvf

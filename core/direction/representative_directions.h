@@ -21,6 +21,17 @@ std::vector<double> vertexRepresentatives(const SurfaceMesh& mesh, const MeshTop
                                           const MeshGeometry& geometry,
                                           const std::vector<double>& faceDirections, int symmetry);
 
+// Each vertex's tangent plane (the area-weighted vertex normal's) and two axes in it: the mesh's alone, made
+// once for every field's vertex representatives.
+struct VertexTangentAxes {
+  std::vector<double> a, b;  // 3 per vertex each, orthonormal, b = n x a
+};
+VertexTangentAxes vertexTangentAxes(const SurfaceMesh& mesh);
+// The same representatives with the axes made beforehand (into out, reusing its room).
+void vertexRepresentatives(const VertexTangentAxes& axes, const SurfaceMesh& mesh,
+                           const MeshTopology& topology, const MeshGeometry& geometry,
+                           const std::vector<double>& faceDirections, int symmetry, std::vector<double>& out);
+
 // Two representatives a and b point the same way up to a rotation by 2 pi k / N: the angle between them
 // reduced to (-pi/N, pi/N] (about `normal`).
 double symmetricAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& normal,

@@ -41,7 +41,7 @@ export const TEMPLATE = `<div class="root" part="root">
         title="Open a mesh (.glb, .gltf, .obj, .off, .ply) — or drop one on the view">Open…</button>
       <input id="file-input" type="file" hidden>
       <button id="save-design" type="button" data-overflow="7"
-        title="Save the design as JSON, the format "tvf design" reads (Ctrl+S)">Save</button>
+        title="Save the design as JSON, the format &quot;tvf design&quot; reads (Ctrl+S)">Save</button>
       <button id="load-design" type="button" class="edit" data-overflow="4"
         title="Load a design JSON (or drop one on the view)">Load…</button>
       <input id="design-input" type="file" accept=".json,application/json" hidden>
