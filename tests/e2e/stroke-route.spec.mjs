@@ -237,7 +237,11 @@ test('the stroke route the doc lists is the one a stroke takes', async ({ browse
   await cdp.send('Profiler.takePreciseCoverage'); // the count starts here
   for (const w of workers) await w.send('Profiler.takePreciseCoverage');
   await page.mouse.up();
-  const coverage = await recorded;
+  const never = new Promise((_, reject) => {
+    const why = 'the pause after view-sync.js renderNow() never came: the field was not drawn';
+    setTimeout(() => reject(new Error(why)), 60_000).unref();
+  });
+  const coverage = await Promise.race([recorded, never]);
   // The worker's part ends when the factor has taken the update the solve went through.
   await expect.poll(() => page.evaluate(() => window.tvf.perf().deferredUpdate?.seq ?? null)).not.toBe(deferredBefore);
   const workerCoverage = { result: [] };
