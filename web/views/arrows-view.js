@@ -51,7 +51,8 @@ export class ArrowsView {
     // The previous surface's scale is not this one's: no arrows until the next render's updateView has the
     // scale of this surface in view (sampling at the old one, then again at the new, cost a second sampling).
     this.wpp = 0;
-    this.mesh = new InstancedMesh(glyphGeometry(this.symmetry), new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide }), 1);
+    const material = new MeshBasicMaterial({ color: 0xffffff, side: DoubleSide });
+    this.mesh = new InstancedMesh(glyphGeometry(this.symmetry), material, 1);
     this.mesh.instanceMatrix.setUsage(DynamicDrawUsage);
     this.mesh.frustumCulled = false;
     this.mesh.count = 0;
@@ -65,7 +66,8 @@ export class ArrowsView {
   async prepare(surface, wpp, yieldToPage) {
     this.prepared = null;
     const spacing = arrowSpacingPx(this.options.density) * wpp;
-    if (!(spacing > 0) || (POISSON_PACKING * surface.area) / (spacing * spacing) > MAX_SAMPLES) return; // a local set: the view's own
+    // Too many for the whole surface: the view's own local set, made when it draws.
+    if (!(spacing > 0) || (POISSON_PACKING * surface.area) / (spacing * spacing) > MAX_SAMPLES) return;
     const sampler = new SurfaceSampler(surface, spacing, { maxSamples: MAX_SAMPLES });
     while (!sampler.step(DARTS_PER_TASK)) await yieldToPage();
     this.prepared = { surface, spacing, samples: sampler.result() };
@@ -99,7 +101,8 @@ export class ArrowsView {
   setField(faceVectors, vertexVectors = null, scale = null, symmetry = 1) {
     this.#setSymmetry(symmetryOf(symmetry));
     this.faceVectors = faceVectors;
-    this.vertexVectors = vertexVectors && this.surface && vertexVectors.length === 3 * this.surface.nV ? vertexVectors : null;
+    const fits = vertexVectors && this.surface && vertexVectors.length === 3 * this.surface.nV;
+    this.vertexVectors = fits ? vertexVectors : null;
     this.scale = this.vertexVectors ? scale : null;
     this.#rebuild();
   }
@@ -258,7 +261,8 @@ function facesNearView(s, camera) {
   const P = s.positions, T = s.triangles;
   for (let f = 0; f < s.nF; f++) {
     const a = 3 * T[3 * f], b = 3 * T[3 * f + 1], c = 3 * T[3 * f + 2];
-    v.set((P[a] + P[b] + P[c]) / 3, (P[a + 1] + P[b + 1] + P[c + 1]) / 3, (P[a + 2] + P[b + 2] + P[c + 2]) / 3).project(camera);
+    v.set((P[a] + P[b] + P[c]) / 3, (P[a + 1] + P[b + 1] + P[c + 1]) / 3, (P[a + 2] + P[b + 2] + P[c + 2]) / 3);
+    v.project(camera);
     if (Math.abs(v.x) <= 2 && Math.abs(v.y) <= 2 && v.z <= 1 && v.z >= -1) out.push(f);
   }
   return Int32Array.from(out);
