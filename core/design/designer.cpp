@@ -33,7 +33,7 @@ struct Designer::Impl {
   FieldSettings settings;
   std::unique_ptr<FieldSystem> system;
   // The system in use before the last symmetry change, resumed when that symmetry comes back: its factor's
-  // ordering (the analysis) is kept, as one factor kept across a round trip through a line field would be.
+  // ordering (the analysis) is kept, its numeric factor freed.
   std::unique_ptr<FieldSystem> retired;
   DerivedField field;
   DesignStats stats;
@@ -62,6 +62,10 @@ struct Designer::Impl {
       next = makeFieldSystem(symmetry, mesh, constraints, settings);
     }
     retired = std::move(system);
+    // Resuming it factors it again (its constraints may change meanwhile): only its ordering is worth
+    // keeping, and its factor would double the memory of a big mesh's design (3.64 against 1.79 GB at 1.25M
+    // edges with a cross field).
+    retired->factor().release();
     system = std::move(next);
     field.clear();
   }

@@ -538,6 +538,16 @@ bool FactoredSystem::factored() const {
   return impl_->factor != nullptr;
 }
 
+void FactoredSystem::release() {
+  Impl& s = *impl_;
+  s.deferred.clear();
+  s.factor.reset();
+  s.forward = ForwardSolution();
+  s.backward = BackwardSubstitution();
+  s.backward.setParts(s.threads);
+  cholmod_free_work(s.common.get());
+}
+
 int64_t FactoredSystem::factorNonzeros() const {
   const cholmod_factor* L = impl_->factor.get();
   if (!L) return 0;

@@ -88,6 +88,10 @@ class FactoredSystem {
   int64_t supernodalSolves() const;   // solves and solveOnce calls that substituted backward by supernodes
 
   bool factored() const;
+  // Frees the numeric factor and what was made from it (solves' state, a held update, the updates'
+  // workspace), keeping the ordering: the next factor() of the same pattern reuses it. For a system kept out
+  // of use, which is factored again when it comes back anyway.
+  void release();
   int64_t factorNonzeros() const;
   const FactorTimings& timings() const;
   std::string description() const;

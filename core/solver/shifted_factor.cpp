@@ -96,6 +96,11 @@ void ShiftedFactor::invalidate() {
   stale_ = true;
 }
 
+void ShiftedFactor::release() {
+  system_.release();
+  stale_ = true;
+}
+
 std::vector<double> ShiftedFactor::shiftedDiagonal(double scale, const DiagonalTerms& terms) const {
   std::vector<double> diagonal(kernelEdges_.size(), 0.0);
   for (size_t e = 0; e < kernelEdges_.size(); ++e)

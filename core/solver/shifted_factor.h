@@ -55,6 +55,8 @@ class ShiftedFactor {
   // invalidate() and after a refused downdate.
   bool current() const;
   void invalidate();  // the base matrix changed
+  // Frees the factor, keeping its ordering (FactoredSystem::release); not current until factored again.
+  void release();
 
   // Factors base + terms + the shift, raising the shift (and spreading it to every edge) until CHOLMOD finds
   // the matrix definite. Throws InputError when even the largest shift fails, or when the factor would need

@@ -957,3 +957,28 @@ TEST(ShiftedFactor, AKernelIsShiftedAndTheRefinedSolutionSolvesTheUnshiftedSyste
   factor.solve(upper, scale, terms, b, x);
   EXPECT_LT((A * x - b).norm() / b.norm(), 1e-12);
 }
+
+TEST(FactoredSystem, ReleaseFreesTheFactorAndKeepsTheOrdering) {
+  // A system put out of use (a design's vector field while a cross field is shown) keeps its ordering only:
+  // factored again, it reuses the ordering and solves as a fresh factorization does, bit for bit; a held
+  // update and the solves' kept state go with the factor.
+  Designer d(icosphere(4));
+  const SparseMatrix base = d.baseMatrix();
+  const int32_t n = static_cast<int32_t>(base.rows());
+  FactoredSystem kept, fresh;
+  for (FactoredSystem* s : {&kept, &fresh}) s->setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
+  ASSERT_TRUE(kept.factor(base));
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n), x, y;
+  b[17] = 1.0;
+  kept.solve(b, x);
+  ASSERT_TRUE(kept.deferUpdate({3, 40}, {2.0, 5.0}));
+  kept.release();
+  EXPECT_FALSE(kept.factored());
+  EXPECT_FALSE(kept.hasDeferred());
+  ASSERT_TRUE(kept.factor(base));
+  EXPECT_TRUE(kept.timings().analysisReused);
+  kept.solve(b, x);
+  ASSERT_TRUE(fresh.factor(base));
+  fresh.solve(b, y);
+  EXPECT_EQ(x, y);
+}
