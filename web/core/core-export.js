@@ -2,7 +2,7 @@
 // mesh the core already holds (handed over once per model, on the first export: the model file is not parsed
 // again). Of a glTF/GLB file only its document is kept, so a GLB keeps the model's own glTF and a field-only
 // export matches `tvf export` byte for byte. One per worker, i.e. per <tangent-field-designer> element.
-import { CoreError } from './core-client.js';
+import { CoreError } from './core-error.js';
 
 // What only a line or cross field can be exported as (the export panel offers it for N ≥ 2 alone).
 const RAW_FIELD_REFUSAL =

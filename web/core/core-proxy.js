@@ -12,7 +12,7 @@
 //   `silentMs` (a call in flight is the user's to cancel: cancel()).
 // Then every pending call rejects with a readable CoreError, a fresh worker starts, and `onRestart(reason)`
 // (supplied by the session) reloads the current model and replays the current design before new calls go out.
-import { CoreError } from './core-client.js';
+import { CoreError } from './core-error.js';
 
 // A module worker from another origin (a CDN) cannot be started directly; its source can, from a blob: URL
 // (CSP: worker-src blob:). The worker is told the asset base, so its own URL does not matter.

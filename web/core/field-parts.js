@@ -3,7 +3,7 @@
 // from the part's 1-form exactly as the field's are. Nothing is computed unless asked (edits never pay for it).
 // Owned by the field version's derived-field object (worker/derived-field.js), which makes one on first request
 // and is replaced, parts and all, at every solve. COMPONENTS is also the page's list of the parts it may show.
-import { CoreError } from './core-client.js';
+import { CoreError } from './core-error.js';
 
 export const COMPONENTS = ['whole', 'exact', 'coexact', 'harmonic'];
 

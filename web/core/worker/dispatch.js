@@ -12,7 +12,7 @@
 //   anytime  need no mesh
 //   notes    {key: fn(value)}: a message {key: value} outside the request sequence
 // Imports the worker's state's parts it drives.
-import { CoreError } from '../core-client.js';
+import { CoreError } from '../core-error.js';
 import { snapshot } from './snapshot.js';
 import { isFatal } from './supervision.js';
 import { Transfer } from './transfer.js';

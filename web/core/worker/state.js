@@ -4,7 +4,7 @@
 // read-ops.js, hooks.js, synthesis/worker-ops.js) read and set it; dispatch.js runs the requests over it.
 // Imports geometry/ for the Surface.
 import { Surface } from '../../geometry/surface.js';
-import { CoreError } from '../core-client.js';
+import { CoreError } from '../core-error.js';
 import { SpareArrays } from '../spare-arrays.js';
 import { DerivedField } from './derived-field.js';
 
