@@ -4,8 +4,8 @@
 //   stripes are level sets of a linear function (truth: their tangent) and which is continuous across seams;
 // - the default bunny with a stroke-designed field;
 // - with TVF_MEASURE=1 and scripts/fetch-meshes.sh run: held-out CGAL models (knot2 has genus 1; others with
-//   TVF_MEASURE_MODELS=refined_elephant,camel,...), reported for
-//   docs/benchmarks.md (slow under software WebGL: not part of `npm test`).
+//   TVF_MEASURE_MODELS=refined_elephant,camel,...), reported for docs/benchmarks.md and held to its targets
+//   (slow under software WebGL: not part of `npm test`).
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 import bunny from 'bunny';
@@ -195,7 +195,12 @@ test.describe.serial('exported GLB at the default settings', () => {
       test.skip(!process.env.TVF_MEASURE || !existsSync(file), 'set TVF_MEASURE=1 and run scripts/fetch-meshes.sh');
       test.setTimeout(600_000);
       await page.evaluate(() => window.tvf.clearTexture());
-      await measureModel(page, testInfo, { name, bytes: Array.from(readFileSync(file)) });
+      const r = await measureModel(page, testInfo, { name, bytes: Array.from(readFileSync(file)) });
+      expect(r.stripeMeanDegrees, 'stripes against the field (degrees)').toBeLessThan(TARGETS.mean);
+      expect(r.shareWithin10, 'share of the surface within 10°').toBeGreaterThan(TARGETS.share);
+      expect(r.seamRatio, 'seam jump ÷ interior jump').toBeLessThan(TARGETS.seam);
+      // Coherent patches, as on the bunny (docs/benchmarks.md: knot2 129.4 against 6119 for random coordinates).
+      expect(r.neighbourhoodEnergy).toBeLessThan(0.05 * r.neighbourhoodEnergyRandom);
     });
   }
 
@@ -208,3 +213,6 @@ test.describe.serial('exported GLB at the default settings', () => {
 // 0.95–1.03 at 0.66 x (the previous fixed 6 tiles across √area measured 6.72° / 0.85 / 1.00); the issue's
 // targets are 6° / 0.85 / 1.3 (docs/texture-synthesis.md, "Exported GLB").
 const BUNNY_LIMITS = { mean: 6, share: 0.87, seam: 1.15 };
+// The targets every held-out model meets (docs/benchmarks.md, "Texture": knot2 3.8° / 96.7 % / 1.09, lion-head
+// 5.46° / 89.1 % / 1.16, homer 5.03° / 90.5 % / 1.06; camel's 88.2 % the least margin of the seven).
+const TARGETS = { mean: 6, share: 0.85, seam: 1.3 };
