@@ -10,7 +10,7 @@
 #   wasm/build-cholmod.sh --refresh                     # re-read the archive's Sources index (new Debian revision?)
 #   JOBS=4 wasm/build-cholmod.sh                        # parallel compile jobs (default 2)
 #   CHOLMOD_NATIVE=$(wasm/build-cholmod.sh --native | tail -1)   # the same sources built for this machine (below)
-#   CHOLMOD_THREADS=$(wasm/build-cholmod.sh --threads | tail -1) # the wasm archive compiled with -pthread (below)
+#   CHOLMOD_THREADS=$(wasm/build-cholmod.sh --threads | tail -1) # the wasm archive for shared memory (below)
 # The last line on stdout is the absolute path of the output folder; all progress goes to stderr.
 #
 # Output (ignored: build-wasm/ matches build-*/ in .gitignore):
@@ -66,10 +66,14 @@
 #   -lblas). The native CLI links it instead of Debian's libcholmod3 (built -O2 for any x86-64, with OpenMP):
 #   on bunny00 a 50-edge stroke's rank-50 update goes from 12-15 to 7.5-8 ms and the factorization from
 #   ~360 to ~170 ms (docs/benchmarks.md), and native and wasm then run one CHOLMOD, from one source package.
-# * --threads: the same wasm archive with every source compiled -pthread (atomics and bulk memory), into
-#   build-wasm/cholmod-threads/<key>_pthread/: a module linked with shared memory (wasm/build.sh builds
-#   tvf_core_threads.mjs for cross-origin-isolated pages) can only take objects compiled that way. CHOLMOD
-#   itself runs on one thread there too; the core's own backward substitution uses the others.
+# * --threads: the wasm archive for a module linked with shared memory (wasm/build.sh builds
+#   tvf_core_threads.mjs for cross-origin-isolated pages), into build-wasm/cholmod-threads/<key>_pthread/. It
+#   is the plain archive's objects (compiled once, shared with it in cholmod-work/build/<plain key>/obj)
+#   except the few that lost thread-local storage or atomics to the plain build (GKlib's error and memory
+#   state, METIS's entry points that use them: the linker refuses those objects in shared memory, marked
+#   `-shared-mem` in their target features), which are compiled again with -pthread. An object with neither
+#   is the same code either way, and CHOLMOD runs on one thread there too; the core's own backward
+#   substitution uses the others. Compiling every source twice cost about a minute of a fresh `npm test`.
 
 set -euo pipefail
 
@@ -88,6 +92,10 @@ for arg in "$@"; do
     *) echo "build-cholmod.sh: unknown argument: $arg (try --help)" >&2; exit 2 ;;
   esac
 done
+
+# The threads archive has a recipe of its own (plain objects with -pthread twins of the marked ones).
+PLAIN_RECIPE=$RECIPE
+[ "$THREADS" = 0 ] || RECIPE=${RECIPE}t2
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
 WORK=$ROOT/build-wasm/cholmod-work  # sources and apt state, shared by both targets
@@ -230,6 +238,8 @@ if [ -z "$SS_VER" ] || [ -z "$EIG_VER" ] || [ -z "$METIS_VER" ]; then
 fi
 KEY=suitesparse-${SS_VER}_eigen3-${EIG_VER}_metis-${METIS_VER}_r${RECIPE}_p${PATCHSUM}
 [ "$NATIVE" = 0 ] || KEY=suitesparse-${SS_VER}_metis-${METIS_VER}_${ISA}_r${RECIPE}_p${PATCHSUM}
+# The plain archive's folder, whose objects the threads archive shares.
+PLAIN_KEY=suitesparse-${SS_VER}_eigen3-${EIG_VER}_metis-${METIS_VER}_r${PLAIN_RECIPE}_p${PATCHSUM}
 [ "$THREADS" = 0 ] || KEY=${KEY}_pthread
 OUT=$TOP/$KEY
 log "suitesparse $SS_VER, eigen3 $EIG_VER, metis $METIS_VER -> $OUT"
@@ -261,6 +271,15 @@ log "sources ready ($(elapsed))"
 
 # ---------------------------------------------------------------- build tree: patched include copy + objects
 BLD=$WORK/build/$KEY
+TWINS=
+if [ "$THREADS" = 1 ]; then
+  # Sources, headers and objects are the plain archive's (built here if it was not): one build at a time there.
+  TWINS=$BLD/obj
+  mkdir -p "$TWINS" "$ROOT/build-wasm/cholmod"
+  exec 8>"$ROOT/build-wasm/cholmod/.lock"
+  if ! flock -n 8; then log "a plain build-cholmod.sh holds build-wasm/cholmod/.lock; waiting"; flock 8; fi
+  BLD=$WORK/build/$PLAIN_KEY
+fi
 INC=$BLD/include
 OBJ=$BLD/obj
 GEN=$BLD/gen
@@ -297,11 +316,6 @@ CFLAGS="-O3 -DNDEBUG -msimd128"
 METISFLAGS="-O3 -msimd128 -DLINUX -D_FILE_OFFSET_BITS=64 -std=c99 -fno-strict-aliasing -DNDEBUG -DNDEBUG2 -I$METIS/include -I$METIS/GKlib -I$METIS/libmetis"
 CXXFLAGS="-O3 -DNDEBUG -msimd128"
 CC=emcc CXX=em++ AR=emar ARCHIVE=libcholmod_wasm.a
-if [ "$THREADS" = 1 ]; then
-  CFLAGS="$CFLAGS -pthread"
-  METISFLAGS="$METISFLAGS -pthread"
-  CXXFLAGS="$CXXFLAGS -pthread"
-fi
 if [ "$NATIVE" = 1 ]; then
   march=; [ "$ISA" = generic ] || march=-march=$ISA
   CFLAGS="-O3 -DNDEBUG -fPIC $march"
@@ -358,11 +372,28 @@ log "compiling $njobs sources with $JOBS jobs ($CFLAGS; C++: $CXXFLAGS)"
 xargs -P "$JOBS" -L 1 bash -c 'compile_one "$@"' _ < "$JOBLIST" >&2 || die "compilation failed"
 log "compiled ($(elapsed))"
 
+# --threads: the objects the plain build marked `-shared-mem` (thread-local storage or atomics lowered away)
+# are compiled again with -pthread into $TWINS, and the archive takes those copies instead.
+if [ "$THREADS" = 1 ]; then
+  TWINLIST=$TWINS/../jobs.txt
+  while read -r cc extra src obj; do
+    if LC_ALL=C grep -qa 'shared-mem' "$obj"; then printf '%s %s %s %s\n' "$cc" "$extra" "$src" "$TWINS/$(basename "$obj")"; fi
+  done < "$JOBLIST" > "$TWINLIST"
+  CFLAGS="$CFLAGS -pthread" METISFLAGS="$METISFLAGS -pthread" CXXFLAGS="$CXXFLAGS -pthread" \
+    xargs -P "$JOBS" -L 1 bash -c 'compile_one "$@"' _ < "$TWINLIST" >&2 || die "compilation failed"
+  log "compiled again with -pthread: $(awk '{print $4}' "$TWINLIST" | xargs -r -n1 basename | tr '\n' ' ')($(elapsed))"
+fi
+
 # ---------------------------------------------------------------- archive + output folder
 STAGE=$TOP/.$KEY.tmp.$$
 rm -rf "$STAGE"; mkdir -p "$STAGE/lib" "$STAGE/include"
-awk '{print $4}' "$JOBLIST" > "$BLD/objects.txt"
-$AR rcs "$STAGE/lib/$ARCHIVE" $(cat "$BLD/objects.txt")
+OBJECTS=$STAGE/objects.txt
+while read -r _ _ _ obj; do
+  if [ -n "$TWINS" ] && [ -f "$TWINS/$(basename "$obj")" ]; then echo "$TWINS/$(basename "$obj")"; else echo "$obj"; fi
+done < "$JOBLIST" > "$OBJECTS"
+# shellcheck disable=SC2046
+$AR rcs "$STAGE/lib/$ARCHIVE" $(cat "$OBJECTS")
+rm -f "$OBJECTS"
 cp "$INC"/*.h "$STAGE/include/"
 rm -f "$STAGE"/include/cholmod_gpu*.h "$STAGE/include/cholmod_internal.h" "$STAGE/include/cholmod_template.h"
 
@@ -381,9 +412,10 @@ fi
   echo "eigen3 $EIG_VER"
   echo "metis $METIS_VER"
   echo "METISFLAGS $METISFLAGS"
-  echo "$CC $("$CC" --version | head -n1)"
+  echo "$CC $("$CC" --version 2>/dev/null | sed -n 1p)"
   echo "CFLAGS $CFLAGS"
   echo "CXXFLAGS $CXXFLAGS"
+  [ -z "$TWINS" ] || echo "with -pthread as well: $(awk '{print $4}' "$TWINLIST" | xargs -r -n1 basename | tr '\n' ' ')"
   if [ "$NATIVE" = 1 ]; then
     echo "blas/lapack: the system's (link -llapack -lblas); headers unpatched"
     echo "patches: $(cd "$ROOT/wasm/patches" && echo *.patch)"
