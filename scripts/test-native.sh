@@ -2,12 +2,34 @@
 # Native tests: the whole suite on the release build, then every bad-input test again under
 # AddressSanitizer + UBSan, where a loader or check that reads out of bounds would show, then a bounded
 # libFuzzer run (60 s over the five loaders and the design parser; scripts/fuzz.sh --seconds N for longer).
+# The sanitizer build compiles the core, the CLI and only the test files that hold the bad-input tests (found
+# in the release build's list), and checks afterwards that it ran every one of them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+SANITIZED='MeshIo|MeshChecks|Cli\.BadInput|Impossible|BadEntries|Robust|Fuzz|Truncat|Error'
 ctest --test-dir build --output-on-failure -j2
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DTVF_SANITIZE=ON > /dev/null
-cmake --build build-asan -j2
+
+# The selected tests of a build tree, by name.
+listed() { ctest --test-dir "$1" -N -R "$SANITIZED" | sed -n 's/^ *Test *#[0-9]*: //p' | sort; }
+# The files that declare the selected tests (TEST/TEST_F/TEST_P(Suite, Name); a parameterized test's
+# instances as Prefix/Suite.Name/N), or their suite where a macro names the test.
+files=()
+for test in $(listed build | sed -E 's/^([^/]*\/)?([A-Za-z0-9_]+)\.([A-Za-z0-9_]+).*/\2.\3/' | sort -u); do
+  suite=${test%%.*} name=${test#*.}
+  found=$(grep -lE "^(TEST|TEST_F|TEST_P)\(${suite}, *${name}\)" tests/native/*_test.cpp ||
+    grep -lE "^(TEST|TEST_F|TEST_P)\(${suite}," tests/native/*_test.cpp || true)
+  for f in $found; do files+=("$(basename "$f" _test.cpp)"); done
+done
+stems=$(printf '%s\n' "${files[@]}" | sort -u | paste -sd';')
+[ -n "$stems" ] || { echo "test-native: no test file holds the sanitizer's tests" >&2; exit 1; }
+
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DTVF_SANITIZE=ON "-DTVF_TEST_FILES=$stems" > /dev/null
+cmake --build build-asan -j2 --target tvf_tests
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-  ctest --test-dir build-asan --output-on-failure -j2 \
-  -R 'MeshIo|MeshChecks|Cli\.BadInput|Impossible|BadEntries|Robust|Fuzz|Truncat|Error'
+  ctest --test-dir build-asan --output-on-failure -j2 -R "$SANITIZED"
+if [ "$(listed build)" != "$(listed build-asan)" ]; then
+  echo "test-native: the sanitizer build lacks some of the release build's bad-input tests:" >&2
+  diff <(listed build) <(listed build-asan) >&2 || true
+  exit 1
+fi
 bash scripts/fuzz.sh --seconds "${TVF_FUZZ_SECONDS:-60}"
