@@ -64,6 +64,38 @@ function streaks(page) {
 }
 const angleGap = (a, b) => { const d = Math.abs(a - b) % 180; return Math.min(d, 180 - d); };
 
+// The grey levels of the central box (40 % of each side) of the canvas, row by row, with the box's width.
+function centreGrey(page) {
+  return page.evaluate(() => {
+    const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
+    const c = document.createElement('canvas');
+    c.width = src.width;
+    c.height = src.height;
+    const ctx = c.getContext('2d', { willReadFrequently: true });
+    ctx.drawImage(src, 0, 0);
+    const w = Math.floor(0.4 * src.width), h = Math.floor(0.4 * src.height);
+    const d = ctx.getImageData(Math.floor(0.3 * src.width), Math.floor(0.3 * src.height), w, h).data;
+    const grey = [];
+    for (let i = 0; i < d.length; i += 4) grey.push((d[i] + d[i + 1] + d[i + 2]) / 3);
+    return { w, grey };
+  });
+}
+
+// Fine detail: the mean absolute difference between a pixel and the mean of its four neighbours.
+function detail({ w, grey }) {
+  const h = grey.length / w;
+  let sum = 0;
+  for (let y = 1; y < h - 1; y++)
+    for (let x = 1; x < w - 1; x++) {
+      const i = y * w + x;
+      sum += Math.abs(grey[i] - (grey[i - 1] + grey[i + 1] + grey[i - w] + grey[i + w]) / 4);
+    }
+  return sum / ((w - 2) * (h - 2));
+}
+
+// The share of pixels whose grey level differs by more than 24 between two pictures of the same box.
+const changed = (a, b) => a.grey.filter((g, i) => Math.abs(g - b.grey[i]) > 24).length / a.grey.length;
+
 test.describe.serial('flow-texture view', () => {
   let page, errors;
   const evaluate = (fn, arg) => page.evaluate(fn, arg);
@@ -145,12 +177,24 @@ test.describe.serial('flow-texture view', () => {
     await page.locator('#show-lic').check();
     await expect.poll(() => evaluate(() => window.tvf.views().lic)).toBe(true);
     await settle();
-    // Arrows in front of the surface stay visible through the flow texture (it is depth-tested).
     const png = await evaluate(async () => {
       const blob = await window.tvf.screenshot({ width: 640, height: 480 });
       return Array.from(new Uint8Array(await blob.arrayBuffer()));
     });
     writeFileSync(resolve(OUT, 'lic-bunny.png'), Buffer.from(png));
+    // Read back from the canvas: the arrows in front of the surface stay visible through the flow texture (it
+    // is depth-tested), and the flow texture itself puts fine streaks on the bunny that plain shading has not.
+    const withArrows = await centreGrey(page);
+    await evaluate(() => window.tvf.setViews({ arrows: false }));
+    await settle();
+    const licOnly = await centreGrey(page);
+    await evaluate(() => window.tvf.setViews({ lic: false }));
+    await settle();
+    const plain = await centreGrey(page);
+    const measured = { arrowsChange: changed(withArrows, licOnly), licDetail: detail(licOnly), plainDetail: detail(plain) };
+    console.log(`LIC on the bunny: ${JSON.stringify(measured)}`);
+    expect(measured.arrowsChange, 'share of the centre the arrows change').toBeGreaterThan(0.01);
+    expect(measured.licDetail, 'fine detail with the flow texture vs plain shading').toBeGreaterThan(2 * measured.plainDetail);
   });
 });
 
