@@ -4,9 +4,9 @@
 // (one-form 1e-9), and the flow map decoded by the browser points along the stroke (2 deg) in both
 // conventions. With a synthesized texture the one GLB also carries it: valid, indexed with a vertex per
 // distinct (position, UV) corner, one connected surface per atlas chart, the texture where three.js's
-// GLTFLoader (bundled here from node_modules, not the page's copy) finds it. TVF_DOC_PICTURES=1 also writes the
-// material-preview pictures in docs/images/.
-import { mkdirSync, readFileSync } from 'node:fs';
+// GLTFLoader (bundled here from node_modules, not the page's copy) finds it. The material-preview pictures of
+// docs/export.md are scripts/material-preview-pictures.mjs's.
+import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { expect, test } from '@playwright/test';
 import * as esbuild from 'esbuild';
@@ -296,33 +296,4 @@ test('on the model\'s own UVs the textured GLB keeps the model\'s layout; textur
   const asked = jsonOf(await page.evaluate(() => window.tvf.exportGlb({ size: 128, texture: true }).then((b) => Array.from(b))));
   expect(asked.materials[0].pbrMetallicRoughness.baseColorTexture).toBeDefined();
   expect(errors).toEqual([]);
-});
-
-test('material preview pictures', async ({ page }) => {
-  test.skip(!process.env.TVF_DOC_PICTURES, 'set TVF_DOC_PICTURES=1 to write docs/images/material-preview-*.png');
-  await openDesigner(page);
-  // A source at the lowest and a sink at the highest vertex of the default model: a field that sweeps over
-  // the whole surface, so the highlights wrap around it.
-  const [low, high] = await page.evaluate(() => {
-    const { positions } = window.tvf.mesh();
-    let lo = 0, hi = 0;
-    for (let v = 0; v < positions.length / 3; v++) {
-      if (positions[3 * v + 1] < positions[3 * lo + 1]) lo = v;
-      if (positions[3 * v + 1] > positions[3 * hi + 1]) hi = v;
-    }
-    return [lo, hi];
-  });
-  await page.evaluate(([lo, hi]) => window.tvf.loadDesign({ constraints: [{ type: 'source', vertex: lo, strength: 1 }, { type: 'sink', vertex: hi, strength: 1 }] }), [low, high]);
-  await page.evaluate(() => window.tvf.setViews({ arrows: false }));
-  // The picture is of the model: panels and handles out of the way.
-  await page.evaluate(() => {
-    const style = document.createElement('style');
-    style.textContent = '#side-panel, #constraints-panel { display: none !important; }';
-    window.tvf.shadowRoot.append(style);
-  });
-  mkdirSync('docs/images', { recursive: true });
-  for (const preset of ['brushed metal', 'satin']) {
-    await page.evaluate((p) => window.tvf.materialPreview(p), preset);
-    await page.locator('#view').screenshot({ path: `docs/images/material-preview-${preset.replace(' ', '-')}.png` });
-  }
 });
