@@ -39,10 +39,6 @@ export class ProgressiveCore {
     this.waiters = [];
   }
 
-  get leading() {
-    return this.preview !== null;
-  }
-
   // Resolves when the field shown is the exact core's (at once when no preview leads).
   settled() {
     return this.outstanding === 0 ? Promise.resolve() : new Promise((resolve) => this.waiters.push(resolve));
