@@ -52,7 +52,10 @@ std::vector<double> faceRepresentatives(const FaceFrames& frames, const Eigen::V
     for (int32_t f = partBegin(numFaces, part, parts); f < end; ++f) {
       const double re = power[2 * f], im = power[2 * f + 1];
       if (re == 0 && im == 0) continue;
-      const double length = std::hypot(re, im);
+      // hypot's guard against overflow and underflow only where the squares leave the range: a power field's
+      // values are about unit (its constraints' are unit).
+      double length = std::sqrt(re * re + im * im);
+      if (!(length > 0) || !std::isfinite(length)) length = std::hypot(re, im);
       fromFaceFrame(frames, f, unitRoot(re / length, im / length, symmetry), &out[3 * f]);
     }
   });
@@ -139,7 +142,8 @@ void vertexRepresentatives(const VertexTangentAxes& axes, const SurfaceMesh& mes
   out.assign(3 * static_cast<size_t>(t.numVertices), 0.0);
   for (int32_t v = 0; v < t.numVertices; ++v) {
     if (sum[v] == 0.0) continue;
-    const double length = std::abs(sum[v]);
+    double length = std::sqrt(std::norm(sum[v]));
+    if (!(length > 0) || !std::isfinite(length)) length = std::abs(sum[v]);  // squares out of range
     const std::complex<double> root = unitRoot(sum[v].real() / length, sum[v].imag() / length, symmetry);
     for (int k = 0; k < 3; ++k)
       out[3 * v + k] = root.real() * axes.a[3 * v + k] + root.imag() * axes.b[3 * v + k];
