@@ -6,12 +6,11 @@
 //
 // Usage: node scripts/material-preview-pictures.mjs [--out DIR] [--port P]
 //   --out   where the pictures go (default docs/images)
-import { spawn } from 'node:child_process';
 import { existsSync, mkdirSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from '@playwright/test';
 import { openDesigner } from '../tests/e2e/helpers.mjs';
+import { launchChromium, startServer } from './page-session.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const arg = (name, fallback) => {
@@ -65,18 +64,8 @@ async function pictures(page) {
 }
 
 mkdirSync(out, { recursive: true });
-const server = spawn(process.execPath, [resolve(ROOT, 'scripts/serve.mjs')], {
-  env: { ...process.env, PORT: String(port) },
-  stdio: ['ignore', 'pipe', 'inherit'],
-});
-await new Promise((ok, fail) => {
-  server.stdout.on('data', (d) => String(d).includes('http://') && ok());
-  server.on('exit', (code) => fail(new Error(`the server exited (${code})`)));
-});
-const browser = await chromium.launch({
-  executablePath: process.env.TVF_CHROMIUM || '/usr/bin/chromium',
-  args: ['--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--no-first-run', '--disable-background-networking'],
-});
+const server = await startServer(port);
+const browser = await launchChromium();
 try {
   const page = await browser.newPage({ viewport: { width: 1024, height: 720 }, baseURL: `http://127.0.0.1:${port}/` });
   page.setDefaultTimeout(180_000);

@@ -15,12 +15,11 @@
 // Per model and setting: <model>-<label>.glb (the exported GLB), <model>-<label>-diag.json (mesh, field,
 // singularities, atlas UVs and the synthesis stats) and, with --raw, <model>-<label>-{coords,jacobian,exemplar}.bin;
 // one JSON line per setting on stdout.
-import { spawn } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from '@playwright/test';
 import { openDesigner, surfacePointsAlongScreenLine } from '../tests/e2e/helpers.mjs';
+import { launchChromium, startServer } from './page-session.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const MESHES = resolve(ROOT, 'bench-data/meshes');
@@ -107,18 +106,8 @@ async function sweep(page, name) {
 }
 
 mkdirSync(out, { recursive: true });
-const server = spawn(process.execPath, [resolve(ROOT, 'scripts/serve.mjs')], {
-  env: { ...process.env, PORT: String(port) },
-  stdio: ['ignore', 'pipe', 'inherit'],
-});
-await new Promise((ok, fail) => {
-  server.stdout.on('data', (d) => String(d).includes('http://') && ok());
-  server.on('exit', (code) => fail(new Error(`the server exited (${code})`)));
-});
-const browser = await chromium.launch({
-  executablePath: process.env.TVF_CHROMIUM || '/usr/bin/chromium',
-  args: ['--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--no-first-run', '--disable-background-networking'],
-});
+const server = await startServer(port);
+const browser = await launchChromium();
 try {
   for (const name of models) {
     const page = await browser.newPage({ viewport: { width: 1024, height: 720 }, baseURL: `http://127.0.0.1:${port}/` });

@@ -1,0 +1,29 @@
+// The app served from dist/ and Debian's Chromium with software GL, for the measurement scripts that drive the
+// real page outside the test runner (texture-sweep.mjs, material-preview-pictures.mjs). Never a downloaded
+// browser: TVF_CHROMIUM or /usr/bin/chromium.
+import { spawn } from 'node:child_process';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from '@playwright/test';
+
+const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
+
+// scripts/serve.mjs on this port, resolved once it listens; kill() ends it.
+export async function startServer(port) {
+  const server = spawn(process.execPath, [resolve(ROOT, 'scripts/serve.mjs')], {
+    env: { ...process.env, PORT: String(port) },
+    stdio: ['ignore', 'pipe', 'inherit'],
+  });
+  await new Promise((ok, fail) => {
+    server.stdout.on('data', (d) => String(d).includes('http://') && ok());
+    server.on('exit', (code) => fail(new Error(`the server exited (${code})`)));
+  });
+  return server;
+}
+
+export function launchChromium() {
+  return chromium.launch({
+    executablePath: process.env.TVF_CHROMIUM || '/usr/bin/chromium',
+    args: ['--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--no-first-run', '--disable-background-networking'],
+  });
+}
