@@ -93,7 +93,8 @@ export const DESIGN_METHODS = [
   {
     name: 'setSymmetry', ...CONSTRAINTS,
     signatures: [['n: number', 'Promise<Constraint[]>']],
-    description: 'Sets the symmetry N (1 vector, 2 line, 4 cross; 1–6) as one undoable step; for N ≥ 2 it removes ' +
+    description: 'Sets the symmetry N (1 vector, 2 line, 4 cross; 1–6) as one undoable step; ' +
+      'for N ≥ 2 it removes ' +
       'the sources, sinks, vortices and edge constraints and resolves with them (undo restores them).',
   },
   {
@@ -232,7 +233,8 @@ export const DESIGN_METHODS = [
   {
     name: 'hodge', ...FIELD,
     signatures: [['', 'Promise<HodgeDecomposition>']],
-    description: 'The Hodge decomposition of the current field: exact, coexact and harmonic parts (c = dα + δβ + h), ' +
+    description: 'The Hodge decomposition of the current field: exact, coexact and harmonic parts ' +
+      '(c = dα + δβ + h), ' +
       'made on first request.',
   },
   {

@@ -55,7 +55,8 @@ export const ATTRIBUTES = [
     property: 'symmetry',
     type: 'number',
     default: '1',
-    description: "The field's symmetry N, a whole number 1–6: 1 a vector field, 2 a line field (a direction without " +
+    description: "The field's symmetry N, a whole number 1–6: 1 a vector field, " +
+      '2 a line field (a direction without ' +
       'sign), 4 a cross field (four directions at right angles). Follows the design: the Symmetry selector, ' +
       'setSymmetry(), undo and loaded designs write it back.',
   },

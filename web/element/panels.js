@@ -181,7 +181,8 @@ export function bindPanels($, focused, actions, showError) {
     box.classList.toggle('stale', !shares.current);
     for (const part of SHARE_PARTS) {
       const x = shares[part];
-      box.querySelector(`[data-share="${part}"]`).textContent = Number.isFinite(x) ? `${(100 * x).toFixed(1)} %` : '–';
+      const text = Number.isFinite(x) ? `${(100 * x).toFixed(1)} %` : '–';
+      box.querySelector(`[data-share="${part}"]`).textContent = text;
     }
   }
 

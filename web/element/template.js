@@ -28,8 +28,8 @@ const TITLES = {
 };
 
 // The first-visit hint over the view.
-const HINT = 'Drag to turn the model · double-click to orbit around a point · pick <b>Stroke</b> and drag across the ' +
-  'surface to steer the field · <b>?</b> for help';
+const HINT = 'Drag to turn the model · double-click to orbit around a point · ' +
+  'pick <b>Stroke</b> and drag across the surface to steer the field · <b>?</b> for help';
 
 export const TEMPLATE = `<div class="root" part="root">
   <header class="toolbar" part="toolbar" role="toolbar" aria-label="Design tools">

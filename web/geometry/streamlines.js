@@ -16,7 +16,8 @@ import { scrambled } from './surface.js';
 
 const MAX_POINTS_PER_LINE = 4000;
 const ZERO = Object.freeze([0, 0, 0]);
-// N-fields: the interpolated field counts as defined where |Σ bₖcₖ| ≥ this × Σ bₖ|cₖ| (corners within ~90°).
+// N-fields: the interpolated field counts as defined where |Σ bₖcₖ| ≥ this × Σ bₖ|cₖ|
+// (corners within ~90°).
 const COHERENCE = 0.7;
 
 // Returns polylines as Float32Arrays (x, y, z per point), lifted off the surface by `lift` along face normals.
