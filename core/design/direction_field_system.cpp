@@ -119,9 +119,8 @@ void DirectionFieldSystem::clear(DesignStats& stats) {
 }
 
 void DirectionFieldSystem::factorNow(DesignStats& stats) {
-  system_.factor().invalidate();
-  FieldSolution discarded;
-  solve(discarded, stats);  // factors; the solve after it is what a caller wants next anyway
+  system_.factorNow();
+  stats.nnzPerRowM = system_.nonZerosPerRow();
 }
 
 void DirectionFieldSystem::solve(FieldSolution& field, DesignStats& stats) {

@@ -199,6 +199,10 @@ void PowerFieldSystem::smoothestField(Eigen::VectorXd& u) {
   u = std::move(x);
 }
 
+void PowerFieldSystem::factorNow() {
+  factor_.factor(base_, scale_, allTerms());
+}
+
 void PowerFieldSystem::solve(Eigen::VectorXd& u) {
   const DiagonalTerms terms = allTerms();
   if (!factor_.current()) factor_.factor(base_, scale_, terms);

@@ -49,6 +49,8 @@ class PowerFieldSystem {
   void clear();
   double lastUpdateMs() const;
 
+  // Factors H + the boundary and constraint terms (what solve() does first when the factor is not current).
+  void factorNow();
   // Solves (factoring first when needed); the power field u, 2 values (re, im) per face.
   void solve(Eigen::VectorXd& u);
   const PowerFieldReport& report() const;
