@@ -4,16 +4,9 @@
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import { fnv1a } from '../../web/core/model-bytes.js';
-import { icosphere } from './fakes.mjs';
+import { icosphere, offText } from './fakes.mjs';
 
 const DIST = new URL('../../dist/', import.meta.url).href;
-
-function offText({ positions, triangles }) {
-  const lines = [`OFF\n${positions.length / 3} ${triangles.length / 3} 0`];
-  for (let v = 0; v < positions.length; v += 3) lines.push(`${positions[v]} ${positions[v + 1]} ${positions[v + 2]}`);
-  for (let f = 0; f < triangles.length; f += 3) lines.push(`3 ${triangles[f]} ${triangles[f + 1]} ${triangles[f + 2]}`);
-  return lines.join('\n') + '\n';
-}
 
 // The entry serves `self`: here a stand-in that keeps what the worker posts.
 const posted = [];

@@ -8,6 +8,14 @@ import { Surface } from '../../web/geometry/surface.js';
 // ------------------------------------------------------------------------------------------ meshes
 
 // OFF text → {positions: Float64Array, triangles: Int32Array} (triangles only, as tests/icosphere.mjs writes).
+// A mesh as OFF text (the inverse of parseOff).
+export function offText({ positions, triangles }) {
+  const lines = [`OFF\n${positions.length / 3} ${triangles.length / 3} 0`];
+  for (let v = 0; v < positions.length; v += 3) lines.push(`${positions[v]} ${positions[v + 1]} ${positions[v + 2]}`);
+  for (let f = 0; f < triangles.length; f += 3) lines.push(`3 ${triangles[f]} ${triangles[f + 1]} ${triangles[f + 2]}`);
+  return lines.join('\n') + '\n';
+}
+
 export function parseOff(text) {
   const words = text
     .split('\n')

@@ -9,16 +9,9 @@ import { openModelInSteps } from '../../web/core/open-steps.js';
 import { Preview } from '../../web/core/preview/preview.js';
 import { warmUpPreview } from '../../web/core/preview/warm-up.js';
 import { SpareArrays } from '../../web/core/spare-arrays.js';
-import { icosphere, parseOff } from './fakes.mjs';
+import { icosphere, offText, parseOff } from './fakes.mjs';
 
 const DIST = new URL('../../dist/', import.meta.url).href;
-
-function offText({ positions, triangles }) {
-  const lines = [`OFF\n${positions.length / 3} ${triangles.length / 3} 0`];
-  for (let v = 0; v < positions.length; v += 3) lines.push(`${positions[v]} ${positions[v + 1]} ${positions[v + 2]}`);
-  for (let f = 0; f < triangles.length; f += 3) lines.push(`3 ${triangles[f]} ${triangles[f + 1]} ${triangles[f + 2]}`);
-  return lines.join('\n') + '\n';
-}
 
 function opening(core, bytes, previewEdges) {
   const sent = [];
