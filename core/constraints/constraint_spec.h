@@ -12,7 +12,10 @@ struct SurfacePoint {
   double bary[3];
 };
 
-enum class ConstraintKind { Stroke, Vector, Edge, Source, Sink, Vortex };
+// A Singularity prescribes a line or cross field's (or a unit vector field's) index at a vertex: element is
+// the vertex, value the index (a nonzero multiple of 1/N); it is a change of the field's connection
+// (direction/trivial_connection.h), not a row.
+enum class ConstraintKind { Stroke, Vector, Edge, Source, Sink, Vortex, Singularity };
 
 // Strokes, vectors and edges become weighted edge rows in the matrix; sources, sinks and vortices enter only
 // the right-hand side.
@@ -24,10 +27,10 @@ struct ConstraintSpec {
   int32_t id = 0;
   ConstraintKind kind = ConstraintKind::Edge;
   std::vector<SurfacePoint> points;  // stroke
-  int32_t element = -1;              // face (vector, vortex) or vertex (source, sink)
+  int32_t element = -1;              // face (vector, vortex) or vertex (source, sink, singularity)
   int32_t edge[2] = {-1, -1};        // edge: vertex pair, value along i -> j
   double vector[3] = {0, 0, 0};
-  double value = 0;
+  double value = 0;  // edge: the 1-form's value; singularity: the index
   double strength = 1;  // stroke: |t|; source/sink: total flux; vortex: signed circulation
   double weight = 1;    // edge-type constraints: relative to the mean diagonal of the system matrix
 };

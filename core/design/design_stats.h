@@ -37,6 +37,14 @@ struct DesignStats {
   // The smoothest unconstrained N-field's inverse iterations and eigenvalue (0 for any other solve).
   int32_t inverseIterations = 0;
   double smoothestEigenvalue = 0;
+  // Prescribed singularities (design/prescribed_field_system.h): "none"; "exact" when the prescribed indices
+  // account for all the index the surface needs (their sum is the Euler characteristic, or the surface has a
+  // boundary to take the rest) and the field is the trivial connection's, with exactly those singularities;
+  // "free" when the field places freeIndex = eulerCharacteristic - prescribedIndex itself.
+  std::string singularityMode = "none";
+  int32_t eulerCharacteristic = 0;
+  double prescribedIndex = 0, freeIndex = 0;
+  int32_t featureEdges = 0;  // edges the field follows as features (detected by angle, plus or minus edits)
 };
 
 }  // namespace tvf

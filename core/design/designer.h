@@ -6,6 +6,7 @@
 // system; it never asks which kind it is. This is the object the CLI and the wasm bindings drive; it holds
 // no UI state.
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -74,6 +75,14 @@ class Designer {
   int32_t addSource(int32_t vertex, double strength);  // strength = total outflow
   int32_t addSink(int32_t vertex, double strength);    // strength = total inflow
   int32_t addVortex(int32_t face, double strength);    // signed circulation, + = counter-clockwise
+  // A prescribed singularity (any symmetry; direction/trivial_connection.h): the field has index `index` at
+  // interior vertex `vertex`. Throws InputError naming the problem (a boundary or unused vertex, an index that
+  // is not a nonzero multiple of 1/N, a vertex that already has one); the design is then unchanged. With
+  // singularities the field is a unit N-direction field even for N = 1, and sources, sinks, vortices and edge
+  // values are refused (by name) as for N >= 2.
+  int32_t addSingularity(int32_t vertex, double index);
+  // The singularity `id` to another vertex, keeping its id and index (checked as addSingularity checks).
+  void moveSingularity(int32_t id, int32_t vertex);
   void remove(int32_t id);                             // throws InputError for an unknown id
   void setWeight(int32_t id, double weight);           // edge-type constraints only
   void setStrength(int32_t id, double strength);
@@ -98,7 +107,20 @@ class Designer {
   // say), by the Whitney maps the solve itself applies, built once per mesh and shared.
   void reconstruct(const double* oneForm, std::vector<double>& faceVectors,
                    std::vector<double>& vertexVectors) const;
+  // The field's singularities, each flagged `prescribed` when the design prescribes that index there.
   const std::vector<Singularity>& singularities() const;
+
+  // Sharp features (mesh/feature_edges.h): interior edges whose dihedral angle exceeds `degrees` (0: none
+  // detected), plus `add`, minus `remove` (vertex pairs). Faces along a feature take its direction as a
+  // strongly weighted term (direction/feature_terms.h); a base change, so the factor is made again. Throws
+  // InputError naming a pair that is not a mesh edge, or an angle outside [0, 180]; unchanged then.
+  void setFeatures(double degrees, const std::vector<std::array<int32_t, 2>>& add,
+                   const std::vector<std::array<int32_t, 2>>& remove);
+  // 0 (none) by default, so a design made before features keeps its field; the page starts designs at 35.
+  double featureAngle() const;
+  const std::vector<std::array<int32_t, 2>>& featureEdgesAdded() const;
+  const std::vector<std::array<int32_t, 2>>& featureEdgesRemoved() const;
+  const std::vector<int32_t>& featureEdges() const;  // the edges in use, ascending
   const DesignStats& stats() const;
   // The Hodge decomposition (Eq. 3) of the current one-form, computed on each call (two Poisson solves on
   // the mesh's d0, d1 and stars; field/hodge_decomposition.h). Throws InputError before the first solve.

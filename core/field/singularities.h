@@ -13,6 +13,9 @@ namespace tvf {
 struct Singularity {
   int32_t vertex;
   double index;
+  // The design prescribes this index at this vertex (design/designer.h: addSingularity); false for a
+  // singularity the field placed itself.
+  bool prescribed = false;
 };
 
 // Nonzero indices only. Vertices on a boundary, and vertices where the field vanishes in an incident face,
