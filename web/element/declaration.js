@@ -20,7 +20,7 @@ export const DESCRIPTION = 'Interactive design of smooth tangent vector fields o
 
 // String unions the declarations below refer to by name (the manifest spells them out).
 export const ENUMS = {
-  Tool: ['orbit', 'select', 'stroke', 'vector', 'source', 'sink', 'vortex'],
+  Tool: ['orbit', 'select', 'stroke', 'vector', 'source', 'sink', 'vortex', 'singularity', 'feature'],
   Controls: ['full', 'minimal', 'none'],
   ErrorCode: ['model', 'design', 'texture', 'core', 'setting', 'attribute', 'autosave'],
   CoreFailureKind: ['ended', 'error', 'trap', 'silent', 'cancelled'],

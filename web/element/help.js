@@ -12,6 +12,18 @@ export const HELP_TOOLS = [
     'B',
     'Click: the field turns around the triangle (X flips counter-clockwise / clockwise). Vector fields only.',
   ],
+  [
+    'Singularity',
+    'I',
+    'Click near a vertex: a prescribed singularity there, of the index chosen in the toolbar (a multiple of ' +
+      '1/N). Drag a placed one (ringed) to move it; drag from empty surface for a +1/N, \u22121/N pair.',
+  ],
+  [
+    'Feature',
+    'K',
+    'Click an edge, or drag along edges: sharp features the field follows. Remove (or Alt or Shift held): ' +
+      'they stop being features. The Field panel sets the angle over which edges are features.',
+  ],
 ];
 
 export const HELP_SHORTCUTS = [
@@ -20,7 +32,7 @@ export const HELP_SHORTCUTS = [
   ['X', 'Flip the vortex turning (counter-clockwise ↔ clockwise)'],
   ['Ctrl+Z / Ctrl+Shift+Z, Ctrl+Y', 'Undo / redo'],
   ['Ctrl+S', 'Save the design'],
-  ['Delete / Backspace', 'Delete the selected constraint'],
+  ['Delete / Backspace', 'Delete the selected constraint or prescribed singularity'],
   ['Escape', 'Deselect, then back to Orbit; closes this help'],
   ['? / H / F1', 'This help'],
 ];
@@ -30,6 +42,7 @@ export const HELP_GESTURES = [
   ['Right-drag, Shift+drag, two-finger drag', 'Pan'],
   ['Wheel, pinch', 'Zoom'],
   ['Double-click / double-tap on the model', 'Orbit around that point'],
+  ['Alt+drag, Shift+drag (Feature tool)', 'Remove feature edges instead of adding them'],
   ['Drop a file on the view', 'Open a mesh (.glb, .gltf, .obj, .off, .ply) or load a design (.json)'],
   ['☰ Panels (small screens)', 'Open or close the settings and constraint drawers (a bottom sheet on phones)'],
   [

@@ -1,8 +1,10 @@
-// The side panels: field settings (symmetry, curvature alignment, boundary, smoothness), the views and their legend,
-// and the constraint list with the selection editor. Reports user intent through `actions` and renders the state it
+// The side panels: field settings (symmetry, curvature alignment, boundary, smoothness, the feature angle, what
+// the prescribed singularities leave to the field), the views and their legend, and the constraint list with the
+// selection editor. Reports user intent through `actions` and renders the state it
 // is handed; a box the user is typing in is never overwritten.
 import { checkedNumber, fmtNum, guarded } from './numbers.js';
 import { alignsToCurvature } from '../session/symmetry.js';
+import { indexLabel, PRESCRIBED_RING } from '../views/singularity-style.js';
 
 const SWATCH = {
   stroke: '#ff7a1a',
@@ -11,6 +13,7 @@ const SWATCH = {
   source: '#ef4444',
   sink: '#22c55e',
   vortex: '#3b82f6',
+  singularity: PRESCRIBED_RING,
 };
 const VIEW_INPUTS = [
   'show-arrows',
@@ -27,6 +30,23 @@ const SHARE_PARTS = ['exact', 'coexact', 'harmonic'];
 
 const title = (type) => `${type[0].toUpperCase()}${type.slice(1)}`;
 
+// An index as a fraction in lowest terms over the smallest N up to 6 that writes it exactly ("3/2", "−1/4").
+function fraction(x, plus = '') {
+  const n = [1, 2, 3, 4, 5, 6].find((k) => Math.abs(x * k - Math.round(x * k)) < 1e-9) ?? 6;
+  const label = indexLabel(x, n);
+  return label.startsWith('+') ? `${plus}${label.slice(1)}` : label;
+}
+
+// What the prescribed singularities leave to the field, in words ({mode, eulerCharacteristic, prescribedIndex,
+// freeIndex}); '' when none are prescribed.
+export function singularitySummaryText(summary) {
+  if (!summary || summary.mode === 'none') return '';
+  const { eulerCharacteristic: chi, prescribedIndex: p, freeIndex: free } = summary;
+  const head = `χ = ${chi}, prescribed ${fraction(p)}`;
+  if (summary.mode === 'exact') return `${head}: the field has these singularities and no other.`;
+  return `${head}: the field places ${fraction(free, '+')} itself.`;
+}
+
 function describe(c) {
   switch (c.type) {
     case 'stroke': return `${c.points.length} points · strength ${fmtNum(c.strength)} · weight ${fmtNum(c.weight)}`;
@@ -35,6 +55,7 @@ function describe(c) {
     case 'source':
     case 'sink': return `vertex ${c.vertex} · strength ${fmtNum(c.strength)}`;
     case 'vortex': return `face ${c.face} · ${c.strength >= 0 ? 'CCW' : 'CW'} ${fmtNum(Math.abs(c.strength))}`;
+    case 'singularity': return `vertex ${c.vertex} · index ${fraction(c.index)}`;
     default: return '';
   }
 }
@@ -88,6 +109,24 @@ export function bindPanels($, focused, actions, showError) {
     }),
   );
   gamma.addEventListener('change', guard((e) => actions.onGamma(checkedNumber(e.target, 'Smoothness γ'))));
+  const featureAngle = $('#feature-angle');
+  featureAngle.addEventListener(
+    'change',
+    guard((e) => actions.onFeatureAngle(checkedNumber(e.target, 'The feature angle'))),
+  );
+
+  // features: {angle, count} (count: the edges in use; null while unknown); summary: singularitySummaryText's.
+  function setFeatures({ angle, count }) {
+    if (Number.isFinite(angle) && focused() !== featureAngle) featureAngle.value = String(angle);
+    const note = $('#feature-count');
+    note.hidden = count == null;
+    note.textContent = count === 1 ? '1 feature edge' : `${count} feature edges`;
+  }
+  function setSingularitySummary(summary) {
+    const text = singularitySummaryText(summary), note = $('#singularity-summary');
+    note.hidden = !text;
+    note.textContent = text;
+  }
 
   // ---- symmetry and curvature alignment: the checkbox turns the alignment on at the strength in the box.
   const symmetry = $('#symmetry');
@@ -229,6 +268,8 @@ export function bindPanels($, focused, actions, showError) {
 
   return {
     setSettings,
+    setFeatures,
+    setSingularitySummary,
     setHasBoundary,
     views,
     setViews,

@@ -24,6 +24,12 @@ const TITLES = {
   component: 'The part of the Hodge decomposition c = dα + δβ + h that the arrows, streamlines, flow texture, ' +
     "magnitude colours and texture draw (in the whole field's magnitude scale); singularity markers stay the whole " +
     "field's",
+  singularity: 'Click a vertex: a prescribed singularity of the index chosen beside; drag one to move it, drag ' +
+    'from empty surface for a +/− pair; Delete removes the selected one (I)',
+  singularityIndex: "The index of the singularity a click places, a multiple of 1/N (N: the field's symmetry)",
+  feature: 'Click or drag along edges: sharp features the field follows (Alt or Shift: remove them) (K)',
+  featureAngle: 'Edges where the surface folds by more than this many degrees are sharp features the field ' +
+    'follows (0: none; the Feature tool adds or removes edges)',
   shares: "Share of the energy in each part: ‖part‖² / ‖c‖² in the decomposition's inner product",
 };
 
@@ -62,6 +68,10 @@ export const TEMPLATE = `<div class="root" part="root">
         title="Click: a sink at the nearest vertex (G)">Sink</button>
       <button type="button" class="edit" data-tool="vortex" aria-pressed="false"
         title="Click: a vortex in the triangle — the field turns around it (B; X flips its turning)">Vortex</button>
+      <button type="button" class="edit" data-tool="singularity" aria-pressed="false"
+        title="${TITLES.singularity}">Singularity</button>
+      <button type="button" class="edit" data-tool="feature" aria-pressed="false"
+        title="${TITLES.feature}">Feature</button>
     </div>
     <span class="tool-options edit">
       <label data-for="stroke source sink vortex" title="${TITLES.strength}">Strength
@@ -79,6 +89,15 @@ export const TEMPLATE = `<div class="root" part="root">
           title="Counter-clockwise about the surface normal (X flips)">↺ CCW</button>
         <button type="button" data-orientation="cw" aria-pressed="false"
           title="Clockwise about the surface normal (X flips)">↻ CW</button>
+      </span>
+      <label data-for="singularity" title="${TITLES.singularityIndex}">Index
+        <select id="singularity-index"></select>
+      </label>
+      <span class="segmented" data-for="feature" role="group" aria-label="Feature edit">
+        <button type="button" data-feature-mode="add" aria-pressed="true"
+          title="Edges clicked or dragged along become features">Add</button>
+        <button type="button" data-feature-mode="remove" aria-pressed="false"
+          title="Edges clicked or dragged along stop being features (or hold Alt or Shift)">Remove</button>
       </span>
     </span>
     <span class="sep edit" aria-hidden="true"></span>
@@ -139,6 +158,11 @@ export const TEMPLATE = `<div class="root" part="root">
         <label title="${TITLES.gamma}">Smoothness γ
           <input id="gamma" type="number" value="0" min="0" step="0.1">
         </label>
+        <label title="${TITLES.featureAngle}">Features over°
+          <input id="feature-angle" type="number" value="35" min="0" max="180" step="5">
+        </label>
+        <p id="feature-count" class="note" hidden></p>
+        <p id="singularity-summary" class="note" hidden></p>
         <p class="note">Changing symmetry, smoothness<span id="boundary-note"
           hidden> or the boundary</span> rebuilds the solver: a moment on large models.</p>
       </details>

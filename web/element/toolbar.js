@@ -1,7 +1,9 @@
-// The toolbar: the tools and their options (strength, how closely to follow, the vortex turning), undo and
-// redo, the camera buttons and the ☰ Panels toggle of small screens. The file buttons are files.js's; what
+// The toolbar: the tools and their options (strength, how closely to follow, the vortex turning, a prescribed
+// singularity's index, whether the Feature tool adds or removes), undo and redo, the camera buttons and the
+// ☰ Panels toggle of small screens. The file buttons are files.js's; what
 // does not fit in one row goes into the ⋯ menu (toolbar-overflow.js).
 import { VIEW_PRESETS } from '../views/camera.js';
+import { indexLabel } from '../views/singularity-style.js';
 import { fieldPhrase, keepsConstraint } from '../session/symmetry.js';
 import { checkedNumber } from './numbers.js';
 import { bindOverflow } from './toolbar-overflow.js';
@@ -36,6 +38,37 @@ export function bindToolbar($, $$, actions, flash) {
     overflow.fit(); // this tool's options may need room: refit now, not a frame later
     actions.onTool(tool);
   }
+  // The Feature tool adds or removes (Alt or Shift at the press removes whatever this says).
+  let featureMode = 'add';
+  for (const btn of $$('[data-feature-mode]'))
+    btn.addEventListener('click', () => setFeatureMode(btn.dataset.featureMode));
+  function setFeatureMode(mode) {
+    featureMode = mode;
+    for (const b of $$('[data-feature-mode]')) b.setAttribute('aria-pressed', String(b.dataset.featureMode === mode));
+  }
+
+  // A prescribed singularity's index, k/N: +1/N, -1/N, +2/N, -2/N, ... +1, -1 (the options follow N; the choice
+  // keeps its sign and, where it can, its size).
+  const indexSelect = $('#singularity-index');
+  let indexN = 0;
+  function setIndexChoices(n) {
+    if (n === indexN) return;
+    const was = indexN ? Number(indexSelect.value) / indexN : 1 / n;
+    indexN = n;
+    const options = [];
+    for (let k = 1; k <= n; k++) {
+      for (const sign of [1, -1]) {
+        const o = document.createElement('option');
+        o.value = String(sign * k);
+        o.textContent = indexLabel((sign * k) / n, n);
+        options.push(o);
+      }
+    }
+    indexSelect.replaceChildren(...options);
+    const k = Math.sign(was) * Math.min(n, Math.max(1, Math.round(Math.abs(was) * n)));
+    indexSelect.value = String(k);
+  }
+
   for (const btn of $$('[data-orientation]'))
     btn.addEventListener('click', () => setOrientation(btn.dataset.orientation));
   function setOrientation(o) {
@@ -47,6 +80,7 @@ export function bindToolbar($, $$, actions, flash) {
   // with the reason as their tooltip; a tool in use that goes off gives way to orbit.
   const baseTitles = new Map(POINT_TOOLS.map((tool) => [tool, toolButton(tool).title]));
   function setSymmetry(n) {
+    setIndexChoices(n);
     for (const tool of POINT_TOOLS) {
       const btn = toolButton(tool), off = !keepsConstraint(tool, n);
       btn.disabled = off;
@@ -67,6 +101,8 @@ export function bindToolbar($, $$, actions, flash) {
     }
     return { strength: s, weight: Number(weight.value), orientation };
   }
+
+  setIndexChoices(1);
 
   // ---- undo / redo
   $('#undo').addEventListener('click', () => actions.onUndo());
@@ -90,6 +126,9 @@ export function bindToolbar($, $$, actions, flash) {
     setSymmetry,
     flipOrientation: () => setOrientation(orientation === 'ccw' ? 'cw' : 'ccw'),
     toolOptions,
+    // The index a Singularity click places (k/N of the field's N).
+    singularityIndex: () => Number(indexSelect.value) / indexN,
+    featureRemoving: () => featureMode === 'remove',
     setHistory,
     dispose: () => overflow.dispose(),
   };

@@ -10,7 +10,17 @@ import { bindPanels } from './panels.js';
 import { bindStatus } from './status.js';
 import { bindToolbar } from './toolbar.js';
 
-const TOOL_KEYS = { o: 'orbit', e: 'select', s: 'stroke', v: 'vector', r: 'source', g: 'sink', b: 'vortex' };
+const TOOL_KEYS = {
+  o: 'orbit',
+  e: 'select',
+  s: 'stroke',
+  v: 'vector',
+  r: 'source',
+  g: 'sink',
+  b: 'vortex',
+  i: 'singularity',
+  k: 'feature',
+};
 const PRESET_KEYS = { 1: 'front', 3: 'side', 7: 'top' };
 
 // root: the shadow root; host: the element (keyboard events reach it from inside the shadow tree).
@@ -97,12 +107,16 @@ export function bindUi(root, host, actions) {
       toolbar.setSymmetry(settings.symmetry ?? 1);
     },
     setHasBoundary: panels.setHasBoundary,
+    setFeatures: panels.setFeatures,
+    setSingularitySummary: panels.setSingularitySummary,
     setHistory: toolbar.setHistory,
     setLegend: panels.setLegend,
     setViews: panels.setViews,
     views: panels.views,
     flash: status.flash,
     toolOptions: toolbar.toolOptions,
+    singularityIndex: toolbar.singularityIndex,
+    featureRemoving: toolbar.featureRemoving,
     setTool: toolbar.setTool,
   };
 }

@@ -1,16 +1,19 @@
 // The pointer tools and the controller that routes presses to the active one. Pointer events are taken in
 // the capture phase on the viewport, so OrbitControls never sees a press a tool claims; a press off the
 // model (or on empty surface with the select tool) still orbits.
+import { FeatureTool } from './feature-tool.js';
+import { SingularityTool } from './singularity-tool.js';
 import { StrokeTool } from './stroke-tool.js';
 
 const CLICK_SLOP_PX = 6; // a press that moves less than this is a click
 
-export const TOOLS = ['orbit', 'select', 'stroke', 'vector', 'source', 'sink', 'vortex'];
+export const TOOLS = ['orbit', 'select', 'stroke', 'vector', 'source', 'sink', 'vortex', 'singularity', 'feature'];
 
 export class ToolController {
   // viewer: picks and draws the gestures; target: the element that receives the pointer events.
   // actions: {onStroke(points, event), onVector(face, vector3, event), onPlace(kind, hit, event),
-  // onSelect(uid | null), flash(text)}; readonly(): true while only orbit and select may be used.
+  // onSelect(uid | null), flash(text), singularity: SingularityTool's actions, feature: FeatureTool's};
+  // readonly(): true while only orbit and select may be used.
   constructor(viewer, target, actions, readonly = () => false) {
     this.readonly = readonly;
     this.viewer = viewer;
@@ -28,6 +31,8 @@ export class ToolController {
       sink: new PlaceTool('sink', viewer, actions),
       vortex: new PlaceTool('vortex', viewer, actions),
       select: new SelectTool(viewer, actions),
+      singularity: new SingularityTool(viewer, actions.singularity),
+      feature: new FeatureTool(viewer, actions.feature),
     };
     this.listening = new AbortController();
     const options = { capture: true, signal: this.listening.signal };

@@ -58,9 +58,9 @@ export class LabelTextures {
   }
 
   // A text tag (TAG_ASPECT wide per unit high): the text in `color` on a dark rounded box.
-  getTag(key, color, text) {
+  getTag(key, color, text, rim = color) {
     let tex = this.cache.get(key);
-    if (!tex) this.cache.set(key, (tex = tagTexture(color, text)));
+    if (!tex) this.cache.set(key, (tex = tagTexture(color, text, rim)));
     return tex;
   }
 
@@ -70,7 +70,9 @@ export class LabelTextures {
   }
 }
 
-function discTexture(fill, text, { ring = false, textColor = '#111827' } = {}) {
+// ring: a thick rim (white, or ringColor); ringColor alone makes the rim that colour and thicker still (a
+// prescribed singularity's pin, singularity-style.js).
+function discTexture(fill, text, { ring = false, ringColor = null, textColor = '#111827' } = {}) {
   const size = 64;
   const c = document.createElement('canvas');
   c.width = c.height = size;
@@ -79,8 +81,8 @@ function discTexture(fill, text, { ring = false, textColor = '#111827' } = {}) {
   g.arc(size / 2, size / 2, size / 2 - 3, 0, 2 * Math.PI);
   g.fillStyle = fill;
   g.fill();
-  g.lineWidth = ring ? 6 : 3;
-  g.strokeStyle = ring ? '#ffffff' : 'rgba(17, 24, 39, 0.85)';
+  g.lineWidth = ringColor ? 10 : ring ? 6 : 3;
+  g.strokeStyle = ringColor ?? (ring ? '#ffffff' : 'rgba(17, 24, 39, 0.85)');
   g.stroke();
   g.fillStyle = textColor;
   g.font = `bold ${text.length > 2 ? 24 : 30}px system-ui, sans-serif`;
@@ -94,7 +96,8 @@ function discTexture(fill, text, { ring = false, textColor = '#111827' } = {}) {
 
 export const TAG_ASPECT = 2.5;
 
-function tagTexture(color, text) {
+// color: the text and the rim; rim: another colour for the rim (a prescribed singularity's tag).
+function tagTexture(color, text, rim = color) {
   const h = 48, w = Math.round(TAG_ASPECT * h);
   const c = document.createElement('canvas');
   c.width = w;
@@ -105,8 +108,8 @@ function tagTexture(color, text) {
   else g.rect(2, 2, w - 4, h - 4); // canvases before roundRect (Chromium < 99, Safari < 16)
   g.fillStyle = 'rgba(17, 24, 39, 0.85)';
   g.fill();
-  g.lineWidth = 3;
-  g.strokeStyle = color;
+  g.lineWidth = rim === color ? 3 : 6;
+  g.strokeStyle = rim;
   g.stroke();
   g.fillStyle = color;
   g.font = 'bold 28px system-ui, sans-serif';

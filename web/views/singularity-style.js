@@ -9,6 +9,12 @@ const NEGATIVE_PALE = [0xf3, 0xe8, 0xff];
 
 const MINUS = '\u2212';
 
+// A prescribed singularity (one the user pinned, not one the field placed itself): the disc of its index,
+// ringed in cyan, a hue the index ramps, the handles and the feature lines never use.
+export const PRESCRIBED_RING = '#22d3ee';
+// The marker of the prescribed singularity the Singularity tool has selected, and its ghost while it is dragged.
+export const SELECTED_RING = '#ffffff';
+
 function gcd(a, b) {
   while (b) [a, b] = [b, a % b];
   return a;

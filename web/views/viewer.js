@@ -1,8 +1,8 @@
 // three.js view of the core's welded mesh. Face i of the rendered geometry is face i of the core, so picks
 // translate to core surface points without any remapping. The field views live in arrows-view.js,
-// streamlines-view.js and singularities-view.js, the constraint handles in handles.js; this module owns the
-// scene, the camera, picking and the surface itself (its geometry made by surface-geometry.js). Normals come from
-// the Surface (geometry/surface.js), computed once per mesh.
+// streamlines-view.js and singularities-view.js, the constraint handles in handles.js, the feature lines in
+// features-view.js; this module owns the scene, the camera, picking and the surface itself (its geometry made by
+// surface-geometry.js). Normals come from the Surface (geometry/surface.js), computed once per mesh.
 import {
   AmbientLight,
   Color,
@@ -26,6 +26,7 @@ import { adoptBVH } from '../geometry/mesh-bvh-transfer.js';
 import { ArrowsView } from './arrows-view.js';
 import { MeshStaging } from './mesh-staging.js';
 import { frameModel, framingDistance, refitToAspect } from './camera.js';
+import { FeaturesView } from './features-view.js';
 import { worldPerPixelAt } from '../geometry/arrow-sampling.js';
 import { viridis } from './colormap.js';
 import { magnitudeScale } from '../geometry/magnitudes.js';
@@ -95,6 +96,7 @@ export class Viewer {
     this.labels = new LabelTextures();
     this.singularities = new SingularitiesView(this.scene, this.labels);
     this.handles = new HandlesView(this.scene, this.labels);
+    this.features = new FeaturesView(this.scene); // sharp feature edges, as lines on the surface
     this.lic = new LicView();
     this.surfaceLayer = new SurfaceLayer(); // a big surface drawn once per view (surface-layer.js)
     this.afterRender = []; // callbacks (time) → void, run once after the next render
@@ -201,7 +203,8 @@ export class Viewer {
     this.surfaceMesh.raycast = acceleratedRaycast;
     this.scene.add(this.surfaceMesh);
     this.#applyColorMapMaterial();
-    for (const view of [this.arrows, this.streamlines, this.singularities, this.handles]) view.setSurface(surface);
+    for (const view of [this.arrows, this.streamlines, this.singularities, this.handles, this.features])
+      view.setSurface(surface);
     this.streamlines.normalAt = (x, y, z) => this.#normalNear(x, y, z);
     this.lic.setSurface(geom, surface.meanEdge, surface);
     this.frame();
