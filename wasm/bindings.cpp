@@ -23,6 +23,7 @@
 #include <emscripten/val.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -122,6 +123,24 @@ val copyOf(const double* data, std::size_t size) {
 val copyOf(const std::vector<double>& v) { return copyOf(v.data(), v.size()); }
 val copyOf(const Eigen::VectorXd& v) { return copyOf(v.data(), static_cast<std::size_t>(v.size())); }
 
+// Vertex pairs from a flat list of numbers [a, b, a, b, ...] (feature edges to add or remove).
+std::vector<std::array<int32_t, 2>> vertexPairs(const val& flat, const char* what) {
+  const std::vector<double> v = emscripten::convertJSArrayToNumberVector<double>(flat);
+  if (v.size() % 2 != 0)
+    throw tvf::InputError(std::string(what) + ": expected 2 vertices per edge, got " + std::to_string(v.size()) +
+                          " numbers");
+  std::vector<std::array<int32_t, 2>> out(v.size() / 2);
+  for (std::size_t k = 0; k < out.size(); ++k)
+    out[k] = {toIndex(v[2 * k], what), toIndex(v[2 * k + 1], what)};
+  return out;
+}
+
+nlohmann::json pairsJson(const std::vector<std::array<int32_t, 2>>& pairs) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& p : pairs) out.push_back({p[0], p[1]});
+  return out;
+}
+
 class DesignerBinding {
  public:
   // format: 'glb' | 'gltf' | 'obj' | 'off' | 'ply' | '' (sniffed from the bytes).
@@ -132,10 +151,11 @@ class DesignerBinding {
     return error;
   }
 
-  // The whole model change as one transaction: mesh, then settings (JSON {"boundary", "gamma"}; '' for the
-  // defaults), then an autosaved design (JSON document; '' for none), then factor and solve. Settings or a
-  // design the new mesh cannot take are dropped and reported (settingsError, restoreError) without failing
-  // the load; a mesh that cannot be read, checked, factored or solved fails it. Returns JSON:
+  // The whole model change as one transaction: mesh, then settings (JSON {"boundary", "gamma", "symmetry",
+  // "curvatureAlignment", "featureAngle"}; '' for the defaults), then an autosaved design (JSON document; ''
+  // for none), then factor and solve. Settings or a design the new mesh cannot take are dropped and reported
+  // (settingsError, restoreError) without failing the load; a mesh that cannot be read, checked, factored or
+  // solved fails it. Returns JSON:
   // {"ok": true, "settingsError": string|null, "restoreError": string|null} or {"ok": false, "error": string}.
   std::string loadModel(const val& bytes, const std::string& format, const std::string& settings,
                         const std::string& design) {
@@ -298,10 +318,42 @@ class DesignerBinding {
   int addVortex(double f, double strength) {
     return add([&] { return need().addVortex(toIndex(f, "face"), strength); });
   }
-  // One constraint object of the design format, re-added exactly as saved (undo of a delete, redo).
+  // One constraint object of the design format, re-added exactly as saved (undo of a delete, redo); a
+  // prescribed singularity as {"type": "singularity", "vertex", "index"}, as constraintJson() gives it.
   int addConstraintJson(const std::string& text) {
     return add([&] { return need().add(tvf::constraintFromJson(nlohmann::json::parse(text))); });
   }
+  // A prescribed singularity: its id, or -1 with the core's reason in lastError() (a boundary vertex, an
+  // index that is not a nonzero multiple of 1/N, a vertex that has one); the design is then unchanged.
+  int addSingularity(double vertex, double index) {
+    return add([&] { return need().addSingularity(toIndex(vertex, "singularity vertex"), index); });
+  }
+  // Keeps the id and the index; false with lastError() when refused.
+  bool moveSingularity(double id, double vertex) {
+    return ok([&] { need().moveSingularity(toIndex(id, "id"), toIndex(vertex, "singularity vertex")); });
+  }
+  // Feature edges: those whose dihedral angle exceeds `degrees` (0: none), plus `add`, minus `remove` (flat
+  // vertex pairs [a, b, a, b, ...]); '' or the core's refusal (a pair that is not an edge, a bad angle), the
+  // design then unchanged. The next solve factors the new system.
+  std::string setFeatures(double degrees, const val& add, const val& remove) {
+    return run([&] {
+      const auto plus = vertexPairs(add, "feature edge to add");
+      const auto minus = vertexPairs(remove, "feature edge to remove");
+      need().setFeatures(degrees, plus, minus);
+    });
+  }
+  double featureAngle() const { return designer_ ? designer_->featureAngle() : 0.0; }
+  // {"angle", "add": [[a, b], ...], "remove": [[a, b], ...]}: the design's features as set.
+  std::string featuresJson() const {
+    return json([&] {
+      const std::vector<std::array<int32_t, 2>> none;
+      return nlohmann::json{{"angle", featureAngle()},
+                            {"add", pairsJson(designer_ ? designer_->featureEdgesAdded() : none)},
+                            {"remove", pairsJson(designer_ ? designer_->featureEdgesRemoved() : none)}};
+    });
+  }
+  // The edges the field follows as features (indices into edges(), ascending): a view into wasm memory.
+  val featureEdges() const { return designer_ ? view(designer_->featureEdges()) : view(emptyI_); }
 
   bool remove(double id) { return ok([&] { need().remove(toIndex(id, "id")); }); }
   bool setWeight(double id, double w) { return ok([&] { need().setWeight(toIndex(id, "id"), w); }); }
@@ -374,7 +426,7 @@ class DesignerBinding {
       nlohmann::json out = nlohmann::json::array();
       if (designer_)
         for (const tvf::Singularity& s : designer_->singularities())
-          out.push_back({{"vertex", s.vertex}, {"index", s.index}});
+          out.push_back({{"vertex", s.vertex}, {"index", s.index}, {"prescribed", s.prescribed}});
       return out;
     });
   }
@@ -395,6 +447,17 @@ class DesignerBinding {
         for (const tvf::ConstraintSpec& c : designer_->constraints())
           if (c.id == id) return tvf::constraintToJson(c);
       return nlohmann::json();
+    });
+  }
+  // Every constraint in constraintIdsJson()'s order, a prescribed singularity as {"type": "singularity",
+  // "vertex", "index"}: the design document lists singularities apart ("singularities": [{vertex, index}]), so
+  // its "constraints" alone do not line up with the ids.
+  std::string constraintsJson() const {
+    return json([&] {
+      nlohmann::json out = nlohmann::json::array();
+      if (designer_)
+        for (const tvf::ConstraintSpec& c : designer_->constraints()) out.push_back(tvf::constraintToJson(c));
+      return out;
     });
   }
   std::string statsJson() const {
@@ -488,12 +551,18 @@ class DesignerBinding {
             const nlohmann::json a = s.value("curvatureAlignment", nlohmann::json(0.0));
             if (!a.is_number()) throw tvf::InputError("curvatureAlignment must be a number");
             next->setCurvatureAlignment(a.get<double>());
+            // A new design's feature angle (the page starts designs at 35 degrees); a restored design's own
+            // features replace it below.
+            const nlohmann::json f = s.value("featureAngle", nlohmann::json(0.0));
+            if (!f.is_number()) throw tvf::InputError("featureAngle must be a number");
+            next->setFeatures(f.get<double>(), {}, {});
           })) {
         if (settingsError) *settingsError = error;
         next->setBoundary(tvf::BoundaryCondition::makeFree());
         next->setGamma(0);
         next->setCurvatureAlignment(0);
         next->setSymmetry(1);
+        next->setFeatures(0, {}, {});
       }
     }
     *restored = Restored{};
@@ -518,6 +587,7 @@ class DesignerBinding {
     next.clearConstraints();
     next.setBoundary(tvf::BoundaryCondition::makeFree());
     next.setGamma(0);
+    next.setFeatures(0, {}, {});
     next.solve();
   }
   template <typename F>
@@ -639,6 +709,13 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("addSource", &DesignerBinding::addSource)
       .function("addSink", &DesignerBinding::addSink)
       .function("addVortex", &DesignerBinding::addVortex)
+      .function("addSingularity", &DesignerBinding::addSingularity)
+      .function("moveSingularity", &DesignerBinding::moveSingularity)
+      .function("setFeatures", &DesignerBinding::setFeatures)
+      .function("featureAngle", &DesignerBinding::featureAngle)
+      .function("featuresJson", &DesignerBinding::featuresJson)
+      .function("featureEdges", &DesignerBinding::featureEdges)
+      .function("constraintsJson", &DesignerBinding::constraintsJson)
       .function("remove", &DesignerBinding::remove)
       .function("setWeight", &DesignerBinding::setWeight)
       .function("setStrength", &DesignerBinding::setStrength)
