@@ -45,8 +45,11 @@ class TinyCore {
   constraint(id) {
     return this.weights.has(id) ? { type: 'vortex', weight: this.weights.get(id) } : undefined;
   }
+  constraintSpecs() {
+    return this.constraintIds().map((id) => this.constraint(id));
+  }
   designJson() {
-    return JSON.stringify({ constraints: this.constraintIds().map((id) => this.constraint(id)) });
+    return JSON.stringify({ constraints: this.constraintSpecs() });
   }
   stats() {
     return { solves: this.calls.filter((c) => c === 'solve').length };

@@ -84,9 +84,12 @@ const KINDS = {
   source: { weight: false, strength: true },
   sink: { weight: false, strength: true },
   vortex: { weight: false, strength: true },
+  singularity: { weight: false, strength: false },
 };
-const TOP_LEVEL = new Set(['schema', 'mesh', 'boundary', 'gamma', 'symmetry', 'curvatureAlignment', 'constraints']);
-const MUTATING = new Set(['loadMesh', 'add', 'remove', 'setWeight', 'setStrength', 'setBoundary', 'setGamma', 'setSymmetry', 'setCurvatureAlignment', 'applyDesign']);
+const TOP_LEVEL = new Set(['schema', 'mesh', 'boundary', 'gamma', 'symmetry', 'curvatureAlignment', 'constraints',
+  'singularities', 'featureAngle', 'featureEdges']);
+const MUTATING = new Set(['loadMesh', 'add', 'remove', 'setWeight', 'setStrength', 'setBoundary', 'setGamma', 'setSymmetry', 'setCurvatureAlignment', 'applyDesign',
+  'addSingularity', 'moveSingularity', 'setFeatures']);
 // Ops whose failure the worker takes back by applying the whole previous design again (core/setting-ops.js).
 const RESTORES_DESIGN = new Set(['applyDesign', 'setSymmetry']);
 // Constraints that are vector-field notions: the core refuses them for a symmetry N ≥ 2.
@@ -121,6 +124,7 @@ export class FakeCore {
     this.gamma = 0;
     this.symmetry = 1;
     this.curvatureAlignment = 0;
+    this.features = { angle: 0, add: [], remove: [] };
     this.version = 0;
     this.log = []; // [op, args] of every call
     this.nonFinite = false; // the next snapshots carry a NaN in the field
@@ -129,8 +133,12 @@ export class FakeCore {
     this.maxInFlight = 0;
   }
 
-  // The design document as core.designJson() writes it.
+  // The design document as core.designJson() writes it: prescribed singularities listed apart, the features
+  // only where not the default.
   document() {
+    const all = this.ids.map((id) => structuredClone(this.specs.get(id)));
+    const singular = all.filter((spec) => spec?.type === 'singularity');
+    const { angle, add, remove } = this.features;
     return {
       schema: 'tvf-design/1',
       mesh: this.fingerprint(),
@@ -138,8 +146,32 @@ export class FakeCore {
       gamma: this.gamma,
       symmetry: this.symmetry,
       curvatureAlignment: this.curvatureAlignment,
-      constraints: this.ids.map((id) => structuredClone(this.specs.get(id))),
+      constraints: all.filter((spec) => spec?.type !== 'singularity'),
+      ...(singular.length ? { singularities: singular.map(({ vertex, index }) => ({ vertex, index })) } : {}),
+      ...(angle ? { featureAngle: angle } : {}),
+      ...(add.length || remove.length ? { featureEdges: structuredClone({ add, remove }) } : {}),
     };
+  }
+
+  // A prescribed singularity's checks, as the core's: a vertex of the mesh that has none (but `self`), an index
+  // that is a nonzero multiple of 1/n.
+  #checkSingularity(vertex, index, n, self = null) {
+    const nV = this.mesh.positions.length / 3;
+    if (!Number.isInteger(vertex) || vertex < 0 || vertex >= nV) throw new Error(`singularity: vertex ${vertex} does not exist on the mesh`);
+    if (typeof index !== 'number' || index === 0 || Math.abs(index * n - Math.round(index * n)) > 1e-9)
+      throw new Error(`singularity: index ${index} is not a nonzero multiple of 1/${n}`);
+    for (const [id, spec] of this.specs)
+      if (id !== self && spec.type === 'singularity' && spec.vertex === vertex) throw new Error(`singularity: vertex ${vertex} already has one`);
+  }
+
+  // Features {angle, add, remove} checked as the core checks them: an angle in [0, 180], pairs that are edges.
+  #checkFeatures({ angle, add, remove }) {
+    if (typeof angle !== 'number' || !(angle >= 0 && angle <= 180)) throw new Error(`features: angle ${angle} is out of range (0 … 180)`);
+    const edges = new Set();
+    const E = this.mesh.edges;
+    for (let k = 0; k < E.length; k += 2) edges.add(`${Math.min(E[k], E[k + 1])},${Math.max(E[k], E[k + 1])}`);
+    for (const [a, b] of [...add, ...remove])
+      if (!edges.has(`${Math.min(a, b)},${Math.max(a, b)}`)) throw new Error(`features: ${a}-${b} is not an edge of the mesh`);
   }
 
   fingerprint() {
@@ -169,6 +201,7 @@ export class FakeCore {
     }
     if (spec.type === 'vector' || spec.type === 'vortex') index('face', spec.face, nF);
     if (spec.type === 'source' || spec.type === 'sink') index('vertex', spec.vertex, nV);
+    if (spec.type === 'singularity') this.#checkSingularity(spec.vertex, spec.index, n);
     if (spec.type === 'vector' && !(Array.isArray(spec.vector) && spec.vector.length === 3)) throw new Error('vector: vector must be [x, y, z]');
     if (spec.type === 'edge' && !(Array.isArray(spec.edge) && spec.edge.length === 2 && spec.edge[0] !== spec.edge[1]))
       throw new Error('edge: edge must be two different vertices');
@@ -209,6 +242,18 @@ export class FakeCore {
     checkSymmetry(symmetry);
     checkAlignment(alignment, symmetry);
     const parsed = design.constraints.map((c) => this.#parse(c, symmetry));
+    if (parsed.some((spec) => spec.type === 'singularity')) throw new Error('design: a singularity belongs in "singularities"');
+    const singular = (design.singularities ?? []).map(({ vertex, index }) => ({ type: 'singularity', vertex, index }));
+    const seen = new Set();
+    for (const { vertex, index } of singular) {
+      this.#checkSingularity(vertex, index, symmetry);
+      if (seen.has(vertex)) throw new Error(`singularity: vertex ${vertex} already has one`);
+      seen.add(vertex);
+    }
+    const features = { angle: design.featureAngle ?? 0, add: design.featureEdges?.add ?? [], remove: design.featureEdges?.remove ?? [] };
+    this.#checkFeatures(features);
+    this.features = structuredClone(features);
+    parsed.push(...singular);
     this.ids = [];
     this.specs.clear();
     this.boundary = structuredClone(boundary);
@@ -236,7 +281,8 @@ export class FakeCore {
       this.symmetry = 1;
       this.curvatureAlignment = 0;
       try {
-        const { boundary, gamma, symmetry = 1, curvatureAlignment = 0 } = settings;
+        const { boundary, gamma, symmetry = 1, curvatureAlignment = 0, featureAngle = 0 } = settings;
+        this.features = { angle: featureAngle, add: [], remove: [] };
         this.#checkBoundary(boundary);
         this.#checkGamma(gamma);
         checkSymmetry(symmetry);
@@ -298,6 +344,24 @@ export class FakeCore {
       this.curvatureAlignment = curvatureAlignment;
       return { value: add.map((spec) => this.#add(spec)), changed: null };
     },
+    addSingularity: (vertex, index) => {
+      this.#checkSingularity(vertex, index, this.symmetry);
+      const id = this.#add({ type: 'singularity', vertex, index });
+      return { value: id, changed: [id] };
+    },
+    moveSingularity: (id, vertex) => {
+      const spec = this.#constraint(id);
+      if (spec.type !== 'singularity') throw new Error(`move singularity: ${id} is not a singularity`);
+      this.#checkSingularity(vertex, spec.index, this.symmetry, id);
+      spec.vertex = vertex;
+      return { value: true, changed: [id] };
+    },
+    setFeatures: (features = {}) => {
+      const next = { ...this.features, ...structuredClone(features) };
+      this.#checkFeatures(next);
+      this.features = next;
+      return { value: true, changed: null };
+    },
     applyDesign: (design) => {
       this.#apply(design);
       return { value: true, changed: null };
@@ -330,15 +394,24 @@ export class FakeCore {
     if (this.nonFinite) faceVectors[3] = NaN;
     const design = changed
       ? { ids: [...this.ids], changed: changed.filter((id) => this.specs.has(id)).map((id) => [id, structuredClone(this.specs.get(id))]) }
-      : { ids: [...this.ids], document: this.document() };
+      : { ids: [...this.ids], document: this.document(), specs: this.ids.map((id) => structuredClone(this.specs.get(id))) };
+    // The prescribed singularities as the core reads them out (the fake's field has no others), and what they
+    // leave to the field on this closed mesh (V - E + F); the feature edges in use are the added ones.
+    const singular = this.ids.map((id) => this.specs.get(id)).filter((spec) => spec?.type === 'singularity');
+    const chi = nV - this.mesh.edges.length / 2 + nF;
+    const prescribedIndex = singular.reduce((sum, { index }) => sum + index, 0);
+    const mode = !singular.length ? 'none' : Math.abs(chi - prescribedIndex) < 1e-9 ? 'exact' : 'free';
+    const topology = { singularityMode: mode, eulerCharacteristic: chi, prescribedIndex, freeIndex: chi - prescribedIndex };
     return {
       version: this.version,
       symmetry: this.symmetry,
       faceVectors,
       vertexVectors: new Float64Array(3 * nV),
       oneForm: new Float64Array(this.mesh.edges.length / 2),
-      stats: { constraints: this.ids.length },
+      stats: { constraints: this.ids.length, ...topology, featureEdges: this.features.add.length },
       design,
+      singularities: singular.length ? singular.map(({ vertex, index }) => ({ vertex, index, prescribed: true })) : null,
+      featureEdges: Int32Array.from(this.features.add.flat()),
     };
   }
 
@@ -359,6 +432,7 @@ export class FakeCore {
         gamma: this.gamma,
         symmetry: this.symmetry,
         curvatureAlignment: this.curvatureAlignment,
+        features: structuredClone(this.features),
       };
       let out;
       try {

@@ -76,6 +76,34 @@ export const DESIGN_METHODS = [
     description: 'Changes the strength of a stroke, source, sink or vortex.',
   },
   {
+    name: 'addSingularity', ...CONSTRAINTS,
+    signatures: [['vertex: number, index: number', 'Promise<number>']],
+    description: 'Prescribes a singularity: the field has this index (a nonzero multiple of 1/N) at this interior ' +
+      "vertex. Resolves with its constraint id; rejects with the core's reason (a boundary vertex, a bad index, a " +
+      'vertex that has one), the design unchanged.',
+  },
+  {
+    name: 'moveSingularity', ...CONSTRAINTS,
+    signatures: [['id: number, vertex: number', 'Promise<true>']],
+    description: 'Moves a prescribed singularity to another vertex, keeping its id and index.',
+  },
+  {
+    name: 'removeSingularity', ...CONSTRAINTS,
+    signatures: [['id: number', 'Promise<true>']],
+    description: 'Removes a prescribed singularity (as remove(id); undo brings back its vertex and index).',
+  },
+  {
+    name: 'setFeatures', ...CONSTRAINTS,
+    signatures: [['features: Partial<FeatureSettings>', 'Promise<void>']],
+    description: 'Sets the sharp features the field follows: edges sharper than `angle` degrees (0: none; a new ' +
+      'design starts at 35), plus `add`, minus `remove` (vertex pairs); keys left out keep their values.',
+  },
+  {
+    name: 'features', ...CONSTRAINTS,
+    signatures: [['', 'Features']],
+    description: 'The sharp features as set, and `edges`: the vertex pairs the field follows.',
+  },
+  {
     name: 'constraints', ...CONSTRAINTS,
     signatures: [['', 'Constraint[]']],
     description: 'The constraints in id order, each in the design format plus its id.',
@@ -239,9 +267,15 @@ export const DESIGN_METHODS = [
   },
   {
     name: 'singularities', ...FIELD,
-    signatures: [['', '{ vertex: number; index: number }[]']],
+    signatures: [['', 'Singularity[]']],
     description: "The field's singularities: an index per interior vertex that has one (an integer; a multiple of " +
-      '1/N for a line or cross field).',
+      '1/N for a line or cross field), `prescribed` when the design prescribes it (then with its constraint id).',
+  },
+  {
+    name: 'singularitySummary', ...FIELD,
+    signatures: [['', 'SingularitySummary']],
+    description: 'What the prescribed singularities leave to the field: the Euler characteristic, the prescribed ' +
+      'index and the index the field places itself.',
   },
   {
     name: 'stats', ...FIELD,

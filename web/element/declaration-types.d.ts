@@ -62,7 +62,8 @@ export type ConstraintSpec =
   | { type: 'vector'; face: number; vector: [number, number, number]; weight: number }
   | { type: 'edge'; edge: [number, number]; value: number; weight: number }
   | { type: 'source' | 'sink'; vertex: number; strength: number }
-  | { type: 'vortex'; face: number; strength: number };
+  | { type: 'vortex'; face: number; strength: number }
+  | { type: 'singularity'; vertex: number; index: number };
 
 /** A constraint with the element's id for it (kept across delete and undo). */
 export type Constraint = ConstraintSpec & { id: number };
@@ -75,7 +76,45 @@ export interface Design {
   /** Pull toward the principal curvature directions, ≥ 0 (0 or absent: off; even N only). */
   curvatureAlignment?: number;
   constraints: ConstraintSpec[];
+  /** Prescribed singularities: an index (a nonzero multiple of 1/N) at an interior vertex. */
+  singularities?: { vertex: number; index: number }[];
+  /** Edges whose dihedral angle exceeds this many degrees are features (0 or absent: none). */
+  featureAngle?: number;
+  /** Feature edges added to and removed from those the angle finds, as vertex pairs. */
+  featureEdges?: { add: [number, number][]; remove: [number, number][] };
   [key: string]: unknown;
+}
+
+/** One of the field's singularities; a prescribed one carries its constraint id. */
+export interface Singularity {
+  vertex: number;
+  /** An integer; a multiple of 1/N for a line or cross field. */
+  index: number;
+  /** Whether the design prescribes this index at this vertex (else the field placed it itself). */
+  prescribed: boolean;
+  id?: number;
+}
+
+/** What the prescribed singularities leave to the field (singularitySummary()). */
+export interface SingularitySummary {
+  /** 'none': nothing prescribed; 'exact': the field has exactly the prescribed singularities; 'free': it places
+   * freeIndex = eulerCharacteristic - prescribedIndex itself. */
+  mode: 'none' | 'exact' | 'free';
+  eulerCharacteristic: number;
+  prescribedIndex: number;
+  freeIndex: number;
+}
+
+/** The sharp features: the detection angle (degrees, 0: none) and the edits, as vertex pairs. */
+export interface FeatureSettings {
+  angle: number;
+  add: [number, number][];
+  remove: [number, number][];
+}
+
+/** The features as set, and the edges the field follows ([a, b] vertex pairs). */
+export interface Features extends FeatureSettings {
+  edges: [number, number][];
 }
 
 export interface Views {

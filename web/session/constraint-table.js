@@ -1,15 +1,28 @@
 // The page's mirror of the design the core holds (docs/design-format.md), kept in step from the replies' design
 // changes, and the page ids of its constraints. Page ids ("uids") are what the API, the panels and the
 // history name; they survive a delete and its undo, whereas the core hands out a fresh id whenever it re-adds
-// a constraint. Specs are kept exactly as the core sent them (the core validated and stored them).
+// a constraint. Specs are kept exactly as the core sent them (the core validated and stored them). A prescribed
+// singularity is a constraint here ({type: 'singularity', vertex, index}: listed, removed and undone as any
+// other), although the document lists them apart, as "singularities": [{vertex, index}].
 
 // The design's settings as a document without them means them (docs/design-format.md): symmetry 1 is a
 // vector field, curvature alignment 0 is off.
 const DEFAULT_SETTINGS = Object.freeze({ boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0 });
+// A design the page starts (before any model, and carried to the first) takes edges sharper than this many
+// degrees as features; a document without "featureAngle" means 0 (none), as the core reads it.
+export const NEW_DESIGN_FEATURE_ANGLE = 35;
+
+const isSingularity = (spec) => spec?.type === 'singularity';
+
+// The design's constraints and singularities as the document lists them, from the specs in the core's order.
+function documentLists(specs) {
+  const singularities = specs.filter(isSingularity).map(({ vertex, index }) => ({ vertex, index }));
+  return { constraints: specs.filter((spec) => !isSingularity(spec)), singularities };
+}
 
 export class ConstraintTable {
   constructor() {
-    this.design = { ...DEFAULT_SETTINGS, constraints: [] };
+    this.design = { ...DEFAULT_SETTINGS, featureAngle: NEW_DESIGN_FEATURE_ANGLE, constraints: [] };
     this.specByCore = new Map(); // core id → spec
     this.coreOrder = []; // core ids in the core's order (that of design.constraints)
     this.uids = new Map(); // uid → core id
@@ -31,19 +44,23 @@ export class ConstraintTable {
     this.mapDocument(null);
   }
 
-  // The worker sends the whole document after loads, settings, designs and failed edits; after a constraint
-  // edit only the entries it touched and the id order.
-  apply({ ids, document, changed }) {
+  // The worker sends the whole document after loads, settings, designs and failed edits, with every spec in
+  // the ids' order (`specs`; without them the document's constraints are those specs); after a constraint edit
+  // only the entries it touched and the id order.
+  apply({ ids, document, changed, specs }) {
     if (document) {
       this.design = document;
-      this.specByCore = new Map(ids.map((id, k) => [id, document.constraints[k]]));
+      const all = specs ?? document.constraints;
+      this.specByCore = new Map(ids.map((id, k) => [id, all[k]]));
     } else {
       for (const [id, spec] of changed) this.specByCore.set(id, spec);
       const missing = ids.find((id) => !this.specByCore.has(id));
       if (missing !== undefined)
         throw new Error(`internal error: the core has constraint ${missing}, which the page never saw`);
       this.specByCore = new Map(ids.map((id) => [id, this.specByCore.get(id)]));
-      this.design = { ...this.design, constraints: ids.map((id) => this.specByCore.get(id)) };
+      const { constraints, singularities } = documentLists(ids.map((id) => this.specByCore.get(id)));
+      this.design = { ...this.design, constraints, singularities };
+      if (!singularities.length) delete this.design.singularities; // as the core writes a design without any
     }
     this.coreOrder = ids;
     for (const [uid, coreId] of this.uids) if (!this.specByCore.has(coreId)) this.uids.delete(uid);
@@ -97,8 +114,21 @@ export class ConstraintTable {
     return Object.fromEntries(Object.entries(DEFAULT_SETTINGS).map(([key, fallback]) => [key, d[key] ?? fallback]));
   }
 
+  // The sharp features {angle (degrees; 0: none detected), add, remove ([[a, b], ...] vertex pairs)}.
+  features() {
+    const { featureAngle = 0, featureEdges = {} } = this.design;
+    return { angle: featureAngle, add: featureEdges.add ?? [], remove: featureEdges.remove ?? [] };
+  }
+
+  // The features as the document writes them (a key only where not the default): what a cleared design keeps.
+  featureKeys() {
+    const { featureAngle, featureEdges } = this.design;
+    return { ...(featureAngle ? { featureAngle } : {}), ...(featureEdges ? { featureEdges } : {}) };
+  }
+
   // The design's content as text, to tell unsaved edits (undoing back to the saved state counts as none).
   key() {
-    return JSON.stringify({ ...this.settings(), constraints: this.design.constraints });
+    const { constraints, singularities = [] } = this.design;
+    return JSON.stringify({ ...this.settings(), constraints, singularities, features: this.features() });
   }
 }

@@ -22,9 +22,12 @@ export class DerivedField {
   #streamlines = new Map(); // `${component} ${spacing}` → lines
 
   // snapshot: the worker's reply ({version (the worker's), symmetry (N: 1 vector, 2 line, 4 cross; for N ≥ 2 the
-  // vectors are unit representatives), faceVectors, vertexVectors, oneForm, scale, stats}); a preview's
-  // faceVectors (of a vector field) and oneForm are null until required. surfaceOf(): the session's mesh now.
-  constructor({ version, symmetry, faceVectors, vertexVectors, oneForm, scale, stats }, surfaceOf) {
+  // vectors are unit representatives), faceVectors, vertexVectors, oneForm, scale, stats, singularities (the
+  // core's, flagged `prescribed`, when the design prescribes some; else null), featureEdges (the feature edges'
+  // vertex pairs, flat; absent from a preview)}); a preview's faceVectors (of a vector field) and oneForm are
+  // null until required. surfaceOf(): the session's mesh now.
+  constructor(snapshot, surfaceOf) {
+    const { version, symmetry, faceVectors, vertexVectors, oneForm, scale, stats } = snapshot;
     this.version = version;
     this.symmetry = symmetry;
     // The arrays as the worker sent them (a derived one is put here when made): they go back to the worker
@@ -33,6 +36,8 @@ export class DerivedField {
     this.vertexVectors = vertexVectors;
     this.oneForm = oneForm;
     this.stats = stats;
+    this.featureEdges = snapshot.featureEdges ?? null;
+    this.#singularities = snapshot.singularities ?? null;
     this.#scale = scale ?? null;
     this.#surfaceOf = surfaceOf;
   }
@@ -73,6 +78,8 @@ export class DerivedField {
     return this.#scale;
   }
 
+  // [{vertex, index, prescribed}]: the core's when it sent them (it knows which the design prescribes), else
+  // found here ([{vertex, index}]: none prescribed).
   requireSingularities() {
     this.#singularities ??= findSingularities(this.#surfaceOf(), this.requireFaceVectors(), this.symmetry);
     return this.#singularities;

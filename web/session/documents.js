@@ -4,6 +4,7 @@
 // share a name never receives a design whose indices mean nothing on it.
 
 import { fnv1a } from '../core/model-bytes.js';
+import { NEW_DESIGN_FEATURE_ANGLE } from './constraint-table.js';
 
 const AUTOSAVE_PREFIX = 'tvf.autosave.v1:';
 
@@ -13,11 +14,14 @@ export function modelKey(name, bytes, digest = fnv1a(bytes)) {
   return `${name}|${bytes.length}|${digest}`;
 }
 
-// Nothing to keep: no constraint and every setting at its default.
+// Nothing to keep: no constraint, no prescribed singularity, no feature edge edit and every setting at its
+// default (a feature angle of 0 or a new design's: a design left at either is not worth a version).
 export function isEmptyDesign(design) {
   const vectorField = (design.symmetry ?? 1) === 1 && !design.curvatureAlignment;
   const defaults = (design.boundary ?? 'free') === 'free' && !design.gamma && vectorField;
-  return !design.constraints?.length && defaults;
+  const angle = design.featureAngle ?? 0;
+  const features = (angle === 0 || angle === NEW_DESIGN_FEATURE_ANGLE) && !design.featureEdges;
+  return !design.constraints?.length && !design.singularities?.length && defaults && features;
 }
 
 // store: the autosave attribute's value ('' on the app page), so that several designers on one origin can keep

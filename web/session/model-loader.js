@@ -58,7 +58,9 @@ export class ModelLoader {
         s.perf.loadPhases = { start: performance.now() };
         const previewEdges = opts.previewEdges ?? PREVIEW_EDGES;
         const load = { previewEdges, delayForTestMs: s.debugExactDelayMs ?? 0, onPhase: (p) => this.#phase(p) };
-        const args = [bytes, model.format, s.settings(), saved?.design ?? null];
+        // The design's feature angle goes with the settings (a new design's: NEW_DESIGN_FEATURE_ANGLE).
+        const settings = { ...s.settings(), featureAngle: s.table.features().angle };
+        const args = [bytes, model.format, settings, saved?.design ?? null];
         try {
           reply = await s.call('loadMesh', args, [bytes.buffer], load);
         } catch (err) {

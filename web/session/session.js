@@ -27,6 +27,7 @@ import { Autosave } from './autosave.js';
 import { ConstraintTable } from './constraint-table.js';
 import { DerivedField } from './derived-field.js';
 import { Emitter } from './emitter.js';
+import { FieldTopology } from './field-topology.js';
 import { History } from './history.js';
 import { ModelLoader } from './model-loader.js';
 import { CoreProxy } from '../core/core-proxy.js';
@@ -66,6 +67,7 @@ export class Session extends Emitter {
     this.history = new History(() => this.emit('history'));
     this.autosave = new Autosave(this, autosave);
     this.models = new ModelLoader(this);
+    this.topology = new FieldTopology(this); // prescribed singularities and sharp features
     this.perf = {};
     this.disposed = false;
     // Every mutation runs alone and in call order: the worker's state and the session's copies move together.
@@ -247,9 +249,9 @@ export class Session extends Emitter {
     return this.table.settings();
   }
 
-  // Derived on first read, once per field: no edit waits for them.
+  // Derived on first read, once per field: no edit waits for them. [{vertex, index, prescribed, id?}].
   currentSingularities() {
-    return this.field.requireSingularities();
+    return this.topology.singularities();
   }
 
   // The current field's 'faceVectors', 'oneForm' or 'vertexVectors' (a preview's first two derived on first read).

@@ -1,6 +1,7 @@
-// The client's calls on the design's constraints (core-client.js composes them): one constraint in or out, its
-// weight and strength, the stored specs and the design document as a whole. A refusal comes back as -1 or
-// false, with the core's reason in lastError(). Owns nothing; imports client/checks.js and core-error.js.
+// The client's calls on the design's constraints (core-client.js composes them): one constraint in or out (a
+// prescribed singularity added or moved), its weight and strength, the stored specs and the design document.
+// A refusal comes back as -1 or false, with the core's reason in lastError(). Owns nothing; imports
+// client/checks.js and core-error.js.
 import { CoreError } from '../core-error.js';
 import { check, guard, prefixed, requireNumber } from './checks.js';
 
@@ -22,9 +23,31 @@ export const editCalls = (Base) =>
       return this.#id('constraint', guard('constraint', () => this.designer.addConstraintJson(json)));
     }
 
-    // Core ids in the order of designJson().constraints.
+    // Core ids in the core's order: that of designJson().constraints, with the prescribed singularities (which
+    // the document lists apart, as "singularities") where they were added; constraintSpecs() lines up with it.
     constraintIds() {
       return JSON.parse(guard('constraints', () => this.designer.constraintIdsJson()));
+    }
+
+    // Every constraint's spec in constraintIds()' order, a singularity as {type: 'singularity', vertex, index}.
+    constraintSpecs() {
+      return JSON.parse(guard('constraints', () => this.designer.constraintsJson()));
+    }
+
+    // A prescribed singularity (index a nonzero multiple of 1/N at an interior vertex): its core id. The core's
+    // refusal (a boundary vertex, a bad index, a vertex that has one) is a CoreError, the design unchanged.
+    addSingularity(vertex, index) {
+      requireNumber('singularity: vertex', vertex);
+      requireNumber('singularity: index', index);
+      return this.#id('singularity', guard('singularity', () => this.designer.addSingularity(vertex, index)));
+    }
+
+    // The singularity `id` to another vertex, its id and index kept.
+    moveSingularity(id, vertex) {
+      requireNumber('move singularity: id', id);
+      requireNumber('move singularity: vertex', vertex);
+      const ok = guard('move singularity', () => this.designer.moveSingularity(id, vertex));
+      if (!ok) throw new CoreError(prefixed('move singularity', this.#lastError() || `no singularity with id ${id}`));
     }
 
     remove(id) {

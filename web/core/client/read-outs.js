@@ -1,7 +1,8 @@
 // The client's read-outs of the current model and field (core-client.js composes them): the mesh, the field
-// arrays, the Hodge decomposition, a 1-form's reconstruction, the stats and the singularities. Views the core
-// returns point into wasm memory and die at the next mutating call or memory growth, so everything handed out
-// is a copy (slice(): one memcpy into a buffer of its own, which the worker can then transfer).
+// arrays, the Hodge decomposition, a 1-form's reconstruction, the stats, the singularities and the feature
+// edges. Views the core returns point into wasm memory and die at the next mutating call or memory growth, so
+// everything handed out is a copy (slice(): one memcpy into a buffer of its own, which the worker can then
+// transfer).
 // Owns nothing; imports client/checks.js.
 import { checkObject, guard } from './checks.js';
 
@@ -57,7 +58,28 @@ export const readOuts = (Base) =>
       return JSON.parse(guard('stats', () => this.designer.statsJson()));
     }
 
+    // [{vertex, index, prescribed}]: the field's singularities, each flagged when the design prescribes it.
     singularities() {
       return JSON.parse(guard('singularities', () => this.designer.singularitiesJson()));
+    }
+
+    // The edges the field follows as features (indices into edges(), ascending), an Int32Array of its own.
+    featureEdges() {
+      return guard('feature edges', () => this.designer.featureEdges().slice());
+    }
+
+    // The same edges as vertex pairs, flat ([a, b, a, b, ...]), read through the core's view of the edge list
+    // (not a copy of it).
+    featureEdgePairs() {
+      return guard('feature edges', () => {
+        const used = this.designer.featureEdges().slice();
+        const pairs = new Int32Array(2 * used.length);
+        const edges = this.designer.edges();
+        for (let k = 0; k < used.length; k++) {
+          pairs[2 * k] = edges[2 * used[k]];
+          pairs[2 * k + 1] = edges[2 * used[k] + 1];
+        }
+        return pairs;
+      });
     }
   };

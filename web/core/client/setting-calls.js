@@ -1,6 +1,6 @@
 // The client's calls on the design's settings (core-client.js composes them): the boundary condition, γ, the
-// symmetry N, the curvature alignment, and the model's info. Owns nothing; imports client/checks.js and
-// core-error.js.
+// symmetry N, the curvature alignment, the sharp features, and the model's info. Owns nothing; imports
+// client/checks.js and core-error.js.
 import { CoreError } from '../core-error.js';
 import { check, guard, requireNumber } from './checks.js';
 
@@ -40,6 +40,27 @@ export const settingCalls = (Base) =>
         throw new CoreError(`symmetry must be a whole number from 1 to 6 (got ${got})`);
       }
       check('symmetry', guard('symmetry', () => this.designer.setSymmetry(n)));
+    }
+
+    // Feature edges: those whose dihedral angle exceeds `angle` degrees (0: none), plus `add`, minus `remove`
+    // ([[a, b], ...] vertex pairs). The core refuses a pair that is not an edge or an angle outside [0, 180].
+    setFeatures({ angle = 0, add = [], remove = [] } = {}) {
+      requireNumber('features: angle', angle);
+      const flat = (what, pairs) => {
+        if (!Array.isArray(pairs)) throw new CoreError(`features: ${what} must be a list of [a, b] vertex pairs`);
+        return pairs.flatMap((p) => {
+          if (!Array.isArray(p) || p.length !== 2 || !p.every((v) => typeof v === 'number'))
+            throw new CoreError(`features: ${what} must be a list of [a, b] vertex pairs (got ${JSON.stringify(p)})`);
+          return p;
+        });
+      };
+      const plus = flat('add', add), minus = flat('remove', remove);
+      check('features', guard('features', () => this.designer.setFeatures(angle, plus, minus)));
+    }
+
+    // {angle, add, remove} as set.
+    features() {
+      return JSON.parse(guard('features', () => this.designer.featuresJson()));
     }
 
     curvatureAlignment() {

@@ -43,7 +43,8 @@ export function specOnCoarse(map, spec) {
   const out = { ...spec };
   if (spec.points) out.points = polylineOnCoarse(map, spec.points);
   if (spec.type === 'vector' || spec.type === 'vortex') out.face = map.faceOnCoarse(spec.face);
-  if (spec.type === 'source' || spec.type === 'sink') out.vertex = nearestCorner(map, spec.vertex);
+  if (spec.type === 'source' || spec.type === 'sink' || spec.type === 'singularity')
+    out.vertex = nearestCorner(map, spec.vertex);
   if (spec.type === 'edge') {
     const P = map.fine.positions;
     const [i, j] = spec.edge;
@@ -66,9 +67,13 @@ function nearestCorner(map, v) {
   return map.coarse.triangles[3 * c + k];
 }
 
-// A whole design document: its constraints posed on the coarse mesh, without the fine mesh's fingerprint.
+// A whole design document: its constraints and singularities posed on the coarse mesh, without the fine mesh's
+// fingerprint and feature edge edits (the coarse mesh has none of those edges; its features are the angle's).
 export function designOnCoarse(map, doc) {
   const out = { ...doc, constraints: (doc.constraints ?? []).map((s) => map.specOnCoarse(s)) };
+  if (doc.singularities)
+    out.singularities = doc.singularities.map((s) => ({ ...s, vertex: nearestCorner(map, s.vertex) }));
   delete out.mesh;
+  delete out.featureEdges;
   return out;
 }

@@ -46,10 +46,18 @@ export class Preview {
     this.#adoptDocument(fineDoc);
   }
 
+  // The fine design's feature edge edits ({add, remove}), which only the fine document carries.
+  #adoptFeatureEdges({ add = [], remove = [] } = {}) {
+    this.template = { ...this.template, featureEdges: { add, remove } };
+    if (!add.length && !remove.length) delete this.template.featureEdges;
+  }
+
   // The fine specs of a document the coarse core has just taken whole, under the ids it gave them.
   #adoptDocument(doc) {
+    this.#adoptFeatureEdges(doc.featureEdges);
     const ids = this.core.constraintIds();
-    this.fineSpecs = new Map(ids.map((id, k) => [id, this.#normal(id, doc.constraints[k])]));
+    const fine = [...doc.constraints, ...(doc.singularities ?? []).map((s) => ({ type: 'singularity', ...s }))];
+    this.fineSpecs = new Map(ids.map((id, k) => [id, this.#normal(id, fine[k])]));
   }
 
   // A fine spec as the exact core keeps it (keys sorted, defaults filled in): the coarse core's own copy of
@@ -68,6 +76,9 @@ export class Preview {
   argsOnCoarse(op, args) {
     const m = this.map;
     if (op === 'add') return [m.specOnCoarse(args[0])];
+    if (op === 'addSingularity') return [m.specOnCoarse({ type: 'singularity', vertex: args[0] }).vertex, args[1]];
+    if (op === 'moveSingularity') return [args[0], m.specOnCoarse({ type: 'singularity', vertex: args[1] }).vertex];
+    if (op === 'setFeatures') return [args[0] && 'angle' in args[0] ? { angle: args[0].angle } : {}];
     if (op === 'applyDesign') return [m.designOnCoarse(args[0])];
     if (op === 'setSymmetry' && args[1]?.add)
       return [args[0], { ...args[1], add: args[1].add.map((s) => m.specOnCoarse(s)) }];
@@ -77,19 +88,30 @@ export class Preview {
   // After the op succeeded on the coarse core: the fine specs follow.
   afterOp(op, args, result) {
     if (op === 'add') this.fineSpecs.set(result, this.#normal(result, args[0]));
+    else if (op === 'addSingularity')
+      this.fineSpecs.set(result, this.#normal(result, { type: 'singularity', vertex: args[0] }));
+    else if (op === 'moveSingularity') this.fineSpecs.set(args[0], { ...this.fineSpecs.get(args[0]), vertex: args[1] });
     else if (op === 'remove') this.fineSpecs.delete(args[0]);
     else if (op === 'setWeight' || op === 'setStrength') {
       const spec = this.fineSpecs.get(args[0]);
       if (spec) this.fineSpecs.set(args[0], this.#normal(args[0], spec));
     } else if (op === 'applyDesign') this.#adoptDocument(args[0]);
+    else if (op === 'setFeatures') this.#adoptFeatureEdges({ ...this.template.featureEdges, ...args[0] });
     else if (op === 'setSymmetry')
       (args[1]?.add ?? []).forEach((spec, k) => this.fineSpecs.set(result[k], this.#normal(result[k], spec)));
   }
 
-  // The fine design document: the coarse core's settings, the fine mesh's fingerprint, the fine specs.
+  // The fine design document: the coarse core's settings, the fine mesh's fingerprint, the fine specs (the
+  // prescribed singularities listed apart, as the core writes them). The features are the coarse core's angle
+  // and the fine design's edge edits (the coarse mesh has none of those edges).
   fineDocument(ids) {
     const coarse = JSON.parse(this.core.designJson());
-    const doc = { ...coarse, constraints: ids.map((id) => this.fineSpecs.get(id)) };
+    const specs = ids.map((id) => this.fineSpecs.get(id));
+    const singular = specs.filter((spec) => spec.type === 'singularity');
+    const doc = { ...coarse, constraints: specs.filter((spec) => spec.type !== 'singularity') };
+    delete doc.singularities;
+    if (singular.length) doc.singularities = singular.map(({ vertex, index }) => ({ vertex, index }));
+    if (this.template.featureEdges) doc.featureEdges = this.template.featureEdges;
     if (this.template.mesh) doc.mesh = this.template.mesh;
     else delete doc.mesh;
     return doc;
@@ -121,7 +143,7 @@ export class Preview {
     // after every edit, at a cost growing with the design.
     const design = changed
       ? { ids, changed: changed.filter((id) => ids.includes(id)).map((id) => [id, this.fineSpecs.get(id)]) }
-      : { ids, document: this.fineDocument(ids) };
+      : { ids, document: this.fineDocument(ids), specs: ids.map((id) => this.fineSpecs.get(id)) };
     timing.designMs = performance.now() - t1;
     const stats = {
       ...c.stats(),

@@ -1,7 +1,7 @@
-// The worker's edits of one constraint (dispatch.js files them as `edits`: the core solves after each and the
-// reply carries a snapshot). Each says how to take itself back should that solve fail (state.undoEdit) and
-// which design entries it changed (state.changedIds), so that the snapshot carries only those. The edits of
-// the design as a whole are setting-ops.js's. Imports nothing.
+// The worker's edits of one constraint, a prescribed singularity's included (dispatch.js files them as `edits`: the
+// core solves after each and the reply carries a snapshot). Each says how to take itself back should that solve fail
+// (state.undoEdit) and which design entries it changed (state.changedIds), so that the snapshot carries only those. The
+// edits of the design as a whole are setting-ops.js's. Imports nothing.
 
 export function editOps(state) {
   return {
@@ -13,6 +13,23 @@ export function editOps(state) {
         state.undoEdit = () => state.core.remove(id);
         state.changedIds = [id];
         return id;
+      },
+
+      // A prescribed singularity (index a nonzero multiple of 1/N at an interior vertex); its core id.
+      addSingularity(vertex, index) {
+        const id = state.core.addSingularity(vertex, index);
+        state.undoEdit = () => state.core.remove(id);
+        state.changedIds = [id];
+        return id;
+      },
+
+      // The singularity keeps its id and index; the core refuses what addSingularity would.
+      moveSingularity(id, vertex) {
+        const before = state.core.constraint(id)?.vertex;
+        state.core.moveSingularity(id, vertex);
+        if (before !== undefined) state.undoEdit = () => state.core.moveSingularity(id, before);
+        state.changedIds = [id];
+        return true;
       },
 
       remove(id) {

@@ -1,7 +1,7 @@
 // The worker's ops that change the design as a whole rather than one constraint: the boundary condition, γ, the
-// symmetry N, the curvature alignment and a whole design document. After each the worker solves (refactoring:
-// each changes the system or its right-hand side) and sends the whole document back: dispatch.js files them as
-// `edits`, with no changed ids. Each sets state.undoEdit: how to take the edit back should the solve after it
+// symmetry N, the curvature alignment, the sharp features and a whole design document. After each the worker solves
+// (refactoring: each changes the system or its right-hand side) and sends the whole document back: dispatch.js files
+// them as `edits`, with no changed ids. Each sets state.undoEdit: how to take the edit back should the solve after it
 // fail, so that the core never keeps a state it cannot solve. Imports nothing.
 
 export function settingOps(state) {
@@ -52,6 +52,16 @@ export function settingOps(state) {
       c.setSymmetry(n);
       if (curvatureAlignment > 0) c.setCurvatureAlignment(curvatureAlignment);
       return add.map((spec) => c.addConstraintJson(spec));
+    },
+
+    // The sharp features {angle (degrees; 0: none detected), add, remove ([[a, b], ...] vertex pairs)}; a key
+    // left out keeps its value. A change of the system's base: the factor is made again.
+    setFeatures(features = {}) {
+      const before = core().features();
+      onUndo(() => core().setFeatures(before));
+      core().setFeatures({ ...before, ...features });
+      core().factor();
+      return true;
     },
 
     applyDesign(design) {

@@ -1,8 +1,9 @@
 // What an edit's reply carries after its solve (dispatch.js): the field arrays the views need, copied out of
 // the wasm heap (a memcpy each, into spares where the page has handed some back) and transferred; the stats;
 // and the design as a change to the page's copy (the constraints the edit touched and the id order) rather
-// than the whole document. Everything else is derived when it is read or shown: the singularities on the page,
-// the streamlines and Hodge parts here on request (read-ops.js), the whole document on request (`read`).
+// than the whole document; the edges the field follows as features. Everything else is derived when it is read
+// or shown: the singularities on the page (the core's own with prescribed ones: fieldTopology), the streamlines
+// and Hodge parts here on request (read-ops.js), the whole document on request (`read`).
 // Imports nothing beyond the worker's state.
 
 // changed: core ids whose design entry the op set (null: the whole document, after a load, a setting, a design,
@@ -34,13 +35,16 @@ function exactSnapshot(state, changed, timing) {
   lap('deriveMs');
   timing.reusedArrays = counts.reused;
   const ids = core.constraintIds();
+  // specs: every constraint's in the ids' order (the document lists the prescribed singularities apart).
   const design = changed
     ? { ids, changed: changed.filter((id) => ids.includes(id)).map((id) => [id, core.constraint(id)]) }
-    : { ids, document: JSON.parse(core.designJson()) };
+    : { ids, document: JSON.parse(core.designJson()), specs: core.constraintSpecs() };
   lap('designMs');
   // heapBytes: the wasm memory, which never shrinks: the peak so far.
   const stats = { ...core.stats(), preview: false, heapBytes: core.Module.HEAP8.buffer.byteLength };
   lap('statsMs');
+  const { singularities, featureEdges } = fieldTopology(core, stats);
+  lap('topologyMs');
   return {
     version: field.version,
     symmetry: core.symmetry(),
@@ -50,6 +54,19 @@ function exactSnapshot(state, changed, timing) {
     scale: field.magnitudeScale(vertexVectors),
     stats,
     design,
-    transfer: [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer],
+    singularities,
+    featureEdges,
+    transfer: [faceVectors.buffer, vertexVectors.buffer, oneForm.buffer].concat(
+      featureEdges.length ? [featureEdges.buffer] : [],
+    ),
   };
+}
+
+// With prescribed singularities the core's own read-out ([{vertex, index, prescribed}]), which knows which
+// indices the design prescribes (the page finds a field's singularities itself otherwise: null); and the edges
+// the field follows as features, as vertex pairs (flat Int32Array, empty when none).
+function fieldTopology(core, stats) {
+  const singularities = stats.singularityMode && stats.singularityMode !== 'none' ? core.singularities() : null;
+  const featureEdges = stats.featureEdges > 0 ? core.featureEdgePairs() : new Int32Array(0);
+  return { singularities, featureEdges };
 }

@@ -8,15 +8,38 @@
 //   refused(table, forward) (optional): after a request the core refused, whose reply put the design back;
 //   label, result, changes (false: not recorded), clearsSelection, serialize() and a static deserialize().
 import { AddConstraint } from './add-constraint.js';
+import { AddSingularity } from './add-singularity.js';
+import { MoveSingularity } from './move-singularity.js';
 import { RemoveConstraint } from './remove-constraint.js';
 import { ReplaceDesign } from './replace-design.js';
 import { SetParameter } from './set-parameter.js';
+import { SetFeatures } from './set-features.js';
 import { SetSetting } from './set-setting.js';
 import { SetSymmetry } from './set-symmetry.js';
 
-export { AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting, SetSymmetry };
+export {
+  AddConstraint,
+  AddSingularity,
+  MoveSingularity,
+  RemoveConstraint,
+  ReplaceDesign,
+  SetFeatures,
+  SetParameter,
+  SetSetting,
+  SetSymmetry,
+};
 
-const COMMANDS = [AddConstraint, RemoveConstraint, ReplaceDesign, SetParameter, SetSetting, SetSymmetry];
+const COMMANDS = [
+  AddConstraint,
+  AddSingularity,
+  MoveSingularity,
+  RemoveConstraint,
+  ReplaceDesign,
+  SetFeatures,
+  SetParameter,
+  SetSetting,
+  SetSymmetry,
+];
 
 // A command from its serialize() form.
 export function deserializeCommand(json) {

@@ -1,0 +1,73 @@
+// The field's topology as the user designs it, for one Session: prescribed singularities placed, moved and
+// removed, the sharp features set, and the reads of both (the field's singularities with the prescribed ones
+// flagged and named by page id, what the prescribed indices leave to the field, the features in use). Every
+// edit is a command (commands/) run by the session, one history step each, as any other edit; a refusal of
+// the core rejects with its message and leaves the design as it was.
+//
+// Owns no state beyond the session's. Imports the session's commands.
+import { AddSingularity, MoveSingularity, RemoveConstraint, SetFeatures } from './commands/index.js';
+
+export class FieldTopology {
+  constructor(session) {
+    this.session = session;
+  }
+
+  // index: a nonzero multiple of 1/N; resolves with the singularity's page id. meshSerial: as addConstraint's.
+  addSingularity(vertex, index, meshSerial = undefined) {
+    const s = this.session;
+    return s.execute(() => {
+      if (meshSerial !== undefined && meshSerial !== s.meshSerial)
+        throw new Error('the model changed before this edit reached the core; it was not applied');
+      return new AddSingularity(vertex, index);
+    });
+  }
+
+  moveSingularity(uid, vertex) {
+    return this.session.execute((table) => MoveSingularity.of(table, uid, vertex));
+  }
+
+  // As any constraint's removal; refused for a constraint that is not a singularity.
+  removeSingularity(uid) {
+    return this.session.execute((table) => {
+      const command = RemoveConstraint.of(table, uid);
+      if (command.spec.type !== 'singularity')
+        throw new Error(`constraint ${uid} is a ${command.spec.type}, not a singularity`);
+      return command;
+    });
+  }
+
+  // features: any of {angle, add, remove}.
+  setFeatures(features) {
+    return this.session.execute((table) => SetFeatures.of(table, features));
+  }
+
+  // The current field's singularities [{vertex, index, prescribed, id (page id, prescribed ones)}]: the core's
+  // read-out when the design prescribes some (it flags them), else the page's own; a singularity where the
+  // design prescribes that index is prescribed either way (a big model's preview field is the page's).
+  singularities() {
+    const s = this.session;
+    const byVertex = new Map();
+    for (const { uid, spec } of s.table.entries()) if (spec.type === 'singularity') byVertex.set(spec.vertex, uid);
+    return s.field.requireSingularities().map(({ vertex, index, prescribed = false }) => {
+      const uid = byVertex.get(vertex);
+      const named = uid !== undefined && (prescribed || s.table.specOf(uid).index === index);
+      return named ? { vertex, index, prescribed: true, id: uid } : { vertex, index, prescribed };
+    });
+  }
+
+  // {mode: 'none' | 'exact' | 'free', eulerCharacteristic, prescribedIndex, freeIndex}: the field's stats.
+  summary() {
+    const { singularityMode = 'none', eulerCharacteristic = 0, prescribedIndex = 0, freeIndex = 0 } =
+      this.session.field.stats;
+    return { mode: singularityMode, eulerCharacteristic, prescribedIndex, freeIndex };
+  }
+
+  // {angle, add, remove} as the design holds them, and `edges`: the vertex pairs in use ([[a, b], ...]; none
+  // known for a big model's preview field).
+  features() {
+    const pairs = this.session.field.featureEdges ?? [];
+    const edges = [];
+    for (let k = 0; k + 1 < pairs.length; k += 2) edges.push([pairs[k], pairs[k + 1]]);
+    return { ...structuredClone(this.session.table.features()), edges };
+  }
+}
