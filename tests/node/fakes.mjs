@@ -339,6 +339,8 @@ export class FakeCore {
       checkSymmetry(n);
       const kept = this.ids.map((id) => this.specs.get(id)).find((spec) => VECTOR_NOTIONS[spec.type] && n >= 2);
       if (kept) throw new Error(`symmetry: the design has ${VECTOR_NOTIONS[kept.type]}, which a field of symmetry ${n} cannot have`);
+      for (const spec of this.specs.values())
+        if (spec.type === 'singularity') this.#checkSingularity(spec.vertex, spec.index, n, [...this.specs].find(([, x]) => x === spec)[0]);
       this.symmetry = n;
       checkAlignment(curvatureAlignment, n);
       this.curvatureAlignment = curvatureAlignment;

@@ -264,3 +264,23 @@ test('the new commands serialize and replay on another session to the same desig
   s.dispose();
   s2.dispose();
 });
+
+test('a new symmetry takes the singularities it cannot keep in the same step; undo brings them back', async () => {
+  const core = new FakeCore();
+  const s = await open(core);
+  await s.setSetting('symmetry', 4);
+  const quarter = await s.topology.addSingularity(3, 0.25);
+  const half = await s.topology.addSingularity(9, -0.5);
+  const notices = [];
+  s.on('flash', ({ text }) => notices.push(text));
+  const removed = await s.setSetting('symmetry', 2);
+  assert.deepEqual(removed, [{ id: quarter, type: 'singularity', vertex: 3, index: 0.25 }]);
+  assert.deepEqual(coreSingularities(core), [{ type: 'singularity', vertex: 9, index: -0.5 }], 'the -1/2 stays');
+  assert.match(notices.at(-1), /Line field: removed 1 singularity \(undo restores it\)/);
+  await s.step(false);
+  assert.equal(core.symmetry, 4);
+  assert.deepEqual(s.constraintList().map(({ id, vertex, index }) => [id, vertex, index]),
+    [[quarter, 3, 0.25], [half, 9, -0.5]]);
+  assertMirrorsCore(s, core);
+  s.dispose();
+});

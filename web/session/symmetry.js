@@ -19,11 +19,19 @@ export const fieldPhrase = (n) => (NAMES[n] ? `a ${NAMES[n].toLowerCase()} field
 
 export const keepsConstraint = (type, n) => !(n >= 2 && VECTOR_ONLY_TYPES.includes(type));
 
+// A design's constraint under symmetry n: as its type allows, and a prescribed singularity only while its index
+// is a multiple of 1/n (+1/4 means nothing to a line field).
+export function keepsSpec(spec, n) {
+  if (spec.type !== 'singularity') return keepsConstraint(spec.type, n);
+  return Math.abs(spec.index * n - Math.round(spec.index * n)) < 1e-9;
+}
+
 // Principal curvature directions are lines (no sign) and come in perpendicular pairs: a field can be pulled
 // towards them only when its own N is even.
 export const alignsToCurvature = (n) => n >= 2 && n % 2 === 0;
 
-const PLURAL = { source: 'sources', sink: 'sinks', vortex: 'vortices', edge: 'edge constraints' };
+const PLURAL = { source: 'sources', sink: 'sinks', vortex: 'vortices', edge: 'edge constraints',
+  singularity: 'singularities' };
 const SINGULAR = { edge: 'edge constraint' };
 
 // [{type}] → '2 sources and 1 vortex' (types in first-seen order).

@@ -1,9 +1,10 @@
 // The symmetry N of the field (1 vector, 2 line, 4 cross: symmetry.js) as one step. What the new N cannot
 // keep goes in the same step, and the user is told what: the sources, sinks, vortices and edge constraints a
-// line or cross field has no notion of (the core refuses N ≥ 2 while they are there), and the curvature
-// alignment an odd N has none of. Strokes and vectors carry over. Undo brings back N, the alignment and the
-// removed constraints, under their page ids and with the specs the core held.
-import { alignsToCurvature, countedTypes, fieldTitle, keepsConstraint, symmetryName } from '../symmetry.js';
+// line or cross field has no notion of (the core refuses N ≥ 2 while they are there), the prescribed
+// singularities whose index is no multiple of 1/N, and the curvature alignment an odd N has none of. Strokes
+// and vectors carry over. Undo brings back N, the alignment and the removed constraints, under their page ids
+// and with the specs the core held.
+import { alignsToCurvature, countedTypes, fieldTitle, keepsSpec, symmetryName } from '../symmetry.js';
 
 export class SetSymmetry {
   static type = 'SetSymmetry';
@@ -20,7 +21,7 @@ export class SetSymmetry {
     const { symmetry, curvatureAlignment } = table.settings();
     const removed = table
       .entries()
-      .filter(({ spec }) => !keepsConstraint(spec.type, n))
+      .filter(({ spec }) => !keepsSpec(spec, n))
       .sort((a, b) => a.uid - b.uid)
       .map(({ uid, spec }) => ({ uid, spec: structuredClone(spec) }));
     const to = { symmetry: n, curvatureAlignment: alignsToCurvature(n) ? curvatureAlignment : 0 };
