@@ -89,7 +89,7 @@ const KINDS = {
 const TOP_LEVEL = new Set(['schema', 'mesh', 'boundary', 'gamma', 'symmetry', 'curvatureAlignment', 'constraints',
   'singularities', 'featureAngle', 'featureEdges']);
 const MUTATING = new Set(['loadMesh', 'add', 'remove', 'setWeight', 'setStrength', 'setBoundary', 'setGamma', 'setSymmetry', 'setCurvatureAlignment', 'applyDesign',
-  'addSingularity', 'moveSingularity', 'setFeatures']);
+  'addSingularity', 'moveSingularity', 'setFeatures', 'addSingularities', 'removeConstraints']);
 // Ops whose failure the worker takes back by applying the whole previous design again (core/setting-ops.js).
 const RESTORES_DESIGN = new Set(['applyDesign', 'setSymmetry']);
 // Constraints that are vector-field notions: the core refuses them for a symmetry N ≥ 2.
@@ -350,6 +350,24 @@ export class FakeCore {
       this.#checkSingularity(vertex, index, this.symmetry);
       const id = this.#add({ type: 'singularity', vertex, index });
       return { value: id, changed: [id] };
+    },
+    // As the worker's: a refusal of any takes back those added before it.
+    addSingularities: (list) => {
+      const ids = [];
+      try {
+        for (const [vertex, index] of list) {
+          this.#checkSingularity(vertex, index, this.symmetry);
+          ids.push(this.#add({ type: 'singularity', vertex, index }));
+        }
+      } catch (err) {
+        ids.forEach((id) => this.#remove(id));
+        throw err;
+      }
+      return { value: ids, changed: ids };
+    },
+    removeConstraints: (ids) => {
+      ids.forEach((id) => this.#remove(id));
+      return { value: true, changed: [] };
     },
     moveSingularity: (id, vertex) => {
       const spec = this.#constraint(id);

@@ -38,7 +38,8 @@ function assertMirrorsCore(s, core) {
   assert.deepEqual(s.topology.features().angle, core.features.angle);
 }
 
-const requests = (core, from) => core.log.slice(from).map(([op]) => op);
+// The edits' requests since `from` (the loader's warm-up request comes when it will).
+const requests = (core, from) => core.log.slice(from).map(([op]) => op).filter((op) => op !== 'warmUp');
 
 // The k-th edge of the core's mesh, and a vertex pair that is not an edge.
 const edge = (core, k) => [core.mesh.edges[2 * k], core.mesh.edges[2 * k + 1]];
@@ -282,5 +283,31 @@ test('a new symmetry takes the singularities it cannot keep in the same step; un
   assert.deepEqual(s.constraintList().map(({ id, vertex, index }) => [id, vertex, index]),
     [[quarter, 3, 0.25], [half, 9, -0.5]]);
   assertMirrorsCore(s, core);
+  s.dispose();
+});
+
+test('a +/- pair is one step and one request each way; a refusal of either adds neither', async () => {
+  const core = new FakeCore();
+  const s = await open(core);
+  await s.setSetting('symmetry', 4);
+  const before = core.log.length, depth = s.history.undoStack.length;
+  const [plus, minus] = await s.topology.addSingularityPair([3, 0.25], [9, -0.25]);
+  assert.deepEqual(requests(core, before), ['addSingularities']);
+  assert.equal(s.history.undoStack.length, depth + 1);
+  assert.deepEqual(s.constraintList().map(({ id, vertex, index }) => [id, vertex, index]), [[plus, 3, 0.25], [minus, 9, -0.25]]);
+  assert.equal(s.topology.summary().prescribedIndex, 0, 'the total index is unchanged');
+  await s.step(false);
+  assert.deepEqual(requests(core, before), ['addSingularities', 'removeConstraints']);
+  assert.deepEqual(coreSingularities(core), []);
+  await s.step(true);
+  assert.deepEqual(s.constraintList().map(({ id }) => id), [plus, minus], 'the same page ids');
+  assertMirrorsCore(s, core);
+  await assert.rejects(s.topology.addSingularityPair([20, 0.25], [9, -0.25]), /vertex 9 already has one/);
+  assert.deepEqual(coreSingularities(core).map(({ vertex }) => vertex), [3, 9], 'the refused pair’s first singularity was taken back');
+  assert.equal(s.history.undoStack.length, depth + 1);
+  assertMirrorsCore(s, core);
+  const json = JSON.parse(JSON.stringify(s.history.serialize()));
+  const pair = json.undo.find((c) => c.type === 'AddSingularityPair');
+  assert.deepEqual(deserializeCommand(pair).serialize(), pair);
   s.dispose();
 });

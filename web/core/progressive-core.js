@@ -22,7 +22,8 @@ export const PREVIEW_EDGES = 300_000;
 
 // Ops that change the design or the field: the preview takes them too.
 const EDITS = ['add', 'remove', 'setWeight', 'setStrength', 'setBoundary', 'setGamma', 'setSymmetry',
-  'setCurvatureAlignment', 'applyDesign', 'addSingularity', 'moveSingularity', 'setFeatures'];
+  'setCurvatureAlignment', 'applyDesign', 'addSingularity', 'moveSingularity', 'setFeatures', 'addSingularities',
+  'removeConstraints'];
 const isEdit = (op) => EDITS.includes(op);
 
 export class ProgressiveCore {

@@ -5,7 +5,13 @@
 // the core rejects with its message and leaves the design as it was.
 //
 // Owns no state beyond the session's. Imports the session's commands.
-import { AddSingularity, MoveSingularity, RemoveConstraint, SetFeatures } from './commands/index.js';
+import {
+  AddSingularity,
+  AddSingularityPair,
+  MoveSingularity,
+  RemoveConstraint,
+  SetFeatures,
+} from './commands/index.js';
 
 export class FieldTopology {
   constructor(session) {
@@ -14,11 +20,21 @@ export class FieldTopology {
 
   // index: a nonzero multiple of 1/N; resolves with the singularity's page id. meshSerial: as addConstraint's.
   addSingularity(vertex, index, meshSerial = undefined) {
+    return this.#onModel(meshSerial, () => new AddSingularity(vertex, index));
+  }
+
+  // Two singularities ([vertex, index] each, a +/- pair) as one step; resolves with their page ids.
+  addSingularityPair(first, second, meshSerial = undefined) {
+    return this.#onModel(meshSerial, () => new AddSingularityPair([[...first], [...second]]));
+  }
+
+  // A tool's edit, dropped when the model changed before it reached the core.
+  #onModel(meshSerial, makeCommand) {
     const s = this.session;
     return s.execute(() => {
       if (meshSerial !== undefined && meshSerial !== s.meshSerial)
         throw new Error('the model changed before this edit reached the core; it was not applied');
-      return new AddSingularity(vertex, index);
+      return makeCommand();
     });
   }
 

@@ -76,8 +76,9 @@ export class Preview {
   argsOnCoarse(op, args) {
     const m = this.map;
     if (op === 'add') return [m.specOnCoarse(args[0])];
-    if (op === 'addSingularity') return [m.specOnCoarse({ type: 'singularity', vertex: args[0] }).vertex, args[1]];
-    if (op === 'moveSingularity') return [args[0], m.specOnCoarse({ type: 'singularity', vertex: args[1] }).vertex];
+    if (op === 'addSingularity') return [this.#vertexOnCoarse(args[0]), args[1]];
+    if (op === 'moveSingularity') return [args[0], this.#vertexOnCoarse(args[1])];
+    if (op === 'addSingularities') return [args[0].map(([v, k]) => [this.#vertexOnCoarse(v), k])];
     if (op === 'setFeatures') return [args[0] && 'angle' in args[0] ? { angle: args[0].angle } : {}];
     if (op === 'applyDesign') return [m.designOnCoarse(args[0])];
     if (op === 'setSymmetry' && args[1]?.add)
@@ -85,20 +86,33 @@ export class Preview {
     return args;
   }
 
+  #vertexOnCoarse(vertex) {
+    return this.map.specOnCoarse({ type: 'singularity', vertex }).vertex;
+  }
+
   // After the op succeeded on the coarse core: the fine specs follow.
   afterOp(op, args, result) {
+    if (this.#afterTopologyOp(op, args, result)) return;
     if (op === 'add') this.fineSpecs.set(result, this.#normal(result, args[0]));
-    else if (op === 'addSingularity')
-      this.fineSpecs.set(result, this.#normal(result, { type: 'singularity', vertex: args[0] }));
-    else if (op === 'moveSingularity') this.fineSpecs.set(args[0], { ...this.fineSpecs.get(args[0]), vertex: args[1] });
     else if (op === 'remove') this.fineSpecs.delete(args[0]);
     else if (op === 'setWeight' || op === 'setStrength') {
       const spec = this.fineSpecs.get(args[0]);
       if (spec) this.fineSpecs.set(args[0], this.#normal(args[0], spec));
     } else if (op === 'applyDesign') this.#adoptDocument(args[0]);
-    else if (op === 'setFeatures') this.#adoptFeatureEdges({ ...this.template.featureEdges, ...args[0] });
     else if (op === 'setSymmetry')
       (args[1]?.add ?? []).forEach((spec, k) => this.fineSpecs.set(result[k], this.#normal(result[k], spec)));
+  }
+
+  // The prescribed singularities' and the features' ops; false for any other.
+  #afterTopologyOp(op, args, result) {
+    const fine = (id, vertex) => this.fineSpecs.set(id, this.#normal(id, { type: 'singularity', vertex }));
+    if (op === 'addSingularity') fine(result, args[0]);
+    else if (op === 'addSingularities') args[0].forEach(([vertex], k) => fine(result[k], vertex));
+    else if (op === 'moveSingularity') fine(args[0], args[1]);
+    else if (op === 'removeConstraints') args[0].forEach((id) => this.fineSpecs.delete(id));
+    else if (op === 'setFeatures') this.#adoptFeatureEdges({ ...this.template.featureEdges, ...args[0] });
+    else return false;
+    return true;
   }
 
   // The fine design document: the coarse core's settings, the fine mesh's fingerprint, the fine specs (the

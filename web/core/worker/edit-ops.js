@@ -23,6 +23,16 @@ export function editOps(state) {
         return id;
       },
 
+      // Several at once ([[vertex, index], ...]: a +/- pair, one step for the page); their core ids. A refusal of
+      // any takes back those added before it.
+      addSingularities(list) {
+        const ids = [];
+        state.undoEdit = () => ids.forEach((id) => state.core.remove(id));
+        for (const [vertex, index] of list) ids.push(state.core.addSingularity(vertex, index));
+        state.changedIds = ids;
+        return ids;
+      },
+
       // The singularity keeps its id and index; the core refuses what addSingularity would.
       moveSingularity(id, vertex) {
         const before = state.core.constraint(id)?.vertex;
@@ -34,6 +44,13 @@ export function editOps(state) {
 
       remove(id) {
         state.core.remove(id);
+        state.changedIds = [];
+        return true;
+      },
+
+      // Several constraints in one step (the undo of a pair).
+      removeConstraints(ids) {
+        for (const id of ids) state.core.remove(id);
         state.changedIds = [];
         return true;
       },

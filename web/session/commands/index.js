@@ -9,6 +9,7 @@
 //   label, result, changes (false: not recorded), clearsSelection, serialize() and a static deserialize().
 import { AddConstraint } from './add-constraint.js';
 import { AddSingularity } from './add-singularity.js';
+import { AddSingularityPair } from './add-singularity-pair.js';
 import { MoveSingularity } from './move-singularity.js';
 import { RemoveConstraint } from './remove-constraint.js';
 import { ReplaceDesign } from './replace-design.js';
@@ -20,6 +21,7 @@ import { SetSymmetry } from './set-symmetry.js';
 export {
   AddConstraint,
   AddSingularity,
+  AddSingularityPair,
   MoveSingularity,
   RemoveConstraint,
   ReplaceDesign,
@@ -32,6 +34,7 @@ export {
 const COMMANDS = [
   AddConstraint,
   AddSingularity,
+  AddSingularityPair,
   MoveSingularity,
   RemoveConstraint,
   ReplaceDesign,
