@@ -84,6 +84,8 @@ export function panelActions(d) {
     // What a new N removes is announced by the session (a flash) and comes back with undo.
     onSymmetry: editable((n) => d.report(s().setSetting('symmetry', n))),
     onCurvatureAlignment: editable((strength) => d.report(s().setSetting('curvatureAlignment', strength))),
+    // The angle over which edges are sharp features (0: none); the Feature tool's additions and removals kept.
+    onFeatureAngle: editable((angle) => d.report(s().topology.setFeatures({ angle }))),
     onViews: (views) => d.viewSync?.apply(views),
     onSelect: (uid) => s().select(uid),
     onFrame: (view) => d.viewer.frame(view),

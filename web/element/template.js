@@ -158,7 +158,7 @@ export const TEMPLATE = `<div class="root" part="root">
         <label title="${TITLES.gamma}">Smoothness γ
           <input id="gamma" type="number" value="0" min="0" step="0.1">
         </label>
-        <label title="${TITLES.featureAngle}">Features over°
+        <label title="${TITLES.featureAngle}">Feature angle°
           <input id="feature-angle" type="number" value="35" min="0" max="180" step="5">
         </label>
         <p id="feature-count" class="note" hidden></p>

@@ -223,6 +223,7 @@ export class ViewSync {
   // A new mesh: the surface, before its first field is shown.
   modelChanged({ info, surface }) {
     this.drawn = null;
+    this.shown.featureEdges = null;
     this.sharesShown = null;
     this.viewer.setMesh(surface);
     this.ui.setHasBoundary(info.boundaryLoops > 0);
@@ -238,6 +239,7 @@ export class ViewSync {
     this.#showDerived();
     viewer.handles.setConstraints(s.table.entries());
     viewer.handles.setSelected(s.selected);
+    this.#showDesignTopology();
     ui.setConstraints(s.constraintList(), s.selected);
     ui.setSettings(s.settings());
     ui.setStatus({ name: s.modelName, info: s.info, stats: s.field.stats });
@@ -253,6 +255,25 @@ export class ViewSync {
     this.onRefreshed();
   }
 
+  // The prescribed singularities (the design's, always drawn), the feature edges in use (their lines rebuilt only
+  // when they changed: a stroke's solve sends the same edges again), and what the prescribed indices leave to the
+  // field (the Field panel).
+  #showDesignTopology() {
+    const { viewer, ui, session: s } = this, N = this.#symmetry();
+    const prescribed = s.constraintList().filter((c) => c.type === 'singularity');
+    viewer.singularities.setPrescribed(prescribed.map(({ id, vertex, index }) => ({ id, vertex, index })), N);
+    viewer.singularities.setSelected(s.selected);
+    const { angle, edges } = s.topology.features();
+    const pairs = s.field.featureEdges, last = this.shown.featureEdges;
+    if (!pairs || !last || pairs.length !== last.length || pairs.some((v, k) => v !== last[k])) {
+      viewer.features.setEdges(edges);
+      this.shown.featureEdges = pairs;
+    }
+    // A big model's preview field knows no feature edges: the count waits for the exact one.
+    ui.setFeatures({ angle, count: pairs ? edges.length : null });
+    ui.setSingularitySummary(s.topology.summary());
+  }
+
   refreshHistory() {
     const h = this.session.history;
     const undo = h.peekUndo(), redo = h.peekRedo();
@@ -262,6 +283,7 @@ export class ViewSync {
 
   selectionChanged(selected) {
     this.viewer.handles.setSelected(selected);
+    this.viewer.singularities.setSelected(selected);
     this.ui.setConstraints(this.session.constraintList(), selected);
     this.viewer.requestRender();
   }

@@ -53,6 +53,7 @@ export class SingularitiesView {
   setSurface(surface) {
     this.surface = surface;
     this.prescribed = [];
+    this.prescribedKey = null;
     this.ghosts = [];
     this.selected = null;
     this.setSingularities([]);
@@ -67,6 +68,9 @@ export class SingularitiesView {
 
   // The design's prescribed singularities, [{vertex, index, id}], and the field's N.
   setPrescribed(list, symmetry = 1) {
+    const key = JSON.stringify([list, symmetry]);
+    if (key === this.prescribedKey) return; // after most edits: as they were
+    this.prescribedKey = key;
     this.prescribed = list;
     this.symmetry = symmetryOf(symmetry);
     this.#build();
