@@ -555,4 +555,157 @@ check('client: setGamma(undefined) is refused', /gamma must be a number/.test(re
 check('client: a failed loadModel keeps the model', /load:/.test(refused(() => client.loadModel(new TextEncoder().encode(hugeTet), 'off'))) &&
   client.oneForm().length === 30 * 4);
 t.delete();
+
+// ------------------------------------------------------------------ prescribed singularities, sharp features
+// On a closed sphere (chi = 2) prescribed indices summing to 2 are the field's singularities exactly; a move
+// moves that one only; a removal leaves the others and the field places the index it left. Features on a box
+// made here: exactly its 12 creases, n edges each.
+{
+  const e = new Module.Designer();
+  check('topology: sphere loads', e.loadMesh(ico(2), 'off') === '' && e.setSymmetry(4) === '');
+  const P = e.positions();
+  const nV = P.length / 3;
+  // Eight vertices far apart (greedy farthest points), so that every singularity has room of its own.
+  const far = [0];
+  while (far.length < 8) {
+    let best = -1, bestD = -1;
+    for (let v = 0; v < nV; v++) {
+      const dmin = Math.min(...far.map((w) => (P[3 * v] - P[3 * w]) ** 2 + (P[3 * v + 1] - P[3 * w + 1]) ** 2 +
+        (P[3 * v + 2] - P[3 * w + 2]) ** 2));
+      if (dmin > bestD) [best, bestD] = [v, dmin];
+    }
+    far.push(best);
+  }
+  const ids = far.map((v) => e.addSingularity(v, 0.25));
+  // [vertex, index, prescribed] in vertex order (the core writes an object's keys sorted).
+  const bySorted = (list) => list.map((x) => [x.vertex, x.index, x.prescribed]).sort((a, b) => a[0] - b[0]);
+  const prescribedSet = (vertices) => bySorted(vertices.map((vertex) => ({ vertex, index: 0.25, prescribed: true })));
+  check('topology: 8 x +1/4 placed', ids.every((id) => id > 0) && e.solve() === '', e.lastError());
+  check('topology: the field has exactly the prescribed singularities, flagged',
+    JSON.stringify(bySorted(JSON.parse(e.singularitiesJson()))) === JSON.stringify(prescribedSet(far)),
+    e.singularitiesJson());
+  let stats = JSON.parse(e.statsJson());
+  check('topology: stats say exact, chi 2, nothing free', stats.singularityMode === 'exact' &&
+    stats.eulerCharacteristic === 2 && stats.prescribedIndex === 2 && stats.freeIndex === 0, JSON.stringify(stats));
+  const specs = JSON.parse(e.constraintsJson());
+  check('topology: constraintsJson lines up with the ids, singularities as specs',
+    JSON.stringify(JSON.parse(e.constraintIdsJson())) === JSON.stringify(ids) &&
+    specs.every((c, k) => c.type === 'singularity' && c.vertex === far[k] && c.index === 0.25), e.constraintsJson());
+  check('topology: constraintJson(id) gives the spec', JSON.parse(e.constraintJson(ids[2])).vertex === far[2]);
+  const doc = JSON.parse(e.designJson());
+  check('topology: the design lists them apart', doc.constraints.length === 0 &&
+    JSON.stringify(doc.singularities.map((x) => [x.vertex, x.index])) === JSON.stringify(far.map((v) => [v, 0.25])),
+    JSON.stringify(doc.singularities));
+
+  // A move to a neighbour of the first one's vertex.
+  const E = e.edges();
+  let target = -1;
+  for (let k = 0; k < E.length && target < 0; k += 2) {
+    if (E[k] === far[0] && !far.includes(E[k + 1])) target = E[k + 1];
+    else if (E[k + 1] === far[0] && !far.includes(E[k])) target = E[k];
+  }
+  const moved = [target, ...far.slice(1)];
+  check('topology: move keeps the id', e.moveSingularity(ids[0], target) === true && e.solve() === '' &&
+    JSON.stringify(JSON.parse(e.constraintIdsJson())) === JSON.stringify(ids), e.lastError());
+  check('topology: the move moved exactly that one',
+    JSON.stringify(bySorted(JSON.parse(e.singularitiesJson()))) === JSON.stringify(prescribedSet(moved)),
+    e.singularitiesJson());
+
+  // Refusals: the design stays as it was.
+  const before = e.designJson();
+  check('topology: a second one on a vertex is refused', e.addSingularity(far[1], -0.25) === -1, e.lastError());
+  check('topology: an index that is not a multiple of 1/4 is refused', e.addSingularity(far[1] + 1, 1 / 3) === -1 &&
+    e.lastError().length > 0, e.lastError());
+  check('topology: a vertex that does not exist is refused', e.addSingularity(nV + 5, 0.25) === -1);
+  check('topology: a move onto a taken vertex is refused', e.moveSingularity(ids[0], far[1]) === false);
+  check('topology: a fractional vertex is named', e.addSingularity(1.5, 0.25) === -1 &&
+    /integer index/.test(e.lastError()), e.lastError());
+  check('topology: after the refusals the design is unchanged', e.designJson() === before);
+
+  // Removal: the other seven stay, and the field places the +1/4 left over itself.
+  check('topology: remove one', e.remove(ids[3]) === true && e.solve() === '', e.lastError());
+  const after = JSON.parse(e.singularitiesJson());
+  const kept = moved.filter((v, k) => k !== 3);
+  check('topology: the others stay, prescribed',
+    JSON.stringify(bySorted(after.filter((x) => x.prescribed))) === JSON.stringify(prescribedSet(kept)),
+    e.singularitiesJson());
+  stats = JSON.parse(e.statsJson());
+  check('topology: stats say free, +1/4 left to the field', stats.singularityMode === 'free' &&
+    Math.abs(stats.freeIndex - 0.25) < 1e-12, JSON.stringify(stats));
+  const free = after.filter((x) => !x.prescribed);
+  check('topology: the field placed the index left over', Math.abs(free.reduce((a, x) => a + x.index, 0) - 0.25) < 1e-9,
+    JSON.stringify(free));
+  check('topology: undo of a removal through the design format', e.addConstraintJson(JSON.stringify(
+    { type: 'singularity', vertex: moved[3], index: 0.25 })) > 0 && e.solve() === '' &&
+    JSON.parse(e.statsJson()).singularityMode === 'exact', e.lastError());
+  e.delete();
+}
+{
+  // A box [-1, 1]^3 with n edges along each crease, faces outward.
+  const n = 4;
+  const index = new Map(), positions = [], triangles = [];
+  const vertex = (p) => {
+    const key = p.map((x) => x.toFixed(6)).join(',');
+    if (!index.has(key)) {
+      index.set(key, positions.length);
+      positions.push(p);
+    }
+    return index.get(key);
+  };
+  for (let axis = 0; axis < 3; axis++)
+    for (const sign of [-1, 1]) {
+      const [u, w] = [(axis + 1) % 3, (axis + 2) % 3]; // u x w = +axis: counter-clockwise seen from outside
+      const at = (i, j) => {
+        const p = [0, 0, 0];
+        p[axis] = sign;
+        p[u] = -1 + (2 * i) / n;
+        p[w] = -1 + (2 * j) / n;
+        return vertex(p);
+      };
+      for (let i = 0; i < n; i++)
+        for (let j = 0; j < n; j++) {
+          const [a, b, c, dd] = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+          triangles.push(...(sign > 0 ? [a, b, c, a, c, dd] : [a, c, b, a, dd, c]));
+        }
+    }
+  const off = `OFF\n${positions.length} ${triangles.length / 3} 0\n${positions.map((p) => p.join(' ')).join('\n')}\n` +
+    `${Array.from({ length: triangles.length / 3 }, (_, f) => `3 ${triangles.slice(3 * f, 3 * f + 3).join(' ')}`).join('\n')}\n`;
+  const b = new Module.Designer();
+  check('features: box loads as a cross field', b.loadMesh(new TextEncoder().encode(off), 'off') === '' &&
+    b.setSymmetry(4) === '', b.lastError());
+  check('features: none by default', b.featureAngle() === 0 && b.featureEdges().length === 0 && b.solve() === '');
+  check('features: 35 degrees', b.setFeatures(35, [], []) === '' && b.solve() === '', b.lastError());
+  const used = Int32Array.from(b.featureEdges());
+  const E = Int32Array.from(b.edges());
+  const P = b.positions();
+  // An edge along a crease: its ends share two coordinates at the same +-1 (a face's diagonal does not).
+  const creaseEdge = (e) => [0, 1, 2].filter((k) => Math.abs(Math.abs(P[3 * E[2 * e] + k]) - 1) < 1e-9 &&
+    P[3 * E[2 * e] + k] === P[3 * E[2 * e + 1] + k]).length >= 2;
+  check('features: exactly the 12 creases, n edges each', used.length === 12 * n && [...used].every(creaseEdge),
+    `${used.length} edges`);
+  check('features: the stats count them', JSON.parse(b.statsJson()).featureEdges === 12 * n);
+  // An edge across a face (not a crease) added, a crease edge removed.
+  let flat = -1;
+  for (let k = 0; k < E.length / 2 && flat < 0; k++) if (!creaseEdge(k)) flat = k;
+  const crease = used[0];
+  const add = [E[2 * flat], E[2 * flat + 1]], remove = [E[2 * crease], E[2 * crease + 1]];
+  check('features: add and remove by vertex pairs', b.setFeatures(35, add, remove) === '' && b.solve() === '' &&
+    b.featureEdges().length === 12 * n && Int32Array.from(b.featureEdges()).includes(flat) &&
+    !Int32Array.from(b.featureEdges()).includes(crease), b.lastError());
+  const features = JSON.parse(b.featuresJson());
+  check('features: featuresJson as set', features.angle === 35 && JSON.stringify(features.add) === JSON.stringify([add]) &&
+    JSON.stringify(features.remove) === JSON.stringify([remove]), b.featuresJson());
+  const doc = JSON.parse(b.designJson());
+  check('features: the design carries them', doc.featureAngle === 35 &&
+    JSON.stringify(doc.featureEdges) === JSON.stringify({ add: [add], remove: [remove] }), b.designJson());
+  const before = b.featuresJson();
+  check('features: a pair that is not an edge is refused, unchanged',
+    b.setFeatures(10, [0, positions.length - 1], []) !== '' && b.featuresJson() === before, b.lastError());
+  check('features: an odd number of vertices is refused', /2 vertices per edge/.test(b.setFeatures(10, [0], [])));
+  check('features: an angle of 200 is refused, unchanged', b.setFeatures(200, [], []) !== '' &&
+    b.featuresJson() === before);
+  check('features: 0 turns detection off', b.setFeatures(0, [], []) === '' && b.solve() === '' &&
+    b.featureEdges().length === 0);
+  b.delete();
+}
 finish();

@@ -29,7 +29,8 @@ test('core client: the call groups make one class, each call defined once', () =
     'hodge', 'info', 'loadModel', 'mesh', 'oneForm', 'openParsed', 'parsedMesh', 'pendingDesign', 'pendingInfo',
     'pendingMesh', 'readModel', 'reconstruct', 'remove', 'setBoundary', 'setCurvatureAlignment',
     'setDeferredUpdates', 'setFactorMemoryLimit', 'setGamma', 'setStrength', 'setSymmetry', 'setWeight',
-    'singularities', 'solve', 'stats', 'symmetry', 'vertexVectors', 'warmUp'];
+    'singularities', 'solve', 'stats', 'symmetry', 'vertexVectors', 'warmUp', 'addSingularity', 'moveSingularity',
+    'setFeatures', 'features', 'featureEdgePairs', 'constraintSpecs'];
   assert.deepEqual(used.filter((name) => !all.includes(name)), []);
 });
 
