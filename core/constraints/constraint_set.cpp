@@ -54,6 +54,11 @@ void ConstraintSet::validate(const ConstraintSpec& s) const {
       break;
     case ConstraintKind::Stroke:
       break;  // strokeRows validates its points
+    case ConstraintKind::Singularity:
+      if (!vertexOk(s.element))
+        throw InputError("singularity: vertex " + std::to_string(s.element) + " does not exist or is unused");
+      requireFinite(s.value, "singularity index");
+      break;  // the index's relation to N and the vertex's neighbours: design/prescribed_field_system.h
   }
 }
 
@@ -107,6 +112,16 @@ void ConstraintSet::remove(int32_t id) {
 
 const ConstraintSpec& ConstraintSet::spec(int32_t id) const {
   return find(id).spec;
+}
+
+void ConstraintSet::setElement(int32_t id, int32_t element) {
+  Entry& e = find(id);
+  ConstraintSpec moved = e.spec;
+  moved.element = element;
+  validate(moved);
+  if (isEdgeKind(moved.kind)) e.rows = rowsFor(moved);
+  if (isSingularKind(moved.kind)) singularStale_ = true;
+  e.spec = std::move(moved);
 }
 
 double ConstraintSet::setWeight(int32_t id, double weight) {

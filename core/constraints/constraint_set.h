@@ -29,7 +29,7 @@ class ConstraintSet {
   // order of adding). Throws InputError naming the problem (a face, vertex or edge that does not exist, a
   // number out of range, a stroke that cannot be walked); the set is then unchanged.
   int32_t add(ConstraintSpec spec);
-  double lastRowsMs() const;                     // add()'s row computation (a stroke's surface walk)
+  double lastRowsMs() const;  // add()'s row computation (a stroke's surface walk)
   // add()'s checks alone (ranges, elements that exist), throwing as add() would.
   void validate(const ConstraintSpec& spec) const;
   void remove(int32_t id);                       // throws InputError for an unknown id
@@ -37,7 +37,9 @@ class ConstraintSet {
   // Returns the previous weight. Throws InputError for an unknown id, a source/sink/vortex (they have no
   // weight) or a weight out of range.
   double setWeight(int32_t id, double weight);
-  void setStrength(int32_t id, double strength);  // throws InputError for an unknown id or a bad number
+  void setStrength(int32_t id, double strength);
+  // The constraint's vertex or face (a moved singularity), validated as add() does; unchanged on error.
+  void setElement(int32_t id, int32_t element);  // throws InputError for an unknown id or a bad number
   void clear();
 
   std::vector<ConstraintSpec> specs() const;  // in the order they were added

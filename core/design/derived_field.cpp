@@ -1,5 +1,7 @@
 #include "design/derived_field.h"
 
+#include <cmath>
+
 namespace tvf {
 
 void DerivedField::solved() {
@@ -10,6 +12,7 @@ void DerivedField::clear() {
   solution_.unknowns.resize(0);
   solution_.oneForm.clear();
   solution_.faceVectors.clear();
+  solution_.prescribed.clear();
   vertexVectors_.clear();
   singularities_.clear();
   vertexVectorsCurrent_ = singularitiesCurrent_ = true;
@@ -25,6 +28,10 @@ const std::vector<Singularity>& DerivedField::requireSingularities(const DesignM
   if (!singularitiesCurrent_)
     singularities_ = findSingularities(mesh.mesh(), mesh.topology(), mesh.geometry(), solution_.faceVectors,
                                        solution_.symmetry);
+  for (Singularity& s : singularities_) {
+    const auto it = solution_.prescribed.find(s.vertex);
+    s.prescribed = it != solution_.prescribed.end() && std::abs(it->second - s.index) < 1e-9;
+  }
   singularitiesCurrent_ = true;
   return singularities_;
 }

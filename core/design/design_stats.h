@@ -44,6 +44,7 @@ struct DesignStats {
   std::string singularityMode = "none";
   int32_t eulerCharacteristic = 0;
   double prescribedIndex = 0, freeIndex = 0;
+  double connectionMs = 0;   // the last change of singularities: the trivial connection's solve
   int32_t featureEdges = 0;  // edges the field follows as features (detected by angle, plus or minus edits)
 };
 

@@ -11,7 +11,9 @@
 #include "design/derived_field.h"
 #include "design/design_mesh.h"
 #include "design/field_system.h"
+#include "design/prescribed_field_system.h"
 #include "field/whitney_reconstruction.h"
+#include "mesh/feature_edges.h"
 #include "mesh/mesh_checks.h"
 
 namespace tvf {
@@ -37,6 +39,8 @@ struct Designer::Impl {
   std::unique_ptr<FieldSystem> retired;
   DerivedField field;
   DesignStats stats;
+  double featureAngle = 0;
+  std::vector<std::array<int32_t, 2>> featureAdded, featureRemoved;
 
   Impl(SurfaceMesh m, MeshTopology t)
       : mesh(std::move(m), std::move(t)), constraints(mesh.mesh(), mesh.topology(), mesh.geometry()) {
@@ -53,9 +57,14 @@ struct Designer::Impl {
     if (retired) apply(*retired);
   }
 
+  bool wantsPrescribed() const {
+    return settings.exactSingularities || !constraints.specsOf(ConstraintKind::Singularity).empty();
+  }
+
+  // The system for this symmetry and the constraint set as it is (with or without prescribed singularities).
   void switchTo(int symmetry) {
     std::unique_ptr<FieldSystem> next;
-    if (retired && retired->symmetry() == symmetry) {
+    if (retired && retired->symmetry() == symmetry && retired->prescribes() == wantsPrescribed()) {
       retired->resume();  // throws, retired unchanged, for constraints it cannot take
       next = std::move(retired);
     } else {
@@ -181,7 +190,84 @@ void Designer::factor() {
 }
 
 int32_t Designer::add(const ConstraintSpec& spec) {
-  return impl_->system->add(spec, impl_->stats);
+  Impl& d = *impl_;
+  if (spec.kind != ConstraintKind::Singularity || d.system->prescribes()) return d.system->add(spec, d.stats);
+  // The first singularity: the design's field becomes the prescribed-singularity system's.
+  ConstraintSpec probe = spec;
+  probe.id = 0;
+  d.constraints.validate(probe);
+  checkSingularity(probe, d.symmetry(), d.mesh.mesh(), d.mesh.topology(), d.mesh.geometry(), d.constraints);
+  const int32_t id = d.constraints.add(spec);
+  try {
+    d.switchTo(d.symmetry());
+  } catch (...) {
+    d.constraints.remove(id);
+    throw;
+  }
+  return id;
+}
+
+void Designer::setExactSingularities(bool exact) {
+  Impl& d = *impl_;
+  if (exact == d.settings.exactSingularities) return;
+  d.settings.exactSingularities = exact;
+  if (d.system->prescribes() == d.wantsPrescribed()) return;
+  try {
+    d.switchTo(d.symmetry());
+  } catch (...) {
+    d.settings.exactSingularities = !exact;
+    throw;
+  }
+}
+
+bool Designer::exactSingularities() const {
+  return impl_->settings.exactSingularities;
+}
+
+int32_t Designer::addSingularity(int32_t vertex, double index) {
+  ConstraintSpec s;
+  s.kind = ConstraintKind::Singularity;
+  s.element = vertex;
+  s.value = index;
+  return add(s);
+}
+
+void Designer::moveSingularity(int32_t id, int32_t vertex) {
+  Impl& d = *impl_;
+  ConstraintSpec moved = d.constraints.spec(id);  // throws for an unknown id
+  if (moved.kind != ConstraintKind::Singularity)
+    throw InputError("constraint " + std::to_string(id) + " is not a singularity; only singularities move");
+  moved.element = vertex;
+  d.constraints.validate(moved);
+  checkSingularity(moved, d.symmetry(), d.mesh.mesh(), d.mesh.topology(), d.mesh.geometry(), d.constraints,
+                   id);
+  d.constraints.setElement(id, vertex);
+  d.system->singularitiesChanged();
+}
+
+void Designer::setFeatures(double degrees, const std::vector<std::array<int32_t, 2>>& add,
+                           const std::vector<std::array<int32_t, 2>>& remove) {
+  Impl& d = *impl_;
+  std::vector<int32_t> edges = tvf::featureEdges(d.mesh.topology(), d.mesh.geometry(), degrees, add, remove);
+  d.featureAngle = degrees;
+  d.featureAdded = add;
+  d.featureRemoved = remove;
+  if (edges == d.settings.featureEdges) return;  // re-applying a design must not refactor
+  d.settings.featureEdges = std::move(edges);
+  d.eachSystem([&](FieldSystem& s) { s.setFeatures(d.settings.featureEdges); });
+}
+
+double Designer::featureAngle() const {
+  return impl_->featureAngle;
+}
+const std::vector<std::array<int32_t, 2>>& Designer::featureEdgesAdded() const {
+  return impl_->featureAdded;
+}
+const std::vector<std::array<int32_t, 2>>& Designer::featureEdgesRemoved() const {
+  return impl_->featureRemoved;
+}
+const std::vector<int32_t>& Designer::featureEdges() const {
+  return impl_->settings.featureEdges;
 }
 
 int32_t Designer::addStroke(const std::vector<SurfacePoint>& points, double strength, double weight) {
@@ -238,8 +324,11 @@ int32_t Designer::addVortex(int32_t face, double strength) {
 
 void Designer::remove(int32_t id) {
   Impl& d = *impl_;
-  d.system->remove(d.constraints.spec(id), d.stats);  // spec() throws for an unknown id
+  const ConstraintSpec spec = d.constraints.spec(id);  // throws for an unknown id
+  d.system->remove(spec, d.stats);
   d.constraints.remove(id);
+  // The last singularity gone: back to the symmetry's own system (resumed when it was retired).
+  if (d.system->prescribes() != d.wantsPrescribed()) d.switchTo(d.symmetry());
 }
 
 void Designer::setWeight(int32_t id, double weight) {
@@ -257,12 +346,21 @@ void Designer::clearConstraints() {
   Impl& d = *impl_;
   d.system->clear(d.stats);
   d.constraints.clear();
+  if (d.system->prescribes() != d.wantsPrescribed()) d.switchTo(d.symmetry());
 }
 
 void Designer::solve() {
   Impl& d = *impl_;
   d.stats.symmetry = d.symmetry();
+  if (!d.system->prescribes()) {
+    d.stats.singularityMode = "none";
+    d.stats.prescribedIndex = 0;
+    d.stats.eulerCharacteristic = d.mesh.topology().eulerCharacteristic();
+    d.stats.freeIndex = d.stats.eulerCharacteristic;
+  }
+  d.stats.featureEdges = static_cast<int32_t>(d.settings.featureEdges.size());
   d.system->solve(d.field.solution(), d.stats);
+  if (!d.system->prescribes()) d.field.solution().prescribed.clear();
   d.field.solved();
 }
 

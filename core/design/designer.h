@@ -76,15 +76,20 @@ class Designer {
   int32_t addSink(int32_t vertex, double strength);    // strength = total inflow
   int32_t addVortex(int32_t face, double strength);    // signed circulation, + = counter-clockwise
   // A prescribed singularity (any symmetry; direction/trivial_connection.h): the field has index `index` at
-  // interior vertex `vertex`. Throws InputError naming the problem (a boundary or unused vertex, an index that
-  // is not a nonzero multiple of 1/N, a vertex that already has one); the design is then unchanged. With
+  // interior vertex `vertex`. Throws InputError naming the problem (a boundary or unused vertex, an index
+  // that is not a nonzero multiple of 1/N, a vertex that already has one); the design is then unchanged. With
   // singularities the field is a unit N-direction field even for N = 1, and sources, sinks, vortices and edge
   // values are refused (by name) as for N >= 2.
   int32_t addSingularity(int32_t vertex, double index);
+  // true: the field has exactly the prescribed singularities, none when none are prescribed (a torus's cross
+  // field without any; on a sphere the whole index is then left to the field, "free"). false (the default):
+  // with no prescription the field is the smoothest one, singularities wherever it puts them.
+  void setExactSingularities(bool exact);
+  bool exactSingularities() const;
   // The singularity `id` to another vertex, keeping its id and index (checked as addSingularity checks).
   void moveSingularity(int32_t id, int32_t vertex);
-  void remove(int32_t id);                             // throws InputError for an unknown id
-  void setWeight(int32_t id, double weight);           // edge-type constraints only
+  void remove(int32_t id);                    // throws InputError for an unknown id
+  void setWeight(int32_t id, double weight);  // edge-type constraints only
   void setStrength(int32_t id, double strength);
   void clearConstraints();
   // Re-adds a constraint from its spec (ignoring spec.id); returns the new id.

@@ -6,6 +6,7 @@
 
 #include "common/input_error.h"
 #include "direction/direction_constraints.h"
+#include "direction/feature_terms.h"
 #include "direction/representative_directions.h"
 
 namespace tvf {
@@ -16,9 +17,11 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+}  // namespace
+
 // Sources, sinks, vortices and edge values are vector-field notions: the refusal names how many of each the
 // design holds, so the user knows what to remove.
-void refuseVectorNotions(const std::vector<ConstraintSpec>& specs, int symmetry) {
+void refuseVectorNotions(const std::vector<ConstraintSpec>& specs, const std::string& field) {
   int sources = 0, sinks = 0, vortices = 0, edges = 0;
   for (const ConstraintSpec& spec : specs) {
     sources += spec.kind == ConstraintKind::Source;
@@ -36,11 +39,14 @@ void refuseVectorNotions(const std::vector<ConstraintSpec>& specs, int symmetry)
   name(vortices, "vortex", "vortices");
   name(edges, "edge value", "edge values");
   if (!named.empty())
-    throw InputError("a field of symmetry " + std::to_string(symmetry) +
-                     " takes strokes and directions only; the design has " + named +
+    throw InputError(field + " takes strokes and directions only; the design has " + named +
                      " (vector-field notions): remove them first");
 }
 
+namespace {
+std::string symmetryField(int symmetry) {
+  return "a field of symmetry " + std::to_string(symmetry);
+}
 }  // namespace
 
 DirectionFieldSystem::DirectionFieldSystem(int symmetry, const DesignMesh& mesh, ConstraintSet& constraints,
@@ -50,10 +56,11 @@ DirectionFieldSystem::DirectionFieldSystem(int symmetry, const DesignMesh& mesh,
       constraints_(constraints),
       gamma_(settings.gamma),
       system_(mesh.mesh(), mesh.topology(), mesh.geometry(), symmetry) {
-  refuseVectorNotions(constraints.specs(), symmetry);
+  refuseVectorNotions(constraints.specs(), symmetryField(symmetry));
   configureFactor(system_.factor(), settings);
   system_.setCurvatureAlignment(settings.curvatureAlignment);
   setBoundary(settings.boundary);
+  setFeatures(settings.featureEdges);
   addAll();
 }
 
@@ -66,9 +73,22 @@ int64_t DirectionFieldSystem::unknowns() const {
 void DirectionFieldSystem::setBoundary(const BoundaryCondition& bc) {
   const std::vector<double> angles =
       bc.free ? std::vector<double>{} : boundaryEdgeAngles(mesh_.topology(), bc);
-  system_.setBoundaryTerms(
-      boundaryDirectionTerms(mesh_.mesh(), mesh_.topology(), system_.frames(), angles, symmetry_),
-      kBoundaryWeight);
+  boundaryTerms_ =
+      boundaryDirectionTerms(mesh_.mesh(), mesh_.topology(), system_.frames(), angles, symmetry_);
+  fixedTerms();
+}
+
+void DirectionFieldSystem::setFeatures(const std::vector<int32_t>& edges) {
+  featureTerms_ = edges.empty() ? std::vector<FaceDirectionTerm>{}
+                                : featureDirectionTerms(mesh_.mesh(), mesh_.topology(), system_.frames(),
+                                                        featureCurves(mesh_.topology(), edges), symmetry_);
+  fixedTerms();
+}
+
+void DirectionFieldSystem::fixedTerms() {
+  std::vector<FaceDirectionTerm> all = boundaryTerms_;
+  all.insert(all.end(), featureTerms_.begin(), featureTerms_.end());
+  system_.setBoundaryTerms(std::move(all), kBoundaryWeight);
 }
 
 void DirectionFieldSystem::addAll() {
@@ -78,7 +98,7 @@ void DirectionFieldSystem::addAll() {
 }
 
 void DirectionFieldSystem::resume() {
-  refuseVectorNotions(constraints_.specs(), symmetry_);
+  refuseVectorNotions(constraints_.specs(), symmetryField(symmetry_));
   system_.factor().invalidate();  // so that forgetting the old terms downdates nothing
   system_.clear();
   addAll();

@@ -4,11 +4,17 @@
 // vectors as face terms (direction/direction_constraints.h), a fixed-angle boundary as strongly weighted
 // face terms, and read out as unit representatives of the N directions per face and per vertex.
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "design/field_system.h"
 #include "direction/power_field_system.h"
 
 namespace tvf {
+
+// Throws InputError when `specs` hold sources, sinks, vortices or edge values, naming how many of each and
+// `field` (e.g. "a field of symmetry 4") as what cannot take them.
+void refuseVectorNotions(const std::vector<ConstraintSpec>& specs, const std::string& field);
 
 class DirectionFieldSystem final : public FieldSystem {
  public:
@@ -24,6 +30,7 @@ class DirectionFieldSystem final : public FieldSystem {
   void setBoundary(const BoundaryCondition& bc) override;
   void setGamma(double gamma) override { gamma_ = gamma; }  // a vector-field notion: only a warning here
   void setCurvatureAlignment(double s) override { system_.setCurvatureAlignment(s); }
+  void setFeatures(const std::vector<int32_t>& edges) override;
   void resume() override;
 
   int32_t add(const ConstraintSpec& spec, DesignStats& stats) override;
@@ -40,13 +47,15 @@ class DirectionFieldSystem final : public FieldSystem {
   double weightScale() override { return system_.scale(); }
 
  private:
-  void addAll();  // every stored constraint's terms (the factor is made with them at the next solve)
+  void fixedTerms();  // the boundary's and the features' terms into the base
+  void addAll();      // every stored constraint's terms (the factor is made with them at the next solve)
 
   int symmetry_;
   const DesignMesh& mesh_;
   ConstraintSet& constraints_;
   double gamma_;
   PowerFieldSystem system_;
+  std::vector<FaceDirectionTerm> boundaryTerms_, featureTerms_;
 };
 
 }  // namespace tvf

@@ -4,11 +4,14 @@
 
 #include "design/direction_field_system.h"
 #include "design/one_form_system.h"
+#include "design/prescribed_field_system.h"
 
 namespace tvf {
 
 std::unique_ptr<FieldSystem> makeFieldSystem(int symmetry, const DesignMesh& mesh, ConstraintSet& constraints,
                                              const FieldSettings& settings) {
+  if (settings.exactSingularities || !constraints.specsOf(ConstraintKind::Singularity).empty())
+    return std::make_unique<PrescribedFieldSystem>(symmetry, mesh, constraints, settings);
   if (symmetry == 1) return std::make_unique<OneFormSystem>(mesh, constraints, settings);
   return std::make_unique<DirectionFieldSystem>(symmetry, mesh, constraints, settings);
 }

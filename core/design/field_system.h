@@ -8,6 +8,7 @@
 // read-outs made from its own unknowns.
 #include <Eigen/Core>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -28,6 +29,7 @@ struct FieldSolution {
   Eigen::VectorXd unknowns;         // a 1-form (one value per edge) or a power field (re, im per face)
   std::vector<double> oneForm;      // the vector field's unknowns as the read-outs hand them out; else empty
   std::vector<double> faceVectors;  // empty before the first solve
+  std::map<int32_t, double> prescribed;  // the singularities the solve's design prescribed: vertex -> index
 };
 
 // What a system is made with and must follow: the design's base settings and how its factor runs.
@@ -39,6 +41,10 @@ struct FieldSettings {
   int threads = 0;  // 0: the factor's default
   double memoryLimit = 0;
   bool deferUpdates = false;
+  std::vector<int32_t> featureEdges;  // mesh/feature_edges.h: the edges the field follows
+  // The field has exactly the prescribed singularities, none when none are prescribed (a torus's field
+  // without any): the prescribed-singularity system even for an empty set.
+  bool exactSingularities = false;
 };
 
 // A fixed-angle boundary is enforced this strongly relative to the mean diagonal, in either system.
@@ -56,6 +62,12 @@ class FieldSystem {
   virtual void setBoundary(const BoundaryCondition& bc) = 0;
   virtual void setGamma(double gamma) = 0;
   virtual void setCurvatureAlignment(double s) = 0;
+  // The edges whose direction the faces beside them take, strongly weighted (direction/feature_terms.h).
+  virtual void setFeatures(const std::vector<int32_t>& edges) = 0;
+  // Whether this system places the design's prescribed singularities (design/prescribed_field_system.h).
+  virtual bool prescribes() const { return false; }
+  // The design's singularities changed (added, moved or removed in the constraint set).
+  virtual void singularitiesChanged() {}
   // Takes the constraint set as it now is after the system was out of use (other constraints may have come
   // and gone); throws InputError naming what it cannot take, unchanged then.
   virtual void resume() = 0;
@@ -84,7 +96,9 @@ class FieldSystem {
 };
 
 // The system of symmetry N (1: the vector field) over the design's mesh and constraint set, both of which
-// must outlive it. Throws InputError naming what it cannot take (a source on a line field).
+// must outlive it: with prescribed singularities in the set (or settings.exactSingularities), the
+// prescribed-singularity system of that N.
+// Throws InputError naming what it cannot take (a source on a line field).
 std::unique_ptr<FieldSystem> makeFieldSystem(int symmetry, const DesignMesh& mesh, ConstraintSet& constraints,
                                              const FieldSettings& settings);
 

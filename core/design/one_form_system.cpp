@@ -6,7 +6,10 @@
 #include <utility>
 
 #include "common/input_error.h"
+#include "constraints/edge_rows.h"
 #include "field/whitney_reconstruction.h"
+#include "mesh/feature_edges.h"
+#include "mesh/mesh_geometry.h"
 
 namespace tvf {
 namespace {
@@ -38,6 +41,7 @@ OneFormSystem::OneFormSystem(const DesignMesh& mesh, ConstraintSet& constraints,
       factor_(kernelEdges(mesh.topology()), settings.ordering) {
   factor_.setEdgeGraph(mesh.topology().edgeVertices, mesh.topology().numVertices);
   configureFactor(factor_, settings);
+  setFeatures(settings.featureEdges);
 }
 
 int64_t OneFormSystem::unknowns() const {
@@ -48,6 +52,31 @@ void OneFormSystem::setBoundary(const BoundaryCondition& bc) {
   boundary_ = bc;
   baseStale_ = true;
   factor_.invalidate();
+}
+
+void OneFormSystem::setFeatures(const std::vector<int32_t>& edges) {
+  featureEdges_.clear();
+  featureValues_.clear();
+  const MeshTopology& t = mesh_.topology();
+  for (const FeatureCurve& curve : featureCurves(t, edges))
+    for (size_t i = 0; i < curve.edges.size(); ++i) {
+      const Eigen::Vector3d along = curve.signs[i] * edgeVector(mesh_.mesh(), t, curve.edges[i]).normalized();
+      for (int side = 0; side < 2; ++side)
+        for (const EdgeRow& row :
+             vectorRows(mesh_.mesh(), t, t.edgeFaces[2 * curve.edges[i] + side], along)) {
+          featureEdges_.push_back(row.edge);
+          featureValues_.push_back(row.value);
+        }
+    }
+  baseStale_ = true;
+  factor_.invalidate();
+}
+
+Eigen::VectorXd OneFormSystem::rightHandSide() {
+  Eigen::VectorXd b = constraints_.rightHandSide(ops_, scale_);
+  for (size_t i = 0; i < featureEdges_.size(); ++i)
+    b[featureEdges_[i]] += kBoundaryWeight * scale_ * featureValues_[i];
+  return b;
 }
 
 void OneFormSystem::setGamma(double gamma) {
@@ -77,6 +106,7 @@ void OneFormSystem::rebuildBase() {
     base_ += upperTriangle((kBoundaryWeight * scale_) * (Zt * ops_.boundaryRows));
     base_.makeCompressed();
   }
+  for (const int32_t e : featureEdges_) base_.coeffRef(e, e) += kBoundaryWeight * scale_;
   const double nonZeros = 2.0 * static_cast<double>(base_.nonZeros()) - static_cast<double>(base_.rows());
   nnzPerRowM_ = nonZeros / std::max<Eigen::Index>(1, base_.rows());
   baseStale_ = false;
@@ -132,7 +162,7 @@ void OneFormSystem::solve(FieldSolution& field, DesignStats& stats) {
   stats.smoothestEigenvalue = 0;
   if (baseStale_ || !factor_.current()) factorNow(stats);
   auto start = Clock::now();
-  const Eigen::VectorXd b = constraints_.rightHandSide(ops_, scale_);
+  const Eigen::VectorXd b = rightHandSide();
   stats.rhsMs = msSince(start);
   if (!b.allFinite()) throw InputError("the constraints give a right-hand side that is not finite");
   stats.warnings = constraints_.warnings(boundary_);
@@ -168,7 +198,7 @@ void OneFormSystem::vertexVectors(const FieldSolution& field, std::vector<double
 void OneFormSystem::assemble(SparseMatrix& A, Eigen::VectorXd& b) {
   requireBase();
   A = plusDiagonal(fullFromUpper(base_), constraintTerms());
-  b = constraints_.rightHandSide(ops_, scale_);
+  b = rightHandSide();
 }
 
 SparseMatrix OneFormSystem::baseMatrix() {

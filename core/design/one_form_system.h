@@ -19,6 +19,9 @@ class OneFormSystem final : public FieldSystem {
   void setBoundary(const BoundaryCondition& bc) override;
   void setGamma(double gamma) override;
   void setCurvatureAlignment(double) override {}  // a direction-field notion
+  // The faces beside each feature curve take the unit vector along it (oriented as the curve runs) as
+  // strongly weighted rows of the base (a vector constraint's three edge rows), like a fixed boundary's.
+  void setFeatures(const std::vector<int32_t>& edges) override;
   void resume() override;
 
   int32_t add(const ConstraintSpec& spec, DesignStats& stats) override;
@@ -38,6 +41,7 @@ class OneFormSystem final : public FieldSystem {
   void rebuildBase();
   void requireBase();
   DiagonalTerms constraintTerms() const;
+  Eigen::VectorXd rightHandSide();
   // Constraint id's rows at relative weight `weight` into (or with downdate, out of) the factor.
   void updateRows(int32_t id, double weight, bool downdate, DesignStats& stats);
 
@@ -51,6 +55,8 @@ class OneFormSystem final : public FieldSystem {
   SparseMatrix base_;
   double scale_ = 1;
   double nnzPerRowM_ = 0;
+  std::vector<int32_t> featureEdges_;
+  std::vector<double> featureValues_;
   ShiftedFactor factor_;
   // The next solve's face vectors, swapped in once known finite; between solves the previous field's, which
   // the vertex vectors' threads take for their partial sums.

@@ -38,6 +38,11 @@ class PowerFieldSystem {
   // s >= 0: how strongly the field is pulled towards the principal curvature directions (0: not at all).
   void setCurvatureAlignment(double s);
 
+  // Rotations added to the Levi-Civita connection's angles (one per entry, FaceConnection order; empty:
+  // none): a trivial connection's (direction/trivial_connection.h). H changes, so the factor is made again
+  // (its ordering kept: the pattern is the same).
+  void setConnectionRotations(const std::vector<double>& rotations);
+
   // Directions the boundary condition fixes (direction/direction_constraints.h), at relative weight `weight`:
   // part of the base matrix (they change only with the boundary condition), so the factor is made again.
   void setBoundaryTerms(std::vector<FaceDirectionTerm> terms, double weight);
@@ -75,6 +80,7 @@ class PowerFieldSystem {
   const MeshGeometry& geometry_;
   int symmetry_;
   FaceFrames frames_;
+  FaceConnection leviCivita_;
   SparseMatrix connection_;  // H alone
   SparseMatrix base_;        // H + the boundary terms, upper triangle
   std::vector<FaceDirectionTerm> boundaryTerms_;
