@@ -104,7 +104,9 @@ test.describe.serial('singularity and feature tools', () => {
   test('Singularity tool: 8 clicks of +1/4 on a sphere give exactly those singularities, all prescribed', async () => {
     const chi = mesh.positions.length / 3 - mesh.edges.length / 2 + mesh.triangles.length / 3;
     expect(chi).toBe(2);
+    await expect(page.locator('#show-singularities')).not.toBeChecked();
     await useTool('Singularity');
+    await expect(page.locator('#show-singularities'), 'the tool shows where the field puts the rest').toBeChecked();
     await expect(page.locator('#singularity-index option')).toHaveCount(8); // +-1/4, +-1/2, +-3/4, +-1
     await page.locator('#singularity-index').selectOption('1');
     const targets = await spreadVertices(8);

@@ -75,6 +75,10 @@ export function panelActions(d) {
     },
     onTool: (tool) => {
       d.tools?.setTool(tool); // bindUi selects orbit before the tools exist
+      // Placing singularities means seeing where the field puts the rest: the Singularities view comes on (its box
+      // ticked, so it stays a choice the user sees and can undo).
+      const sync = d.viewSync;
+      if (tool === 'singularity' && sync && !sync.views.singularities) sync.set({ singularities: true });
       d.onTool(tool);
     },
     onUndo: editable(() => d.edit('undo', s().step(false))),
