@@ -271,7 +271,7 @@ test.describe.serial('singularity and feature tools', () => {
     expect(errors).toEqual([]);
   });
 
-  test('the feature angle sets the feature edges of a box; the Feature tool adds and removes edges', async () => {
+  test('box: the feature angle sets the feature edges, the Feature tool adds and removes some', async ({}, testInfo) => {
     await loadOff(boxOff(4), 'box.off');
     const angle = page.locator('#feature-angle');
     await expect(angle).toHaveValue('35');
@@ -317,6 +317,7 @@ test.describe.serial('singularity and feature tools', () => {
     const keyOf = ([a, b]) => `${Math.min(a, b)},${Math.max(a, b)}`;
     expect(add.map(keyOf).sort()).toEqual([flat, e0, e1].map(keyOf).sort());
     expect((await evaluate(() => window.tvf.history())).undo.length).toBe(steps + 1);
+    await page.screenshot({ path: testInfo.outputPath('box-features.png') });
     await key('Control+z');
     await expect.poll(async () => (await evaluate(() => window.tvf.features())).edges.length).toBe(48);
     expect(errors).toEqual([]);
