@@ -53,6 +53,26 @@ std::vector<SurfacePoint> stripStroke(const SurfaceMesh& mesh, const MeshTopolog
   return points;
 }
 
+// The first vertex from `start` on (cyclically) that is interior and used by a face, other than `avoid`: a
+// vertex that can carry a prescribed singularity.
+int32_t interiorVertex(const MeshTopology& t, int32_t start, int32_t avoid) {
+  for (int32_t k = 0; k < t.numVertices; ++k) {
+    const int32_t v = (start + k) % t.numVertices;
+    if (v != avoid && !t.isBoundaryVertex[v] && t.vertexFaceCount[v] > 0) return v;
+  }
+  return -1;
+}
+
+// A neighbour of v across an edge that can carry a singularity (one step of a drag), other than `avoid`.
+int32_t interiorNeighbour(const MeshTopology& t, int32_t v, int32_t avoid) {
+  for (int32_t k = t.vertexEdgeStart[v]; k < t.vertexEdgeStart[v + 1]; ++k) {
+    const int32_t e = t.vertexEdgeList[k];
+    const int32_t w = t.edgeVertices[2 * e] == v ? t.edgeVertices[2 * e + 1] : t.edgeVertices[2 * e];
+    if (w != avoid && !t.isBoundaryVertex[w]) return w;
+  }
+  return -1;
+}
+
 }  // namespace
 
 namespace {
@@ -65,8 +85,39 @@ struct Samples {
   int strokeEdges = 0;      // edges the benchmark stroke crosses (one per step between adjacent faces)
   int strokeRefactors = 0;  // stroke solves that refactored (an updated factor found wanting): timings void
   int strokeIncrementalSolves = 0;  // stroke solves whose forward substitution was incremental
+  // A prescribed singularity placed (the second of a +1/N, -1/N pair, so the total index stays) and then
+  // moved to a neighbouring vertex, each with its solve and read-outs; and the factorizations they made.
+  std::vector<double> singularityPlace, singularityMove;
+  int64_t singularityFactorizations = 0;
   std::string factorKind;
 };
+
+// Placing and moving a prescribed singularity as the page's Singularity tool does: the +1/N stays where it
+// was placed (untimed), the -1/N is placed and then dragged one vertex on, each edit followed by the solve.
+void timeSingularityEdits(Designer& designer, int r, Samples& s) {
+  const MeshTopology& t = designer.topology();
+  const int32_t nV = t.numVertices;
+  const int32_t plus = interiorVertex(t, (r * 7919 + 101) % nV, -1);
+  const int32_t minus = interiorVertex(t, (r * 104729 + nV / 2) % nV, plus);
+  const int32_t next = minus < 0 ? -1 : interiorNeighbour(t, minus, plus);
+  if (plus < 0 || minus < 0 || next < 0) return;  // no room for a pair (a mesh that is nearly all boundary)
+  const double index = 1.0 / designer.symmetry();
+  designer.clearConstraints();
+  designer.addSingularity(plus, index);
+  designer.solve();
+  const int64_t factorizationsBefore = designer.stats().factorizations;
+  int32_t id = 0;
+  s.singularityPlace.push_back(timeMs([&] {
+    id = designer.addSingularity(minus, -index);
+    designer.solve();  // with the read-outs, as the page gets them
+  }));
+  s.singularityMove.push_back(timeMs([&] {
+    designer.moveSingularity(id, next);
+    designer.solve();  // with the read-outs, as the page gets them
+  }));
+  s.singularityFactorizations += designer.stats().factorizations - factorizationsBefore;
+  designer.clearConstraints();
+}
 
 void runRepeat(Designer& designer, int r, bool metis, Samples& s) {
   const int32_t nF = designer.mesh().numFaces();
@@ -137,6 +188,14 @@ void runRepeat(Designer& designer, int r, bool metis, Samples& s) {
   s.nnzPerRowM = designer.stats().nnzPerRowM;
   s.nnzPerRowL = designer.stats().nnzPerRowL;
   s.factorKind = designer.stats().factorKind;
+  timeSingularityEdits(designer, r, s);
+}
+
+// The median of the placing and moving edits together: what one singularity edit costs the page.
+double singularityEditMedian(const Samples& s) {
+  std::vector<double> edits = s.singularityPlace;
+  edits.insert(edits.end(), s.singularityMove.begin(), s.singularityMove.end());
+  return median(edits);
 }
 
 nlohmann::json summary(const Samples& s, bool metis) {
@@ -159,6 +218,10 @@ nlohmann::json summary(const Samples& s, bool metis) {
           {"strokeIncrementalSolves", s.strokeIncrementalSolves},
           {"reconstructMs", median(s.reconstruct)},
           {"smoothestMs", median(s.smoothest)},
+          {"singularityEditMs", singularityEditMedian(s)},
+          {"singularityPlaceMs", median(s.singularityPlace)},
+          {"singularityMoveMs", median(s.singularityMove)},
+          {"singularityFactorizations", s.singularityFactorizations},
           {"ordering", metis ? "metis" : "amd"},
           {"factorKind", s.factorKind}};
 }

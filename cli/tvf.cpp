@@ -14,6 +14,9 @@
 #include "design/mesh_info.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_io.h"
+#include "io/rosy_file.h"
+#include "io/sharp_file.h"
+#include "io/sing_file.h"
 
 namespace {
 
@@ -23,10 +26,12 @@ int usage() {
   std::cerr << "usage:\n"
                "  tvf info MESH\n"
                "  tvf design MESH DESIGN.json [-o FIELD.json] [--ignore-fingerprint] [--hodge]\n"
+               "             [--sing IN.sing]\n"
                "  tvf export MESH DESIGN.json [--glb OUT.glb] [--flowmap OUT.png] [--size N]\n"
                "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
                "             [--no-embed-flowmap] [--component whole|exact|coexact|harmonic]\n"
-               "             [--rawfield OUT.rawfield]\n"
+               "             [--rawfield OUT.rawfield] [--sing OUT.sing] [--rosy OUT.rosy]\n"
+               "             [--sharp OUT.sharp]\n"
                "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
                "            [--threads N] [--symmetry N]\n"
                "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
@@ -42,7 +47,12 @@ int usage() {
                "faceDirections (one unit representative per face) and fractional singularity indices;\n"
                "bench --symmetry N times that field's system. export of such a design combs the directions\n"
                "per atlas chart for the flow map and the GLB (KHR_materials_anisotropy, _FIELD); --rawfield\n"
-               "writes all N directions per face in Directional's raw field format (docs/export.md).\n";
+               "writes all N directions per face in Directional's raw field format (docs/export.md).\n"
+               "Prescribed singularities and sharp features: a design's \"singularities\",\n"
+               "\"featureAngle\" and \"featureEdges\" (docs/design-format.md). design --sing adds a\n"
+               "Directional .sing file's singularities to the design's (the file's N is the symmetry of\n"
+               "a design that names none). export --sing writes the field's singularities (Directional),\n"
+               "--rosy the cross field (QuadWild; symmetry 4), --sharp the feature edges (QuadWild).\n";
   return kUsageError;
 }
 
@@ -66,12 +76,52 @@ int info(const std::string& path) {
   return 0;
 }
 
+// A field of directions rather than a 1-form: symmetry N >= 2, or any N with prescribed singularities (they
+// make even N = 1 a unit direction field; design/designer.h).
+bool directionField(const tvf::Designer& designer) {
+  if (designer.symmetry() != 1) return true;
+  for (const tvf::ConstraintSpec& s : designer.constraints())
+    if (s.kind == tvf::ConstraintKind::Singularity) return true;
+  return false;
+}
+
+std::string readTextFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw tvf::InputError("cannot open " + path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void writeTextFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  if (!(out << text)) throw tvf::InputError("cannot write " + path);
+}
+
+// Directional's .sing added to the design's "singularities": the file's N becomes the design's symmetry when
+// the design names none; otherwise each index k/N must fit the design's symmetry (applyDesignDocument
+// checks).
+void addSingFile(nlohmann::json& design, const std::string& singPath) {
+  tvf::SingFile file;
+  try {
+    file = tvf::readSingFile(readTextFile(singPath));
+  } catch (const tvf::InputError& e) {
+    throw tvf::InputError(singPath + ": " + e.what());
+  }
+  if (!design.is_object()) return;  // applyDesignDocument names the problem
+  if (!design.contains("symmetry") && file.symmetry != 1) design["symmetry"] = file.symmetry;
+  nlohmann::json& list = design["singularities"];
+  if (list.is_null()) list = nlohmann::json::array();
+  if (!list.is_array()) return;
+  for (const auto& s : file.singularities) list.push_back({{"vertex", s.vertex}, {"index", s.index}});
+}
+
 int design(const std::string& meshPath, const std::string& designPath, const std::string& outPath,
-           bool checkFingerprint, bool hodge) {
+           bool checkFingerprint, bool hodge, const std::string& singPath) {
   tvf::Designer designer(tvf::loadMesh(meshPath));
   designer.setMetisOrdering(true);
+  nlohmann::json document = readJsonFile(designPath);
+  if (!singPath.empty()) addSingFile(document, singPath);
   try {
-    tvf::applyDesignDocument(designer, readJsonFile(designPath), checkFingerprint);
+    tvf::applyDesignDocument(designer, document, checkFingerprint);
   } catch (const tvf::InputError& e) {
     const std::string why = e.what();
     throw tvf::InputError(
@@ -80,11 +130,11 @@ int design(const std::string& meshPath, const std::string& designPath, const std
   }
   designer.solve();
   nlohmann::json field = tvf::fieldDocument(designer);
-  if (hodge && designer.symmetry() != 1)
+  if (hodge && directionField(designer))
     throw tvf::InputError(
-        "--hodge: the Hodge decomposition is of vector fields (symmetry 1); this design has "
-        "symmetry " +
-        std::to_string(designer.symmetry()));
+        "--hodge: the Hodge decomposition is of vector fields (symmetry 1, no prescribed singularity); this "
+        "design has symmetry " +
+        std::to_string(designer.symmetry()) + (designer.symmetry() == 1 ? " and singularities" : ""));
   if (hodge) field["hodge"] = tvf::hodgeDocument(designer.hodgeDecomposition());
   const std::string text = field.dump();
   if (outPath.empty()) {
@@ -97,11 +147,13 @@ int design(const std::string& meshPath, const std::string& designPath, const std
 }
 
 int designCommand(int argc, char** argv) {
-  std::string out;
+  std::string out, sing;
   bool checkFingerprint = true, hodge = false;
   for (int k = 4; k < argc; ++k) {
     if (std::strcmp(argv[k], "-o") == 0 && k + 1 < argc)
       out = argv[++k];
+    else if (std::strcmp(argv[k], "--sing") == 0 && k + 1 < argc)
+      sing = argv[++k];
     else if (std::strcmp(argv[k], "--ignore-fingerprint") == 0)
       checkFingerprint = false;
     else if (std::strcmp(argv[k], "--hodge") == 0)
@@ -109,7 +161,7 @@ int designCommand(int argc, char** argv) {
     else
       return usage();
   }
-  return design(argv[2], argv[3], out, checkFingerprint, hodge);
+  return design(argv[2], argv[3], out, checkFingerprint, hodge, sing);
 }
 
 std::vector<uint8_t> readBytes(const std::string& path) {
@@ -145,10 +197,23 @@ double numberArgument(const std::string& flag, const char* text) {
   return value;
 }
 
+// The quad-meshing tools' files (docs/export.md): Directional's .sing (the field's singularities, prescribed
+// and free alike, so that index prescription there reproduces this field's), QuadWild's .rosy and .sharp.
+void writeInteropFiles(const tvf::Designer& designer, const std::string& singPath,
+                       const std::string& rosyPath, const std::string& sharpPath) {
+  if (!singPath.empty())
+    writeTextFile(singPath, tvf::writeSingFile(designer.symmetry(), designer.singularities()));
+  if (!rosyPath.empty())
+    writeTextFile(rosyPath, tvf::writeRosyFile(designer.faceVectors(), designer.symmetry()));
+  if (!sharpPath.empty())
+    writeTextFile(sharpPath, tvf::writeSharpFile(designer.topology(), designer.geometry(),
+                                                 designer.mesh().positions, designer.featureEdges()));
+}
+
 int exportCommand(int argc, char** argv) {
   if (argc < 4) return usage();
   const std::string meshPath = argv[2], designPath = argv[3];
-  std::string glbPath, flowMapPath, rawFieldPath;
+  std::string glbPath, flowMapPath, rawFieldPath, singPath, rosyPath, sharpPath;
   tvf::FieldExportOptions options;
   tvf::FieldComponent component = tvf::FieldComponent::Whole;
   for (int k = 4; k < argc; ++k) {
@@ -165,6 +230,12 @@ int exportCommand(int argc, char** argv) {
       flowMapPath = value;
     } else if (a == "--rawfield") {
       rawFieldPath = value;
+    } else if (a == "--sing") {
+      singPath = value;
+    } else if (a == "--rosy") {
+      rosyPath = value;
+    } else if (a == "--sharp") {
+      sharpPath = value;
     } else if (a == "--size") {
       options.size = static_cast<int>(numberArgument(a, value));
     } else if (a == "--convention") {
@@ -182,30 +253,37 @@ int exportCommand(int argc, char** argv) {
       return usage();
     }
   }
-  if (glbPath.empty() && flowMapPath.empty() && rawFieldPath.empty())
-    throw tvf::InputError("nothing to export: give --glb, --flowmap and/or --rawfield");
+  if (glbPath.empty() && flowMapPath.empty() && rawFieldPath.empty() && singPath.empty() &&
+      rosyPath.empty() && sharpPath.empty())
+    throw tvf::InputError(
+        "nothing to export: give --glb, --flowmap, --rawfield, --sing, --rosy and/or --sharp");
   const tvf::MeshFormat format = tvf::formatFromPath(meshPath);
   tvf::Designer designer(tvf::loadMesh(meshPath));
   designer.setMetisOrdering(true);
   tvf::applyDesignDocument(designer, readDesign(designPath));
   const int symmetry = designer.symmetry();
-  if (symmetry != 1 && component != tvf::FieldComponent::Whole)
+  const bool directions = directionField(designer);
+  if (directions && component != tvf::FieldComponent::Whole)
     throw tvf::InputError(
-        "--component: the Hodge decomposition is of vector fields (symmetry 1); this design "
-        "has symmetry " +
-        std::to_string(symmetry));
+        "--component: the Hodge decomposition is of vector fields (symmetry 1, no prescribed singularity); "
+        "this design has symmetry " +
+        std::to_string(symmetry) + (symmetry == 1 ? " and singularities" : ""));
+  if (!rosyPath.empty() && symmetry != 4)
+    throw tvf::InputError("--rosy: .rosy holds a cross field (symmetry 4); this design has symmetry " +
+                          std::to_string(symmetry));
   designer.solve();
   if (!rawFieldPath.empty()) {
-    if (symmetry == 1)
+    if (!directions)
       throw tvf::InputError(
           "--rawfield: a raw field holds line or cross fields; this design is a vector field "
           "(symmetry 1)");
     const std::string text = tvf::exportRawField(designer.geometry(), designer.faceVectors(), symmetry);
     writeBytes(rawFieldPath, std::vector<uint8_t>(text.begin(), text.end()));
   }
+  writeInteropFiles(designer, singPath, rosyPath, sharpPath);
   if (glbPath.empty() && flowMapPath.empty()) return 0;
   // The whole field, or one part of its Hodge decomposition; the GLB still embeds the whole design.
-  const std::vector<double> oneForm = symmetry != 1 ? std::vector<double>{}
+  const std::vector<double> oneForm = directions ? std::vector<double>{}
                                       : component == tvf::FieldComponent::Whole
                                           ? designer.oneForm()
                                           : tvf::componentOneForm(designer.hodgeDecomposition(), component);
@@ -220,11 +298,11 @@ int exportCommand(int argc, char** argv) {
               << "\n";
   }
   if (!flowMapPath.empty()) {
-    writeBytes(flowMapPath, symmetry == 1 ? tvf::exportFlowMapPng(mesh, designer.topology(), atlas.cornerUVs,
-                                                                  oneForm, options)
-                                          : tvf::exportDirectionFlowMapPng(
-                                                mesh, designer.topology(), designer.geometry(),
-                                                atlas.cornerUVs, designer.faceVectors(), symmetry, options));
+    writeBytes(flowMapPath, !directions ? tvf::exportFlowMapPng(mesh, designer.topology(), atlas.cornerUVs,
+                                                                oneForm, options)
+                                        : tvf::exportDirectionFlowMapPng(
+                                              mesh, designer.topology(), designer.geometry(), atlas.cornerUVs,
+                                              designer.faceVectors(), symmetry, options));
   }
   if (!glbPath.empty()) {
     std::unique_ptr<tvf::GltfSource> source;
@@ -236,12 +314,11 @@ int exportCommand(int argc, char** argv) {
                               parent.empty() ? "." : parent, meshPath));
     }
     writeBytes(glbPath,
-               symmetry == 1
-                   ? tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(), atlas,
-                                         oneForm, tvf::designDocument(designer), options)
-                   : tvf::exportDirectionGlb(mesh, designer.topology(), designer.geometry(), source.get(),
-                                             atlas, designer.faceVectors(), symmetry,
-                                             tvf::designDocument(designer), options));
+               !directions ? tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(),
+                                                 atlas, oneForm, tvf::designDocument(designer), options)
+                           : tvf::exportDirectionGlb(mesh, designer.topology(), designer.geometry(),
+                                                     source.get(), atlas, designer.faceVectors(), symmetry,
+                                                     tvf::designDocument(designer), options));
   }
   return 0;
 }

@@ -1,5 +1,7 @@
 #include "design/design_document.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -26,6 +28,8 @@ const char* kindName(ConstraintKind k) {
       return "sink";
     case ConstraintKind::Vortex:
       return "vortex";
+    case ConstraintKind::Singularity:
+      return "singularity";
   }
   return "";
 }
@@ -87,8 +91,10 @@ std::string describeFingerprint(const json& f) {
 }
 
 void checkSchema(const json& doc) {
-  static const std::set<std::string> known{"schema",      "mesh",     "boundary",          "gamma",
-                                           "constraints", "symmetry", "curvatureAlignment"};
+  static const std::set<std::string> known{
+      "schema",       "mesh",        "boundary",           "gamma",
+      "constraints",  "symmetry",    "curvatureAlignment", "singularities",
+      "featureAngle", "featureEdges"};
   if (doc.contains("schema")) {
     const json& s = doc["schema"];
     if (!s.is_string() || s.get<std::string>() != kDesignSchema)
@@ -98,8 +104,8 @@ void checkSchema(const json& doc) {
   for (const auto& item : doc.items())
     if (!known.count(item.key()))
       throw InputError("not a design file: unknown key \"" + item.key() +
-                       "\" (a design has schema, mesh, boundary, gamma, symmetry, curvatureAlignment and "
-                       "constraints)");
+                       "\" (a design has schema, mesh, boundary, gamma, symmetry, curvatureAlignment, "
+                       "constraints, singularities, featureAngle and featureEdges)");
   if (!doc.contains("constraints")) throw InputError("not a design file: it has no \"constraints\" list");
 }
 
@@ -115,6 +121,68 @@ void checkFingerprint(const Designer& designer, const json& doc) {
       saved["hash"] != current["hash"])
     throw InputError("this design was made for another mesh (" + describeFingerprint(saved) +
                      "); the open mesh has " + describeFingerprint(current));
+}
+
+// "singularities": [{"vertex": v, "index": k}, ...] as Singularity specs, in the file's order.
+std::vector<ConstraintSpec> singularitiesFromJson(const json& doc) {
+  std::vector<ConstraintSpec> specs;
+  if (!doc.contains("singularities")) return specs;
+  const json& list = doc["singularities"];
+  if (!list.is_array())
+    throw InputError("design: \"singularities\" must be a list of {\"vertex\", \"index\"}");
+  for (size_t k = 0; k < list.size(); ++k) {
+    const std::string where = "singularities[" + std::to_string(k) + "]";
+    const json& entry = list[k];
+    if (!entry.is_object() || !entry.contains("index") || entry.size() != 2)
+      throw InputError(where + ": must be {\"vertex\": v, \"index\": k}");
+    ConstraintSpec s;
+    s.kind = ConstraintKind::Singularity;
+    s.element = integer(entry, "vertex", where);
+    s.value = number(entry, "index", 0.0, where);
+    specs.push_back(s);
+  }
+  return specs;
+}
+
+// The design's sharp features: "featureAngle" (absent: 0, none detected, so designs made before features
+// replay unchanged) and "featureEdges": {"add": [[a, b], ...], "remove": [...]}.
+struct FeatureSettings {
+  double angle = 0;
+  std::vector<std::array<int32_t, 2>> add, remove;
+};
+
+std::vector<std::array<int32_t, 2>> vertexPairs(const json& list, const std::string& what) {
+  if (!list.is_array()) throw InputError(what + " must be a list of vertex pairs [a, b]");
+  std::vector<std::array<int32_t, 2>> pairs;
+  for (size_t k = 0; k < list.size(); ++k) {
+    const std::string where = what + " " + std::to_string(k);
+    double ab[2];
+    numbers(list[k], ab, 2, where);
+    pairs.push_back({elementIndex(ab[0], where + " vertex"), elementIndex(ab[1], where + " vertex")});
+  }
+  return pairs;
+}
+
+FeatureSettings featuresFromJson(const json& doc) {
+  FeatureSettings f;
+  f.angle = number(doc, "featureAngle", 0.0, "design");
+  if (!doc.contains("featureEdges")) return f;
+  const json& edges = doc["featureEdges"];
+  if (!edges.is_object())
+    throw InputError("design: \"featureEdges\" must be {\"add\": [...], \"remove\": [...]}");
+  for (const auto& item : edges.items())
+    if (item.key() != "add" && item.key() != "remove")
+      throw InputError("design: unknown key \"" + item.key() +
+                       "\" in \"featureEdges\" (it has add and remove)");
+  if (edges.contains("add")) f.add = vertexPairs(edges["add"], "featureEdges.add");
+  if (edges.contains("remove")) f.remove = vertexPairs(edges["remove"], "featureEdges.remove");
+  return f;
+}
+
+json pairList(const std::vector<std::array<int32_t, 2>>& pairs) {
+  json out = json::array();
+  for (const auto& p : pairs) out.push_back({p[0], p[1]});
+  return out;
 }
 
 }  // namespace
@@ -160,6 +228,13 @@ ConstraintSpec constraintFromJson(const json& c, size_t index) {
   } else if (type == "vortex") {
     s.kind = ConstraintKind::Vortex;
     s.element = integer(c, "face", where);
+  } else if (type == "singularity") {
+    // The page's constraint list and undo speak of a singularity as of any constraint; a design file lists
+    // them under its own "singularities" key (applyDesignDocument refuses them among the constraints).
+    s.kind = ConstraintKind::Singularity;
+    s.element = integer(c, "vertex", where);
+    if (!c.contains("index")) throw InputError(where + ": a singularity needs an \"index\"");
+    s.value = number(c, "index", 0.0, where);
   } else {
     throw InputError(where + ": unknown type \"" + type + "\"");
   }
@@ -196,6 +271,10 @@ json constraintToJson(const ConstraintSpec& s) {
     case ConstraintKind::Vortex:
       c["face"] = s.element;
       c["strength"] = s.strength;
+      break;
+    case ConstraintKind::Singularity:
+      c["vertex"] = s.element;
+      c["index"] = s.value;
       break;
   }
   return c;
@@ -253,16 +332,31 @@ void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) 
   std::vector<ConstraintSpec> specs;
   if (doc.contains("constraints")) {
     if (!doc["constraints"].is_array()) throw InputError("design: \"constraints\" must be a list");
-    for (size_t k = 0; k < doc["constraints"].size(); ++k)
+    for (size_t k = 0; k < doc["constraints"].size(); ++k) {
       specs.push_back(constraintFromJson(doc["constraints"][k], k));
+      if (specs.back().kind == ConstraintKind::Singularity)
+        throw InputError(
+            "constraint " + std::to_string(k) +
+            ": a singularity belongs in the design's \"singularities\" list, not in \"constraints\"");
+    }
   }
+  const size_t numConstraints = specs.size();
+  for (const ConstraintSpec& s : singularitiesFromJson(doc)) specs.push_back(s);
+  const FeatureSettings features = featuresFromJson(doc);
   // Apply to a scratch copy of the settings first so a bad entry leaves the designer untouched.
   const BoundaryCondition oldBc = designer.boundary();
   const double oldGamma = designer.gamma();
   const int oldSymmetry = designer.symmetry();
   const double oldAlignment = designer.curvatureAlignment();
-  const std::vector<ConstraintSpec> oldSpecs = designer.constraints();
-  const auto replace = [&](const BoundaryCondition& b, double g, int n, double s,
+  const std::vector<ConstraintSpec> oldSpecs = designer.constraints();  // singularities among them
+  const FeatureSettings oldFeatures{designer.featureAngle(), designer.featureEdgesAdded(),
+                                    designer.featureEdgesRemoved()};
+  // Constraints first, then the prescribed singularities (the order of their ids in the saved file).
+  const auto where = [&](size_t k) {
+    if (k < numConstraints) return "constraint " + std::to_string(k);
+    return "singularities[" + std::to_string(k - numConstraints) + "]";
+  };
+  const auto replace = [&](const BoundaryCondition& b, double g, int n, double s, const FeatureSettings& f,
                            const std::vector<ConstraintSpec>& list, bool annotate) {
     designer.setBoundary(b);
     designer.setGamma(g);
@@ -270,26 +364,35 @@ void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) 
     designer.setCurvatureAlignment(0);  // before the symmetry, which refuses an alignment it cannot take
     designer.setSymmetry(n);
     designer.setCurvatureAlignment(s);
+    designer.setFeatures(f.angle, f.add, f.remove);
     for (size_t k = 0; k < list.size(); ++k) {
       try {
         designer.add(list[k]);
       } catch (const InputError& e) {
         if (!annotate) throw;
-        throw InputError("constraint " + std::to_string(k) + ": " + e.what());
+        throw InputError(where(k) + ": " + e.what());
       }
     }
   };
   try {
-    replace(bc, gamma, symmetry, alignment, specs, true);
+    replace(bc, gamma, symmetry, alignment, features, specs, true);
   } catch (const InputError&) {
-    replace(oldBc, oldGamma, oldSymmetry, oldAlignment, oldSpecs, false);
+    replace(oldBc, oldGamma, oldSymmetry, oldAlignment, oldFeatures, oldSpecs, false);
     throw;
   }
 }
 
 json designDocument(const Designer& designer) {
   json constraints = json::array();
-  for (const auto& s : designer.constraints()) constraints.push_back(constraintToJson(s));
+  std::vector<ConstraintSpec> singularities;
+  for (const auto& s : designer.constraints()) {
+    if (s.kind == ConstraintKind::Singularity)
+      singularities.push_back(s);
+    else
+      constraints.push_back(constraintToJson(s));
+  }
+  std::stable_sort(singularities.begin(), singularities.end(),
+                   [](const ConstraintSpec& a, const ConstraintSpec& b) { return a.id < b.id; });
   json doc = {{"schema", kDesignSchema},
               {"mesh", designerFingerprint(designer)},
               {"boundary", boundaryToJson(designer.boundary())},
@@ -298,6 +401,15 @@ json designDocument(const Designer& designer) {
   // Written only when not the default, so a vector-field design reads (and hashes) as it always did.
   if (designer.symmetry() != 1) doc["symmetry"] = designer.symmetry();
   if (designer.curvatureAlignment() != 0) doc["curvatureAlignment"] = designer.curvatureAlignment();
+  if (!singularities.empty()) {
+    json list = json::array();
+    for (const auto& s : singularities) list.push_back({{"vertex", s.element}, {"index", s.value}});
+    doc["singularities"] = list;
+  }
+  if (designer.featureAngle() != 0) doc["featureAngle"] = designer.featureAngle();
+  if (!designer.featureEdgesAdded().empty() || !designer.featureEdgesRemoved().empty())
+    doc["featureEdges"] = {{"add", pairList(designer.featureEdgesAdded())},
+                           {"remove", pairList(designer.featureEdgesRemoved())}};
   return doc;
 }
 
@@ -324,6 +436,11 @@ json statsJson(const DesignStats& s) {
           {"factorizations", s.factorizations},
           {"inverseIterations", s.inverseIterations},
           {"smoothestEigenvalue", s.smoothestEigenvalue},
+          {"singularityMode", s.singularityMode},
+          {"eulerCharacteristic", s.eulerCharacteristic},
+          {"prescribedIndex", s.prescribedIndex},
+          {"freeIndex", s.freeIndex},
+          {"featureEdges", s.featureEdges},
           {"warnings", s.warnings}};
 }
 
@@ -333,18 +450,23 @@ json fieldDocument(const Designer& designer) {
   for (size_t k = 0; k + 1 < ev.size(); k += 2) edges.push_back({ev[k], ev[k + 1]});
   json singularities = json::array();
   for (const auto& s : designer.singularities())
-    singularities.push_back({{"vertex", s.vertex}, {"index", s.index}});
-  if (designer.symmetry() != 1)
+    singularities.push_back({{"vertex", s.vertex}, {"index", s.index}, {"prescribed", s.prescribed}});
+  json features = json::array();
+  for (const int32_t e : designer.featureEdges()) features.push_back({ev[2 * e], ev[2 * e + 1]});
+  // With prescribed singularities even N = 1 is a unit direction field (design/designer.h): no 1-form.
+  if (designer.symmetry() != 1 || designer.oneForm().empty())
     return {{"symmetry", designer.symmetry()},
             {"faceDirections", vec3List(designer.faceVectors())},
             {"vertexDirections", vec3List(designer.vertexVectors())},
             {"singularities", singularities},
+            {"featureEdges", features},
             {"stats", statsJson(designer.stats())}};
   return {{"edges", edges},
           {"oneForm", designer.oneForm()},
           {"faceVectors", vec3List(designer.faceVectors())},
           {"vertexVectors", vec3List(designer.vertexVectors())},
           {"singularities", singularities},
+          {"featureEdges", features},
           {"stats", statsJson(designer.stats())}};
 }
 

@@ -13,15 +13,21 @@ inline constexpr const char* kDesignSchema = "tvf-design/1";
 // float32, and the triangles. Rounding makes the page (wasm) and the CLI agree on any mesh they parse alike.
 nlohmann::json meshFingerprint(const SurfaceMesh& mesh);
 
-// Replaces the designer's boundary, gamma and constraints with the document's. Throws InputError naming the
-// offending entry — also for an unknown schema or key, a document without "constraints", and (unless
-// checkFingerprint is false) a "mesh" fingerprint that is not the designer's mesh; on error the designer is
-// left as it was.
+// Replaces the designer's boundary, gamma, symmetry, sharp features ("featureAngle", "featureEdges"),
+// constraints and prescribed singularities ("singularities", added after the constraints) with the
+// document's. Throws InputError naming the offending entry (a singularity at a boundary vertex, an index that
+// is not a multiple of 1/N, two on one vertex, a feature pair that is not a mesh edge, ...) — also for an
+// unknown schema or key, a document without "constraints", and (unless checkFingerprint is false) a "mesh"
+// fingerprint that is not the designer's mesh; on error the designer is left as it was.
 void applyDesignDocument(Designer& designer, const nlohmann::json& document, bool checkFingerprint = true);
-// With "schema" and the mesh fingerprint ("mesh").
+// With "schema" and the mesh fingerprint ("mesh"); the Singularity specs go to "singularities" in id order,
+// not to "constraints". Keys at their defaults (symmetry 1, no singularity, feature angle 0, no feature
+// edits) are left out, so older designs read and hash as they did.
 nlohmann::json designDocument(const Designer& designer);
 
-// edges, oneForm, faceVectors, vertexVectors, singularities, stats (after solve()).
+// edges, oneForm, faceVectors, vertexVectors, singularities (each with "prescribed"), featureEdges (the
+// vertex pairs in use), stats (after solve()); for a direction field faceDirections and vertexDirections
+// instead.
 nlohmann::json fieldDocument(const Designer& designer);
 nlohmann::json statsJson(const DesignStats& stats);
 
