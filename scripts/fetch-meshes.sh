@@ -20,7 +20,7 @@ DATA=$ROOT/bench-data
 MESHES=$DATA/meshes
 # Edge counts (from `tvf info`): homer 14.8k, knot2 17.3k, lion-head 25.0k, camel 29.3k, mannequin-devil 38.9k,
 # man 52.5k, diplodocus 71.9k, armadillo 78.0k, bunny00 113.1k, refined_elephant 133.4k.
-NAMES=(homer knot2 lion-head camel mannequin-devil man diplodocus armadillo bunny00 refined_elephant)
+NAMES=(homer knot2 lion-head camel mannequin-devil man diplodocus armadillo bunny00 refined_elephant fandisk_large)
 BIG=armadillo-sub2   # armadillo subdivided twice: 1,248,000 edges
 BIGGER=bunny00-sub2  # bunny00 subdivided twice: 1,809,792 edges (the page's size limit, docs/benchmarks.md)
 
@@ -114,5 +114,12 @@ for pair in "$BIG:armadillo" "$BIGGER:bunny00"; do
   node "$ROOT/scripts/subdivide-off.mjs" "$MESHES/$base.off" "$MESHES/$name.off.tmp" --levels 2 >&2
   mv "$MESHES/$name.off.tmp" "$MESHES/$name.off"
 done
+
+# A CAD model of about 100k faces for sharp features: fandisk_large (31,682 faces) split 1-to-4 once (flat
+# subdivision keeps every crease).
+if [ ! -s "$MESHES/fandisk-sub1.off" ]; then
+  node "$ROOT/scripts/subdivide-off.mjs" "$MESHES/fandisk_large.off" "$MESHES/fandisk-sub1.off.tmp" --levels 1 >&2
+  mv "$MESHES/fandisk-sub1.off.tmp" "$MESHES/fandisk-sub1.off"
+fi
 
 ls -1 "$MESHES"/*.off | sed "s|^$ROOT/||"

@@ -38,6 +38,8 @@ struct Designer::Impl {
   // ordering (the analysis) is kept, its numeric factor freed.
   std::unique_ptr<FieldSystem> retired;
   DerivedField field;
+  // The field is the solve of the design as it is (no edit since): what a new system may start from.
+  bool fieldCurrent = false;
   DesignStats stats;
   double featureAngle = 0;
   std::vector<std::array<int32_t, 2>> featureAdded, featureRemoved;
@@ -63,6 +65,7 @@ struct Designer::Impl {
 
   // The system for this symmetry and the constraint set as it is (with or without prescribed singularities).
   void switchTo(int symmetry) {
+    fieldCurrent = false;
     std::unique_ptr<FieldSystem> next;
     if (retired && retired->symmetry() == symmetry && retired->prescribes() == wantsPrescribed()) {
       retired->resume();  // throws, retired unchanged, for constraints it cannot take
@@ -98,6 +101,7 @@ void Designer::setBoundary(const BoundaryCondition& bc) {
   }
   if (sameBoundaryCondition(bc, d.settings.boundary)) return;  // re-applying a design must not refactor
   d.settings.boundary = bc;
+  d.fieldCurrent = false;
   d.eachSystem([&](FieldSystem& s) { s.setBoundary(bc); });
 }
 
@@ -133,6 +137,7 @@ void Designer::setCurvatureAlignment(double s) {
     throw InputError("curvature alignment is for line and cross fields (an even symmetry); the symmetry is " +
                      std::to_string(d.symmetry()));
   d.settings.curvatureAlignment = s;
+  d.fieldCurrent = false;
   // A retired odd symmetry cannot come back with the alignment on (setSymmetry refuses it): it needs none.
   d.eachSystem([&](FieldSystem& f) {
     if (s == 0 || f.symmetry() % 2 == 0) f.setCurvatureAlignment(s);
@@ -191,12 +196,21 @@ void Designer::factor() {
 
 int32_t Designer::add(const ConstraintSpec& spec) {
   Impl& d = *impl_;
-  if (spec.kind != ConstraintKind::Singularity || d.system->prescribes()) return d.system->add(spec, d.stats);
-  // The first singularity: the design's field becomes the prescribed-singularity system's.
+  if (spec.kind != ConstraintKind::Singularity || d.system->prescribes()) {
+    const int32_t id = d.system->add(spec, d.stats);
+    d.fieldCurrent = false;
+    return id;
+  }
+  // The first singularity: the design's field becomes the prescribed-singularity system's, which places the
+  // rest of the index where the field it replaces has its singularities.
   ConstraintSpec probe = spec;
   probe.id = 0;
   d.constraints.validate(probe);
   checkSingularity(probe, d.symmetry(), d.mesh.mesh(), d.mesh.topology(), d.mesh.geometry(), d.constraints);
+  std::map<int32_t, double> smoothest;
+  const bool seed = d.fieldCurrent && !d.field.solution().faceVectors.empty();
+  if (seed)
+    for (const Singularity& s : d.field.requireSingularities(d.mesh)) smoothest[s.vertex] = s.index;
   const int32_t id = d.constraints.add(spec);
   try {
     d.switchTo(d.symmetry());
@@ -204,6 +218,8 @@ int32_t Designer::add(const ConstraintSpec& spec) {
     d.constraints.remove(id);
     throw;
   }
+  if (seed) d.system->seedSmoothestSingularities(std::move(smoothest));
+  d.fieldCurrent = false;
   return id;
 }
 
@@ -242,6 +258,7 @@ void Designer::moveSingularity(int32_t id, int32_t vertex) {
   checkSingularity(moved, d.symmetry(), d.mesh.mesh(), d.mesh.topology(), d.mesh.geometry(), d.constraints,
                    id);
   d.constraints.setElement(id, vertex);
+  d.fieldCurrent = false;
   d.system->singularitiesChanged();
 }
 
@@ -254,6 +271,7 @@ void Designer::setFeatures(double degrees, const std::vector<std::array<int32_t,
   d.featureRemoved = remove;
   if (edges == d.settings.featureEdges) return;  // re-applying a design must not refactor
   d.settings.featureEdges = std::move(edges);
+  d.fieldCurrent = false;
   d.eachSystem([&](FieldSystem& s) { s.setFeatures(d.settings.featureEdges); });
 }
 
@@ -325,6 +343,7 @@ int32_t Designer::addVortex(int32_t face, double strength) {
 void Designer::remove(int32_t id) {
   Impl& d = *impl_;
   const ConstraintSpec spec = d.constraints.spec(id);  // throws for an unknown id
+  d.fieldCurrent = false;
   d.system->remove(spec, d.stats);
   d.constraints.remove(id);
   // The last singularity gone: back to the symmetry's own system (resumed when it was retired).
@@ -335,15 +354,18 @@ void Designer::setWeight(int32_t id, double weight) {
   Impl& d = *impl_;
   const double previous = d.constraints.setWeight(id, weight);  // validates
   if (weight == previous) return;
+  d.fieldCurrent = false;
   d.system->reweight(d.constraints.spec(id), previous, d.stats);
 }
 
 void Designer::setStrength(int32_t id, double strength) {
   impl_->constraints.setStrength(id, strength);  // enters only the right-hand side
+  impl_->fieldCurrent = false;
 }
 
 void Designer::clearConstraints() {
   Impl& d = *impl_;
+  d.fieldCurrent = false;
   d.system->clear(d.stats);
   d.constraints.clear();
   if (d.system->prescribes() != d.wantsPrescribed()) d.switchTo(d.symmetry());
@@ -361,6 +383,7 @@ void Designer::solve() {
   d.stats.featureEdges = static_cast<int32_t>(d.settings.featureEdges.size());
   d.system->solve(d.field.solution(), d.stats);
   if (!d.system->prescribes()) d.field.solution().prescribed.clear();
+  d.fieldCurrent = true;
   d.field.solved();
 }
 

@@ -68,6 +68,9 @@ class FieldSystem {
   virtual bool prescribes() const { return false; }
   // The design's singularities changed (added, moved or removed in the constraint set).
   virtual void singularitiesChanged() {}
+  // The singularities of the smoothest field of the design as it now is without prescriptions (the field the
+  // system in use before this one solved last, unedited since), so that it need not be solved again.
+  virtual void seedSmoothestSingularities(std::map<int32_t, double>) {}
   // Takes the constraint set as it now is after the system was out of use (other constraints may have come
   // and gone); throws InputError naming what it cannot take, unchanged then.
   virtual void resume() = 0;

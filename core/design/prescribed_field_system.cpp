@@ -11,7 +11,9 @@
 #include "design/direction_field_system.h"
 #include "direction/direction_constraints.h"
 #include "direction/feature_terms.h"
+#include "direction/free_singularities.h"
 #include "direction/representative_directions.h"
+#include "field/singularities.h"
 #include "mesh/mesh_geometry.h"
 
 namespace tvf {
@@ -107,12 +109,11 @@ PrescribedFieldSystem::PrescribedFieldSystem(int symmetry, const DesignMesh& mes
 }
 
 ShiftedFactor& PrescribedFieldSystem::factor() {
-  return exact_ || !power_ ? angles_.factor() : power_->factor();
+  return angles_.factor();
 }
 
 int64_t PrescribedFieldSystem::unknowns() const {
-  const int64_t faces = mesh_.topology().numFaces;
-  return exact_ ? faces : 2 * faces;
+  return mesh_.topology().numFaces;
 }
 
 PowerFieldSystem& PrescribedFieldSystem::power() {
@@ -134,6 +135,32 @@ void PrescribedFieldSystem::fixedTerms() {
   all.insert(all.end(), featureTerms_.begin(), featureTerms_.end());
   angles_.setFixedTerms(all, kBoundaryWeight);
   if (power_) power_->setBoundaryTerms(std::move(all), kBoundaryWeight);
+  naturalChanged();
+}
+
+void PrescribedFieldSystem::naturalChanged() {
+  naturalStale_ = true;
+  if (!exact_) connectionStale_ = true;  // the free singularities follow the smoothest field's
+}
+
+void PrescribedFieldSystem::seedSmoothestSingularities(std::map<int32_t, double> singularities) {
+  natural_ = std::move(singularities);
+  naturalStale_ = false;
+  connectionStale_ = true;
+}
+
+// The singularities of the smoothest field of the design without its prescriptions.
+const std::map<int32_t, double>& PrescribedFieldSystem::natural() {
+  if (!naturalStale_) return natural_;
+  Eigen::VectorXd u;
+  power().solve(u);
+  const std::vector<double> vectors = faceRepresentatives(frames_, u, symmetry_);
+  natural_.clear();
+  for (const Singularity& s :
+       findSingularities(mesh_.mesh(), mesh_.topology(), mesh_.geometry(), vectors, symmetry_))
+    natural_[s.vertex] = s.index;
+  naturalStale_ = false;
+  return natural_;
 }
 
 void PrescribedFieldSystem::setBoundary(const BoundaryCondition& bc) {
@@ -155,6 +182,7 @@ void PrescribedFieldSystem::setFeatures(const std::vector<int32_t>& edges) {
 void PrescribedFieldSystem::setCurvatureAlignment(double s) {
   settings_.curvatureAlignment = s;
   if (power_ && symmetry_ % 2 == 0) power_->setCurvatureAlignment(s);
+  naturalChanged();
 }
 
 void PrescribedFieldSystem::addAll() {
@@ -165,7 +193,7 @@ void PrescribedFieldSystem::addAll() {
       if (power_) power_->add(spec.id, terms, spec.weight);
       angles_.add(spec.id, std::move(terms), spec.weight);
     }
-  connectionStale_ = true;
+  naturalStale_ = connectionStale_ = true;
 }
 
 void PrescribedFieldSystem::resume() {
@@ -199,6 +227,7 @@ int32_t PrescribedFieldSystem::add(const ConstraintSpec& spec, DesignStats& stat
   if (power_) power_->add(id, terms, spec.weight);
   angles_.add(id, std::move(terms), spec.weight);
   stats.updateMs = factor().lastUpdateMs();
+  naturalChanged();
   return id;
 }
 
@@ -210,17 +239,19 @@ void PrescribedFieldSystem::remove(const ConstraintSpec& spec, DesignStats& stat
   angles_.remove(spec.id);
   if (power_) power_->remove(spec.id);
   stats.updateMs = factor().lastUpdateMs();
+  naturalChanged();
 }
 
 void PrescribedFieldSystem::reweight(const ConstraintSpec& spec, double, DesignStats&) {
   angles_.setWeight(spec.id, spec.weight);
   if (power_) power_->setWeight(spec.id, spec.weight);
+  naturalChanged();
 }
 
 void PrescribedFieldSystem::clear(DesignStats& stats) {
   angles_.clear();
   if (power_) power_->clear();
-  connectionStale_ = true;
+  naturalStale_ = connectionStale_ = true;
   stats.updateMs = factor().lastUpdateMs();
 }
 
@@ -231,68 +262,51 @@ std::map<int32_t, double> PrescribedFieldSystem::prescribed() const {
   return out;
 }
 
-// The rotations for the design's singularities and, with them, what the field is turned from: the parallel
-// field (exact) or the power field's connection (free).
+// The free singularities, when the prescribed ones do not complete the index, and the trivial connection's
+// parallel field for both.
 void PrescribedFieldSystem::updateConnection(DesignStats& stats) {
   if (!connectionStale_) return;
   const MeshTopology& t = mesh_.topology();
   const std::map<int32_t, double> indices = prescribed();
-  const bool exact = indicesComplete(t, indices);
-  rotations_ = trivial_.rotations(holonomyTargets(t, mesh_.geometry(), indices, !exact), symmetry_);
+  exact_ = indicesComplete(t, indices);
+  free_ = exact_ ? std::map<int32_t, double>{}
+                 : tvf::freeSingularities(mesh_.mesh(), t, natural(), indices, symmetry_);
+  std::map<int32_t, double> all = indices;
+  all.insert(free_.begin(), free_.end());
+  rotations_ = trivial_.rotations(holonomyTargets(t, mesh_.geometry(), all), symmetry_);
   stats.connectionMs = trivial_.lastSolveMs();
-  if (exact) {
-    angles_.setParallel(trivial_.parallelAngles(rotations_));
-    // The power field's factor is for another connection: free it, keep its ordering.
-    if (power_ && !exact_) power_->factor().release();
-  } else {
-    if (exact_) angles_.factor().release();
-    power().setConnectionRotations(rotations_);
-  }
-  exact_ = exact;
+  angles_.setParallel(trivial_.parallelAngles(rotations_));
   connectionStale_ = false;
 }
 
 void PrescribedFieldSystem::factorNow(DesignStats& stats) {
   updateConnection(stats);
-  if (exact_) {
-    angles_.factorNow();
-    stats.nnzPerRowM = angles_.nonZerosPerRow();
-  } else {
-    power_->factorNow();
-    stats.nnzPerRowM = power_->nonZerosPerRow();
-  }
+  angles_.factorNow();
+  stats.nnzPerRowM = angles_.nonZerosPerRow();
 }
 
 void PrescribedFieldSystem::solve(FieldSolution& field, DesignStats& stats) {
   updateConnection(stats);
   auto start = Clock::now();
-  Eigen::VectorXd u;
-  if (exact_) {
-    std::vector<double> theta;
-    angles_.solve(theta);
-    u.resize(2 * static_cast<Eigen::Index>(theta.size()));
-    for (size_t f = 0; f < theta.size(); ++f) {
-      const std::complex<double> z = std::polar(1.0, symmetry_ * theta[f]);
-      u[2 * f] = z.real();
-      u[2 * f + 1] = z.imag();
-    }
-    stats.nnzPerRowM = angles_.nonZerosPerRow();
-    stats.inverseIterations = 0;
-    stats.smoothestEigenvalue = 0;
-  } else {
-    power_->solve(u);
-    stats.nnzPerRowM = power_->nonZerosPerRow();
-    stats.inverseIterations = power_->report().inverseIterations;
-    stats.smoothestEigenvalue = power_->report().eigenvalue;
+  std::vector<double> theta;
+  angles_.solve(theta);
+  Eigen::VectorXd u(2 * static_cast<Eigen::Index>(theta.size()));
+  for (size_t f = 0; f < theta.size(); ++f) {
+    const std::complex<double> z = std::polar(1.0, symmetry_ * theta[f]);
+    u[2 * f] = z.real();
+    u[2 * f + 1] = z.imag();
   }
   stats.solveMs = msSince(start);
   reportFactor(factor(), unknowns(), stats);
+  stats.nnzPerRowM = angles_.nonZerosPerRow();
+  stats.inverseIterations = 0;
+  stats.smoothestEigenvalue = 0;
   stats.rhsMs = 0;
   stats.warnings.clear();
   if (gamma_ > 0) stats.warnings.push_back("gamma applies to vector fields without prescribed singularities");
-  if (exact_ && settings_.curvatureAlignment > 0)
+  if (settings_.curvatureAlignment > 0 && exact_)
     stats.warnings.push_back(
-        "curvature alignment is not applied while the prescribed singularities are exact");
+        "curvature alignment only moves the free singularities; these are all prescribed");
   if (!u.allFinite())
     throw InputError(
         "the field is not finite (the system is too badly conditioned for these constraints); "
@@ -305,11 +319,10 @@ void PrescribedFieldSystem::solve(FieldSolution& field, DesignStats& stats) {
   field.prescribed = prescribed();
   stats.reconstructMs = msSince(start);
 
-  const MeshTopology& t = mesh_.topology();
   double sum = 0;
   for (const auto& [v, index] : field.prescribed) sum += index;
   stats.singularityMode = exact_ ? "exact" : "free";
-  stats.eulerCharacteristic = t.eulerCharacteristic();
+  stats.eulerCharacteristic = mesh_.topology().eulerCharacteristic();
   stats.prescribedIndex = sum;
   stats.freeIndex = stats.eulerCharacteristic - sum;
 }
@@ -322,18 +335,15 @@ void PrescribedFieldSystem::vertexVectors(const FieldSolution& field, std::vecto
 void PrescribedFieldSystem::assemble(SparseMatrix& A, Eigen::VectorXd& b) {
   DesignStats ignored;
   updateConnection(ignored);
-  if (exact_) return angles_.assemble(A, b);
-  power_->assemble(A, b);
+  angles_.assemble(A, b);
 }
 
 SparseMatrix PrescribedFieldSystem::baseMatrix() {
-  DesignStats ignored;
-  updateConnection(ignored);
-  return exact_ ? angles_.baseMatrix() : power_->baseMatrix();
+  return angles_.baseMatrix();
 }
 
 double PrescribedFieldSystem::weightScale() {
-  return exact_ || !power_ ? angles_.scale() : power_->scale();
+  return angles_.scale();
 }
 
 }  // namespace tvf

@@ -1,15 +1,15 @@
 #pragma once
 // The field of a design with prescribed singularities, any symmetry N = 1..6 (N = 1: a unit vector field):
-// the Levi-Civita connection made trivial except at the prescribed vertices (direction/trivial_connection.h).
-// When the prescribed indices account for all the index the surface needs ("exact": they sum to the Euler
-// characteristic on every closed component, or the component has a boundary to take the rest), the field is
-// the trivial connection's parallel field turned by a function (direction/angle_field_system.h): it has
-// exactly the prescribed singularities, strokes and directions bend it without adding any, and placing,
-// moving or removing a singularity changes only right-hand sides (one vertex-Laplacian solve for the
-// rotations, then the angle solve with its factor). Otherwise ("free") the rest of the index is left as
-// curvature spread over the other vertices and the field is the power field (Knoppel et al. 2013) of the
-// changed connection, which places that rest as singularities of its own; a change of the singularities then
-// changes the connection, so the power field's factor is made again (its ordering kept).
+// the parallel field of a trivial connection (direction/trivial_connection.h) turned by a function
+// (direction/angle_field_system.h), so that it has exactly the singularities the connection was made for, and
+// strokes, directions, a fixed boundary and features bend it without adding, moving or cancelling any. When
+// the prescribed indices account for all the index the surface needs ("exact": they sum to the Euler
+// characteristic on every closed component, or the component has a boundary to take the rest) those are all
+// its singularities. Otherwise ("free") the rest goes where the smoothest field of the same design without
+// the prescriptions puts its own (direction/free_singularities.h): that power field (Knoppel et al. 2013) is
+// kept factored beside the angle system and solved again only when a stroke, direction, the boundary or a
+// feature changes. Placing, moving or removing a singularity changes right-hand sides only: one solve with
+// the connection's vertex-Laplacian factor and one with the angle system's, never a factorization.
 #include <map>
 #include <memory>
 
@@ -46,6 +46,7 @@ class PrescribedFieldSystem final : public FieldSystem {
   void setFeatures(const std::vector<int32_t>& edges) override;
   void resume() override;
   void singularitiesChanged() override { connectionStale_ = true; }
+  void seedSmoothestSingularities(std::map<int32_t, double> singularities) override;
 
   int32_t add(const ConstraintSpec& spec, DesignStats& stats) override;
   void remove(const ConstraintSpec& spec, DesignStats& stats) override;
@@ -60,10 +61,8 @@ class PrescribedFieldSystem final : public FieldSystem {
   SparseMatrix baseMatrix() override;
   double weightScale() override;
 
-  // For checks: the trivial connection's rotations of the last solve and the parallel field's residual.
-  const std::vector<double>& rotations() const { return rotations_; }
-  const TrivialConnection& connection() const { return trivial_; }
   bool exact() const { return exact_; }
+  const std::map<int32_t, double>& freeSingularities() const { return free_; }  // of the last solve
 
  private:
   std::map<int32_t, double> prescribed() const;
@@ -71,6 +70,8 @@ class PrescribedFieldSystem final : public FieldSystem {
   void fixedTerms();
   void addAll();
   PowerFieldSystem& power();
+  void naturalChanged();  // a stroke, direction, boundary or feature changed the smoothest field
+  const std::map<int32_t, double>& natural();
 
   int symmetry_;
   const DesignMesh& mesh_;
@@ -81,7 +82,9 @@ class PrescribedFieldSystem final : public FieldSystem {
   FaceConnection leviCivita_;
   TrivialConnection trivial_;
   AngleFieldSystem angles_;
-  std::unique_ptr<PowerFieldSystem> power_;  // the free case's, made on first need
+  std::unique_ptr<PowerFieldSystem> power_;  // the smoothest field without prescriptions, made on first need
+  std::map<int32_t, double> natural_, free_;
+  bool naturalStale_ = true;
   std::vector<FaceDirectionTerm> boundaryTerms_, featureTerms_;
   bool connectionStale_ = true;
   bool exact_ = true;

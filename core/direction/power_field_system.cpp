@@ -44,8 +44,8 @@ PowerFieldSystem::PowerFieldSystem(const SurfaceMesh& mesh, const MeshTopology& 
       geometry_(geometry),
       symmetry_(symmetry),
       frames_(faceFrames(mesh, geometry)),
-      leviCivita_(leviCivitaConnection(mesh, topology, geometry, frames_)),
-      connection_(connectionLaplacian(leviCivita_, topology.numFaces, symmetry)),
+      connection_(connectionLaplacian(leviCivitaConnection(mesh, topology, geometry, frames_),
+                                      topology.numFaces, symmetry)),
       base_(upperTriangle(connection_)),
       mass_(powerFieldMass(geometry)),
       scale_(meanDiagonal(connection_)),
@@ -66,13 +66,6 @@ void PowerFieldSystem::setCurvatureAlignment(double s) {
   if (s > 0 && curvature_.empty())
     curvature_ = principalCurvaturePower(mesh_, topology_, geometry_, frames_, symmetry_);
   curvatureAlignment_ = s;
-}
-
-void PowerFieldSystem::setConnectionRotations(const std::vector<double>& rotations) {
-  FaceConnection changed = leviCivita_;
-  for (size_t k = 0; k < rotations.size() && k < changed.angle.size(); ++k) changed.angle[k] += rotations[k];
-  connection_ = connectionLaplacian(changed, topology_.numFaces, symmetry_);
-  setBoundaryTerms(std::move(boundaryTerms_), boundaryWeight_);  // the base again, and the factor made stale
 }
 
 void PowerFieldSystem::setBoundaryTerms(std::vector<FaceDirectionTerm> terms, double weight) {

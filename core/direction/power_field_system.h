@@ -80,7 +80,6 @@ class PowerFieldSystem {
   const MeshGeometry& geometry_;
   int symmetry_;
   FaceFrames frames_;
-  FaceConnection leviCivita_;
   SparseMatrix connection_;  // H alone
   SparseMatrix base_;        // H + the boundary terms, upper triangle
   std::vector<FaceDirectionTerm> boundaryTerms_;

@@ -35,24 +35,11 @@ bool indicesComplete(const MeshTopology& t, const std::map<int32_t, double>& pre
 }
 
 std::vector<double> holonomyTargets(const MeshTopology& t, const MeshGeometry& g,
-                                    const std::map<int32_t, double>& prescribed, bool spreadRest) {
+                                    const std::map<int32_t, double>& indices) {
   std::vector<double> b(t.numVertices, 0.0);
   for (int32_t v = 0; v < t.numVertices; ++v)
     if (!t.isBoundaryVertex[v] && t.vertexFaceCount[v] > 0) b[v] = -g.angleDefect[v];
-  for (const auto& [v, index] : prescribed) b[v] += kTwoPi * index;
-  if (!spreadRest) return b;
-  const std::vector<double> sums = componentSums(t, prescribed);
-  std::vector<double> area(t.components.size(), 0.0);
-  for (int32_t v = 0; v < t.numVertices; ++v)
-    if (t.vertexComponent[v] >= 0 && t.vertexFaceCount[v] > 0 && !prescribed.count(v))
-      area[t.vertexComponent[v]] += g.star0[v];
-  for (int32_t v = 0; v < t.numVertices; ++v) {
-    const int32_t c = t.vertexComponent[v];
-    if (c < 0 || t.vertexFaceCount[v] == 0 || prescribed.count(v) || t.components[c].boundaryLoops > 0)
-      continue;
-    const double rest = t.components[c].eulerCharacteristic - sums[c];
-    if (area[c] > 0) b[v] += kTwoPi * rest * g.star0[v] / area[c];
-  }
+  for (const auto& [v, index] : indices) b[v] += kTwoPi * index;
   return b;
 }
 
@@ -60,7 +47,7 @@ TrivialConnection::TrivialConnection(const MeshTopology& topology, const FaceCon
     : topology_(topology),
       connection_(connection),
       cycles_(dualCycles(topology, connection)),
-      factor_(std::vector<uint8_t>(cycles_.vertexRows, 0), FillOrdering::Amd) {
+      factor_(std::vector<uint8_t>(cycles_.vertexRows, 0)) {
   double mean = 0;
   for (const double w : connection.weight) mean += w;
   mean = connection.weight.empty() ? 1.0 : mean / static_cast<double>(connection.weight.size());

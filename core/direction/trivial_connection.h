@@ -21,12 +21,10 @@
 
 namespace tvf {
 
-// What each vertex cycle's rotations must add up to: 2 pi k_v - K_v at a vertex with prescribed index k_v
-// (K_v its angle defect), -K_v elsewhere. With spreadRest, a closed component whose prescribed indices do not
-// sum to its Euler characteristic keeps the rest, 2 pi (chi - sum k), as curvature spread over its other
-// vertices by their area (star0), where a field can place it as singularities of its own.
+// What each vertex cycle's rotations must add up to: 2 pi k_v - K_v at a vertex with index k_v (K_v its angle
+// defect), -K_v elsewhere.
 std::vector<double> holonomyTargets(const MeshTopology& topology, const MeshGeometry& geometry,
-                                    const std::map<int32_t, double>& prescribed, bool spreadRest);
+                                    const std::map<int32_t, double>& indices);
 
 // Whether the prescribed indices account for all the index the surface needs: on every closed component
 // they sum to its Euler characteristic (a component with a boundary takes any sum).

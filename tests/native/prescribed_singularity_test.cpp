@@ -124,8 +124,7 @@ double turningAgainstTrivialConnection(const Designer& d, const std::map<int32_t
   const FaceFrames frames = faceFrames(d.mesh(), d.geometry());
   const FaceConnection c = leviCivitaConnection(d.mesh(), d.topology(), d.geometry(), frames);
   TrivialConnection trivial(d.topology(), c);
-  const std::vector<double> x =
-      trivial.rotations(holonomyTargets(d.topology(), d.geometry(), set, false), symmetry);
+  const std::vector<double> x = trivial.rotations(holonomyTargets(d.topology(), d.geometry(), set), symmetry);
   const std::vector<double> theta = faceAngles(d, frames);
   double worst = 0;
   for (size_t k = 0; k < x.size(); ++k)
@@ -408,4 +407,34 @@ TEST(SharpFeatures, EditsByPairAndRefusals) {
   EXPECT_THROW(d.setFeatures(35, {{0, 100}}, {}), InputError);  // not an edge
   EXPECT_EQ(d.featureEdges().size(), detected - 1);             // unchanged
   EXPECT_EQ(d.featureEdgesRemoved().size(), 1u);
+}
+
+TEST(PrescribedSingularities, PlacingOnePullsTheNearestFreeOneToIt) {
+  // The free singularities are the smoothest field's, less the one nearest each prescription: on a bumpy
+  // sphere's cross field, a +1/4 placed anywhere takes the place of the nearest natural +1/4, the others
+  // stay.
+  const SurfaceMesh mesh = bumpySphere(3);
+  Designer smooth(mesh);
+  smooth.setSymmetry(4);
+  smooth.solve();
+  const std::map<int32_t, double> natural = found(smooth);
+  ASSERT_FALSE(natural.empty());
+  for (const int32_t v : {5, 200, 555}) {
+    Designer d(mesh);
+    d.setSymmetry(4);
+    d.addSingularity(v, 0.25);
+    d.solve();
+    EXPECT_EQ(d.stats().singularityMode, "free");
+    int32_t nearest = -1;
+    double best = 1e300;
+    for (const auto& [u, index] : natural)
+      if (index > 0 && (vertexPosition(mesh, u) - vertexPosition(mesh, v)).norm() < best)
+        best = (vertexPosition(mesh, u) - vertexPosition(mesh, v)).norm(), nearest = u;
+    std::map<int32_t, double> expected = natural;
+    expected[nearest] -= 0.25;
+    if (std::abs(expected[nearest]) < 1e-12) expected.erase(nearest);
+    expected[v] += 0.25;
+    expectSameSet(expected, found(d), "one placed");
+    for (const Singularity& s : d.singularities()) EXPECT_EQ(s.prescribed, s.vertex == v) << s.vertex;
+  }
 }
