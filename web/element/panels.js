@@ -55,7 +55,7 @@ function describe(c) {
     case 'source':
     case 'sink': return `vertex ${c.vertex} · strength ${fmtNum(c.strength)}`;
     case 'vortex': return `face ${c.face} · ${c.strength >= 0 ? 'CCW' : 'CW'} ${fmtNum(Math.abs(c.strength))}`;
-    case 'singularity': return `vertex ${c.vertex} · index ${fraction(c.index)}`;
+    case 'singularity': return `vertex ${c.vertex} · index ${fraction(c.index, '+')}`;
     default: return '';
   }
 }
