@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <set>
 
 #include "design/designer.h"
 #include "io/mesh_io.h"
@@ -53,22 +54,22 @@ std::vector<SurfacePoint> stripStroke(const SurfaceMesh& mesh, const MeshTopolog
   return points;
 }
 
-// The first vertex from `start` on (cyclically) that is interior and used by a face, other than `avoid`: a
-// vertex that can carry a prescribed singularity.
-int32_t interiorVertex(const MeshTopology& t, int32_t start, int32_t avoid) {
+// The first vertex from `start` on (cyclically) that is interior, used by a face and not in `used`: a vertex
+// that can carry a prescribed singularity; -1 when there is none.
+int32_t freeVertex(const MeshTopology& t, int32_t start, const std::set<int32_t>& used) {
   for (int32_t k = 0; k < t.numVertices; ++k) {
     const int32_t v = (start + k) % t.numVertices;
-    if (v != avoid && !t.isBoundaryVertex[v] && t.vertexFaceCount[v] > 0) return v;
+    if (!used.count(v) && !t.isBoundaryVertex[v] && t.vertexFaceCount[v] > 0) return v;
   }
   return -1;
 }
 
-// A neighbour of v across an edge that can carry a singularity (one step of a drag), other than `avoid`.
-int32_t interiorNeighbour(const MeshTopology& t, int32_t v, int32_t avoid) {
+// A neighbour of v across an edge that can carry a singularity (one step of a drag), not in `used`.
+int32_t freeNeighbour(const MeshTopology& t, int32_t v, const std::set<int32_t>& used) {
   for (int32_t k = t.vertexEdgeStart[v]; k < t.vertexEdgeStart[v + 1]; ++k) {
     const int32_t e = t.vertexEdgeList[k];
     const int32_t w = t.edgeVertices[2 * e] == v ? t.edgeVertices[2 * e + 1] : t.edgeVertices[2 * e];
-    if (w != avoid && !t.isBoundaryVertex[w]) return w;
+    if (!used.count(w) && !t.isBoundaryVertex[w]) return w;
   }
   return -1;
 }
@@ -85,37 +86,65 @@ struct Samples {
   int strokeEdges = 0;      // edges the benchmark stroke crosses (one per step between adjacent faces)
   int strokeRefactors = 0;  // stroke solves that refactored (an updated factor found wanting): timings void
   int strokeIncrementalSolves = 0;  // stroke solves whose forward substitution was incremental
-  // A prescribed singularity placed (the second of a +1/N, -1/N pair, so the total index stays) and then
-  // moved to a neighbouring vertex, each with its solve and read-outs; and the factorizations they made.
-  std::vector<double> singularityPlace, singularityMove;
-  int64_t singularityFactorizations = 0;
+  // Prescribed singularities (timeSingularityEdits): a +1/N, -1/N pair placed in one step, one of them
+  // moved, with every index the surface needs prescribed (exact); one moved with none else (free).
+  std::vector<double> singularityPlace, singularityMove, singularityFreeMove;
+  int64_t singularityFactorizations = 0;  // numeric factorizations the exact edits made
+  std::string singularityMode;            // the mode of the exact edits' field, as the designer reports it
   std::string factorKind;
 };
 
-// Placing and moving a prescribed singularity as the page's Singularity tool does: the +1/N stays where it
-// was placed (untimed), the -1/N is placed and then dragged one vertex on, each edit followed by the solve.
+// Prescribed singularities edited as the page's Singularity tool does, each edit timed with its solve and
+// read-outs. First with every index the surface needs prescribed, so that the field has exactly the
+// prescribed singularities (exact): on a closed surface |chi| N singularities of index sign(chi)/N spread
+// over it (untimed), then a +1/N, -1/N pair drawn out in one step (the total stays chi) and its -1/N dragged
+// one vertex on. Then the free case: the same pair alone on the surface, the field placing chi itself, and
+// the -1/N dragged back.
 void timeSingularityEdits(Designer& designer, int r, Samples& s) {
   const MeshTopology& t = designer.topology();
-  const int32_t nV = t.numVertices;
-  const int32_t plus = interiorVertex(t, (r * 7919 + 101) % nV, -1);
-  const int32_t minus = interiorVertex(t, (r * 104729 + nV / 2) % nV, plus);
-  const int32_t next = minus < 0 ? -1 : interiorNeighbour(t, minus, plus);
-  if (plus < 0 || minus < 0 || next < 0) return;  // no room for a pair (a mesh that is nearly all boundary)
-  const double index = 1.0 / designer.symmetry();
+  const int32_t nV = t.numVertices, symmetry = designer.symmetry();
+  const int32_t chi = t.boundaryLoops.empty() ? t.eulerCharacteristic() : 0;
+  std::set<int32_t> used;
+  std::vector<int32_t> background;
+  const int32_t count = std::abs(chi) * symmetry;
+  for (int32_t k = 0; k < count; ++k) {
+    const int32_t v =
+        freeVertex(t, static_cast<int32_t>((int64_t(k) * nV / std::max(count, 1) + r * 7919) % nV), used);
+    if (v < 0) return;  // too few interior vertices to prescribe
+    used.insert(v);
+    background.push_back(v);
+  }
+  const int32_t plus = freeVertex(t, (r * 104729 + nV / 3) % nV, used);
+  if (plus >= 0) used.insert(plus);
+  const int32_t minus = plus < 0 ? -1 : freeVertex(t, (r * 7919 + 2 * nV / 3) % nV, used);
+  if (minus >= 0) used.insert(minus);
+  const int32_t next = minus < 0 ? -1 : freeNeighbour(t, minus, used);
+  if (next < 0) return;  // no room for a pair (a mesh that is nearly all boundary)
+  const double index = 1.0 / symmetry;
   designer.clearConstraints();
-  designer.addSingularity(plus, index);
+  for (const int32_t v : background) designer.addSingularity(v, chi > 0 ? index : -index);
   designer.solve();
   const int64_t factorizationsBefore = designer.stats().factorizations;
   int32_t id = 0;
   s.singularityPlace.push_back(timeMs([&] {
+    designer.addSingularity(plus, index);
     id = designer.addSingularity(minus, -index);
     designer.solve();  // with the read-outs, as the page gets them
   }));
   s.singularityMove.push_back(timeMs([&] {
     designer.moveSingularity(id, next);
-    designer.solve();  // with the read-outs, as the page gets them
+    designer.solve();
   }));
   s.singularityFactorizations += designer.stats().factorizations - factorizationsBefore;
+  s.singularityMode = designer.stats().singularityMode;
+  designer.clearConstraints();
+  designer.addSingularity(plus, index);
+  id = designer.addSingularity(next, -index);
+  designer.solve();
+  s.singularityFreeMove.push_back(timeMs([&] {
+    designer.moveSingularity(id, minus);
+    designer.solve();
+  }));
   designer.clearConstraints();
 }
 
@@ -191,7 +220,7 @@ void runRepeat(Designer& designer, int r, bool metis, Samples& s) {
   timeSingularityEdits(designer, r, s);
 }
 
-// The median of the placing and moving edits together: what one singularity edit costs the page.
+// The median of the exact placing and moving edits together: what one singularity edit costs the page.
 double singularityEditMedian(const Samples& s) {
   std::vector<double> edits = s.singularityPlace;
   edits.insert(edits.end(), s.singularityMove.begin(), s.singularityMove.end());
@@ -222,6 +251,8 @@ nlohmann::json summary(const Samples& s, bool metis) {
           {"singularityPlaceMs", median(s.singularityPlace)},
           {"singularityMoveMs", median(s.singularityMove)},
           {"singularityFactorizations", s.singularityFactorizations},
+          {"singularityMode", s.singularityMode},
+          {"singularityFreeMoveMs", median(s.singularityFreeMove)},
           {"ordering", metis ? "metis" : "amd"},
           {"factorKind", s.factorKind}};
 }

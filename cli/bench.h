@@ -11,10 +11,13 @@ namespace tvf {
 // N-direction field's power-field system instead (its solve: the first constrained solve; its update: a
 // direction constraint at one face), with the same keys, plus smoothestMs (the unconstrained field's inverse
 // iteration).
-// Every symmetry also times prescribed singularities (design/designer.h: addSingularity): a +1/N placed
-// untimed, then a -1/N placed and moved to a neighbouring vertex, each edit timed with its solve and
-// read-outs: singularityPlaceMs, singularityMoveMs, singularityEditMs (the median of both kinds of edit
-// together) and singularityFactorizations (numeric factorizations those timed edits made, over all repeats).
+// Every symmetry also times prescribed singularities (design/designer.h: addSingularity), each edit with its
+// solve and read-outs: with every index the surface needs prescribed (on a closed surface |chi| N of index
+// sign(chi)/N, untimed), a +1/N, -1/N pair placed in one step (singularityPlaceMs) and its -1/N moved to a
+// neighbouring vertex (singularityMoveMs); singularityEditMs is the median of both kinds of edit together,
+// singularityFactorizations the numeric factorizations they made (all repeats), singularityMode the field's
+// mode then ("exact"). singularityFreeMoveMs: the same move with only the pair prescribed, the field placing
+// the rest of the index itself (where chi = 0, or on a surface with boundary, that too is exact).
 nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
                         const std::vector<bool>& orderings, int threads = 0, int symmetry = 1);
 }  // namespace tvf

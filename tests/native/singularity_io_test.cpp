@@ -547,5 +547,8 @@ TEST(SingularityCli, BenchReportsSingularityEdits) {
   EXPECT_GE(b["singularityEditMs"].get<double>(),
             std::min(b["singularityPlaceMs"].get<double>(), b["singularityMoveMs"].get<double>()));
   EXPECT_TRUE(b.contains("singularityFactorizations"));
+  EXPECT_TRUE(b.contains("singularityFreeMoveMs"));
+  // A torus needs no index (chi = 0): the pair alone is all there is, and the field has exactly it.
+  EXPECT_EQ(b["singularityMode"], "exact");
 }
 #endif
