@@ -133,6 +133,9 @@ test.describe.serial('singularity and feature tools', () => {
     expect(await summary()).toMatchObject({ mode: 'exact', eulerCharacteristic: 2, freeIndex: 0 });
     // The field's own indices, from its face vectors: those 8 and no other.
     expect(await fieldIndices()).toEqual(want);
+    // Listed with the constraints, each with its vertex and index.
+    await expect(page.locator('#constraint-list li')).toHaveCount(8);
+    await expect(page.locator('#constraint-list li').first()).toContainText(`vertex ${targets[0].v} · index +1/4`);
     expect(errors).toEqual([]);
   });
 
@@ -271,7 +274,7 @@ test.describe.serial('singularity and feature tools', () => {
     expect(errors).toEqual([]);
   });
 
-  test('box: the feature angle sets the feature edges, the Feature tool adds and removes some', async ({}, testInfo) => {
+  test('box: the feature angle sets the feature edges; the Feature tool adds, removes some', async ({}, testInfo) => {
     await loadOff(boxOff(4), 'box.off');
     const angle = page.locator('#feature-angle');
     await expect(angle).toHaveValue('35');
