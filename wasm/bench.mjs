@@ -31,6 +31,9 @@
 //   processes, e.g. "--no-liftoff" to compare V8 tiering strategies), --module PATH (tvf_core.mjs),
 //   --symmetry N (1: a vector field; 2 a line, 4 a cross field: their power-field system, a direction constraint
 //   as the single update, smoothestMs for the unconstrained field; the native side with tvf bench --symmetry N).
+// Every repeat ends with a prescribed singularity's edits, as tvf bench times them: a +1/N placed, then a -1/N
+// placed and moved one vertex on, each with its solve and the singularities' read-out: singularityEditMs (the
+// median of both edits), singularityPlaceMs, singularityMoveMs, singularityFactorizations (expected 0).
 // Threads: the module is build-wasm/tvf_core_threads.mjs when it was built (what a cross-origin-isolated page,
 // the app's own, runs), with as many backward-substitution threads as it has (2) where the machine has the
 // cores; --threads 1 takes the plain tvf_core.mjs (what any other page runs). The native side runs with the
@@ -96,6 +99,65 @@ function faceStrip(positions, triangles, nb, start, crossings) {
   return flat;
 }
 
+// Each vertex's neighbours and whether it can carry a prescribed singularity (used by a face, not on a
+// boundary: an edge with one face), from the core's edges and triangles.
+function vertexRing(triangles, edges, nV) {
+  const faceCount = new Map(), key = (a, b) => (a < b ? a * nV + b : b * nV + a);
+  for (let t = 0; t < triangles.length; t += 3)
+    for (let k = 0; k < 3; k++) {
+      const e = key(triangles[t + k], triangles[t + ((k + 1) % 3)]);
+      faceCount.set(e, (faceCount.get(e) ?? 0) + 1);
+    }
+  const interior = new Uint8Array(nV);
+  for (let t = 0; t < triangles.length; t++) interior[triangles[t]] = 1;
+  const neighbours = Array.from({ length: nV }, () => []);
+  for (let k = 0; k < edges.length; k += 2) {
+    const [a, b] = [edges[k], edges[k + 1]];
+    neighbours[a].push(b);
+    neighbours[b].push(a);
+    if (faceCount.get(key(a, b)) === 1) interior[a] = interior[b] = 0;
+  }
+  return { interior, neighbours };
+}
+
+// Placing and moving a prescribed singularity as the page's Singularity tool does (and tvf bench): +1/N placed
+// (untimed), then -1/N placed and dragged one vertex on, each edit with its solve and the singularities' read-out
+// (the worker sends them with the field), so that the total index stays that of the pair. Returns the two times
+// and the factorizations the edits made (none is expected: placing and moving update the factor).
+function timeSingularityEdits(d, ring, r) {
+  const nV = ring.interior.length;
+  const interiorFrom = (start, avoid) => {
+    for (let k = 0; k < nV; k++) {
+      const v = (start + k) % nV;
+      if (v !== avoid && ring.interior[v]) return v;
+    }
+    return -1;
+  };
+  const plus = interiorFrom((r * 7919 + 101) % nV, -1);
+  const minus = interiorFrom((r * 104729 + Math.floor(nV / 2)) % nV, plus);
+  const next = minus < 0 ? undefined : ring.neighbours[minus].find((w) => w !== plus && ring.interior[w]);
+  if (plus < 0 || minus < 0 || next === undefined) return null;
+  const index = 1 / d.symmetry();
+  if (!d.clearConstraints()) fail('clear', d.lastError());
+  if (d.addSingularity(plus, index) < 0) fail('singularity', d.lastError());
+  ok('solve', d.solve());
+  const before = JSON.parse(d.statsJson()).factorizations;
+  let t = performance.now();
+  const id = d.addSingularity(minus, -index);
+  if (id < 0) fail('singularity', d.lastError());
+  ok('solve', d.solve());
+  d.singularitiesJson();
+  const placeMs = performance.now() - t;
+  t = performance.now();
+  if (!d.moveSingularity(id, next)) fail('move singularity', d.lastError());
+  ok('solve', d.solve());
+  d.singularitiesJson();
+  const moveMs = performance.now() - t;
+  const factorizations = JSON.parse(d.statsJson()).factorizations - before;
+  if (!d.clearConstraints()) fail('clear', d.lastError());
+  return { placeMs, moveMs, factorizations };
+}
+
 function fail(what, message) {
   throw new Error(`${what}: ${message}`);
 }
@@ -154,10 +216,12 @@ async function measureWasm(mesh, opts) {
   const pos = Float64Array.from(d.positions());
   const nb = faceNeighbours(tri);
   const nF = tri.length / 3;
+  const ring = vertexRing(tri, Int32Array.from(d.edges()), pos.length / 3);
   const orderings = opts.compare ? [true, false] : [!opts.amd];
   const samples = orderings.map(() => ({ analyze: [], factor: [], solve: [], update: [], stroke: [], strokeUpdate: [],
     strokeRows: [], strokeRhs: [], strokeSolve: [], reconstruct: [], factorCall: [], solveCall: [], updateCall: [],
-    strokeRefactors: 0, strokeIncrementalSolves: 0, smoothest: [], deferredStroke: [], deferredCorrection: [], deferredUpdate: [] }));
+    strokeRefactors: 0, strokeIncrementalSolves: 0, smoothest: [], deferredStroke: [], deferredCorrection: [], deferredUpdate: [],
+    singularityPlace: [], singularityMove: [], singularityFactorizations: 0 }));
   const last = [];
   const statsNow = () => JSON.parse(d.statsJson());
   // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
@@ -232,6 +296,12 @@ async function measureWasm(mesh, opts) {
         ok('defer', d.setDeferredUpdates(false));
       }
       last[o] = stats;
+      const edits = timeSingularityEdits(d, ring, r);
+      if (edits) {
+        s.singularityPlace.push(edits.placeMs);
+        s.singularityMove.push(edits.moveMs);
+        s.singularityFactorizations += edits.factorizations;
+      }
     });
   d.delete();
   const summary = (s, stats, metis) => ({
@@ -246,6 +316,10 @@ async function measureWasm(mesh, opts) {
     strokeIncrementalSolves: s.strokeIncrementalSolves,
     reconstructMs: median(s.reconstruct), symmetry: Number(opts.symmetry ?? 1), smoothestMs: median(s.smoothest),
     factorCallMs: median(s.factorCall), solveCallMs: median(s.solveCall), updateCallMs: median(s.updateCall),
+    // One singularity edit (placing or moving, with its solve): the median of both kinds together, as tvf bench.
+    singularityEditMs: median([...s.singularityPlace, ...s.singularityMove]),
+    singularityPlaceMs: median(s.singularityPlace), singularityMoveMs: median(s.singularityMove),
+    singularityFactorizations: s.singularityFactorizations,
     repeat: opts.repeat, warmUp: opts.warmup === false ? 'none' : String(opts.warmup), settleMs: opts.settle,
     ordering: metis ? 'metis' : 'amd', factorKind: stats.factorKind,
     // The wasm heap after the factorization and edits (it only grows): what this mesh needs in the browser.
