@@ -31,9 +31,10 @@
 //   processes, e.g. "--no-liftoff" to compare V8 tiering strategies), --module PATH (tvf_core.mjs),
 //   --symmetry N (1: a vector field; 2 a line, 4 a cross field: their power-field system, a direction constraint
 //   as the single update, smoothestMs for the unconstrained field; the native side with tvf bench --symmetry N).
-// Every repeat ends with a prescribed singularity's edits, as tvf bench times them: a +1/N placed, then a -1/N
-// placed and moved one vertex on, each with its solve and the singularities' read-out: singularityEditMs (the
-// median of both edits), singularityPlaceMs, singularityMoveMs, singularityFactorizations (expected 0).
+// Every repeat ends with prescribed singularities' edits, as tvf bench times them (timeSingularityEdits):
+// singularityEditMs (the median of placing a pair and moving one, with every index the surface needs
+// prescribed), singularityPlaceMs, singularityMoveMs, singularityFactorizations (expected 0), singularityMode
+// (expected 'exact') and singularityFreeMoveMs (a move with the field placing the rest itself).
 // Threads: the module is build-wasm/tvf_core_threads.mjs when it was built (what a cross-origin-isolated page,
 // the app's own, runs), with as many backward-substitution threads as it has (2) where the machine has the
 // cores; --threads 1 takes the plain tvf_core.mjs (what any other page runs). The native side runs with the
@@ -120,42 +121,68 @@ function vertexRing(triangles, edges, nV) {
   return { interior, neighbours };
 }
 
-// Placing and moving a prescribed singularity as the page's Singularity tool does (and tvf bench): +1/N placed
-// (untimed), then -1/N placed and dragged one vertex on, each edit with its solve and the singularities' read-out
-// (the worker sends them with the field), so that the total index stays that of the pair. Returns the two times
-// and the factorizations the edits made (none is expected: placing and moving update the factor).
-function timeSingularityEdits(d, ring, r) {
-  const nV = ring.interior.length;
-  const interiorFrom = (start, avoid) => {
+// Prescribed singularities edited as the page's Singularity tool does, each edit timed with its solve and the
+// singularities' read-out (the worker sends them with the field), as tvf bench times them (cli/bench.cpp): first
+// with every index the surface needs prescribed, so that the field has exactly the prescribed singularities
+// (exact): on a closed surface |chi| N singularities of index sign(chi)/N spread over it (untimed), then a
+// +1/N, -1/N pair drawn out in one step (the total stays chi) and its -1/N dragged one vertex on; then the free
+// case: the same pair alone, the field placing chi itself, and the -1/N dragged back. Returns the times, the
+// factorizations the exact edits made (none is expected) and the mode they ran in; null without room.
+function timeSingularityEdits(d, ring, chi, r) {
+  const nV = ring.interior.length, N = d.symmetry();
+  const used = new Set();
+  const freeVertex = (start) => {
     for (let k = 0; k < nV; k++) {
       const v = (start + k) % nV;
-      if (v !== avoid && ring.interior[v]) return v;
+      if (!used.has(v) && ring.interior[v]) return v;
     }
     return -1;
   };
-  const plus = interiorFrom((r * 7919 + 101) % nV, -1);
-  const minus = interiorFrom((r * 104729 + Math.floor(nV / 2)) % nV, plus);
-  const next = minus < 0 ? undefined : ring.neighbours[minus].find((w) => w !== plus && ring.interior[w]);
-  if (plus < 0 || minus < 0 || next === undefined) return null;
-  const index = 1 / d.symmetry();
+  const background = [], count = Math.abs(chi) * N;
+  for (let k = 0; k < count; k++) {
+    const v = freeVertex((Math.floor((k * nV) / Math.max(count, 1)) + r * 7919) % nV);
+    if (v < 0) return null;
+    used.add(v);
+    background.push(v);
+  }
+  const plus = freeVertex((r * 104729 + Math.floor(nV / 3)) % nV);
+  if (plus >= 0) used.add(plus);
+  const minus = plus < 0 ? -1 : freeVertex((r * 7919 + Math.floor((2 * nV) / 3)) % nV);
+  if (minus >= 0) used.add(minus);
+  const next = minus < 0 ? undefined : ring.neighbours[minus].find((w) => !used.has(w) && ring.interior[w]);
+  if (next === undefined) return null;
+  const index = 1 / N;
+  const place = (v, k) => {
+    const id = d.addSingularity(v, k);
+    if (id < 0) fail('singularity', d.lastError());
+    return id;
+  };
+  const timed = (edit) => {
+    const t = performance.now();
+    edit();
+    ok('solve', d.solve());
+    d.singularitiesJson();
+    return performance.now() - t;
+  };
+  const move = (id, v) => d.moveSingularity(id, v) || fail('move singularity', d.lastError());
   if (!d.clearConstraints()) fail('clear', d.lastError());
-  if (d.addSingularity(plus, index) < 0) fail('singularity', d.lastError());
+  for (const v of background) place(v, chi > 0 ? index : -index);
   ok('solve', d.solve());
   const before = JSON.parse(d.statsJson()).factorizations;
-  let t = performance.now();
-  const id = d.addSingularity(minus, -index);
-  if (id < 0) fail('singularity', d.lastError());
-  ok('solve', d.solve());
-  d.singularitiesJson();
-  const placeMs = performance.now() - t;
-  t = performance.now();
-  if (!d.moveSingularity(id, next)) fail('move singularity', d.lastError());
-  ok('solve', d.solve());
-  d.singularitiesJson();
-  const moveMs = performance.now() - t;
-  const factorizations = JSON.parse(d.statsJson()).factorizations - before;
+  let id;
+  const placeMs = timed(() => {
+    place(plus, index);
+    id = place(minus, -index);
+  });
+  const moveMs = timed(() => move(id, next));
+  const { factorizations, singularityMode: mode } = JSON.parse(d.statsJson());
   if (!d.clearConstraints()) fail('clear', d.lastError());
-  return { placeMs, moveMs, factorizations };
+  place(plus, index);
+  id = place(next, -index);
+  ok('solve', d.solve());
+  const freeMoveMs = timed(() => move(id, minus));
+  if (!d.clearConstraints()) fail('clear', d.lastError());
+  return { placeMs, moveMs, freeMoveMs, factorizations: factorizations - before, mode };
 }
 
 function fail(what, message) {
@@ -217,11 +244,13 @@ async function measureWasm(mesh, opts) {
   const nb = faceNeighbours(tri);
   const nF = tri.length / 3;
   const ring = vertexRing(tri, Int32Array.from(d.edges()), pos.length / 3);
+  const { eulerCharacteristic, boundaryLoops } = JSON.parse(d.infoJson());
+  const chi = boundaryLoops ? 0 : eulerCharacteristic; // with a boundary nothing needs prescribing
   const orderings = opts.compare ? [true, false] : [!opts.amd];
   const samples = orderings.map(() => ({ analyze: [], factor: [], solve: [], update: [], stroke: [], strokeUpdate: [],
     strokeRows: [], strokeRhs: [], strokeSolve: [], reconstruct: [], factorCall: [], solveCall: [], updateCall: [],
     strokeRefactors: 0, strokeIncrementalSolves: 0, smoothest: [], deferredStroke: [], deferredCorrection: [], deferredUpdate: [],
-    singularityPlace: [], singularityMove: [], singularityFactorizations: 0 }));
+    singularityPlace: [], singularityMove: [], singularityFreeMove: [], singularityFactorizations: 0 }));
   const last = [];
   const statsNow = () => JSON.parse(d.statsJson());
   // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
@@ -296,11 +325,13 @@ async function measureWasm(mesh, opts) {
         ok('defer', d.setDeferredUpdates(false));
       }
       last[o] = stats;
-      const edits = timeSingularityEdits(d, ring, r);
+      const edits = timeSingularityEdits(d, ring, chi, r);
       if (edits) {
         s.singularityPlace.push(edits.placeMs);
         s.singularityMove.push(edits.moveMs);
+        s.singularityFreeMove.push(edits.freeMoveMs);
         s.singularityFactorizations += edits.factorizations;
+        s.singularityMode = edits.mode;
       }
     });
   d.delete();
@@ -319,7 +350,8 @@ async function measureWasm(mesh, opts) {
     // One singularity edit (placing or moving, with its solve): the median of both kinds together, as tvf bench.
     singularityEditMs: median([...s.singularityPlace, ...s.singularityMove]),
     singularityPlaceMs: median(s.singularityPlace), singularityMoveMs: median(s.singularityMove),
-    singularityFactorizations: s.singularityFactorizations,
+    singularityFactorizations: s.singularityFactorizations, singularityMode: s.singularityMode,
+    singularityFreeMoveMs: median(s.singularityFreeMove),
     repeat: opts.repeat, warmUp: opts.warmup === false ? 'none' : String(opts.warmup), settleMs: opts.settle,
     ordering: metis ? 'metis' : 'amd', factorKind: stats.factorKind,
     // The wasm heap after the factorization and edits (it only grows): what this mesh needs in the browser.
