@@ -258,6 +258,22 @@ TEST(SingularityDesignFile, FieldFileFlagsPrescribedSingularitiesAndListsFeature
   EXPECT_EQ(prescribed["stats"]["prescribedIndex"], 2.0);
 }
 
+TEST(SingularityDesignFile, AVectorFieldWithSingularitiesIsWrittenAsDirections) {
+  // Two +1 on a sphere: all the index it needs. The field is then a unit direction field, not a 1-form.
+  Designer d(icosphere(2));
+  applyDesignDocument(d, nlohmann::json::parse(R"({"constraints": [],
+      "singularities": [{"vertex": 0, "index": 1}, {"vertex": 3, "index": 1}]})"));
+  d.solve();
+  const nlohmann::json field = fieldDocument(d);
+  EXPECT_FALSE(field.contains("oneForm"));
+  EXPECT_EQ(field["symmetry"], 1);
+  ASSERT_EQ(field["faceDirections"].size(), static_cast<size_t>(d.mesh().numFaces()));
+  std::set<std::pair<int32_t, double>> found;
+  for (const auto& s : field["singularities"])
+    found.insert({s["vertex"].get<int32_t>(), s["index"].get<double>()});
+  EXPECT_EQ(found, (std::set<std::pair<int32_t, double>>{{0, 1.0}, {3, 1.0}}));
+}
+
 TEST(SingularityDesignFile, BadSingularitiesAndFeaturesAreRefusedByName) {
   // A sheet with a boundary (vertex 0 is its corner), with a design loaded from a file.
   Designer d(flatGrid(6, 1.0, true));
