@@ -147,7 +147,7 @@ export class FakeCore {
       symmetry: this.symmetry,
       curvatureAlignment: this.curvatureAlignment,
       constraints: all.filter((spec) => spec?.type !== 'singularity'),
-      ...(singular.length ? { singularities: singular.map(({ vertex, index }) => ({ vertex, index })) } : {}),
+      ...(singular.length ? { singularities: singular.map(({ vertex, index }) => ({ index, vertex })) } : {}),
       ...(angle ? { featureAngle: angle } : {}),
       ...(add.length || remove.length ? { featureEdges: structuredClone({ add, remove }) } : {}),
     };

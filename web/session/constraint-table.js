@@ -14,9 +14,10 @@ export const NEW_DESIGN_FEATURE_ANGLE = 35;
 
 const isSingularity = (spec) => spec?.type === 'singularity';
 
-// The design's constraints and singularities as the document lists them, from the specs in the core's order.
+// The design's constraints and singularities as the document lists them, from the specs in the core's order
+// (each singularity's keys in the core's order too, so that the design's text does not depend on the route).
 function documentLists(specs) {
-  const singularities = specs.filter(isSingularity).map(({ vertex, index }) => ({ vertex, index }));
+  const singularities = specs.filter(isSingularity).map(({ vertex, index }) => ({ index, vertex }));
   return { constraints: specs.filter((spec) => !isSingularity(spec)), singularities };
 }
 
@@ -129,6 +130,7 @@ export class ConstraintTable {
   // The design's content as text, to tell unsaved edits (undoing back to the saved state counts as none).
   key() {
     const { constraints, singularities = [] } = this.design;
-    return JSON.stringify({ ...this.settings(), constraints, singularities, features: this.features() });
+    const prescribed = singularities.map(({ vertex, index }) => [vertex, index]);
+    return JSON.stringify({ ...this.settings(), constraints, prescribed, features: this.features() });
   }
 }

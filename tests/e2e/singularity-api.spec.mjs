@@ -1,0 +1,247 @@
+// The element API of prescribed singularities and sharp features (issue 44, items 2 and 4, the page side; docs/
+// js-api.md) against the real wasm core in its worker: addSingularity, moveSingularity and removeSingularity,
+// each one undoable step that keeps its id; singularities() with `prescribed` and the ids; singularitySummary();
+// the refusals (the core's message, the design and the history unchanged); saveDesign/loadDesign and the
+// autosave carrying singularities and features; setFeatures with any subset of its keys, and features().edges
+// equal to the edges this file finds sharper than the angle from the mesh's own dihedral angles; and the
+// worker's part of a singularity edit on bunny00 in perf(). The truth is the mesh and the core's own records.
+import { readFileSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { expect, test } from '@playwright/test';
+import { icosphereOff } from '../icosphere.mjs';
+import { cross, dot, norm, openDesignerPage, readMesh, sub, vertex } from './helpers.mjs';
+
+const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
+const CROSS = { boundary: 'free', gamma: 0, symmetry: 4, constraints: [] };
+
+// A box [-1, 1]^3 with n edges along each crease, faces outward, as OFF text.
+function boxOff(n) {
+  const index = new Map(), positions = [], triangles = [];
+  const at = (p) => {
+    const key = p.join(',');
+    if (!index.has(key)) index.set(key, positions.push(p) - 1);
+    return index.get(key);
+  };
+  for (let axis = 0; axis < 3; axis++)
+    for (const sign of [-1, 1]) {
+      const [u, w] = [(axis + 1) % 3, (axis + 2) % 3];
+      const grid = (i, j) => {
+        const p = [0, 0, 0];
+        p[axis] = sign;
+        p[u] = -1 + (2 * i) / n;
+        p[w] = -1 + (2 * j) / n;
+        return at(p);
+      };
+      for (let i = 0; i < n; i++)
+        for (let j = 0; j < n; j++) {
+          const [a, b, c, d] = [grid(i, j), grid(i + 1, j), grid(i + 1, j + 1), grid(i, j + 1)];
+          triangles.push(...(sign > 0 ? [a, b, c, a, c, d] : [a, c, b, a, d, c]));
+        }
+    }
+  const faces = Array.from({ length: triangles.length / 3 }, (_, f) => `3 ${triangles.slice(3 * f, 3 * f + 3).join(' ')}`);
+  return `OFF\n${positions.length} ${faces.length} 0\n${positions.map((p) => p.join(' ')).join('\n')}\n${faces.join('\n')}\n`;
+}
+
+// The interior edges whose faces' normals differ by more than `degrees`, as sorted "a,b" keys.
+function sharpEdges(mesh, degrees) {
+  const T = mesh.triangles, faces = new Map();
+  const normal = (f) => {
+    const [a, b, c] = [0, 1, 2].map((k) => vertex(mesh, T[3 * f + k]));
+    const n = cross(sub(b, a), sub(c, a));
+    return n.map((x) => x / norm(n));
+  };
+  for (let f = 0; f < T.length / 3; f++)
+    for (let k = 0; k < 3; k++) {
+      const [a, b] = [T[3 * f + k], T[3 * f + ((k + 1) % 3)]];
+      const key = a < b ? `${a},${b}` : `${b},${a}`;
+      faces.set(key, [...(faces.get(key) ?? []), f]);
+    }
+  const out = [];
+  for (const [key, fs] of faces) {
+    if (fs.length !== 2) continue;
+    const angle = (Math.acos(Math.min(1, Math.max(-1, dot(normal(fs[0]), normal(fs[1]))))) * 180) / Math.PI;
+    if (angle > degrees) out.push(key);
+  }
+  return out.sort();
+}
+
+const keys = (pairs) => pairs.map(([a, b]) => (a < b ? `${a},${b}` : `${b},${a}`)).sort();
+
+test.describe.serial('prescribed singularities and sharp features through the API', () => {
+  let page, errors;
+  const evaluate = (fn, arg) => page.evaluate(fn, arg);
+  // The message an API call rejects with, or 'resolved'.
+  const refusal = (fn, arg) => page.evaluate(fn, arg).then(() => 'resolved', (err) => err.message);
+
+  test.beforeAll(async ({ browser }) => {
+    ({ page, errors } = await openDesignerPage(browser));
+  });
+  test.afterAll(async () => {
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  test('singularities: placed, moved, removed and undone, each keeping its id; the refusals change nothing', async () => {
+    const off = icosphereOff(2);
+    await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'ico2.off', restore: false }),
+      off);
+    await evaluate((d) => window.tvf.loadDesign(d), CROSS);
+    const mesh = await readMesh(page);
+    // Eight vertices spread over the sphere (greedy farthest points).
+    const far = [0];
+    while (far.length < 8) {
+      let best = -1, bestD = -1;
+      for (let v = 0; v < mesh.positions.length / 3; v++) {
+        const d = Math.min(...far.map((w) => norm(sub(vertex(mesh, v), vertex(mesh, w)))));
+        if (d > bestD) [best, bestD] = [v, d];
+      }
+      far.push(best);
+    }
+    const ids = await evaluate(async (far) => {
+      const out = [];
+      for (const v of far) out.push(await window.tvf.addSingularity(v, 0.25));
+      return out;
+    }, far);
+    expect(new Set(ids).size).toBe(8);
+    const found = await evaluate(() => window.tvf.singularities());
+    const asSet = (list) => list.map((s) => `${s.vertex}:${s.index}:${s.prescribed}:${s.id}`).sort();
+    expect(asSet(found)).toEqual(asSet(far.map((vertex, k) => ({ vertex, index: 0.25, prescribed: true, id: ids[k] }))));
+    expect(await evaluate(() => window.tvf.singularitySummary())).toEqual(
+      { mode: 'exact', eulerCharacteristic: 2, prescribedIndex: 2, freeIndex: 0 });
+    const listed = (await evaluate(() => window.tvf.constraints())).filter((c) => c.type === 'singularity');
+    expect(listed.map((c) => [c.id, c.vertex, c.index])).toEqual(far.map((v, k) => [ids[k], v, 0.25]));
+    const lastOp = await evaluate(() => window.tvf.perf().lastOp);
+    expect(lastOp.op).toBe('addSingularity');
+    expect(lastOp.workerParts.topologyMs).toBeGreaterThanOrEqual(0);
+
+    // A move to a neighbour: that one moves, under its id; undo puts it back.
+    const E = mesh.edges;
+    let target = -1;
+    for (let k = 0; k < E.length && target < 0; k += 2)
+      if (E[k] === far[0] && !far.includes(E[k + 1])) target = E[k + 1];
+      else if (E[k + 1] === far[0] && !far.includes(E[k])) target = E[k];
+    await evaluate(([id, v]) => window.tvf.moveSingularity(id, v), [ids[0], target]);
+    const moved = await evaluate(() => window.tvf.singularities());
+    expect(asSet(moved)).toEqual(asSet([target, ...far.slice(1)].map((vertex, k) =>
+      ({ vertex, index: 0.25, prescribed: true, id: ids[k] }))));
+    await evaluate(() => window.tvf.undo());
+    expect((await evaluate(() => window.tvf.singularities())).find((s) => s.id === ids[0]).vertex).toBe(far[0]);
+    await evaluate(() => window.tvf.redo());
+
+    // Removal: the field places the +1/4 itself; undo brings back vertex and index under the same id.
+    await evaluate((id) => window.tvf.removeSingularity(id), ids[3]);
+    const summary = await evaluate(() => window.tvf.singularitySummary());
+    expect(summary.mode).toBe('free');
+    expect(summary.freeIndex).toBeCloseTo(0.25, 12);
+    const after = await evaluate(() => window.tvf.singularities());
+    expect(after.filter((s) => s.prescribed).length).toBe(7);
+    expect(after.filter((s) => !s.prescribed).reduce((sum, s) => sum + s.index, 0)).toBeCloseTo(0.25, 9);
+    await evaluate(() => window.tvf.undo());
+    const back = (await evaluate(() => window.tvf.constraints())).find((c) => c.id === ids[3]);
+    expect(back).toEqual({ id: ids[3], type: 'singularity', vertex: far[3], index: 0.25 });
+
+    // Refusals reject with the core's reason and leave the design and the history as they were.
+    const design = await evaluate(() => JSON.stringify(window.tvf.saveDesign()));
+    const history = await evaluate(() => window.tvf.history());
+    const unsaved = await evaluate(() => window.tvf.hasUnsavedEdits());
+    const reasons = [
+      await refusal((v) => window.tvf.addSingularity(v, -0.25), far[1]),
+      await refusal((v) => window.tvf.addSingularity(v, 1 / 3), far[1] === 1 ? 2 : 1),
+      await refusal(([id, v]) => window.tvf.moveSingularity(id, v), [ids[0], far[2]]),
+      await refusal(() => window.tvf.setFeatures({ angle: 400 })),
+    ];
+    console.log(`refusals: ${reasons.join(' | ')}`);
+    for (const reason of reasons) expect(reason).not.toBe('resolved');
+    expect(reasons[0]).toMatch(new RegExp(`${far[1]}`));
+    expect(await evaluate(() => window.tvf.saveDesign())).toEqual(JSON.parse(design));
+    expect(await evaluate(() => window.tvf.hasUnsavedEdits())).toBe(unsaved);
+    expect(await evaluate(() => window.tvf.history())).toEqual(history);
+
+    // Save, load and the autosave carry them.
+    const saved = JSON.parse(design);
+    const vertices = (list) => list.map((s) => `${s.vertex}:${s.index}`).sort();
+    expect(vertices(saved.singularities)).toEqual(vertices([target, ...far.slice(1)].map((vertex) => ({ vertex, index: 0.25 }))));
+    await evaluate(() => window.tvf.loadDesign({ boundary: 'free', gamma: 0, constraints: [] }));
+    expect(await evaluate(() => window.tvf.singularitySummary().mode)).toBe('none');
+    await evaluate((d) => window.tvf.loadDesign(d), saved);
+    expect(await evaluate(() => window.tvf.saveDesign())).toEqual(saved);
+    await evaluate(() => window.tvf.autosaveIdle());
+    await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'ico2.off' }), off);
+    const restored = await evaluate(() => window.tvf.saveDesign());
+    expect(restored.singularities).toEqual(saved.singularities);
+  });
+
+  test('features: the edges sharper than the angle, edits by vertex pairs, any subset of the keys', async () => {
+    const n = 3;
+    await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'box.off', restore: false }),
+      boxOff(n));
+    await evaluate((d) => window.tvf.loadDesign(d), { ...CROSS, featureAngle: 35 });
+    const mesh = await readMesh(page);
+    const creases = sharpEdges(mesh, 35);
+    expect(creases.length).toBe(12 * n);
+    let f = await evaluate(() => window.tvf.features());
+    expect(f.angle).toBe(35);
+    expect(keys(f.edges)).toEqual(creases);
+    expect((await evaluate(() => window.tvf.stats())).featureEdges).toBe(12 * n);
+
+    // A face's diagonal added and a crease edge removed; the angle stays.
+    const E = mesh.edges;
+    let flat = null;
+    for (let k = 0; k < E.length && !flat; k += 2) if (!creases.includes(`${E[k]},${E[k + 1]}`)) flat = [E[k], E[k + 1]];
+    const crease = creases[0].split(',').map(Number);
+    await evaluate(([add, remove]) => window.tvf.setFeatures({ add: [add], remove: [remove] }), [flat, crease]);
+    f = await evaluate(() => window.tvf.features());
+    expect(f.angle).toBe(35);
+    expect(keys(f.edges)).toEqual(keys([...creases.slice(1).map((k) => k.split(',').map(Number)), flat]));
+    expect(await evaluate(() => window.tvf.saveDesign().featureEdges)).toEqual({ add: [flat], remove: [crease] });
+    await evaluate(() => window.tvf.setFeatures({ angle: 0 }));
+    expect(keys((await evaluate(() => window.tvf.features())).edges)).toEqual(keys([flat]));
+    await evaluate(() => window.tvf.undo());
+    await evaluate(() => window.tvf.undo());
+    f = await evaluate(() => window.tvf.features());
+    expect([f.angle, f.add, f.remove, keys(f.edges)]).toEqual([35, [], [], creases]);
+    const reason = await refusal(() => window.tvf.setFeatures({ add: [[0, 0]] }));
+    expect(reason).not.toBe('resolved');
+    expect((await evaluate(() => window.tvf.features())).add).toEqual([]);
+  });
+
+  test("a singularity edit on bunny00: the worker's part in perf()", async () => {
+    test.setTimeout(120_000);
+    const bytes = readFileSync(resolve(ROOT, 'bench-data/meshes/bunny00.off'));
+    await evaluate(async (b64) => {
+      const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+      await window.tvf.loadModel(bytes, { name: 'bunny00.off', format: 'off', restore: false });
+    }, bytes.toString('base64'));
+    await evaluate((d) => window.tvf.loadDesign(d), CROSS);
+    const nV = (await evaluate(() => window.tvf.info())).vertices;
+    // Every index the sphere needs (8 x +1/4), then one moved three times along its neighbours.
+    const ids = await evaluate(async (nV) => {
+      const out = [];
+      for (let k = 0; k < 8; k++) out.push(await window.tvf.addSingularity(Math.floor((k * nV) / 8) + 11, 0.25));
+      return out;
+    }, nV);
+    const edges = await evaluate(() => Array.from(window.tvf.edges()));
+    const times = [];
+    let at = 11; // ids[0]'s vertex
+    const visited = [at];
+    for (let step = 0; step < 3; step++) {
+      let next = -1; // a neighbour of `at` not visited yet
+      for (let k = 0; k < edges.length && next < 0; k += 2) {
+        const other = edges[k] === at ? edges[k + 1] : edges[k + 1] === at ? edges[k] : -1;
+        if (other >= 0 && !visited.includes(other)) next = other;
+      }
+      expect(next, `a neighbour of vertex ${at} (${edges.length / 2} edges)`).toBeGreaterThanOrEqual(0);
+      visited.push(next);
+      await evaluate(([id, v]) => window.tvf.moveSingularity(id, v), [ids[0], next]);
+      const lastOp = await evaluate(() => window.tvf.perf().lastOp);
+      expect(lastOp.op).toBe('moveSingularity');
+      times.push(lastOp.workerMs);
+      at = next;
+    }
+    expect((await evaluate(() => window.tvf.singularitySummary())).mode).toBe('exact');
+    const median = [...times].sort((a, b) => a - b)[1];
+    console.log(`bunny00, cross field: a singularity move takes the worker ${times.map((t) => t.toFixed(0)).join(', ')} ms`);
+    expect(median).toBeLessThan(150);
+  });
+});
