@@ -120,6 +120,35 @@ test('preview: the coarse mesh is a manifold on the fine vertices; the map is ex
   for (let i = 1; i < spec.points.length; i++) assert.notEqual(spec.points[i].face, spec.points[i - 1].face);
 });
 
+test('preview: a prescribed singularity goes to the coarse vertex it stands on; feature edits stay fine', async () => {
+  const fine = jitteredPlane(40);
+  fine.edges = edgesOf(fine.triangles);
+  const coarse = await coarseMesh(fine.positions, fine.triangles);
+  const map = new SurfaceMap(fine, coarse);
+  // A fine vertex the coarse mesh kept is that coarse vertex (the map is exact on a plane).
+  const kept = [...coarse.fineVertex].slice(0, 20);
+  for (const [c, v] of kept.entries()) {
+    assert.equal(map.specOnCoarse({ type: 'singularity', vertex: v, index: 1 }).vertex, c, `fine vertex ${v}`);
+  }
+  // Any other: a corner of the coarse face it lies in.
+  const other = [...Array(map.nV).keys()].find((v) => !coarse.fineVertex.includes(v));
+  const corner = map.specOnCoarse({ type: 'singularity', vertex: other, index: -1 }).vertex;
+  const face = map.vertexFace[other];
+  assert.ok([0, 1, 2].some((k) => coarse.triangles[3 * face + k] === corner), 'a corner of its coarse face');
+  const doc = {
+    constraints: [],
+    singularities: [{ vertex: kept[0], index: 1 }, { vertex: kept[1], index: -1 }],
+    featureAngle: 30,
+    featureEdges: { add: [[fine.edges[0], fine.edges[1]]], remove: [] },
+    mesh: { vertices: map.nV },
+  };
+  const onCoarse = map.designOnCoarse(doc);
+  assert.deepEqual(onCoarse.singularities, [{ vertex: 0, index: 1 }, { vertex: 1, index: -1 }]);
+  assert.equal(onCoarse.featureAngle, 30, 'the coarse mesh finds its own features by the angle');
+  assert.equal('featureEdges' in onCoarse, false, 'the fine edges are no edges of the coarse mesh');
+  assert.equal('mesh' in onCoarse, false);
+});
+
 // Edges, edges with one face, and the loops those form.
 function boundaryOf(triangles) {
   const count = new Map();
