@@ -197,6 +197,8 @@ void Designer::factor() {
 int32_t Designer::add(const ConstraintSpec& spec) {
   Impl& d = *impl_;
   if (spec.kind != ConstraintKind::Singularity || d.system->prescribes()) {
+    if (spec.kind == ConstraintKind::Singularity)
+      checkOffFeatureCurves(spec.element, d.mesh.topology(), d.settings.featureEdges);
     const int32_t id = d.system->add(spec, d.stats);
     d.fieldCurrent = false;
     return id;
@@ -207,6 +209,7 @@ int32_t Designer::add(const ConstraintSpec& spec) {
   probe.id = 0;
   d.constraints.validate(probe);
   checkSingularity(probe, d.symmetry(), d.mesh.mesh(), d.mesh.topology(), d.mesh.geometry(), d.constraints);
+  checkOffFeatureCurves(probe.element, d.mesh.topology(), d.settings.featureEdges);
   std::map<int32_t, double> smoothest;
   const bool seed = d.fieldCurrent && !d.field.solution().faceVectors.empty();
   if (seed)
@@ -257,6 +260,7 @@ void Designer::moveSingularity(int32_t id, int32_t vertex) {
   d.constraints.validate(moved);
   checkSingularity(moved, d.symmetry(), d.mesh.mesh(), d.mesh.topology(), d.mesh.geometry(), d.constraints,
                    id);
+  checkOffFeatureCurves(vertex, d.mesh.topology(), d.settings.featureEdges);
   d.constraints.setElement(id, vertex);
   d.fieldCurrent = false;
   d.system->singularitiesChanged();
@@ -266,6 +270,8 @@ void Designer::setFeatures(double degrees, const std::vector<std::array<int32_t,
                            const std::vector<std::array<int32_t, 2>>& remove) {
   Impl& d = *impl_;
   std::vector<int32_t> edges = tvf::featureEdges(d.mesh.topology(), d.mesh.geometry(), degrees, add, remove);
+  for (const ConstraintSpec& s : d.constraints.specsOf(ConstraintKind::Singularity))
+    checkOffFeatureCurves(s.element, d.mesh.topology(), edges);
   d.featureAngle = degrees;
   d.featureAdded = add;
   d.featureRemoved = remove;

@@ -171,7 +171,7 @@ std::vector<double> combedVertexField(const SurfaceMesh& mesh, const CombedDirec
 
 void requireDirectionsOn(const MeshTopology& topology, const std::vector<double>& faceDirections,
                          int symmetry) {
-  if (symmetry < 2 || symmetry > 6) throw InputError("direction exports need a symmetry from 2 to 6");
+  if (symmetry < 1 || symmetry > 6) throw InputError("direction exports need a symmetry from 1 to 6");
   if (faceDirections.size() != 3 * static_cast<std::size_t>(topology.numFaces))
     throw InputError("the field has " + std::to_string(faceDirections.size() / 3) +
                      " directions, the mesh has " + std::to_string(topology.numFaces) + " faces");

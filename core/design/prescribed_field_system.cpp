@@ -88,6 +88,17 @@ void checkSingularity(const ConstraintSpec& spec, int symmetry, const SurfaceMes
                        indexText(other.value, symmetry) + "); move or remove that one");
 }
 
+void checkOffFeatureCurves(int32_t vertex, const MeshTopology& t, const std::vector<int32_t>& featureEdges) {
+  int count = 0;
+  for (const int32_t e : featureEdges)
+    count += t.edgeVertices[2 * e] == vertex || t.edgeVertices[2 * e + 1] == vertex;
+  if (count == 2)
+    throw InputError(
+        "singularity at vertex " + std::to_string(vertex) +
+        ": the vertex lies inside a sharp feature curve, along which the field is held; prescribe it "
+        "off the curve or where curves meet, or remove the feature there");
+}
+
 PrescribedFieldSystem::PrescribedFieldSystem(int symmetry, const DesignMesh& mesh, ConstraintSet& constraints,
                                              const FieldSettings& settings)
     : symmetry_(symmetry),
@@ -321,10 +332,28 @@ void PrescribedFieldSystem::solve(FieldSolution& field, DesignStats& stats) {
 
   double sum = 0;
   for (const auto& [v, index] : field.prescribed) sum += index;
+  warnUnseen(field, stats);
   stats.singularityMode = exact_ ? "exact" : "free";
   stats.eulerCharacteristic = mesh_.topology().eulerCharacteristic();
   stats.prescribedIndex = sum;
   stats.freeIndex = stats.eulerCharacteristic - sum;
+}
+
+// A prescription the index count does not find (a stroke or a feature turning the field too fast beside it)
+// is named rather than silently lost.
+void PrescribedFieldSystem::warnUnseen(const FieldSolution& field, DesignStats& stats) const {
+  std::map<int32_t, double> seen;
+  for (const Singularity& s :
+       findSingularities(mesh_.mesh(), mesh_.topology(), mesh_.geometry(), field.faceVectors, symmetry_))
+    seen[s.vertex] = s.index;
+  for (const auto& [v, index] : field.prescribed) {
+    const auto it = seen.find(v);
+    if (it == seen.end() || std::abs(it->second - index) > 1e-9)
+      stats.warnings.push_back("the singularity prescribed at vertex " + std::to_string(v) + " (index " +
+                               indexText(index, symmetry_) +
+                               ") does not show: a stroke, direction or feature turns the field too fast "
+                               "beside it");
+  }
 }
 
 void PrescribedFieldSystem::vertexVectors(const FieldSolution& field, std::vector<double>& out) const {

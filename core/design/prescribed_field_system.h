@@ -28,6 +28,11 @@ void checkSingularity(const ConstraintSpec& spec, int symmetry, const SurfaceMes
                       const MeshTopology& topology, const MeshGeometry& geometry,
                       const ConstraintSet& constraints, int32_t ignoreId = 0);
 
+// Throws InputError when `vertex` lies inside a sharp feature curve (exactly two of featureEdges meet there):
+// the field is held along the curve on both sides, so no index can show there.
+void checkOffFeatureCurves(int32_t vertex, const MeshTopology& topology,
+                           const std::vector<int32_t>& featureEdges);
+
 class PrescribedFieldSystem final : public FieldSystem {
  public:
   // Throws InputError naming what the design holds that it cannot take (sources, sinks, vortices, edge
@@ -70,7 +75,9 @@ class PrescribedFieldSystem final : public FieldSystem {
   void fixedTerms();
   void addAll();
   PowerFieldSystem& power();
-  void naturalChanged();  // a stroke, direction, boundary or feature changed the smoothest field
+  void naturalChanged();
+  void warnUnseen(const FieldSolution& field, DesignStats& stats)
+      const;  // a stroke, direction, boundary or feature changed the smoothest field
   const std::map<int32_t, double>& natural();
 
   int symmetry_;

@@ -438,3 +438,42 @@ TEST(PrescribedSingularities, PlacingOnePullsTheNearestFreeOneToIt) {
     for (const Singularity& s : d.singularities()) EXPECT_EQ(s.prescribed, s.vertex == v) << s.vertex;
   }
 }
+
+TEST(SharpFeatures, NoSingularityInsideAFeatureCurve) {
+  // On a box with its creases as features: a +1/4 at a corner (where three curves meet) is the cube's own and
+  // shows; inside a crease curve it is refused by name, and features that would run through a prescribed
+  // vertex are refused too, the design unchanged.
+  Designer d(holedPlate(1, 1, {}, 3));
+  d.setSymmetry(4);
+  d.setFeatures(35, {}, {});
+  const MeshTopology& t = d.topology();
+  std::vector<int> featureCount(t.numVertices, 0);
+  for (const int32_t e : d.featureEdges()) {
+    ++featureCount[t.edgeVertices[2 * e]];
+    ++featureCount[t.edgeVertices[2 * e + 1]];
+  }
+  int32_t corner = -1, inside = -1, flat = -1;
+  for (int32_t v = 0; v < t.numVertices; ++v) {
+    if (featureCount[v] == 3 && corner < 0) corner = v;
+    if (featureCount[v] == 2 && inside < 0) inside = v;
+    if (featureCount[v] == 0 && flat < 0) flat = v;
+  }
+  ASSERT_TRUE(corner >= 0 && inside >= 0 && flat >= 0);
+  try {
+    d.addSingularity(inside, 0.25);
+    FAIL() << "a singularity inside a feature curve was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("feature curve"), std::string::npos) << e.what();
+  }
+  d.addSingularity(corner, 0.25);
+  d.solve();
+  bool shown = false;
+  for (const Singularity& s : d.singularities()) shown = shown || (s.vertex == corner && s.prescribed);
+  EXPECT_TRUE(shown);
+  EXPECT_TRUE(d.stats().warnings.empty()) << d.stats().warnings.front();
+  d.setFeatures(0, {}, {});
+  d.addSingularity(inside, 0.25);
+  const size_t before = d.featureEdges().size();
+  EXPECT_THROW(d.setFeatures(35, {}, {}), InputError);
+  EXPECT_EQ(d.featureEdges().size(), before);
+}

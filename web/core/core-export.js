@@ -54,11 +54,11 @@ export class CoreExport {
     return this.#loaded().atlasNote();
   }
 
-  // field: {oneForm} of a vector field, or {faceDirections, symmetry} of a line or cross field (one unit
+  // field: {oneForm} of a vector field, or {faceDirections, symmetry} of a direction field (one unit
   // representative per face; the core combs them per chart of the atlas).
   flowMapPng(field, options) {
     const exporter = this.#loaded();
-    const png = field.symmetry > 1
+    const png = field.faceDirections
       ? exporter.directionFlowMapPng(field.faceDirections, field.symmetry, JSON.stringify(options))
       : exporter.flowMapPng(field.oneForm, JSON.stringify(options));
     if (!png) throw new CoreError(`export: ${exporter.lastError()}`);
@@ -70,7 +70,7 @@ export class CoreExport {
   glb(field, design, options, texture = null) {
     const exporter = this.#loaded();
     const text = design ? JSON.stringify(design) : '';
-    const glb = field.symmetry > 1
+    const glb = field.faceDirections
       ? exporter.directionGlb(field.faceDirections, field.symmetry, text, JSON.stringify(options), texture)
       : exporter.glb(field.oneForm, text, JSON.stringify(options), texture);
     if (!glb) throw new CoreError(`export: ${exporter.lastError()}`);
@@ -101,11 +101,13 @@ function sniffFormat(bytes) {
 // The worker's export ops (worker/dispatch.js files them as `onMesh`): the same bytes as `tvf export` for this
 // model file (docs/export.md), of the field and design the core holds now.
 export function exportOps(state) {
-  // What the exports read of the field: a vector field's one-form, or a line or cross field's directions.
+  // What the exports read of the field: a vector field's one-form, or the directions of a line or cross field
+  // (or of a unit vector field with prescribed singularities, which has no one-form).
   const field = () => {
     const symmetry = state.core.symmetry();
-    if (symmetry > 1) return { symmetry, faceDirections: state.core.faceVectors() };
-    return { symmetry, oneForm: state.core.oneForm() };
+    const oneForm = symmetry > 1 ? null : state.core.oneForm();
+    if (!oneForm || oneForm.length === 0) return { symmetry, faceDirections: state.core.faceVectors() };
+    return { symmetry, oneForm };
   };
   const design = () => JSON.parse(state.core.designJson());
 
