@@ -151,7 +151,7 @@ test.describe.serial('prescribed singularities and sharp features through the AP
       await refusal(([id, v]) => window.tvf.moveSingularity(id, v), [ids[0], far[2]]),
       await refusal(() => window.tvf.setFeatures({ angle: 400 })),
     ];
-    console.log(`refusals: ${reasons.join(' | ')}`);
+    console.log(`refusals: ${reasons.map((r) => r.split('\n')[0]).join(' | ')}`);
     for (const reason of reasons) expect(reason).not.toBe('resolved');
     expect(reasons[0]).toMatch(new RegExp(`${far[1]}`));
     expect(await evaluate(() => window.tvf.saveDesign())).toEqual(JSON.parse(design));
@@ -170,6 +170,27 @@ test.describe.serial('prescribed singularities and sharp features through the AP
     await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'ico2.off' }), off);
     const restored = await evaluate(() => window.tvf.saveDesign());
     expect(restored.singularities).toEqual(saved.singularities);
+  });
+
+  test('a vector field takes prescribed singularities: a unit direction field, drawn by every view', async () => {
+    await evaluate(() => window.tvf.loadDesign({ boundary: 'free', gamma: 0, constraints: [] }));
+    const ids = [await evaluate(() => window.tvf.addSingularity(0, 1)), await evaluate(() => window.tvf.addSingularity(5, 1))];
+    expect(await evaluate(() => window.tvf.singularitySummary().mode)).toBe('exact');
+    const found = await evaluate(() => window.tvf.singularities());
+    expect(found.map((s) => [s.vertex, s.index, s.prescribed, s.id]).sort()).toEqual([[0, 1, true, ids[0]], [5, 1, true, ids[1]]]);
+    const lengths = await evaluate(() => {
+      const v = window.tvf.faceVectors();
+      const out = [];
+      for (let f = 0; f < v.length / 3; f++) out.push(Math.hypot(v[3 * f], v[3 * f + 1], v[3 * f + 2]));
+      return out;
+    });
+    expect(Math.max(...lengths.map((l) => Math.abs(l - 1)))).toBeLessThan(1e-9);
+    expect(await refusal(() => window.tvf.addSource(9))).toMatch(/source/);
+    for (const views of [{ arrows: true, streamlines: true, singularities: true }, { lic: true, colorMap: true }])
+      await evaluate((v) => window.tvf.setViews(v), views);
+    await evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
+    await evaluate(() => window.tvf.setViews({ lic: false, colorMap: false, streamlines: false }));
+    expect((await evaluate(() => window.tvf.oneForm())).length, 'a direction field has no 1-form').toBe(0);
   });
 
   test('features: the edges sharper than the angle, edits by vertex pairs, any subset of the keys', async () => {

@@ -37,9 +37,10 @@ export const editCalls = (Base) =>
     // A prescribed singularity (index a nonzero multiple of 1/N at an interior vertex): its core id. The core's
     // refusal (a boundary vertex, a bad index, a vertex that has one) is a CoreError, the design unchanged.
     addSingularity(vertex, index) {
-      requireNumber('singularity: vertex', vertex);
-      requireNumber('singularity: index', index);
-      return this.#id('singularity', guard('singularity', () => this.designer.addSingularity(vertex, index)));
+      requireNumber('add singularity: vertex', vertex);
+      requireNumber('add singularity: index', index);
+      const what = 'add singularity'; // the core's reason names the singularity ("singularity at vertex 3: ...")
+      return this.#id(what, guard(what, () => this.designer.addSingularity(vertex, index)));
     }
 
     // The singularity `id` to another vertex, its id and index kept.
