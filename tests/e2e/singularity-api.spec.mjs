@@ -225,6 +225,15 @@ test.describe.serial('prescribed singularities and sharp features through the AP
     const reason = await refusal(() => window.tvf.setFeatures({ add: [[0, 0]] }));
     expect(reason).not.toBe('resolved');
     expect((await evaluate(() => window.tvf.features())).add).toEqual([]);
+
+    // Clear takes the constraints and singularities; the features stay, as the other settings do.
+    await evaluate(([add]) => window.tvf.setFeatures({ angle: 50, add: [add] }), [flat]);
+    await evaluate(() => window.tvf.addSingularity(0, 0.25));
+    await page.locator('tangent-field-designer #clear-all').click();
+    await expect.poll(() => evaluate(() => window.tvf.constraints().length)).toBe(0);
+    f = await evaluate(() => window.tvf.features());
+    expect([f.angle, f.add]).toEqual([50, [flat]]);
+    expect(await evaluate(() => window.tvf.settings().symmetry)).toBe(4);
   });
 
   test("a singularity edit on bunny00: the worker's part in perf()", async () => {

@@ -104,8 +104,10 @@ export function panelActions(d) {
     onEditWeight: editable((uid, w) => d.report(s().setParameter('weight', uid, w))),
     onEditStrength: editable((uid, v) => d.report(s().setParameter('strength', uid, v))),
     onCancel: () => s().cancel(),
-    onClear: editable(
-      () => s().table.size && d.report(s().replaceDesign({ ...s().settings(), constraints: [] }, 'clear')),
-    ),
+    // The constraints and prescribed singularities go; the settings and the features stay.
+    onClear: editable(() => {
+      const cleared = { ...s().settings(), ...s().table.featureKeys(), constraints: [] };
+      return s().table.size && d.report(s().replaceDesign(cleared, 'clear'));
+    }),
   };
 }
