@@ -82,4 +82,31 @@ test('the preview worker: warmed up on a torus, then prepared on the mesh read a
   assert.equal(after.design.document, undefined);
   assert.deepEqual(after.design.changed.map(([k]) => k), [id]);
   assert.deepEqual(after.design.changed[0][1].points, points);
+
+  // A prescribed singularity: placed and moved on the coarse vertex the fine one stands on, answered in fine
+  // vertices; the features' fine edge edits stay in the fine document, the angle goes to the coarse core.
+  core.remove(id);
+  preview.afterOp('remove', [id], true);
+  core.setSymmetry(4);
+  const [v, w] = [prepared.coarse.fineVertex[5], prepared.coarse.fineVertex[200]];
+  const placeArgs = preview.argsOnCoarse('addSingularity', [v, 0.25]);
+  assert.deepEqual(placeArgs, [5, 0.25], 'a kept fine vertex is its coarse vertex');
+  const sid = core.addSingularity(...placeArgs);
+  preview.afterOp('addSingularity', [v, 0.25], sid);
+  core.solve();
+  const placed = preview.snapshot(new SpareArrays(), {}, [sid]);
+  assert.deepEqual(placed.design.changed, [[sid, { index: 0.25, type: 'singularity', vertex: v }]]);
+  core.moveSingularity(...preview.argsOnCoarse('moveSingularity', [sid, w]));
+  preview.afterOp('moveSingularity', [sid, w], true);
+  const [a, b] = [fine.triangles[0], fine.triangles[1]]; // an edge of the fine mesh
+  core.setFeatures(...preview.argsOnCoarse('setFeatures', [{ angle: 30, add: [[a, b]], remove: [] }]));
+  preview.afterOp('setFeatures', [{ angle: 30, add: [[a, b]], remove: [] }], true);
+  core.solve();
+  const whole = preview.snapshot(new SpareArrays(), {});
+  assert.deepEqual(whole.design.document.singularities, [{ index: 0.25, vertex: w }]);
+  assert.deepEqual(whole.design.specs, [{ index: 0.25, type: 'singularity', vertex: w }]);
+  assert.deepEqual(whole.design.document.constraints, []);
+  assert.equal(whole.design.document.featureAngle, 30);
+  assert.deepEqual(whole.design.document.featureEdges, { add: [[a, b]], remove: [] });
+  assert.deepEqual(core.features().add, [], 'the coarse core has none of the fine edges');
 });
