@@ -20,7 +20,13 @@ namespace tvf {
 namespace {
 
 // Read-outs that only a vector field has (a 1-form): refused by name for an N-direction field.
-void requireVectorField(int symmetry, const char* what) {
+void requireVectorField(const FieldSystem& system, const char* what) {
+  if (system.symmetry() == 1 && system.prescribes())
+    throw InputError(
+        std::string(what) +
+        " of a vector field's 1-form; with prescribed singularities the field is a unit direction "
+        "field (no 1-form): remove the singularities first");
+  const int symmetry = system.symmetry();
   if (symmetry != 1)
     throw InputError(std::string(what) + " of vector fields (symmetry 1); this field has symmetry " +
                      std::to_string(symmetry));
@@ -417,7 +423,7 @@ const DesignStats& Designer::stats() const {
 }
 HodgeDecomposition Designer::hodgeDecomposition() const {
   const Impl& d = *impl_;
-  requireVectorField(d.symmetry(), "the Hodge decomposition is");
+  requireVectorField(*d.system, "the Hodge decomposition is");
   const std::vector<double>& oneForm = d.field.solution().oneForm;
   const MeshTopology& topology = d.mesh.topology();
   if (oneForm.size() != static_cast<size_t>(topology.numEdges))
@@ -467,7 +473,7 @@ double Designer::weightScale() {
 
 Eigen::VectorXd Designer::textureFaceVectors() const {
   const Impl& d = *impl_;
-  requireVectorField(d.symmetry(), "texture vectors are");
+  requireVectorField(*d.system, "texture vectors are");
   std::vector<double> out;
   tvf::textureFaceVectors(d.mesh.mesh(), d.mesh.topology(), d.field.solution().oneForm.data(), out);
   return Eigen::Map<Eigen::VectorXd>(out.data(), out.size());

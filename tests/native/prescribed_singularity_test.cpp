@@ -477,3 +477,17 @@ TEST(SharpFeatures, NoSingularityInsideAFeatureCurve) {
   EXPECT_THROW(d.setFeatures(35, {}, {}), InputError);
   EXPECT_EQ(d.featureEdges().size(), before);
 }
+
+TEST(PrescribedSingularities, AUnitVectorFieldHasNoOneFormToDecompose) {
+  Designer d(icosphere(2));
+  d.addSingularity(3, 1);
+  d.addSingularity(30, 1);
+  d.solve();
+  EXPECT_TRUE(d.oneForm().empty());
+  try {
+    d.hodgeDecomposition();
+    FAIL() << "decomposed a field without a 1-form";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("prescribed singularities"), std::string::npos) << e.what();
+  }
+}
