@@ -46,6 +46,7 @@ struct Designer::Impl {
   DerivedField field;
   // The field is the solve of the design as it is (no edit since): what a new system may start from.
   bool fieldCurrent = false;
+  bool unseenChecked = true;  // the solve's prescriptions compared with the singularities it shows
   DesignStats stats;
   double featureAngle = 0;
   std::vector<std::array<int32_t, 2>> featureAdded, featureRemoved;
@@ -395,6 +396,7 @@ void Designer::solve() {
   d.stats.featureEdges = static_cast<int32_t>(d.settings.featureEdges.size());
   d.system->solve(d.field.solution(), d.stats);
   if (!d.system->prescribes()) d.field.solution().prescribed.clear();
+  d.unseenChecked = false;
   d.fieldCurrent = true;
   d.field.solved();
 }
@@ -416,7 +418,23 @@ const std::vector<double>& Designer::vertexVectors() const {
   return impl_->field.requireVertexVectors(*impl_->system);
 }
 const std::vector<Singularity>& Designer::singularities() const {
-  return impl_->field.requireSingularities(impl_->mesh);
+  Impl& d = *impl_;
+  const std::vector<Singularity>& found = d.field.requireSingularities(d.mesh);
+  if (!d.unseenChecked) {
+    // A prescription the index count does not find (a stroke or a feature turning the field too fast beside
+    // it) is named rather than silently lost; checked once per solve, when the singularities are first read.
+    d.unseenChecked = true;
+    for (const auto& [v, index] : d.field.solution().prescribed) {
+      bool shown = false;
+      for (const Singularity& s : found) shown = shown || (s.vertex == v && s.prescribed);
+      if (!shown)
+        d.stats.warnings.push_back("the singularity prescribed at vertex " + std::to_string(v) + " (index " +
+                                   std::to_string(index) +
+                                   ") does not show: a stroke, direction or feature turns the field too fast "
+                                   "beside it");
+    }
+  }
+  return found;
 }
 const DesignStats& Designer::stats() const {
   return impl_->stats;

@@ -332,28 +332,10 @@ void PrescribedFieldSystem::solve(FieldSolution& field, DesignStats& stats) {
 
   double sum = 0;
   for (const auto& [v, index] : field.prescribed) sum += index;
-  warnUnseen(field, stats);
   stats.singularityMode = exact_ ? "exact" : "free";
   stats.eulerCharacteristic = mesh_.topology().eulerCharacteristic();
   stats.prescribedIndex = sum;
   stats.freeIndex = stats.eulerCharacteristic - sum;
-}
-
-// A prescription the index count does not find (a stroke or a feature turning the field too fast beside it)
-// is named rather than silently lost.
-void PrescribedFieldSystem::warnUnseen(const FieldSolution& field, DesignStats& stats) const {
-  std::map<int32_t, double> seen;
-  for (const Singularity& s :
-       findSingularities(mesh_.mesh(), mesh_.topology(), mesh_.geometry(), field.faceVectors, symmetry_))
-    seen[s.vertex] = s.index;
-  for (const auto& [v, index] : field.prescribed) {
-    const auto it = seen.find(v);
-    if (it == seen.end() || std::abs(it->second - index) > 1e-9)
-      stats.warnings.push_back("the singularity prescribed at vertex " + std::to_string(v) + " (index " +
-                               indexText(index, symmetry_) +
-                               ") does not show: a stroke, direction or feature turns the field too fast "
-                               "beside it");
-  }
 }
 
 void PrescribedFieldSystem::vertexVectors(const FieldSolution& field, std::vector<double>& out) const {
