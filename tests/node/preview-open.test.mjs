@@ -84,7 +84,7 @@ test('the preview worker: warmed up on a torus, then prepared on the mesh read a
   assert.deepEqual(after.design.changed[0][1].points, points);
 
   // A prescribed singularity: placed and moved on the coarse vertex the fine one stands on, answered in fine
-  // vertices; the features' fine edge edits stay in the fine document, the angle goes to the coarse core.
+  // vertices; the features (angle and fine edge edits) stay in the fine document, the coarse core has none.
   core.remove(id);
   preview.afterOp('remove', [id], true);
   core.setSymmetry(4);
@@ -108,5 +108,5 @@ test('the preview worker: warmed up on a torus, then prepared on the mesh read a
   assert.deepEqual(whole.design.document.constraints, []);
   assert.equal(whole.design.document.featureAngle, 30);
   assert.deepEqual(whole.design.document.featureEdges, { add: [[a, b]], remove: [] });
-  assert.deepEqual(core.features().add, [], 'the coarse core has none of the fine edges');
+  assert.deepEqual(core.features(), { angle: 0, add: [], remove: [] }, 'the coarse core has no features');
 });

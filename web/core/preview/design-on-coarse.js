@@ -68,12 +68,14 @@ function nearestCorner(map, v) {
 }
 
 // A whole design document: its constraints and singularities posed on the coarse mesh, without the fine mesh's
-// fingerprint and feature edge edits (the coarse mesh has none of those edges; its features are the angle's).
+// fingerprint and without features: the coarse mesh has none of the fine edges, and the angle would find the
+// decimation's creases (a smooth model's coarse stand-in has many over 35 degrees) rather than the model's.
 export function designOnCoarse(map, doc) {
   const out = { ...doc, constraints: (doc.constraints ?? []).map((s) => map.specOnCoarse(s)) };
   if (doc.singularities)
     out.singularities = doc.singularities.map((s) => ({ ...s, vertex: nearestCorner(map, s.vertex) }));
   delete out.mesh;
   delete out.featureEdges;
+  delete out.featureAngle; // none: 0
   return out;
 }

@@ -29,7 +29,9 @@ export class Preview {
   // model (settings, fingerprint, constraints: normalized fine specs); settings as loadModel's.
   static open(core, { coarse, map, timings }, fineDoc, settings) {
     const t0 = performance.now();
-    const { restoreError } = core.loadModel(offBytes(coarse), 'off', settings, map.designOnCoarse(fineDoc));
+    // The coarse core detects no features (design-on-coarse.js): its settings' angle goes as well.
+    const coarseSettings = settings && { ...settings, featureAngle: 0 };
+    const { restoreError } = core.loadModel(offBytes(coarse), 'off', coarseSettings, map.designOnCoarse(fineDoc));
     // A constraint the coarse surface cannot take would leave the two cores' ids apart: no preview then.
     if (restoreError) throw new Error(`the preview could not take the design: ${restoreError}`);
     const preview = new Preview(core, map, fineDoc);
@@ -46,15 +48,17 @@ export class Preview {
     this.#adoptDocument(fineDoc);
   }
 
-  // The fine design's feature edge edits ({add, remove}), which only the fine document carries.
-  #adoptFeatureEdges({ add = [], remove = [] } = {}) {
-    this.template = { ...this.template, featureEdges: { add, remove } };
+  // The fine design's features: its angle (0: none, as a document without one means) and edge edits ({add,
+  // remove}), which only the fine document carries; the coarse core runs without features (design-on-coarse.js).
+  #adoptFeatures(angle = 0, { add = [], remove = [] } = {}) {
+    this.template = { ...this.template, featureAngle: angle, featureEdges: { add, remove } };
+    if (!angle) delete this.template.featureAngle;
     if (!add.length && !remove.length) delete this.template.featureEdges;
   }
 
   // The fine specs of a document the coarse core has just taken whole, under the ids it gave them.
   #adoptDocument(doc) {
-    this.#adoptFeatureEdges(doc.featureEdges);
+    this.#adoptFeatures(doc.featureAngle, doc.featureEdges);
     const ids = this.core.constraintIds();
     const fine = [...doc.constraints, ...(doc.singularities ?? []).map((s) => ({ type: 'singularity', ...s }))];
     this.fineSpecs = new Map(ids.map((id, k) => [id, this.#normal(id, fine[k])]));
@@ -79,7 +83,7 @@ export class Preview {
     if (op === 'addSingularity') return [this.#vertexOnCoarse(args[0]), args[1]];
     if (op === 'moveSingularity') return [args[0], this.#vertexOnCoarse(args[1])];
     if (op === 'addSingularities') return [args[0].map(([v, k]) => [this.#vertexOnCoarse(v), k])];
-    if (op === 'setFeatures') return [args[0] && 'angle' in args[0] ? { angle: args[0].angle } : {}];
+    if (op === 'setFeatures') return [{ angle: coarseFeatureAngle(args[0]) }];
     if (op === 'applyDesign') return [m.designOnCoarse(args[0])];
     if (op === 'setSymmetry' && args[1]?.add)
       return [args[0], { ...args[1], add: args[1].add.map((s) => m.specOnCoarse(s)) }];
@@ -110,25 +114,33 @@ export class Preview {
     else if (op === 'addSingularities') args[0].forEach(([vertex], k) => fine(result[k], vertex));
     else if (op === 'moveSingularity') fine(args[0], args[1]);
     else if (op === 'removeConstraints') args[0].forEach((id) => this.fineSpecs.delete(id));
-    else if (op === 'setFeatures') this.#adoptFeatureEdges({ ...this.template.featureEdges, ...args[0] });
+    else if (op === 'setFeatures') this.#setFeatures(args[0]);
     else return false;
     return true;
   }
 
+  // A setFeatures op's {angle, add, remove} (any of them; the others keep their values), in the fine design.
+  #setFeatures(features = {}) {
+    const { featureAngle, featureEdges } = this.template;
+    const { angle = featureAngle, add = featureEdges?.add, remove = featureEdges?.remove } = features;
+    this.#adoptFeatures(angle, { add, remove });
+  }
+
   // The fine design document: the coarse core's settings, the fine mesh's fingerprint, the fine specs (the
-  // prescribed singularities listed apart, as the core writes them). The features are the coarse core's angle
-  // and the fine design's edge edits (the coarse mesh has none of those edges).
+  // prescribed singularities listed apart, as the core writes them). The features are the fine design's, angle
+  // and edge edits: the coarse core has none (its mesh has none of those edges, and its decimated creases are
+  // not the model's).
   fineDocument(ids) {
     const coarse = JSON.parse(this.core.designJson());
     const specs = ids.map((id) => this.fineSpecs.get(id));
     const singular = specs.filter((spec) => spec.type === 'singularity');
     const doc = { ...coarse, constraints: specs.filter((spec) => spec.type !== 'singularity') };
-    delete doc.singularities;
+    for (const key of ['singularities', 'featureAngle', 'featureEdges', 'mesh']) delete doc[key];
     if (singular.length) doc.singularities = singular.map(({ vertex, index }) => ({ vertex, index }));
-    if (this.template.featureEdges) doc.featureEdges = this.template.featureEdges;
-    if (this.template.mesh) doc.mesh = this.template.mesh;
-    else delete doc.mesh;
-    return doc;
+    for (const key of ['featureAngle', 'featureEdges', 'mesh'])
+      if (this.template[key] !== undefined) doc[key] = this.template[key];
+    // In the core's key order (the parts are in theirs already).
+    return Object.fromEntries(Object.keys(doc).sort().map((key) => [key, doc[key]]));
   }
 
   // The reply to a mutating op (worker/snapshot.js, in fine terms): the preview field on the fine
@@ -180,6 +192,13 @@ export class Preview {
   }
 }
 
+
+// The angle a setFeatures op gives the coarse core: 0 (no features there), or an angle the core refuses (not a
+// number of degrees in [0, 180]) as it is, so that the coarse core refuses it by name as the exact one will.
+function coarseFeatureAngle(features) {
+  const angle = features?.angle ?? 0;
+  return typeof angle === 'number' && angle >= 0 && angle <= 180 ? 0 : angle;
+}
 
 // JSON values with every object's keys in order, as the core writes them (nlohmann's objects are sorted).
 function sortedKeys(value) {
