@@ -48,6 +48,8 @@ export interface Settings {
   symmetry: number;
   /** 0: off. */
   curvatureAlignment: number;
+  /** true: the field has exactly the prescribed singularities, none when none are prescribed. */
+  exactSingularities: boolean;
 }
 
 export interface MeshInfo {
@@ -83,6 +85,8 @@ export interface Design {
   constraints: ConstraintSpec[];
   /** Prescribed singularities: an index (a nonzero multiple of 1/N) at an interior vertex. */
   singularities?: { vertex: number; index: number }[];
+  /** true: the field has exactly the prescribed singularities, none when none are prescribed (absent: false). */
+  exactSingularities?: boolean;
   /** Edges whose dihedral angle exceeds this many degrees are features (0 or absent: none). */
   featureAngle?: number;
   /** Feature edges added to and removed from those the angle finds, as vertex pairs. */
@@ -108,6 +112,8 @@ export interface SingularitySummary {
   eulerCharacteristic: number;
   prescribedIndex: number;
   freeIndex: number;
+  /** The design asks for exactly the prescribed singularities (setExactSingularities). */
+  exact: boolean;
 }
 
 /** The sharp features: the detection angle (degrees, 0: none) and the edits, as vertex pairs. */
@@ -368,6 +374,10 @@ export declare class TangentFieldDesigner extends HTMLElement {
   setFeatures(features: Partial<FeatureSettings>): Promise<void>;
   /** The sharp features as set, and `edges`: the vertex pairs the field follows. */
   features(): Features;
+  /** true: the field has exactly the prescribed singularities, none when none are prescribed (a torus's cross field without any); false (the default): with none prescribed the smoothest field places its own. One undoable step; the Field panel's "Only prescribed singularities". */
+  setExactSingularities(exact: boolean): Promise<void>;
+  /** Adds the singularities of a Directional .sing file (its text) to the design as one undoable step, all or none; resolves with their constraint ids. Rejects with the line or the singularity refused. */
+  loadSing(text: string): Promise<number[]>;
   /** The constraints in id order, each in the design format plus its id. */
   constraints(): Constraint[];
   /** Sets the boundary condition (refactors). */
@@ -378,7 +388,7 @@ export declare class TangentFieldDesigner extends HTMLElement {
   setSymmetry(n: number): Promise<Constraint[]>;
   /** Pulls a line or cross field (even N) toward the principal curvature directions with this strength ≥ 0 (0: off). */
   setCurvatureAlignment(strength: number): Promise<void>;
-  /** The current boundary condition, γ, symmetry and curvature alignment. */
+  /** The current boundary condition, γ, symmetry, curvature alignment and exactSingularities. */
   settings(): Settings;
 
   // Undo and redo.
@@ -404,6 +414,12 @@ export declare class TangentFieldDesigner extends HTMLElement {
   exportGlb(options?: Partial<ExportOptions>): Promise<Uint8Array>;
   /** A line or cross field (symmetry N ≥ 2) as Directional's raw field text: "N numF", then the N directions (x y z each, counter-clockwise about the normal) of every face of the welded mesh (docs/export.md), as `tvf export --rawfield` writes it. Rejects for a vector field. */
   exportRawField(): Promise<string>;
+  /** Every singularity of the field, prescribed or placed by it, as Directional's .sing text (docs/export.md), as `tvf export --sing` writes it. */
+  exportSing(): Promise<string>;
+  /** A cross field (N = 4) as QuadWild's .rosy text, as `tvf export --rosy` writes it. Rejects for any other N. */
+  exportRosy(): Promise<string>;
+  /** The feature edges in use (and the border) as QuadWild's .sharp text, as `tvf export --sharp` writes it. */
+  exportSharp(): Promise<string>;
   /** The export options in force (the Export panel shows the same). */
   exportOptions(): ExportOptions;
   /** Changes some export options. */
@@ -438,7 +454,7 @@ export declare class TangentFieldDesigner extends HTMLElement {
   hodge(): Promise<HodgeDecomposition>;
   /** The field's singularities: an index per interior vertex that has one (an integer; a multiple of 1/N for a line or cross field), `prescribed` when the design prescribes it (then with its constraint id). */
   singularities(): Singularity[];
-  /** What the prescribed singularities leave to the field: the Euler characteristic, the prescribed index and the index the field places itself. */
+  /** What the prescribed singularities leave to the field: the Euler characteristic, the prescribed index and the index the field places itself, and `exact`: whether the design asks for only the prescribed. */
   singularitySummary(): SingularitySummary;
   /** The core's timings and sizes for the latest operations; `preview` is true while the field shown is a big model's preview (solved on a coarse copy), false for the exact field. */
   stats(): Record<string, number | string | boolean>;

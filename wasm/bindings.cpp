@@ -343,6 +343,12 @@ class DesignerBinding {
     });
   }
   double featureAngle() const { return designer_ ? designer_->featureAngle() : 0.0; }
+  // true: the field has exactly the prescribed singularities, none when none are prescribed (a torus's cross
+  // field without any); '' or the core's refusal, the design then unchanged.
+  std::string setExactSingularities(bool exact) {
+    return run([&] { need().setExactSingularities(exact); });
+  }
+  bool exactSingularities() const { return designer_ && designer_->exactSingularities(); }
   // {"angle", "add": [[a, b], ...], "remove": [[a, b], ...]}: the design's features as set.
   std::string featuresJson() const {
     return json([&] {
@@ -556,6 +562,9 @@ class DesignerBinding {
             const nlohmann::json f = s.value("featureAngle", nlohmann::json(0.0));
             if (!f.is_number()) throw tvf::InputError("featureAngle must be a number");
             next->setFeatures(f.get<double>(), {}, {});
+            const nlohmann::json x = s.value("exactSingularities", nlohmann::json(false));
+            if (!x.is_boolean()) throw tvf::InputError("exactSingularities must be true or false");
+            next->setExactSingularities(x.get<bool>());
           })) {
         if (settingsError) *settingsError = error;
         next->setBoundary(tvf::BoundaryCondition::makeFree());
@@ -563,6 +572,7 @@ class DesignerBinding {
         next->setCurvatureAlignment(0);
         next->setSymmetry(1);
         next->setFeatures(0, {}, {});
+        next->setExactSingularities(false);
       }
     }
     *restored = Restored{};
@@ -588,6 +598,7 @@ class DesignerBinding {
     next.setBoundary(tvf::BoundaryCondition::makeFree());
     next.setGamma(0);
     next.setFeatures(0, {}, {});
+    next.setExactSingularities(false);
     next.solve();
   }
   template <typename F>
@@ -713,6 +724,8 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("moveSingularity", &DesignerBinding::moveSingularity)
       .function("setFeatures", &DesignerBinding::setFeatures)
       .function("featureAngle", &DesignerBinding::featureAngle)
+      .function("setExactSingularities", &DesignerBinding::setExactSingularities)
+      .function("exactSingularities", &DesignerBinding::exactSingularities)
       .function("featuresJson", &DesignerBinding::featuresJson)
       .function("featureEdges", &DesignerBinding::featureEdges)
       .function("constraintsJson", &DesignerBinding::constraintsJson)

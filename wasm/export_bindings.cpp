@@ -18,8 +18,14 @@
 //   x.directionFlowMapPng(faceDirections, symmetry, optionsJson)            // a line or cross field (N >= 2):
 //   x.directionGlb(faceDirections, symmetry, designJson, optionsJson, texture)  // one unit representative per
 //   x.rawField(faceDirections, symmetry)      // face, combed per chart by the core; rawField: Directional's text
+//   x.singFile(symmetry, singularitiesJson)   // Directional's .sing of [{vertex, index}, ...] (io/sing_file.h)
+//   x.rosyFile(faceDirections, symmetry)      // QuadWild's .rosy of a cross field (io/rosy_file.h)
+//   x.sharpFile(featureEdges)                 // QuadWild's .sharp of the edges in use (io/sharp_file.h)
+//                                             // each: the file's text, or '' with lastError() set
 //   x.lastError(), x.delete()
 //   Module.embeddedDesignJson(uint8Array)     // the design a GLB carries, 'null' when none
+//   Module.readSingJson(text)                 // a .sing read: {symmetry, singularities: [{vertex, index}]}
+//                                             // or {error}: the reader's refusal naming the line
 // optionsJson: {size, convention: 'gltf'|'opengl', bits: 8|16, gutter, strength, rotation, embedFlowMap,
 // embedDesign}; every key optional (defaults as the CLI's).
 // texture: null, or {png: Uint8Array, cornerUVs: Float32Array (6 per face)}: a base-colour image over its own
@@ -37,6 +43,9 @@
 #include "design/field_export.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_io.h"
+#include "io/rosy_file.h"
+#include "io/sharp_file.h"
+#include "io/sing_file.h"
 
 namespace {
 
@@ -184,6 +193,38 @@ class FieldExporterBinding {
     return text;
   }
 
+  // The quad meshers' files, as `tvf export --sing/--rosy/--sharp` writes them from the same read-outs (the
+  // Designer's singularities, face directions and feature edges): the same bytes.
+  std::string singFile(int symmetry, const std::string& singularities) {
+    return text([&] {
+      std::vector<tvf::Singularity> list;
+      for (const nlohmann::json& s : nlohmann::json::parse(singularities))
+        list.push_back({s.at("vertex").get<int32_t>(), s.at("index").get<double>()});
+      return tvf::writeSingFile(symmetry, list);
+    });
+  }
+
+  std::string rosyFile(const val& faceDirections, int symmetry) {
+    return text([&] {
+      const std::vector<double> directions = numbersOf<double>(faceDirections);
+      if (directions.size() != 3 * static_cast<std::size_t>(need().surface.numFaces()))
+        throw tvf::InputError(".rosy: expected one direction per face");
+      return tvf::writeRosyFile(directions, symmetry);
+    });
+  }
+
+  // featureEdges: edge indices of the Designer's topology, which buildTopology makes the same from the same
+  // welded mesh as this exporter's.
+  std::string sharpFile(const val& featureEdges) {
+    return text([&] {
+      const Mesh& m = need();
+      const std::vector<int32_t> edges = numbersOf<int32_t>(featureEdges);
+      for (const int32_t e : edges)
+        if (e < 0 || e >= m.topology.numEdges) throw tvf::InputError(".sharp: a feature edge names no edge");
+      return tvf::writeSharpFile(m.topology, geometry(), m.surface.positions, edges);
+    });
+  }
+
   std::string lastError() const { return lastError_; }
 
  private:
@@ -243,6 +284,12 @@ class FieldExporterBinding {
     return lastError_;
   }
   template <typename F>
+  std::string text(F&& f) {
+    std::string out;
+    attempt(lastError_, [&] { out = f(); });
+    return out;
+  }
+  template <typename F>
   val produce(F&& f) {
     std::vector<uint8_t> bytes;
     if (!attempt(lastError_, [&] { bytes = f(); })) return val::null();
@@ -263,6 +310,19 @@ std::string embeddedDesignJson(const val& bytes) {
   }
 }
 
+// A .sing file read (io/sing_file.h) as JSON: {symmetry, singularities: [{vertex, index}]}, or {error}.
+std::string readSingJson(const std::string& text) {
+  try {
+    const tvf::SingFile file = tvf::readSingFile(text);
+    nlohmann::json list = nlohmann::json::array();
+    for (const tvf::Singularity& s : file.singularities)
+      list.push_back({{"vertex", s.vertex}, {"index", s.index}});
+    return nlohmann::json{{"symmetry", file.symmetry}, {"singularities", list}}.dump();
+  } catch (const std::exception& e) {
+    return nlohmann::json{{"error", e.what()}}.dump();
+  }
+}
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(tvf_export) {
@@ -276,6 +336,10 @@ EMSCRIPTEN_BINDINGS(tvf_export) {
       .function("directionFlowMapPng", &FieldExporterBinding::directionFlowMapPng)
       .function("directionGlb", &FieldExporterBinding::directionGlb)
       .function("rawField", &FieldExporterBinding::rawField)
+      .function("singFile", &FieldExporterBinding::singFile)
+      .function("rosyFile", &FieldExporterBinding::rosyFile)
+      .function("sharpFile", &FieldExporterBinding::sharpFile)
       .function("lastError", &FieldExporterBinding::lastError);
   emscripten::function("embeddedDesignJson", &embeddedDesignJson);
+  emscripten::function("readSingJson", &readSingJson);
 }

@@ -708,4 +708,87 @@ t.delete();
     b.featureEdges().length === 0);
   b.delete();
 }
+// Only the prescribed singularities: a torus (chi = 0) made here, N = 4, asked for exactly its prescribed ones
+// with none prescribed, has no singularity at all (the smoothest field is free to place +/- pairs).
+{
+  const [n, m, R, r] = [24, 12, 2, 0.7];
+  const verts = [], faces = [];
+  for (let i = 0; i < n; i++)
+    for (let j = 0; j < m; j++) {
+      const [u, v] = [(2 * Math.PI * i) / n, (2 * Math.PI * j) / m];
+      verts.push([(R + r * Math.cos(v)) * Math.cos(u), (R + r * Math.cos(v)) * Math.sin(u), r * Math.sin(v)]);
+      const at = (a, b) => ((a + n) % n) * m + ((b + m) % m);
+      faces.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)], [at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+    }
+  const off = `OFF\n${verts.length} ${faces.length} 0\n${verts.map((p) => p.join(' ')).join('\n')}\n` +
+    `${faces.map((f) => `3 ${f.join(' ')}`).join('\n')}\n`;
+  const t = new Module.Designer();
+  check('exact: torus loads as a cross field', t.loadMesh(new TextEncoder().encode(off), 'off') === '' &&
+    t.setSymmetry(4) === '' && t.solve() === '', t.lastError());
+  check('exact: off by default, not in the design', t.exactSingularities() === false &&
+    !('exactSingularities' in JSON.parse(t.designJson())));
+  check('exact: set', t.setExactSingularities(true) === '' && t.exactSingularities() === true && t.solve() === '',
+    t.lastError());
+  const stats = JSON.parse(t.statsJson());
+  check('exact: the torus has no singularity', JSON.parse(t.singularitiesJson()).length === 0, t.singularitiesJson());
+  check('exact: stats say exact, chi 0', stats.singularityMode === 'exact' && stats.eulerCharacteristic === 0,
+    JSON.stringify(stats));
+  const doc = JSON.parse(t.designJson());
+  check('exact: the design carries it', doc.exactSingularities === true, t.designJson());
+  check('exact: off again, and the design loses it', t.setExactSingularities(false) === '' && t.solve() === '' &&
+    !('exactSingularities' in JSON.parse(t.designJson())));
+  check('exact: applyDesignJson brings it back', t.applyDesignJson(JSON.stringify(doc)) === '' &&
+    t.exactSingularities() === true && t.solve() === '' && JSON.parse(t.singularitiesJson()).length === 0,
+    t.lastError());
+
+  // The quad meshers' files by the exporter over the Designer's mesh, and a .sing read back: a +/- pair
+  // prescribed is what the file holds (N = 4, k = +1 and -1).
+  const pair = [[30, 0.25], [150, -0.25]];
+  pair.forEach(([v, k]) => t.addSingularity(v, k));
+  check('exact: a +/- pair is all the field has', t.solve() === '' &&
+    JSON.stringify(JSON.parse(t.singularitiesJson()).map((x) => [x.vertex, x.index]).sort((a, b) => a[0] - b[0])) ===
+    JSON.stringify(pair), t.singularitiesJson());
+  const x = new Module.FieldExporter();
+  check('exporter: takes the mesh', x.setMesh(t.positions().slice(), t.triangles().slice(), t.cornerUVs().slice(),
+    t.sourceToWelded().slice()) === '', x.lastError());
+  const sing = x.singFile(4, t.singularitiesJson());
+  check('exporter: .sing is "N count" and the pair as vertex k', sing === '4 2\n30 1\n150 -1\n', JSON.stringify(sing));
+  const read = JSON.parse(Module.readSingJson(sing));
+  check('exporter: .sing read back', read.symmetry === 4 && JSON.stringify(read.singularities) ===
+    JSON.stringify(pair.map(([vertex, index]) => ({ index, vertex }))), JSON.stringify(read));
+  check('exporter: a bad .sing is refused naming the line', /line 2/.test(JSON.parse(Module.readSingJson('4 1\nx\n')).error ?? ''),
+    Module.readSingJson('4 1\nx\n'));
+  const rosy = x.rosyFile(t.faceVectors().slice(), 4).split('\n');
+  check('exporter: .rosy has numF, 4 and a direction per face', rosy[0] === String(faces.length) && rosy[1] === '4' &&
+    rosy.slice(2, 2 + faces.length).every((l) => l.split(' ').length === 3));
+  check('exporter: .rosy of a line field is refused', x.rosyFile(t.faceVectors().slice(), 2) === '' &&
+    /symmetry/.test(x.lastError()), x.lastError());
+  check('exporter: .sharp without features: the count 0 of a closed mesh', x.sharpFile([]) === '0\n',
+    JSON.stringify(x.sharpFile([])));
+  check('exporter: .sharp refuses an edge that is not there', x.sharpFile([1e6]) === '' && /no edge/.test(x.lastError()));
+
+  // The same bytes as tvf export --sing/--rosy/--sharp for the same model and design.
+  const cli = resolve(ROOT, 'build/tvf');
+  const dir = mkdtempSync(resolve(tmpdir(), 'tvf-quad-'));
+  let same = false, detail = '';
+  try {
+    // A short feature curve away from the pair (vertices 0, 1, 2: along one ring of the tube).
+    if (t.setFeatures(0, [0, 1, 1, 2], []) !== '' || t.solve() !== '') throw new Error(t.lastError());
+    writeFileSync(resolve(dir, 'torus.off'), off);
+    writeFileSync(resolve(dir, 'design.json'), t.designJson());
+    execFileSync(cli, ['export', resolve(dir, 'torus.off'), resolve(dir, 'design.json'), '--sing',
+      resolve(dir, 'a.sing'), '--rosy', resolve(dir, 'a.rosy'), '--sharp', resolve(dir, 'a.sharp')]);
+    const files = ['sing', 'rosy', 'sharp'].map((e) => readFileSync(resolve(dir, `a.${e}`), 'utf8'));
+    const page = [x.singFile(4, t.singularitiesJson()), x.rosyFile(t.faceVectors().slice(), 4),
+      x.sharpFile(Int32Array.from(t.featureEdges()))];
+    same = files.every((f, k) => f === page[k]) && t.featureEdges().length > 0;
+    detail = `${t.featureEdges().length} feature edges; ` + files.map((f, k) => `${f.length}/${page[k].length}`).join(', ');
+  } catch (err) {
+    detail = String(err.message ?? err);
+  }
+  check('exporter: the same bytes as tvf export --sing --rosy --sharp', same, detail);
+  rmSync(dir, { recursive: true, force: true });
+  x.delete();
+  t.delete();
+}
 finish();

@@ -92,9 +92,9 @@ std::string describeFingerprint(const json& f) {
 
 void checkSchema(const json& doc) {
   static const std::set<std::string> known{
-      "schema",       "mesh",        "boundary",           "gamma",
-      "constraints",  "symmetry",    "curvatureAlignment", "singularities",
-      "featureAngle", "featureEdges"};
+      "schema",       "mesh",         "boundary",           "gamma",
+      "constraints",  "symmetry",     "curvatureAlignment", "singularities",
+      "featureAngle", "featureEdges", "exactSingularities"};
   if (doc.contains("schema")) {
     const json& s = doc["schema"];
     if (!s.is_string() || s.get<std::string>() != kDesignSchema)
@@ -105,7 +105,7 @@ void checkSchema(const json& doc) {
     if (!known.count(item.key()))
       throw InputError("not a design file: unknown key \"" + item.key() +
                        "\" (a design has schema, mesh, boundary, gamma, symmetry, curvatureAlignment, "
-                       "constraints, singularities, featureAngle and featureEdges)");
+                       "constraints, singularities, exactSingularities, featureAngle and featureEdges)");
   if (!doc.contains("constraints")) throw InputError("not a design file: it has no \"constraints\" list");
 }
 
@@ -142,6 +142,16 @@ std::vector<ConstraintSpec> singularitiesFromJson(const json& doc) {
     specs.push_back(s);
   }
   return specs;
+}
+
+// "exactSingularities": true when the field has exactly the prescribed singularities, none when none are
+// prescribed (design/designer.h); absent: false, so designs made before it replay unchanged.
+bool exactSingularitiesFromJson(const json& doc) {
+  if (!doc.contains("exactSingularities")) return false;
+  const json& x = doc["exactSingularities"];
+  if (!x.is_boolean())
+    throw InputError("design: \"exactSingularities\" must be true or false, got " + x.dump());
+  return x.get<bool>();
 }
 
 // The design's sharp features: "featureAngle" (absent: 0, none detected, so designs made before features
@@ -343,11 +353,13 @@ void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) 
   const size_t numConstraints = specs.size();
   for (const ConstraintSpec& s : singularitiesFromJson(doc)) specs.push_back(s);
   const FeatureSettings features = featuresFromJson(doc);
+  const bool exact = exactSingularitiesFromJson(doc);
   // Apply to a scratch copy of the settings first so a bad entry leaves the designer untouched.
   const BoundaryCondition oldBc = designer.boundary();
   const double oldGamma = designer.gamma();
   const int oldSymmetry = designer.symmetry();
   const double oldAlignment = designer.curvatureAlignment();
+  const bool oldExact = designer.exactSingularities();
   const std::vector<ConstraintSpec> oldSpecs = designer.constraints();  // singularities among them
   const FeatureSettings oldFeatures{designer.featureAngle(), designer.featureEdgesAdded(),
                                     designer.featureEdgesRemoved()};
@@ -357,7 +369,7 @@ void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) 
     return "singularities[" + std::to_string(k - numConstraints) + "]";
   };
   const auto replace = [&](const BoundaryCondition& b, double g, int n, double s, const FeatureSettings& f,
-                           const std::vector<ConstraintSpec>& list, bool annotate) {
+                           bool x, const std::vector<ConstraintSpec>& list, bool annotate) {
     designer.setBoundary(b);
     designer.setGamma(g);
     designer.clearConstraints();
@@ -365,6 +377,7 @@ void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) 
     designer.setSymmetry(n);
     designer.setCurvatureAlignment(s);
     designer.setFeatures(f.angle, f.add, f.remove);
+    designer.setExactSingularities(x);  // before the singularities: it chooses the system they go into
     for (size_t k = 0; k < list.size(); ++k) {
       try {
         designer.add(list[k]);
@@ -375,9 +388,9 @@ void applyDesignDocument(Designer& designer, const json& doc, bool fingerprint) 
     }
   };
   try {
-    replace(bc, gamma, symmetry, alignment, features, specs, true);
+    replace(bc, gamma, symmetry, alignment, features, exact, specs, true);
   } catch (const InputError&) {
-    replace(oldBc, oldGamma, oldSymmetry, oldAlignment, oldFeatures, oldSpecs, false);
+    replace(oldBc, oldGamma, oldSymmetry, oldAlignment, oldFeatures, oldExact, oldSpecs, false);
     throw;
   }
 }
@@ -406,6 +419,7 @@ json designDocument(const Designer& designer) {
     for (const auto& s : singularities) list.push_back({{"vertex", s.element}, {"index", s.value}});
     doc["singularities"] = list;
   }
+  if (designer.exactSingularities()) doc["exactSingularities"] = true;
   if (designer.featureAngle() != 0) doc["featureAngle"] = designer.featureAngle();
   if (!designer.featureEdgesAdded().empty() || !designer.featureEdgesRemoved().empty())
     doc["featureEdges"] = {{"add", pairList(designer.featureEdgesAdded())},

@@ -1,5 +1,6 @@
 #include "io/rosy_file.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "common/input_error.h"
@@ -14,8 +15,12 @@ std::string writeRosyFile(const std::vector<double>& faceDirections, int symmetr
   std::string out = std::to_string(numFaces) + "\n4\n";
   char line[96];
   for (size_t f = 0; f < numFaces; ++f) {
+    // A unit vector to 9 decimals, as 9 digits of its larger components: a small component's further digits
+    // are round-off, which would make two solves of the same field (the page's and the CLI's) write different
+    // bytes. (+ 0.0 writes -0 as 0.)
+    const auto digits = [](double x) { return std::round(x * 1e9) / 1e9 + 0.0; };
     const double* d = &faceDirections[3 * f];
-    std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", d[0], d[1], d[2]);
+    std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", digits(d[0]), digits(d[1]), digits(d[2]));
     out += line;
   }
   return out;

@@ -9,7 +9,7 @@
 namespace tvf {
 
 // faceDirections: 3 per face (a unit representative). Throws InputError unless symmetry is 4: the reader
-// asserts a cross field. 9 significant digits (the reader parses floats).
+// asserts a cross field. Rounded to 9 decimals (the reader parses floats).
 std::string writeRosyFile(const std::vector<double>& faceDirections, int symmetry);
 
 }  // namespace tvf

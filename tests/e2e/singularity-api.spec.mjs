@@ -108,7 +108,7 @@ test.describe.serial('prescribed singularities and sharp features through the AP
     const asSet = (list) => list.map((s) => `${s.vertex}:${s.index}:${s.prescribed}:${s.id}`).sort();
     expect(asSet(found)).toEqual(asSet(far.map((vertex, k) => ({ vertex, index: 0.25, prescribed: true, id: ids[k] }))));
     expect(await evaluate(() => window.tvf.singularitySummary())).toEqual(
-      { mode: 'exact', eulerCharacteristic: 2, prescribedIndex: 2, freeIndex: 0 });
+      { mode: 'exact', eulerCharacteristic: 2, prescribedIndex: 2, freeIndex: 0, exact: false });
     const listed = (await evaluate(() => window.tvf.constraints())).filter((c) => c.type === 'singularity');
     expect(listed.map((c) => [c.id, c.vertex, c.index])).toEqual(far.map((v, k) => [ids[k], v, 0.25]));
     const lastOp = await evaluate(() => window.tvf.perf().lastOp);

@@ -52,7 +52,8 @@ test.describe.serial('line and cross fields', () => {
     await expect(page.locator('[data-tool="source"]')).toBeEnabled();
     await selector().selectOption('2');
     await expectSymmetry(2);
-    expect(await settings()).toEqual({ boundary: 'free', gamma: 0, symmetry: 2, curvatureAlignment: 0 });
+    expect(await settings()).toEqual({ boundary: 'free', gamma: 0, symmetry: 2, curvatureAlignment: 0,
+      exactSingularities: false });
     for (const tool of ['source', 'sink', 'vortex']) {
       await expect(page.locator(`[data-tool="${tool}"]`)).toBeDisabled();
       await expect(page.locator(`[data-tool="${tool}"]`)).toHaveAttribute('title', /not for a line field/);

@@ -274,6 +274,47 @@ TEST(SingularityDesignFile, AVectorFieldWithSingularitiesIsWrittenAsDirections) 
   EXPECT_EQ(found, (std::set<std::pair<int32_t, double>>{{0, 1.0}, {3, 1.0}}));
 }
 
+TEST(SingularityDesignFile, ExactSingularitiesRoundTripsAndIsWrittenOnlyWhenTrue) {
+  // A torus needs no index (chi = 0): asked for exactly the prescribed singularities, none, its cross field has
+  // none at all, where the smoothest field is free to place pairs.
+  const SurfaceMesh ring = torus(30, 16, 2, 0.7);
+  Designer d(ring);
+  d.setSymmetry(4);
+  EXPECT_FALSE(designDocument(d).contains("exactSingularities"));  // the default is not written
+  d.setExactSingularities(true);
+  const nlohmann::json doc = designDocument(d);
+  ASSERT_TRUE(doc.contains("exactSingularities"));
+  EXPECT_EQ(doc["exactSingularities"], true);
+
+  Designer e(ring);
+  applyDesignDocument(e, nlohmann::json::parse(doc.dump()));
+  EXPECT_TRUE(e.exactSingularities());
+  EXPECT_EQ(designDocument(e), doc);
+  e.solve();
+  EXPECT_TRUE(e.singularities().empty());
+  EXPECT_EQ(e.stats().singularityMode, "exact");
+
+  // Read before the singularities: a +/- pair on the torus is then all there is.
+  nlohmann::json pair = doc;
+  pair["singularities"] = {{{"vertex", 40}, {"index", 0.25}}, {{"vertex", 200}, {"index", -0.25}}};
+  applyDesignDocument(e, pair);
+  e.solve();
+  std::set<std::pair<int32_t, double>> found;
+  for (const Singularity& s : e.singularities()) found.insert({s.vertex, s.index});
+  EXPECT_EQ(found, (std::set<std::pair<int32_t, double>>{{40, 0.25}, {200, -0.25}}));
+  EXPECT_EQ(designDocument(e)["exactSingularities"], true);
+
+  // A file without the key turns it off; a value that is not a boolean is refused and changes nothing.
+  nlohmann::json without = doc;
+  without.erase("exactSingularities");
+  applyDesignDocument(e, without);
+  EXPECT_FALSE(e.exactSingularities());
+  nlohmann::json bad = doc;
+  bad["exactSingularities"] = 1;
+  expectRefused(e, bad, "\"exactSingularities\" must be true or false");
+  EXPECT_FALSE(e.exactSingularities());
+}
+
 TEST(SingularityDesignFile, BadSingularitiesAndFeaturesAreRefusedByName) {
   // A sheet with a boundary (vertex 0 is its corner), with a design loaded from a file.
   Designer d(flatGrid(6, 1.0, true));

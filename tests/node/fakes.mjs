@@ -87,9 +87,9 @@ const KINDS = {
   singularity: { weight: false, strength: false },
 };
 const TOP_LEVEL = new Set(['schema', 'mesh', 'boundary', 'gamma', 'symmetry', 'curvatureAlignment', 'constraints',
-  'singularities', 'featureAngle', 'featureEdges']);
+  'singularities', 'featureAngle', 'featureEdges', 'exactSingularities']);
 const MUTATING = new Set(['loadMesh', 'add', 'remove', 'setWeight', 'setStrength', 'setBoundary', 'setGamma', 'setSymmetry', 'setCurvatureAlignment', 'applyDesign',
-  'addSingularity', 'moveSingularity', 'setFeatures', 'addSingularities', 'removeConstraints']);
+  'addSingularity', 'moveSingularity', 'setFeatures', 'addSingularities', 'removeConstraints', 'setExactSingularities']);
 // Ops whose failure the worker takes back by applying the whole previous design again (core/setting-ops.js).
 const RESTORES_DESIGN = new Set(['applyDesign', 'setSymmetry']);
 // Constraints that are vector-field notions: the core refuses them for a symmetry N ≥ 2.
@@ -125,6 +125,7 @@ export class FakeCore {
     this.symmetry = 1;
     this.curvatureAlignment = 0;
     this.features = { angle: 0, add: [], remove: [] };
+    this.exactSingularities = false;
     this.version = 0;
     this.log = []; // [op, args] of every call
     this.nonFinite = false; // the next snapshots carry a NaN in the field
@@ -150,6 +151,7 @@ export class FakeCore {
       ...(singular.length ? { singularities: singular.map(({ vertex, index }) => ({ index, vertex })) } : {}),
       ...(angle ? { featureAngle: angle } : {}),
       ...(add.length || remove.length ? { featureEdges: structuredClone({ add, remove }) } : {}),
+      ...(this.exactSingularities ? { exactSingularities: true } : {}),
     };
   }
 
@@ -252,7 +254,10 @@ export class FakeCore {
     }
     const features = { angle: design.featureAngle ?? 0, add: design.featureEdges?.add ?? [], remove: design.featureEdges?.remove ?? [] };
     this.#checkFeatures(features);
+    const exact = design.exactSingularities ?? false;
+    if (typeof exact !== 'boolean') throw new Error('design: "exactSingularities" must be true or false');
     this.features = structuredClone(features);
+    this.exactSingularities = exact;
     parsed.push(...singular);
     this.ids = [];
     this.specs.clear();
@@ -283,6 +288,7 @@ export class FakeCore {
       try {
         const { boundary, gamma, symmetry = 1, curvatureAlignment = 0, featureAngle = 0 } = settings;
         this.features = { angle: featureAngle, add: [], remove: [] };
+        this.exactSingularities = settings.exactSingularities ?? false;
         this.#checkBoundary(boundary);
         this.#checkGamma(gamma);
         checkSymmetry(symmetry);
@@ -382,11 +388,24 @@ export class FakeCore {
       this.features = next;
       return { value: true, changed: null };
     },
+    setExactSingularities: (exact) => {
+      if (typeof exact !== 'boolean') throw new Error('exactSingularities must be true or false');
+      this.exactSingularities = exact;
+      return { value: true, changed: null };
+    },
     applyDesign: (design) => {
       this.#apply(design);
       return { value: true, changed: null };
     },
     read: () => this.document(),
+    // Directional's .sing as core-export.js reads it (the core's reader: io/sing_file.h): "N count", then
+    // "vertex k" per singularity of index k / N.
+    readSing: (text) => {
+      const lines = text.split('\n').filter((l) => l.trim()).map((l) => l.trim().split(/\s+/).map(Number));
+      const [[n, count], ...entries] = lines;
+      if (!(n >= 1) || entries.length !== count) throw new Error('line 1: expected "N count"');
+      return { symmetry: n, singularities: entries.map(([vertex, k]) => ({ vertex, index: k / n })) };
+    },
   };
 
   #remove(id) {

@@ -32,7 +32,7 @@ function assertMirrorsCore(s, core) {
   for (const { id, ...spec } of list) assert.deepEqual(spec, core.specs.get(s.table.coreIdOf(id)), `page id ${id}`);
   assert.deepEqual(s.design.constraints, coreSpecs(core), 'the mirrored document is the core’s, in its order');
   const { boundary, gamma, symmetry, curvatureAlignment } = core;
-  assert.deepEqual(s.settings(), { boundary, gamma, symmetry, curvatureAlignment });
+  assert.deepEqual(s.settings(), { boundary, gamma, symmetry, curvatureAlignment, exactSingularities: false });
 }
 
 const pageIds = (s) => s.constraintList().map((c) => c.id);
@@ -147,7 +147,7 @@ test('an edit the core refuses is not recorded and the page shows what the core 
   await assert.rejects(s.setSetting('gamma', -1), /gamma -1 is out of range/);
   assert.equal(s.history.undoStack.length, depth);
   assert.deepEqual(s.constraintList(), before);
-  const defaults = { boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0 };
+  const defaults = { boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0, exactSingularities: false };
   assert.deepEqual(settings, [defaults, defaults]);
   // The failure's snapshot is the session's field now: the core's latest version.
   assert.equal(s.field.version, core.version);
@@ -159,7 +159,13 @@ test('boundary and γ settings go to the core and undo to the previous values', 
   const { s, core } = await withThree();
   await s.setSetting('gamma', 2.5);
   await s.setSetting('boundary', { angle: 0.5 });
-  assert.deepEqual(s.settings(), { boundary: { angle: 0.5 }, gamma: 2.5, symmetry: 1, curvatureAlignment: 0 });
+  assert.deepEqual(s.settings(), {
+    boundary: { angle: 0.5 },
+    gamma: 2.5,
+    symmetry: 1,
+    curvatureAlignment: 0,
+    exactSingularities: false,
+  });
   assertMirrorsCore(s, core);
   await s.step(false);
   assert.equal(core.boundary, 'free');

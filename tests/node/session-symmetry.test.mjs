@@ -31,7 +31,7 @@ function assertMirrorsCore(s, core) {
   for (const { id, ...spec } of list) assert.deepEqual(spec, core.specs.get(s.table.coreIdOf(id)), `page id ${id}`);
   assert.deepEqual(s.design.constraints, coreSpecs(core), 'the mirrored document is the core’s, in its order');
   const { boundary, gamma, symmetry, curvatureAlignment } = core;
-  assert.deepEqual(s.settings(), { boundary, gamma, symmetry, curvatureAlignment });
+  assert.deepEqual(s.settings(), { boundary, gamma, symmetry, curvatureAlignment, exactSingularities: false });
   assert.equal(s.field.symmetry, core.symmetry, 'the field says which N its vectors are representatives of');
 }
 
@@ -193,7 +193,7 @@ test('SetSymmetry serializes through JSON; replayed on another session it rebuil
   assertMirrorsCore(s2, core2);
   while (await s2.step(false));
   assert.deepEqual(s2.constraintList(), []);
-  assert.deepEqual(s2.settings(), { boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0 });
+  assert.deepEqual(s2.settings(), { boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0, exactSingularities: false });
   s.dispose();
   s2.dispose();
 });
@@ -212,11 +212,11 @@ test('SetSymmetry alone: label, result and serialize name N and what it removes'
 
 test('a design document with symmetry and curvature alignment round-trips through the constraint table', () => {
   const t = new ConstraintTable();
-  assert.deepEqual(t.settings(), { boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0 }, 'the defaults before any model');
+  assert.deepEqual(t.settings(), { boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0, exactSingularities: false }, 'the defaults before any model');
   const document = { schema: 'tvf-design/1', boundary: 'free', gamma: 0.5, symmetry: 2, curvatureAlignment: 0.3, constraints: [stroke] };
   t.apply({ ids: [11], document: structuredClone(document) });
   t.adoptUnmapped();
-  assert.deepEqual(t.settings(), { boundary: 'free', gamma: 0.5, symmetry: 2, curvatureAlignment: 0.3 });
+  assert.deepEqual(t.settings(), { boundary: 'free', gamma: 0.5, symmetry: 2, curvatureAlignment: 0.3, exactSingularities: false });
   assert.deepEqual(t.design, document, 'the design (save, autosave) is the core’s document, symmetry included');
   const key = t.key();
   t.apply({ ids: [11], document: { ...structuredClone(document), symmetry: 4 } });
@@ -225,7 +225,7 @@ test('a design document with symmetry and curvature alignment round-trips throug
   assert.equal(t.key(), key, 'back to the saved N is none');
   // A document without the keys (an older design) means a vector field without alignment.
   t.apply({ ids: [], document: { boundary: 'free', gamma: 0, constraints: [] } });
-  assert.deepEqual(t.settings(), { boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0 });
+  assert.deepEqual(t.settings(), { boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0, exactSingularities: false });
   assert.equal(isEmptyDesign(t.design), true);
   assert.equal(isEmptyDesign({ ...t.design, symmetry: 2 }), false, 'a line field with no constraint is still worth autosaving');
   assert.equal(isEmptyDesign({ ...t.design, symmetry: 2, curvatureAlignment: 1 }), false);
@@ -249,7 +249,14 @@ test('designs carry N: loading one sets it (undoably), saving one keeps it, Clea
   await s.loadModel(MODEL, { name: 'again.off' });
   const [, [, , settings]] = core.log.findLast(([op]) => op === 'loadMesh');
   // The feature angle goes too: 0, as the loaded design (which has none) means.
-  const expected = { boundary: 'free', gamma: 0, symmetry: 2, curvatureAlignment: 0.5, featureAngle: 0 };
+  const expected = {
+    boundary: 'free',
+    gamma: 0,
+    symmetry: 2,
+    curvatureAlignment: 0.5,
+    exactSingularities: false,
+    featureAngle: 0,
+  };
   assert.deepEqual(settings, expected, 'the settings go to the next model');
   assertMirrorsCore(s, core);
   s.dispose();

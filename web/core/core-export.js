@@ -8,6 +8,12 @@ import { CoreError } from './core-error.js';
 const RAW_FIELD_REFUSAL =
   'a cross-field file (raw field) holds line and cross fields; this is a vector field: choose Line or Cross';
 
+// QuadWild's .rosy holds a cross field; the page's words for the other N.
+const ROSY_REFUSAL = (n) =>
+  `a QuadWild .rosy file holds a cross field (symmetry 4); this is a ${FIELD_NAMES[n] ?? `${n}-direction field`}` +
+  ': choose Cross';
+const FIELD_NAMES = { 1: 'vector field', 2: 'line field', 4: 'cross field' };
+
 const isGltf = (format) => format === 'glb' || format === 'gltf';
 
 export class CoreExport {
@@ -84,6 +90,37 @@ export class CoreExport {
     if (!text) throw new CoreError(`export: ${exporter.lastError()}`);
     return text;
   }
+
+  // The quad meshers' files (docs/export.md) by the core's writers, from the read-outs `tvf export
+  // --sing/--rosy/--sharp` writes them from: the same bytes.
+  // singularities: [{vertex, index}, ...], every one the field has.
+  singFile(symmetry, singularities) {
+    return this.#text('.sing', (x) => x.singFile(symmetry, JSON.stringify(singularities)));
+  }
+
+  rosyFile(field) {
+    if (field.symmetry !== 4) throw new CoreError(ROSY_REFUSAL(field.symmetry));
+    return this.#text('.rosy', (x) => x.rosyFile(field.faceDirections, field.symmetry));
+  }
+
+  // featureEdges: the Designer's edge indices of the features in use.
+  sharpFile(featureEdges) {
+    return this.#text('.sharp', (x) => x.sharpFile(featureEdges));
+  }
+
+  // A .sing file read: {symmetry, singularities: [{vertex, index}]}; throws the reader's refusal (naming the line).
+  readSing(text) {
+    const read = JSON.parse(this.Module.readSingJson(String(text)));
+    if (read.error) throw new CoreError(read.error);
+    return read;
+  }
+
+  #text(what, write) {
+    const exporter = this.#loaded();
+    const out = write(exporter);
+    if (!out) throw new CoreError(`export ${what}: ${exporter.lastError()}`);
+    return out;
+  }
 }
 
 // The loader's sniffing (io/mesh_io.h formatFromBytes), for a file opened with no format named: only whether
@@ -130,6 +167,27 @@ export function exportOps(state) {
       const f = field();
       if (f.symmetry < 2) throw new CoreError(RAW_FIELD_REFUSAL);
       return state.coreExport.rawField(f);
+    },
+
+    // Directional's .sing: every singularity of the field, prescribed or placed by it (as tvf export --sing).
+    exportSing() {
+      const list = state.core.singularities().map(({ vertex, index }) => ({ vertex, index }));
+      return state.coreExport.singFile(state.core.symmetry(), list);
+    },
+
+    // QuadWild's .rosy (a cross field only) and .sharp (the feature edges in use).
+    exportRosy() {
+      const symmetry = state.core.symmetry();
+      return state.coreExport.rosyFile({ symmetry, faceDirections: symmetry === 4 ? state.core.faceVectors() : null });
+    },
+
+    exportSharp() {
+      return state.coreExport.sharpFile(state.core.featureEdges());
+    },
+
+    // A .sing file's text read by the core: {symmetry, singularities}; nothing changes.
+    readSing(text) {
+      return state.coreExport.readSing(text);
     },
   };
   return { onMesh };

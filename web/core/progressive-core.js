@@ -23,7 +23,7 @@ export const PREVIEW_EDGES = 300_000;
 // Ops that change the design or the field: the preview takes them too.
 const EDITS = ['add', 'remove', 'setWeight', 'setStrength', 'setBoundary', 'setGamma', 'setSymmetry',
   'setCurvatureAlignment', 'applyDesign', 'addSingularity', 'moveSingularity', 'setFeatures', 'addSingularities',
-  'removeConstraints'];
+  'removeConstraints', 'setExactSingularities'];
 const isEdit = (op) => EDITS.includes(op);
 
 export class ProgressiveCore {

@@ -104,6 +104,19 @@ export const DESIGN_METHODS = [
     description: 'The sharp features as set, and `edges`: the vertex pairs the field follows.',
   },
   {
+    name: 'setExactSingularities', ...CONSTRAINTS,
+    signatures: [['exact: boolean', 'Promise<void>']],
+    description: 'true: the field has exactly the prescribed singularities, none when none are prescribed (a ' +
+      "torus's cross field without any); false (the default): with none prescribed the smoothest field places its " +
+      'own. One undoable step; the Field panel\'s "Only prescribed singularities".',
+  },
+  {
+    name: 'loadSing', ...CONSTRAINTS,
+    signatures: [['text: string', 'Promise<number[]>']],
+    description: "Adds the singularities of a Directional .sing file (its text) to the design as one undoable " +
+      'step, all or none; resolves with their constraint ids. Rejects with the line or the singularity refused.',
+  },
+  {
     name: 'constraints', ...CONSTRAINTS,
     signatures: [['', 'Constraint[]']],
     description: 'The constraints in id order, each in the design format plus its id.',
@@ -134,7 +147,7 @@ export const DESIGN_METHODS = [
   {
     name: 'settings', ...CONSTRAINTS,
     signatures: [['', 'Settings']],
-    description: 'The current boundary condition, γ, symmetry and curvature alignment.',
+    description: 'The current boundary condition, γ, symmetry, curvature alignment and exactSingularities.',
   },
 
   {
@@ -193,6 +206,24 @@ export const DESIGN_METHODS = [
     description: 'A line or cross field (symmetry N ≥ 2) as Directional\'s raw field text: "N numF", then the ' +
       'N directions (x y z each, counter-clockwise about the normal) of every face of the welded mesh ' +
       '(docs/export.md), as `tvf export --rawfield` writes it. Rejects for a vector field.',
+  },
+  {
+    name: 'exportSing', ...DOCUMENTS,
+    signatures: [['', 'Promise<string>']],
+    description: "Every singularity of the field, prescribed or placed by it, as Directional's .sing text " +
+      '(docs/export.md), as `tvf export --sing` writes it.',
+  },
+  {
+    name: 'exportRosy', ...DOCUMENTS,
+    signatures: [['', 'Promise<string>']],
+    description: "A cross field (N = 4) as QuadWild's .rosy text, as `tvf export --rosy` writes it. Rejects for " +
+      'any other N.',
+  },
+  {
+    name: 'exportSharp', ...DOCUMENTS,
+    signatures: [['', 'Promise<string>']],
+    description: "The feature edges in use (and the border) as QuadWild's .sharp text, as `tvf export --sharp` " +
+      'writes it.',
   },
   {
     name: 'exportOptions', ...DOCUMENTS,
@@ -275,7 +306,7 @@ export const DESIGN_METHODS = [
     name: 'singularitySummary', ...FIELD,
     signatures: [['', 'SingularitySummary']],
     description: 'What the prescribed singularities leave to the field: the Euler characteristic, the prescribed ' +
-      'index and the index the field places itself.',
+      'index and the index the field places itself, and `exact`: whether the design asks for only the prescribed.',
   },
   {
     name: 'stats', ...FIELD,

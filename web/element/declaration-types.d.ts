@@ -43,6 +43,8 @@ export interface Settings {
   symmetry: number;
   /** 0: off. */
   curvatureAlignment: number;
+  /** true: the field has exactly the prescribed singularities, none when none are prescribed. */
+  exactSingularities: boolean;
 }
 
 export interface MeshInfo {
@@ -78,6 +80,8 @@ export interface Design {
   constraints: ConstraintSpec[];
   /** Prescribed singularities: an index (a nonzero multiple of 1/N) at an interior vertex. */
   singularities?: { vertex: number; index: number }[];
+  /** true: the field has exactly the prescribed singularities, none when none are prescribed (absent: false). */
+  exactSingularities?: boolean;
   /** Edges whose dihedral angle exceeds this many degrees are features (0 or absent: none). */
   featureAngle?: number;
   /** Feature edges added to and removed from those the angle finds, as vertex pairs. */
@@ -103,6 +107,8 @@ export interface SingularitySummary {
   eulerCharacteristic: number;
   prescribedIndex: number;
   freeIndex: number;
+  /** The design asks for exactly the prescribed singularities (setExactSingularities). */
+  exact: boolean;
 }
 
 /** The sharp features: the detection angle (degrees, 0: none) and the edits, as vertex pairs. */

@@ -1,6 +1,6 @@
 // Files in and out: the Open…, Save, Load… and Export buttons, their file pickers, and dropping files on the
 // view. A .gltf may come with its .bin files: the first mesh-like file is the model, the rest are its
-// resources; a lone .json is a design.
+// resources; a lone .json is a design, a lone .sing (Directional's singularities) is added to the design.
 const MODEL = /\.(glb|gltf|obj|off|ply)$/i;
 
 // $: querySelector in the shadow root.
@@ -10,10 +10,12 @@ export function bindFiles($, actions) {
   const viewport = $('#viewport');
   const dropOverlay = $('#drop-overlay');
   fileInput.accept = actions.accept;
+  designInput.accept = '.json,application/json,.sing';
 
   function openFiles(files) {
     const main = files.find((f) => MODEL.test(f.name));
     if (!main && files.length === 1 && /\.json$/i.test(files[0].name)) return actions.onLoadDesign(files[0]);
+    if (!main && files.length === 1 && /\.sing$/i.test(files[0].name)) return actions.onLoadSing(files[0]);
     const model = main ?? files[0];
     actions.onOpen(model, files.filter((f) => f !== model));
   }
@@ -29,7 +31,7 @@ export function bindFiles($, actions) {
   designInput.addEventListener('change', () => {
     const [file] = designInput.files;
     designInput.value = '';
-    if (file) actions.onLoadDesign(file);
+    if (file) (/\.sing$/i.test(file.name) ? actions.onLoadSing : actions.onLoadDesign)(file);
   });
   $('#export-field').addEventListener('click', () => actions.onExportField());
 

@@ -44,6 +44,14 @@ async function loadDesignFile(d, file) {
   }
 }
 
+// A Directional .sing picked or dropped: its singularities join the design as one step (undo removes them all);
+// a refusal is shown as any other, the design untouched.
+async function loadSingFile(d, file) {
+  const ids = await d.session.topology.addSingFile(await file.text(), file.name);
+  const n = ids.length;
+  d.ui.flash(`Added ${n} singularit${n === 1 ? 'y' : 'ies'} from ${file.name}. Undo (Ctrl+Z) removes them.`, 5000);
+}
+
 function saveDesign(d) {
   const s = d.session;
   try {
@@ -68,6 +76,7 @@ export function panelActions(d) {
     onLoadDesign: editable(async (file) => {
       if (await mayDiscard(d, 'Loading a design', 'Load anyway')) d.report(loadDesignFile(d, file));
     }),
+    onLoadSing: editable((file) => d.report(loadSingFile(d, file))),
     onSaveDesign: () => saveDesign(d),
     onExportField: () => {
       const download = (text) => downloadJson(`${baseName(s().modelName)}.field.json`, text);
@@ -90,6 +99,8 @@ export function panelActions(d) {
     onCurvatureAlignment: editable((strength) => d.report(s().setSetting('curvatureAlignment', strength))),
     // The angle over which edges are sharp features (0: none); the Feature tool's additions and removals kept.
     onFeatureAngle: editable((angle) => d.report(s().topology.setFeatures({ angle }))),
+    // The field with exactly the prescribed singularities (none when none are prescribed), or free to add its own.
+    onExactSingularities: editable((exact) => d.report(s().topology.setExactSingularities(exact))),
     onViews: (views) => d.viewSync?.apply(views),
     onSelect: (uid) => s().select(uid),
     onFrame: (view) => d.viewer.frame(view),

@@ -115,6 +115,9 @@ export function bindPanels($, focused, actions, showError) {
     guard((e) => actions.onFeatureAngle(checkedNumber(e.target, 'The feature angle'))),
   );
 
+  const exactSingularities = $('#exact-singularities');
+  exactSingularities.addEventListener('change', () => actions.onExactSingularities(exactSingularities.checked));
+
   // features: {angle, count} (count: the edges in use; null while unknown); summary: singularitySummaryText's.
   function setFeatures({ angle, count }) {
     if (Number.isFinite(angle) && focused() !== featureAngle) featureAngle.value = String(angle);
@@ -169,7 +172,8 @@ export function bindPanels($, focused, actions, showError) {
     }
   }
 
-  function setSettings({ boundary, gamma: g, symmetry: n = 1, curvatureAlignment = 0 }) {
+  function setSettings({ boundary, gamma: g, symmetry: n = 1, curvatureAlignment = 0, exactSingularities: x = false }) {
+    exactSingularities.checked = x;
     const isAngle = typeof boundary !== 'string';
     boundarySelect.value = isAngle ? 'angle' : boundary;
     $('#boundary-angle-row').hidden = !isAngle;

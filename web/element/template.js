@@ -30,6 +30,8 @@ const TITLES = {
   feature: 'Click or drag along edges: sharp features the field follows (Alt or Shift: remove them) (K)',
   featureAngle: 'Edges where the surface folds by more than this many degrees are sharp features the field ' +
     'follows (0: none; the Feature tool adds or removes edges)',
+  exactSingularities: 'The field has exactly the singularities you prescribe, and none where you prescribe ' +
+    'none (a torus then has none; on a sphere the field places what the prescribed ones leave out)',
   shares: "Share of the energy in each part: ‖part‖² / ‖c‖² in the decomposition's inner product",
 };
 
@@ -161,6 +163,8 @@ export const TEMPLATE = `<div class="root" part="root">
         <label title="${TITLES.featureAngle}">Feature angle°
           <input id="feature-angle" type="number" value="35" min="0" max="180" step="5">
         </label>
+        <label class="check" title="${TITLES.exactSingularities}"><input id="exact-singularities"
+          type="checkbox"> Only prescribed singularities</label>
         <p id="feature-count" class="note" hidden></p>
         <p id="singularity-summary" class="note" hidden></p>
         <p class="note">Changing symmetry, smoothness<span id="boundary-note"

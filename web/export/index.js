@@ -61,6 +61,14 @@ export function setupExport({ viewer, panel, call, modelName, onError, texture =
   const downloadRawField = () =>
     exportRawField().then((text) => downloadBlob(`${modelName()}.rawfield`, new Blob([text], { type: 'text/plain' })));
 
+  // The quad meshers' files (docs/export.md): Directional's .sing (every singularity of the field), QuadWild's
+  // .rosy (a cross field; the worker refuses another N by name) and .sharp (the feature edges in use).
+  const exportSing = () => call('exportSing', []);
+  const exportRosy = () => call('exportRosy', []);
+  const exportSharp = () => call('exportSharp', []);
+  const downloadText = (extension, make) =>
+    make().then((text) => downloadBlob(`${modelName()}.${extension}`, new Blob([text], { type: 'text/plain' })));
+
   const downloadGlb = (opts) =>
     exportGlb(opts).then((glb) =>
       downloadBlob(`${modelName()}.field.glb`, new Blob([glb], { type: 'model/gltf-binary' })),
@@ -106,6 +114,9 @@ export function setupExport({ viewer, panel, call, modelName, onError, texture =
         .catch(onError),
     onGlb: () => downloadGlb().catch(onError),
     onRawField: () => downloadRawField().catch(onError),
+    onSing: () => downloadText('sing', exportSing).catch(onError),
+    onRosy: () => downloadText('rosy', exportRosy).catch(onError),
+    onSharp: () => downloadText('sharp', exportSharp).catch(onError),
     onPreview: (preset) => materialPreview(preset).catch(onError),
   });
 
@@ -115,6 +126,9 @@ export function setupExport({ viewer, panel, call, modelName, onError, texture =
     exportFlowMap,
     exportGlb,
     exportRawField,
+    exportSing,
+    exportRosy,
+    exportSharp,
     downloadGlb,
     materialPreview,
     materialPreviewInfo: () => refresh.then(() => preview.info()),

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The "Export" section of the side panel: flow map size / convention / bits, anisotropy strength and
-// rotation, the Flow map and GLB downloads, and the material preview with its presets. Built here and
-// appended to the given container; `actions` receives what the user chose.
+// rotation, the Flow map and GLB downloads, the quad meshers' files (.sing, .rosy, .sharp), and the material
+// preview with its presets. Built here and appended to the given container; `actions` receives what the user
+// chose.
 import { el } from '../dom.js';
 
 function select(id, title, values, value) {
@@ -11,7 +12,8 @@ function select(id, title, values, value) {
   return s;
 }
 
-export function mountExportPanel(container, { options, presets, onOptions, onFlowMap, onGlb, onRawField, onPreview }) {
+export function mountExportPanel(container, actions) {
+  const { options, presets, onOptions, onFlowMap, onGlb, onRawField, onSing, onRosy, onSharp, onPreview } = actions;
   const size = select(
     'export-size',
     'Flow map texels per side',
@@ -61,6 +63,21 @@ export function mountExportPanel(container, { options, presets, onOptions, onFlo
       'Download the field as a raw field (.rawfield: "N numF", then the N directions of each face), the format ' +
       'Directional reads, for quad remeshing',
   });
+  // The quad meshers' files (docs/export.md): what Directional and QuadWild read.
+  const sing = el('button', {
+    id: 'export-sing',
+    type: 'button',
+    text: '.sing',
+    title: "Download the field's singularities, prescribed and placed alike, as Directional's .sing",
+  });
+  const rosyTitle = "Download the cross field as QuadWild's .rosy (one direction per face)";
+  const rosy = el('button', { id: 'export-rosy', type: 'button', text: '.rosy', title: rosyTitle });
+  const sharp = el('button', {
+    id: 'export-sharp',
+    type: 'button',
+    text: '.sharp',
+    title: "Download the feature edges the field follows (and the border) as QuadWild's .sharp",
+  });
   const preview = select(
     'export-preview',
     'Show the exported material (physical, anisotropic along the field) under a studio environment',
@@ -78,6 +95,7 @@ export function mountExportPanel(container, { options, presets, onOptions, onFlo
     el('label', { title: 'KHR_materials_anisotropy strength (0..1)' }, 'Anisotropy ', strength),
     el('label', { title: 'Rotation of the highlights from the field direction, degrees' }, 'Rotation° ', rotation),
     el('div', { class: 'buttons' }, flowMap, ' ', glb, ' ', rawField),
+    el('div', { class: 'buttons', id: 'export-quad', title: 'Files for quad meshers' }, sing, ' ', rosy, ' ', sharp),
     el('label', {}, 'Material preview ', preview),
   );
   container.append(section);
@@ -91,6 +109,9 @@ export function mountExportPanel(container, { options, presets, onOptions, onFlo
     [flowMap, 'click', () => onFlowMap()],
     [glb, 'click', () => onGlb()],
     [rawField, 'click', () => onRawField()],
+    [sing, 'click', () => onSing()],
+    [rosy, 'click', () => onRosy()],
+    [sharp, 'click', () => onSharp()],
     [preview, 'change', () => onPreview(preview.value || null)],
   ];
   for (const [target, type, fn] of listeners) target.addEventListener(type, fn);
@@ -107,6 +128,9 @@ export function mountExportPanel(container, { options, presets, onOptions, onFlo
     // see), and the raw field applies.
     setSymmetry(n) {
       rawField.hidden = n < 2;
+      // .rosy holds a cross field alone: disabled otherwise, with the reason where the user looks.
+      rosy.disabled = n !== 4;
+      rosy.title = n === 4 ? rosyTitle : `${rosyTitle}; a .rosy holds a cross field (N = 4): choose Cross`;
       glb.textContent = n === 2 ? 'Anisotropy GLB' : 'GLB';
       const combed =
         `the ${n === 2 ? 'line' : 'cross'} field combed to one direction per region ` +

@@ -6,8 +6,14 @@
 // other), although the document lists them apart, as "singularities": [{vertex, index}].
 
 // The design's settings as a document without them means them (docs/design-format.md): symmetry 1 is a
-// vector field, curvature alignment 0 is off.
-const DEFAULT_SETTINGS = Object.freeze({ boundary: 'free', gamma: 0, symmetry: 1, curvatureAlignment: 0 });
+// vector field, curvature alignment 0 is off, and with no singularity prescribed the field places its own.
+const DEFAULT_SETTINGS = Object.freeze({
+  boundary: 'free',
+  gamma: 0,
+  symmetry: 1,
+  curvatureAlignment: 0,
+  exactSingularities: false,
+});
 // A design the page starts (before any model, and carried to the first) takes edges sharper than this many
 // degrees as features; a document without "featureAngle" means 0 (none), as the core reads it.
 export const NEW_DESIGN_FEATURE_ANGLE = 35;
@@ -109,7 +115,8 @@ export class ConstraintTable {
     return [...this.uids.keys()].map((uid) => ({ uid, spec: this.specOf(uid) }));
   }
 
-  // {boundary, gamma, symmetry, curvatureAlignment}, the defaults where the document leaves one out.
+  // {boundary, gamma, symmetry, curvatureAlignment, exactSingularities}, the defaults where the document leaves
+  // one out.
   settings() {
     const d = this.design;
     return Object.fromEntries(Object.entries(DEFAULT_SETTINGS).map(([key, fallback]) => [key, d[key] ?? fallback]));

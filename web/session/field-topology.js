@@ -7,6 +7,7 @@
 // Owns no state beyond the session's. Imports the session's commands.
 import {
   AddSingularity,
+  AddSingularities,
   AddSingularityPair,
   MoveSingularity,
   RemoveConstraint,
@@ -26,6 +27,39 @@ export class FieldTopology {
   // Two singularities ([vertex, index] each, a +/- pair) as one step; resolves with their page ids.
   addSingularityPair(first, second, meshSerial = undefined) {
     return this.#onModel(meshSerial, () => new AddSingularityPair([[...first], [...second]]));
+  }
+
+  // Several singularities ([[vertex, index], ...]: a .sing file's) as one step, all or none; resolves with
+  // their page ids. what: where they came from (the step's label).
+  addSingularities(list, what = '') {
+    return this.session.execute(() => {
+      if (!Array.isArray(list) || !list.every((s) => Array.isArray(s) && s.length === 2))
+        throw new Error('singularities must be a list of [vertex, index] pairs');
+      return new AddSingularities(list.map((s) => [...s]), undefined, what);
+    });
+  }
+
+  // A Directional .sing file's singularities (its text) added as one step, all or none, each index k / N of the
+  // file's N: the design's N must hold it as a multiple of its own 1/N (the core refuses one that is not). A
+  // refusal names the file, and the file's N where it is not the design's. Resolves with their page ids.
+  async addSingFile(text, name = 'the .sing file') {
+    const s = this.session;
+    let read = null;
+    const named = (err) => {
+      const n = s.settings().symmetry;
+      const why = read && read.symmetry !== n ? ` (the file's N is ${read.symmetry}, the design's ${n})` : '';
+      return new Error(`${name}: ${err.message}${why}`);
+    };
+    try {
+      read = await s.request('readSing', [String(text)], { exclusive: true });
+    } catch (err) {
+      throw named(err);
+    }
+    const list = read.singularities.map(({ vertex, index }) => [vertex, index]);
+    if (!list.length) throw new Error(`${name} holds no singularity`);
+    return this.addSingularities(list, name).catch((err) => {
+      throw named(err);
+    });
   }
 
   // A tool's edit, dropped when the model changed before it reached the core.
@@ -71,11 +105,18 @@ export class FieldTopology {
     });
   }
 
-  // {mode: 'none' | 'exact' | 'free', eulerCharacteristic, prescribedIndex, freeIndex}: the field's stats.
+  // {mode: 'none' | 'exact' | 'free', eulerCharacteristic, prescribedIndex, freeIndex}: the field's stats;
+  // exact: the design asks for only the prescribed singularities (none when none are prescribed).
   summary() {
     const { singularityMode = 'none', eulerCharacteristic = 0, prescribedIndex = 0, freeIndex = 0 } =
       this.session.field.stats;
-    return { mode: singularityMode, eulerCharacteristic, prescribedIndex, freeIndex };
+    const exact = this.session.table.settings().exactSingularities;
+    return { mode: singularityMode, eulerCharacteristic, prescribedIndex, freeIndex, exact };
+  }
+
+  // true: the field has exactly the prescribed singularities, none when none are prescribed.
+  setExactSingularities(exact) {
+    return this.session.setSetting('exactSingularities', exact);
   }
 
   // {angle, add, remove} as the design holds them, and `edges`: the vertex pairs in use ([[a, b], ...]; none

@@ -324,8 +324,9 @@ export class Session extends Emitter {
     return this.execute((table) => SetParameter.of(table, kind, uid, value));
   }
 
-  // kind: 'boundary' | 'gamma' | 'symmetry' | 'curvatureAlignment'; the core checks the value. A new symmetry
-  // takes the constraints it cannot keep with it, in the same step, and resolves with them ({id, ...spec}).
+  // kind: 'boundary' | 'gamma' | 'symmetry' | 'curvatureAlignment' | 'exactSingularities'; the core checks the
+  // value. A new symmetry takes the constraints it cannot keep with it, in the same step, and resolves with them
+  // ({id, ...spec}).
   setSetting(kind, value) {
     return this.execute((table) =>
       kind === 'symmetry' ? SetSymmetry.of(table, value) : SetSetting.of(table, kind, value),

@@ -1,5 +1,6 @@
 // The client's calls on the design's settings (core-client.js composes them): the boundary condition, γ, the
-// symmetry N, the curvature alignment, the sharp features, and the model's info. Owns nothing; imports
+// symmetry N, the curvature alignment, the sharp features, whether the field has only the prescribed
+// singularities, and the model's info. Owns nothing; imports
 // client/checks.js and core-error.js.
 import { CoreError } from '../core-error.js';
 import { check, guard, requireNumber } from './checks.js';
@@ -56,6 +57,18 @@ export const settingCalls = (Base) =>
       };
       const plus = flat('add', add), minus = flat('remove', remove);
       check('features', guard('features', () => this.designer.setFeatures(angle, plus, minus)));
+    }
+
+    // true: the field has exactly the prescribed singularities, none when none are prescribed (a torus's cross
+    // field without any); false: with none prescribed the smoothest field places its own.
+    setExactSingularities(exact) {
+      if (typeof exact !== 'boolean')
+        throw new CoreError(`exactSingularities must be true or false (got ${JSON.stringify(exact) ?? 'nothing'})`);
+      check('exact singularities', guard('exact singularities', () => this.designer.setExactSingularities(exact)));
+    }
+
+    exactSingularities() {
+      return guard('exact singularities', () => this.designer.exactSingularities());
     }
 
     // {angle, add, remove} as set.

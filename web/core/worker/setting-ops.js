@@ -1,8 +1,9 @@
 // The worker's ops that change the design as a whole rather than one constraint: the boundary condition, γ, the
-// symmetry N, the curvature alignment, the sharp features and a whole design document. After each the worker solves
-// (refactoring: each changes the system or its right-hand side) and sends the whole document back: dispatch.js files
-// them as `edits`, with no changed ids. Each sets state.undoEdit: how to take the edit back should the solve after it
-// fail, so that the core never keeps a state it cannot solve. Imports nothing.
+// symmetry N, the curvature alignment, the sharp features, whether the field has only the prescribed singularities
+// and a whole design document. After each the worker solves (refactoring: each changes the system or its
+// right-hand side) and sends the whole document back: dispatch.js files them as `edits`, with no changed ids. Each
+// sets state.undoEdit: how to take the edit back should the solve after it fail, so that the core never keeps a
+// state it cannot solve. Imports nothing.
 
 export function settingOps(state) {
   const core = () => state.core;
@@ -60,6 +61,16 @@ export function settingOps(state) {
       const before = core().features();
       onUndo(() => core().setFeatures(before));
       core().setFeatures({ ...before, ...features });
+      core().factor();
+      return true;
+    },
+
+    // true: the field has exactly the prescribed singularities (none when none are prescribed). The field system
+    // may change kind (the prescribed one or the smoothest): it is factored again.
+    setExactSingularities(exact) {
+      const before = core().exactSingularities();
+      onUndo(() => core().setExactSingularities(before));
+      core().setExactSingularities(exact);
       core().factor();
       return true;
     },

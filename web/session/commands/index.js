@@ -9,6 +9,7 @@
 //   label, result, changes (false: not recorded), clearsSelection, serialize() and a static deserialize().
 import { AddConstraint } from './add-constraint.js';
 import { AddSingularity } from './add-singularity.js';
+import { AddSingularities } from './add-singularities.js';
 import { AddSingularityPair } from './add-singularity-pair.js';
 import { MoveSingularity } from './move-singularity.js';
 import { RemoveConstraint } from './remove-constraint.js';
@@ -21,6 +22,7 @@ import { SetSymmetry } from './set-symmetry.js';
 export {
   AddConstraint,
   AddSingularity,
+  AddSingularities,
   AddSingularityPair,
   MoveSingularity,
   RemoveConstraint,
@@ -34,6 +36,7 @@ export {
 const COMMANDS = [
   AddConstraint,
   AddSingularity,
+  AddSingularities,
   AddSingularityPair,
   MoveSingularity,
   RemoveConstraint,

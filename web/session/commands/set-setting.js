@@ -1,12 +1,24 @@
-// The boundary condition, γ or the curvature alignment, with the value it replaces (each a refactorization or a
-// new right-hand side). The symmetry N has a command of its own (set-symmetry.js): it may take constraints with it.
-const OPS = { boundary: 'setBoundary', gamma: 'setGamma', curvatureAlignment: 'setCurvatureAlignment' };
-const LABELS = { boundary: 'boundary condition', gamma: 'γ', curvatureAlignment: 'curvature alignment' };
+// The boundary condition, γ, the curvature alignment or whether the field has only the prescribed
+// singularities, with the value it replaces (each a refactorization or a new right-hand side). The symmetry N
+// has a command of its own (set-symmetry.js): it may take constraints with it.
+const OPS = {
+  boundary: 'setBoundary',
+  gamma: 'setGamma',
+  curvatureAlignment: 'setCurvatureAlignment',
+  exactSingularities: 'setExactSingularities',
+};
+const LABELS = {
+  boundary: 'boundary condition',
+  gamma: 'γ',
+  curvatureAlignment: 'curvature alignment',
+  exactSingularities: 'only prescribed singularities',
+};
 
 export class SetSetting {
   static type = 'SetSetting';
 
-  // kind: 'boundary' | 'gamma' | 'curvatureAlignment'; the values as the design format writes them.
+  // kind: 'boundary' | 'gamma' | 'curvatureAlignment' | 'exactSingularities'; the values as the design format
+  // writes them.
   constructor(kind, from, to) {
     this.kind = kind;
     this.from = from;
