@@ -360,7 +360,7 @@ test('attributes drive the element and are reflected; an embedded element autosa
       };
     });
   let s = await state();
-  expect(s.settings).toEqual({ boundary: 'free', gamma: 0.25, symmetry: 1, curvatureAlignment: 0 });
+  expect(s.settings).toEqual({ boundary: 'free', gamma: 0.25, symmetry: 1, curvatureAlignment: 0, exactSingularities: false });
   expect(s.constraints).toEqual(['source', 'sink']); // designs/two-sources.json
   expect(s.views).toMatchObject({ arrows: true, singularities: true, streamlines: false, colorMap: false });
   expect(s.props).toMatchObject({ gamma: 0.25, readonly: true, controls: 'minimal' });
