@@ -1,7 +1,7 @@
-// Several prescribed singularities as one step (a Directional .sing file opened on the page): one request each
-// way, the worker's addSingularities (which adds all or, on a refusal, none) and its removeConstraints for the
-// undo. Each singularity gets a page id of its own, kept across undo and redo, and is listed, moved and removed
-// as any prescribed one.
+// Several prescribed singularities as one step (a Directional .sing file opened on the page; the Singularity
+// tool's +/- pair, add-singularity-pair.js): one request each way, the worker's addSingularities (which adds all
+// or, on a refusal, none) and its removeConstraints for the undo. Each singularity gets a page id of its own,
+// kept across undo and redo, and is listed, moved and removed as any prescribed one.
 export class AddSingularities {
   static type = 'AddSingularities';
 
