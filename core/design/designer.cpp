@@ -66,6 +66,14 @@ struct Designer::Impl {
     if (retired) apply(*retired);
   }
 
+  // A singularity's checks against the mesh, the symmetry, the other prescriptions (but the one with id
+  // ignoreId, being moved) and the features; throws InputError naming the problem.
+  void checkPrescription(const ConstraintSpec& spec, int32_t ignoreId = 0) const {
+    constraints.validate(spec);
+    checkSingularity(spec, symmetry(), mesh.mesh(), mesh.topology(), mesh.geometry(), constraints, ignoreId);
+    checkOffFeatureCurves(spec.element, mesh.topology(), settings.featureEdges);
+  }
+
   bool wantsPrescribed() const {
     return settings.exactSingularities || !constraints.specsOf(ConstraintKind::Singularity).empty();
   }
@@ -214,9 +222,7 @@ int32_t Designer::add(const ConstraintSpec& spec) {
   // rest of the index where the field it replaces has its singularities.
   ConstraintSpec probe = spec;
   probe.id = 0;
-  d.constraints.validate(probe);
-  checkSingularity(probe, d.symmetry(), d.mesh.mesh(), d.mesh.topology(), d.mesh.geometry(), d.constraints);
-  checkOffFeatureCurves(probe.element, d.mesh.topology(), d.settings.featureEdges);
+  d.checkPrescription(probe);
   std::map<int32_t, double> smoothest;
   const bool seed = d.fieldCurrent && !d.field.solution().faceVectors.empty();
   if (seed)
@@ -264,10 +270,7 @@ void Designer::moveSingularity(int32_t id, int32_t vertex) {
   if (moved.kind != ConstraintKind::Singularity)
     throw InputError("constraint " + std::to_string(id) + " is not a singularity; only singularities move");
   moved.element = vertex;
-  d.constraints.validate(moved);
-  checkSingularity(moved, d.symmetry(), d.mesh.mesh(), d.mesh.topology(), d.mesh.geometry(), d.constraints,
-                   id);
-  checkOffFeatureCurves(vertex, d.mesh.topology(), d.settings.featureEdges);
+  d.checkPrescription(moved, id);
   d.constraints.setElement(id, vertex);
   d.fieldCurrent = false;
   d.system->singularitiesChanged();

@@ -1,26 +1,11 @@
 #include "direction/dual_cycles.h"
 
 #include <algorithm>
-#include <numeric>
+
+#include "common/union_find.h"
 
 namespace tvf {
 namespace {
-
-struct UnionFind {
-  std::vector<int32_t> parent;
-  explicit UnionFind(int32_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int32_t root(int32_t a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  }
-  bool join(int32_t a, int32_t b) {
-    a = root(a);
-    b = root(b);
-    if (a == b) return false;
-    parent[a] = b;
-    return true;
-  }
-};
 
 // The counter-clockwise cycle around vertex v crosses an interior edge from the face in which the edge runs
 // into v to the face in which it runs out of v.
@@ -155,11 +140,11 @@ DualCycles dualCycles(const MeshTopology& t, const FaceConnection& c) {
   dualTree(t, c, d, inDualTree);
   UnionFind primal(t.numVertices);
   for (const auto& loop : t.boundaryLoops)
-    for (const int32_t e : loop) primal.join(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1]);
+    for (const int32_t e : loop) primal.unite(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1]);
   for (int32_t k = 0; k < entries; ++k) {
     if (inDualTree[k]) continue;
     const int32_t e = d.edgeOfEntry[k];
-    if (primal.join(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1])) continue;
+    if (primal.unite(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1])) continue;
     d.generators.push_back(fundamentalCycle(d, c, k));
   }
 

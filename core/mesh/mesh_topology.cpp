@@ -3,29 +3,14 @@
 #include <algorithm>
 #include <numeric>
 
+#include "common/union_find.h"
+
 namespace tvf {
 namespace {
 
 int32_t lowerOf(const SurfaceMesh& mesh, int32_t h) {
   return std::min(mesh.triangles[h], mesh.triangles[h - h % 3 + (h % 3 + 1) % 3]);
 }
-
-class UnionFind {
- public:
-  explicit UnionFind(int32_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int32_t find(int32_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(int32_t a, int32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int32_t> parent_;
-};
 
 // The half-edges in canonical edge order: by lower vertex (a counting sort, which keeps corner order), then
 // by upper vertex within each vertex's few. Equal (lower, upper) runs are one edge, their corners in corner

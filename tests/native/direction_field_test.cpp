@@ -215,14 +215,7 @@ TEST(DirectionField, StraightStrokeIsFollowedOnACurvedSurface) {
   // weight 1e4: at every face it crosses, the field is within 1 degree of the stroke's heading there.
   const int n = 64, m = 24;
   const SurfaceMesh mesh = torus(n, m, 1.0, 0.4);
-  std::vector<SurfacePoint> points;
-  for (int k = 0; k <= 24; ++k) {
-    const double x = 2.0 + 0.5 * k;  // in quads along the parallel, at 0.3 of the strip's height
-    const int i = static_cast<int>(x);
-    const double a = x - i, b = 0.3;
-    points.push_back(a >= b ? SurfacePoint{2 * i, {1 - a, a - b, b}}
-                            : SurfacePoint{2 * i + 1, {1 - b, a, b - a}});
-  }
+  const std::vector<SurfacePoint> points = torusParallelStroke();
   const MeshTopology t = buildTopology(mesh);
   const StrokeWalk walk = walkStroke(mesh, t, points);
   ASSERT_GT(walk.crossings.size(), 20u);

@@ -244,14 +244,7 @@ TEST(PrescribedSingularities, MovingOneMovesExactlyThatOneWithoutRefactoring) {
 TEST(PrescribedSingularities, StrokesBendTheFieldButNeverMoveASingularity) {
   const int n = 64, m = 24;
   const SurfaceMesh mesh = torus(n, m, 1.0, 0.4);
-  std::vector<SurfacePoint> points;
-  for (int k = 0; k <= 24; ++k) {
-    const double x = 2.0 + 0.5 * k;
-    const int i = static_cast<int>(x);
-    const double a = x - i, b = 0.3;
-    points.push_back(a >= b ? SurfacePoint{2 * i, {1 - a, a - b, b}}
-                            : SurfacePoint{2 * i + 1, {1 - b, a, b - a}});
-  }
+  const std::vector<SurfacePoint> points = torusParallelStroke();
   const MeshTopology t = buildTopology(mesh);
   const StrokeWalk walk = walkStroke(mesh, t, points);
   for (const int symmetry : {1, 2, 4}) {

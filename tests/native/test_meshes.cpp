@@ -138,6 +138,18 @@ SurfaceMesh holedPlate(int width, int depth, const std::vector<std::pair<int, in
   return m;
 }
 
+std::vector<SurfacePoint> torusParallelStroke() {
+  std::vector<SurfacePoint> points;
+  for (int k = 0; k <= 24; ++k) {
+    const double x = 2.0 + 0.5 * k;  // in quads along the parallel, at 0.3 of the strip's height
+    const int i = static_cast<int>(x);
+    const double a = x - i, b = 0.3;
+    points.push_back(a >= b ? SurfacePoint{2 * i, {1 - a, a - b, b}}
+                            : SurfacePoint{2 * i + 1, {1 - b, a, b - a}});
+  }
+  return points;
+}
+
 SurfaceMesh disjointUnion(const SurfaceMesh& a, const SurfaceMesh& b) {
   SurfaceMesh m = a;
   const int32_t offset = a.numVertices();

@@ -2,6 +2,7 @@
 // Meshes made in code, with known topology and geometry, for the native tests.
 #include <vector>
 
+#include "constraints/constraint_spec.h"
 #include "mesh/icosphere.h"  // icosphere(): core's, the one the wasm warm-up designs on
 #include "mesh/surface_mesh.h"
 
@@ -17,6 +18,9 @@ SurfaceMesh torus(int n, int m, double R, double r);
 // Surface of a one-voxel-thick plate of width x depth cells with a hole at every listed cell, each unit face
 // split into k x k quads: genus = number of holes.
 SurfaceMesh holedPlate(int width, int depth, const std::vector<std::pair<int, int>>& holes, int k);
+// A stroke along a parallel of torus(n, m, ...) (quad (i, j) is faces 2 (j n + i) and +1): 25 points from 2
+// to 14 quads along the first strip, at 0.3 of its height.
+std::vector<SurfacePoint> torusParallelStroke();
 // Concatenates meshes (several components).
 SurfaceMesh disjointUnion(const SurfaceMesh& a, const SurfaceMesh& b);
 // Moves every vertex by a deterministic pseudo-random offset of relative size `amount` in the mesh's own
