@@ -158,6 +158,23 @@ TEST(PrescribedSingularities, RandomCompleteSetsAreExactlyTheFieldsSingularities
       }
 }
 
+TEST(PrescribedSingularities, OddAndSixFoldSymmetriesToo) {
+  // N = 3 and 6 (the range is 1 to 6): random complete sets on a sphere and a torus, exactly found.
+  const SurfaceMesh meshes[] = {bumpySphere(3), torus(40, 16, 1.0, 0.4)};
+  for (const SurfaceMesh& mesh : meshes)
+    for (const int symmetry : {3, 6}) {
+      Designer d(mesh);
+      d.setSymmetry(symmetry);
+      const std::map<int32_t, double> set = prescribeRandom(d, symmetry, 4, 21);
+      d.solve();
+      SCOPED_TRACE("N = " + std::to_string(symmetry) +
+                   ", chi = " + std::to_string(d.topology().eulerCharacteristic()));
+      EXPECT_EQ(d.stats().singularityMode, "exact");
+      expectSameSet(set, found(d), "found vs prescribed");
+      EXPECT_LT(turningAgainstTrivialConnection(d, set, symmetry), 1e-9);
+    }
+}
+
 TEST(PrescribedSingularities, EightQuarterSingularitiesAnywhereOnASphere) {
   const SurfaceMesh mesh = icosphere(3);
   for (unsigned seed = 11; seed <= 14; ++seed) {
