@@ -26,6 +26,17 @@ const VertexTangentAxes& DesignMesh::vertexTangentAxes() const {
   return vertexTangentAxes_;
 }
 
+const FaceFrames& DesignMesh::faceFrames() const {
+  if (!faceFrames_) faceFrames_ = tvf::faceFrames(mesh_, geometry_);
+  return *faceFrames_;
+}
+
+const FaceConnection& DesignMesh::leviCivitaConnection() const {
+  if (!leviCivitaConnection_)
+    leviCivitaConnection_ = tvf::leviCivitaConnection(mesh_, topology_, geometry_, faceFrames());
+  return *leviCivitaConnection_;
+}
+
 uint64_t DesignMesh::hash() const {
   if (!hash_) hash_ = meshHash(mesh_);
   return *hash_;

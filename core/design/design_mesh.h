@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dec/hodge_star.h"
+#include "direction/levi_civita_connection.h"
 #include "direction/representative_directions.h"
 #include "field/whitney_reconstruction.h"
 #include "mesh/mesh_checks.h"
@@ -28,6 +29,10 @@ class DesignMesh {
   const VertexVectorMap& vertexVectorMap() const;
   // Each vertex's tangent axes (direction/representative_directions.h), built on first use.
   const VertexTangentAxes& vertexTangentAxes() const;
+  // Each face's tangent frame and the discrete Levi-Civita connection between faces
+  // (direction/levi_civita_connection.h), built on first use: every direction-field system reads these.
+  const FaceFrames& faceFrames() const;
+  const FaceConnection& leviCivitaConnection() const;
   uint64_t hash() const;  // meshHash(mesh()), made on first use
 
  private:
@@ -37,6 +42,8 @@ class DesignMesh {
   mutable FaceVectorMap faceVectorMap_;
   mutable VertexVectorMap vertexVectorMap_;
   mutable VertexTangentAxes vertexTangentAxes_;
+  mutable std::optional<FaceFrames> faceFrames_;
+  mutable std::optional<FaceConnection> leviCivitaConnection_;
   mutable std::optional<uint64_t> hash_;
 };
 

@@ -55,12 +55,14 @@ DirectionFieldSystem::DirectionFieldSystem(int symmetry, const DesignMesh& mesh,
       mesh_(mesh),
       constraints_(constraints),
       gamma_(settings.gamma),
-      system_(mesh.mesh(), mesh.topology(), mesh.geometry(), symmetry) {
+      system_(mesh.mesh(), mesh.topology(), mesh.geometry(), mesh.faceFrames(), mesh.leviCivitaConnection(),
+              symmetry) {
   refuseVectorNotions(constraints.specs(), symmetryField(symmetry));
   configureFactor(system_.factor(), settings);
   system_.setCurvatureAlignment(settings.curvatureAlignment);
-  setBoundary(settings.boundary);
-  setFeatures(settings.featureEdges);
+  boundary_ = settings.boundary;
+  featureEdges_ = settings.featureEdges;
+  fixedTerms();
   addAll();
 }
 
@@ -68,27 +70,32 @@ int64_t DirectionFieldSystem::unknowns() const {
   return 2 * static_cast<int64_t>(mesh_.topology().numFaces);
 }
 
-// A fixed-angle boundary as strongly weighted directions at the boundary faces (the weight of the 1-form's
-// fixed-angle rows); a free boundary adds none.
-void DirectionFieldSystem::setBoundary(const BoundaryCondition& bc) {
+std::vector<FaceDirectionTerm> fixedDirectionTerms(const DesignMesh& mesh, const BoundaryCondition& boundary,
+                                                   const std::vector<int32_t>& featureEdges, int symmetry) {
   const std::vector<double> angles =
-      bc.free ? std::vector<double>{} : boundaryEdgeAngles(mesh_.topology(), bc);
-  boundaryTerms_ =
-      boundaryDirectionTerms(mesh_.mesh(), mesh_.topology(), system_.frames(), angles, symmetry_);
+      boundary.free ? std::vector<double>{} : boundaryEdgeAngles(mesh.topology(), boundary);
+  std::vector<FaceDirectionTerm> terms =
+      boundaryDirectionTerms(mesh.mesh(), mesh.topology(), mesh.faceFrames(), angles, symmetry);
+  if (featureEdges.empty()) return terms;
+  const std::vector<FaceDirectionTerm> features =
+      featureDirectionTerms(mesh.mesh(), mesh.topology(), mesh.faceFrames(),
+                            featureCurves(mesh.topology(), featureEdges), symmetry);
+  terms.insert(terms.end(), features.begin(), features.end());
+  return terms;
+}
+
+void DirectionFieldSystem::setBoundary(const BoundaryCondition& bc) {
+  boundary_ = bc;
   fixedTerms();
 }
 
 void DirectionFieldSystem::setFeatures(const std::vector<int32_t>& edges) {
-  featureTerms_ = edges.empty() ? std::vector<FaceDirectionTerm>{}
-                                : featureDirectionTerms(mesh_.mesh(), mesh_.topology(), system_.frames(),
-                                                        featureCurves(mesh_.topology(), edges), symmetry_);
+  featureEdges_ = edges;
   fixedTerms();
 }
 
 void DirectionFieldSystem::fixedTerms() {
-  std::vector<FaceDirectionTerm> all = boundaryTerms_;
-  all.insert(all.end(), featureTerms_.begin(), featureTerms_.end());
-  system_.setBoundaryTerms(std::move(all), kBoundaryWeight);
+  system_.setBoundaryTerms(fixedDirectionTerms(mesh_, boundary_, featureEdges_, symmetry_), kBoundaryWeight);
 }
 
 void DirectionFieldSystem::addAll() {

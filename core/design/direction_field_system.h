@@ -16,6 +16,12 @@ namespace tvf {
 // `field` (e.g. "a field of symmetry 4") as what cannot take them.
 void refuseVectorNotions(const std::vector<ConstraintSpec>& specs, const std::string& field);
 
+// What a direction field's base holds besides its smoothness: a fixed-angle boundary as directions at the
+// boundary faces (none for a free one) and the faces beside the feature edges along them
+// (direction/feature_terms.h), both taken at kBoundaryWeight.
+std::vector<FaceDirectionTerm> fixedDirectionTerms(const DesignMesh& mesh, const BoundaryCondition& boundary,
+                                                   const std::vector<int32_t>& featureEdges, int symmetry);
+
 class DirectionFieldSystem final : public FieldSystem {
  public:
   // Throws InputError when the design holds constraints an N-direction field cannot take (sources, sinks,
@@ -55,7 +61,8 @@ class DirectionFieldSystem final : public FieldSystem {
   ConstraintSet& constraints_;
   double gamma_;
   PowerFieldSystem system_;
-  std::vector<FaceDirectionTerm> boundaryTerms_, featureTerms_;
+  BoundaryCondition boundary_;
+  std::vector<int32_t> featureEdges_;
 };
 
 }  // namespace tvf

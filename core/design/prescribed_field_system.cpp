@@ -10,7 +10,6 @@
 #include "common/input_error.h"
 #include "design/direction_field_system.h"
 #include "direction/direction_constraints.h"
-#include "direction/feature_terms.h"
 #include "direction/free_singularities.h"
 #include "direction/representative_directions.h"
 #include "field/singularities.h"
@@ -106,16 +105,14 @@ PrescribedFieldSystem::PrescribedFieldSystem(int symmetry, const DesignMesh& mes
       constraints_(constraints),
       settings_(settings),
       gamma_(settings.gamma),
-      frames_(faceFrames(mesh.mesh(), mesh.geometry())),
-      leviCivita_(leviCivitaConnection(mesh.mesh(), mesh.topology(), mesh.geometry(), frames_)),
-      trivial_(mesh.topology(), leviCivita_),
-      angles_(mesh.topology(), leviCivita_, symmetry) {
+      frames_(mesh.faceFrames()),
+      trivial_(mesh.topology(), mesh.leviCivitaConnection()),
+      angles_(mesh.topology(), mesh.leviCivitaConnection(), symmetry) {
   refuseVectorNotions(constraints.specs(), kField);
   for (const ConstraintSpec& spec : constraints.specsOf(ConstraintKind::Singularity))
     checkSingularity(spec, symmetry, mesh.mesh(), mesh.topology(), mesh.geometry(), constraints);
   configureFactor(angles_.factor(), settings);
-  setBoundary(settings.boundary);
-  setFeatures(settings.featureEdges);
+  fixedTerms();
   addAll();
 }
 
@@ -129,7 +126,8 @@ int64_t PrescribedFieldSystem::unknowns() const {
 
 PowerFieldSystem& PrescribedFieldSystem::power() {
   if (!power_) {
-    power_ = std::make_unique<PowerFieldSystem>(mesh_.mesh(), mesh_.topology(), mesh_.geometry(), symmetry_);
+    power_ = std::make_unique<PowerFieldSystem>(mesh_.mesh(), mesh_.topology(), mesh_.geometry(), frames_,
+                                                mesh_.leviCivitaConnection(), symmetry_);
     configureFactor(power_->factor(), settings_);
     if (symmetry_ % 2 == 0) power_->setCurvatureAlignment(settings_.curvatureAlignment);
     fixedTerms();
@@ -142,8 +140,8 @@ PowerFieldSystem& PrescribedFieldSystem::power() {
 }
 
 void PrescribedFieldSystem::fixedTerms() {
-  std::vector<FaceDirectionTerm> all = boundaryTerms_;
-  all.insert(all.end(), featureTerms_.begin(), featureTerms_.end());
+  std::vector<FaceDirectionTerm> all =
+      fixedDirectionTerms(mesh_, settings_.boundary, settings_.featureEdges, symmetry_);
   angles_.setFixedTerms(all, kBoundaryWeight);
   if (power_) power_->setBoundaryTerms(std::move(all), kBoundaryWeight);
   naturalChanged();
@@ -176,17 +174,11 @@ const std::map<int32_t, double>& PrescribedFieldSystem::natural() {
 
 void PrescribedFieldSystem::setBoundary(const BoundaryCondition& bc) {
   settings_.boundary = bc;
-  const std::vector<double> angles =
-      bc.free ? std::vector<double>{} : boundaryEdgeAngles(mesh_.topology(), bc);
-  boundaryTerms_ = boundaryDirectionTerms(mesh_.mesh(), mesh_.topology(), frames_, angles, symmetry_);
   fixedTerms();
 }
 
 void PrescribedFieldSystem::setFeatures(const std::vector<int32_t>& edges) {
   settings_.featureEdges = edges;
-  featureTerms_ = edges.empty() ? std::vector<FaceDirectionTerm>{}
-                                : featureDirectionTerms(mesh_.mesh(), mesh_.topology(), frames_,
-                                                        featureCurves(mesh_.topology(), edges), symmetry_);
   fixedTerms();
 }
 

@@ -85,14 +85,12 @@ class PrescribedFieldSystem final : public FieldSystem {
   ConstraintSet& constraints_;
   FieldSettings settings_;
   double gamma_;
-  FaceFrames frames_;
-  FaceConnection leviCivita_;
+  const FaceFrames& frames_;  // the mesh's (design/design_mesh.h)
   TrivialConnection trivial_;
   AngleFieldSystem angles_;
   std::unique_ptr<PowerFieldSystem> power_;  // the smoothest field without prescriptions, made on first need
   std::map<int32_t, double> natural_, free_;
   bool naturalStale_ = true;
-  std::vector<FaceDirectionTerm> boundaryTerms_, featureTerms_;
   bool connectionStale_ = true;
   bool exact_ = true;
   std::vector<double> rotations_;

@@ -54,7 +54,7 @@ void dualTree(const MeshTopology& t, const FaceConnection& c, DualCycles& d, std
   }
 }
 
-// The path from face f up the dual tree to the root, as (entry, sign of the step up).
+// The faces from f up the dual tree to its root, f first.
 std::vector<int32_t> pathToRoot(const DualCycles& d, const FaceConnection& c, int32_t f) {
   std::vector<int32_t> faces{f};
   while (d.parentEntry[f] >= 0) {

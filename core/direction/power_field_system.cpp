@@ -38,14 +38,14 @@ constexpr int kMaxInverseIterations = 60;
 }  // namespace
 
 PowerFieldSystem::PowerFieldSystem(const SurfaceMesh& mesh, const MeshTopology& topology,
-                                   const MeshGeometry& geometry, int symmetry)
+                                   const MeshGeometry& geometry, const FaceFrames& frames,
+                                   const FaceConnection& connection, int symmetry)
     : mesh_(mesh),
       topology_(topology),
       geometry_(geometry),
       symmetry_(symmetry),
-      frames_(faceFrames(mesh, geometry)),
-      connection_(connectionLaplacian(leviCivitaConnection(mesh, topology, geometry, frames_),
-                                      topology.numFaces, symmetry)),
+      frames_(frames),
+      connection_(connectionLaplacian(connection, topology.numFaces, symmetry)),
       base_(upperTriangle(connection_)),
       mass_(powerFieldMass(geometry)),
       scale_(meanDiagonal(connection_)),

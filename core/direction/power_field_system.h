@@ -28,9 +28,10 @@ struct PowerFieldReport {
 
 class PowerFieldSystem {
  public:
-  // The mesh, topology and geometry must outlive the system.
+  // The mesh, topology, geometry, the face frames and the Levi-Civita connection between them
+  // (direction/levi_civita_connection.h) must outlive the system.
   PowerFieldSystem(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& geometry,
-                   int symmetry);
+                   const FaceFrames& frames, const FaceConnection& connection, int symmetry);
 
   int symmetry() const;
   const FaceFrames& frames() const;
@@ -79,7 +80,7 @@ class PowerFieldSystem {
   const MeshTopology& topology_;
   const MeshGeometry& geometry_;
   int symmetry_;
-  FaceFrames frames_;
+  const FaceFrames& frames_;
   SparseMatrix connection_;  // H alone
   SparseMatrix base_;        // H + the boundary terms, upper triangle
   std::vector<FaceDirectionTerm> boundaryTerms_;

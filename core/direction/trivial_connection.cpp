@@ -69,11 +69,11 @@ void TrivialConnection::factorVertexBlock() {
   for (int32_t r = 0; r < d.vertexRows; ++r) triplets.emplace_back(r, r, 0.0);  // every diagonal stored
   vertexBlock_.resize(d.vertexRows, d.vertexRows);
   vertexBlock_.setFromTriplets(triplets.begin(), triplets.end());
-  double scale = 0;
-  for (int32_t r = 0; r < d.vertexRows; ++r) scale += vertexBlock_.coeff(r, r);
-  scale = d.vertexRows > 0 ? scale / d.vertexRows : 1.0;
+  scale_ = 0;
+  for (int32_t r = 0; r < d.vertexRows; ++r) scale_ += vertexBlock_.coeff(r, r);
+  scale_ = d.vertexRows > 0 ? scale_ / d.vertexRows : 1.0;
   const DiagonalTerms none;
-  if (d.vertexRows > 0) factor_.factor(vertexBlock_, scale, none);
+  if (d.vertexRows > 0) factor_.factor(vertexBlock_, scale_, none);
 
   // The generators' coupling to the vertex cycles and among themselves, and the Schur complement.
   const int32_t generators = static_cast<int32_t>(d.generators.size());
@@ -105,7 +105,7 @@ void TrivialConnection::factorVertexBlock() {
   for (int32_t j = 0; j < generators; ++j) {
     Eigen::VectorXd z;
     const Eigen::VectorXd bj = Eigen::VectorXd(coupling_.col(j));
-    factor_.solve(vertexBlock_, scale, none, bj, z);
+    factor_.solve(vertexBlock_, scale_, none, bj, z);
     solvedCoupling_.col(j) = z;
   }
   schur_ = among - Eigen::MatrixXd(coupling_.transpose()) * solvedCoupling_;
@@ -120,11 +120,7 @@ std::vector<double> TrivialConnection::rotations(const std::vector<double>& vert
   for (int32_t v = 0; v < topology_.numVertices; ++v)
     if (d.vertexRow[v] >= 0) b[d.vertexRow[v]] = vertexTargets[v];
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(d.vertexRows);
-  if (d.vertexRows > 0) {
-    double scale = 0;
-    for (int32_t r = 0; r < d.vertexRows; ++r) scale += vertexBlock_.coeff(r, r);
-    factor_.solve(vertexBlock_, scale / d.vertexRows, DiagonalTerms{}, b, lambda);
-  }
+  if (d.vertexRows > 0) factor_.solve(vertexBlock_, scale_, DiagonalTerms{}, b, lambda);
   // What the vertex cycles alone leave each generator, rounded to the nearest multiple of 2 pi / N.
   const int32_t generators = static_cast<int32_t>(d.generators.size());
   Eigen::VectorXd lambdaG = Eigen::VectorXd::Zero(generators);

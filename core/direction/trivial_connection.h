@@ -55,6 +55,7 @@ class TrivialConnection {
   DualCycles cycles_;
   std::vector<double> inverseWeight_;
   SparseMatrix vertexBlock_;  // upper triangle
+  double scale_ = 1;          // its mean diagonal
   ShiftedFactor factor_;
   bool factored_ = false;
   SparseMatrix coupling_;           // B = C_V W^-1 C_G', vertex rows x generators
