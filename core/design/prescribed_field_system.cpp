@@ -130,7 +130,9 @@ PowerFieldSystem& PrescribedFieldSystem::power() {
                                                 mesh_.leviCivitaConnection(), symmetry_);
     configureFactor(power_->factor(), settings_);
     if (symmetry_ % 2 == 0) power_->setCurvatureAlignment(settings_.curvatureAlignment);
-    fixedTerms();
+    // Its own base only: the angle system's factor stays as it is.
+    power_->setBoundaryTerms(
+        fixedDirectionTerms(mesh_, settings_.boundary, settings_.featureEdges, symmetry_), kBoundaryWeight);
     for (const ConstraintSpec& spec : constraints_.specs())
       if (spec.kind == ConstraintKind::Stroke || spec.kind == ConstraintKind::Vector)
         power_->add(spec.id, directionTerms(mesh_.mesh(), mesh_.topology(), frames_, spec, symmetry_),
