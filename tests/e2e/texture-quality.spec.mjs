@@ -33,22 +33,32 @@ function texelStepStatistics({ width, height, pixels }, mag, big = 60) {
   return { across: across / nAcross, inside: inside / nInside };
 }
 
-// Animation frames the page draws while `run(arg)`, evaluated in the page, awaits a call made through
-// window.framesDuring(call): {frames, value}.
+// Animation frames the page draws, and turns its thread takes (tasks posted to itself through a
+// MessageChannel, one after another), while `run(arg)`, evaluated in the page, awaits a call made through
+// window.framesDuring(call): {frames, turns, value}. Frames need the compositor and the GPU process as well,
+// which a loaded machine may starve for a few hundred milliseconds; turns need the page's thread alone, so
+// they say whether work was done elsewhere.
 async function framesDuring(page, run, arg) {
   await page.evaluate(() => {
     window.framesDuring ??= async (call) => {
-      let frames = 0, running = true;
+      let frames = 0, turns = 0, running = true;
       const tick = () => {
         frames++;
         if (running) requestAnimationFrame(tick);
       };
+      const channel = new MessageChannel();
+      channel.port1.onmessage = () => {
+        turns++;
+        if (running) channel.port2.postMessage(0);
+      };
       requestAnimationFrame(tick);
       await new Promise((r) => requestAnimationFrame(() => r()));
       frames = 0;
+      channel.port2.postMessage(0);
       const value = await call();
       running = false;
-      return { frames, value };
+      channel.port1.close();
+      return { frames, turns, value };
     };
   });
   return page.evaluate(run, arg);
@@ -56,8 +66,8 @@ async function framesDuring(page, run, arg) {
 
 // Animation frames the page draws while one tvf.synthesize(options) runs: {frames, stats}.
 async function synthesisFrames(page, options) {
-  const { frames, value } = await framesDuring(page, (o) => window.framesDuring(() => window.tvf.synthesize(o)), options);
-  return { frames, stats: value };
+  const { frames, turns, value } = await framesDuring(page, (o) => window.framesDuring(() => window.tvf.synthesize(o)), options);
+  return { frames, turns, stats: value };
 }
 
 test.describe.serial('texture quality and responsiveness (flat square)', () => {
@@ -169,9 +179,10 @@ test.describe.serial('texture quality and responsiveness (flat square)', () => {
 });
 
 // The generated atlas (LSCM charts and packing, up to seconds on a big model) is made by the element's core
-// worker: the page keeps drawing frames while it is computed. Counted over a synthesis that itself blocks
-// (interleave off), so every frame drawn during the call was drawn while the atlas was computed elsewhere;
-// the same call again with the atlas cached is the baseline (no frames).
+// worker: the page's thread stays free while it is computed. Counted over a synthesis that itself blocks
+// (interleave off), so every turn the thread took during the call was taken while the atlas was computed
+// elsewhere; the same call again with the atlas cached is the baseline (no turn). Frames are logged beside the
+// turns: they also need the compositor, which a loaded machine can starve, so they are not asserted.
 test.describe.serial('the generated atlas and the exemplar analysis are made off the page thread (bunny)', () => {
   let page, errors;
 
@@ -184,22 +195,23 @@ test.describe.serial('the generated atlas and the exemplar analysis are made off
     await page?.close();
   });
 
-  test('frames keep coming while the atlas is generated', async () => {
+  test('the page\'s thread keeps taking tasks while the atlas is generated', async () => {
     const options = { resolution: 512, featureScale: 1, interleave: false, seed: 5 };
     const first = await synthesisFrames(page, options);
     const cached = await synthesisFrames(page, options);
-    console.log(JSON.stringify({ framesWhileAtlasGenerated: first.frames, framesAtlasCached: cached.frames, atlas: first.stats.atlas }));
+    console.log(JSON.stringify({ framesWhileAtlasGenerated: first.frames, framesAtlasCached: cached.frames,
+      turnsWhileAtlasGenerated: first.turns, turnsAtlasCached: cached.turns, atlas: first.stats.atlas }));
     expect(first.stats.atlas.source).toBe('generated');
-    expect(cached.frames, 'a blocking synthesis with the atlas cached draws no frames (the baseline)').toBeLessThanOrEqual(2);
-    expect(first.frames, 'frames drawn while the worker generated the atlas').toBeGreaterThan(cached.frames + 3);
+    expect(cached.turns, 'a blocking synthesis with the atlas cached leaves the thread no turn (the baseline)').toBeLessThanOrEqual(2);
+    expect(first.turns, 'turns taken while the worker generated the atlas').toBeGreaterThan(cached.turns + 100);
   });
 
   // The exemplar analysis (Gaussian stack, PCA, k-coherence candidates: 0.2-0.4 s for 128²) runs in the
   // core worker too. A new image exemplar is analysed while no texture is shown (so no synthesis follows);
   // the same image again comes from the page's cache and is the baseline.
-  test('frames keep coming while a new exemplar is analysed', async () => {
+  test('the page\'s thread keeps taking tasks while a new exemplar is analysed', async () => {
     const analysed = async (seed) => {
-      const { frames, value } = await framesDuring(page, (seed) => {
+      const { frames, turns, value } = await framesDuring(page, (seed) => {
         window.tvf.clearTexture();
         let state = seed;
         const random = () => ((state = (Math.imul(state, 1664525) + 1013904223) >>> 0) / 2 ** 32);
@@ -210,15 +222,17 @@ test.describe.serial('the generated atlas and the exemplar analysis are made off
         }
         return window.framesDuring(() => window.tvf.setExemplar(image, { size: 128 }));
       }, seed);
-      return { frames, cached: value.cached, analysisMs: value.analysisMs, levels: value.levels };
+      return { frames, turns, cached: value.cached, analysisMs: value.analysisMs, levels: value.levels };
     };
     const first = await analysed(11);
     const cached = await analysed(11);
-    console.log(JSON.stringify({ framesWhileAnalysed: first.frames, framesCached: cached.frames, analysisMs: first.analysisMs }));
+    console.log(JSON.stringify({ framesWhileAnalysed: first.frames, framesCached: cached.frames,
+      turnsWhileAnalysed: first.turns, turnsCached: cached.turns, analysisMs: first.analysisMs }));
     expect(first.cached).toBe(false);
     expect(cached.cached).toBe(true);
     expect(first.levels).toBeGreaterThan(3);
-    expect(first.frames, 'frames drawn while the worker analysed the exemplar').toBeGreaterThan(cached.frames + 3);
+    expect(cached.turns, 'an exemplar from the cache leaves the thread no turn (the baseline)').toBeLessThanOrEqual(2);
+    expect(first.turns, 'turns taken while the worker analysed the exemplar').toBeGreaterThan(cached.turns + 100);
   });
 
   test('no console errors', () => {
