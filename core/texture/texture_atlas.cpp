@@ -618,20 +618,23 @@ void dilateInto(const Bitmap& in, int r, Bitmap& out) {
         for (int d = std::max(0, y - r); d <= std::min(h - 1, y + r); ++d) out.set(x, d);
 }
 
-ChartShape chartShape(const Chart& chart, double density, int rotation, int gutter) {
+// The chart at `density`, unrotated. It is moved by whole texels only, so that a quarter turn of its bitmap is
+// the bitmap of the quarter-turned chart (rotatedQuarter): the texel centres map onto texel centres, and packing
+// rasterizes each chart once per density instead of once per rotation.
+ChartShape chartShape(const Chart& chart, double density, int gutter) {
   ChartShape s;
   s.texel.resize(chart.uv.size());
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   for (size_t i = 0; i < chart.uv.size(); i += 2) {
-    double x = chart.uv[i] * density, y = chart.uv[i + 1] * density;
-    for (int r = 0; r < rotation; ++r) std::tie(x, y) = std::make_pair(-y, x);
+    const double x = chart.uv[i] * density, y = chart.uv[i + 1] * density;
     s.texel[i] = x, s.texel[i + 1] = y;
     x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
   }
-  const double margin = gutter + 1.0;
-  for (size_t i = 0; i < s.texel.size(); i += 2) s.texel[i] += margin - x0, s.texel[i + 1] += margin - y0;
-  const int w = static_cast<int>(std::ceil(x1 - x0 + 2 * margin)) + 1;
-  const int h = static_cast<int>(std::ceil(y1 - y0 + 2 * margin)) + 1;
+  const int margin = gutter + 1;
+  const double sx = margin - std::floor(x0), sy = margin - std::floor(y0);
+  for (size_t i = 0; i < s.texel.size(); i += 2) s.texel[i] += sx, s.texel[i + 1] += sy;
+  const int w = static_cast<int>(std::ceil(x1 + sx)) + margin + 1;
+  const int h = static_cast<int>(std::ceil(y1 + sy)) + margin + 1;
   // Touched: the texel's square meets a triangle (its centre within half a diagonal). Covered: its centre is
   // in a triangle (with a margin for the rounding of UVs to floats), i.e. the texels synthesis writes.
   Bitmap touched(w, h), covered(w, h);
@@ -657,6 +660,20 @@ ChartShape chartShape(const Chart& chart, double density, int rotation, int gutt
   s.mask = Bitmap(w, h);
   dilateInto(covered, gutter, s.mask);
   dilateInto(touched, std::max(0, gutter - 1), s.mask);
+  return s;
+}
+
+// The shape turned a quarter (x, y) -> (-y, x), kept in its bitmap: texel (i, j) goes to (h - 1 - j, i).
+ChartShape rotatedQuarter(const ChartShape& in) {
+  ChartShape s;
+  const int w = in.mask.width, h = in.mask.height;
+  s.texel.resize(in.texel.size());
+  for (size_t i = 0; i < in.texel.size(); i += 2) s.texel[i] = h - in.texel[i + 1], s.texel[i + 1] = in.texel[i];
+  s.mask = Bitmap(h, w);
+  for (int y = 0; y < h; ++y)
+    for (int k = 0; k < in.mask.words; ++k)
+      for (uint64_t bits = in.mask.bits[static_cast<size_t>(y) * in.mask.words + k]; bits; bits &= bits - 1)
+        s.mask.set(h - 1 - y, 64 * k + __builtin_ctzll(bits));
   return s;
 }
 
@@ -703,8 +720,10 @@ bool pack(const std::vector<Chart>& charts, double density, int resolution, int 
   for (size_t c = 0; c < charts.size(); ++c) {
     int bestTop = 1 << 30;
     Bitmap bestMask(0, 0);
+    ChartShape turned = chartShape(charts[c], density, gutter);
     for (int rot = 0; rot < kRotations; ++rot) {
-      ChartShape shape = chartShape(charts[c], density, rot, gutter);
+      ChartShape shape = rot == 0 ? turned : rotatedQuarter(turned);
+      if (rot > 0) turned = shape;
       if (shape.mask.width > resolution || shape.mask.height > resolution) continue;
       Bitmap m = coarsen(shape.mask, block);
       bool placed = false;
