@@ -256,16 +256,18 @@ async function strokeBench(page, meshPath) {
 }
 
 // The texture's first synthesis (the atlas generated, the exemplar analysed) and its updates after strokes
-// (auto-update: each stroke's preview, then its exact field): the time to the texture done, and the main
-// thread's longest task during each phase.
+// (auto-update: each stroke's preview, then its exact field): the time to the texture done, the main thread's
+// longest task during each, and where the time went: the run's phases (synthesisStats().phases, phase-clock.js)
+// with what came before the run (the stroke's solve, for an update) and after it (the texture shown to the
+// promise resolving), beside the wall time measured here on its own.
 async function textureBench(page, strokes) {
   await page.evaluate(() => window.__longTasks.splice(0));
   const profile = await startProfile(page, arg('--profile-texture', null));
-  const firstMs = await page.evaluate(async () => {
+  const first = await page.evaluate(async () => {
     const t0 = performance.now();
     await window.tvf.synthesize();
-    await window.tvf.synthesisIdle();
-    return performance.now() - t0;
+    const s = await window.tvf.synthesisIdle();
+    return { wallMs: performance.now() - t0, t0, t1: performance.now(), stats: s };
   });
   const firstTasks = await page.evaluate(() => window.__longTasks.splice(0));
   const updates = [];
@@ -275,25 +277,53 @@ async function textureBench(page, strokes) {
       const t0 = performance.now();
       await window.tvf.addStroke(pts);
       await window.tvf.settled();
-      await window.tvf.synthesisIdle();
-      return performance.now() - t0;
+      const s = await window.tvf.synthesisIdle();
+      return { wallMs: performance.now() - t0, t0, t1: performance.now(), stats: s };
     }, points));
   }
   const updateTasks = await page.evaluate(() => window.__longTasks.splice(0));
   await profile.stop();
   const longest = (tasks) => tasks.reduce((m, t) => Math.max(m, t.ms), 0);
+  const byWall = [...updates].sort((a, b) => a.wallMs - b.wallMs);
+  const medianUpdate = byWall[Math.floor((byWall.length - 1) / 2)];
   return {
-    textureFirstMs: firstMs,
-    textureUpdateMs: median(updates),
+    textureFirstMs: first.wallMs,
+    textureUpdateMs: median(updates.map((u) => u.wallMs)),
     textureUpdates: updates.length,
+    textureFirstPhases: phaseTable(first, 'before the run'),
+    textureUpdatePhases: medianUpdate ? phaseTable(medianUpdate, 'stroke solved, field changed') : null,
     longestTextureFirstTaskMs: longest(firstTasks),
     longestTextureUpdateTaskMs: longest(updateTasks),
     textureUpdateLongTasks: updateTasks.map((t) => Math.round(t.ms)),
     textureFirstLongTasks: firstTasks.map((t) => Math.round(t.ms)),
-    textureStats: await page.evaluate(() => {
-      const s = window.tvf.synthesisStats();
-      return s && { resolution: s.resolution, totalMs: s.totalMs, atlasMs: s.atlas?.ms, chartMs: s.atlas?.chartMs };
-    }),
+    textureStats: first.stats && {
+      resolution: first.stats.resolution,
+      totalMs: first.stats.totalMs,
+      atlasMs: first.stats.atlas?.ms,
+      chartMs: first.stats.atlas?.chartMs,
+      gpuMs: first.stats.gpuMs,
+      slices: first.stats.slices,
+      sliceTexels: first.stats.sliceTexels,
+      atlasWorkerSteps: first.stats.atlas?.workerSteps,
+    },
+  };
+}
+
+// One texture's phases, in the page's clock: `before` (call or stroke to the run's start), the run's own, and
+// 'after shown'; with their sum, the wall time measured around it, and the kernel's and the rest's shares.
+function phaseTable({ wallMs, t0, t1, stats }, before) {
+  if (!stats?.phases) return null;
+  const round = (x) => Math.round(10 * x) / 10;
+  const phases = { [before]: round(stats.startedAt - t0), ...stats.phases, 'after shown': round(t1 - stats.shownAt) };
+  const sum = Object.values(phases).reduce((a, b) => a + b, 0);
+  const kernel = Object.entries(phases).reduce((a, [k, v]) => a + (k.includes('kernel') ? v : 0), 0);
+  return {
+    phases,
+    sumMs: round(sum),
+    wallMs: round(wallMs),
+    sumOverWall: Math.round((1000 * sum) / wallMs) / 1000,
+    kernelMs: round(kernel),
+    nonKernelMs: round(sum - kernel),
   };
 }
 

@@ -84,6 +84,7 @@ export class Designer {
         return s.request('analyzeExemplar', [spec]);
       },
       getFieldVersion: () => (s.surface && s.field ? this.viewSync.drawnVersion() : undefined),
+      isPreviewField: () => !!s.field?.stats?.preview,
       getModel: () =>
         s.surface && s.field
           ? {

@@ -8,7 +8,8 @@
 import { runSynthesisBench } from './bench.js';
 import { defaultResolution } from './auto-settings.js';
 import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8 } from './exemplar.js';
-import { TexturedModel } from './render.js';
+import { setUpAtlas } from './atlas-setup.js';
+import { PhaseClock } from './phase-clock.js';
 import { DEFAULTS, Synthesizer } from './synthesizer.js';
 import { glbTexture, texturePng, textureReadback } from './texture-exports.js';
 import { TEXTURE_SYMMETRIES, textureRefusal } from '../session/symmetry.js';
@@ -26,11 +27,13 @@ export class SynthesisController {
   // computeAtlas(model, {resolution, gutter}) and analyzeExemplar(spec): preparedAtlas (atlas-prepared.js) and
   // analyzeExemplar (exemplar.js) off the page's thread (the element's core worker), resolving with their results.
   // getFieldVersion(): the model's fieldVersion without the copies getModel() makes (tens of ms at 400k
-  // vertices, at every field change).
+  // vertices, at every field change). isPreviewField(): the current field is a big model's preview, which its
+  // exact field replaces when it lands.
   constructor({
     viewer,
     getModel,
     getFieldVersion = () => getModel()?.fieldVersion,
+    isPreviewField = () => false,
     computeAtlas,
     analyzeExemplar,
     onChange = () => {},
@@ -40,6 +43,7 @@ export class SynthesisController {
     this.viewer = viewer;
     this.getModel = getModel;
     this.getFieldVersion = getFieldVersion;
+    this.isPreviewField = isPreviewField;
     this.onChange = onChange;
     this.onError = onError;
     this.library = new ExemplarLibrary(analyzeExemplar);
@@ -59,6 +63,9 @@ export class SynthesisController {
     this.stats = null;
     this.queue = Promise.resolve();
     this.pendingField = false;
+    this.runVersion = undefined; // the field version the run scheduled or under way is for
+    this.changedAt = null; // the first field change the next run answers
+    this.previewFieldShown = false; // the last field change was a big model's preview field
   }
 
   // Runs fn after everything queued before it (texture-exports.js reads through this too).
@@ -68,7 +75,7 @@ export class SynthesisController {
     return run;
   }
 
-  #ensureSynth() {
+  ensureSynth() {
     if (!this.synth) this.synth = new Synthesizer();
     return this.synth;
   }
@@ -76,7 +83,7 @@ export class SynthesisController {
   // A new one in a task of its own (its WebGL context alone took 64-103 ms); null if disposed meanwhile.
   async #synthesizer() {
     if (!this.synth) {
-      this.#ensureSynth();
+      this.ensureSynth();
       await new Promise((resolve) => setTimeout(resolve, 0));
     }
     return this.synth;
@@ -121,57 +128,31 @@ export class SynthesisController {
     return { label, size: tables.size, levels: tables.levels.length, cached, analysisMs, analysis: tables.stats };
   }
 
-  // The atlas for the current model at `resolution` (cached per model and resolution).
-  async #atlasFor(model, resolution) {
-    const gutter = this.options.gutter ?? DEFAULTS.gutter;
-    if (
-      this.atlas &&
-      this.atlas.key === model.key &&
-      this.atlas.resolution === resolution &&
-      this.atlas.gutter === gutter
-    )
-      return this.atlas;
-    // Generating an atlas takes up to seconds on a big model: the element's core worker does it, so the page
-    // keeps drawing and taking input; the synthesis programs compile meanwhile (Synthesizer.programsReady).
-    const programs = this.#ensureSynth().programsReady();
-    programs.catch(() => {}); // a failure is thrown by the await below
-    const chosen = await this.computeAtlas(model, { resolution, gutter });
-    await programs;
-    // The raster takes the corners and seams; the atlas kept here is the one the exports and stats read.
-    const { corners = null, seams = null, ...atlas } = chosen;
-    const { positions, triangles, neighbour } = model.surface;
-    const spec = { resolution, positions, triangles, neighbour, cornerUVs: atlas.cornerUVs, corners, seams };
-    let task = performance.now(); // a new task once the steps took the page a while (none for a blocking synthesis)
-    for (const _ of this.#ensureSynth().setAtlasSteps(spec))
-      if (this.options.interleave && performance.now() - task > 16) {
-        await new Promise((resolve) => setTimeout(resolve, 0));
-        task = performance.now();
-      }
-    this.atlas = { key: model.key, resolution, gutter, ...atlas };
-    if (!this.render) this.render = new TexturedModel(this.viewer);
-    await this.render.setGeometry(model.surface, this.atlas.cornerUVs);
-    return this.atlas;
-  }
-
   // Synthesizes for the current field and shows the result; later field changes resynthesize with the same
   // options until clearTexture(). Options: resolution (power of two, default 256) and the synthesizer's
   // (featureScale, magnitudeExponent, jitter, passes, kappa, seed, gutter, timing).
   synthesize(options = {}) {
+    const clock = new PhaseClock();
+    this.changedAt = null;
     return this.exclusive(async () => {
+      clock.mark('queued behind earlier texture work');
       checkSynthesisOptions(options);
       this.options = { ...this.options, ...options };
       if (!this.exemplar) {
         const r = await this.library.procedural('stripes', PROCEDURAL_SIZE, 1);
         this.exemplar = { tables: r.tables, label: 'stripes', cached: r.cached, analysisMs: 0 };
+        clock.mark('exemplar analysis (worker)');
         (await this.#synthesizer())?.setExemplar(r.tables);
+        clock.mark('synthesis context, exemplar to the GPU');
       }
       this.active = true;
-      return this.#run();
+      return this.#run({ clock });
     });
   }
 
   // One synthesis for the current model and field. preview: stop one level short of the finest (quick edits).
-  async #run({ preview = false } = {}) {
+  // clock: the phases since the call or the field change this run answers (phase-clock.js).
+  async #run({ preview = false, clock = new PhaseClock() } = {}) {
     const model = this.getModel();
     if (!model) throw new Error('no model loaded');
     // A line or cross field's vectors are each one of its N directions, chosen arbitrarily: it is combed for the
@@ -185,18 +166,22 @@ export class SynthesisController {
     }
     const token = ++this.runToken;
     const t0 = performance.now();
+    this.ensureSynth();
+    clock.mark('field from the page, synthesis context');
     const resolution =
       this.options.resolution === 'auto' ? defaultResolution(model.triangles.length / 3) : this.options.resolution;
-    const atlas = await this.#atlasFor(model, resolution);
+    const atlas = await setUpAtlas(this, model, resolution, clock);
     const tAtlas = performance.now() - t0;
     const synthOptions = runOptions(this.options, model, atlas, this.exemplar.tables.size, preview);
     const field = fieldInput(model, atlas);
+    clock.mark(field.symmetry > 1 ? 'field combed for the atlas' : 'run options');
     let s;
     if (this.options.interleave) {
       let shown = -1;
       this.progress = { fraction: 0, preview };
       this.onChange();
       s = await this.synth.synthesizeInterleaved(field.input, { ...synthOptions, timing: 'total' }, {
+        clock,
         cancelled: () => token !== this.runToken,
         onProgress: (f) => {
           this.progress = { fraction: f, preview };
@@ -210,17 +195,20 @@ export class SynthesisController {
       if (!s) return this.synthesisStats(); // superseded by a newer field change
     } else {
       s = this.synth.synthesize(field.input, synthOptions);
+      clock.mark('kernel (blocking run)');
     }
     const t1 = performance.now();
     const { coords, jacobian } = this.options.interleave
       ? await this.synth.readResultAsync()
       : { coords: this.synth.readCoordinates(), jacobian: this.synth.readJacobian() };
+    clock.mark('read-back');
     if (token !== this.runToken || !this.render) return this.synthesisStats(); // superseded while it was read
     const t2 = performance.now();
     const { rgba8: exemplar, size: exemplarSize } = this.exemplar.tables;
     const texture = { resolution: s.resolution, coords, jacobian, exemplar, exemplarSize };
     const shown = await this.render.setTexture(texture, { sliced: this.options.interleave });
     if (!shown) return this.synthesisStats(); // the model changed while the texture went to the GPU
+    clock.mark('upload to the view');
     this.stale = false;
     this.stats = {
       ...s,
@@ -228,10 +216,14 @@ export class SynthesisController {
       shapeComplexity: atlas.complexity ?? null,
       autoResolution: this.options.resolution === 'auto',
       exemplar: this.exemplarInfo(),
-      atlas: { source: atlas.source, reason: atlas.reason, resolution: atlas.resolution, ...atlas.stats, ms: tAtlas },
+      atlas: { source: atlas.source, reason: atlas.reason, resolution: atlas.resolution, ...atlas.stats, ms: tAtlas,
+        workerSteps: atlas.workerSteps, cache: atlas.cache },
       readbackMs: t2 - t1,
       uploadMs: performance.now() - t2,
       wallMs: performance.now() - t0,
+      ...clock.summary(),
+      startedAt: clock.t0,
+      shownAt: clock.last,
       fieldVersion: model.fieldVersion,
       symmetry: field.symmetry,
       ...(field.symmetry > 1 ? { combMs: field.ms, combCutEdges: field.cutEdges } : {}),
@@ -241,21 +233,28 @@ export class SynthesisController {
     return structuredClone(this.stats);
   }
 
-  // The field changed: resynthesize while a texture is shown (autoUpdate), coalescing bursts of changes into
-  // one run and cancelling a run the change makes stale. Changes that come quickly (or with interactive: true,
-  // e.g. while a stroke is dragged) get a preview, and a full synthesis once they stop.
+  // The field changed: resynthesize while a texture is shown (autoUpdate), cancelling a run the change makes
+  // stale. A change on its own (a released stroke, an edit, a big model's exact field landing after its preview)
+  // starts a full synthesis at once. Changes that come quickly one after another (or with interactive: true,
+  // e.g. while something is dragged) get a preview, and a full synthesis once they stop for QUICK_EDIT_MS.
   fieldChanged({ interactive = false } = {}) {
     if (!this.active) return;
     const version = this.getFieldVersion();
-    if (this.atlas && version !== undefined && version === this.lastFieldVersion) return;
+    if (this.atlas && version !== undefined && (version === this.lastFieldVersion || version === this.runVersion))
+      return;
     if (!this.options.autoUpdate) {
       this.stale = true;
       this.onChange();
       return;
     }
     const now = performance.now();
-    const quick = interactive || now - this.lastFieldChange < QUICK_EDIT_MS;
-    this.lastFieldChange = now;
+    const previewField = this.isPreviewField();
+    const landing = this.previewFieldShown && !previewField; // the exact field of what the preview stood for
+    this.previewFieldShown = previewField;
+    const quick = interactive || (!landing && now - this.lastFieldChange < QUICK_EDIT_MS);
+    if (!landing) this.lastFieldChange = now;
+    this.changedAt ??= now;
+    this.runVersion = version;
     this.runToken++; // cancels a run in progress
     clearTimeout(this.settleTimer);
     this.settleTimer = null;
@@ -278,7 +277,13 @@ export class SynthesisController {
     setTimeout(() => {
       this.pendingField = false;
       const p = this.pendingPreview;
-      const run = () => (this.active ? this.#run({ preview: p }) : null);
+      const run = () => {
+        // The phases of an update start at the field change it answers.
+        const clock = new PhaseClock(this.changedAt ?? performance.now());
+        this.changedAt = null;
+        clock.mark(p ? 'settle, queue (preview)' : 'settle, queue');
+        return this.active ? this.#run({ preview: p, clock }) : null;
+      };
       this.exclusive(run).catch((err) => this.onError(err));
     }, 0);
   }

@@ -21,12 +21,12 @@ import {
   Program,
   createContext,
   drawFullscreen,
-  gpuDone,
   readTargetsAsync,
   sync,
 } from './gl.js';
 import { disposeExemplar, uploadExemplar } from './gpu-exemplar.js';
 import { levelPlan } from './level-plan.js';
+import { PhaseClock } from './phase-clock.js';
 import {
   COPY_FS,
   CORRECT_FS,
@@ -39,6 +39,7 @@ import {
   UNPACK_FS,
   UPSAMPLE_FS,
 } from './shaders.js';
+import { SlicePacer } from './slice-pacer.js';
 
 export const DEFAULTS = Object.freeze({
   featureScale: 1, // 1: one exemplar pixel spans one atlas texel (at the atlas's mean density) on the surface
@@ -135,31 +136,45 @@ export class Synthesizer {
   }
 
   // The same, yielding to the page between draws so that the view keeps rendering and input keeps working
-  // while the GPU (software rendering: seconds) works through the pyramid: after each group of draws estimated
-  // at about `budgetTexels` texel-shadings, the GL queue is flushed and the next frame awaited. onProgress(f) gets
-  // the share done (0..1); when cancelled() turns true the run stops and resolves to null (the previous result
-  // stays). Options as synthesize(), plus `finestLevel` (0, or 1 for a quarter-cost preview that stops one level
-  // short: the result then lives at half the atlas resolution, see resultLevel).
+  // while the GPU works through the pyramid: the draws go in slices sized to what the GPU does in a frame
+  // (slice-pacer.js), each waited for before the next. onProgress(f) gets the share done (0..1); when cancelled()
+  // turns true the run stops and resolves to null (the previous result stays). Options as synthesize(), plus
+  // `finestLevel` (0, or 1 for a quarter-cost preview that stops one level short: the result then lives at half
+  // the atlas resolution, see resultLevel). clock: a PhaseClock (phase-clock.js) the run's phases are marked on.
   async synthesizeInterleaved(
     vertexVectors,
     options = {},
-    { onProgress = () => {}, cancelled = () => false, budgetTexels = 1 << 15, nextFrame = defaultNextFrame } = {},
+    { onProgress = () => {}, cancelled = () => false, clock = new PhaseClock(), nextFrame = defaultNextFrame } = {},
   ) {
     const steps = this.#steps(vertexVectors, options);
-    let pending = 0;
+    const pacer = (this.pacer ??= new SlicePacer(this.gl));
+    pacer.start();
+    let pending = 0, kernel = false;
     for (let r = steps.next(); ; r = steps.next()) {
-      if (r.done) return r.value;
-      pending += r.value.texels;
+      if (r.done) return { ...r.value, gpuMs: pacer.finish(clock), slices: pacer.slices, sliceTexels: pacer.texels };
       onProgress(r.value.progress);
-      if (pending >= budgetTexels) {
-        pending = 0;
+      if (r.value.field) {
+        // The field goes to the GPU a slice of faces per task.
         this.gl.flush();
-        await (r.value.gpuIdle ? gpuDone(this.gl, nextFrame, cancelled) : nextFrame());
-        if (cancelled()) {
-          this.gl.bindFramebuffer(this.gl.FRAMEBUFFER, null);
-          return null;
-        }
+        await nextFrame();
+        clock.mark('field to the GPU');
+        continue;
       }
+      if (!kernel) {
+        kernel = true;
+        clock.mark('field to the GPU');
+        pacer.begin();
+      }
+      pending += r.value.texels;
+      if (pending < pacer.texels && !r.value.gpuIdle) continue;
+      pending = 0;
+      await pacer.end(clock, nextFrame, cancelled, { last: !!r.value.gpuIdle });
+      if (cancelled()) {
+        pacer.start();
+        this.gl.bindFramebuffer(this.gl.FRAMEBUFFER, null);
+        return null;
+      }
+      if (!r.value.gpuIdle) pacer.begin();
     }
   }
 
@@ -184,7 +199,7 @@ export class Synthesizer {
         this.magRef = r.value;
         break;
       }
-      yield { texels: Infinity, progress: 0 };
+      yield { texels: Infinity, progress: 0, field: true };
     }
     // Total shading work: the Jacobian and per level 4 upsample quarters, 4 x passes correction quarters
     // (weighted x8: they read ~90 texels each) and the unpack.
@@ -286,8 +301,8 @@ export class Synthesizer {
       });
       tLevel = now;
     }
-    // Interleaved, the page waits for the GPU between frames (the queue lags the draws by up to seconds with
-    // software GL), so that the read-back that times the run does not hold the page's thread.
+    // Interleaved, the last slice is waited for like every other, so that the read-back that times the run does
+    // not hold the page's thread.
     yield { texels: Infinity, progress: 1, gpuIdle: true };
     if (o.timing !== 'levels') sync(gl, parent);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);

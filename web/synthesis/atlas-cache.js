@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Prepared atlases (atlas-prepared.js) kept per mesh in the core's worker: the last one in memory, and every
+// recent one in IndexedDB, so that a texture on the same mesh again (another resolution and back, the model
+// opened again, the page reloaded) skips the charts and packing (seconds on a big model). An entry is keyed by
+// a 64-bit hash of the exact input (positions, triangles, the model's own UVs, resolution, gutter) and holds
+// that input's sizes and a format version: an entry whose sizes or version differ is stale or foreign and is
+// ignored (and replaced once the atlas is made again).
+const DB_NAME = 'tvf-atlas-cache';
+const STORE = 'atlases';
+const FORMAT = 1;
+const KEPT = 4; // entries in IndexedDB, the least recently made dropped first
+
+// Two 32-bit multiplicative hashes over the bytes of each array (as 32-bit words, the tail byte by byte).
+export function inputHash(arrays) {
+  let a = 0x811c9dc5, b = 0x9e3779b9;
+  const step = (w) => {
+    a = Math.imul(a ^ w, 0x01000193);
+    b = Math.imul(b ^ w, 0x85ebca6b) ^ (b >>> 13);
+  };
+  for (const arr of arrays) {
+    if (!arr) {
+      step(0x7fffffff);
+      continue;
+    }
+    const bytes = new Uint8Array(arr.buffer, arr.byteOffset, arr.byteLength);
+    const words = new Uint32Array(arr.buffer, arr.byteOffset, arr.byteOffset % 4 ? 0 : bytes.length >> 2);
+    for (let i = 0; i < words.length; i++) step(words[i]);
+    for (let i = 4 * words.length; i < bytes.length; i++) step(bytes[i]);
+    step(bytes.length);
+  }
+  return (a >>> 0).toString(16).padStart(8, '0') + (b >>> 0).toString(16).padStart(8, '0');
+}
+
+function request(req) {
+  return new Promise((resolve, reject) => {
+    req.onsuccess = () => resolve(req.result);
+    req.onerror = () => reject(req.error ?? new Error('IndexedDB request failed'));
+  });
+}
+
+// A prepared atlas's typed arrays copied (what the cache keeps while the caller transfers its own away).
+function copied(atlas) {
+  return {
+    ...atlas,
+    cornerUVs: atlas.cornerUVs.slice(),
+    faceCharts: atlas.faceCharts?.slice(),
+    corners: { ...atlas.corners, data: atlas.corners.data.slice(), faceArea: atlas.corners.faceArea.slice() },
+    seams: { ...atlas.seams, map: atlas.seams.map.slice() },
+  };
+}
+
+export class AtlasCache {
+  constructor({ persistent = !!globalThis.indexedDB } = {}) {
+    this.persistent = persistent;
+    this.memory = null; // {key, sizes, atlas}
+    this.db = null;
+  }
+
+  // The input's identity: {key, sizes}.
+  static identify({ positions, triangles, cornerUVs }, { resolution, gutter }) {
+    const sizes = [positions.length, triangles.length, cornerUVs?.length ?? -1, resolution, gutter, FORMAT];
+    return { key: inputHash([positions, triangles, cornerUVs, Int32Array.from(sizes)]), sizes };
+  }
+
+  // The atlas kept for the input (a copy the caller may transfer), or null.
+  async get({ key, sizes }) {
+    const same = (e) =>
+      e && e.key === key && e.sizes?.length === sizes.length && e.sizes.every((n, i) => n === sizes[i]);
+    if (same(this.memory)) return copied(this.memory.atlas);
+    const entry = await this.#read(key).catch(() => null);
+    if (!same(entry)) return null;
+    this.memory = entry;
+    return copied(entry.atlas);
+  }
+
+  // Keeps a copy of `atlas`, made for the input identified by {key, sizes}.
+  async put({ key, sizes }, atlas) {
+    const entry = { key, sizes, madeAt: Date.now(), atlas: copied(atlas) };
+    this.memory = entry;
+    await this.#write(entry).catch(() => {}); // a full or refused store costs the next opening only
+  }
+
+  async #open() {
+    if (!this.persistent) return null;
+    if (this.db) return this.db;
+    const open = indexedDB.open(DB_NAME, 1);
+    open.onupgradeneeded = () => open.result.createObjectStore(STORE, { keyPath: 'key' });
+    this.db = await request(open);
+    this.db.onversionchange = () => {
+      this.db.close();
+      this.db = null;
+    };
+    return this.db;
+  }
+
+  async #read(key) {
+    const db = await this.#open();
+    return db ? request(db.transaction(STORE).objectStore(STORE).get(key)) : null;
+  }
+
+  async #write(entry) {
+    const db = await this.#open();
+    if (!db) return;
+    const store = db.transaction(STORE, 'readwrite').objectStore(STORE);
+    await request(store.put(entry));
+    const all = await request(store.getAll());
+    all.sort((x, y) => y.madeAt - x.madeAt);
+    for (const old of all.slice(KEPT)) await request(store.delete(old.key));
+  }
+}

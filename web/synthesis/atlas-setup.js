@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The atlas a synthesis run works in, set up for the current model (controller.js): chosen or generated in the
+// core's worker (which keeps it per mesh, worker-ops.js), its corner data rasterized on the synthesizer's GPU
+// context, the textured model's geometry built for it. Each step is a phase of the run's clock
+// (phase-clock.js). Owns nothing: the controller keeps the atlas and the textured model.
+import { DEFAULTS } from './synthesizer.js';
+import { TexturedModel } from './render.js';
+
+// c: the SynthesisController. Resolves with the atlas (c.atlas, reused while the model, resolution and gutter
+// stay the same).
+export async function setUpAtlas(c, model, resolution, clock) {
+  const gutter = c.options.gutter ?? DEFAULTS.gutter;
+  const held = c.atlas;
+  if (held && held.key === model.key && held.resolution === resolution && held.gutter === gutter) return held;
+  // Generating an atlas takes up to seconds on a big model: the element's core worker does it, so the page
+  // keeps drawing and taking input; the synthesis programs compile meanwhile (Synthesizer.programsReady).
+  const programs = c.ensureSynth().programsReady();
+  programs.catch(() => {}); // a failure is thrown by the await below
+  const chosen = await c.computeAtlas(model, { resolution, gutter });
+  const kept = chosen.cache?.cached;
+  clock.mark(kept ? 'atlas (worker: kept for this mesh)' : 'atlas (worker: charts, packing, corners, seams)');
+  await programs;
+  clock.mark('shader compilation (waited for)');
+  // The raster takes the corners and seams; the atlas kept here is the one the exports and stats read.
+  const { corners = null, seams = null, ...atlas } = chosen;
+  const { positions, triangles, neighbour } = model.surface;
+  const spec = { resolution, positions, triangles, neighbour, cornerUVs: atlas.cornerUVs, corners, seams };
+  let task = performance.now(); // a new task once the steps took the page a while (none for a blocking synthesis)
+  for (const _ of c.ensureSynth().setAtlasSteps(spec))
+    if (c.options.interleave && performance.now() - task > 16) {
+      await new Promise((resolve) => setTimeout(resolve, 0));
+      task = performance.now();
+    }
+  clock.mark('atlas corner data to the GPU');
+  c.atlas = { key: model.key, resolution, gutter, ...atlas };
+  if (!c.render) c.render = new TexturedModel(c.viewer);
+  await c.render.setGeometry(model.surface, c.atlas.cornerUVs);
+  clock.mark('textured geometry (built, staged)');
+  return c.atlas;
+}

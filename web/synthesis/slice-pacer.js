@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// How much of a synthesis goes to the GPU per frame. A fixed share (32k texel shadings a frame) took hundreds of
+// frames, seconds, for a pyramid a real GPU runs in 29 ms; software GL, on the other hand, falls seconds behind
+// (and so does the page's own drawing) when given more than it can draw in a frame. So each slice is fenced and
+// the next one sized by what the GPU did: twice as much when it was done by the next frame, half when it still
+// worked on it two frames later; the page waits for the slice before the one just issued, so the GPU always has
+// work queued. The size learnt is kept for the synthesizer's next run.
+//
+// Phases (phase-clock.js): 'kernel: draws' (issuing a slice on the page's thread), 'kernel: GPU' (frames waited
+// while the GPU worked on a slice), 'waits between slices' (frames waited with the GPU already done). Where the
+// context has EXT_disjoint_timer_query_webgl2, the GPU's own time replaces the frame count's guess (finish()).
+export class SlicePacer {
+  constructor(gl, { texels = 1 << 16, minTexels = 1 << 12, maxTexels = 1 << 26 } = {}) {
+    this.gl = gl;
+    this.texels = texels;
+    this.minTexels = minTexels;
+    this.maxTexels = maxTexels;
+    this.timer = gl.getExtension('EXT_disjoint_timer_query_webgl2');
+    this.query = null;
+    this.queries = [];
+    this.inFlight = []; // fences of slices the GPU may still work on, oldest first
+    this.slices = 0;
+  }
+
+  // A run starts: no GPU time measured yet.
+  start() {
+    this.#dropQueries();
+    this.#dropFences();
+    this.slices = 0;
+  }
+
+  // Before a slice's draws.
+  begin() {
+    if (!this.timer || this.query) return;
+    this.query = this.gl.createQuery();
+    this.gl.beginQuery(this.timer.TIME_ELAPSED_EXT, this.query);
+  }
+
+  // After a slice's draws: flushes them and waits, a frame at a time, until the GPU is done with the slice before
+  // (or with this one too when `last`, or the run is cancelled), so that the GPU always has the next slice queued
+  // while the page waits and never more than two. The next slice's size follows from the frames that took.
+  async end(clock, nextFrame, cancelled, { last = false } = {}) {
+    const gl = this.gl;
+    if (this.query) {
+      gl.endQuery(this.timer.TIME_ELAPSED_EXT);
+      this.queries.push(this.query);
+      this.query = null;
+    }
+    this.slices++;
+    const fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+    gl.flush();
+    clock.mark('kernel: draws');
+    if (!fence) {
+      await nextFrame(); // a lost context
+      clock.mark('waits between slices');
+      return;
+    }
+    this.inFlight.push(fence);
+    const keep = last ? 0 : 1;
+    let frames = 0;
+    while (this.inFlight.length > keep && !cancelled()) {
+      await nextFrame();
+      frames++;
+      const before = this.inFlight.length;
+      while (this.inFlight.length && gl.getSyncParameter(this.inFlight[0], gl.SYNC_STATUS) === gl.SIGNALED)
+        gl.deleteSync(this.inFlight.shift());
+      // Every slice done at the first look: the GPU may have idled part of the frame.
+      clock.mark(frames === 1 && this.inFlight.length === 0 && before > 0 ? 'waits between slices' : 'kernel: GPU');
+    }
+    if (last || cancelled()) this.#dropFences();
+    if (frames <= 1) this.texels = Math.min(this.maxTexels, 2 * this.texels);
+    else if (frames > 2) this.texels = Math.max(this.minTexels, this.texels / 2);
+  }
+
+  #dropFences() {
+    for (const f of this.inFlight) this.gl.deleteSync(f);
+    this.inFlight = [];
+  }
+
+  // The run is done (every slice waited for): with a GPU timer, its measured time becomes the kernel's and the
+  // rest of the frames waited the waits'. Returns the GPU's milliseconds, or null without a timer.
+  finish(clock) {
+    const gl = this.gl;
+    if (!this.timer || !this.queries.length) return null;
+    let ns = 0;
+    const disjoint = gl.getParameter(this.timer.GPU_DISJOINT_EXT);
+    for (const q of this.queries) {
+      if (!gl.getQueryParameter(q, gl.QUERY_RESULT_AVAILABLE)) return this.#dropQueries();
+      ns += gl.getQueryParameter(q, gl.QUERY_RESULT);
+    }
+    this.#dropQueries();
+    if (disjoint) return null;
+    const gpuMs = ns / 1e6;
+    const waited = (clock.phases['kernel: GPU'] ?? 0) + (clock.phases['waits between slices'] ?? 0);
+    clock.move('kernel: GPU', 'waits between slices', clock.phases['kernel: GPU'] ?? 0);
+    clock.move('waits between slices', 'kernel: GPU', Math.min(gpuMs, waited));
+    return gpuMs;
+  }
+
+  #dropQueries() {
+    if (this.query) this.gl.endQuery(this.timer.TIME_ELAPSED_EXT);
+    for (const q of [...this.queries, this.query]) if (q) this.gl.deleteQuery(q);
+    this.queries = [];
+    this.query = null;
+    return null;
+  }
+}
