@@ -597,6 +597,38 @@ double pointTriangleDistance2(double px, double py, const double* t) {
   return best;
 }
 
+// The triangle's edge lines, normalized and facing out: a point's distance beyond any of them is a lower bound of
+// its distance to the triangle, which rules most texels around a small triangle out without the exact distance.
+struct EdgeBounds {
+  double nx[3] = {}, ny[3] = {}, c[3] = {};
+  bool usable = false;
+  bool fartherThanReach(double px, double py) const {
+    constexpr double kReach = 0.70710678118654757 + 1e-6;  // sqrt(0.5), with room for rounding
+    if (!usable) return false;
+    for (int k = 0; k < 3; ++k)
+      if (nx[k] * px + ny[k] * py + c[k] > kReach) return true;
+    return false;
+  }
+};
+
+EdgeBounds edgeBounds(const double* t) {
+  EdgeBounds b;
+  const double area2 = (t[2] - t[0]) * (t[5] - t[1]) - (t[3] - t[1]) * (t[4] - t[0]);
+  if (!(std::abs(area2) > 1e-12)) return b;
+  const double orient = area2 > 0 ? 1.0 : -1.0;
+  for (int k = 0; k < 3; ++k) {
+    const double ax = t[2 * k], ay = t[2 * k + 1], bx = t[2 * ((k + 1) % 3)], by = t[2 * ((k + 1) % 3) + 1];
+    const double len = std::hypot(bx - ax, by - ay);
+    if (!(len > 1e-12)) return b;
+    // Outward distance of p: -orient * ((b - a) x (p - a)) / |b - a|.
+    b.nx[k] = orient * (by - ay) / len;
+    b.ny[k] = -orient * (bx - ax) / len;
+    b.c[k] = -(b.nx[k] * ax + b.ny[k] * ay);
+  }
+  b.usable = true;
+  return b;
+}
+
 // A chart laid out in texels at one density and rotation: corner positions (texels, from the bitmap's origin)
 // and the bitmap of the texels it owns: those its triangles cover, and its gutter.
 struct ChartShape {
@@ -604,18 +636,32 @@ struct ChartShape {
   Bitmap mask{0, 0};
 };
 
-// Adds to `out` the square (Chebyshev) dilation of `in` by r texels: rows, then columns.
+// Adds to `out` the square (Chebyshev) dilation of `in` by r texels (r < 64): rows, then columns, a word at a time.
 void dilateInto(const Bitmap& in, int r, Bitmap& out) {
-  const int w = in.width, h = in.height;
-  Bitmap rows(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (in.get(x, y))
-        for (int d = std::max(0, x - r); d <= std::min(w - 1, x + r); ++d) rows.set(d, y);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (rows.get(x, y))
-        for (int d = std::max(0, y - r); d <= std::min(h - 1, y + r); ++d) out.set(x, d);
+  const int h = in.height, words = in.words;
+  const uint64_t lastWord = in.width % 64 ? (uint64_t{1} << (in.width % 64)) - 1 : ~uint64_t{0};
+  Bitmap rows(in.width, h);
+  for (int y = 0; y < h; ++y) {
+    const uint64_t* src = &in.bits[static_cast<size_t>(y) * words];
+    uint64_t* dst = &rows.bits[static_cast<size_t>(y) * words];
+    for (int k = 0; k < words; ++k) {
+      uint64_t acc = src[k];
+      for (int d = 1; d <= r; ++d) {
+        acc |= src[k] << d | src[k] >> d;
+        if (k > 0) acc |= src[k - 1] >> (64 - d);
+        if (k + 1 < words) acc |= src[k + 1] << (64 - d);
+      }
+      dst[k] = acc;
+    }
+    if (words) dst[words - 1] &= lastWord;
+  }
+  for (int y = 0; y < h; ++y) {
+    uint64_t* dst = &out.bits[static_cast<size_t>(y) * words];
+    for (int dy = std::max(0, y - r); dy <= std::min(h - 1, y + r); ++dy) {
+      const uint64_t* src = &rows.bits[static_cast<size_t>(dy) * words];
+      for (int k = 0; k < words; ++k) dst[k] |= src[k];
+    }
+  }
 }
 
 // The chart at `density`, unrotated. It is moved by whole texels only, so that a quarter turn of its bitmap is
@@ -645,9 +691,10 @@ ChartShape chartShape(const Chart& chart, double density, int gutter) {
     const int tx1 = std::min(w - 1, static_cast<int>(std::floor(std::max({t[0], t[2], t[4]}))) + 1);
     const int ty0 = std::max(0, static_cast<int>(std::floor(std::min({t[1], t[3], t[5]}))) - 1);
     const int ty1 = std::min(h - 1, static_cast<int>(std::floor(std::max({t[1], t[3], t[5]}))) + 1);
+    const EdgeBounds bounds = edgeBounds(t);
     for (int y = ty0; y <= ty1; ++y)
       for (int x = tx0; x <= tx1; ++x) {
-        if (covered.get(x, y)) continue;
+        if (covered.get(x, y) || bounds.fartherThanReach(x + 0.5, y + 0.5)) continue;
         const double d2 = pointTriangleDistance2(x + 0.5, y + 0.5, t);
         if (d2 <= kReach2) touched.set(x, y);
         if (d2 <= kCoveredReach2) covered.set(x, y);
@@ -697,11 +744,20 @@ struct Placement {
 };
 
 // The mask on a grid of b x b texel blocks (a block is taken when any of its texels is).
+// Rows are ORed a block at a time, then each word's groups of b bits tested together (b is a power of two up to
+// 64, as resolution / kPackGrid is).
 Bitmap coarsen(const Bitmap& mask, int b) {
   Bitmap out((mask.width + b - 1) / b, (mask.height + b - 1) / b);
-  for (int y = 0; y < mask.height; ++y)
-    for (int x = 0; x < mask.width; ++x)
-      if (mask.get(x, y)) out.set(x / b, y / b);
+  const uint64_t group = b >= 64 ? ~uint64_t{0} : (uint64_t{1} << b) - 1;
+  std::vector<uint64_t> rows(mask.words);
+  for (int by = 0; by < out.height; ++by) {
+    std::fill(rows.begin(), rows.end(), 0);
+    for (int y = by * b; y < std::min(mask.height, (by + 1) * b); ++y)
+      for (int k = 0; k < mask.words; ++k) rows[k] |= mask.bits[static_cast<size_t>(y) * mask.words + k];
+    for (int k = 0; k < mask.words; ++k)
+      for (int j = 0; j < 64 && rows[k] >> j; j += b)
+        if (rows[k] >> j & group) out.set((64 * k + j) / b, by);
+  }
   return out;
 }
 
