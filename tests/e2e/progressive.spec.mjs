@@ -292,8 +292,8 @@ test.describe.serial('progressive loading of big meshes', () => {
     expect(r.afterOrbit.drawn).toBeGreaterThan(r.afterEdit.drawn); // the orbit drew the surface again
   });
 
-  // The synthesized texture's model: its geometry staged ahead of its first frame, its texture sent a slice
-  // of rows per task (the picture of one upload), and drawn as the surface in the layer (a big textured frame
+  // The synthesized texture's model: its geometry staged ahead of its first frame, its texture copied on the
+  // GPU (the same picture whichever way it was made), and drawn as the surface in the layer (a big textured frame
   // rasterized at every field change keeps the GPU process, and through it the page, busy): its picture is
   // drawn again when its texture changes, and not for frames that change the field alone, and it equals the
   // direct one.
@@ -320,8 +320,8 @@ test.describe.serial('progressive loading of big meshes', () => {
         gl2.bufferData = bufferData;
       }
       const textured = await window.layerComparison();
-      // The texture went to the view two slices of rows per texture (2 MB each); a blocking synthesis sends it
-      // at once: the same texture, the same picture.
+      // The texture goes to the view as a copy made on the GPU, from an interleaved synthesis or a blocking one:
+      // the same texture, the same picture.
       const sliced = await window.viewPixels();
       await t.synthesize({ interleave: false });
       const whole = await window.viewPixels();

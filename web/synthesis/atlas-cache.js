@@ -73,11 +73,12 @@ export class AtlasCache {
     return copied(entry.atlas);
   }
 
-  // Keeps a copy of `atlas`, made for the input identified by {key, sizes}.
-  async put({ key, sizes }, atlas) {
+  // Keeps a copy of `atlas`, made for the input identified by {key, sizes}: in memory at once, in IndexedDB
+  // behind the caller (the promise returned; a full or refused store costs the next opening only).
+  put({ key, sizes }, atlas) {
     const entry = { key, sizes, madeAt: Date.now(), atlas: copied(atlas) };
     this.memory = entry;
-    await this.#write(entry).catch(() => {}); // a full or refused store costs the next opening only
+    return this.#write(entry).catch(() => {});
   }
 
   async #open() {

@@ -66,6 +66,8 @@ export class SynthesisController {
     this.runVersion = undefined; // the field version the run scheduled or under way is for
     this.changedAt = null; // the first field change the next run answers
     this.previewFieldShown = false; // the last field change was a big model's preview field
+    this.previewRuns = 0; // runs made as previews of quick edits (synthesisStats().previewRuns)
+    this.#watchContext();
   }
 
   // Runs fn after everything queued before it (texture-exports.js reads through this too).
@@ -75,12 +77,34 @@ export class SynthesisController {
     return run;
   }
 
+  // The synthesizer draws in the view's own WebGL context (its result shown where it is made: gl-guard.js).
   ensureSynth() {
-    if (!this.synth) this.synth = new Synthesizer();
+    const renderer = this.viewer.renderer;
+    if (this.synth) return this.synth;
+    this.synth = new Synthesizer(renderer.getContext(), { renderer });
+    if (this.exemplar) this.synth.setExemplar(this.exemplar.tables); // a context lost and restored
     return this.synth;
   }
 
-  // A new one in a task of its own (its WebGL context alone took 64-103 ms); null if disposed meanwhile.
+  // The view's context was lost: everything made in it is gone (the synthesizer, the atlas's raster, the
+  // texture shown); once it is back, a texture that was shown is made again (the atlas from the worker's cache).
+  #watchContext() {
+    const canvas = this.viewer.renderer?.domElement;
+    if (!canvas?.addEventListener) return;
+    this.onContextLost = () => {
+      this.runToken++;
+      this.synth = null;
+      this.atlas = null;
+      this.lastFieldVersion = undefined;
+      this.runVersion = undefined;
+      this.render?.dropTextures();
+    };
+    this.onContextRestored = () => this.active && this.fieldChanged();
+    canvas.addEventListener('webglcontextlost', this.onContextLost);
+    canvas.addEventListener('webglcontextrestored', this.onContextRestored);
+  }
+
+  // A new one in a task of its own (its programs are created there); null if disposed meanwhile.
   async #synthesizer() {
     if (!this.synth) {
       this.ensureSynth();
@@ -197,18 +221,12 @@ export class SynthesisController {
       s = this.synth.synthesize(field.input, synthOptions);
       clock.mark('kernel (blocking run)');
     }
-    const t1 = performance.now();
-    const { coords, jacobian } = this.options.interleave
-      ? await this.synth.readResultAsync()
-      : { coords: this.synth.readCoordinates(), jacobian: this.synth.readJacobian() };
-    clock.mark('read-back');
-    if (token !== this.runToken || !this.render) return this.synthesisStats(); // superseded while it was read
+    if (token !== this.runToken || !this.render) return this.synthesisStats(); // superseded meanwhile
+    // The result stays on the GPU: copied (exact) into targets the view draws from, which later runs do not touch.
     const t2 = performance.now();
     const { rgba8: exemplar, size: exemplarSize } = this.exemplar.tables;
-    const texture = { resolution: s.resolution, coords, jacobian, exemplar, exemplarSize };
-    const shown = await this.render.setTexture(texture, { sliced: this.options.interleave });
-    if (!shown) return this.synthesisStats(); // the model changed while the texture went to the GPU
-    clock.mark('upload to the view');
+    if (!this.render.setTexture({ ...this.synth.displayCopy(), exemplar, exemplarSize })) return this.synthesisStats();
+    clock.mark('to the view (copied on the GPU)');
     this.stale = false;
     this.stats = {
       ...s,
@@ -218,13 +236,13 @@ export class SynthesisController {
       exemplar: this.exemplarInfo(),
       atlas: { source: atlas.source, reason: atlas.reason, resolution: atlas.resolution, ...atlas.stats, ms: tAtlas,
         workerSteps: atlas.workerSteps, cache: atlas.cache },
-      readbackMs: t2 - t1,
       uploadMs: performance.now() - t2,
       wallMs: performance.now() - t0,
       ...clock.summary(),
       startedAt: clock.t0,
       shownAt: clock.last,
       fieldVersion: model.fieldVersion,
+      previewRuns: this.previewRuns,
       symmetry: field.symmetry,
       ...(field.symmetry > 1 ? { combMs: field.ms, combCutEdges: field.cutEdges } : {}),
     };
@@ -274,6 +292,7 @@ export class SynthesisController {
     }
     this.pendingField = true;
     this.pendingPreview = preview;
+    // A task of its own: the page draws the changed field first.
     setTimeout(() => {
       this.pendingField = false;
       const p = this.pendingPreview;
@@ -281,7 +300,8 @@ export class SynthesisController {
         // The phases of an update start at the field change it answers.
         const clock = new PhaseClock(this.changedAt ?? performance.now());
         this.changedAt = null;
-        clock.mark(p ? 'settle, queue (preview)' : 'settle, queue');
+        clock.mark(p ? 'settle, queue (preview)' : 'queue (behind the page\'s tasks)');
+        if (p) this.previewRuns++;
         return this.active ? this.#run({ preview: p, clock }) : null;
       };
       this.exclusive(run).catch((err) => this.onError(err));
@@ -354,6 +374,9 @@ export class SynthesisController {
 
   // The element left the page: free the synthesis WebGL context and the textured mesh now.
   dispose() {
+    const canvas = this.viewer.renderer?.domElement;
+    canvas?.removeEventListener?.('webglcontextlost', this.onContextLost);
+    canvas?.removeEventListener?.('webglcontextrestored', this.onContextRestored);
     this.active = false;
     this.render?.dispose();
     this.render = null;

@@ -231,55 +231,6 @@ export function drawFullscreen(gl, vao) {
   gl.bindVertexArray(null);
 }
 
-// Resolves once the GPU has done everything issued so far (a fence, looked at once per nextFrame()) or
-// cancelled() turns true: waiting without holding the page's thread, which a read-back would.
-export async function gpuDone(gl, nextFrame, cancelled = () => false) {
-  const fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
-  if (!fence) return nextFrame(); // a lost context
-  gl.flush();
-  try {
-    do await nextFrame();
-    while (!cancelled() && gl.getSyncParameter(fence, gl.SYNC_STATUS) !== gl.SIGNALED);
-  } finally {
-    gl.deleteSync(fence);
-  }
-}
-
-// Floats read back per task (4 MB).
-const READ_SLICE_FLOATS = 1 << 20;
-
-// The float targets' contents, read without holding the page's thread: each readPixels goes into a pixel
-// buffer, and the copies out are made once a fence says the GPU is done, looked at once per nextFrame(). A
-// plain readPixels waits for the GPU process, with software GL behind by up to seconds (0.2-0.6 s a read at
-// 832k faces).
-export async function readTargetsAsync(gl, targets, nextFrame) {
-  const reads = targets.map((t) => {
-    const out = new Float32Array(4 * t.width * t.height);
-    const buffer = gl.createBuffer();
-    gl.bindBuffer(gl.PIXEL_PACK_BUFFER, buffer);
-    gl.bufferData(gl.PIXEL_PACK_BUFFER, out.byteLength, gl.STREAM_READ);
-    gl.bindFramebuffer(gl.FRAMEBUFFER, t.framebuffer);
-    gl.readPixels(0, 0, t.width, t.height, gl.RGBA, gl.FLOAT, 0);
-    return { out, buffer };
-  });
-  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-  gl.bindBuffer(gl.PIXEL_PACK_BUFFER, null);
-  await gpuDone(gl, nextFrame);
-  // A few MB copied per task (a 1024 atlas's 16 MB in one copy took ~100 ms).
-  let first = true;
-  for (const { out, buffer } of reads) {
-    for (let at = 0; at < out.length; at += READ_SLICE_FLOATS) {
-      if (!first) await nextFrame();
-      first = false;
-      gl.bindBuffer(gl.PIXEL_PACK_BUFFER, buffer);
-      gl.getBufferSubData(gl.PIXEL_PACK_BUFFER, 4 * at, out, at, Math.min(READ_SLICE_FLOATS, out.length - at));
-      gl.bindBuffer(gl.PIXEL_PACK_BUFFER, null);
-    }
-    gl.deleteBuffer(buffer);
-  }
-  return reads.map((r) => r.out);
-}
-
 // Waits for the GPU: a 1x1 readPixels from the current framebuffer (gl.finish() does not wait in Chromium).
 export function sync(gl, target) {
   const px = new Float32Array(4);

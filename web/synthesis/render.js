@@ -8,12 +8,11 @@ import {
   BufferGeometry,
   DataTexture,
   DoubleSide,
-  FloatType,
+  ExternalTexture,
   LinearFilter,
   LinearMipmapLinearFilter,
   Mesh,
   MeshStandardMaterial,
-  NearestFilter,
   RepeatWrapping,
   RGBAFormat,
   SRGBColorSpace,
@@ -24,18 +23,8 @@ import { MAGNIFY_GLSL } from './shaders.js';
 
 // Faces per task while the textured geometry is built (~20 ms).
 const BUILD_SLICE = 1 << 15;
-// Bytes of a synthesized texture sent to the GPU per task (~20 ms with software GL).
-const UPLOAD_BYTES = 2 << 20;
 
 const nextTask = () => new Promise((resolve) => setTimeout(resolve, 0));
-
-// A float RGBA texture of the synthesis (row 0 = v 0), its data not yet sent.
-function floatTexture(data, resolution) {
-  const t = new DataTexture(data, resolution, resolution, RGBAFormat, FloatType);
-  t.minFilter = t.magFilter = NearestFilter;
-  t.generateMipmaps = false;
-  return t;
-}
 
 function exemplarTexture(exemplar, exemplarSize) {
   const ex = new DataTexture(exemplar, exemplarSize, exemplarSize, RGBAFormat, UnsignedByteType);
@@ -47,31 +36,6 @@ function exemplarTexture(exemplar, exemplarSize) {
   ex.anisotropy = 4;
   ex.needsUpdate = true;
   return ex;
-}
-
-// Sends textures to the GPU a slice of rows per task through three.js (its storage first, then its update
-// ranges, which take one row each), or all in this task when not `sliced`. Returns false as soon as live() does.
-async function upload(renderer, textures, resolution, live, sliced) {
-  const rows = Math.max(1, Math.floor(UPLOAD_BYTES / (16 * resolution)));
-  for (const t of textures) {
-    if (!sliced) {
-      t.needsUpdate = true;
-      renderer.initTexture(t);
-      continue;
-    }
-    t.source.dataReady = false;
-    t.needsUpdate = true;
-    renderer.initTexture(t);
-    t.source.dataReady = true;
-    for (let y0 = 0; y0 < resolution; y0 += rows) {
-      await nextTask();
-      if (!live()) return false;
-      for (let y = y0; y < Math.min(resolution, y0 + rows); y++) t.addUpdateRange(4 * resolution * y, 4 * resolution);
-      t.needsUpdate = true;
-      renderer.initTexture(t);
-    }
-  }
-  return true;
 }
 
 // The model's corners, each with its position, smooth normal and atlas UV. bounds: the surface's bounding
@@ -131,7 +95,7 @@ export class TexturedModel {
     this.building = null; // the setGeometry call in progress
     this.mesh = null;
     this.textures = null; // {coord, jac, ex}: what the mesh shows
-    this.uploading = null; // the setTexture call whose textures go to the GPU
+    this.targets = null; // the synthesizer's display targets behind coord and jac
     this.visible = true;
   }
 
@@ -170,40 +134,43 @@ export class TexturedModel {
     this.mesh.name = 'synthesized texture';
     this.mesh.visible = false; // until the first texture arrives
     this.mesh.userData.pictureVersion = 0;
+    this.mesh.userData.costlyPixels = true; // drawn once per view and texture (views/surface-layer.js)
     this.viewer.scene.add(this.mesh);
     this.viewer.surfaceStandIn = this.mesh;
     await this.viewer.surfaceLayer.compile(this.viewer.renderer, this.viewer.scene, this.viewer.camera, this.mesh);
   }
 
-  // coords, jacobian: Float32Array RGBA of resolution^2 (row 0 = v 0); exemplar: RGBA8 of exemplarSize^2. The
-  // two float textures (32 MB for a 1024 atlas) go to the GPU a slice per task, into textures of their own: the
-  // model shows the previous ones until both are complete (three.js's upload at the next frame held the page for
-  // 0.1–0.2 s at 832k faces, issue 28); all at once when not `sliced` (a blocking synthesis). Resolves true once
-  // shown, false if a newer call or a new mesh came first.
-  async setTexture({ resolution, coords, jacobian, exemplar, exemplarSize }, { sliced = true } = {}) {
-    if (!this.mesh) return false;
-    const call = (this.uploading = {}), mesh = this.mesh;
-    const coord = floatTexture(coords, resolution), jac = floatTexture(jacobian, resolution);
-    const live = () => this.uploading === call && this.mesh === mesh;
-    if (!(await upload(this.viewer.renderer, [coord, jac], resolution, live, sliced))) {
+  // coord, jac: the synthesizer's display targets (synthesis-readout.js displayCopy: RGBA32F, resolution^2, row 0
+  // = v 0), made in this view's own WebGL context and drawn as they are (three.js ExternalTexture): nothing is
+  // read back or uploaded on the way to the screen. The model owns them from here and frees them when a newer
+  // texture replaces them. exemplar: RGBA8 of exemplarSize^2. Returns false (freeing them) without a mesh.
+  setTexture({ resolution, coord, jac, exemplar, exemplarSize }) {
+    if (!this.mesh) {
       coord.dispose();
       jac.dispose();
       return false;
     }
-    this.uploading = null;
     const previous = this.textures;
     const keepExemplar = previous?.ex.image.data === exemplar && previous.ex.image.width === exemplarSize;
     const ex = keepExemplar ? previous.ex : exemplarTexture(exemplar, exemplarSize);
-    if (previous) for (const t of Object.values(previous)) if (t !== ex) t.dispose();
-    this.textures = { coord, jac, ex };
-    this.uniforms.uSynthCoord.value = coord;
-    this.uniforms.uSynthJac.value = jac;
+    this.#disposeTextures({ keep: ex });
+    this.textures = { coord: new ExternalTexture(coord.texture), jac: new ExternalTexture(jac.texture), ex };
+    this.targets = [coord, jac];
+    this.uniforms.uSynthCoord.value = this.textures.coord;
+    this.uniforms.uSynthJac.value = this.textures.jac;
     this.uniforms.uExemplarMap.value = ex;
     this.uniforms.uAtlasSize.value = resolution;
     this.uniforms.uExemplarSize.value = exemplarSize;
-    mesh.userData.pictureVersion++;
+    this.mesh.userData.pictureVersion++;
     this.setVisible(this.visible);
     return true;
+  }
+
+  // The view's context was lost: the textures went with it (three.js makes its own again, not these).
+  dropTextures() {
+    this.targets = null;
+    this.textures = null;
+    this.setVisible(this.visible);
   }
 
   // Shows the textured model in place of the viewer's own surface (which stays in the scene for picking).
@@ -216,10 +183,11 @@ export class TexturedModel {
     this.viewer.requestRender?.();
   }
 
-  #disposeTextures() {
-    if (!this.textures) return;
-    for (const t of Object.values(this.textures)) t.dispose();
+  #disposeTextures({ keep = null } = {}) {
+    for (const t of Object.values(this.textures ?? {})) if (t !== keep) t.dispose();
+    for (const target of this.targets ?? []) target.dispose();
     this.textures = null;
+    this.targets = null;
   }
 
   #disposeMesh() {

@@ -7,24 +7,16 @@
 // in float render targets, with no read-back inside the level loop.
 //
 // Usage:
-//   const syn = new Synthesizer();                 // its own WebGL2 context
+//   const syn = new Synthesizer();                 // its own WebGL2 context (or the view's: gl-guard.js)
 //   syn.setExemplar(tables);                       // exemplarTables(analysis) from exemplar.js
 //   syn.setAtlas({resolution, positions, triangles, cornerUVs, neighbour?});
 //   const stats = syn.synthesize(vertexVectors, {featureScale, magnitudeExponent, seed, ...});
+//   syn.displayCopy()                              // the result for the view, on the GPU
 //   syn.readCoordinates(), syn.readJacobian(), syn.readColour({magnification, nearest})
 import { AtlasRaster } from './atlas-raster.js';
-import {
-  ByteTarget,
-  FloatTarget,
-  FULLSCREEN_VS,
-  GLError,
-  Program,
-  createContext,
-  drawFullscreen,
-  readTargetsAsync,
-  sync,
-} from './gl.js';
+import { FloatTarget, FULLSCREEN_VS, GLError, Program, createContext, drawFullscreen, sync } from './gl.js';
 import { disposeExemplar, uploadExemplar } from './gpu-exemplar.js';
+import { GLGuard } from './gl-guard.js';
 import { levelPlan } from './level-plan.js';
 import { PhaseClock } from './phase-clock.js';
 import {
@@ -40,6 +32,7 @@ import {
   UPSAMPLE_FS,
 } from './shaders.js';
 import { SlicePacer } from './slice-pacer.js';
+import { displayCopy, readColour, readCoordinates, readJacobian } from './synthesis-readout.js';
 
 export const DEFAULTS = Object.freeze({
   featureScale: 1, // 1: one exemplar pixel spans one atlas texel (at the atlas's mean density) on the surface
@@ -61,8 +54,20 @@ const defaultNextFrame = () =>
   );
 
 export class Synthesizer {
-  constructor(gl = createContext()) {
+  // gl: a context of its own by default; or the view's, with its three.js `renderer`, whose state each batch of
+  // GL calls here leaves as it found it (gl-guard.js).
+  constructor(gl = createContext(), { renderer = null } = {}) {
+    if (!gl.getExtension('EXT_color_buffer_float'))
+      throw new GLError('texture synthesis needs float render targets (EXT_color_buffer_float)');
     this.gl = gl;
+    this.guard = new GLGuard(renderer);
+    this.guard.run(() => this.#create(gl));
+    this.exemplar = null;
+    this.atlas = null; // an AtlasRaster
+    this.lastStats = null;
+  }
+
+  #create(gl) {
     this.vao = gl.createVertexArray();
     this.programs = {
       jacobian: new Program(gl, JACOBIAN_VS, JACOBIAN_FS, 'jacobian'),
@@ -75,14 +80,13 @@ export class Synthesizer {
       copy: new Program(gl, FULLSCREEN_VS, COPY_FS, 'copy'),
       seamResolve: new Program(gl, FULLSCREEN_VS, SEAM_RESOLVE_FS, 'seam-resolve'),
     };
-    this.exemplar = null;
-    this.atlas = null; // an AtlasRaster
-    this.lastStats = null;
   }
 
   // Every program checked (compiled and linked, or a GLError): waits for the driver where it is not done yet.
   checkPrograms() {
-    for (const p of Object.values(this.programs)) p.check();
+    this.guard.run(() => {
+      for (const p of Object.values(this.programs)) p.check();
+    });
   }
 
   // Resolves once the driver has compiled and linked every program, looked at once per nextFrame() (the
@@ -101,9 +105,13 @@ export class Synthesizer {
 
   // tables: {size, levels: [{appearance, neighbourhood, candidates, projection, projectionOffset}], rgba8}
   setExemplar(tables) {
-    const exemplar = uploadExemplar(this.gl, tables);
-    this.#disposeExemplar();
-    this.exemplar = exemplar;
+    if (tables === this.exemplarTables) return; // already on the GPU
+    this.exemplarTables = tables;
+    this.guard.run(() => {
+      const exemplar = uploadExemplar(this.gl, tables);
+      this.#disposeExemplar();
+      this.exemplar = exemplar;
+    });
   }
 
   // The mesh in the atlas: {resolution, positions, triangles, cornerUVs, neighbour?} (atlas-raster.js).
@@ -114,6 +122,10 @@ export class Synthesizer {
   // The same a GPU allocation per step (AtlasRaster.allocate), for a caller that yields to the page between
   // them; the previous atlas stays until the last step.
   *setAtlasSteps(spec) {
+    return yield* this.guard.steps(this.#atlasSteps(spec));
+  }
+
+  *#atlasSteps(spec) {
     this.programs.jacobian.check();
     const atlas = new AtlasRaster(this.gl, this.programs.jacobian, spec);
     let done = false;
@@ -131,8 +143,10 @@ export class Synthesizer {
   // for {cornerVectors} (9 per face: a line or cross field combed for the atlas, AtlasRaster.rasterSteps).
   // Returns {levels: [{size, stackLevel, spacing, ms}], jacobianMs, totalMs, ...}.
   synthesize(vertexVectors, options = {}) {
-    const steps = this.#steps(vertexVectors, options);
-    for (let r = steps.next(); ; r = steps.next()) if (r.done) return r.value;
+    return this.guard.run(() => {
+      const steps = this.#steps(vertexVectors, options);
+      for (let r = steps.next(); ; r = steps.next()) if (r.done) return r.value;
+    });
   }
 
   // The same, yielding to the page between draws so that the view keeps rendering and input keeps working
@@ -146,7 +160,7 @@ export class Synthesizer {
     options = {},
     { onProgress = () => {}, cancelled = () => false, clock = new PhaseClock(), nextFrame = defaultNextFrame } = {},
   ) {
-    const steps = this.#steps(vertexVectors, options);
+    const steps = this.guard.steps(this.#steps(vertexVectors, options));
     const pacer = (this.pacer ??= new SlicePacer(this.gl));
     pacer.start();
     let pending = 0, kernel = false;
@@ -171,7 +185,6 @@ export class Synthesizer {
       await pacer.end(clock, nextFrame, cancelled, { last: !!r.value.gpuIdle });
       if (cancelled()) {
         pacer.start();
-        this.gl.bindFramebuffer(this.gl.FRAMEBUFFER, null);
         return null;
       }
       if (!r.value.gpuIdle) pacer.begin();
@@ -328,48 +341,21 @@ export class Synthesizer {
     return this.lastStats;
   }
 
+  // The result copied for the view, and read back for files and tests (synthesis-readout.js).
+  displayCopy() {
+    return displayCopy(this);
+  }
+
   readCoordinates() {
-    return this.result.read();
+    return readCoordinates(this);
   }
 
-  readJacobian(level = this.resultLevel ?? 0) {
-    return this.levels[level].jac.read();
+  readJacobian(level) {
+    return readJacobian(this, level);
   }
 
-  // Both, without holding the page's thread while the GPU catches up (gl.js readTargetsAsync).
-  async readResultAsync(nextFrame = defaultNextFrame) {
-    const [coords, jacobian] = await readTargetsAsync(
-      this.gl,
-      [this.result, this.levels[this.resultLevel ?? 0].jac],
-      nextFrame,
-    );
-    return { coords, jacobian };
-  }
-
-  // The exemplar's colours at the synthesized coordinates: RGBA8, (resolution * magnification)^2, row 0 = v 0.
-  // magnification: output pixels per atlas texel (any positive number; the output is resolution * magnification
-  // rounded). The same magnification as the page's renderer unless nearest.
-  readColour({ magnification = 1, nearest = true } = {}) {
-    this.programs.resolve.check();
-    const gl = this.gl;
-    const level = this.levels[this.resultLevel ?? 0];
-    const size = Math.round(level.size * magnification);
-    const target = new ByteTarget(gl, size, size);
-    target.bindAsTarget();
-    this.programs.resolve
-      .use()
-      .texture('uCoord', this.result)
-      .texture('uJac', level.jac)
-      .texture('uExemplar', this.exemplar.rgba)
-      .float('uMag', size / level.size)
-      .float('uM', this.exemplar.size)
-      .int('uMask', this.exemplar.size - 1)
-      .int('uNearest', nearest ? 1 : 0);
-    drawFullscreen(gl, this.vao);
-    const pixels = target.read();
-    target.dispose();
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    return { width: size, height: size, pixels };
+  readColour(options) {
+    return readColour(this, options);
   }
 
   #disposeExemplar() {
@@ -385,11 +371,14 @@ export class Synthesizer {
     this.result = null;
   }
 
+  // Frees its GL objects; a context of its own is lost with them, the view's is left to the view.
   dispose() {
-    this.#disposeExemplar();
-    this.#disposeAtlas();
-    for (const p of Object.values(this.programs)) p.dispose();
-    this.gl.deleteVertexArray(this.vao);
-    this.gl.getExtension('WEBGL_lose_context')?.loseContext();
+    this.guard.run(() => {
+      this.#disposeExemplar();
+      this.#disposeAtlas();
+      for (const p of Object.values(this.programs)) p.dispose();
+      this.gl.deleteVertexArray(this.vao);
+    });
+    if (!this.guard.renderer) this.gl.getExtension('WEBGL_lose_context')?.loseContext();
   }
 }

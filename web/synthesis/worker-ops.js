@@ -23,7 +23,7 @@ export function synthesisOps(state) {
       const cached = !!atlas;
       if (!atlas) {
         atlas = preparedAtlas(state.core.Module, input, options);
-        await atlases.put(id, atlas);
+        atlases.put(id, atlas); // stored in IndexedDB after the reply
       }
       if (cached) atlas.workerSteps = null; // the steps were the run's that made it
       atlas.cache = { cached, key: id.key, ms: performance.now() - t0 };
