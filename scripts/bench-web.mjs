@@ -305,6 +305,7 @@ async function textureBench(page, strokes) {
       slices: first.stats.slices,
       sliceTexels: first.stats.sliceTexels,
       atlasWorkerSteps: first.stats.atlas?.workerSteps,
+      atlasCache: first.stats.atlas?.cache,
     },
   };
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The atlas a synthesis run works in, set up for the current model (controller.js): chosen or generated in the
 // core's worker (which keeps it per mesh, worker-ops.js), its corner data rasterized on the synthesizer's GPU
-// context, the textured model's geometry built for it. Each step is a phase of the run's clock
+// context, the textured model's geometry started for it. Each step is a phase of the run's clock
 // (phase-clock.js). Owns nothing: the controller keeps the atlas and the textured model.
 import { DEFAULTS } from './synthesizer.js';
 import { TexturedModel } from './render.js';
@@ -13,10 +13,19 @@ export async function setUpAtlas(c, model, resolution, clock) {
   const held = c.atlas;
   if (held && held.key === model.key && held.resolution === resolution && held.gutter === gutter) return held;
   // Generating an atlas takes up to seconds on a big model: the element's core worker does it, so the page
-  // keeps drawing and taking input; the synthesis programs compile meanwhile (Synthesizer.programsReady).
+  // keeps drawing and taking input; the synthesis programs compile meanwhile (Synthesizer.programsReady, asked
+  // once the request is out: its first look at them may wait for the GPU process).
+  const sentAt = performance.timeOrigin + performance.now();
+  const request = c.computeAtlas(model, { resolution, gutter });
   const programs = c.ensureSynth().programsReady();
   programs.catch(() => {}); // a failure is thrown by the await below
-  const chosen = await c.computeAtlas(model, { resolution, gutter });
+  const chosen = await request;
+  const receivedAt = performance.timeOrigin + performance.now();
+  if (chosen.cache) {
+    // Before the worker took the request (other work of its own first), and after it replied.
+    chosen.cache.waitedMs = chosen.cache.startedAt - sentAt;
+    chosen.cache.replyMs = receivedAt - chosen.cache.finishedAt;
+  }
   const kept = chosen.cache?.cached;
   clock.mark(kept ? 'atlas (worker: kept for this mesh)' : 'atlas (worker: charts, packing, corners, seams)');
   await programs;
@@ -34,7 +43,9 @@ export async function setUpAtlas(c, model, resolution, clock) {
   clock.mark('atlas corner data to the GPU');
   c.atlas = { key: model.key, resolution, gutter, ...atlas };
   if (!c.render) c.render = new TexturedModel(c.viewer);
-  await c.render.setGeometry(model.surface, c.atlas.cornerUVs);
-  clock.mark('textured geometry (built, staged)');
+  // The textured model's geometry is built and staged while the synthesis runs: it is needed only to show the
+  // result (c.atlas.geometry, awaited then).
+  c.atlas.geometry = c.render.setGeometry(model.surface, c.atlas.cornerUVs);
+  c.atlas.geometry.catch(() => {}); // a failure is thrown where it is awaited
   return c.atlas;
 }

@@ -201,16 +201,20 @@ export class SynthesisController {
     clock.mark(field.symmetry > 1 ? 'field combed for the atlas' : 'run options');
     let s;
     if (this.options.interleave) {
-      let shown = -1;
+      let shown = -1, shownAt = -Infinity;
       this.progress = { fraction: 0, preview };
       this.onChange();
       s = await this.synth.synthesizeInterleaved(field.input, { ...synthOptions, timing: 'total' }, {
         clock,
         cancelled: () => token !== this.runToken,
+        // The panel follows the progress at most ten times a second: every change of it is a frame the GPU
+        // draws beside the synthesis.
         onProgress: (f) => {
           this.progress = { fraction: f, preview };
-          if (Math.floor(100 * f) !== shown) {
+          const now = performance.now();
+          if (Math.floor(100 * f) !== shown && now - shownAt >= 100) {
             shown = Math.floor(100 * f);
+            shownAt = now;
             this.onChange();
           }
         },
@@ -221,6 +225,8 @@ export class SynthesisController {
       s = this.synth.synthesize(field.input, synthOptions);
       clock.mark('kernel (blocking run)');
     }
+    await atlas.geometry;
+    clock.mark('textured geometry (waited for)');
     if (token !== this.runToken || !this.render) return this.synthesisStats(); // superseded meanwhile
     // The result stays on the GPU: copied (exact) into targets the view draws from, which later runs do not touch.
     const t2 = performance.now();

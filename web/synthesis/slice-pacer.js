@@ -2,13 +2,15 @@
 // How much of a synthesis goes to the GPU per frame. A fixed share (32k texel shadings a frame) took hundreds of
 // frames, seconds, for a pyramid a real GPU runs in 29 ms; software GL, on the other hand, falls seconds behind
 // (and so does the page's own drawing) when given more than it can draw in a frame. So each slice is fenced and
-// the next one sized by what the GPU did: twice as much when it was done by the next frame, half when it still
-// worked on it two frames later; the page waits for the slice before the one just issued, so the GPU always has
-// work queued. The size learnt is kept for the synthesizer's next run.
+// the next one sized by what the GPU did: twice as much when it was done within a frame's time, half when it
+// still worked on it two frames' time later; the page waits for the slice before the one just issued, so the
+// GPU always has work queued. The size learnt is kept for the synthesizer's next run.
 //
-// Phases (phase-clock.js): 'kernel: draws' (issuing a slice on the page's thread), 'kernel: GPU' (frames waited
-// while the GPU worked on a slice), 'waits between slices' (frames waited with the GPU already done). Where the
-// context has EXT_disjoint_timer_query_webgl2, the GPU's own time replaces the frame count's guess (finish()).
+// Phases (phase-clock.js): 'kernel: draws' (issuing a slice on the page's thread), 'kernel: GPU' (polls waited
+// while the GPU worked on a slice), 'waits between slices' (the poll in which the GPU was found done). Where the
+// context has EXT_disjoint_timer_query_webgl2, the GPU's own time replaces the polls' guess (finish()).
+const FRAME_MS = 16.7;
+
 export class SlicePacer {
   constructor(gl, { texels = 1 << 16, minTexels = 1 << 12, maxTexels = 1 << 26 } = {}) {
     this.gl = gl;
@@ -36,10 +38,12 @@ export class SlicePacer {
     this.gl.beginQuery(this.timer.TIME_ELAPSED_EXT, this.query);
   }
 
-  // After a slice's draws: flushes them and waits, a frame at a time, until the GPU is done with the slice before
-  // (or with this one too when `last`, or the run is cancelled), so that the GPU always has the next slice queued
-  // while the page waits and never more than two. The next slice's size follows from the frames that took.
-  async end(clock, nextFrame, cancelled, { last = false } = {}) {
+  // After a slice's draws: flushes them and waits until the GPU is done with the slice before (or with this one
+  // too when `last`, or the run is cancelled), so that the GPU always has the next slice queued and never more
+  // than two. The fences are looked at every few milliseconds (`poll`, a short task: the page's thread stays
+  // free, and a slice done mid-frame is followed at once, not at the next frame). The next slice is twice as
+  // big when the wait took under a frame, half as big when it took over two.
+  async end(clock, poll, cancelled, { last = false } = {}) {
     const gl = this.gl;
     if (this.query) {
       gl.endQuery(this.timer.TIME_ELAPSED_EXT);
@@ -51,25 +55,24 @@ export class SlicePacer {
     gl.flush();
     clock.mark('kernel: draws');
     if (!fence) {
-      await nextFrame(); // a lost context
+      await poll(); // a lost context
       clock.mark('waits between slices');
       return;
     }
     this.inFlight.push(fence);
-    const keep = last ? 0 : 1;
-    let frames = 0;
+    const keep = last ? 0 : 1, t0 = performance.now();
     while (this.inFlight.length > keep && !cancelled()) {
-      await nextFrame();
-      frames++;
+      await poll();
       const before = this.inFlight.length;
       while (this.inFlight.length && gl.getSyncParameter(this.inFlight[0], gl.SYNC_STATUS) === gl.SIGNALED)
         gl.deleteSync(this.inFlight.shift());
-      // Every slice done at the first look: the GPU may have idled part of the frame.
-      clock.mark(frames === 1 && this.inFlight.length === 0 && before > 0 ? 'waits between slices' : 'kernel: GPU');
+      // Every slice done: the GPU may have idled since it finished, for part of the poll.
+      clock.mark(this.inFlight.length === 0 && before > 0 ? 'waits between slices' : 'kernel: GPU');
     }
     if (last || cancelled()) this.#dropFences();
-    if (frames <= 1) this.texels = Math.min(this.maxTexels, 2 * this.texels);
-    else if (frames > 2) this.texels = Math.max(this.minTexels, this.texels / 2);
+    const waited = performance.now() - t0;
+    if (waited < FRAME_MS) this.texels = Math.min(this.maxTexels, 2 * this.texels);
+    else if (waited > 2 * FRAME_MS) this.texels = Math.max(this.minTexels, this.texels / 2);
   }
 
   #dropFences() {

@@ -52,6 +52,8 @@ const defaultNextFrame = () =>
   new Promise((resolve) =>
     typeof requestAnimationFrame === 'function' ? requestAnimationFrame(() => resolve()) : setTimeout(resolve, 0),
   );
+// A short task: the page's thread free for whatever waits, without waiting for a frame to be drawn.
+const defaultNextTask = () => new Promise((resolve) => setTimeout(resolve, 0));
 
 export class Synthesizer {
   // gl: a context of its own by default; or the view's, with its three.js `renderer`, whose state each batch of
@@ -90,12 +92,25 @@ export class Synthesizer {
   }
 
   // Resolves once the driver has compiled and linked every program, looked at once per nextFrame() (the
-  // compilation goes on beside the page: KHR_parallel_shader_compile), then checks them.
+  // compilation goes on beside the page: KHR_parallel_shader_compile), then checks them. Without that extension
+  // (SwiftShader), a fence issued after the link commands says when the GPU process has come to them: asked
+  // earlier, the check waited for it on the page's thread (~0.1-0.2 s at the first texture).
   // A context lost meanwhile (dispose()) ends the wait unchecked.
   async programsReady(nextFrame = defaultNextFrame) {
     const gl = this.gl, parallel = gl.getExtension('KHR_parallel_shader_compile');
-    while (!gl.isContextLost() && !Object.values(this.programs).every((p) => p.ready(parallel))) await nextFrame();
+    const fence = parallel || this.programsChecked ? null : gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+    gl.flush();
+    const done = () =>
+      parallel
+        ? Object.values(this.programs).every((p) => p.ready(parallel))
+        : !fence || gl.getSyncParameter(fence, gl.SYNC_STATUS) === gl.SIGNALED;
+    try {
+      while (!gl.isContextLost() && !done()) await nextFrame();
+    } finally {
+      if (fence) gl.deleteSync(fence);
+    }
     if (!gl.isContextLost()) this.checkPrograms();
+    this.programsChecked = true;
   }
 
   // The pyramid levels of the current atlas, finest first.
@@ -158,7 +173,7 @@ export class Synthesizer {
   async synthesizeInterleaved(
     vertexVectors,
     options = {},
-    { onProgress = () => {}, cancelled = () => false, clock = new PhaseClock(), nextFrame = defaultNextFrame } = {},
+    { onProgress = () => {}, cancelled = () => false, clock = new PhaseClock(), nextTask = defaultNextTask } = {},
   ) {
     const steps = this.guard.steps(this.#steps(vertexVectors, options));
     const pacer = (this.pacer ??= new SlicePacer(this.gl));
@@ -170,7 +185,7 @@ export class Synthesizer {
       if (r.value.field) {
         // The field goes to the GPU a slice of faces per task.
         this.gl.flush();
-        await nextFrame();
+        await nextTask();
         clock.mark('field to the GPU');
         continue;
       }
@@ -182,7 +197,7 @@ export class Synthesizer {
       pending += r.value.texels;
       if (pending < pacer.texels && !r.value.gpuIdle) continue;
       pending = 0;
-      await pacer.end(clock, nextFrame, cancelled, { last: !!r.value.gpuIdle });
+      await pacer.end(clock, nextTask, cancelled, { last: !!r.value.gpuIdle });
       if (cancelled()) {
         pacer.start();
         return null;

@@ -8,6 +8,8 @@ import { AtlasCache } from './atlas-cache.js';
 import { preparedAtlas, preparedBuffers } from './atlas-prepared.js';
 import { analyzeExemplar, exemplarBuffers } from './exemplar.js';
 
+const sumOf = (steps) => Object.values(steps ?? {}).reduce((a, b) => a + b, 0);
+
 // state: the core worker's (core/worker/state.js); its core holds the wasm module.
 export function synthesisOps(state) {
   const atlases = new AtlasCache();
@@ -19,14 +21,19 @@ export function synthesisOps(state) {
       const t0 = performance.now();
       const input = { positions, triangles, cornerUVs };
       const id = AtlasCache.identify(input, options);
+      const t1 = performance.now();
       let atlas = await atlases.get(id);
+      const t2 = performance.now();
       const cached = !!atlas;
       if (!atlas) {
         atlas = preparedAtlas(state.core.Module, input, options);
         atlases.put(id, atlas); // stored in IndexedDB after the reply
       }
       if (cached) atlas.workerSteps = null; // the steps were the run's that made it
-      atlas.cache = { cached, key: id.key, ms: performance.now() - t0 };
+      const t3 = performance.now();
+      const ms = { identifyMs: t1 - t0, lookUpMs: t2 - t1, keptMs: cached ? 0 : t3 - t2 - sumOf(atlas.workerSteps) };
+      const at = (t) => performance.timeOrigin + t; // comparable with the page's clock
+      atlas.cache = { cached, key: id.key, ms: t3 - t0, ...ms, startedAt: at(t0), finishedAt: at(t3) };
       return new Transfer(atlas, preparedBuffers(atlas));
     },
 
