@@ -6,7 +6,10 @@
 //                             [--profile-load FILE]   (CPU profiles of the page's thread over the strokes, the load)
 //                             [--preview-edges N]   (loadModel's previewEdges: 1 forces a preview, 0 none)
 //                             [--symmetry N]   (the strokes on an N-direction field: 2 line, 4 cross; default 1)
-//                             [--texture N]   (then the texture: its first synthesis and N strokes' updates)
+//                             [--texture N]   (then the texture: its first synthesis and N strokes' updates,
+//                             each broken into its phases: textureFirstPhases, textureUpdatePhases)
+//                             [--reopen]   (with --texture: the mesh opened again, its texture made again)
+//                             [--gpu]   (hardware WebGL: ANGLE on Vulkan, or TVF_GPU_ARGS; default SwiftShader)
 //                             [--profile-texture FILE]   (a CPU profile of the page's thread over the texture's runs)
 //                             [--trace FILE]   (a Chromium trace of every process and thread over the strokes:
 //                             the exact worker, the preview worker and the GPU process side by side)
@@ -166,7 +169,7 @@ async function strokeBench(page, meshPath) {
   }
   await strokesProfile.stop();
   if (traceFile) await page.context().browser().stopTracing();
-  const texture = arg('--texture', null) == null ? null : await textureBench(page, strokes.slice(0, Number(arg('--texture'))));
+  const texture = arg('--texture', null) == null ? null : await textureBench(page, strokes.slice(0, Number(arg('--texture'))), `/bench-mesh/${name}`);
   const pick = (f) => median(runs.map(f));
   const m = {
     updateMs: pick((r) => r.stats.updateMs),
@@ -201,6 +204,7 @@ async function strokeBench(page, meshPath) {
   const longest = (tasks) => tasks.reduce((m, t) => Math.max(m, t.ms), 0);
   const result = {
     mesh: meshPath,
+    renderer: await page.evaluate(rendererString),
     edges: load.info.edges,
     // Issue 28's measures: the first field and the exact one after loadModel is called; a stroke's field drawn
     // (the preview's on a big mesh) and its exact field (medians); the longest main-thread task during the load
@@ -255,12 +259,20 @@ async function strokeBench(page, meshPath) {
   rmSync(resolve(ROOT, 'dist/bench-mesh'), { recursive: true, force: true });
 }
 
+// The WebGL renderer the page gets (unmasked where the browser tells it).
+function rendererString() {
+  const gl = document.createElement('canvas').getContext('webgl2');
+  if (!gl) return 'no WebGL2';
+  const info = gl.getExtension('WEBGL_debug_renderer_info');
+  return gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER);
+}
+
 // The texture's first synthesis (the atlas generated, the exemplar analysed) and its updates after strokes
 // (auto-update: each stroke's preview, then its exact field): the time to the texture done, the main thread's
 // longest task during each, and where the time went: the run's phases (synthesisStats().phases, phase-clock.js)
 // with what came before the run (the stroke's solve, for an update) and after it (the texture shown to the
 // promise resolving), beside the wall time measured here on its own.
-async function textureBench(page, strokes) {
+async function textureBench(page, strokes, url) {
   await page.evaluate(() => window.__longTasks.splice(0));
   const profile = await startProfile(page, arg('--profile-texture', null));
   const first = await page.evaluate(async () => {
@@ -282,6 +294,16 @@ async function textureBench(page, strokes) {
     }, points));
   }
   const updateTasks = await page.evaluate(() => window.__longTasks.splice(0));
+  // --reopen: the same mesh opened again, its texture made again (the atlas from the worker's cache).
+  const reopened = !process.argv.includes('--reopen') ? null : await page.evaluate(async (u) => {
+    await window.tvf.clearTexture();
+    await window.tvf.loadModel(u, { restore: false });
+    await window.tvf.settled();
+    const t0 = performance.now();
+    await window.tvf.synthesize();
+    const s = await window.tvf.synthesisIdle();
+    return { wallMs: performance.now() - t0, t0, t1: performance.now(), stats: s };
+  }, url);
   await profile.stop();
   const longest = (tasks) => tasks.reduce((m, t) => Math.max(m, t.ms), 0);
   const byWall = [...updates].sort((a, b) => a.wallMs - b.wallMs);
@@ -292,6 +314,7 @@ async function textureBench(page, strokes) {
     textureUpdates: updates.length,
     textureFirstPhases: phaseTable(first, 'before the run'),
     textureUpdatePhases: medianUpdate ? phaseTable(medianUpdate, 'stroke solved, field changed') : null,
+    ...(reopened ? { textureReopenedMs: reopened.wallMs, textureReopenedPhases: phaseTable(reopened, 'before the run') } : {}),
     longestTextureFirstTaskMs: longest(firstTasks),
     longestTextureUpdateTaskMs: longest(updateTasks),
     textureUpdateLongTasks: updateTasks.map((t) => Math.round(t.ms)),
@@ -333,9 +356,16 @@ await new Promise((ok, fail) => {
   server.stdout.on('data', (d) => String(d).includes('http://') && ok());
   server.on('exit', (code) => fail(new Error(`the server exited (${code})`)));
 });
+// --gpu: hardware WebGL (ANGLE on Vulkan by default; TVF_GPU_ARGS replaces the flags, e.g. ANGLE on EGL), as
+// ../shared/tools/gpu-page/README.md ran the page on a GPU machine; else SwiftShader. Every result names the
+// renderer the page got.
+const GPU_ARGS = ['--use-angle=vulkan', '--enable-features=Vulkan,VulkanFromANGLE,DefaultANGLEVulkan', '--ignore-gpu-blocklist', '--enable-gpu', '--no-sandbox', '--disable-dev-shm-usage'];
+const glArgs = process.argv.includes('--gpu')
+  ? (process.env.TVF_GPU_ARGS ? process.env.TVF_GPU_ARGS.split(/\s+/).filter(Boolean) : GPU_ARGS)
+  : ['--enable-unsafe-swiftshader', '--use-angle=swiftshader'];
 const browser = await chromium.launch({
   executablePath: process.env.TVF_CHROMIUM || '/usr/bin/chromium',
-  args: ['--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+  args: [...glArgs, '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
 });
 try {
   const page = await browser.newPage({ viewport: { width: 1024, height: 720 } });

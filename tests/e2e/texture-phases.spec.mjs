@@ -5,7 +5,7 @@
 // - one edit on its own (nothing else changing) is answered by a full synthesis started at once: no preview,
 //   no settle timer in its phases.
 import { expect, test } from '@playwright/test';
-import { openDesigner, openDesignerPage } from './helpers.mjs';
+import { openDesigner, openDesignerPage, readMesh, subdividedOff } from './helpers.mjs';
 
 const OPTIONS = { resolution: 256, featureScale: 1, seed: 3 };
 
@@ -126,6 +126,29 @@ test.describe.serial('texture phases, a single edit, the atlas kept per mesh (bu
     expect(r.after.fieldVersion).toBe(r.before.fieldVersion);
     expect(r.after.atlas.cache.cached).toBe(true);
     expect(r.same).toBe(true);
+  });
+
+  // On a big model (here forced: previewEdges 1) an edit brings a preview field, then the exact one: the texture
+  // ends on the exact field, and synthesisIdle() resolves with it (the queue's own race is
+  // tests/node/synthesis-idle.test.mjs's).
+  test('a preview field, then the exact one: the texture ends on the exact field', async () => {
+    const off = subdividedOff(await readMesh(page), 0);
+    const r = await page.evaluate(async ({ off, o }) => {
+      const t = window.tvf;
+      await t.loadModel(new TextEncoder().encode(off), { name: 'bunny.off', format: 'off', previewEdges: 1, restore: false });
+      await t.settled();
+      await t.synthesize(o);
+      const before = await t.synthesisIdle();
+      await t.addVector(900, [1, 0.2, 0]);
+      await t.settled();
+      const after = await t.synthesisIdle();
+      const again = await t.synthesize(o); // the current field, asked for: no newer than what the idle one showed
+      return { before, after, again, exact: !t.stats().preview };
+    }, { off, o: OPTIONS });
+    expect(r.exact).toBe(true);
+    expect(r.after.fieldVersion).toBeGreaterThan(r.before.fieldVersion);
+    expect(r.after.fieldVersion).toBe(r.again.fieldVersion);
+    expect(r.after.preview).toBe(false);
   });
 
   test('no console errors', () => {

@@ -89,7 +89,7 @@ export class SynthesisController {
   // The view's context was lost: everything made in it is gone (the synthesizer, the atlas's raster, the
   // texture shown); once it is back, a texture that was shown is made again (the atlas from the worker's cache).
   #watchContext() {
-    const canvas = this.viewer.renderer?.domElement;
+    const canvas = this.viewer?.renderer?.domElement;
     if (!canvas?.addEventListener) return;
     this.onContextLost = () => {
       this.runToken++;
@@ -333,9 +333,12 @@ export class SynthesisController {
   }
 
   // Resolves (with the latest stats) once no synthesis is queued or pending.
+  // A run queued while it waited (this.queue moved on) is waited for too.
   async whenIdle() {
     for (;;) {
-      await this.queue;
+      const queue = this.queue;
+      await queue;
+      if (queue !== this.queue) continue;
       if (!this.pendingField && !this.settleTimer) return this.synthesisStats();
       await new Promise((r) => setTimeout(r, 5));
     }
@@ -380,7 +383,7 @@ export class SynthesisController {
 
   // The element left the page: free the synthesis WebGL context and the textured mesh now.
   dispose() {
-    const canvas = this.viewer.renderer?.domElement;
+    const canvas = this.viewer?.renderer?.domElement;
     canvas?.removeEventListener?.('webglcontextlost', this.onContextLost);
     canvas?.removeEventListener?.('webglcontextrestored', this.onContextRestored);
     this.active = false;
