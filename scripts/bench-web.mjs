@@ -299,11 +299,13 @@ async function textureBench(page, strokes, url) {
     await window.tvf.clearTexture();
     await window.tvf.loadModel(u, { restore: false });
     await window.tvf.settled();
+    window.__reopenLoadTasks = window.__longTasks.splice(0);
     const t0 = performance.now();
     await window.tvf.synthesize();
     const s = await window.tvf.synthesisIdle();
     return { wallMs: performance.now() - t0, t0, t1: performance.now(), stats: s };
   }, url);
+  const reopenTasks = reopened ? await page.evaluate(() => [window.__reopenLoadTasks, window.__longTasks.splice(0)]) : null;
   await profile.stop();
   const longest = (tasks) => tasks.reduce((m, t) => Math.max(m, t.ms), 0);
   const byWall = [...updates].sort((a, b) => a.wallMs - b.wallMs);
@@ -314,7 +316,13 @@ async function textureBench(page, strokes, url) {
     textureUpdates: updates.length,
     textureFirstPhases: phaseTable(first, 'before the run'),
     textureUpdatePhases: medianUpdate ? phaseTable(medianUpdate, 'stroke solved, field changed') : null,
-    ...(reopened ? { textureReopenedMs: reopened.wallMs, textureReopenedPhases: phaseTable(reopened, 'before the run') } : {}),
+    ...(reopened ? {
+      textureReopenedMs: reopened.wallMs,
+      textureReopenedPhases: phaseTable(reopened, 'before the run'),
+      // The main thread's longest task while the model was opened again, and while its texture was made.
+      longestReopenLoadTaskMs: longest(reopenTasks[0]),
+      longestTextureReopenedTaskMs: longest(reopenTasks[1]),
+    } : {}),
     longestTextureFirstTaskMs: longest(firstTasks),
     longestTextureUpdateTaskMs: longest(updateTasks),
     textureUpdateLongTasks: updateTasks.map((t) => Math.round(t.ms)),

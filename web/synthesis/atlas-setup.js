@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The atlas a synthesis run works in, set up for the current model (controller.js): chosen or generated in the
 // core's worker (which keeps it per mesh, worker-ops.js), its corner data rasterized on the synthesizer's GPU
-// context, the textured model's geometry started for it. Each step is a phase of the run's clock
+// context, the textured model's geometry built for it. Each step is a phase of the run's clock
 // (phase-clock.js). Owns nothing: the controller keeps the atlas and the textured model.
 import { DEFAULTS } from './synthesizer.js';
 import { TexturedModel } from './render.js';
@@ -34,6 +34,7 @@ export async function setUpAtlas(c, model, resolution, clock) {
   const { corners = null, seams = null, ...atlas } = chosen;
   const { positions, triangles, neighbour } = model.surface;
   const spec = { resolution, positions, triangles, neighbour, cornerUVs: atlas.cornerUVs, corners, seams };
+  if (c.options.interleave) await c.ensureSynth().drained(clock, "waits for the GPU (the view's frames)");
   let task = performance.now(); // a new task once the steps took the page a while (none for a blocking synthesis)
   for (const _ of c.ensureSynth().setAtlasSteps(spec))
     if (c.options.interleave && performance.now() - task > 16) {
@@ -43,9 +44,10 @@ export async function setUpAtlas(c, model, resolution, clock) {
   clock.mark('atlas corner data to the GPU');
   c.atlas = { key: model.key, resolution, gutter, ...atlas };
   if (!c.render) c.render = new TexturedModel(c.viewer);
-  // The textured model's geometry is built and staged while the synthesis runs: it is needed only to show the
-  // result (c.atlas.geometry, awaited then).
-  c.atlas.geometry = c.render.setGeometry(model.surface, c.atlas.cornerUVs);
-  c.atlas.geometry.catch(() => {}); // a failure is thrown where it is awaited
+  // Before the synthesis, not beside it: the model's program is compiled here, and without
+  // KHR_parallel_shader_compile that waits for the GPU process, which in the view's context would first finish
+  // the synthesis's queued slices (a 0.43 s task when it ran beside them).
+  await c.render.setGeometry(model.surface, c.atlas.cornerUVs);
+  clock.mark('textured geometry (built, staged)');
   return c.atlas;
 }

@@ -225,8 +225,6 @@ export class SynthesisController {
       s = this.synth.synthesize(field.input, synthOptions);
       clock.mark('kernel (blocking run)');
     }
-    await atlas.geometry;
-    clock.mark('textured geometry (waited for)');
     if (token !== this.runToken || !this.render) return this.synthesisStats(); // superseded meanwhile
     // The result stays on the GPU: copied (exact) into targets the view draws from, which later runs do not touch.
     const t2 = performance.now();

@@ -75,6 +75,24 @@ export class SlicePacer {
     else if (waited > 2 * FRAME_MS) this.texels = Math.max(this.minTexels, this.texels / 2);
   }
 
+  // Waits (polling, as end() does) until the GPU has done everything issued so far, marking the wait as
+  // `phase`. Before a big upload: a bufferSubData issued while the GPU process is busy (the view's frame of a
+  // big textured model takes it seconds with software GL) waits for it on the page's thread (4.4 s of one
+  // task in an armadillo-sub2 update).
+  async drain(clock, poll, cancelled, phase) {
+    const gl = this.gl;
+    const fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+    gl.flush();
+    clock.mark(phase);
+    if (!fence) return;
+    try {
+      while (!cancelled() && gl.getSyncParameter(fence, gl.SYNC_STATUS) !== gl.SIGNALED) await poll();
+    } finally {
+      gl.deleteSync(fence);
+    }
+    clock.mark(phase);
+  }
+
   #dropFences() {
     for (const f of this.inFlight) this.gl.deleteSync(f);
     this.inFlight = [];

@@ -18,7 +18,7 @@ import { FloatTarget, FULLSCREEN_VS, GLError, Program, createContext, drawFullsc
 import { disposeExemplar, uploadExemplar } from './gpu-exemplar.js';
 import { GLGuard } from './gl-guard.js';
 import { levelPlan } from './level-plan.js';
-import { PhaseClock } from './phase-clock.js';
+import { interleavedRun } from './interleaved-run.js';
 import {
   COPY_FS,
   CORRECT_FS,
@@ -52,8 +52,6 @@ const defaultNextFrame = () =>
   new Promise((resolve) =>
     typeof requestAnimationFrame === 'function' ? requestAnimationFrame(() => resolve()) : setTimeout(resolve, 0),
   );
-// A short task: the page's thread free for whatever waits, without waiting for a frame to be drawn.
-const defaultNextTask = () => new Promise((resolve) => setTimeout(resolve, 0));
 
 export class Synthesizer {
   // gl: a context of its own by default; or the view's, with its three.js `renderer`, whose state each batch of
@@ -164,46 +162,22 @@ export class Synthesizer {
     });
   }
 
-  // The same, yielding to the page between draws so that the view keeps rendering and input keeps working
-  // while the GPU works through the pyramid: the draws go in slices sized to what the GPU does in a frame
-  // (slice-pacer.js), each waited for before the next. onProgress(f) gets the share done (0..1); when cancelled()
-  // turns true the run stops and resolves to null (the previous result stays). Options as synthesize(), plus
-  // `finestLevel` (0, or 1 for a quarter-cost preview that stops one level short: the result then lives at half
-  // the atlas resolution, see resultLevel). clock: a PhaseClock (phase-clock.js) the run's phases are marked on.
-  async synthesizeInterleaved(
-    vertexVectors,
-    options = {},
-    { onProgress = () => {}, cancelled = () => false, clock = new PhaseClock(), nextTask = defaultNextTask } = {},
-  ) {
-    const steps = this.guard.steps(this.#steps(vertexVectors, options));
-    const pacer = (this.pacer ??= new SlicePacer(this.gl));
-    pacer.start();
-    let pending = 0, kernel = false;
-    for (let r = steps.next(); ; r = steps.next()) {
-      if (r.done) return { ...r.value, gpuMs: pacer.finish(clock), slices: pacer.slices, sliceTexels: pacer.texels };
-      onProgress(r.value.progress);
-      if (r.value.field) {
-        // The field goes to the GPU a slice of faces per task.
-        this.gl.flush();
-        await nextTask();
-        clock.mark('field to the GPU');
-        continue;
-      }
-      if (!kernel) {
-        kernel = true;
-        clock.mark('field to the GPU');
-        pacer.begin();
-      }
-      pending += r.value.texels;
-      if (pending < pacer.texels && !r.value.gpuIdle) continue;
-      pending = 0;
-      await pacer.end(clock, nextTask, cancelled, { last: !!r.value.gpuIdle });
-      if (cancelled()) {
-        pacer.start();
-        return null;
-      }
-      if (!r.value.gpuIdle) pacer.begin();
-    }
+  // The same, yielding to the page between slices so that the view keeps rendering and input keeps working
+  // while the GPU works through the pyramid (interleaved-run.js; run: its onProgress, cancelled, clock).
+  // Resolves to null when cancelled (the previous result stays). Options as synthesize(), plus `finestLevel`
+  // (0, or 1 for a quarter-cost preview that stops one level short: the result then lives at half the atlas
+  // resolution, see resultLevel).
+  // Resolves once the GPU has done everything issued in this context so far (the view's frames included),
+  // marking the wait as `phase` on `clock`: before big uploads, which would otherwise wait for it on the page's
+  // thread (a 0.55 s texImage2D of the atlas's set-up behind a reopened model's frames).
+  async drained(clock, phase) {
+    this.pacer ??= new SlicePacer(this.gl);
+    await this.pacer.drain(clock, () => new Promise((resolve) => setTimeout(resolve, 0)), () => false, phase);
+  }
+
+  async synthesizeInterleaved(vertexVectors, options = {}, run = {}) {
+    this.pacer ??= new SlicePacer(this.gl);
+    return interleavedRun(this.pacer, () => this.guard.steps(this.#steps(vertexVectors, options)), run);
   }
 
   *#steps(vertexVectors, options) {
