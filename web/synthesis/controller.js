@@ -79,8 +79,8 @@ export class SynthesisController {
 
   // The synthesizer draws in the view's own WebGL context (its result shown where it is made: gl-guard.js).
   ensureSynth() {
-    const renderer = this.viewer.renderer;
     if (this.synth) return this.synth;
+    const renderer = this.viewer.renderer;
     this.synth = new Synthesizer(renderer.getContext(), { renderer });
     if (this.exemplar) this.synth.setExemplar(this.exemplar.tables); // a context lost and restored
     return this.synth;
@@ -167,7 +167,7 @@ export class SynthesisController {
         this.exemplar = { tables: r.tables, label: 'stripes', cached: r.cached, analysisMs: 0 };
         clock.mark('exemplar analysis (worker)');
         (await this.#synthesizer())?.setExemplar(r.tables);
-        clock.mark('synthesis context, exemplar to the GPU');
+        clock.mark('synthesizer, exemplar to the GPU');
       }
       this.active = true;
       return this.#run({ clock });
@@ -191,7 +191,7 @@ export class SynthesisController {
     const token = ++this.runToken;
     const t0 = performance.now();
     this.ensureSynth();
-    clock.mark('field from the page, synthesis context');
+    clock.mark('field from the page');
     const resolution =
       this.options.resolution === 'auto' ? defaultResolution(model.triangles.length / 3) : this.options.resolution;
     const atlas = await setUpAtlas(this, model, resolution, clock);
@@ -241,8 +241,7 @@ export class SynthesisController {
       atlas: { source: atlas.source, reason: atlas.reason, resolution: atlas.resolution, ...atlas.stats, ms: tAtlas,
         workerSteps: atlas.workerSteps, cache: atlas.cache },
       uploadMs: performance.now() - t2,
-      wallMs: performance.now() - t0,
-      ...clock.summary(),
+      ...clock.summary(), // phases and wallMs
       startedAt: clock.t0,
       shownAt: clock.last,
       fieldVersion: model.fieldVersion,

@@ -26,6 +26,11 @@ export function createContext() {
     preserveDrawingBuffer: false,
   });
   if (!gl) throw new GLError('texture synthesis needs WebGL2, which this browser does not provide');
+  return requireFloatTargets(gl);
+}
+
+// gl with float render targets enabled (a context of its own or the view's), or a GLError.
+export function requireFloatTargets(gl) {
   if (!gl.getExtension('EXT_color_buffer_float'))
     throw new GLError('texture synthesis needs float render targets (EXT_color_buffer_float)');
   return gl;

@@ -5,9 +5,7 @@
 // busy GPU process on the page's thread), and the pyramid's draws are paced by slice-pacer.js. Every wait is a
 // phase of the run's clock (phase-clock.js). Owns nothing.
 import { PhaseClock } from './phase-clock.js';
-
-// A short task: the page's thread free for whatever waits, without waiting for a frame to be drawn.
-const nextTaskDefault = () => new Promise((resolve) => setTimeout(resolve, 0));
+import { nextTask as nextTaskDefault } from './slice-pacer.js';
 
 // pacer: the synthesizer's SlicePacer; makeSteps(): the steps' generator (made once the GPU is drained). Options:
 // onProgress(f) gets the share done (0..1); cancelled() turning true stops the run, which resolves to null;

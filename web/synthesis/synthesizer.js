@@ -14,7 +14,16 @@
 //   syn.displayCopy()                              // the result for the view, on the GPU
 //   syn.readCoordinates(), syn.readJacobian(), syn.readColour({magnification, nearest})
 import { AtlasRaster } from './atlas-raster.js';
-import { FloatTarget, FULLSCREEN_VS, GLError, Program, createContext, drawFullscreen, sync } from './gl.js';
+import {
+  FloatTarget,
+  FULLSCREEN_VS,
+  GLError,
+  Program,
+  createContext,
+  drawFullscreen,
+  requireFloatTargets,
+  sync,
+} from './gl.js';
 import { disposeExemplar, uploadExemplar } from './gpu-exemplar.js';
 import { GLGuard } from './gl-guard.js';
 import { levelPlan } from './level-plan.js';
@@ -31,7 +40,7 @@ import {
   UNPACK_FS,
   UPSAMPLE_FS,
 } from './shaders.js';
-import { SlicePacer } from './slice-pacer.js';
+import { SlicePacer, nextTask } from './slice-pacer.js';
 import { displayCopy, readColour, readCoordinates, readJacobian } from './synthesis-readout.js';
 
 export const DEFAULTS = Object.freeze({
@@ -57,8 +66,7 @@ export class Synthesizer {
   // gl: a context of its own by default; or the view's, with its three.js `renderer`, whose state each batch of
   // GL calls here leaves as it found it (gl-guard.js).
   constructor(gl = createContext(), { renderer = null } = {}) {
-    if (!gl.getExtension('EXT_color_buffer_float'))
-      throw new GLError('texture synthesis needs float render targets (EXT_color_buffer_float)');
+    requireFloatTargets(gl);
     this.gl = gl;
     this.guard = new GLGuard(renderer);
     this.guard.run(() => this.#create(gl));
@@ -167,17 +175,17 @@ export class Synthesizer {
   // Resolves to null when cancelled (the previous result stays). Options as synthesize(), plus `finestLevel`
   // (0, or 1 for a quarter-cost preview that stops one level short: the result then lives at half the atlas
   // resolution, see resultLevel).
+  async synthesizeInterleaved(vertexVectors, options = {}, run = {}) {
+    this.pacer ??= new SlicePacer(this.gl);
+    return interleavedRun(this.pacer, () => this.guard.steps(this.#steps(vertexVectors, options)), run);
+  }
+
   // Resolves once the GPU has done everything issued in this context so far (the view's frames included),
   // marking the wait as `phase` on `clock`: before big uploads, which would otherwise wait for it on the page's
   // thread (a 0.55 s texImage2D of the atlas's set-up behind a reopened model's frames).
   async drained(clock, phase) {
     this.pacer ??= new SlicePacer(this.gl);
-    await this.pacer.drain(clock, () => new Promise((resolve) => setTimeout(resolve, 0)), () => false, phase);
-  }
-
-  async synthesizeInterleaved(vertexVectors, options = {}, run = {}) {
-    this.pacer ??= new SlicePacer(this.gl);
-    return interleavedRun(this.pacer, () => this.guard.steps(this.#steps(vertexVectors, options)), run);
+    await this.pacer.drain(clock, nextTask, () => false, phase);
   }
 
   *#steps(vertexVectors, options) {
@@ -303,8 +311,8 @@ export class Synthesizer {
       });
       tLevel = now;
     }
-    // Interleaved, the last slice is waited for like every other, so that the read-back that times the run does
-    // not hold the page's thread.
+    // Interleaved, the last slice is waited for like every other, so that the one-texel read that ends a
+    // blocking run's timing finds the GPU done here.
     yield { texels: Infinity, progress: 1, gpuIdle: true };
     if (o.timing !== 'levels') sync(gl, parent);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
