@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // How much of a synthesis goes to the GPU per frame. A fixed share (32k texel shadings a frame) made a 1024²
 // pyramid about 860 slices, a frame each, for work a real GPU does in 29 ms; software GL, on the other hand,
-// falls seconds behind (and so does the page's own drawing) when given more than it can draw in a frame. So each slice is fenced and
-// the next one sized by what the GPU did: twice as much when it was done within a frame's time, half when it
-// still worked on it two frames' time later; the page waits for the slice before the one just issued, so the
-// GPU always has work queued. The size learnt is kept for the synthesizer's next run.
+// falls seconds behind (and so does the page's own drawing) when given more than it can draw in a frame. So
+// each slice is fenced and the next one sized by what the GPU did: twice as much when it was done within a
+// frame's time, half when it still worked on it two frames' time later; the page waits for the slice before
+// the one just issued, so the GPU always has work queued. The size learnt is kept for the synthesizer's next
+// run.
 //
 // Phases (phase-clock.js): 'kernel: draws' (issuing a slice on the page's thread), 'kernel: GPU' (polls waited
 // while the GPU worked on a slice), 'waits between slices' (the poll in which the GPU was found done). Where the
