@@ -3,8 +3,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -12,7 +12,9 @@
 #include <tuple>
 #include <utility>
 
+#include "common/thread_team.h"
 #include "mesh/mesh_geometry.h"
+#include "solver/spd_solve.h"
 
 namespace tvf {
 namespace {
@@ -198,8 +200,17 @@ void inPlaneCorners(const Eigen::Vector3d p[3], const Eigen::Vector3d& normal, E
 // face's own orthonormal frame the map's gradients must satisfy grad v = rot90(grad u) (Cauchy-Riemann,
 // orientation preserving); each face contributes those two residuals weighted by sqrt(area). Returns false if
 // the solve fails.
-bool lscm(const SurfaceMesh& mesh, const FaceGeometry& g, Chart& chart) {
-  std::vector<int32_t> local(mesh.numVertices(), -1), verts;
+// `local`: one entry per mesh vertex, all -1, left so (a chart's scratch, not remade per chart: at 832k faces
+// clearing one per chart cost more than many charts' solves).
+bool lscm(const SurfaceMesh& mesh, const FaceGeometry& g, Chart& chart, std::vector<int32_t>& local) {
+  std::vector<int32_t> verts;
+  struct Reset {
+    std::vector<int32_t>& local;
+    const std::vector<int32_t>& verts;
+    ~Reset() {
+      for (int32_t v : verts) local[v] = -1;
+    }
+  } reset{local, verts};
   for (int32_t f : chart.faces)
     for (int k = 0; k < 3; ++k) {
       const int32_t v = mesh.triangles[3 * f + k];
@@ -229,16 +240,20 @@ bool lscm(const SurfaceMesh& mesh, const FaceGeometry& g, Chart& chart) {
   const Eigen::Vector2d pinned[2] = {{0, 0}, {span, 0}};
   auto pinIndex = [&](int32_t i) { return i == pinA ? 0 : 1; };
 
-  const int32_t rows = 2 * static_cast<int32_t>(chart.faces.size());
+  // The normal equations' matrix, upper triangle, assembled face by face: each face's two residual rows a
+  // add a a^T (6 free unknowns at most), and their pinned part moves to the right-hand side.
   std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::VectorXd constant = Eigen::VectorXd::Zero(rows);
-  int32_t row = 0;
+  triplets.reserve(42 * chart.faces.size());
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * nFree);
   for (int32_t f : chart.faces) {
     Eigen::Vector3d p[3];
     facePositions(mesh, f, p);
     Eigen::Vector2d q[3];
     inPlaneCorners(p, g.normals[f], q);
     const double w = 1.0 / (2.0 * std::sqrt(g.areas[f]));
+    int32_t col[2][6];
+    double coef[2][6], constant[2] = {0, 0};
+    int used = 0;
     for (int j = 0; j < 3; ++j) {
       // Edge opposite corner j, counter-clockwise: grad u = sum_j u_j rot90(e_j) / 2A.
       const Eigen::Vector2d& a = q[(j + 1) % 3];
@@ -248,31 +263,33 @@ bool lscm(const SurfaceMesh& mesh, const FaceGeometry& g, Chart& chart) {
       // rot90(grad u) - grad v = (-sum u_j e_j - sum v_j rot90(e_j)) / 2A, rot90(e) = (-ey, ex).
       const double cu[2] = {-ex * w, -ey * w};
       const double cv[2] = {ey * w, -ex * w};
-      for (int r = 0; r < 2; ++r) {
-        if (column[i] >= 0) {
-          triplets.emplace_back(row + r, column[i], cu[r]);
-          triplets.emplace_back(row + r, nFree + column[i], cv[r]);
-        } else {
-          const Eigen::Vector2d& pv = pinned[pinIndex(i)];
-          constant[row + r] += cu[r] * pv.x() + cv[r] * pv.y();
+      if (column[i] >= 0) {
+        for (int r = 0; r < 2; ++r) {
+          col[r][used] = column[i], coef[r][used] = cu[r];
+          col[r][used + 1] = nFree + column[i], coef[r][used + 1] = cv[r];
         }
+        used += 2;
+      } else {
+        const Eigen::Vector2d& pv = pinned[pinIndex(i)];
+        for (int r = 0; r < 2; ++r) constant[r] += cu[r] * pv.x() + cv[r] * pv.y();
       }
     }
-    row += 2;
+    for (int r = 0; r < 2; ++r)
+      for (int a = 0; a < used; ++a) {
+        rhs[col[r][a]] -= coef[r][a] * constant[r];
+        for (int b = 0; b < used; ++b)
+          if (col[r][a] <= col[r][b]) triplets.emplace_back(col[r][a], col[r][b], coef[r][a] * coef[r][b]);
+      }
   }
   chart.uv.assign(6 * chart.faces.size(), 0.0);
   std::vector<Eigen::Vector2d> uvOf(n, Eigen::Vector2d::Zero());
   uvOf[pinA] = pinned[0];
   uvOf[pinB] = pinned[1];
   if (nFree > 0) {
-    Eigen::SparseMatrix<double> A(rows, 2 * nFree);
-    A.setFromTriplets(triplets.begin(), triplets.end());
-    const Eigen::SparseMatrix<double> AtA = (A.transpose() * A).pruned();
-    const Eigen::VectorXd rhs = -(A.transpose() * constant);
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(AtA);
-    if (solver.info() != Eigen::Success) return false;
-    const Eigen::VectorXd x = solver.solve(rhs);
-    if (solver.info() != Eigen::Success || !x.allFinite()) return false;
+    SparseMatrix upper(2 * nFree, 2 * nFree);
+    upper.setFromTriplets(triplets.begin(), triplets.end());
+    Eigen::VectorXd x;
+    if (!solveSpdOnce(upper, rhs, x)) return false;
     for (int32_t i = 0; i < n; ++i)
       if (column[i] >= 0) uvOf[i] = {x[column[i]], x[nFree + column[i]]};
   }
@@ -525,35 +542,75 @@ void normalizeChart(Chart& chart, const FaceGeometry& g) {
   for (size_t i = 0; i < m; ++i) chart.uv[2 * i] -= x0, chart.uv[2 * i + 1] -= y0;
 }
 
-// Flat charts covering every face of positive area: grown, flattened, split until acceptable.
+// A chart flattened and checked, or, when its map is not acceptable, the pieces to try instead.
+struct ChartOutcome {
+  Chart chart;
+  bool accepted = false;
+  std::vector<std::vector<int32_t>> pieces;
+};
+
+// What one thread needs to flatten charts: scratch the size of the mesh, cleared as it is used.
+struct ChartScratch {
+  std::vector<int32_t> vertexLocal, faceMark;
+  explicit ChartScratch(const SurfaceMesh& mesh)
+      : vertexLocal(mesh.numVertices(), -1), faceMark(mesh.numFaces(), 0) {}
+};
+
+ChartOutcome flattenOrSplit(const SurfaceMesh& mesh, const FaceGeometry& g, std::vector<int32_t> faces,
+                            ChartScratch& scratch) {
+  ChartOutcome out;
+  out.chart.faces = std::move(faces);
+  Chart& chart = out.chart;
+  if (lscm(mesh, g, chart, scratch.vertexLocal) && chartAcceptable(mesh, chart, g)) {
+    normalizeChart(chart, g);
+    out.accepted = true;
+    return out;
+  }
+  if (chart.faces.size() == 1) {
+    // A single face whose map failed (a sliver): its own shape in its plane.
+    const int32_t f = chart.faces[0];
+    Eigen::Vector3d p[3];
+    facePositions(mesh, f, p);
+    Eigen::Vector2d q[3];
+    inPlaneCorners(p, g.normals[f], q);
+    chart.uv = {q[0].x(), q[0].y(), q[1].x(), q[1].y(), q[2].x(), q[2].y()};
+    normalizeChart(chart, g);
+    out.accepted = true;
+    return out;
+  }
+  out.pieces = splitFaces(chart.faces, g, scratch.faceMark);
+  return out;
+}
+
+// Flat charts covering every face of positive area: grown, flattened, split until acceptable. The charts of a
+// round are independent: they are flattened on the thread team's parts (common/thread_team.h), biggest first,
+// each part taking the next chart left; the pieces of those split make the next round. The result does not
+// depend on the number of parts.
 std::vector<Chart> makeCharts(const SurfaceMesh& mesh, const FaceGeometry& g, int& splits) {
   std::vector<std::vector<int32_t>> pending = growCharts(g);
-  std::vector<int32_t> mark(mesh.numFaces(), 0);
   std::vector<Chart> charts;
   splits = 0;
+  const int parts = ThreadTeam::usefulParts();
+  std::vector<ChartScratch> scratch;
+  for (int k = 0; k < parts; ++k) scratch.emplace_back(mesh);
   while (!pending.empty()) {
-    Chart chart;
-    chart.faces = std::move(pending.back());
-    pending.pop_back();
-    if (lscm(mesh, g, chart) && chartAcceptable(mesh, chart, g)) {
-      normalizeChart(chart, g);
-      charts.push_back(std::move(chart));
-      continue;
+    std::stable_sort(pending.begin(), pending.end(),
+                     [](const auto& a, const auto& b) { return a.size() > b.size(); });
+    std::vector<ChartOutcome> outcome(pending.size());
+    std::atomic<size_t> next{0};
+    ThreadTeam::shared().run(parts, [&](int part) {
+      for (size_t i; (i = next.fetch_add(1)) < pending.size();)
+        outcome[i] = flattenOrSplit(mesh, g, std::move(pending[i]), scratch[part]);
+    });
+    pending.clear();
+    for (ChartOutcome& o : outcome) {
+      if (o.accepted) {
+        charts.push_back(std::move(o.chart));
+        continue;
+      }
+      ++splits;
+      for (auto& piece : o.pieces) pending.push_back(std::move(piece));
     }
-    if (chart.faces.size() == 1) {
-      // A single face whose map failed (a sliver): its own shape in its plane.
-      const int32_t f = chart.faces[0];
-      Eigen::Vector3d p[3];
-      facePositions(mesh, f, p);
-      Eigen::Vector2d q[3];
-      inPlaneCorners(p, g.normals[f], q);
-      chart.uv = {q[0].x(), q[0].y(), q[1].x(), q[1].y(), q[2].x(), q[2].y()};
-      normalizeChart(chart, g);
-      charts.push_back(std::move(chart));
-      continue;
-    }
-    ++splits;
-    for (auto& piece : splitFaces(chart.faces, g, mark)) pending.push_back(std::move(piece));
   }
   std::stable_sort(charts.begin(), charts.end(),
                    [](const Chart& a, const Chart& b) { return a.surfaceArea > b.surfaceArea; });
@@ -597,8 +654,9 @@ double pointTriangleDistance2(double px, double py, const double* t) {
   return best;
 }
 
-// The triangle's edge lines, normalized and facing out: a point's distance beyond any of them is a lower bound of
-// its distance to the triangle, which rules most texels around a small triangle out without the exact distance.
+// The triangle's edge lines, normalized and facing out: a point's distance beyond any of them is a lower
+// bound of its distance to the triangle, which rules most texels around a small triangle out without the
+// exact distance.
 struct EdgeBounds {
   double nx[3] = {}, ny[3] = {}, c[3] = {};
   bool usable = false;
@@ -636,7 +694,8 @@ struct ChartShape {
   Bitmap mask{0, 0};
 };
 
-// Adds to `out` the square (Chebyshev) dilation of `in` by r texels (r < 64): rows, then columns, a word at a time.
+// Adds to `out` the square (Chebyshev) dilation of `in` by r texels (r < 64): rows, then columns, a word at a
+// time.
 void dilateInto(const Bitmap& in, int r, Bitmap& out) {
   const int h = in.height, words = in.words;
   const uint64_t lastWord = in.width % 64 ? (uint64_t{1} << (in.width % 64)) - 1 : ~uint64_t{0};
@@ -664,9 +723,9 @@ void dilateInto(const Bitmap& in, int r, Bitmap& out) {
   }
 }
 
-// The chart at `density`, unrotated. It is moved by whole texels only, so that a quarter turn of its bitmap is
-// the bitmap of the quarter-turned chart (rotatedQuarter): the texel centres map onto texel centres, and packing
-// rasterizes each chart once per density instead of once per rotation.
+// The chart at `density`, unrotated. It is moved by whole texels only, so that a quarter turn of its bitmap
+// is the bitmap of the quarter-turned chart (rotatedQuarter): the texel centres map onto texel centres, and
+// packing rasterizes each chart once per density instead of once per rotation.
 ChartShape chartShape(const Chart& chart, double density, int gutter) {
   ChartShape s;
   s.texel.resize(chart.uv.size());
@@ -715,7 +774,8 @@ ChartShape rotatedQuarter(const ChartShape& in) {
   ChartShape s;
   const int w = in.mask.width, h = in.mask.height;
   s.texel.resize(in.texel.size());
-  for (size_t i = 0; i < in.texel.size(); i += 2) s.texel[i] = h - in.texel[i + 1], s.texel[i + 1] = in.texel[i];
+  for (size_t i = 0; i < in.texel.size(); i += 2)
+    s.texel[i] = h - in.texel[i + 1], s.texel[i + 1] = in.texel[i];
   s.mask = Bitmap(h, w);
   for (int y = 0; y < h; ++y)
     for (int k = 0; k < in.mask.words; ++k)
@@ -744,8 +804,8 @@ struct Placement {
 };
 
 // The mask on a grid of b x b texel blocks (a block is taken when any of its texels is).
-// Rows are ORed a block at a time, then each word's groups of b bits tested together (b is a power of two up to
-// 64, as resolution / kPackGrid is).
+// Rows are ORed a block at a time, then each word's groups of b bits tested together (b is a power of two up
+// to 64, as resolution / kPackGrid is).
 Bitmap coarsen(const Bitmap& mask, int b) {
   Bitmap out((mask.width + b - 1) / b, (mask.height + b - 1) / b);
   const uint64_t group = b >= 64 ? ~uint64_t{0} : (uint64_t{1} << b) - 1;
@@ -801,6 +861,78 @@ bool pack(const std::vector<Chart>& charts, double density, int resolution, int 
   for (uint64_t w : atlas.bits) taken += __builtin_popcountll(w);
   used = static_cast<double>(taken) / (static_cast<double>(grid) * grid);
   return true;
+}
+
+// One packing tried at a density.
+struct Packing {
+  double density = 0;
+  bool fits = false;
+  double used = 0;
+  std::vector<Placement> placements;
+  std::vector<ChartShape> shapes;
+};
+
+struct DensitySearch {
+  Packing packing;   // the densest that fits
+  int attempts = 0;  // packings the search needed (those tried ahead and not needed are not counted)
+};
+
+// The densest packing that fits: from the area bound down by 7% steps, then up again by bisection of the
+// densities' ratio. With several parts (common/thread_team.h) each round packs, side by side, the density the
+// search tries next and those it would try after it if that one failed (going down) or fit (bisecting): the
+// same sequence of densities as one part tries one by one, so the same atlas, in fewer rounds
+// (armadillo-sub2: 5 instead of 8).
+DensitySearch densestPacking(const std::vector<Chart>& charts, int resolution, int gutter) {
+  const int block = std::max(1, resolution / kPackGrid);
+  const int parts = ThreadTeam::usefulParts();
+  const auto packAll = [&](std::vector<Packing>& tries) {
+    ThreadTeam::shared().run(std::min<int>(parts, static_cast<int>(tries.size())), [&](int part) {
+      for (size_t i = part; i < tries.size(); i += parts) {
+        Packing& t = tries[i];
+        t.fits = pack(charts, t.density, resolution, gutter, block, t.placements, t.shapes, t.used);
+      }
+    });
+  };
+  double surfaceArea = 0;
+  for (const Chart& c : charts) surfaceArea += c.surfaceArea;
+  double fail = resolution / std::sqrt(surfaceArea);  // 100% of the square: never fits with gutters
+  double density = 0.85 * fail;
+  DensitySearch out;
+  while (!out.packing.fits) {
+    std::vector<Packing> tries(parts);
+    for (int k = 0; k < parts; ++k) tries[k].density = density * std::pow(0.93, k);
+    packAll(tries);
+    for (Packing& t : tries) {
+      ++out.attempts;
+      if (t.fits) {
+        out.packing = std::move(t);
+        break;
+      }
+      fail = t.density;
+      density = 0.93 * t.density;
+    }
+    if (!out.packing.fits && density < 1e-12 * fail)
+      throw InputError("atlas: the charts do not fit the resolution");
+  }
+  for (int it = 0; it < kBisections && fail / out.packing.density > kDensityPrecision;) {
+    // The next density, and those after it should each fit.
+    std::vector<Packing> tries;
+    for (double ok = out.packing.density; static_cast<int>(tries.size()) < parts &&
+                                          it + tries.size() < kBisections && fail / ok > kDensityPrecision;) {
+      tries.emplace_back().density = std::sqrt(ok * fail);
+      ok = tries.back().density;
+    }
+    packAll(tries);
+    for (Packing& t : tries) {
+      ++out.attempts, ++it;
+      if (!t.fits) {
+        fail = t.density;
+        break;  // those after it assumed it fit
+      }
+      out.packing = std::move(t);
+    }
+  }
+  return out;
 }
 
 void checkInput(const SurfaceMesh& mesh) {
@@ -962,34 +1094,11 @@ TextureAtlas generateAtlas(const SurfaceMesh& mesh, const MeshTopology& topology
   if (charts.empty()) throw InputError("atlas: every face of the mesh has zero area");
   atlas.numCharts = static_cast<int>(charts.size());
 
-  // The densest packing that fits: from the area bound down by 7% steps, then up again by bisection.
-  double surfaceArea = 0;
-  for (const Chart& c : charts) surfaceArea += c.surfaceArea;
-  double fail = resolution / std::sqrt(surfaceArea);  // 100% of the square: never fits with gutters
-  double ok = 0, density = 0.85 * fail;
-  std::vector<Placement> placements, best;
-  const int block = std::max(1, resolution / kPackGrid);
-  double used = 0;
-  std::vector<ChartShape> shapes, bestShapes;
-  while (ok == 0) {
-    ++atlas.packAttempts;
-    if (pack(charts, density, resolution, gutterTexels, block, placements, shapes, used)) {
-      atlas.used = used;
-      ok = density, best = placements, bestShapes = std::move(shapes);
-    } else {
-      fail = density;
-      density *= 0.93;
-    }
-    if (density < 1e-12 * fail) throw InputError("atlas: the charts do not fit the resolution");
-  }
-  for (int it = 0; it < kBisections && fail / ok > kDensityPrecision; ++it) {
-    density = std::sqrt(ok * fail);
-    ++atlas.packAttempts;
-    if (pack(charts, density, resolution, gutterTexels, block, placements, shapes, used))
-      ok = density, best = placements, bestShapes = std::move(shapes), atlas.used = used;
-    else
-      fail = density;
-  }
+  const DensitySearch found = densestPacking(charts, resolution, gutterTexels);
+  atlas.packAttempts = found.attempts;
+  atlas.used = found.packing.used;
+  const std::vector<Placement>& best = found.packing.placements;
+  const std::vector<ChartShape>& bestShapes = found.packing.shapes;
 
   const int32_t nF = mesh.numFaces();
   atlas.cornerUVs.assign(6 * static_cast<size_t>(nF), 0.0f);

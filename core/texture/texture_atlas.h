@@ -3,7 +3,7 @@
 //
 // generateAtlas() cuts the surface into charts (grown over faces whose normals stay inside a cone, in order
 // of distance from the seed so they come out round), flattens each by least-squares conformal maps (LSCM,
-// Levy et al. 2002; Eigen's sparse LDL^T), splits any chart whose map flips a face, overlaps itself or
+// Levy et al. 2002; CHOLMOD's supernodal Cholesky), splits any chart whose map flips a face, overlaps itself or
 // stretches area too unevenly, scales every chart to one texel density (texels per unit surface length), and
 // packs them into the square by first fit over texel bitmaps of the charts (4 rotations each, `gutter` texels
 // of exclusive border around every chart), raising the density until the packing no longer fits.

@@ -213,6 +213,18 @@ TEST(TextureAtlas, SphereAndTorusChartsAreFlipFreeDisjointAndEvenlyDense) {
   }
 }
 
+// Charts are flattened on several threads (common/thread_team.h) in rounds; the atlas must not depend on
+// which thread took which chart: two runs give the same bits.
+TEST(TextureAtlas, FlatteningOnThreadsIsDeterministic) {
+  const SurfaceMesh two = disjointUnion(icosphere(3), torus(64, 24, 2.0, 0.7));
+  const TextureAtlas a = generateAtlas(two, 512, 2), b = generateAtlas(two, 512, 2);
+  EXPECT_GT(a.numCharts, 8);
+  EXPECT_EQ(a.numCharts, b.numCharts);
+  EXPECT_EQ(a.splits, b.splits);
+  EXPECT_EQ(a.faceChart, b.faceChart);
+  EXPECT_EQ(a.cornerUVs, b.cornerUVs);
+}
+
 TEST(TextureAtlas, SeveralComponentsAndGutters) {
   const SurfaceMesh two = disjointUnion(icosphere(2), torus(32, 12, 2.0, 0.7));
   for (int gutter : {0, 1, 3}) {

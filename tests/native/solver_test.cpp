@@ -17,6 +17,7 @@
 #include "solver/edge_dissection.h"
 #include "solver/factored_system.h"
 #include "solver/shifted_factor.h"
+#include "solver/spd_solve.h"
 #include "solver/subtree_partition.h"
 #include "test_fields.h"
 #include "test_meshes.h"
@@ -981,4 +982,34 @@ TEST(FactoredSystem, ReleaseFreesTheFactorAndKeepsTheOrdering) {
   ASSERT_TRUE(fresh.factor(base));
   fresh.solve(b, y);
   EXPECT_EQ(x, y);
+}
+
+// The one-shot SPD solve (an atlas chart's conformal map): the residual of a shifted vertex Laplacian's
+// system against an independent Eigen factorization, and a clear "no" for a matrix that is not positive
+// definite.
+TEST(SpdSolveOnce, MatchesAnIndependentFactorizationAndRefusesIndefinite) {
+  const SurfaceMesh mesh = torus(24, 12, 2.0, 0.7);
+  const MeshTopology t = buildTopology(mesh);
+  const int n = t.numVertices;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    const int32_t a = t.edgeVertices[2 * e], b = t.edgeVertices[2 * e + 1];
+    entries.insert(entries.end(), {{a, a, 1.0}, {b, b, 1.0}, {a, b, -1.0}, {b, a, -1.0}});
+  }
+  for (int i = 0; i < n; ++i) entries.emplace_back(i, i, 1e-3);
+  SparseMatrix A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  std::mt19937 rnd(3);
+  std::normal_distribution<double> normal;
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = normal(rnd);
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solveSpdOnce(upperTriangle(A), b, x));
+  EXPECT_LT((A * x - b).norm(), 1e-8 * b.norm());
+  const Eigen::VectorXd reference = Eigen::SimplicialLDLT<SparseMatrix>(A).solve(b);
+  EXPECT_LT((x - reference).norm(), 1e-8 * reference.norm());
+
+  SparseMatrix indefinite = A;
+  indefinite.coeffRef(n / 2, n / 2) = -5.0;
+  EXPECT_FALSE(solveSpdOnce(upperTriangle(indefinite), b, x));
 }

@@ -7,6 +7,7 @@ import { Transfer } from '../core/worker/transfer.js';
 import { AtlasCache } from './atlas-cache.js';
 import { preparedAtlas, preparedBuffers } from './atlas-prepared.js';
 import { analyzeExemplar, exemplarBuffers } from './exemplar.js';
+import { warmUpTexture } from './warm-up.js';
 
 const sumOf = (steps) => Object.values(steps ?? {}).reduce((a, b) => a + b, 0);
 
@@ -41,6 +42,11 @@ export function synthesisOps(state) {
     analyzeExemplar(spec) {
       const tables = analyzeExemplar(state.core.Module, spec);
       return new Transfer(tables, exemplarBuffers(tables));
+    },
+
+    // The atlas and analysis code run once on small inputs (warm-up.js), so a first texture runs optimized code.
+    warmUpTexture() {
+      return warmUpTexture(state.core.Module);
     },
   };
 

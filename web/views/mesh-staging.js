@@ -11,6 +11,11 @@
 // call for that, so the context's bufferData is wrapped for that one draw); the slices are three.js's update
 // ranges (bufferSubData).
 //
+// An upload issued while the GPU process is still busy (a frame of the model opened before: seconds of a big
+// textured model with software GL) waits for it on the page's thread: a 923 ms bufferSubData when armadillo-sub2
+// was opened again over its textured self. So each step waits, in short polls, for a fence issued after the
+// step before (the first for everything issued before the staging began).
+//
 // Owned by viewer.js. Imports three.js only.
 import { BufferGeometry, Mesh, MeshBasicMaterial, Scene, WebGLRenderTarget } from 'three';
 
@@ -33,9 +38,14 @@ export class MeshStaging {
     this.#drop();
     const staged = (this.staged = { surface, geometry: null });
     return new Promise((resolve) => {
-      let steps = null, done = 0;
+      let steps = null, done = 0, fence = this.#fence();
       const next = () => {
-        if (this.staged !== staged) return resolve(done);
+        if (this.staged !== staged) {
+          this.#deleteFence(fence);
+          return resolve(done);
+        }
+        if (fence && !this.#signalled(fence)) return setTimeout(next, 1);
+        fence = this.#deleteFence(fence);
         try {
           if (!steps) {
             staged.geometry = build();
@@ -47,6 +57,7 @@ export class MeshStaging {
           return resolve(done);
         }
         if (!steps.length) return resolve(done);
+        fence = this.#fence();
         setTimeout(next, 0);
       };
       setTimeout(next, 0);
@@ -66,6 +77,24 @@ export class MeshStaging {
     this.#drop();
     this.material?.dispose();
     this.target?.dispose();
+  }
+
+  // A fence after everything issued so far in the view's context, or null (a lost context).
+  #fence() {
+    const gl = this.renderer.getContext();
+    const fence = gl.fenceSync?.(gl.SYNC_GPU_COMMANDS_COMPLETE, 0) ?? null;
+    if (fence) gl.flush();
+    return fence;
+  }
+
+  #signalled(fence) {
+    const gl = this.renderer.getContext();
+    return gl.isContextLost() || gl.getSyncParameter(fence, gl.SYNC_STATUS) === gl.SIGNALED;
+  }
+
+  #deleteFence(fence) {
+    if (fence) this.renderer.getContext().deleteSync(fence);
+    return null;
   }
 
   #drop() {

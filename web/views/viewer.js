@@ -59,6 +59,10 @@ export class Viewer {
     // frame still in flight: with software GL and a million triangles the first stroke's new program held the
     // page's thread for 2.3 s. The shaders are the project's own and covered by the picture tests.
     this.renderer.debug.checkShaderErrors = false;
+    // The same round trip, asked once and kept by three.js, for the first texture with anisotropic filtering
+    // (the synthesized texture's exemplar): 94 ms of an armadillo-sub2 texture update's task, asked here while
+    // the GPU process has no frame to finish.
+    this.renderer.capabilities.getMaxAnisotropy();
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
     this.renderer.outputColorSpace = SRGBColorSpace;
     this.renderer.setClearColor(BACKGROUND, 1);
