@@ -356,6 +356,7 @@ function phaseTable({ wallMs, t0, t1, stats }, before) {
     sumOverWall: Math.round((1000 * sum) / wallMs) / 1000,
     kernelMs: round(kernel),
     nonKernelMs: round(sum - kernel),
+    viewFrames: stats.viewFrames, // the view's frames drawn during the run, beside it on the GPU
   };
 }
 

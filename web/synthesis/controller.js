@@ -189,7 +189,7 @@ export class SynthesisController {
       throw new Error(textureRefusal(symmetry));
     }
     const token = ++this.runToken;
-    const t0 = performance.now();
+    const t0 = performance.now(), frames0 = this.viewer.renderCount;
     this.ensureSynth();
     clock.mark('field from the page');
     const resolution =
@@ -246,6 +246,7 @@ export class SynthesisController {
       shownAt: clock.last,
       fieldVersion: model.fieldVersion,
       previewRuns: this.previewRuns,
+      viewFrames: this.viewer.renderCount - frames0, // the view's frames drawn during the run (beside it on the GPU)
       symmetry: field.symmetry,
       ...(field.symmetry > 1 ? { combMs: field.ms, combCutEdges: field.cutEdges } : {}),
     };
