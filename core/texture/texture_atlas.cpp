@@ -821,9 +821,6 @@ Bitmap coarsen(const Bitmap& mask, int b) {
   return out;
 }
 
-// First fit (lowest row, then column) of each chart, largest first, trying 4 rotations and keeping the one
-// whose top edge ends lowest. Positions are searched on a grid of `block` texels (the search costs the square
-// of the grid size). Returns false when a chart does not fit.
 // First fit (lowest row, then column) of each chart, largest first, trying kRotations rotations and keeping
 // the one whose top edge ends lowest. Positions are searched on a grid of `block` texels (the search costs
 // the square of the grid size). Returns false when a chart does not fit.
