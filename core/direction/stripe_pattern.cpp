@@ -1,0 +1,302 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "direction/stripe_pattern.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <string>
+
+#include "common/input_error.h"
+#include "common/sparse_matrix.h"
+#include "dec/hodge_star.h"
+#include "mesh/mesh_geometry.h"
+#include "solver/spd_solve.h"
+
+namespace tvf {
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+// A family of one vertex's stripes matched to one of its neighbour's: the neighbour's family, and -1 where
+// its direction points the other way (its phase then runs the other way: its psi is conjugated).
+struct Match {
+  int8_t family = 0, sign = 1;
+};
+
+struct Families {
+  int count = 1;
+  bool oriented = true;                    // a vector field's directions: never matched with a sign
+  std::vector<Eigen::Vector3d> direction;  // count per vertex: the field's representative, turned f quarters
+  std::vector<Eigen::Vector3d> growth;  // count per vertex: the direction the phase grows in (a quarter more)
+};
+
+Families familiesOf(const SurfaceMesh& mesh, const std::vector<double>& vertexDirections, int symmetry) {
+  const int32_t nV = mesh.numVertices();
+  const std::vector<double> normals = vertexNormals(mesh);
+  Families out;
+  out.count = symmetry == 4 ? 2 : 1;
+  out.oriented = symmetry == 1;
+  out.direction.resize(static_cast<size_t>(nV) * out.count);
+  out.growth.resize(out.direction.size());
+  for (int32_t v = 0; v < nV; ++v) {
+    const Eigen::Vector3d n(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+    Eigen::Vector3d d(vertexDirections[3 * v], vertexDirections[3 * v + 1], vertexDirections[3 * v + 2]);
+    d -= d.dot(n) * n;
+    const double length = d.norm();
+    d = length > 0 && std::isfinite(length) ? Eigen::Vector3d(d / length) : Eigen::Vector3d::Zero();
+    for (int f = 0; f < out.count; ++f) {
+      out.direction[static_cast<size_t>(v) * out.count + f] = d;
+      d = n.cross(d);  // a quarter turn: the next family, and the phase's growth direction of this one
+      out.growth[static_cast<size_t>(v) * out.count + f] = d;
+    }
+  }
+  return out;
+}
+
+// Per edge (canonical orientation a -> b) and family f at a: the family at b and the sign it matches with.
+std::vector<Match> edgeMatches(const MeshTopology& t, const Families& fam) {
+  const int F = fam.count;
+  std::vector<Match> out(static_cast<size_t>(t.numEdges) * F);
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    const int32_t a = t.edgeVertices[2 * e], b = t.edgeVertices[2 * e + 1];
+    const Eigen::Vector3d& da = fam.direction[static_cast<size_t>(a) * F];
+    Match m;
+    double best = -1;
+    for (int g = 0; g < F; ++g) {
+      const double c = da.dot(fam.direction[static_cast<size_t>(b) * F + g]);
+      if (std::abs(c) > best)
+        best = std::abs(c),
+        m = {static_cast<int8_t>(g), static_cast<int8_t>(c < 0 && !fam.oriented ? -1 : 1)};
+    }
+    out[static_cast<size_t>(e) * F] = m;
+    // The second family is the first turned a quarter at both ends: D_a^0 ~ s D_b^g gives D_a^1 ~ s D_b^1 for
+    // g = 0 and -s D_b^0 for g = 1.
+    if (F == 2)
+      out[static_cast<size_t>(e) * F + 1] =
+          m.family == 0 ? Match{1, m.sign} : Match{0, static_cast<int8_t>(-m.sign)};
+  }
+  return out;
+}
+
+// The match for family f across edge e walked from vertex `from`.
+Match walk(const MeshTopology& t, const std::vector<Match>& matches, int F, int32_t e, int32_t from, int f) {
+  if (t.edgeVertices[2 * e] == from) return matches[static_cast<size_t>(e) * F + f];
+  for (int g = 0; g < F; ++g) {
+    const Match m = matches[static_cast<size_t>(e) * F + g];
+    if (m.family == f) return {static_cast<int8_t>(g), m.sign};
+  }
+  return {};
+}
+
+struct EdgeTurns {
+  std::vector<Match> matches;
+  std::vector<double> omega;  // per edge and family at its lower vertex: the phase's advance from a to b
+};
+
+double localFrequency(const StripeOptions& o, int32_t v) {
+  return o.vertexFrequencyScale.empty() ? o.frequency : o.frequency * o.vertexFrequencyScale[v];
+}
+
+// omega along a -> b for a family whose growth directions at a and b (already matched) are ya and yb.
+double advance(const SurfaceMesh& mesh, const StripeOptions& o, int32_t a, int32_t b,
+               const Eigen::Vector3d& ya, const Eigen::Vector3d& yb) {
+  const double nu = 0.5 * (localFrequency(o, a) + localFrequency(o, b));
+  return kTwoPi * nu * 0.5 * (ya + yb).dot(vertexPosition(mesh, b) - vertexPosition(mesh, a));
+}
+
+EdgeTurns edgeTurns(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam,
+                    const StripeOptions& o) {
+  const int F = fam.count;
+  EdgeTurns out{edgeMatches(t, fam), std::vector<double>(static_cast<size_t>(t.numEdges) * F)};
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    const int32_t a = t.edgeVertices[2 * e], b = t.edgeVertices[2 * e + 1];
+    for (int f = 0; f < F; ++f) {
+      const Match m = out.matches[static_cast<size_t>(e) * F + f];
+      const Eigen::Vector3d& ya = fam.growth[static_cast<size_t>(a) * F + f];
+      const Eigen::Vector3d yb = m.sign * fam.growth[static_cast<size_t>(b) * F + m.family];
+      out.omega[static_cast<size_t>(e) * F + f] = advance(mesh, o, a, b, ya, yb);
+    }
+  }
+  return out;
+}
+
+// The energy sum w_e |C^s psi_b^g - e^(i omega) psi_a^f|^2 (C: conjugation) as the upper triangle of a real
+// symmetric matrix, unknowns (re, im) of vertex v's family f at 2 (v F + f).
+SparseMatrix stripeEnergy(const MeshTopology& t, const MeshGeometry& g, const EdgeTurns& turns, int F,
+                          double shift) {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<size_t>(t.numEdges) * F * 12 + 2 * static_cast<size_t>(t.numVertices) * F);
+  std::vector<double> diagonal(2 * static_cast<size_t>(t.numVertices) * F, 0.0);
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    const double w =
+        std::max(g.star1[e], 0.0);  // an obtuse pair's negative cotan weight would break definiteness
+    if (!(w > 0)) continue;
+    const int32_t a = t.edgeVertices[2 * e], b = t.edgeVertices[2 * e + 1];
+    for (int f = 0; f < F; ++f) {
+      const Match m = turns.matches[static_cast<size_t>(e) * F + f];
+      const double c = std::cos(turns.omega[static_cast<size_t>(e) * F + f]);
+      const double s = std::sin(turns.omega[static_cast<size_t>(e) * F + f]);
+      // M = C^s R(omega): the coupling block -w M sits at (b's rows, a's columns).
+      const double M[2][2] = {{c, -s}, {m.sign * s, m.sign * c}};
+      const int32_t ia = 2 * (a * F + f), ib = 2 * (b * F + m.family);
+      diagonal[ia] += w, diagonal[ia + 1] += w, diagonal[ib] += w, diagonal[ib + 1] += w;
+      for (int r = 0; r < 2; ++r)
+        for (int k = 0; k < 2; ++k) {
+          if (ib < ia)
+            entries.emplace_back(ib + r, ia + k, -w * M[r][k]);
+          else
+            entries.emplace_back(ia + k, ib + r, -w * M[r][k]);
+        }
+    }
+  }
+  for (int32_t v = 0; v < t.numVertices; ++v)
+    for (int k = 0; k < 2 * F; ++k) {
+      const int32_t i = 2 * v * F + k;
+      entries.emplace_back(i, i, diagonal[i] + shift * g.star0[v]);
+    }
+  SparseMatrix upper(2 * t.numVertices * F, 2 * t.numVertices * F);
+  upper.setFromTriplets(entries.begin(), entries.end());
+  return upper;
+}
+
+// The smallest eigenvector of A psi = lambda B psi (B: the vertex areas) by inverse iteration on a block of
+// kBlock vectors with a Rayleigh-Ritz step each time: the smallest eigenvalues of these energies are often
+// nearly repeated (a symmetric surface's pattern can shift along it), where one vector's inverse iteration
+// crawls (hundreds of steps on a torus) and a block's converges at the rate of the block's next eigenvalue.
+constexpr int kBlock = 4;
+
+void smallestEigenvector(const SparseMatrix& upper, const Eigen::VectorXd& mass, const StripeOptions& o,
+                         StripePattern& out) {
+  SpdFactor factor(upper);
+  if (!factor.ok()) throw InputError("stripe pattern: the energy could not be factored");
+  const Eigen::Index n = upper.rows(), k = std::min<Eigen::Index>(kBlock, n);
+  Eigen::MatrixXd x(n, k);
+  uint32_t state = 12345u;
+  for (Eigen::Index j = 0; j < k; ++j)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      state = state * 1664525u + 1013904223u;
+      x(i, j) = static_cast<double>(state >> 8) / 16777216.0 - 0.5;
+    }
+  const auto A = upper.selfadjointView<Eigen::Upper>();
+  double previous = std::numeric_limits<double>::infinity();
+  for (out.iterations = 0; out.iterations < o.maxIterations;) {
+    Eigen::MatrixXd y;
+    if (!factor.solve(mass.asDiagonal() * x, y)) throw InputError("stripe pattern: the solve failed");
+    // B-orthonormal columns, then the Ritz vectors of A in their span, smallest first.
+    const Eigen::MatrixXd gram = y.transpose() * mass.asDiagonal() * y;
+    const Eigen::LLT<Eigen::MatrixXd> llt(gram);
+    if (llt.info() != Eigen::Success) throw InputError("stripe pattern: the iteration lost its rank");
+    y = llt.matrixU().solve<Eigen::OnTheRight>(y);
+    const Eigen::MatrixXd h = y.transpose() * (A * y);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ritz(0.5 * (h + h.transpose()));
+    x = y * ritz.eigenvectors();
+    ++out.iterations;
+    out.eigenvalue = ritz.eigenvalues()[0];
+    if (std::abs(previous - out.eigenvalue) <= o.tolerance * std::max(std::abs(out.eigenvalue), 1e-300))
+      break;
+    previous = out.eigenvalue;
+  }
+  out.psi.assign(x.col(0).data(), x.col(0).data() + n);
+}
+
+std::complex<double> psiOf(const StripePattern& p, int F, int32_t v, int f, int sign) {
+  const size_t i = 2 * (static_cast<size_t>(v) * F + f);
+  return {p.psi[i], sign * p.psi[i + 1]};
+}
+
+// Corner phases and branch index of one face and one family of its first corner.
+void facePhases(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam, const EdgeTurns& turns,
+                const StripeOptions& o, int32_t face, int f0, StripePattern& out, bool& fieldSingular) {
+  const int F = fam.count;
+  int32_t v[3];
+  int family[4], sign[4];
+  for (int k = 0; k < 3; ++k) v[k] = mesh.triangles[3 * face + k];
+  family[0] = f0, sign[0] = 1;
+  for (int k = 0; k < 3; ++k) {
+    const Match m = walk(t, turns.matches, F, t.edgeOf(face, k), v[k], family[k]);
+    family[k + 1] = m.family, sign[k + 1] = sign[k] * m.sign;
+  }
+  fieldSingular = family[3] != f0 || sign[3] != 1;
+  double alpha[4];
+  alpha[0] = std::arg(psiOf(out, F, v[0], family[0], sign[0]));
+  for (int k = 0; k < 3; ++k) {
+    const int32_t a = v[k], b = v[(k + 1) % 3];
+    const int fb = k < 2 ? family[k + 1] : f0, sb = k < 2 ? sign[k + 1] : 1;
+    const Eigen::Vector3d ya = sign[k] * fam.growth[static_cast<size_t>(a) * F + family[k]];
+    const Eigen::Vector3d yb = sb * fam.growth[static_cast<size_t>(b) * F + fb];
+    const double omega = advance(mesh, o, a, b, ya, yb);
+    const std::complex<double> pa = psiOf(out, F, a, family[k], sign[k]), pb = psiOf(out, F, b, fb, sb);
+    alpha[k + 1] = alpha[k] + omega + std::arg(pb * std::conj(std::polar(1.0, omega) * pa));
+  }
+  const int n = fieldSingular ? 0 : static_cast<int>(std::lround((alpha[3] - alpha[0]) / kTwoPi));
+  const size_t slot = static_cast<size_t>(f0) * t.numFaces + face;
+  out.branchIndex[slot] = static_cast<int8_t>(std::clamp(n, -127, 127));
+  for (int k = 0; k < 3; ++k)
+    out.cornerPhase[3 * slot + k] = static_cast<float>(alpha[k] - n * kTwoPi * k / 3.0);
+}
+
+void checkInput(const SurfaceMesh& mesh, const std::vector<double>& dirs, const StripeOptions& o) {
+  if (o.symmetry != 1 && o.symmetry != 2 && o.symmetry != 4)
+    throw InputError("stripe pattern: symmetry must be 1, 2 or 4 (got " + std::to_string(o.symmetry) + ")");
+  if (!(o.frequency > 0) || !std::isfinite(o.frequency))
+    throw InputError("stripe pattern: the frequency must be positive and finite");
+  if (dirs.size() != 3 * static_cast<size_t>(mesh.numVertices()))
+    throw InputError("stripe pattern: expected 3 direction components per vertex");
+  if (!o.vertexFrequencyScale.empty()) {
+    if (o.vertexFrequencyScale.size() != static_cast<size_t>(mesh.numVertices()))
+      throw InputError("stripe pattern: expected one frequency scale per vertex");
+    for (double s : o.vertexFrequencyScale)
+      if (!(s > 0) || !std::isfinite(s))
+        throw InputError("stripe pattern: frequency scales must be positive");
+  }
+}
+
+}  // namespace
+
+double stripeAngle(double b0, double b1, double b2) {
+  double l;
+  if (b2 <= b0 && b2 <= b1)
+    l = (M_PI / 3.0) * (1.0 + (b1 - b0) / (1.0 - 3.0 * b2));
+  else if (b0 <= b1 && b0 <= b2)
+    l = (M_PI / 3.0) * (3.0 + (b2 - b1) / (1.0 - 3.0 * b0));
+  else
+    l = (M_PI / 3.0) * (5.0 + (b0 - b2) / (1.0 - 3.0 * b1));
+  return l >= kTwoPi ? l - kTwoPi : l;
+}
+
+StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology,
+                            const std::vector<double>& vertexDirections, const StripeOptions& options) {
+  checkInput(mesh, vertexDirections, options);
+  const MeshGeometry g = computeMeshGeometry(mesh, topology);
+  const Families fam = familiesOf(mesh, vertexDirections, options.symmetry);
+  const int F = fam.count;
+  const EdgeTurns turns = edgeTurns(mesh, topology, fam, options);
+
+  // A shift small against the energy's scale keeps the factor definite where the turns are consistent (then
+  // the smallest eigenvalue is 0: a phase exactly following the field).
+  const double shift = 1e-8 * std::max(g.star1.cwiseAbs().sum(), 1e-300) / std::max(g.star0.sum(), 1e-300);
+  const SparseMatrix upper = stripeEnergy(topology, g, turns, F, shift);
+  Eigen::VectorXd mass(upper.rows());
+  for (int32_t v = 0; v < topology.numVertices; ++v) mass.segment(2 * v * F, 2 * F).setConstant(g.star0[v]);
+
+  StripePattern out;
+  out.families = F;
+  smallestEigenvector(upper, mass, options, out);
+  out.eigenvalue -= shift;
+  out.cornerPhase.assign(3 * static_cast<size_t>(topology.numFaces) * F, 0.0f);
+  out.branchIndex.assign(static_cast<size_t>(topology.numFaces) * F, 0);
+  out.fieldSingular.assign(topology.numFaces, 0);
+  for (int32_t face = 0; face < topology.numFaces; ++face)
+    for (int f = 0; f < F; ++f) {
+      bool singular = false;
+      facePhases(mesh, topology, fam, turns, options, face, f, out, singular);
+      if (singular) out.fieldSingular[face] = 1;
+    }
+  return out;
+}
+
+}  // namespace tvf

@@ -1,0 +1,63 @@
+#pragma once
+// Stripe patterns (Knöppel, Crane, Pinkall, Schröder 2015, "Stripe Patterns on Surfaces"): a phase whose
+// level sets run along a direction field at a chosen spacing, with no seams, and branch points only where the
+// pattern must have them.
+//
+// A unit complex number psi per vertex (per vertex and family for a cross field), the smoothest under the
+// connection that advances the phase by omega_ij = 2 pi nu <(Y_i + s_ij Y_j) / 2, p_j - p_i> along each edge,
+// where Y is the direction the phase grows in (the field turned a quarter in the tangent plane: the stripes
+// follow the field) and s_ij = +-1 matches a line or cross field's representatives across the edge (the
+// neighbour's psi is then conjugated: its phase runs the other way). That is the eigenvector of the smallest
+// eigenvalue of the energy sum_ij w_ij |psi_j - e^(i omega_ij) psi_i|^2 (cotan weights) against the vertex
+// areas, found by inverse iteration on one CHOLMOD factor (solver/spd_solve.h).
+//
+// The phase inside a face: each corner's phase unwrapped from the first corner along the face's edges, each
+// step omega_ij plus the argument psi_j / (e^(i omega_ij) psi_i) (in (-pi, pi]). Going round the face comes
+// back to the start plus 2 pi n; n != 0 (a zero of psi inside: the pattern's branch point, where a stripe
+// ends or forks) makes the face singular, and its phase is sum_k b_k g_k + n L(b), L the piecewise-linear
+// angle of the paper's Sec. 5 (0, 2 pi / 3, 4 pi / 3 at the corners, linear along each edge, a 2 pi turn
+// about the centroid: stripeAngle()), so that along every edge the phase is the linear interpolation its
+// neighbour has. Regular faces (n = 0) interpolate the corner phases linearly. A face round which a line or
+// cross field's representatives do not match up (the field's own singularity) is marked; its phase is
+// unwrapped along two of its edges.
+#include <cstdint>
+#include <vector>
+
+#include "mesh/mesh_topology.h"
+#include "mesh/surface_mesh.h"
+
+namespace tvf {
+
+struct StripeOptions {
+  int symmetry = 1;  // 1 (vector field), 2 (line field): one family of stripes; 4 (cross field): two, a grid
+  double frequency = 1.0;  // stripes per unit length
+  // Optional, one per vertex: the frequency's factor there (the paper's Sec. 6.3 spacing from the field's
+  // magnitude); empty for none.
+  std::vector<double> vertexFrequencyScale;
+  int maxIterations = 200;
+  double tolerance = 1e-10;  // on the Rayleigh quotient's relative change
+};
+
+struct StripePattern {
+  int families = 1;  // 1, or 2 for a cross field (the second family's stripes across the first's)
+  // families x 3 per face (family-major: all faces of family 0, then of family 1): g_k of the phase
+  // sum_k b_k g_k + n L(b), in radians (stripes at the phase's multiples of 2 pi).
+  std::vector<float> cornerPhase;
+  std::vector<int8_t> branchIndex;  // families per face (family-major): n
+  std::vector<uint8_t>
+      fieldSingular;        // per face: 1 where the field's representatives do not match up round it
+  std::vector<double> psi;  // 2 x families per vertex (re, im), unit B-norm
+  double eigenvalue = 0;    // the energy's Rayleigh quotient at psi
+  int iterations = 0;
+};
+
+// vertexDirections: 3 per vertex, the field's (representative) direction there; a zero vector leaves the
+// vertex's edges without turning. Throws InputError for a bad size, a symmetry other than 1, 2 or 4, a
+// frequency that is not positive and finite, or a factorization that fails.
+StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology,
+                            const std::vector<double>& vertexDirections, const StripeOptions& options);
+
+// L(b) for barycentric b: the paper's piecewise-linear angle about the face's centroid, in [0, 2 pi).
+double stripeAngle(double b0, double b1, double b2);
+
+}  // namespace tvf

@@ -1,0 +1,223 @@
+// Stripe patterns (direction/stripe_pattern.h) against analytic truth: straight stripes at exactly the asked
+// frequency on a flat square with a constant field, a cross field's two families at right angles, stripes
+// along a field on a curved surface, a line field's representatives' signs changing nothing, the phase equal
+// from both sides of every edge (branch faces included: the piecewise-linear angle keeps it so), and the
+// piecewise-linear angle's own properties.
+#include "direction/stripe_pattern.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "common/input_error.h"
+#include "mesh/mesh_geometry.h"
+#include "mesh/mesh_topology.h"
+#include "test_meshes.h"
+
+using namespace tvf;
+using namespace tvf::testing;
+
+namespace {
+
+// The gradient of sum_k b_k g_k on a face (the regular part of the phase).
+Eigen::Vector3d phaseGradient(const SurfaceMesh& mesh, const StripePattern& p, int family, int32_t f) {
+  Eigen::Vector3d pos[3], grad[3];
+  facePositions(mesh, f, pos);
+  barycentricGradients(pos, grad);
+  const size_t slot = static_cast<size_t>(family) * mesh.numFaces() + f;
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) g += p.cornerPhase[3 * slot + k] * grad[k];
+  return g;
+}
+
+// The phase at barycentric b in face f (family 0).
+double phaseAt(const StripePattern& p, int32_t nF, int family, int32_t f, const double b[3]) {
+  const size_t slot = static_cast<size_t>(family) * nF + f;
+  double x = 0;
+  for (int k = 0; k < 3; ++k) x += b[k] * p.cornerPhase[3 * slot + k];
+  return x + p.branchIndex[slot] * stripeAngle(b[0], b[1], b[2]);
+}
+
+double angleBetweenLines(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::min(1.0, std::abs(a.normalized().dot(b.normalized()))));
+}
+
+std::vector<double> constantField(const SurfaceMesh& m, const Eigen::Vector3d& d) {
+  std::vector<double> out;
+  for (int32_t v = 0; v < m.numVertices(); ++v) out.insert(out.end(), {d.x(), d.y(), d.z()});
+  return out;
+}
+
+// Around the tube of torus(n, m, R, r) (the direction of increasing minor angle), unit.
+std::vector<double> aroundTheTube(const SurfaceMesh& m) {
+  std::vector<double> out;
+  for (int32_t v = 0; v < m.numVertices(); ++v) {
+    const Eigen::Vector3d p = vertexPosition(m, v);
+    const Eigen::Vector3d ring(p.x(), p.y(), 0);
+    const Eigen::Vector3d centre = 2.0 * ring.normalized();  // torus(.., R = 2, ..)
+    const Eigen::Vector3d radial = (p - centre).normalized();
+    const Eigen::Vector3d around = Eigen::Vector3d(-p.y(), p.x(), 0).normalized();
+    const Eigen::Vector3d t = around.cross(radial).normalized();
+    out.insert(out.end(), {t.x(), t.y(), t.z()});
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(StripePattern, FlatConstantFieldGivesStraightStripesAtTheFrequency) {
+  const SurfaceMesh m = flatGrid(24, 1.0, true);
+  const MeshTopology t = buildTopology(m);
+  const Eigen::Vector3d d = Eigen::Vector3d(1, 0.3, 0).normalized();
+  StripeOptions o;
+  o.frequency = 5.0;
+  const StripePattern p = stripePattern(m, t, constantField(m, d), o);
+  const Eigen::Vector3d growth =
+      Eigen::Vector3d::UnitZ().cross(d);  // stripes along d: the phase grows across
+  double worstAngle = 0, worstRate = 0;
+  for (int32_t f = 0; f < m.numFaces(); ++f) {
+    ASSERT_EQ(p.branchIndex[f], 0);
+    const Eigen::Vector3d g = phaseGradient(m, p, 0, f);
+    worstAngle = std::max(worstAngle, std::acos(std::min(1.0, g.normalized().dot(growth))));
+    worstRate = std::max(worstRate, std::abs(g.norm() / (2 * M_PI * o.frequency) - 1));
+  }
+  EXPECT_LT(worstAngle, 1e-6);
+  EXPECT_LT(worstRate, 1e-6);
+  EXPECT_NEAR(p.eigenvalue, 0.0, 1e-6);
+}
+
+TEST(StripePattern, CrossFieldGivesTwoFamiliesAtRightAngles) {
+  const SurfaceMesh m = flatGrid(16, 1.0);
+  const MeshTopology t = buildTopology(m);
+  const Eigen::Vector3d d = Eigen::Vector3d(0.8, -0.6, 0);
+  StripeOptions o;
+  o.symmetry = 4;
+  o.frequency = 3.0;
+  const StripePattern p = stripePattern(m, t, constantField(m, d), o);
+  ASSERT_EQ(p.families, 2);
+  for (int32_t f = 0; f < m.numFaces(); ++f) {
+    const Eigen::Vector3d g0 = phaseGradient(m, p, 0, f), g1 = phaseGradient(m, p, 1, f);
+    EXPECT_LT(angleBetweenLines(g0, Eigen::Vector3d::UnitZ().cross(d)), 1e-6);
+    EXPECT_LT(angleBetweenLines(g1, d), 1e-6);
+    EXPECT_NEAR(g0.norm(), 2 * M_PI * o.frequency, 1e-6 * g0.norm());
+    EXPECT_NEAR(g1.norm(), 2 * M_PI * o.frequency, 1e-6 * g1.norm());
+  }
+}
+
+TEST(StripePattern, StripesFollowTheFieldOnATorus) {
+  const SurfaceMesh m = torus(96, 36, 2.0, 0.7);
+  const MeshTopology t = buildTopology(m);
+  const std::vector<double> field = aroundTheTube(m);
+  StripeOptions o;
+  o.frequency = 2.0;
+  const StripePattern p = stripePattern(m, t, field, o);
+  double sum = 0, area = 0, within5 = 0;
+  for (int32_t f = 0; f < m.numFaces(); ++f) {
+    Eigen::Vector3d pos[3];
+    facePositions(m, f, pos);
+    const double a = faceNormalArea(pos).area;
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) d += Eigen::Map<const Eigen::Vector3d>(&field[3 * m.triangles[3 * f + k]]);
+    const Eigen::Vector3d growth = faceNormalArea(pos).normal.cross(d);
+    const double angle = angleBetweenLines(phaseGradient(m, p, 0, f), growth) * 180 / M_PI;
+    sum += a * angle, area += a, within5 += angle < 5 ? a : 0;
+  }
+  EXPECT_LT(sum / area, 1.0);
+  EXPECT_GT(within5 / area, 0.99);
+}
+
+TEST(StripePattern, LineFieldRepresentativesSignsChangeNothing) {
+  const SurfaceMesh m = torus(48, 18, 2.0, 0.7);
+  const MeshTopology t = buildTopology(m);
+  std::vector<double> field = aroundTheTube(m), flipped = field;
+  std::mt19937 rnd(7);
+  for (int32_t v = 0; v < m.numVertices(); ++v)
+    if (rnd() % 2)
+      for (int c = 0; c < 3; ++c) flipped[3 * v + c] = -flipped[3 * v + c];
+  StripeOptions o;
+  o.symmetry = 2;
+  o.frequency = 1.5;
+  const StripePattern a = stripePattern(m, t, field, o), b = stripePattern(m, t, flipped, o);
+  EXPECT_NEAR(a.eigenvalue, b.eigenvalue, 1e-6 * std::max(1.0, std::abs(a.eigenvalue)));
+  for (int32_t f = 0; f < m.numFaces(); ++f) {
+    EXPECT_EQ(b.fieldSingular[f], 0);
+    // The same up to how far the inverse iteration got within the (nearly) repeated smallest eigenvalue.
+    EXPECT_LT(angleBetweenLines(phaseGradient(m, a, 0, f), phaseGradient(m, b, 0, f)), 2e-3);
+  }
+}
+
+// A source's radial field: stripes along the rays, so their number must grow outwards and some end (branch
+// faces). From both faces of every edge the phase agrees at points along it, modulo 2 pi.
+TEST(StripePattern, PhaseAgreesAcrossEveryEdgeBranchFacesIncluded) {
+  const SurfaceMesh m = flatGrid(30, 1.0, true);
+  const MeshTopology t = buildTopology(m);
+  std::vector<double> field;
+  for (int32_t v = 0; v < m.numVertices(); ++v) {
+    const Eigen::Vector3d r = vertexPosition(m, v) - Eigen::Vector3d(0.503, 0.497, 0);
+    field.insert(field.end(), {r.x() / r.norm(), r.y() / r.norm(), 0.0});
+  }
+  StripeOptions o;
+  o.frequency = 8.0;
+  const StripePattern p = stripePattern(m, t, field, o);
+  int branch = 0;
+  for (int32_t f = 0; f < m.numFaces(); ++f) branch += p.branchIndex[f] != 0;
+  EXPECT_GT(branch, 0);
+  double worst = 0;
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    if (t.isBoundaryEdge[e]) continue;
+    const int32_t va = t.edgeVertices[2 * e], vb = t.edgeVertices[2 * e + 1];
+    for (double s : {0.0, 0.25, 0.5, 0.8, 1.0}) {
+      double phase[2];
+      for (int side = 0; side < 2; ++side) {
+        const int32_t f = t.edgeFaces[2 * e + side];
+        double b[3] = {0, 0, 0};
+        for (int k = 0; k < 3; ++k) {
+          if (m.triangles[3 * f + k] == va) b[k] = 1 - s;
+          if (m.triangles[3 * f + k] == vb) b[k] = s;
+        }
+        phase[side] = phaseAt(p, m.numFaces(), 0, f, b);
+      }
+      const double d = std::remainder(phase[0] - phase[1], 2 * M_PI);
+      worst = std::max(worst, std::abs(d));
+    }
+  }
+  EXPECT_LT(worst, 1e-4);
+}
+
+TEST(StripePattern, PiecewiseLinearAngle) {
+  EXPECT_NEAR(stripeAngle(1, 0, 0), 0.0, 1e-12);
+  EXPECT_NEAR(stripeAngle(0, 1, 0), 2 * M_PI / 3, 1e-12);
+  EXPECT_NEAR(stripeAngle(0, 0, 1), 4 * M_PI / 3, 1e-12);
+  // Linear along each edge.
+  EXPECT_NEAR(stripeAngle(0.75, 0.25, 0), 0.25 * 2 * M_PI / 3, 1e-12);
+  EXPECT_NEAR(stripeAngle(0, 0.5, 0.5), M_PI, 1e-12);
+  EXPECT_NEAR(stripeAngle(0.5, 0, 0.5), 5 * M_PI / 3, 1e-12);
+  // Continuous inside but for its 2 pi turn: a walk round the centroid turns by 2 pi in small steps.
+  double turned = 0, previous = stripeAngle(1.0 / 3 - 0.2, 1.0 / 3 + 0.2, 1.0 / 3), largest = 0;
+  for (int i = 1; i <= 720; ++i) {
+    const double a = 2 * M_PI * i / 720;
+    const double b1 = 1.0 / 3 + 0.2 * std::cos(a), b2 = 1.0 / 3 + 0.2 * std::sin(a);
+    const double l = stripeAngle(1 - b1 - b2, b1, b2);
+    const double step = std::remainder(l - previous, 2 * M_PI);
+    turned += step, largest = std::max(largest, std::abs(step)), previous = l;
+  }
+  EXPECT_NEAR(std::abs(turned), 2 * M_PI, 1e-9);
+  EXPECT_LT(largest, 0.05);
+}
+
+TEST(StripePattern, BadInputIsReported) {
+  const SurfaceMesh m = flatGrid(4, 1.0);
+  const MeshTopology t = buildTopology(m);
+  const std::vector<double> field = constantField(m, Eigen::Vector3d::UnitX());
+  StripeOptions o;
+  o.symmetry = 3;
+  EXPECT_THROW(stripePattern(m, t, field, o), InputError);
+  o = {};
+  o.frequency = 0;
+  EXPECT_THROW(stripePattern(m, t, field, o), InputError);
+  o = {};
+  EXPECT_THROW(stripePattern(m, t, std::vector<double>(5, 0.0), o), InputError);
+  o.vertexFrequencyScale.assign(m.numVertices(), -1.0);
+  EXPECT_THROW(stripePattern(m, t, field, o), InputError);
+}
