@@ -9,7 +9,7 @@
 // follow the field) and s_ij = +-1 matches a line or cross field's representatives across the edge (the
 // neighbour's psi is then conjugated: its phase runs the other way). That is the eigenvector of the smallest
 // eigenvalue of the energy sum_ij w_ij |psi_j - e^(i omega_ij) psi_i|^2 (cotan weights) against the vertex
-// areas, found by inverse iteration on one CHOLMOD factor (solver/spd_solve.h).
+// areas, found by LOBPCG preconditioned by one CHOLMOD factor of the energy (solver/spd_solve.h).
 //
 // The phase inside a face: each corner's phase unwrapped from the first corner along the face's edges, each
 // step omega_ij plus the argument psi_j / (e^(i omega_ij) psi_i) (in (-pi, pi]). Going round the face comes
@@ -35,7 +35,10 @@ struct StripeOptions {
   // magnitude); empty for none.
   std::vector<double> vertexFrequencyScale;
   int maxIterations = 200;
-  double tolerance = 1e-10;  // on the Rayleigh quotient's relative change
+  double tolerance = 1e-6;  // on the first Ritz vector's relative residual |A x - theta B x| / |A x|
+  // Optional: a start for psi (a pattern computed before for a field close to this one), 2 x families per
+  // vertex.
+  std::vector<double> initialPsi;
 };
 
 struct StripePattern {
@@ -48,7 +51,9 @@ struct StripePattern {
       fieldSingular;        // per face: 1 where the field's representatives do not match up round it
   std::vector<double> psi;  // 2 x families per vertex (re, im), unit B-norm
   double eigenvalue = 0;    // the energy's Rayleigh quotient at psi
+  double residual = 0;  // |A psi - eigenvalue B psi| / |A psi| when the iteration stopped
   int iterations = 0;
+  double factorMs = 0, iterateMs = 0;
 };
 
 // vertexDirections: 3 per vertex, the field's (representative) direction there; a zero vector leaves the

@@ -206,6 +206,23 @@ TEST(StripePattern, PiecewiseLinearAngle) {
   EXPECT_LT(largest, 0.05);
 }
 
+// A pattern computed before for the same field starts the iteration where it ends (what an edit's update
+// leans on: the field after a stroke is close to the one before).
+TEST(StripePattern, AStartFromThePatternBeforeConvergesAtOnce) {
+  const SurfaceMesh m = torus(48, 18, 2.0, 0.7);
+  const MeshTopology t = buildTopology(m);
+  StripeOptions o;
+  o.symmetry = 2;
+  o.frequency = 1.5;
+  const StripePattern cold = stripePattern(m, t, aroundTheTube(m), o);
+  EXPECT_LE(cold.residual, o.tolerance);
+  EXPECT_GT(cold.iterations, 2);
+  o.initialPsi = cold.psi;
+  const StripePattern warm = stripePattern(m, t, aroundTheTube(m), o);
+  EXPECT_LE(warm.iterations, 2);
+  EXPECT_NEAR(warm.eigenvalue, cold.eigenvalue, 1e-6 * cold.eigenvalue);
+}
+
 TEST(StripePattern, BadInputIsReported) {
   const SurfaceMesh m = flatGrid(4, 1.0);
   const MeshTopology t = buildTopology(m);
