@@ -570,8 +570,13 @@ test.describe.serial('the design studio', () => {
     });
     await page.screenshot({ path: testInfo.outputPath('large-mesh.png') });
     expect(run.info.vertices).toBeGreaterThan(10000);
-    // Not a timing assertion: only where the load measurably took long must the indicator have come up.
-    if (run.op.workerMs > 500) expect(run.progressShownAfterMs, 'progress indicator shown during the load').not.toBeNull();
+    // Not a timing assertion: only where the load measurably took long must the indicator have come up, and
+    // only where the page's thread was free to show it (its 200 ms timer and the reply wait for the same thread:
+    // on a loaded machine a pause of the whole thread can outlast the load, and the reply then comes first).
+    const freeForMs = run.op.workerMs - run.maxMainThreadBlockMs;
+    if (run.op.workerMs > 500 && freeForMs > 300)
+      expect(run.progressShownAfterMs, 'progress indicator shown during the load').not.toBeNull();
+    else if (run.progressShownAfterMs === null) console.log(JSON.stringify({ progressNotAsserted: { workerMs: run.op.workerMs, maxMainThreadBlockMs: run.maxMainThreadBlockMs } }));
     measurements.largeMeshLoad = {
       mesh: source.path ? 'bench-data/meshes/bunny00.off' : 'bunny subdivided twice',
       vertices: run.info.vertices,

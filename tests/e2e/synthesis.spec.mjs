@@ -290,6 +290,26 @@ test.describe.serial('texture synthesis on a curved model (the default bunny, ge
     await page?.close();
   });
 
+  // Before any texture: the Texture panel's thumbnail already shows the exemplar a synthesis would use (the
+  // default stripes), the same picture as once it is chosen explicitly.
+  test('the exemplar thumbnail shows the default exemplar before the first synthesis', async () => {
+    const thumbnail = () =>
+      page.evaluate(() => {
+        const c = document.querySelector('tangent-field-designer').shadowRoot.getElementById('tex-preview');
+        return Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data);
+      });
+    const spread = (px) => {
+      const grey = px.filter((_, i) => i % 4 === 0);
+      const mean = grey.reduce((a, b) => a + b, 0) / grey.length;
+      return Math.sqrt(grey.reduce((a, b) => a + (b - mean) ** 2, 0) / grey.length);
+    };
+    await expect.poll(async () => spread(await thumbnail()), { timeout: 20000 }).toBeGreaterThan(20);
+    expect(await page.evaluate(() => window.tvf.synthesisStats())).toBeNull();
+    const before = await thumbnail();
+    await page.evaluate(() => window.tvf.setExemplar('stripes'));
+    expect(await thumbnail()).toEqual(before);
+  });
+
   test('stripes follow a stroke-designed field within 10°; seams continue across charts', async ({}, testInfo) => {
     // A stroke across the body, sampled from the surface under a horizontal screen line.
     const points = await surfacePointsAlongScreenLine(page, { x0: 0.38, dx: 0.012, y: 0.55, count: 20 });

@@ -146,6 +146,12 @@ export class SynthesisController {
     });
   }
 
+  // The exemplar the next synthesis uses when none was chosen (its tables, from the library's cache after the
+  // first call): for the panel's thumbnail before any texture is made.
+  async defaultExemplar() {
+    return (await this.library.procedural('stripes', PROCEDURAL_SIZE, 1)).tables;
+  }
+
   exemplarInfo() {
     if (!this.exemplar) return null;
     const { tables, label, cached, analysisMs } = this.exemplar;

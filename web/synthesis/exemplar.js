@@ -59,20 +59,28 @@ export class ExemplarLibrary {
   constructor(analyze, { capacity = 6 } = {}) {
     this.analyze = analyze;
     this.cache = new Map(); // key -> tables, most recently used last
+    this.pending = new Map(); // key -> the analysis under way: asked again meanwhile, it is awaited, not redone
     this.capacity = capacity;
   }
 
   async #cached(key, label, spec) {
+    if (this.pending.has(key)) await this.pending.get(key).catch(() => {});
     if (this.cache.has(key)) {
       const t = this.cache.get(key);
       this.cache.delete(key);
       this.cache.set(key, t);
       return { tables: t, cached: true };
     }
-    const tables = { key, source: label, ...(await this.analyze(spec)) };
-    this.cache.set(key, tables);
-    while (this.cache.size > this.capacity) this.cache.delete(this.cache.keys().next().value);
-    return { tables, cached: false };
+    const analysis = Promise.resolve(this.analyze(spec));
+    this.pending.set(key, analysis);
+    try {
+      const tables = { key, source: label, ...(await analysis) };
+      this.cache.set(key, tables);
+      while (this.cache.size > this.capacity) this.cache.delete(this.cache.keys().next().value);
+      return { tables, cached: false };
+    } finally {
+      this.pending.delete(key);
+    }
   }
 
   procedural(name, size = PROCEDURAL_SIZE, seed = 1) {

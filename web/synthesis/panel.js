@@ -117,6 +117,10 @@ export function mountSynthesisPanel(
       custom.textContent = label;
       exemplar.value = 'custom';
     }
+    drawThumbnail(info);
+  }
+
+  function drawThumbnail(info) {
     const ctx = preview.getContext('2d');
     const img = new ImageData(new Uint8ClampedArray(info.rgba8), info.size, info.size);
     const c = canvasElement(info.size, info.size);
@@ -124,6 +128,13 @@ export function mountSynthesisPanel(
     ctx.imageSmoothingEnabled = true;
     ctx.drawImage(c, 0, 0, 48, 48);
   }
+
+  // Until an exemplar is chosen or a texture made, the one a synthesis would use (analysed in the core's worker
+  // once it has started, and kept for that synthesis).
+  controller
+    .defaultExemplar?.()
+    .then((tables) => !controller.exemplar && !shownExemplar && drawThumbnail(tables))
+    .catch(() => {});
 
   function showStats() {
     const p = controller.progress;
