@@ -791,4 +791,44 @@ t.delete();
   x.delete();
   t.delete();
 }
+
+// Stripe patterns (stripe_bindings.cpp): on a flat square with a constant field, straight stripes across it at
+// exactly the asked frequency (the gradient of each face's interpolated phase); a second compute on the same
+// mesh starts from the first's pattern; a bad symmetry is refused by name.
+{
+  const n = 12, positions = [], triangles = [];
+  for (let j = 0; j <= n; j++) for (let i = 0; i <= n; i++) positions.push(i / n, j / n, 0);
+  const id = (i, j) => j * (n + 1) + i;
+  for (let j = 0; j < n; j++)
+    for (let i = 0; i < n; i++) triangles.push(id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1), id(i, j + 1));
+  const dir = [0.6, 0.8, 0];
+  const directions = positions.map((_, k) => dir[k % 3]);
+  const s = new Module.StripePatternBuilder();
+  const frequency = 4;
+  const err = s.compute(positions, triangles, directions, JSON.stringify({ symmetry: 2, frequency }));
+  check('stripes: computed', err === '', err);
+  const phase = s.cornerPhase().slice();
+  let worstRate = 0, worstAngle = 0;
+  for (let f = 0; f < triangles.length / 3; f++) {
+    const p = [0, 1, 2].map((k) => positions.slice(3 * triangles[3 * f + k], 3 * triangles[3 * f + k] + 2));
+    const g = phase.slice(3 * f, 3 * f + 3);
+    // Solve grad . (p1 - p0) = g1 - g0, grad . (p2 - p0) = g2 - g0 in the plane.
+    const [ax, ay] = [p[1][0] - p[0][0], p[1][1] - p[0][1]], [bx, by] = [p[2][0] - p[0][0], p[2][1] - p[0][1]];
+    const det = ax * by - ay * bx, da = g[1] - g[0], db = g[2] - g[0];
+    const gx = (da * by - db * ay) / det, gy = (ax * db - bx * da) / det;
+    const rate = Math.hypot(gx, gy);
+    worstRate = Math.max(worstRate, Math.abs(rate / (2 * Math.PI * frequency) - 1));
+    // The phase grows across the field: the gradient is perpendicular to it.
+    worstAngle = Math.max(worstAngle, Math.abs((gx * dir[0] + gy * dir[1]) / rate));
+  }
+  check('stripes: the asked frequency, across the field', worstRate < 1e-4 && worstAngle < 1e-4,
+    `rate ${worstRate}, cos ${worstAngle}`);
+  const first = JSON.parse(s.statsJson());
+  check('stripes: a second compute starts from the first', s.compute(positions, triangles, directions,
+    JSON.stringify({ symmetry: 2, frequency })) === '' && JSON.parse(s.statsJson()).warmStart === true &&
+    JSON.parse(s.statsJson()).iterations <= first.iterations, s.statsJson());
+  const refused = s.compute(positions, triangles, directions, JSON.stringify({ symmetry: 3, frequency }));
+  check('stripes: symmetry 3 is refused by name', /symmetry must be 1, 2 or 4/.test(refused), refused);
+  s.delete();
+}
 finish();

@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+//
+// embind bindings of stripe patterns (core/direction/stripe_pattern.h). Same conventions as bindings.cpp:
+// nothing throws into JS (compute returns '' or the error message), and the read-outs are
+// typed_memory_view()s into wasm memory, valid until the next compute on the same object or memory growth:
+// copy them first.
+//
+//   const s = new Module.StripePatternBuilder();
+//   s.compute(positions, triangles, vertexDirections, optionsJson)   // '' or an error message
+//   //   positions: 3 per vertex; triangles: 3 per face; vertexDirections: 3 per vertex (the field's
+//   //   representatives); optionsJson: {symmetry: 1|2|4, frequency (stripes per unit length),
+//   //   vertexFrequencyScale?: [one per vertex], tolerance?, maxIterations?}
+//   s.cornerPhase()     // Float32Array view: families x 3 per face (family-major), radians
+//   s.branchIndex()     // Int8Array view: families per face
+//   s.fieldSingular()   // Uint8Array view: 1 per face
+//   s.statsJson()       // {families, eigenvalue, residual, iterations, factorMs, iterateMs, warmStart}
+//   s.delete()
+// A compute on the same mesh and symmetry as the one before starts from its pattern (an edit's field is close
+// to the one before it).
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+
+#include <exception>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "common/input_error.h"
+#include "direction/stripe_pattern.h"
+#include "mesh/mesh_topology.h"
+#include "mesh/surface_mesh.h"
+
+namespace {
+
+using emscripten::val;
+
+class StripePatternBinding {
+ public:
+  std::string compute(const val& positions, const val& triangles, const val& directions,
+                      const std::string& json) {
+    try {
+      tvf::SurfaceMesh mesh;
+      mesh.positions = emscripten::convertJSArrayToNumberVector<double>(positions);
+      mesh.triangles = emscripten::convertJSArrayToNumberVector<int32_t>(triangles);
+      const std::vector<double> dirs = emscripten::convertJSArrayToNumberVector<double>(directions);
+      if (mesh.positions.size() % 3 || mesh.triangles.size() % 3 || mesh.triangles.empty())
+        throw tvf::InputError("stripe pattern: positions and triangles must come in threes");
+      for (int32_t v : mesh.triangles)
+        if (v < 0 || v >= mesh.numVertices())
+          throw tvf::InputError("stripe pattern: a vertex index out of range");
+      const nlohmann::json o = json.empty() ? nlohmann::json::object() : nlohmann::json::parse(json);
+      tvf::StripeOptions options;
+      options.symmetry = o.value("symmetry", 1);
+      options.frequency = o.value("frequency", 1.0);
+      options.tolerance = o.value("tolerance", options.tolerance);
+      options.maxIterations = o.value("maxIterations", options.maxIterations);
+      if (o.contains("vertexFrequencyScale"))
+        options.vertexFrequencyScale = o.at("vertexFrequencyScale").get<std::vector<double>>();
+      const bool sameMesh = mesh.triangles == triangles_ && mesh.positions.size() == positionCount_;
+      warmStart_ = sameMesh && symmetry_ == options.symmetry && !pattern_.psi.empty();
+      if (warmStart_) options.initialPsi = pattern_.psi;
+      const tvf::MeshTopology topology = tvf::buildTopology(mesh);
+      pattern_ = tvf::stripePattern(mesh, topology, dirs, options);
+      triangles_ = std::move(mesh.triangles);
+      positionCount_ = mesh.positions.size();
+      symmetry_ = options.symmetry;
+      return "";
+    } catch (const std::bad_alloc&) {
+      return "out of memory";
+    } catch (const std::exception& e) {
+      return e.what()[0] ? e.what() : "unknown error in the core";
+    }
+  }
+  val cornerPhase() const { return view(pattern_.cornerPhase); }
+  val branchIndex() const { return view(pattern_.branchIndex); }
+  val fieldSingular() const { return view(pattern_.fieldSingular); }
+  std::string statsJson() const {
+    return nlohmann::json{{"families", pattern_.families}, {"eigenvalue", pattern_.eigenvalue},
+                          {"residual", pattern_.residual}, {"iterations", pattern_.iterations},
+                          {"factorMs", pattern_.factorMs}, {"iterateMs", pattern_.iterateMs},
+                          {"warmStart", warmStart_}}
+        .dump();
+  }
+
+ private:
+  template <typename T>
+  static val view(const std::vector<T>& v) {
+    return val(emscripten::typed_memory_view(v.size(), v.data()));
+  }
+
+  tvf::StripePattern pattern_;
+  std::vector<int32_t> triangles_;
+  size_t positionCount_ = 0;
+  int symmetry_ = 0;
+  bool warmStart_ = false;
+};
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(tvf_stripes) {
+  emscripten::class_<StripePatternBinding>("StripePatternBuilder")
+      .constructor<>()
+      .function("compute", &StripePatternBinding::compute)
+      .function("cornerPhase", &StripePatternBinding::cornerPhase)
+      .function("branchIndex", &StripePatternBinding::branchIndex)
+      .function("fieldSingular", &StripePatternBinding::fieldSingular)
+      .function("statsJson", &StripePatternBinding::statsJson);
+}
