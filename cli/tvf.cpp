@@ -12,8 +12,11 @@
 #include "design/design_document.h"
 #include "design/field_export.h"
 #include "design/mesh_info.h"
+#include "direction/stripe_pattern.h"
+#include "direction/stripe_texture.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_io.h"
+#include "io/png_writer.h"
 #include "io/rosy_file.h"
 #include "io/sharp_file.h"
 #include "io/sing_file.h"
@@ -23,36 +26,39 @@ namespace {
 constexpr int kUsageError = 2;
 
 int usage() {
-  std::cerr << "usage:\n"
-               "  tvf info MESH\n"
-               "  tvf design MESH DESIGN.json [-o FIELD.json] [--ignore-fingerprint] [--hodge]\n"
-               "             [--sing IN.sing]\n"
-               "  tvf export MESH DESIGN.json [--glb OUT.glb] [--flowmap OUT.png] [--size N]\n"
-               "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
-               "             [--no-embed-flowmap] [--component whole|exact|coexact|harmonic]\n"
-               "             [--rawfield OUT.rawfield] [--sing OUT.sing] [--rosy OUT.rosy]\n"
-               "             [--sharp OUT.sharp]\n"
-               "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
-               "            [--threads N] [--symmetry N]\n"
-               "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
-               "updates, slower analysis), as in the browser build; --amd for AMD; --compare for both,\n"
-               "interleaved repeat by repeat in one process (JSON only).\n"
-               "--threads: threads of each solve's backward substitution (default: the cores, up to 4).\n"
-               "MESH: .gltf, .glb, .off, .obj or .ply\n"
-               "A design saved for another mesh (its \"mesh\" fingerprint differs) is refused unless\n"
-               "--ignore-fingerprint is given.\n"
-               "--hodge: the field file gets \"hodge\" (Hodge decomposition: exact, coexact, harmonic,\n"
-               "potentials, energyShares). --component: export that part of the field instead of the whole.\n"
-               "A design's \"symmetry\" (1 vector, 2 line, 4 cross field; up to 6) makes design write\n"
-               "faceDirections (one unit representative per face) and fractional singularity indices;\n"
-               "bench --symmetry N times that field's system. export of such a design combs the directions\n"
-               "per atlas chart for the flow map and the GLB (KHR_materials_anisotropy, _FIELD); --rawfield\n"
-               "writes all N directions per face in Directional's raw field format (docs/export.md).\n"
-               "Prescribed singularities and sharp features: a design's \"singularities\",\n"
-               "\"featureAngle\" and \"featureEdges\" (docs/design-format.md). design --sing adds a\n"
-               "Directional .sing file's singularities to the design's (the file's N is the symmetry of\n"
-               "a design that names none). export --sing writes the field's singularities (Directional),\n"
-               "--rosy the cross field (QuadWild; symmetry 4), --sharp the feature edges (QuadWild).\n";
+  std::cerr
+      << "usage:\n"
+         "  tvf info MESH\n"
+         "  tvf design MESH DESIGN.json [-o FIELD.json] [--ignore-fingerprint] [--hodge]\n"
+         "             [--sing IN.sing]\n"
+         "  tvf export MESH DESIGN.json [--glb OUT.glb] [--flowmap OUT.png] [--size N]\n"
+         "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
+         "             [--no-embed-flowmap] [--component whole|exact|coexact|harmonic]\n"
+         "             [--rawfield OUT.rawfield] [--sing OUT.sing] [--rosy OUT.rosy]\n"
+         "             [--sharp OUT.sharp] [--stripes FREQ]\n"
+         "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
+         "            [--threads N] [--symmetry N]\n"
+         "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
+         "updates, slower analysis), as in the browser build; --amd for AMD; --compare for both,\n"
+         "interleaved repeat by repeat in one process (JSON only).\n"
+         "--threads: threads of each solve's backward substitution (default: the cores, up to 4).\n"
+         "MESH: .gltf, .glb, .off, .obj or .ply\n"
+         "A design saved for another mesh (its \"mesh\" fingerprint differs) is refused unless\n"
+         "--ignore-fingerprint is given.\n"
+         "--hodge: the field file gets \"hodge\" (Hodge decomposition: exact, coexact, harmonic,\n"
+         "potentials, energyShares). --component: export that part of the field instead of the whole.\n"
+         "A design's \"symmetry\" (1 vector, 2 line, 4 cross field; up to 6) makes design write\n"
+         "faceDirections (one unit representative per face) and fractional singularity indices;\n"
+         "bench --symmetry N times that field's system. export of such a design combs the directions\n"
+         "per atlas chart for the flow map and the GLB (KHR_materials_anisotropy, _FIELD); --rawfield\n"
+         "writes all N directions per face in Directional's raw field format (docs/export.md).\n"
+         "Prescribed singularities and sharp features: a design's \"singularities\",\n"
+         "\"featureAngle\" and \"featureEdges\" (docs/design-format.md). design --sing adds a\n"
+         "Directional .sing file's singularities to the design's (the file's N is the symmetry of\n"
+         "a design that names none). export --sing writes the field's singularities (Directional),\n"
+         "--rosy the cross field (QuadWild; symmetry 4), --sharp the feature edges (QuadWild).\n"
+         "export --stripes FREQ bakes the field's stripe pattern (FREQ stripes per unit length; a grid\n"
+         "for a cross field) into the GLB's base colour over the export's atlas (docs/export.md).\n";
   return kUsageError;
 }
 
@@ -210,12 +216,26 @@ void writeInteropFiles(const tvf::Designer& designer, const std::string& singPat
                                                  designer.mesh().positions, designer.featureEdges()));
 }
 
+// The design's stripe pattern (direction/stripe_pattern.h) drawn into the export's atlas, as a PNG.
+std::vector<uint8_t> stripePng(const tvf::Designer& designer, const tvf::ExportAtlas& atlas,
+                               const tvf::FieldExportOptions& options, double frequency) {
+  tvf::StripeOptions o;
+  o.symmetry = designer.symmetry();
+  o.frequency = frequency;
+  const tvf::StripePattern pattern =
+      tvf::stripePattern(designer.mesh(), designer.topology(), designer.vertexVectors(), o);
+  const std::vector<uint8_t> rgba =
+      tvf::stripeTextureRgba(designer.mesh(), pattern, atlas.cornerUVs, options.size, options.gutterTexels);
+  return tvf::encodePngRgba(std::vector<uint16_t>(rgba.begin(), rgba.end()), options.size, options.size, 8);
+}
+
 int exportCommand(int argc, char** argv) {
   if (argc < 4) return usage();
   const std::string meshPath = argv[2], designPath = argv[3];
   std::string glbPath, flowMapPath, rawFieldPath, singPath, rosyPath, sharpPath;
   tvf::FieldExportOptions options;
   tvf::FieldComponent component = tvf::FieldComponent::Whole;
+  double stripes = 0;
   for (int k = 4; k < argc; ++k) {
     const std::string a = argv[k];
     if (a == "--no-embed-flowmap") {
@@ -249,6 +269,11 @@ int exportCommand(int argc, char** argv) {
       options.anisotropyRotation = numberArgument(a, value);
     } else if (a == "--component") {
       component = tvf::fieldComponentFromName(value);
+    } else if (a == "--stripes") {
+      stripes = numberArgument(a, value);
+      if (!(stripes > 0))
+        throw tvf::InputError(
+            "--stripes: the frequency must be a positive number of stripes per unit length");
     } else {
       return usage();
     }
@@ -268,6 +293,13 @@ int exportCommand(int argc, char** argv) {
         "--component: the Hodge decomposition is of vector fields (symmetry 1, no prescribed singularity); "
         "this design has symmetry " +
         std::to_string(symmetry) + (symmetry == 1 ? " and singularities" : ""));
+  if (stripes > 0 && glbPath.empty())
+    throw tvf::InputError("--stripes bakes the stripes into the GLB's base colour: give --glb too");
+  if (stripes > 0 && symmetry != 1 && symmetry != 2 && symmetry != 4)
+    throw tvf::InputError(
+        "--stripes: stripe patterns are of vector, line and cross fields (symmetry 1, 2, 4); "
+        "this design has symmetry " +
+        std::to_string(symmetry));
   if (!rosyPath.empty() && symmetry != 4)
     throw tvf::InputError("--rosy: .rosy holds a cross field (symmetry 4); this design has symmetry " +
                           std::to_string(symmetry));
@@ -288,8 +320,9 @@ int exportCommand(int argc, char** argv) {
                                           ? designer.oneForm()
                                           : tvf::componentOneForm(designer.hodgeDecomposition(), component);
   const tvf::SurfaceMesh& mesh = designer.mesh();
-  const tvf::ExportAtlas atlas = tvf::exportAtlasFor(
-      mesh, designer.topology(), options, !flowMapPath.empty() || (!glbPath.empty() && options.embedFlowMap));
+  const tvf::ExportAtlas atlas =
+      tvf::exportAtlasFor(mesh, designer.topology(), options,
+                          !flowMapPath.empty() || (!glbPath.empty() && options.embedFlowMap) || stripes > 0);
   if (atlas.generated) {
     std::cerr << "tvf: " << meshPath << ": " << atlas.reason << "; using a generated atlas"
               << (glbPath.empty()
@@ -305,6 +338,8 @@ int exportCommand(int argc, char** argv) {
                                               designer.faceVectors(), symmetry, options));
   }
   if (!glbPath.empty()) {
+    const std::vector<uint8_t> baseColour =
+        stripes > 0 ? stripePng(designer, atlas, options, stripes) : std::vector<uint8_t>{};
     std::unique_ptr<tvf::GltfSource> source;
     if (format == tvf::MeshFormat::Gltf || format == tvf::MeshFormat::Glb) {
       const std::vector<uint8_t> bytes = readBytes(meshPath);
@@ -314,11 +349,12 @@ int exportCommand(int argc, char** argv) {
                               parent.empty() ? "." : parent, meshPath));
     }
     writeBytes(glbPath,
-               !directions ? tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(),
-                                                 atlas, oneForm, tvf::designDocument(designer), options)
-                           : tvf::exportDirectionGlb(mesh, designer.topology(), designer.geometry(),
-                                                     source.get(), atlas, designer.faceVectors(), symmetry,
-                                                     tvf::designDocument(designer), options));
+               !directions
+                   ? tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(), atlas,
+                                         oneForm, tvf::designDocument(designer), options, baseColour)
+                   : tvf::exportDirectionGlb(mesh, designer.topology(), designer.geometry(), source.get(),
+                                             atlas, designer.faceVectors(), symmetry,
+                                             tvf::designDocument(designer), options, baseColour));
   }
   return 0;
 }

@@ -124,13 +124,18 @@ bool isDataUri(const std::string& uri) {
   return uri.rfind("data:", 0) == 0;
 }
 
-// Moves every buffer of the source into the builder's single buffer and repoints the bufferViews.
+// Moves every buffer of the source into the builder's single buffer and repoints the source's bufferViews.
+// Views the builder added before (a base colour texture) already index its buffer and stay as they are: a
+// base colour on a GLB that kept its source pointed into the source's data before.
 void mergeBuffers(const GltfSource& source, GlbBuilder& builder) {
   json& doc = builder.doc();
   std::vector<std::size_t> base;
   for (const auto& buffer : source.buffers) base.push_back(builder.append(buffer.data(), buffer.size()));
+  const std::size_t sourceViews =
+      source.document.contains("bufferViews") ? source.document["bufferViews"].size() : std::size_t{0};
   if (doc.contains("bufferViews")) {
-    for (json& view : doc["bufferViews"]) {
+    for (std::size_t v = 0; v < std::min(sourceViews, doc["bufferViews"].size()); ++v) {
+      json& view = doc["bufferViews"][v];
       const std::size_t buffer = view.value("buffer", 0);
       view["buffer"] = 0;
       view["byteOffset"] = view.value("byteOffset", std::size_t{0}) + base.at(buffer);

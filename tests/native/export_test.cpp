@@ -606,6 +606,52 @@ TEST_F(CurvedPatchExport, AModelWithoutUVsGetsAGeneratedAtlas) {
       parseGlb(readBytes(dir_ / "plain.glb")).doc["extras"][tvf::kGlbExtrasKey].contains("flowMapTexture"));
 }
 
+// export --stripes bakes the field's stripe pattern into the GLB's base colour over the model's own UVs:
+// along the stroke the colour hardly changes, across it it goes through whole stripes (the grey's variance
+// over a segment of about one period, in both directions, at every stroke sample). --stripes without --glb,
+// or with no frequency, is refused by name.
+TEST_F(CurvedPatchExport, StripesAreBakedIntoTheBaseColourAlongTheStroke) {
+  const int n = 512;
+  ASSERT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("s.glb") +
+                   " --stripes 6 --size 512"),
+            0);
+  const Glb glb = parseGlb(readBytes(dir_ / "s.glb"));
+  const json& pbr = glb.doc["materials"][0]["pbrMetallicRoughness"];
+  ASSERT_TRUE(pbr.contains("baseColorTexture"));
+  const json& image =
+      glb.doc["images"]
+             [glb.doc["textures"][pbr["baseColorTexture"]["index"].get<int>()]["source"].get<int>()];
+  const json& view = glb.doc["bufferViews"][image["bufferView"].get<int>()];
+  const auto begin = glb.bin.begin() + view.value("byteOffset", 0);
+  const Image map = decodePng(std::vector<uint8_t>(begin, begin + view["byteLength"].get<long>()));
+  ASSERT_EQ(map.width, n);
+  const auto variance = [&](const Eigen::Vector2d& q, const Eigen::Vector2d& d) {
+    double sum = 0, sum2 = 0;
+    for (int s = -16; s <= 16; ++s) {
+      const Eigen::Vector2d p = q + s * d;
+      const int x = std::clamp(int(p.x()), 0, n - 1), y = std::clamp(int(p.y()), 0, n - 1);
+      sum += map.at(x, y, 0), sum2 += double(map.at(x, y, 0)) * map.at(x, y, 0);
+    }
+    return sum2 / 33 - (sum / 33) * (sum / 33);
+  };
+  double along = 0, across = 0;
+  for (size_t k = 5; k + 6 < stroke_.size(); ++k) {
+    const Eigen::Vector2d t = toUV(mesh_, mesh_.cornerUVs, stroke_[k].face, strokeTangent(k)).normalized();
+    const Eigen::Vector2d q = uvAt(mesh_.cornerUVs, stroke_[k]) * n;
+    along += variance(q, t);
+    across += variance(q, Eigen::Vector2d(-t.y(), t.x()));
+  }
+  std::cout << "[ measured ] stripes: grey variance along the stroke " << along << ", across " << across
+            << "\n";
+  EXPECT_GT(across, 1000.0 * (stroke_.size() - 11));  // whole stripes: a light-dark contrast of ~180 levels
+  EXPECT_LT(along, 0.05 * across);
+  EXPECT_EQ(
+      runCli(path("patch.glb") + " " + path("design.json") + " --flowmap " + path("f.png") + " --stripes 6"),
+      2);
+  EXPECT_EQ(
+      runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("z.glb") + " --stripes 0"), 2);
+}
+
 TEST_F(CurvedPatchExport, NormalMappedMaterialsGetTheDirectionInAnisotropyTexture) {
   const double worst = anisotropyTextureDeviation("design.json", "mapped.out.glb", false);
   EXPECT_LT(worst, 2.0);

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "common/input_error.h"
+#include "direction/stripe_texture.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
 #include "test_meshes.h"
@@ -221,6 +222,42 @@ TEST(StripePattern, AStartFromThePatternBeforeConvergesAtOnce) {
   const StripePattern warm = stripePattern(m, t, aroundTheTube(m), o);
   EXPECT_LE(warm.iterations, 2);
   EXPECT_NEAR(warm.eigenvalue, cold.eigenvalue, 1e-6 * cold.eigenvalue);
+}
+
+// The pattern drawn into an atlas (direction/stripe_texture.h): a flat square whose UVs are its own x and y,
+// a constant field along x. Down a texel column the light-dark transitions come at exactly the asked
+// frequency (their spacing, over the whole column, within 1 %); along a texel row the colour does not change.
+TEST(StripeTexture, FlatSquareStripesAtTheAskedFrequency) {
+  const SurfaceMesh m = flatGrid(20, 1.0, true);
+  const MeshTopology t = buildTopology(m);
+  StripeOptions o;
+  o.frequency = 8.0;
+  const StripePattern p = stripePattern(m, t, constantField(m, Eigen::Vector3d::UnitX()), o);
+  std::vector<float> uvs;
+  for (int32_t f = 0; f < m.numFaces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d q = vertexPosition(m, m.triangles[3 * f + k]);
+      uvs.insert(uvs.end(), {static_cast<float>(q.x()), static_cast<float>(q.y())});
+    }
+  const int size = 512;
+  const std::vector<uint8_t> rgba = stripeTextureRgba(m, p, uvs, size, 2);
+  const auto grey = [&](int x, int y) { return rgba[4 * (static_cast<size_t>(y) * size + x)]; };
+  for (int y = 0; y < size; ++y) ASSERT_EQ(rgba[4 * (static_cast<size_t>(y) * size + 100) + 3], 255);
+  // Transitions down column 100: where the grey crosses its mid-level, located by linear interpolation.
+  const double mid = 0.5 * (236 + 52);
+  std::vector<double> crossings;
+  for (int y = 0; y + 1 < size; ++y) {
+    const double a = grey(100, y) - mid, b = grey(100, y + 1) - mid;
+    if ((a < 0) != (b < 0)) crossings.push_back((y + 0.5 + a / (a - b)) / size);
+  }
+  ASSERT_GE(crossings.size(), 14u);
+  const double periods = 0.5 * static_cast<double>(crossings.size() - 1);
+  EXPECT_NEAR(periods / (crossings.back() - crossings.front()), o.frequency, 0.01 * o.frequency);
+  int worstRow = 0;
+  for (int y = 0; y < size; y += 7)
+    for (int x = 0; x < size; ++x) worstRow = std::max(worstRow, std::abs(grey(x, y) - grey(0, y)));
+  EXPECT_LE(worstRow, 2);
+  EXPECT_THROW(stripeTextureRgba(m, p, std::vector<float>(5), size, 2), InputError);
 }
 
 TEST(StripePattern, BadInputIsReported) {
