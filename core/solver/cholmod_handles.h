@@ -1,8 +1,10 @@
 #pragma once
-// RAII ownership of CHOLMOD's workspace and objects (int32 API).
+// RAII ownership of CHOLMOD's workspace and objects (int32 API), and views of the project's matrices.
 #include <cholmod.h>
 
 #include <memory>
+
+#include "common/sparse_matrix.h"
 
 namespace tvf {
 
@@ -36,5 +38,24 @@ struct CholmodDenseDeleter {
 using CholmodFactorPtr = std::unique_ptr<cholmod_factor, CholmodFactorDeleter>;
 using CholmodSparsePtr = std::unique_ptr<cholmod_sparse, CholmodSparseDeleter>;
 using CholmodDensePtr = std::unique_ptr<cholmod_dense, CholmodDenseDeleter>;
+
+// A view of a compressed upper triangle as CHOLMOD's packed, sorted, symmetric-upper sparse matrix: nothing
+// is copied, so it is valid while `upper` is.
+inline cholmod_sparse upperTriangleView(const SparseMatrix& upper) {
+  cholmod_sparse s{};
+  s.nrow = static_cast<size_t>(upper.rows());
+  s.ncol = static_cast<size_t>(upper.cols());
+  s.nzmax = static_cast<size_t>(upper.nonZeros());
+  s.p = const_cast<int*>(upper.outerIndexPtr());
+  s.i = const_cast<int*>(upper.innerIndexPtr());
+  s.x = const_cast<double*>(upper.valuePtr());
+  s.stype = 1;
+  s.itype = CHOLMOD_INT;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = 1;
+  s.packed = 1;
+  return s;
+}
 
 }  // namespace tvf

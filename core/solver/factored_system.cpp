@@ -330,24 +330,6 @@ struct FactoredSystem::Impl {
     if (perm.empty()) return cholmod_analyze(&A, common.get());
     return analyzeGiven(A, perm);
   }
-
-  // A view of the upper triangle of A as CHOLMOD's packed, sorted, symmetric-upper sparse matrix.
-  static cholmod_sparse upperView(const SparseMatrix& upper) {
-    cholmod_sparse s{};
-    s.nrow = upper.rows();
-    s.ncol = upper.cols();
-    s.nzmax = upper.nonZeros();
-    s.p = const_cast<int*>(upper.outerIndexPtr());
-    s.i = const_cast<int*>(upper.innerIndexPtr());
-    s.x = const_cast<double*>(upper.valuePtr());
-    s.stype = 1;
-    s.itype = CHOLMOD_INT;
-    s.xtype = CHOLMOD_REAL;
-    s.dtype = CHOLMOD_DOUBLE;
-    s.sorted = 1;
-    s.packed = 1;
-    return s;
-  }
 };
 
 FactoredSystem::FactoredSystem(FillOrdering ordering) : impl_(std::make_unique<Impl>(ordering)) {}
@@ -374,7 +356,7 @@ bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<do
       return factorUpper(upperTriangle(upper + D), {});
     }
   }
-  cholmod_sparse view = Impl::upperView(upper);
+  cholmod_sparse view = upperTriangleView(upper);
   if (!values.empty()) view.x = values.data();
   auto start = std::chrono::steady_clock::now();
   s.forward.invalidate();

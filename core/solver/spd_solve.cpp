@@ -30,18 +30,7 @@ SpdFactor::SpdFactor(const SparseMatrix& upper) : impl_(std::make_unique<Impl>()
   c.print = 0;
   c.error_handler = nullptr;
 
-  cholmod_sparse A{};  // a view of `upper`, not a copy
-  A.nrow = A.ncol = s.n;
-  A.nzmax = static_cast<size_t>(upper.nonZeros());
-  A.p = const_cast<int*>(upper.outerIndexPtr());
-  A.i = const_cast<int*>(upper.innerIndexPtr());
-  A.x = const_cast<double*>(upper.valuePtr());
-  A.stype = 1;
-  A.itype = CHOLMOD_INT;
-  A.xtype = CHOLMOD_REAL;
-  A.dtype = CHOLMOD_DOUBLE;
-  A.sorted = 1;
-  A.packed = 1;
+  cholmod_sparse A = upperTriangleView(upper);
 
   s.factor.reset(cholmod_analyze(&A, &c));
   if (!s.factor || !cholmod_factorize(&A, s.factor.get(), &c) || c.status != CHOLMOD_OK) return;

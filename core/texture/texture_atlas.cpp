@@ -7,6 +7,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <functional>
+#include <mutex>
 #include <numeric>
 #include <queue>
 #include <tuple>
@@ -542,6 +545,22 @@ void normalizeChart(Chart& chart, const FaceGeometry& g) {
   for (size_t i = 0; i < m; ++i) chart.uv[2 * i] -= x0, chart.uv[2 * i + 1] -= y0;
 }
 
+// The thread team's run for tasks that may throw (out of memory in a chart's solve or a packing's bitmaps,
+// which the team's tasks must not): the first exception is rethrown here once every part has returned.
+void runParts(int parts, const std::function<void(int)>& task) {
+  std::exception_ptr failure;
+  std::mutex m;
+  ThreadTeam::shared().run(parts, [&](int part) {
+    try {
+      task(part);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(m);
+      if (!failure) failure = std::current_exception();
+    }
+  });
+  if (failure) std::rethrow_exception(failure);
+}
+
 // A chart flattened and checked, or, when its map is not acceptable, the pieces to try instead.
 struct ChartOutcome {
   Chart chart;
@@ -598,7 +617,7 @@ std::vector<Chart> makeCharts(const SurfaceMesh& mesh, const FaceGeometry& g, in
                      [](const auto& a, const auto& b) { return a.size() > b.size(); });
     std::vector<ChartOutcome> outcome(pending.size());
     std::atomic<size_t> next{0};
-    ThreadTeam::shared().run(parts, [&](int part) {
+    runParts(parts, [&](int part) {
       for (size_t i; (i = next.fetch_add(1)) < pending.size();)
         outcome[i] = flattenOrSplit(mesh, g, std::move(pending[i]), scratch[part]);
     });
@@ -883,7 +902,7 @@ DensitySearch densestPacking(const std::vector<Chart>& charts, int resolution, i
   const int block = std::max(1, resolution / kPackGrid);
   const int parts = ThreadTeam::usefulParts();
   const auto packAll = [&](std::vector<Packing>& tries) {
-    ThreadTeam::shared().run(std::min<int>(parts, static_cast<int>(tries.size())), [&](int part) {
+    runParts(std::min<int>(parts, static_cast<int>(tries.size())), [&](int part) {
       for (size_t i = part; i < tries.size(); i += parts) {
         Packing& t = tries[i];
         t.fits = pack(charts, t.density, resolution, gutter, block, t.placements, t.shapes, t.used);
