@@ -168,7 +168,7 @@ SparseMatrix stripeEnergy(const MeshTopology& t, const MeshGeometry& g, const Ed
 // of kBlock vectors, preconditioned by A^-1 itself (one CHOLMOD factor, kBlock solves a step). The smallest
 // eigenvalues of these energies are often nearly repeated (a symmetric surface's pattern can shift along it),
 // where plain inverse iteration crawls: a block's next eigenvalue sets the rate instead, and the three-term
-// recurrence speeds it further (bunny00's line field: 41 steps of block inverse iteration, a few of LOBPCG).
+// recurrence speeds it further (bunny00's line field: 16 steps to a residual of 1e-6).
 constexpr int kBlock = 4;
 
 // A B-orthonormal basis of span(S) (columns of tiny weight dropped), and the map from S's coordinates to it.
