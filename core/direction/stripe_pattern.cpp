@@ -202,9 +202,14 @@ Basis orthonormalBasis(const Eigen::MatrixXd& S, const Eigen::VectorXd& mass) {
 }
 
 void smallestEigenvector(const SparseMatrix& upper, const Eigen::VectorXd& mass, const StripeOptions& o,
-                         StripePattern& out) {
+                         std::unique_ptr<SpdFactor>& kept, StripePattern& out) {
   const auto t0 = std::chrono::steady_clock::now();
-  SpdFactor factor(upper);
+  if (kept)
+    kept->refactor(upper);
+  else
+    kept = std::make_unique<SpdFactor>(upper);
+  SpdFactor& factor = *kept;
+  out.analysisReused = factor.analysisReused();
   if (!factor.ok()) throw InputError("stripe pattern: the energy could not be factored");
   const auto t1 = std::chrono::steady_clock::now();
   out.factorMs = std::chrono::duration<double, std::milli>(t1 - t0).count();
@@ -320,8 +325,12 @@ double stripeAngle(double b0, double b1, double b2) {
   return l >= kTwoPi ? l - kTwoPi : l;
 }
 
+StripeWorkspace::StripeWorkspace() = default;
+StripeWorkspace::~StripeWorkspace() = default;
+
 StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology,
-                            const std::vector<double>& vertexDirections, const StripeOptions& options) {
+                            const std::vector<double>& vertexDirections, const StripeOptions& options,
+                            StripeWorkspace* workspace) {
   checkInput(mesh, vertexDirections, options);
   const MeshGeometry g = computeMeshGeometry(mesh, topology);
   const Families fam = familiesOf(mesh, vertexDirections, options.symmetry);
@@ -337,7 +346,14 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
 
   StripePattern out;
   out.families = F;
-  smallestEigenvector(upper, mass, options, out);
+  StripeWorkspace local;
+  StripeWorkspace& w = workspace ? *workspace : local;
+  StripeOptions o = options;
+  if (o.initialPsi.empty() && w.symmetry == o.symmetry && w.psi.size() == static_cast<size_t>(upper.rows()))
+    o.initialPsi = w.psi;
+  smallestEigenvector(upper, mass, o, w.factor, out);
+  w.psi = out.psi;
+  w.symmetry = o.symmetry;
   out.eigenvalue -= shift;
   out.cornerPhase.assign(3 * static_cast<size_t>(topology.numFaces) * F, 0.0f);
   out.branchIndex.assign(static_cast<size_t>(topology.numFaces) * F, 0);

@@ -21,6 +21,7 @@
 // cross field's representatives do not match up (the field's own singularity) is marked; its phase is
 // unwrapped along two of its edges.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "mesh/mesh_topology.h"
@@ -51,16 +52,32 @@ struct StripePattern {
       fieldSingular;        // per face: 1 where the field's representatives do not match up round it
   std::vector<double> psi;  // 2 x families per vertex (re, im), unit B-norm
   double eigenvalue = 0;    // the energy's Rayleigh quotient at psi
-  double residual = 0;  // |A psi - eigenvalue B psi| / |A psi| when the iteration stopped
+  double residual = 0;      // |A psi - eigenvalue B psi| / |A psi| when the iteration stopped
   int iterations = 0;
   double factorMs = 0, iterateMs = 0;
+  bool analysisReused = false;  // the factorization reused a workspace's symbolic analysis
+};
+
+class SpdFactor;
+
+// What a pattern's next computation on the same mesh reuses (an edit's update): the factor, whose symbolic
+// analysis holds while the energy's pattern does (it depends on the mesh alone), and the last psi, a start
+// close to the next one when no initialPsi is given.
+struct StripeWorkspace {
+  StripeWorkspace();
+  ~StripeWorkspace();
+  std::unique_ptr<SpdFactor> factor;
+  std::vector<double> psi;
+  int symmetry = 0;
 };
 
 // vertexDirections: 3 per vertex, the field's (representative) direction there; a zero vector leaves the
 // vertex's edges without turning. Throws InputError for a bad size, a symmetry other than 1, 2 or 4, a
 // frequency that is not positive and finite, or a factorization that fails.
+// workspace: optional, kept by the caller between computations on this mesh (see StripeWorkspace).
 StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology,
-                            const std::vector<double>& vertexDirections, const StripeOptions& options);
+                            const std::vector<double>& vertexDirections, const StripeOptions& options,
+                            StripeWorkspace* workspace = nullptr);
 
 // L(b) for barycentric b: the paper's piecewise-linear angle about the face's centroid, in [0, 2 pi).
 double stripeAngle(double b0, double b1, double b2);

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "solver/spd_solve.h"
 
+#include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "solver/cholmod_handles.h"
 
@@ -10,31 +12,53 @@ namespace tvf {
 struct SpdFactor::Impl {
   CholmodCommon common;
   CholmodFactorPtr factor{nullptr, {common.get()}};
+  std::vector<int> outer, inner;  // the pattern the analysis was made for
   size_t n = 0;
-  bool ok = false;
+  bool ok = false, reused = false;
+
+  bool samePattern(const SparseMatrix& upper) const {
+    return factor && static_cast<size_t>(upper.rows()) == n &&
+           std::equal(outer.begin(), outer.end(), upper.outerIndexPtr(), upper.outerIndexPtr() + n + 1) &&
+           static_cast<size_t>(upper.nonZeros()) == inner.size() &&
+           std::equal(inner.begin(), inner.end(), upper.innerIndexPtr());
+  }
+
+  void factorize(const SparseMatrix& upper) {
+    ok = reused = false;
+    if (upper.cols() != upper.rows() || !upper.isCompressed()) return;
+    cholmod_sparse A = upperTriangleView(upper);
+    cholmod_common& c = *common.get();
+    reused = samePattern(upper);
+    if (!reused) {
+      n = static_cast<size_t>(upper.rows());
+      if (n == 0) return void(ok = true);
+      outer.assign(upper.outerIndexPtr(), upper.outerIndexPtr() + n + 1);
+      inner.assign(upper.innerIndexPtr(), upper.innerIndexPtr() + upper.nonZeros());
+      factor.reset(cholmod_analyze(&A, &c));
+    }
+    if (!factor || !cholmod_factorize(&A, factor.get(), &c) || c.status != CHOLMOD_OK) return;
+    ok = factor->minor >= n;  // else not positive definite
+  }
 };
 
 SpdFactor::SpdFactor(const SparseMatrix& upper) : impl_(std::make_unique<Impl>()) {
-  Impl& s = *impl_;
-  if (upper.cols() != upper.rows() || !upper.isCompressed()) return;
-  s.n = static_cast<size_t>(upper.rows());
-  if (s.n == 0) {
-    s.ok = true;
-    return;
-  }
-  cholmod_common& c = *s.common.get();
+  cholmod_common& c = *impl_->common.get();
   c.nmethods = 1;  // AMD alone: METIS's nested dissection pays off only far beyond these systems' sizes
   c.method[0].ordering = CHOLMOD_AMD;
   c.postorder = 1;
   c.supernodal = CHOLMOD_SUPERNODAL;
   c.print = 0;
   c.error_handler = nullptr;
+  impl_->factorize(upper);
+}
 
-  cholmod_sparse A = upperTriangleView(upper);
+bool SpdFactor::refactor(const SparseMatrix& upper) {
+  impl_->factorize(upper);
+  return impl_->ok;
+}
 
-  s.factor.reset(cholmod_analyze(&A, &c));
-  if (!s.factor || !cholmod_factorize(&A, s.factor.get(), &c) || c.status != CHOLMOD_OK) return;
-  s.ok = s.factor->minor >= s.n;  // else not positive definite
+bool SpdFactor::analysisReused() const {
+  return impl_->reused;
 }
 
 SpdFactor::~SpdFactor() = default;

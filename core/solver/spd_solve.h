@@ -21,6 +21,10 @@ class SpdFactor {
   SpdFactor& operator=(const SpdFactor&) = delete;
 
   bool ok() const;
+  // Factors A again, reusing the symbolic analysis (ordering, supernodes) when A has the pattern of the
+  // matrix it was made for, else analysing it afresh. Returns ok().
+  bool refactor(const SparseMatrix& upper);
+  bool analysisReused() const;  // the last factorization reused the analysis
   // Solves A x = b; false (x unspecified) when the factor is not ok or the solution is not finite.
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   // The same for every column of b at once.

@@ -260,6 +260,29 @@ TEST(StripeTexture, FlatSquareStripesAtTheAskedFrequency) {
   EXPECT_THROW(stripeTextureRgba(m, p, std::vector<float>(5), size, 2), InputError);
 }
 
+// A workspace kept between computations on one mesh (an edit's update): the next field's pattern reuses the
+// factor's analysis and starts from the pattern before, in fewer steps, to the pattern a cold computation
+// finds.
+TEST(StripePattern, AWorkspaceReusesTheAnalysisAndStartsFromThePatternBefore) {
+  const SurfaceMesh m = torus(48, 18, 2.0, 0.7);
+  const MeshTopology t = buildTopology(m);
+  std::vector<double> before = aroundTheTube(m), after = before;
+  for (int32_t v = 0; v < m.numVertices(); ++v) after[3 * v + 2] += 0.15;  // the field tilted a little
+  StripeOptions o;
+  o.symmetry = 2;
+  o.frequency = 1.5;
+  StripeWorkspace workspace;
+  const StripePattern first = stripePattern(m, t, before, o, &workspace);
+  EXPECT_FALSE(first.analysisReused);
+  const StripePattern edited = stripePattern(m, t, after, o, &workspace);
+  const StripePattern cold = stripePattern(m, t, after, o);
+  EXPECT_TRUE(edited.analysisReused);
+  EXPECT_LT(edited.iterations, cold.iterations);
+  EXPECT_NEAR(edited.eigenvalue, cold.eigenvalue, 1e-6 * cold.eigenvalue);
+  for (int32_t f = 0; f < m.numFaces(); ++f)
+    EXPECT_LT(angleBetweenLines(phaseGradient(m, edited, 0, f), phaseGradient(m, cold, 0, f)), 2e-3);
+}
+
 TEST(StripePattern, BadInputIsReported) {
   const SurfaceMesh m = flatGrid(4, 1.0);
   const MeshTopology t = buildTopology(m);
