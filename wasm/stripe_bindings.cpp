@@ -13,10 +13,11 @@
 //   s.cornerPhase()     // Float32Array view: families x 3 per face (family-major), radians
 //   s.branchIndex()     // Int8Array view: families per face
 //   s.fieldSingular()   // Uint8Array view: 1 per face
-//   s.statsJson()       // {families, eigenvalue, residual, iterations, factorMs, iterateMs, warmStart}
+//   s.statsJson()       // {families, eigenvalue, residual, iterations, factorMs, iterateMs, warmStart,
+//                       //  analysisReused}
 //   s.delete()
-// A compute on the same mesh and symmetry as the one before starts from its pattern (an edit's field is close
-// to the one before it).
+// A compute on the same mesh as the one before reuses its factor's analysis and, for the same symmetry,
+// starts from its pattern (core/direction/stripe_pattern.h's StripeWorkspace).
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
@@ -56,14 +57,17 @@ class StripePatternBinding {
       options.maxIterations = o.value("maxIterations", options.maxIterations);
       if (o.contains("vertexFrequencyScale"))
         options.vertexFrequencyScale = o.at("vertexFrequencyScale").get<std::vector<double>>();
-      const bool sameMesh = mesh.triangles == triangles_ && mesh.positions.size() == positionCount_;
-      warmStart_ = sameMesh && symmetry_ == options.symmetry && !pattern_.psi.empty();
-      if (warmStart_) options.initialPsi = pattern_.psi;
+      // Another mesh: nothing of the workspace holds (its factor's analysis, its psi).
+      if (mesh.triangles != triangles_ || mesh.positions.size() != positionCount_) {
+        workspace_.factor.reset();
+        workspace_.psi.clear();
+        workspace_.symmetry = 0;
+      }
+      warmStart_ = workspace_.symmetry == options.symmetry && !workspace_.psi.empty();
       const tvf::MeshTopology topology = tvf::buildTopology(mesh);
-      pattern_ = tvf::stripePattern(mesh, topology, dirs, options);
+      pattern_ = tvf::stripePattern(mesh, topology, dirs, options, &workspace_);
       triangles_ = std::move(mesh.triangles);
       positionCount_ = mesh.positions.size();
-      symmetry_ = options.symmetry;
       return "";
     } catch (const std::bad_alloc&) {
       return "out of memory";
@@ -78,7 +82,7 @@ class StripePatternBinding {
     return nlohmann::json{{"families", pattern_.families}, {"eigenvalue", pattern_.eigenvalue},
                           {"residual", pattern_.residual}, {"iterations", pattern_.iterations},
                           {"factorMs", pattern_.factorMs}, {"iterateMs", pattern_.iterateMs},
-                          {"warmStart", warmStart_}}
+                          {"warmStart", warmStart_},       {"analysisReused", pattern_.analysisReused}}
         .dump();
   }
 
@@ -91,7 +95,7 @@ class StripePatternBinding {
   tvf::StripePattern pattern_;
   std::vector<int32_t> triangles_;
   size_t positionCount_ = 0;
-  int symmetry_ = 0;
+  tvf::StripeWorkspace workspace_;
   bool warmStart_ = false;
 };
 

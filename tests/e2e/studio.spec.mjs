@@ -530,11 +530,20 @@ test.describe.serial('the design studio', () => {
       beat();
     });
     const before = await evaluate(() => window.tvf.info().vertices);
-    // When the progress indicator shows (it does for operations longer than 200 ms).
+    // When the progress indicator shows (it does for operations longer than 200 ms): seen by a MutationObserver
+    // when it comes up, and by a 5 ms poll while it is up (an indicator already up when the load began shows
+    // no mutation).
     await evaluate(() => {
       window.__progressShown = [];
+      window.__progressPolled = [];
       const el = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#progress');
+      window.__progressUpAtStart = !el.hidden;
       new MutationObserver(() => !el.hidden && window.__progressShown.push(performance.now())).observe(el, { attributes: true });
+      const poll = () => {
+        if (!el.hidden) window.__progressPolled.push(performance.now());
+        if (!window.__stopFrames) setTimeout(poll, 5);
+      };
+      poll();
     });
     const unsaved = await evaluate(() => window.tvf.hasUnsavedEdits());
     await page.setInputFiles('#file-input', source.path ?? source);
@@ -563,7 +572,11 @@ test.describe.serial('the design studio', () => {
         maxFrameGapMs: maxGap(frames),
         maxMainThreadBlockMs: maxGap(beats),
         meshSetupMs: window.tvf.perf().meshSetupMs,
-        progressShownAfterMs: window.__progressShown.length ? window.__progressShown[0] - op.sentAt : null,
+        progressShownAfterMs: (() => {
+          const up = [...window.__progressShown, ...inWindow(window.__progressPolled)].sort((a, b) => a - b);
+          return up.length ? up[0] - op.sentAt : null;
+        })(),
+        progressUpAtStart: window.__progressUpAtStart,
         info: window.tvf.info(),
         stats: window.tvf.stats(),
       };
@@ -575,7 +588,7 @@ test.describe.serial('the design studio', () => {
     // on a loaded machine a pause of the whole thread can outlast the load, and the reply then comes first).
     const freeForMs = run.op.workerMs - run.maxMainThreadBlockMs;
     if (run.op.workerMs > 500 && freeForMs > 300)
-      expect(run.progressShownAfterMs, 'progress indicator shown during the load').not.toBeNull();
+      expect(run.progressShownAfterMs, `progress indicator shown during the load: ${JSON.stringify({ ...run.op, maxMainThreadBlockMs: run.maxMainThreadBlockMs, progressUpAtStart: run.progressUpAtStart })}`).not.toBeNull();
     else if (run.progressShownAfterMs === null) console.log(JSON.stringify({ progressNotAsserted: { workerMs: run.op.workerMs, maxMainThreadBlockMs: run.maxMainThreadBlockMs } }));
     measurements.largeMeshLoad = {
       mesh: source.path ? 'bench-data/meshes/bunny00.off' : 'bunny subdivided twice',
