@@ -58,11 +58,7 @@ class StripePatternBinding {
       if (o.contains("vertexFrequencyScale"))
         options.vertexFrequencyScale = o.at("vertexFrequencyScale").get<std::vector<double>>();
       // Another mesh: nothing of the workspace holds (its factor's analysis, its psi).
-      if (mesh.triangles != triangles_ || mesh.positions.size() != positionCount_) {
-        workspace_.factor.reset();
-        workspace_.psi.clear();
-        workspace_.symmetry = 0;
-      }
+      if (mesh.triangles != triangles_ || mesh.positions.size() != positionCount_) workspace_.clear();
       warmStart_ = workspace_.symmetry == options.symmetry && !workspace_.psi.empty();
       const tvf::MeshTopology topology = tvf::buildTopology(mesh);
       pattern_ = tvf::stripePattern(mesh, topology, dirs, options, &workspace_);

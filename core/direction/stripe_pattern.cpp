@@ -328,6 +328,12 @@ double stripeAngle(double b0, double b1, double b2) {
 StripeWorkspace::StripeWorkspace() = default;
 StripeWorkspace::~StripeWorkspace() = default;
 
+void StripeWorkspace::clear() {
+  factor.reset();
+  psi.clear();
+  symmetry = 0;
+}
+
 StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology,
                             const std::vector<double>& vertexDirections, const StripeOptions& options,
                             StripeWorkspace* workspace) {

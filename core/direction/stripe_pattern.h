@@ -66,6 +66,7 @@ class SpdFactor;
 struct StripeWorkspace {
   StripeWorkspace();
   ~StripeWorkspace();
+  void clear();  // for another mesh
   std::unique_ptr<SpdFactor> factor;
   std::vector<double> psi;
   int symmetry = 0;
