@@ -222,8 +222,8 @@ std::vector<uint8_t> stripePng(const tvf::Designer& designer, const tvf::ExportA
   tvf::StripeOptions o;
   o.symmetry = designer.symmetry();
   o.frequency = frequency;
-  const tvf::StripePattern pattern =
-      tvf::stripePattern(designer.mesh(), designer.topology(), designer.vertexVectors(), o);
+  const tvf::StripePattern pattern = tvf::stripePattern(designer.mesh(), designer.topology(),
+                                                        designer.geometry(), designer.vertexVectors(), o);
   const std::vector<uint8_t> rgba =
       tvf::stripeTextureRgba(designer.mesh(), pattern, atlas.cornerUVs, options.size, options.gutterTexels);
   return tvf::encodePngRgba(std::vector<uint16_t>(rgba.begin(), rgba.end()), options.size, options.size, 8);

@@ -57,13 +57,17 @@ class StripePatternBinding {
       options.maxIterations = o.value("maxIterations", options.maxIterations);
       if (o.contains("vertexFrequencyScale"))
         options.vertexFrequencyScale = o.at("vertexFrequencyScale").get<std::vector<double>>();
-      // Another mesh: nothing of the workspace holds (its factor's analysis, its psi).
-      if (mesh.triangles != triangles_ || mesh.positions.size() != positionCount_) workspace_.clear();
+      // Another mesh: its topology and geometry derived once, and nothing of the workspace holds (its
+      // factor's analysis, its psi).
+      if (mesh.triangles != triangles_ || mesh.positions != positions_) {
+        topology_ = tvf::buildTopology(mesh);
+        geometry_ = tvf::computeMeshGeometry(mesh, topology_);
+        workspace_.clear();
+        triangles_ = mesh.triangles;
+        positions_ = mesh.positions;
+      }
       warmStart_ = workspace_.symmetry == options.symmetry && !workspace_.psi.empty();
-      const tvf::MeshTopology topology = tvf::buildTopology(mesh);
-      pattern_ = tvf::stripePattern(mesh, topology, dirs, options, &workspace_);
-      triangles_ = std::move(mesh.triangles);
-      positionCount_ = mesh.positions.size();
+      pattern_ = tvf::stripePattern(mesh, topology_, geometry_, dirs, options, &workspace_);
       return "";
     } catch (const std::bad_alloc&) {
       return "out of memory";
@@ -90,7 +94,9 @@ class StripePatternBinding {
 
   tvf::StripePattern pattern_;
   std::vector<int32_t> triangles_;
-  size_t positionCount_ = 0;
+  std::vector<double> positions_;
+  tvf::MeshTopology topology_;
+  tvf::MeshGeometry geometry_;
   tvf::StripeWorkspace workspace_;
   bool warmStart_ = false;
 };

@@ -334,11 +334,10 @@ void StripeWorkspace::clear() {
   symmetry = 0;
 }
 
-StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology,
+StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& g,
                             const std::vector<double>& vertexDirections, const StripeOptions& options,
                             StripeWorkspace* workspace) {
   checkInput(mesh, vertexDirections, options);
-  const MeshGeometry g = computeMeshGeometry(mesh, topology);
   const Families fam = familiesOf(mesh, vertexDirections, options.symmetry);
   const int F = fam.count;
   const EdgeTurns turns = edgeTurns(mesh, topology, fam, options);

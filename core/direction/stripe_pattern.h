@@ -24,6 +24,7 @@
 #include <memory>
 #include <vector>
 
+#include "dec/hodge_star.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
 
@@ -75,10 +76,11 @@ struct StripeWorkspace {
 // vertexDirections: 3 per vertex, the field's (representative) direction there; a zero vector leaves the
 // vertex's edges without turning. Throws InputError for a bad size, a symmetry other than 1, 2 or 4, a
 // frequency that is not positive and finite, or a factorization that fails.
-// workspace: optional, kept by the caller between computations on this mesh (see StripeWorkspace).
+// topology and geometry: the mesh's, as the caller holds them (a Designer's). workspace: optional, kept by
+// the caller between computations on this mesh (see StripeWorkspace).
 StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology,
-                            const std::vector<double>& vertexDirections, const StripeOptions& options,
-                            StripeWorkspace* workspace = nullptr);
+                            const MeshGeometry& geometry, const std::vector<double>& vertexDirections,
+                            const StripeOptions& options, StripeWorkspace* workspace = nullptr);
 
 // L(b) for barycentric b: the paper's piecewise-linear angle about the face's centroid, in [0, 2 pi).
 double stripeAngle(double b0, double b1, double b2);

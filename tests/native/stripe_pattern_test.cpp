@@ -73,7 +73,7 @@ TEST(StripePattern, FlatConstantFieldGivesStraightStripesAtTheFrequency) {
   const Eigen::Vector3d d = Eigen::Vector3d(1, 0.3, 0).normalized();
   StripeOptions o;
   o.frequency = 5.0;
-  const StripePattern p = stripePattern(m, t, constantField(m, d), o);
+  const StripePattern p = stripePattern(m, t, computeMeshGeometry(m, t), constantField(m, d), o);
   const Eigen::Vector3d growth =
       Eigen::Vector3d::UnitZ().cross(d);  // stripes along d: the phase grows across
   double worstAngle = 0, worstRate = 0;
@@ -95,7 +95,7 @@ TEST(StripePattern, CrossFieldGivesTwoFamiliesAtRightAngles) {
   StripeOptions o;
   o.symmetry = 4;
   o.frequency = 3.0;
-  const StripePattern p = stripePattern(m, t, constantField(m, d), o);
+  const StripePattern p = stripePattern(m, t, computeMeshGeometry(m, t), constantField(m, d), o);
   ASSERT_EQ(p.families, 2);
   for (int32_t f = 0; f < m.numFaces(); ++f) {
     const Eigen::Vector3d g0 = phaseGradient(m, p, 0, f), g1 = phaseGradient(m, p, 1, f);
@@ -112,7 +112,7 @@ TEST(StripePattern, StripesFollowTheFieldOnATorus) {
   const std::vector<double> field = aroundTheTube(m);
   StripeOptions o;
   o.frequency = 2.0;
-  const StripePattern p = stripePattern(m, t, field, o);
+  const StripePattern p = stripePattern(m, t, computeMeshGeometry(m, t), field, o);
   double sum = 0, area = 0, within5 = 0;
   for (int32_t f = 0; f < m.numFaces(); ++f) {
     Eigen::Vector3d pos[3];
@@ -139,7 +139,8 @@ TEST(StripePattern, LineFieldRepresentativesSignsChangeNothing) {
   StripeOptions o;
   o.symmetry = 2;
   o.frequency = 1.5;
-  const StripePattern a = stripePattern(m, t, field, o), b = stripePattern(m, t, flipped, o);
+  const StripePattern a = stripePattern(m, t, computeMeshGeometry(m, t), field, o),
+                      b = stripePattern(m, t, computeMeshGeometry(m, t), flipped, o);
   EXPECT_NEAR(a.eigenvalue, b.eigenvalue, 1e-6 * std::max(1.0, std::abs(a.eigenvalue)));
   for (int32_t f = 0; f < m.numFaces(); ++f) {
     EXPECT_EQ(b.fieldSingular[f], 0);
@@ -160,7 +161,7 @@ TEST(StripePattern, PhaseAgreesAcrossEveryEdgeBranchFacesIncluded) {
   }
   StripeOptions o;
   o.frequency = 8.0;
-  const StripePattern p = stripePattern(m, t, field, o);
+  const StripePattern p = stripePattern(m, t, computeMeshGeometry(m, t), field, o);
   int branch = 0;
   for (int32_t f = 0; f < m.numFaces(); ++f) branch += p.branchIndex[f] != 0;
   EXPECT_GT(branch, 0);
@@ -215,11 +216,11 @@ TEST(StripePattern, AStartFromThePatternBeforeConvergesAtOnce) {
   StripeOptions o;
   o.symmetry = 2;
   o.frequency = 1.5;
-  const StripePattern cold = stripePattern(m, t, aroundTheTube(m), o);
+  const StripePattern cold = stripePattern(m, t, computeMeshGeometry(m, t), aroundTheTube(m), o);
   EXPECT_LE(cold.residual, o.tolerance);
   EXPECT_GT(cold.iterations, 2);
   o.initialPsi = cold.psi;
-  const StripePattern warm = stripePattern(m, t, aroundTheTube(m), o);
+  const StripePattern warm = stripePattern(m, t, computeMeshGeometry(m, t), aroundTheTube(m), o);
   EXPECT_LE(warm.iterations, 2);
   EXPECT_NEAR(warm.eigenvalue, cold.eigenvalue, 1e-6 * cold.eigenvalue);
 }
@@ -232,7 +233,8 @@ TEST(StripeTexture, FlatSquareStripesAtTheAskedFrequency) {
   const MeshTopology t = buildTopology(m);
   StripeOptions o;
   o.frequency = 8.0;
-  const StripePattern p = stripePattern(m, t, constantField(m, Eigen::Vector3d::UnitX()), o);
+  const StripePattern p =
+      stripePattern(m, t, computeMeshGeometry(m, t), constantField(m, Eigen::Vector3d::UnitX()), o);
   std::vector<float> uvs;
   for (int32_t f = 0; f < m.numFaces(); ++f)
     for (int k = 0; k < 3; ++k) {
@@ -272,10 +274,10 @@ TEST(StripePattern, AWorkspaceReusesTheAnalysisAndStartsFromThePatternBefore) {
   o.symmetry = 2;
   o.frequency = 1.5;
   StripeWorkspace workspace;
-  const StripePattern first = stripePattern(m, t, before, o, &workspace);
+  const StripePattern first = stripePattern(m, t, computeMeshGeometry(m, t), before, o, &workspace);
   EXPECT_FALSE(first.analysisReused);
-  const StripePattern edited = stripePattern(m, t, after, o, &workspace);
-  const StripePattern cold = stripePattern(m, t, after, o);
+  const StripePattern edited = stripePattern(m, t, computeMeshGeometry(m, t), after, o, &workspace);
+  const StripePattern cold = stripePattern(m, t, computeMeshGeometry(m, t), after, o);
   EXPECT_TRUE(edited.analysisReused);
   EXPECT_LT(edited.iterations, cold.iterations);
   EXPECT_NEAR(edited.eigenvalue, cold.eigenvalue, 1e-6 * cold.eigenvalue);
@@ -289,12 +291,12 @@ TEST(StripePattern, BadInputIsReported) {
   const std::vector<double> field = constantField(m, Eigen::Vector3d::UnitX());
   StripeOptions o;
   o.symmetry = 3;
-  EXPECT_THROW(stripePattern(m, t, field, o), InputError);
+  EXPECT_THROW(stripePattern(m, t, computeMeshGeometry(m, t), field, o), InputError);
   o = {};
   o.frequency = 0;
-  EXPECT_THROW(stripePattern(m, t, field, o), InputError);
+  EXPECT_THROW(stripePattern(m, t, computeMeshGeometry(m, t), field, o), InputError);
   o = {};
-  EXPECT_THROW(stripePattern(m, t, std::vector<double>(5, 0.0), o), InputError);
+  EXPECT_THROW(stripePattern(m, t, computeMeshGeometry(m, t), std::vector<double>(5, 0.0), o), InputError);
   o.vertexFrequencyScale.assign(m.numVertices(), -1.0);
-  EXPECT_THROW(stripePattern(m, t, field, o), InputError);
+  EXPECT_THROW(stripePattern(m, t, computeMeshGeometry(m, t), field, o), InputError);
 }

@@ -110,8 +110,8 @@ export class Designer {
   }
 
   // After the first model is shown, as the session warms the design's calls up: the texture's CPU half in the
-  // core's worker (synthesis/warm-up.js), ~0.25 s there that the first texture saves (bunny00: its atlas 665 ->
-  // 436 ms in the worker). Never fails anything: an optimization only.
+  // core's worker (synthesis/warm-up.js: ~0.27 s there; the first texture's atlas choice for bunny00 665 ->
+  // 436 ms, under node). Never fails anything: an optimization only.
   #warmUpTextureLater() {
     if (this.textureWarmed) return;
     this.textureWarmed = true;

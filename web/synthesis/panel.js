@@ -132,7 +132,7 @@ export function mountSynthesisPanel(
   // Until an exemplar is chosen or a texture made, the one a synthesis would use (analysed in the core's worker
   // once it has started, and kept for that synthesis).
   controller
-    .defaultExemplar?.()
+    .defaultExemplar()
     .then((tables) => !controller.exemplar && !shownExemplar && drawThumbnail(tables))
     .catch(() => {});
 
