@@ -108,7 +108,11 @@ for (const [size, options] of SIZES) {
       await openSections(page); // sections added for this symmetry start open too
       const label = `symmetry ${n}`;
       expect(await overflows(page), label).toEqual([]);
-      if (await page.locator('#view-component').isEnabled()) {
+      // The Component select is for vector fields only; wait for the panel to say so for this symmetry (the
+      // settings can come after settled(): reading isEnabled() at once raced them).
+      const vectorField = Number(n) === 1;
+      await expect(page.locator('#view-component')).toHaveJSProperty('disabled', !vectorField);
+      if (vectorField) {
         for (const c of components) {
           await page.locator('#view-component').selectOption(c);
           await settled(page);
