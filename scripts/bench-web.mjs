@@ -316,6 +316,7 @@ async function textureBench(page, strokes, url) {
     textureUpdates: updates.length,
     textureFirstPhases: phaseTable(first, 'before the run'),
     textureUpdatePhases: medianUpdate ? phaseTable(medianUpdate, 'stroke solved, field changed') : null,
+    textureEachUpdatePhases: updates.map((u) => phaseTable(u, 'stroke solved, field changed')),
     ...(reopened ? {
       textureReopenedMs: reopened.wallMs,
       textureReopenedPhases: phaseTable(reopened, 'before the run'),

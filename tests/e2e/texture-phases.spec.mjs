@@ -162,3 +162,29 @@ test.describe.serial('texture phases, a single edit, the atlas kept per mesh (bu
     expect(errors.filter((e) => !/CONTEXT_LOST|context lost/i.test(e))).toEqual([]);
   });
 });
+
+// synthesis/atlas-ahead.js: a model's atlas is prepared in the core's worker once the model is shown, before any
+// texture is asked for, so the first texture at the resolution a run would choose finds it made.
+test('a model\'s atlas is prepared ahead: the first texture finds it kept', async ({ browser }) => {
+  const { page, errors } = await openDesignerPage(browser);
+  try {
+    const r = await page.evaluate(async () => {
+      const t = window.tvf;
+      await t.settled();
+      // The default model's atlas takes the worker ~0.1-0.3 s here, a step per request.
+      await new Promise((resolve) => setTimeout(resolve, 2500));
+      await t.synthesize({ seed: 3 });
+      return { ahead: await t.synthesisIdle() };
+    });
+    const a = r.ahead;
+    expect(a.atlas.source).toBe('generated');
+    expect(a.atlas.cache.cached).toBe(true);
+    expect(Object.keys(a.phases)).toContain('atlas (worker: kept for this mesh)');
+    expect(Object.keys(a.phases)).not.toContain('atlas (worker: charts, packing, corners, seams)');
+    expect(a.atlas.charts).toBeGreaterThan(0);
+    expect(a.atlas.coverage).toBeGreaterThan(0.3);
+    expect(errors).toEqual([]);
+  } finally {
+    await page.close();
+  }
+});

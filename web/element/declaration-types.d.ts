@@ -229,7 +229,7 @@ export interface SynthesisOptions {
   seams?: boolean;
   gutter?: number;
   timing?: 'levels' | 'total';
-  /** Faces whose field goes to the GPU per task (default 32768): a big model's field is uploaded a slice per frame. */
+  /** Faces whose field goes to the GPU per task (default 131072): a big model's field is uploaded a slice per frame. */
   sliceFaces?: number;
 }
 

@@ -9,7 +9,7 @@ import { ViewSync } from './view-sync.js';
 import { setupExport } from '../export/index.js';
 import { baseName } from '../session/documents.js';
 import { Session } from '../session/session.js';
-import { setupSynthesis } from '../synthesis/index.js';
+import { prepareAtlasAhead, setupSynthesis } from '../synthesis/index.js';
 import { ToolController } from '../tools/tools.js';
 import { setPivotAt } from '../views/camera.js';
 import { Viewer } from '../views/viewer.js';
@@ -109,14 +109,22 @@ export class Designer {
     });
   }
 
-  // After the first model is shown, as the session warms the design's calls up: the texture's CPU half in the
-  // core's worker (synthesis/warm-up.js: ~0.27 s there; the first texture's atlas choice for bunny00 665 ->
-  // 436 ms, under node). Never fails anything: an optimization only.
-  #warmUpTextureLater() {
-    if (this.textureWarmed) return;
-    this.textureWarmed = true;
+  // After a model is shown, as the session warms the design's calls up: the model's texture atlas prepared
+  // in the core's worker (synthesis/atlas-ahead.js), or for a model too big for that, once, the texture's CPU
+  // half warmed up on a torus (synthesis/warm-up.js: ~0.27 s there; the first texture's atlas choice for bunny00
+  // 665 -> 436 ms, under node). Never fails anything: an optimization only.
+  #prepareTextureLater() {
     const s = this.session;
-    setTimeout(() => !s.disposed && s.request('warmUpTexture').catch(() => {}), 0);
+    setTimeout(async () => {
+      if (s.disposed || !s.surface) return;
+      const { positions, triangles } = s.surface;
+      const request = (op, args) => s.request(op, args);
+      const model = { positions, triangles, cornerUVs: s.cornerUVs };
+      const prepared = await prepareAtlasAhead(request, this.synthesis, model).catch(() => null);
+      if (prepared !== false || this.textureWarmed || s.disposed) return;
+      this.textureWarmed = true;
+      s.request('warmUpTexture').catch(() => {});
+    }, 0);
   }
 
   #subscribe() {
@@ -126,7 +134,7 @@ export class Designer {
     s.on('banner', ({ message, action }) => ui.showError(message, action));
     s.on('banner-clear', () => ui.clearError());
     s.on('flash', ({ text, ms }) => ui.flash(text, ms));
-    s.on('load', () => this.#warmUpTextureLater());
+    s.on('load', () => this.#prepareTextureLater());
     s.on('settings', (settings) => {
       ui.setSettings(settings);
       this.onSettings(settings);

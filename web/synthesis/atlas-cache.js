@@ -69,15 +69,25 @@ export class AtlasCache {
     if (same(this.memory)) return copied(this.memory.atlas);
     const entry = await this.#read(key).catch(() => null);
     if (!same(entry)) return null;
-    this.memory = entry;
+    this.memory = { ...entry, persisted: true };
     return copied(entry.atlas);
   }
 
   // Keeps a copy of `atlas`, made for the input identified by {key, sizes}: in memory at once, in IndexedDB
-  // behind the caller (the promise returned; a full or refused store costs the next opening only).
-  put({ key, sizes }, atlas) {
+  // behind the caller (the promise returned; a full or refused store costs the next opening only) unless
+  // `persist` is false (an atlas prepared ahead, which nobody asked for yet: persist() stores it once used).
+  put({ key, sizes }, atlas, { persist = true } = {}) {
     const entry = { key, sizes, madeAt: Date.now(), atlas: copied(atlas) };
-    this.memory = entry;
+    this.memory = { ...entry, persisted: persist };
+    return persist ? this.#write(entry).catch(() => {}) : Promise.resolve();
+  }
+
+  // The atlas in memory stored in IndexedDB too, where it is not yet.
+  persist() {
+    const m = this.memory;
+    if (!m || m.persisted) return Promise.resolve();
+    m.persisted = true;
+    const { persisted, ...entry } = m;
     return this.#write(entry).catch(() => {});
   }
 

@@ -9,23 +9,36 @@ import { cornerData } from './atlas-corners.js';
 import { shapeComplexity } from './auto-settings.js';
 import { seamIndirection } from './seams.js';
 
-export function preparedAtlas(Module, { positions, triangles, cornerUVs }, options) {
-  const t0 = performance.now();
+export function preparedAtlas(Module, input, options) {
+  const steps = preparedAtlasSteps(Module, input, options);
+  for (;;) {
+    const r = steps.next();
+    if (r.done) return r.value;
+  }
+}
+
+// The same, a step at a time (a generator returning the atlas): the worker prepares a model's atlas ahead
+// between other requests (worker-ops.js prepareTextureAtlas). workerSteps: each step's own time.
+export function* preparedAtlasSteps(Module, { positions, triangles, cornerUVs }, options) {
+  let t = performance.now();
+  const took = () => -t + (t = performance.now());
   const atlas = chooseAtlas(Module, { positions, triangles, cornerUVs }, options);
-  const t1 = performance.now();
+  atlas.workerSteps = { chooseMs: took() };
+  yield;
+  t = performance.now();
   atlas.corners = cornerData(positions, triangles, atlas.cornerUVs);
-  const t2 = performance.now();
+  atlas.workerSteps.cornersMs = took();
   const surface = new Surface(positions, triangles, null);
   atlas.complexity = shapeComplexity(surface);
-  const t3 = performance.now();
+  atlas.workerSteps.complexityMs = took();
+  yield;
+  t = performance.now();
   atlas.seams = seamIndirection(
     { positions, triangles, neighbour: surface.neighbour },
     atlas.cornerUVs,
     options.resolution,
   );
-  const t4 = performance.now();
-  atlas.seams.ms = t4 - t3;
-  atlas.workerSteps = { chooseMs: t1 - t0, cornersMs: t2 - t1, complexityMs: t3 - t2, seamsMs: t4 - t3 };
+  atlas.workerSteps.seamsMs = atlas.seams.ms = took();
   return atlas;
 }
 

@@ -174,21 +174,26 @@ export class AtlasRaster {
   }
 
   // The field per corner of faces f0 .. f1 - 1 from the vertices', and their part of the reference magnitude
-  // (area-weighted mean over faces of the corner mean).
+  // (area-weighted mean over faces of the corner mean). Math.sqrt, not Math.hypot: 5 x faster in V8, and this
+  // is on the path from a stroke to its texture (bunny00: 7 -> 1.3 ms).
   #fillField(vertexVectors, f0, f1, sums) {
-    const T = this.triangles, out = this.fieldData;
+    const T = this.triangles, out = this.fieldData, A = this.faceArea;
+    let magSum = 0, areaSum = 0;
     for (let f = f0; f < f1; f++) {
       let mag = 0;
       for (let k = 0; k < 3; k++) {
         const v = 3 * T[3 * f + k], o = 9 * f + 3 * k;
-        out[o] = vertexVectors[v];
-        out[o + 1] = vertexVectors[v + 1];
-        out[o + 2] = vertexVectors[v + 2];
-        mag += Math.hypot(vertexVectors[v], vertexVectors[v + 1], vertexVectors[v + 2]) / 3;
+        const x = vertexVectors[v], y = vertexVectors[v + 1], z = vertexVectors[v + 2];
+        out[o] = x;
+        out[o + 1] = y;
+        out[o + 2] = z;
+        mag += Math.sqrt(x * x + y * y + z * z);
       }
-      sums.mag += mag * this.faceArea[f];
-      sums.area += this.faceArea[f];
+      magSum += (mag / 3) * A[f];
+      areaSum += A[f];
     }
+    sums.mag += magSum;
+    sums.area += areaSum;
   }
 
   // The same from a per-corner field (9 per face).
@@ -197,7 +202,10 @@ export class AtlasRaster {
     out.set(C.subarray(9 * f0, 9 * f1), 9 * f0);
     for (let f = f0; f < f1; f++) {
       let mag = 0;
-      for (let c = 9 * f; c < 9 * f + 9; c += 3) mag += Math.hypot(C[c], C[c + 1], C[c + 2]) / 3;
+      for (let c = 9 * f; c < 9 * f + 9; c += 3) {
+        const x = C[c], y = C[c + 1], z = C[c + 2];
+        mag += Math.sqrt(x * x + y * y + z * z) / 3;
+      }
       sums.mag += mag * this.faceArea[f];
       sums.area += this.faceArea[f];
     }

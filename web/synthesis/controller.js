@@ -6,19 +6,16 @@
 // for the user are auto-settings.js's; which options synthesize() takes, options.js's; what a run hands the
 // synthesizer (its options, the field it follows), run-inputs.js's; the texture read out, texture-exports.js's.
 import { runSynthesisBench } from './bench.js';
-import { defaultResolution } from './auto-settings.js';
 import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8 } from './exemplar.js';
-import { setUpAtlas } from './atlas-setup.js';
+import { atlasOptions, setUpAtlas } from './atlas-setup.js';
 import { PhaseClock } from './phase-clock.js';
+import { QUICK_EDIT_MS, isQuickEdit } from './quick-edits.js';
 import { DEFAULTS, Synthesizer } from './synthesizer.js';
 import { glbTexture, texturePng, textureReadback } from './texture-exports.js';
 import { TEXTURE_SYMMETRIES, textureRefusal } from '../session/symmetry.js';
 import { checkSynthesisOptions } from './options.js';
 import { fieldInput, runOptions } from './run-inputs.js';
 
-// Field changes closer together than this count as quick edits: the texture follows them with a preview (one
-// level short of the finest, a quarter of the work) and is synthesized in full once they stop for this long.
-const QUICK_EDIT_MS = 400;
 
 export class SynthesisController {
   // viewer: the page's Viewer (scene, surfaceMesh, requestRender).
@@ -66,6 +63,7 @@ export class SynthesisController {
     this.runVersion = undefined; // the field version the run scheduled or under way is for
     this.changedAt = null; // the first field change the next run answers
     this.previewFieldShown = false; // the last field change was a big model's preview field
+    this.runsQueued = 0; // field changes' runs queued or running (quick-edits.js)
     this.previewRuns = 0; // runs made as previews of quick edits (synthesisStats().previewRuns)
     this.#watchContext();
   }
@@ -198,8 +196,7 @@ export class SynthesisController {
     const t0 = performance.now(), frames0 = this.viewer.renderCount;
     this.ensureSynth();
     clock.mark('field from the page');
-    const resolution =
-      this.options.resolution === 'auto' ? defaultResolution(model.triangles.length / 3) : this.options.resolution;
+    const { resolution } = atlasOptions(this.options, model.triangles.length / 3);
     const atlas = await setUpAtlas(this, model, resolution, clock);
     const tAtlas = performance.now() - t0;
     const synthOptions = runOptions(this.options, model, atlas, this.exemplar.tables.size, preview);
@@ -263,8 +260,8 @@ export class SynthesisController {
 
   // The field changed: resynthesize while a texture is shown (autoUpdate), cancelling a run the change makes
   // stale. A change on its own (a released stroke, an edit, a big model's exact field landing after its preview)
-  // starts a full synthesis at once. Changes that come quickly one after another (or with interactive: true,
-  // e.g. while something is dragged) get a preview, and a full synthesis once they stop for QUICK_EDIT_MS.
+  // starts a full synthesis at once. Quick edits (quick-edits.js: changes that come faster than the texture
+  // follows, or while something is dragged) get a preview, and a full synthesis once they stop.
   fieldChanged({ interactive = false } = {}) {
     if (!this.active) return;
     const version = this.getFieldVersion();
@@ -279,7 +276,7 @@ export class SynthesisController {
     const previewField = this.isPreviewField();
     const landing = this.previewFieldShown && !previewField; // the exact field of what the preview stood for
     this.previewFieldShown = previewField;
-    const quick = interactive || (!landing && now - this.lastFieldChange < QUICK_EDIT_MS);
+    const quick = isQuickEdit(this, { interactive, landing, now });
     if (!landing) this.lastFieldChange = now;
     this.changedAt ??= now;
     this.runVersion = version;
@@ -314,7 +311,10 @@ export class SynthesisController {
         if (p) this.previewRuns++;
         return this.active ? this.#run({ preview: p, clock }) : null;
       };
-      this.exclusive(run).catch((err) => this.onError(err));
+      this.runsQueued++;
+      this.exclusive(run)
+        .catch((err) => this.onError(err))
+        .finally(() => this.runsQueued--);
     }, 0);
   }
 
