@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cli/bench.h"
+#include "cli/ordering_cache.h"
 #include "design/design_document.h"
 #include "design/field_export.h"
 #include "design/mesh_info.h"
@@ -30,14 +31,16 @@ int usage() {
       << "usage:\n"
          "  tvf info MESH\n"
          "  tvf design MESH DESIGN.json [-o FIELD.json] [--ignore-fingerprint] [--hodge]\n"
-         "             [--sing IN.sing]\n"
+         "             [--sing IN.sing] [--ordering-cache DIR]\n"
          "  tvf export MESH DESIGN.json [--glb OUT.glb] [--flowmap OUT.png] [--size N]\n"
          "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
          "             [--no-embed-flowmap] [--component whole|exact|coexact|harmonic]\n"
          "             [--rawfield OUT.rawfield] [--sing OUT.sing] [--rosy OUT.rosy]\n"
-         "             [--sharp OUT.sharp] [--stripes FREQ]\n"
+         "             [--sharp OUT.sharp] [--stripes FREQ] [--ordering-cache DIR]\n"
          "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
          "            [--threads N] [--symmetry N]\n"
+         "--ordering-cache DIR keeps the field's fill-reducing ordering in DIR, one file per mesh and\n"
+         "symmetry: the same mesh again skips the ordering (a stale or foreign file is ignored).\n"
          "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
          "updates, slower analysis), as in the browser build; --amd for AMD; --compare for both,\n"
          "interleaved repeat by repeat in one process (JSON only).\n"
@@ -120,8 +123,19 @@ void addSingFile(nlohmann::json& design, const std::string& singPath) {
   for (const auto& s : file.singularities) list.push_back({{"vertex", s.vertex}, {"index", s.index}});
 }
 
+// --ordering-cache DIR around the designer's first solve (ordering_cache.h); a cache file ignored is said on
+// stderr.
+void solveWithOrderingCache(tvf::Designer& designer, const std::string& cacheDir) {
+  if (cacheDir.empty()) return designer.solve();
+  const std::string adopted = tvf::adoptCachedOrdering(designer, cacheDir);
+  if (adopted != "adopted" && adopted != "none kept")
+    std::cerr << "tvf: --ordering-cache: " << adopted << "\n";
+  designer.solve();
+  tvf::keepOrdering(designer, cacheDir);
+}
+
 int design(const std::string& meshPath, const std::string& designPath, const std::string& outPath,
-           bool checkFingerprint, bool hodge, const std::string& singPath) {
+           bool checkFingerprint, bool hodge, const std::string& singPath, const std::string& cacheDir) {
   tvf::Designer designer(tvf::loadMesh(meshPath));
   designer.setMetisOrdering(true);
   nlohmann::json document = readJsonFile(designPath);
@@ -134,7 +148,7 @@ int design(const std::string& meshPath, const std::string& designPath, const std
         designPath + ": " + why +
         (why.find("another mesh") != std::string::npos ? " (--ignore-fingerprint applies it anyway)" : ""));
   }
-  designer.solve();
+  solveWithOrderingCache(designer, cacheDir);
   nlohmann::json field = tvf::fieldDocument(designer);
   if (hodge && directionField(designer))
     throw tvf::InputError(
@@ -153,11 +167,13 @@ int design(const std::string& meshPath, const std::string& designPath, const std
 }
 
 int designCommand(int argc, char** argv) {
-  std::string out, sing;
+  std::string out, sing, cacheDir;
   bool checkFingerprint = true, hodge = false;
   for (int k = 4; k < argc; ++k) {
     if (std::strcmp(argv[k], "-o") == 0 && k + 1 < argc)
       out = argv[++k];
+    else if (std::strcmp(argv[k], "--ordering-cache") == 0 && k + 1 < argc)
+      cacheDir = argv[++k];
     else if (std::strcmp(argv[k], "--sing") == 0 && k + 1 < argc)
       sing = argv[++k];
     else if (std::strcmp(argv[k], "--ignore-fingerprint") == 0)
@@ -167,7 +183,7 @@ int designCommand(int argc, char** argv) {
     else
       return usage();
   }
-  return design(argv[2], argv[3], out, checkFingerprint, hodge, sing);
+  return design(argv[2], argv[3], out, checkFingerprint, hodge, sing, cacheDir);
 }
 
 std::vector<uint8_t> readBytes(const std::string& path) {
@@ -232,7 +248,7 @@ std::vector<uint8_t> stripePng(const tvf::Designer& designer, const tvf::ExportA
 int exportCommand(int argc, char** argv) {
   if (argc < 4) return usage();
   const std::string meshPath = argv[2], designPath = argv[3];
-  std::string glbPath, flowMapPath, rawFieldPath, singPath, rosyPath, sharpPath;
+  std::string glbPath, flowMapPath, rawFieldPath, singPath, rosyPath, sharpPath, cacheDir;
   tvf::FieldExportOptions options;
   tvf::FieldComponent component = tvf::FieldComponent::Whole;
   double stripes = 0;
@@ -252,6 +268,8 @@ int exportCommand(int argc, char** argv) {
       rawFieldPath = value;
     } else if (a == "--sing") {
       singPath = value;
+    } else if (a == "--ordering-cache") {
+      cacheDir = value;
     } else if (a == "--rosy") {
       rosyPath = value;
     } else if (a == "--sharp") {
@@ -303,7 +321,7 @@ int exportCommand(int argc, char** argv) {
   if (!rosyPath.empty() && symmetry != 4)
     throw tvf::InputError("--rosy: .rosy holds a cross field (symmetry 4); this design has symmetry " +
                           std::to_string(symmetry));
-  designer.solve();
+  solveWithOrderingCache(designer, cacheDir);
   if (!rawFieldPath.empty()) {
     if (!directions)
       throw tvf::InputError(

@@ -8,7 +8,8 @@
 //                             [--symmetry N]   (the strokes on an N-direction field: 2 line, 4 cross; default 1)
 //                             [--texture N]   (then the texture: its first synthesis and N strokes' updates,
 //                             each broken into its phases: textureFirstPhases, textureUpdatePhases)
-//                             [--reopen]   (with --texture: the mesh opened again, its texture made again)
+//                             [--reopen]   (with --texture: the mesh opened again, its texture made again;
+//                             reopenExactFieldMs: loadModel to its exact field, the ordering kept)
 //                             [--gpu]   (hardware WebGL: ANGLE on Vulkan, or TVF_GPU_ARGS; default SwiftShader)
 //                             [--profile-texture FILE]   (a CPU profile of the page's thread over the texture's runs)
 //                             [--trace FILE]   (a Chromium trace of every process and thread over the strokes:
@@ -106,7 +107,8 @@ async function strokeBench(page, meshPath) {
     const phases = Object.fromEntries(Object.entries(window.tvf.perf().loadPhases ?? {}).map(([k, v]) => [k, v - t0]));
     await window.tvf.settled();
     if (firstStats.preview) await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
-    return { t0, info, phases, modelRead, previewTimings, loadMs: performance.now() - t0, firstFieldMs, exactFieldMs: performance.now() - t0, preview: firstStats.preview, previewFaces: firstStats.previewFaces ?? null, previewStats: firstStats };
+    const { analyzeMs, factorMs, analysisReused } = window.tvf.stats(); // the exact field's factorization
+    return { t0, info, phases, modelRead, previewTimings, loadMs: performance.now() - t0, firstFieldMs, exactFieldMs: performance.now() - t0, preview: firstStats.preview, previewFaces: firstStats.previewFaces ?? null, previewStats: firstStats, exactFactor: { analyzeMs, factorMs, analysisReused } };
   }, { url: `/bench-mesh/${name}`, previewEdges: arg('--preview-edges', null) == null ? null : Number(arg('--preview-edges')) });
   await loadProfile.stop();
   // A task that began before loadModel was called (the page's own start, reported late) is not the load's.
@@ -211,6 +213,7 @@ async function strokeBench(page, meshPath) {
     // and during the strokes; the exact core's wasm memory (it never shrinks: the peak).
     firstFieldMs: load.firstFieldMs,
     exactFieldMs: load.exactFieldMs,
+    exactFactor: load.exactFactor,
     preview: load.preview,
     previewFaces: load.previewFaces,
     strokePreviewMs: median(runs.map((r) => r.pageMs)),
@@ -297,8 +300,12 @@ async function textureBench(page, strokes, url) {
   // --reopen: the same mesh opened again, its texture made again (the atlas from the worker's cache).
   const reopened = !process.argv.includes('--reopen') ? null : await page.evaluate(async (u) => {
     await window.tvf.clearTexture();
+    const tOpen = performance.now();
     await window.tvf.loadModel(u, { restore: false });
     await window.tvf.settled();
+    // The exact field of the mesh opened again (its ordering kept from the first opening, ordering-cache.js).
+    const { analyzeMs, factorMs, analysisReused } = window.tvf.stats();
+    window.__reopenExact = { ms: performance.now() - tOpen, analyzeMs, factorMs, analysisReused };
     window.__reopenLoadTasks = window.__longTasks.splice(0);
     const t0 = performance.now();
     await window.tvf.synthesize();
@@ -306,6 +313,7 @@ async function textureBench(page, strokes, url) {
     return { wallMs: performance.now() - t0, t0, t1: performance.now(), stats: s };
   }, url);
   const reopenTasks = reopened ? await page.evaluate(() => [window.__reopenLoadTasks, window.__longTasks.splice(0)]) : null;
+  const reopenExact = reopened ? await page.evaluate(() => window.__reopenExact) : null;
   await profile.stop();
   const longest = (tasks) => tasks.reduce((m, t) => Math.max(m, t.ms), 0);
   const byWall = [...updates].sort((a, b) => a.wallMs - b.wallMs);
@@ -318,6 +326,9 @@ async function textureBench(page, strokes, url) {
     textureUpdatePhases: medianUpdate ? phaseTable(medianUpdate, 'stroke solved, field changed') : null,
     textureEachUpdatePhases: updates.map((u) => phaseTable(u, 'stroke solved, field changed')),
     ...(reopened ? {
+      reopenExactFieldMs: reopenExact.ms,
+      reopenExactFactor: { analyzeMs: reopenExact.analyzeMs, factorMs: reopenExact.factorMs,
+        analysisReused: reopenExact.analysisReused },
       textureReopenedMs: reopened.wallMs,
       textureReopenedPhases: phaseTable(reopened, 'before the run'),
       // The main thread's longest task while the model was opened again, and while its texture was made.

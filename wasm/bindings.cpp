@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <map>
 #include <memory>
@@ -224,6 +225,39 @@ class DesignerBinding {
   val pendingTriangles() const { return pending_ ? view(pending_->mesh().triangles) : view(emptyI_); }
   val pendingEdges() const { return pending_ ? view(pending_->edgeVertices()) : view(emptyI_); }
   val pendingCornerUVs() const { return pending_ ? view(pending_->mesh().cornerUVs) : view(emptyF_); }
+
+  // The fill-reducing ordering kept per mesh by the page (web/core/worker/ordering-cache.js): the pending
+  // model's key (its mesh hash and field symmetry), an ordering kept for it adopted before commitModel factors
+  // (FactoredSystem::adoptOrdering; a stale one is found so at factorization), and the current model's own:
+  // keptOrderingJson() {n, pattern, metis, dissection} with keptOrderingPerm() viewing the permutation.
+  std::string pendingOrderingKey() const {
+    if (!pending_) return "";
+    char key[48];
+    std::snprintf(key, sizeof key, "%016llx-n%d", static_cast<unsigned long long>(pending_->meshHash()),
+                  pending_->symmetry());
+    return key;
+  }
+  bool adoptPendingOrdering(const val& perm, const std::string& patternHex, bool metis, bool dissection) {
+    if (!pending_) return false;
+    tvf::KeptOrdering k;
+    k.perm = emscripten::convertJSArrayToNumberVector<int32_t>(perm);
+    k.pattern = std::strtoull(patternHex.c_str(), nullptr, 16);
+    k.ordering = metis ? tvf::FillOrdering::Metis : tvf::FillOrdering::Amd;
+    k.dissection = dissection;
+    return pending_->adoptFieldOrdering(k);
+  }
+  std::string keptOrderingJson() {
+    kept_ = designer_ ? designer_->fieldOrdering() : tvf::KeptOrdering{};
+    char pattern[20];
+    std::snprintf(pattern, sizeof pattern, "%016llx", static_cast<unsigned long long>(kept_.pattern));
+    return nlohmann::json{{"n", kept_.perm.size()},
+                          {"pattern", pattern},
+                          {"metis", kept_.ordering == tvf::FillOrdering::Metis},
+                          {"dissection", kept_.dissection},
+                          {"reused", designer_ && designer_->stats().analysisReused}}
+        .dump();
+  }
+  val keptOrderingPerm() const { return view(kept_.perm); }
 
   // bytes <= 0: the address space left in wasm memory (the default); otherwise a fixed limit, for tests.
   std::string setFactorMemoryLimit(double bytes) {
@@ -630,6 +664,7 @@ class DesignerBinding {
 
   std::unique_ptr<tvf::Designer> designer_;
   std::unique_ptr<tvf::Designer> pending_;  // openParsed's model, until commitModel
+  tvf::KeptOrdering kept_;                   // keptOrderingJson()'s, viewed by keptOrderingPerm()
   std::unique_ptr<tvf::SurfaceMesh> parsed_;  // readModel's mesh, until openParsed
   Restored pendingRestored_;
   // reconstruct()'s Whitney maps for designer_'s mesh (built on first use; dropped when the model changes).
@@ -698,6 +733,10 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("pendingTriangles", &DesignerBinding::pendingTriangles)
       .function("pendingEdges", &DesignerBinding::pendingEdges)
       .function("pendingCornerUVs", &DesignerBinding::pendingCornerUVs)
+      .function("pendingOrderingKey", &DesignerBinding::pendingOrderingKey)
+      .function("adoptPendingOrdering", &DesignerBinding::adoptPendingOrdering)
+      .function("keptOrderingJson", &DesignerBinding::keptOrderingJson)
+      .function("keptOrderingPerm", &DesignerBinding::keptOrderingPerm)
       .function("setFactorMemoryLimit", &DesignerBinding::setFactorMemoryLimit)
       .function("gamma", &DesignerBinding::gamma)
       .function("infoJson", &DesignerBinding::infoJson)

@@ -467,6 +467,14 @@ const SurfaceMesh& Designer::mesh() const {
 uint64_t Designer::meshHash() const {
   return impl_->mesh.hash();
 }
+
+KeptOrdering Designer::fieldOrdering() const {
+  return impl_->system->factor().keptOrdering();
+}
+
+bool Designer::adoptFieldOrdering(const KeptOrdering& kept) {
+  return impl_->system->factor().adoptOrdering(kept);
+}
 const std::vector<int32_t>& Designer::edgeVertices() const {
   return impl_->mesh.topology().edgeVertices;
 }

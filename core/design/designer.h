@@ -23,6 +23,7 @@
 #include "mesh/mesh_checks.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
+#include "solver/factored_system.h"  // KeptOrdering
 
 namespace tvf {
 
@@ -147,6 +148,12 @@ class Designer {
   // meshHash(mesh()) (mesh/mesh_hash.h), made on first use: every saved design carries it, and the page saves
   // one after each edit (7 ms at 832k faces in wasm).
   uint64_t meshHash() const;
+  // The field system's fill-reducing ordering (FactoredSystem::keptOrdering: empty before the first
+  // factorization), to keep beyond this designer; and one kept from an earlier designer on the same mesh,
+  // which the next factorization of the same pattern uses instead of ordering again
+  // (FactoredSystem::adoptOrdering).
+  KeptOrdering fieldOrdering() const;
+  bool adoptFieldOrdering(const KeptOrdering& kept);
   const std::vector<int32_t>& edgeVertices() const;  // 2 per edge, lower index first
   // Derived from the mesh once, at construction; exports and benchmarks read them rather than derive again.
   const MeshTopology& topology() const;

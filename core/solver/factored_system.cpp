@@ -290,7 +290,7 @@ struct FactoredSystem::Impl {
   // ordering (which is kept).
   cholmod_factor* analyzeOrReuse(cholmod_sparse& A, const SparseMatrix& upper) {
     const uint64_t pattern = patternHash(A);
-    timings.analysisReused = !orderingPerm.empty() && pattern == orderingPattern;
+    timings.analysisReused = orderingPerm.size() == A.ncol && pattern == orderingPattern;
     cholmod_factor* L = timings.analysisReused ? analyzeGiven(A, orderingPerm) : analyze(A, upper);
     if (!L) return nullptr;
     const int* perm = static_cast<const int*>(L->Perm);
@@ -486,6 +486,29 @@ void FactoredSystem::setOrdering(FillOrdering ordering) {
   next->threads = impl_->threads;
   next->backward.setParts(next->threads);
   impl_ = std::move(next);
+}
+
+KeptOrdering FactoredSystem::keptOrdering() const {
+  KeptOrdering k;
+  k.perm.assign(impl_->orderingPerm.begin(), impl_->orderingPerm.end());
+  k.pattern = impl_->orderingPattern;
+  k.ordering = impl_->ordering;
+  k.dissection = impl_->usedDissection;
+  return k;
+}
+
+bool FactoredSystem::adoptOrdering(const KeptOrdering& kept) {
+  if (kept.ordering != impl_->ordering || kept.perm.empty()) return false;
+  const size_t n = kept.perm.size();
+  std::vector<uint8_t> seen(n, 0);
+  for (int32_t p : kept.perm) {
+    if (p < 0 || static_cast<size_t>(p) >= n || seen[p]) return false;
+    seen[p] = 1;
+  }
+  impl_->orderingPerm.assign(kept.perm.begin(), kept.perm.end());
+  impl_->orderingPattern = kept.pattern;
+  impl_->usedDissection = kept.dissection;
+  return true;
 }
 
 void FactoredSystem::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices) {

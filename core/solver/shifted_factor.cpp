@@ -66,6 +66,14 @@ void ShiftedFactor::setOrdering(FillOrdering ordering) {
   stale_ = true;
 }
 
+KeptOrdering ShiftedFactor::keptOrdering() const {
+  return system_.keptOrdering();
+}
+
+bool ShiftedFactor::adoptOrdering(const KeptOrdering& kept) {
+  return system_.adoptOrdering(kept);
+}
+
 void ShiftedFactor::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices) {
   system_.setEdgeGraph(std::move(edgeVertices), numVertices);
   stale_ = true;

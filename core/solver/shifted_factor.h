@@ -46,7 +46,9 @@ class ShiftedFactor {
   void setOrdering(FillOrdering ordering);  // forgets the factor and the ordering
   // The mesh's edges (2 vertices each): the METIS ordering dissects its vertex graph (FactoredSystem).
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);
-  void setThreads(int threads);  // FactoredSystem::setThreads
+  void setThreads(int threads);                  // FactoredSystem::setThreads
+  KeptOrdering keptOrdering() const;             // FactoredSystem::keptOrdering
+  bool adoptOrdering(const KeptOrdering& kept);  // FactoredSystem::adoptOrdering
   int threads() const;
   void setMemoryLimit(double bytes);  // 0: the machine's physical memory
   double memoryLimit() const;

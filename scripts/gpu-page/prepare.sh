@@ -6,7 +6,25 @@
 # warm): `bash .gpu/a1/remote.sh a1`, `bash .gpu/a2/remote.sh a2`, `bash .gpu/b/remote.sh b COMMAND...`, each with
 # its folder carried. docs/benchmarks.md (the GPU table) says what was run that way.
 # Run from the project's root after `npm run build` (and scripts/fetch-meshes.sh for the benchmark's meshes).
+# With --cores, .gpu/c alone: node, the native `tvf` with its libraries, the wasm build and the two meshes of
+# scripts/bench-cores.sh, for one command on the same kind of machine: `bash .gpu/c/remote.sh c COMMAND...`.
 set -euo pipefail
+if [ "${1:-}" = --cores ]; then
+  root=$(git rev-parse --show-toplevel); cd "$root"; here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+  mkdir -p .git/info; grep -qx '/.gpu/' .git/info/exclude 2>/dev/null || echo '/.gpu/' >> .git/info/exclude
+  rm -rf .gpu/c; mkdir -p .gpu/c; t=$(mktemp -d); trap 'rm -rf "$t"' EXIT
+  p=$t/pack; mkdir -p "$p/lib" "$p/proj/build" "$p/proj/bench-data/meshes" "$p/proj/wasm" "$p/proj/scripts"
+  for l in $(ldd build/tvf | awk '$3 ~ /^\// {print $3}'); do
+    case $(basename "$l") in libc.so*|libm.so*|libdl.so*|libpthread.so*|librt.so*|ld-linux*) ;; *) cp -L "$l" "$p/lib/";; esac
+  done
+  mkdir -p "$p/proj/build-wasm"; cp build/tvf "$p/proj/build/"
+  cp build-wasm/*.mjs build-wasm/*.js build-wasm/*.wasm build-wasm/package.json "$p/proj/build-wasm/"
+  cp package.json "$p/proj/"; cp wasm/bench.mjs "$p/proj/wasm/"
+  cp scripts/bench-cores.sh scripts/bench.mjs scripts/subdivide-off.mjs "$p/proj/scripts/"
+  cp bench-data/meshes/{bunny00,armadillo}.off "$p/proj/bench-data/meshes/"
+  (cd "$p" && tar cf - . | xz -T2 -6 > "$root/.gpu/c/c.tar.xz"); xz -6 -T2 -c "$(command -v node)" > .gpu/c/node.xz
+  cp "$here/remote.sh" .gpu/c/remote.sh; du -sh .gpu/c; exit 0
+fi
 root=$(git rev-parse --show-toplevel); cd "$root"; here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 mkdir -p .git/info; grep -qx '/.gpu/' .git/info/exclude 2>/dev/null || echo '/.gpu/' >> .git/info/exclude
 rm -rf .gpu; mkdir -p .gpu/a1 .gpu/a2 .gpu/b; t=$(mktemp -d); trap 'rm -rf "$t"' EXIT

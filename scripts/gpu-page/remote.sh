@@ -4,6 +4,8 @@
 #   remote.sh a2            joins the halves and unpacks the shell into /opt/chs
 #   remote.sh b COMMAND...  unpacks node, the libraries and the project into /opt, and runs COMMAND in the project
 #                           with TVF_CHROMIUM, TVF_GPU_ARGS and the GPU's Vulkan driver set
+#   remote.sh c COMMAND...  (prepare.sh --cores; no browser) unpacks node, tvf and its libraries, the wasm
+#                           build and two meshes, and runs COMMAND in that project
 # The three run on one warm machine, one right after the other: /opt is all they share.
 set -euo pipefail
 cd "$(dirname "$0")"; stage=$1; shift
@@ -27,5 +29,9 @@ case $stage in
     export TVF_GPU_ARGS='--use-angle=vulkan --enable-features=Vulkan,VulkanFromANGLE,DefaultANGLEVulkan
       --ignore-gpu-blocklist --enable-gpu --no-sandbox --disable-dev-shm-usage'
     cd /opt/b/proj && "$@" ;;
-  *) echo "remote.sh: a1, a2 or b"; exit 2 ;;
+  c)
+    xz -dc node.xz > /opt/node && chmod +x /opt/node && mkdir -p /opt/c && xz -dc c.tar.xz | tar xf - -C /opt/c
+    export PATH=/opt:$PATH LD_LIBRARY_PATH=/opt/c/lib
+    cd /opt/c/proj && "$@" ;;
+  *) echo "remote.sh: a1, a2, b or c"; exit 2 ;;
 esac

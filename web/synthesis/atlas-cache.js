@@ -5,6 +5,8 @@
 // a 64-bit hash of the exact input (positions, triangles, the model's own UVs, resolution, gutter) and holds
 // that input's sizes and a format version: an entry whose sizes or version differ is stale or foreign and is
 // ignored (and replaced once the atlas is made again).
+import { KeptStore } from '../core/worker/kept-store.js';
+
 const DB_NAME = 'tvf-atlas-cache';
 const STORE = 'atlases';
 const FORMAT = 1;
@@ -31,13 +33,6 @@ export function inputHash(arrays) {
   return (a >>> 0).toString(16).padStart(8, '0') + (b >>> 0).toString(16).padStart(8, '0');
 }
 
-function request(req) {
-  return new Promise((resolve, reject) => {
-    req.onsuccess = () => resolve(req.result);
-    req.onerror = () => reject(req.error ?? new Error('IndexedDB request failed'));
-  });
-}
-
 // A prepared atlas's typed arrays copied (what the cache keeps while the caller transfers its own away).
 function copied(atlas) {
   return {
@@ -51,9 +46,8 @@ function copied(atlas) {
 
 export class AtlasCache {
   constructor({ persistent = !!globalThis.indexedDB } = {}) {
-    this.persistent = persistent;
+    this.store = new KeptStore(DB_NAME, STORE, KEPT, { persistent });
     this.memory = null; // {key, sizes, atlas}
-    this.db = null;
   }
 
   // The input's identity: {key, sizes}.
@@ -67,7 +61,7 @@ export class AtlasCache {
     const same = (e) =>
       e && e.key === key && e.sizes?.length === sizes.length && e.sizes.every((n, i) => n === sizes[i]);
     if (same(this.memory)) return copied(this.memory.atlas);
-    const entry = await this.#read(key).catch(() => null);
+    const entry = await this.store.get(key);
     if (!same(entry)) return null;
     this.memory = { ...entry, persisted: true };
     return copied(entry.atlas);
@@ -79,7 +73,7 @@ export class AtlasCache {
   put({ key, sizes }, atlas, { persist = true } = {}) {
     const entry = { key, sizes, madeAt: Date.now(), atlas: copied(atlas) };
     this.memory = { ...entry, persisted: persist };
-    return persist ? this.#write(entry).catch(() => {}) : Promise.resolve();
+    return persist ? this.store.put(entry) : Promise.resolve();
   }
 
   // The atlas in memory stored in IndexedDB too, where it is not yet.
@@ -88,34 +82,6 @@ export class AtlasCache {
     if (!m || m.persisted) return Promise.resolve();
     m.persisted = true;
     const { persisted, ...entry } = m;
-    return this.#write(entry).catch(() => {});
-  }
-
-  async #open() {
-    if (!this.persistent) return null;
-    if (this.db) return this.db;
-    const open = indexedDB.open(DB_NAME, 1);
-    open.onupgradeneeded = () => open.result.createObjectStore(STORE, { keyPath: 'key' });
-    this.db = await request(open);
-    this.db.onversionchange = () => {
-      this.db.close();
-      this.db = null;
-    };
-    return this.db;
-  }
-
-  async #read(key) {
-    const db = await this.#open();
-    return db ? request(db.transaction(STORE).objectStore(STORE).get(key)) : null;
-  }
-
-  async #write(entry) {
-    const db = await this.#open();
-    if (!db) return;
-    const store = db.transaction(STORE, 'readwrite').objectStore(STORE);
-    await request(store.put(entry));
-    const all = await request(store.getAll());
-    all.sort((x, y) => y.madeAt - x.madeAt);
-    for (const old of all.slice(KEPT)) await request(store.delete(old.key));
+    return this.store.put(entry);
   }
 }

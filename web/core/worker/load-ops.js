@@ -6,6 +6,7 @@ import { Surface } from '../../geometry/surface.js';
 import { loadCore } from '../core-client.js';
 import { CoreExport } from '../core-export.js';
 import { openModelInSteps } from '../open-steps.js';
+import { OrderingCache } from './ordering-cache.js';
 import { holdLifeLock } from './supervision.js';
 import { Transfer } from './transfer.js';
 
@@ -14,6 +15,7 @@ import { Transfer } from './transfer.js';
 const PREVIEW_WAIT_MS = 20_000;
 
 export function loadOps(state) {
+  const orderings = new OrderingCache();
   const anytime = {
     // assetBase: the folder holding wasm/tvf_core.mjs (the element's asset base; the worker may run from a
     // blob: URL, where its own import.meta.url names nothing useful).
@@ -59,10 +61,13 @@ export function loadOps(state) {
       const progress = (value, list) => state.progress(value, list);
       const { opened, info: pendingInfo, ahead } = openModelInSteps(core, steps, progress);
       if (ahead) await sendAhead(state);
+      // The ordering this mesh had when it was last opened (ordering-cache.js): its analysis skips METIS.
+      const ordering = await orderings.adopt(core.designer);
       state.progress({ phase: 'factoring', info: pendingInfo });
       // Tests: an exact factorization that takes at least this long, so the preview surely leads.
       for (const end = performance.now() + (options.delayForTestMs ?? 0); performance.now() < end; );
       const committed = core.commitModel();
+      orderings.keep(core.designer, ordering.key); // behind the reply
       coreExport.modelLoaded(bytes, format);
       state.meshChanged();
       const info = core.info();
