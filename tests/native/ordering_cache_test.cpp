@@ -18,28 +18,15 @@ namespace tvf {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::designEveryKind;
+using testing::offText;
+using testing::relativeDifference;
 using testing::torus;
-
-void design(Designer& d) {
-  const int32_t nF = d.mesh().numFaces();
-  std::vector<SurfacePoint> points;
-  for (int32_t f : {nF / 7, nF / 7 + 1, nF / 7 + 2}) points.push_back({f, {0.2, 0.3, 0.5}});
-  d.addStroke(points, 1.0, 1.0);
-  d.addSource(d.mesh().triangles[0], 1.0);
-  d.solve();
-}
-
-double maxRelativeDifference(const std::vector<double>& a, const std::vector<double>& b) {
-  double diff = 0, norm = 0;
-  for (size_t i = 0; i < a.size(); ++i)
-    diff = std::max(diff, std::abs(a[i] - b[i])), norm = std::max(norm, std::abs(a[i]));
-  return diff / norm;
-}
 
 TEST(KeptOrdering, AdoptedOnTheSameMeshSkipsTheOrderingAndGivesTheSameField) {
   const SurfaceMesh m = torus(40, 20, 2, 0.7);
   Designer first(m);
-  design(first);
+  designEveryKind(first);
   EXPECT_FALSE(first.stats().analysisReused);
   const KeptOrdering kept = first.fieldOrdering();
   ASSERT_EQ(kept.perm.size(), static_cast<size_t>(first.topology().numEdges));
@@ -47,16 +34,16 @@ TEST(KeptOrdering, AdoptedOnTheSameMeshSkipsTheOrderingAndGivesTheSameField) {
 
   Designer second(m);
   ASSERT_TRUE(second.adoptFieldOrdering(kept));
-  design(second);
+  designEveryKind(second);
   EXPECT_TRUE(second.stats().analysisReused);
   EXPECT_EQ(second.stats().factorKind, first.stats().factorKind);
-  EXPECT_LT(maxRelativeDifference(second.oneForm(), first.oneForm()), 1e-12);
+  EXPECT_LT(relativeDifference(second.oneForm(), first.oneForm()), 1e-12);
 }
 
 TEST(KeptOrdering, OneOfAnotherPatternKindOrShapeIsIgnored) {
   const SurfaceMesh m = torus(40, 20, 2, 0.7);
   Designer first(m);
-  design(first);
+  designEveryKind(first);
   KeptOrdering kept = first.fieldOrdering();
 
   // Another pattern (gamma > 0 widens the stencil): adopted, then found stale at the factorization.
@@ -64,10 +51,10 @@ TEST(KeptOrdering, OneOfAnotherPatternKindOrShapeIsIgnored) {
   widened.setGamma(0.01);
   fresh.setGamma(0.01);
   ASSERT_TRUE(widened.adoptFieldOrdering(kept));
-  design(widened);
-  design(fresh);
+  designEveryKind(widened);
+  designEveryKind(fresh);
   EXPECT_FALSE(widened.stats().analysisReused);
-  EXPECT_LT(maxRelativeDifference(widened.oneForm(), fresh.oneForm()), 1e-12);
+  EXPECT_LT(relativeDifference(widened.oneForm(), fresh.oneForm()), 1e-12);
 
   // The other ordering kind, or not a permutation: refused outright.
   Designer amd(m);
@@ -80,9 +67,9 @@ TEST(KeptOrdering, OneOfAnotherPatternKindOrShapeIsIgnored) {
   twice.perm = {0, 1, 2};
   // A permutation of another size, claiming the same pattern (a damaged record): stale at factorization.
   EXPECT_TRUE(other.adoptFieldOrdering(twice));
-  design(other);
+  designEveryKind(other);
   EXPECT_FALSE(other.stats().analysisReused);
-  EXPECT_LT(maxRelativeDifference(other.oneForm(), first.oneForm()), 1e-12);
+  EXPECT_LT(relativeDifference(other.oneForm(), first.oneForm()), 1e-12);
 }
 
 TEST(OrderingFile, RoundTripsAndRefusesStaleForeignOrDamagedFiles) {
@@ -117,15 +104,7 @@ TEST(OrderingCacheCli, TheSecondRunOfAMeshReusesTheOrderingAndWritesTheSameField
   fs::remove_all(dir);
   fs::create_directories(dir);
   const SurfaceMesh m = torus(40, 20, 2, 0.7);
-  std::ostringstream off;
-  off.precision(17);
-  off << "OFF\n" << m.numVertices() << " " << m.numFaces() << " 0\n";
-  for (int v = 0; v < m.numVertices(); ++v)
-    off << m.positions[3 * v] << " " << m.positions[3 * v + 1] << " " << m.positions[3 * v + 2] << "\n";
-  for (int f = 0; f < m.numFaces(); ++f)
-    off << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2]
-        << "\n";
-  std::ofstream(dir / "torus.off") << off.str();
+  std::ofstream(dir / "torus.off") << offText(m);
   std::ofstream(dir / "design.json")
       << R"({"constraints": [{"type": "source", "vertex": 3, "strength": 1}]})";
   const std::string args = "design " + (dir / "torus.off").string() + " " + (dir / "design.json").string() +
@@ -137,9 +116,9 @@ TEST(OrderingCacheCli, TheSecondRunOfAMeshReusesTheOrderingAndWritesTheSameField
   EXPECT_FALSE(fa["stats"]["analysisReused"].get<bool>());
   EXPECT_TRUE(fb["stats"]["analysisReused"].get<bool>());
   EXPECT_EQ(fa["oneForm"].size(), fb["oneForm"].size());
-  EXPECT_LT(maxRelativeDifference(fa["oneForm"].get<std::vector<double>>(),
-                                  fb["oneForm"].get<std::vector<double>>()),
-            1e-12);
+  EXPECT_LT(
+      relativeDifference(fa["oneForm"].get<std::vector<double>>(), fb["oneForm"].get<std::vector<double>>()),
+      1e-12);
   // A damaged cache file is named on stderr and ignored: the ordering is computed again, and rewritten.
   const fs::path file = fs::directory_iterator(dir / "cache")->path();
   { std::fstream(file, std::ios::in | std::ios::out | std::ios::binary).seekp(60).put('\x7f'); }

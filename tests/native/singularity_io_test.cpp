@@ -275,8 +275,8 @@ TEST(SingularityDesignFile, AVectorFieldWithSingularitiesIsWrittenAsDirections) 
 }
 
 TEST(SingularityDesignFile, ExactSingularitiesRoundTripsAndIsWrittenOnlyWhenTrue) {
-  // A torus needs no index (chi = 0): asked for exactly the prescribed singularities, none, its cross field has
-  // none at all, where the smoothest field is free to place pairs.
+  // A torus needs no index (chi = 0): asked for exactly the prescribed singularities, none, its cross field
+  // has none at all, where the smoothest field is free to place pairs.
   const SurfaceMesh ring = torus(30, 16, 2, 0.7);
   Designer d(ring);
   d.setSymmetry(4);
@@ -481,15 +481,7 @@ fs::path writeTemp(const std::string& name, const std::string& text) {
 }
 
 fs::path writeMesh(const std::string& name, const SurfaceMesh& m) {
-  std::ostringstream out;
-  out.precision(17);
-  out << "OFF\n" << m.numVertices() << " " << m.numFaces() << " 0\n";
-  for (int v = 0; v < m.numVertices(); ++v)
-    out << m.positions[3 * v] << " " << m.positions[3 * v + 1] << " " << m.positions[3 * v + 2] << "\n";
-  for (int f = 0; f < m.numFaces(); ++f)
-    out << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2]
-        << "\n";
-  return writeTemp(name, out.str());
+  return writeTemp(name, offText(m));
 }
 
 std::string readText(const fs::path& path) {

@@ -27,18 +27,6 @@ using namespace tvf::testing;
 
 namespace {
 
-// A stroke through the barycentres of a few faces, a source and a vortex: every kind of right-hand side, and
-// rank-k updates of the factor.
-void designEveryKind(Designer& d) {
-  const int32_t nF = d.mesh().numFaces();
-  std::vector<SurfacePoint> points;
-  for (int32_t f : {nF / 7, nF / 7 + 1, nF / 7 + 2}) points.push_back({f, {0.2, 0.3, 0.5}});
-  d.addStroke(points, 1.0, 1.0);
-  d.addSource(d.mesh().triangles[0], 1.0);
-  d.addVortex(nF / 2, -0.5);
-  d.solve();
-}
-
 DiagonalTerms concatenate(const DiagonalTerms& a, const DiagonalTerms& b) {
   DiagonalTerms out = a;
   out.rows.insert(out.rows.end(), b.rows.begin(), b.rows.end());

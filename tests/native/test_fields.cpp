@@ -11,6 +11,16 @@ Eigen::VectorXd asVector(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size());
 }
 
+void designEveryKind(Designer& d) {
+  const int32_t nF = d.mesh().numFaces();
+  std::vector<SurfacePoint> points;
+  for (int32_t f : {nF / 7, nF / 7 + 1, nF / 7 + 2}) points.push_back({f, {0.2, 0.3, 0.5}});
+  d.addStroke(points, 1.0, 1.0);
+  d.addSource(d.mesh().triangles[0], 1.0);
+  d.addVortex(nF / 2, -0.5);
+  d.solve();
+}
+
 double relativeDifference(const std::vector<double>& a, const std::vector<double>& b) {
   return (asVector(a) - asVector(b)).norm() / std::max(1e-300, asVector(b).norm());
 }

@@ -11,6 +11,9 @@
 namespace tvf::testing {
 
 Eigen::VectorXd asVector(const std::vector<double>& v);
+// A stroke through the barycentres of a few faces, a source and a vortex, then a solve: every kind of
+// right-hand side, and rank-k updates of the factor.
+void designEveryKind(Designer& d);
 // |a - b| / |b|.
 double relativeDifference(const std::vector<double>& a, const std::vector<double>& b);
 

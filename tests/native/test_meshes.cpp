@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <sstream>
 #include <tuple>
 
 namespace tvf::testing {
@@ -165,6 +166,18 @@ void jitterPlanar(SurfaceMesh& mesh, double amount, unsigned seed) {
     mesh.positions[3 * v] += u(rng);
     mesh.positions[3 * v + 1] += u(rng);
   }
+}
+
+std::string offText(const SurfaceMesh& m) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "OFF\n" << m.numVertices() << " " << m.numFaces() << " 0\n";
+  for (int v = 0; v < m.numVertices(); ++v)
+    out << m.positions[3 * v] << " " << m.positions[3 * v + 1] << " " << m.positions[3 * v + 2] << "\n";
+  for (int f = 0; f < m.numFaces(); ++f)
+    out << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2]
+        << "\n";
+  return out.str();
 }
 
 }  // namespace tvf::testing

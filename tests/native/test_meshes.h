@@ -1,5 +1,6 @@
 #pragma once
 // Meshes made in code, with known topology and geometry, for the native tests.
+#include <string>
 #include <vector>
 
 #include "constraints/constraint_spec.h"
@@ -15,6 +16,8 @@ SurfaceMesh flatGrid(int n, double size = 1.0, bool alternate = false);
 SurfaceMesh flatAnnulus(int rings, int sectors, double r0, double r1);
 // Torus of revolution, valence 6 everywhere.
 SurfaceMesh torus(int n, int m, double R, double r);
+// The mesh as an OFF file's text, positions to 17 digits (what the CLI's tests hand it).
+std::string offText(const SurfaceMesh& m);
 // Surface of a one-voxel-thick plate of width x depth cells with a hole at every listed cell, each unit face
 // split into k x k quads: genus = number of holes.
 SurfaceMesh holedPlate(int width, int depth, const std::vector<std::pair<int, int>>& holes, int k);
