@@ -148,6 +148,45 @@ check('failed load keeps the previous mesh', keep !== '' && d.positions().length
   check('back to the icosphere', d.loadMesh(new TextEncoder().encode(off), 'off') === '' && d.positions().length === 3 * nV);
 }
 
+// The field's ordering kept per mesh (web/core/worker/ordering-cache.js): read out of one designer after its
+// commit and adopted by another before its own, on the same mesh: the analysis reused and the same field; a
+// permutation that is not one is refused, and another mesh's key differs.
+{
+  const mesh = new TextEncoder().encode(icosphere(3));
+  const open = (designer, adopt) => {
+    designer.readModel(mesh, 'off');
+    designer.openParsed('', '');
+    const key = designer.pendingOrderingKey();
+    const adopted = adopt ? adopt(designer) : false;
+    designer.commitModel();
+    designer.addSource(0, 1);
+    designer.addSink(100, 1);
+    designer.solve();
+    return { key, adopted, reused: JSON.parse(designer.statsJson()).analysisReused, oneForm: Float64Array.from(designer.oneForm()) };
+  };
+  const a = new Module.Designer();
+  const first = open(a);
+  const kept = JSON.parse(a.keptOrderingJson());
+  const perm = Int32Array.from(a.keptOrderingPerm());
+  check('keptOrderingJson: the permutation of every edge, METIS, not reused', kept.n === first.oneForm.length &&
+    perm.length === kept.n && kept.metis === true && kept.reused === false && /^[0-9a-f]{16}$/.test(kept.pattern), JSON.stringify(kept));
+  const b = new Module.Designer();
+  const again = open(b, (x) => x.adoptPendingOrdering(perm, kept.pattern, kept.metis, kept.dissection));
+  check('adoptPendingOrdering: adopted, the analysis reused, the same key', again.adopted && again.reused && again.key === first.key,
+    JSON.stringify({ adopted: again.adopted, reused: again.reused }));
+  check('adoptPendingOrdering: the same field', maxAbsDiff(again.oneForm, first.oneForm) <= 1e-12 * maxAbs(first.oneForm));
+  const c = new Module.Designer();
+  const bad = Int32Array.from(perm);
+  bad[1] = bad[0];
+  const refused = open(c, (x) => x.adoptPendingOrdering(bad, kept.pattern, kept.metis, kept.dissection));
+  check('adoptPendingOrdering: not a permutation, refused; ordered anew', !refused.adopted && !refused.reused &&
+    maxAbsDiff(refused.oneForm, first.oneForm) <= 1e-12 * maxAbs(first.oneForm));
+  c.readModel(new TextEncoder().encode(icosphere(2)), 'off');
+  c.openParsed('', '');
+  check('pendingOrderingKey: another mesh, another key', c.pendingOrderingKey() !== first.key, c.pendingOrderingKey());
+  for (const x of [a, b, c]) x.delete();
+}
+
 // Source at vertex 0, sink at the antipodal vertex.
 const pos = Float64Array.from(d.positions());
 let far = 0, best = Infinity;
