@@ -203,6 +203,10 @@ class DesignerBinding {
     std::string error;
     if (!pending_) return nlohmann::json{{"ok", false}, {"error", "no model is open to commit"}}.dump();
     if (attempt(error, [&] {
+          // The model being replaced lets its factor go first (its design and field stay): a big model opened
+          // over itself otherwise factors beside a factor as big as its own in the same heap. Should the commit
+          // fail, the model kept factors again at its next solve.
+          if (designer_) designer_->releaseFactors();
           solvePrepared(*pending_, pendingRestored_);
           designer_ = std::move(pending_);
         })) {

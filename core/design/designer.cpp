@@ -475,6 +475,10 @@ KeptOrdering Designer::fieldOrdering() const {
 bool Designer::adoptFieldOrdering(const KeptOrdering& kept) {
   return impl_->system->factor().adoptOrdering(kept);
 }
+
+void Designer::releaseFactors() {
+  impl_->eachSystem([](FieldSystem& s) { s.factor().release(); });
+}
 const std::vector<int32_t>& Designer::edgeVertices() const {
   return impl_->mesh.topology().edgeVertices;
 }

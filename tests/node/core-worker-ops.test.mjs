@@ -193,3 +193,38 @@ test("one derived-field object per field version: each read-out made on first re
   await call('hodgeShares', [2]);
   assert.equal(state.core.calls.filter((c) => c === 'hodge').length, hodgeBefore + 1, 'the new version decomposes anew');
 });
+
+// Requests are served one after another: an op that waits (a big model's load for the page's word that its
+// preview is made, the ordering cache for IndexedDB) is not overtaken by the request the page sent behind it,
+// which would otherwise change the model being replaced and be lost with it; a note is still taken at once.
+test('an op that waits is not overtaken by the request behind it; notes are taken meanwhile', async () => {
+  const posted = [];
+  const scope = { postMessage: (data) => posted.push(data) };
+  const state = new WorkerState(scope);
+  const order = [];
+  let release;
+  const waiting = new Promise((resolve) => (release = resolve));
+  serve(scope, state, [{
+    anytime: {
+      async slow() {
+        order.push('slow begins');
+        await waiting;
+        order.push('slow ends');
+        return 1;
+      },
+      fast() {
+        order.push('fast');
+        return 2;
+      },
+    },
+    notes: { word: () => (order.push('note'), release()) },
+  }]);
+  const first = scope.onmessage({ data: { seq: 1, op: 'slow', args: [] } });
+  const second = scope.onmessage({ data: { seq: 2, op: 'fast', args: [] } });
+  await new Promise((resolve) => setTimeout(resolve, 20));
+  assert.deepEqual(order, ['slow begins'], 'the second request waits for the first');
+  scope.onmessage({ data: { word: true } });
+  await Promise.all([first, second]);
+  assert.deepEqual(order, ['slow begins', 'note', 'slow ends', 'fast']);
+  assert.deepEqual(posted.filter((p) => p.seq).map((p) => [p.seq, p.value]), [[1, 1], [2, 2]]);
+});

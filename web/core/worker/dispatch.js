@@ -39,24 +39,35 @@ export function composeOps(groups) {
 // Serves the composed groups on scope (the worker's global, or a stand-in with postMessage in tests).
 export function serve(scope, state, groups) {
   const { ops, notes } = composeOps(groups);
-  scope.onmessage = async ({ data }) => {
+  // Requests run one after another, in the order they came, each once the one before has replied: an op that
+  // waits (a big model's load for the page's word that its preview is made, the ordering cache for IndexedDB)
+  // is not overtaken by the edits the page sends behind it, which would change the model it is replacing and
+  // be lost with it. Notes and pings are not requests: they are taken at once (the word the load waits for).
+  let queue = Promise.resolve();
+  scope.onmessage = ({ data }) => {
     if (data.ping) return void scope.postMessage({ pong: true });
     for (const [key, note] of notes) if (data[key]) return void note(data[key]);
-    const entry = ops.get(data.op);
-    const mutating = entry?.kind === 'edits' || entry?.kind === 'opens';
-    const t0 = performance.now();
-    const { reply, transfer } = await answer(state, data, entry, mutating);
-    if (reply.snapshot) delete reply.snapshot.transfer;
-    reply.seq = data.seq;
-    reply.workerMs = performance.now() - t0;
-    scope.postMessage(reply, transfer);
-    // The update the solve went through (Designer::setDeferredUpdates) goes into the factor once the field has
-    // gone.
-    if (!mutating || !state.core?.hasMesh) return;
-    const t = performance.now();
-    state.core.applyDeferredUpdates();
-    scope.postMessage({ deferredUpdate: { seq: data.seq, ms: performance.now() - t } });
+    queue = queue.then(() => serveRequest(scope, state, ops, data)).catch((err) => console.error(err));
+    return queue; // resolves once this request is served (a stand-in scope in tests awaits it)
   };
+}
+
+// One request: its op answered and replied, then the update its solve held beside the factor put into it.
+async function serveRequest(scope, state, ops, data) {
+  const entry = ops.get(data.op);
+  const mutating = entry?.kind === 'edits' || entry?.kind === 'opens';
+  const t0 = performance.now();
+  const { reply, transfer } = await answer(state, data, entry, mutating);
+  if (reply.snapshot) delete reply.snapshot.transfer;
+  reply.seq = data.seq;
+  reply.workerMs = performance.now() - t0;
+  scope.postMessage(reply, transfer);
+  // The update the solve went through (Designer::setDeferredUpdates) goes into the factor once the field has
+  // gone.
+  if (!mutating || !state.core?.hasMesh) return;
+  const t = performance.now();
+  state.core.applyDeferredUpdates();
+  scope.postMessage({ deferredUpdate: { seq: data.seq, ms: performance.now() - t } });
 }
 
 async function answer(state, data, entry, mutating) {
