@@ -10,7 +10,11 @@ import { shapeComplexity } from './auto-settings.js';
 import { seamIndirection } from './seams.js';
 
 export function preparedAtlas(Module, input, options) {
-  const steps = preparedAtlasSteps(Module, input, options);
+  return finishSteps(preparedAtlasSteps(Module, input, options));
+}
+
+// The rest of a generator's steps, at once; its value.
+export function finishSteps(steps) {
   for (;;) {
     const r = steps.next();
     if (r.done) return r.value;

@@ -5,17 +5,9 @@
 // worker's Transfer.
 import { Transfer } from '../core/worker/transfer.js';
 import { AtlasCache } from './atlas-cache.js';
-import { preparedAtlas, preparedAtlasSteps, preparedBuffers } from './atlas-prepared.js';
+import { finishSteps, preparedAtlas, preparedAtlasSteps, preparedBuffers } from './atlas-prepared.js';
 import { analyzeExemplar, exemplarBuffers } from './exemplar.js';
 import { warmUpTexture } from './warm-up.js';
-
-// The rest of a generator's steps; its value.
-function finish(steps) {
-  for (;;) {
-    const r = steps.next();
-    if (r.done) return r.value;
-  }
-}
 
 const sumOf = (steps) => Object.values(steps ?? {}).reduce((a, b) => a + b, 0);
 
@@ -40,7 +32,7 @@ export function synthesisOps(state) {
         // The one being prepared ahead for this input is finished, not started again.
         const steps = ahead?.id.key === id.key ? ahead.steps : null;
         ahead = null;
-        atlas = steps ? finish(steps) : preparedAtlas(state.core.Module, input, options);
+        atlas = steps ? finishSteps(steps) : preparedAtlas(state.core.Module, input, options);
         atlases.put(id, atlas); // stored in IndexedDB after the reply
       }
       if (cached) atlas.workerSteps = null; // the steps were the run's that made it
