@@ -57,14 +57,20 @@ export class AtlasCache {
   }
 
   // The atlas kept for the input (a copy the caller may transfer), or null.
-  async get({ key, sizes }) {
+  async get(id) {
+    return (await this.has(id)) ? copied(this.memory.atlas) : null;
+  }
+
+  // Whether an atlas is kept for the input, in memory or in IndexedDB (then brought into memory), copying
+  // nothing: what an atlas prepared ahead looks up before making one.
+  async has({ key, sizes }) {
     const same = (e) =>
       e && e.key === key && e.sizes?.length === sizes.length && e.sizes.every((n, i) => n === sizes[i]);
-    if (same(this.memory)) return copied(this.memory.atlas);
+    if (same(this.memory)) return true;
     const entry = await this.store.get(key);
-    if (!same(entry)) return null;
+    if (!same(entry)) return false;
     this.memory = { ...entry, persisted: true };
-    return copied(entry.atlas);
+    return true;
   }
 
   // Keeps a copy of `atlas`, made for the input identified by {key, sizes}: in memory at once, in IndexedDB

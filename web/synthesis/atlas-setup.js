@@ -16,8 +16,8 @@ export function atlasOptions(options, numFaces) {
 
 // c: the SynthesisController. Resolves with the atlas (c.atlas, reused while the model, resolution and gutter
 // stay the same).
-export async function setUpAtlas(c, model, resolution, clock) {
-  const { gutter } = atlasOptions(c.options, model.triangles.length / 3);
+export async function setUpAtlas(c, model, clock) {
+  const { resolution, gutter } = atlasOptions(c.options, model.triangles.length / 3);
   const held = c.atlas;
   if (held && held.key === model.key && held.resolution === resolution && held.gutter === gutter) return held;
   // Generating an atlas takes up to seconds on a big model: the element's core worker does it, so the page

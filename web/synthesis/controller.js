@@ -7,7 +7,7 @@
 // synthesizer (its options, the field it follows), run-inputs.js's; the texture read out, texture-exports.js's.
 import { runSynthesisBench } from './bench.js';
 import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8 } from './exemplar.js';
-import { atlasOptions, setUpAtlas } from './atlas-setup.js';
+import { setUpAtlas } from './atlas-setup.js';
 import { PhaseClock } from './phase-clock.js';
 import { QUICK_EDIT_MS, isQuickEdit } from './quick-edits.js';
 import { DEFAULTS, Synthesizer } from './synthesizer.js';
@@ -15,7 +15,6 @@ import { glbTexture, texturePng, textureReadback } from './texture-exports.js';
 import { TEXTURE_SYMMETRIES, textureRefusal } from '../session/symmetry.js';
 import { checkSynthesisOptions } from './options.js';
 import { fieldInput, runOptions } from './run-inputs.js';
-
 
 export class SynthesisController {
   // viewer: the page's Viewer (scene, surfaceMesh, requestRender).
@@ -196,8 +195,7 @@ export class SynthesisController {
     const t0 = performance.now(), frames0 = this.viewer.renderCount;
     this.ensureSynth();
     clock.mark('field from the page');
-    const { resolution } = atlasOptions(this.options, model.triangles.length / 3);
-    const atlas = await setUpAtlas(this, model, resolution, clock);
+    const atlas = await setUpAtlas(this, model, clock);
     const tAtlas = performance.now() - t0;
     const synthOptions = runOptions(this.options, model, atlas, this.exemplar.tables.size, preview);
     const field = fieldInput(model, atlas);

@@ -52,7 +52,7 @@ export function synthesisOps(state) {
         const input = { positions, triangles, cornerUVs };
         const id = AtlasCache.identify(input, options);
         ahead = null;
-        if (await atlases.get(id)) return { done: true, cached: true };
+        if (await atlases.has(id)) return { done: true, cached: true };
         ahead = { id, steps: preparedAtlasSteps(state.core.Module, input, options) };
       }
       if (!ahead) return { done: true, cached: false }; // a texture took it, or another model replaced it

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The field's fill-reducing ordering kept per mesh in IndexedDB (kept-store.js), so that opening a model again
 // skips ordering it: METIS on the mesh's vertex graph, most of the analysis before a big model's first field
-// (armadillo-sub2: 2.3-3.3 s). An entry is keyed by the mesh's hash and the field's symmetry (the core's
-// pendingOrderingKey) and holds the hash of the matrix pattern it was made for. The core ignores one whose
+// (armadillo-sub2 in the page: 2.4-3.9 s). An entry is keyed by the mesh's hash and the field's symmetry (the
+// core's pendingOrderingKey) and holds the hash of the matrix pattern it was made for. The core ignores one whose
 // pattern or size differs (stale), and refuses one of the other ordering kind or that is not a permutation
 // (foreign, damaged); the load then orders as before, and the new ordering replaces the entry. Owned by
 // load-ops.js.
