@@ -797,7 +797,7 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("hodge", &DesignerBinding::hodge)
       .function("reconstruct", &DesignerBinding::reconstruct);
   function("warmUp", &warmUp);
-  // 1 in the plain build; in the build with pthreads (tvf_core_threads.mjs) one more than its helper threads.
-  function("solverThreadsAvailable",
-           emscripten::optional_override([] { return tvf::ThreadTeam::kHelpers + 1; }));
+  // 1 in the plain build; in the build with pthreads (tvf_core_threads.mjs) one more than the helper threads
+  // its pool started with.
+  function("solverThreadsAvailable", emscripten::optional_override([] { return tvf::ThreadTeam::maxParts(); }));
 }

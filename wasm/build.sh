@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 #
 # build.sh: build the WebAssembly core, build-wasm/tvf_core.mjs + build-wasm/tvf_core.wasm (ES6 module,
-# factory `createTvfCore`, runs in browsers, workers and node), and the same core with a helper thread,
+# factory `createTvfCore`, runs in browsers, workers and node), and the same core with helper threads,
 # build-wasm/tvf_core_threads.{mjs,wasm,worker.js} (cross-origin-isolated pages and node; see build_variant).
 #
 # Usage:
@@ -61,13 +61,14 @@ if command -v flock >/dev/null; then
 fi
 
 # One variant: $1 = plain | threads. plain: tvf_core.{mjs,wasm}, one thread, runs anywhere. threads:
-# tvf_core_threads.{mjs,wasm,worker.js}, shared memory and one helper pthread (PTHREAD_POOL_SIZE=1, started with
-# the module) for the backward substitution; only cross-origin-isolated pages and node can run it
+# tvf_core_threads.{mjs,wasm,worker.js}, shared memory and up to 7 helper pthreads (PTHREAD_POOL_SIZE: the cores
+# less one, wasm/node-pre.js; started with the module) for the factorization and the backward substitution;
+# only cross-origin-isolated pages and node can run it
 # (SharedArrayBuffer), so the page picks it when `crossOriginIsolated` and the plain one otherwise.
 build_variant() {
   local variant=$1 build cholmod name extra
   if [ "$variant" = threads ]; then
-    build=$OUT/core-threads name=tvf_core_threads extra="-pthread -DTVF_THREAD_HELPERS=1"
+    build=$OUT/core-threads name=tvf_core_threads extra="-pthread -DTVF_THREAD_HELPERS=7"
     cholmod=$("$ROOT/wasm/build-cholmod.sh" --threads | tail -1)
   else
     build=$OUT/core name=tvf_core extra=

@@ -6,6 +6,17 @@
 // wasmBinary or instantiateWasm. Browsers and workers never enter the branch. (`_scriptDir` is the
 // import.meta.url that the MODULARIZE wrapper captures; import.meta itself would break 3.1.6's terser pass.)
 var require, __dirname;
+// The build with pthreads starts its helper threads' workers with the module (its PTHREAD_POOL_SIZE): one
+// fewer than the cores (navigator.hardwareConcurrency, or node's), at most 7, or as many as
+// createTvfCore({threadHelpers}) asks for. The plain build ignores it.
+var tvfThreadHelpers = (function () {
+  var cores = 2;
+  if (typeof navigator == 'object' && navigator.hardwareConcurrency > 0) cores = navigator.hardwareConcurrency;
+  else if (typeof process == 'object' && typeof process.getBuiltinModule == 'function')
+    cores = process.getBuiltinModule('os').availableParallelism();
+  var asked = Module['threadHelpers'];
+  return Math.max(0, Math.min(7, asked === undefined ? cores - 1 : asked | 0));
+})();
 if (typeof process == 'object' && typeof process.versions == 'object' && typeof process.versions.node == 'string') {
   __dirname = decodeURIComponent(new URL('.', _scriptDir).pathname).replace(/\/$/, '');
   if (typeof process.getBuiltinModule == 'function') {

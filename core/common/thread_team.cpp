@@ -2,30 +2,54 @@
 
 #include <algorithm>
 
+#if defined(__EMSCRIPTEN_PTHREADS__)
+#include <emscripten.h>
+#endif
+
 namespace tvf {
 
+int ThreadTeam::helpers() {
+#if defined(__EMSCRIPTEN_PTHREADS__)
+  // The workers the pool started with (wasm/node-pre.js); a pthread beyond them would never start.
+  static const int started = EM_ASM_INT({ return typeof tvfThreadHelpers == 'number' ? tvfThreadHelpers : 0; });
+  return std::clamp(started, 0, kHelpers);
+#else
+  return kHelpers;
+#endif
+}
+
 ThreadTeam& ThreadTeam::shared() {
-  static ThreadTeam team(kHelpers);
+  static ThreadTeam team(helpers());
   return team;
 }
 
 int ThreadTeam::usefulParts() {
   const int cores = static_cast<int>(std::thread::hardware_concurrency());
-  return std::clamp(cores, 1, kHelpers + 1);
+  return std::clamp(cores, 1, maxParts());
 }
 
 ThreadTeam::ThreadTeam(int helpers) {
   helpers_.reserve(helpers);
-  for (int h = 0; h < helpers; ++h) helpers_.emplace_back([this, h] { serve(h); });
+  try {
+    for (int h = 0; h < helpers; ++h) helpers_.emplace_back([this, h] { serve(h); });
+  } catch (...) {  // a thread that cannot start: the ones that did are stopped, the caller told
+    stop();
+    throw;
+  }
 }
 
-ThreadTeam::~ThreadTeam() {
+void ThreadTeam::stop() {
   {
     std::lock_guard<std::mutex> lock(m_);
     quit_ = true;
   }
   wake_.notify_all();
   for (std::thread& t : helpers_) t.join();
+  helpers_.clear();
+}
+
+ThreadTeam::~ThreadTeam() {
+  stop();
 }
 
 // Helper h runs task h + 1 of every generation that has that many parts.

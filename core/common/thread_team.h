@@ -4,7 +4,7 @@
 //
 // A thread per solve would cost its creation each time, and in wasm a pthread started while the caller then
 // blocks runs only if a pre-started worker is free (emscripten's PTHREAD_POOL_SIZE); otherwise the page would
-// hang. So the helpers are started once, as many as the build provides (kHelpers), and shared: a caller that
+// hang. So the helpers are started once, as many as the build provides (helpers()), and shared: a caller that
 // finds them busy with another caller's tasks runs its own tasks itself, one after another.
 #include <condition_variable>
 #include <functional>
@@ -16,19 +16,25 @@ namespace tvf {
 
 class ThreadTeam {
  public:
-  // Natively up to four parts; a wasm build with pthreads as many as the workers it starts with (the
-  // module's PTHREAD_POOL_SIZE, passed as TVF_THREAD_HELPERS); without pthreads one.
+  // The most helpers a build can have: natively 15 (sixteen parts); a wasm build with pthreads the most
+  // workers its pool may start with (TVF_THREAD_HELPERS); without pthreads none.
 #if defined(TVF_THREAD_HELPERS)
   static constexpr int kHelpers = TVF_THREAD_HELPERS;
 #elif defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
   static constexpr int kHelpers = 0;
 #else
-  static constexpr int kHelpers = 3;
+  static constexpr int kHelpers = 15;
 #endif
 
-  // The process's team, its helpers started on the first call.
+  // The helpers this process has: natively kHelpers; in wasm as many as the module's pool started
+  // (wasm/node-pre.js: one fewer than the cores, at most kHelpers, or what the page asked for).
+  static int helpers();
+  // The most parts run() runs at once: helpers() + 1.
+  static int maxParts() { return helpers() + 1; }
+  // The process's team, its helpers started on the first call (std::system_error when one cannot start; the
+  // next call tries again).
   static ThreadTeam& shared();
-  // How many parts a solve should be cut into here: the cores there are, at most kHelpers + 1.
+  // How many parts a solve should be cut into here: the cores there are, at most maxParts().
   static int usefulParts();
 
   ~ThreadTeam();
@@ -44,6 +50,7 @@ class ThreadTeam {
  private:
   explicit ThreadTeam(int helpers);
   void serve(int helper);
+  void stop();
 
   std::mutex busy_;  // held by the caller whose tasks the helpers run
   std::mutex m_;

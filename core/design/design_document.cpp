@@ -446,6 +446,8 @@ json statsJson(const DesignStats& s) {
           {"kernelHandling", s.kernelHandling},
           {"kernelShift", s.kernelShift},
           {"factorKind", s.factorKind},
+          {"factorThreads", s.factorThreads},
+          {"singleThreadWhy", s.singleThreadWhy},
           {"symmetry", s.symmetry},
           {"factorizations", s.factorizations},
           {"inverseIterations", s.inverseIterations},

@@ -30,6 +30,10 @@ struct DesignStats {
   double kernelShift = 0;      // the relative diagonal shift that made the factorization succeed
   std::vector<std::string> warnings;
   std::string factorKind;  // e.g. "supernodal LL' (AMD)"
+  // Threads the last numeric factorization ran on; when more were asked for and it ran on one, why (a
+  // helper thread that failed to run, a tree with no subtrees worth splitting).
+  int32_t factorThreads = 1;
+  std::string singleThreadWhy;
   int32_t symmetry = 1;    // N of the field solved last (1: a vector field, the paper's 1-form)
   // Numeric factorizations of the system in use since it was made: a constraint edit adds none (rank
   // updates).

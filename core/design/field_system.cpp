@@ -33,6 +33,8 @@ void reportFactor(const ShiftedFactor& factor, int64_t unknowns, DesignStats& st
   stats.kernelShift = r.kernelShift;
   stats.kernelHandling = r.kernelHandling;
   stats.factorKind = r.factorKind;
+  stats.factorThreads = r.factorThreads;
+  stats.singleThreadWhy = r.singleThreadWhy;
   stats.factorizations = r.factorizations;
   stats.precisionRefactors = factor.precisionRefactors();
   stats.incrementalSolves = factor.incrementalSolves();

@@ -14,6 +14,7 @@
 #include "solver/cholmod_handles.h"
 #include "solver/edge_dissection.h"
 #include "solver/forward_solution.h"
+#include "solver/supernodal_cholesky.h"
 #include "solver/woodbury_correction.h"
 
 namespace tvf {
@@ -112,6 +113,7 @@ struct FactoredSystem::Impl {
   // L^-1 P b of the last tracked solve, redone after an edit only on the columns the edit changed.
   ForwardSolution forward;
   int threads = ThreadTeam::usefulParts();
+  int factorThreads = threads;
   BackwardKernel backwardKernel = defaultBackwardKernel(threads);
   BackwardSubstitution backward;
   int64_t supernodalSolves = 0;
@@ -142,11 +144,14 @@ struct FactoredSystem::Impl {
     backward.setParts(threads);
     chooseOrdering(*common.get(), o);
     common->supernodal = CHOLMOD_AUTO;
-    // No relaxed amalgamation of supernodes: the explicit zeros it adds (30 % of the values at 1.25M edges)
-    // sit in the supernodal factor beside the row indices the conversion to LDL' allocates, the memory peak,
-    // only to be dropped by the resymbol after it; the factorization is no slower without them
+    // No relaxed amalgamation of supernodes, not even of the smallest (CHOLMOD merges those of up to 4
+    // columns whatever their zeros): the explicit zeros it adds (30 % of the values at 1.25M edges) sit in
+    // the supernodal factor beside the row indices the conversion to LDL' allocates, the memory peak, and a
+    // resymbol would have to drop them after it (bunny00 natively: 19 ms to drop 1.1 % of the values). The
+    // supernodes are then fundamental, their pattern L's exact one, and the factorization is no slower
     // (docs/method.md).
     std::fill(std::begin(common->zrelax), std::end(common->zrelax), 0.0);
+    std::fill(std::begin(common->nrelax), std::end(common->nrelax), 0);
     common->final_asis = 1;
     // Updates take the columns two at a time: their workspace is maxrank columns of n doubles, which for
     // CHOLMOD's default 8 (80 MB at 1.25M edges) found no room left after the conversion and grew the heap to
@@ -376,14 +381,18 @@ bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<do
                      " of memory, more than the " + gigabytes(s.memoryLimit) + " available");
   }
   start = std::chrono::steady_clock::now();
-  cholmod_factorize(&view, s.factor.get(), s.common.get());
+  SupernodalReport threading;
+  factorSupernodal(view, *s.factor, s.factorThreads, *s.common.get(), threading);
   s.timings.factorMs = msSince(start);
+  s.timings.factorThreads = threading.parts;
+  s.timings.singleThreadWhy = threading.singleThreadWhy;
+  s.timings.subtreeShare = threading.subtreeShare;
   if (s.common->status == CHOLMOD_OUT_OF_MEMORY) {
     s.factor.reset();
     throw InputError("out of memory while factoring the " + std::to_string(s.n) + "-edge system (estimated " +
                      gigabytes(s.estimatedBytes) + ")");
   }
-  // The resymbol below reads the pattern only: the values copy goes before the conversion's peak.
+  // The values copy goes before the conversion's peak.
   std::vector<double>().swap(values);
   view.x = const_cast<double*>(upper.valuePtr());
   const bool ok = s.common->status == CHOLMOD_OK && s.factor->minor == s.factor->n;
@@ -391,8 +400,6 @@ bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<do
   start = std::chrono::steady_clock::now();
   if (ok) {
     cholmod_change_factor(CHOLMOD_REAL, 0, 0, 1, 1, s.factor.get(), s.common.get());
-    // Relaxed supernodes carry explicit zeros; dropping them makes every later solve and update cheaper.
-    if (s.wasSupernodal) cholmod_resymbol(&view, nullptr, 0, 1, s.factor.get(), s.common.get());
     if (s.bySupernodes()) s.backward.prepare(*s.factor);
   }
   // The factorization's workspace (the supernodal update matrices among it) would stay in the common object.
@@ -484,6 +491,7 @@ void FactoredSystem::setOrdering(FillOrdering ordering) {
   next->memoryLimit = impl_->memoryLimit;
   next->backwardKernel = impl_->backwardKernel;
   next->threads = impl_->threads;
+  next->factorThreads = impl_->factorThreads;
   next->backward.setParts(next->threads);
   impl_ = std::move(next);
 }
@@ -517,8 +525,13 @@ void FactoredSystem::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t num
   impl_->orderingPerm.clear();
 }
 
+void FactoredSystem::setFactorThreads(int threads) {
+  impl_->factorThreads = std::clamp(threads, 1, ThreadTeam::maxParts());
+}
+
 void FactoredSystem::setThreads(int threads) {
-  impl_->threads = std::clamp(threads, 1, ThreadTeam::kHelpers + 1);
+  impl_->threads = std::clamp(threads, 1, ThreadTeam::maxParts());
+  impl_->factorThreads = impl_->threads;
   impl_->backwardKernel = defaultBackwardKernel(impl_->threads);
   impl_->backward.setParts(impl_->threads);
 }
@@ -575,7 +588,13 @@ std::string FactoredSystem::description() const {
     backward = ", backward substitution by supernodes";
     if (groups > 1) backward += " on " + std::to_string(groups) + " threads";
   }
-  return std::string(s.wasSupernodal ? "supernodal LL'" : "simplicial LDL'") +
+  std::string threading;
+  if (s.timings.factorThreads > 1)
+    threading = " on " + std::to_string(s.timings.factorThreads) + " threads (" +
+                std::to_string(static_cast<int>(100 * s.timings.subtreeShare + 0.5)) + " % of its work in subtrees)";
+  else if (!s.timings.singleThreadWhy.empty())
+    threading = " on one thread (" + s.timings.singleThreadWhy + ")";
+  return std::string(s.wasSupernodal ? "supernodal LL'" : "simplicial LDL'") + threading +
          " factor, kept as simplicial LDL' for updates (" +
          (s.ordering == FillOrdering::Amd ? "AMD ordering)"
           : s.usedDissection              ? "METIS nested dissection of the mesh's vertex graph)"

@@ -35,6 +35,11 @@ struct FactorTimings {
   // The last factor() reused the previous symbolic analysis (same sparsity pattern): no ordering was
   // computed.
   bool analysisReused = false;
+  // Threads the last numeric factorization ran on (solver/supernodal_cholesky.h), and, when more were
+  // asked for and it ran on one, why.
+  int factorThreads = 1;
+  std::string singleThreadWhy;
+  double subtreeShare = 0;  // of its estimated work, the share factored side by side
 };
 
 // A fill-reducing ordering kept beyond the system that computed it (the page's IndexedDB, the CLI's
@@ -77,11 +82,14 @@ class FactoredSystem {
   // is a nested dissection of the vertex graph (solver/edge_dissection.h) instead of CHOLMOD's of A's graph.
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);
   void setMemoryLimit(double bytes);  // 0: no limit
-  // Threads for the backward substitution (default: the cores there are; at most what common/thread_team.h
-  // provides, to which larger numbers are cut); also sets the backward kernel to
-  // defaultBackwardKernel(threads). CHOLMOD's columns run on one.
+  // Threads for the numeric factorization's subtrees and the backward substitution (default: the cores
+  // there are; at most what common/thread_team.h provides, to which larger numbers are cut); also sets the
+  // backward kernel to defaultBackwardKernel(threads). CHOLMOD's columns run on one.
   void setThreads(int threads);
   int threads() const;
+  // Threads for the numeric factorization alone (setThreads sets it too): a test compares the backward
+  // substitution on several threads over one factor.
+  void setFactorThreads(int threads);
   void setBackwardKernel(BackwardKernel kernel);
   double estimatedBytes() const;  // the last analysis' estimate of the factor's peak memory
   // L L' +/- sum_k w_k e_{row_k} e_{row_k}' in one cholmod_updown call; weights must be positive.

@@ -136,6 +136,8 @@ void ShiftedFactor::factor(const SparseMatrix& base, double scale, const Diagona
   report_.analyzeMs = t.analyzeMs;
   report_.analysisReused = t.analysisReused;
   report_.factorMs = t.factorMs + t.convertMs;
+  report_.factorThreads = t.factorThreads;
+  report_.singleThreadWhy = t.singleThreadWhy;
   report_.factorNonzeros = system_.factorNonzeros();
   ++report_.factorizations;
   report_.kernelShift = shift_;

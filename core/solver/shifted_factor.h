@@ -35,6 +35,8 @@ struct FactorReport {
   std::string kernelHandling;  // how the kernel was made definite, in words
   std::string factorKind;      // e.g. "supernodal LL' (AMD)"
   int64_t factorizations = 0;  // numeric factorizations since the factor was made (edits must add none)
+  int factorThreads = 1;       // FactorTimings::factorThreads
+  std::string singleThreadWhy;
 };
 
 class ShiftedFactor {

@@ -19,6 +19,7 @@
 #include "solver/shifted_factor.h"
 #include "solver/spd_solve.h"
 #include "solver/subtree_partition.h"
+#include "solver/supernodal_cholesky.h"
 #include "test_fields.h"
 #include "test_meshes.h"
 
@@ -691,6 +692,7 @@ TEST(FactoredSystem, ThreadedBackwardSubstitutionIsBitIdentical) {
     for (int threads = 1; threads <= 4; ++threads) {
       systems.emplace_back(ordering);
       systems.back().setThreads(threads);
+      systems.back().setFactorThreads(1);  // one factor for all: the substitution alone is compared
       systems.back().setBackwardKernel(BackwardKernel::Supernodes);
       systems.back().setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
       ASSERT_TRUE(systems.back().factor(base)) << where;
@@ -722,6 +724,103 @@ TEST(FactoredSystem, ThreadedBackwardSubstitutionIsBitIdentical) {
       }
     }
   }
+}
+
+namespace {
+
+// max |x - y| / max |y|.
+double relativeDifference(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
+  return (x - y).cwiseAbs().maxCoeff() / y.cwiseAbs().maxCoeff();
+}
+
+// The solves of A (the designer's base matrix, shifted by 1e-4 of its mean diagonal: a kernel's tiny shift
+// would leave a condition number that magnifies any change in the order of the sums) factored on 2, 3 and 4 threads against the serial factorization's, before and after
+// rank updates, to `tolerance` relative; the factorization ran on the threads asked for, its subtrees
+// holding most of the work.
+void expectParallelFactorEqualsSerial(Designer& d, const std::string& where, double tolerance = 1e-12) {
+  SparseMatrix A = d.baseMatrix();
+  SparseMatrix shift(A.rows(), A.cols());
+  shift.setIdentity();
+  A += (1e-4 * A.diagonal().mean()) * shift;
+  const int32_t n = static_cast<int32_t>(A.rows());
+  std::vector<FactoredSystem> systems;
+  for (int threads = 1; threads <= 4; ++threads) {
+    systems.emplace_back();
+    systems.back().setThreads(threads);
+    systems.back().setBackwardKernel(BackwardKernel::Columns);
+    systems.back().setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
+    ASSERT_TRUE(systems.back().factor(A)) << where;
+  }
+  EXPECT_EQ(systems[0].timings().factorThreads, 1);
+  for (size_t t = 1; t < systems.size(); ++t) {
+    EXPECT_EQ(systems[t].timings().factorThreads, static_cast<int>(t) + 1)
+        << where << ": " << systems[t].timings().singleThreadWhy;
+    EXPECT_GT(systems[t].timings().subtreeShare, 0.5) << where;
+    EXPECT_EQ(systems[t].factorNonzeros(), systems[0].factorNonzeros()) << where;
+  }
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  Eigen::VectorXd b(n), serial, x;
+  for (int32_t e = 0; e < n; ++e) b[e] = value(random);
+  for (int step = 0; step < 3; ++step) {
+    if (step > 0) {
+      std::vector<int32_t> rows;
+      std::vector<double> weights;
+      for (int c = 0; c < 10; ++c) rows.push_back(static_cast<int32_t>(random() % n)), weights.push_back(1.0);
+      for (FactoredSystem& f : systems) f.updateDiagonal(rows, weights, false);
+    }
+    systems[0].solve(b, serial);
+    for (size_t t = 1; t < systems.size(); ++t) {
+      systems[t].solve(b, x);
+      EXPECT_LT(relativeDifference(x, serial), tolerance) << where << ", " << t + 1 << " threads, step " << step;
+    }
+  }
+}
+
+}  // namespace
+
+// The numeric factorization of the subtrees side by side and of the top separators' dense blocks in bands
+// (solver/supernodal_cholesky.h) gives the serial factor up to the order of its sums: the solves agree to
+// 1e-12 relative, on a sphere, a torus and an annulus (kernels, shifted). The bi-Laplacian's condition number
+// (~1e10 here) magnifies the order of the sums into ~2e-11 between any two factorizations of it.
+TEST(FactoredSystem, ParallelFactorizationEqualsTheSerialOne) {
+  Designer sphere(icosphere(6));
+  expectParallelFactorEqualsSerial(sphere, "sphere");
+  Designer ring(torus(160, 80, 2.0, 0.7));
+  expectParallelFactorEqualsSerial(ring, "torus");
+  Designer open(flatAnnulus(60, 320, 0.5, 1.0));
+  expectParallelFactorEqualsSerial(open, "annulus");
+  Designer smooth(icosphere(5));
+  smooth.setGamma(0.5);
+  expectParallelFactorEqualsSerial(smooth, "bi-Laplacian", 1e-9);
+}
+
+// A helper thread that cannot run its part (the test hook stands for a thread that fails to start) leaves the
+// factorization to one thread, with the reason in the session's stats, and the field is the same.
+TEST(Designer, AFailedFactorizationThreadFallsBackToOneWithTheReason) {
+  const auto design = [](Designer& x) {
+    x.addSource(0, 1.0);
+    x.addSink(x.mesh().numVertices() - 1, 1.0);
+    x.solve();
+  };
+  Designer serial(icosphere(6));
+  serial.setSolverThreads(1);
+  design(serial);
+  Designer d(icosphere(6));
+  d.setSolverThreads(2);
+  failNextSupernodalThreads();
+  design(d);
+  EXPECT_EQ(d.stats().factorThreads, 1);
+  EXPECT_NE(d.stats().singleThreadWhy.find("helper thread"), std::string::npos) << d.stats().singleThreadWhy;
+  EXPECT_NE(d.stats().factorKind.find("on one thread (a helper thread"), std::string::npos) << d.stats().factorKind;
+  const auto values = [](const Designer& x) {
+    return Eigen::Map<const Eigen::VectorXd>(x.oneForm().data(), static_cast<Eigen::Index>(x.oneForm().size()));
+  };
+  EXPECT_LT(relativeDifference(values(d), values(serial)), 1e-12);
+  Designer again(icosphere(6));
+  again.setSolverThreads(2);
+  design(again);
+  EXPECT_EQ(again.stats().factorThreads, 2) << again.stats().singleThreadWhy;
 }
 
 TEST(Solver, RemovingEverythingReturnsToTheOriginalField) {

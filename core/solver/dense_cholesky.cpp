@@ -1,0 +1,59 @@
+#include "solver/dense_cholesky.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "common/thread_team.h"
+#include "solver/dense_kernels.h"
+
+namespace tvf {
+namespace {
+
+// Columns per panel: wide enough that the updates are matrix products, narrow enough that the panel's own
+// factorization, on one thread, stays small.
+constexpr int kPanel = 64;
+
+// Rows [r0, r1) of the columns [k1, nscol) to the right of panel [k0, k1): minus the panel's product with its
+// rows [k1, nscol), the lower triangle only where the rows are the diagonal block's.
+void updateRows(double* b, int ld, int nscol, int k0, int k1, int r0, int r1) {
+  const double* panel = b + static_cast<size_t>(k0) * ld;
+  const int a = std::max(r0, k1);
+  const int diagEnd = std::min(r1, nscol);
+  if (a < diagEnd) {  // rows in the diagonal block: the square part before them, then their own triangle
+    blas::gemmNTSubtract(diagEnd - a, a - k1, k1 - k0, panel + a, ld, panel + k1, ld,
+                         b + a + static_cast<size_t>(k1) * ld, ld);
+    blas::syrkLowerSubtract(diagEnd - a, k1 - k0, panel + a, ld, b + a + static_cast<size_t>(a) * ld, ld);
+  }
+  const int below = std::max(a, nscol);
+  if (below < r1)
+    blas::gemmNTSubtract(r1 - below, nscol - k1, k1 - k0, panel + below, ld, panel + k1, ld,
+                         b + below + static_cast<size_t>(k1) * ld, ld);
+}
+
+}  // namespace
+
+int factorBlockOnThreads(double* block, int nsrow, int nscol, int parts) {
+  std::vector<int> bounds(parts + 1);
+  ThreadTeam& team = ThreadTeam::shared();
+  for (int k0 = 0; k0 < nscol; k0 += kPanel) {
+    const int k1 = std::min(nscol, k0 + kPanel), width = k1 - k0;
+    double* diagonal = block + k0 + static_cast<size_t>(k0) * nsrow;
+    const int info = blas::potrfLower(width, diagonal, nsrow);
+    if (info != 0) return k0 + info;
+    if (k1 == nsrow) break;
+    splitRows(
+        k1, nsrow, parts, [](int) { return 1.0; }, bounds.data());
+    team.run(parts, [&](int k) {
+      blas::trsmRightLowerTransposed(bounds[k + 1] - bounds[k], width, diagonal, nsrow,
+                                     block + bounds[k] + static_cast<size_t>(k0) * nsrow, nsrow);
+    });
+    if (k1 == nscol) break;
+    splitRows(
+        k1, nsrow, parts, [&](int r) { return static_cast<double>(std::min(r + 1, nscol) - k1); },
+        bounds.data());
+    team.run(parts, [&](int k) { updateRows(block, nsrow, nscol, k0, k1, bounds[k], bounds[k + 1]); });
+  }
+  return 0;
+}
+
+}  // namespace tvf

@@ -1,0 +1,120 @@
+#pragma once
+// The BLAS and LAPACK routines CHOLMOD's supernodal factorization calls, declared for the project's own
+// supernodal kernels (solver/supernodal_cholesky.h), which call the same ones so that both factor alike.
+// Fortran calling convention: every argument by pointer, no hidden string lengths (as cholmod_blas.h).
+// The wasm build's BLAS is Eigen's, whose routines return int (wasm/build-cholmod.sh); a native BLAS's
+// return nothing.
+//
+// Small blocks, most of a mesh's supernodes, go to Eigen's kernels inline instead: a native BLAS may take a
+// lock of its own for each call's buffers (OpenBLAS's blas_memory_alloc), which threads factoring side by
+// side then wait on (bunny00 natively: each of two subtrees 45 ms alone, 95 ms together).
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+namespace tvf::blas {
+
+#ifdef __EMSCRIPTEN__
+using Status = int;
+#else
+using Status = void;
+#endif
+
+extern "C" {
+Status dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha,
+              const double* a, const int* lda, const double* beta, double* c, const int* ldc);
+Status dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
+              const double* alpha, const double* a, const int* lda, const double* b, const int* ldb,
+              const double* beta, double* c, const int* ldc);
+Status dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m,
+              const int* n, const double* alpha, const double* a, const int* lda, double* b, const int* ldb);
+Status dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info);
+}
+
+// Multiply-adds up to which a call stays inline.
+constexpr double kInlineFlops = 48.0 * 48.0 * 48.0;
+
+using Block = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+using ConstBlock = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+
+// C (n x n, lower) = A A' for A n x k; column-major, leading dimensions as given.
+inline void syrkLower(int n, int k, const double* a, int lda, double* c, int ldc) {
+  if (0.5 * n * n * k > kInlineFlops) {
+    const double one = 1, zero = 0;
+    dsyrk_("L", "N", &n, &k, &one, a, &lda, &zero, c, &ldc);
+    return;
+  }
+  ConstBlock A(a, n, k, Eigen::OuterStride<>(lda));
+  Block C(c, n, n, Eigen::OuterStride<>(ldc));
+  C.triangularView<Eigen::Lower>().setZero();
+  C.selfadjointView<Eigen::Lower>().rankUpdate(A);
+}
+
+// C (m x n) = A B' for A m x k, B n x k.
+inline void gemmNT(int m, int n, int k, const double* a, int lda, const double* b, int ldb, double* c,
+                   int ldc) {
+  if (static_cast<double>(m) * n * k > kInlineFlops) {
+    const double one = 1, zero = 0;
+    dgemm_("N", "T", &m, &n, &k, &one, a, &lda, b, &ldb, &zero, c, &ldc);
+    return;
+  }
+  ConstBlock A(a, m, k, Eigen::OuterStride<>(lda));
+  ConstBlock B(b, n, k, Eigen::OuterStride<>(ldb));
+  Block C(c, m, n, Eigen::OuterStride<>(ldc));
+  C.noalias() = A.lazyProduct(B.transpose());
+}
+
+// C (m x n) -= A B' for A m x k, B n x k.
+inline void gemmNTSubtract(int m, int n, int k, const double* a, int lda, const double* b, int ldb, double* c,
+                           int ldc) {
+  if (m <= 0 || n <= 0 || k <= 0) return;
+  if (static_cast<double>(m) * n * k > kInlineFlops) {
+    const double minusOne = -1, one = 1;
+    dgemm_("N", "T", &m, &n, &k, &minusOne, a, &lda, b, &ldb, &one, c, &ldc);
+    return;
+  }
+  ConstBlock A(a, m, k, Eigen::OuterStride<>(lda));
+  ConstBlock B(b, n, k, Eigen::OuterStride<>(ldb));
+  Block C(c, m, n, Eigen::OuterStride<>(ldc));
+  C.noalias() -= A.lazyProduct(B.transpose());
+}
+
+// C (n x n, lower) -= A A' for A n x k.
+inline void syrkLowerSubtract(int n, int k, const double* a, int lda, double* c, int ldc) {
+  if (n <= 0 || k <= 0) return;
+  if (0.5 * n * n * k > kInlineFlops) {
+    const double minusOne = -1, one = 1;
+    dsyrk_("L", "N", &n, &k, &minusOne, a, &lda, &one, c, &ldc);
+    return;
+  }
+  ConstBlock A(a, n, k, Eigen::OuterStride<>(lda));
+  Block C(c, n, n, Eigen::OuterStride<>(ldc));
+  C.selfadjointView<Eigen::Lower>().rankUpdate(A, -1.0);
+}
+
+// B (m x n) = B L'^-1 for L n x n lower triangular.
+inline void trsmRightLowerTransposed(int m, int n, const double* l, int ldl, double* b, int ldb) {
+  if (m <= 0 || n <= 0) return;
+  if (0.5 * m * n * n > kInlineFlops) {
+    const double one = 1;
+    dtrsm_("R", "L", "T", "N", &m, &n, &one, l, &ldl, b, &ldb);
+    return;
+  }
+  ConstBlock L(l, n, n, Eigen::OuterStride<>(ldl));
+  Block B(b, m, n, Eigen::OuterStride<>(ldb));
+  L.transpose().triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(B);
+}
+
+// The lower Cholesky factor of the n x n block at a, in place; 0, or the 1-based column that is not
+// positive.
+inline int potrfLower(int n, double* a, int lda) {
+  int info = 0;
+  if (n * n * (n / 3.0) > kInlineFlops) {
+    dpotrf_("L", &n, a, &lda, &info);
+    return info;
+  }
+  Block A(a, n, n, Eigen::OuterStride<>(lda));
+  const Eigen::Index bad = Eigen::internal::llt_inplace<double, Eigen::Lower>::blocked(A);
+  return bad < 0 ? 0 : static_cast<int>(bad) + 1;
+}
+
+}  // namespace tvf::blas

@@ -1,0 +1,377 @@
+#include "solver/supernodal_cholesky.h"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/thread_team.h"
+#include "solver/cholmod_handles.h"
+#include "solver/dense_cholesky.h"
+#include "solver/dense_kernels.h"
+#include "solver/subtree_partition.h"
+
+namespace tvf {
+namespace {
+
+std::atomic<bool> failThreadsOnce{false};
+
+// The supernodal factor's arrays (CHOLMOD's layout): supernode s holds columns super[s] .. super[s+1]-1,
+// its rows are ls[pi[s] .. pi[s+1]) (its own columns first, ascending), and its values the column-major
+// nsrow x nscol block at x + px[s].
+struct Supernodes {
+  int n, count;
+  const int *super, *pi, *px, *ls;
+  double* x;
+  int first(int s) const { return super[s]; }
+  int cols(int s) const { return super[s + 1] - super[s]; }
+  int rows(int s) const { return pi[s + 1] - pi[s]; }
+};
+
+Supernodes supernodesOf(cholmod_factor& L) {
+  return {static_cast<int>(L.n),         static_cast<int>(L.nsuper),    static_cast<const int*>(L.super),
+          static_cast<const int*>(L.pi), static_cast<const int*>(L.px), static_cast<const int*>(L.s),
+          static_cast<double*>(L.x)};
+}
+
+// The lower triangle of P A P', column by column (rows unsorted): what each supernode assembles its columns
+// from.
+struct PermutedLower {
+  std::vector<int> p, i;
+  std::vector<double> x;
+};
+
+// From A's upper triangle (column j: rows <= j) and the inverse permutation, on `parts` threads: each counts,
+// then places, the entries of its share of A's columns (its own counts per column of the result).
+PermutedLower permutedLower(const cholmod_sparse& A, const std::vector<int>& inverse, int parts) {
+  const int n = static_cast<int>(A.ncol);
+  const int* Ap = static_cast<const int*>(A.p);
+  const int* Ai = static_cast<const int*>(A.i);
+  const double* Ax = static_cast<const double*>(A.x);
+  std::vector<int> bounds(parts + 1);
+  splitRows(
+      0, n, parts, [&](int j) { return static_cast<double>(Ap[j + 1] - Ap[j]); }, bounds.data());
+  std::vector<std::vector<int>> next(parts, std::vector<int>(n + 1, 0));
+  ThreadTeam& team = ThreadTeam::shared();
+  team.run(parts, [&](int t) {
+    int* count = next[t].data();
+    for (int j = bounds[t]; j < bounds[t + 1]; ++j)
+      for (int q = Ap[j]; q < Ap[j + 1]; ++q) ++count[std::min(inverse[Ai[q]], inverse[j])];
+  });
+  PermutedLower S;
+  S.p.assign(n + 1, 0);
+  int at = 0;
+  for (int k = 0; k < n; ++k) {
+    S.p[k] = at;
+    for (int t = 0; t < parts; ++t) at += std::exchange(next[t][k], at);
+  }
+  S.p[n] = at;
+  S.i.resize(at);
+  S.x.resize(at);
+  team.run(parts, [&](int t) {
+    int* place = next[t].data();
+    for (int j = bounds[t]; j < bounds[t + 1]; ++j)
+      for (int q = Ap[j]; q < Ap[j + 1]; ++q) {
+        const int a = inverse[Ai[q]], b = inverse[j], slot = place[std::min(a, b)]++;
+        S.i[slot] = std::max(a, b);
+        S.x[slot] = Ax[q];
+      }
+  });
+  return S;
+}
+
+// One thread's scratch: row positions within the supernode being factored (indexed by row of L), the
+// descendants' rows mapped to them, and the update block of one descendant.
+struct Workspace {
+  std::vector<int> map, relativeMap;
+  std::vector<double> c;
+  std::vector<int> pending;  // descendants whose next ancestor lies above the subtrees, for after them
+};
+
+class Factorization {
+ public:
+  // A top supernode with dense work (nscol^2 nsrow) above this is factored on all threads.
+  static constexpr double kSharedFlops = 4e6;
+
+  Factorization(const Supernodes& sn, const PermutedLower& S) : sn_(sn), S_(S) {
+    superMap_.resize(sn.n);
+    for (int s = 0; s < sn.count; ++s) std::fill(&superMap_[sn.super[s]], &superMap_[sn.super[s + 1]], s);
+    head_.assign(sn.count, -1);
+    next_.assign(sn.count, -1);
+    lpos_.assign(sn.count, 0);
+    parent_.resize(sn.count);
+    work_.resize(sn.count);
+    for (int s = 0; s < sn.count; ++s) {
+      const int nscol = sn.cols(s), nsrow = sn.rows(s);
+      parent_[s] = nsrow > nscol ? superMap_[sn.ls[sn.pi[s] + nscol]] : -1;
+      // Its own dense work and the update it sends up, which its ancestors' thread does.
+      work_[s] = 1 + static_cast<int64_t>(nscol) * nsrow * nsrow;
+    }
+  }
+
+  const std::vector<int>& parent() const { return parent_; }
+  const std::vector<int64_t>& work() const { return work_; }
+  int failedColumn() const { return failed_.load(); }
+
+  void prepare(Workspace& w, size_t maxcsize, bool withMaps = true) const {
+    if (withMaps) {
+      w.map.assign(sn_.n, -1);
+      w.relativeMap.resize(sn_.n);
+    }
+    w.c.resize(maxcsize);
+  }
+
+  // The top's supernodes (descending), after the subtrees: those with dense work enough on all `parts`
+  // threads (spaces[0] with maps, the others with an update block), the rest on this one.
+  void factorTop(const std::vector<int>& nodes, std::vector<Workspace>& spaces, int parts,
+                 const std::vector<char>& mine) {
+    for (auto it = nodes.rbegin(); it != nodes.rend(); ++it) {
+      if (failed_.load(std::memory_order_relaxed) < sn_.n) return;
+      const double nscol = sn_.cols(*it), nsrow = sn_.rows(*it);
+      if (parts > 1 && nscol * nscol * nsrow > kSharedFlops)
+        factorShared(*it, spaces, parts);
+      else
+        factorOne(*it, spaces[0], mine);
+    }
+  }
+
+  // Supernodes `nodes` (descending), each after its descendants; a descendant whose next ancestor is not
+  // among them waits in w.pending when `alone` is false.
+  void factorAll(const std::vector<int>& nodes, Workspace& w, const std::vector<char>& mine) {
+    for (auto it = nodes.rbegin(); it != nodes.rend(); ++it) {
+      if (failed_.load(std::memory_order_relaxed) < sn_.n) return;
+      factorOne(*it, w, mine);
+    }
+  }
+
+  // Links the descendants that waited for an ancestor above the subtrees, in the groups' order.
+  void linkPending(Workspace& w) {
+    for (const int d : w.pending) link(d, superMap_[sn_.ls[sn_.pi[d] + lpos_[d]]]);
+    w.pending.clear();
+  }
+
+ private:
+  void link(int d, int ancestor) {
+    next_[d] = head_[ancestor];
+    head_[ancestor] = d;
+  }
+
+  // d into its ancestor's list when that is this thread's, else into the pending list.
+  void pass(int d, int ancestor, Workspace& w, const std::vector<char>& mine) {
+    if (mine[ancestor])
+      link(d, ancestor);
+    else
+      w.pending.push_back(d);
+  }
+
+  // The columns of S (the lower triangle of P A P') that s holds, scattered into its zeroed block.
+  void assembleMatrix(int s, const std::vector<int>& map, double* block) const {
+    const int* Sp = S_.p.data();
+    const int* Si = S_.i.data();
+    const double* Sx = S_.x.data();
+    const int k1 = sn_.first(s), nsrow = sn_.rows(s);
+    for (int k = k1; k < k1 + sn_.cols(s); ++k) {
+      double* column = block + static_cast<size_t>(k - k1) * nsrow;
+      for (int p = Sp[k]; p < Sp[k + 1]; ++p) {
+        const int row = map[Si[p]];
+        if (Si[p] >= k && row >= 0 && row < nsrow) column[row] = Sx[p];
+      }
+    }
+  }
+
+  // s -= the update of descendant d (its rows from lpos[d] on, of which those below s's last column
+  // continue to d's next ancestor); returns the position after d's rows in s's columns.
+  int subtractUpdate(int s, int d, Workspace& w, double* block) const {
+    const int k2 = sn_.first(s) + sn_.cols(s), nsrow = sn_.rows(s);
+    const int ndrow = sn_.rows(d), ndcol = sn_.cols(d);
+    const int pdi1 = sn_.pi[d] + lpos_[d], pdend = sn_.pi[d + 1];
+    int pdi2 = pdi1;
+    while (pdi2 < pdend && sn_.ls[pdi2] < k2) ++pdi2;
+    const int ndrow1 = pdi2 - pdi1, ndrow2 = pdend - pdi1;
+    const double* l1 = sn_.x + sn_.px[d] + lpos_[d];
+    double* c = w.c.data();
+    blas::syrkLower(ndrow1, ndcol, l1, ndrow, c, ndrow2);
+    if (ndrow2 > ndrow1)
+      blas::gemmNT(ndrow2 - ndrow1, ndrow1, ndcol, l1 + ndrow1, ndrow, l1, ndrow, c + ndrow1, ndrow2);
+    int* rel = w.relativeMap.data();
+    for (int i = 0; i < ndrow2; ++i) rel[i] = w.map[sn_.ls[pdi1 + i]];
+    for (int j = 0; j < ndrow1; ++j) {
+      double* column = block + static_cast<size_t>(rel[j]) * nsrow;
+      const double* cj = c + static_cast<size_t>(j) * ndrow2;
+      for (int i = j; i < ndrow2; ++i) column[rel[i]] -= cj[i];
+    }
+    return pdi2 - sn_.pi[d];
+  }
+
+  // The rows of d (from lpos[d] on) that lie in rows [r0, r1) of s: minus their products with d's rows in
+  // s's columns, where below the diagonal.
+  void subtractUpdateRows(int s, int d, const std::vector<int>& map, Workspace& w, double* block, int r0,
+                          int r1) const {
+    const int k2 = sn_.first(s) + sn_.cols(s), nsrow = sn_.rows(s);
+    const int pdi1 = sn_.pi[d] + lpos_[d], ndrow2 = sn_.pi[d + 1] - pdi1;
+    const int* rows = sn_.ls + pdi1;
+    const int ndrow1 = static_cast<int>(std::lower_bound(rows, rows + ndrow2, k2) - rows);
+    const auto below = [&](int target) {  // d's first row at or after position `target` of s
+      return static_cast<int>(
+          std::partition_point(rows, rows + ndrow2, [&](int row) { return map[row] < target; }) - rows);
+    };
+    const int lo = below(r0), hi = below(r1), jn = std::min(ndrow1, hi);
+    if (lo >= hi || jn == 0) return;
+    const double* l1 = sn_.x + sn_.px[d] + lpos_[d];
+    double* c = w.c.data();
+    blas::gemmNT(hi - lo, jn, sn_.cols(d), l1 + lo, sn_.rows(d), l1, sn_.rows(d), c, hi - lo);
+    for (int j = 0; j < jn; ++j) {
+      double* column = block + static_cast<size_t>(map[rows[j]]) * nsrow;
+      const double* cj = c + static_cast<size_t>(j) * (hi - lo) - lo;
+      for (int i = std::max(lo, j); i < hi; ++i) column[map[rows[i]]] -= cj[i];
+    }
+  }
+
+  void failAt(int column) {
+    int seen = failed_.load();
+    while (column < seen && !failed_.compare_exchange_weak(seen, column)) {
+    }
+  }
+
+  // factorOne's work with the descendants' updates split by rows of s, and the dense block on all threads.
+  void factorShared(int s, std::vector<Workspace>& spaces, int parts) {
+    const int psi = sn_.pi[s], nscol = sn_.cols(s), nsrow = sn_.rows(s);
+    const int k2 = sn_.first(s) + nscol;
+    double* block = sn_.x + sn_.px[s];
+    std::vector<int>& map = spaces[0].map;
+    std::fill(block, block + static_cast<size_t>(nsrow) * nscol, 0.0);
+    for (int k = 0; k < nsrow; ++k) map[sn_.ls[psi + k]] = k;
+    assembleMatrix(s, map, block);
+    std::vector<int> descendants;
+    for (int d = head_[s]; d != -1; d = next_[d]) descendants.push_back(d);
+    std::vector<int> bounds(parts + 1);
+    // A row of s takes updates in its columns up to itself.
+    splitRows(
+        0, nsrow, parts, [&](int r) { return static_cast<double>(std::min(r + 1, nscol)); }, bounds.data());
+    ThreadTeam::shared().run(parts, [&](int k) {
+      for (const int d : descendants)
+        subtractUpdateRows(s, d, map, spaces[k], block, bounds[k], bounds[k + 1]);
+    });
+    for (const int d : descendants) {
+      const int* rows = sn_.ls + sn_.pi[d];
+      lpos_[d] = static_cast<int>(std::lower_bound(rows + lpos_[d], rows + sn_.rows(d), k2) - rows);
+      if (lpos_[d] < sn_.rows(d)) link(d, superMap_[rows[lpos_[d]]]);
+    }
+    head_[s] = -1;
+    const int info = factorBlockOnThreads(block, nsrow, nscol, parts);
+    if (info != 0) return failAt(sn_.first(s) + info - 1);
+    if (nsrow == nscol) return;
+    lpos_[s] = nscol;
+    link(s, parent_[s]);
+  }
+
+  void factorOne(int s, Workspace& w, const std::vector<char>& mine) {
+    const int psi = sn_.pi[s], nscol = sn_.cols(s), nsrow = sn_.rows(s);
+    double* block = sn_.x + sn_.px[s];
+    std::fill(block, block + static_cast<size_t>(nsrow) * nscol, 0.0);
+    for (int k = 0; k < nsrow; ++k) w.map[sn_.ls[psi + k]] = k;
+    assembleMatrix(s, w.map, block);
+    for (int d = head_[s]; d != -1;) {
+      const int dnext = next_[d];
+      lpos_[d] = subtractUpdate(s, d, w, block);
+      if (lpos_[d] < sn_.rows(d)) pass(d, superMap_[sn_.ls[sn_.pi[d] + lpos_[d]]], w, mine);
+      d = dnext;
+    }
+    head_[s] = -1;
+    const int info = blas::potrfLower(nscol, block, nsrow);
+    if (info != 0) return failAt(sn_.first(s) + info - 1);
+    if (nsrow == nscol) return;
+    blas::trsmRightLowerTransposed(nsrow - nscol, nscol, block, nsrow, block + nscol, nsrow);
+    lpos_[s] = nscol;
+    pass(s, parent_[s], w, mine);
+  }
+
+  Supernodes sn_;
+  const PermutedLower& S_;
+  std::vector<int> superMap_, head_, next_, lpos_, parent_;
+  std::vector<int64_t> work_;
+  std::atomic<int> failed_{sn_.n};
+};
+
+// The BLAS's first calls may set up state of its own (Eigen's cache sizes in wasm); made on this thread
+// before any other calls it.
+void touchDenseKernels() {
+  double a[4] = {4, 2, 2, 4}, c[4] = {0, 0, 0, 0};
+  blas::syrkLower(1, 1, a, 2, c, 2);
+  blas::gemmNT(1, 1, 1, a, 2, a, 2, c, 2);
+  blas::potrfLower(2, a, 2);
+  blas::trsmRightLowerTransposed(1, 1, a, 2, c, 2);
+}
+
+bool factorSerially(cholmod_sparse& A, cholmod_factor& L, cholmod_common& c, SupernodalReport& report,
+                    std::string why) {
+  report.parts = 1;
+  report.singleThreadWhy = std::move(why);
+  return cholmod_factorize(&A, &L, &c) != 0;
+}
+
+}  // namespace
+
+void failNextSupernodalThreads() {
+  failThreadsOnce = true;
+}
+
+bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_common& c,
+                      SupernodalReport& report) {
+  report = SupernodalReport();
+  if (parts <= 1) return factorSerially(A, L, c, report, "");
+  if (!L.is_super)
+    return factorSerially(A, L, c, report, "the factor is simplicial (too little fill to split)");
+  ThreadTeam* team = nullptr;
+  try {
+    team = &ThreadTeam::shared();
+  } catch (const std::exception& e) {
+    return factorSerially(A, L, c, report, std::string("the helper threads could not start: ") + e.what());
+  }
+  parts = std::min(parts, ThreadTeam::maxParts());
+  if (L.xtype == CHOLMOD_PATTERN && !cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, &L, &c)) return false;
+  L.is_ll = 1;
+  PermutedLower S;
+  Factorization f(supernodesOf(L), S);
+  const SubtreePartition partition = partitionSubtrees(f.parent(), f.work(), parts);
+  if (partition.groups.size() < 2)
+    return factorSerially(A, L, c, report, "the elimination tree has no subtrees worth splitting");
+  const int groups = static_cast<int>(partition.groups.size());
+  std::vector<int> inverse(L.n);
+  for (size_t k = 0; k < L.n; ++k) inverse[static_cast<const int*>(L.Perm)[k]] = static_cast<int>(k);
+  S = permutedLower(A, inverse, groups);
+  std::vector<int>().swap(inverse);
+  std::vector<Workspace> spaces(groups);
+  std::vector<std::vector<char>> mine(groups + 1, std::vector<char>(L.nsuper, 0));
+  for (int g = 0; g < groups; ++g)
+    for (const int s : partition.groups[g]) mine[g][s] = 1;
+  for (const int s : partition.top) mine[groups][s] = 1;
+  touchDenseKernels();
+  std::atomic<int> ran{0};
+  const bool failing = failThreadsOnce.exchange(false);
+  team->run(groups, [&](int g) {
+    if (failing && g > 0) return;  // as a helper that never started
+    f.prepare(spaces[g], L.maxcsize);
+    f.factorAll(partition.groups[g], spaces[g], mine[g]);
+    spaces[g].map = std::vector<int>();
+    ran.fetch_add(1);
+  });
+  if (ran.load() < groups)
+    return factorSerially(A, L, c, report,
+                          "a helper thread did not run its part of the factorization (" +
+                              std::to_string(ran.load()) + " of " + std::to_string(groups) + " parts ran)");
+  for (Workspace& w : spaces) f.linkPending(w);
+  for (int g = 0; g < groups; ++g) f.prepare(spaces[g], L.maxcsize, g == 0);
+  f.factorTop(partition.top, spaces, groups, mine[groups]);
+  report.parts = groups;
+  report.subtreeShare =
+      1.0 - static_cast<double>(partition.topWork) / static_cast<double>(partition.totalWork);
+  c.status = CHOLMOD_OK;
+  L.minor = static_cast<size_t>(f.failedColumn());
+  if (L.minor < L.n) c.status = CHOLMOD_NOT_POSDEF;
+  return true;
+}
+
+}  // namespace tvf

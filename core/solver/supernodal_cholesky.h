@@ -1,0 +1,37 @@
+#pragma once
+// The numeric supernodal Cholesky factorization L L' = P A P', with the independent subtrees of the
+// supernodal elimination tree factored on separate threads.
+//
+// It fills the same supernodal factor CHOLMOD's cholmod_factorize would (the symbolic analysis is CHOLMOD's,
+// and each supernode is computed as cholmod_super_numeric computes it: left-looking, the descendants'
+// updates by dsyrk/dgemm, then dpotrf and dtrsm), so the conversion to the simplicial LDL' that the updates,
+// downdates and solves use follows unchanged. A descendant updates only its ancestors, so subtrees that are
+// not nested never read each other's columns; a nested dissection makes them even. The top of the tree (the
+// separators above the cut, solver/subtree_partition.h) follows the subtrees, and its largest supernodes
+// split their dense work across the threads. Only the order in which updates are summed differs from the
+// serial factorization: the factors agree to round-off.
+#include <cholmod.h>
+
+#include <string>
+
+namespace tvf {
+
+struct SupernodalReport {
+  int parts = 1;                // threads the factorization ran on
+  double subtreeShare = 0;      // of the estimated work, the share in the subtrees factored side by side
+  std::string singleThreadWhy;  // when more threads were asked for and one ran: why
+};
+
+// For a test: the next factorization's helper tasks fail as a thread that cannot start would, once.
+void failNextSupernodalThreads();
+
+// A: symmetric, upper triangle stored (as for cholmod_factorize); L: CHOLMOD's symbolic supernodal analysis
+// of A (or a numeric supernodal factor of the same analysis, overwritten). Runs on up to `parts` threads
+// (common/thread_team.h); on one, or where the tree has no subtrees worth splitting, it is CHOLMOD's own
+// cholmod_factorize. Sets c.status and L.minor as cholmod_factorize does (CHOLMOD_NOT_POSDEF, with L.minor
+// the first column that failed, when A is not numerically positive definite; the factor is then not usable).
+// Returns false only when CHOLMOD could not allocate.
+bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_common& c,
+                      SupernodalReport& report);
+
+}  // namespace tvf
