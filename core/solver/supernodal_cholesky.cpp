@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "common/thread_team.h"
-#include "solver/cholmod_handles.h"
 #include "solver/dense_cholesky.h"
 #include "solver/dense_kernels.h"
 #include "solver/subtree_partition.h"
@@ -138,7 +137,7 @@ class Factorization {
   }
 
   // Supernodes `nodes` (descending), each after its descendants; a descendant whose next ancestor is not
-  // among them waits in w.pending when `alone` is false.
+  // `mine` (another thread's, or the top's) waits in w.pending.
   void factorAll(const std::vector<int>& nodes, Workspace& w, const std::vector<char>& mine) {
     for (auto it = nodes.rbegin(); it != nodes.rend(); ++it) {
       if (failed_.load(std::memory_order_relaxed) < sn_.n) return;
@@ -295,14 +294,18 @@ class Factorization {
   std::atomic<int> failed_{sn_.n};
 };
 
-// The BLAS's first calls may set up state of its own (Eigen's cache sizes in wasm); made on this thread
-// before any other calls it.
+// The BLAS's first calls may set up state of its own (Eigen's cache sizes in wasm, whose objects are not
+// built for threads): made on this thread before the helpers call it. Straight to the BLAS, since blocks
+// this small would stay inline.
 void touchDenseKernels() {
   double a[4] = {4, 2, 2, 4}, c[4] = {0, 0, 0, 0};
-  blas::syrkLower(1, 1, a, 2, c, 2);
-  blas::gemmNT(1, 1, 1, a, 2, a, 2, c, 2);
-  blas::potrfLower(2, a, 2);
-  blas::trsmRightLowerTransposed(1, 1, a, 2, c, 2);
+  const int one = 1, two = 2;
+  const double alpha = 1, beta = 0;
+  int info = 0;
+  blas::dsyrk_("L", "N", &one, &one, &alpha, a, &two, &beta, c, &two);
+  blas::dgemm_("N", "T", &one, &one, &one, &alpha, a, &two, a, &two, &beta, c, &two);
+  blas::dpotrf_("L", &two, a, &two, &info);
+  blas::dtrsm_("R", "L", "T", "N", &one, &one, &alpha, a, &two, c, &two);
 }
 
 bool factorSerially(cholmod_sparse& A, cholmod_factor& L, cholmod_common& c, SupernodalReport& report,
