@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # How the core's factorization and edits scale with the machine's cores, on bunny00 and armadillo-sub2: natively
-# (`tvf bench --threads N`, with OpenBLAS on N threads: the supernodal factorization's only parallelism) at 1, 2,
-# 4, 8 and 16 threads, and in wasm under node (wasm/bench.mjs) at 1 and 2 threads, the most the wasm build's
-# pool has. Prints one JSON object {machine, rows: [{mesh, edges, build, threads, analyzeMs, factorMs, solveMs,
+# (`tvf bench --threads N`: the factorization's subtrees and the backward substitution on N threads, OpenBLAS on N)
+# at 1, 2, 4, 8 and 16 threads, and in wasm under node (wasm/bench.mjs) at 1 and 2 threads (the module with
+# pthreads has one helper fewer than the cores, at most 7). Prints one JSON object {machine, rows: [{mesh, edges, build, threads, analyzeMs, factorMs, solveMs,
 # updateMs, strokeUpdateSolveMs}]} (medians over the repeats) and writes it to bench-data/bench-cores.json.
 # Each run's result is also kept as it comes, a line of bench-data/bench-cores.jsonl (and on stderr), so that a
 # run stopped early (a lent machine's time running out: the whole set took over 400 s on a 16-core one) still
