@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <vector>
 
+#ifndef __EMSCRIPTEN__
+#include <dlfcn.h>
+#endif
+
 #include "common/thread_team.h"
 #include "solver/dense_kernels.h"
 
@@ -30,7 +34,36 @@ void updateRows(double* b, int ld, int nscol, int k0, int k1, int r0, int r1) {
                          b + below + static_cast<size_t>(k1) * ld, ld);
 }
 
+#ifndef __EMSCRIPTEN__
+using SetThreads = void (*)(int);
+using GetThreads = int (*)();
+
+SetThreads openblasSetThreads() {
+  return reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+}
+#endif
+
 }  // namespace
+
+namespace blas {
+
+BlasOnCallingThread::BlasOnCallingThread() {
+#ifndef __EMSCRIPTEN__
+  const auto get = reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  const SetThreads set = openblasSetThreads();
+  if (!get || !set) return;
+  restore_ = get();
+  if (restore_ > 1) set(1);
+#endif
+}
+
+BlasOnCallingThread::~BlasOnCallingThread() {
+#ifndef __EMSCRIPTEN__
+  if (restore_ > 1) openblasSetThreads()(restore_);
+#endif
+}
+
+}  // namespace blas
 
 int factorBlockOnThreads(double* block, int nsrow, int nscol, int parts) {
   std::vector<int> bounds(parts + 1);

@@ -30,6 +30,20 @@ Status dtrsm_(const char* side, const char* uplo, const char* transa, const char
 Status dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info);
 }
 
+// While it lives, a native OpenBLAS runs each call on the calling thread alone: the factorization's own
+// threads each call it, and OpenBLAS's pool, spinning for work beside them, made two threads on bunny00 take
+// 217 ms where one took 144. Found at run time (the BLAS may be another); nothing in wasm.
+class BlasOnCallingThread {
+ public:
+  BlasOnCallingThread();
+  ~BlasOnCallingThread();
+  BlasOnCallingThread(const BlasOnCallingThread&) = delete;
+  BlasOnCallingThread& operator=(const BlasOnCallingThread&) = delete;
+
+ private:
+  int restore_ = 0;
+};
+
 // Multiply-adds up to which a call stays inline.
 constexpr double kInlineFlops = 48.0 * 48.0 * 48.0;
 

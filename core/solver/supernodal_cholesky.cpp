@@ -352,6 +352,7 @@ bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_c
     for (const int s : partition.groups[g]) mine[g][s] = 1;
   for (const int s : partition.top) mine[groups][s] = 1;
   touchDenseKernels();
+  const blas::BlasOnCallingThread blasAlone;
   std::atomic<int> ran{0};
   const bool failing = failThreadsOnce.exchange(false);
   team->run(groups, [&](int g) {
