@@ -5,6 +5,7 @@
 #include <functional>
 #include <set>
 
+#include "common/input_error.h"
 #include "design/designer.h"
 #include "io/mesh_io.h"
 #include "mesh/mesh_geometry.h"
@@ -54,22 +55,35 @@ std::vector<SurfacePoint> stripStroke(const SurfaceMesh& mesh, const MeshTopolog
   return points;
 }
 
-// The first vertex from `start` on (cyclically) that is interior, used by a face and not in `used`: a vertex
-// that can carry a prescribed singularity; -1 when there is none.
-int32_t freeVertex(const MeshTopology& t, int32_t start, const std::set<int32_t>& used) {
+// Whether the designer takes a singularity of this index at v (interior, used by a face, a one-ring that can
+// show it: the checks addSingularity makes). The designer is left as it was.
+bool carries(Designer& designer, int32_t v, double index) {
+  try {
+    designer.remove(designer.addSingularity(v, index));
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+// The first vertex from `start` on (cyclically) that can carry a singularity of +-index and is not in
+// `used`; -1 when there is none.
+int32_t freeVertex(Designer& designer, int32_t start, const std::set<int32_t>& used, double index) {
+  const MeshTopology& t = designer.topology();
   for (int32_t k = 0; k < t.numVertices; ++k) {
     const int32_t v = (start + k) % t.numVertices;
-    if (!used.count(v) && !t.isBoundaryVertex[v] && t.vertexFaceCount[v] > 0) return v;
+    if (!used.count(v) && carries(designer, v, index) && carries(designer, v, -index)) return v;
   }
   return -1;
 }
 
 // A neighbour of v across an edge that can carry a singularity (one step of a drag), not in `used`.
-int32_t freeNeighbour(const MeshTopology& t, int32_t v, const std::set<int32_t>& used) {
+int32_t freeNeighbour(Designer& designer, int32_t v, const std::set<int32_t>& used, double index) {
+  const MeshTopology& t = designer.topology();
   for (int32_t k = t.vertexEdgeStart[v]; k < t.vertexEdgeStart[v + 1]; ++k) {
     const int32_t e = t.vertexEdgeList[k];
     const int32_t w = t.edgeVertices[2 * e] == v ? t.edgeVertices[2 * e + 1] : t.edgeVertices[2 * e];
-    if (!used.count(w) && !t.isBoundaryVertex[w]) return w;
+    if (!used.count(w) && carries(designer, w, index) && carries(designer, w, -index)) return w;
   }
   return -1;
 }
@@ -107,21 +121,21 @@ void timeSingularityEdits(Designer& designer, int r, Samples& s) {
   std::set<int32_t> used;
   std::vector<int32_t> background;
   const int32_t count = std::abs(chi) * symmetry;
+  const double index = 1.0 / symmetry;
+  designer.clearConstraints();
   for (int32_t k = 0; k < count; ++k) {
-    const int32_t v =
-        freeVertex(t, static_cast<int32_t>((int64_t(k) * nV / std::max(count, 1) + r * 7919) % nV), used);
+    const int32_t start = static_cast<int32_t>((int64_t(k) * nV / std::max(count, 1) + r * 7919) % nV);
+    const int32_t v = freeVertex(designer, start, used, index);
     if (v < 0) return;  // too few interior vertices to prescribe
     used.insert(v);
     background.push_back(v);
   }
-  const int32_t plus = freeVertex(t, (r * 104729 + nV / 3) % nV, used);
+  const int32_t plus = freeVertex(designer, (r * 104729 + nV / 3) % nV, used, index);
   if (plus >= 0) used.insert(plus);
-  const int32_t minus = plus < 0 ? -1 : freeVertex(t, (r * 7919 + 2 * nV / 3) % nV, used);
+  const int32_t minus = plus < 0 ? -1 : freeVertex(designer, (r * 7919 + 2 * nV / 3) % nV, used, index);
   if (minus >= 0) used.insert(minus);
-  const int32_t next = minus < 0 ? -1 : freeNeighbour(t, minus, used);
+  const int32_t next = minus < 0 ? -1 : freeNeighbour(designer, minus, used, index);
   if (next < 0) return;  // no room for a pair (a mesh that is nearly all boundary)
-  const double index = 1.0 / symmetry;
-  designer.clearConstraints();
   for (const int32_t v : background) designer.addSingularity(v, chi > 0 ? index : -index);
   designer.solve();
   const int64_t factorizationsBefore = designer.stats().factorizations;
@@ -257,6 +271,39 @@ nlohmann::json summary(const Samples& s, bool metis) {
           {"factorKind", s.factorKind}};
 }
 
+// A source and a stroke solved: the field the factorization on threads is checked by.
+std::vector<double> checkField(Designer& d, bool metis) {
+  d.clearConstraints();
+  d.setMetisOrdering(metis);
+  d.addSource(d.mesh().triangles[0], 1.0);
+  d.addStroke(stripStroke(d.mesh(), d.topology(), 7, 50), 1.0, 1.0);
+  d.solve();
+  return d.oneForm();
+}
+
+// max |a - b| / max |b|.
+double relativeDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  double diff = 0, scale = 0;
+  for (size_t e = 0; e < b.size(); ++e) {
+    diff = std::max(diff, std::abs(a[e] - b[e]));
+    scale = std::max(scale, std::abs(b[e]));
+  }
+  return scale > 0 ? diff / scale : diff;
+}
+
+// The field on the designer's threads against the field on one, through the session's own solve (its kernel
+// shift and refinement included), and, for scale, the serial field with the other ordering against it: how
+// far a mere change in the order of the sums moves this system's field.
+nlohmann::json parallelFieldDifference(Designer& designer, bool metis) {
+  const std::vector<double> threaded = checkField(designer, metis);
+  Designer serial(designer.mesh());
+  serial.setSolverThreads(1);
+  const std::vector<double> one = checkField(serial, metis);
+  const std::vector<double> otherOrdering = checkField(serial, !metis);
+  return {{"parallelFieldDifference", relativeDifference(threaded, one)},
+          {"orderingFieldDifference", relativeDifference(otherOrdering, one)}};
+}
+
 }  // namespace
 
 nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
@@ -272,6 +319,8 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
   nlohmann::json out = {{"mesh", meshPath},     {"edges", designer.edgeVertices().size() / 2},
                         {"repeat", repeat},     {"gamma", gamma},
                         {"symmetry", symmetry}, {"threads", designer.solverThreads()}};
+  if (designer.solverThreads() > 1 && symmetry == 1)
+    out.update(parallelFieldDifference(designer, orderings[0]));
   if (orderings.size() == 1) {
     out.update(summary(samples[0], orderings[0]));
     return out;

@@ -116,6 +116,20 @@ TEST(Cli, BenchPrintsTheTableKeys) {
   EXPECT_EQ(b["ordering"], "metis");  // the default, as in the browser build
 }
 
+// With threads, the bench checks the factorization on them against the serial one through the session's
+// field, beside the serial field with the other ordering (the system's own sensitivity to the order of sums).
+TEST(Cli, BenchOnTwoThreadsChecksTheFieldAgainstOneThreads) {
+  const fs::path mesh = writeOff("cli_bench_threads.off", tvf::icosphere(6));
+  const CliRun r = runTvf("bench " + mesh.string() + " --repeat 1 --threads 2 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto b = nlohmann::json::parse(r.out);
+  EXPECT_NE(b["factorKind"].get<std::string>().find("LL' on 2 threads"), std::string::npos) << b["factorKind"];
+  EXPECT_LT(b["parallelFieldDifference"].get<double>(), 1e-12);
+  EXPECT_LT(b["orderingFieldDifference"].get<double>(), 1e-12);
+  EXPECT_FALSE(runTvf("bench " + mesh.string() + " --repeat 1 --threads 1 --json").out.find(
+                   "parallelFieldDifference") != std::string::npos);
+}
+
 TEST(Cli, BenchCompareReportsBothOrderings) {
   const fs::path mesh = writeOff("cli_bench_compare.off", tvf::testing::torus(40, 20, 2, 0.7));
   const CliRun r = runTvf("bench " + mesh.string() + " --repeat 1 --compare");
