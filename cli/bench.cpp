@@ -5,6 +5,7 @@
 #include <functional>
 #include <set>
 
+#include "cli/cholmod_baseline.h"
 #include "common/input_error.h"
 #include "design/designer.h"
 #include "io/mesh_io.h"
@@ -304,6 +305,34 @@ nlohmann::json parallelFieldDifference(Designer& designer, bool metis) {
           {"orderingFieldDifference", relativeDifference(otherOrdering, one)}};
 }
 
+// A single-edge update repeated in a loop, as a session's edits follow each other (updateMs times the first
+// of a repeat, after a factorization and a solve): the median of the designer's own updateMs.
+double steadyUpdateMs(Designer& designer) {
+  designer.clearConstraints();
+  designer.addSource(designer.mesh().triangles[0], 1.0);
+  designer.solve();
+  const int32_t nF = designer.mesh().numFaces();
+  std::vector<double> updates;
+  for (int r = 0; r < 51; ++r) {
+    const int32_t face = (r * 7919 + 13) % nF;
+    const int32_t id = designer.addEdge(designer.mesh().triangles[3 * face],
+                                        designer.mesh().triangles[3 * face + 1], 0.1, 1.0);
+    updates.push_back(designer.stats().updateMs);
+    designer.remove(id);
+  }
+  designer.clearConstraints();
+  return median(updates);
+}
+
+// The base matrix, its kernel shifted by 1e-8 of its mean diagonal (as the session's factor shifts it).
+SparseMatrix shiftedBase(Designer& designer) {
+  SparseMatrix A = designer.baseMatrix();
+  SparseMatrix identity(A.rows(), A.cols());
+  identity.setIdentity();
+  A += (1e-8 * A.diagonal().mean()) * identity;
+  return A;
+}
+
 }  // namespace
 
 nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
@@ -321,6 +350,10 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
                         {"symmetry", symmetry}, {"threads", designer.solverThreads()}};
   if (designer.solverThreads() > 1 && symmetry == 1)
     out.update(parallelFieldDifference(designer, orderings[0]));
+  if (symmetry == 1) {
+    out["steadyUpdateMs"] = steadyUpdateMs(designer);
+    out.update(cholmodBaseline(shiftedBase(designer), 15));
+  }
   if (orderings.size() == 1) {
     out.update(summary(samples[0], orderings[0]));
     return out;

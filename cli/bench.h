@@ -18,6 +18,10 @@ namespace tvf {
 // singularityFactorizations the numeric factorizations they made (all repeats), singularityMode the field's
 // mode then ("exact"). singularityFreeMoveMs: the same move with only the pair prescribed, the field placing
 // the rest of the index itself (where chi = 0, or on a surface with boundary, that too is exact).
+// Symmetry 1 also gives steadyUpdateMs (single-edge updates one after another: the median of 51) and, for
+// scale, plain CHOLMOD's simplicial LDL' with AMD on the same matrix (cli/cholmod_baseline.h:
+// plainAmdSolveMs, plainAmdUpdateMs); with threads, parallelFieldDifference and orderingFieldDifference (the
+// field on them against one thread's, and the serial field with the other ordering against it).
 nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
                         const std::vector<bool>& orderings, int threads = 0, int symmetry = 1);
 }  // namespace tvf

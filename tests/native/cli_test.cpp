@@ -114,6 +114,11 @@ TEST(Cli, BenchPrintsTheTableKeys) {
   EXPECT_EQ(b["edges"], 2400);
   EXPECT_GT(b["strokeUpdateSolveMs"].get<double>(), 0.0);
   EXPECT_EQ(b["ordering"], "metis");  // the default, as in the browser build
+  // Plain CHOLMOD beside it, on the same matrix: the scale for the solve and the update.
+  EXPECT_GT(b["plainAmdSolveMs"].get<double>(), 0.0);
+  EXPECT_GT(b["plainAmdUpdateMs"].get<double>(), 0.0);
+  EXPECT_GT(b["steadyUpdateMs"].get<double>(), 0.0);
+  EXPECT_GT(b["plainAmdFactorNonzeros"].get<double>(), 0.0);
 }
 
 // With threads, the bench checks the factorization on them against the serial one through the session's
