@@ -31,7 +31,7 @@ Status dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* i
 }
 
 // While it lives, a native OpenBLAS runs each call on the calling thread alone: the factorization's own
-// threads each call it, and OpenBLAS's pool, spinning for work beside them, made two threads on bunny00 take
+// threads each call it, and OpenBLAS's own pool working beside them made two threads on bunny00 take
 // 217 ms where one took 144. Found at run time (the BLAS may be another); nothing in wasm.
 class BlasOnCallingThread {
  public:
