@@ -5,6 +5,7 @@
 #include <functional>
 #include <set>
 
+#include "cli/bench_timing.h"
 #include "cli/cholmod_baseline.h"
 #include "common/input_error.h"
 #include "design/designer.h"
@@ -15,18 +16,6 @@
 namespace tvf {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
-double timeMs(const std::function<void()>& f) {
-  const auto start = Clock::now();
-  f();
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Barycentres of a strip of adjacent faces heading away from the start: a stroke crossing ~`crossings` edges.
 std::vector<SurfacePoint> stripStroke(const SurfaceMesh& mesh, const MeshTopology& t, int32_t start,

@@ -1,24 +1,12 @@
 #include "cli/cholmod_baseline.h"
 
 #include <algorithm>
-#include <chrono>
 #include <vector>
 
+#include "cli/bench_timing.h"
 #include "solver/cholmod_handles.h"
 
 namespace tvf {
-namespace {
-
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
-}
-
-}  // namespace
 
 nlohmann::json cholmodBaseline(const SparseMatrix& A, int repeat) {
   repeat = std::max(repeat, 5);
@@ -36,9 +24,8 @@ nlohmann::json cholmodBaseline(const SparseMatrix& A, int repeat) {
   std::vector<double> solves, updates;
   for (int k = 0; k < repeat; ++k) {
     static_cast<double*>(b->x)[(k * 104729) % n] += 1.0;
-    const auto start = std::chrono::steady_clock::now();
-    CholmodDensePtr x(cholmod_solve(CHOLMOD_A, L.get(), b.get(), c.get()), {c.get()});
-    solves.push_back(msSince(start));
+    CholmodDensePtr x(nullptr, {c.get()});  // freed after the timing, as before the next solve
+    solves.push_back(timeMs([&] { x.reset(cholmod_solve(CHOLMOD_A, L.get(), b.get(), c.get())); }));
   }
   for (int k = 0; k < repeat; ++k) {
     CholmodSparsePtr C(cholmod_allocate_sparse(n, 1, 1, 1, 1, 0, CHOLMOD_REAL, c.get()), {c.get()});
@@ -46,9 +33,7 @@ nlohmann::json cholmodBaseline(const SparseMatrix& A, int repeat) {
     static_cast<int*>(C->p)[1] = 1;
     static_cast<int*>(C->i)[0] = (k * 7919) % n;
     static_cast<double*>(C->x)[0] = 1.0;
-    const auto start = std::chrono::steady_clock::now();
-    cholmod_updown(1, C.get(), L.get(), c.get());
-    updates.push_back(msSince(start));
+    updates.push_back(timeMs([&] { cholmod_updown(1, C.get(), L.get(), c.get()); }));
   }
   int64_t nonzeros = 0;
   for (int j = 0; j < n; ++j) nonzeros += static_cast<const int*>(L->nz)[j];
