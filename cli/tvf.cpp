@@ -17,7 +17,7 @@
 #include "design/design_document.h"
 #include "design/field_export.h"
 #include "design/mesh_info.h"
-#include "direction/stripe_pattern.h"
+#include "design/design_stripes.h"
 #include "direction/stripe_texture.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_io.h"
@@ -40,7 +40,8 @@ int usage() {
          "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
          "             [--no-embed-flowmap] [--component whole|exact|coexact|harmonic]\n"
          "             [--rawfield OUT.rawfield] [--sing OUT.sing] [--rosy OUT.rosy]\n"
-         "             [--sharp OUT.sharp] [--stripes FREQ] [--ordering-cache DIR]\n"
+         "             [--sharp OUT.sharp] [--stripes FREQ] [--stripe-profile NAME]\n"
+         "             [--ordering-cache DIR]\n"
          "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
          "            [--threads N] [--symmetry N]\n"
          "--ordering-cache DIR keeps the field's fill-reducing ordering in DIR, one file per mesh and\n"
@@ -66,8 +67,9 @@ int usage() {
          "Directional .sing file's singularities to the design's (the file's N is the symmetry of\n"
          "a design that names none). export --sing writes the field's singularities (Directional),\n"
          "--rosy the cross field (QuadWild; symmetry 4), --sharp the feature edges (QuadWild).\n"
-         "export --stripes FREQ bakes the field's stripe pattern (FREQ stripes per unit length; a grid\n"
-         "for a cross field) into the GLB's base colour over the export's atlas (docs/export.md).\n";
+         "export --stripes FREQ bakes the field's stripe pattern (FREQ stripes per unit length) into the\n"
+         "GLB's base colour over the export's atlas (docs/export.md); --stripe-profile stripes, wood,\n"
+         "grid, bricks or weave (default: stripes, grid for a cross field).\n";
   return kUsageError;
 }
 
@@ -238,16 +240,14 @@ void writeInteropFiles(const tvf::Designer& designer, const std::string& singPat
                                                  designer.mesh().positions, designer.featureEdges()));
 }
 
-// The design's stripe pattern (direction/stripe_pattern.h) drawn into the export's atlas, as a PNG.
+// The design's stripe pattern (design/design_stripes.h) drawn into the export's atlas, as a PNG.
 std::vector<uint8_t> stripePng(const tvf::Designer& designer, const tvf::ExportAtlas& atlas,
-                               const tvf::FieldExportOptions& options, double frequency) {
-  tvf::StripeOptions o;
-  o.symmetry = designer.symmetry();
-  o.frequency = frequency;
-  const tvf::StripePattern pattern = tvf::stripePattern(designer.mesh(), designer.topology(),
-                                                        designer.geometry(), designer.vertexVectors(), o);
-  const std::vector<uint8_t> rgba =
-      tvf::stripeTextureRgba(designer.mesh(), pattern, atlas.cornerUVs, options.size, options.gutterTexels);
+                               const tvf::FieldExportOptions& options, const tvf::DesignStripeOptions& stripes) {
+  tvf::DesignStripes pattern;
+  pattern.compute(designer.mesh(), designer.topology(), designer.geometry(), designer.symmetry(),
+                  designer.vertexVectors(), stripes);
+  const std::vector<uint8_t> rgba = tvf::stripeTextureRgba(designer.mesh(), pattern.pattern(), atlas.cornerUVs,
+                                                           options.size, options.gutterTexels, {}, stripes.profile);
   return tvf::encodePngRgba(std::vector<uint16_t>(rgba.begin(), rgba.end()), options.size, options.size, 8);
 }
 
@@ -258,6 +258,7 @@ int exportCommand(int argc, char** argv) {
   tvf::FieldExportOptions options;
   tvf::FieldComponent component = tvf::FieldComponent::Whole;
   double stripes = 0;
+  std::string stripeProfile;
   for (int k = 4; k < argc; ++k) {
     const std::string a = argv[k];
     if (a == "--no-embed-flowmap") {
@@ -298,6 +299,8 @@ int exportCommand(int argc, char** argv) {
       if (!(stripes > 0))
         throw tvf::InputError(
             "--stripes: the frequency must be a positive number of stripes per unit length");
+    } else if (a == "--stripe-profile") {
+      stripeProfile = tvf::stripeProfileName(tvf::stripeProfileNamed(value));
     } else {
       return usage();
     }
@@ -319,11 +322,15 @@ int exportCommand(int argc, char** argv) {
         std::to_string(symmetry) + (symmetry == 1 ? " and singularities" : ""));
   if (stripes > 0 && glbPath.empty())
     throw tvf::InputError("--stripes bakes the stripes into the GLB's base colour: give --glb too");
-  if (stripes > 0 && symmetry != 1 && symmetry != 2 && symmetry != 4)
-    throw tvf::InputError(
-        "--stripes: stripe patterns are of vector, line and cross fields (symmetry 1, 2, 4); "
-        "this design has symmetry " +
-        std::to_string(symmetry));
+  if (!stripeProfile.empty() && !(stripes > 0))
+    throw tvf::InputError("--stripe-profile draws the stripes of --stripes FREQ: give --stripes too");
+  tvf::DesignStripeOptions stripeOptions;
+  if (stripes > 0) {
+    nlohmann::json o{{"frequency", stripes}};
+    if (!stripeProfile.empty()) o["profile"] = stripeProfile;
+    stripeOptions = tvf::designStripeOptionsFromJson(o.dump(), symmetry);
+    tvf::checkStripeOptions(symmetry, stripeOptions);  // before the solve: a refusal costs nothing
+  }
   if (!rosyPath.empty() && symmetry != 4)
     throw tvf::InputError("--rosy: .rosy holds a cross field (symmetry 4); this design has symmetry " +
                           std::to_string(symmetry));
@@ -363,7 +370,7 @@ int exportCommand(int argc, char** argv) {
   }
   if (!glbPath.empty()) {
     const std::vector<uint8_t> baseColour =
-        stripes > 0 ? stripePng(designer, atlas, options, stripes) : std::vector<uint8_t>{};
+        stripes > 0 ? stripePng(designer, atlas, options, stripeOptions) : std::vector<uint8_t>{};
     std::unique_ptr<tvf::GltfSource> source;
     if (format == tvf::MeshFormat::Gltf || format == tvf::MeshFormat::Glb) {
       const std::vector<uint8_t> bytes = readBytes(meshPath);

@@ -4,7 +4,7 @@
 
 export type Tool = 'orbit' | 'select' | 'stroke' | 'vector' | 'source' | 'sink' | 'vortex' | 'singularity' | 'feature';
 export type Controls = 'full' | 'minimal' | 'none';
-export type ErrorCode = 'model' | 'design' | 'texture' | 'core' | 'setting' | 'attribute' | 'autosave';
+export type ErrorCode = 'model' | 'design' | 'texture' | 'stripes' | 'core' | 'setting' | 'attribute' | 'autosave';
 export type CoreFailureKind = 'ended' | 'error' | 'trap' | 'silent' | 'cancelled';
 export type MaterialPreset = 'brushed metal' | 'satin';
 
@@ -126,6 +126,33 @@ export interface FeatureSettings {
 /** The features as set, and the edges the field follows ([a, b] vertex pairs). */
 export interface Features extends FeatureSettings {
   edges: [number, number][];
+}
+
+/** Stripe pattern options (setStripes; docs/stripes.md). */
+export interface StripeOptions {
+  /** Shown in place of the surface's colour. */
+  visible: boolean;
+  /** Stripes per unit length of the model; null: about 40 across the model's bounding-box diagonal. */
+  frequency: number | null;
+  /** 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave' (a cross field: grid, bricks or weave); null: the field's default. */
+  profile: 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave' | null;
+  /** 0..1: denser stripes where a vector field is stronger (0: even spacing). */
+  magnitudeSpacing: number;
+  /** '#rrggbb' (or 0xrrggbb). */
+  light: string | number;
+  dark: string | number;
+}
+
+/** The options in force, and the last pattern's stats. */
+export interface StripeState {
+  visible: boolean;
+  frequency: number;
+  profile: 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave';
+  magnitudeSpacing: number;
+  light: string;
+  dark: string;
+  stats: { families: number; iterations: number; residual: number; workerMs: number; roundTripMs: number } | null;
+  error: string | null;
 }
 
 export interface Views {
@@ -314,7 +341,7 @@ export declare class TangentFieldDesigner extends HTMLElement {
   curvatureAlignment: number;
   /** `tool` (default orbit): The active mouse tool. */
   tool: Tool | null;
-  /** `views` (default arrows): Space-separated subset of: arrows streamlines lic magnitude singularities texture (lic: the flow texture). Reading the property gives the views() method; assigning a string sets the attribute. */
+  /** `views` (default arrows): Space-separated subset of: arrows streamlines lic magnitude singularities texture stripes (lic: the flow texture; stripes: the stripe pattern, setStripes()). Reading the property gives the views() method; assigning a string sets the attribute. */
   get views(): () => Views;
   set views(value: string | null);
   /** `controls` (default minimal): full = the studio panels, minimal = toolbar only, none = canvas only. */
@@ -473,6 +500,14 @@ export declare class TangentFieldDesigner extends HTMLElement {
   select(id: number | null): void;
   /** The id of the selected constraint, or null. */
   selected(): number | null;
+
+  // Stripe patterns.
+  /** Shows or hides the field's stripe pattern and sets its frequency, profile, spacing and colours. */
+  setStripes(options: Partial<StripeOptions>): Promise<StripeState>;
+  /** The stripe pattern's options in force, whether it is shown, and the last pattern's stats. */
+  stripes(): StripeState;
+  /** Resolves once the stripes shown are of the field the views draw and of the options. */
+  stripesIdle(): Promise<StripeState>;
 
   // View helpers.
   /** A PNG of the view, drawn again at width × height pixels (default: the canvas). */

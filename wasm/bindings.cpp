@@ -41,6 +41,7 @@
 
 #include "common/thread_team.h"
 #include "design/design_document.h"
+#include "design/design_stripes.h"
 #include "design/designer.h"
 #include "design/mesh_info.h"
 #include "field/hodge_decomposition.h"
@@ -147,7 +148,10 @@ class DesignerBinding {
   // format: 'glb' | 'gltf' | 'obj' | 'off' | 'ply' | '' (sniffed from the bytes).
   std::string loadMesh(const val& bytes, const std::string& format) {
     std::string error;
-    attempt(error, [&] { designer_ = prepareModel(bytes, format, "", "", nullptr, nullptr); });
+    attempt(error, [&] {
+      designer_ = prepareModel(bytes, format, "", "", nullptr, nullptr);
+      ++modelSerial_;
+    });
     lastError_ = error;
     return error;
   }
@@ -163,6 +167,7 @@ class DesignerBinding {
     std::string error, settingsError, restoreError;
     const bool ok = attempt(error, [&] {
       designer_ = prepareModel(bytes, format, settings, design, &settingsError, &restoreError);
+      ++modelSerial_;
     });
     lastError_ = error;
     return loadResult(ok, error, settingsError, restoreError);
@@ -209,6 +214,7 @@ class DesignerBinding {
           if (designer_) designer_->releaseFactors();
           solvePrepared(*pending_, pendingRestored_);
           designer_ = std::move(pending_);
+          ++modelSerial_;
         })) {
       pending_.reset();
       lastError_.clear();
@@ -416,6 +422,41 @@ class DesignerBinding {
   val cornerUVs() const { return designer_ ? view(designer_->mesh().cornerUVs) : view(emptyF_); }
   // glTF: the welded vertex of every source vertex (the exporter keeps the model's layout with it).
   val sourceToWelded() const { return designer_ ? view(designer_->mesh().sourceToWelded) : view(emptyI_); }
+
+  // The stripe pattern (design/design_stripes.h) of the field the page draws: vertexVectors, 3 per vertex (the
+  // whole field or a Hodge part; null: the design's own). options: designStripeOptionsFromJson's JSON. '' or
+  // the error. Kept per model, so that the next one starts from this one; read by the views below until then.
+  std::string computeStripes(const val& vertexVectors, const std::string& options) {
+    return run([&] {
+      const tvf::Designer& d = need();
+      if (stripesModel_ != modelSerial_) {
+        stripes_.clear();
+        stripesModel_ = modelSerial_;
+      }
+      const tvf::DesignStripeOptions o = tvf::designStripeOptionsFromJson(options, d.symmetry());
+      const std::vector<double> given =
+          vertexVectors.isNull() || vertexVectors.isUndefined() ? std::vector<double>{}
+                                   : emscripten::convertJSArrayToNumberVector<double>(vertexVectors);
+      if (!given.empty() && given.size() != d.mesh().positions.size())
+        throw tvf::InputError("stripes: expected 3 numbers per vertex of the model");
+      const auto t0 = std::chrono::steady_clock::now();
+      stripes_.compute(d.mesh(), d.topology(), d.geometry(), d.symmetry(), given.empty() ? d.vertexVectors() : given,
+                       o);
+      stripesMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    });
+  }
+  // families x 3 per face (family-major), radians; families per face (family-major).
+  val stripeCornerPhase() const { return view(stripes_.pattern().cornerPhase); }
+  val stripeBranchIndex() const { return view(stripes_.pattern().branchIndex); }
+  std::string stripeStatsJson() const {
+    const tvf::StripePattern& p = stripes_.pattern();
+    return nlohmann::json{{"families", p.families},     {"profile", tvf::stripeProfileName(stripes_.profile())},
+                          {"eigenvalue", p.eigenvalue}, {"residual", p.residual},
+                          {"iterations", p.iterations}, {"factorMs", p.factorMs},
+                          {"iterateMs", p.iterateMs},   {"analysisReused", p.analysisReused},
+                          {"ms", stripesMs_}}
+        .dump();
+  }
 
   // The Hodge decomposition (Eq. 3, field/hodge_decomposition.h) of the current field, computed now (two Poisson
   // solves): {exact, coexact, harmonic (per edge, the oneForm's order), potential0 (per vertex), potential2 (per
@@ -668,6 +709,10 @@ class DesignerBinding {
 
   std::unique_ptr<tvf::Designer> designer_;
   std::unique_ptr<tvf::Designer> pending_;  // openParsed's model, until commitModel
+  int modelSerial_ = 0;                      // one more per model made current
+  tvf::DesignStripes stripes_;               // computeStripes's, of model stripesModel_
+  int stripesModel_ = -1;
+  double stripesMs_ = 0;
   tvf::KeptOrdering kept_;                   // keptOrderingJson()'s, viewed by keptOrderingPerm()
   std::unique_ptr<tvf::SurfaceMesh> parsed_;  // readModel's mesh, until openParsed
   Restored pendingRestored_;
@@ -795,6 +840,10 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("addConstraintJson", &DesignerBinding::addConstraintJson)
       .function("fieldJson", &DesignerBinding::fieldJson)
       .function("hodge", &DesignerBinding::hodge)
+      .function("computeStripes", &DesignerBinding::computeStripes)
+      .function("stripeCornerPhase", &DesignerBinding::stripeCornerPhase)
+      .function("stripeBranchIndex", &DesignerBinding::stripeBranchIndex)
+      .function("stripeStatsJson", &DesignerBinding::stripeStatsJson)
       .function("reconstruct", &DesignerBinding::reconstruct);
   function("warmUp", &warmUp);
   // 1 in the plain build; in the build with pthreads (tvf_core_threads.mjs) one more than the helper threads

@@ -31,16 +31,22 @@
 // texture: null, or {png: Uint8Array, cornerUVs: Float32Array (6 per face)}: a base-colour image over its own
 // UVs (e.g. the synthesized texture in its atlas; image row 0 = v 0, as glTF samples it). Those UVs then index
 // the flow map too; unless they are the model's own, the GLB is a new document over the welded mesh with a
-// vertex per (welded vertex, UV) pair (io/gltf_writer.h).
+// vertex per (welded vertex, UV) pair (io/gltf_writer.h). Or {stripes: {cornerPhase, branchIndex, families,
+// profile, light?, dark?}}: the page's stripe pattern (Designer.computeStripes), drawn into the export's atlas
+// (direction/stripe_texture.h) as `tvf export --stripes` draws it.
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "design/field_export.h"
+#include "direction/stripe_texture.h"
+#include "io/png_writer.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_io.h"
 #include "io/rosy_file.h"
@@ -236,11 +242,18 @@ class FieldExporterBinding {
     std::unique_ptr<tvf::MeshGeometry> geometry;
   };
 
-  // The atlas a GLB uses: the export's own, or the texture's UVs when a texture goes with it.
+  // The atlas a GLB uses: the export's own, or the texture's UVs when a texture goes with it. A texture
+  // {stripes: {cornerPhase, branchIndex, families, profile, light?, dark?}} is the page's stripe pattern
+  // (design/design_stripes.h), drawn here into the export's atlas as `tvf export --stripes` draws it.
   static tvf::ExportAtlas atlasFor(const Mesh& m, const tvf::FieldExportOptions& o, const val& texture,
                                    std::vector<uint8_t>& baseColor) {
     tvf::ExportAtlas atlas;
     if (isNullish(texture)) return tvf::exportAtlasFor(m.surface, m.topology, o, o.embedFlowMap);
+    if (!isNullish(texture["stripes"])) {
+      atlas = tvf::exportAtlasFor(m.surface, m.topology, o, true);
+      baseColor = stripePng(m, atlas, o, texture["stripes"]);
+      return atlas;
+    }
     baseColor = bytesOf(texture["png"]);
     atlas.cornerUVs = numbersOf<float>(texture["cornerUVs"]);
     if (baseColor.empty()) throw tvf::InputError("export: the texture has no image");
@@ -249,6 +262,33 @@ class FieldExporterBinding {
     // The model's own UVs fit the model's layout; any others need a vertex per (vertex, UV) pair.
     atlas.generated = atlas.cornerUVs != m.surface.cornerUVs;
     return atlas;
+  }
+
+  static std::vector<uint8_t> stripePng(const Mesh& m, const tvf::ExportAtlas& atlas,
+                                        const tvf::FieldExportOptions& o, const val& stripes) {
+    tvf::StripePattern pattern;
+    pattern.families = stripes["families"].as<int>();
+    pattern.cornerPhase = numbersOf<float>(stripes["cornerPhase"]);
+    pattern.branchIndex = numbersOf<int8_t>(stripes["branchIndex"]);
+    const std::size_t nF = static_cast<std::size_t>(m.surface.numFaces());
+    if (pattern.families < 1 || pattern.families > 2 || pattern.cornerPhase.size() != 3 * nF * pattern.families ||
+        pattern.branchIndex.size() != nF * pattern.families)
+      throw tvf::InputError("export: the stripe pattern is not of this mesh");
+    tvf::StripeColours colours;
+    colourOf(stripes["light"], colours.light);
+    colourOf(stripes["dark"], colours.dark);
+    const std::vector<uint8_t> rgba =
+        tvf::stripeTextureRgba(m.surface, pattern, atlas.cornerUVs, o.size, o.gutterTexels, colours,
+                               tvf::stripeProfileNamed(stripes["profile"].as<std::string>()));
+    return tvf::encodePngRgba(std::vector<uint16_t>(rgba.begin(), rgba.end()), o.size, o.size, 8);
+  }
+
+  // [r, g, b] in 0..255, or nothing (the default stays).
+  static void colourOf(const val& rgb, uint8_t out[3]) {
+    const std::vector<double> c = numbersOf<double>(rgb);
+    if (c.empty()) return;
+    if (c.size() != 3) throw tvf::InputError("export: a stripe colour is [r, g, b]");
+    for (int k = 0; k < 3; ++k) out[k] = static_cast<uint8_t>(std::clamp(std::lround(c[k]), 0L, 255L));
   }
 
   const Mesh& need() const {

@@ -1,7 +1,8 @@
 // The core's module worker (one per <tangent-field-designer> element, started by core/core-proxy.js as
 // core-worker.js beside the bundle, and as a throwaway reader of model files): an entry point that only
 // composes. The wasm core's ops and their protocol are core/worker/ (dispatch.js says how each group's ops
-// are served); the CPU halves of texture synthesis are synthesis/worker-ops.js. An entry point may import
+// are served); the CPU halves of texture synthesis are synthesis/worker-ops.js, the
+// stripe pattern's stripes/worker-ops.js. An entry point may import
 // any layer; everything it composes keeps to its own.
 import { exportOps } from './core/core-export.js';
 import { bytesOps } from './core/model-bytes.js';
@@ -13,6 +14,7 @@ import { previewOps } from './core/worker/preview-ops.js';
 import { readOps } from './core/worker/read-ops.js';
 import { settingOps } from './core/worker/setting-ops.js';
 import { WorkerState } from './core/worker/state.js';
+import { stripeOps } from './stripes/worker-ops.js';
 import { synthesisOps } from './synthesis/worker-ops.js';
 
 // The worker's whole state is this one WorkerState: one served core per worker, one worker per element.
@@ -27,6 +29,7 @@ function serveWorker(scope) {
     exportOps(state),
     bytesOps(),
     synthesisOps(state),
+    stripeOps(state),
     testHooks(state),
   ]);
 }

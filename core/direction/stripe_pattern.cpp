@@ -35,7 +35,8 @@ struct Families {
   std::vector<Eigen::Vector3d> growth;  // count per vertex: the direction the phase grows in (a quarter more)
 };
 
-Families familiesOf(const SurfaceMesh& mesh, const std::vector<double>& vertexDirections, int symmetry) {
+Families familiesOf(const SurfaceMesh& mesh, const std::vector<double>& vertexDirections, int symmetry,
+                    int quarterTurns) {
   const int32_t nV = mesh.numVertices();
   const std::vector<double> normals = vertexNormals(mesh);
   Families out;
@@ -49,6 +50,7 @@ Families familiesOf(const SurfaceMesh& mesh, const std::vector<double>& vertexDi
     d -= d.dot(n) * n;
     const double length = d.norm();
     d = length > 0 && std::isfinite(length) ? Eigen::Vector3d(d / length) : Eigen::Vector3d::Zero();
+    for (int q = 0; q < quarterTurns; ++q) d = n.cross(d);
     for (int f = 0; f < out.count; ++f) {
       out.direction[static_cast<size_t>(v) * out.count + f] = d;
       d = n.cross(d);  // a quarter turn: the next family, and the phase's growth direction of this one
@@ -338,7 +340,8 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
                             const std::vector<double>& vertexDirections, const StripeOptions& options,
                             StripeWorkspace* workspace) {
   checkInput(mesh, vertexDirections, options);
-  const Families fam = familiesOf(mesh, vertexDirections, options.symmetry);
+  const Families fam =
+      familiesOf(mesh, vertexDirections, options.symmetry, ((options.quarterTurns % 4) + 4) % 4);
   const int F = fam.count;
   const EdgeTurns turns = edgeTurns(mesh, topology, fam, options);
 

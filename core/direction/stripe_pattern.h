@@ -33,6 +33,9 @@ namespace tvf {
 struct StripeOptions {
   int symmetry = 1;  // 1 (vector field), 2 (line field): one family of stripes; 4 (cross field): two, a grid
   double frequency = 1.0;  // stripes per unit length
+  // The field turned this many quarters in the tangent plane before anything else: 1 draws a vector or line
+  // field's stripes across it (the second family of a grid along a one-family field).
+  int quarterTurns = 0;
   // Optional, one per vertex: the frequency's factor there (the paper's Sec. 6.3 spacing from the field's
   // magnitude); empty for none.
   std::vector<double> vertexFrequencyScale;

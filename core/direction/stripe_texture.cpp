@@ -9,14 +9,6 @@
 namespace tvf {
 namespace {
 
-double familyPhase(const StripePattern& p, int32_t numFaces, int family, int32_t f, const double b[3]) {
-  const size_t slot = static_cast<size_t>(family) * numFaces + f;
-  double phase = 0;
-  for (int k = 0; k < 3; ++k) phase += b[k] * p.cornerPhase[3 * slot + k];
-  const int n = p.branchIndex[slot];
-  return n ? phase + n * stripeAngle(b[0], b[1], b[2]) : phase;
-}
-
 // Fills uncovered texels from covered 8-neighbours, one ring per pass.
 void dilate(std::vector<uint8_t>& rgba, int size, int passes) {
   std::vector<uint8_t> next;
@@ -47,28 +39,118 @@ void dilate(std::vector<uint8_t>& rgba, int size, int passes) {
   }
 }
 
+constexpr double kTwoPi = 2.0 * M_PI;
+
+double smoothstep(double e0, double e1, double x) {
+  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+  return t * t * (3 - 2 * t);
+}
+double fract(double x) {
+  return x - std::floor(x);
+}
+// Distance to the nearest whole number.
+double offWhole(double x) {
+  return std::abs(fract(x + 0.5) - 0.5);
+}
+// 0 on a line of half-width `half` round whole x, 1 off it, over a footprint w.
+double line(double x, double half, double w) {
+  return smoothstep(half - w, half + w, offWhole(x));
+}
+
+// The phase's change per texel of face f's UV triangle (u, v in texels), in periods: the footprint the
+// profile is filtered over (the linear part's gradient; a branch face's turn about its centre adds little).
+double texelFootprint(const StripePattern& p, int32_t nF, int32_t f, const double u[3], const double v[3],
+                      double det) {
+  double w = 0;
+  for (int family = 0; family < p.families; ++family) {
+    const float* g = &p.cornerPhase[3 * (static_cast<size_t>(family) * nF + f)];
+    const double dx = ((g[1] - g[0]) * (v[2] - v[0]) - (g[2] - g[0]) * (v[1] - v[0])) / det;
+    const double dy = ((g[2] - g[0]) * (u[1] - u[0]) - (g[1] - g[0]) * (u[2] - u[0])) / det;
+    w = std::max(w, 0.5 * (std::abs(dx) + std::abs(dy)) / kTwoPi);
+  }
+  return w;
+}
+
 }  // namespace
 
-double stripeValue(const StripePattern& p, int32_t numFaces, int32_t f, const double b[3]) {
-  if (p.families == 1) return 0.5 + 0.5 * std::cos(familyPhase(p, numFaces, 0, f, b));
-  // Grid lines: each family's stripes narrowed to lines at its phase's multiples of 2 pi, the darker wins.
-  double value = 1;
-  for (int family = 0; family < p.families; ++family) {
-    const double c = 0.5 + 0.5 * std::cos(familyPhase(p, numFaces, family, f, b));
-    value = std::min(value, 1 - std::pow(c, 8));
+StripeProfile stripeProfileNamed(const std::string& name) {
+  for (const StripeProfile p : {StripeProfile::Stripes, StripeProfile::WoodRings, StripeProfile::GridLines,
+                                StripeProfile::Bricks, StripeProfile::Weave})
+    if (name == stripeProfileName(p)) return p;
+  throw InputError("stripe profile '" + name + "': expected stripes, wood, grid, bricks or weave");
+}
+
+const char* stripeProfileName(StripeProfile profile) {
+  switch (profile) {
+    case StripeProfile::WoodRings:
+      return "wood";
+    case StripeProfile::GridLines:
+      return "grid";
+    case StripeProfile::Bricks:
+      return "bricks";
+    case StripeProfile::Weave:
+      return "weave";
+    default:
+      return "stripes";
   }
-  return value;
+}
+
+bool stripeProfileHasTwoFamilies(StripeProfile profile) {
+  return profile == StripeProfile::GridLines || profile == StripeProfile::Bricks ||
+         profile == StripeProfile::Weave;
+}
+
+double stripePatternFrequencyFactor(StripeProfile profile) {
+  return profile == StripeProfile::Bricks || profile == StripeProfile::Weave ? 0.5 : 1.0;
+}
+
+double stripeProfileValue(StripeProfile profile, double x, double y, double w) {
+  switch (profile) {
+    case StripeProfile::Stripes: {
+      const double soft = std::max(w, 0.1);
+      return smoothstep(0.25 - soft, 0.25 + soft, offWhole(x));
+    }
+    case StripeProfile::WoodRings: {
+      const double late = 1 - smoothstep(0.0, 0.35 + w, offWhole(x));
+      return 1 - 0.8 * late * late;
+    }
+    case StripeProfile::GridLines:
+      return std::min(line(x, 0.06, w), line(y, 0.06, w));
+    case StripeProfile::Bricks: {
+      const double X = 2 * x, Y = 2 * y, row = std::floor(X + 0.5);
+      const double along = 0.5 * Y + 0.5 * (row - 2 * std::floor(0.5 * row));
+      return std::min(line(X + 0.5, 0.06, 2 * w), line(along, 0.03, w));
+    }
+    case StripeProfile::Weave: {
+      const double X = 2 * x, Y = 2 * y, i = std::floor(X + 0.5), j = std::floor(Y + 0.5);
+      const bool alongOnTop = (i + j) - 2 * std::floor(0.5 * (i + j)) < 0.5;
+      const double across = std::cos(M_PI * (alongOnTop ? X - i : Y - j));
+      return 0.2 + 0.8 * std::sqrt(std::max(across, 0.0));
+    }
+  }
+  return 1;
+}
+
+double stripePhase(const StripePattern& p, int32_t numFaces, int family, int32_t f, const double b[3]) {
+  const size_t slot = static_cast<size_t>(family) * numFaces + f;
+  double phase = 0;
+  for (int k = 0; k < 3; ++k) phase += b[k] * p.cornerPhase[3 * slot + k];
+  const int n = p.branchIndex[slot];
+  return n ? phase + n * stripeAngle(b[0], b[1], b[2]) : phase;
 }
 
 std::vector<uint8_t> stripeTextureRgba(const SurfaceMesh& mesh, const StripePattern& pattern,
                                        const std::vector<float>& cornerUVs, int size, int gutterTexels,
-                                       const StripeColours& colours) {
+                                       const StripeColours& colours, StripeProfile profile) {
   const int32_t nF = mesh.numFaces();
   if (size < 1 || size > 8192) throw InputError("stripe texture: the size must be in [1, 8192]");
   if (cornerUVs.size() != 6 * static_cast<size_t>(nF))
     throw InputError("stripe texture: expected 6 UV coordinates per face");
   if (pattern.cornerPhase.size() != 3 * static_cast<size_t>(nF) * pattern.families)
     throw InputError("stripe texture: the pattern is of another mesh");
+  if (stripeProfileHasTwoFamilies(profile) && pattern.families < 2)
+    throw InputError(std::string("stripe texture: the ") + stripeProfileName(profile) +
+                     " profile needs two families of stripes");
   std::vector<uint8_t> rgba(4 * static_cast<size_t>(size) * size, 0);
   for (int32_t f = 0; f < nF; ++f) {
     double u[3], v[3];
@@ -76,6 +158,7 @@ std::vector<uint8_t> stripeTextureRgba(const SurfaceMesh& mesh, const StripePatt
       u[k] = cornerUVs[6 * f + 2 * k] * size, v[k] = cornerUVs[6 * f + 2 * k + 1] * size;
     const double det = (u[1] - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (v[1] - v[0]);
     if (!(std::abs(det) > 1e-12)) continue;
+    const double w = texelFootprint(pattern, nF, f, u, v, det);
     const int x0 = std::max(0, static_cast<int>(std::floor(std::min({u[0], u[1], u[2]}) - 0.5)));
     const int x1 = std::min(size - 1, static_cast<int>(std::ceil(std::max({u[0], u[1], u[2]}) - 0.5)));
     const int y0 = std::max(0, static_cast<int>(std::floor(std::min({v[0], v[1], v[2]}) - 0.5)));
@@ -91,7 +174,9 @@ std::vector<uint8_t> stripeTextureRgba(const SurfaceMesh& mesh, const StripePatt
         if (b[0] < kSlack || b[1] < kSlack || b[2] < kSlack) continue;
         uint8_t* out = &rgba[4 * (static_cast<size_t>(y) * size + x)];
         if (out[3]) continue;  // the first face to cover a texel keeps it
-        const double t = std::clamp(stripeValue(pattern, nF, f, b), 0.0, 1.0);
+        const double first = stripePhase(pattern, nF, 0, f, b) / kTwoPi;
+        const double second = pattern.families > 1 ? stripePhase(pattern, nF, 1, f, b) / kTwoPi : 0.0;
+        const double t = std::clamp(stripeProfileValue(profile, first, second, w), 0.0, 1.0);
         for (int c = 0; c < 3; ++c)
           out[c] =
               static_cast<uint8_t>(std::lround(colours.dark[c] + t * (colours.light[c] - colours.dark[c])));

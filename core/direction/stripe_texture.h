@@ -1,12 +1,13 @@
 #pragma once
 // A stripe pattern (direction/stripe_pattern.h) drawn into a texture atlas, for a GLB's base colour: per
 // texel centre inside a face's UV triangle, the face's phase at the texel's barycentric point (branch faces
-// with their piecewise-linear angle), through a profile: stripes 0.5 + 0.5 cos(phase) for one family, grid
-// lines (the darker of the two families' stripes, narrowed) for two. Texels outside every triangle take a
-// covered neighbour's colour, `gutter` texels out, so bilinear lookups at chart borders read stripes, not
-// background. Texel (x, y) has its centre at UV ((x + 0.5) / size, (y + 0.5) / size): row 0 is v = 0, as glTF
-// samples.
+// with their piecewise-linear angle), through a profile (StripeProfile), filtered over the texel's footprint.
+// The page draws the same profiles per fragment (web/stripes/profiles.js): the same formulas, so that a GLB
+// shows what the page showed. Texels outside every triangle take a covered neighbour's colour, `gutter`
+// texels out, so bilinear lookups at chart borders read stripes, not background. Texel (x, y) has its centre
+// at UV ((x + 0.5) / size, (y + 0.5) / size): row 0 is v = 0, as glTF samples.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "direction/stripe_pattern.h"
@@ -14,18 +15,43 @@
 
 namespace tvf {
 
+// How a phase becomes a colour. x = phase / 2 pi of the first family (periods), y of the second. Every
+// profile reads the same where a line field's phase runs the other way (x -> -x + k, k whole): the
+// representatives' signs leave no seam.
+//  Stripes: dark bands half a period wide round whole x (their edges where cos(phase) = 0).
+//  WoodRings: a ring per period, light early wood darkening towards a late-wood line at whole x.
+//  GridLines: lines 0.12 of a period wide at whole x and at whole y.
+//  Bricks, Weave: of a pattern at half the frequency (stripePatternFrequencyFactor), whose whole periods keep
+//  the parity of a row or a thread across every edge: X = 2x, Y = 2y. Bricks: mortar at half-whole X (a row
+//  per period of the asked frequency), head joints every two periods of Y, shifted one on every other row.
+//  Weave: threads centred on whole X and on whole Y, over and under in a checkerboard.
+enum class StripeProfile { Stripes, WoodRings, GridLines, Bricks, Weave };
+
+// "stripes", "wood", "grid", "bricks", "weave"; throws InputError naming the choices.
+StripeProfile stripeProfileNamed(const std::string& name);
+const char* stripeProfileName(StripeProfile profile);
+// Grid lines, bricks and weave need two families of stripes.
+bool stripeProfileHasTwoFamilies(StripeProfile profile);
+// The pattern a profile draws is computed at this times the asked frequency (1, or 1/2 for bricks and weave).
+double stripePatternFrequencyFactor(StripeProfile profile);
+
 struct StripeColours {
   uint8_t light[3] = {236, 228, 212};
   uint8_t dark[3] = {52, 44, 40};
 };
 
+// The profile's value in [0, 1] (0 dark, 1 light) at x, y (periods), filtered over a footprint of w periods.
+double stripeProfileValue(StripeProfile profile, double x, double y, double w);
+
 // RGBA8, 4 per texel, row 0 first; alpha 255 where covered or filled, 0 elsewhere. cornerUVs: 6 per face.
-// Throws InputError for a size outside [1, 8192] or cornerUVs of the wrong size.
+// Throws InputError for a size outside [1, 8192], cornerUVs of the wrong size, or a profile that needs two
+// families drawn from a pattern of one.
 std::vector<uint8_t> stripeTextureRgba(const SurfaceMesh& mesh, const StripePattern& pattern,
                                        const std::vector<float>& cornerUVs, int size, int gutterTexels,
-                                       const StripeColours& colours = {});
+                                       const StripeColours& colours = {},
+                                       StripeProfile profile = StripeProfile::Stripes);
 
-// The profile's value in [0, 1] (0 dark, 1 light) at a point of face f with barycentric b.
-double stripeValue(const StripePattern& pattern, int32_t numFaces, int32_t f, const double b[3]);
+// A family's phase (radians) at a point of face f with barycentric b.
+double stripePhase(const StripePattern& pattern, int32_t numFaces, int family, int32_t f, const double b[3]);
 
 }  // namespace tvf

@@ -1,7 +1,8 @@
 // The wasm core's client: loads the module (dist/wasm/tvf_core.mjs, or the threaded build) and wraps its embind
 // Designer in one class whose calls come in groups by concern (client/): a model's opening, the solver, the
-// settings, the constraints, the read-outs. Each call goes through client/checks.js, so that a failure, in
-// whatever form the core reports it, reaches the page as one CoreError (core-error.js) naming the operation.
+// settings, the constraints, the read-outs, the stripe pattern. Each call goes through client/checks.js, so that a
+// failure, in whatever form the core reports it, reaches the page as one CoreError (core-error.js) naming the
+// operation.
 // Owns the loaded module and its Designer; imports client/ and core-error.js.
 import { editCalls } from './client/edit-calls.js';
 import { describe } from './client/checks.js';
@@ -9,6 +10,7 @@ import { modelCalls } from './client/model-calls.js';
 import { readOuts } from './client/read-outs.js';
 import { settingCalls } from './client/setting-calls.js';
 import { solveCalls } from './client/solve-calls.js';
+import { stripeCalls } from './client/stripe-calls.js';
 import { CoreError } from './core-error.js';
 
 // The core with a helper thread for each solve's backward substitution (tvf_core_threads.mjs) needs shared
@@ -65,4 +67,4 @@ class LoadedCore {
 }
 
 // The groups extend one another in turn (no two define the same call: tests/node/core-client.test.mjs).
-export class CoreClient extends readOuts(editCalls(settingCalls(solveCalls(modelCalls(LoadedCore))))) {}
+export class CoreClient extends stripeCalls(readOuts(editCalls(settingCalls(solveCalls(modelCalls(LoadedCore)))))) {}

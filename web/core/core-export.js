@@ -157,9 +157,11 @@ export function exportOps(state) {
       return state.coreExport.flowMapPng(field(), options);
     },
 
-    // texture: null or {png, cornerUVs}, the synthesized texture (web/export/index.js).
+    // texture: null, {png, cornerUVs} (the synthesized texture), or {stripes: {profile, light, dark}}: the core's
+    // current stripe pattern (client/stripe-calls.js, the one the page shows) baked in (web/export/index.js).
     exportGlb(options, texture) {
-      return state.coreExport.glb(field(), design(), options, texture);
+      const baked = texture?.stripes ? { stripes: { ...texture.stripes, ...state.core.stripeArrays() } } : texture;
+      return state.coreExport.glb(field(), design(), options, baked);
     },
 
     // A line or cross field as Directional's raw field text (docs/export.md).

@@ -111,6 +111,10 @@ export const api = {
   selected: (d) => d.session.selected,
   views: (d) => ({ ...d.viewSync.views }),
   setViews: (d, views) => d.viewSync.set(views),
+  // Stripe patterns (web/stripes/, docs/js-api.md): the options, shown or not, and the pattern's stats.
+  setStripes: (d, opts) => d.stripes.setStripes(opts),
+  stripes: (d) => d.stripes.state(),
+  stripesIdle: (d) => d.stripes.whenIdle(),
   streamlines: read((d) => d.viewSync.currentStreamlines().map((l) => Array.from(l))),
   // The direction cues drawn on the streamlines: each chevron's tip and the middle of its back.
   streamlineCues: read((d) => d.viewer.streamlines.cues.map(({ tip, back }) => ({ tip, back }))),

@@ -2,7 +2,7 @@
 // a bad one is refused with what it holds (the `error` event, code 'attribute'). The setting values themselves
 // are still the core's to check.
 
-const VIEW_NAMES = ['arrows', 'streamlines', 'lic', 'magnitude', 'singularities', 'texture'];
+const VIEW_NAMES = ['arrows', 'streamlines', 'lic', 'magnitude', 'singularities', 'texture', 'stripes'];
 export const DEFAULT_VIEWS = 'arrows';
 
 export function parseBoundary(text) {

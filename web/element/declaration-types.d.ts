@@ -123,6 +123,33 @@ export interface Features extends FeatureSettings {
   edges: [number, number][];
 }
 
+/** Stripe pattern options (setStripes; docs/stripes.md). */
+export interface StripeOptions {
+  /** Shown in place of the surface's colour. */
+  visible: boolean;
+  /** Stripes per unit length of the model; null: about 40 across the model's bounding-box diagonal. */
+  frequency: number | null;
+  /** 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave' (a cross field: grid, bricks or weave); null: the field's default. */
+  profile: 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave' | null;
+  /** 0..1: denser stripes where a vector field is stronger (0: even spacing). */
+  magnitudeSpacing: number;
+  /** '#rrggbb' (or 0xrrggbb). */
+  light: string | number;
+  dark: string | number;
+}
+
+/** The options in force, and the last pattern's stats. */
+export interface StripeState {
+  visible: boolean;
+  frequency: number;
+  profile: 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave';
+  magnitudeSpacing: number;
+  light: string;
+  dark: string;
+  stats: { families: number; iterations: number; residual: number; workerMs: number; roundTripMs: number } | null;
+  error: string | null;
+}
+
 export interface Views {
   arrows: boolean;
   arrowDensity: number;

@@ -6,6 +6,7 @@
 // Each group's source and section of docs/js-api.md, spread into its methods.
 const VIEWS = { source: 'api', group: 'Views' };
 const VIEW_HELPERS = { source: 'api', group: 'View helpers' };
+const STRIPES = { source: 'api', group: 'Stripe patterns' };
 const TEXTURE = { source: 'texture', group: 'Texture synthesis' };
 const ELEMENT = { source: 'element', group: 'The element' };
 const TEST_HOOKS = { source: 'api', group: 'Test hooks', internal: true };
@@ -31,6 +32,22 @@ export const VIEW_METHODS = [
     name: 'selected', ...VIEWS,
     signatures: [['', 'number | null']],
     description: 'The id of the selected constraint, or null.',
+  },
+
+  {
+    name: 'setStripes', ...STRIPES,
+    signatures: [['options: Partial<StripeOptions>', 'Promise<StripeState>']],
+    description: "Shows or hides the field's stripe pattern and sets its frequency, profile, spacing and colours.",
+  },
+  {
+    name: 'stripes', ...STRIPES,
+    signatures: [['', 'StripeState']],
+    description: "The stripe pattern's options in force, whether it is shown, and the last pattern's stats.",
+  },
+  {
+    name: 'stripesIdle', ...STRIPES,
+    signatures: [['', 'Promise<StripeState>']],
+    description: 'Resolves once the stripes shown are of the field the views draw and of the options.',
   },
 
   {

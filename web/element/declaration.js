@@ -22,7 +22,7 @@ export const DESCRIPTION = 'Interactive design of smooth tangent vector fields o
 export const ENUMS = {
   Tool: ['orbit', 'select', 'stroke', 'vector', 'source', 'sink', 'vortex', 'singularity', 'feature'],
   Controls: ['full', 'minimal', 'none'],
-  ErrorCode: ['model', 'design', 'texture', 'core', 'setting', 'attribute', 'autosave'],
+  ErrorCode: ['model', 'design', 'texture', 'stripes', 'core', 'setting', 'attribute', 'autosave'],
   CoreFailureKind: ['ended', 'error', 'trap', 'silent', 'cancelled'],
   MaterialPreset: ['brushed metal', 'satin'],
 };
@@ -74,8 +74,10 @@ export const ATTRIBUTES = [
     property: 'views',
     type: 'string | null',
     default: 'arrows',
-    description: 'Space-separated subset of: arrows streamlines lic magnitude singularities texture (lic: the flow ' +
-      'texture). Reading the property gives the views() method; assigning a string sets the attribute.',
+    description: 'Space-separated subset of: arrows streamlines lic magnitude singularities texture stripes ' +
+      '(lic: the ' +
+      'flow texture; stripes: the stripe pattern, setStripes()). Reading the property gives the views() method; ' +
+      'assigning a string sets the attribute.',
   },
   {
     name: 'controls',

@@ -9,6 +9,7 @@ import { ViewSync } from './view-sync.js';
 import { setupExport } from '../export/index.js';
 import { baseName } from '../session/documents.js';
 import { Session } from '../session/session.js';
+import { setupStripes } from '../stripes/index.js';
 import { prepareAtlasAhead, setupSynthesis } from '../synthesis/index.js';
 import { ToolController } from '../tools/tools.js';
 import { setPivotAt } from '../views/camera.js';
@@ -52,15 +53,21 @@ export class Designer {
     this.viewSync.apply(this.ui.views());
     this.textureApi = {};
     this.synthesis = this.#setupSynthesis($('#side-panel'), bench);
-    this.viewSync.onRefreshed = () => this.synthesis.fieldChanged(); // resynthesize when the field changed
+    this.stripes = this.#setupStripes($('#side-panel'));
+    // The texture and the stripes follow the field drawn.
+    this.viewSync.onRefreshed = () => {
+      this.synthesis.fieldChanged();
+      this.stripes.fieldChanged();
+    };
     this.exports = setupExport({
       viewer: this.viewer,
       panel: $('#side-panel'),
       call: (op, args) => session.request(op, args, { exclusive: true }),
       modelName: () => baseName(session.modelName),
       onError: (err) => !session.disposed && this.ui.showError(err.message),
-      // The one GLB export embeds the synthesized texture when there is one.
+      // The one GLB export embeds the stripes when they are shown, else the synthesized texture when there is one.
       texture: this.synthesis,
+      stripes: this.stripes,
       symmetry: () => session.field?.symmetry ?? 1,
     });
     this.#subscribe();
@@ -109,6 +116,27 @@ export class Designer {
     });
   }
 
+  // Stripe patterns (web/stripes/, docs/stripes.md): of the field the views draw, made in the core's worker.
+  #setupStripes(panel) {
+    const s = this.session;
+    return setupStripes({
+      viewer: this.viewer,
+      panel,
+      onError: (err) => s.fail('stripes', err),
+      call: async (op, args) => (await s.proxy.call(op, args, [], { background: true })).value,
+      getField: () => {
+        const drawn = this.viewSync.drawn;
+        if (!s.surface || !s.field) return null;
+        const derived = drawn?.derived ?? s.field;
+        const component = drawn?.name ?? 'whole';
+        const symmetry = s.field.symmetry ?? 1;
+        return { version: derived.version, component, key: this.viewSync.drawnVersion(), symmetry, surface: s.surface };
+      },
+      // Shown, they take the texture's place; hidden, they give it back.
+      onShow: (shown) => this.synthesis.setTextureVisible(!shown && this.synthesis.active),
+    });
+  }
+
   // After a model is shown, as the session warms the design's calls up: the model's texture atlas prepared
   // in the core's worker (synthesis/atlas-ahead.js), or for a model too big for that, once, the texture's CPU
   // half warmed up on a torus (synthesis/warm-up.js: ~0.27 s there; the first texture's atlas choice for bunny00
@@ -144,6 +172,7 @@ export class Designer {
     s.on('model', (model) => {
       this.viewSync.modelChanged(model);
       this.synthesis.modelChanged(); // the model's UVs and a fresh atlas for the new mesh
+      this.stripes.modelChanged();
     });
     // A big model's mesh goes to the GPU ahead of its field; perf().meshUploads counts the tasks it took.
     s.on('surface', (staged) => {
@@ -185,6 +214,7 @@ export class Designer {
     if (this.session.disposed) return;
     this.session.dispose();
     this.synthesis.dispose();
+    this.stripes.dispose();
     this.exports.dispose();
     this.tools.dispose();
     this.ui.dispose();

@@ -246,6 +246,8 @@ export class TangentFieldDesigner extends Base {
       colorMap: on.has('magnitude'),
       singularities: on.has('singularities'),
     });
+    if (on.has('stripes') !== d.stripes.visible)
+      d.stripes.setStripes({ visible: on.has('stripes') }).catch((err) => s.fail('stripes', err));
     const texture = on.has('texture');
     if (texture === d.textureView) return;
     d.textureView = texture;

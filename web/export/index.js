@@ -11,7 +11,8 @@ import { mountExportPanel } from './panel.js';
 
 // The export options the page starts with (the CLI's defaults, docs/export.md). texture: 'auto' embeds the
 // synthesized texture when one is shown, true requires one (the last one made), false leaves it out;
-// textureResolution / textureMagnification size its image (default 2 pixels per atlas texel).
+// textureResolution / textureMagnification size its image (default 2 pixels per atlas texel). stripes: 'auto'
+// bakes the stripe pattern in the texture's place while it is shown, true requires it shown, false leaves it out.
 export const DEFAULT_EXPORT_OPTIONS = {
   size: 1024,
   convention: 'gltf',
@@ -19,16 +20,20 @@ export const DEFAULT_EXPORT_OPTIONS = {
   strength: 1,
   rotation: 0,
   texture: 'auto',
+  stripes: 'auto',
 };
 // The preview needs no flow map, and its anisotropy texture (normal-mapped models) can be coarser; it shows the
 // field's material, not the texture.
-const PREVIEW_OPTIONS = { embedFlowMap: false, embedDesign: false, size: 512, texture: false };
+const PREVIEW_OPTIONS = { embedFlowMap: false, embedDesign: false, size: 512, texture: false, stripes: false };
 // Options that choose the texture here; the rest go to the core's writer.
-const TEXTURE_KEYS = ['texture', 'textureResolution', 'textureMagnification'];
+const TEXTURE_KEYS = ['texture', 'textureResolution', 'textureMagnification', 'stripes'];
 
 // call(op, args): one worker request after the session's pending edits, resolving to its value.
-// texture: the synthesis controller (synthesis/controller.js exportTexture()), or null without synthesis.
-export function setupExport({ viewer, panel, call, modelName, onError, texture = null, symmetry = () => 1 }) {
+// texture: the synthesis controller (synthesis/controller.js exportTexture()), or null without synthesis;
+// stripes: the stripes controller (stripes/controller.js exportStripes()), or null.
+export function setupExport({
+  viewer, panel, call, modelName, onError, texture = null, stripes = null, symmetry = () => 1,
+}) {
   const preview = new MaterialPreview(viewer);
   let options = { ...DEFAULT_EXPORT_OPTIONS };
   let previewPreset = null; // null: preview off
@@ -40,6 +45,13 @@ export function setupExport({ viewer, panel, call, modelName, onError, texture =
     const o = { ...options, ...opts };
     if (![true, false, 'auto'].includes(o.texture))
       throw new Error(`exportGlb: texture must be true, false or 'auto' (got ${JSON.stringify(o.texture)})`);
+    if (![true, false, 'auto'].includes(o.stripes))
+      throw new Error(`exportGlb: stripes must be true, false or 'auto' (got ${JSON.stringify(o.stripes)})`);
+    // The stripes shown are baked by the core into the export's atlas, in the texture's place.
+    const pattern = o.stripes === false ? null : await stripes?.exportStripes();
+    if (o.stripes === true && !pattern)
+      throw new Error('exportGlb: stripes: true needs the stripes shown (setStripes)');
+    if (pattern) return call('exportGlb', [coreOptions(o), { stripes: pattern }]);
     const image =
       o.texture === false || (!texture && o.texture === 'auto')
         ? null

@@ -4,8 +4,6 @@
 // (shaders.js MAGNIFY_GLSL: the four nearest texels' coordinates, each continued with its Jacobian, blended),
 // the same function the PNG/GLB export renders with.
 import {
-  BufferAttribute,
-  BufferGeometry,
   DataTexture,
   DoubleSide,
   ExternalTexture,
@@ -18,13 +16,9 @@ import {
   SRGBColorSpace,
   UnsignedByteType,
 } from 'three';
+import { cornerGeometry } from '../views/corner-geometry.js';
 import { MeshStaging } from '../views/mesh-staging.js';
 import { MAGNIFY_GLSL } from './shaders.js';
-
-// Faces per task while the textured geometry is built (~20 ms).
-const BUILD_SLICE = 1 << 15;
-
-const nextTask = () => new Promise((resolve) => setTimeout(resolve, 0));
 
 function exemplarTexture(exemplar, exemplarSize) {
   const ex = new DataTexture(exemplar, exemplarSize, exemplarSize, RGBAFormat, UnsignedByteType);
@@ -36,34 +30,6 @@ function exemplarTexture(exemplar, exemplarSize) {
   ex.anisotropy = 4;
   ex.needsUpdate = true;
   return ex;
-}
-
-// The model's corners, each with its position, smooth normal and atlas UV. bounds: the surface's bounding
-// sphere (the same points), when it has one.
-async function cornerGeometry({ positions, triangles, vertexNormals }, cornerUVs, bounds) {
-  const nF = triangles.length / 3;
-  const pos = new Float32Array(9 * nF), nor = new Float32Array(9 * nF), uv = new Float32Array(6 * nF);
-  for (let f0 = 0; f0 < nF; f0 += BUILD_SLICE) {
-    // Each slice in a task of its own, the first too (the atlas was set up in the caller's).
-    await nextTask();
-    for (let f = f0; f < Math.min(nF, f0 + BUILD_SLICE); f++)
-      for (let k = 0; k < 3; k++) {
-        const v = 3 * triangles[3 * f + k];
-        for (let c = 0; c < 3; c++) {
-          pos[9 * f + 3 * k + c] = positions[v + c];
-          nor[9 * f + 3 * k + c] = vertexNormals[v + c];
-        }
-        uv[6 * f + 2 * k] = cornerUVs[6 * f + 2 * k];
-        uv[6 * f + 2 * k + 1] = cornerUVs[6 * f + 2 * k + 1];
-      }
-  }
-  const geom = new BufferGeometry();
-  geom.setAttribute('position', new BufferAttribute(pos, 3));
-  geom.setAttribute('normal', new BufferAttribute(nor, 3));
-  geom.setAttribute('uv', new BufferAttribute(uv, 2));
-  if (bounds) geom.boundingSphere = bounds.clone();
-  else geom.computeBoundingSphere();
-  return geom;
 }
 
 const FRAGMENT_PARS = `

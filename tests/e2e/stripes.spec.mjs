@@ -1,0 +1,165 @@
+// Stripe patterns in the page (issue 45; docs/stripes.md, docs/js-api.md "Stripe patterns"), against the real
+// wasm core in its worker and the real WebGL view: the pictures are read back from the canvas and measured here.
+// A flat square with a constant field shows straight stripes at exactly the asked frequency (the transitions'
+// spacing down the picture against the projection of the model's units); on the default model the stripes show,
+// follow an edit (a new pattern for the new field), and the GLB bakes them into its base colour; a cross field
+// takes grid, bricks or weave only, and bad options are refused by name with nothing changed.
+import { expect, test } from '@playwright/test';
+import { openDesignerPage } from './helpers.mjs';
+
+// A flat n × n grid over the unit square in z = 0, as OFF text.
+function flatSquareOff(n) {
+  const v = [], f = [];
+  for (let j = 0; j <= n; j++) for (let i = 0; i <= n; i++) v.push(`${i / n} ${j / n} 0`);
+  const at = (i, j) => j * (n + 1) + i;
+  for (let j = 0; j < n; j++)
+    for (let i = 0; i < n; i++) {
+      f.push(`3 ${at(i, j)} ${at(i + 1, j)} ${at(i + 1, j + 1)}`, `3 ${at(i, j)} ${at(i + 1, j + 1)} ${at(i, j + 1)}`);
+    }
+  return `OFF\n${v.length} ${f.length} 0\n${v.join('\n')}\n${f.join('\n')}\n`;
+}
+
+// The canvas's grey values down pixel column x (drawing-buffer pixels), top first.
+function greyColumn(page, x) {
+  return page.evaluate((x) => {
+    const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
+    const c = document.createElement('canvas');
+    c.width = src.width;
+    c.height = src.height;
+    const ctx = c.getContext('2d', { willReadFrequently: true });
+    ctx.drawImage(src, 0, 0);
+    const data = ctx.getImageData(Math.round(x), 0, 1, src.height).data;
+    const out = [];
+    for (let i = 0; i < data.length; i += 4) out.push((data[i] + data[i + 1] + data[i + 2]) / 3);
+    return { grey: out, width: src.width, height: src.height, cssHeight: src.clientHeight };
+  }, x);
+}
+
+// Where the grey crosses the middle of its neighbourhood's range (±half a window), by linear interpolation.
+function crossings(grey, from, to, window) {
+  const mid = (y) => {
+    const lo = Math.max(from, y - window), hi = Math.min(to, y + window);
+    let min = Infinity, max = -Infinity;
+    for (let k = lo; k <= hi; k++) [min, max] = [Math.min(min, grey[k]), Math.max(max, grey[k])];
+    return { m: 0.5 * (min + max), contrast: max - min };
+  };
+  const out = [];
+  for (let y = from; y < to; y++) {
+    const { m, contrast } = mid(y);
+    if (contrast < 60) continue;
+    const a = grey[y] - m, b = grey[y + 1] - m;
+    if (a < 0 !== b < 0) out.push(y + a / (a - b));
+  }
+  return out;
+}
+
+test.describe.serial('stripe patterns in the page', () => {
+  let page, errors;
+  const evaluate = (fn, arg) => page.evaluate(fn, arg);
+  const refusal = (fn, arg) => page.evaluate(fn, arg).then(() => 'resolved', (err) => err.message);
+
+  test.beforeAll(async ({ browser }) => {
+    ({ page, errors } = await openDesignerPage(browser, { viewport: { width: 900, height: 700 } }));
+  });
+  test.afterAll(async () => {
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  test('a flat square with a constant field: straight stripes at exactly the asked frequency', async () => {
+    await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'square.off', restore: false }),
+      flatSquareOff(40));
+    // One vector along x: the constant field fits it with zero energy, so it is the field.
+    await evaluate(() => window.tvf.addVector(0, [1, 0, 0]));
+    await evaluate(() => window.tvf.setViews({ arrows: false, singularities: false }));
+    const frequency = 12;
+    const state = await evaluate((frequency) =>
+      window.tvf.setStripes({ visible: true, frequency, profile: 'stripes', light: '#ffffff', dark: '#000000' }),
+    frequency);
+    expect(state.visible).toBe(true);
+    expect(state.stats.families).toBe(1);
+    await evaluate(() => window.tvf.setCamera({ position: [0.5, 0.5, 1.6], target: [0.5, 0.5, 0] }));
+    await page.waitForTimeout(300);
+    // The model's y = 0.2 and 0.8 on screen (CSS pixels), scaled to the drawing buffer.
+    const [a, b] = await evaluate(() => [window.tvf.projectToScreen([0.5, 0.2, 0]), window.tvf.projectToScreen([0.5, 0.8, 0])]);
+    const box = await page.evaluate(() => {
+      const r = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
+      return { left: r.left, top: r.top };
+    });
+    const col = await greyColumn(page, 0);
+    const scale = col.height / col.cssHeight;
+    const x = (a.x - box.left) * scale;
+    const { grey } = await greyColumn(page, x);
+    const ya = (a.y - box.top) * scale, yb = (b.y - box.top) * scale;
+    const pxPerUnit = Math.abs(yb - ya) / 0.6;
+    const found = crossings(grey, Math.round(Math.min(ya, yb)), Math.round(Math.max(ya, yb)), Math.round(pxPerUnit / frequency));
+    expect(found.length).toBeGreaterThan(10);
+    const periods = (found.length - 1) / 2;
+    const measured = periods / ((found.at(-1) - found[0]) / pxPerUnit);
+    console.log(`[ measured ] flat square: ${found.length} transitions, ${measured.toFixed(3)} stripes per unit (asked ${frequency})`);
+    expect(Math.abs(measured - frequency)).toBeLessThan(0.01 * frequency);
+    // Straight: the same transitions one fifth of the square to the right.
+    const c = await evaluate(() => window.tvf.projectToScreen([0.7, 0.5, 0]));
+    const other = crossings((await greyColumn(page, (c.x - box.left) * scale)).grey, Math.round(Math.min(ya, yb)),
+      Math.round(Math.max(ya, yb)), Math.round(pxPerUnit / frequency));
+    expect(other.length).toBe(found.length);
+    for (let k = 0; k < found.length; k++) expect(Math.abs(other[k] - found[k])).toBeLessThan(1.5);
+  });
+
+  test('on the default model: shown, following an edit, baked into the GLB; bad options refused by name', async () => {
+    await page.reload();
+    await page.waitForFunction(() => window.tvf && window.tvf.ready);
+    await evaluate(() => window.tvf.ready);
+    await evaluate(() => window.tvf.setViews({ arrows: false }));
+    const before = await evaluate(() => window.tvf.setStripes({ visible: true }));
+    expect(before.profile).toBe('stripes');
+    expect(before.stats.families).toBe(1);
+    expect(before.stats.residual).toBeLessThan(1e-3);
+    // A stroke: a new field, and the stripes follow it (a new pattern of the new field version).
+    const mesh = await evaluate(() => window.tvf.mesh());
+    const faces = [0, 1, 2].map((k) => Math.floor(((k + 1) * mesh.triangles.length) / 3 / 4));
+    await evaluate((faces) => window.tvf.addStroke(faces.map((face) => ({ face, bary: [1 / 3, 1 / 3, 1 / 3] }))), faces);
+    const after = await evaluate(() => window.tvf.stripesIdle());
+    expect(after.stats.fieldKey).not.toBe(before.stats.fieldKey);
+    // The GLB bakes the stripes shown into its base colour: an image with both colours in it.
+    const shades = await evaluate(async () => {
+      const glb = await window.tvf.exportGlb({ size: 256 });
+      const view = new DataView(glb.buffer, glb.byteOffset);
+      const jsonLength = view.getUint32(12, true);
+      const doc = JSON.parse(new TextDecoder().decode(glb.subarray(20, 20 + jsonLength)));
+      const bin = glb.subarray(20 + jsonLength + 8);
+      const material = doc.materials[0].pbrMetallicRoughness;
+      const image = doc.images[doc.textures[material.baseColorTexture.index].source];
+      const bv = doc.bufferViews[image.bufferView];
+      const bytes = bin.subarray(bv.byteOffset ?? 0, (bv.byteOffset ?? 0) + bv.byteLength);
+      const bitmap = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
+      const c = new OffscreenCanvas(bitmap.width, bitmap.height);
+      const ctx = c.getContext('2d');
+      ctx.drawImage(bitmap, 0, 0);
+      const data = ctx.getImageData(0, 0, bitmap.width, bitmap.height).data;
+      let light = 0, dark = 0, covered = 0;
+      for (let i = 0; i < data.length; i += 4) {
+        if (data[i + 3] < 255) continue;
+        covered++;
+        if (Math.abs(data[i] - 0xec) + Math.abs(data[i + 1] - 0xe4) + Math.abs(data[i + 2] - 0xd4) < 12) light++;
+        if (Math.abs(data[i] - 0x34) + Math.abs(data[i + 1] - 0x2c) + Math.abs(data[i + 2] - 0x28) < 12) dark++;
+      }
+      return { width: bitmap.width, light: light / covered, dark: dark / covered };
+    });
+    console.log(`[ measured ] baked stripes: ${JSON.stringify(shades)}`);
+    expect(shades.width).toBe(256);
+    expect(shades.light).toBeGreaterThan(0.2);
+    expect(shades.dark).toBeGreaterThan(0.2);
+    // Refusals name the option and change nothing.
+    expect(await refusal(() => window.tvf.setStripes({ profile: 'plaid' }))).toContain('plaid');
+    expect(await refusal(() => window.tvf.setStripes({ frequency: -1 }))).toContain('frequency');
+    expect(await refusal(() => window.tvf.setStripes({ light: 'red' }))).toContain('light');
+    expect((await evaluate(() => window.tvf.stripes())).profile).toBe('stripes');
+    // A cross field draws the profiles that use both its directions: stripes give way to a grid.
+    await evaluate(() => window.tvf.setSymmetry(4));
+    const cross = await evaluate(() => window.tvf.stripesIdle());
+    expect(cross.profile).toBe('grid');
+    expect(cross.stats.families).toBe(2);
+    await evaluate(() => window.tvf.setStripes({ visible: false }));
+  });
+});

@@ -1,0 +1,149 @@
+// A design's stripe pattern (design/design_stripes.h) and the profiles it is drawn with
+// (direction/stripe_texture.h), against invariants and analytic truth: every profile reads the same where a
+// line field's phase runs the other way (x -> -x + k), so a line field's representatives leave no seam; a grid
+// along a vector field takes a second family across the field (its phase gradient at right angles to the
+// first's, on every face of a torus); bricks and weave are drawn from a pattern at half the frequency (the
+// phase gradient's length on a flat square); a cross field refuses one-family profiles by name, and bad options
+// are refused before anything is computed.
+#include "design/design_stripes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/input_error.h"
+#include "mesh/mesh_geometry.h"
+#include "mesh/mesh_topology.h"
+#include "test_meshes.h"
+
+using namespace tvf;
+using namespace tvf::testing;
+
+namespace {
+
+const StripeProfile kProfiles[] = {StripeProfile::Stripes, StripeProfile::WoodRings, StripeProfile::GridLines,
+                                   StripeProfile::Bricks, StripeProfile::Weave};
+
+Eigen::Vector3d phaseGradient(const SurfaceMesh& mesh, const StripePattern& p, int family, int32_t f) {
+  Eigen::Vector3d pos[3], grad[3];
+  facePositions(mesh, f, pos);
+  barycentricGradients(pos, grad);
+  const size_t slot = static_cast<size_t>(family) * mesh.numFaces() + f;
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) g += p.cornerPhase[3 * slot + k] * grad[k];
+  return g;
+}
+
+std::vector<double> constantField(const SurfaceMesh& m, const Eigen::Vector3d& d) {
+  std::vector<double> out;
+  for (int32_t v = 0; v < m.numVertices(); ++v) out.insert(out.end(), {d.x(), d.y(), d.z()});
+  return out;
+}
+
+// Around the tube of torus(n, m, 2, r), unit.
+std::vector<double> aroundTheTube(const SurfaceMesh& m) {
+  std::vector<double> out;
+  for (int32_t v = 0; v < m.numVertices(); ++v) {
+    const Eigen::Vector3d p = vertexPosition(m, v);
+    const Eigen::Vector3d centre = 2.0 * Eigen::Vector3d(p.x(), p.y(), 0).normalized();
+    const Eigen::Vector3d t = Eigen::Vector3d(-p.y(), p.x(), 0).normalized().cross((p - centre).normalized());
+    out.insert(out.end(), {t.x(), t.y(), t.z()});
+  }
+  return out;
+}
+
+}  // namespace
+
+// x -> -x + k (k whole) for the first family, and for the second too where the profile reads one: the same
+// value, at points that are not on a transition (where a filtered edge may round either way).
+TEST(StripeProfiles, ReadTheSameWhereTheLinePhaseRunsTheOtherWay) {
+  for (const StripeProfile profile : kProfiles) {
+    double worst = 0;
+    for (int i = 0; i < 997; ++i) {
+      const double x = -3.0 + 6.0 * std::fmod(0.6180339887 * i, 1.0);
+      const double y = -3.0 + 6.0 * std::fmod(0.7548776662 * i + 0.1, 1.0);
+      for (const int k : {-2, -1, 0, 1, 2, 3}) {
+        const double base = stripeProfileValue(profile, x, y, 0.01);
+        worst = std::max(worst, std::abs(base - stripeProfileValue(profile, -x + k, y, 0.01)));
+        if (stripeProfileHasTwoFamilies(profile))
+          worst = std::max(worst, std::abs(base - stripeProfileValue(profile, x, -y + k, 0.01)));
+      }
+    }
+    EXPECT_LT(worst, 1e-9) << stripeProfileName(profile);
+  }
+  for (const StripeProfile profile : kProfiles)
+    EXPECT_EQ(stripeProfileNamed(stripeProfileName(profile)), profile);
+  EXPECT_THROW(stripeProfileNamed("plaid"), InputError);
+}
+
+TEST(DesignStripes, AGridAlongAVectorFieldTakesASecondFamilyAcrossIt) {
+  const SurfaceMesh m = torus(96, 36, 2.0, 0.7);
+  const MeshTopology t = buildTopology(m);
+  const MeshGeometry g = computeMeshGeometry(m, t);
+  DesignStripes stripes;
+  DesignStripeOptions o;
+  o.frequency = 2.0;
+  o.profile = StripeProfile::GridLines;
+  const StripePattern& p = stripes.compute(m, t, g, 1, aroundTheTube(m), o);
+  ASSERT_EQ(p.families, 2);
+  ASSERT_EQ(p.cornerPhase.size(), 6u * m.numFaces());
+  // Each family against its own truth: the first's phase grows across the field, the second's along it.
+  const std::vector<double> field = aroundTheTube(m);
+  double across = 0, along = 0;
+  int32_t counted = 0;
+  for (int32_t f = 0; f < m.numFaces(); ++f) {
+    if (p.branchIndex[f] || p.branchIndex[m.numFaces() + f]) continue;
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) d += Eigen::Vector3d(&field[3 * m.triangles[3 * f + k]]);
+    const Eigen::Vector3d a = phaseGradient(m, p, 0, f).normalized(), b = phaseGradient(m, p, 1, f).normalized();
+    across += std::asin(std::min(1.0, std::abs(a.dot(d.normalized())))) * 180 / M_PI;
+    along += std::acos(std::min(1.0, std::abs(b.dot(d.normalized())))) * 180 / M_PI;
+    ++counted;
+  }
+  ASSERT_GT(counted, m.numFaces() / 2);
+  std::cout << "[ measured ] grid along a torus's field: the first family's stripes " << across / counted
+            << " deg off the field, the second's " << along / counted << " deg off across it\n";
+  EXPECT_LT(across / counted, 1.0);
+  EXPECT_LT(along / counted, 3.0);
+}
+
+TEST(DesignStripes, BricksAndWeaveAreDrawnFromAPatternAtHalfTheFrequency) {
+  const SurfaceMesh m = flatGrid(24, 1.0, true);
+  const MeshTopology t = buildTopology(m);
+  const MeshGeometry g = computeMeshGeometry(m, t);
+  for (const StripeProfile profile : {StripeProfile::Stripes, StripeProfile::Bricks, StripeProfile::Weave}) {
+    DesignStripes stripes;
+    DesignStripeOptions o;
+    o.frequency = 6.0;
+    o.profile = profile;
+    const StripePattern& p = stripes.compute(m, t, g, 2, constantField(m, Eigen::Vector3d::UnitX()), o);
+    const double expected = 2 * M_PI * o.frequency * stripePatternFrequencyFactor(profile);
+    for (int32_t f = 0; f < m.numFaces(); f += 37) {
+      const Eigen::Vector3d grad = phaseGradient(m, p, 0, f);
+      EXPECT_NEAR(grad.norm(), expected, 1e-3 * expected) << stripeProfileName(profile);
+      EXPECT_NEAR(std::abs(grad.normalized().y()), 1.0, 1e-6);  // across the field (x)
+    }
+  }
+}
+
+TEST(DesignStripes, BadOptionsAreRefusedByName) {
+  const auto refusal = [](int symmetry, const std::string& json) {
+    try {
+      checkStripeOptions(symmetry, designStripeOptionsFromJson(json, symmetry));
+      return std::string("accepted");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+  };
+  EXPECT_NE(refusal(4, R"({"profile": "stripes"})").find("cross field has two"), std::string::npos);
+  EXPECT_NE(refusal(4, R"({"profile": "wood"})").find("choose grid, bricks or weave"), std::string::npos);
+  EXPECT_EQ(refusal(4, "{}"), "accepted");  // a cross field's default: grid lines
+  EXPECT_EQ(designStripeOptionsFromJson("{}", 4).profile, StripeProfile::GridLines);
+  EXPECT_EQ(designStripeOptionsFromJson("{}", 2).profile, StripeProfile::Stripes);
+  EXPECT_NE(refusal(3, "{}").find("symmetry 1, 2 or 4"), std::string::npos);
+  EXPECT_NE(refusal(1, R"({"frequency": 0})").find("frequency"), std::string::npos);
+  EXPECT_NE(refusal(1, R"({"frequency": "x"})").find("numbers"), std::string::npos);
+  EXPECT_NE(refusal(1, R"({"magnitudeSpacing": 2})").find("magnitudeSpacing"), std::string::npos);
+  EXPECT_NE(refusal(1, R"({"profile": "plaid"})").find("plaid"), std::string::npos);
+  EXPECT_NE(refusal(1, "[1").find("not JSON"), std::string::npos);
+}

@@ -1,0 +1,211 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Stripe patterns on the page (docs/stripes.md): the options (frequency, profile, spacing by magnitude, colours),
+// whether the stripes are shown, and when the core's pattern is asked for — once per field version the views
+// draw while they are shown, the newest field winning when edits come faster than patterns. The pattern itself
+// is the core's (core/design/design_stripes.h), made in the worker (worker-ops.js) and drawn by stripe-model.js.
+// Owns its StripeModel; imports views/ (through stripe-model.js) and its own folder.
+import { PROFILES, TWO_FAMILY_PROFILES } from './profiles.js';
+import { StripeModel } from './stripe-model.js';
+
+const DEFAULT_LIGHT = 0xece4d4;
+const DEFAULT_DARK = 0x342c28;
+// Default spacing: this many stripes across the model's bounding-box diagonal, but no period under four mean
+// edge lengths (a narrower one is more than the mesh can show).
+const STRIPES_PER_DIAGONAL = 40;
+const MIN_PERIOD_EDGES = 4;
+
+const twoSignificant = (x) => Number(x.toPrecision(2));
+const hex = (c) => `#${c.toString(16).padStart(6, '0')}`;
+
+function colourOf(value, what) {
+  if (typeof value === 'number' && Number.isInteger(value) && value >= 0 && value <= 0xffffff) return value;
+  if (typeof value === 'string' && /^#[0-9a-f]{6}$/i.test(value)) return parseInt(value.slice(1), 16);
+  throw new Error(`setStripes: ${what} must be a colour '#rrggbb' (got ${JSON.stringify(value)})`);
+}
+
+// The default frequency (stripes per unit length) of a Surface.
+export function defaultFrequency(surface) {
+  const p = surface.positions, lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < p.length; i += 3)
+    for (let c = 0; c < 3; c++) {
+      lo[c] = Math.min(lo[c], p[i + c]);
+      hi[c] = Math.max(hi[c], p[i + c]);
+    }
+  const diagonal = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
+  return twoSignificant(Math.min(STRIPES_PER_DIAGONAL / diagonal, 1 / (MIN_PERIOD_EDGES * (surface.meanEdge || 1))));
+}
+
+export class StripesController {
+  // viewer: the page's Viewer; call(op, args): the worker's op, resolving to its value (null when the field
+  // version asked for is no longer the worker's); getField(): {version, component, key, symmetry, surface} of
+  // the field the views draw, or null; onChange(): the state changed (the panel redraws); onError(err);
+  // onShow(shown): the stripes are about to show (true), or have just gone (false): another stand-in for the
+  // surface (the synthesized texture) makes way or comes back.
+  constructor({ viewer, call, getField, onChange = () => {}, onError = () => {}, onShow = () => {} }) {
+    this.viewer = viewer;
+    this.call = call;
+    this.getField = getField;
+    this.onChange = onChange;
+    this.onError = onError;
+    this.onShow = onShow;
+    this.model = new StripeModel(viewer);
+    this.options = { frequency: null, profile: null, magnitudeSpacing: 0, light: DEFAULT_LIGHT, dark: DEFAULT_DARK };
+    this.visible = false;
+    this.surface = null; // the Surface the model's geometry was built from
+    this.shown = null; // {key, options}: what the stripes on screen are of
+    this.stats = null;
+    this.error = null;
+    this.running = null; // the update in flight
+    this.again = false;
+  }
+
+  // The options in force: the frequency and profile the model and field choose when none was set.
+  effective() {
+    const f = this.getField();
+    const symmetry = f?.symmetry ?? 1;
+    let profile = this.options.profile ?? (symmetry === 4 ? 'grid' : 'stripes');
+    if (symmetry === 4 && !TWO_FAMILY_PROFILES.includes(profile)) profile = 'grid';
+    const frequency = this.options.frequency ?? (f ? defaultFrequency(f.surface) : 1);
+    return { frequency, profile, magnitudeSpacing: symmetry === 1 ? this.options.magnitudeSpacing : 0 };
+  }
+
+  state() {
+    const { frequency, profile, magnitudeSpacing } = this.effective();
+    return {
+      visible: this.visible,
+      frequency,
+      profile,
+      magnitudeSpacing,
+      light: hex(this.options.light),
+      dark: hex(this.options.dark),
+      stats: this.stats ? { ...this.stats } : null,
+      error: this.error,
+    };
+  }
+
+  // opts: any of {visible, frequency (> 0, or null: the default), profile, magnitudeSpacing (0..1), light,
+  // dark}; checked before anything changes. Resolves with state() once the stripes shown are of these options.
+  async setStripes(opts = {}) {
+    const next = { ...this.options };
+    if ('frequency' in opts) {
+      const f = opts.frequency;
+      if (f !== null && !(typeof f === 'number' && f > 0 && Number.isFinite(f)))
+        throw new Error(`setStripes: frequency must be a positive number of stripes per unit length (got ${f})`);
+      next.frequency = f;
+    }
+    if ('profile' in opts) {
+      if (opts.profile !== null && !PROFILES.includes(opts.profile))
+        throw new Error(`setStripes: unknown profile ${JSON.stringify(opts.profile)}; one of ${PROFILES.join(', ')}`);
+      next.profile = opts.profile;
+    }
+    if ('magnitudeSpacing' in opts) {
+      const m = opts.magnitudeSpacing;
+      if (!(typeof m === 'number' && m >= 0 && m <= 1))
+        throw new Error(`setStripes: magnitudeSpacing must be a number in [0, 1] (got ${m})`);
+      next.magnitudeSpacing = m;
+    }
+    if ('light' in opts) next.light = colourOf(opts.light, 'light');
+    if ('dark' in opts) next.dark = colourOf(opts.dark, 'dark');
+    this.options = next;
+    const wasVisible = this.visible;
+    if ('visible' in opts) this.visible = !!opts.visible;
+    this.#style();
+    if (this.visible && !wasVisible) this.onShow(true);
+    this.model.setVisible(this.visible);
+    if (!this.visible && wasVisible) this.onShow(false);
+    this.onChange();
+    if (this.visible) await this.update();
+    return this.state();
+  }
+
+  // The field drawn changed (a new version or another component): new stripes when they are shown.
+  fieldChanged() {
+    if (this.visible) this.update().catch((err) => this.onError(err));
+  }
+
+  // Another model: its geometry is built on the next update.
+  modelChanged() {
+    this.shown = null;
+    this.stats = null;
+    if (this.visible) this.update().catch((err) => this.onError(err));
+  }
+
+  // Brings the stripes up to the field drawn and the options; one update at a time, the newest state winning.
+  update() {
+    if (this.running) {
+      this.again = true;
+      return this.running;
+    }
+    this.running = (async () => {
+      try {
+        do {
+          this.again = false;
+          await this.#updateOnce();
+        } while (this.again && this.visible);
+      } finally {
+        this.running = null;
+      }
+    })();
+    return this.running;
+  }
+
+  async #updateOnce() {
+    const field = this.getField();
+    if (!field || !this.visible) return;
+    if (this.surface !== field.surface) {
+      this.surface = field.surface;
+      this.shown = null;
+      await this.model.setGeometry(field.surface);
+    }
+    const { frequency, profile, magnitudeSpacing } = this.effective();
+    const options = { frequency, profile, magnitudeSpacing };
+    const wanted = JSON.stringify([field.key, field.component, options]);
+    if (this.shown === wanted) return;
+    const t0 = performance.now();
+    let reply;
+    try {
+      reply = await this.call('stripes', [field.version, field.component, options]);
+    } catch (err) {
+      this.error = err.message;
+      this.onChange();
+      throw err;
+    }
+    if (this.getField()?.key !== field.key || this.surface !== field.surface) {
+      this.again = true; // another field came meanwhile
+      return;
+    }
+    if (!reply) return; // the worker is not at this version (yet): its field's change asks again
+    this.#style();
+    this.model.setPattern(reply);
+    this.shown = wanted;
+    this.error = null;
+    this.stats = { ...reply.stats, fieldKey: field.key, roundTripMs: performance.now() - t0 };
+    this.onChange();
+  }
+
+  // Resolves once no update is in flight (tests, benchmarks).
+  async whenIdle() {
+    while (this.running) await this.running.catch(() => {});
+    return this.state();
+  }
+
+  // What the one GLB export bakes into the base colour when the stripes are shown: the options the worker
+  // draws the core's current pattern with (core-export.js), after bringing it up to the field.
+  async exportStripes() {
+    if (!this.visible) return null;
+    await this.update();
+    const { profile } = this.effective();
+    const rgb = (c) => [(c >> 16) & 255, (c >> 8) & 255, c & 255];
+    return { profile, light: rgb(this.options.light), dark: rgb(this.options.dark) };
+  }
+
+  #style() {
+    const { profile } = this.effective();
+    this.model.setStyle({ profile, light: this.options.light, dark: this.options.dark });
+  }
+
+  dispose() {
+    this.visible = false;
+    this.model.dispose();
+  }
+}

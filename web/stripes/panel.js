@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The "Stripes" section of the side panel: show, profile, stripes per unit length (or the model's default),
+// spacing by the field's magnitude (vector fields), the two colours, and a status line with the pattern's
+// times. Built here and appended to the given container; every control goes through the controller's
+// setStripes, as the API's calls do. Imports dom.js and its own folder.
+import { el } from '../dom.js';
+import { PROFILE_LABELS, PROFILES, TWO_FAMILY_PROFILES } from './profiles.js';
+
+const fmt = (ms) => (ms < 10 ? ms.toFixed(1) : ms.toFixed(0));
+
+export function mountStripesPanel(controller, container, { onError = (e) => console.error(e) } = {}) {
+  const show = el('input', { id: 'stripes-show', type: 'checkbox' });
+  const profile = el('select', { id: 'stripes-profile', title: 'How the phase is drawn' });
+  for (const name of PROFILES) profile.append(el('option', { value: name, text: PROFILE_LABELS[name] }));
+  const frequency = el('input', {
+    id: 'stripes-frequency',
+    type: 'number',
+    min: '0',
+    step: 'any',
+    title: 'Stripes per unit length of the model (empty: about 40 across the model)',
+  });
+  const magnitude = el('input', {
+    id: 'stripes-magnitude',
+    type: 'range',
+    min: '0',
+    max: '1',
+    step: '0.05',
+    value: '0',
+    title: 'Denser stripes where the field is stronger (0: even spacing; vector fields)',
+  });
+  const light = el('input', { id: 'stripes-light', type: 'color', title: 'Light colour' });
+  const dark = el('input', { id: 'stripes-dark', type: 'color', title: 'Dark colour' });
+  const status = el('p', { id: 'stripes-status', class: 'note', text: 'Stripes follow the field exactly.' });
+  const section = el(
+    'details',
+    { id: 'stripes-panel' },
+    el('summary', { text: 'Stripes' }),
+    el('label', { class: 'check', title: 'Stripe pattern along the field (Knöppel et al. 2015)' }, show, ' Show'),
+    el('label', {}, 'Profile ', profile),
+    el('label', {}, 'Per unit ', frequency),
+    el('label', {}, 'By magnitude ', magnitude),
+    el('label', {}, 'Colours ', light, ' ', dark),
+    status,
+  );
+  container.append(section);
+
+  const set = (opts) => controller.setStripes(opts).catch(onError);
+  show.addEventListener('change', () => set({ visible: show.checked }));
+  profile.addEventListener('change', () => set({ profile: profile.value }));
+  frequency.addEventListener('change', () => {
+    const v = frequency.value.trim();
+    set({ frequency: v === '' ? null : Number(v) });
+  });
+  magnitude.addEventListener('change', () => set({ magnitudeSpacing: Number(magnitude.value) }));
+  light.addEventListener('change', () => set({ light: light.value }));
+  dark.addEventListener('change', () => set({ dark: dark.value }));
+
+  const refresh = () => {
+    const s = controller.state(), symmetry = controller.getField()?.symmetry ?? 1;
+    show.checked = s.visible;
+    for (const o of profile.options) o.disabled = symmetry === 4 && !TWO_FAMILY_PROFILES.includes(o.value);
+    profile.value = s.profile;
+    if (document.activeElement !== frequency) frequency.value = String(s.frequency);
+    magnitude.value = String(s.magnitudeSpacing);
+    magnitude.disabled = symmetry !== 1;
+    light.value = s.light;
+    dark.value = s.dark;
+    if (s.error) status.textContent = s.error;
+    else if (s.stats) {
+      const t = s.stats;
+      status.textContent = `${t.families === 2 ? 'Two families' : 'One family'}: ${t.iterations} steps, ` +
+        `${fmt(t.workerMs)} ms in the worker, ${fmt(t.roundTripMs)} ms in all.`;
+    }
+  };
+  refresh();
+  return { refresh };
+}

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The stripe pattern's worker op, served by the element's core worker (web/core-worker.js composes it with the
+// core's ops; core/worker/dispatch.js files it as `onMesh`): the core's pattern of one field version, laid out
+// per corner for the page's non-indexed stripe geometry, so that the page's thread only hands it to the GPU.
+// Imports the core worker's Transfer.
+import { Transfer } from '../core/worker/transfer.js';
+
+// The core's arrays (families × 3 per face, family-major; families per face) as two per-corner attributes:
+// phase (2 per corner: the first family's phase, the second's or 0) and branch (2 per corner: each family's
+// branch index n, the same at the face's three corners).
+export function cornerAttributes({ families, cornerPhase, branchIndex }) {
+  const nF = branchIndex.length / families;
+  const phase = new Float32Array(6 * nF), branch = new Int8Array(6 * nF);
+  for (let family = 0; family < families; family++) {
+    const p = cornerPhase.subarray(3 * nF * family), b = branchIndex.subarray(nF * family);
+    for (let f = 0; f < nF; f++)
+      for (let k = 0; k < 3; k++) {
+        phase[6 * f + 2 * k + family] = p[3 * f + k];
+        branch[6 * f + 2 * k + family] = b[f];
+      }
+  }
+  return { phase, branch };
+}
+
+// state: the core worker's (core/worker/state.js).
+export function stripeOps(state) {
+  const onMesh = {
+    // The pattern of field `forVersion` (null once that is no longer the current field: the page asks again),
+    // of its `component` ('whole' or a Hodge part: the field the views draw), with `options`
+    // (core/design/design_stripes.h). Replies {families, phase, branch, stats}, the arrays transferred.
+    stripes(forVersion, component, options) {
+      if (forVersion !== state.field.version) return null;
+      const t0 = performance.now();
+      const part = component && component !== 'whole' ? state.field.hodge().component(component) : null;
+      const vectors = part?.vertexVectors ?? null;
+      const stats = state.core.computeStripes(vectors, options);
+      const { phase, branch } = cornerAttributes(state.core.stripeArrays());
+      const workerMs = performance.now() - t0;
+      const value = { families: stats.families, phase, branch, stats: { ...stats, workerMs } };
+      return new Transfer(value, [phase.buffer, branch.buffer]);
+    },
+  };
+  return { onMesh };
+}
