@@ -56,12 +56,15 @@ DesignStripeOptions designStripeOptionsFromJson(const std::string& json, int sym
     out.magnitudeSpacing = o.value("magnitudeSpacing", out.magnitudeSpacing);
     out.maxIterations = o.value("maxIterations", out.maxIterations);
     out.tolerance = o.value("tolerance", out.tolerance);
+    out.adaptSpacing = o.value("adaptSpacing", out.adaptSpacing);
     out.profile = o.contains("profile") ? stripeProfileNamed(o.at("profile").get<std::string>())
                   : symmetry == 4       ? StripeProfile::GridLines
                                         : StripeProfile::Stripes;
   } catch (const nlohmann::json::type_error&) {
     throw InputError(
-        "stripes: frequency, magnitudeSpacing, maxIterations and tolerance are numbers, profile a name");
+        "stripes: frequency, magnitudeSpacing, maxIterations and tolerance are numbers, adaptSpacing a "
+        "boolean, "
+        "profile a name");
   }
   return out;
 }
@@ -85,6 +88,7 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
   o.frequency = options.frequency * stripePatternFrequencyFactor(options.profile);
   o.maxIterations = options.maxIterations;
   o.tolerance = options.tolerance;
+  o.adaptSpacing = options.adaptSpacing;
   if (options.magnitudeSpacing > 0 && symmetry == 1)
     o.vertexFrequencyScale = magnitudeScale(vertexVectors, options.magnitudeSpacing);
   StripePattern along = stripePattern(mesh, topology, geometry, vertexVectors, o, &along_);

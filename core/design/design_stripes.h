@@ -26,6 +26,8 @@ struct DesignStripeOptions {
   double magnitudeSpacing = 0;
   int maxIterations = 200;
   double tolerance = 1e-6;
+  // StripeOptions::adaptSpacing (one family: the stripes follow the field, their spacing gives way).
+  bool adaptSpacing = true;
 };
 
 // The options from the page's JSON: {frequency, profile: "stripes" | "wood" | "grid" | "bricks" | "weave",

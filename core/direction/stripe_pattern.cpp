@@ -127,6 +127,72 @@ EdgeTurns edgeTurns(const SurfaceMesh& mesh, const MeshTopology& t, const Famili
   return out;
 }
 
+// adaptSpacing's factor (stripe_pattern.h): per face, r_f = |f| n_f . (grad u x w_f) + curl_f, w_f the target
+// gradient nu Y in the face and curl_f the advance omega round it (the representatives matched to the first
+// corner's), minimized as sum r_f^2 / |f| + eps (2 pi nu)^2 sum_e star1_e (u_a - u_b)^2 + eps^2 (2 pi nu)^2
+// sum_v A_v u_v^2. Faces round which a line field's representatives do not match up are left out.
+std::vector<double> adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                                   const Families& fam, const EdgeTurns& turns, const StripeOptions& o) {
+  constexpr double kSmooth = 1e-2;
+  const int32_t nV = t.numVertices;
+  const double k = kTwoPi * o.frequency;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nV);
+  for (int32_t face = 0; face < t.numFaces; ++face) {
+    int32_t v[3];
+    int sign[4] = {1, 1, 1, 1};
+    for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
+    double curl = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int32_t e = t.edgeOf(face, c);
+      const Match m = walk(t, turns.matches, 1, e, v[c], 0);
+      const double omega = turns.omega[e];
+      // omega is the advance from the edge's lower vertex to its upper one, for the lower one's
+      // representative.
+      const bool forward = t.edgeVertices[2 * e] == v[c];
+      curl += sign[c] * (forward ? omega : -m.sign * omega);
+      sign[c + 1] = sign[c] * m.sign;
+    }
+    if (sign[3] != 1) continue;
+    Eigen::Vector3d p[3], grad[3];
+    facePositions(mesh, face, p);
+    barycentricGradients(p, grad);
+    Eigen::Vector3d w = Eigen::Vector3d::Zero();
+    for (int c = 0; c < 3; ++c) w += sign[c] * kTwoPi * localFrequency(o, v[c]) * fam.growth[v[c]] / 3.0;
+    const Eigen::Vector3d n(g.faceNormal[3 * face], g.faceNormal[3 * face + 1], g.faceNormal[3 * face + 2]);
+    const double area = g.faceArea[face];
+    if (!(area > 0)) continue;
+    double coef[3];
+    for (int c = 0; c < 3; ++c) coef[c] = area * n.dot(grad[c].cross(w));
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b)
+        if (v[a] <= v[b]) entries.emplace_back(v[a], v[b], coef[a] * coef[b] / area);
+      rhs[v[a]] -= coef[a] * curl / area;
+    }
+  }
+  const double smooth = kSmooth * k * k, pin = kSmooth * kSmooth * k * k;
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    const double w = smooth * std::max(g.star1[e], 0.0);
+    const int32_t a = std::min(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1]);
+    const int32_t b = std::max(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1]);
+    entries.emplace_back(a, a, w), entries.emplace_back(b, b, w), entries.emplace_back(a, b, -w);
+  }
+  for (int32_t v = 0; v < nV; ++v) entries.emplace_back(v, v, pin * g.star0[v]);
+  SparseMatrix upper(nV, nV);
+  upper.setFromTriplets(entries.begin(), entries.end());
+  Eigen::VectorXd u;
+  if (!solveSpdOnce(upper, rhs, u)) throw InputError("stripe pattern: the spacing could not be solved");
+  std::vector<double> scale(nV);
+  double mean = 0, area = 0;
+  for (int32_t v = 0; v < nV; ++v) {
+    scale[v] = std::exp(std::clamp(u[v], -3.0, 3.0));
+    mean += g.star0[v] * scale[v], area += g.star0[v];
+  }
+  mean /= std::max(area, 1e-300);
+  for (double& x : scale) x = std::clamp(x / mean, 0.25, 4.0);
+  return scale;
+}
+
 // The energy sum w_e |C^s psi_b^g - e^(i omega) psi_a^f|^2 (C: conjugation) as the upper triangle of a real
 // symmetric matrix, unknowns (re, im) of vertex v's family f at 2 (v F + f).
 SparseMatrix stripeEnergy(const MeshTopology& t, const MeshGeometry& g, const EdgeTurns& turns, int F,
@@ -343,7 +409,17 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   const Families fam =
       familiesOf(mesh, vertexDirections, options.symmetry, ((options.quarterTurns % 4) + 4) % 4);
   const int F = fam.count;
-  const EdgeTurns turns = edgeTurns(mesh, topology, fam, options);
+  StripeOptions adapted = options;
+  std::vector<double> spacing;
+  double spacingMs = 0;
+  if (options.adaptSpacing && F == 1) {
+    const auto t0 = std::chrono::steady_clock::now();
+    spacing = adaptedSpacing(mesh, topology, g, fam, edgeTurns(mesh, topology, fam, options), options);
+    if (adapted.vertexFrequencyScale.empty()) adapted.vertexFrequencyScale.assign(spacing.size(), 1.0);
+    for (size_t v = 0; v < spacing.size(); ++v) adapted.vertexFrequencyScale[v] *= spacing[v];
+    spacingMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  const EdgeTurns turns = edgeTurns(mesh, topology, fam, adapted);
 
   // A shift small against the energy's scale keeps the factor definite where the turns are consistent (then
   // the smallest eigenvalue is 0: a phase exactly following the field).
@@ -362,6 +438,8 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   smallestEigenvector(upper, mass, o, w.factor, out);
   w.psi = out.psi;
   w.symmetry = o.symmetry;
+  out.spacing = std::move(spacing);
+  out.spacingMs = spacingMs;
   out.eigenvalue -= shift;
   out.cornerPhase.assign(3 * static_cast<size_t>(topology.numFaces) * F, 0.0f);
   out.branchIndex.assign(static_cast<size_t>(topology.numFaces) * F, 0);
@@ -369,7 +447,7 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   for (int32_t face = 0; face < topology.numFaces; ++face)
     for (int f = 0; f < F; ++f) {
       bool singular = false;
-      facePhases(mesh, topology, fam, turns, options, face, f, out, singular);
+      facePhases(mesh, topology, fam, turns, adapted, face, f, out, singular);
       if (singular) out.fieldSingular[face] = 1;
     }
   return out;

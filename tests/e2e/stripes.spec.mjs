@@ -1,7 +1,8 @@
 // Stripe patterns in the page (issue 45; docs/stripes.md, docs/js-api.md "Stripe patterns"), against the real
 // wasm core in its worker and the real WebGL view: the pictures are read back from the canvas and measured here.
 // A flat square with a constant field shows straight stripes at exactly the asked frequency (the transitions'
-// spacing down the picture against the projection of the model's units); on the default model the stripes show,
+// spacing down the picture against the projection of the model's units; the adapted spacing, on by default, has
+// nothing to adapt there); on the default model the stripes show,
 // follow an edit (a new pattern for the new field), and the GLB bakes them into its base colour; a cross field
 // takes grid, bricks or weave only, and bad options are refused by name with nothing changed.
 import { expect, test } from '@playwright/test';
@@ -113,6 +114,7 @@ test.describe.serial('stripe patterns in the page', () => {
     await evaluate(() => window.tvf.setViews({ arrows: false }));
     const before = await evaluate(() => window.tvf.setStripes({ visible: true }));
     expect(before.profile).toBe('stripes');
+    expect(before.adaptSpacing).toBe(true);
     expect(before.stats.families).toBe(1);
     expect(before.stats.residual).toBeLessThan(1e-3);
     // A stroke: a new field, and the stripes follow it (a new pattern of the new field version).
@@ -154,6 +156,7 @@ test.describe.serial('stripe patterns in the page', () => {
     expect(await refusal(() => window.tvf.setStripes({ profile: 'plaid' }))).toContain('plaid');
     expect(await refusal(() => window.tvf.setStripes({ frequency: -1 }))).toContain('frequency');
     expect(await refusal(() => window.tvf.setStripes({ light: 'red' }))).toContain('light');
+    expect(await refusal(() => window.tvf.setStripes({ adaptSpacing: 'yes' }))).toContain('adaptSpacing');
     expect((await evaluate(() => window.tvf.stripes())).profile).toBe('stripes');
     // A cross field draws the profiles that use both its directions: stripes give way to a grid.
     await evaluate(() => window.tvf.setSymmetry(4));

@@ -1,10 +1,10 @@
 // A design's stripe pattern (design/design_stripes.h) and the profiles it is drawn with
 // (direction/stripe_texture.h), against invariants and analytic truth: every profile reads the same where a
-// line field's phase runs the other way (x -> -x + k), so a line field's representatives leave no seam; a grid
-// along a vector field takes a second family across the field (its phase gradient at right angles to the
+// line field's phase runs the other way (x -> -x + k), so a line field's representatives leave no seam; a
+// grid along a vector field takes a second family across the field (its phase gradient at right angles to the
 // first's, on every face of a torus); bricks and weave are drawn from a pattern at half the frequency (the
-// phase gradient's length on a flat square); a cross field refuses one-family profiles by name, and bad options
-// are refused before anything is computed.
+// phase gradient's length on a flat square); a cross field refuses one-family profiles by name, and bad
+// options are refused before anything is computed.
 #include "design/design_stripes.h"
 
 #include <gtest/gtest.h>
@@ -95,7 +95,8 @@ TEST(DesignStripes, AGridAlongAVectorFieldTakesASecondFamilyAcrossIt) {
     if (p.branchIndex[f] || p.branchIndex[m.numFaces() + f]) continue;
     Eigen::Vector3d d = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) d += Eigen::Vector3d(&field[3 * m.triangles[3 * f + k]]);
-    const Eigen::Vector3d a = phaseGradient(m, p, 0, f).normalized(), b = phaseGradient(m, p, 1, f).normalized();
+    const Eigen::Vector3d a = phaseGradient(m, p, 0, f).normalized(),
+                          b = phaseGradient(m, p, 1, f).normalized();
     across += std::asin(std::min(1.0, std::abs(a.dot(d.normalized())))) * 180 / M_PI;
     along += std::acos(std::min(1.0, std::abs(b.dot(d.normalized())))) * 180 / M_PI;
     ++counted;
@@ -124,6 +125,58 @@ TEST(DesignStripes, BricksAndWeaveAreDrawnFromAPatternAtHalfTheFrequency) {
       EXPECT_NEAR(std::abs(grad.normalized().y()), 1.0, 1e-6);  // across the field (x)
     }
   }
+}
+
+// The stripes along a helical field on a torus: nu Y is not closed (the helix's pitch per ring length changes
+// from the inside of the torus to the outside), so at one spacing the pattern bends the stripes off the field
+// to keep the spacing. The adapted spacing lets them follow it (each face's phase gradient against the field,
+// area-weighted), its frequency higher on the inside.
+TEST(DesignStripes, TheAdaptedSpacingLetsTheStripesFollowTheField) {
+  const SurfaceMesh m = torus(96, 36, 2.0, 0.7);
+  const MeshTopology t = buildTopology(m);
+  const MeshGeometry g = computeMeshGeometry(m, t);
+  // Half-way between around the tube and along the ring: a helix, its turn per ring length changing from the
+  // inside of the torus to the outside.
+  std::vector<double> field = aroundTheTube(m);
+  for (int32_t v = 0; v < m.numVertices(); ++v) {
+    const Eigen::Vector3d p = vertexPosition(m, v), ring = Eigen::Vector3d(-p.y(), p.x(), 0).normalized();
+    const Eigen::Vector3d h = (Eigen::Vector3d(&field[3 * v]) + ring).normalized();
+    for (int c = 0; c < 3; ++c) field[3 * v + c] = h[c];
+  }
+  const auto meanDeviation = [&](bool adapt, std::vector<double>* spacing) {
+    DesignStripes stripes;
+    DesignStripeOptions o;
+    o.frequency = 1.5;
+    o.adaptSpacing = adapt;
+    const StripePattern& p = stripes.compute(m, t, g, 1, field, o);
+    if (spacing) *spacing = p.spacing;
+    double sum = 0, area = 0;
+    for (int32_t f = 0; f < m.numFaces(); ++f) {
+      if (p.branchIndex[f]) continue;
+      Eigen::Vector3d d = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) d += Eigen::Vector3d(&field[3 * m.triangles[3 * f + k]]);
+      const Eigen::Vector3d grad = phaseGradient(m, p, 0, f).normalized();
+      sum += g.faceArea[f] * std::asin(std::min(1.0, std::abs(grad.dot(d.normalized())))) * 180 / M_PI;
+      area += g.faceArea[f];
+    }
+    return sum / area;
+  };
+  std::vector<double> spacing;
+  const double even = meanDeviation(false, nullptr), adapted = meanDeviation(true, &spacing);
+  std::cout << "[ measured ] stripes along a helix on a torus: " << even
+            << " deg off the field at one spacing, " << adapted << " deg with the spacing adapted\n";
+  EXPECT_LT(adapted, 1.2);
+  EXPECT_LT(adapted, 0.3 * even);
+  // The frequency's factor is larger on the inside of the torus (a shorter ring, the same number of stripes).
+  ASSERT_EQ(spacing.size(), static_cast<size_t>(m.numVertices()));
+  double inner = 0, outer = 0;
+  int nIn = 0, nOut = 0;
+  for (int32_t v = 0; v < m.numVertices(); ++v) {
+    const double r = vertexPosition(m, v).head<2>().norm();
+    if (r < 1.5) inner += spacing[v], ++nIn;
+    if (r > 2.5) outer += spacing[v], ++nOut;
+  }
+  EXPECT_GT(inner / nIn, 1.3 * (outer / nOut));
 }
 
 TEST(DesignStripes, BadOptionsAreRefusedByName) {

@@ -133,6 +133,8 @@ export interface StripeOptions {
   profile: 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave' | null;
   /** 0..1: denser stripes where a vector field is stronger (0: even spacing). */
   magnitudeSpacing: number;
+  /** The spacing gives way so that the stripes follow the field exactly (default true; one family). */
+  adaptSpacing: boolean;
   /** '#rrggbb' (or 0xrrggbb). */
   light: string | number;
   dark: string | number;
@@ -144,6 +146,7 @@ export interface StripeState {
   frequency: number;
   profile: 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave';
   magnitudeSpacing: number;
+  adaptSpacing: boolean;
   light: string;
   dark: string;
   stats: { families: number; iterations: number; residual: number; workerMs: number; roundTripMs: number } | null;

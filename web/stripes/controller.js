@@ -49,7 +49,9 @@ export class StripesController {
     this.onError = onError;
     this.onShow = onShow;
     this.model = new StripeModel(viewer);
-    this.options = { frequency: null, profile: null, magnitudeSpacing: 0, light: DEFAULT_LIGHT, dark: DEFAULT_DARK };
+    this.options = {
+      frequency: null, profile: null, magnitudeSpacing: 0, adaptSpacing: true, light: DEFAULT_LIGHT, dark: DEFAULT_DARK,
+    };
     this.visible = false;
     this.surface = null; // the Surface the model's geometry was built from
     this.shown = null; // {key, options}: what the stripes on screen are of
@@ -66,16 +68,18 @@ export class StripesController {
     let profile = this.options.profile ?? (symmetry === 4 ? 'grid' : 'stripes');
     if (symmetry === 4 && !TWO_FAMILY_PROFILES.includes(profile)) profile = 'grid';
     const frequency = this.options.frequency ?? (f ? defaultFrequency(f.surface) : 1);
-    return { frequency, profile, magnitudeSpacing: symmetry === 1 ? this.options.magnitudeSpacing : 0 };
+    const magnitudeSpacing = symmetry === 1 ? this.options.magnitudeSpacing : 0;
+    return { frequency, profile, magnitudeSpacing, adaptSpacing: this.options.adaptSpacing };
   }
 
   state() {
-    const { frequency, profile, magnitudeSpacing } = this.effective();
+    const { frequency, profile, magnitudeSpacing, adaptSpacing } = this.effective();
     return {
       visible: this.visible,
       frequency,
       profile,
       magnitudeSpacing,
+      adaptSpacing,
       light: hex(this.options.light),
       dark: hex(this.options.dark),
       stats: this.stats ? { ...this.stats } : null,
@@ -83,8 +87,8 @@ export class StripesController {
     };
   }
 
-  // opts: any of {visible, frequency (> 0, or null: the default), profile, magnitudeSpacing (0..1), light,
-  // dark}; checked before anything changes. Resolves with state() once the stripes shown are of these options.
+  // opts: any of {visible, frequency (> 0, or null: the default), profile, magnitudeSpacing (0..1), adaptSpacing,
+  // light, dark}; checked before anything changes. Resolves with state() once the stripes shown are of these options.
   async setStripes(opts = {}) {
     const next = { ...this.options };
     if ('frequency' in opts) {
@@ -103,6 +107,11 @@ export class StripesController {
       if (!(typeof m === 'number' && m >= 0 && m <= 1))
         throw new Error(`setStripes: magnitudeSpacing must be a number in [0, 1] (got ${m})`);
       next.magnitudeSpacing = m;
+    }
+    if ('adaptSpacing' in opts) {
+      if (typeof opts.adaptSpacing !== 'boolean')
+        throw new Error(`setStripes: adaptSpacing must be true or false (got ${JSON.stringify(opts.adaptSpacing)})`);
+      next.adaptSpacing = opts.adaptSpacing;
     }
     if ('light' in opts) next.light = colourOf(opts.light, 'light');
     if ('dark' in opts) next.dark = colourOf(opts.dark, 'dark');
@@ -157,8 +166,7 @@ export class StripesController {
       this.shown = null;
       await this.model.setGeometry(field.surface);
     }
-    const { frequency, profile, magnitudeSpacing } = this.effective();
-    const options = { frequency, profile, magnitudeSpacing };
+    const options = this.effective();
     const wanted = JSON.stringify([field.key, field.component, options]);
     if (this.shown === wanted) return;
     const t0 = performance.now();

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The "Stripes" section of the side panel: show, profile, stripes per unit length (or the model's default),
-// spacing by the field's magnitude (vector fields), the two colours, and a status line with the pattern's
-// times. Built here and appended to the given container; every control goes through the controller's
-// setStripes, as the API's calls do. Imports dom.js and its own folder.
+// spacing by the field's magnitude (vector fields), the spacing adapted to the field, the two colours, and a
+// status line with the pattern's times. Built here and appended to the given container; every control goes
+// through the controller's setStripes, as the API's calls do. Imports dom.js and its own folder.
 import { el } from '../dom.js';
 import { PROFILE_LABELS, PROFILES, TWO_FAMILY_PROFILES } from './profiles.js';
 
@@ -28,6 +28,11 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     value: '0',
     title: 'Denser stripes where the field is stronger (0: even spacing; vector fields)',
   });
+  const adapt = el('input', {
+    id: 'stripes-adapt',
+    type: 'checkbox',
+    title: 'The spacing gives way so that the stripes follow the field exactly (off: even spacing)',
+  });
   const light = el('input', { id: 'stripes-light', type: 'color', title: 'Light colour' });
   const dark = el('input', { id: 'stripes-dark', type: 'color', title: 'Dark colour' });
   const status = el('p', { id: 'stripes-status', class: 'note', text: 'Stripes follow the field exactly.' });
@@ -39,6 +44,7 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     el('label', {}, 'Profile ', profile),
     el('label', {}, 'Per unit ', frequency),
     el('label', {}, 'By magnitude ', magnitude),
+    el('label', { class: 'check' }, adapt, ' follow the field exactly'),
     el('label', {}, 'Colours ', light, ' ', dark),
     status,
   );
@@ -52,6 +58,7 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     set({ frequency: v === '' ? null : Number(v) });
   });
   magnitude.addEventListener('change', () => set({ magnitudeSpacing: Number(magnitude.value) }));
+  adapt.addEventListener('change', () => set({ adaptSpacing: adapt.checked }));
   light.addEventListener('change', () => set({ light: light.value }));
   dark.addEventListener('change', () => set({ dark: dark.value }));
 
@@ -63,6 +70,8 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     if (document.activeElement !== frequency) frequency.value = String(s.frequency);
     magnitude.value = String(s.magnitudeSpacing);
     magnitude.disabled = symmetry !== 1;
+    adapt.checked = s.adaptSpacing;
+    adapt.disabled = symmetry === 4;
     light.value = s.light;
     dark.value = s.dark;
     if (s.error) status.textContent = s.error;
