@@ -138,7 +138,7 @@ export interface StripeOptions {
   profile: 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave' | null;
   /** 0..1: denser stripes where a vector field is stronger (0: even spacing). */
   magnitudeSpacing: number;
-  /** The spacing gives way so that the stripes follow the field exactly (default true; one family). */
+  /** The spacing gives way so that the stripes follow the field exactly (default true). */
   adaptSpacing: boolean;
   /** '#rrggbb' (or 0xrrggbb). */
   light: string | number;

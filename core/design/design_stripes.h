@@ -26,7 +26,7 @@ struct DesignStripeOptions {
   double magnitudeSpacing = 0;
   int maxIterations = 200;
   double tolerance = 1e-6;
-  // StripeOptions::adaptSpacing (one family: the stripes follow the field, their spacing gives way).
+  // StripeOptions::adaptSpacing (the stripes follow the field, their spacing gives way).
   bool adaptSpacing = true;
 };
 

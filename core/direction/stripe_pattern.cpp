@@ -127,49 +127,110 @@ EdgeTurns edgeTurns(const SurfaceMesh& mesh, const MeshTopology& t, const Famili
   return out;
 }
 
-// adaptSpacing's factor (stripe_pattern.h): per face, r_f = |f| n_f . (grad u x w_f) + curl_f, w_f the target
-// gradient nu Y in the face and curl_f the advance omega round it (the representatives matched to the first
-// corner's), minimized as sum r_f^2 / |f| + eps (2 pi nu)^2 sum_e star1_e (u_a - u_b)^2 + eps^2 (2 pi nu)^2
-// sum_v A_v u_v^2. Faces round which a line field's representatives do not match up are left out.
+// One face's term of adaptedSpacing for one family: r_f = |f| n_f . (grad u x w_f) + curl_f, w_f the mean of
+// the corners' target gradients nu Y (matched to the first corner's family and sign) and curl_f the advance
+// round the face, as rows of the normal equations (weight `weight` / |f|).
+void addSpacingTerms(const SurfaceMesh& mesh, const MeshGeometry& g, const Families& fam,
+                     const StripeOptions& o, int32_t face, const int32_t v[3], const int family[4],
+                     const int sign[4], double curl, double weight,
+                     std::vector<Eigen::Triplet<double>>& entries, Eigen::VectorXd& rhs) {
+  const double area = g.faceArea[face] / weight;
+  if (!(weight > 0) || !(area > 0)) return;
+  Eigen::Vector3d p[3], grad[3];
+  facePositions(mesh, face, p);
+  barycentricGradients(p, grad);
+  Eigen::Vector3d w = Eigen::Vector3d::Zero();
+  for (int c = 0; c < 3; ++c)
+    w += sign[c] * kTwoPi * localFrequency(o, v[c]) *
+         fam.growth[static_cast<size_t>(v[c]) * fam.count + family[c]] / 3.0;
+  const Eigen::Vector3d n(g.faceNormal[3 * face], g.faceNormal[3 * face + 1], g.faceNormal[3 * face + 2]);
+  double coef[3];
+  for (int c = 0; c < 3; ++c) coef[c] = g.faceArea[face] * n.dot(grad[c].cross(w));
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b)
+      if (v[a] <= v[b]) entries.emplace_back(v[a], v[b], coef[a] * coef[b] / area);
+    rhs[v[a]] -= coef[a] * curl / area;
+  }
+}
+
+// Faces round which the field turns (its singularities: a line or cross field's representatives that do not
+// match up, or a turn of more than pi round the face), and each face's weight in adaptedSpacing: 0 there,
+// growing as (distance / period)^2 to 1 a period away. Near a singularity the spacing the field asks for runs
+// off to 0 or infinity, and following it there only crowds the stripes the mesh can show.
+std::vector<double> spacingWeights(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                                   const Families& fam, const EdgeTurns& turns, const StripeOptions& o) {
+  const int F = fam.count;
+  std::vector<int32_t> hops(t.numFaces, -1), queue;
+  for (int32_t face = 0; face < t.numFaces; ++face) {
+    int32_t v[3];
+    int family[4] = {0, 0, 0, 0}, sign[4] = {1, 1, 1, 1};
+    for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
+    for (int c = 0; c < 3; ++c) {
+      const Match m = walk(t, turns.matches, F, t.edgeOf(face, c), v[c], family[c]);
+      family[c + 1] = m.family, sign[c + 1] = sign[c] * m.sign;
+    }
+    const Eigen::Vector3d n(g.faceNormal[3 * face], g.faceNormal[3 * face + 1], g.faceNormal[3 * face + 2]);
+    double turn = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int d = (c + 1) % 3;
+      const int fd = c < 2 ? family[d] : family[3], sd = c < 2 ? sign[d] : sign[3];
+      Eigen::Vector3d a = sign[c] * fam.growth[static_cast<size_t>(v[c]) * F + family[c]];
+      Eigen::Vector3d b = sd * fam.growth[static_cast<size_t>(v[d]) * F + fd];
+      a -= a.dot(n) * n, b -= b.dot(n) * n;
+      turn += std::atan2(n.dot(a.cross(b)), a.dot(b));
+    }
+    if (sign[3] != 1 || family[3] != 0 || std::abs(turn) > M_PI) hops[face] = 0, queue.push_back(face);
+  }
+  for (size_t head = 0; head < queue.size(); ++head) {
+    const int32_t face = queue[head];
+    for (int c = 0; c < 3; ++c) {
+      const int32_t e = t.edgeOf(face, c);
+      const int32_t other = t.edgeFaces[2 * e] == face ? t.edgeFaces[2 * e + 1] : t.edgeFaces[2 * e];
+      if (other < 0 || hops[other] >= 0) continue;
+      hops[other] = hops[face] + 1;
+      queue.push_back(other);
+    }
+  }
+  std::vector<double> weight(t.numFaces, 1.0);
+  constexpr double kQuietPeriods = 2;
+  const double perEdge = g.meanEdgeLength * o.frequency;  // periods per hop
+  for (int32_t face = 0; face < t.numFaces; ++face)
+    if (hops[face] >= 0) weight[face] = std::min(1.0, std::pow(hops[face] * perEdge / kQuietPeriods, 2));
+  return weight;
+}
+
+// adaptSpacing's factor (stripe_pattern.h): sum over faces and families of r_f^2 / |f| (addSpacingTerms) +
+// eps (2 pi nu)^2 sum_e star1_e (u_a - u_b)^2 + eps^2 (2 pi nu)^2 sum_v A_v u_v^2, one factor for every
+// family (a cross field's two ask for it in the least-squares sense). Faces round which the field's
+// representatives do not match up are left out.
 std::vector<double> adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
                                    const Families& fam, const EdgeTurns& turns, const StripeOptions& o) {
-  constexpr double kSmooth = 1e-2;
+  constexpr double kSmooth = 3e-2;
   const int32_t nV = t.numVertices;
   const double k = kTwoPi * o.frequency;
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nV);
-  for (int32_t face = 0; face < t.numFaces; ++face) {
-    int32_t v[3];
-    int sign[4] = {1, 1, 1, 1};
-    for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
-    double curl = 0;
-    for (int c = 0; c < 3; ++c) {
-      const int32_t e = t.edgeOf(face, c);
-      const Match m = walk(t, turns.matches, 1, e, v[c], 0);
-      const double omega = turns.omega[e];
-      // omega is the advance from the edge's lower vertex to its upper one, for the lower one's
-      // representative.
-      const bool forward = t.edgeVertices[2 * e] == v[c];
-      curl += sign[c] * (forward ? omega : -m.sign * omega);
-      sign[c + 1] = sign[c] * m.sign;
+  const int F = fam.count;
+  const std::vector<double> weight = spacingWeights(mesh, t, g, fam, turns, o);
+  for (int32_t face = 0; face < t.numFaces; ++face)
+    for (int f0 = 0; f0 < F; ++f0) {
+      int32_t v[3];
+      int family[4] = {f0, 0, 0, 0}, sign[4] = {1, 1, 1, 1};
+      for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
+      double curl = 0;
+      for (int c = 0; c < 3; ++c) {
+        const int32_t e = t.edgeOf(face, c);
+        const Match m = walk(t, turns.matches, F, e, v[c], family[c]);
+        // omega is the advance from the edge's lower vertex to its upper one, for the lower one's
+        // representative of the family it is stored under.
+        const bool forward = t.edgeVertices[2 * e] == v[c];
+        const double omega = turns.omega[static_cast<size_t>(e) * F + (forward ? family[c] : m.family)];
+        curl += sign[c] * (forward ? omega : -m.sign * omega);
+        family[c + 1] = m.family, sign[c + 1] = sign[c] * m.sign;
+      }
+      if (sign[3] != 1 || family[3] != f0) continue;
+      addSpacingTerms(mesh, g, fam, o, face, v, family, sign, curl, weight[face], entries, rhs);
     }
-    if (sign[3] != 1) continue;
-    Eigen::Vector3d p[3], grad[3];
-    facePositions(mesh, face, p);
-    barycentricGradients(p, grad);
-    Eigen::Vector3d w = Eigen::Vector3d::Zero();
-    for (int c = 0; c < 3; ++c) w += sign[c] * kTwoPi * localFrequency(o, v[c]) * fam.growth[v[c]] / 3.0;
-    const Eigen::Vector3d n(g.faceNormal[3 * face], g.faceNormal[3 * face + 1], g.faceNormal[3 * face + 2]);
-    const double area = g.faceArea[face];
-    if (!(area > 0)) continue;
-    double coef[3];
-    for (int c = 0; c < 3; ++c) coef[c] = area * n.dot(grad[c].cross(w));
-    for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b)
-        if (v[a] <= v[b]) entries.emplace_back(v[a], v[b], coef[a] * coef[b] / area);
-      rhs[v[a]] -= coef[a] * curl / area;
-    }
-  }
   const double smooth = kSmooth * k * k, pin = kSmooth * kSmooth * k * k;
   for (int32_t e = 0; e < t.numEdges; ++e) {
     const double w = smooth * std::max(g.star1[e], 0.0);
@@ -412,7 +473,7 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   StripeOptions adapted = options;
   std::vector<double> spacing;
   double spacingMs = 0;
-  if (options.adaptSpacing && F == 1) {
+  if (options.adaptSpacing) {
     const auto t0 = std::chrono::steady_clock::now();
     spacing = adaptedSpacing(mesh, topology, g, fam, edgeTurns(mesh, topology, fam, options), options);
     if (adapted.vertexFrequencyScale.empty()) adapted.vertexFrequencyScale.assign(spacing.size(), 1.0);

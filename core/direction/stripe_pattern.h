@@ -36,12 +36,13 @@ struct StripeOptions {
   // The field turned this many quarters in the tangent plane before anything else: 1 draws a vector or line
   // field's stripes across it (the second family of a grid along a one-family field).
   int quarterTurns = 0;
-  // One family (symmetry 1, 2): the spacing adapts so that the stripes can follow the field. The phase's
-  // gradient must be curl-free, and nu Y (Y the field turned a quarter) rarely is on a curved surface: at one
-  // spacing the pattern compromises between direction and spacing. A frequency factor e^u with
-  // du ^ (nu Y) = -d(nu Y) (a linear equation: u is fixed along the field's lines, free across them), solved
-  // in the least-squares sense with a little smoothness, makes nu e^u Y nearly closed: the stripes follow the
+  // The spacing adapts so that the stripes can follow the field. The phase's gradient must be curl-free, and
+  // nu Y (Y the field turned a quarter) rarely is on a curved surface: at one spacing the pattern compromises
+  // between direction and spacing. A frequency factor e^u with du ^ (nu Y) = -d(nu Y) (a linear equation: u
+  // is fixed along the field's lines, free across them), solved in the least-squares sense with some
+  // smoothness (a cross field's two families together), makes nu e^u Y nearly closed: the stripes follow the
   // field, their spacing changes along it (clamped to [1/4, 4] of the asked one, its area mean the asked one).
+  // Near the field's singularities, where that spacing runs off, the equation fades out.
   bool adaptSpacing = false;
   // Optional, one per vertex: the frequency's factor there (the paper's Sec. 6.3 spacing from the field's
   // magnitude); empty for none.

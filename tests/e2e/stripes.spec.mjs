@@ -4,9 +4,14 @@
 // spacing down the picture against the projection of the model's units; the adapted spacing, on by default, has
 // nothing to adapt there); on the default model the stripes show,
 // follow an edit (a new pattern for the new field), and the GLB bakes them into its base colour; a cross field
-// takes grid, bricks or weave only, and bad options are refused by name with nothing changed.
+// takes grid, bricks or weave only, and bad options are refused by name with nothing changed. On a sphere's
+// smoothest line field the stripes' own direction, read from the pixels, turns by pi round each +1/2 singularity
+// (one stripe ends there, the others turn round it) and not at all where the field is calm; a cross field's
+// grid turns by pi/2 round each of its eight +1/4 (three of its lines meet there) (stripe-topology.mjs).
 import { expect, test } from '@playwright/test';
+import { icosphereOff } from '../icosphere.mjs';
 import { openDesignerPage } from './helpers.mjs';
+import { directionTurns } from './stripe-topology.mjs';
 
 // A flat n × n grid over the unit square in z = 0, as OFF text.
 function flatSquareOff(n) {
@@ -18,6 +23,23 @@ function flatSquareOff(n) {
       f.push(`3 ${at(i, j)} ${at(i + 1, j)} ${at(i + 1, j + 1)}`, `3 ${at(i, j)} ${at(i + 1, j + 1)} ${at(i, j + 1)}`);
     }
   return `OFF\n${v.length} ${f.length} 0\n${v.join('\n')}\n${f.join('\n')}\n`;
+}
+
+// The whole canvas as grey values, and where it sits on the page.
+function readCanvas(page) {
+  return page.evaluate(() => {
+    const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
+    const c = document.createElement('canvas');
+    c.width = src.width;
+    c.height = src.height;
+    const ctx = c.getContext('2d', { willReadFrequently: true });
+    ctx.drawImage(src, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    const grey = [];
+    for (let i = 0; i < d.length; i += 4) grey.push((d[i] + d[i + 1] + d[i + 2]) / 3);
+    const r = src.getBoundingClientRect();
+    return { w: c.width, h: c.height, grey, left: r.left, top: r.top, scale: c.height / src.clientHeight };
+  });
 }
 
 // The canvas's grey values down pixel column x (drawing-buffer pixels), top first.
@@ -165,4 +187,71 @@ test.describe.serial('stripe patterns in the page', () => {
     expect(cross.stats.families).toBe(2);
     await evaluate(() => window.tvf.setStripes({ visible: false }));
   });
+
+  test('a sphere: one stripe ends at each +1/2 of a line field, grid lines meet three to a junction at a +1/4',
+    async () => {
+      await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'ico5.off', restore: false }),
+        icosphereOff(5));
+      const positions = await evaluate(() => Array.from(window.tvf.mesh().positions));
+      const at = (v) => positions.slice(3 * v, 3 * v + 3);
+      const frequency = 8;
+      // Looks at vertex v from 0.9 above the sphere; returns the canvas, v's pixel and the period in pixels.
+      const lookAt = async (v) => {
+        const q = at(v), u = q.map((x) => x / Math.hypot(...q));
+        await evaluate(([position, target]) => window.tvf.setCamera({ position, target }), [u.map((x) => 1.9 * x), q]);
+        await page.waitForTimeout(200);
+        const t = Math.abs(u[2]) < 0.9 ? [u[1], -u[0], 0] : [0, u[2], -u[1]], tl = Math.hypot(...t);
+        const [s0, s1] = await evaluate(([a, b]) => [window.tvf.projectToScreen(a), window.tvf.projectToScreen(b)],
+          [q, q.map((x, k) => x + (0.1 * t[k]) / tl)]);
+        const img = await readCanvas(page);
+        const period = (Math.hypot(s1.x - s0.x, s1.y - s0.y) * img.scale) / (0.1 * frequency);
+        return { img, cx: (s0.x - img.left) * img.scale, cy: (s0.y - img.top) * img.scale, period };
+      };
+      // The vertex farthest from every singularity: where the stripes only run on.
+      const calmest = (singular) => {
+        let best = 0, bestD = -1;
+        for (let v = 0; v < positions.length / 3; v++) {
+          const d = Math.min(...singular.map((s) => Math.hypot(...at(v).map((x, k) => x - at(s.vertex)[k]))));
+          if (d > bestD) [best, bestD] = [v, d];
+        }
+        return best;
+      };
+      // The stripes' own direction's turn round circles of 1 and 1.5 periods (window: 0.4 of a period).
+      const turns = async (v, m) => {
+        const { img, cx, cy, period } = await lookAt(v);
+        const picture = { width: img.w, height: img.h, grey: img.grey };
+        return [1, 1.5].map((R) => directionTurns(picture, cx, cy, R * period, 0.4 * period, m));
+      };
+      const whole = (list) => list.map((x) => Math.abs(x - Math.round(x)) < 0.2 ? Math.abs(Math.round(x)) : x);
+
+      await evaluate(() => window.tvf.loadDesign({ symmetry: 2, constraints: [] }));
+      await evaluate((frequency) => window.tvf.setStripes({ visible: true, frequency, profile: 'stripes',
+        light: '#ffffff', dark: '#000000' }), frequency);
+      await evaluate(() => window.tvf.setViews({ arrows: false, singularities: false }));
+      const halves = await evaluate(() => window.tvf.singularities());
+      expect(halves.map((s) => s.index)).toEqual([0.5, 0.5, 0.5, 0.5]);
+      for (const s of halves) {
+        const t = await turns(s.vertex, 2);
+        console.log(`[ measured ] +1/2 at vertex ${s.vertex}: the stripes turn ${t.map((x) => x.toFixed(3))} (x pi)`);
+        expect(whole(t)).toEqual([1, 1]);
+      }
+      const calmLines = await turns(calmest(halves), 2);
+      console.log(`[ measured ] line field, where it is calm: the stripes turn ${calmLines.map((x) => x.toFixed(3))}`);
+      expect(whole(calmLines)).toEqual([0, 0]);
+
+      await evaluate(() => window.tvf.loadDesign({ symmetry: 4, constraints: [] }));
+      const grid = await evaluate((frequency) => window.tvf.setStripes({ frequency, profile: 'grid' }), frequency);
+      expect(grid.stats.families).toBe(2);
+      const quarters = await evaluate(() => window.tvf.singularities());
+      expect(quarters.map((s) => s.index)).toEqual(Array(8).fill(0.25));
+      for (const s of quarters) {
+        const t = await turns(s.vertex, 4);
+        console.log(`[ measured ] +1/4 at vertex ${s.vertex}: the grid turns ${t.map((x) => x.toFixed(3))} (x pi/2)`);
+        expect(whole(t)).toEqual([1, 1]);
+      }
+      const calmGrid = await turns(calmest(quarters), 4);
+      console.log(`[ measured ] cross field, where it is calm: the grid turns ${calmGrid.map((x) => x.toFixed(3))}`);
+      expect(whole(calmGrid)).toEqual([0, 0]);
+      await evaluate(() => window.tvf.setStripes({ visible: false }));
+    });
 });

@@ -71,7 +71,6 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     magnitude.value = String(s.magnitudeSpacing);
     magnitude.disabled = symmetry !== 1;
     adapt.checked = s.adaptSpacing;
-    adapt.disabled = symmetry === 4;
     light.value = s.light;
     dark.value = s.dark;
     if (s.error) status.textContent = s.error;
