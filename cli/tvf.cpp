@@ -240,15 +240,22 @@ void writeInteropFiles(const tvf::Designer& designer, const std::string& singPat
                                                  designer.mesh().positions, designer.featureEdges()));
 }
 
-// The design's stripe pattern (design/design_stripes.h) drawn into the export's atlas, as a PNG.
-std::vector<uint8_t> stripePng(const tvf::Designer& designer, const tvf::ExportAtlas& atlas,
-                               const tvf::FieldExportOptions& options, const tvf::DesignStripeOptions& stripes) {
+// The design's stripe pattern (design/design_stripes.h) baked for the GLB: drawn into the export's atlas as a
+// PNG, and its phase as TEXCOORD_1.
+struct BakedStripes {
+  std::vector<uint8_t> png;
+  std::vector<float> phaseTexcoords;
+};
+
+BakedStripes bakeStripes(const tvf::Designer& designer, const tvf::ExportAtlas& atlas,
+                         const tvf::FieldExportOptions& options, const tvf::DesignStripeOptions& stripes) {
   tvf::DesignStripes pattern;
   pattern.compute(designer.mesh(), designer.topology(), designer.geometry(), designer.symmetry(),
                   designer.vertexVectors(), stripes);
   const std::vector<uint8_t> rgba = tvf::stripeTextureRgba(designer.mesh(), pattern.pattern(), atlas.cornerUVs,
                                                            options.size, options.gutterTexels, {}, stripes.profile);
-  return tvf::encodePngRgba(std::vector<uint16_t>(rgba.begin(), rgba.end()), options.size, options.size, 8);
+  return {tvf::encodePngRgba(std::vector<uint16_t>(rgba.begin(), rgba.end()), options.size, options.size, 8),
+          tvf::stripeTexcoords(designer.mesh(), designer.topology(), pattern.pattern())};
 }
 
 int exportCommand(int argc, char** argv) {
@@ -369,8 +376,7 @@ int exportCommand(int argc, char** argv) {
                                               designer.faceVectors(), symmetry, options));
   }
   if (!glbPath.empty()) {
-    const std::vector<uint8_t> baseColour =
-        stripes > 0 ? stripePng(designer, atlas, options, stripeOptions) : std::vector<uint8_t>{};
+    const BakedStripes baked = stripes > 0 ? bakeStripes(designer, atlas, options, stripeOptions) : BakedStripes{};
     std::unique_ptr<tvf::GltfSource> source;
     if (format == tvf::MeshFormat::Gltf || format == tvf::MeshFormat::Glb) {
       const std::vector<uint8_t> bytes = readBytes(meshPath);
@@ -382,10 +388,12 @@ int exportCommand(int argc, char** argv) {
     writeBytes(glbPath,
                !directions
                    ? tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(), atlas,
-                                         oneForm, tvf::designDocument(designer), options, baseColour)
+                                         oneForm, tvf::designDocument(designer), options, baked.png,
+                                         baked.phaseTexcoords)
                    : tvf::exportDirectionGlb(mesh, designer.topology(), designer.geometry(), source.get(),
                                              atlas, designer.faceVectors(), symmetry,
-                                             tvf::designDocument(designer), options, baseColour));
+                                             tvf::designDocument(designer), options, baked.png,
+                                             baked.phaseTexcoords));
   }
   return 0;
 }

@@ -33,7 +33,7 @@
 // the flow map too; unless they are the model's own, the GLB is a new document over the welded mesh with a
 // vertex per (welded vertex, UV) pair (io/gltf_writer.h). Or {stripes: {cornerPhase, branchIndex, families,
 // profile, light?, dark?}}: the page's stripe pattern (Designer.computeStripes), drawn into the export's atlas
-// (direction/stripe_texture.h) as `tvf export --stripes` draws it.
+// (direction/stripe_texture.h) as `tvf export --stripes` draws it, its phase as TEXCOORD_1 on a new document.
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
@@ -156,10 +156,12 @@ class FieldExporterBinding {
       const tvf::FieldExportOptions o = optionsFrom(options);
       const Mesh& m = need();
       std::vector<uint8_t> baseColor;
-      const tvf::ExportAtlas atlas = atlasFor(m, o, texture, baseColor);
+      std::vector<float> phase;
+      const tvf::ExportAtlas atlas = atlasFor(m, o, texture, baseColor, phase);
       return tvf::exportFieldGlb(m.surface, m.topology, geometry(), source_.get(), atlas,
                                  numbersOf<double>(oneForm),
-                                 design.empty() ? nlohmann::json() : nlohmann::json::parse(design), o, baseColor);
+                                 design.empty() ? nlohmann::json() : nlohmann::json::parse(design), o, baseColor,
+                                 phase);
     });
   }
 
@@ -179,11 +181,12 @@ class FieldExporterBinding {
       const tvf::FieldExportOptions o = optionsFrom(options);
       const Mesh& m = need();
       std::vector<uint8_t> baseColor;
-      const tvf::ExportAtlas atlas = atlasFor(m, o, texture, baseColor);
+      std::vector<float> phase;
+      const tvf::ExportAtlas atlas = atlasFor(m, o, texture, baseColor, phase);
       return tvf::exportDirectionGlb(m.surface, m.topology, geometry(), source_.get(), atlas,
                                      numbersOf<double>(faceDirections), symmetry,
                                      design.empty() ? nlohmann::json() : nlohmann::json::parse(design), o,
-                                     baseColor);
+                                     baseColor, phase);
     });
   }
 
@@ -246,12 +249,14 @@ class FieldExporterBinding {
   // {stripes: {cornerPhase, branchIndex, families, profile, light?, dark?}} is the page's stripe pattern
   // (design/design_stripes.h), drawn here into the export's atlas as `tvf export --stripes` draws it.
   static tvf::ExportAtlas atlasFor(const Mesh& m, const tvf::FieldExportOptions& o, const val& texture,
-                                   std::vector<uint8_t>& baseColor) {
+                                   std::vector<uint8_t>& baseColor, std::vector<float>& phaseTexcoords) {
     tvf::ExportAtlas atlas;
     if (isNullish(texture)) return tvf::exportAtlasFor(m.surface, m.topology, o, o.embedFlowMap);
     if (!isNullish(texture["stripes"])) {
       atlas = tvf::exportAtlasFor(m.surface, m.topology, o, true);
-      baseColor = stripePng(m, atlas, o, texture["stripes"]);
+      const tvf::StripePattern pattern = stripePatternOf(m, texture["stripes"]);
+      baseColor = stripePng(m, atlas, o, pattern, texture["stripes"]);
+      phaseTexcoords = tvf::stripeTexcoords(m.surface, m.topology, pattern);
       return atlas;
     }
     baseColor = bytesOf(texture["png"]);
@@ -264,8 +269,7 @@ class FieldExporterBinding {
     return atlas;
   }
 
-  static std::vector<uint8_t> stripePng(const Mesh& m, const tvf::ExportAtlas& atlas,
-                                        const tvf::FieldExportOptions& o, const val& stripes) {
+  static tvf::StripePattern stripePatternOf(const Mesh& m, const val& stripes) {
     tvf::StripePattern pattern;
     pattern.families = stripes["families"].as<int>();
     pattern.cornerPhase = numbersOf<float>(stripes["cornerPhase"]);
@@ -274,6 +278,11 @@ class FieldExporterBinding {
     if (pattern.families < 1 || pattern.families > 2 || pattern.cornerPhase.size() != 3 * nF * pattern.families ||
         pattern.branchIndex.size() != nF * pattern.families)
       throw tvf::InputError("export: the stripe pattern is not of this mesh");
+    return pattern;
+  }
+
+  static std::vector<uint8_t> stripePng(const Mesh& m, const tvf::ExportAtlas& atlas, const tvf::FieldExportOptions& o,
+                                        const tvf::StripePattern& pattern, const val& stripes) {
     tvf::StripeColours colours;
     colourOf(stripes["light"], colours.light);
     colourOf(stripes["dark"], colours.dark);

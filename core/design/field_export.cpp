@@ -120,7 +120,8 @@ namespace {
 std::vector<uint8_t> fieldGlb(const SurfaceMesh& mesh, const MeshTopology& topology, const GltfSource* source,
                               const ExportAtlas& atlas, std::vector<double> vertexField,
                               const FaceFieldSampler& sample, const nlohmann::json& design,
-                              const FieldExportOptions& options, const std::vector<uint8_t>& baseColorPng) {
+                              const FieldExportOptions& options, const std::vector<uint8_t>& baseColorPng,
+                              const std::vector<float>& phaseTexcoords) {
   const std::vector<float>& cornerUVs = atlas.cornerUVs;
   // A generated atlas cuts the surface where the source's vertices do not: only a new layout can hold it.
   if (atlas.generated) source = nullptr;
@@ -128,6 +129,7 @@ std::vector<uint8_t> fieldGlb(const SurfaceMesh& mesh, const MeshTopology& topol
   content.mesh = &mesh;
   content.source = source;
   content.cornerUVs = source ? std::vector<float>{} : cornerUVs;
+  if (!source) content.cornerTexcoord1 = phaseTexcoords;
   content.vertexField = std::move(vertexField);
   content.vertexNormal = vertexNormals(mesh);
   content.vertexTangent = fieldTangents(mesh, content.vertexNormal, content.vertexField);
@@ -183,7 +185,8 @@ std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const MeshTopology&
                                     const MeshGeometry& geometry, const GltfSource* source,
                                     const ExportAtlas& atlas, const std::vector<double>& oneForm,
                                     const nlohmann::json& design, const FieldExportOptions& options,
-                                    const std::vector<uint8_t>& baseColorPng) {
+                                    const std::vector<uint8_t>& baseColorPng,
+                                    const std::vector<float>& phaseTexcoords) {
   requireOneFormOn(topology, oneForm);
   std::vector<double> vertexField;
   vertexVectors(mesh, topology, geometry, oneForm.data(), vertexField);
@@ -191,7 +194,7 @@ std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const MeshTopology&
     return whitneyVector(mesh, topology, oneForm.data(), f, bary);
   };
   return fieldGlb(mesh, topology, source, atlas, std::move(vertexField), whitney, design, options,
-                  baseColorPng);
+                  baseColorPng, phaseTexcoords);
 }
 
 std::vector<uint8_t> exportDirectionFlowMapPng(const SurfaceMesh& mesh, const MeshTopology& topology,
@@ -217,7 +220,8 @@ std::vector<uint8_t> exportDirectionGlb(const SurfaceMesh& mesh, const MeshTopol
                                         const ExportAtlas& atlas, const std::vector<double>& faceDirections,
                                         int symmetry, const nlohmann::json& design,
                                         const FieldExportOptions& options,
-                                        const std::vector<uint8_t>& baseColorPng) {
+                                        const std::vector<uint8_t>& baseColorPng,
+                                        const std::vector<float>& phaseTexcoords) {
   requireDirectionsOn(topology, faceDirections, symmetry);
   const CombedDirections combed =
       combDirections(mesh, topology, geometry, faceDirections, symmetry, atlas.cornerUVs);
@@ -225,7 +229,7 @@ std::vector<uint8_t> exportDirectionGlb(const SurfaceMesh& mesh, const MeshTopol
     return combedDirection(combed, f, bary);
   };
   return fieldGlb(mesh, topology, source, atlas, combedVertexField(mesh, combed), sample, design, options,
-                  baseColorPng);
+                  baseColorPng, phaseTexcoords);
 }
 
 std::string exportRawField(const MeshGeometry& geometry, const std::vector<double>& faceDirections,

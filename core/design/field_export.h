@@ -64,11 +64,14 @@ std::vector<uint8_t> exportFlowMapPng(const SurfaceMesh& mesh, const MeshTopolog
 // the anisotropy texture; cornerUVs empty for none (then no flow map). A generated atlas makes the GLB a new
 // document over the welded mesh with those UVs as TEXCOORD_0 (the source's layout has no room for them).
 // oneForm: per edge, canonical orientation. design: stored in extras when not null (and options.embedDesign).
+// phaseTexcoords: 6 per face, a baked stripe pattern's phase (direction/stripe_texture.h stripeTexcoords) as
+// TEXCOORD_1, written on a new document only (a kept source's layout cannot split its vertices for it).
 std::vector<uint8_t> exportFieldGlb(const SurfaceMesh& mesh, const MeshTopology& topology,
                                     const MeshGeometry& geometry, const GltfSource* source,
                                     const ExportAtlas& atlas, const std::vector<double>& oneForm,
                                     const nlohmann::json& design, const FieldExportOptions& options,
-                                    const std::vector<uint8_t>& baseColorPng = {});
+                                    const std::vector<uint8_t>& baseColorPng = {},
+                                    const std::vector<float>& phaseTexcoords = {});
 
 // Line and cross fields (symmetry N >= 2; faceDirections: one unit representative per face, a Designer's
 // faceVectors()). Flow maps, tangent frames and anisotropy textures are signed, so the directions are combed
@@ -84,7 +87,8 @@ std::vector<uint8_t> exportDirectionGlb(const SurfaceMesh& mesh, const MeshTopol
                                         const ExportAtlas& atlas, const std::vector<double>& faceDirections,
                                         int symmetry, const nlohmann::json& design,
                                         const FieldExportOptions& options,
-                                        const std::vector<uint8_t>& baseColorPng = {});
+                                        const std::vector<uint8_t>& baseColorPng = {},
+                                        const std::vector<float>& phaseTexcoords = {});
 // The field as Directional's raw field text (io/raw_field.h), all N directions per face.
 std::string exportRawField(const MeshGeometry& geometry, const std::vector<double>& faceDirections,
                            int symmetry);

@@ -139,6 +139,56 @@ double stripePhase(const StripePattern& p, int32_t numFaces, int family, int32_t
   return n ? phase + n * stripeAngle(b[0], b[1], b[2]) : phase;
 }
 
+std::vector<float> stripeTexcoords(const SurfaceMesh& mesh, const MeshTopology& t, const StripePattern& p) {
+  constexpr double kTolerance = 1e-2;  // periods
+  const int32_t nF = mesh.numFaces();
+  if (p.cornerPhase.size() != 3 * static_cast<size_t>(nF) * p.families)
+    throw InputError("stripe texture coordinates: the pattern is of another mesh");
+  std::vector<float> out(6 * static_cast<size_t>(nF), 0.0f);
+  std::vector<double> value(3 * static_cast<size_t>(nF));
+  std::vector<int32_t> queue;
+  for (int family = 0; family < p.families; ++family) {
+    // The phase at each corner, in periods: the linear part plus a branch face's turn there (0, 1/3, 2/3 of
+    // n).
+    for (int32_t f = 0; f < nF; ++f) {
+      const size_t slot = static_cast<size_t>(family) * nF + f;
+      for (int k = 0; k < 3; ++k)
+        value[3 * f + k] = p.cornerPhase[3 * slot + k] / kTwoPi + p.branchIndex[slot] * k / 3.0;
+    }
+    std::vector<uint8_t> done(nF, 0);
+    for (int32_t seed = 0; seed < nF; ++seed) {
+      if (done[seed]) continue;
+      done[seed] = 1;
+      queue.assign(1, seed);
+      for (size_t head = 0; head < queue.size(); ++head) {
+        const int32_t f = queue[head];
+        for (int c = 0; c < 3; ++c) {
+          const int32_t e = t.edgeOf(f, c);
+          const int32_t g = t.edgeFaces[2 * e] == f ? t.edgeFaces[2 * e + 1] : t.edgeFaces[2 * e];
+          if (g < 0 || done[g]) continue;
+          // The edge's two vertices as corners of f and of g.
+          const int32_t a = mesh.triangles[3 * f + c], b = mesh.triangles[3 * f + (c + 1) % 3];
+          int ga = -1, gb = -1;
+          for (int k = 0; k < 3; ++k) {
+            if (mesh.triangles[3 * g + k] == a) ga = k;
+            if (mesh.triangles[3 * g + k] == b) gb = k;
+          }
+          if (ga < 0 || gb < 0) continue;
+          const double shift = std::round(value[3 * f + c] - value[3 * g + ga]);
+          if (std::abs(value[3 * f + c] - value[3 * g + ga] - shift) > kTolerance ||
+              std::abs(value[3 * f + (c + 1) % 3] - value[3 * g + gb] - shift) > kTolerance)
+            continue;  // a seam
+          for (int k = 0; k < 3; ++k) value[3 * g + k] += shift;
+          done[g] = 1;
+          queue.push_back(g);
+        }
+      }
+    }
+    for (size_t i = 0; i < value.size(); ++i) out[2 * i + family] = static_cast<float>(value[i]);
+  }
+  return out;
+}
+
 std::vector<uint8_t> stripeTextureRgba(const SurfaceMesh& mesh, const StripePattern& pattern,
                                        const std::vector<float>& cornerUVs, int size, int gutterTexels,
                                        const StripeColours& colours, StripeProfile profile) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "direction/stripe_pattern.h"
+#include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
 
 namespace tvf {
@@ -50,6 +51,14 @@ std::vector<uint8_t> stripeTextureRgba(const SurfaceMesh& mesh, const StripePatt
                                        const std::vector<float>& cornerUVs, int size, int gutterTexels,
                                        const StripeColours& colours = {},
                                        StripeProfile profile = StripeProfile::Stripes);
+
+// The phase as a texture coordinate (an engine's own pattern reads it: TEXCOORD_1 of the GLB), 2 per face
+// corner: each family's phase at the corner in periods (the second 0 for one family). Each face is shifted by
+// whole periods so that the phase continues across every edge where it can; where it cannot (round a branch
+// point, across a line field's sign flip or a cross field's family swap) the edge is a seam and its corners
+// differ. Inside a branch face the coordinate is the corners' linear interpolation, not the pattern's turn.
+std::vector<float> stripeTexcoords(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                   const StripePattern& pattern);
 
 // A family's phase (radians) at a point of face f with barycentric b.
 double stripePhase(const StripePattern& pattern, int32_t numFaces, int family, int32_t f, const double b[3]);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -260,23 +261,27 @@ json fromSource(const FieldGlbContent& content, const FieldGlbOptions& options, 
   return doc;
 }
 
-// A vertex per (welded vertex, UV) pair, in welded order, so a reload welds back to the same numbering.
+// A vertex per (welded vertex, UV, TEXCOORD_1) triple, in welded order, so a reload welds back to the same
+// numbering.
 void fromMesh(const FieldGlbContent& content, const FieldGlbOptions& options, GlbBuilder& builder,
               int baseColorTexture) {
   const SurfaceMesh& mesh = *content.mesh;
-  const bool uvs = !content.cornerUVs.empty();
-  std::vector<std::map<std::pair<float, float>, uint32_t>> splits(mesh.numVertices());
-  for (int32_t c = 0; c < mesh.numFaces() * 3; ++c) {
-    const std::pair<float, float> uv =
-        uvs ? std::make_pair(content.cornerUVs[2 * c], content.cornerUVs[2 * c + 1])
-            : std::make_pair(0.0f, 0.0f);
-    splits[mesh.triangles[c]].emplace(uv, 0);
-  }
-  std::vector<float> positions, normals, texcoords, tangents, field;
+  const bool uvs = !content.cornerUVs.empty(), second = !content.cornerTexcoord1.empty();
+  using Key = std::array<float, 4>;
+  const auto keyOf = [&](int32_t c) {
+    Key k{0.0f, 0.0f, 0.0f, 0.0f};
+    if (uvs) k[0] = content.cornerUVs[2 * c], k[1] = content.cornerUVs[2 * c + 1];
+    if (second) k[2] = content.cornerTexcoord1[2 * c], k[3] = content.cornerTexcoord1[2 * c + 1];
+    return k;
+  };
+  std::vector<std::map<Key, uint32_t>> splits(mesh.numVertices());
+  for (int32_t c = 0; c < mesh.numFaces() * 3; ++c) splits[mesh.triangles[c]].emplace(keyOf(c), 0);
+  std::vector<float> positions, normals, texcoords, texcoords1, tangents, field;
   uint32_t next = 0;
   for (int32_t v = 0; v < mesh.numVertices(); ++v) {
-    if (splits[v].empty()) splits[v].emplace(std::make_pair(0.0f, 0.0f), 0);  // keep unused vertices numbered
-    for (auto& [uv, index] : splits[v]) {
+    if (splits[v].empty())
+      splits[v].emplace(Key{0.0f, 0.0f, 0.0f, 0.0f}, 0);  // keep unused vertices numbered
+    for (auto& [key, index] : splits[v]) {
       index = next++;
       for (int d = 0; d < 3; ++d) {
         positions.push_back(static_cast<float>(mesh.positions[3 * v + d]));
@@ -285,22 +290,18 @@ void fromMesh(const FieldGlbContent& content, const FieldGlbOptions& options, Gl
         field.push_back(static_cast<float>(content.vertexField[3 * v + d]));
       }
       tangents.push_back(1.0f);
-      texcoords.push_back(uv.first);
-      texcoords.push_back(uv.second);
+      texcoords.insert(texcoords.end(), {key[0], key[1]});
+      texcoords1.insert(texcoords1.end(), {key[2], key[3]});
     }
   }
   std::vector<uint32_t> indices;
-  for (int32_t c = 0; c < mesh.numFaces() * 3; ++c) {
-    const std::pair<float, float> uv =
-        uvs ? std::make_pair(content.cornerUVs[2 * c], content.cornerUVs[2 * c + 1])
-            : std::make_pair(0.0f, 0.0f);
-    indices.push_back(splits[mesh.triangles[c]].at(uv));
-  }
+  for (int32_t c = 0; c < mesh.numFaces() * 3; ++c) indices.push_back(splits[mesh.triangles[c]].at(keyOf(c)));
   json attributes = {{"POSITION", builder.addFloatAccessor(positions, 3, "VEC3", true)},
                      {"NORMAL", builder.addFloatAccessor(normals, 3, "VEC3", false)},
                      {"TANGENT", builder.addFloatAccessor(tangents, 4, "VEC4", false)},
                      {"_FIELD", builder.addFloatAccessor(field, 3, "VEC3", false)}};
   if (uvs) attributes["TEXCOORD_0"] = builder.addFloatAccessor(texcoords, 2, "VEC2", false);
+  if (second) attributes["TEXCOORD_1"] = builder.addFloatAccessor(texcoords1, 2, "VEC2", false);
   json material = fieldMaterial(baseColorTexture >= 0);
   addFieldMaterial(material, options, -1, baseColorTexture);
   const int materialIndex = builder.push("materials", material);
@@ -325,6 +326,9 @@ void checkContent(const FieldGlbContent& content) {
       content.cornerUVs.size() != 6 * static_cast<std::size_t>(content.mesh->numFaces())) {
     throw InputError("GLB export: expected 6 UV values per face");
   }
+  if (!content.cornerTexcoord1.empty() &&
+      content.cornerTexcoord1.size() != 6 * static_cast<std::size_t>(content.mesh->numFaces()))
+    throw InputError("GLB export: expected 6 TEXCOORD_1 values per face");
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // wasm core in its worker and the real WebGL view: the pictures are read back from the canvas and measured here.
 // A flat square with a constant field shows straight stripes at exactly the asked frequency (the transitions'
 // spacing down the picture against the projection of the model's units; the adapted spacing, on by default, has
-// nothing to adapt there); on the default model the stripes show,
+// nothing to adapt there), and its GLB carries the phase as TEXCOORD_1; on the default model the stripes show,
 // follow an edit (a new pattern for the new field), and the GLB bakes them into its base colour; a cross field
 // takes grid, bricks or weave only, and bad options are refused by name with nothing changed. On a sphere's
 // smoothest line field the stripes' own direction, read from the pixels, turns by pi round each +1/2 singularity
@@ -127,6 +127,20 @@ test.describe.serial('stripe patterns in the page', () => {
       Math.round(Math.max(ya, yb)), Math.round(pxPerUnit / frequency));
     expect(other.length).toBe(found.length);
     for (let k = 0; k < found.length; k++) expect(Math.abs(other[k] - found[k])).toBeLessThan(1.5);
+    // The GLB (built anew: an OFF model) carries the phase as TEXCOORD_1: 12 periods across the unit square.
+    const span = await evaluate(async () => {
+      const glb = await window.tvf.exportGlb({ size: 128 });
+      const jsonLength = new DataView(glb.buffer, glb.byteOffset).getUint32(12, true);
+      const doc = JSON.parse(new TextDecoder().decode(glb.subarray(20, 20 + jsonLength)));
+      const bin = glb.subarray(20 + jsonLength + 8);
+      const accessor = doc.accessors[doc.meshes[0].primitives[0].attributes.TEXCOORD_1];
+      const view = doc.bufferViews[accessor.bufferView];
+      const start = bin.byteOffset + (view.byteOffset ?? 0) + (accessor.byteOffset ?? 0);
+      const values = new Float32Array(bin.buffer.slice(start, start + 8 * accessor.count));
+      const x = values.filter((_, i) => i % 2 === 0);
+      return Math.max(...x) - Math.min(...x);
+    });
+    expect(Math.abs(span - frequency)).toBeLessThan(0.01 * frequency);
   });
 
   test('on the default model: shown, following an edit, baked into the GLB; bad options refused by name', async () => {

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "design/design_document.h"
@@ -729,3 +730,47 @@ TEST_F(CurvedPatchExport, CrossFieldRawFieldReadsBackTheSameDirections) {
 }
 
 }  // namespace
+
+// export --stripes writes the phase as TEXCOORD_1 on a GLB it builds anew (an OFF model: a generated atlas). A
+// flat square with a constant field along x: the first coordinate is the phase in periods, so it changes along
+// y at exactly the asked frequency and not along x (within 10^-3 of a period), and a flat field's phase has no
+// seam: every corner at one position carries the same value.
+TEST(StripeExport, ThePhaseIsWrittenAsASecondTextureCoordinate) {
+  const fs::path dir = fs::temp_directory_path() / ("tvf_stripe_tex_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const tvf::SurfaceMesh m = tvf::testing::flatGrid(12, 1.0, true);
+  {
+    std::ofstream off(dir / "square.off");
+    off << "OFF\n" << m.numVertices() << " " << m.numFaces() << " 0\n";
+    for (int32_t v = 0; v < m.numVertices(); ++v)
+      off << m.positions[3 * v] << " " << m.positions[3 * v + 1] << " " << m.positions[3 * v + 2] << "\n";
+    for (int32_t f = 0; f < m.numFaces(); ++f)
+      off << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2] << "\n";
+    std::ofstream(dir / "design.json")
+        << json{{"constraints", {{{"type", "vector"}, {"face", 0}, {"vector", {1, 0, 0}}}}}}.dump();
+  }
+  const double frequency = 3.0;
+  ASSERT_EQ(runCli((dir / "square.off").string() + " " + (dir / "design.json").string() + " --glb " +
+                   (dir / "s.glb").string() + " --stripes 3 --size 256"),
+            0);
+  const Glb glb = parseGlb(readBytes(dir / "s.glb"));
+  const json& attributes = glb.doc["meshes"][0]["primitives"][0]["attributes"];
+  ASSERT_TRUE(attributes.contains("TEXCOORD_1"));
+  const std::vector<float> p = accessorFloats(glb, attributes["POSITION"].get<int>());
+  const std::vector<float> phase = accessorFloats(glb, attributes["TEXCOORD_1"].get<int>());
+  ASSERT_EQ(phase.size() / 2, p.size() / 3);
+  // phase = s * frequency * y + c, s = +-1 (which way the phase grows across the field).
+  const double s = (phase[2] - phase[0]) * (p[4] - p[1]) >= 0 ? 1.0 : -1.0;
+  const double c = phase[0] - s * frequency * p[1];
+  std::map<std::pair<long, long>, float> at;
+  double worst = 0, seams = 0;
+  for (size_t v = 0; v < phase.size() / 2; ++v) {
+    worst = std::max(worst, std::abs(phase[2 * v] - s * frequency * p[3 * v + 1] - c));
+    const auto key = std::make_pair(std::lround(1e5 * p[3 * v]), std::lround(1e5 * p[3 * v + 1]));
+    const auto [it, fresh] = at.emplace(key, phase[2 * v]);
+    if (!fresh) seams = std::max(seams, static_cast<double>(std::abs(it->second - phase[2 * v])));
+  }
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_LT(seams, 1e-4);
+  fs::remove_all(dir);
+}
