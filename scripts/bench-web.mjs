@@ -10,6 +10,8 @@
 //                             each broken into its phases: textureFirstPhases, textureUpdatePhases)
 //                             [--reopen]   (with --texture: the mesh opened again, its texture made again;
 //                             reopenExactFieldMs: loadModel to its exact field, the ordering kept)
+//                             [--stripes N]   (then the stripes: turned on, and N strokes' updates: stripes*
+//                             keys, bench-web-stripes.mjs)
 //                             [--gpu]   (hardware WebGL: ANGLE on Vulkan, or TVF_GPU_ARGS; default SwiftShader)
 //                             [--profile-texture FILE]   (a CPU profile of the page's thread over the texture's runs)
 //                             [--trace FILE]   (a Chromium trace of every process and thread over the strokes:
@@ -47,6 +49,7 @@ import { basename, dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from '@playwright/test';
 import { stripStrokesInPage } from '../tests/e2e/helpers.mjs';
+import { stripesBench } from './bench-web-stripes.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const arg = (name, fallback) => {
@@ -172,6 +175,7 @@ async function strokeBench(page, meshPath) {
   await strokesProfile.stop();
   if (traceFile) await page.context().browser().stopTracing();
   const texture = arg('--texture', null) == null ? null : await textureBench(page, strokes.slice(0, Number(arg('--texture'))), `/bench-mesh/${name}`);
+  const stripes = arg('--stripes', null) == null ? null : await stripesBench(page, strokes.slice(0, Number(arg('--stripes'))));
   const pick = (f) => median(runs.map(f));
   const m = {
     updateMs: pick((r) => r.stats.updateMs),
@@ -234,6 +238,8 @@ async function strokeBench(page, meshPath) {
     heapPeakBytes: runs.at(-1)?.stats.heapBytes ?? null,
     // --texture N: the texture synthesized on the field, then N of the strokes again with the texture shown.
     ...(texture ?? {}),
+    // --stripes N: the stripe pattern turned on, then N of the strokes again with the stripes shown.
+    ...(stripes ?? {}),
     previewHeapBytes: load.previewStats.previewHeapBytes ?? null,
     loadPhasesMs: load.phases,
     modelRead: load.modelRead,

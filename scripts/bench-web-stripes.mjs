@@ -1,0 +1,54 @@
+// bench:web's stripes stage (scripts/bench-web.mjs --stripes N): the stripe pattern turned on over the field the
+// strokes left, then N strokes, each timed from addStroke to its field drawn and to its stripes drawn, with the
+// page's long tasks (PerformanceObserver 'longtask', collected by bench-web.mjs into window.__longTasks).
+const median = (v) => {
+  const s = v.filter(Number.isFinite).sort((a, b) => a - b);
+  return s.length === 0 ? null : s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
+};
+const longest = (tasks) => tasks.reduce((m, t) => Math.max(m, t.ms), 0);
+
+export async function stripesBench(page, strokes) {
+  await page.evaluate(() => window.__longTasks.splice(0));
+  const first = await page.evaluate(async () => {
+    const t0 = performance.now();
+    const state = await window.tvf.setStripes({ visible: true });
+    await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+    return { ms: performance.now() - t0, stats: state.stats };
+  });
+  const firstTasks = await page.evaluate(() => window.__longTasks.splice(0));
+  const runs = [];
+  for (const points of strokes) {
+    runs.push(await page.evaluate(async (pts) => {
+      const frames = () => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+      await frames();
+      const before = window.tvf.stripes().stats?.fieldKey;
+      const t0 = performance.now();
+      await window.tvf.addStroke(pts);
+      const fieldMs = performance.now() - t0;
+      await window.tvf.settled();
+      let state = await window.tvf.stripesIdle();
+      while (state.stats?.fieldKey === before && performance.now() - t0 < 60_000) {
+        await frames();
+        state = await window.tvf.stripesIdle();
+      }
+      await frames();
+      return { fieldMs, stripesMs: performance.now() - t0, stats: state.stats };
+    }, points));
+  }
+  const tasks = await page.evaluate(() => window.__longTasks.splice(0));
+  await page.evaluate(() => window.tvf.setStripes({ visible: false }));
+  return {
+    stripesFirstMs: first.ms,
+    stripesFirstStats: first.stats,
+    stripesLongestFirstTaskMs: longest(firstTasks),
+    // Medians over the strokes: the field drawn, the stripes drawn (both from addStroke), their ratio per edit,
+    // and the worker's pattern (the eigensolver's steps, the whole op).
+    stripesStrokeFieldMs: median(runs.map((r) => r.fieldMs)),
+    stripesStrokeMs: median(runs.map((r) => r.stripesMs)),
+    stripesOverFieldPerEdit: median(runs.map((r) => r.stripesMs / r.fieldMs)),
+    stripesWorkerMs: median(runs.map((r) => r.stats?.workerMs)),
+    stripesIterations: median(runs.map((r) => r.stats?.iterations)),
+    stripesLongestStrokeTaskMs: longest(tasks),
+    stripesStrokes: runs.length,
+  };
+}
