@@ -1,0 +1,34 @@
+// The exported GLB drawn by Babylon.js (npm @babylonjs/core and @babylonjs/loaders) as its viewer would: the glTF
+// loader's PBR material (anisotropy from KHR_materials_anisotropy and the TANGENT attribute), a point light at
+// the camera, nothing else. Bundled by tests/e2e/anisotropy-renderers.spec.mjs into an IIFE (TvfBabylonScene).
+import { Color4, Engine, ImportMeshAsync, PointLight, Scene, UniversalCamera, Vector3 } from '@babylonjs/core';
+import '@babylonjs/loaders/glTF';
+
+// glb: the file's bytes; camera: {position, target} in the glTF's frame (right-handed: the loader flips it into
+// Babylon's). Returns the drawing buffer's RGBA8, row 0 at the top.
+export async function render(canvas, glb, camera) {
+  const engine = new Engine(canvas, false, { preserveDrawingBuffer: true, stencil: false });
+  const scene = new Scene(engine);
+  scene.useRightHandedSystem = true;
+  scene.clearColor = new Color4(0, 0, 0, 1);
+  await ImportMeshAsync(glb, scene, { pluginExtension: '.glb' });
+  const view = new UniversalCamera('camera', new Vector3(...camera.position), scene);
+  view.fov = (30 * Math.PI) / 180;
+  view.fovMode = 0; // vertical, as three's
+  view.minZ = 0.01;
+  view.upVector = new Vector3(0, 1, 0);
+  view.setTarget(new Vector3(...camera.target));
+  const light = new PointLight('light', new Vector3(...camera.position), scene);
+  light.intensity = 2.5;
+  light.falloffType = 2; // none: as three's decay 0
+  await scene.whenReadyAsync();
+  scene.render();
+  const w = canvas.width, h = canvas.height;
+  const gl = engine._gl;
+  const pixels = new Uint8Array(4 * w * h);
+  gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+  const flipped = new Uint8Array(pixels.length);
+  for (let y = 0; y < h; y++) flipped.set(pixels.subarray(4 * w * (h - 1 - y), 4 * w * (h - y)), 4 * w * y);
+  engine.dispose();
+  return flipped;
+}
