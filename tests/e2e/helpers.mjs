@@ -27,6 +27,24 @@ export async function openDesignerPage(browser, options) {
   return { page, errors };
 }
 
+// The designer's whole canvas as grey values (row 0 at the top), with where it sits on the page: {w, h, grey,
+// left, top, scale} (scale: drawing-buffer pixels per CSS pixel).
+export function readCanvasGrey(page) {
+  return page.evaluate(() => {
+    const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
+    const c = document.createElement('canvas');
+    c.width = src.width;
+    c.height = src.height;
+    const ctx = c.getContext('2d', { willReadFrequently: true });
+    ctx.drawImage(src, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    const grey = [];
+    for (let i = 0; i < d.length; i += 4) grey.push((d[i] + d[i + 1] + d[i + 2]) / 3);
+    const r = src.getBoundingClientRect();
+    return { w: c.width, h: c.height, grey, left: r.left, top: r.top, scale: c.height / src.clientHeight };
+  });
+}
+
 // Fraction of pixels in the central box of the WebGL canvas that differ from the background colour.
 export function centreCoverage(page, box = 0.3) {
   return page.evaluate((box) => {

@@ -10,7 +10,7 @@
 // grid turns by pi/2 round each of its eight +1/4 (three of its lines meet there) (stripe-topology.mjs).
 import { expect, test } from '@playwright/test';
 import { icosphereOff } from '../icosphere.mjs';
-import { openDesignerPage } from './helpers.mjs';
+import { openDesignerPage, readCanvasGrey } from './helpers.mjs';
 import { directionTurns } from './stripe-topology.mjs';
 
 // A flat n × n grid over the unit square in z = 0, as OFF text.
@@ -25,38 +25,8 @@ function flatSquareOff(n) {
   return `OFF\n${v.length} ${f.length} 0\n${v.join('\n')}\n${f.join('\n')}\n`;
 }
 
-// The whole canvas as grey values, and where it sits on the page.
-function readCanvas(page) {
-  return page.evaluate(() => {
-    const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
-    const c = document.createElement('canvas');
-    c.width = src.width;
-    c.height = src.height;
-    const ctx = c.getContext('2d', { willReadFrequently: true });
-    ctx.drawImage(src, 0, 0);
-    const d = ctx.getImageData(0, 0, c.width, c.height).data;
-    const grey = [];
-    for (let i = 0; i < d.length; i += 4) grey.push((d[i] + d[i + 1] + d[i + 2]) / 3);
-    const r = src.getBoundingClientRect();
-    return { w: c.width, h: c.height, grey, left: r.left, top: r.top, scale: c.height / src.clientHeight };
-  });
-}
-
 // The canvas's grey values down pixel column x (drawing-buffer pixels), top first.
-function greyColumn(page, x) {
-  return page.evaluate((x) => {
-    const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
-    const c = document.createElement('canvas');
-    c.width = src.width;
-    c.height = src.height;
-    const ctx = c.getContext('2d', { willReadFrequently: true });
-    ctx.drawImage(src, 0, 0);
-    const data = ctx.getImageData(Math.round(x), 0, 1, src.height).data;
-    const out = [];
-    for (let i = 0; i < data.length; i += 4) out.push((data[i] + data[i + 1] + data[i + 2]) / 3);
-    return { grey: out, width: src.width, height: src.height, cssHeight: src.clientHeight };
-  }, x);
-}
+const greyColumn = (img, x) => Array.from({ length: img.h }, (_, y) => img.grey[y * img.w + Math.round(x)]);
 
 // Where the grey crosses the middle of its neighbourhood's range (±half a window), by linear interpolation.
 function crossings(grey, from, to, window) {
@@ -105,15 +75,9 @@ test.describe.serial('stripe patterns in the page', () => {
     await page.waitForTimeout(300);
     // The model's y = 0.2 and 0.8 on screen (CSS pixels), scaled to the drawing buffer.
     const [a, b] = await evaluate(() => [window.tvf.projectToScreen([0.5, 0.2, 0]), window.tvf.projectToScreen([0.5, 0.8, 0])]);
-    const box = await page.evaluate(() => {
-      const r = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view').getBoundingClientRect();
-      return { left: r.left, top: r.top };
-    });
-    const col = await greyColumn(page, 0);
-    const scale = col.height / col.cssHeight;
-    const x = (a.x - box.left) * scale;
-    const { grey } = await greyColumn(page, x);
-    const ya = (a.y - box.top) * scale, yb = (b.y - box.top) * scale;
+    const img = await readCanvasGrey(page);
+    const grey = greyColumn(img, (a.x - img.left) * img.scale);
+    const ya = (a.y - img.top) * img.scale, yb = (b.y - img.top) * img.scale;
     const pxPerUnit = Math.abs(yb - ya) / 0.6;
     const found = crossings(grey, Math.round(Math.min(ya, yb)), Math.round(Math.max(ya, yb)), Math.round(pxPerUnit / frequency));
     expect(found.length).toBeGreaterThan(10);
@@ -123,7 +87,7 @@ test.describe.serial('stripe patterns in the page', () => {
     expect(Math.abs(measured - frequency)).toBeLessThan(0.01 * frequency);
     // Straight: the same transitions one fifth of the square to the right.
     const c = await evaluate(() => window.tvf.projectToScreen([0.7, 0.5, 0]));
-    const other = crossings((await greyColumn(page, (c.x - box.left) * scale)).grey, Math.round(Math.min(ya, yb)),
+    const other = crossings(greyColumn(img, (c.x - img.left) * img.scale), Math.round(Math.min(ya, yb)),
       Math.round(Math.max(ya, yb)), Math.round(pxPerUnit / frequency));
     expect(other.length).toBe(found.length);
     for (let k = 0; k < found.length; k++) expect(Math.abs(other[k] - found[k])).toBeLessThan(1.5);
@@ -217,7 +181,7 @@ test.describe.serial('stripe patterns in the page', () => {
         const t = Math.abs(u[2]) < 0.9 ? [u[1], -u[0], 0] : [0, u[2], -u[1]], tl = Math.hypot(...t);
         const [s0, s1] = await evaluate(([a, b]) => [window.tvf.projectToScreen(a), window.tvf.projectToScreen(b)],
           [q, q.map((x, k) => x + (0.1 * t[k]) / tl)]);
-        const img = await readCanvas(page);
+        const img = await readCanvasGrey(page);
         const period = (Math.hypot(s1.x - s0.x, s1.y - s0.y) * img.scale) / (0.1 * frequency);
         return { img, cx: (s0.x - img.left) * img.scale, cy: (s0.y - img.top) * img.scale, period };
       };

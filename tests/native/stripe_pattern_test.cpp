@@ -14,23 +14,13 @@
 #include "direction/stripe_texture.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
+#include "stripe_test_fields.h"
 #include "test_meshes.h"
 
 using namespace tvf;
 using namespace tvf::testing;
 
 namespace {
-
-// The gradient of sum_k b_k g_k on a face (the regular part of the phase).
-Eigen::Vector3d phaseGradient(const SurfaceMesh& mesh, const StripePattern& p, int family, int32_t f) {
-  Eigen::Vector3d pos[3], grad[3];
-  facePositions(mesh, f, pos);
-  barycentricGradients(pos, grad);
-  const size_t slot = static_cast<size_t>(family) * mesh.numFaces() + f;
-  Eigen::Vector3d g = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) g += p.cornerPhase[3 * slot + k] * grad[k];
-  return g;
-}
 
 // The phase at barycentric b in face f (family 0).
 double phaseAt(const StripePattern& p, int32_t nF, int family, int32_t f, const double b[3]) {
@@ -42,27 +32,6 @@ double phaseAt(const StripePattern& p, int32_t nF, int family, int32_t f, const 
 
 double angleBetweenLines(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::acos(std::min(1.0, std::abs(a.normalized().dot(b.normalized()))));
-}
-
-std::vector<double> constantField(const SurfaceMesh& m, const Eigen::Vector3d& d) {
-  std::vector<double> out;
-  for (int32_t v = 0; v < m.numVertices(); ++v) out.insert(out.end(), {d.x(), d.y(), d.z()});
-  return out;
-}
-
-// Around the tube of torus(n, m, R, r) (the direction of increasing minor angle), unit.
-std::vector<double> aroundTheTube(const SurfaceMesh& m) {
-  std::vector<double> out;
-  for (int32_t v = 0; v < m.numVertices(); ++v) {
-    const Eigen::Vector3d p = vertexPosition(m, v);
-    const Eigen::Vector3d ring(p.x(), p.y(), 0);
-    const Eigen::Vector3d centre = 2.0 * ring.normalized();  // torus(.., R = 2, ..)
-    const Eigen::Vector3d radial = (p - centre).normalized();
-    const Eigen::Vector3d around = Eigen::Vector3d(-p.y(), p.x(), 0).normalized();
-    const Eigen::Vector3d t = around.cross(radial).normalized();
-    out.insert(out.end(), {t.x(), t.y(), t.z()});
-  }
-  return out;
 }
 
 }  // namespace

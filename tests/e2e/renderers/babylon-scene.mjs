@@ -3,6 +3,7 @@
 // the camera, nothing else. Bundled by tests/e2e/anisotropy-renderers.spec.mjs into an IIFE (TvfBabylonScene).
 import { Color4, Engine, ImportMeshAsync, PointLight, Scene, UniversalCamera, Vector3 } from '@babylonjs/core';
 import '@babylonjs/loaders/glTF';
+import { topDownPixels } from './read-pixels.mjs';
 
 // glb: the file's bytes; camera: {position, target} in the glTF's frame (right-handed: the loader flips it into
 // Babylon's). Returns the drawing buffer's RGBA8, row 0 at the top.
@@ -23,12 +24,7 @@ export async function render(canvas, glb, camera) {
   light.falloffType = 2; // none: as three's decay 0
   await scene.whenReadyAsync();
   scene.render();
-  const w = canvas.width, h = canvas.height;
-  const gl = engine._gl;
-  const pixels = new Uint8Array(4 * w * h);
-  gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
-  const flipped = new Uint8Array(pixels.length);
-  for (let y = 0; y < h; y++) flipped.set(pixels.subarray(4 * w * (h - 1 - y), 4 * w * (h - y)), 4 * w * y);
+  const pixels = topDownPixels(engine._gl, canvas.width, canvas.height);
   engine.dispose();
-  return flipped;
+  return pixels;
 }

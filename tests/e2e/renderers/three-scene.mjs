@@ -3,6 +3,7 @@
 // at the camera, nothing else. Bundled by tests/e2e/anisotropy-renderers.spec.mjs into an IIFE (TvfThreeScene).
 import { Color, PerspectiveCamera, PointLight, Scene, WebGLRenderer } from 'three';
 import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
+import { topDownPixels } from './read-pixels.mjs';
 
 // glb: the file's bytes; camera: {position, target} in the model's frame. Returns the drawing buffer's RGBA8,
 // row 0 at the top.
@@ -21,11 +22,7 @@ export async function render(canvas, glb, camera) {
   light.position.set(...camera.position);
   scene.add(view, light);
   renderer.render(scene, view);
-  const gl = renderer.getContext(), w = canvas.width, h = canvas.height;
-  const pixels = new Uint8Array(4 * w * h);
-  gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
-  const flipped = new Uint8Array(pixels.length);
-  for (let y = 0; y < h; y++) flipped.set(pixels.subarray(4 * w * (h - 1 - y), 4 * w * (h - y)), 4 * w * y);
+  const pixels = topDownPixels(renderer.getContext(), canvas.width, canvas.height);
   renderer.dispose();
-  return flipped;
+  return pixels;
 }
