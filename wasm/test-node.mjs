@@ -848,22 +848,26 @@ t.delete();
   t.delete();
 }
 
-// Stripe patterns (stripe_bindings.cpp): on a flat square with a constant field, straight stripes across it at
-// exactly the asked frequency (the gradient of each face's interpolated phase); a second compute on the same
-// mesh starts from the first's pattern; a bad symmetry is refused by name.
+// Stripe patterns (Designer.computeStripes, core/design/design_stripes.h): on a flat square whose line field is
+// one vector's (a constant field), straight stripes across it at exactly the asked frequency (the gradient of
+// each face's interpolated phase); a second compute on the same model reuses the factor's analysis from the
+// pattern before, in no more steps; a symmetry without stripes is refused by name.
 {
-  const n = 12, positions = [], triangles = [];
-  for (let j = 0; j <= n; j++) for (let i = 0; i <= n; i++) positions.push(i / n, j / n, 0);
+  const n = 12, rows = [], faces = [];
+  for (let j = 0; j <= n; j++) for (let i = 0; i <= n; i++) rows.push(`${i / n} ${j / n} 0`);
   const id = (i, j) => j * (n + 1) + i;
   for (let j = 0; j < n; j++)
-    for (let i = 0; i < n; i++) triangles.push(id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1), id(i, j + 1));
+    for (let i = 0; i < n; i++) faces.push(`3 ${id(i, j)} ${id(i + 1, j)} ${id(i + 1, j + 1)}`, `3 ${id(i, j)} ${id(i + 1, j + 1)} ${id(i, j + 1)}`);
+  const s = new Module.Designer();
+  const loadedSquare = s.loadMesh(new TextEncoder().encode(`OFF\n${rows.length} ${faces.length} 0\n${rows.join('\n')}\n${faces.join('\n')}\n`), 'off');
   const dir = [0.6, 0.8, 0];
-  const directions = positions.map((_, k) => dir[k % 3]);
-  const s = new Module.StripePatternBuilder();
+  const designed = loadedSquare || s.applyDesignJson(JSON.stringify({ symmetry: 2, constraints: [
+    { type: 'vector', face: 0, vector: dir }] })) || s.solve();
+  check('stripes: a square with a constant line field', designed === '', designed);
   const frequency = 4;
-  const err = s.compute(positions, triangles, directions, JSON.stringify({ symmetry: 2, frequency }));
+  const err = s.computeStripes(null, JSON.stringify({ frequency }));
   check('stripes: computed', err === '', err);
-  const phase = s.cornerPhase().slice();
+  const positions = s.positions().slice(), triangles = s.triangles().slice(), phase = s.stripeCornerPhase().slice();
   let worstRate = 0, worstAngle = 0;
   for (let f = 0; f < triangles.length / 3; f++) {
     const p = [0, 1, 2].map((k) => positions.slice(3 * triangles[3 * f + k], 3 * triangles[3 * f + k] + 2));
@@ -879,12 +883,14 @@ t.delete();
   }
   check('stripes: the asked frequency, across the field', worstRate < 1e-4 && worstAngle < 1e-4,
     `rate ${worstRate}, cos ${worstAngle}`);
-  const first = JSON.parse(s.statsJson());
-  check('stripes: a second compute starts from the first', s.compute(positions, triangles, directions,
-    JSON.stringify({ symmetry: 2, frequency })) === '' && JSON.parse(s.statsJson()).warmStart === true &&
-    JSON.parse(s.statsJson()).iterations <= first.iterations, s.statsJson());
-  const refused = s.compute(positions, triangles, directions, JSON.stringify({ symmetry: 3, frequency }));
-  check('stripes: symmetry 3 is refused by name', /symmetry must be 1, 2 or 4/.test(refused), refused);
+  const first = JSON.parse(s.stripeStatsJson());
+  const again = s.computeStripes(null, JSON.stringify({ frequency }));
+  const second = JSON.parse(s.stripeStatsJson());
+  check('stripes: a second compute starts from the first', again === '' && second.analysisReused === true &&
+    second.iterations <= first.iterations, JSON.stringify(second));
+  const turned = s.setSymmetry(3) || s.solve();
+  const refused = turned || s.computeStripes(null, JSON.stringify({ frequency }));
+  check('stripes: symmetry 3 is refused by name', /symmetry 1, 2 or 4/.test(refused), refused);
   s.delete();
 }
 finish();

@@ -7,7 +7,7 @@ import { mkdirSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect, test } from '@playwright/test';
-import { openDesigner, trackErrors, openDesignerPage } from './helpers.mjs';
+import { openDesigner, trackErrors, openDesignerPage, readCanvasGrey } from './helpers.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const OUT = resolve(ROOT, 'test-results/views');
@@ -65,20 +65,13 @@ function streaks(page) {
 const angleGap = (a, b) => { const d = Math.abs(a - b) % 180; return Math.min(d, 180 - d); };
 
 // The grey levels of the central box (40 % of each side) of the canvas, row by row, with the box's width.
-function centreGrey(page) {
-  return page.evaluate(() => {
-    const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
-    const c = document.createElement('canvas');
-    c.width = src.width;
-    c.height = src.height;
-    const ctx = c.getContext('2d', { willReadFrequently: true });
-    ctx.drawImage(src, 0, 0);
-    const w = Math.floor(0.4 * src.width), h = Math.floor(0.4 * src.height);
-    const d = ctx.getImageData(Math.floor(0.3 * src.width), Math.floor(0.3 * src.height), w, h).data;
-    const grey = [];
-    for (let i = 0; i < d.length; i += 4) grey.push((d[i] + d[i + 1] + d[i + 2]) / 3);
-    return { w, grey };
-  });
+async function centreGrey(page) {
+  const img = await readCanvasGrey(page);
+  const w = Math.floor(0.4 * img.w), h = Math.floor(0.4 * img.h);
+  const x0 = Math.floor(0.3 * img.w), y0 = Math.floor(0.3 * img.h);
+  const grey = [];
+  for (let y = y0; y < y0 + h; y++) grey.push(...img.grey.slice(y * img.w + x0, y * img.w + x0 + w));
+  return { w, grey };
 }
 
 // Fine detail: the mean absolute difference between a pixel and the mean of its four neighbours.

@@ -54,7 +54,7 @@ export class StripesController {
     };
     this.visible = false;
     this.surface = null; // the Surface the model's geometry was built from
-    this.shown = null; // {key, options}: what the stripes on screen are of
+    this.shown = null; // what the stripes on screen are of: their field's key, component and options, as JSON
     this.stats = null;
     this.error = null;
     this.running = null; // the update in flight

@@ -6,7 +6,7 @@
 // stripe ends or forks inside that face as the paper draws it, with no smearing. It stands in for the surface
 // (viewer.surfaceStandIn), which stays in the scene for picking. Owns its mesh; imports three.js, views/.
 import { BufferAttribute, Color, DoubleSide, Mesh, MeshStandardMaterial } from 'three';
-import { cornerGeometry } from '../views/corner-geometry.js';
+import { stagedCornerGeometry } from '../views/corner-geometry.js';
 import { MeshStaging } from '../views/mesh-staging.js';
 import { STRIPE_GLSL, profileIndex } from './profiles.js';
 
@@ -76,16 +76,14 @@ export class StripeModel {
   async setGeometry(surface) {
     this.#disposeMesh();
     const call = (this.building = {});
-    const geom = await cornerGeometry(surface, null, this.viewer.surfaceMesh?.geometry.boundingSphere);
-    const corners = geom.getAttribute('position').count;
-    geom.setAttribute('stripePhase', new BufferAttribute(new Float32Array(2 * corners), 2));
-    geom.setAttribute('stripeBranch', new BufferAttribute(new Int8Array(2 * corners), 2));
-    if (this.building === call) {
-      this.staging ??= new MeshStaging(this.viewer.renderer, this.viewer.camera);
-      await this.staging.stage(geom, () => geom);
-      this.staging.take(geom);
-    }
-    if (this.building !== call) return geom.dispose();
+    this.staging ??= new MeshStaging(this.viewer.renderer, this.viewer.camera);
+    const bounds = this.viewer.surfaceMesh?.geometry.boundingSphere;
+    const geom = await stagedCornerGeometry(this.staging, surface, null, bounds, () => this.building === call, (g) => {
+      const corners = g.getAttribute('position').count;
+      g.setAttribute('stripePhase', new BufferAttribute(new Float32Array(2 * corners), 2));
+      g.setAttribute('stripeBranch', new BufferAttribute(new Int8Array(2 * corners), 2));
+    });
+    if (!geom) return;
     const material = new MeshStandardMaterial({ color: 0xffffff, roughness: 0.7, metalness: 0.0, side: DoubleSide });
     material.onBeforeCompile = (shader) => {
       Object.assign(shader.uniforms, this.uniforms);
@@ -143,10 +141,6 @@ export class StripeModel {
     }
     if (viewer.surfaceMesh) viewer.surfaceMesh.material.visible = !on && !viewer.surfaceStandIn?.visible;
     viewer.requestRender?.();
-  }
-
-  get shown() {
-    return !!this.mesh?.visible;
   }
 
   #changed() {

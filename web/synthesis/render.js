@@ -16,7 +16,7 @@ import {
   SRGBColorSpace,
   UnsignedByteType,
 } from 'three';
-import { cornerGeometry } from '../views/corner-geometry.js';
+import { stagedCornerGeometry } from '../views/corner-geometry.js';
 import { MeshStaging } from '../views/mesh-staging.js';
 import { MAGNIFY_GLSL } from './shaders.js';
 
@@ -73,13 +73,10 @@ export class TexturedModel {
   async setGeometry(surface, cornerUVs) {
     this.#disposeMesh();
     const call = (this.building = {});
-    const geom = await cornerGeometry(surface, cornerUVs, this.viewer.surfaceMesh?.geometry.boundingSphere);
-    if (this.building === call) {
-      this.staging ??= new MeshStaging(this.viewer.renderer, this.viewer.camera);
-      await this.staging.stage(geom, () => geom);
-      this.staging.take(geom);
-    }
-    if (this.building !== call) return geom.dispose();
+    this.staging ??= new MeshStaging(this.viewer.renderer, this.viewer.camera);
+    const bounds = this.viewer.surfaceMesh?.geometry.boundingSphere;
+    const geom = await stagedCornerGeometry(this.staging, surface, cornerUVs, bounds, () => this.building === call);
+    if (!geom) return;
     const material = new MeshStandardMaterial({ color: 0xffffff, roughness: 0.7, metalness: 0.0, side: DoubleSide });
     material.defines = { USE_UV: '' };
     this.uniforms = {
