@@ -7,12 +7,18 @@
 // hang. So the helpers are started once, as many as the build provides (helpers()), and shared: a caller that
 // finds them busy with another caller's tasks runs its own tasks itself, one after another.
 #include <condition_variable>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>
 
 namespace tvf {
+
+// Item `begin` of part k of `parts` over `count` items (part k covers [partBegin(k), partBegin(k + 1))).
+inline int32_t partBegin(int32_t count, int part, int parts) {
+  return static_cast<int32_t>(static_cast<int64_t>(count) * part / parts);
+}
 
 class ThreadTeam {
  public:

@@ -16,9 +16,6 @@ namespace {
 int partsFor(int32_t faces) {
   return faces < 50000 ? 1 : 2;
 }
-int32_t partBegin(int32_t count, int part, int parts) {
-  return static_cast<int32_t>(static_cast<int64_t>(count) * part / parts);
-}
 
 // The principal square root of a unit complex number x + iy by the half-angle formulas, each branch where it
 // loses no precision (the real part is >= 0, as for arg / 2 in (-pi/2, pi/2]).

@@ -78,11 +78,8 @@ FaceVectorMap faceVectorMap(const SurfaceMesh& mesh, const MeshTopology& t) {
 
 namespace {
 
-// Faces [begin, end) of part k of `parts`: the reconstructions run on the solver's helper threads (a memory
-// bound pass over 9 coefficients per face: 60 MB at 832k faces, after every edit).
-int32_t partBegin(int32_t count, int part, int parts) {
-  return static_cast<int32_t>(static_cast<int64_t>(count) * part / parts);
-}
+// The reconstructions run on the solver's helper threads, in parts of faces (partBegin): a memory bound pass
+// over 9 coefficients per face, 60 MB at 832k faces, after every edit.
 
 // Parts of a pass over this many faces: one below the size where a helper's wake-up costs more than it saves,
 // else two, whatever the threads (ThreadTeam runs parts without a free helper on the calling thread): the

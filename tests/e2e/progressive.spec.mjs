@@ -253,6 +253,85 @@ test.describe.serial('progressive loading of big meshes', () => {
     expect(r.progressive).toEqual(r.plain);
   });
 
+  // What a big model's preview and picking need from its mesh alone is kept per mesh (worker/preview-cache.js,
+  // worker/picking-cache.js): opened again, the preview takes its coarse mesh and map, the page its bounds tree,
+  // from IndexedDB, and shows the same preview field and picks the same faces as when they were made; a
+  // damaged entry of either is ignored (made anew, the same results) and replaced.
+  test('a big model opened again takes its preview parts and its picking tree from the cache', async () => {
+    const r = await page.evaluate(async (off) => {
+      const t = window.tvf;
+      const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+      // The mesh of the tests above, scaled: a mesh nothing is kept for yet.
+      const lines = off.split('\n');
+      const [nV, nF] = lines[1].split(' ').map(Number);
+      for (let v = 2; v < 2 + nV; v++) lines[v] = lines[v].split(' ').map((x) => 1.25 * Number(x)).join(' ');
+      const bytes = new TextEncoder().encode(lines.join('\n'));
+      const view = t.shadowRoot.querySelector('#view').getBoundingClientRect();
+      const grid = () => {
+        const out = [];
+        for (let i = 1; i < 10; i++)
+          for (let j = 1; j < 10; j++) out.push(t.pick(view.left + (view.width * i) / 10, view.top + (view.height * j) / 10)?.face ?? -1);
+        return out;
+      };
+      const store = (name, storeName, change) =>
+        new Promise((resolve) => {
+          const req = indexedDB.open(name, 1);
+          req.onupgradeneeded = () => req.result.createObjectStore(storeName, { keyPath: 'key' });
+          req.onsuccess = () => {
+            const s = req.result.transaction(storeName, 'readwrite').objectStore(storeName);
+            const all = s.getAll();
+            all.onsuccess = () => {
+              const entry = all.result.find((e) => e.key.endsWith(`-v${nV}-f${nF}`));
+              if (entry && change) change(entry), s.put(entry);
+              req.result.close();
+              resolve(!!entry);
+            };
+          };
+          req.onerror = () => resolve(false);
+        });
+      const stored = async () => {
+        for (let k = 0; k < 100; k++) {
+          if ((await store('tvf-preview-cache', 'previews')) && (await store('tvf-picking-cache', 'trees'))) return true;
+          await sleep(50);
+        }
+        return false;
+      };
+      const open = async () => {
+        t.debugDelayExact(2000); // the preview is read before the exact field lands
+        await t.loadModel(bytes, { name: 'scaled.off', format: 'off', previewEdges: 1, restore: false });
+        const out = { preview: t.stats().preview, kept: t.perf().previewTimings?.kept, faces: Array.from(t.faceVectors()) };
+        for (let k = 0; k < 100 && !('picking' in t.perf().loadPhases); k++) await sleep(50);
+        Object.assign(out, { treeKept: t.perf().pickingTreeKept, grid: grid() });
+        t.debugDelayExact(0);
+        await t.settled();
+        return out;
+      };
+      const first = await open();
+      const madeStored = await stored();
+      const again = await open();
+      await store('tvf-preview-cache', 'previews', (e) => (e.vertexFace[0] = 1e9));
+      await store('tvf-picking-cache', 'trees', (e) => (e.bvh.indirectBuffer[0] = 1e9));
+      const damaged = await open();
+      const replaced = (await stored()) && (await open());
+      return { first, madeStored, again, damaged, replaced, nF };
+    }, off);
+    const { first, again, damaged, replaced } = r;
+    const hits = first.grid.filter((f) => f >= 0).length;
+    console.log('kept preview parts:', JSON.stringify({ hits, runs: [first, again, damaged, replaced].map((o) => [o.preview, o.kept, o.treeKept]) }));
+    expect(first.preview).toBe(true);
+    expect([first.kept, first.treeKept]).toEqual([false, false]);
+    expect(r.madeStored).toBe(true);
+    expect([again.preview, again.kept, again.treeKept]).toEqual([true, true, true]);
+    expect([damaged.preview, damaged.kept, damaged.treeKept]).toEqual([true, false, false]);
+    expect([replaced.preview, replaced.kept, replaced.treeKept]).toEqual([true, true, true]);
+    expect(hits).toBeGreaterThan(15);
+    expect(hits).toBeLessThan(81);
+    for (const run of [again, damaged, replaced]) {
+      expect(run.faces).toEqual(first.faces);
+      expect(run.grid).toEqual(first.grid);
+    }
+  });
+
   // A big surface is drawn once per view and copied under the field (views/surface-layer.js): an edit that
   // changes only the field must not draw the surface again, an orbit must, and the picture, field included,
   // must be the one the scene draws directly. Forced here on a small mesh by lowering the layer's size.

@@ -110,6 +110,29 @@ TEST(OneFormLaplacian, UpperTriangleAssemblyEqualsTheProducts) {
   EXPECT_LT((Eigen::MatrixXd(G) - twiceUpper).cwiseAbs().maxCoeff(), 1e-14);
 }
 
+// Past 100k edges the columns are assembled in parts on the helper threads: the same matrix, bit for bit, as
+// the products' (sparse, in Eigen) to round-off, with the same pattern (upper, every diagonal last).
+TEST(OneFormLaplacian, ColumnsAssembledInPartsEqualTheProducts) {
+  Built b = build(flatGrid(190, 2.0, true));  // 108,680 edges
+  ASSERT_GT(b.topology.numEdges, 100000);
+  jitterPlanar(b.mesh, 0.002, 11);
+  b.geometry = computeMeshGeometry(b.mesh, b.topology);
+  const OneFormOperators ops = buildOneFormOperators(b.mesh, b.topology, b.geometry, {});
+  const Eigen::VectorXd inverseStar0 = b.geometry.star0.cwiseInverse();
+  const SparseMatrix products =
+      SparseMatrix(ops.d1.transpose() * b.geometry.star2.asDiagonal() * ops.d1) +
+      SparseMatrix(ops.divergence.transpose() * inverseStar0.asDiagonal() * ops.divergence);
+  const SparseMatrix expected = SparseMatrix(products.triangularView<Eigen::Upper>());
+  const SparseMatrix upper = oneFormLaplacianUpper(ops, b.geometry);
+  EXPECT_LT(SparseMatrix(upper - expected).coeffs().cwiseAbs().maxCoeff(), 1e-12 * meanDiagonal(products));
+  for (int j = 0; j < upper.outerSize(); ++j) {
+    ASSERT_GT(upper.outerIndexPtr()[j + 1], upper.outerIndexPtr()[j]);
+    EXPECT_EQ(upper.innerIndexPtr()[upper.outerIndexPtr()[j + 1] - 1], j);
+  }
+  EXPECT_EQ(upper.nonZeros(),
+            SparseMatrix(expected.pruned(0.0)).nonZeros() + (upper.diagonal().array() == 0.0).count());
+}
+
 TEST(OneFormLaplacian, ConstantFieldOnAFlatMeshHasZeroEnergyWithFreeBoundary) {
   Built b = build(flatGrid(10, 2.0, true));
   jitterPlanar(b.mesh, 0.04, 7);

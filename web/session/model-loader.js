@@ -139,8 +139,13 @@ export class ModelLoader {
       this.picking = this.staged.surface;
       s.emit('surface', this.staged);
     }
-    // Its adjacency and BVH follow, before or after its first field (the viewer picks nothing until then).
-    if (p.phase === 'picking') this.picking?.adoptPicking(p.picking), (this.picking = null);
+    // Its adjacency and BVH follow, before or after its first field (the viewer picks nothing until then); the
+    // BVH kept from an earlier opening of the same mesh when there was one (perf().pickingTreeKept).
+    if (p.phase === 'picking') {
+      this.picking?.adoptPicking(p.picking);
+      this.picking = null;
+      s.perf.pickingTreeKept = p.treeKept;
+    }
     if (p.phase === 'opened') {
       const faces = grouped(p.info.faces);
       s.flash(`Opening a big mesh (${faces} faces): a preview first, the exact field follows.`, 4000);

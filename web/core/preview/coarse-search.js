@@ -10,12 +10,12 @@ import { closestOnTriangle } from './closest-point.js';
 
 export class CoarseSearch {
   // fine: {positions, triangles} (Float64Array, Int32Array); coarse: {positions, triangles, fineVertex}
-  // (coarse-mesh.js).
-  constructor(fine, coarse) {
+  // (coarse-mesh.js); nearest: the nearest kept vertices found for this mesh before, or undefined.
+  constructor(fine, coarse, nearest) {
     this.fine = fine;
     this.coarse = coarse;
     this.#coarseFacesAround();
-    this.nearest = nearestKeptVertex(fine.triangles, fine.positions.length / 3, coarse.fineVertex);
+    this.nearest = nearest ?? nearestKeptVertex(fine.triangles, fine.positions.length / 3, coarse.fineVertex);
     this.stamp = new Int32Array(coarse.triangles.length / 3).fill(-1);
     this.query = -1; // stamps of the queries (candidatesNear) count down from here, below every face index
     // Reused lists and coordinates: the searches run a few million times per model, and an array per call

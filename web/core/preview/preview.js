@@ -13,16 +13,30 @@ import { coarseMesh, offBytes } from './coarse-mesh.js';
 import { SurfaceMap } from './surface-map.js';
 import { magnitudeScale } from '../../geometry/magnitudes.js';
 
+// The coarse mesh of keptParts(): its vertices are fine ones.
+function keptCoarse(fine, { coarseTriangles, fineVertex }) {
+  const positions = new Float64Array(3 * fineVertex.length);
+  fineVertex.forEach((v, c) => positions.set(fine.positions.subarray(3 * v, 3 * v + 3), 3 * c));
+  return { positions, triangles: coarseTriangles, fineVertex };
+}
+
 export class Preview {
   // The mesh's part, which needs no design: the coarse stand-in and the map. fine: {positions, triangles} as
-  // the exact worker read them (Float64Array, Int32Array). Returns what open() takes.
-  static async prepare(fine) {
+  // the exact worker read them (Float64Array, Int32Array); kept: keptParts() of a preview of this very mesh (a
+  // model opened again: no simplification, no search), or null. Returns what open() takes.
+  static async prepare(fine, kept = null) {
     const t0 = performance.now();
-    const coarse = await coarseMesh(fine.positions, fine.triangles);
+    const coarse = kept ? keptCoarse(fine, kept) : await coarseMesh(fine.positions, fine.triangles);
     const t1 = performance.now();
-    const map = new SurfaceMap(fine, coarse);
-    const timings = { simplifyMs: t1 - t0, mapMs: performance.now() - t1, coarseFaces: coarse.triangles.length / 3 };
+    const map = new SurfaceMap(fine, coarse, kept);
+    const coarseFaces = coarse.triangles.length / 3;
+    const timings = { simplifyMs: t1 - t0, mapMs: performance.now() - t1, coarseFaces, kept: !!kept };
     return { coarse, map, timings };
+  }
+
+  // What depends on the mesh alone in prepare()'s result, for a later prepare() of the same mesh.
+  static keptParts({ coarse, map }) {
+    return { coarseTriangles: coarse.triangles, fineVertex: coarse.fineVertex, ...map.kept() };
   }
 
   // core: the worker's CoreClient; prepared: prepare()'s; fineDoc: the exact core's design document of the

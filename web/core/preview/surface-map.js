@@ -14,20 +14,18 @@ import { faceNormals, vertexNormals } from '../../geometry/mesh-geometry.js';
 
 export class SurfaceMap {
   // fine: {positions, triangles} (Float64Array, Int32Array); coarse: {positions, triangles, fineVertex}
-  // (coarse-mesh.js).
-  constructor(fine, coarse) {
+  // (coarse-mesh.js); kept: the vertex parts of this map as kept() gave them for this very mesh (a model opened
+  // again, worker/preview-cache.js), or null to search them.
+  constructor(fine, coarse, kept = null) {
     this.fine = fine;
     this.coarse = coarse;
     this.nV = fine.positions.length / 3;
     this.nF = fine.triangles.length / 3;
-    this.search = new CoarseSearch(fine, coarse);
-    this.vertexFace = new Int32Array(this.nV);
-    this.vertexBary = new Float64Array(3 * this.nV);
-    const p = [0, 0, 0];
-    for (let v = 0; v < this.nV; v++) {
-      for (let k = 0; k < 3; k++) p[k] = fine.positions[3 * v + k];
-      this.search.closest(p, this.search.aroundFineVertex(v), v, this.vertexFace, this.vertexBary);
-    }
+    this.search = new CoarseSearch(fine, coarse, kept?.nearest);
+    if (kept) {
+      this.vertexFace = kept.vertexFace;
+      this.vertexBary = kept.vertexBary;
+    } else this.#searchVertices();
     // The face centres' closest points are found when asked for (faceOnCoarse): a vector field's preview needs
     // a few, for the constraints; all of them took 0.2 s of the first field at 832k faces.
     this.faceFace = new Int32Array(this.nF).fill(-1);
@@ -37,6 +35,21 @@ export class SurfaceMap {
     // normals when a line or cross field needs them (faceNormals()).
     this.vertexNormals = vertexNormals(fine.positions, fine.triangles);
     this.faceNormalsCache = null;
+  }
+
+  #searchVertices() {
+    this.vertexFace = new Int32Array(this.nV);
+    this.vertexBary = new Float64Array(3 * this.nV);
+    const p = [0, 0, 0];
+    for (let v = 0; v < this.nV; v++) {
+      for (let k = 0; k < 3; k++) p[k] = this.fine.positions[3 * v + k];
+      this.search.closest(p, this.search.aroundFineVertex(v), v, this.vertexFace, this.vertexBary);
+    }
+  }
+
+  // What a model opened again takes instead of the vertices' search (the constructor's `kept`).
+  kept() {
+    return { vertexFace: this.vertexFace, vertexBary: this.vertexBary, nearest: this.search.nearest };
   }
 
   #fineCentre(f, out) {

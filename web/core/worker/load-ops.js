@@ -7,6 +7,7 @@ import { loadCore } from '../core-client.js';
 import { CoreExport } from '../core-export.js';
 import { openModelInSteps } from '../open-steps.js';
 import { OrderingCache } from './ordering-cache.js';
+import { PickingCache } from './picking-cache.js';
 import { holdLifeLock } from './supervision.js';
 import { Transfer } from './transfer.js';
 
@@ -16,6 +17,7 @@ const PREVIEW_WAIT_MS = 20_000;
 
 export function loadOps(state) {
   const orderings = new OrderingCache();
+  const trees = new PickingCache();
   const anytime = {
     // assetBase: the folder holding wasm/tvf_core.mjs (the element's asset base; the worker may run from a
     // blob: URL, where its own import.meta.url names nothing useful).
@@ -60,7 +62,7 @@ export function loadOps(state) {
       };
       const progress = (value, list) => state.progress(value, list);
       const { opened, info: pendingInfo, ahead } = openModelInSteps(core, steps, progress);
-      if (ahead) await sendAhead(state);
+      if (ahead) await sendAhead(state, trees);
       // The ordering this mesh had when it was last opened (ordering-cache.js): its analysis skips METIS.
       const ordering = await orderings.adopt(core.designer);
       state.progress({ phase: 'factoring', info: pendingInfo });
@@ -95,14 +97,20 @@ export function loadOps(state) {
 
 // A big model, opened: the page's surface goes now, and the picking parts and the factorization's two threads,
 // which would take the cores from the preview, wait for the page's word that it is made.
-async function sendAhead(state) {
+// trees: the bounds trees kept per mesh (picking-cache.js).
+async function sendAhead(state, trees) {
   const m = state.core.pendingMesh();
   const { arrays, list } = pageSurface(new Surface(m.positions, m.triangles, m.edges), true, { picking: false });
   state.progress({ phase: 'surface', surface: arrays }, list);
+  const { designer } = state.core;
+  const keptTree = trees.find(designer.pendingPositions(), designer.pendingTriangles()); // read while waiting
   await new Promise((resolve) => {
     state.previewMade = resolve;
     setTimeout(resolve, PREVIEW_WAIT_MS);
   });
-  const picking = pickingParts(state.core.designer.pendingPositions(), state.core.designer.pendingTriangles());
-  state.progress({ phase: 'picking', picking: picking.value }, picking.list);
+  const kept = await keptTree;
+  // Views of the wasm heap, taken after the waits (the heap may have grown while the cache was read).
+  const picking = pickingParts(designer.pendingPositions(), designer.pendingTriangles(), kept.bvh);
+  if (!kept.bvh) trees.keep(kept.key, picking.value.bvh);
+  state.progress({ phase: 'picking', picking: picking.value, treeKept: !!kept.bvh }, picking.list);
 }
