@@ -8,8 +8,11 @@
 //                             [--symmetry N]   (the strokes on an N-direction field: 2 line, 4 cross; default 1)
 //                             [--texture N]   (then the texture: its first synthesis and N strokes' updates,
 //                             each broken into its phases: textureFirstPhases, textureUpdatePhases)
-//                             [--reopen]   (with --texture: the mesh opened again, its texture made again;
-//                             reopenExactFieldMs: loadModel to its exact field, the ordering kept)
+//                             [--reopen [--reload]]   (the mesh opened again, over itself or in the page
+//                             reloaded: reopenExactFieldMs, loadModel to its exact field, the ordering, preview
+//                             parts and picking tree kept; with --texture its texture made again too)
+//                             [--undo N]   (after the strokes, N undos then N redos, each timed as a stroke
+//                             is: undoMs, redoMs (pageMs), undoUpdateMs/redoUpdateMs and undoSolveMs (the core's))
 //                             [--stripes N]   (then the stripes: turned on, and N strokes' updates: stripes*
 //                             keys, bench-web-stripes.mjs)
 //                             [--gpu]   (hardware WebGL: ANGLE on Vulkan, or TVF_GPU_ARGS; default SwiftShader)
@@ -174,6 +177,9 @@ async function strokeBench(page, meshPath) {
   }
   await strokesProfile.stop();
   if (traceFile) await page.context().browser().stopTracing();
+  const undo = arg('--undo', null) == null ? null : await undoBench(page, Number(arg('--undo')));
+  const reopenAlone = process.argv.includes('--reopen') && arg('--texture', null) == null;
+  const reopen = reopenAlone ? await reopenBench(page, `/bench-mesh/${name}`) : null;
   const texture = arg('--texture', null) == null ? null : await textureBench(page, strokes.slice(0, Number(arg('--texture'))), `/bench-mesh/${name}`);
   const stripes = arg('--stripes', null) == null ? null : await stripesBench(page, strokes.slice(0, Number(arg('--stripes'))));
   const pick = (f) => median(runs.map(f));
@@ -236,6 +242,10 @@ async function strokeBench(page, meshPath) {
     loadLongTasks: loadTasks.map((t) => ({ at: Math.round(t.at - load.t0), ms: t.ms })),
     longestStrokeTaskMs: longest(strokeTasks),
     heapPeakBytes: runs.at(-1)?.stats.heapBytes ?? null,
+    // --undo N: N undos of the strokes, then N redos (medians).
+    ...(undo ?? {}),
+    // --reopen without --texture: the mesh opened again.
+    ...(reopen ?? {}),
     // --texture N: the texture synthesized on the field, then N of the strokes again with the texture shown.
     ...(texture ?? {}),
     // --stripes N: the stripe pattern turned on, then N of the strokes again with the stripes shown.
@@ -281,6 +291,65 @@ function rendererString() {
 // longest task during each, and where the time went: the run's phases (synthesisStats().phases, phase-clock.js)
 // with what came before the run (the stroke's solve, for an update) and after it (the texture shown to the
 // promise resolving), beside the wall time measured here on its own.
+// The mesh opened again (what IndexedDB kept per mesh from its first opening: the ordering, the preview's parts,
+// the picking tree), in the same page over itself, or with --reload in the page reloaded (a fresh core, heap and
+// JIT, as a user opening the model another day finds them): its first and exact fields timed from loadModel, as
+// the first opening's are.
+async function reopenBench(page, url) {
+  if (process.argv.includes('--reload')) {
+    await page.reload();
+    await page.evaluate(() => window.tvf.ready);
+    await page.evaluate(() => window.tvf.settled());
+  }
+  const r = await page.evaluate(async (u) => {
+    window.__longTasks.length = 0;
+    const t0 = performance.now();
+    await window.tvf.loadModel(u, { restore: false });
+    const firstMs = performance.now() - t0;
+    await window.tvf.settled();
+    const exactMs = performance.now() - t0;
+    const { previewTimings, pickingTreeKept, loadPhases } = window.tvf.perf();
+    const phases = Object.fromEntries(Object.entries(loadPhases ?? {}).map(([k, v]) => [k, Math.round(v - t0)]));
+    const { analyzeMs, factorMs, analysisReused } = window.tvf.stats();
+    const tasks = window.__longTasks.splice(0);
+    return { firstMs, exactMs, analyzeMs, factorMs, analysisReused, previewTimings, pickingTreeKept, phases, tasks };
+  }, url);
+  return {
+    reopenFirstFieldMs: r.firstMs,
+    reopenExactFieldMs: r.exactMs,
+    reopenExactFactor: { analyzeMs: r.analyzeMs, factorMs: r.factorMs, analysisReused: r.analysisReused },
+    reopenPreviewKept: r.previewTimings?.kept ?? null,
+    reopenPickingTreeKept: r.pickingTreeKept ?? null,
+    reopenPhasesMs: r.phases,
+    reopenPreviewTimings: r.previewTimings,
+    longestReopenLoadTaskMs: r.tasks.reduce((m, t) => Math.max(m, t.ms), 0),
+  };
+}
+
+// N undos of the last strokes, then N redos, each at a user's pace (the previous field on screen), timed from the
+// call to its field drawn (the exact one, settled) with the core's update (a downdate for an undone stroke) and
+// solve.
+async function undoBench(page, n) {
+  const step = (op) => page.evaluate(async (op) => {
+    await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+    const t0 = performance.now();
+    await window.tvf[op]();
+    await window.tvf.settled();
+    const { updateMs, solveMs, factorizations, precisionRefactors } = window.tvf.stats();
+    return { ms: performance.now() - t0, updateMs, solveMs, factorizations, precisionRefactors };
+  }, op);
+  const undos = [], redos = [];
+  for (let k = 0; k < n; k++) undos.push(await step('undo'));
+  for (let k = 0; k < n; k++) redos.push(await step('redo'));
+  const of = (runs, key) => median(runs.map((r) => r[key]));
+  return {
+    undoMs: of(undos, 'ms'), undoUpdateMs: of(undos, 'updateMs'), undoSolveMs: of(undos, 'solveMs'),
+    redoMs: of(redos, 'ms'), redoUpdateMs: of(redos, 'updateMs'), redoSolveMs: of(redos, 'solveMs'), undos: n,
+    undoSteps: undos.map((r) => Math.round(r.ms)), redoSteps: redos.map((r) => Math.round(r.ms)),
+    undoFactorizations: undos.at(-1)?.factorizations, undoPrecisionRefactors: undos.at(-1)?.precisionRefactors,
+  };
+}
+
 async function textureBench(page, strokes, url) {
   await page.evaluate(() => window.__longTasks.splice(0));
   const profile = await startProfile(page, arg('--profile-texture', null));

@@ -21,9 +21,15 @@ constexpr double kMaxShift = 1e-4;
 // A downdate that removes weight w (relative to the mean diagonal) leaves round-off of about eps * w in the
 // pivots it passes through: removing a 1e20 weight leaves nothing of the original pivot (all NaN), removing
 // 1e8 leaves 1e-8. The weights taken out by downdates since the last factorization are summed; a downdate
-// that would push the sum past this budget refactors instead, which keeps the factor within ~1e-12 of a
-// fresh one.
-constexpr double kDowndateBudget = 1e4;
+// that would push the sum past the budget refactors instead. With a kernel shift the system is as badly
+// conditioned as the shift is small, and that round-off reaches the field amplified: the budget keeps it within
+// ~1e-12 of a fresh factor. Without one (every component closed and of genus 0) the round-off stays what it is,
+// and the solve after downdates checks its backward error anyway (solvesToRoundOff): there a stroke's rows,
+// which weigh 5e3-1e4 mean diagonals, would refactor at every second undo under the small budget (bunny00 in
+// the page: 150-270 ms instead of 25-30 ms; armadillo-sub2: seconds), and the large one lets about a hundred
+// strokes be undone between factorizations, the factor within ~1e-10 of a fresh one.
+constexpr double kDowndateBudgetShifted = 1e4;
+constexpr double kDowndateBudget = 1e6;
 // Backward error ||b - A x|| / (||A|| ||x|| + ||b||) (infinity norms) of a solve after downdates beyond
 // which the factor is considered spoilt: a downdated factor is that of A + E with ||E|| ~ eps * (weight
 // removed), and this is ||E x|| / ||A|| ||x||; a fresh LDL' gives ~1e-16.
@@ -164,7 +170,7 @@ void ShiftedFactor::update(const DiagonalTerms& change, double scale, bool downd
   if (downdate) {
     double largest = 0;
     for (const double w : change.weights) largest = std::max(largest, w / scale);
-    if (downdateLoad_ + largest > kDowndateBudget) {
+    if (downdateLoad_ + largest > (shift_ > 0 ? kDowndateBudgetShifted : kDowndateBudget)) {
       stale_ = true;  // refactor at the next solve instead of downdating away the precision
       return;
     }

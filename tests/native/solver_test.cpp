@@ -943,16 +943,16 @@ TEST(ShiftedFactor, RankUpdatesEqualAFreshFactorizationAndDowndatesKeepToTheBudg
   EXPECT_LT((x - y).norm() / y.norm(), 1e-10);
   EXPECT_LT((plusDiagonal(base, both) * x - b).norm() / b.norm(), 1e-10);
   EXPECT_EQ(updated.precisionRefactors(), 0);
-  // Taking `second` out again spends 100 of the budget of 1e4: done, and the factor is `first`'s again.
+  // Taking `second` out again spends 100 of the budget of 1e6: done, and the factor is `first`'s again.
   updated.update(second, scale, true);
   EXPECT_TRUE(updated.current());
   fresh.factor(upper, scale, first);
   updated.solve(upper, scale, first, b, x);
   fresh.solve(upper, scale, first, b, y);
   EXPECT_LT((x - y).norm() / y.norm(), 1e-10);
-  // Adding a constraint 2e4 times stiffer than the surface is free; taking it out would spend more than the
+  // Adding a constraint 2e6 times stiffer than the surface is free; taking it out would spend more than the
   // budget, so it is refused and the factor is no longer current (the session refactors at its next solve).
-  const DiagonalTerms stiff{{5}, {2e4 * scale}};
+  const DiagonalTerms stiff{{5}, {2e6 * scale}};
   updated.update(stiff, scale, false);
   EXPECT_TRUE(updated.current());
   updated.update(stiff, scale, true);

@@ -76,7 +76,11 @@ export class ProgressiveCore {
       (meshed ??= (async () => {
         const proxy = await (early ?? this.#startPreview());
         const { positions, triangles } = mesh;
-        await proxy.call('previewMesh', [{ positions, triangles }], [positions.buffer, triangles.buffer]);
+        const reply = await proxy.call('previewMesh', [{ positions, triangles }], [positions.buffer, triangles.buffer]);
+        // The mesh's preview parts were kept from an earlier opening (worker/preview-cache.js): what is left of
+        // the preview, its coarse solve, is short beside the exact worker's own work before its factorization
+        // (the picking parts, the analysis, the matrix), which then need not wait for it.
+        if (reply.value?.kept) this.exact.notify({ previewMade: true });
         return proxy;
       })());
     const endWorkers = () => [early, meshed].forEach((p) => p?.then((proxy) => proxy.terminate(), () => {}));

@@ -103,7 +103,8 @@ async function sendAhead(state, trees) {
   const { arrays, list } = pageSurface(new Surface(m.positions, m.triangles, m.edges), true, { picking: false });
   state.progress({ phase: 'surface', surface: arrays }, list);
   const { designer } = state.core;
-  const keptTree = trees.find(designer.pendingPositions(), designer.pendingTriangles()); // read while waiting
+  const { vertices, faces } = state.core.pendingInfo();
+  const keptTree = trees.find(designer.pendingMeshHash(), vertices, faces); // read while waiting
   await new Promise((resolve) => {
     state.previewMade = resolve;
     setTimeout(resolve, PREVIEW_WAIT_MS);

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// The key under which the worker caches keep what depends on a mesh alone (preview-cache.js, picking-cache.js).
+// The key under which the preview worker keeps what depends on a mesh alone (preview-cache.js): the exact worker
+// keys its own by the core's hash (picking-cache.js), which the preview worker, given the mesh before the core
+// has checked it, does not have.
 // Imports nothing.
 
 // Two 32-bit FNV-1a-style lanes over the 32-bit words of the positions (float64 bits) and the triangles, with

@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // A big model's bounds tree (the page's picking BVH, geometry/mesh-bvh-transfer.js) kept per mesh in IndexedDB
 // (kept-store.js), so that opening it again skips building it (armadillo-sub2: about 0.27 s, which the
-// exact worker spends after the preview and before it factors). Keyed by the mesh's hash (mesh-key.js); an
+// exact worker spends after the preview and before it factors). Keyed by the core's mesh hash; an
 // entry whose tree does not fit the mesh (another count, a node or leaf out of range: foreign, damaged) is
 // ignored, the tree built as before and the entry replaced. Owned by load-ops.js.
 import { SERIALIZED_MESH_BVH_VERSION } from '../../geometry/mesh-bvh-transfer.js';
 import { KeptStore } from './kept-store.js';
-import { meshKey } from './mesh-key.js';
 
 const FORMAT = 1;
 const UINT32_PER_NODE = 8; // three-mesh-bvh's packed node: 6 float bounds, then offset / right child, count
@@ -44,13 +43,14 @@ export class PickingCache {
     this.store = new KeptStore('tvf-picking-cache', 'trees', 2, options);
   }
 
-  // Resolves with {key, bvh}: the tree kept for this mesh (positions, triangles as the core has them), or null.
-  // Never fails (an optimization only).
-  async find(positions, triangles) {
+  // hash: the core's mesh hash (the float positions' bits and the triangles: what the tree is built on); nV, nF
+  // the mesh's counts. Resolves with {key, bvh}: the tree kept for this mesh, or null. Never fails (an
+  // optimization only).
+  async find(hash, nV, nF) {
     try {
-      const key = meshKey(positions, triangles);
-      const entry = await this.store.get(key);
-      return { key, bvh: usableBVH(entry, positions.length / 3, triangles.length / 3) ? entry.bvh : null };
+      const key = hash ? `${hash}-v${nV}-f${nF}` : '';
+      const entry = key ? await this.store.get(key) : null;
+      return { key, bvh: usableBVH(entry, nV, nF) ? entry.bvh : null };
     } catch {
       return { key: '', bvh: null };
     }

@@ -20,7 +20,7 @@ export function previewOps(state) {
       const found = await kept.find(mesh);
       state.prepared = await Preview.prepare(mesh, found.kept);
       if (!found.kept) kept.keep(found.key, Preview.keptParts(state.prepared));
-      return true;
+      return { kept: !!found.kept };
     },
   };
 
