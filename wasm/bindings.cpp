@@ -242,9 +242,14 @@ class DesignerBinding {
   // keptOrderingJson() {n, pattern, metis, dissection} with keptOrderingPerm() viewing the permutation.
   std::string pendingOrderingKey() const {
     if (!pending_) return "";
-    char key[48];
-    std::snprintf(key, sizeof key, "%016llx-n%d", static_cast<unsigned long long>(pending_->meshHash()),
-                  pending_->symmetry());
+    return pendingMeshHash() + "-n" + std::to_string(pending_->symmetry());
+  }
+  // The pending mesh's hash (its float positions' bits and its triangles), in hex: the key of what the worker
+  // keeps per mesh (web/core/worker/picking-cache.js).
+  std::string pendingMeshHash() const {
+    if (!pending_) return "";
+    char key[20];
+    std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(pending_->meshHash()));
     return key;
   }
   bool adoptPendingOrdering(const val& perm, const std::string& patternHex, bool metis, bool dissection) {
@@ -783,6 +788,7 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("pendingEdges", &DesignerBinding::pendingEdges)
       .function("pendingCornerUVs", &DesignerBinding::pendingCornerUVs)
       .function("pendingOrderingKey", &DesignerBinding::pendingOrderingKey)
+      .function("pendingMeshHash", &DesignerBinding::pendingMeshHash)
       .function("adoptPendingOrdering", &DesignerBinding::adoptPendingOrdering)
       .function("keptOrderingJson", &DesignerBinding::keptOrderingJson)
       .function("keptOrderingPerm", &DesignerBinding::keptOrderingPerm)
