@@ -10,7 +10,7 @@ import { checkAtlasUVs, generateAtlas, rasterCoverage } from '../../web/synthesi
 import createTvfCore from '../../build-wasm/tvf_core.mjs';
 import { flatSquareGlb } from '../node/export-fixtures.mjs';
 import { Surface } from '../../web/geometry/surface.js';
-import { defaultFeatureScale, shapeComplexity } from '../../web/synthesis/auto-settings.js';
+import { defaultFeatureScale, defaultResolution, shapeComplexity } from '../../web/synthesis/auto-settings.js';
 import { seamIndirection } from '../../web/synthesis/seams.js';
 import { icosphereOff } from '../icosphere.mjs';
 import { surfacePointsAlongScreenLine, openDesignerPage } from './helpers.mjs';
@@ -475,5 +475,24 @@ test.describe('default feature size from the shape (node)', () => {
     expect(fs(34)).toBeCloseTo(fs(60), 9);
     expect(fs(34)).toBeCloseTo((1024 * Math.sqrt(0.6)) / (16 * 64), 9);
     expect(defaultFeatureScale(256, 0.6, 64, 30)).toBe(0.625);
+    // Whatever the exemplar's size, a tile of >= 40 texels: a 128-pixel exemplar may take 0.3125 texels per pixel
+    // and so as many tiles as a 64-pixel one; a 16-pixel one needs 2.5.
+    expect(defaultFeatureScale(256, 0.6, 128, 30)).toBe(40 / 128);
+    expect(defaultFeatureScale(1024, 0.6, 128, 34) * 128).toBeCloseTo(fs(34) * 64, 9);
+    expect(defaultFeatureScale(256, 0.6, 16, 30)).toBe(2.5);
+  });
+
+  test('the atlas resolution follows the face count, and the curvature where the face count gives too few texels', () => {
+    // 16 texels per face at 60 % coverage: 3,674 faces 512², 9,856 faces 1024², capped at 1024².
+    expect([3674, 9856, 60000, 800000].map((n) => defaultResolution(n))).toEqual([512, 1024, 1024, 1024]);
+    // Curvature: a tile of 40 texels at 0.8 of the curvature's tiles, at 55 % coverage. The bunny (complexity
+    // 13.8: 11.6 tiles) stays at 512²; a coarse model as curved as the elephant (19: 16 tiles) or a knotted tube
+    // (34) gets 1024²; a small sphere's or square's 6 tiles (0.8 x 6 x 40 texels over 0.74) need 512², not 256².
+    expect(defaultResolution(3674, 13.8)).toBe(512);
+    expect(defaultResolution(5500, 19)).toBe(1024);
+    expect(defaultResolution(5000, 34)).toBe(1024);
+    expect(defaultResolution(1000)).toBe(256);
+    expect(defaultResolution(1000, 3.5)).toBe(512);
+    expect(defaultResolution(1000, 0)).toBe(512);
   });
 });

@@ -4,8 +4,10 @@
 //   stripes are level sets of a linear function (truth: their tangent) and which is continuous across seams;
 // - the default bunny with a stroke-designed field;
 // - with TVF_MEASURE=1 and scripts/fetch-meshes.sh run: held-out CGAL models (knot2 has genus 1; others with
-//   TVF_MEASURE_MODELS=refined_elephant,camel,...), reported for docs/benchmarks.md and held to its targets
-//   (slow under software WebGL: not part of `npm test`).
+//   TVF_MEASURE_MODELS=refined_elephant,camel,..., low-poly ones made by scripts/decimate-off.mjs among them),
+//   reported for docs/benchmarks.md and held to its targets (slow under software WebGL: not part of `npm test`);
+//   TVF_MEASURE_SYMMETRY=2 measures a line field, TVF_MEASURE_EXEMPLAR_SIZE=32|128|... another size of
+//   the stripes exemplar.
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 import bunny from 'bunny';
@@ -15,7 +17,6 @@ import { surfacePointsAlongScreenLine, openDesignerPage } from './helpers.mjs';
 import { neighbourhoodEnergy, randomCoordinates } from './synthesis-metrics.mjs';
 import { pixelLength, readGlb, seamJumpRatio, stripeAlignment } from './surface-texture-metrics.mjs';
 
-const STRIPE_PERIOD_PX = 16; // the 'stripes' exemplar: 64² with a period of 16 pixels
 
 test('the surface stripe measure on an analytic texture over a generated atlas (calibration)', async () => {
   const Module = await createTvfCore();
@@ -82,13 +83,16 @@ test('the surface stripe measure on an analytic texture over a generated atlas (
 
 // Loads a model (or keeps the default), draws a stroke across the view, synthesizes at the page's defaults,
 // exports the GLB and measures it. Returns the report.
-async function measureModel(page, testInfo, { name, bytes }) {
+// exemplarSize: the procedural stripes' size (their period a quarter of it); symmetry: the field's N, set before
+// the stroke (a line or cross field's texture follows its combed representatives).
+async function measureModel(page, testInfo, { name, bytes, exemplarSize = 64, symmetry = 1 }) {
   if (bytes) await page.evaluate(([b, n]) => window.tvf.loadModel(new Uint8Array(b), { name: n }), [bytes, name]);
   await page.evaluate(() => window.tvf.setViews({ arrows: false }));
+  if (symmetry !== 1) await page.evaluate(async (n) => (await window.tvf.setSymmetry(n), window.tvf.settled()), symmetry);
   const points = await surfacePointsAlongScreenLine(page, { x0: 0.3, dx: 0.013, y: 0.5, count: 30 });
   expect(points.length).toBeGreaterThan(5);
   await page.evaluate((pts) => window.tvf.addStroke(pts), points);
-  await page.evaluate(() => window.tvf.setExemplar('stripes'));
+  await page.evaluate((size) => window.tvf.setExemplar({ procedural: 'stripes', size }), exemplarSize);
   const stats = await page.evaluate(() => window.tvf.synthesize());
   // The GLB comes back as base64: a number array of a 10 MB file (refined_elephant) took minutes.
   const data = await page.evaluate(async () => {
@@ -101,7 +105,7 @@ async function measureModel(page, testInfo, { name, bytes }) {
   data.glb = Buffer.from(data.glb, 'base64');
   const glb = readGlb(new Uint8Array(data.glb.buffer, data.glb.byteOffset, data.glb.byteLength));
   const magnification = glb.image.width / stats.atlas.resolution;
-  const period = STRIPE_PERIOD_PX * stats.featureScale * magnification * pixelLength(glb);
+  const period = (exemplarSize / 4) * stats.featureScale * magnification * pixelLength(glb);
   const align = stripeAlignment(glb, Float64Array.from(data.faceVectors), period);
   const seams = seamJumpRatio(glb, Int32Array.from(data.triangles));
   await page.screenshot({ path: testInfo.outputPath(`${name}.png`) });
@@ -150,6 +154,8 @@ async function measureModel(page, testInfo, { name, bytes }) {
   const report = {
     model: name,
     faces: data.triangles.length / 3,
+    exemplarSize,
+    symmetry,
     atlas: { resolution: stats.atlas.resolution, charts: stats.atlas.charts, coverage: stats.atlas.coverage, ms: Math.round(stats.atlas.ms) },
     featureScale: +stats.featureScale.toFixed(3),
     stripeMeanDegrees: +align.meanDegrees.toFixed(2),
@@ -197,7 +203,10 @@ test.describe.serial('exported GLB at the default settings', () => {
       test.skip(!process.env.TVF_MEASURE || !existsSync(file), 'set TVF_MEASURE=1 and run scripts/fetch-meshes.sh');
       test.setTimeout(600_000);
       await page.evaluate(() => window.tvf.clearTexture());
-      const r = await measureModel(page, testInfo, { name, bytes: Array.from(readFileSync(file)) });
+      const exemplarSize = Number(process.env.TVF_MEASURE_EXEMPLAR_SIZE ?? 64);
+      const symmetry = Number(process.env.TVF_MEASURE_SYMMETRY ?? 1);
+      const bytes = Array.from(readFileSync(file));
+      const r = await measureModel(page, testInfo, { name, bytes, exemplarSize, symmetry });
       expect(r.stripeMeanDegrees, 'stripes against the field (degrees)').toBeLessThan(TARGETS.mean);
       expect(r.shareWithin10, 'share of the surface within 10°').toBeGreaterThan(TARGETS.share);
       expect(r.seamRatio, 'seam jump ÷ interior jump').toBeLessThan(TARGETS.seam);

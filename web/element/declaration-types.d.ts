@@ -243,7 +243,7 @@ export interface FieldComponent {
 }
 
 export interface SynthesisOptions {
-  /** Atlas side, a power of two, or 'auto' (256–1024 by face count). */
+  /** Atlas side, a power of two, or 'auto' (256–1024 by face count and curvature). */
   resolution?: number | 'auto';
   /** Texture size on the surface; 'auto': 6–16 exemplar tiles across sqrt(surface area). */
   featureScale?: number | 'auto';

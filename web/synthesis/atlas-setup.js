@@ -3,21 +3,25 @@
 // core's worker (which keeps it per mesh, worker-ops.js), its corner data rasterized on the synthesizer's GPU
 // context, the textured model's geometry built for it. Each step is a phase of the run's clock
 // (phase-clock.js). Owns nothing: the controller keeps the atlas and the textured model.
-import { defaultResolution } from './auto-settings.js';
+import { defaultResolution, shapeComplexity } from './auto-settings.js';
 import { DEFAULTS } from './synthesizer.js';
 import { TexturedModel } from './render.js';
 
-// The atlas's {resolution, gutter} for a model of `numFaces` faces under the controller's options (the same for
-// a run and for the atlas prepared ahead, atlas-ahead.js, so that the run finds it kept).
-export function atlasOptions(options, numFaces) {
-  const resolution = options.resolution === 'auto' ? defaultResolution(numFaces) : options.resolution;
+// The atlas's {resolution, gutter} for a model under the controller's options (the same for a run and for the
+// atlas prepared ahead, atlas-ahead.js, so that the run finds it kept). surface: the model's Surface (its face
+// count and, for 'auto', its shape complexity: computed once per Surface, a pass over its edges).
+export function atlasOptions(options, surface) {
+  const numFaces = surface.triangles.length / 3;
+  const auto = options.resolution === 'auto';
+  if (auto) surface.shapeComplexity ??= shapeComplexity(surface);
+  const resolution = auto ? defaultResolution(numFaces, surface.shapeComplexity) : options.resolution;
   return { resolution, gutter: options.gutter ?? DEFAULTS.gutter };
 }
 
 // c: the SynthesisController. Resolves with the atlas (c.atlas, reused while the model, resolution and gutter
 // stay the same).
 export async function setUpAtlas(c, model, clock) {
-  const { resolution, gutter } = atlasOptions(c.options, model.triangles.length / 3);
+  const { resolution, gutter } = atlasOptions(c.options, model.surface);
   const held = c.atlas;
   if (held && held.key === model.key && held.resolution === resolution && held.gutter === gutter) return held;
   // Generating an atlas takes up to seconds on a big model: the element's core worker does it, so the page

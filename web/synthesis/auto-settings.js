@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// The synthesis settings chosen for the user ('auto'): the atlas resolution from the face count, and the
-// feature scale from the model's curvature and the atlas's texel density. Pure functions of the model, kept
-// apart from the controller so the tests can check them against analytic shapes.
+// The synthesis settings chosen for the user ('auto'): the atlas resolution from the face count and the model's
+// curvature, and the feature scale from the curvature, the atlas's texel density and the exemplar's size. Pure
+// functions of the model, kept apart from the controller so the tests can check them against analytic shapes
+// (docs/texture-synthesis.md, "How the resolution and the feature size are chosen").
 
 // Default feature size. Stripes read as following the field only where the field (and the surface it lies on)
 // turns little over a stripe period; on a curved model the field turns with the surface, so the exemplar tile
@@ -14,17 +15,34 @@
 const TILES_PER_COMPLEXITY = 0.84;
 const MIN_TILES = 6;
 const MAX_TILES = 16;
-// Below this many atlas texels per exemplar pixel the synthesis resolves the exemplar's features with too few
-// texels (a 16-pixel stripe period in fewer than 10 texels): the tile count gives way first.
-const MIN_FEATURE_SCALE = 0.625;
+// A tile spans at least this many atlas texels: the procedural exemplars repeat their feature four times a tile
+// (the stripes' period is a quarter of the exemplar), and a period drawn with fewer than 10 texels is not
+// resolved. At 64² that is 0.625 texels per exemplar pixel; a larger exemplar may take fewer per pixel, a smaller
+// one needs more, and the tile count gives way first.
+const MIN_TILE_TEXELS = 40;
+// The resolution is chosen before the atlas exists: its charts are taken to cover this share of it (generated
+// atlases cover 0.50-0.69).
+const TYPICAL_COVERAGE = 0.55;
+// The share of the curvature's tiles the texel floor may take away before the atlas doubles its resolution:
+// the bunny keeps 10.3 of its 11.6 tiles at 512² (4.89° / 90.5 %); a 5,500-face genus-3 elephant kept 9.9 of 16
+// there (11.0° / 64 %), and a 6,000-face camel 9.7 (8.7° / 71 %).
+const TILES_KEPT = 0.8;
 
-// The atlas resolution a model gets by default: enough texels per face for the Jacobian to vary smoothly and for
-// a stripe period to span ≥ 10 texels at the default feature size (≈ 16 texels per face at ~60 % coverage),
-// between 256² and 1024².
-export function defaultResolution(numFaces) {
-  const want = Math.sqrt((numFaces * 16) / 0.6);
+// The tiles across sqrt(area) the model's shape complexity asks for.
+export function defaultTiles(complexity = MIN_TILES / TILES_PER_COMPLEXITY) {
+  return Math.min(MAX_TILES, Math.max(MIN_TILES, TILES_PER_COMPLEXITY * complexity));
+}
+
+// The atlas resolution a model gets by default, between 256² and 1024²: enough texels per face for the Jacobian
+// to vary smoothly (≈ 16 texels per face at ~60 % coverage), and, given the shape complexity, for a tile to span
+// MIN_TILE_TEXELS at TILES_KEPT of the tiles the curvature asks for (a coarse but curved model would otherwise
+// get the face count's resolution and too few texels per stripe).
+export function defaultResolution(numFaces, complexity = null) {
+  const forFaces = Math.sqrt((numFaces * 16) / 0.6);
+  const forTiles =
+    complexity == null ? 0 : (TILES_KEPT * defaultTiles(complexity) * MIN_TILE_TEXELS) / Math.sqrt(TYPICAL_COVERAGE);
   let r = 256;
-  while (r < want && r < 1024) r *= 2;
+  while (r < Math.max(forFaces, forTiles) && r < 1024) r *= 2;
   return r;
 }
 
@@ -58,9 +76,8 @@ export function shapeComplexity({ positions, triangles, normals, areas, neighbou
 
 // The feature scale (atlas texels per exemplar pixel at the atlas's mean density) that makes one exemplar tile
 // span sqrt(area) / tiles on the surface, tiles from the shape complexity (above): tile length
-// m * featureScale * texelLength, with texelLength = sqrt(area / coverage) / R.
-export function defaultFeatureScale(resolution, coverage, exemplarSize, complexity = MIN_TILES / TILES_PER_COMPLEXITY) {
-  const tiles = Math.min(MAX_TILES, Math.max(MIN_TILES, TILES_PER_COMPLEXITY * complexity));
-  const fs = (resolution * Math.sqrt(Math.max(coverage, 0.05))) / (tiles * exemplarSize);
-  return Math.min(8, Math.max(MIN_FEATURE_SCALE, fs));
+// m * featureScale * texelLength, with texelLength = sqrt(area / coverage) / R; a tile at least MIN_TILE_TEXELS.
+export function defaultFeatureScale(resolution, coverage, exemplarSize, complexity) {
+  const fs = (resolution * Math.sqrt(Math.max(coverage, 0.05))) / (defaultTiles(complexity) * exemplarSize);
+  return Math.min(8, Math.max(MIN_TILE_TEXELS / exemplarSize, fs));
 }
