@@ -76,6 +76,14 @@ TEST(OneFormLaplacian, SymmetricWithElevenNonzerosPerRowOnARegularMesh) {
   EXPECT_NEAR(perRow, 11.0, 1.0) << perRow;
 }
 
+// d1' *2 d1 + D' *0^-1 D as Eigen's sparse products of the operators: the truth the assembly is checked
+// against.
+SparseMatrix laplacianProducts(const Built& b, const OneFormOperators& ops) {
+  const Eigen::VectorXd inverseStar0 = b.geometry.star0.cwiseInverse();
+  return SparseMatrix(ops.d1.transpose() * b.geometry.star2.asDiagonal() * ops.d1) +
+         SparseMatrix(ops.divergence.transpose() * inverseStar0.asDiagonal() * ops.divergence);
+}
+
 // The Laplacian is assembled as its upper triangle, column by column (upperWeightedGram); checked against
 // Eigen's products of the same operators (the sum d1' *2 d1 + D' *0^-1 D, the free boundary's fluxes in D
 // included), and a Gram matrix of a random operator against the dense product.
@@ -84,10 +92,7 @@ TEST(OneFormLaplacian, UpperTriangleAssemblyEqualsTheProducts) {
   jitterPlanar(b.mesh, 0.04, 3);
   b.geometry = computeMeshGeometry(b.mesh, b.topology);
   const OneFormOperators ops = buildOneFormOperators(b.mesh, b.topology, b.geometry, {});
-  const Eigen::VectorXd inverseStar0 = b.geometry.star0.cwiseInverse();
-  const SparseMatrix products =
-      SparseMatrix(ops.d1.transpose() * b.geometry.star2.asDiagonal() * ops.d1) +
-      SparseMatrix(ops.divergence.transpose() * inverseStar0.asDiagonal() * ops.divergence);
+  const SparseMatrix products = laplacianProducts(b, ops);
   const SparseMatrix upper = oneFormLaplacianUpper(ops, b.geometry);
   const Eigen::MatrixXd expected = Eigen::MatrixXd(products).triangularView<Eigen::Upper>();
   EXPECT_LT((Eigen::MatrixXd(upper) - expected).cwiseAbs().maxCoeff(), 1e-12 * meanDiagonal(products));
@@ -110,18 +115,15 @@ TEST(OneFormLaplacian, UpperTriangleAssemblyEqualsTheProducts) {
   EXPECT_LT((Eigen::MatrixXd(G) - twiceUpper).cwiseAbs().maxCoeff(), 1e-14);
 }
 
-// Past 100k edges the columns are assembled in parts on the helper threads: the same matrix, bit for bit, as
-// the products' (sparse, in Eigen) to round-off, with the same pattern (upper, every diagonal last).
+// Past 100k edges the columns are assembled in parts on the helper threads: the products' upper triangle to
+// round-off, with its pattern (every diagonal stored, last in its column).
 TEST(OneFormLaplacian, ColumnsAssembledInPartsEqualTheProducts) {
   Built b = build(flatGrid(190, 2.0, true));  // 108,680 edges
   ASSERT_GT(b.topology.numEdges, 100000);
   jitterPlanar(b.mesh, 0.002, 11);
   b.geometry = computeMeshGeometry(b.mesh, b.topology);
   const OneFormOperators ops = buildOneFormOperators(b.mesh, b.topology, b.geometry, {});
-  const Eigen::VectorXd inverseStar0 = b.geometry.star0.cwiseInverse();
-  const SparseMatrix products =
-      SparseMatrix(ops.d1.transpose() * b.geometry.star2.asDiagonal() * ops.d1) +
-      SparseMatrix(ops.divergence.transpose() * inverseStar0.asDiagonal() * ops.divergence);
+  const SparseMatrix products = laplacianProducts(b, ops);
   const SparseMatrix expected = SparseMatrix(products.triangularView<Eigen::Upper>());
   const SparseMatrix upper = oneFormLaplacianUpper(ops, b.geometry);
   EXPECT_LT(SparseMatrix(upper - expected).coeffs().cwiseAbs().maxCoeff(), 1e-12 * meanDiagonal(products));
