@@ -3,7 +3,8 @@
 #
 # fetch-meshes.sh: real benchmark meshes from Debian's `libcgal-demo` package (CGAL's data/meshes/*.off,
 # shipped inside /usr/share/doc/libcgal-dev/data.tar.gz), plus a ~1.25M-edge mesh made by two rounds of
-# 1-to-4 midpoint subdivision of armadillo.off (scripts/subdivide-off.mjs), and a ~1.8M-edge one of bunny00.off.
+# 1-to-4 midpoint subdivision of armadillo.off (scripts/subdivide-off.mjs), a ~1.8M-edge one of bunny00.off,
+# and four low-poly curved models decimated from CGAL's (scripts/decimate-off.mjs).
 #
 # Usage: scripts/fetch-meshes.sh             # idempotent: does nothing when every mesh is already there
 #        scripts/fetch-meshes.sh --fuzz-seeds # only the fuzzing seeds (see below), nothing else
@@ -121,5 +122,15 @@ if [ ! -s "$MESHES/fandisk-sub1.off" ]; then
   node "$ROOT/scripts/subdivide-off.mjs" "$MESHES/fandisk_large.off" "$MESHES/fandisk-sub1.off.tmp" --levels 1 >&2
   mv "$MESHES/fandisk-sub1.off.tmp" "$MESHES/fandisk-sub1.off"
 fi
+
+# Low-poly curved stand-ins (scripts/decimate-off.mjs, meshoptimizer's simplifier): the synthesized texture's
+# defaults measured on coarse models (docs/texture-synthesis.md, "How the resolution and the feature size are
+# chosen"); refined_elephant-5500 keeps its genus 3.
+for pair in refined_elephant:5500 camel:6000 lion-head:7000 knot2:5000; do
+  base=${pair%%:*} faces=${pair#*:}
+  [ -s "$MESHES/$base-$faces.off" ] && continue
+  node "$ROOT/scripts/decimate-off.mjs" "$MESHES/$base.off" "$MESHES/$base-$faces.off.tmp" "$faces" >&2
+  mv "$MESHES/$base-$faces.off.tmp" "$MESHES/$base-$faces.off"
+done
 
 ls -1 "$MESHES"/*.off | sed "s|^$ROOT/||"
