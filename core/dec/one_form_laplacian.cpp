@@ -208,10 +208,14 @@ SparseMatrix upperWeightedGram(const std::vector<GramTerm>& terms) {
   return G;
 }
 
-SparseMatrix biLaplacian(const SparseMatrix& M, const MeshGeometry& g, double gamma) {
+// M W M is the weighted Gram matrix M' W M of the symmetric M: assembled as its upper triangle, like M's own,
+// without Eigen's product temporaries (armadillo-sub2: the products grew the wasm heap from 2.0 to 4.0 GB
+// before the factor's estimate refused the system).
+SparseMatrix biLaplacianUpper(const SparseMatrix& M, const MeshGeometry& g, double gamma) {
   const Eigen::VectorXd inverseMass = g.whitneyMass1.cwiseInverse();
-  SparseMatrix B = M * inverseMass.asDiagonal() * M;
-  SparseMatrix result = M + gamma * B;
+  SparseMatrix result = upperWeightedGram({{&M, &inverseMass}});
+  result *= gamma;
+  result += upperTriangle(M);
   result.prune(0.0);
   return result;
 }

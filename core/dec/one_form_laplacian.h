@@ -38,8 +38,9 @@ struct GramTerm {
 };
 SparseMatrix upperWeightedGram(const std::vector<GramTerm>& terms);
 
-// M + gamma M P^-1 M with P the (strictly positive) Whitney 1-form mass diagonal: *1 may be zero or negative.
-SparseMatrix biLaplacian(const SparseMatrix& M, const MeshGeometry& geometry, double gamma);
+// The upper triangle of M + gamma M P^-1 M with P the (strictly positive) Whitney 1-form mass diagonal: *1
+// may be zero or negative. M: the whole symmetric matrix (oneFormLaplacian).
+SparseMatrix biLaplacianUpper(const SparseMatrix& M, const MeshGeometry& geometry, double gamma);
 
 double meanDiagonal(const SparseMatrix& A);
 

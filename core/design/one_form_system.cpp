@@ -96,9 +96,9 @@ void OneFormSystem::rebuildBase() {
   ops_ = buildOneFormOperators(mesh_.mesh(), topology, geometry, angles);
   constraints_.operatorsChanged();
   base_ = SparseMatrix();  // the old one goes before the new one is assembled
-  base_ = gamma_ > 0 ? upperTriangle(biLaplacian(oneFormLaplacian(ops_, geometry), geometry,
-                                                 gamma_ * geometry.totalArea))
-                     : oneFormLaplacianUpper(ops_, geometry);
+  base_ = gamma_ > 0
+              ? biLaplacianUpper(oneFormLaplacian(ops_, geometry), geometry, gamma_ * geometry.totalArea)
+              : oneFormLaplacianUpper(ops_, geometry);
   ops_.d0 = SparseMatrix();  // it made the divergence; nothing reads it after (35 MB at 1.25M edges)
   scale_ = meanDiagonal(base_);
   if (ops_.boundaryRows.rows() > 0) {

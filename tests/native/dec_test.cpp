@@ -135,6 +135,28 @@ TEST(OneFormLaplacian, ColumnsAssembledInPartsEqualTheProducts) {
             SparseMatrix(expected.pruned(0.0)).nonZeros() + (upper.diagonal().array() == 0.0).count());
 }
 
+// gamma's bi-Laplacian M + gamma M P^-1 M, assembled as its upper triangle through the weighted Gram matrix:
+// against Eigen's products of the same matrices, on a torus (closed) and on a jittered grid (free boundary).
+TEST(OneFormLaplacian, BiLaplacianUpperTriangleEqualsTheProducts) {
+  for (const bool closed : {true, false}) {
+    Built b = build(closed ? torus(24, 12, 2.0, 0.7) : flatGrid(12, 2.0, true));
+    if (!closed) {
+      jitterPlanar(b.mesh, 0.04, 5);
+      b.geometry = computeMeshGeometry(b.mesh, b.topology);
+    }
+    const SparseMatrix M =
+        oneFormLaplacian(buildOneFormOperators(b.mesh, b.topology, b.geometry, {}), b.geometry);
+    const double gamma = 0.1 * b.geometry.totalArea;
+    const Eigen::VectorXd inverseMass = b.geometry.whitneyMass1.cwiseInverse();
+    const Eigen::MatrixXd truth =
+        Eigen::MatrixXd(M) + gamma * (Eigen::MatrixXd(M) * inverseMass.asDiagonal() * Eigen::MatrixXd(M));
+    const Eigen::MatrixXd upper = Eigen::MatrixXd(biLaplacianUpper(M, b.geometry, gamma));
+    const Eigen::MatrixXd expected = truth.triangularView<Eigen::Upper>();
+    EXPECT_LT((upper - expected).cwiseAbs().maxCoeff(), 1e-12 * truth.diagonal().cwiseAbs().maxCoeff())
+        << closed;
+  }
+}
+
 TEST(OneFormLaplacian, ConstantFieldOnAFlatMeshHasZeroEnergyWithFreeBoundary) {
   Built b = build(flatGrid(10, 2.0, true));
   jitterPlanar(b.mesh, 0.04, 7);

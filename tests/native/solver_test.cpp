@@ -84,7 +84,7 @@ TEST(EdgeDissection, SeparatorsCutTheMatrixTheyAreMadeFor) {
   const MeshTopology t = buildTopology(m);
   const MeshGeometry g = computeMeshGeometry(m, t);
   const SparseMatrix M = oneFormLaplacian(buildOneFormOperators(m, t, g, {}), g);
-  const SparseMatrix B = biLaplacian(M, g, 0.1 * g.totalArea);
+  const SparseMatrix B = fullFromUpper(biLaplacianUpper(M, g, 0.1 * g.totalArea));
   auto dissect = [&](const SparseMatrix& A) { return dissectEdges(t.edgeVertices, t.numVertices, 500, A); };
   auto sidesDisconnected = [](const EdgeDissection& d, const SparseMatrix& A) {
     const int32_t top = static_cast<int32_t>(d.firstSet.size()) - 1;
@@ -734,9 +734,9 @@ double relativeDifference(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
 }
 
 // The solves of A (the designer's base matrix, shifted by 1e-4 of its mean diagonal: a kernel's tiny shift
-// would leave a condition number that magnifies any change in the order of the sums) factored on 2, 3 and 4 threads against the serial factorization's, before and after
-// rank updates, to `tolerance` relative; the factorization ran on the threads asked for, its subtrees
-// holding most of the work.
+// would leave a condition number that magnifies any change in the order of the sums) factored on 2, 3 and 4
+// threads against the serial factorization's, before and after rank updates, to `tolerance` relative; the
+// factorization ran on the threads asked for, its subtrees holding most of the work.
 void expectParallelFactorEqualsSerial(Designer& d, const std::string& where, double tolerance = 1e-12) {
   SparseMatrix A = d.baseMatrix();
   SparseMatrix shift(A.rows(), A.cols());
@@ -772,7 +772,8 @@ void expectParallelFactorEqualsSerial(Designer& d, const std::string& where, dou
     systems[0].solve(b, serial);
     for (size_t t = 1; t < systems.size(); ++t) {
       systems[t].solve(b, x);
-      EXPECT_LT(relativeDifference(x, serial), tolerance) << where << ", " << t + 1 << " threads, step " << step;
+      EXPECT_LT(relativeDifference(x, serial), tolerance)
+          << where << ", " << t + 1 << " threads, step " << step;
     }
   }
 }
@@ -812,9 +813,11 @@ TEST(Designer, AFailedFactorizationThreadFallsBackToOneWithTheReason) {
   design(d);
   EXPECT_EQ(d.stats().factorThreads, 1);
   EXPECT_NE(d.stats().singleThreadWhy.find("helper thread"), std::string::npos) << d.stats().singleThreadWhy;
-  EXPECT_NE(d.stats().factorKind.find("on one thread (a helper thread"), std::string::npos) << d.stats().factorKind;
+  EXPECT_NE(d.stats().factorKind.find("on one thread (a helper thread"), std::string::npos)
+      << d.stats().factorKind;
   const auto values = [](const Designer& x) {
-    return Eigen::Map<const Eigen::VectorXd>(x.oneForm().data(), static_cast<Eigen::Index>(x.oneForm().size()));
+    return Eigen::Map<const Eigen::VectorXd>(x.oneForm().data(),
+                                             static_cast<Eigen::Index>(x.oneForm().size()));
   };
   EXPECT_LT(relativeDifference(values(d), values(serial)), 1e-12);
   Designer again(icosphere(6));
