@@ -145,8 +145,10 @@ export class Designer {
     const s = this.session;
     setTimeout(async () => {
       if (s.disposed || !s.surface) return;
+      const { positions, triangles } = s.surface;
       const request = (op, args) => s.request(op, args);
-      const prepared = await prepareAtlasAhead(request, this.synthesis, s.surface, s.cornerUVs).catch(() => null);
+      const model = { positions, triangles, cornerUVs: s.cornerUVs };
+      const prepared = await prepareAtlasAhead(request, this.synthesis, model).catch(() => null);
       if (prepared !== false || this.textureWarmed || s.disposed) return;
       this.textureWarmed = true;
       s.request('warmUpTexture').catch(() => {});

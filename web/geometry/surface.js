@@ -14,9 +14,6 @@ export class Surface {
     this.nV = positions.length / 3;
     this.nF = triangles.length / 3;
     this.angleDefect = null;
-    // The curvature measure the texture's default settings follow (synthesis/auto-settings.js), set there when
-    // first asked: a pass over every edge.
-    this.shapeComplexity = null;
     if (derived) return void Object.assign(this, derived);
     this.#geometry();
     this.vertexNormals = vertexNormals(this.positions, this.triangles); // for lifting markers off the surface

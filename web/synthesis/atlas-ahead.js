@@ -10,12 +10,11 @@ import { atlasOptions } from './atlas-setup.js';
 export const AHEAD_FACES = 150_000;
 
 // request(op, args): the session's request to the core's worker; controller: the SynthesisController (its
-// options say the resolution and gutter a run will ask for); surface: the model's Surface; cornerUVs: its own.
+// options say the resolution and gutter a run will ask for); model: {positions, triangles, cornerUVs}.
 // Resolves with the last step's {done, cached}, or false for a model left alone.
-export async function prepareAtlasAhead(request, controller, surface, cornerUVs) {
-  const { positions, triangles } = surface;
+export async function prepareAtlasAhead(request, controller, { positions, triangles, cornerUVs }) {
   if (triangles.length / 3 > AHEAD_FACES) return false;
-  const options = atlasOptions(controller.options, surface);
+  const options = atlasOptions(controller.options);
   let r = await request('prepareTextureAtlas', [positions, triangles, cornerUVs ?? null, options]);
   while (!r.done) r = await request('prepareTextureAtlas', []);
   return r;

@@ -6,11 +6,22 @@
 import { Surface } from '../geometry/surface.js';
 import { chooseAtlas } from './atlas.js';
 import { cornerData } from './atlas-corners.js';
-import { shapeComplexity } from './auto-settings.js';
+import { defaultResolution, shapeComplexity } from './auto-settings.js';
 import { seamIndirection } from './seams.js';
 
 export function preparedAtlas(Module, input, options) {
   return finishSteps(preparedAtlasSteps(Module, input, options));
+}
+
+// The model's atlas options with an 'auto' resolution chosen (auto-settings.js defaultResolution, from the face
+// count and the shape complexity, which needs the model's Surface: both made here, in the worker, once per
+// request, and handed on to preparedAtlasSteps). Returns {options, shape: {surface, complexity} | null}.
+export function resolvedAtlasOptions({ positions, triangles }, options) {
+  if (options.resolution !== 'auto') return { options, shape: null };
+  const surface = new Surface(positions, triangles, null);
+  const complexity = shapeComplexity(surface);
+  const resolution = defaultResolution(triangles.length / 3, complexity);
+  return { options: { ...options, resolution }, shape: { surface, complexity } };
 }
 
 // The rest of a generator's steps, at once; its value.
@@ -22,8 +33,9 @@ export function finishSteps(steps) {
 }
 
 // The same, a step at a time (a generator returning the atlas): the worker prepares a model's atlas ahead
-// between other requests (worker-ops.js prepareTextureAtlas). workerSteps: each step's own time.
-export function* preparedAtlasSteps(Module, { positions, triangles, cornerUVs }, options) {
+// between other requests (worker-ops.js prepareTextureAtlas). workerSteps: each step's own time. options: with a
+// numeric resolution; shape: resolvedAtlasOptions()'s, or null to make them here.
+export function* preparedAtlasSteps(Module, { positions, triangles, cornerUVs }, options, shape = null) {
   let t = performance.now();
   const took = () => -t + (t = performance.now());
   const atlas = chooseAtlas(Module, { positions, triangles, cornerUVs }, options);
@@ -32,8 +44,9 @@ export function* preparedAtlasSteps(Module, { positions, triangles, cornerUVs },
   t = performance.now();
   atlas.corners = cornerData(positions, triangles, atlas.cornerUVs);
   atlas.workerSteps.cornersMs = took();
-  const surface = new Surface(positions, triangles, null);
-  atlas.complexity = shapeComplexity(surface);
+  const surface = shape?.surface ?? new Surface(positions, triangles, null);
+  atlas.complexity = shape?.complexity ?? shapeComplexity(surface);
+  atlas.resolution = options.resolution;
   atlas.workerSteps.complexityMs = took();
   yield;
   t = performance.now();

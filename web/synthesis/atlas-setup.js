@@ -3,32 +3,27 @@
 // core's worker (which keeps it per mesh, worker-ops.js), its corner data rasterized on the synthesizer's GPU
 // context, the textured model's geometry built for it. Each step is a phase of the run's clock
 // (phase-clock.js). Owns nothing: the controller keeps the atlas and the textured model.
-import { defaultResolution, shapeComplexity } from './auto-settings.js';
 import { DEFAULTS } from './synthesizer.js';
 import { TexturedModel } from './render.js';
 
-// The atlas's {resolution, gutter} for a model under the controller's options (the same for a run and for the
-// atlas prepared ahead, atlas-ahead.js, so that the run finds it kept). surface: the model's Surface (its face
-// count and, for 'auto', its shape complexity: computed once per Surface, a pass over its edges).
-export function atlasOptions(options, surface) {
-  const numFaces = surface.triangles.length / 3;
-  const auto = options.resolution === 'auto';
-  if (auto) surface.shapeComplexity ??= shapeComplexity(surface);
-  const resolution = auto ? defaultResolution(numFaces, surface.shapeComplexity) : options.resolution;
-  return { resolution, gutter: options.gutter ?? DEFAULTS.gutter };
+// The atlas's {resolution, gutter} under the controller's options, as asked of the core's worker (the same for a
+// run and for the atlas prepared ahead, atlas-ahead.js, so that the run finds it kept): an 'auto' resolution is
+// chosen there, from the model (atlas-prepared.js resolvedAtlasOptions), and comes back as the atlas's.
+export function atlasOptions(options) {
+  return { resolution: options.resolution, gutter: options.gutter ?? DEFAULTS.gutter };
 }
 
 // c: the SynthesisController. Resolves with the atlas (c.atlas, reused while the model, resolution and gutter
 // stay the same).
 export async function setUpAtlas(c, model, clock) {
-  const { resolution, gutter } = atlasOptions(c.options, model.surface);
+  const { resolution: asked, gutter } = atlasOptions(c.options);
   const held = c.atlas;
-  if (held && held.key === model.key && held.resolution === resolution && held.gutter === gutter) return held;
+  if (held && held.key === model.key && held.asked === asked && held.gutter === gutter) return held;
   // Generating an atlas takes up to seconds on a big model: the element's core worker does it, so the page
   // keeps drawing and taking input; the synthesis programs compile meanwhile (Synthesizer.programsReady, asked
   // once the request is out: its first look at them may wait for the GPU process).
   const sentAt = performance.timeOrigin + performance.now();
-  const request = c.computeAtlas(model, { resolution, gutter });
+  const request = c.computeAtlas(model, { resolution: asked, gutter });
   const programs = c.ensureSynth().programsReady();
   programs.catch(() => {}); // a failure is thrown by the await below
   const chosen = await request;
@@ -44,6 +39,7 @@ export async function setUpAtlas(c, model, clock) {
   clock.mark('shader compilation (waited for)');
   // The raster takes the corners and seams; the atlas kept here is the one the exports and stats read.
   const { corners = null, seams = null, ...atlas } = chosen;
+  const { resolution } = atlas;
   const { positions, triangles, neighbour } = model.surface;
   const spec = { resolution, positions, triangles, neighbour, cornerUVs: atlas.cornerUVs, corners, seams };
   if (c.options.interleave) await c.ensureSynth().drained(clock, "waits for the GPU (the view's frames)");
@@ -54,7 +50,7 @@ export async function setUpAtlas(c, model, clock) {
       task = performance.now();
     }
   clock.mark('atlas corner data to the GPU');
-  c.atlas = { key: model.key, resolution, gutter, ...atlas };
+  c.atlas = { key: model.key, asked, gutter, ...atlas };
   if (!c.render) c.render = new TexturedModel(c.viewer);
   // Before the synthesis, not beside it: the model's program is compiled here, and without
   // KHR_parallel_shader_compile that waits for the GPU process, which in the view's context would first finish

@@ -14,7 +14,7 @@ export function runOptions(options, model, atlas, exemplarSize, preview) {
   for (const k of OPTION_KEYS) if (options[k] !== undefined) synthOptions[k] = options[k];
   const coverage = atlas.stats.coverage ?? atlas.stats.check?.coverage ?? 0.5;
   if (synthOptions.featureScale === 'auto') {
-    atlas.complexity ??= model.surface.shapeComplexity ?? shapeComplexity(model.surface);
+    atlas.complexity ??= shapeComplexity(model.surface);
     synthOptions.featureScale = defaultFeatureScale(atlas.resolution, coverage, exemplarSize, atlas.complexity);
   }
   if (preview) synthOptions.finestLevel = 1;
