@@ -1,0 +1,353 @@
+#include "quad/quad_extraction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "mesh/mesh_geometry.h"
+
+namespace tvf {
+namespace {
+
+struct Vec2 {
+  double u, v;
+};
+Vec2 operator-(Vec2 a, Vec2 b) {
+  return {a.u - b.u, a.v - b.v};
+}
+Vec2 operator+(Vec2 a, Vec2 b) {
+  return {a.u + b.u, a.v + b.v};
+}
+double cross(Vec2 a, Vec2 b) {
+  return a.u * b.v - a.v * b.u;
+}
+
+// The axis directions, counter-clockwise: +u, +v, -u, -v; a port of a regular grid point is one of them.
+constexpr int kAxis[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+int axisIndex(int du, int dv) {
+  for (int k = 0; k < 4; ++k)
+    if (kAxis[k][0] == du && kAxis[k][1] == dv) return k;
+  return -1;
+}
+
+struct GridPoint {
+  int32_t face;      // the face it lies in (a cone: the first of its fan)
+  int32_t fan = -1;  // a cone's fan, -1 inside a face
+  double bary[3];
+  long iu = 0, iv = 0;  // its (u, v) in its face's chart (inside a face)
+};
+
+// A cone's port: the direction (du, dv) in `face`'s chart.
+struct ConePort {
+  int32_t face;
+  int du, dv;
+};
+
+struct PortRef {
+  int32_t point = -1;
+  int port = -1;
+  bool operator==(const PortRef& o) const { return point == o.point && port == o.port; }
+};
+
+class Extractor {
+ public:
+  Extractor(const SurfaceMesh& mesh, const MeshTopology& t, const CrossFieldCut& cut,
+            const SeamlessParametrization& p)
+      : mesh_(mesh), t_(t), cut_(cut), uv_(p.cornerUV), shift_(p.edgeShift) {}
+
+  QuadExtraction run() {
+    findCones();
+    findFacePoints();
+    traceAll();
+    return assemble();
+  }
+
+ private:
+  Vec2 corner(int32_t f, int k) const { return {uv_[6 * f + 2 * k], uv_[6 * f + 2 * k + 1]}; }
+  double twiceArea(int32_t f) const {
+    return cross(corner(f, 1) - corner(f, 0), corner(f, 2) - corner(f, 0));
+  }
+  // Barycentric coordinates of x in f's (u, v) triangle.
+  void barycentric(int32_t f, Vec2 x, double l[3]) const {
+    const double a = twiceArea(f);
+    for (int k = 0; k < 3; ++k)
+      l[k] = cross(corner(f, (k + 2) % 3) - corner(f, (k + 1) % 3), x - corner(f, (k + 1) % 3)) / a;
+  }
+  bool isCone(int32_t f, int k) const { return cut_.fanTurns[cut_.copyFan[cut_.cornerCopy[3 * f + k]]] != 0; }
+
+  // Carries a point and a direction from f's chart into the chart of g across edge e.
+  void carry(int32_t e, int32_t f, Vec2& x, int& du, int& dv, Vec2* target) const {
+    if (!cut_.cut[e]) return;
+    const int r = cut_.matching[e];
+    const Vec2 s{shift_[2 * e], shift_[2 * e + 1]};
+    auto apply = [&](Vec2 y, bool point) {
+      Vec2 o;
+      if (t_.edgeFaces[2 * e] == f) {
+        quarterTurn2(-r, y.u, y.v, o.u, o.v);
+        return point ? o + s : o;
+      }
+      quarterTurn2(r, point ? y.u - s.u : y.u, point ? y.v - s.v : y.v, o.u, o.v);
+      return o;
+    };
+    x = apply(x, true);
+    if (target) *target = apply(*target, true);
+    const Vec2 d = apply({static_cast<double>(du), static_cast<double>(dv)}, false);
+    du = static_cast<int>(std::lround(d.u));
+    dv = static_cast<int>(std::lround(d.v));
+  }
+
+  void findCones() {
+    const int32_t numFans = static_cast<int32_t>(cut_.fanTurns.size());
+    for (int32_t fan = 0; fan < numFans; ++fan) {
+      if (!cut_.fanTurns[fan]) continue;
+      const int32_t v = cut_.fanVertex[fan];
+      GridPoint p{cut_.fanFaceList[cut_.fanFaceStart[fan]], fan, {1, 0, 0}};
+      const int32_t id = static_cast<int32_t>(points_.size());
+      points_.push_back(p);
+      ports_.emplace_back();
+      std::vector<ConePort>& ports = conePorts_[id];
+      for (int32_t k = cut_.fanFaceStart[fan]; k < cut_.fanFaceStart[fan + 1]; ++k) {
+        const int32_t f = cut_.fanFaceList[k];
+        int c = 0;
+        while (mesh_.triangles[3 * f + c] != v) ++c;
+        coneAt_[3 * f + c] = id;
+        const Vec2 o = corner(f, c), a = corner(f, (c + 1) % 3) - o, b = corner(f, (c + 2) % 3) - o;
+        if (!(cross(a, b) > 0)) continue;  // a flipped face's wedge holds no port
+        std::vector<std::pair<double, int>> inWedge;
+        for (int d = 0; d < 4; ++d) {
+          const Vec2 dir{static_cast<double>(kAxis[d][0]), static_cast<double>(kAxis[d][1])};
+          const bool fromA = cross(a, dir) > 0 || (cross(a, dir) == 0 && a.u * dir.u + a.v * dir.v > 0);
+          if (fromA && cross(dir, b) > 0)
+            inWedge.emplace_back(std::atan2(cross(a, dir), a.u * dir.u + a.v * dir.v), d);
+        }
+        std::sort(inWedge.begin(), inWedge.end());
+        for (const auto& [angle, d] : inWedge) ports.push_back({f, kAxis[d][0], kAxis[d][1]});
+      }
+      ports_.back().assign(ports.size(), PortRef{});
+    }
+  }
+
+  void findFacePoints() {
+    faceFirstPoint_.assign(t_.numFaces + 1, 0);
+    for (int32_t f = 0; f < t_.numFaces; ++f) {
+      faceFirstPoint_[f] = static_cast<int32_t>(points_.size());
+      if (!(twiceArea(f) > 0)) continue;
+      double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 q = corner(f, k);
+        lo[0] = std::min(lo[0], q.u), hi[0] = std::max(hi[0], q.u);
+        lo[1] = std::min(lo[1], q.v), hi[1] = std::max(hi[1], q.v);
+      }
+      for (long i = static_cast<long>(std::ceil(lo[0])); i <= static_cast<long>(std::floor(hi[0])); ++i)
+        for (long j = static_cast<long>(std::ceil(lo[1])); j <= static_cast<long>(std::floor(hi[1])); ++j)
+          addIfInside(f, i, j);
+    }
+    faceFirstPoint_[t_.numFaces] = static_cast<int32_t>(points_.size());
+  }
+
+  void addIfInside(int32_t f, long i, long j) {
+    double l[3];
+    barycentric(f, {static_cast<double>(i), static_cast<double>(j)}, l);
+    int zeros = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (l[k] < 0) return;
+      if (l[k] == 0) {
+        ++zeros;
+        // On an edge: the point belongs to the edge's first face.
+        const int32_t e = t_.edgeOf(f, (k + 1) % 3);
+        if (t_.edgeFaces[2 * e] != f) return;
+      }
+    }
+    if (zeros > 1) return;  // a corner: only cones sit there, found with their fans
+    GridPoint p{f, -1, {l[0], l[1], l[2]}, i, j};
+    points_.push_back(p);
+    ports_.emplace_back(4, PortRef{});
+  }
+
+  // The grid point at integer (u, v) `x` of f's chart, or -1.
+  int32_t pointAt(int32_t f, Vec2 x) const {
+    const long i = std::lround(x.u), j = std::lround(x.v);
+    for (int32_t k = faceFirstPoint_[f]; k < faceFirstPoint_[f + 1]; ++k)
+      if (points_[k].iu == i && points_[k].iv == j) return k;
+    return -1;
+  }
+
+  // The port of cone `id` leaving along (du, dv) in f's chart; -1 when f's wedge does not hold it.
+  int conePort(int32_t id, int32_t f, int du, int dv) const {
+    const std::vector<ConePort>& ports = conePorts_.at(id);
+    for (std::size_t k = 0; k < ports.size(); ++k)
+      if (ports[k].face == f && ports[k].du == du && ports[k].dv == dv) return static_cast<int>(k);
+    return -1;
+  }
+
+  // Arrival at cone `id` through face f heading (du, dv): the port back along the walk. When the walk came
+  // in along an edge of f, the port lies in a neighbour of the fan.
+  PortRef arriveAtCone(int32_t id, int32_t f, int du, int dv) const {
+    int port = conePort(id, f, -du, -dv);
+    if (port >= 0) return {id, port};
+    for (int c = 0; c < 3; ++c) {
+      const int32_t e = t_.edgeOf(f, c), g = t_.otherFace(e, f);
+      if (g < 0) continue;
+      Vec2 x{0, 0};
+      int bu = -du, bv = -dv;
+      carry(e, f, x, bu, bv, nullptr);
+      port = conePort(id, g, bu, bv);
+      if (port >= 0) return {id, port};
+    }
+    return {};
+  }
+
+  // Walks from x in f along (du, dv) to the grid point at `target`: the port it arrives through.
+  PortRef trace(int32_t f, Vec2 x, int du, int dv, Vec2 target) const {
+    const int maxSteps = 64 + 4 * static_cast<int>(std::sqrt(static_cast<double>(t_.numFaces)));
+    for (int step = 0; step < maxSteps; ++step) {
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 q = corner(f, k);
+        if (isCone(f, k) && std::abs(q.u - target.u) < 1e-6 && std::abs(q.v - target.v) < 1e-6)
+          return arriveAtCone(coneAt_.at(3 * f + k), f, du, dv);
+      }
+      double lt[3], lx[3];
+      barycentric(f, target, lt);
+      if (lt[0] >= -1e-12 && lt[1] >= -1e-12 && lt[2] >= -1e-12) return arriveAtPoint(f, target, du, dv, lt);
+      barycentric(f, x, lx);
+      int exit = -1;
+      double best = 1e300;
+      for (int k = 0; k < 3; ++k) {
+        if (!(lt[k] < 0)) continue;
+        const double s = std::max(0.0, lx[k]) / (std::max(0.0, lx[k]) - lt[k]);
+        if (s < best) best = s, exit = k;
+      }
+      if (exit < 0) return {};
+      const int32_t e = t_.edgeOf(f, (exit + 1) % 3), g = t_.otherFace(e, f);
+      if (g < 0) return {};
+      x = x + Vec2{best * (target.u - x.u), best * (target.v - x.v)};
+      carry(e, f, x, du, dv, &target);
+      f = g;
+    }
+    return {};
+  }
+
+  PortRef arriveAtPoint(int32_t f, Vec2 target, int du, int dv, const double lt[3]) const {
+    int32_t id = pointAt(f, target);
+    if (id >= 0) return {id, axisIndex(-du, -dv)};
+    // On an edge: the point was given to the face across it.
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(lt[k]) > 1e-9) continue;
+      const int32_t e = t_.edgeOf(f, (k + 1) % 3), g = t_.otherFace(e, f);
+      if (g < 0) continue;
+      Vec2 x = target;
+      int bu = du, bv = dv;
+      carry(e, f, x, bu, bv, nullptr);
+      id = pointAt(g, {std::round(x.u), std::round(x.v)});
+      if (id >= 0) return {id, axisIndex(-bu, -bv)};
+    }
+    return {};
+  }
+
+  void traceAll() {
+    for (int32_t id = 0; id < static_cast<int32_t>(points_.size()); ++id) {
+      const GridPoint& p = points_[id];
+      for (std::size_t port = 0; port < ports_[id].size(); ++port) {
+        int32_t f;
+        int du, dv;
+        Vec2 x;
+        if (p.fan >= 0) {
+          const ConePort& c = conePorts_.at(id)[port];
+          f = c.face, du = c.du, dv = c.dv;
+          int k = 0;
+          while (coneAtCorner(f, k) != id) ++k;
+          x = corner(f, k);
+          x = {std::round(x.u), std::round(x.v)};
+        } else {
+          f = p.face, du = kAxis[port][0], dv = kAxis[port][1];
+          x = {static_cast<double>(p.iu), static_cast<double>(p.iv)};
+        }
+        ports_[id][port] = trace(f, x, du, dv, {x.u + du, x.v + dv});
+        if (ports_[id][port].point < 0) ++failedTraces_;
+      }
+    }
+  }
+
+  int32_t coneAtCorner(int32_t f, int k) const {
+    const auto it = coneAt_.find(3 * f + k);
+    return it == coneAt_.end() ? -1 : it->second;
+  }
+
+  QuadExtraction assemble() {
+    QuadExtraction out;
+    out.failedTraces = failedTraces_;
+    // An edge is kept only when both its walks found each other.
+    auto linked = [&](PortRef a) {
+      const PortRef b = ports_[a.point][a.port];
+      return b.point >= 0 && b.port >= 0 && ports_[b.point][b.port] == a;
+    };
+    std::vector<std::vector<uint8_t>> used(points_.size());
+    for (std::size_t id = 0; id < points_.size(); ++id) used[id].assign(ports_[id].size(), 0);
+    std::vector<int32_t> remap(points_.size(), -1), loop;
+    for (int32_t id = 0; id < static_cast<int32_t>(points_.size()); ++id)
+      for (int port = 0; port < static_cast<int>(ports_[id].size()); ++port) {
+        if (used[id][port] || !linked({id, port})) continue;
+        loop.clear();
+        PortRef h{id, port};
+        bool closed = false;
+        for (int k = 0; k < 16 && linked(h) && !used[h.point][h.port]; ++k) {
+          used[h.point][h.port] = 1;
+          loop.push_back(h.point);
+          const PortRef b = ports_[h.point][h.port];
+          const int valence = static_cast<int>(ports_[b.point].size());
+          h = {b.point, (b.port + valence - 1) % valence};
+          if (h == PortRef{id, port}) {
+            closed = true;
+            break;
+          }
+        }
+        if (!closed || loop.size() < 3) {
+          ++out.openLoops;
+          continue;
+        }
+        for (int32_t v : loop) {
+          if (remap[v] < 0) remap[v] = addVertex(out.mesh, v);
+          out.mesh.faceVertices.push_back(remap[v]);
+        }
+        out.mesh.faceStart.push_back(static_cast<int32_t>(out.mesh.faceVertices.size()));
+      }
+    out.mesh.faceStart.insert(out.mesh.faceStart.begin(), 0);
+    return out;
+  }
+
+  int32_t addVertex(QuadMesh& q, int32_t id) const {
+    const GridPoint& p = points_[id];
+    Eigen::Vector3d x;
+    if (p.fan >= 0) {
+      x = vertexPosition(mesh_, cut_.fanVertex[p.fan]);
+    } else {
+      Eigen::Vector3d c[3];
+      facePositions(mesh_, p.face, c);
+      x = p.bary[0] * c[0] + p.bary[1] * c[1] + p.bary[2] * c[2];
+    }
+    q.positions.insert(q.positions.end(), {x.x(), x.y(), x.z()});
+    q.vertexFace.push_back(p.face);
+    return q.numVertices() - 1;
+  }
+
+  const SurfaceMesh& mesh_;
+  const MeshTopology& t_;
+  const CrossFieldCut& cut_;
+  const std::vector<double>& uv_;
+  const std::vector<double>& shift_;
+  std::vector<GridPoint> points_;
+  std::vector<std::vector<PortRef>> ports_;  // per point and port: where its iso-line arrives
+  std::map<int32_t, std::vector<ConePort>> conePorts_;
+  std::map<int32_t, int32_t> coneAt_;  // face corner -> cone point
+  std::vector<int32_t> faceFirstPoint_;
+  int32_t failedTraces_ = 0;
+};
+
+}  // namespace
+
+QuadExtraction extractQuads(const SurfaceMesh& mesh, const MeshTopology& topology, const CrossFieldCut& cut,
+                            const SeamlessParametrization& parametrization) {
+  return Extractor(mesh, topology, cut, parametrization).run();
+}
+
+}  // namespace tvf

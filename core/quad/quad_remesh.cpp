@@ -1,0 +1,102 @@
+#include "quad/quad_remesh.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "common/input_error.h"
+#include "field/singularities.h"
+#include "quad/cross_field_cut.h"
+#include "quad/quad_extraction.h"
+#include "quad/seamless_parametrization.h"
+
+namespace tvf {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+constexpr double kMostQuads = 4e6;
+
+double chosenEdgeLength(const MeshGeometry& g, const QuadRemeshOptions& o) {
+  if (o.edgeLength != 0) {
+    if (!(o.edgeLength > 0) || !std::isfinite(o.edgeLength))
+      throw InputError("quad mesh: the edge length must be a positive number");
+    if (g.totalArea / (o.edgeLength * o.edgeLength) > kMostQuads)
+      throw InputError("quad mesh: an edge length of " + std::to_string(o.edgeLength) +
+                       " would make more than 4 million quads");
+    return o.edgeLength;
+  }
+  if (o.targetQuads <= 0) throw InputError("quad mesh: give an edge length or a number of quads");
+  if (o.targetQuads > kMostQuads) throw InputError("quad mesh: at most 4 million quads");
+  return std::sqrt(g.totalArea / static_cast<double>(o.targetQuads));
+}
+
+void checkInputs(const MeshTopology& t, const std::vector<double>& faceDirections, int symmetry) {
+  if (symmetry != 4)
+    throw InputError("quad meshes need a cross field (symmetry 4); this field has symmetry " +
+                     std::to_string(symmetry));
+  if (!t.boundaryLoops.empty())
+    throw InputError("quad meshes need a closed surface: this model has " +
+                     std::to_string(t.boundaryLoops.size()) + " boundary loop(s)");
+  if (faceDirections.size() != 3 * static_cast<std::size_t>(t.numFaces))
+    throw InputError("quad mesh: expected 3 numbers per face for the field's directions");
+  for (double x : faceDirections)
+    if (!std::isfinite(x)) throw InputError("quad mesh: the field's directions are not finite numbers");
+}
+
+}  // namespace
+
+QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                            const std::vector<double>& faceDirections, int symmetry,
+                            const QuadRemeshOptions& options, const RemeshProgress& progress) {
+  const Clock::time_point start = Clock::now();
+  checkInputs(t, faceDirections, symmetry);
+  QuadRemeshResult out;
+  out.edgeLength = chosenEdgeLength(g, options);
+  auto report = [&](const char* stage, double fraction) {
+    if (progress && !progress(stage, fraction)) throw RemeshCancelled();
+  };
+  report("cutting", 0.0);
+  Clock::time_point stage = Clock::now();
+  const CrossFieldCut cut = cutCrossField(mesh, t, g, faceDirections);
+  out.cones = cut.cones;
+  out.cutEdges = cut.cutEdges;
+  out.cutMs = msSince(stage);
+
+  report("parametrizing", 0.05);
+  stage = Clock::now();
+  bool stopped = false;
+  const SeamlessParametrization param =
+      parametrizeSeamless(mesh, t, g, cut, out.edgeLength, [&](double fraction) {
+        stopped = progress && !progress("parametrizing", 0.05 + 0.7 * fraction);
+        return !stopped;
+      });
+  if (stopped) throw RemeshCancelled();
+  out.flippedTriangles = param.flippedFaces;
+  out.integerUnknowns = param.integerUnknowns;
+  out.roundingSolves = param.roundingSolves;
+  out.parametrizeMs = msSince(stage);
+
+  report("extracting", 0.75);
+  stage = Clock::now();
+  QuadExtraction extraction = extractQuads(mesh, t, cut, param);
+  out.failedTraces = extraction.failedTraces;
+  out.openLoops = extraction.openLoops;
+  out.mesh = std::move(extraction.mesh);
+  out.extractMs = msSince(stage);
+  if (out.mesh.numFaces() == 0)
+    throw InputError("quad mesh: no quad could be made at this edge length; try a smaller one");
+
+  report("measuring", 0.9);
+  stage = Clock::now();
+  const std::vector<Singularity> singularities = findSingularities(mesh, t, g, faceDirections, symmetry);
+  out.stats = measureQuadMesh(out.mesh, mesh, g, faceDirections, symmetry, singularities, out.edgeLength);
+  out.measureMs = msSince(stage);
+  out.totalMs = msSince(start);
+  report("done", 1.0);
+  return out;
+}
+
+}  // namespace tvf

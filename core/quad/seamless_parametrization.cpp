@@ -1,0 +1,334 @@
+#include "quad/seamless_parametrization.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "common/input_error.h"
+#include "common/sparse_matrix.h"
+#include "mesh/mesh_geometry.h"
+#include "solver/spd_solve.h"
+
+namespace tvf {
+namespace {
+
+// A linear combination of integer unknowns with integer coefficients: (unknown, coefficient), by unknown.
+using Combo = std::vector<std::pair<int32_t, int64_t>>;
+
+Combo sum(const Combo& a, int64_t sa, const Combo& b, int64_t sb) {
+  Combo out;
+  std::size_t i = 0, j = 0;
+  while (i < a.size() || j < b.size()) {
+    if (j == b.size() || (i < a.size() && a[i].first < b[j].first)) {
+      out.emplace_back(a[i].first, sa * a[i].second), ++i;
+    } else if (i == a.size() || b[j].first < a[i].first) {
+      out.emplace_back(b[j].first, sb * b[j].second), ++j;
+    } else {
+      const int64_t c = sa * a[i].second + sb * b[j].second;
+      if (c) out.emplace_back(a[i].first, c);
+      ++i, ++j;
+    }
+  }
+  return out;
+}
+
+// A point (u, v) made of integer combinations.
+struct ComboPoint {
+  Combo u, v;
+};
+
+ComboPoint turned(int k, const ComboPoint& p) {
+  switch (((k % 4) + 4) % 4) {
+    case 0:
+      return p;
+    case 1:
+      return {sum(p.v, -1, {}, 0), p.u};
+    case 2:
+      return {sum(p.u, -1, {}, 0), sum(p.v, -1, {}, 0)};
+    default:
+      return {p.v, sum(p.u, -1, {}, 0)};
+  }
+}
+
+ComboPoint added(const ComboPoint& a, const ComboPoint& b, int64_t sb) {
+  return {sum(a.u, 1, b.u, sb), sum(a.v, 1, b.v, sb)};
+}
+
+// Integer unknowns tied by equations sum c_i x_i = 0: each equation solved for one unknown of coefficient
+// +-1 in terms of the others (substituted lazily, path-compressed).
+class IntegerElimination {
+ public:
+  explicit IntegerElimination(int32_t n) : expression_(n), eliminated_(n, 0) {}
+
+  Combo resolve(int32_t x) {
+    if (!eliminated_[x]) return {{x, 1}};
+    Combo r;
+    for (const auto& [y, c] : expression_[x]) r = sum(r, 1, resolve(y), c);
+    expression_[x] = r;
+    return r;
+  }
+  Combo resolve(const Combo& c) {
+    Combo r;
+    for (const auto& [y, k] : c) r = sum(r, 1, resolve(y), k);
+    return r;
+  }
+  // Returns false when the equation has no coefficient +-1 (it is then left out).
+  bool add(const Combo& equation, int32_t preferBelow) {
+    const Combo row = resolve(equation);
+    if (row.empty()) return true;
+    int best = -1;
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      if (std::abs(row[i].second) != 1) continue;
+      if (best < 0 || (row[i].first < preferBelow && row[best].first >= preferBelow))
+        best = static_cast<int>(i);
+    }
+    if (best < 0) return false;
+    const int32_t x = row[best].first;
+    const int64_t s = row[best].second;
+    Combo e;
+    for (const auto& [y, c] : row)
+      if (y != x) e.emplace_back(y, -s * c);
+    expression_[x] = e;
+    eliminated_[x] = 1;
+    return true;
+  }
+  bool eliminated(int32_t x) const { return eliminated_[x] != 0; }
+
+ private:
+  std::vector<Combo> expression_;
+  std::vector<uint8_t> eliminated_;
+};
+
+// A coordinate as a sparse row over the solve's unknowns z.
+using Row = std::vector<std::pair<int32_t, double>>;
+
+struct Layout {
+  std::vector<int32_t> fanBase;    // per fan: z index of its base's u (v next), -1 for cones
+  std::vector<int32_t> integerZ;   // per integer unknown: its z index, -1 when eliminated
+  std::vector<int32_t> integerOf;  // per z: the integer unknown, -1 for a continuous one
+  int32_t size = 0;
+};
+
+Row rowOf(const Combo& c, const Layout& layout) {
+  Row r;
+  for (const auto& [x, k] : c) r.emplace_back(layout.integerZ[x], static_cast<double>(k));
+  return r;
+}
+
+// Each copy's (u, v) as rows over z: its fan's base turned, plus its integer combination.
+struct CopyRows {
+  std::vector<Row> u, v;
+};
+
+}  // namespace
+
+SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshTopology& t,
+                                            const MeshGeometry& g, const CrossFieldCut& cut, double h,
+                                            const ParametrizationProgress& progress) {
+  SeamlessParametrization out;
+  const int32_t numFans = static_cast<int32_t>(cut.fanTurns.size());
+  const int32_t numCopies = static_cast<int32_t>(cut.copyVertex.size());
+  // Integer unknowns: t_e for each cut edge, then each cone's position.
+  std::vector<int32_t> cutIndex(t.numEdges, -1), coneIndex(numFans, -1);
+  int32_t numCut = 0, numCones = 0;
+  for (int32_t e = 0; e < t.numEdges; ++e)
+    if (cut.cut[e]) cutIndex[e] = numCut++;
+  for (int32_t fan = 0; fan < numFans; ++fan)
+    if (cut.fanTurns[fan]) coneIndex[fan] = numCones++;
+  const int32_t numIntegers = 2 * (numCut + numCones);
+  auto shiftOf = [&](int32_t e) { return ComboPoint{{{2 * cutIndex[e], 1}}, {{2 * cutIndex[e] + 1, 1}}}; };
+
+  // Each copy relative to its fan's base: quarter turns k and an integer combination.
+  std::vector<int> copyTurns(numCopies, 0);
+  std::vector<ComboPoint> copyShift(numCopies);
+  auto across = [&](int32_t copy, int& turns, ComboPoint& shift) {
+    const int32_t e = cut.copyEdge[copy], from = cut.copyFromFace[copy], prev = cut.copyPrevious[copy];
+    const int r = cut.matching[e];
+    if (t.edgeFaces[2 * e] == from) {
+      turns = copyTurns[prev] - r;
+      shift = added(turned(-r, copyShift[prev]), shiftOf(e), 1);
+    } else {
+      turns = copyTurns[prev] + r;
+      shift = turned(r, added(copyShift[prev], shiftOf(e), -1));
+    }
+  };
+  IntegerElimination elimination(numIntegers);
+  for (int32_t fan = 0; fan < numFans; ++fan) {
+    const int32_t first = cut.fanFirstCopy[fan], end = cut.fanFirstCopy[fan + 1];
+    for (int32_t c = first + 1; c < end; ++c) across(c, copyTurns[c], copyShift[c]);
+    if (cut.copyEdge[first] < 0) continue;
+    // Back round to the first copy: R^k base + shift = base.
+    int k = 0;
+    ComboPoint shift;
+    across(first, k, shift);
+    ComboPoint condition = shift;
+    if (coneIndex[fan] >= 0) {
+      const ComboPoint c{{{numIntegers - 2 * numCones + 2 * coneIndex[fan], 1}},
+                         {{numIntegers - 2 * numCones + 2 * coneIndex[fan] + 1, 1}}};
+      condition = added(added(turned(k, c), c, -1), shift, 1);
+    }
+    for (const Combo* row : {&condition.u, &condition.v})
+      if (!elimination.add(*row, 2 * numCut)) ++out.unenforcedConditions;
+  }
+
+  // The solve's unknowns: each regular fan's base, then the integer unknowns left free.
+  Layout layout;
+  layout.fanBase.assign(numFans, -1);
+  for (int32_t fan = 0; fan < numFans; ++fan)
+    if (coneIndex[fan] < 0) layout.fanBase[fan] = layout.size, layout.size += 2;
+  layout.integerZ.assign(numIntegers, -1);
+  for (int32_t x = 0; x < numIntegers; ++x)
+    if (!elimination.eliminated(x)) {
+      layout.integerZ[x] = layout.size++;
+      ++out.integerUnknowns;
+    }
+  layout.integerOf.assign(layout.size, -1);
+  for (int32_t x = 0; x < numIntegers; ++x)
+    if (layout.integerZ[x] >= 0) layout.integerOf[layout.integerZ[x]] = x;
+
+  CopyRows rows;
+  rows.u.resize(numCopies);
+  rows.v.resize(numCopies);
+  for (int32_t c = 0; c < numCopies; ++c) {
+    const int32_t fan = cut.copyFan[c];
+    ComboPoint base;
+    Row bu, bv;
+    if (coneIndex[fan] >= 0) {
+      const int32_t x = numIntegers - 2 * numCones + 2 * coneIndex[fan];
+      base = {{{x, 1}}, {{x + 1, 1}}};
+    } else {
+      bu = {{layout.fanBase[fan], 1.0}};
+      bv = {{layout.fanBase[fan] + 1, 1.0}};
+    }
+    const ComboPoint turnedBase = turned(copyTurns[c], base);
+    const ComboPoint whole = added(turnedBase, copyShift[c], 1);
+    Row u = rowOf(elimination.resolve(whole.u), layout), v = rowOf(elimination.resolve(whole.v), layout);
+    if (coneIndex[fan] < 0) {
+      // R^k (bu, bv): the continuous base turned.
+      const int k = ((copyTurns[c] % 4) + 4) % 4;
+      const std::pair<int32_t, double> U{layout.fanBase[fan], 1.0}, V{layout.fanBase[fan] + 1, 1.0};
+      const std::pair<int32_t, double> mU{U.first, -1.0}, mV{V.first, -1.0};
+      const std::pair<int32_t, double> tu[4] = {U, mV, mU, V}, tv[4] = {V, U, mV, mU};
+      u.push_back(tu[k]);
+      v.push_back(tv[k]);
+    }
+    rows.u[c] = std::move(u);
+    rows.v[c] = std::move(v);
+  }
+
+  // The least-squares energy sum_f A_f (|grad u - X/h|^2 + |grad v - Y/h|^2) as z^T K z - 2 b^T z + const.
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(layout.size);
+  double constant = 0;
+  for (int32_t f = 0; f < t.numFaces; ++f) {
+    Eigen::Vector3d p[3], grad[3];
+    facePositions(mesh, f, p);
+    const double area = g.faceArea[f];
+    if (!(area > 0)) continue;
+    barycentricGradients(p, grad);
+    const Eigen::Vector3d n(&g.faceNormal[3 * f]), x(&cut.direction[3 * f]);
+    const Eigen::Vector3d target[2] = {x / h, n.cross(x) / h};
+    for (int comp = 0; comp < 2; ++comp) {
+      constant += area * target[comp].squaredNorm();
+      for (int j = 0; j < 3; ++j) {
+        const Row& rj = (comp ? rows.v : rows.u)[cut.cornerCopy[3 * f + j]];
+        const double gj = area * grad[j].dot(target[comp]);
+        for (const auto& [zj, cj] : rj) b[zj] += gj * cj;
+        for (int k = 0; k < 3; ++k) {
+          const Row& rk = (comp ? rows.v : rows.u)[cut.cornerCopy[3 * f + k]];
+          const double s = area * grad[j].dot(grad[k]);
+          for (const auto& [zj, cj] : rj)
+            for (const auto& [zk, ck] : rk) triplets.emplace_back(zj, zk, s * cj * ck);
+        }
+      }
+    }
+  }
+  SparseMatrix K(layout.size, layout.size);
+  K.setFromTriplets(triplets.begin(), triplets.end());
+  triplets.clear();
+  triplets.shrink_to_fit();
+
+  // Fixed so far: one regular base pinned off the grid (the whole chart can move), then the rounded integers.
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(layout.size);
+  std::vector<uint8_t> fixed(layout.size, 0);
+  for (int32_t fan = 0; fan < numFans; ++fan)
+    if (layout.fanBase[fan] >= 0) {
+      z[layout.fanBase[fan]] = 0.3125, z[layout.fanBase[fan] + 1] = 0.6875;
+      fixed[layout.fanBase[fan]] = fixed[layout.fanBase[fan] + 1] = 1;
+      break;
+    }
+  const int32_t totalIntegers = out.integerUnknowns;
+  int32_t freeIntegers = totalIntegers;
+  for (;;) {
+    std::vector<int32_t> unknown(layout.size, -1);
+    int32_t n = 0;
+    for (int32_t i = 0; i < layout.size; ++i)
+      if (!fixed[i]) unknown[i] = n++;
+    Eigen::VectorXd rhs(n), x(n);
+    std::vector<Eigen::Triplet<double>> upper;
+    for (int32_t i = 0; i < layout.size; ++i)
+      if (!fixed[i]) rhs[unknown[i]] = b[i];
+    for (int32_t col = 0; col < K.outerSize(); ++col)
+      for (SparseMatrix::InnerIterator it(K, col); it; ++it) {
+        const int32_t row = static_cast<int32_t>(it.row());
+        if (fixed[row]) continue;
+        if (fixed[col]) {
+          rhs[unknown[row]] -= it.value() * z[col];
+        } else if (unknown[row] <= unknown[col]) {
+          upper.emplace_back(unknown[row], unknown[col], it.value());
+        }
+      }
+    SparseMatrix A(n, n);
+    A.setFromTriplets(upper.begin(), upper.end());
+    if (n > 0) {
+      if (!solveSpdOnce(A, rhs, x))
+        throw InputError("quad mesh: the parametrization's system could not be solved (a degenerate mesh?)");
+      for (int32_t i = 0; i < layout.size; ++i)
+        if (!fixed[i]) z[i] = x[unknown[i]];
+    }
+    ++out.roundingSolves;
+    if (progress && !progress(totalIntegers ? 1.0 - static_cast<double>(freeIntegers) / totalIntegers : 1.0))
+      return out;
+    if (freeIntegers == 0) break;
+    std::vector<std::pair<double, int32_t>> candidates;
+    for (int32_t i = 0; i < layout.size; ++i)
+      if (!fixed[i] && layout.integerOf[i] >= 0)
+        candidates.emplace_back(std::abs(z[i] - std::round(z[i])), i);
+    std::sort(candidates.begin(), candidates.end());
+    const std::size_t batch = std::max<std::size_t>(1, (candidates.size() + 3) / 4);
+    for (std::size_t k = 0; k < batch; ++k) {
+      const int32_t i = candidates[k].second;
+      z[i] = std::round(z[i]);
+      fixed[i] = 1;
+      --freeIntegers;
+    }
+  }
+
+  auto evaluate = [&](const Row& r) {
+    double s = 0;
+    for (const auto& [i, c] : r) s += c * z[i];
+    return s;
+  };
+  out.cornerUV.resize(6 * t.numFaces);
+  for (int32_t f = 0; f < t.numFaces; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int32_t c = cut.cornerCopy[3 * f + k];
+      out.cornerUV[6 * f + 2 * k] = evaluate(rows.u[c]);
+      out.cornerUV[6 * f + 2 * k + 1] = evaluate(rows.v[c]);
+    }
+    const double* q = &out.cornerUV[6 * f];
+    const double twice = (q[2] - q[0]) * (q[5] - q[1]) - (q[3] - q[1]) * (q[4] - q[0]);
+    if (!(twice > 0)) ++out.flippedFaces;
+  }
+  out.edgeShift.assign(2 * t.numEdges, 0.0);
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    if (cutIndex[e] < 0) continue;
+    for (int k = 0; k < 2; ++k)
+      out.edgeShift[2 * e + k] =
+          evaluate(rowOf(elimination.resolve(Combo{{2 * cutIndex[e] + k, 1}}), layout));
+  }
+  out.energy = (evaluate({}) + z.dot(K * z) - 2 * b.dot(z) + constant) / std::max(g.totalArea, 1e-300);
+  return out;
+}
+
+}  // namespace tvf
