@@ -25,6 +25,7 @@
 #include "io/rosy_file.h"
 #include "io/sharp_file.h"
 #include "io/sing_file.h"
+#include "cli/quad_command.h"
 
 namespace {
 
@@ -42,6 +43,7 @@ int usage() {
          "             [--rawfield OUT.rawfield] [--sing OUT.sing] [--rosy OUT.rosy]\n"
          "             [--sharp OUT.sharp] [--stripes FREQ] [--stripe-profile NAME]\n"
          "             [--ordering-cache DIR]\n"
+         "  tvf quad MESH DESIGN.json -o OUT.obj [--edge-length L | --quads N] [--json]\n"
          "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
          "            [--threads N] [--symmetry N]\n"
          "--ordering-cache DIR keeps the field's fill-reducing ordering in DIR, one file per mesh and\n"
@@ -69,7 +71,10 @@ int usage() {
          "--rosy the cross field (QuadWild; symmetry 4), --sharp the feature edges (QuadWild).\n"
          "export --stripes FREQ bakes the field's stripe pattern (FREQ stripes per unit length) into the\n"
          "GLB's base colour over the export's atlas (docs/export.md); --stripe-profile stripes, wood,\n"
-         "grid, bricks or weave (default: stripes, grid for a cross field).\n";
+         "grid, bricks or weave (default: stripes, grid for a cross field).\n"
+         "quad: a quad mesh following the design's cross field (symmetry 4; a closed surface), at an\n"
+         "edge length or about N quads (default 5000), as OBJ; --json prints its statistics\n"
+         "(docs/quad-meshes.md).\n";
   return kUsageError;
 }
 
@@ -467,6 +472,7 @@ int main(int argc, char** argv) {
     if (command == "design" && argc >= 4) return designCommand(argc, argv);
     if (command == "bench") return bench(argc, argv);
     if (command == "export") return exportCommand(argc, argv);
+    if (command == "quad") return tvf::cli::quadCommand(argc, argv, readDesign);
     return usage();
   } catch (const tvf::InputError& e) {
     std::cerr << "tvf: " << e.what() << "\n";

@@ -7,7 +7,7 @@
 #include "common/input_error.h"
 #include "common/sparse_matrix.h"
 #include "mesh/mesh_geometry.h"
-#include "solver/spd_solve.h"
+#include "quad/greedy_rounding.h"
 
 namespace tvf {
 namespace {
@@ -216,9 +216,11 @@ SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshT
     rows.v[c] = std::move(v);
   }
 
-  // The least-squares energy sum_f A_f (|grad u - X/h|^2 + |grad v - Y/h|^2) as z^T K z - 2 b^T z + const.
+  // The least-squares energy sum_f A_f (|grad u - X/h|^2 + |grad v - Y/h|^2) over the copies' coordinates
+  // (L w - 2 b_w), then through w = C z onto the solve's unknowns: K = C^T L C. The rows of C next to the
+  // cut's trunk sum many integer unknowns; the product keeps that to the matrix, not the faces' terms.
   std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(layout.size);
+  Eigen::VectorXd bw = Eigen::VectorXd::Zero(2 * numCopies);
   double constant = 0;
   for (int32_t f = 0; f < t.numFaces; ++f) {
     Eigen::Vector3d p[3], grad[3];
@@ -231,78 +233,48 @@ SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshT
     for (int comp = 0; comp < 2; ++comp) {
       constant += area * target[comp].squaredNorm();
       for (int j = 0; j < 3; ++j) {
-        const Row& rj = (comp ? rows.v : rows.u)[cut.cornerCopy[3 * f + j]];
-        const double gj = area * grad[j].dot(target[comp]);
-        for (const auto& [zj, cj] : rj) b[zj] += gj * cj;
-        for (int k = 0; k < 3; ++k) {
-          const Row& rk = (comp ? rows.v : rows.u)[cut.cornerCopy[3 * f + k]];
-          const double s = area * grad[j].dot(grad[k]);
-          for (const auto& [zj, cj] : rj)
-            for (const auto& [zk, ck] : rk) triplets.emplace_back(zj, zk, s * cj * ck);
-        }
+        const int32_t wj = 2 * cut.cornerCopy[3 * f + j] + comp;
+        bw[wj] += area * grad[j].dot(target[comp]);
+        for (int k = 0; k < 3; ++k)
+          triplets.emplace_back(wj, 2 * cut.cornerCopy[3 * f + k] + comp, area * grad[j].dot(grad[k]));
       }
     }
   }
-  SparseMatrix K(layout.size, layout.size);
-  K.setFromTriplets(triplets.begin(), triplets.end());
+  SparseMatrix L(2 * numCopies, 2 * numCopies), C(2 * numCopies, layout.size);
+  L.setFromTriplets(triplets.begin(), triplets.end());
+  triplets.clear();
+  for (int32_t c = 0; c < numCopies; ++c) {
+    for (const auto& [z, k] : rows.u[c]) triplets.emplace_back(2 * c, z, k);
+    for (const auto& [z, k] : rows.v[c]) triplets.emplace_back(2 * c + 1, z, k);
+  }
+  C.setFromTriplets(triplets.begin(), triplets.end());
   triplets.clear();
   triplets.shrink_to_fit();
+  const SparseMatrix LC = L * C;
+  const SparseMatrix K = SparseMatrix(C.transpose()) * LC;
+  const Eigen::VectorXd b = C.transpose() * bw;
 
-  // Fixed so far: one regular base pinned off the grid (the whole chart can move), then the rounded integers.
-  Eigen::VectorXd z = Eigen::VectorXd::Zero(layout.size);
-  std::vector<uint8_t> fixed(layout.size, 0);
-  for (int32_t fan = 0; fan < numFans; ++fan)
-    if (layout.fanBase[fan] >= 0) {
-      z[layout.fanBase[fan]] = 0.3125, z[layout.fanBase[fan] + 1] = 0.6875;
-      fixed[layout.fanBase[fan]] = fixed[layout.fanBase[fan] + 1] = 1;
-      break;
-    }
-  const int32_t totalIntegers = out.integerUnknowns;
-  int32_t freeIntegers = totalIntegers;
-  for (;;) {
-    std::vector<int32_t> unknown(layout.size, -1);
-    int32_t n = 0;
-    for (int32_t i = 0; i < layout.size; ++i)
-      if (!fixed[i]) unknown[i] = n++;
-    Eigen::VectorXd rhs(n), x(n);
-    std::vector<Eigen::Triplet<double>> upper;
-    for (int32_t i = 0; i < layout.size; ++i)
-      if (!fixed[i]) rhs[unknown[i]] = b[i];
-    for (int32_t col = 0; col < K.outerSize(); ++col)
-      for (SparseMatrix::InnerIterator it(K, col); it; ++it) {
-        const int32_t row = static_cast<int32_t>(it.row());
-        if (fixed[row]) continue;
-        if (fixed[col]) {
-          rhs[unknown[row]] -= it.value() * z[col];
-        } else if (unknown[row] <= unknown[col]) {
-          upper.emplace_back(unknown[row], unknown[col], it.value());
-        }
-      }
-    SparseMatrix A(n, n);
-    A.setFromTriplets(upper.begin(), upper.end());
-    if (n > 0) {
-      if (!solveSpdOnce(A, rhs, x))
-        throw InputError("quad mesh: the parametrization's system could not be solved (a degenerate mesh?)");
-      for (int32_t i = 0; i < layout.size; ++i)
-        if (!fixed[i]) z[i] = x[unknown[i]];
-    }
-    ++out.roundingSolves;
-    if (progress && !progress(totalIntegers ? 1.0 - static_cast<double>(freeIntegers) / totalIntegers : 1.0))
-      return out;
-    if (freeIntegers == 0) break;
-    std::vector<std::pair<double, int32_t>> candidates;
-    for (int32_t i = 0; i < layout.size; ++i)
-      if (!fixed[i] && layout.integerOf[i] >= 0)
-        candidates.emplace_back(std::abs(z[i] - std::round(z[i])), i);
-    std::sort(candidates.begin(), candidates.end());
-    const std::size_t batch = std::max<std::size_t>(1, (candidates.size() + 3) / 4);
-    for (std::size_t k = 0; k < batch; ++k) {
-      const int32_t i = candidates[k].second;
-      z[i] = std::round(z[i]);
-      fixed[i] = 1;
-      --freeIntegers;
-    }
+  // Each component's chart can move as a whole: one regular base per component pinned off the grid.
+  std::vector<std::pair<int32_t, double>> pinned;
+  std::vector<uint8_t> componentPinned(t.components.size(), 0), integer(layout.size, 0);
+  for (int32_t fan = 0; fan < numFans; ++fan) {
+    const int32_t component = t.vertexComponent[cut.fanVertex[fan]];
+    if (layout.fanBase[fan] < 0 || component < 0 || componentPinned[component]) continue;
+    componentPinned[component] = 1;
+    pinned.emplace_back(layout.fanBase[fan], 0.3125);
+    pinned.emplace_back(layout.fanBase[fan] + 1, 0.6875);
   }
+  for (int32_t i = 0; i < layout.size; ++i) integer[i] = layout.integerOf[i] >= 0;
+  bool stopped = false;
+  const GreedyRounding rounded = roundGreedily(K, b, integer, pinned, [&](double fraction) {
+    stopped = progress && !progress(fraction);
+    return !stopped;
+  });
+  if (stopped) return out;
+  if (!rounded.ok)
+    throw InputError("quad mesh: the parametrization's system could not be solved (a degenerate mesh?)");
+  const Eigen::VectorXd& z = rounded.z;
+  out.roundingSolves = rounded.roundingSteps;
 
   auto evaluate = [&](const Row& r) {
     double s = 0;
@@ -327,7 +299,7 @@ SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshT
       out.edgeShift[2 * e + k] =
           evaluate(rowOf(elimination.resolve(Combo{{2 * cutIndex[e] + k, 1}}), layout));
   }
-  out.energy = (evaluate({}) + z.dot(K * z) - 2 * b.dot(z) + constant) / std::max(g.totalArea, 1e-300);
+  out.energy = (z.dot(K * z) - 2 * b.dot(z) + constant) / std::max(g.totalArea, 1e-300);
   return out;
 }
 

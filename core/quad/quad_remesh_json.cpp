@@ -1,0 +1,68 @@
+#include "quad/quad_remesh_json.h"
+
+#include "common/input_error.h"
+
+namespace tvf {
+
+QuadRemeshOptions quadRemeshOptionsFromJson(const std::string& text) {
+  nlohmann::json j;
+  try {
+    j = text.empty() ? nlohmann::json::object() : nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error&) {
+    throw InputError("quad mesh options must be a JSON object");
+  }
+  if (!j.is_object()) throw InputError("quad mesh options must be a JSON object");
+  QuadRemeshOptions o;
+  if (j.contains("edgeLength")) {
+    if (!j["edgeLength"].is_number()) throw InputError("quad mesh: edgeLength must be a number");
+    o.edgeLength = j["edgeLength"].get<double>();
+  }
+  if (j.contains("quads")) {
+    if (!j["quads"].is_number()) throw InputError("quad mesh: quads must be a number");
+    const double n = j["quads"].get<double>();
+    if (!(n >= 1) || !(n <= 4e6)) throw InputError("quad mesh: quads must be between 1 and 4 million");
+    o.targetQuads = static_cast<int64_t>(n);
+  }
+  return o;
+}
+
+nlohmann::json quadRemeshJson(const QuadRemeshResult& r) {
+  const QuadMeshStats& s = r.stats;
+  return {{"faces", s.faces},
+          {"quads", s.quads},
+          {"vertices", s.vertices},
+          {"edges", s.edges},
+          {"quadShare", s.quadShare},
+          {"irregularVertices", s.irregularVertices},
+          {"valence3", s.valence3},
+          {"valence5", s.valence5},
+          {"fieldSingularities", s.fieldSingularities},
+          {"irregularNearSingularity", s.irregularNearSingularity},
+          {"irregularFarthest", s.irregularFarthest},
+          {"edgeAngleMedianDeg", s.edgeAngleMedianDeg},
+          {"edgeAngleP90Deg", s.edgeAngleP90Deg},
+          {"hausdorffRelative", s.hausdorffRelative},
+          {"aspectMedian", s.aspectMedian},
+          {"flippedFaces", s.flippedFaces},
+          {"degenerateFaces", s.degenerateFaces},
+          {"boundaryEdges", s.boundaryEdges},
+          {"manifold", s.manifold},
+          {"oriented", s.oriented},
+          {"eulerCharacteristic", s.eulerCharacteristic},
+          {"edgeLength", r.edgeLength},
+          {"cones", r.cones},
+          {"cutEdges", r.cutEdges},
+          {"flippedTriangles", r.flippedTriangles},
+          {"integerUnknowns", r.integerUnknowns},
+          {"roundingSolves", r.roundingSolves},
+          {"failedTraces", r.failedTraces},
+          {"openLoops", r.openLoops},
+          {"ms", r.totalMs},
+          {"stageMs",
+           {{"cut", r.cutMs},
+            {"parametrize", r.parametrizeMs},
+            {"extract", r.extractMs},
+            {"measure", r.measureMs}}}};
+}
+
+}  // namespace tvf
