@@ -35,7 +35,7 @@ double chosenEdgeLength(const MeshGeometry& g, const QuadRemeshOptions& o) {
 
 void checkInputs(const MeshTopology& t, const std::vector<double>& faceDirections, int symmetry) {
   if (symmetry != 4)
-    throw InputError("quad meshes need a cross field (symmetry 4); this field has symmetry " +
+    throw InputError("Quad meshes need a cross field (symmetry 4); this field has symmetry " +
                      std::to_string(symmetry));
   if (!t.boundaryLoops.empty())
     throw InputError("quad meshes need a closed surface: this model has " +
