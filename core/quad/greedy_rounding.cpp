@@ -2,12 +2,18 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "solver/spd_solve.h"
 
 namespace tvf {
 namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
 
 enum class Kind : uint8_t { Continuous, Integer, Pinned };
 
@@ -83,12 +89,15 @@ GreedyRounding roundGreedily(const SparseMatrix& K, const Eigen::VectorXd& b,
   Acc.setFromTriplets(cc.begin(), cc.end());
   Kci.setFromTriplets(ci.begin(), ci.end());
   cc.clear(), ci.clear();
+  Clock::time_point stage = Clock::now();
   SpdFactor factor(Acc);
   if (!factor.ok()) return out;
+  out.factorMs = msSince(stage);
+  stage = Clock::now();
   Eigen::VectorXd y0;
   if (!factor.solve(bc, y0)) return out;
   Eigen::VectorXd r = bi - Kci.transpose() * y0;
-  constexpr int32_t kBlock = 32;
+  constexpr int32_t kBlock = 128;
   for (int32_t c0 = 0; c0 < ni; c0 += kBlock) {
     const int32_t w = std::min(kBlock, ni - c0);
     Eigen::MatrixXd D = Eigen::MatrixXd(Kci.middleCols(c0, w)), Z;
@@ -96,6 +105,8 @@ GreedyRounding roundGreedily(const SparseMatrix& K, const Eigen::VectorXd& b,
     S.middleCols(c0, w) -= Kci.transpose() * Z;
   }
   S = 0.5 * (S + S.transpose()).eval();
+  out.schurMs = msSince(stage);
+  stage = Clock::now();
 
   Eigen::VectorXd x = Eigen::VectorXd::Zero(ni);
   std::vector<uint8_t> fixed(ni, 0);
@@ -116,6 +127,7 @@ GreedyRounding roundGreedily(const SparseMatrix& K, const Eigen::VectorXd& b,
     left -= static_cast<int32_t>(batch);
     ++out.roundingSteps;
   }
+  out.roundMs = msSince(stage);
   Eigen::VectorXd xc;
   if (!factor.solve(Eigen::VectorXd(bc - Kci * x), xc)) return out;
   for (int32_t i = 0; i < n; ++i) {

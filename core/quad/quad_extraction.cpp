@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "mesh/mesh_geometry.h"
 
@@ -312,7 +313,46 @@ class Extractor {
         out.mesh.faceStart.push_back(static_cast<int32_t>(out.mesh.faceVertices.size()));
       }
     out.mesh.faceStart.insert(out.mesh.faceStart.begin(), 0);
+    out.filledHoles = fillHoles(out.mesh);
     return out;
+  }
+
+  // Where walks failed the quad mesh has holes; each hole bounded by at most kLongestHole edges becomes one
+  // polygon, so that the mesh is closed as the surface is (the polygons are counted, not hidden: they lower
+  // the quad share).
+  static int32_t fillHoles(QuadMesh& m) {
+    constexpr std::size_t kLongestHole = 16;
+    std::set<std::pair<int32_t, int32_t>> directed;
+    for (int32_t f = 0; f < m.numFaces(); ++f)
+      for (int32_t k = m.faceStart[f]; k < m.faceStart[f + 1]; ++k) {
+        const int32_t next = k + 1 < m.faceStart[f + 1] ? k + 1 : m.faceStart[f];
+        directed.insert({m.faceVertices[k], m.faceVertices[next]});
+      }
+    // The holes' edges, each the reverse of a face's edge that has no twin.
+    std::multimap<int32_t, int32_t> hole;
+    for (const auto& [a, b] : directed)
+      if (!directed.count({b, a})) hole.insert({b, a});
+    int32_t filled = 0;
+    std::vector<int32_t> loop;
+    while (!hole.empty()) {
+      auto it = hole.begin();
+      const int32_t start = it->first;
+      loop.assign(1, start);
+      int32_t at = it->second;
+      hole.erase(it);
+      while (at != start && loop.size() <= kLongestHole) {
+        const auto next = hole.find(at);
+        if (next == hole.end()) break;
+        loop.push_back(at);
+        at = next->second;
+        hole.erase(next);
+      }
+      if (at != start || loop.size() < 3 || loop.size() > kLongestHole) continue;
+      m.faceVertices.insert(m.faceVertices.end(), loop.begin(), loop.end());
+      m.faceStart.push_back(static_cast<int32_t>(m.faceVertices.size()));
+      ++filled;
+    }
+    return filled;
   }
 
   int32_t addVertex(QuadMesh& q, int32_t id) const {

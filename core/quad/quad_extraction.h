@@ -15,6 +15,7 @@ struct QuadExtraction {
   QuadMesh mesh;
   int32_t failedTraces = 0;  // iso-line walks that found no grid point where the next one should be
   int32_t openLoops = 0;     // face loops that did not close (holes in the quad mesh)
+  int32_t filledHoles = 0;   // holes closed by one polygon each
 };
 
 QuadExtraction extractQuads(const SurfaceMesh& mesh, const MeshTopology& topology, const CrossFieldCut& cut,

@@ -41,9 +41,9 @@ double hausdorff(const QuadMesh& q, const SurfaceMesh& surface) {
   for (std::size_t t = 0; t < tris.size(); t += 3) {
     const Eigen::Vector3d a = point(q.positions, tris[t]), b = point(q.positions, tris[t + 1]),
                           c = point(q.positions, tris[t + 2]);
-    for (int i = 0; i <= 4; ++i)
-      for (int j = 0; i + j <= 4; ++j)
-        worst = std::max(worst, toInput.distance(a + (b - a) * (i / 4.0) + (c - a) * (j / 4.0)));
+    for (int i = 0; i <= 2; ++i)
+      for (int j = 0; i + j <= 2; ++j)
+        worst = std::max(worst, toInput.distance(a + (b - a) * (i / 2.0) + (c - a) * (j / 2.0)));
   }
   const int32_t nf = static_cast<int32_t>(surface.triangles.size() / 3);
   for (int32_t f = 0; f < nf; ++f) {

@@ -28,8 +28,8 @@ struct QuadMeshStats {
   // the field's directions there, the mean of the two ends: median and 90th percentile, in degrees.
   double edgeAngleMedianDeg = 0, edgeAngleP90Deg = 0;
   // The two-sided Hausdorff distance between the quad mesh (each polygon fanned from its first vertex,
-  // sampled at 15 points per triangle) and the input (its vertices and face centroids), over the input's
-  // bounding-box diagonal.
+  // sampled at its corners and edge midpoints) and the input (its vertices and face centroids), over the
+  // input's bounding-box diagonal.
   double hausdorffRelative = 0;
   // Per quad, the mean length of one pair of opposite edges over the other's, at least 1: the median.
   double aspectMedian = 0;

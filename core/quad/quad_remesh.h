@@ -32,6 +32,8 @@ struct QuadRemeshResult {
   // unknowns, the extraction's failed iso-line walks and open loops, and the stages' times.
   int32_t cones = 0, cutEdges = 0, flippedTriangles = 0, integerUnknowns = 0, roundingSolves = 0;
   int32_t failedTraces = 0, openLoops = 0;
+  int32_t filledHoles = 0;  // holes the failed walks left, closed by a polygon each
+  int32_t stiffenings = 0;  // solves again with folded triangles stiffened
   double cutMs = 0, parametrizeMs = 0, extractMs = 0, measureMs = 0, totalMs = 0;
 };
 

@@ -1,6 +1,7 @@
 #include "quad/seamless_parametrization.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 
@@ -124,8 +125,11 @@ struct CopyRows {
 
 SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshTopology& t,
                                             const MeshGeometry& g, const CrossFieldCut& cut, double h,
-                                            const ParametrizationProgress& progress) {
+                                            const ParametrizationProgress& progress,
+                                            const std::vector<double>& faceWeight,
+                                            const std::vector<double>& keptIntegers) {
   SeamlessParametrization out;
+  const auto start = std::chrono::steady_clock::now();
   const int32_t numFans = static_cast<int32_t>(cut.fanTurns.size());
   const int32_t numCopies = static_cast<int32_t>(cut.copyVertex.size());
   // Integer unknowns: t_e for each cut edge, then each cone's position.
@@ -225,7 +229,7 @@ SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshT
   for (int32_t f = 0; f < t.numFaces; ++f) {
     Eigen::Vector3d p[3], grad[3];
     facePositions(mesh, f, p);
-    const double area = g.faceArea[f];
+    const double area = g.faceArea[f] * (faceWeight.empty() ? 1.0 : faceWeight[f]);
     if (!(area > 0)) continue;
     barycentricGradients(p, grad);
     const Eigen::Vector3d n(&g.faceNormal[3 * f]), x(&cut.direction[3 * f]);
@@ -251,6 +255,7 @@ SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshT
   triplets.clear();
   triplets.shrink_to_fit();
   const SparseMatrix LC = L * C;
+  const auto assembled = std::chrono::steady_clock::now();
   const SparseMatrix K = SparseMatrix(C.transpose()) * LC;
   const Eigen::VectorXd b = C.transpose() * bw;
 
@@ -265,6 +270,12 @@ SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshT
     pinned.emplace_back(layout.fanBase[fan] + 1, 0.6875);
   }
   for (int32_t i = 0; i < layout.size; ++i) integer[i] = layout.integerOf[i] >= 0;
+  if (!keptIntegers.empty()) {
+    int32_t k = 0;
+    for (int32_t i = 0; i < layout.size; ++i)
+      if (integer[i]) pinned.emplace_back(i, keptIntegers.at(k++));
+  }
+  out.assembleMs = std::chrono::duration<double, std::milli>(assembled - start).count();
   bool stopped = false;
   const GreedyRounding rounded = roundGreedily(K, b, integer, pinned, [&](double fraction) {
     stopped = progress && !progress(fraction);
@@ -275,6 +286,9 @@ SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshT
     throw InputError("quad mesh: the parametrization's system could not be solved (a degenerate mesh?)");
   const Eigen::VectorXd& z = rounded.z;
   out.roundingSolves = rounded.roundingSteps;
+  for (int32_t i = 0; i < layout.size; ++i)
+    if (integer[i]) out.integers.push_back(z[i]);
+  out.factorMs = rounded.factorMs, out.schurMs = rounded.schurMs, out.roundMs = rounded.roundMs;
 
   auto evaluate = [&](const Row& r) {
     double s = 0;

@@ -25,17 +25,24 @@ struct SeamlessParametrization {
   int32_t integerUnknowns = 0;    // after the elimination
   int32_t roundingSolves = 0;
   int32_t unenforcedConditions = 0;  // closure conditions with no +-1 coefficient (none expected)
-  double energy = 0;                 // the final least-squares misfit, relative to the surface's area
+  std::vector<double> integers;      // the rounded integer unknowns, to keep in a solve with other weights
+  double assembleMs = 0, factorMs = 0, schurMs = 0, roundMs = 0;
+  double energy = 0;  // the final least-squares misfit, relative to the surface's area
 };
 
 using ParametrizationProgress = std::function<bool(double fraction)>;
 
-// edgeLength > 0: the grid's spacing on the surface. progress (may be empty) is called after each solve;
+// edgeLength > 0: the grid's spacing on the surface. faceWeight (one per face, or empty for all 1) scales
+// each face's term: stiffer faces keep closer to the field (the remesher raises it where a solve folded).
+// keptIntegers (an earlier result's `integers` on the same cut, or empty): the integers kept, not rounded
+// again: one continuous solve. progress (may be empty) is called after each solve;
 // returning false stops (the result then is incomplete: cornerUV empty). Throws InputError when a solve
 // fails.
 SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshTopology& topology,
                                             const MeshGeometry& geometry, const CrossFieldCut& cut,
-                                            double edgeLength, const ParametrizationProgress& progress = {});
+                                            double edgeLength, const ParametrizationProgress& progress = {},
+                                            const std::vector<double>& faceWeight = {},
+                                            const std::vector<double>& keptIntegers = {});
 
 // (a, b) turned k quarters counter-clockwise.
 inline void quarterTurn2(int k, double a, double b, double& x, double& y) {
