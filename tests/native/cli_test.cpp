@@ -3,14 +3,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "design/design_document.h"
 #include "cli_run.h"
+#include "design/design_document.h"
 #include "test_meshes.h"
 
 namespace {
@@ -128,11 +129,12 @@ TEST(Cli, BenchOnTwoThreadsChecksTheFieldAgainstOneThreads) {
   const CliRun r = runTvf("bench " + mesh.string() + " --repeat 1 --threads 2 --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto b = nlohmann::json::parse(r.out);
-  EXPECT_NE(b["factorKind"].get<std::string>().find("LL' on 2 threads"), std::string::npos) << b["factorKind"];
+  EXPECT_NE(b["factorKind"].get<std::string>().find("LL' on 2 threads"), std::string::npos)
+      << b["factorKind"];
   EXPECT_LT(b["parallelFieldDifference"].get<double>(), 1e-12);
   EXPECT_LT(b["orderingFieldDifference"].get<double>(), 1e-12);
-  EXPECT_FALSE(runTvf("bench " + mesh.string() + " --repeat 1 --threads 1 --json").out.find(
-                   "parallelFieldDifference") != std::string::npos);
+  EXPECT_FALSE(runTvf("bench " + mesh.string() + " --repeat 1 --threads 1 --json")
+                   .out.find("parallelFieldDifference") != std::string::npos);
 }
 
 TEST(Cli, BenchCompareReportsBothOrderings) {
@@ -165,7 +167,43 @@ TEST(Cli, DesignForAnotherMeshIsRefusedUnlessOverridden) {
   EXPECT_NE(refused.err.find("--ignore-fingerprint"), std::string::npos) << refused.err;
   const CliRun forced = runTvf("design " + torus.string() + " " + design.string() + " --ignore-fingerprint");
   EXPECT_EQ(forced.exitCode, 0) << forced.err;
-  const CliRun malformed = runTvf("design " + sphere.string() + " " + writeText("cli_foo.json", R"({"foo": 1})").string());
+  const CliRun malformed =
+      runTvf("design " + sphere.string() + " " + writeText("cli_foo.json", R"({"foo": 1})").string());
   EXPECT_EQ(malformed.exitCode, 2);
   EXPECT_NE(malformed.err.find("unknown key \"foo\""), std::string::npos) << malformed.err;
+}
+
+TEST(Cli, QuadWritesTheQuadMeshAsObjAndItsStatistics) {
+  const fs::path mesh = writeOff("cli_quad_torus.off", tvf::testing::torus(48, 16, 1.0, 0.35));
+  const fs::path design =
+      writeText("cli_quad_design.json", R"({"symmetry": 4, "exactSingularities": true, "constraints": []})");
+  const fs::path out = fs::temp_directory_path() / (std::to_string(getpid()) + "_cli_quad.obj");
+  const CliRun r = runTvf("quad " + mesh.string() + " " + design.string() + " -o " + out.string() +
+                          " --edge-length 0.1 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto stats = nlohmann::json::parse(r.out);
+  EXPECT_EQ(stats["irregularVertices"], 0);
+  EXPECT_EQ(stats["eulerCharacteristic"], 0);
+  EXPECT_EQ(stats["quads"], stats["faces"]);
+  // The OBJ holds the mesh the statistics describe: its vertices, and its faces as quads.
+  std::ifstream in(out);
+  std::string line;
+  int vertices = 0, faces = 0, quads = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("v ", 0) == 0) ++vertices;
+    if (line.rfind("f ", 0) == 0) {
+      ++faces;
+      quads += std::count(line.begin(), line.end(), ' ') == 4;
+    }
+  }
+  EXPECT_EQ(vertices, stats["vertices"]);
+  EXPECT_EQ(faces, stats["faces"]);
+  EXPECT_EQ(quads, faces);
+  fs::remove(out);
+
+  const fs::path vector = writeText("cli_quad_vector.json", R"({"constraints": []})");
+  const CliRun refused = runTvf("quad " + mesh.string() + " " + vector.string() + " -o " + out.string());
+  EXPECT_EQ(refused.exitCode, 2);
+  EXPECT_NE(refused.err.find("Quad meshes need a cross field"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(out));
 }

@@ -5,11 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 
 #include "common/input_error.h"
 #include "design/designer.h"
 #include "mesh/closest_point.h"
+#include "mesh/mesh_geometry.h"
 #include "quad/quad_mesh_stats.h"
 #include "test_meshes.h"
 
@@ -72,6 +76,167 @@ TEST(QuadRemesh, ASphereWithEightQuarterConesHasEightValenceThreeVertices) {
   EXPECT_EQ(r.stats.quads, r.stats.faces);
   EXPECT_EQ(r.stats.eulerCharacteristic, 2);
   EXPECT_EQ(r.stats.flippedFaces, 0);
+}
+
+// The unit cube's surface as an n x n quad grid per side (a hand-made quad mesh: 6 n^2 quads, the corners of
+// valence 3), and the same grid split into triangles as the input surface it lies on.
+struct CubeQuads {
+  QuadMesh quads;
+  SurfaceMesh surface;
+  std::vector<double> axisField;  // 3 per triangle: a cube edge's direction in its plane
+  std::vector<Singularity> corners;
+};
+
+CubeQuads cubeQuads(int n) {
+  CubeQuads c;
+  std::map<std::array<long, 3>, int32_t> index;
+  auto vertex = [&](const Eigen::Vector3d& x) {
+    const std::array<long, 3> key{std::lround(x.x() * n), std::lround(x.y() * n), std::lround(x.z() * n)};
+    const auto [it, added] = index.emplace(key, static_cast<int32_t>(index.size()));
+    if (added) c.quads.positions.insert(c.quads.positions.end(), {x.x(), x.y(), x.z()});
+    return it->second;
+  };
+  c.quads.faceStart.push_back(0);
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      // Two tangent axes ordered so that (a, b, outward normal) is right-handed.
+      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          int32_t q[4];
+          const int di[4] = {0, 1, 1, 0}, dj[4] = {0, 0, 1, 1};
+          for (int k = 0; k < 4; ++k) {
+            Eigen::Vector3d x = Eigen::Vector3d::Zero();
+            x[axis] = side;
+            x[a] = static_cast<double>(i + di[k]) / n;
+            x[b] = static_cast<double>(j + dj[k]) / n;
+            q[k] = vertex(x);
+          }
+          if (side == 0) std::swap(q[1], q[3]);
+          c.quads.faceVertices.insert(c.quads.faceVertices.end(), q, q + 4);
+          c.quads.faceStart.push_back(static_cast<int32_t>(c.quads.faceVertices.size()));
+          c.surface.triangles.insert(c.surface.triangles.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+          Eigen::Vector3d along = Eigen::Vector3d::Zero();
+          along[a] = 1;
+          for (int t = 0; t < 2; ++t)
+            c.axisField.insert(c.axisField.end(), {along.x(), along.y(), along.z()});
+        }
+    }
+  c.surface.positions = c.quads.positions;
+  c.quads.vertexFace.assign(c.quads.numVertices(), -1);
+  for (std::size_t t = 0; t < c.surface.triangles.size(); ++t)
+    if (c.quads.vertexFace[c.surface.triangles[t]] < 0)
+      c.quads.vertexFace[c.surface.triangles[t]] = static_cast<int32_t>(t / 3);
+  for (const auto& [key, v] : index)
+    if ((key[0] == 0 || key[0] == n) && (key[1] == 0 || key[1] == n) && (key[2] == 0 || key[2] == n))
+      c.corners.push_back({v, 0.25});
+  return c;
+}
+
+QuadMeshStats measureCube(const CubeQuads& c, double h) {
+  const MeshTopology t = buildTopology(c.surface);
+  const MeshGeometry g = computeMeshGeometry(c.surface, t);
+  return measureQuadMesh(c.quads, c.surface, g, c.axisField, 4, c.corners, h);
+}
+
+TEST(QuadMeshStats, AHandMadeCubeGridMeasuresAsItsDefinitionsSay) {
+  const CubeQuads c = cubeQuads(3);
+  const QuadMeshStats s = measureCube(c, 1.0 / 3);
+  EXPECT_EQ(s.faces, 54);
+  EXPECT_EQ(s.quads, 54);
+  EXPECT_DOUBLE_EQ(s.quadShare, 1.0);
+  EXPECT_EQ(s.vertices, 56);  // 6 n^2 + 2 for n = 3 (V - E + F = 2 with E = 2 F)
+  EXPECT_EQ(s.eulerCharacteristic, 2);
+  EXPECT_EQ(s.irregularVertices, 8);
+  EXPECT_EQ(s.valence3, 8);
+  EXPECT_DOUBLE_EQ(s.irregularNearSingularity, 1.0);
+  EXPECT_NEAR(s.irregularFarthest, 0.0, 1e-12);
+  EXPECT_NEAR(s.edgeAngleMedianDeg, 0.0, 1e-9);
+  EXPECT_NEAR(s.edgeAngleP90Deg, 0.0, 1e-9);
+  EXPECT_NEAR(s.hausdorffRelative, 0.0, 1e-12);
+  EXPECT_NEAR(s.aspectMedian, 1.0, 1e-12);
+  EXPECT_EQ(s.flippedFaces, 0);
+  EXPECT_EQ(s.degenerateFaces, 0);
+  EXPECT_TRUE(s.manifold);
+  EXPECT_TRUE(s.oriented);
+  EXPECT_EQ(s.boundaryEdges, 0);
+}
+
+TEST(QuadMeshStats, FlipsDegeneraciesHolesDistancesAndAnglesAreCounted) {
+  CubeQuads c = cubeQuads(3);
+  // One quad reversed: it points inwards and its edges run the same way as its neighbours'.
+  std::reverse(c.quads.faceVertices.begin() + 4, c.quads.faceVertices.begin() + 8);
+  QuadMeshStats s = measureCube(c, 1.0 / 3);
+  EXPECT_EQ(s.flippedFaces, 1);
+  EXPECT_FALSE(s.oriented);
+  // One quad removed: a hole of four edges; and the singularities moved away from the corners.
+  c = cubeQuads(3);
+  c.quads.faceVertices.erase(c.quads.faceVertices.begin(), c.quads.faceVertices.begin() + 4);
+  c.quads.faceStart.erase(c.quads.faceStart.begin());
+  for (int32_t& k : c.quads.faceStart) k -= 4;
+  for (Singularity& x : c.corners) x.vertex = c.corners.front().vertex;
+  s = measureCube(c, 1.0 / 3);
+  EXPECT_EQ(s.faces, 53);
+  EXPECT_EQ(s.boundaryEdges, 4);
+  EXPECT_EQ(s.eulerCharacteristic, 1);
+  EXPECT_LT(s.irregularNearSingularity, 1.0);
+  EXPECT_NEAR(s.irregularFarthest, 3 * std::sqrt(3.0), 1e-9);  // the opposite corner: sqrt(3) / h
+  // A quad with a vertex twice is degenerate.
+  c = cubeQuads(3);
+  c.quads.faceVertices[c.quads.faceStart[1] + 2] = c.quads.faceVertices[c.quads.faceStart[1] + 1];
+  s = measureCube(c, 1.0 / 3);
+  EXPECT_EQ(s.degenerateFaces, 1);
+  // The field turned by 10 degrees in every face: every edge is 10 degrees off.
+  c = cubeQuads(3);
+  const MeshTopology t = buildTopology(c.surface);
+  const MeshGeometry g = computeMeshGeometry(c.surface, t);
+  for (int32_t f = 0; f < t.numFaces; ++f) {
+    const Eigen::Vector3d n(&g.faceNormal[3 * f]), x(&c.axisField[3 * f]);
+    const double a = 10 * M_PI / 180;
+    Eigen::Map<Eigen::Vector3d>(&c.axisField[3 * f]) = std::cos(a) * x + std::sin(a) * n.cross(x);
+  }
+  s = measureQuadMesh(c.quads, c.surface, g, c.axisField, 4, c.corners, 1.0 / 3);
+  EXPECT_NEAR(s.edgeAngleMedianDeg, 10.0, 1e-9);
+  EXPECT_NEAR(s.edgeAngleP90Deg, 10.0, 1e-9);
+}
+
+TEST(QuadRemesh, KeepsTheEulerCharacteristicOfAGenusTwoSurface) {
+  Designer d(testing::holedPlate(5, 3, {{1, 1}, {3, 1}}, 2));
+  d.setSymmetry(4);
+  d.solve();
+  const QuadRemeshResult r = remeshDesign(d, 0.25);
+  printResult(r);
+  EXPECT_EQ(r.stats.eulerCharacteristic, -2);
+  EXPECT_EQ(r.stats.boundaryEdges, 0);
+  EXPECT_GE(r.stats.quadShare, 0.98);
+  EXPECT_LT(r.stats.edgeAngleMedianDeg, 5.0);
+}
+
+TEST(QuadRemesh, RefusesWhatItCannotMeshByName) {
+  Designer line(icosphere(2));
+  line.setSymmetry(2);
+  line.solve();
+  try {
+    remeshDesign(line, 0.2);
+    FAIL() << "a line field was remeshed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Quad meshes need a cross field"), std::string::npos) << e.what();
+  }
+  Designer open(testing::flatGrid(8));
+  open.setSymmetry(4);
+  open.solve();
+  EXPECT_THROW(remeshDesign(open, 0.2), InputError);
+  Designer sphere(icosphere(2));
+  sphere.setSymmetry(4);
+  sphere.solve();
+  EXPECT_THROW(remeshDesign(sphere, 1e-5), InputError);  // far more than 4 million quads
+  EXPECT_THROW(remeshDesign(sphere, -1), InputError);
+  // A Cancel from the progress callback ends it with RemeshCancelled.
+  QuadRemeshOptions o;
+  o.edgeLength = 0.2;
+  EXPECT_THROW(quadRemesh(sphere.mesh(), sphere.topology(), sphere.geometry(), sphere.faceVectors(), 4, o,
+                          [](const std::string& stage, double) { return stage != "extracting"; }),
+               RemeshCancelled);
 }
 
 }  // namespace
