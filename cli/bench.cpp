@@ -16,7 +16,6 @@
 namespace tvf {
 namespace {
 
-
 // Barycentres of a strip of adjacent faces heading away from the start: a stroke crossing ~`crossings` edges.
 std::vector<SurfacePoint> stripStroke(const SurfaceMesh& mesh, const MeshTopology& t, int32_t start,
                                       int crossings) {

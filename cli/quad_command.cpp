@@ -1,5 +1,6 @@
 #include "cli/quad_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -83,6 +84,39 @@ int quadCommand(int argc, char** argv, const std::function<nlohmann::json(const 
   else
     printTable(stats);
   return 0;
+}
+
+nlohmann::json quadBench(const std::string& meshPath, int64_t quads, int repeat) {
+  Designer designer(loadMesh(meshPath));
+  designer.setMetisOrdering(true);
+  designer.setSymmetry(4);
+  designer.solve();
+  QuadRemeshOptions options;
+  options.targetQuads = quads;
+  std::vector<std::vector<double>> times(5);
+  nlohmann::json last;
+  for (int r = 0; r < repeat; ++r) {
+    const QuadRemeshResult q = quadRemesh(designer.mesh(), designer.topology(), designer.geometry(),
+                                          designer.faceVectors(), 4, options);
+    const double ms[5] = {q.totalMs, q.cutMs, q.parametrizeMs, q.extractMs, q.measureMs};
+    for (int k = 0; k < 5; ++k) times[k].push_back(ms[k]);
+    last = quadRemeshJson(q);
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  return {{"mesh", meshPath},
+          {"faces", designer.topology().numFaces},
+          {"targetQuads", quads},
+          {"repeat", repeat},
+          {"quadMs", median(times[0])},
+          {"stageMs",
+           {{"cut", median(times[1])},
+            {"parametrize", median(times[2])},
+            {"extract", median(times[3])},
+            {"measure", median(times[4])}}},
+          {"stats", last}};
 }
 
 }  // namespace tvf::cli

@@ -14,10 +14,11 @@
 
 #include "cli/bench.h"
 #include "cli/ordering_cache.h"
+#include "cli/quad_command.h"
 #include "design/design_document.h"
+#include "design/design_stripes.h"
 #include "design/field_export.h"
 #include "design/mesh_info.h"
-#include "design/design_stripes.h"
 #include "direction/stripe_texture.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_io.h"
@@ -25,7 +26,6 @@
 #include "io/rosy_file.h"
 #include "io/sharp_file.h"
 #include "io/sing_file.h"
-#include "cli/quad_command.h"
 
 namespace {
 
@@ -46,6 +46,7 @@ int usage() {
          "  tvf quad MESH DESIGN.json -o OUT.obj [--edge-length L | --quads N] [--json]\n"
          "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
          "            [--threads N] [--symmetry N]\n"
+         "  tvf bench MESH --quads N [--repeat R]   (the quad remesher, JSON)\n"
          "--ordering-cache DIR keeps the field's fill-reducing ordering in DIR, one file per mesh and\n"
          "symmetry: the same mesh again skips the ordering (a stale or foreign file is ignored).\n"
          "Fill-reducing ordering: METIS nested dissection by default (less fill, faster solves and\n"
@@ -257,8 +258,9 @@ BakedStripes bakeStripes(const tvf::Designer& designer, const tvf::ExportAtlas& 
   tvf::DesignStripes pattern;
   pattern.compute(designer.mesh(), designer.topology(), designer.geometry(), designer.symmetry(),
                   designer.vertexVectors(), stripes);
-  const std::vector<uint8_t> rgba = tvf::stripeTextureRgba(designer.mesh(), pattern.pattern(), atlas.cornerUVs,
-                                                           options.size, options.gutterTexels, {}, stripes.profile);
+  const std::vector<uint8_t> rgba =
+      tvf::stripeTextureRgba(designer.mesh(), pattern.pattern(), atlas.cornerUVs, options.size,
+                             options.gutterTexels, {}, stripes.profile);
   return {tvf::encodePngRgba(std::vector<uint16_t>(rgba.begin(), rgba.end()), options.size, options.size, 8),
           tvf::stripeTexcoords(designer.mesh(), designer.topology(), pattern.pattern())};
 }
@@ -381,7 +383,8 @@ int exportCommand(int argc, char** argv) {
                                               designer.faceVectors(), symmetry, options));
   }
   if (!glbPath.empty()) {
-    const BakedStripes baked = stripes > 0 ? bakeStripes(designer, atlas, options, stripeOptions) : BakedStripes{};
+    const BakedStripes baked =
+        stripes > 0 ? bakeStripes(designer, atlas, options, stripeOptions) : BakedStripes{};
     std::unique_ptr<tvf::GltfSource> source;
     if (format == tvf::MeshFormat::Gltf || format == tvf::MeshFormat::Glb) {
       const std::vector<uint8_t> bytes = readBytes(meshPath);
@@ -390,15 +393,14 @@ int exportCommand(int argc, char** argv) {
           tvf::loadGltfSource(bytes.data(), bytes.size(), format == tvf::MeshFormat::Glb,
                               parent.empty() ? "." : parent, meshPath));
     }
-    writeBytes(glbPath,
-               !directions
-                   ? tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(), source.get(), atlas,
-                                         oneForm, tvf::designDocument(designer), options, baked.png,
-                                         baked.phaseTexcoords)
-                   : tvf::exportDirectionGlb(mesh, designer.topology(), designer.geometry(), source.get(),
-                                             atlas, designer.faceVectors(), symmetry,
-                                             tvf::designDocument(designer), options, baked.png,
-                                             baked.phaseTexcoords));
+    writeBytes(glbPath, !directions
+                            ? tvf::exportFieldGlb(mesh, designer.topology(), designer.geometry(),
+                                                  source.get(), atlas, oneForm, tvf::designDocument(designer),
+                                                  options, baked.png, baked.phaseTexcoords)
+                            : tvf::exportDirectionGlb(mesh, designer.topology(), designer.geometry(),
+                                                      source.get(), atlas, designer.faceVectors(), symmetry,
+                                                      tvf::designDocument(designer), options, baked.png,
+                                                      baked.phaseTexcoords));
   }
   return 0;
 }
@@ -420,6 +422,7 @@ int bench(int argc, char** argv) {
   double gamma = 0;
   bool json = false;
   int threads = 0, symmetry = 1;
+  int64_t quads = 0;
   std::vector<bool> orderings{true};
   for (int k = 3; k < argc; ++k) {
     const std::string a = argv[k];
@@ -436,6 +439,10 @@ int bench(int argc, char** argv) {
       symmetry = std::atoi(argv[++k]);
       if (symmetry < 1 || symmetry > 6)
         throw tvf::InputError("--symmetry must be a whole number from 1 to 6");
+    } else if (a == "--quads" && k + 1 < argc) {
+      quads = std::atoll(argv[++k]);
+      if (quads < 1 || quads > 4000000)
+        throw tvf::InputError("--quads must be a whole number from 1 to 4000000");
     } else if (a == "--metis") {
       orderings = {true};
     } else if (a == "--amd") {
@@ -446,6 +453,10 @@ int bench(int argc, char** argv) {
     } else {
       return usage();
     }
+  }
+  if (quads > 0) {
+    std::cout << tvf::cli::quadBench(argv[2], quads, repeat).dump() << "\n";
+    return 0;
   }
   const nlohmann::json r = tvf::runBench(argv[2], repeat, gamma, orderings, threads, symmetry);
   if (json)

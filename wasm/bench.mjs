@@ -30,7 +30,8 @@
 //   after the warm-up so background compilation can finish; default 100), --node-flags "FLAGS" (for the child
 //   processes, e.g. "--no-liftoff" to compare V8 tiering strategies), --module PATH (tvf_core.mjs),
 //   --symmetry N (1: a vector field; 2 a line, 4 a cross field: their power-field system, a direction constraint
-//   as the single update, smoothestMs for the unconstrained field; the native side with tvf bench --symmetry N).
+//   as the single update, smoothestMs for the unconstrained field; the native side with tvf bench --symmetry N),
+//   --quads N (instead of all else: the quad remesher at about N quads, wasm/quad-bench.mjs; JSON).
 // Every repeat ends with prescribed singularities' edits, as tvf bench times them (timeSingularityEdits):
 // singularityEditMs (the median of placing a pair and moving one, with every index the surface needs
 // prescribed), singularityPlaceMs, singularityMoveMs, singularityFactorizations (expected 0), singularityMode
@@ -43,6 +44,7 @@ import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
+import { measureQuadNative, measureQuadWasm } from './quad-bench.mjs';
 import {
   ROOT, ensureMeshes, fmt, meshName, meshPath, nativeTable, parseArgs, repeatFor, runNative,
 } from '../scripts/bench.mjs';
@@ -438,6 +440,7 @@ async function main() {
   const opts = parseArgs(argv, {
     json: false, 'first-factor-only': false, 'no-warmup': false, warmup: '3,1', settle: '100', native: '',
     'no-native': false, 'node-flags': '', module: '', amd: false, compare: false, threads: '', symmetry: '1',
+    quads: '',
   });
   if (opts.threads && !(Number.isInteger(Number(opts.threads)) && Number(opts.threads) >= 1))
     fail('--threads', `must be a whole number of at least 1 (got ${opts.threads})`);
@@ -445,6 +448,21 @@ async function main() {
   opts.settle = Number(opts.settle);
   opts.module = opts.module || undefined;
 
+  if (opts.quads) {
+    // The quad remesher alone (wasm/quad-bench.mjs): JSON, one mesh.
+    if (opts.meshes.length !== 1) fail('--quads', 'give exactly one mesh');
+    const mesh = opts.meshes[0];
+    ensureMeshes([mesh]);
+    const repeat = repeatFor(opts, mesh);
+    const wasm = await measureQuadWasm(resolve(opts.module ?? defaultModule(opts)), mesh, Number(opts.quads), repeat);
+    let native;
+    if (!opts['no-native']) {
+      ensureNativeCli(opts);
+      native = measureQuadNative(opts.tvf, mesh, Number(opts.quads), repeat);
+    }
+    console.log(JSON.stringify({ mesh, wasm, native, wasmOverNative: native ? wasm.quadMs / native.quadMs : undefined }));
+    return;
+  }
   if (opts['first-factor-only']) {
     // Child: one cold first factorization.
     const r = await measureWasm(opts.meshes[0], { ...opts, firstOnly: true });

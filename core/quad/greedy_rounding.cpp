@@ -97,7 +97,7 @@ GreedyRounding roundGreedily(const SparseMatrix& K, const Eigen::VectorXd& b,
   Eigen::VectorXd y0;
   if (!factor.solve(bc, y0)) return out;
   Eigen::VectorXd r = bi - Kci.transpose() * y0;
-  constexpr int32_t kBlock = 128;
+  constexpr int32_t kBlock = 16;
   for (int32_t c0 = 0; c0 < ni; c0 += kBlock) {
     const int32_t w = std::min(kBlock, ni - c0);
     Eigen::MatrixXd D = Eigen::MatrixXd(Kci.middleCols(c0, w)), Z;
