@@ -893,4 +893,31 @@ t.delete();
   check('stripes: symmetry 3 is refused by name', /symmetry 1, 2 or 4/.test(refused), refused);
   s.delete();
 }
+{
+  // The quad remesher (wasm/quad_bindings.cpp): a sphere's smoothest cross field has eight +1/4 singularities,
+  // and its quad mesh eight valence-3 vertices, closed (V - E + F = 2), as many vertices as the arrays say.
+  const q = new Module.Designer();
+  const ready = q.loadMesh(new TextEncoder().encode(icosphere(4)), 'off') || q.setSymmetry(4) || q.solve();
+  check('quad: a cross field on a sphere', ready === '', ready);
+  const args = [q.positions().slice(), Int32Array.from(q.triangles()), q.faceVectors().slice()];
+  const stages = [];
+  const r = Module.quadRemesh(...args, JSON.stringify({ edgeLength: 0.15, symmetry: 4 }),
+    (stage) => { stages.push(stage); return true; });
+  check('quad: remeshed', !r.error, r.error);
+  if (!r.error) {
+    const stats = JSON.parse(r.statsJson);
+    check('quad: eight valence-3 vertices, closed, all quads', stats.valence3 === 8 && stats.irregularVertices === 8 &&
+      stats.eulerCharacteristic === 2 && stats.quads === stats.faces, r.statsJson);
+    check('quad: the arrays are the mesh the statistics describe', r.positions.length === 3 * stats.vertices &&
+      r.faceStart.length === stats.faces + 1 && r.faceVertices.length === r.faceStart[stats.faces] &&
+      r.irregular.length === 8, `${r.positions.length} ${r.faceStart.length}`);
+    check('quad: progress through every stage', stages.includes('parametrizing') && stages.at(-1) === 'done',
+      stages.join());
+  }
+  const cancelled = Module.quadRemesh(...args, JSON.stringify({ edgeLength: 0.15, symmetry: 4 }), () => false);
+  check('quad: a progress answering false cancels', /cancelled/.test(cancelled.error ?? ''), cancelled.error);
+  const line = Module.quadRemesh(...args, JSON.stringify({ edgeLength: 0.15, symmetry: 2 }), null);
+  check('quad: a line field is refused by name', /Quad meshes need a cross field/.test(line.error ?? ''), line.error);
+  q.delete();
+}
 finish();
