@@ -25,7 +25,8 @@ struct GreedyRounding {
 };
 
 // K: the full symmetric matrix; integer: 1 per integer unknown; pinned: (unknown, value). progress (may be
-// empty) gets the fraction of integers fixed; returning false stops (ok stays false).
+// empty) gets the fraction done (the Schur complement's columns, then the integers fixed); returning false
+// stops (ok stays false).
 GreedyRounding roundGreedily(const SparseMatrix& K, const Eigen::VectorXd& b,
                              const std::vector<uint8_t>& integer,
                              const std::vector<std::pair<int32_t, double>>& pinned,
