@@ -158,6 +158,72 @@ export interface StripeState {
   error: string | null;
 }
 
+/** The target size of a remesh (remesh()): exactly one of the two. */
+export type QuadRemeshOptions =
+  /** The quads' edge length, in the model's units. */
+  | { edgeLength: number }
+  /** About this many quads (the surface's area over it gives the edge length). */
+  | { quads: number };
+
+/** The statistics of a quad mesh (the core's, core/quad/quad_mesh_stats.h). */
+export interface QuadMeshStats {
+  faces: number;
+  quads: number;
+  vertices: number;
+  /** quads / faces, 0..1. */
+  quadShare: number;
+  /** Interior vertices whose valence is not 4. */
+  irregularVertices: number;
+  fieldSingularities: number;
+  /** Share of the irregular vertices within two edge lengths of a field singularity, 0..1. */
+  irregularNearSingularity: number;
+  /** Angle between the quad edges and the nearest field direction, degrees. */
+  edgeAngleMedianDeg: number;
+  edgeAngleP90Deg: number;
+  /** Hausdorff distance to the model over its bounding-box diagonal. */
+  hausdorffRelative: number;
+  aspectMedian: number;
+  flippedFaces: number;
+  degenerateFaces: number;
+  manifold: boolean;
+  eulerCharacteristic: number;
+  /** The edge length used. */
+  edgeLength: number;
+  /** The core's time, ms. */
+  ms: number;
+  /** And the core's other measures (stageMs: each stage's time, ...). */
+  [key: string]: unknown;
+}
+
+/** A quad mesh (remesh()): polygons in CSR form, counter-clockwise; nearly all are quads. */
+export interface QuadMesh {
+  /** 3 per vertex. */
+  positions: Float64Array;
+  /** faces + 1: face k is faceVertices[faceStart[k] .. faceStart[k + 1]). */
+  faceStart: Int32Array;
+  faceVertices: Int32Array;
+  /** The interior vertices whose valence is not 4. */
+  irregular: Int32Array;
+  stats: QuadMeshStats;
+}
+
+/** The Quad mesh panel's state (quadMesh()). */
+export interface QuadMeshState {
+  running: boolean;
+  /** The core's stage while running, else null. */
+  stage: string | null;
+  /** 0..1 while running. */
+  fraction: number;
+  target: QuadRemeshOptions;
+  /** The wireframe is shown (the panel's Show). */
+  visible: boolean;
+  hasResult: boolean;
+  /** The design changed since the quad mesh was made. */
+  stale: boolean;
+  stats: QuadMeshStats | null;
+  error: string | null;
+}
+
 export interface Views {
   arrows: boolean;
   arrowDensity: number;
@@ -511,6 +577,18 @@ export declare class TangentFieldDesigner extends HTMLElement {
   stripes(): StripeState;
   /** Resolves once the stripes shown are of the field the views draw and of the options. */
   stripesIdle(): Promise<StripeState>;
+
+  // Quad meshes.
+  /** A quad mesh whose edges follow the cross field, made on a worker of its own (the design stays editable); no edit. Rejects with 'Quad meshes need a cross field' for another symmetry, or the core's reason. */
+  remesh(options?: QuadRemeshOptions): Promise<QuadMesh>;
+  /** Stops the remeshing in flight (its worker ended at once); false when none was. */
+  cancelRemesh(): boolean;
+  /** The Quad mesh panel's state: the run's stage, the target, the last quad mesh's stats, stale or not. */
+  quadMesh(): QuadMeshState;
+  /** The last quad mesh as OBJ text: its polygons as they are (f a b c d, 1-based). */
+  exportQuadObj(): string;
+  /** The last quad mesh as a GLB: a triangulated copy (each quad split along its shorter diagonal). */
+  exportQuadGlb(): ArrayBuffer;
 
   // View helpers.
   /** A PNG of the view, drawn again at width × height pixels (default: the canvas). */

@@ -17,7 +17,7 @@ const MAX_COLUMNS = 120;
 // layer's folder is checked, core/'s worker ops included: that core/ imports nothing of synthesis/, session/ or
 // element/ is this rule (they are all above it).
 export const LAYERS = {
-  element: 7, export: 6, synthesis: 6, stripes: 6, tools: 6, views: 5, session: 4, core: 3, geometry: 2, '.': 1,
+  element: 7, export: 6, synthesis: 6, stripes: 6, quad: 6, tools: 6, views: 5, session: 4, core: 3, geometry: 2, '.': 1,
 };
 const ENTRY_POINTS = new Set(['index.js', 'main.js', 'element-entry.js', 'core-worker.js']);
 

@@ -115,6 +115,15 @@ export const api = {
   setStripes: (d, opts) => d.stripes.setStripes(opts),
   stripes: (d) => d.stripes.state(),
   stripesIdle: (d) => d.stripes.whenIdle(),
+  // Quad meshes (web/quad/, docs/js-api.md): no edit, no history entry; each run on a worker of its own.
+  remesh: async (d, options) => {
+    d.session.requireReady();
+    return d.quad.remesh(options);
+  },
+  cancelRemesh: (d) => d.quad.cancel(),
+  quadMesh: (d) => d.quad.state(),
+  exportQuadObj: (d) => d.quad.exportObj(),
+  exportQuadGlb: (d) => d.quad.exportGlb(),
   streamlines: read((d) => d.viewSync.currentStreamlines().map((l) => Array.from(l))),
   // The direction cues drawn on the streamlines: each chevron's tip and the middle of its back.
   streamlineCues: read((d) => d.viewer.streamlines.cues.map(({ tip, back }) => ({ tip, back }))),

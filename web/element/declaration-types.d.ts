@@ -153,6 +153,72 @@ export interface StripeState {
   error: string | null;
 }
 
+/** The target size of a remesh (remesh()): exactly one of the two. */
+export type QuadRemeshOptions =
+  /** The quads' edge length, in the model's units. */
+  | { edgeLength: number }
+  /** About this many quads (the surface's area over it gives the edge length). */
+  | { quads: number };
+
+/** The statistics of a quad mesh (the core's, core/quad/quad_mesh_stats.h). */
+export interface QuadMeshStats {
+  faces: number;
+  quads: number;
+  vertices: number;
+  /** quads / faces, 0..1. */
+  quadShare: number;
+  /** Interior vertices whose valence is not 4. */
+  irregularVertices: number;
+  fieldSingularities: number;
+  /** Share of the irregular vertices within two edge lengths of a field singularity, 0..1. */
+  irregularNearSingularity: number;
+  /** Angle between the quad edges and the nearest field direction, degrees. */
+  edgeAngleMedianDeg: number;
+  edgeAngleP90Deg: number;
+  /** Hausdorff distance to the model over its bounding-box diagonal. */
+  hausdorffRelative: number;
+  aspectMedian: number;
+  flippedFaces: number;
+  degenerateFaces: number;
+  manifold: boolean;
+  eulerCharacteristic: number;
+  /** The edge length used. */
+  edgeLength: number;
+  /** The core's time, ms. */
+  ms: number;
+  /** And the core's other measures (stageMs: each stage's time, ...). */
+  [key: string]: unknown;
+}
+
+/** A quad mesh (remesh()): polygons in CSR form, counter-clockwise; nearly all are quads. */
+export interface QuadMesh {
+  /** 3 per vertex. */
+  positions: Float64Array;
+  /** faces + 1: face k is faceVertices[faceStart[k] .. faceStart[k + 1]). */
+  faceStart: Int32Array;
+  faceVertices: Int32Array;
+  /** The interior vertices whose valence is not 4. */
+  irregular: Int32Array;
+  stats: QuadMeshStats;
+}
+
+/** The Quad mesh panel's state (quadMesh()). */
+export interface QuadMeshState {
+  running: boolean;
+  /** The core's stage while running, else null. */
+  stage: string | null;
+  /** 0..1 while running. */
+  fraction: number;
+  target: QuadRemeshOptions;
+  /** The wireframe is shown (the panel's Show). */
+  visible: boolean;
+  hasResult: boolean;
+  /** The design changed since the quad mesh was made. */
+  stale: boolean;
+  stats: QuadMeshStats | null;
+  error: string | null;
+}
+
 export interface Views {
   arrows: boolean;
   arrowDensity: number;

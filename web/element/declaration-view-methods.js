@@ -7,6 +7,7 @@
 const VIEWS = { source: 'api', group: 'Views' };
 const VIEW_HELPERS = { source: 'api', group: 'View helpers' };
 const STRIPES = { source: 'api', group: 'Stripe patterns' };
+const QUAD = { source: 'api', group: 'Quad meshes' };
 const TEXTURE = { source: 'texture', group: 'Texture synthesis' };
 const ELEMENT = { source: 'element', group: 'The element' };
 const TEST_HOOKS = { source: 'api', group: 'Test hooks', internal: true };
@@ -48,6 +49,33 @@ export const VIEW_METHODS = [
     name: 'stripesIdle', ...STRIPES,
     signatures: [['', 'Promise<StripeState>']],
     description: 'Resolves once the stripes shown are of the field the views draw and of the options.',
+  },
+
+  {
+    name: 'remesh', ...QUAD,
+    signatures: [['options?: QuadRemeshOptions', 'Promise<QuadMesh>']],
+    description: 'A quad mesh whose edges follow the cross field, made on a worker of its own (the design stays ' +
+      "editable); no edit. Rejects with 'Quad meshes need a cross field' for another symmetry, or the core's reason.",
+  },
+  {
+    name: 'cancelRemesh', ...QUAD,
+    signatures: [['', 'boolean']],
+    description: 'Stops the remeshing in flight (its worker ended at once); false when none was.',
+  },
+  {
+    name: 'quadMesh', ...QUAD,
+    signatures: [['', 'QuadMeshState']],
+    description: "The Quad mesh panel's state: the run's stage, the target, the last quad mesh's stats, stale or not.",
+  },
+  {
+    name: 'exportQuadObj', ...QUAD,
+    signatures: [['', 'string']],
+    description: 'The last quad mesh as OBJ text: its polygons as they are (f a b c d, 1-based).',
+  },
+  {
+    name: 'exportQuadGlb', ...QUAD,
+    signatures: [['', 'ArrayBuffer']],
+    description: 'The last quad mesh as a GLB: a triangulated copy (each quad split along its shorter diagonal).',
   },
 
   {

@@ -8,6 +8,7 @@ import { bindUi } from './ui.js';
 import { ViewSync } from './view-sync.js';
 import { setupExport } from '../export/index.js';
 import { baseName } from '../session/documents.js';
+import { setupQuad } from '../quad/index.js';
 import { Session } from '../session/session.js';
 import { setupStripes } from '../stripes/index.js';
 import { prepareAtlasAhead, setupSynthesis } from '../synthesis/index.js';
@@ -54,6 +55,7 @@ export class Designer {
     this.textureApi = {};
     this.synthesis = this.#setupSynthesis($('#side-panel'), bench);
     this.stripes = this.#setupStripes($('#side-panel'));
+    this.quad = this.#setupQuad($('#side-panel'), assetBase);
     // The texture and the stripes follow the field drawn.
     this.viewSync.onRefreshed = () => {
       this.synthesis.fieldChanged();
@@ -137,6 +139,33 @@ export class Designer {
     });
   }
 
+  // Quad meshes from the cross field (web/quad/): each remesh runs on a worker of its own, never the core's, and
+  // is no edit: the session only hands over the mesh and the field as they are.
+  #setupQuad(panel, assetBase) {
+    const s = this.session;
+    return setupQuad({
+      viewer: this.viewer,
+      panel,
+      assetBase,
+      symmetry: () => s.field?.symmetry ?? 1,
+      fieldVersion: () => s.fieldVersion,
+      area: () => (s.surface?.areas ?? []).reduce((sum, a) => sum + a, 0),
+      modelName: () => baseName(s.modelName),
+      onError: (err) => !s.disposed && this.ui.showError(err.message),
+      getInput: async () => {
+        if (s.field?.stats?.preview) await s.settled(); // the exact field, not a big model's preview of it
+        if (!s.surface || !s.field) return null;
+        return {
+          positions: s.surface.positions.slice(),
+          triangles: s.surface.triangles.slice(),
+          faceDirections: s.fieldArray('faceVectors').slice(),
+          symmetry: s.field.symmetry ?? 1,
+          version: s.fieldVersion,
+        };
+      },
+    });
+  }
+
   // After a model is shown, as the session warms the design's calls up: the model's texture atlas prepared
   // in the core's worker (synthesis/atlas-ahead.js), or for a model too big for that, once, the texture's CPU
   // half warmed up on a torus (synthesis/warm-up.js: ~0.27 s there; the first texture's atlas choice for bunny00
@@ -173,6 +202,7 @@ export class Designer {
       this.viewSync.modelChanged(model);
       this.synthesis.modelChanged(); // the model's UVs and a fresh atlas for the new mesh
       this.stripes.modelChanged();
+      this.quad.modelChanged(); // a quad mesh is of one model
     });
     // A big model's mesh goes to the GPU ahead of its field; perf().meshUploads counts the tasks it took.
     s.on('surface', (staged) => {
@@ -182,7 +212,10 @@ export class Designer {
       this.viewSync.refresh();
       this.onSettings(s.settings());
     });
-    s.on('fieldchange', () => this.exports.fieldChanged());
+    s.on('fieldchange', () => {
+      this.exports.fieldChanged();
+      this.quad.fieldChanged(); // a quad mesh of an earlier field is stale
+    });
     const ends = new Map();
     s.on('busy', ({ op, done, phase }) => {
       if (phase) return void ends.get(op)?.end.relabel(phase);
@@ -215,6 +248,7 @@ export class Designer {
     this.session.dispose();
     this.synthesis.dispose();
     this.stripes.dispose();
+    this.quad.dispose();
     this.exports.dispose();
     this.tools.dispose();
     this.ui.dispose();

@@ -1,0 +1,236 @@
+// Quad meshes from the designed cross field in the page (issue 46, item 2; web/quad/, docs/js-api.md "Quad
+// meshes"), against the real wasm core on a worker of its own and the real WebGL view. On a small sphere's cross
+// field the Quad mesh panel's Remesh makes a quad mesh whose statistics, as the panel shows them, are sane (nearly
+// all quads, closed, as many field singularities as the page counts); its wireframe is on the canvas (the pixels
+// differ from the same view with Show off); its OBJ (the API's, and the panel's download, the same text) reads
+// back with the counts of the statistics, its GLB holds every vertex and the triangles. An edit leaves it drawn
+// and marks it stale. While a remesh runs a stroke drawn with the mouse is taken; Cancel in the panel then leaves
+// the panel idle, no new result and no worker of its own, and the next remesh runs (and ends its worker). A vector
+// or line field is refused with "Quad meshes need a cross field", by the API and in the panel.
+import { readFile } from 'node:fs/promises';
+import { expect, test } from '@playwright/test';
+import { icosphereOff } from '../icosphere.mjs';
+import { parseObj } from '../node/quad-fixtures.mjs';
+import { openDesignerPage } from './helpers.mjs';
+
+// The canvas's pixels as RGB bytes (row 0 at the top), carried out of the page as base64 (a plain array of
+// two million numbers took seconds to serialize).
+async function readCanvasRgb(page) {
+  const base64 = await page.evaluate(() => {
+    const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
+    const c = document.createElement('canvas');
+    c.width = src.width;
+    c.height = src.height;
+    const ctx = c.getContext('2d', { willReadFrequently: true });
+    ctx.drawImage(src, 0, 0);
+    const rgba = ctx.getImageData(0, 0, c.width, c.height).data;
+    const rgb = new Uint8Array((rgba.length / 4) * 3);
+    for (let i = 0, j = 0; i < rgba.length; i += 4, j += 3) rgb.set(rgba.subarray(i, i + 3), j);
+    let text = '';
+    for (let i = 0; i < rgb.length; i += 0x8000) text += String.fromCharCode(...rgb.subarray(i, i + 0x8000));
+    return btoa(text);
+  });
+  return new Uint8Array(Buffer.from(base64, 'base64'));
+}
+
+// A remesh target that keeps the core busy for seconds on the small sphere (the parametrization is the sphere's;
+// the extraction and the statistics grow with the quads).
+const BIG_TARGET = 1_000_000;
+
+// Share of pixels whose colour differs by more than `threshold` (sum over R, G, B).
+function differingShare(a, b, threshold = 48) {
+  let n = 0;
+  for (let i = 0; i < a.length; i += 3)
+    if (Math.abs(a[i] - b[i]) + Math.abs(a[i + 1] - b[i + 1]) + Math.abs(a[i + 2] - b[i + 2]) > threshold) n++;
+  return n / (a.length / 3);
+}
+
+test.describe.serial('quad meshes in the page', () => {
+  let page, errors;
+  const evaluate = (fn, arg) => page.evaluate(fn, arg);
+  // The message remesh(options) rejects with, exactly as the page has it.
+  const refusal = (options) =>
+    page.evaluate((o) => window.tvf.remesh(o).then(() => 'resolved', (err) => err.message), options);
+  const quadState = () => evaluate(() => window.tvf.quadMesh());
+  // Two animation frames: the view's requested render has been drawn.
+  const frames = () => evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  let first = null; // the statistics of the panel's remesh
+
+  test.beforeAll(async ({ browser }) => {
+    ({ page, errors } = await openDesignerPage(browser, { viewport: { width: 1024, height: 720 } }));
+    // A closed genus-0 sphere of 1,280 triangles: its smoothest cross field has eight +1/4 singularities.
+    await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'ball.off', restore: false }),
+      icosphereOff(3));
+    await evaluate(() => window.tvf.setSymmetry(4));
+    await evaluate(() => window.tvf.setViews({ arrows: false, singularities: false }));
+    await page.locator('#quad-panel summary').click();
+  });
+  test.afterAll(async () => {
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  test('Remesh in the panel: sane statistics, the wireframe drawn, the OBJ as the statistics count', async () => {
+    await expect(page.locator('#quad-status')).toHaveText('No quad mesh yet.');
+    await expect(page.locator('#quad-target-mode')).toHaveValue('quads');
+    await expect(page.locator('#quad-target')).toHaveValue('5000');
+    await page.locator('#quad-target').fill('800');
+    await page.locator('#quad-target').dispatchEvent('change');
+    expect((await quadState()).target).toEqual({ quads: 800 });
+    const t0 = Date.now();
+    await page.locator('#quad-remesh').click();
+    await expect.poll(async () => (await quadState()).hasResult, { timeout: 120_000 }).toBe(true);
+    const state = await quadState();
+    const s = (first = state.stats);
+    const ms = Date.now() - t0;
+    console.log(`[ measured ] icosphere(3), 800 quads asked, ${ms} ms from the click: ${JSON.stringify(s)}`);
+    expect(state.running).toBe(false);
+    expect(state.error).toBeNull();
+    expect(state.stale).toBe(false);
+    expect(s.faces).toBeGreaterThan(0);
+    expect(s.quads).toBeLessThanOrEqual(s.faces);
+    expect(s.quadShare).toBeGreaterThanOrEqual(0.9);
+    expect(s.faces).toBeGreaterThan(400);
+    expect(s.faces).toBeLessThan(1600);
+    expect(s.manifold).toBe(true);
+    expect(s.eulerCharacteristic).toBe(2);
+    expect(s.fieldSingularities).toBe(await evaluate(() => window.tvf.singularities().length));
+    expect(s.flippedFaces).toBe(0);
+    expect(s.hausdorffRelative).toBeLessThan(0.05);
+    // The panel shows those numbers; idle: no bar, Cancel disabled, the exports enabled.
+    const shown = await page.locator('#quad-stats').innerText();
+    const count = (n) => n.toLocaleString('en-US');
+    const quadPercent = (100 * s.quadShare).toFixed(2);
+    expect(shown).toContain(`Quads: ${count(s.quads)} of ${count(s.faces)} faces (${quadPercent} %)`);
+    expect(shown).toContain(`Irregular vertices: ${s.irregularVertices} (field singularities: ${s.fieldSingularities}`);
+    expect(shown).toContain(`median ${s.edgeAngleMedianDeg.toFixed(1)}°, p90 ${s.edgeAngleP90Deg.toFixed(1)}°`);
+    await expect(page.locator('#quad-running')).toBeHidden();
+    await expect(page.locator('#quad-cancel')).toBeDisabled();
+    await expect(page.locator('#quad-export-obj')).toBeEnabled();
+
+    // The wireframe: the same view with Show off differs.
+    await frames();
+    const withMesh = await readCanvasRgb(page);
+    await page.locator('#quad-show').uncheck();
+    await frames();
+    const without = await readCanvasRgb(page);
+    await page.locator('#quad-show').check();
+    await frames();
+    const again = await readCanvasRgb(page);
+    const share = differingShare(withMesh, without);
+    console.log(`[ measured ] the wireframe changes ${(100 * share).toFixed(2)} % of the canvas's pixels`);
+    expect(share).toBeGreaterThan(0.005);
+    expect(differingShare(withMesh, again)).toBeLessThan(0.001);
+
+    // The OBJ: as many vertices, faces and quads as the statistics say.
+    const obj = parseObj(await evaluate(() => window.tvf.exportQuadObj()));
+    expect(obj.vertices.length).toBe(s.vertices);
+    expect(obj.faces.length).toBe(s.faces);
+    expect(obj.faces.filter((f) => f.length === 4).length).toBe(s.quads);
+    // The panel's OBJ button downloads the same text.
+    const [download] = await Promise.all([page.waitForEvent('download'), page.locator('#quad-export-obj').click()]);
+    expect(download.suggestedFilename()).toBe('ball.quad.obj');
+    const downloaded = await readFile(await download.path(), 'utf8');
+    expect(downloaded).toBe(await evaluate(() => window.tvf.exportQuadObj()));
+    // The GLB: its triangulated copy, with every vertex.
+    const glb = await evaluate(() => {
+      const bytes = new DataView(window.tvf.exportQuadGlb());
+      const length = bytes.getUint32(12, true);
+      const doc = JSON.parse(new TextDecoder().decode(new Uint8Array(bytes.buffer, 20, length)));
+      return { magic: bytes.getUint32(0, true), total: bytes.getUint32(8, true), size: bytes.byteLength, doc };
+    });
+    expect(glb.magic).toBe(0x46546c67);
+    expect(glb.total).toBe(glb.size);
+    const primitive = glb.doc.meshes[0].primitives[0];
+    expect(glb.doc.accessors[primitive.attributes.POSITION].count).toBe(s.vertices);
+    expect(glb.doc.accessors[primitive.indices].count).toBe(3 * obj.faces.reduce((n, f) => n + f.length - 2, 0));
+  });
+
+  test('an edit: the quad mesh stays drawn and is marked stale; remeshing is no edit', async () => {
+    const history = await evaluate(() => window.tvf.history());
+    expect(history.undo.some((label) => /remesh|quad/i.test(label))).toBe(false);
+    await evaluate(() => window.tvf.addVector(0, [0, 0, 1]));
+    await expect.poll(async () => (await quadState()).stale).toBe(true);
+    await expect(page.locator('#quad-status')).toHaveText('The design changed since; Remesh again.');
+    const state = await quadState();
+    expect(state.hasResult).toBe(true);
+    expect(state.stats).toEqual(first);
+    expect(state.visible).toBe(true);
+  });
+
+  test('Cancel while a stroke is drawn: the panel idle again, no new result; the next remesh runs', async () => {
+    // The page's workers now: the element's core worker (and what it started); a remesh adds one of its own.
+    const idleWorkers = page.workers().length;
+    // A big target keeps the core busy long enough to draw meanwhile.
+    await evaluate((quads) => {
+      window.__remesh = window.tvf.remesh({ quads }).then(() => 'resolved', (err) => err.message);
+    }, BIG_TARGET);
+    await expect(page.locator('#quad-cancel')).toBeEnabled();
+    await expect(page.locator('#quad-running')).toBeVisible();
+    await expect.poll(() => page.workers().length).toBeGreaterThan(idleWorkers);
+    console.log(`[ measured ] the page's workers: ${idleWorkers} idle, ${page.workers().length} while remeshing`);
+    // Once the core is at work (its first stage posted), a stroke drawn with the mouse is taken at once.
+    await expect.poll(async () => (await quadState()).stage, { timeout: 60_000 }).not.toBe('starting');
+    const before = (await evaluate(() => window.tvf.constraints())).length;
+    const line = await evaluate(() => {
+      const view = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
+      const r = view.getBoundingClientRect();
+      const cx = r.left + r.width / 2, cy = r.top + r.height / 2, half = 60, n = 24;
+      for (const dy of [0, 30, -30, 60]) {
+        let all = true;
+        for (let k = 0; k <= n && all; k++) all = !!window.tvf.pick(cx - half + (2 * half * k) / n, cy + dy);
+        if (all) return { x0: cx - half, x1: cx + half, y: cy + dy };
+      }
+      return null;
+    });
+    expect(line, 'a screen line across the sphere').not.toBeNull();
+    const t0 = Date.now();
+    await page.getByRole('button', { name: 'Stroke', exact: true }).click();
+    await page.mouse.move(line.x0, line.y);
+    await page.mouse.down();
+    await page.mouse.move(line.x1, line.y, { steps: 12 });
+    await page.mouse.up();
+    await expect.poll(async () => (await evaluate(() => window.tvf.constraints())).length).toBe(before + 1);
+    console.log(`[ measured ] a stroke drawn during the remesh: its constraint after ${Date.now() - t0} ms`);
+    expect((await quadState()).running, 'the remesh still runs').toBe(true);
+    await page.getByRole('button', { name: 'Orbit', exact: true }).click();
+    await page.locator('#quad-cancel').click();
+    expect(await evaluate(() => window.__remesh)).toBe('the quad remeshing was cancelled');
+    const state = await quadState();
+    expect(state.running).toBe(false);
+    expect(state.stage).toBeNull();
+    expect(state.error).toBeNull();
+    expect(state.stats).toEqual(first); // no new result: the earlier (stale) one stays
+    await expect(page.locator('#quad-running')).toBeHidden();
+    await expect(page.locator('#quad-cancel')).toBeDisabled();
+    expect(await evaluate(() => window.tvf.cancelRemesh())).toBe(false);
+    await expect.poll(() => page.workers().length, { message: "the remesh's worker is gone" }).toBe(idleWorkers);
+
+    // The next remesh, through the API: the arrays as the statistics count them, and the mesh no longer stale.
+    const result = await evaluate(async () => {
+      const r = await window.tvf.remesh({ quads: 600 });
+      return { nV: r.positions.length / 3, nF: r.faceStart.length - 1, corners: r.faceVertices.length,
+        irregular: r.irregular.length, stats: r.stats };
+    });
+    expect(result.nV).toBe(result.stats.vertices);
+    expect(result.nF).toBe(result.stats.faces);
+    expect(result.irregular).toBe(result.stats.irregularVertices);
+    expect(result.stats.quadShare).toBeGreaterThanOrEqual(0.9);
+    await expect.poll(() => page.workers().length, { message: 'a finished remesh ends its worker' }).toBe(idleWorkers);
+    const after = await quadState();
+    expect(after.stale).toBe(false);
+    expect(after.target).toEqual({ quads: 600 });
+    await expect(page.locator('#quad-target')).toHaveValue('600');
+  });
+
+  test('a vector or line field is refused: "Quad meshes need a cross field"', async () => {
+    for (const n of [1, 2]) {
+      await evaluate((n) => window.tvf.setSymmetry(n), n);
+      expect(await refusal(undefined)).toBe('Quad meshes need a cross field');
+    }
+    await page.locator('#quad-remesh').click();
+    await expect(page.locator('#quad-status')).toHaveText('Quad meshes need a cross field');
+    expect((await quadState()).running).toBe(false);
+    expect(await refusal({ quads: 0 })).toMatch(/^remesh: quads must be a whole number/);
+  });
+});

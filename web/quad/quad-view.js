@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The quad mesh drawn over the model: its edges as one LineSegments, and its irregular vertices as points, blue
+// where three edges meet, red where five do, amber for any other valence. A quad's edges are chords of the
+// surface, which on a convex part runs above them: every end is lifted along the quad mesh's vertex normal by
+// a fraction of the edge length (more than a chord's sag, L²/8R, wherever the quads are small against the
+// curvature, as a remesh makes them), and the surface's own polygon offset does the rest where it is flat.
+// A stale mesh (the design changed since) is drawn dimmer. Owns its objects; imports three.js and its own folder.
+import { BufferAttribute, BufferGeometry, Color, Group, LineBasicMaterial, LineSegments, Points, PointsMaterial }
+  from 'three';
+import { meanEdgeLength, uniqueEdges, valences, vertexNormals } from './quad-mesh.js';
+
+const LINE_COLOR = 0x2dd4bf; // teal: no field view, handle or marker uses it
+const STALE_COLOR = 0x5b6b70;
+const VALENCE_COLORS = { 3: 0x3b82f6, 5: 0xef4444 };
+const OTHER_VALENCE_COLOR = 0xf59e0b;
+const LINE_LIFT = 0.04; // × edge length
+const POINT_LIFT = 0.08;
+const POINT_SIZE = 7; // pixels
+
+export class QuadView {
+  constructor(viewer) {
+    this.viewer = viewer;
+    this.group = new Group();
+    this.group.visible = false;
+    this.lines = new LineSegments(new BufferGeometry(), new LineBasicMaterial({ color: LINE_COLOR }));
+    this.lines.renderOrder = 2;
+    this.points = new Points(
+      new BufferGeometry(),
+      new PointsMaterial({ size: POINT_SIZE, sizeAttenuation: false, vertexColors: true }),
+    );
+    this.points.renderOrder = 3;
+    this.group.add(this.lines, this.points);
+    viewer.scene.add(this.group);
+    this.hasMesh = false;
+    this.visible = true;
+    this.edgeCount = 0;
+  }
+
+  // mesh: {positions, faceStart, faceVertices, irregular}; edgeLength: the core's target (else the mean edge).
+  setMesh(mesh, { edgeLength = 0, stale = false } = {}) {
+    const edges = uniqueEdges(mesh);
+    const length = edgeLength > 0 ? edgeLength : meanEdgeLength(mesh, edges);
+    const normals = vertexNormals(mesh), p = mesh.positions;
+    const lifted = (out, at, v, lift) => {
+      for (let c = 0; c < 3; c++) out[at + c] = p[3 * v + c] + lift * normals[3 * v + c];
+    };
+    const line = new Float32Array(3 * edges.length);
+    for (let k = 0; k < edges.length; k++) lifted(line, 3 * k, edges[k], LINE_LIFT * length);
+    const valence = valences(mesh);
+    const point = new Float32Array(3 * mesh.irregular.length), colour = new Float32Array(point.length);
+    const c = new Color();
+    mesh.irregular.forEach((v, k) => {
+      lifted(point, 3 * k, v, POINT_LIFT * length);
+      c.setHex(VALENCE_COLORS[valence[v]] ?? OTHER_VALENCE_COLOR).toArray(colour, 3 * k);
+    });
+    this.#geometry(this.lines, { position: line });
+    this.#geometry(this.points, { position: point, color: colour });
+    this.edgeCount = edges.length / 2;
+    this.hasMesh = true;
+    this.setStale(stale);
+    this.#show();
+  }
+
+  #geometry(object, attributes) {
+    object.geometry.dispose();
+    object.geometry = new BufferGeometry();
+    for (const [name, array] of Object.entries(attributes))
+      object.geometry.setAttribute(name, new BufferAttribute(array, 3));
+  }
+
+  setVisible(visible) {
+    this.visible = !!visible;
+    this.#show();
+  }
+
+  setStale(stale) {
+    this.lines.material.color.setHex(stale ? STALE_COLOR : LINE_COLOR);
+    this.viewer.requestRender();
+  }
+
+  clear() {
+    this.hasMesh = false;
+    this.edgeCount = 0;
+    this.#geometry(this.lines, { position: new Float32Array(0) });
+    this.#geometry(this.points, { position: new Float32Array(0), color: new Float32Array(0) });
+    this.#show();
+  }
+
+  #show() {
+    this.group.visible = this.visible && this.hasMesh;
+    this.viewer.requestRender();
+  }
+
+  // What is drawn, for the tests: whether the wireframe is shown, its edges and irregular vertices.
+  drawn() {
+    const irregular = this.points.geometry.getAttribute('position')?.count ?? 0;
+    return { shown: this.group.visible, edges: this.edgeCount, irregular };
+  }
+
+  dispose() {
+    this.group.parent?.remove(this.group);
+    for (const o of [this.lines, this.points]) {
+      o.geometry.dispose();
+      o.material.dispose();
+    }
+  }
+}

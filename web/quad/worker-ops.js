@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The quad remeshing's worker op, composed by web/core-worker.js like every group, but served by a worker of its
+// own (run.js starts a second core-worker.js for each remesh): a remesh takes seconds to minutes, and on the
+// element's core worker it would hold every edit behind it. Here the core's quadRemesh (wasm/quad_bindings.cpp,
+// core/quad/quad_remesh.h) runs on the mesh and cross field the page sends, its stages go to the page as
+// `progress` messages, and the polygon mesh comes back with its arrays transferred. Cancelling is the page's
+// terminate() of this worker, so the progress callback never says stop. Imports the core worker's Transfer and
+// CoreError.
+import { CoreError } from '../core/core-error.js';
+import { Transfer } from '../core/worker/transfer.js';
+
+// state: the worker's (core/worker/state.js), whose `init` loaded the module.
+export function quadOps(state) {
+  const anytime = {
+    // positions (Float64Array, 3 per vertex), triangles (Int32Array, 3 per face), faceDirections (Float64Array,
+    // one unit representative of the cross field per face), options ({edgeLength} | {quads}, plus symmetry).
+    // Replies {positions, faceStart, faceVertices, irregular, stats, workerMs}; a refusal rejects with the core's
+    // words.
+    quadRemesh(positions, triangles, faceDirections, options) {
+      const Module = state.core?.Module;
+      if (typeof Module?.quadRemesh !== 'function')
+        throw new CoreError('this build of the core has no quad remeshing: rebuild it (npm run build:wasm)');
+      const t0 = performance.now();
+      const progress = (stage, fraction) => {
+        state.progress({ stage: String(stage), fraction: Number(fraction) });
+        return true;
+      };
+      const out = Module.quadRemesh(positions, triangles, faceDirections, JSON.stringify(options), progress);
+      if (out.error) throw new CoreError(out.error);
+      // Copies: an embind result may view the wasm heap, whose buffer cannot be transferred.
+      const value = {
+        positions: Float64Array.from(out.positions),
+        faceStart: Int32Array.from(out.faceStart),
+        faceVertices: Int32Array.from(out.faceVertices),
+        irregular: Int32Array.from(out.irregular),
+        stats: JSON.parse(out.statsJson),
+        workerMs: performance.now() - t0,
+      };
+      const list = ['positions', 'faceStart', 'faceVertices', 'irregular'].map((k) => value[k].buffer);
+      return new Transfer(value, list);
+    },
+  };
+  return { anytime };
+}
