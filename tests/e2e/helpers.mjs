@@ -27,10 +27,11 @@ export async function openDesignerPage(browser, options) {
   return { page, errors };
 }
 
-// The designer's whole canvas as grey values (row 0 at the top), with where it sits on the page: {w, h, grey,
-// left, top, scale} (scale: drawing-buffer pixels per CSS pixel).
-export function readCanvasGrey(page) {
-  return page.evaluate(() => {
+// The designer's whole canvas read in the page (drawn into a 2D canvas, row 0 at the top) and carried out as
+// `as` says: 'grey', {w, h, grey, left, top, scale} (below); 'rgb', its RGB bytes as base64 (a plain array of
+// two million numbers took seconds to serialize).
+function readCanvas(page, as) {
+  return page.evaluate((as) => {
     const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
     const c = document.createElement('canvas');
     c.width = src.width;
@@ -38,11 +39,29 @@ export function readCanvasGrey(page) {
     const ctx = c.getContext('2d', { willReadFrequently: true });
     ctx.drawImage(src, 0, 0);
     const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    if (as === 'rgb') {
+      const rgb = new Uint8Array((d.length / 4) * 3);
+      for (let i = 0, j = 0; i < d.length; i += 4, j += 3) rgb.set(d.subarray(i, i + 3), j);
+      let text = '';
+      for (let i = 0; i < rgb.length; i += 0x8000) text += String.fromCharCode(...rgb.subarray(i, i + 0x8000));
+      return btoa(text);
+    }
     const grey = [];
     for (let i = 0; i < d.length; i += 4) grey.push((d[i] + d[i + 1] + d[i + 2]) / 3);
     const r = src.getBoundingClientRect();
     return { w: c.width, h: c.height, grey, left: r.left, top: r.top, scale: c.height / src.clientHeight };
-  });
+  }, as);
+}
+
+// The designer's whole canvas as grey values (row 0 at the top), with where it sits on the page: {w, h, grey,
+// left, top, scale} (scale: drawing-buffer pixels per CSS pixel).
+export function readCanvasGrey(page) {
+  return readCanvas(page, 'grey');
+}
+
+// The designer's whole canvas as RGB bytes (row 0 at the top), a Uint8Array of 3 per pixel.
+export async function readCanvasRgb(page) {
+  return new Uint8Array(Buffer.from(await readCanvas(page, 'rgb'), 'base64'));
 }
 
 // Fraction of pixels in the central box of the WebGL canvas that differ from the background colour.

@@ -11,27 +11,7 @@ import { readFile } from 'node:fs/promises';
 import { expect, test } from '@playwright/test';
 import { icosphereOff } from '../icosphere.mjs';
 import { parseObj } from '../node/quad-fixtures.mjs';
-import { openDesignerPage } from './helpers.mjs';
-
-// The canvas's pixels as RGB bytes (row 0 at the top), carried out of the page as base64 (a plain array of
-// two million numbers took seconds to serialize).
-async function readCanvasRgb(page) {
-  const base64 = await page.evaluate(() => {
-    const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
-    const c = document.createElement('canvas');
-    c.width = src.width;
-    c.height = src.height;
-    const ctx = c.getContext('2d', { willReadFrequently: true });
-    ctx.drawImage(src, 0, 0);
-    const rgba = ctx.getImageData(0, 0, c.width, c.height).data;
-    const rgb = new Uint8Array((rgba.length / 4) * 3);
-    for (let i = 0, j = 0; i < rgba.length; i += 4, j += 3) rgb.set(rgba.subarray(i, i + 3), j);
-    let text = '';
-    for (let i = 0; i < rgb.length; i += 0x8000) text += String.fromCharCode(...rgb.subarray(i, i + 0x8000));
-    return btoa(text);
-  });
-  return new Uint8Array(Buffer.from(base64, 'base64'));
-}
+import { openDesignerPage, readCanvasRgb } from './helpers.mjs';
 
 // A remesh target that keeps the core busy for seconds on the small sphere (the parametrization is the sphere's;
 // the extraction and the statistics grow with the quads).

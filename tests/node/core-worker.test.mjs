@@ -5,23 +5,12 @@ import assert from 'node:assert/strict';
 import test from 'node:test';
 import { fnv1a } from '../../web/core/model-bytes.js';
 import { icosphere, offText } from './fakes.mjs';
+import { serveCoreWorker } from './worker-harness.mjs';
 
 const DIST = new URL('../../dist/', import.meta.url).href;
 
-// The entry serves `self`: here a stand-in that keeps what the worker posts.
-const posted = [];
-const scope = { postMessage: (data, list = []) => posted.push({ data, list }) };
-globalThis.self = scope;
-await import('../../web/core-worker.js');
-
-let seq = 0;
-async function call(op, ...args) {
-  const mine = ++seq;
-  await scope.onmessage({ data: { seq: mine, op, args } });
-  const { data, list } = posted.find((p) => p.data.seq === mine && !p.data.progress);
-  if (!data.ok) throw new Error(data.error);
-  return { ...data, list };
-}
+// The entry serves `self`: here a stand-in that keeps what the worker posts (worker-harness.mjs).
+const { posted, call } = await serveCoreWorker();
 
 test('the worker entry: a load, an edit, and read-outs of the version they name', async () => {
   assert.deepEqual((await call('init', DIST)).value, { crossOriginIsolated: false });

@@ -12,22 +12,11 @@ import { quadObj } from '../../web/quad/quad-files.js';
 import { valences } from '../../web/quad/quad-mesh.js';
 import { icosphere, offText } from './fakes.mjs';
 import { parseObj } from './quad-fixtures.mjs';
+import { serveCoreWorker } from './worker-harness.mjs';
 
 const DIST = new URL('../../dist/', import.meta.url).href;
 
-const posted = [];
-const scope = { postMessage: (data, list = []) => posted.push({ data, list }) };
-globalThis.self = scope;
-await import('../../web/core-worker.js');
-
-let seq = 0;
-async function call(op, ...args) {
-  const mine = ++seq;
-  await scope.onmessage({ data: { seq: mine, op, args } });
-  const { data, list } = posted.find((p) => p.data.seq === mine && !p.data.progress);
-  if (!data.ok) throw new Error(data.error);
-  return { ...data, list, seq: mine };
-}
+const { posted, call } = await serveCoreWorker();
 
 await call('init', DIST);
 const mesh = icosphere(3);
@@ -112,9 +101,8 @@ test('the controller over the real op: the result, stale after the next field, a
     // handed on once it has replied.
     startRun: (data, options, onProgress) => {
       runs++;
-      const mine = seq + 1; // the number call() gives the request it posts now
       const promise = call('quadRemesh', data.positions, data.triangles, data.faceDirections, options).then((reply) => {
-        for (const p of posted) if (p.data.seq === mine && p.data.progress) onProgress(p.data.progress);
+        for (const p of posted) if (p.data.seq === reply.seq && p.data.progress) onProgress(p.data.progress);
         return reply.value;
       });
       return { promise, cancel: () => false };

@@ -90,6 +90,12 @@ export function vertexNormals(positions, triangles) {
     out[c + 1] += ny;
     out[c + 2] += nz;
   }
+  return normalizeEach3(out);
+}
+
+// Each 3-vector of a flat array (out[3k..3k+2]) scaled to unit length in place (a zero one left as it is);
+// returns out. The vertex normals' last step here and in quad/quad-mesh.js.
+export function normalizeEach3(out) {
   for (let v = 0; v < out.length; v += 3) {
     const l = Math.hypot(out[v], out[v + 1], out[v + 2]) || 1;
     out[v] /= l;

@@ -2,7 +2,9 @@
 // What the page derives from a quad mesh as the core returns it (core/quad/quad_remesh.h: positions, 3 per
 // vertex; polygons in CSR, faceStart and faceVertices, counter-clockwise): its edges, the valence of its
 // vertices, normals to lift the wireframe off the surface, and a triangulated copy for the GLB. Pure functions
-// of the arrays, no DOM and no three.js, so that the node tests run them as the page does. Imports nothing.
+// of the arrays, no DOM and no three.js, so that the node tests run them as the page does. Imports
+// geometry/mesh-geometry.js's normalizeEach3 (the normals' last step).
+import { normalizeEach3 } from '../geometry/mesh-geometry.js';
 
 export const faceCount = ({ faceStart }) => Math.max(0, faceStart.length - 1);
 export const vertexCount = ({ positions }) => positions.length / 3;
@@ -52,13 +54,7 @@ export function vertexNormals({ positions: p, faceStart, faceVertices }) {
       out[v + 2] += nz;
     }
   }
-  for (let v = 0; v < out.length; v += 3) {
-    const l = Math.hypot(out[v], out[v + 1], out[v + 2]) || 1;
-    out[v] /= l;
-    out[v + 1] /= l;
-    out[v + 2] /= l;
-  }
-  return out;
+  return normalizeEach3(out);
 }
 
 // The mean length of the mesh's edges (0 for none).
