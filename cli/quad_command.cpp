@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "cli/bench_timing.h"
 #include "common/input_error.h"
 #include "design/design_document.h"
 #include "design/designer.h"
@@ -102,10 +103,6 @@ nlohmann::json quadBench(const std::string& meshPath, int64_t quads, int repeat)
     for (int k = 0; k < 5; ++k) times[k].push_back(ms[k]);
     last = quadRemeshJson(q);
   }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
   return {{"mesh", meshPath},
           {"faces", designer.topology().numFaces},
           {"targetQuads", quads},

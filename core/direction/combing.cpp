@@ -25,19 +25,13 @@ Eigen::Vector3d closestRotation(const Eigen::Vector3d& v, const Eigen::Vector3d&
   return rotated(inPlane, normal, step * std::round(toReference / step));
 }
 
-int cornerOf(const SurfaceMesh& mesh, int32_t f, int32_t v) {
-  for (int c = 0; c < 3; ++c)
-    if (mesh.triangles[3 * f + c] == v) return c;
-  return -1;
-}
-
 // Faces f and g across edge e lie in one chart when both shared corners keep their UVs.
 bool sameChart(const SurfaceMesh& mesh, const MeshTopology& t, const std::vector<float>& uvs, int32_t e,
                int32_t f, int32_t g) {
   if (uvs.empty()) return true;
   for (int k = 0; k < 2; ++k) {
     const int32_t v = t.edgeVertices[2 * e + k];
-    const int cf = cornerOf(mesh, f, v), cg = cornerOf(mesh, g, v);
+    const int cf = mesh.cornerOf(f, v), cg = mesh.cornerOf(g, v);
     if (uvs[6 * f + 2 * cf] != uvs[6 * g + 2 * cg] || uvs[6 * f + 2 * cf + 1] != uvs[6 * g + 2 * cg + 1])
       return false;
   }

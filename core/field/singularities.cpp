@@ -10,12 +10,6 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-int cornerOf(const SurfaceMesh& mesh, int32_t f, int32_t v) {
-  for (int c = 0; c < 3; ++c)
-    if (mesh.triangles[3 * f + c] == v) return c;
-  return -1;
-}
-
 // u as a complex number in the frame of `edge` (real axis) in the face with normal n: transport across the
 // edge by unfolding keeps this number, so the jump between two faces is the argument of their ratio.
 std::complex<double> inEdgeFrame(const Eigen::Vector3d& edge, const Eigen::Vector3d& u, const double* n) {
@@ -44,7 +38,7 @@ std::vector<Singularity> findSingularities(const SurfaceMesh& mesh, const MeshTo
     int32_t f = startFace[v];
     const Eigen::Vector3d pv = vertexPosition(mesh, v);
     for (int32_t step = 0; step < t.vertexFaceCount[v] && defined; ++step) {
-      const int c = cornerOf(mesh, f, v);
+      const int c = mesh.cornerOf(f, v);
       // Edge (b -> v) of f leads to the next face counter-clockwise around v.
       const int32_t shared = t.edgeOf(f, (c + 2) % 3);
       const int32_t next = t.otherFace(shared, f);

@@ -21,6 +21,12 @@ struct SurfaceMesh {
   int32_t numVertices() const { return static_cast<int32_t>(positions.size() / 3); }
   int32_t numFaces() const { return static_cast<int32_t>(triangles.size() / 3); }
   bool hasUVs() const { return !cornerUVs.empty(); }
+  // The corner (0, 1, 2) of face f at vertex v, or -1 when f does not use v.
+  int cornerOf(int32_t f, int32_t v) const {
+    for (int c = 0; c < 3; ++c)
+      if (triangles[3 * f + c] == v) return c;
+    return -1;
+  }
 };
 
 }  // namespace tvf

@@ -109,12 +109,6 @@ std::vector<uint8_t> prunedCutGraph(const MeshTopology& t, const std::vector<uin
   return cut;
 }
 
-int cornerOf(const SurfaceMesh& mesh, int32_t f, int32_t v) {
-  for (int c = 0; c < 3; ++c)
-    if (mesh.triangles[3 * f + c] == v) return c;
-  return -1;
-}
-
 // The faces round vertex v from corner (f, c), counter-clockwise, each with the edge to the next.
 void walkFan(const SurfaceMesh& mesh, const MeshTopology& t, int32_t f, int c, std::vector<int32_t>& faces,
              std::vector<int32_t>& edges) {
@@ -128,7 +122,7 @@ void walkFan(const SurfaceMesh& mesh, const MeshTopology& t, int32_t f, int c, s
     edges.push_back(e);
     face = t.otherFace(e, face);
     if (face < 0) break;
-    corner = cornerOf(mesh, face, v);
+    corner = mesh.cornerOf(face, v);
   } while (face != f && faces.size() <= static_cast<std::size_t>(t.numFaces));
 }
 
@@ -156,56 +150,50 @@ CrossFieldCut cutCrossField(const SurfaceMesh& mesh, const MeshTopology& t, cons
       out.matching[e] =
           matchingAcross(mesh, t, g, out.direction, e, t.edgeFaces[2 * e], t.edgeFaces[2 * e + 1]);
 
-  // Fans and their turns first (the cones decide the pruning), copies after the cut is known.
-  std::vector<int32_t> cornerFan(3 * t.numFaces, -1), faces, edges;
-  std::vector<uint8_t> coneVertex(t.numVertices, 0);
-  std::vector<std::vector<int32_t>> fanFaces, fanEdges;
+  // Fans and their turns first (the cones decide the pruning), copies after the cut is known. A fan's faces
+  // go to fanFaceList, the edge from each to the next to fanEdges (same offsets).
+  std::vector<uint8_t> cornerSeen(3 * t.numFaces, 0), coneVertex(t.numVertices, 0);
+  std::vector<int32_t> faces, edges, fanEdges;
+  out.fanFaceStart.push_back(0);
   for (int32_t f = 0; f < t.numFaces; ++f)
     for (int c = 0; c < 3; ++c) {
-      if (cornerFan[3 * f + c] >= 0) continue;
+      if (cornerSeen[3 * f + c]) continue;
       walkFan(mesh, t, f, c, faces, edges);
-      const int32_t fan = static_cast<int32_t>(fanFaces.size());
       const int32_t v = mesh.triangles[3 * f + c];
       int turns = 0;
       const bool closed = t.otherFace(edges.back(), faces.back()) == faces.front();
       for (std::size_t k = 0; k < faces.size(); ++k) {
-        cornerFan[3 * faces[k] + cornerOf(mesh, faces[k], v)] = fan;
+        cornerSeen[3 * faces[k] + mesh.cornerOf(faces[k], v)] = 1;
         if (closed || k + 1 < faces.size()) turns += turnsCrossing(out, t, edges[k], faces[k]);
       }
-      turns = ((turns % 4) + 4) % 4;
-      if (!closed) turns = 0;
+      turns = closed ? ((turns % 4) + 4) % 4 : 0;
       out.fanTurns.push_back(static_cast<int8_t>(turns));
       out.fanVertex.push_back(v);
       if (turns) coneVertex[v] = 1, ++out.cones;
-      fanFaces.push_back(faces);
-      fanEdges.push_back(edges);
+      out.fanFaceList.insert(out.fanFaceList.end(), faces.begin(), faces.end());
+      fanEdges.insert(fanEdges.end(), edges.begin(), edges.end());
+      out.fanFaceStart.push_back(static_cast<int32_t>(out.fanFaceList.size()));
     }
-  out.fanFaceStart.push_back(0);
-  for (const std::vector<int32_t>& fs : fanFaces) {
-    out.fanFaceList.insert(out.fanFaceList.end(), fs.begin(), fs.end());
-    out.fanFaceStart.push_back(static_cast<int32_t>(out.fanFaceList.size()));
-  }
   out.cut = prunedCutGraph(t, tree, coneVertex);
   for (uint8_t c : out.cut) out.cutEdges += c;
 
   // Copies: within a fan, a new one after each cut edge; the first starts after the fan's last cut edge.
   out.cornerCopy.assign(3 * t.numFaces, -1);
   out.fanFirstCopy.push_back(0);
-  for (std::size_t fan = 0; fan < fanFaces.size(); ++fan) {
-    const std::vector<int32_t>& fs = fanFaces[fan];
-    const std::vector<int32_t>& es = fanEdges[fan];
-    const std::size_t m = fs.size();
+  for (std::size_t fan = 0; fan + 1 < out.fanFaceStart.size(); ++fan) {
+    const int32_t* fs = &out.fanFaceList[out.fanFaceStart[fan]];
+    const int32_t* es = &fanEdges[out.fanFaceStart[fan]];
+    const std::size_t m = out.fanFaceStart[fan + 1] - out.fanFaceStart[fan];
     std::size_t start = 0;
     for (std::size_t k = 0; k < m; ++k)
       if (out.cut[es[k]]) start = (k + 1) % m;
-    const int32_t first = static_cast<int32_t>(out.copyVertex.size());
+    const int32_t first = static_cast<int32_t>(out.copyFan.size());
     auto newCopy = [&](int32_t edge, int32_t fromFace, int32_t previous) {
-      out.copyVertex.push_back(out.fanVertex[fan]);
       out.copyFan.push_back(static_cast<int32_t>(fan));
       out.copyEdge.push_back(edge);
       out.copyFromFace.push_back(fromFace);
       out.copyPrevious.push_back(previous);
-      return static_cast<int32_t>(out.copyVertex.size()) - 1;
+      return static_cast<int32_t>(out.copyFan.size()) - 1;
     };
     const std::size_t closing = (start + m - 1) % m;
     const bool anyCut = out.cut[es[closing]] != 0;
@@ -213,11 +201,11 @@ CrossFieldCut cutCrossField(const SurfaceMesh& mesh, const MeshTopology& t, cons
     const int32_t v = out.fanVertex[fan];
     for (std::size_t step = 0; step < m; ++step) {
       const std::size_t k = (start + step) % m;
-      out.cornerCopy[3 * fs[k] + cornerOf(mesh, fs[k], v)] = copy;
+      out.cornerCopy[3 * fs[k] + mesh.cornerOf(fs[k], v)] = copy;
       if (step + 1 < m && out.cut[es[k]]) copy = newCopy(es[k], fs[k], copy);
     }
     if (anyCut) out.copyPrevious[first] = copy;
-    out.fanFirstCopy.push_back(static_cast<int32_t>(out.copyVertex.size()));
+    out.fanFirstCopy.push_back(static_cast<int32_t>(out.copyFan.size()));
   }
   return out;
 }

@@ -23,7 +23,6 @@ struct CrossFieldCut {
   // Copies: a vertex has one per side of the cut round it (one where no cut edge meets it). Each fan of faces
   // round a vertex is walked counter-clockwise; a copy's faces follow the one before it across a cut edge.
   std::vector<int32_t> cornerCopy;  // 3 per face
-  std::vector<int32_t> copyVertex;  // per copy
   std::vector<int32_t> copyFan;     // per copy: its fan (a vertex's cycle of faces)
   std::vector<int32_t> copyEdge;    // per copy: the cut edge crossed into it from the copy before (-1: none)
   std::vector<int32_t> copyFromFace;  // per copy: the face on the far side of that edge (the copy before)

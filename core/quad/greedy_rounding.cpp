@@ -2,18 +2,12 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "solver/spd_solve.h"
 
 namespace tvf {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 
 enum class Kind : uint8_t { Continuous, Integer, Pinned };
 
@@ -89,11 +83,8 @@ GreedyRounding roundGreedily(const SparseMatrix& K, const Eigen::VectorXd& b,
   Acc.setFromTriplets(cc.begin(), cc.end());
   Kci.setFromTriplets(ci.begin(), ci.end());
   cc.clear(), ci.clear();
-  Clock::time_point stage = Clock::now();
   SpdFactor factor(Acc);
   if (!factor.ok()) return out;
-  out.factorMs = msSince(stage);
-  stage = Clock::now();
   Eigen::VectorXd y0;
   if (!factor.solve(bc, y0)) return out;
   Eigen::VectorXd r = bi - Kci.transpose() * y0;
@@ -108,8 +99,6 @@ GreedyRounding roundGreedily(const SparseMatrix& K, const Eigen::VectorXd& b,
     if (progress && !progress(0.5 * (c0 + w) / static_cast<double>(ni))) return out;
   }
   S = 0.5 * (S + S.transpose()).eval();
-  out.schurMs = msSince(stage);
-  stage = Clock::now();
 
   Eigen::VectorXd x = Eigen::VectorXd::Zero(ni);
   std::vector<uint8_t> fixed(ni, 0);
@@ -130,7 +119,6 @@ GreedyRounding roundGreedily(const SparseMatrix& K, const Eigen::VectorXd& b,
     left -= static_cast<int32_t>(batch);
     ++out.roundingSteps;
   }
-  out.roundMs = msSince(stage);
   Eigen::VectorXd xc;
   if (!factor.solve(Eigen::VectorXd(bc - Kci * x), xc)) return out;
   for (int32_t i = 0; i < n; ++i) {

@@ -20,7 +20,6 @@ namespace tvf {
 struct GreedyRounding {
   Eigen::VectorXd z;
   int32_t roundingSteps = 0;
-  double factorMs = 0, schurMs = 0, roundMs = 0;
   bool ok = false;  // false: K_CC was not positive definite (or the solve not finite)
 };
 

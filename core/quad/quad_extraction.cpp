@@ -54,7 +54,7 @@ class Extractor {
  public:
   Extractor(const SurfaceMesh& mesh, const MeshTopology& t, const CrossFieldCut& cut,
             const SeamlessParametrization& p)
-      : mesh_(mesh), t_(t), cut_(cut), uv_(p.cornerUV), shift_(p.edgeShift) {}
+      : mesh_(mesh), t_(t), cut_(cut), uv_(p.cornerUV), shift_(p.edgeShift), coneAt_(3 * t.numFaces, -1) {}
 
   QuadExtraction run() {
     findCones();
@@ -65,16 +65,12 @@ class Extractor {
 
  private:
   Vec2 corner(int32_t f, int k) const { return {uv_[6 * f + 2 * k], uv_[6 * f + 2 * k + 1]}; }
-  double twiceArea(int32_t f) const {
-    return cross(corner(f, 1) - corner(f, 0), corner(f, 2) - corner(f, 0));
-  }
   // Barycentric coordinates of x in f's (u, v) triangle.
   void barycentric(int32_t f, Vec2 x, double l[3]) const {
-    const double a = twiceArea(f);
+    const double a = uvTwiceArea(uv_, f);
     for (int k = 0; k < 3; ++k)
       l[k] = cross(corner(f, (k + 2) % 3) - corner(f, (k + 1) % 3), x - corner(f, (k + 1) % 3)) / a;
   }
-  bool isCone(int32_t f, int k) const { return cut_.fanTurns[cut_.copyFan[cut_.cornerCopy[3 * f + k]]] != 0; }
 
   // Carries a point and a direction from f's chart into the chart of g across edge e.
   void carry(int32_t e, int32_t f, Vec2& x, int& du, int& dv, Vec2* target) const {
@@ -106,11 +102,10 @@ class Extractor {
       const int32_t id = static_cast<int32_t>(points_.size());
       points_.push_back(p);
       ports_.emplace_back();
-      std::vector<ConePort>& ports = conePorts_[id];
+      std::vector<ConePort>& ports = conePorts_.emplace_back();
       for (int32_t k = cut_.fanFaceStart[fan]; k < cut_.fanFaceStart[fan + 1]; ++k) {
         const int32_t f = cut_.fanFaceList[k];
-        int c = 0;
-        while (mesh_.triangles[3 * f + c] != v) ++c;
+        const int c = mesh_.cornerOf(f, v);
         coneAt_[3 * f + c] = id;
         const Vec2 o = corner(f, c), a = corner(f, (c + 1) % 3) - o, b = corner(f, (c + 2) % 3) - o;
         if (!(cross(a, b) > 0)) continue;  // a flipped face's wedge holds no port
@@ -132,7 +127,7 @@ class Extractor {
     faceFirstPoint_.assign(t_.numFaces + 1, 0);
     for (int32_t f = 0; f < t_.numFaces; ++f) {
       faceFirstPoint_[f] = static_cast<int32_t>(points_.size());
-      if (!(twiceArea(f) > 0)) continue;
+      if (!(uvTwiceArea(uv_, f) > 0)) continue;
       double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
       for (int k = 0; k < 3; ++k) {
         const Vec2 q = corner(f, k);
@@ -175,7 +170,7 @@ class Extractor {
 
   // The port of cone `id` leaving along (du, dv) in f's chart; -1 when f's wedge does not hold it.
   int conePort(int32_t id, int32_t f, int du, int dv) const {
-    const std::vector<ConePort>& ports = conePorts_.at(id);
+    const std::vector<ConePort>& ports = conePorts_[id];
     for (std::size_t k = 0; k < ports.size(); ++k)
       if (ports[k].face == f && ports[k].du == du && ports[k].dv == dv) return static_cast<int>(k);
     return -1;
@@ -204,8 +199,9 @@ class Extractor {
     for (int step = 0; step < maxSteps; ++step) {
       for (int k = 0; k < 3; ++k) {
         const Vec2 q = corner(f, k);
-        if (isCone(f, k) && std::abs(q.u - target.u) < 1e-6 && std::abs(q.v - target.v) < 1e-6)
-          return arriveAtCone(coneAt_.at(3 * f + k), f, du, dv);
+        const int32_t cone = coneAt_[3 * f + k];
+        if (cone >= 0 && std::abs(q.u - target.u) < 1e-6 && std::abs(q.v - target.v) < 1e-6)
+          return arriveAtCone(cone, f, du, dv);
       }
       double lt[3], lx[3];
       barycentric(f, target, lt);
@@ -253,10 +249,9 @@ class Extractor {
         int du, dv;
         Vec2 x;
         if (p.fan >= 0) {
-          const ConePort& c = conePorts_.at(id)[port];
+          const ConePort& c = conePorts_[id][port];
           f = c.face, du = c.du, dv = c.dv;
-          int k = 0;
-          while (coneAtCorner(f, k) != id) ++k;
+          const int k = mesh_.cornerOf(f, cut_.fanVertex[p.fan]);
           x = corner(f, k);
           x = {std::round(x.u), std::round(x.v)};
         } else {
@@ -267,11 +262,6 @@ class Extractor {
         if (ports_[id][port].point < 0) ++failedTraces_;
       }
     }
-  }
-
-  int32_t coneAtCorner(int32_t f, int k) const {
-    const auto it = coneAt_.find(3 * f + k);
-    return it == coneAt_.end() ? -1 : it->second;
   }
 
   QuadExtraction assemble() {
@@ -376,9 +366,9 @@ class Extractor {
   const std::vector<double>& uv_;
   const std::vector<double>& shift_;
   std::vector<GridPoint> points_;
-  std::vector<std::vector<PortRef>> ports_;  // per point and port: where its iso-line arrives
-  std::map<int32_t, std::vector<ConePort>> conePorts_;
-  std::map<int32_t, int32_t> coneAt_;  // face corner -> cone point
+  std::vector<std::vector<PortRef>> ports_;       // per point and port: where its iso-line arrives
+  std::vector<std::vector<ConePort>> conePorts_;  // per cone (the first points), in counter-clockwise order
+  std::vector<int32_t> coneAt_;                   // per face corner: its cone point, -1 elsewhere
   std::vector<int32_t> faceFirstPoint_;
   int32_t failedTraces_ = 0;
 };

@@ -2,8 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "common/input_error.h"
 #include "field/singularities.h"
@@ -51,10 +49,7 @@ void checkInputs(const MeshTopology& t, const std::vector<double>& faceDirection
 // Folded triangles (their (u, v) not counter-clockwise) and their neighbours weigh more.
 void stiffenFolds(const MeshTopology& t, const SeamlessParametrization& p, std::vector<double>& weight) {
   std::vector<uint8_t> folded(t.numFaces, 0);
-  for (int32_t f = 0; f < t.numFaces; ++f) {
-    const double* q = &p.cornerUV[6 * f];
-    folded[f] = !((q[2] - q[0]) * (q[5] - q[1]) - (q[3] - q[1]) * (q[4] - q[0]) > 0);
-  }
+  for (int32_t f = 0; f < t.numFaces; ++f) folded[f] = !(uvTwiceArea(p.cornerUV, f) > 0);
   for (int32_t f = 0; f < t.numFaces; ++f) {
     if (!folded[f]) continue;
     weight[f] *= 8;
@@ -91,22 +86,21 @@ QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& t, cons
   // each further solve is one factorization (on bunny00 the folds went 26, 20, 3, 0; rounding again each
   // time went 26, 19, 12, 4, 10, 1, 1 at twice the cost).
   constexpr int kStiffenings = 8;
+  const SeamlessSystem system(t, cut);
+  out.integerUnknowns = system.integerUnknowns();
+  out.unenforcedConditions = system.unenforcedConditions();
   std::vector<double> weight(t.numFaces, 1.0);
   SeamlessParametrization param, best;
   for (int round = 0; round <= kStiffenings; ++round) {
     bool stopped = false;
     const double from = 0.05 + 0.7 * round / (kStiffenings + 1), span = 0.7 / (kStiffenings + 1);
-    param = parametrizeSeamless(
-        mesh, t, g, cut, out.edgeLength,
-        [&](double fraction) {
-          stopped = progress && !progress("parametrizing", from + span * fraction);
-          return !stopped;
-        },
-        weight, round > 0 ? best.integers : std::vector<double>{});
+    param = system.solve(mesh, g, out.edgeLength, weight, round > 0 ? best.integers : std::vector<double>{},
+                         [&](double fraction) {
+                           stopped = progress && !progress("parametrizing", from + span * fraction);
+                           return !stopped;
+                         });
     if (stopped) throw RemeshCancelled();
-    if (std::getenv("TVF_QUAD_TRACE"))
-      std::fprintf(stderr, "round %d: flips %d assemble %.0f factor %.0f schur %.0f round %.0f\n", round,
-                   param.flippedFaces, param.assembleMs, param.factorMs, param.schurMs, param.roundMs);
+    if (round == 0) out.roundingSolves = param.roundingSteps;
     // Folds can wander as the weights change: the solve with the fewest is the one kept.
     const bool better = round == 0 || param.flippedFaces < best.flippedFaces;
     if (better) best = std::move(param), out.stiffenings = round;
@@ -115,8 +109,6 @@ QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& t, cons
   }
   param = std::move(best);
   out.flippedTriangles = param.flippedFaces;
-  out.integerUnknowns = param.integerUnknowns;
-  out.roundingSolves = param.roundingSolves;
   out.parametrizeMs = msSince(stage);
 
   report("extracting", 0.75);

@@ -31,6 +31,7 @@ struct QuadRemeshResult {
   // How it went: the field's cones, the cut's length, the parametrization's flipped triangles and integer
   // unknowns, the extraction's failed iso-line walks and open loops, and the stages' times.
   int32_t cones = 0, cutEdges = 0, flippedTriangles = 0, integerUnknowns = 0, roundingSolves = 0;
+  int32_t unenforcedConditions = 0;  // closure equations the elimination could not keep (none expected)
   int32_t failedTraces = 0, openLoops = 0;
   int32_t filledHoles = 0;  // holes the failed walks left, closed by a polygon each
   int32_t stiffenings = 0;  // solves again with folded triangles stiffened

@@ -55,6 +55,7 @@ nlohmann::json quadRemeshJson(const QuadRemeshResult& r) {
           {"flippedTriangles", r.flippedTriangles},
           {"integerUnknowns", r.integerUnknowns},
           {"roundingSolves", r.roundingSolves},
+          {"unenforcedConditions", r.unenforcedConditions},
           {"stiffenings", r.stiffenings},
           {"failedTraces", r.failedTraces},
           {"openLoops", r.openLoops},

@@ -1,12 +1,9 @@
 #include "quad/seamless_parametrization.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <map>
 
 #include "common/input_error.h"
-#include "common/sparse_matrix.h"
 #include "mesh/mesh_geometry.h"
 #include "quad/greedy_rounding.h"
 
@@ -100,38 +97,23 @@ class IntegerElimination {
   std::vector<uint8_t> eliminated_;
 };
 
-// A coordinate as a sparse row over the solve's unknowns z.
-using Row = std::vector<std::pair<int32_t, double>>;
-
 struct Layout {
-  std::vector<int32_t> fanBase;    // per fan: z index of its base's u (v next), -1 for cones
-  std::vector<int32_t> integerZ;   // per integer unknown: its z index, -1 when eliminated
-  std::vector<int32_t> integerOf;  // per z: the integer unknown, -1 for a continuous one
+  std::vector<int32_t> fanBase;   // per fan: index of its base's u (v next), -1 for cones
+  std::vector<int32_t> integerZ;  // per integer unknown: its index, -1 when eliminated
   int32_t size = 0;
 };
 
-Row rowOf(const Combo& c, const Layout& layout) {
-  Row r;
-  for (const auto& [x, k] : c) r.emplace_back(layout.integerZ[x], static_cast<double>(k));
-  return r;
+// An integer combination's terms as triplets of row `row` over the solve's unknowns.
+void addRow(std::vector<Eigen::Triplet<double>>& triplets, int32_t row, const Combo& c,
+            const Layout& layout) {
+  for (const auto& [x, k] : c) triplets.emplace_back(row, layout.integerZ[x], static_cast<double>(k));
 }
-
-// Each copy's (u, v) as rows over z: its fan's base turned, plus its integer combination.
-struct CopyRows {
-  std::vector<Row> u, v;
-};
 
 }  // namespace
 
-SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshTopology& t,
-                                            const MeshGeometry& g, const CrossFieldCut& cut, double h,
-                                            const ParametrizationProgress& progress,
-                                            const std::vector<double>& faceWeight,
-                                            const std::vector<double>& keptIntegers) {
-  SeamlessParametrization out;
-  const auto start = std::chrono::steady_clock::now();
+SeamlessSystem::SeamlessSystem(const MeshTopology& t, const CrossFieldCut& cut) : t_(t), cut_(cut) {
   const int32_t numFans = static_cast<int32_t>(cut.fanTurns.size());
-  const int32_t numCopies = static_cast<int32_t>(cut.copyVertex.size());
+  const int32_t numCopies = static_cast<int32_t>(cut.copyFan.size());
   // Integer unknowns: t_e for each cut edge, then each cone's position.
   std::vector<int32_t> cutIndex(t.numEdges, -1), coneIndex(numFans, -1);
   int32_t numCut = 0, numCones = 0;
@@ -141,6 +123,10 @@ SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshT
     if (cut.fanTurns[fan]) coneIndex[fan] = numCones++;
   const int32_t numIntegers = 2 * (numCut + numCones);
   auto shiftOf = [&](int32_t e) { return ComboPoint{{{2 * cutIndex[e], 1}}, {{2 * cutIndex[e] + 1, 1}}}; };
+  auto coneOf = [&](int32_t fan) {
+    const int32_t x = 2 * numCut + 2 * coneIndex[fan];
+    return ComboPoint{{{x, 1}}, {{x + 1, 1}}};
+  };
 
   // Each copy relative to its fan's base: quarter turns k and an integer combination.
   std::vector<int> copyTurns(numCopies, 0);
@@ -166,118 +152,103 @@ SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshT
     ComboPoint shift;
     across(first, k, shift);
     ComboPoint condition = shift;
-    if (coneIndex[fan] >= 0) {
-      const ComboPoint c{{{numIntegers - 2 * numCones + 2 * coneIndex[fan], 1}},
-                         {{numIntegers - 2 * numCones + 2 * coneIndex[fan] + 1, 1}}};
-      condition = added(added(turned(k, c), c, -1), shift, 1);
-    }
+    if (coneIndex[fan] >= 0) condition = added(added(turned(k, coneOf(fan)), coneOf(fan), -1), shift, 1);
     for (const Combo* row : {&condition.u, &condition.v})
-      if (!elimination.add(*row, 2 * numCut)) ++out.unenforcedConditions;
+      if (!elimination.add(*row, 2 * numCut)) ++unenforced_;
   }
 
-  // The solve's unknowns: each regular fan's base, then the integer unknowns left free.
+  // The unknowns: each regular fan's base, then the integer unknowns left free.
   Layout layout;
   layout.fanBase.assign(numFans, -1);
   for (int32_t fan = 0; fan < numFans; ++fan)
     if (coneIndex[fan] < 0) layout.fanBase[fan] = layout.size, layout.size += 2;
   layout.integerZ.assign(numIntegers, -1);
+  integer_.assign(layout.size, 0);
   for (int32_t x = 0; x < numIntegers; ++x)
     if (!elimination.eliminated(x)) {
       layout.integerZ[x] = layout.size++;
-      ++out.integerUnknowns;
+      integer_.push_back(1);
+      ++integerUnknowns_;
     }
-  layout.integerOf.assign(layout.size, -1);
-  for (int32_t x = 0; x < numIntegers; ++x)
-    if (layout.integerZ[x] >= 0) layout.integerOf[layout.integerZ[x]] = x;
 
-  CopyRows rows;
-  rows.u.resize(numCopies);
-  rows.v.resize(numCopies);
+  // C: a copy is its fan's base (continuous, or a cone's integer position) turned, plus its integer shift.
+  std::vector<Eigen::Triplet<double>> triplets;
   for (int32_t c = 0; c < numCopies; ++c) {
     const int32_t fan = cut.copyFan[c];
-    ComboPoint base;
-    Row bu, bv;
-    if (coneIndex[fan] >= 0) {
-      const int32_t x = numIntegers - 2 * numCones + 2 * coneIndex[fan];
-      base = {{{x, 1}}, {{x + 1, 1}}};
-    } else {
-      bu = {{layout.fanBase[fan], 1.0}};
-      bv = {{layout.fanBase[fan] + 1, 1.0}};
-    }
-    const ComboPoint turnedBase = turned(copyTurns[c], base);
-    const ComboPoint whole = added(turnedBase, copyShift[c], 1);
-    Row u = rowOf(elimination.resolve(whole.u), layout), v = rowOf(elimination.resolve(whole.v), layout);
-    if (coneIndex[fan] < 0) {
-      // R^k (bu, bv): the continuous base turned.
-      const int k = ((copyTurns[c] % 4) + 4) % 4;
-      const std::pair<int32_t, double> U{layout.fanBase[fan], 1.0}, V{layout.fanBase[fan] + 1, 1.0};
-      const std::pair<int32_t, double> mU{U.first, -1.0}, mV{V.first, -1.0};
-      const std::pair<int32_t, double> tu[4] = {U, mV, mU, V}, tv[4] = {V, U, mV, mU};
-      u.push_back(tu[k]);
-      v.push_back(tv[k]);
-    }
-    rows.u[c] = std::move(u);
-    rows.v[c] = std::move(v);
+    const bool cone = coneIndex[fan] >= 0;
+    const ComboPoint whole = added(turned(copyTurns[c], cone ? coneOf(fan) : ComboPoint{}), copyShift[c], 1);
+    addRow(triplets, 2 * c, elimination.resolve(whole.u), layout);
+    addRow(triplets, 2 * c + 1, elimination.resolve(whole.v), layout);
+    if (cone) continue;
+    // R^k (bu, bv) of the continuous base: (bu, bv), (-bv, bu), (-bu, -bv), (bv, -bu).
+    const int k = ((copyTurns[c] % 4) + 4) % 4, bu = layout.fanBase[fan], bv = bu + 1;
+    const int32_t uFrom[4] = {bu, bv, bu, bv}, vFrom[4] = {bv, bu, bv, bu};
+    const double uSign[4] = {1, -1, -1, 1}, vSign[4] = {1, 1, -1, -1};
+    triplets.emplace_back(2 * c, uFrom[k], uSign[k]);
+    triplets.emplace_back(2 * c + 1, vFrom[k], vSign[k]);
   }
+  C_.resize(2 * numCopies, layout.size);
+  C_.setFromTriplets(triplets.begin(), triplets.end());
+  triplets.clear();
+  for (int32_t e = 0; e < t.numEdges; ++e)
+    if (cutIndex[e] >= 0)
+      for (int k = 0; k < 2; ++k)
+        addRow(triplets, 2 * e + k, elimination.resolve({{2 * cutIndex[e] + k, 1}}), layout);
+  shift_.resize(2 * t.numEdges, layout.size);
+  shift_.setFromTriplets(triplets.begin(), triplets.end());
 
+  // Each component's chart can move as a whole: one regular base per component pinned off the grid.
+  std::vector<uint8_t> componentPinned(t.components.size(), 0);
+  for (int32_t fan = 0; fan < numFans; ++fan) {
+    const int32_t component = t.vertexComponent[cut.fanVertex[fan]];
+    if (layout.fanBase[fan] < 0 || component < 0 || componentPinned[component]) continue;
+    componentPinned[component] = 1;
+    pinned_.emplace_back(layout.fanBase[fan], 0.3125);
+    pinned_.emplace_back(layout.fanBase[fan] + 1, 0.6875);
+  }
+}
+
+SeamlessParametrization SeamlessSystem::solve(const SurfaceMesh& mesh, const MeshGeometry& g, double h,
+                                              const std::vector<double>& faceWeight,
+                                              const std::vector<double>& keptIntegers,
+                                              const ParametrizationProgress& progress) const {
+  SeamlessParametrization out;
   // The least-squares energy sum_f A_f (|grad u - X/h|^2 + |grad v - Y/h|^2) over the copies' coordinates
-  // (L w - 2 b_w), then through w = C z onto the solve's unknowns: K = C^T L C. The rows of C next to the
+  // (w^T L w - 2 b_w^T w), then through w = C z onto the unknowns: K = C^T L C. The rows of C next to the
   // cut's trunk sum many integer unknowns; the product keeps that to the matrix, not the faces' terms.
+  const int32_t numCopies = static_cast<int32_t>(C_.rows() / 2);
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::VectorXd bw = Eigen::VectorXd::Zero(2 * numCopies);
-  double constant = 0;
-  for (int32_t f = 0; f < t.numFaces; ++f) {
+  for (int32_t f = 0; f < t_.numFaces; ++f) {
     Eigen::Vector3d p[3], grad[3];
     facePositions(mesh, f, p);
     const double area = g.faceArea[f] * (faceWeight.empty() ? 1.0 : faceWeight[f]);
     if (!(area > 0)) continue;
     barycentricGradients(p, grad);
-    const Eigen::Vector3d n(&g.faceNormal[3 * f]), x(&cut.direction[3 * f]);
+    const Eigen::Vector3d n(&g.faceNormal[3 * f]), x(&cut_.direction[3 * f]);
     const Eigen::Vector3d target[2] = {x / h, n.cross(x) / h};
-    for (int comp = 0; comp < 2; ++comp) {
-      constant += area * target[comp].squaredNorm();
+    for (int comp = 0; comp < 2; ++comp)
       for (int j = 0; j < 3; ++j) {
-        const int32_t wj = 2 * cut.cornerCopy[3 * f + j] + comp;
+        const int32_t wj = 2 * cut_.cornerCopy[3 * f + j] + comp;
         bw[wj] += area * grad[j].dot(target[comp]);
         for (int k = 0; k < 3; ++k)
-          triplets.emplace_back(wj, 2 * cut.cornerCopy[3 * f + k] + comp, area * grad[j].dot(grad[k]));
+          triplets.emplace_back(wj, 2 * cut_.cornerCopy[3 * f + k] + comp, area * grad[j].dot(grad[k]));
       }
-    }
   }
-  SparseMatrix L(2 * numCopies, 2 * numCopies), C(2 * numCopies, layout.size);
+  SparseMatrix L(2 * numCopies, 2 * numCopies);
   L.setFromTriplets(triplets.begin(), triplets.end());
-  triplets.clear();
-  for (int32_t c = 0; c < numCopies; ++c) {
-    for (const auto& [z, k] : rows.u[c]) triplets.emplace_back(2 * c, z, k);
-    for (const auto& [z, k] : rows.v[c]) triplets.emplace_back(2 * c + 1, z, k);
-  }
-  C.setFromTriplets(triplets.begin(), triplets.end());
-  triplets.clear();
-  triplets.shrink_to_fit();
-  const SparseMatrix LC = L * C;
-  const auto assembled = std::chrono::steady_clock::now();
-  const SparseMatrix K = SparseMatrix(C.transpose()) * LC;
-  const Eigen::VectorXd b = C.transpose() * bw;
+  triplets = {};
+  const SparseMatrix K = SparseMatrix(C_.transpose()) * (L * C_);
+  const Eigen::VectorXd b = C_.transpose() * bw;
 
-  // Each component's chart can move as a whole: one regular base per component pinned off the grid.
-  std::vector<std::pair<int32_t, double>> pinned;
-  std::vector<uint8_t> componentPinned(t.components.size(), 0), integer(layout.size, 0);
-  for (int32_t fan = 0; fan < numFans; ++fan) {
-    const int32_t component = t.vertexComponent[cut.fanVertex[fan]];
-    if (layout.fanBase[fan] < 0 || component < 0 || componentPinned[component]) continue;
-    componentPinned[component] = 1;
-    pinned.emplace_back(layout.fanBase[fan], 0.3125);
-    pinned.emplace_back(layout.fanBase[fan] + 1, 0.6875);
-  }
-  for (int32_t i = 0; i < layout.size; ++i) integer[i] = layout.integerOf[i] >= 0;
+  std::vector<std::pair<int32_t, double>> pinned = pinned_;
   if (!keptIntegers.empty()) {
-    int32_t k = 0;
-    for (int32_t i = 0; i < layout.size; ++i)
-      if (integer[i]) pinned.emplace_back(i, keptIntegers.at(k++));
+    std::size_t k = 0;
+    for (int32_t i = 0; i < static_cast<int32_t>(integer_.size()); ++i)
+      if (integer_[i]) pinned.emplace_back(i, keptIntegers.at(k++));
   }
-  out.assembleMs = std::chrono::duration<double, std::milli>(assembled - start).count();
   bool stopped = false;
-  const GreedyRounding rounded = roundGreedily(K, b, integer, pinned, [&](double fraction) {
+  const GreedyRounding rounded = roundGreedily(K, b, integer_, pinned, [&](double fraction) {
     stopped = progress && !progress(fraction);
     return !stopped;
   });
@@ -285,35 +256,21 @@ SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshT
   if (!rounded.ok)
     throw InputError("quad mesh: the parametrization's system could not be solved (a degenerate mesh?)");
   const Eigen::VectorXd& z = rounded.z;
-  out.roundingSolves = rounded.roundingSteps;
-  for (int32_t i = 0; i < layout.size; ++i)
-    if (integer[i]) out.integers.push_back(z[i]);
-  out.factorMs = rounded.factorMs, out.schurMs = rounded.schurMs, out.roundMs = rounded.roundMs;
+  out.roundingSteps = rounded.roundingSteps;
+  for (int32_t i = 0; i < static_cast<int32_t>(integer_.size()); ++i)
+    if (integer_[i]) out.integers.push_back(z[i]);
 
-  auto evaluate = [&](const Row& r) {
-    double s = 0;
-    for (const auto& [i, c] : r) s += c * z[i];
-    return s;
-  };
-  out.cornerUV.resize(6 * t.numFaces);
-  for (int32_t f = 0; f < t.numFaces; ++f) {
+  const Eigen::VectorXd w = C_ * z, shift = shift_ * z;
+  out.cornerUV.resize(6 * t_.numFaces);
+  for (int32_t f = 0; f < t_.numFaces; ++f) {
     for (int k = 0; k < 3; ++k) {
-      const int32_t c = cut.cornerCopy[3 * f + k];
-      out.cornerUV[6 * f + 2 * k] = evaluate(rows.u[c]);
-      out.cornerUV[6 * f + 2 * k + 1] = evaluate(rows.v[c]);
+      const int32_t c = cut_.cornerCopy[3 * f + k];
+      out.cornerUV[6 * f + 2 * k] = w[2 * c];
+      out.cornerUV[6 * f + 2 * k + 1] = w[2 * c + 1];
     }
-    const double* q = &out.cornerUV[6 * f];
-    const double twice = (q[2] - q[0]) * (q[5] - q[1]) - (q[3] - q[1]) * (q[4] - q[0]);
-    if (!(twice > 0)) ++out.flippedFaces;
+    if (!(uvTwiceArea(out.cornerUV, f) > 0)) ++out.flippedFaces;
   }
-  out.edgeShift.assign(2 * t.numEdges, 0.0);
-  for (int32_t e = 0; e < t.numEdges; ++e) {
-    if (cutIndex[e] < 0) continue;
-    for (int k = 0; k < 2; ++k)
-      out.edgeShift[2 * e + k] =
-          evaluate(rowOf(elimination.resolve(Combo{{2 * cutIndex[e] + k, 1}}), layout));
-  }
-  out.energy = (z.dot(K * z) - 2 * b.dot(z) + constant) / std::max(g.totalArea, 1e-300);
+  out.edgeShift.assign(shift.data(), shift.data() + shift.size());
   return out;
 }
 

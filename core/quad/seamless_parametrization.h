@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "common/sparse_matrix.h"
 #include "quad/cross_field_cut.h"
 
 namespace tvf {
@@ -22,27 +23,48 @@ struct SeamlessParametrization {
   std::vector<double> cornerUV;   // 6 per face: each corner's (u, v), its copy's point
   std::vector<double> edgeShift;  // 2 per edge: t_e on cut edges (integers), 0 elsewhere
   int32_t flippedFaces = 0;       // faces whose (u, v) triangle is not counter-clockwise
-  int32_t integerUnknowns = 0;    // after the elimination
-  int32_t roundingSolves = 0;
-  int32_t unenforcedConditions = 0;  // closure conditions with no +-1 coefficient (none expected)
-  std::vector<double> integers;      // the rounded integer unknowns, to keep in a solve with other weights
-  double assembleMs = 0, factorMs = 0, schurMs = 0, roundMs = 0;
-  double energy = 0;  // the final least-squares misfit, relative to the surface's area
+  int32_t roundingSteps = 0;      // integers fixed one (or a batch) at a time; 0 when they were kept
+  std::vector<double> integers;   // the rounded integer unknowns, to keep in a solve with other weights
 };
 
 using ParametrizationProgress = std::function<bool(double fraction)>;
 
-// edgeLength > 0: the grid's spacing on the surface. faceWeight (one per face, or empty for all 1) scales
-// each face's term: stiffer faces keep closer to the field (the remesher raises it where a solve folded).
-// keptIntegers (an earlier result's `integers` on the same cut, or empty): the integers kept, not rounded
-// again: one continuous solve. progress (may be empty) is called after each solve;
-// returning false stops (the result then is incomplete: cornerUV empty). Throws InputError when a solve
-// fails.
-SeamlessParametrization parametrizeSeamless(const SurfaceMesh& mesh, const MeshTopology& topology,
-                                            const MeshGeometry& geometry, const CrossFieldCut& cut,
-                                            double edgeLength, const ParametrizationProgress& progress = {},
-                                            const std::vector<double>& faceWeight = {},
-                                            const std::vector<double>& keptIntegers = {});
+// The system of one cut, made once: the integer equations eliminated, the map C from the unknowns to the
+// copies' coordinates, and the pins (one regular base per component). Solved for each set of face weights
+// (the remesher's stiffening rounds), which change only the energy's L in K = C^T L C.
+class SeamlessSystem {
+ public:
+  // topology and cut must outlive the system.
+  SeamlessSystem(const MeshTopology& topology, const CrossFieldCut& cut);
+
+  int32_t integerUnknowns() const { return integerUnknowns_; }
+  int32_t unenforcedConditions() const { return unenforced_; }  // with no +-1 coefficient (none expected)
+
+  // edgeLength > 0: the grid's spacing on the surface. faceWeight (one per face, or empty for all 1) scales
+  // each face's term: stiffer faces keep closer to the field. keptIntegers (an earlier solve's `integers`,
+  // or empty): the integers kept, not rounded again: one continuous solve. progress (may be empty) is called
+  // as the solve goes; returning false stops (the result then is incomplete: cornerUV empty). Throws
+  // InputError when a solve fails.
+  SeamlessParametrization solve(const SurfaceMesh& mesh, const MeshGeometry& geometry, double edgeLength,
+                                const std::vector<double>& faceWeight = {},
+                                const std::vector<double>& keptIntegers = {},
+                                const ParametrizationProgress& progress = {}) const;
+
+ private:
+  const MeshTopology& t_;
+  const CrossFieldCut& cut_;
+  SparseMatrix C_;                // (u, v) of each copy (rows 2c, 2c + 1) from the unknowns
+  SparseMatrix shift_;            // t_e of each edge (rows 2e, 2e + 1) from the unknowns (0 off the cut)
+  std::vector<uint8_t> integer_;  // per unknown
+  std::vector<std::pair<int32_t, double>> pinned_;
+  int32_t integerUnknowns_ = 0, unenforced_ = 0;
+};
+
+// Twice the signed area of face f's (u, v) triangle (cornerUV: 6 per face): positive where it is not folded.
+inline double uvTwiceArea(const std::vector<double>& cornerUV, int32_t f) {
+  const double* q = &cornerUV[6 * f];
+  return (q[2] - q[0]) * (q[5] - q[1]) - (q[3] - q[1]) * (q[4] - q[0]);
+}
 
 // (a, b) turned k quarters counter-clockwise.
 inline void quarterTurn2(int k, double a, double b, double& x, double& y) {
