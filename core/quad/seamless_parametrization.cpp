@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "common/input_error.h"
 #include "mesh/mesh_geometry.h"
@@ -72,8 +73,13 @@ class IntegerElimination {
   }
   // Returns false when the equation has no coefficient +-1 (it is then left out).
   bool add(const Combo& equation, int32_t preferBelow) {
-    const Combo row = resolve(equation);
+    Combo row = resolve(equation);
     if (row.empty()) return true;
+    // g (sum c_i x_i) = 0 over the integers is sum c_i x_i = 0: the last cones' conditions reduce to rows
+    // of even coefficients (2 (c_a - c_b + ...) = 0), which would otherwise have no +-1 to solve for.
+    int64_t g = 0;
+    for (const auto& [y, c] : row) g = std::gcd(g, std::abs(c));
+    for (auto& [y, c] : row) c /= g;
     int best = -1;
     for (std::size_t i = 0; i < row.size(); ++i) {
       if (std::abs(row[i].second) != 1) continue;

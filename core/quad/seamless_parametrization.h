@@ -38,7 +38,7 @@ class SeamlessSystem {
   SeamlessSystem(const MeshTopology& topology, const CrossFieldCut& cut);
 
   int32_t integerUnknowns() const { return integerUnknowns_; }
-  int32_t unenforcedConditions() const { return unenforced_; }  // with no +-1 coefficient (none expected)
+  int32_t unenforcedConditions() const { return unenforced_; }  // no +-1 coefficient even divided by their gcd
 
   // edgeLength > 0: the grid's spacing on the surface. faceWeight (one per face, or empty for all 1) scales
   // each face's term: stiffer faces keep closer to the field. keptIntegers (an earlier solve's `integers`,
