@@ -47,6 +47,12 @@ export function runNative(tvf, mesh, repeat, extra = []) {
   return JSON.parse(out);
 }
 
+// The median of the numbers (NaN for none).
+export const median = (v) => {
+  const s = [...v].sort((a, b) => a - b);
+  return s.length === 0 ? NaN : s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
+};
+
 export const fmt = (x, digits = 1) =>
   x === undefined || x === null || Number.isNaN(x) ? '–' : Number(x).toFixed(x >= 100 ? 0 : digits);
 

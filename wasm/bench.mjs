@@ -46,14 +46,10 @@ import { dirname, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { measureQuadNative, measureQuadWasm } from './quad-bench.mjs';
 import {
-  ROOT, ensureMeshes, fmt, meshName, meshPath, nativeTable, parseArgs, repeatFor, runNative,
+  ROOT, ensureMeshes, fmt, median, meshName, meshPath, nativeTable, parseArgs, repeatFor, runNative,
 } from '../scripts/bench.mjs';
 
 const SELF = fileURLToPath(import.meta.url);
-const median = (v) => {
-  const s = [...v].sort((a, b) => a - b);
-  return s.length === 0 ? NaN : s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
-};
 
 // For each face corner k, the face across edge (k, k+1), or -1 on a boundary (sorted edge keys: no per-edge
 // allocation on 1M-edge meshes).

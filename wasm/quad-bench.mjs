@@ -6,11 +6,7 @@
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { pathToFileURL } from 'node:url';
-
-const median = (v) => {
-  const s = [...v].sort((a, b) => a - b);
-  return s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
-};
+import { median } from '../scripts/bench.mjs';
 
 export async function measureQuadWasm(modulePath, mesh, quads, repeat) {
   const createTvfCore = (await import(pathToFileURL(modulePath).href)).default;
@@ -22,8 +18,8 @@ export async function measureQuadWasm(modulePath, mesh, quads, repeat) {
   fail('solve', d.solve());
   const positions = Float64Array.from(d.positions()), triangles = Int32Array.from(d.triangles());
   const directions = Float64Array.from(d.faceVectors());
-  // The page remeshes in a worker of its own: the design's factor is not in that heap.
-  d.releaseFactors?.();
+  // The design (and its factor) freed before the remeshing, as in the page, whose quad worker holds no design.
+  d.delete();
   const options = JSON.stringify({ quads, symmetry: 4 });
   const total = [], stages = { cut: [], parametrize: [], extract: [], measure: [] };
   let stats, heapBytes = 0;
@@ -36,7 +32,6 @@ export async function measureQuadWasm(modulePath, mesh, quads, repeat) {
     stats = JSON.parse(out.statsJson);
     for (const k of Object.keys(stages)) stages[k].push(stats.stageMs[k]);
   }
-  d.delete();
   return {
     module: modulePath, faces: triangles.length / 3, targetQuads: quads, repeat, quadMs: median(total),
     stageMs: Object.fromEntries(Object.entries(stages).map(([k, v]) => [k, median(v)])), heapBytes, stats,

@@ -28,8 +28,8 @@ export async function openDesignerPage(browser, options) {
 }
 
 // The designer's whole canvas read in the page (drawn into a 2D canvas, row 0 at the top) and carried out as
-// `as` says: 'grey', {w, h, grey, left, top, scale} (below); 'rgb', its RGB bytes as base64 (a plain array of
-// two million numbers took seconds to serialize).
+// `as` says: 'grey', {w, h, grey, left, top, scale} (below); 'rgb', its RGB bytes as base64 (one compact string
+// out of the page, where a plain array would carry every byte as a separate serialized number).
 function readCanvas(page, as) {
   return page.evaluate((as) => {
     const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');

@@ -13,8 +13,8 @@ import { icosphereOff } from '../icosphere.mjs';
 import { parseObj } from '../node/quad-fixtures.mjs';
 import { openDesignerPage, readCanvasRgb } from './helpers.mjs';
 
-// A remesh target that keeps the core busy for seconds on the small sphere (the parametrization is the sphere's;
-// the extraction and the statistics grow with the quads).
+// A remesh target on the small sphere that the test relies on to keep the core at work until a stroke has been
+// drawn and taken (it checks that the remesh still runs before Cancel, and logs how long it had run then).
 const BIG_TARGET = 1_000_000;
 
 // Share of pixels whose colour differs by more than `threshold` (sum over R, G, B).
@@ -67,8 +67,6 @@ test.describe.serial('quad meshes in the page', () => {
     expect(state.running).toBe(false);
     expect(state.error).toBeNull();
     expect(state.stale).toBe(false);
-    expect(s.faces).toBeGreaterThan(0);
-    expect(s.quads).toBeLessThanOrEqual(s.faces);
     expect(s.quadShare).toBeGreaterThanOrEqual(0.9);
     expect(s.faces).toBeGreaterThan(400);
     expect(s.faces).toBeLessThan(1600);
@@ -142,6 +140,7 @@ test.describe.serial('quad meshes in the page', () => {
     // The page's workers now: the element's core worker (and what it started); a remesh adds one of its own.
     const idleWorkers = page.workers().length;
     // A big target keeps the core busy long enough to draw meanwhile.
+    const started = Date.now();
     await evaluate((quads) => {
       window.__remesh = window.tvf.remesh({ quads }).then(() => 'resolved', (err) => err.message);
     }, BIG_TARGET);
@@ -176,6 +175,7 @@ test.describe.serial('quad meshes in the page', () => {
     await page.getByRole('button', { name: 'Orbit', exact: true }).click();
     await page.locator('#quad-cancel').click();
     expect(await evaluate(() => window.__remesh)).toBe('the quad remeshing was cancelled');
+    console.log(`[ measured ] ${BIG_TARGET} quads asked: cancelled after ${Date.now() - started} ms, still running`);
     const state = await quadState();
     expect(state.running).toBe(false);
     expect(state.stage).toBeNull();

@@ -149,7 +149,7 @@ export class Designer {
       assetBase,
       symmetry: () => s.field?.symmetry ?? 1,
       fieldVersion: () => s.fieldVersion,
-      area: () => (s.surface?.areas ?? []).reduce((sum, a) => sum + a, 0),
+      area: () => s.surface?.area ?? 0,
       modelName: () => baseName(s.modelName),
       onError: (err) => !s.disposed && this.ui.showError(err.message),
       getInput: async () => {

@@ -10,7 +10,6 @@ import { CANCELLED } from './run.js';
 
 // The one refusal of a field that is not a cross field, the API's rejection and the panel's line alike.
 export const QUAD_REFUSAL = 'Quad meshes need a cross field';
-const SUPERSEDED = 'the quad remeshing was replaced by a newer one';
 export const DEFAULT_TARGET = { quads: 5000 };
 
 const copyMesh = (m) => ({
@@ -72,7 +71,7 @@ export class QuadController {
   // Remeshes the current field (options: {edgeLength} | {quads}, default the panel's target, which it becomes).
   // Resolves with copies of the mesh and its stats; rejects with an Error naming the reason: QUAD_REFUSAL for a
   // field that is not a cross field, the core's words for a mesh it cannot remesh, CANCELLED after cancel().
-  // A remesh while one runs replaces it.
+  // A remesh while one runs replaces it (which rejects with CANCELLED).
   async remesh(options) {
     const target = options === undefined ? { ...this.target } : remeshTarget(options);
     this.target = target;
@@ -81,14 +80,14 @@ export class QuadController {
       this.onChange();
       throw new Error(QUAD_REFUSAL);
     }
-    if (this.run) this.#end(SUPERSEDED);
+    if (this.run) this.#end();
     const run = { cancel: () => false, stage: 'starting', fraction: 0 };
     this.run = run;
     this.error = null;
     this.onChange();
     try {
       const input = await this.getInput();
-      if (this.run !== run) throw new Error(run.endedWith ?? CANCELLED);
+      if (this.run !== run) throw new Error(CANCELLED);
       if (!input) throw new Error('remesh: no model is loaded');
       if (input.symmetry !== 4) throw new Error(QUAD_REFUSAL);
       const { positions, triangles, faceDirections } = input;
@@ -101,7 +100,7 @@ export class QuadController {
         });
       run.cancel = started.cancel;
       const value = await started.promise;
-      if (this.run !== run) throw new Error(run.endedWith ?? CANCELLED);
+      if (this.run !== run) throw new Error(CANCELLED);
       this.run = null;
       this.#adopt(value, input);
       return { ...copyMesh(this.result.mesh), stats: { ...this.result.stats } };
@@ -122,7 +121,6 @@ export class QuadController {
     this.stale = this.fieldVersion() !== input.version;
     this.error = null;
     this.view?.setMesh(this.result.mesh, { edgeLength: stats.edgeLength, stale: this.stale });
-    this.view?.setVisible(this.visible);
     this.onChange();
   }
 
@@ -130,15 +128,14 @@ export class QuadController {
   // if any, stays. Returns whether a run was in flight.
   cancel() {
     if (!this.run) return false;
-    this.#end(CANCELLED);
+    this.#end();
     this.onChange();
     return true;
   }
 
-  #end(reason) {
+  #end() {
     const run = this.run;
     this.run = null;
-    run.endedWith = reason;
     run.cancel();
   }
 
@@ -154,7 +151,7 @@ export class QuadController {
 
   // Another model: its quad mesh and any run for the previous one go.
   modelChanged() {
-    if (this.run) this.#end(CANCELLED);
+    if (this.run) this.#end();
     this.result = null;
     this.stale = false;
     this.error = null;
@@ -178,7 +175,7 @@ export class QuadController {
   }
 
   dispose() {
-    if (this.run) this.#end(CANCELLED);
+    if (this.run) this.#end();
     this.view?.dispose();
   }
 }

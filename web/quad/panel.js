@@ -82,13 +82,22 @@ export function mountQuadPanel(controller, container, { area = () => 0, onError 
     if (to === 'quads') return { quads: A > 0 ? Math.max(1, Math.round(A / t.edgeLength ** 2)) : DEFAULT_TARGET.quads };
     return { edgeLength: A > 0 ? threeSignificant(Math.sqrt(A / t.quads)) : 1 };
   };
-  const setTarget = (target) => {
+  // A Remesh refused for what the box holds: the status line says why while the box stays marked.
+  let refused = false;
+  // Takes the target, or marks the box with why not (kept as typed, never silently replaced); `remeshing`: for a
+  // Remesh, which an invalid target then refuses in the status line. Returns whether the target was taken.
+  const setTarget = (target, remeshing = false) => {
+    size.removeAttribute('aria-invalid');
+    refused = false;
     try {
       controller.setTarget(target);
-      size.removeAttribute('aria-invalid');
+      return true;
     } catch (err) {
-      size.setAttribute('aria-invalid', 'true'); // kept as typed, marked, never silently replaced
+      size.setAttribute('aria-invalid', 'true');
       size.title = err.message;
+      refused = remeshing;
+      refresh();
+      return false;
     }
   };
   const readSize = () => (mode.value === 'quads' ? { quads: Number(size.value) } : { edgeLength: Number(size.value) });
@@ -102,13 +111,13 @@ export function mountQuadPanel(controller, container, { area = () => 0, onError 
   };
   const listeners = [
     [show, 'change', () => controller.setVisible(show.checked)],
-    [mode, 'change', () => {
-      size.removeAttribute('aria-invalid');
-      setTarget(convert(controller.state().target, mode.value));
-    }],
+    [mode, 'change', () => setTarget(convert(controller.state().target, mode.value))],
     [size, 'change', () => setTarget(readSize())],
-    // The panel shows the outcome (the refusal, the core's words); the rejection has nowhere else to go.
-    [remesh, 'click', () => controller.remesh().catch(() => {})],
+    // The box as typed first: a target it cannot take is not run, nor the last one in its place. The panel shows
+    // the outcome (the refusal, the core's words); the rejection has nowhere else to go.
+    [remesh, 'click', () => {
+      if (setTarget(readSize(), true)) controller.remesh().catch(() => {});
+    }],
     [cancel, 'click', () => controller.cancel()],
     [obj, 'click', () => download('obj', 'model/obj', () => controller.exportObj())],
     [glb, 'click', () => download('glb', 'model/gltf-binary', () => controller.exportGlb())],
@@ -120,7 +129,7 @@ export function mountQuadPanel(controller, container, { area = () => 0, onError 
     show.checked = s.visible;
     mode.value = 'quads' in s.target ? 'quads' : 'edgeLength';
     if (!size.hasAttribute('aria-invalid')) {
-      if (section.ownerDocument.activeElement !== size) size.value = String(targetValue());
+      if (section.getRootNode().activeElement !== size) size.value = String(targetValue());
       size.title = mode.value === 'quads' ? 'About this many quads' : "Quad edge length, in the model's units";
     }
     cancel.disabled = !s.running;
@@ -129,11 +138,12 @@ export function mountQuadPanel(controller, container, { area = () => 0, onError 
     stage.textContent = s.running ? `${s.stage ?? ''} ${percent(s.fraction, 0)}` : '';
     const cross = controller.symmetry() === 4;
     remesh.title = cross ? REMESH_TITLE : `${QUAD_REFUSAL}: choose Cross (N = 4) in the Field panel`;
-    if (s.error) status.textContent = s.error;
+    const error = refused && !s.running ? size.title : s.error;
+    if (error) status.textContent = error;
     else if (s.running) status.textContent = 'Remeshing; the design stays editable.';
     else if (s.stale) status.textContent = STALE;
     else status.textContent = s.hasResult ? '' : 'No quad mesh yet.';
-    status.classList.toggle('error', !!s.error);
+    status.classList.toggle('error', !!error);
     stats.replaceChildren(...(s.stats ? statsLines(s.stats).map((line) => el('div', { text: line })) : []));
     stats.classList.toggle('stale', s.stale);
     obj.disabled = glb.disabled = !s.hasResult;

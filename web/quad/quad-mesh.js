@@ -27,10 +27,9 @@ export function uniqueEdges({ positions, faceStart, faceVertices }) {
 }
 
 // Edges at each vertex: the valence a quad mesh's regular interior vertex has four of.
-export function valences(mesh) {
+export function valences(mesh, edges = uniqueEdges(mesh)) {
   const v = new Int32Array(vertexCount(mesh));
-  const e = uniqueEdges(mesh);
-  for (let k = 0; k < e.length; k++) v[e[k]]++;
+  for (let k = 0; k < edges.length; k++) v[edges[k]]++;
   return v;
 }
 

@@ -33,7 +33,6 @@ export class QuadView {
     viewer.scene.add(this.group);
     this.hasMesh = false;
     this.visible = true;
-    this.edgeCount = 0;
   }
 
   // mesh: {positions, faceStart, faceVertices, irregular}; edgeLength: the core's target (else the mean edge).
@@ -46,7 +45,7 @@ export class QuadView {
     };
     const line = new Float32Array(3 * edges.length);
     for (let k = 0; k < edges.length; k++) lifted(line, 3 * k, edges[k], LINE_LIFT * length);
-    const valence = valences(mesh);
+    const valence = valences(mesh, edges);
     const point = new Float32Array(3 * mesh.irregular.length), colour = new Float32Array(point.length);
     const c = new Color();
     mesh.irregular.forEach((v, k) => {
@@ -55,7 +54,6 @@ export class QuadView {
     });
     this.#geometry(this.lines, { position: line });
     this.#geometry(this.points, { position: point, color: colour });
-    this.edgeCount = edges.length / 2;
     this.hasMesh = true;
     this.setStale(stale);
     this.#show();
@@ -80,7 +78,6 @@ export class QuadView {
 
   clear() {
     this.hasMesh = false;
-    this.edgeCount = 0;
     this.#geometry(this.lines, { position: new Float32Array(0) });
     this.#geometry(this.points, { position: new Float32Array(0), color: new Float32Array(0) });
     this.#show();
@@ -89,12 +86,6 @@ export class QuadView {
   #show() {
     this.group.visible = this.visible && this.hasMesh;
     this.viewer.requestRender();
-  }
-
-  // What is drawn, for the tests: whether the wireframe is shown, its edges and irregular vertices.
-  drawn() {
-    const irregular = this.points.geometry.getAttribute('position')?.count ?? 0;
-    return { shown: this.group.visible, edges: this.edgeCount, irregular };
   }
 
   dispose() {

@@ -14,27 +14,23 @@ export function quadOps(state) {
   const anytime = {
     // positions (Float64Array, 3 per vertex), triangles (Int32Array, 3 per face), faceDirections (Float64Array,
     // one unit representative of the cross field per face), options ({edgeLength} | {quads}, plus symmetry).
-    // Replies {positions, faceStart, faceVertices, irregular, stats, workerMs}; a refusal rejects with the core's
-    // words.
+    // Replies {positions, faceStart, faceVertices, irregular, stats}; a refusal rejects with the core's words.
     quadRemesh(positions, triangles, faceDirections, options) {
       const Module = state.core?.Module;
       if (typeof Module?.quadRemesh !== 'function')
         throw new CoreError('this build of the core has no quad remeshing: rebuild it (npm run build:wasm)');
-      const t0 = performance.now();
       const progress = (stage, fraction) => {
         state.progress({ stage: String(stage), fraction: Number(fraction) });
         return true;
       };
       const out = Module.quadRemesh(positions, triangles, faceDirections, JSON.stringify(options), progress);
       if (out.error) throw new CoreError(out.error);
-      // Copies: an embind result may view the wasm heap, whose buffer cannot be transferred.
       const value = {
-        positions: Float64Array.from(out.positions),
-        faceStart: Int32Array.from(out.faceStart),
-        faceVertices: Int32Array.from(out.faceVertices),
-        irregular: Int32Array.from(out.irregular),
+        positions: out.positions,
+        faceStart: out.faceStart,
+        faceVertices: out.faceVertices,
+        irregular: out.irregular,
         stats: JSON.parse(out.statsJson),
-        workerMs: performance.now() - t0,
       };
       const list = ['positions', 'faceStart', 'faceVertices', 'irregular'].map((k) => value[k].buffer);
       return new Transfer(value, list);

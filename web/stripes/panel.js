@@ -67,7 +67,7 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     show.checked = s.visible;
     for (const o of profile.options) o.disabled = symmetry === 4 && !TWO_FAMILY_PROFILES.includes(o.value);
     profile.value = s.profile;
-    if (document.activeElement !== frequency) frequency.value = String(s.frequency);
+    if (section.getRootNode().activeElement !== frequency) frequency.value = String(s.frequency);
     magnitude.value = String(s.magnitudeSpacing);
     magnitude.disabled = symmetry !== 1;
     adapt.checked = s.adaptSpacing;
