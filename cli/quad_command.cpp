@@ -74,6 +74,8 @@ int quadCommand(int argc, char** argv, const std::function<nlohmann::json(const 
     throw InputError("Quad meshes need a cross field: the design has symmetry " +
                      std::to_string(designer.symmetry()) + " (set \"symmetry\": 4)");
   designer.solve();
+  for (int32_t e : designer.featureEdges())
+    for (int k = 0; k < 2; ++k) options.featureEdges.push_back(designer.topology().edgeVertices[2 * e + k]);
   const QuadRemeshResult r = quadRemesh(designer.mesh(), designer.topology(), designer.geometry(),
                                         designer.faceVectors(), designer.symmetry(), options);
   std::ofstream out(outPath, std::ios::binary);

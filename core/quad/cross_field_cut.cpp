@@ -77,8 +77,8 @@ std::vector<uint8_t> combAlongTree(const SurfaceMesh& mesh, const MeshTopology& 
   return tree;
 }
 
-// The edges no tree edge crosses, less the branches that end at a vertex that is not a cone (round which
-// the field closes up, so nothing needs cutting).
+// The interior edges no tree edge crosses, less the branches that end at a vertex that is neither a cone nor
+// on the boundary (round such a vertex the field closes up, so nothing needs cutting there).
 std::vector<uint8_t> prunedCutGraph(const MeshTopology& t, const std::vector<uint8_t>& tree,
                                     const std::vector<uint8_t>& coneVertex) {
   std::vector<uint8_t> cut(t.numEdges, 0);
@@ -90,8 +90,10 @@ std::vector<uint8_t> prunedCutGraph(const MeshTopology& t, const std::vector<uin
     ++degree[t.edgeVertices[2 * e + 1]];
   }
   std::vector<int32_t> leaves;
+  // A branch that reaches the boundary ends there: the cut joins cones and handles to the boundary too.
+  auto terminal = [&](int32_t v) { return coneVertex[v] || t.isBoundaryVertex[v]; };
   for (int32_t v = 0; v < t.numVertices; ++v)
-    if (degree[v] == 1 && !coneVertex[v]) leaves.push_back(v);
+    if (degree[v] == 1 && !terminal(v)) leaves.push_back(v);
   while (!leaves.empty()) {
     const int32_t v = leaves.back();
     leaves.pop_back();
@@ -102,19 +104,32 @@ std::vector<uint8_t> prunedCutGraph(const MeshTopology& t, const std::vector<uin
       cut[e] = 0;
       --degree[v];
       const int32_t w = t.edgeVertices[2 * e] == v ? t.edgeVertices[2 * e + 1] : t.edgeVertices[2 * e];
-      if (--degree[w] == 1 && !coneVertex[w]) leaves.push_back(w);
+      if (--degree[w] == 1 && !terminal(w)) leaves.push_back(w);
       break;
     }
   }
   return cut;
 }
 
-// The faces round vertex v from corner (f, c), counter-clockwise, each with the edge to the next.
+// The faces round vertex v from corner (f, c), counter-clockwise, each with the edge to the next. An open fan
+// (v on the boundary) is walked from its first face, whichever corner it is reached from: its last edge then
+// is a boundary edge.
 void walkFan(const SurfaceMesh& mesh, const MeshTopology& t, int32_t f, int c, std::vector<int32_t>& faces,
              std::vector<int32_t>& edges) {
   faces.clear();
   edges.clear();
   const int32_t v = mesh.triangles[3 * f + c];
+  // Clockwise (across the edge from v to the next corner) to the boundary, or round to f again when closed.
+  const int32_t start = f;
+  for (int32_t steps = 0; steps <= t.numFaces; ++steps) {
+    const int32_t back = t.otherFace(t.edgeOf(f, c), f);
+    if (back < 0) break;
+    if (back == start) {
+      f = start, c = mesh.cornerOf(start, v);
+      break;
+    }
+    f = back, c = mesh.cornerOf(back, v);
+  }
   int32_t face = f, corner = c;
   do {
     faces.push_back(face);
@@ -131,6 +146,27 @@ int turnsCrossing(const CrossFieldCut& cut, const MeshTopology& t, int32_t e, in
   return t.edgeFaces[2 * e] == from ? cut.matching[e] : -cut.matching[e];
 }
 
+// The boundary's edges and the features', each with the coordinate constant along it in the face beside it.
+std::vector<CrossFieldCut::IsoEdge> isoEdgesOf(const SurfaceMesh& mesh, const MeshTopology& t,
+                                               const std::vector<double>& x, const MeshGeometry& g,
+                                               const std::vector<int32_t>& featureEdges) {
+  std::vector<uint8_t> wanted(t.numEdges, 0);
+  for (int32_t e = 0; e < t.numEdges; ++e) wanted[e] = t.isBoundaryEdge[e];
+  for (int32_t e : featureEdges)
+    if (e >= 0 && e < t.numEdges) wanted[e] = 1;
+  std::vector<CrossFieldCut::IsoEdge> out;
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    if (!wanted[e]) continue;
+    const int32_t f = t.edgeFaces[2 * e] >= 0 ? t.edgeFaces[2 * e] : t.edgeFaces[2 * e + 1];
+    if (f < 0) continue;
+    const Eigen::Vector3d d = edgeVector(mesh, t, e), xf(&x[3 * f]);
+    const Eigen::Vector3d yf = faceNormalOf(g, f).cross(xf);
+    // Along X, u grows and v stays: v is the constant one.
+    out.push_back({e, f, static_cast<int8_t>(std::abs(d.dot(xf)) >= std::abs(d.dot(yf)) ? 1 : 0)});
+  }
+  return out;
+}
+
 }  // namespace
 
 Eigen::Vector3d quarterTurned(const Eigen::Vector3d& x, const Eigen::Vector3d& n, int quarters) {
@@ -140,7 +176,8 @@ Eigen::Vector3d quarterTurned(const Eigen::Vector3d& x, const Eigen::Vector3d& n
 }
 
 CrossFieldCut cutCrossField(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
-                            const std::vector<double>& faceDirections) {
+                            const std::vector<double>& faceDirections,
+                            const std::vector<int32_t>& featureEdges) {
   CrossFieldCut out;
   out.direction = planarDirections(mesh, g, faceDirections);
   const std::vector<uint8_t> tree = combAlongTree(mesh, t, g, out.direction);
@@ -184,8 +221,10 @@ CrossFieldCut cutCrossField(const SurfaceMesh& mesh, const MeshTopology& t, cons
     const int32_t* fs = &out.fanFaceList[out.fanFaceStart[fan]];
     const int32_t* es = &fanEdges[out.fanFaceStart[fan]];
     const std::size_t m = out.fanFaceStart[fan + 1] - out.fanFaceStart[fan];
+    // An open fan runs from one boundary edge to the other: its first copy starts at its first face.
+    const bool open = t.isBoundaryEdge[es[m - 1]] != 0;
     std::size_t start = 0;
-    for (std::size_t k = 0; k < m; ++k)
+    for (std::size_t k = 0; k < m && !open; ++k)
       if (out.cut[es[k]]) start = (k + 1) % m;
     const int32_t first = static_cast<int32_t>(out.copyFan.size());
     auto newCopy = [&](int32_t edge, int32_t fromFace, int32_t previous) {
@@ -196,7 +235,7 @@ CrossFieldCut cutCrossField(const SurfaceMesh& mesh, const MeshTopology& t, cons
       return static_cast<int32_t>(out.copyFan.size()) - 1;
     };
     const std::size_t closing = (start + m - 1) % m;
-    const bool anyCut = out.cut[es[closing]] != 0;
+    const bool anyCut = !open && out.cut[es[closing]] != 0;
     int32_t copy = newCopy(anyCut ? es[closing] : -1, anyCut ? fs[closing] : -1, first);
     const int32_t v = out.fanVertex[fan];
     for (std::size_t step = 0; step < m; ++step) {
@@ -207,6 +246,7 @@ CrossFieldCut cutCrossField(const SurfaceMesh& mesh, const MeshTopology& t, cons
     if (anyCut) out.copyPrevious[first] = copy;
     out.fanFirstCopy.push_back(static_cast<int32_t>(out.copyFan.size()));
   }
+  out.isoEdges = isoEdgesOf(mesh, t, out.direction, g, featureEdges);
   return out;
 }
 

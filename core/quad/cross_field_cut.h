@@ -33,11 +33,21 @@ struct CrossFieldCut {
   std::vector<int32_t> fanFaceStart, fanFaceList;  // CSR: each fan's faces, counter-clockwise
   int32_t cones = 0;
   int32_t cutEdges = 0;
+  // The edges that must lie on an integer iso-line (the boundary's, and the features'): per such edge, the
+  // face beside it whose chart says so (the first) and the coordinate (0: u, 1: v) constant along it there,
+  // the one of the combed field's two directions farther from the edge's.
+  struct IsoEdge {
+    int32_t edge, face;
+    int8_t coordinate;
+  };
+  std::vector<IsoEdge> isoEdges;
 };
 
 // faceDirections: 3 per face, any one of the cross field's four directions (zero where the field vanishes).
+// featureEdges: edges (indices) the quads' edges are to follow, besides the boundary's.
 CrossFieldCut cutCrossField(const SurfaceMesh& mesh, const MeshTopology& topology,
-                            const MeshGeometry& geometry, const std::vector<double>& faceDirections);
+                            const MeshGeometry& geometry, const std::vector<double>& faceDirections,
+                            const std::vector<int32_t>& featureEdges = {});
 
 // X turned `quarters` times counter-clockwise about the unit normal n (in n's plane).
 Eigen::Vector3d quarterTurned(const Eigen::Vector3d& x, const Eigen::Vector3d& n, int quarters);

@@ -79,6 +79,13 @@ GreedyRounding roundGreedily(const SparseMatrix& K, const Eigen::VectorXd& b,
         S(index[row], index[col]) += it.value();
       }
     }
+  // A ridge far below the energy's scale: a chart placed by integers in one direction only (a cylinder
+  // between two boundary iso-lines) is free to slide along the other, and takes the nearest place to 0 there.
+  double diagonal = 0;
+  for (const auto& c : cc)
+    if (c.row() == c.col()) diagonal += std::abs(c.value());
+  const double ridge = 1e-10 * diagonal / std::max<int32_t>(1, nc);
+  for (int32_t i = 0; i < nc; ++i) cc.emplace_back(i, i, ridge);
   SparseMatrix Acc(nc, nc), Kci(nc, ni);
   Acc.setFromTriplets(cc.begin(), cc.end());
   Kci.setFromTriplets(ci.begin(), ci.end());

@@ -49,15 +49,23 @@ struct PortRef {
   int port = -1;
   bool operator==(const PortRef& o) const { return point == o.point && port == o.port; }
 };
+// Where a port leads off the surface (out through its boundary, or the gap of a boundary vertex's fan).
+constexpr PortRef kOutside{-2, -2};
 
 class Extractor {
  public:
   Extractor(const SurfaceMesh& mesh, const MeshTopology& t, const CrossFieldCut& cut,
             const SeamlessParametrization& p)
-      : mesh_(mesh), t_(t), cut_(cut), uv_(p.cornerUV), shift_(p.edgeShift), coneAt_(3 * t.numFaces, -1) {}
+      : mesh_(mesh),
+        t_(t),
+        cut_(cut),
+        uv_(p.cornerUV),
+        shift_(p.edgeShift),
+        fanOnGrid_(p.fanOnGrid),
+        vertexPointAt_(3 * t.numFaces, -1) {}
 
   QuadExtraction run() {
-    findCones();
+    findVertexPoints();
     findFacePoints();
     traceAll();
     return assemble();
@@ -93,33 +101,46 @@ class Extractor {
     dv = static_cast<int>(std::lround(d.v));
   }
 
-  void findCones() {
+  // Vertices on grid points (cones, corners of features and of the boundary): their ports are the axis
+  // directions in their faces' wedges, counter-clockwise round the fan. A boundary vertex's fan is open: the
+  // direction along its last edge is a port too, and a gap (kOutside) closes the cycle.
+  void findVertexPoints() {
     const int32_t numFans = static_cast<int32_t>(cut_.fanTurns.size());
     for (int32_t fan = 0; fan < numFans; ++fan) {
-      if (!cut_.fanTurns[fan]) continue;
+      if (!fanOnGrid_[fan]) continue;
       const int32_t v = cut_.fanVertex[fan];
       GridPoint p{cut_.fanFaceList[cut_.fanFaceStart[fan]], fan, {1, 0, 0}};
       const int32_t id = static_cast<int32_t>(points_.size());
       points_.push_back(p);
       ports_.emplace_back();
       std::vector<ConePort>& ports = conePorts_.emplace_back();
+      const int32_t last = cut_.fanFaceList[cut_.fanFaceStart[fan + 1] - 1];
+      const bool open = t_.otherFace(t_.edgeOf(last, (mesh_.cornerOf(last, v) + 2) % 3), last) < 0;
       for (int32_t k = cut_.fanFaceStart[fan]; k < cut_.fanFaceStart[fan + 1]; ++k) {
         const int32_t f = cut_.fanFaceList[k];
         const int c = mesh_.cornerOf(f, v);
-        coneAt_[3 * f + c] = id;
+        vertexPointAt_[3 * f + c] = id;
         const Vec2 o = corner(f, c), a = corner(f, (c + 1) % 3) - o, b = corner(f, (c + 2) % 3) - o;
         if (!(cross(a, b) > 0)) continue;  // a flipped face's wedge holds no port
+        const bool closesFan = open && f == last;
         std::vector<std::pair<double, int>> inWedge;
         for (int d = 0; d < 4; ++d) {
           const Vec2 dir{static_cast<double>(kAxis[d][0]), static_cast<double>(kAxis[d][1])};
           const bool fromA = cross(a, dir) > 0 || (cross(a, dir) == 0 && a.u * dir.u + a.v * dir.v > 0);
-          if (fromA && cross(dir, b) > 0)
-            inWedge.emplace_back(std::atan2(cross(a, dir), a.u * dir.u + a.v * dir.v), d);
+          const bool toB =
+              cross(dir, b) > 0 || (closesFan && cross(dir, b) == 0 && b.u * dir.u + b.v * dir.v > 0);
+          if (fromA && toB) inWedge.emplace_back(std::atan2(cross(a, dir), a.u * dir.u + a.v * dir.v), d);
         }
         std::sort(inWedge.begin(), inWedge.end());
         for (const auto& [angle, d] : inWedge) ports.push_back({f, kAxis[d][0], kAxis[d][1]});
       }
       ports_.back().assign(ports.size(), PortRef{});
+      if (open) {
+        ports.push_back({-1, 0, 0});
+        ports_.back().push_back(kOutside);
+        pointOnBoundary_.resize(points_.size(), 0);
+        pointOnBoundary_[id] = 1;
+      }
     }
   }
 
@@ -154,10 +175,15 @@ class Extractor {
         if (t_.edgeFaces[2 * e] != f) return;
       }
     }
-    if (zeros > 1) return;  // a corner: only cones sit there, found with their fans
+    if (zeros > 1) return;  // a corner: only vertices on grid points sit there, found with their fans
     GridPoint p{f, -1, {l[0], l[1], l[2]}, i, j};
     points_.push_back(p);
     ports_.emplace_back(4, PortRef{});
+    for (int k = 0; k < 3; ++k)
+      if (l[k] == 0 && t_.isBoundaryEdge[t_.edgeOf(f, (k + 1) % 3)]) {
+        pointOnBoundary_.resize(points_.size(), 0);
+        pointOnBoundary_.back() = 1;
+      }
   }
 
   // The grid point at integer (u, v) `x` of f's chart, or -1.
@@ -199,7 +225,7 @@ class Extractor {
     for (int step = 0; step < maxSteps; ++step) {
       for (int k = 0; k < 3; ++k) {
         const Vec2 q = corner(f, k);
-        const int32_t cone = coneAt_[3 * f + k];
+        const int32_t cone = vertexPointAt_[3 * f + k];
         if (cone >= 0 && std::abs(q.u - target.u) < 1e-6 && std::abs(q.v - target.v) < 1e-6)
           return arriveAtCone(cone, f, du, dv);
       }
@@ -216,7 +242,8 @@ class Extractor {
       }
       if (exit < 0) return {};
       const int32_t e = t_.edgeOf(f, (exit + 1) % 3), g = t_.otherFace(e, f);
-      if (g < 0) return {};
+      // Straight out through the boundary the point lies on: a port off the surface, not a failed walk.
+      if (g < 0) return step == 0 && best == 0 ? kOutside : PortRef{};
       x = x + Vec2{best * (target.u - x.u), best * (target.v - x.v)};
       carry(e, f, x, du, dv, &target);
       f = g;
@@ -245,6 +272,7 @@ class Extractor {
     for (int32_t id = 0; id < static_cast<int32_t>(points_.size()); ++id) {
       const GridPoint& p = points_[id];
       for (std::size_t port = 0; port < ports_[id].size(); ++port) {
+        if (ports_[id][port] == kOutside) continue;
         int32_t f;
         int du, dv;
         Vec2 x;
@@ -259,7 +287,7 @@ class Extractor {
           x = {static_cast<double>(p.iu), static_cast<double>(p.iv)};
         }
         ports_[id][port] = trace(f, x, du, dv, {x.u + du, x.v + dv});
-        if (ports_[id][port].point < 0) ++failedTraces_;
+        if (ports_[id][port].point == -1) ++failedTraces_;
       }
     }
   }
@@ -281,7 +309,10 @@ class Extractor {
         loop.clear();
         PortRef h{id, port};
         bool closed = false;
-        for (int k = 0; k < 16 && linked(h) && !used[h.point][h.port]; ++k) {
+        bool outside = false;
+        for (int k = 0; k < 16 && !(outside = ports_[h.point][h.port] == kOutside) && linked(h) &&
+                        !used[h.point][h.port];
+             ++k) {
           used[h.point][h.port] = 1;
           loop.push_back(h.point);
           const PortRef b = ports_[h.point][h.port];
@@ -293,7 +324,7 @@ class Extractor {
           }
         }
         if (!closed || loop.size() < 3) {
-          ++out.openLoops;
+          if (!outside) ++out.openLoops;  // round the outside of the boundary: no face there
           continue;
         }
         for (int32_t v : loop) {
@@ -303,14 +334,18 @@ class Extractor {
         out.mesh.faceStart.push_back(static_cast<int32_t>(out.mesh.faceVertices.size()));
       }
     out.mesh.faceStart.insert(out.mesh.faceStart.begin(), 0);
-    out.filledHoles = fillHoles(out.mesh);
+    std::vector<uint8_t> vertexOnBoundary(out.mesh.numVertices(), 0);
+    pointOnBoundary_.resize(points_.size(), 0);
+    for (std::size_t id = 0; id < points_.size(); ++id)
+      if (remap[id] >= 0) vertexOnBoundary[remap[id]] = pointOnBoundary_[id];
+    out.filledHoles = fillHoles(out.mesh, vertexOnBoundary);
     return out;
   }
 
   // Where walks failed the quad mesh has holes; each hole bounded by at most kLongestHole edges becomes one
   // polygon, so that the mesh is closed as the surface is (the polygons are counted, not hidden: they lower
   // the quad share).
-  static int32_t fillHoles(QuadMesh& m) {
+  static int32_t fillHoles(QuadMesh& m, const std::vector<uint8_t>& onBoundary) {
     constexpr std::size_t kLongestHole = 16;
     std::set<std::pair<int32_t, int32_t>> directed;
     for (int32_t f = 0; f < m.numFaces(); ++f)
@@ -338,6 +373,8 @@ class Extractor {
         hole.erase(next);
       }
       if (at != start || loop.size() < 3 || loop.size() > kLongestHole) continue;
+      // The surface's own boundary is not a hole.
+      if (std::all_of(loop.begin(), loop.end(), [&](int32_t v) { return onBoundary[v] != 0; })) continue;
       m.faceVertices.insert(m.faceVertices.end(), loop.begin(), loop.end());
       m.faceStart.push_back(static_cast<int32_t>(m.faceVertices.size()));
       ++filled;
@@ -365,10 +402,13 @@ class Extractor {
   const CrossFieldCut& cut_;
   const std::vector<double>& uv_;
   const std::vector<double>& shift_;
+  const std::vector<uint8_t>& fanOnGrid_;
   std::vector<GridPoint> points_;
+  std::vector<uint8_t>
+      pointOnBoundary_;  // per point (resized as points are added): on the surface's boundary
   std::vector<std::vector<PortRef>> ports_;       // per point and port: where its iso-line arrives
-  std::vector<std::vector<ConePort>> conePorts_;  // per cone (the first points), in counter-clockwise order
-  std::vector<int32_t> coneAt_;                   // per face corner: its cone point, -1 elsewhere
+  std::vector<std::vector<ConePort>> conePorts_;  // per vertex point (the first points), counter-clockwise
+  std::vector<int32_t> vertexPointAt_;            // per face corner: its vertex point, -1 elsewhere
   std::vector<int32_t> faceFirstPoint_;
   int32_t failedTraces_ = 0;
 };

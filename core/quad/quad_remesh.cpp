@@ -37,9 +37,6 @@ void checkInputs(const MeshTopology& t, const std::vector<double>& faceDirection
   if (symmetry != 4)
     throw InputError("Quad meshes need a cross field (symmetry 4); this field has symmetry " +
                      std::to_string(symmetry));
-  if (!t.boundaryLoops.empty())
-    throw InputError("quad meshes need a closed surface: this model has " +
-                     std::to_string(t.boundaryLoops.size()) + " boundary loop(s)");
   if (faceDirections.size() != 3 * static_cast<std::size_t>(t.numFaces))
     throw InputError("quad mesh: expected 3 numbers per face for the field's directions");
   for (double x : faceDirections)
@@ -60,6 +57,20 @@ void stiffenFolds(const MeshTopology& t, const SeamlessParametrization& p, std::
   }
 }
 
+std::vector<int32_t> featureEdgeIndices(const MeshTopology& t, const std::vector<int32_t>& pairs) {
+  if (pairs.size() % 2) throw InputError("quad mesh: feature edges come as vertex pairs");
+  std::vector<int32_t> edges;
+  for (std::size_t k = 0; k < pairs.size(); k += 2) {
+    const int32_t a = pairs[k], b = pairs[k + 1];
+    const int32_t e = a >= 0 && b >= 0 && a < t.numVertices && b < t.numVertices ? findEdge(t, a, b) : -1;
+    if (e < 0)
+      throw InputError("quad mesh: the feature pair (" + std::to_string(a) + ", " + std::to_string(b) +
+                       ") is not an edge of the mesh");
+    edges.push_back(e);
+  }
+  return edges;
+}
+
 }  // namespace
 
 QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
@@ -67,6 +78,7 @@ QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& t, cons
                             const QuadRemeshOptions& options, const RemeshProgress& progress) {
   const Clock::time_point start = Clock::now();
   checkInputs(t, faceDirections, symmetry);
+  const std::vector<int32_t> features = featureEdgeIndices(t, options.featureEdges);
   QuadRemeshResult out;
   out.edgeLength = chosenEdgeLength(g, options);
   auto report = [&](const char* stage, double fraction) {
@@ -74,7 +86,7 @@ QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& t, cons
   };
   report("cutting", 0.0);
   Clock::time_point stage = Clock::now();
-  const CrossFieldCut cut = cutCrossField(mesh, t, g, faceDirections);
+  const CrossFieldCut cut = cutCrossField(mesh, t, g, faceDirections, features);
   out.cones = cut.cones;
   out.cutEdges = cut.cutEdges;
   out.cutMs = msSince(stage);

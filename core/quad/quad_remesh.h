@@ -22,6 +22,9 @@ struct QuadRemeshOptions {
   // The quads' edge length in the model's units; 0: chosen from targetQuads (the surface's area over it).
   double edgeLength = 0;
   int64_t targetQuads = 0;
+  // Vertex pairs, flat (a, b, a, b, ...): the edges the quads' edges are to follow as chains (the design's
+  // sharp features), besides the boundary's, which they always follow.
+  std::vector<int32_t> featureEdges;
 };
 
 struct QuadRemeshResult {
@@ -48,8 +51,8 @@ struct RemeshCancelled : std::runtime_error {
 
 // faceDirections: 3 per face, one unit representative of the cross field (a Designer's faceVectors() at
 // symmetry 4). Throws InputError naming the problem: a field that is not a cross field's (symmetry != 4),
-// a mesh with boundaries, an edge length that is not positive and finite or that asks for more than
-// 4 million quads, a parametrization that cannot be solved.
+// a feature pair that is not an edge, an edge length that is not positive and finite or that asks for more
+// than 4 million quads, a parametrization that cannot be solved.
 QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& topology,
                             const MeshGeometry& geometry, const std::vector<double>& faceDirections,
                             int symmetry, const QuadRemeshOptions& options,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 
 #include "common/input_error.h"
 #include "mesh/mesh_geometry.h"
@@ -104,7 +105,8 @@ class IntegerElimination {
 };
 
 struct Layout {
-  std::vector<int32_t> fanBase;   // per fan: index of its base's u (v next), -1 for cones
+  std::vector<int32_t>
+      baseColumn;                 // 2 per fan: the column of its base's u and v, -1 where integer (a cone's)
   std::vector<int32_t> integerZ;  // per integer unknown: its index, -1 when eliminated
   int32_t size = 0;
 };
@@ -115,19 +117,28 @@ void addRow(std::vector<Eigen::Triplet<double>>& triplets, int32_t row, const Co
   for (const auto& [x, k] : c) triplets.emplace_back(row, layout.integerZ[x], static_cast<double>(k));
 }
 
+// Component i of R^k b (turned(k, ...)) is sign * b[j]: (j, sign).
+std::pair<int, int64_t> turnedComponent(int k, int i) {
+  static constexpr int kFrom[4][2] = {{0, 1}, {1, 0}, {0, 1}, {1, 0}};
+  static constexpr int64_t kSign[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+  const int q = ((k % 4) + 4) % 4;
+  return {kFrom[q][i], kSign[q][i]};
+}
+
 }  // namespace
 
 SeamlessSystem::SeamlessSystem(const MeshTopology& t, const CrossFieldCut& cut) : t_(t), cut_(cut) {
   const int32_t numFans = static_cast<int32_t>(cut.fanTurns.size());
   const int32_t numCopies = static_cast<int32_t>(cut.copyFan.size());
-  // Integer unknowns: t_e for each cut edge, then each cone's position.
+  const int32_t numIso = static_cast<int32_t>(cut.isoEdges.size());
+  // Integer unknowns: t_e for each cut edge, then each cone's position, then each iso-edge's line.
   std::vector<int32_t> cutIndex(t.numEdges, -1), coneIndex(numFans, -1);
   int32_t numCut = 0, numCones = 0;
   for (int32_t e = 0; e < t.numEdges; ++e)
     if (cut.cut[e]) cutIndex[e] = numCut++;
   for (int32_t fan = 0; fan < numFans; ++fan)
     if (cut.fanTurns[fan]) coneIndex[fan] = numCones++;
-  const int32_t numIntegers = 2 * (numCut + numCones);
+  const int32_t firstIso = 2 * (numCut + numCones), numIntegers = firstIso + numIso;
   auto shiftOf = [&](int32_t e) { return ComboPoint{{{2 * cutIndex[e], 1}}, {{2 * cutIndex[e] + 1, 1}}}; };
   auto coneOf = [&](int32_t fan) {
     const int32_t x = 2 * numCut + 2 * coneIndex[fan];
@@ -163,11 +174,42 @@ SeamlessSystem::SeamlessSystem(const MeshTopology& t, const CrossFieldCut& cut) 
       if (!elimination.add(*row, 2 * numCut)) ++unenforced_;
   }
 
-  // The unknowns: each regular fan's base, then the integer unknowns left free.
-  Layout layout;
-  layout.fanBase.assign(numFans, -1);
+  // Iso-edges: at both ends, the copy's constant coordinate is the edge's line m, an integer. In base terms,
+  // sign * base[j] + shift_i = m: a base coordinate that is an integer combination from then on (a fan with
+  // both on a grid point: a corner of the features or the boundary), or, already one, an integer equation.
+  std::vector<std::optional<Combo>> baseCombo(2 * numFans);
   for (int32_t fan = 0; fan < numFans; ++fan)
-    if (coneIndex[fan] < 0) layout.fanBase[fan] = layout.size, layout.size += 2;
+    if (coneIndex[fan] >= 0) baseCombo[2 * fan] = coneOf(fan).u, baseCombo[2 * fan + 1] = coneOf(fan).v;
+  const std::vector<int32_t>& tri = cut.cornerCopy;
+  for (int32_t k = 0; k < numIso; ++k) {
+    const CrossFieldCut::IsoEdge& iso = cut.isoEdges[k];
+    const int i = iso.coordinate;
+    for (int corner = 0; corner < 3; ++corner) {
+      if (t.edgeOf(iso.face, corner) != iso.edge) continue;
+      for (int end = 0; end < 2; ++end) {
+        const int32_t copy = tri[3 * iso.face + (corner + end) % 3], fan = cut.copyFan[copy];
+        const auto [j, sign] = turnedComponent(copyTurns[copy], i);
+        const Combo& shift = i == 0 ? copyShift[copy].u : copyShift[copy].v;
+        const Combo value = sum(sum(Combo{{firstIso + k, 1}}, 1, shift, -1), sign, {}, 0);  // base[j]
+        std::optional<Combo>& slot = baseCombo[2 * fan + j];
+        if (!slot) {
+          slot = value;
+        } else if (!elimination.add(sum(*slot, 1, value, -1), 2 * numCut)) {
+          ++unenforced_;
+        }
+      }
+    }
+  }
+
+  // The unknowns: the base coordinates left continuous, then the integer unknowns left free.
+  Layout layout;
+  layout.baseColumn.assign(2 * numFans, -1);
+  fanOnGrid_.assign(numFans, 0);
+  for (int32_t fan = 0; fan < numFans; ++fan) {
+    for (int j = 0; j < 2; ++j)
+      if (!baseCombo[2 * fan + j]) layout.baseColumn[2 * fan + j] = layout.size++;
+    fanOnGrid_[fan] = baseCombo[2 * fan] && baseCombo[2 * fan + 1];
+  }
   layout.integerZ.assign(numIntegers, -1);
   integer_.assign(layout.size, 0);
   for (int32_t x = 0; x < numIntegers; ++x)
@@ -177,21 +219,21 @@ SeamlessSystem::SeamlessSystem(const MeshTopology& t, const CrossFieldCut& cut) 
       ++integerUnknowns_;
     }
 
-  // C: a copy is its fan's base (continuous, or a cone's integer position) turned, plus its integer shift.
+  // C: a copy is its fan's base (continuous, or integer combinations) turned, plus its integer shift.
   std::vector<Eigen::Triplet<double>> triplets;
   for (int32_t c = 0; c < numCopies; ++c) {
     const int32_t fan = cut.copyFan[c];
-    const bool cone = coneIndex[fan] >= 0;
-    const ComboPoint whole = added(turned(copyTurns[c], cone ? coneOf(fan) : ComboPoint{}), copyShift[c], 1);
+    ComboPoint base;
+    if (baseCombo[2 * fan]) base.u = *baseCombo[2 * fan];
+    if (baseCombo[2 * fan + 1]) base.v = *baseCombo[2 * fan + 1];
+    const ComboPoint whole = added(turned(copyTurns[c], base), copyShift[c], 1);
     addRow(triplets, 2 * c, elimination.resolve(whole.u), layout);
     addRow(triplets, 2 * c + 1, elimination.resolve(whole.v), layout);
-    if (cone) continue;
-    // R^k (bu, bv) of the continuous base: (bu, bv), (-bv, bu), (-bu, -bv), (bv, -bu).
-    const int k = ((copyTurns[c] % 4) + 4) % 4, bu = layout.fanBase[fan], bv = bu + 1;
-    const int32_t uFrom[4] = {bu, bv, bu, bv}, vFrom[4] = {bv, bu, bv, bu};
-    const double uSign[4] = {1, -1, -1, 1}, vSign[4] = {1, 1, -1, -1};
-    triplets.emplace_back(2 * c, uFrom[k], uSign[k]);
-    triplets.emplace_back(2 * c + 1, vFrom[k], vSign[k]);
+    for (int i = 0; i < 2; ++i) {
+      const auto [j, sign] = turnedComponent(copyTurns[c], i);
+      const int32_t column = layout.baseColumn[2 * fan + j];
+      if (column >= 0) triplets.emplace_back(2 * c + i, column, static_cast<double>(sign));
+    }
   }
   C_.resize(2 * numCopies, layout.size);
   C_.setFromTriplets(triplets.begin(), triplets.end());
@@ -203,14 +245,20 @@ SeamlessSystem::SeamlessSystem(const MeshTopology& t, const CrossFieldCut& cut) 
   shift_.resize(2 * t.numEdges, layout.size);
   shift_.setFromTriplets(triplets.begin(), triplets.end());
 
-  // Each component's chart can move as a whole: one regular base per component pinned off the grid.
-  std::vector<uint8_t> componentPinned(t.components.size(), 0);
+  // A component with no iso-edge can move as a whole: one of its regular bases is pinned off the grid (with
+  // cones, this is what was measured; leaving it free too was within noise: homer 0 -> 1 flipped quads,
+  // fandisk 43 -> 38 irregular vertices). One with iso-edges is placed by their integer lines: a pin there
+  // would hold a vertex off its place, so none is set, and the rounding's ridge (greedy_rounding.cpp) takes
+  // what freedom is left (a cylinder between two boundary loops slides round its axis).
+  std::vector<uint8_t> anchored(t.components.size(), 0), componentPinned(t.components.size(), 0);
+  for (const CrossFieldCut::IsoEdge& iso : cut.isoEdges) anchored[t.faceComponent[iso.face]] = 1;
   for (int32_t fan = 0; fan < numFans; ++fan) {
     const int32_t component = t.vertexComponent[cut.fanVertex[fan]];
-    if (layout.fanBase[fan] < 0 || component < 0 || componentPinned[component]) continue;
+    const int32_t bu = layout.baseColumn[2 * fan], bv = layout.baseColumn[2 * fan + 1];
+    if (component < 0 || anchored[component] || componentPinned[component] || bu < 0 || bv < 0) continue;
     componentPinned[component] = 1;
-    pinned_.emplace_back(layout.fanBase[fan], 0.3125);
-    pinned_.emplace_back(layout.fanBase[fan] + 1, 0.6875);
+    pinned_.emplace_back(bu, 0.3125);
+    pinned_.emplace_back(bv, 0.6875);
   }
 }
 
@@ -277,6 +325,7 @@ SeamlessParametrization SeamlessSystem::solve(const SurfaceMesh& mesh, const Mes
     if (!(uvTwiceArea(out.cornerUV, f) > 0)) ++out.flippedFaces;
   }
   out.edgeShift.assign(shift.data(), shift.data() + shift.size());
+  out.fanOnGrid = fanOnGrid_;
   return out;
 }
 

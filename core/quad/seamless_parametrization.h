@@ -6,9 +6,14 @@
 // cut edge the two copies differ by the field's quarter turns and an integer translation t_e,
 // uv_g = R^-r_e uv_f + t_e, so the integer grid lines run on across the cut. Cones sit on grid points.
 //
-// The transitions' translations and the cones' positions are the integer unknowns; the conditions that the
-// copies round each vertex come back to themselves are integer-coefficient equations among them, eliminated
-// (each solved for an unknown with coefficient +-1) before the solve. The rest are rounded greedily: solve,
+// The boundary's and the features' edges (the cut's isoEdges) lie on integer iso-lines: at each end the
+// coordinate constant along the edge is the edge's line, an integer unknown, so that the quads' edges run
+// along them (after Bommes et al. 2009, Sec. 5).
+//
+// The transitions' translations, the cones' positions and the iso-edges' lines are the integer unknowns; the
+// conditions that the copies round each vertex come back to themselves, and that the iso-edges meeting at a
+// vertex agree, are integer-coefficient equations among them, eliminated (each solved for an unknown with
+// coefficient +-1) before the solve. The rest are rounded greedily: solve,
 // fix the quarter of the still-free ones nearest an integer, solve again, until none is left.
 #include <functional>
 #include <string>
@@ -25,6 +30,9 @@ struct SeamlessParametrization {
   int32_t flippedFaces = 0;       // faces whose (u, v) triangle is not counter-clockwise
   int32_t roundingSteps = 0;      // integers fixed one (or a batch) at a time; 0 when they were kept
   std::vector<double> integers;   // the rounded integer unknowns, to keep in a solve with other weights
+  // Per fan (quad/cross_field_cut.h): 1 where its vertex sits on a grid point by construction (a cone, or a
+  // corner of the features or of the boundary, where iso-lines of both coordinates meet).
+  std::vector<uint8_t> fanOnGrid;
 };
 
 using ParametrizationProgress = std::function<bool(double fraction)>;
@@ -38,7 +46,9 @@ class SeamlessSystem {
   SeamlessSystem(const MeshTopology& topology, const CrossFieldCut& cut);
 
   int32_t integerUnknowns() const { return integerUnknowns_; }
-  int32_t unenforcedConditions() const { return unenforced_; }  // no +-1 coefficient even divided by their gcd
+  int32_t unenforcedConditions() const {
+    return unenforced_;
+  }  // no +-1 coefficient even divided by their gcd
 
   // edgeLength > 0: the grid's spacing on the surface. faceWeight (one per face, or empty for all 1) scales
   // each face's term: stiffer faces keep closer to the field. keptIntegers (an earlier solve's `integers`,
@@ -57,6 +67,7 @@ class SeamlessSystem {
   SparseMatrix shift_;            // t_e of each edge (rows 2e, 2e + 1) from the unknowns (0 off the cut)
   std::vector<uint8_t> integer_;  // per unknown
   std::vector<std::pair<int32_t, double>> pinned_;
+  std::vector<uint8_t> fanOnGrid_;
   int32_t integerUnknowns_ = 0, unenforced_ = 0;
 };
 

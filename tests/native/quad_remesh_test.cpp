@@ -11,6 +11,7 @@
 #include <map>
 
 #include "common/input_error.h"
+#include "dec/boundary_condition.h"
 #include "design/designer.h"
 #include "mesh/closest_point.h"
 #include "mesh/mesh_geometry.h"
@@ -215,6 +216,117 @@ TEST(QuadRemesh, KeepsTheEulerCharacteristicOfAGenusTwoSurface) {
   EXPECT_LT(r.stats.edgeAngleMedianDeg, 5.0);
 }
 
+// The quad mesh's edges with one face (its boundary), as vertex pairs.
+std::vector<std::pair<int32_t, int32_t>> quadBoundaryEdges(const QuadMesh& q) {
+  std::map<std::pair<int32_t, int32_t>, int> count;
+  for (int32_t f = 0; f < q.numFaces(); ++f)
+    for (int32_t k = q.faceStart[f]; k < q.faceStart[f + 1]; ++k) {
+      const int32_t a = q.faceVertices[k],
+                    b = q.faceVertices[k + 1 < q.faceStart[f + 1] ? k + 1 : q.faceStart[f]];
+      ++count[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<std::pair<int32_t, int32_t>> out;
+  for (const auto& [e, n] : count)
+    if (n == 1) out.push_back(e);
+  return out;
+}
+
+Eigen::Vector3d quadVertex(const QuadMesh& q, int32_t v) {
+  return Eigen::Vector3d(&q.positions[3 * v]);
+}
+
+TEST(QuadRemesh, AFlatSquareWithItsBoundaryFollowedIsARegularGridWithTheSameBoundary) {
+  Designer d(testing::flatGrid(12));
+  d.setSymmetry(4);
+  d.setBoundary(BoundaryCondition::tangential());
+  d.solve();
+  // 1 / 0.09 = 11.1: the grid stretches to whole quads between the sides, as the sides are iso-lines.
+  const QuadRemeshResult r = remeshDesign(d, 0.09);
+  printResult(r);
+  EXPECT_EQ(r.stats.faces, 121);
+  EXPECT_EQ(r.stats.quads, 121);
+  EXPECT_EQ(r.stats.irregularVertices, 0);
+  EXPECT_EQ(r.stats.eulerCharacteristic, 1);
+  EXPECT_EQ(r.stats.boundaryEdges, 44);
+  EXPECT_EQ(r.failedTraces, 0);
+  EXPECT_EQ(r.filledHoles, 0);
+  EXPECT_EQ(r.stats.flippedFaces, 0);
+  EXPECT_TRUE(r.stats.oriented);
+  EXPECT_NEAR(r.stats.edgeAngleMedianDeg, 0.0, 1e-6);
+  EXPECT_NEAR(r.stats.aspectMedian, 1.0, 1e-6);
+  // Every edge of the quad mesh's boundary lies on the square's, and its four corners are quad vertices.
+  auto onSide = [](double x) { return std::abs(x) < 1e-9 || std::abs(x - 1) < 1e-9; };
+  for (const auto& [a, b] : quadBoundaryEdges(r.mesh)) {
+    const Eigen::Vector3d p = quadVertex(r.mesh, a), q = quadVertex(r.mesh, b);
+    EXPECT_TRUE((onSide(p.x()) && std::abs(p.x() - q.x()) < 1e-9) ||
+                (onSide(p.y()) && std::abs(p.y() - q.y()) < 1e-9))
+        << p.transpose() << " - " << q.transpose();
+  }
+  int corners = 0;
+  for (int32_t v = 0; v < r.mesh.numVertices(); ++v)
+    corners += onSide(quadVertex(r.mesh, v).x()) && onSide(quadVertex(r.mesh, v).y());
+  EXPECT_EQ(corners, 4);
+}
+
+TEST(QuadRemesh, AnAnnulusFollowingItsCirclesIsARegularGridBetweenThem) {
+  Designer d(testing::flatAnnulus(8, 64, 0.5, 1.0));
+  d.setSymmetry(4);
+  d.setBoundary(BoundaryCondition::tangential());
+  d.solve();
+  ASSERT_TRUE(d.singularities().empty());
+  const QuadRemeshResult r = remeshDesign(d, 0.1);
+  printResult(r);
+  EXPECT_EQ(r.stats.irregularVertices, 0);
+  EXPECT_EQ(r.stats.quads, r.stats.faces);
+  EXPECT_EQ(r.stats.eulerCharacteristic, 0);
+  EXPECT_EQ(r.stats.flippedFaces, 0);
+  EXPECT_EQ(r.failedTraces, 0);
+  // Both circles are the quad mesh's boundary: its vertices there lie on them.
+  const std::vector<std::pair<int32_t, int32_t>> boundary = quadBoundaryEdges(r.mesh);
+  EXPECT_EQ(static_cast<int32_t>(boundary.size()), r.stats.boundaryEdges);
+  for (const auto& [a, b] : boundary)
+    for (int32_t v : {a, b}) {
+      // On the 64-gon: between its inscribed circle (cos(pi / 64) r) and its corners (r).
+      const double radius = quadVertex(r.mesh, v).head<2>().norm(), inner = std::cos(M_PI / 64) - 1e-9;
+      EXPECT_TRUE((radius >= 0.5 * inner && radius <= 0.5 + 1e-9) || (radius >= inner && radius <= 1 + 1e-9))
+          << radius;
+    }
+}
+
+TEST(QuadRemesh, ACubesSharpEdgesBecomeChainsOfQuadEdges) {
+  // The cube's surface, 8 triangle pairs a side; its 12 edges are features at 35 degrees.
+  Designer d(cubeQuads(8).surface);
+  d.setSymmetry(4);
+  d.setFeatures(35, {}, {});
+  d.solve();
+  ASSERT_EQ(d.featureEdges().size(), 12u * 8);
+  QuadRemeshOptions o;
+  o.edgeLength = 0.3;  // 3.33 a side: the sides' lines make it 3
+  for (int32_t e : d.featureEdges())
+    for (int k = 0; k < 2; ++k) o.featureEdges.push_back(d.topology().edgeVertices[2 * e + k]);
+  const QuadRemeshResult r = quadRemesh(d.mesh(), d.topology(), d.geometry(), d.faceVectors(), 4, o);
+  printResult(r);
+  EXPECT_EQ(r.stats.faces, 54);
+  EXPECT_EQ(r.stats.quads, 54);
+  EXPECT_EQ(r.stats.valence3, 8);
+  EXPECT_EQ(r.stats.irregularVertices, 8);
+  EXPECT_EQ(r.stats.eulerCharacteristic, 2);
+  EXPECT_NEAR(r.stats.hausdorffRelative, 0.0, 1e-9);
+  // Each quad lies in one side of the cube: no quad folds over a sharp edge.
+  for (int32_t f = 0; f < r.mesh.numFaces(); ++f) {
+    bool inOneSide = false;
+    for (int axis = 0; axis < 3; ++axis)
+      for (double side : {0.0, 1.0}) {
+        bool all = true;
+        for (int32_t k = r.mesh.faceStart[f]; k < r.mesh.faceStart[f + 1]; ++k)
+          all = all && std::abs(quadVertex(r.mesh, r.mesh.faceVertices[k])[axis] - side) < 1e-9;
+        inOneSide = inOneSide || all;
+      }
+    EXPECT_TRUE(inOneSide) << "quad " << f;
+  }
+  // Without the features the same field's quads need not keep to the sides.
+}
+
 TEST(QuadRemesh, RefusesWhatItCannotMeshByName) {
   Designer line(icosphere(2));
   line.setSymmetry(2);
@@ -225,15 +337,20 @@ TEST(QuadRemesh, RefusesWhatItCannotMeshByName) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("Quad meshes need a cross field"), std::string::npos) << e.what();
   }
-  Designer open(testing::flatGrid(8));
-  open.setSymmetry(4);
-  open.solve();
-  EXPECT_THROW(remeshDesign(open, 0.2), InputError);
   Designer sphere(icosphere(2));
   sphere.setSymmetry(4);
   sphere.solve();
   EXPECT_THROW(remeshDesign(sphere, 1e-5), InputError);  // far more than 4 million quads
   EXPECT_THROW(remeshDesign(sphere, -1), InputError);
+  QuadRemeshOptions notAnEdge;
+  notAnEdge.edgeLength = 0.2;
+  notAnEdge.featureEdges = {0, 0};
+  try {
+    quadRemesh(sphere.mesh(), sphere.topology(), sphere.geometry(), sphere.faceVectors(), 4, notAnEdge);
+    FAIL() << "a feature pair that is no edge was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("is not an edge"), std::string::npos) << e.what();
+  }
   // A Cancel from the progress callback ends it with RemeshCancelled.
   QuadRemeshOptions o;
   o.edgeLength = 0.2;
