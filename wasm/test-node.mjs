@@ -920,4 +920,57 @@ t.delete();
   check('quad: a line field is refused by name', /Quad meshes need a cross field/.test(line.error ?? ''), line.error);
   q.delete();
 }
+{
+  // The cube's sharp edges as features: the quads' edges follow them, so every quad lies in one side.
+  const n = 6, index = new Map(), verts = [], tris = [];
+  const vertex = (p) => {
+    const key = p.map((x) => Math.round(x * n)).join();
+    if (!index.has(key)) index.set(key, verts.push(p) - 1);
+    return index.get(key);
+  };
+  for (let axis = 0; axis < 3; axis++) {
+    for (const side of [0, 1]) {
+      const a = (axis + 1) % 3, b = (axis + 2) % 3;
+      for (let i = 0; i < n; i++) {
+        for (let j = 0; j < n; j++) {
+          const q = [[0, 0], [1, 0], [1, 1], [0, 1]].map(([di, dj]) => {
+            const p = [0, 0, 0];
+            p[axis] = side, p[a] = (i + di) / n, p[b] = (j + dj) / n;
+            return vertex(p);
+          });
+          if (side === 0) [q[1], q[3]] = [q[3], q[1]];
+          tris.push([q[0], q[1], q[2]], [q[0], q[2], q[3]]);
+        }
+      }
+    }
+  }
+  const off = `OFF\n${verts.length} ${tris.length} 0\n${verts.map((p) => p.join(' ')).join('\n')}\n` +
+    `${tris.map((t) => `3 ${t.join(' ')}`).join('\n')}\n`;
+  const c = new Module.Designer();
+  const ready = c.loadMesh(new TextEncoder().encode(off), 'off') || c.setSymmetry(4) ||
+    c.setFeatures(35, [], []) || c.solve();
+  check('quad features: a cross field on a cube with its edges as features', ready === '', ready);
+  const edges = c.edges(), pairs = [];
+  for (const e of c.featureEdges()) pairs.push(edges[2 * e], edges[2 * e + 1]);
+  const r = Module.quadRemesh(c.positions().slice(), Int32Array.from(c.triangles()), c.faceVectors().slice(),
+    JSON.stringify({ edgeLength: 0.3, symmetry: 4, featureEdges: pairs }), null);
+  check('quad features: remeshed', !r.error, r.error);
+  if (!r.error) {
+    const stats = JSON.parse(r.statsJson);
+    check('quad features: 12 curves followed, 3 x 3 quads a side', stats.featureCurves === 12 &&
+      stats.releasedFeatureCurves === 0 && stats.quads === 54 && stats.faces === 54, r.statsJson);
+    let straddling = 0;
+    for (let f = 0; f + 1 < r.faceStart.length; f++) {
+      const corners = Array.from(r.faceVertices.subarray(r.faceStart[f], r.faceStart[f + 1]));
+      const inOneSide = [0, 1, 2].some((axis) => [0, 1].some((side) =>
+        corners.every((v) => Math.abs(r.positions[3 * v + axis] - side) < 1e-9)));
+      if (!inOneSide) straddling++;
+    }
+    check('quad features: no quad folds over a sharp edge', straddling === 0, `${straddling} quads`);
+  }
+  const bad = Module.quadRemesh(c.positions().slice(), Int32Array.from(c.triangles()), c.faceVectors().slice(),
+    JSON.stringify({ edgeLength: 0.3, symmetry: 4, featureEdges: [0, 0] }), null);
+  check('quad features: a pair that is no edge is refused by name', /is not an edge/.test(bad.error ?? ''), bad.error);
+  c.delete();
+}
 finish();

@@ -1,10 +1,13 @@
 #include "quad/quad_remesh.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "common/input_error.h"
 #include "field/singularities.h"
+#include "mesh/feature_edges.h"
+#include "mesh/mesh_geometry.h"
 #include "quad/cross_field_cut.h"
 #include "quad/quad_extraction.h"
 #include "quad/seamless_parametrization.h"
@@ -71,6 +74,83 @@ std::vector<int32_t> featureEdgeIndices(const MeshTopology& t, const std::vector
   return edges;
 }
 
+// The feature curves (mesh/feature_edges.h) at least `shortest` long. A shorter one (a stray sharp edge on an
+// organic model, a notch) held to an integer line would bend the grid round it by up to half a quad.
+std::vector<FeatureCurve> followedCurves(const SurfaceMesh& mesh, const MeshTopology& t,
+                                         const std::vector<int32_t>& edges, double shortest) {
+  std::vector<int32_t> sorted = edges;
+  std::sort(sorted.begin(), sorted.end());
+  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  std::vector<FeatureCurve> out;
+  for (FeatureCurve& curve : featureCurves(t, sorted)) {
+    double length = 0;
+    for (int32_t e : curve.edges) length += edgeVector(mesh, t, e).norm();
+    if (length >= shortest) out.push_back(std::move(curve));
+  }
+  return out;
+}
+
+std::vector<int32_t> keptEdges(const std::vector<FeatureCurve>& curves, const std::vector<uint8_t>& kept) {
+  std::vector<int32_t> out;
+  for (std::size_t c = 0; c < curves.size(); ++c)
+    if (kept[c]) out.insert(out.end(), curves[c].edges.begin(), curves[c].edges.end());
+  return out;
+}
+
+// Features closer together than a quad cannot all be lines of the grid (a tube's creases at a coarse size):
+// where the parametrization still folds, the curves that touch a folded triangle are let go. Returns how
+// many were.
+int32_t releaseCurvesNearFolds(const SurfaceMesh& mesh, const MeshTopology& t,
+                               const SeamlessParametrization& p, const std::vector<FeatureCurve>& curves,
+                               std::vector<uint8_t>& kept) {
+  std::vector<uint8_t> nearFold(t.numVertices, 0);
+  for (int32_t f = 0; f < t.numFaces; ++f)
+    if (!(uvTwiceArea(p.cornerUV, f) > 0))
+      for (int c = 0; c < 3; ++c) nearFold[mesh.triangles[3 * f + c]] = 1;
+  int32_t released = 0;
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    if (!kept[c]) continue;
+    for (int32_t e : curves[c].edges)
+      if (nearFold[t.edgeVertices[2 * e]] || nearFold[t.edgeVertices[2 * e + 1]]) {
+        kept[c] = 0, ++released;
+        break;
+      }
+  }
+  return released;
+}
+
+// Stiffening (after Bommes et al. 2009, Sec. 4.3): where a solve folds triangles over, their terms weigh more
+// and it is solved again, up to kStiffenings times. The integers rounded by the first solve are kept: each
+// further solve is one factorization (on bunny00 the folds went 26, 20, 3, 0; rounding again each time went
+// 26, 19, 12, 4, 10, 1, 1 at twice the cost). Progress goes from `from` to `to`.
+SeamlessParametrization parametrize(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                                    const CrossFieldCut& cut, double from, double to,
+                                    const RemeshProgress& progress, QuadRemeshResult& out) {
+  constexpr int kStiffenings = 8;
+  const SeamlessSystem system(t, cut);
+  out.integerUnknowns = system.integerUnknowns();
+  out.unenforcedConditions = system.unenforcedConditions();
+  std::vector<double> weight(t.numFaces, 1.0);
+  SeamlessParametrization param, best;
+  for (int round = 0; round <= kStiffenings; ++round) {
+    bool stopped = false;
+    const double span = (to - from) / (kStiffenings + 1), at = from + span * round;
+    param = system.solve(mesh, g, out.edgeLength, weight, round > 0 ? best.integers : std::vector<double>{},
+                         [&](double fraction) {
+                           stopped = progress && !progress("parametrizing", at + span * fraction);
+                           return !stopped;
+                         });
+    if (stopped) throw RemeshCancelled();
+    if (round == 0) out.roundingSolves = param.roundingSteps;
+    // Folds can wander as the weights change: the solve with the fewest is the one kept.
+    const bool better = round == 0 || param.flippedFaces < best.flippedFaces;
+    if (better) best = std::move(param), out.stiffenings = round;
+    if (best.flippedFaces == 0 || round == kStiffenings) break;
+    stiffenFolds(t, better ? best : param, weight);
+  }
+  return best;
+}
+
 }  // namespace
 
 QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
@@ -84,47 +164,33 @@ QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& t, cons
   auto report = [&](const char* stage, double fraction) {
     if (progress && !progress(stage, fraction)) throw RemeshCancelled();
   };
-  report("cutting", 0.0);
-  Clock::time_point stage = Clock::now();
-  const CrossFieldCut cut = cutCrossField(mesh, t, g, faceDirections, features);
-  out.cones = cut.cones;
-  out.cutEdges = cut.cutEdges;
-  out.cutMs = msSince(stage);
-
-  report("parametrizing", 0.05);
-  stage = Clock::now();
-  // Stiffening (after Bommes et al. 2009, Sec. 4.3): where a solve folds triangles over, their terms weigh
-  // more and it is solved again, up to kStiffenings times. The integers rounded by the first solve are kept:
-  // each further solve is one factorization (on bunny00 the folds went 26, 20, 3, 0; rounding again each
-  // time went 26, 19, 12, 4, 10, 1, 1 at twice the cost).
-  constexpr int kStiffenings = 8;
-  const SeamlessSystem system(t, cut);
-  out.integerUnknowns = system.integerUnknowns();
-  out.unenforcedConditions = system.unenforcedConditions();
-  std::vector<double> weight(t.numFaces, 1.0);
-  SeamlessParametrization param, best;
-  for (int round = 0; round <= kStiffenings; ++round) {
-    bool stopped = false;
-    const double from = 0.05 + 0.7 * round / (kStiffenings + 1), span = 0.7 / (kStiffenings + 1);
-    param = system.solve(mesh, g, out.edgeLength, weight, round > 0 ? best.integers : std::vector<double>{},
-                         [&](double fraction) {
-                           stopped = progress && !progress("parametrizing", from + span * fraction);
-                           return !stopped;
-                         });
-    if (stopped) throw RemeshCancelled();
-    if (round == 0) out.roundingSolves = param.roundingSteps;
-    // Folds can wander as the weights change: the solve with the fewest is the one kept.
-    const bool better = round == 0 || param.flippedFaces < best.flippedFaces;
-    if (better) best = std::move(param), out.stiffenings = round;
-    if (best.flippedFaces == 0 || round == kStiffenings) break;
-    stiffenFolds(t, better ? best : param, weight);
+  // The features are followed where they can be: a first parametrization with every curve long enough, and
+  // up to two more with those near its folds let go (boundary edges are always followed).
+  const std::vector<FeatureCurve> curves = followedCurves(mesh, t, features, out.edgeLength);
+  std::vector<uint8_t> kept(curves.size(), 1);
+  constexpr double kPassProgress[] = {0.05, 0.45, 0.65, 0.75};
+  CrossFieldCut cut;
+  SeamlessParametrization param;
+  for (int pass = 0;; ++pass) {
+    report("cutting", kPassProgress[pass]);
+    Clock::time_point stage = Clock::now();
+    cut = cutCrossField(mesh, t, g, faceDirections, keptEdges(curves, kept));
+    out.cones = cut.cones;
+    out.cutEdges = cut.cutEdges;
+    out.cutMs += msSince(stage);
+    stage = Clock::now();
+    param = parametrize(mesh, t, g, cut, kPassProgress[pass], kPassProgress[pass + 1], progress, out);
+    out.parametrizeMs += msSince(stage);
+    if (param.flippedFaces == 0 || pass == 2) break;
+    const int32_t released = releaseCurvesNearFolds(mesh, t, param, curves, kept);
+    if (released == 0) break;
+    out.releasedFeatureCurves += released;
   }
-  param = std::move(best);
+  out.featureCurves = static_cast<int32_t>(curves.size());
   out.flippedTriangles = param.flippedFaces;
-  out.parametrizeMs = msSince(stage);
 
   report("extracting", 0.75);
-  stage = Clock::now();
+  Clock::time_point stage = Clock::now();
   QuadExtraction extraction = extractQuads(mesh, t, cut, param);
   out.failedTraces = extraction.failedTraces;
   out.openLoops = extraction.openLoops;

@@ -38,6 +38,9 @@ struct QuadRemeshResult {
   int32_t failedTraces = 0, openLoops = 0;
   int32_t filledHoles = 0;  // holes the failed walks left, closed by a polygon each
   int32_t stiffenings = 0;  // solves again with folded triangles stiffened
+  // Feature curves at least an edge length long, and of those, the ones let go because the grid folded
+  // beside them (features closer together than a quad).
+  int32_t featureCurves = 0, releasedFeatureCurves = 0;
   double cutMs = 0, parametrizeMs = 0, extractMs = 0, measureMs = 0, totalMs = 0;
 };
 

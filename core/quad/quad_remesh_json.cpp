@@ -23,6 +23,14 @@ QuadRemeshOptions quadRemeshOptionsFromJson(const std::string& text) {
     if (!(n >= 1) || !(n <= 4e6)) throw InputError("quad mesh: quads must be between 1 and 4 million");
     o.targetQuads = static_cast<int64_t>(n);
   }
+  if (j.contains("featureEdges")) {
+    const nlohmann::json& pairs = j["featureEdges"];
+    if (!pairs.is_array()) throw InputError("quad mesh: featureEdges must be an array of vertex pairs");
+    for (const nlohmann::json& v : pairs) {
+      if (!v.is_number_integer()) throw InputError("quad mesh: featureEdges must hold vertex indices");
+      o.featureEdges.push_back(v.get<int32_t>());
+    }
+  }
   return o;
 }
 
@@ -57,6 +65,8 @@ nlohmann::json quadRemeshJson(const QuadRemeshResult& r) {
           {"roundingSolves", r.roundingSolves},
           {"unenforcedConditions", r.unenforcedConditions},
           {"stiffenings", r.stiffenings},
+          {"featureCurves", r.featureCurves},
+          {"releasedFeatureCurves", r.releasedFeatureCurves},
           {"failedTraces", r.failedTraces},
           {"openLoops", r.openLoops},
           {"filledHoles", r.filledHoles},

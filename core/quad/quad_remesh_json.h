@@ -8,8 +8,9 @@
 
 namespace tvf {
 
-// {"edgeLength": L} or {"quads": N} (and anything else ignored). Throws InputError for a malformed text or
-// a value that is not a number.
+// {"edgeLength": L} or {"quads": N}, and "featureEdges": [a, b, a, b, ...] (vertex pairs, flat: the edges
+// the quads' edges follow); anything else ignored. Throws InputError for a malformed text or a value of the
+// wrong kind.
 QuadRemeshOptions quadRemeshOptionsFromJson(const std::string& text);
 
 // The statistics (quad_mesh_stats.h's names), the edge length used, how it went and the times (ms).

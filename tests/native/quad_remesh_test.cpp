@@ -327,6 +327,39 @@ TEST(QuadRemesh, ACubesSharpEdgesBecomeChainsOfQuadEdges) {
   // Without the features the same field's quads need not keep to the sides.
 }
 
+QuadRemeshResult remeshWithFeatures(Designer& d, double edgeLength) {
+  QuadRemeshOptions o;
+  o.edgeLength = edgeLength;
+  for (int32_t e : d.featureEdges())
+    for (int k = 0; k < 2; ++k) o.featureEdges.push_back(d.topology().edgeVertices[2 * e + k]);
+  return quadRemesh(d.mesh(), d.topology(), d.geometry(), d.faceVectors(), 4, o);
+}
+
+TEST(QuadRemesh, CreasesCloserThanAQuadAreLetGoAndTheRestFollowed) {
+  // A torus of hexagonal section: six creases round it, 0.35 apart.
+  Designer d(torus(48, 6, 1.0, 0.35));
+  d.setSymmetry(4);
+  d.setFeatures(35, {}, {});
+  d.solve();
+  ASSERT_EQ(d.featureEdges().size(), 6u * 48);
+  const QuadRemeshResult fine = remeshWithFeatures(d, 0.1);
+  printResult(fine);
+  EXPECT_EQ(fine.featureCurves, 6);
+  EXPECT_EQ(fine.releasedFeatureCurves, 0);
+  EXPECT_EQ(fine.stats.irregularVertices, 0);
+  EXPECT_EQ(fine.stats.quads, fine.stats.faces);
+  EXPECT_EQ(fine.stats.eulerCharacteristic, 0);
+  // At 0.6 the six creases cannot all be grid lines (the section's 2.1 would need six quads): some are let
+  // go, and the grid is still whole.
+  const QuadRemeshResult coarse = remeshWithFeatures(d, 0.6);
+  printResult(coarse);
+  EXPECT_GT(coarse.releasedFeatureCurves, 0);
+  EXPECT_EQ(coarse.flippedTriangles, 0);
+  EXPECT_EQ(coarse.stats.irregularVertices, 0);
+  EXPECT_EQ(coarse.stats.quads, coarse.stats.faces);
+  EXPECT_EQ(coarse.stats.eulerCharacteristic, 0);
+}
+
 TEST(QuadRemesh, RefusesWhatItCannotMeshByName) {
   Designer line(icosphere(2));
   line.setSymmetry(2);

@@ -184,6 +184,10 @@ export interface QuadMeshStats {
   eulerCharacteristic: number;
   /** The edge length used. */
   edgeLength: number;
+  /** The design's feature curves at least an edge length long, and those let go where the grid folded beside
+   * them (features closer together than a quad). */
+  featureCurves: number;
+  releasedFeatureCurves: number;
   /** The core's time, ms. */
   ms: number;
   /** And the core's other measures (stageMs: each stage's time, ...). */

@@ -159,6 +159,7 @@ export class Designer {
           positions: s.surface.positions.slice(),
           triangles: s.surface.triangles.slice(),
           faceDirections: s.fieldArray('faceVectors').slice(),
+          featureEdges: Array.from(s.field.featureEdges ?? []), // vertex pairs, flat: the quads' edges follow them
           symmetry: s.field.symmetry ?? 1,
           version: s.fieldVersion,
         };

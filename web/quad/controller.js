@@ -21,7 +21,7 @@ const copyMesh = (m) => ({
 
 export class QuadController {
   // view: a QuadView (quad-view.js) or null; getInput(): resolves to {positions, triangles, faceDirections (copies),
-  // symmetry, version (the field's)} of the field now, or null without a model; symmetry(): the design's N now;
+  // featureEdges (vertex pairs, flat), symmetry, version (the field's)} of the field now, or null without a model; symmetry(): the design's N now;
   // fieldVersion(): the field's version now; startRun(input, options, onProgress) → {promise, cancel} (run.js);
   // modelName(): the model's name; onChange(): the state changed (the panel redraws).
   constructor({
@@ -91,7 +91,8 @@ export class QuadController {
       if (!input) throw new Error('remesh: no model is loaded');
       if (input.symmetry !== 4) throw new Error(QUAD_REFUSAL);
       const { positions, triangles, faceDirections } = input;
-      const started = this.startRun({ positions, triangles, faceDirections }, { ...target, symmetry: input.symmetry },
+      const options = { ...target, symmetry: input.symmetry, featureEdges: input.featureEdges ?? [] };
+      const started = this.startRun({ positions, triangles, faceDirections }, options,
         ({ stage, fraction }) => {
           if (this.run !== run) return;
           run.stage = stage;
