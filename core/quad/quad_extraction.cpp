@@ -107,8 +107,8 @@ class Extractor {
   void findVertexPoints() {
     const int32_t numFans = static_cast<int32_t>(cut_.fanTurns.size());
     for (int32_t fan = 0; fan < numFans; ++fan) {
-      if (!fanOnGrid_[fan]) continue;
       const int32_t v = cut_.fanVertex[fan];
+      if (!fanOnGrid_[fan] && !onGridPoint(cut_.fanFaceList[cut_.fanFaceStart[fan]], v)) continue;
       GridPoint p{cut_.fanFaceList[cut_.fanFaceStart[fan]], fan, {1, 0, 0}};
       const int32_t id = static_cast<int32_t>(points_.size());
       points_.push_back(p);
@@ -142,6 +142,13 @@ class Extractor {
         pointOnBoundary_[id] = 1;
       }
     }
+  }
+
+  // A vertex whose (u, v) happens to be a grid point (both whole after the solve's snapping): a regular
+  // tessellation's vertex the grid runs through.
+  bool onGridPoint(int32_t f, int32_t v) const {
+    const Vec2 q = corner(f, mesh_.cornerOf(f, v));
+    return q.u == std::round(q.u) && q.v == std::round(q.v);
   }
 
   void findFacePoints() {
@@ -339,7 +346,48 @@ class Extractor {
     for (std::size_t id = 0; id < points_.size(); ++id)
       if (remap[id] >= 0) vertexOnBoundary[remap[id]] = pointOnBoundary_[id];
     out.filledHoles = fillHoles(out.mesh, vertexOnBoundary);
+    removeSpikes(out.mesh);
     return out;
+  }
+
+  // Where the grid folds, a walk can come back along the edge it left by (a point with one linked port): the
+  // face's loop holds a, b, a. The spike is cut off (the face keeps its other corners; a vertex left in no
+  // face is dropped), so that no face has a vertex twice.
+  static void removeSpikes(QuadMesh& m) {
+    std::vector<int32_t> start{0}, vertices, loop;
+    for (int32_t f = 0; f < m.numFaces(); ++f) {
+      loop.assign(m.faceVertices.begin() + m.faceStart[f], m.faceVertices.begin() + m.faceStart[f + 1]);
+      for (std::size_t i = 0; loop.size() >= 3 && i < loop.size();) {
+        const std::size_t n = loop.size(), before = (i + n - 1) % n, after = (i + 1) % n;
+        if (loop[before] != loop[after]) {
+          ++i;
+          continue;
+        }
+        // Drop b (at i) and the second a (at after).
+        const std::size_t first = std::max(i, after), second = std::min(i, after);
+        loop.erase(loop.begin() + static_cast<std::ptrdiff_t>(first));
+        loop.erase(loop.begin() + static_cast<std::ptrdiff_t>(second));
+        i = 0;
+      }
+      if (loop.size() < 3) continue;
+      vertices.insert(vertices.end(), loop.begin(), loop.end());
+      start.push_back(static_cast<int32_t>(vertices.size()));
+    }
+    if (vertices.size() == m.faceVertices.size()) return;
+    std::vector<int32_t> index(m.numVertices(), -1);
+    QuadMesh out;
+    for (int32_t& v : vertices) {
+      if (index[v] < 0) {
+        index[v] = out.numVertices();
+        out.positions.insert(out.positions.end(), m.positions.begin() + 3 * v,
+                             m.positions.begin() + 3 * v + 3);
+        out.vertexFace.push_back(m.vertexFace[v]);
+      }
+      v = index[v];
+    }
+    out.faceStart = std::move(start);
+    out.faceVertices = std::move(vertices);
+    m = std::move(out);
   }
 
   // Where walks failed the quad mesh has holes; each hole bounded by at most kLongestHole edges becomes one

@@ -314,7 +314,14 @@ SeamlessParametrization SeamlessSystem::solve(const SurfaceMesh& mesh, const Mes
   for (int32_t i = 0; i < static_cast<int32_t>(integer_.size()); ++i)
     if (integer_[i]) out.integers.push_back(z[i]);
 
-  const Eigen::VectorXd w = C_ * z, shift = shift_ * z;
+  Eigen::VectorXd w = C_ * z;
+  const Eigen::VectorXd shift = shift_ * z;
+  // A regular tessellation meets the grid exactly (a vertex on a grid point, an edge along a grid line) up to
+  // round-off: snapped, such places are exact, and the extraction's tests of them (a zero barycentric, a
+  // vertex with both coordinates whole) hold on every side alike. The transitions are whole turns and shifts,
+  // so the copies of a point snap alike.
+  for (Eigen::Index i = 0; i < w.size(); ++i)
+    if (std::abs(w[i] - std::round(w[i])) < 1e-9) w[i] = std::round(w[i]);
   out.cornerUV.resize(6 * t_.numFaces);
   for (int32_t f = 0; f < t_.numFaces; ++f) {
     for (int k = 0; k < 3; ++k) {

@@ -10,8 +10,19 @@
 import { readFile } from 'node:fs/promises';
 import { expect, test } from '@playwright/test';
 import { icosphereOff } from '../icosphere.mjs';
-import { parseObj } from '../node/quad-fixtures.mjs';
+import { cubeQuads, parseObj } from '../node/quad-fixtures.mjs';
 import { openDesignerPage, readCanvasRgb } from './helpers.mjs';
+
+// A quad mesh's polygons fanned into triangles, as an OFF text.
+function trianglesOff({ positions, faceStart, faceVertices }) {
+  const lines = [];
+  for (let f = 0; f + 1 < faceStart.length; f++)
+    for (let k = faceStart[f] + 1; k + 1 < faceStart[f + 1]; k++)
+      lines.push(`3 ${faceVertices[faceStart[f]]} ${faceVertices[k]} ${faceVertices[k + 1]}`);
+  const points = [];
+  for (let v = 0; v < positions.length; v += 3) points.push(`${positions[v]} ${positions[v + 1]} ${positions[v + 2]}`);
+  return `OFF\n${points.length} ${lines.length} 0\n${points.join('\n')}\n${lines.join('\n')}\n`;
+}
 
 // A remesh target on the small sphere that the test relies on to keep the core at work until a stroke has been
 // drawn and taken (it checks that the remesh still runs before Cancel, and logs how long it had run then).
@@ -213,4 +224,44 @@ test.describe.serial('quad meshes in the page', () => {
     expect((await quadState()).running).toBe(false);
     expect(await refusal({ quads: 0 })).toMatch(/^remesh: quads must be a whole number/);
   });
+
+  test("a cube's sharp edges (the design's features) and a square's boundary become chains of quad edges",
+    async () => {
+      await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'cube.off', restore: false }),
+        trianglesOff(cubeQuads(8)));
+      await evaluate(() => window.tvf.setSymmetry(4));
+      await evaluate(() => window.tvf.setFeatures({ angle: 35 }));
+      // The side is 2: at 0.6 each side's lines make it 3 x 3 quads, none folded over an edge of the cube.
+      const cube = await evaluate(() => window.tvf.remesh({ edgeLength: 0.6 }));
+      expect(cube.stats).toMatchObject({ featureCurves: 12, releasedFeatureCurves: 0, quads: 54, faces: 54,
+        valence3: 8, eulerCharacteristic: 2 });
+      const straddling = [];
+      for (let f = 0; f + 1 < cube.faceStart.length; f++) {
+        const corners = Array.from(cube.faceVertices.slice(cube.faceStart[f], cube.faceStart[f + 1]));
+        const flat = [0, 1, 2].some((axis) => [-1, 1].some((side) =>
+          corners.every((v) => Math.abs(cube.positions[3 * v + axis] - side) < 1e-9)));
+        if (!flat) straddling.push(f);
+      }
+      expect(straddling).toEqual([]);
+      // An open square, 2 a side, its field following its boundary: at 0.45 a regular 4 x 4 grid whose
+      // boundary is the square's.
+      const n = 8, positions = [], faceVertices = [];
+      for (let j = 0; j <= n; j++) for (let i = 0; i <= n; i++) positions.push((2 * i) / n, (2 * j) / n, 0);
+      for (let j = 0; j < n; j++)
+        for (let i = 0; i < n; i++) faceVertices.push(j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1,
+          (j + 1) * (n + 1) + i);
+      const grid = { positions, faceStart: Array.from({ length: n * n + 1 }, (_, f) => 4 * f), faceVertices };
+      await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'square.off', restore: false }),
+        trianglesOff(grid));
+      await evaluate(() => window.tvf.setSymmetry(4));
+      await evaluate(() => window.tvf.setBoundary('tangential'));
+      const open = await evaluate(() => window.tvf.remesh({ edgeLength: 0.45 }));
+      expect(open.stats).toMatchObject({ faces: 16, quads: 16, irregularVertices: 0, eulerCharacteristic: 1,
+        boundaryEdges: 16 });
+      const onBoundary = (x) => Math.abs(x) < 1e-9 || Math.abs(x - 2) < 1e-9;
+      let corners = 0;
+      for (let v = 0; v < open.positions.length; v += 3)
+        corners += onBoundary(open.positions[v]) && onBoundary(open.positions[v + 1]) ? 1 : 0;
+      expect(corners).toBe(4);
+    });
 });

@@ -268,6 +268,24 @@ TEST(QuadRemesh, AFlatSquareWithItsBoundaryFollowedIsARegularGridWithTheSameBoun
   EXPECT_EQ(corners, 4);
 }
 
+TEST(QuadRemesh, AGridThroughTheTessellationsOwnVerticesAndEdgesIsWhole) {
+  // 8 x 8 cells a side of 2, quads of 0.45: four a side, their lines at 0.5, 1 and 1.5 run along the cells'
+  // edges and cross at their vertices, up to round-off.
+  Designer d(testing::flatGrid(8, 2.0));
+  d.setSymmetry(4);
+  d.setBoundary(BoundaryCondition::tangential());
+  d.solve();
+  const QuadRemeshResult r = remeshDesign(d, 0.45);
+  printResult(r);
+  EXPECT_EQ(r.stats.faces, 16);
+  EXPECT_EQ(r.stats.quads, 16);
+  EXPECT_EQ(r.stats.irregularVertices, 0);
+  EXPECT_EQ(r.stats.boundaryEdges, 16);
+  EXPECT_EQ(r.stats.eulerCharacteristic, 1);
+  EXPECT_EQ(r.failedTraces, 0);
+  EXPECT_NEAR(r.stats.aspectMedian, 1.0, 1e-9);
+}
+
 TEST(QuadRemesh, AnAnnulusFollowingItsCirclesIsARegularGridBetweenThem) {
   Designer d(testing::flatAnnulus(8, 64, 0.5, 1.0));
   d.setSymmetry(4);

@@ -21,9 +21,9 @@ const copyMesh = (m) => ({
 
 export class QuadController {
   // view: a QuadView (quad-view.js) or null; getInput(): resolves to {positions, triangles, faceDirections (copies),
-  // featureEdges (vertex pairs, flat), symmetry, version (the field's)} of the field now, or null without a model; symmetry(): the design's N now;
-  // fieldVersion(): the field's version now; startRun(input, options, onProgress) → {promise, cancel} (run.js);
-  // modelName(): the model's name; onChange(): the state changed (the panel redraws).
+  // featureEdges (vertex pairs, flat), symmetry, version (the field's)} of the field now, or null without a model;
+  // symmetry(): the design's N now; fieldVersion(): the field's version now; startRun(input, options, onProgress)
+  // → {promise, cancel} (run.js); modelName(): the model's name; onChange(): the state changed (the panel redraws).
   constructor({
     view = null, getInput, symmetry, fieldVersion, startRun, modelName = () => 'model', onChange = () => {},
   }) {
