@@ -394,7 +394,7 @@ class Extractor {
   // polygon, so that the mesh is closed as the surface is (the polygons are counted, not hidden: they lower
   // the quad share).
   static int32_t fillHoles(QuadMesh& m, const std::vector<uint8_t>& onBoundary) {
-    constexpr std::size_t kLongestHole = 16;
+    constexpr std::size_t kLongestHole = 64;
     std::set<std::pair<int32_t, int32_t>> directed;
     for (int32_t f = 0; f < m.numFaces(); ++f)
       for (int32_t k = m.faceStart[f]; k < m.faceStart[f + 1]; ++k) {
@@ -406,26 +406,36 @@ class Extractor {
     for (const auto& [a, b] : directed)
       if (!directed.count({b, a})) hole.insert({b, a});
     int32_t filled = 0;
-    std::vector<int32_t> loop;
-    while (!hole.empty()) {
-      auto it = hole.begin();
-      const int32_t start = it->first;
-      loop.assign(1, start);
-      int32_t at = it->second;
-      hole.erase(it);
-      while (at != start && loop.size() <= kLongestHole) {
-        const auto next = hole.find(at);
-        if (next == hole.end()) break;
-        loop.push_back(at);
-        at = next->second;
-        hole.erase(next);
-      }
-      if (at != start || loop.size() < 3 || loop.size() > kLongestHole) continue;
+    auto fill = [&](const std::vector<int32_t>& loop) {
       // The surface's own boundary is not a hole.
-      if (std::all_of(loop.begin(), loop.end(), [&](int32_t v) { return onBoundary[v] != 0; })) continue;
+      if (loop.size() < 3 || std::all_of(loop.begin(), loop.end(), [&](int32_t v) { return onBoundary[v] != 0; }))
+        return;
       m.faceVertices.insert(m.faceVertices.end(), loop.begin(), loop.end());
       m.faceStart.push_back(static_cast<int32_t>(m.faceVertices.size()));
       ++filled;
+    };
+    // Each walk along the holes' edges closes a loop whenever it comes back to a vertex it passed: a hole that
+    // touches itself at a vertex (a figure 8) is two polygons, none with a vertex twice.
+    std::vector<int32_t> path;
+    while (!hole.empty()) {
+      auto it = hole.begin();
+      path.assign(1, it->first);
+      int32_t at = it->second;
+      hole.erase(it);
+      for (;;) {
+        const auto seen = std::find(path.begin(), path.end(), at);
+        if (seen != path.end()) {
+          fill(std::vector<int32_t>(seen, path.end()));
+          path.erase(seen + 1, path.end());
+        } else {
+          path.push_back(at);
+        }
+        if (path.size() > kLongestHole) break;
+        const auto next = hole.find(at);
+        if (next == hole.end()) break;
+        at = next->second;
+        hole.erase(next);
+      }
     }
     return filled;
   }
