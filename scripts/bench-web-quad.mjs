@@ -4,9 +4,14 @@
 // progress shown? A measurement, not a test: big meshes live here, never in the browser tests.
 //
 //   node scripts/bench-web-quad.mjs [--mesh MESH [--quads N] [--repeat R]]... [--port P] [--no-gc]
+//                                   [--feature-angle A]   (per mesh, as --quads: the design's sharp features, 0
+//                                   none; default the page's new design, 35°)
+//                                   [--profile FILE]   (a CPU profile of the page's main thread over the remeshes;
+//                                   with several meshes, MESH-FILE beside FILE for each)
 //
-// Each --mesh starts a mesh of its own (default: bench-data/meshes/bunny00.off); a --quads or --repeat after it is
-// that mesh's, one before any --mesh is every mesh's default (default 5000 quads, 3 repeats), e.g.
+// Each --mesh starts a mesh of its own (default: bench-data/meshes/bunny00.off); a --quads, --repeat or
+// --feature-angle after it is that mesh's, one before any --mesh every mesh's default (default 5000 quads, 3
+// repeats), e.g.
 //   node scripts/bench-web-quad.mjs --mesh bench-data/meshes/bunny00.off --quads 5000 --repeat 3 \
 //                                   --mesh bench-data/meshes/armadillo-sub2.off --quads 20000 --repeat 1
 // Per mesh, in a page of its own: the mesh loaded through tvf.loadModel (served under /bench-mesh-quad/ as a real
@@ -18,9 +23,14 @@
 //     late tick is the main thread held: maxPollGapMs),
 //   * a MutationObserver on the Quad mesh panel's stage line (#quad-stage) records every text it showed.
 // Tasks count when they began between the call and two frames after its resolution (the quad mesh drawn).
-// Prints one JSON object per mesh (an array for several): medians over the repeats for times, the maximum for
-// the long tasks, the last run's core stats; never a timed assertion.
-import { copyFileSync, existsSync, mkdirSync, rmSync } from 'node:fs';
+// Prints one JSON object per mesh (an array for several): {mesh, faces, featureAngle, featureEdges, quads, repeat,
+// remeshMs (median), longestTaskMs and tasksOver100ms (the maximum over the repeats), stages (polled, in the run's
+// order), progressUpdates (distinct stage and fraction polled, median), stats (the last run's core stats)}, then
+// the details (each run's time and long tasks, maxPollGapMs, the fractions polled, the panel's lines, the load's
+// times). Medians, never a timed assertion. The stage lines progress through (the core's, core/quad/quad_remesh.cpp):
+// starting (the page), cutting, parametrizing (again from cutting when the grid folded beside a feature curve
+// and curves were let go), extracting, measuring, done.
+import { copyFileSync, existsSync, mkdirSync, rmSync, writeFileSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { launchChromium, startServer } from './page-session.mjs';
@@ -33,7 +43,7 @@ function die(message) {
   process.exit(1);
 }
 
-// --mesh groups with their --quads and --repeat; a --quads/--repeat before any --mesh is the default.
+// --mesh groups with their --quads, --repeat and --feature-angle; one before any --mesh is the default.
 function parseArgs(argv) {
   const defaults = { quads: 5000, repeat: 3 };
   const meshes = [];
@@ -53,19 +63,47 @@ function parseArgs(argv) {
       case '--mesh': meshes.push({ path: value() }); break;
       case '--quads': into().quads = number('--quads'); break;
       case '--repeat': into().repeat = number('--repeat'); break;
+      case '--feature-angle': {
+        const a = Number(value());
+        if (!(a >= 0 && a <= 180)) die('--feature-angle must be 0 to 180');
+        into().featureAngle = a;
+        break;
+      }
       case '--port': port = number('--port'); break;
       case '--no-gc': break;
+      case '--profile': value(); break;
       default: die(`unknown argument ${argv[i]}`);
     }
   }
   if (meshes.length === 0) meshes.push({ path: 'bench-data/meshes/bunny00.off' });
-  return { port, meshes: meshes.map((m) => ({ quads: defaults.quads, repeat: defaults.repeat, ...m })) };
+  return { port, meshes: meshes.map((m) => ({ ...defaults, ...m })) };
 }
 
 const { port, meshes } = parseArgs(process.argv.slice(2));
 const collectGarbage = !process.argv.includes('--no-gc');
 if (!existsSync(resolve(ROOT, 'dist/index.html'))) die('dist/ not found; run npm run build:wasm && npm run build:web');
-for (const m of meshes) if (!existsSync(resolve(m.path))) die(`mesh ${m.path} not found (meshes: scripts/fetch-meshes.sh)`);
+for (const m of meshes) {
+  if (!existsSync(resolve(m.path))) die(`mesh ${m.path} not found (meshes: scripts/fetch-meshes.sh)`);
+}
+
+// --profile FILE, with the mesh's name before FILE's own when there are several meshes.
+function profileFile(meshName) {
+  const i = process.argv.indexOf('--profile');
+  if (i < 0) return null;
+  const file = resolve(process.argv[i + 1]);
+  return meshes.length === 1 ? file : resolve(dirname(file), `${meshName}-${basename(file)}`);
+}
+
+// A CPU profile of the page's main thread from now until stop(), written to file (nothing when file is null):
+// bench-web.mjs's.
+async function startProfile(page, file) {
+  if (!file) return { stop: async () => {} };
+  const cdp = await page.context().newCDPSession(page);
+  await cdp.send('Profiler.enable');
+  await cdp.send('Profiler.setSamplingInterval', { interval: 100 });
+  await cdp.send('Profiler.start');
+  return { stop: async () => writeFileSync(file, JSON.stringify((await cdp.send('Profiler.stop')).profile)) };
+}
 
 const median = (v) => {
   const s = v.filter(Number.isFinite).sort((a, b) => a - b);
@@ -115,7 +153,8 @@ function remeshInPage(quads) {
     await frame();
     await frame();
     await new Promise((r) => setTimeout(r, 50));
-    const tasks = window.__longTasks.splice(0).filter((t) => t.at >= t0).map((t) => ({ at: Math.round(t.at - t0), ms: t.ms }));
+    const tasks = window.__longTasks.splice(0).filter((t) => t.at >= t0)
+      .map((t) => ({ at: Math.round(t.at - t0), ms: t.ms }));
     return {
       wallMs: t1 - t0, error, tasks, maxPollGapMs: maxGap, shown,
       polls: polls.map((p) => ({ at: Math.round(p.at - t0), stage: p.stage, fraction: p.fraction })),
@@ -124,7 +163,7 @@ function remeshInPage(quads) {
   })();
 }
 
-async function benchMesh(browser, { path, quads, repeat }) {
+async function benchMesh(browser, { path, quads, repeat, featureAngle = null }) {
   const name = basename(path);
   mkdirSync(resolve(ROOT, 'dist', SERVED), { recursive: true });
   copyFileSync(resolve(path), resolve(ROOT, 'dist', SERVED, name));
@@ -135,23 +174,28 @@ async function benchMesh(browser, { path, quads, repeat }) {
     // Long tasks of the page's main thread (> 50 ms), from the page's start on (bench-web.mjs's observer).
     await page.addInitScript(() => {
       window.__longTasks = [];
-      new PerformanceObserver((list) => window.__longTasks.push(...list.getEntries().map((e) => ({ at: e.startTime, ms: e.duration })))).observe({ type: 'longtask', buffered: true });
+      new PerformanceObserver((list) => {
+        window.__longTasks.push(...list.getEntries().map((e) => ({ at: e.startTime, ms: e.duration })));
+      }).observe({ type: 'longtask', buffered: true });
     });
     await page.goto(`http://127.0.0.1:${port}/`);
     await page.evaluate(() => window.tvf.ready);
-    const load = await page.evaluate(async (url) => {
+    const load = await page.evaluate(async ({ url, featureAngle }) => {
       window.__longTasks.length = 0;
       const t0 = performance.now();
       const info = await window.tvf.loadModel(url, { restore: false });
       const firstFieldMs = performance.now() - t0;
       const preview = window.tvf.stats().preview;
+      if (featureAngle !== null) await window.tvf.setFeatures({ angle: featureAngle });
       await window.tvf.setSymmetry(4);
       await window.tvf.settled();
+      const features = window.tvf.features();
       // The load's longest main-thread task: that the observer sees tasks at all (a big model's load has some).
       const longestTaskMs = window.__longTasks.filter((t) => t.at >= t0).reduce((m, t) => Math.max(m, t.ms), 0);
       return { faces: info.faces, firstFieldMs, exactFieldMs: performance.now() - t0, preview, longestTaskMs,
-        exact: window.tvf.stats().preview === false };
-    }, `/${SERVED}/${name}`);
+        exact: window.tvf.stats().preview === false, featureAngle: features.angle,
+        featureEdges: features.edges.length / (Array.isArray(features.edges[0]) ? 1 : 2) };
+    }, { url: `/${SERVED}/${name}`, featureAngle });
     if (!load.exact) throw new Error(`${name}: the field did not settle to the exact one`);
     if (collectGarbage) {
       const cdp = await page.context().newCDPSession(page);
@@ -159,12 +203,16 @@ async function benchMesh(browser, { path, quads, repeat }) {
       await cdp.detach();
     }
     const runs = [];
+    // --profile FILE: a CPU profile of the page's main thread over the remeshes (.cpuprofile, for DevTools).
+    const profile = await startProfile(page, profileFile(name));
     for (let r = 0; r < repeat; r++) {
       const run = await page.evaluate(remeshInPage, quads);
       if (run.error) throw new Error(`${name}: remesh ${r + 1} rejected: ${run.error}`);
       runs.push(run);
-      console.error(`bench-web-quad: ${name} remesh ${r + 1}/${repeat}: ${Math.round(run.wallMs)} ms, longest task ${Math.round(Math.max(0, ...run.tasks.map((t) => t.ms)))} ms`);
+      const longest = Math.round(Math.max(0, ...run.tasks.map((t) => t.ms)));
+      console.error(`bench-web-quad: ${name} remesh ${r + 1}/${repeat}: ${Math.round(run.wallMs)} ms, longest task ${longest} ms`);
     }
+    await profile.stop();
     // The stages polled over every run, in the run's order (the fraction only grows: by the first fraction seen at
     // each; a poll may miss a short stage in one run and catch it in another), the fractions seen per stage.
     const fractions = {};
@@ -179,6 +227,9 @@ async function benchMesh(browser, { path, quads, repeat }) {
     return {
       mesh: name,
       faces: load.faces,
+      // The design remeshed: the page's new design (features at 35°) unless --feature-angle set them.
+      featureAngle: load.featureAngle,
+      featureEdges: load.featureEdges,
       quads,
       repeat,
       remeshMs: round1(median(runs.map((r) => r.wallMs))),
@@ -197,8 +248,10 @@ async function benchMesh(browser, { path, quads, repeat }) {
       panelStages,
       panelShown: runs.at(-1).shown,
       panelUpdates: median(runs.map((r) => r.shown.length)),
-      load: { firstFieldMs: Math.round(load.firstFieldMs), exactFieldMs: Math.round(load.exactFieldMs), preview: load.preview,
-        longestTaskMs: round1(load.longestTaskMs) },
+      load: {
+        firstFieldMs: Math.round(load.firstFieldMs), exactFieldMs: Math.round(load.exactFieldMs), preview: load.preview,
+        longestTaskMs: round1(load.longestTaskMs),
+      },
       garbageCollectedFirst: collectGarbage,
     };
   } finally {

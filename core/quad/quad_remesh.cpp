@@ -98,15 +98,27 @@ std::vector<int32_t> keptEdges(const std::vector<FeatureCurve>& curves, const st
 }
 
 // Features closer together than a quad cannot all be lines of the grid (a tube's creases at a coarse size):
-// where the parametrization still folds, the curves that touch a folded triangle are let go. Returns how
-// many were.
+// where the parametrization still folds, the curves that touch a folded triangle are let go. Only when the
+// features are what folds it (half the folded triangles or more touch a kept curve): the folds of a field
+// with singularities closer than a quad (a scan's at a 35-degree feature angle: armadillo-sub2's 647) would
+// stay, and each pass is a whole parametrization again. Returns how many were let go.
 int32_t releaseCurvesNearFolds(const SurfaceMesh& mesh, const MeshTopology& t,
                                const SeamlessParametrization& p, const std::vector<FeatureCurve>& curves,
                                std::vector<uint8_t>& kept) {
-  std::vector<uint8_t> nearFold(t.numVertices, 0);
-  for (int32_t f = 0; f < t.numFaces; ++f)
-    if (!(uvTwiceArea(p.cornerUV, f) > 0))
-      for (int c = 0; c < 3; ++c) nearFold[mesh.triangles[3 * f + c]] = 1;
+  std::vector<uint8_t> onCurve(t.numVertices, 0), nearFold(t.numVertices, 0);
+  for (std::size_t c = 0; c < curves.size(); ++c)
+    if (kept[c])
+      for (int32_t e : curves[c].edges)
+        onCurve[t.edgeVertices[2 * e]] = onCurve[t.edgeVertices[2 * e + 1]] = 1;
+  int32_t folds = 0, foldsByCurves = 0;
+  for (int32_t f = 0; f < t.numFaces; ++f) {
+    if (uvTwiceArea(p.cornerUV, f) > 0) continue;
+    ++folds;
+    const int32_t* v = &mesh.triangles[3 * f];
+    foldsByCurves += onCurve[v[0]] || onCurve[v[1]] || onCurve[v[2]];
+    for (int c = 0; c < 3; ++c) nearFold[v[c]] = 1;
+  }
+  if (2 * foldsByCurves < folds) return 0;
   int32_t released = 0;
   for (std::size_t c = 0; c < curves.size(); ++c) {
     if (!kept[c]) continue;

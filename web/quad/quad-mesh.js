@@ -9,21 +9,28 @@ import { normalizeEach3 } from '../geometry/mesh-geometry.js';
 export const faceCount = ({ faceStart }) => Math.max(0, faceStart.length - 1);
 export const vertexCount = ({ positions }) => positions.length / 3;
 
-// The mesh's undirected edges, each once, as vertex pairs (lower index first), in the order polygons meet them.
+// The mesh's undirected edges, each once, as vertex pairs (lower index first), ordered by (lower, higher).
 export function uniqueEdges({ positions, faceStart, faceVertices }) {
-  const nV = positions.length / 3, seen = new Set(), out = [];
-  for (let f = 0; f + 1 < faceStart.length; f++) {
+  // Keys in one typed array, sorted in place: no Set or per-edge array on the main thread's heap, whose garbage
+  // set off a 200 ms collection of the whole page (a big model's) when an armadillo-sub2 quad mesh arrived.
+  const nV = positions.length / 3, keys = new Float64Array(faceVertices.length);
+  for (let f = 0, at = 0; f + 1 < faceStart.length; f++) {
     const s = faceStart[f], n = faceStart[f + 1] - s;
     for (let k = 0; k < n; k++) {
       const a = faceVertices[s + k], b = faceVertices[s + ((k + 1) % n)];
-      const [lo, hi] = a < b ? [a, b] : [b, a];
-      const key = lo * nV + hi; // exact below 9e7 vertices (nV² < 2^53)
-      if (seen.has(key)) continue;
-      seen.add(key);
-      out.push(lo, hi);
+      keys[at++] = a < b ? a * nV + b : b * nV + a; // exact below 9e7 vertices (nV² < 2^53)
     }
   }
-  return Int32Array.from(out);
+  keys.sort();
+  let count = 0;
+  for (let k = 0; k < keys.length; k++) if (k === 0 || keys[k] !== keys[k - 1]) count++;
+  const out = new Int32Array(2 * count);
+  for (let k = 0, at = 0; k < keys.length; k++) {
+    if (k > 0 && keys[k] === keys[k - 1]) continue;
+    out[at++] = Math.floor(keys[k] / nV);
+    out[at++] = keys[k] % nV;
+  }
+  return out;
 }
 
 // Edges at each vertex: the valence a quad mesh's regular interior vertex has four of.
