@@ -6,7 +6,9 @@
 // back with the counts of the statistics, its GLB holds every vertex and the triangles. An edit leaves it drawn
 // and marks it stale. While a remesh runs a stroke drawn with the mouse is taken; Cancel in the panel then leaves
 // the panel idle, no new result and no worker of its own, and the next remesh runs (and ends its worker). A vector
-// or line field is refused with "Quad meshes need a cross field", by the API and in the panel.
+// or line field is refused with "Quad meshes need a cross field", by the API and in the panel. A cube's sharp
+// edges, as the design's features, become chains of quad edges (every quad in one side), and an open square's
+// boundary the quad mesh's (a regular grid, its four corners quad vertices).
 import { readFile } from 'node:fs/promises';
 import { expect, test } from '@playwright/test';
 import { icosphereOff } from '../icosphere.mjs';
