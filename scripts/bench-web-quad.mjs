@@ -30,10 +30,10 @@
 // times). Medians, never a timed assertion. The stage lines progress through (the core's, core/quad/quad_remesh.cpp):
 // starting (the page), cutting, parametrizing (again from cutting when the grid folded beside a feature curve
 // and curves were let go), extracting, measuring, done.
-import { copyFileSync, existsSync, mkdirSync, rmSync, writeFileSync } from 'node:fs';
+import { copyFileSync, existsSync, mkdirSync, rmSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { launchChromium, startServer } from './page-session.mjs';
+import { launchChromium, startProfile, startServer } from './page-session.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const SERVED = 'bench-mesh-quad'; // under dist/, removed at the end
@@ -92,17 +92,6 @@ function profileFile(meshName) {
   if (i < 0) return null;
   const file = resolve(process.argv[i + 1]);
   return meshes.length === 1 ? file : resolve(dirname(file), `${meshName}-${basename(file)}`);
-}
-
-// A CPU profile of the page's main thread from now until stop(), written to file (nothing when file is null):
-// bench-web.mjs's.
-async function startProfile(page, file) {
-  if (!file) return { stop: async () => {} };
-  const cdp = await page.context().newCDPSession(page);
-  await cdp.send('Profiler.enable');
-  await cdp.send('Profiler.setSamplingInterval', { interval: 100 });
-  await cdp.send('Profiler.start');
-  return { stop: async () => writeFileSync(file, JSON.stringify((await cdp.send('Profiler.stop')).profile)) };
 }
 
 const median = (v) => {

@@ -52,6 +52,7 @@ import { basename, dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from '@playwright/test';
 import { stripStrokesInPage } from '../tests/e2e/helpers.mjs';
+import { startProfile } from './page-session.mjs';
 import { stripesBench } from './bench-web-stripes.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
@@ -74,16 +75,6 @@ const median = (v) => {
   const s = v.filter(Number.isFinite).sort((a, b) => a - b);
   return s.length === 0 ? null : s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
 };
-
-// A CPU profile of the page's main thread from now until stop(), written to file (nothing when file is null).
-async function startProfile(page, file) {
-  if (!file) return { stop: async () => {} };
-  const cdp = await page.context().newCDPSession(page);
-  await cdp.send('Profiler.enable');
-  await cdp.send('Profiler.setSamplingInterval', { interval: 100 });
-  await cdp.send('Profiler.start');
-  return { stop: async () => writeFileSync(file, JSON.stringify((await cdp.send('Profiler.stop')).profile)) };
-}
 
 async function strokeBench(page, meshPath) {
   const count = Number(arg('--strokes', 15));

@@ -1,7 +1,8 @@
 // The app served from dist/ and Debian's Chromium with software GL, for the measurement scripts that drive the
-// real page outside the test runner (texture-sweep.mjs, material-preview-pictures.mjs). Never a downloaded
-// browser: TVF_CHROMIUM or /usr/bin/chromium.
+// real page outside the test runner (texture-sweep.mjs, material-preview-pictures.mjs, bench-web-quad.mjs), and
+// a CPU profile of the page (bench-web.mjs too). Never a downloaded browser: TVF_CHROMIUM or /usr/bin/chromium.
 import { spawn } from 'node:child_process';
+import { writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from '@playwright/test';
@@ -26,4 +27,14 @@ export function launchChromium() {
     executablePath: process.env.TVF_CHROMIUM || '/usr/bin/chromium',
     args: ['--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--no-first-run', '--disable-background-networking'],
   });
+}
+
+// A CPU profile of the page's main thread from now until stop(), written to file (nothing when file is null).
+export async function startProfile(page, file) {
+  if (!file) return { stop: async () => {} };
+  const cdp = await page.context().newCDPSession(page);
+  await cdp.send('Profiler.enable');
+  await cdp.send('Profiler.setSamplingInterval', { interval: 100 });
+  await cdp.send('Profiler.start');
+  return { stop: async () => writeFileSync(file, JSON.stringify((await cdp.send('Profiler.stop')).profile)) };
 }

@@ -45,6 +45,15 @@ void printResult(const QuadRemeshResult& r) {
       r.measureMs);
 }
 
+// All quads, none irregular or flipped, and the Euler characteristic chi.
+void expectRegular(const QuadRemeshResult& r, int chi) {
+  printResult(r);
+  EXPECT_EQ(r.stats.irregularVertices, 0);
+  EXPECT_EQ(r.stats.quads, r.stats.faces);
+  EXPECT_EQ(r.stats.eulerCharacteristic, chi);
+  EXPECT_EQ(r.stats.flippedFaces, 0);
+}
+
 TEST(QuadRemesh, ATorusWithASingularityFreeCrossFieldIsARegularGrid) {
   Designer d(torus(48, 16, 1.0, 0.35));
   d.setSymmetry(4);
@@ -52,14 +61,10 @@ TEST(QuadRemesh, ATorusWithASingularityFreeCrossFieldIsARegularGrid) {
   d.solve();
   ASSERT_TRUE(d.singularities().empty());
   const QuadRemeshResult r = remeshDesign(d, 0.1);
-  printResult(r);
-  EXPECT_EQ(r.stats.irregularVertices, 0);
-  EXPECT_EQ(r.stats.quads, r.stats.faces);
-  EXPECT_EQ(r.stats.eulerCharacteristic, 0);
+  expectRegular(r, 0);
   EXPECT_EQ(r.stats.boundaryEdges, 0);
   EXPECT_TRUE(r.stats.manifold);
   EXPECT_TRUE(r.stats.oriented);
-  EXPECT_EQ(r.stats.flippedFaces, 0);
 }
 
 TEST(QuadRemesh, ASphereWithEightQuarterConesHasEightValenceThreeVertices) {
@@ -235,6 +240,18 @@ Eigen::Vector3d quadVertex(const QuadMesh& q, int32_t v) {
   return Eigen::Vector3d(&q.positions[3 * v]);
 }
 
+// A square's regular n x n grid of quads: its boundary 4 n edges, a disc.
+void expectSquareGrid(const QuadRemeshResult& r, int n) {
+  printResult(r);
+  EXPECT_EQ(r.stats.faces, n * n);
+  EXPECT_EQ(r.stats.quads, n * n);
+  EXPECT_EQ(r.stats.irregularVertices, 0);
+  EXPECT_EQ(r.stats.boundaryEdges, 4 * n);
+  EXPECT_EQ(r.stats.eulerCharacteristic, 1);
+  EXPECT_EQ(r.failedTraces, 0);
+  EXPECT_NEAR(r.stats.aspectMedian, 1.0, 1e-6);
+}
+
 TEST(QuadRemesh, AFlatSquareWithItsBoundaryFollowedIsARegularGridWithTheSameBoundary) {
   Designer d(testing::flatGrid(12));
   d.setSymmetry(4);
@@ -242,18 +259,11 @@ TEST(QuadRemesh, AFlatSquareWithItsBoundaryFollowedIsARegularGridWithTheSameBoun
   d.solve();
   // 1 / 0.09 = 11.1: the grid stretches to whole quads between the sides, as the sides are iso-lines.
   const QuadRemeshResult r = remeshDesign(d, 0.09);
-  printResult(r);
-  EXPECT_EQ(r.stats.faces, 121);
-  EXPECT_EQ(r.stats.quads, 121);
-  EXPECT_EQ(r.stats.irregularVertices, 0);
-  EXPECT_EQ(r.stats.eulerCharacteristic, 1);
-  EXPECT_EQ(r.stats.boundaryEdges, 44);
-  EXPECT_EQ(r.failedTraces, 0);
+  expectSquareGrid(r, 11);
   EXPECT_EQ(r.filledHoles, 0);
   EXPECT_EQ(r.stats.flippedFaces, 0);
   EXPECT_TRUE(r.stats.oriented);
   EXPECT_NEAR(r.stats.edgeAngleMedianDeg, 0.0, 1e-6);
-  EXPECT_NEAR(r.stats.aspectMedian, 1.0, 1e-6);
   // Every edge of the quad mesh's boundary lies on the square's, and its four corners are quad vertices.
   auto onSide = [](double x) { return std::abs(x) < 1e-9 || std::abs(x - 1) < 1e-9; };
   for (const auto& [a, b] : quadBoundaryEdges(r.mesh)) {
@@ -275,15 +285,7 @@ TEST(QuadRemesh, AGridThroughTheTessellationsOwnVerticesAndEdgesIsWhole) {
   d.setSymmetry(4);
   d.setBoundary(BoundaryCondition::tangential());
   d.solve();
-  const QuadRemeshResult r = remeshDesign(d, 0.45);
-  printResult(r);
-  EXPECT_EQ(r.stats.faces, 16);
-  EXPECT_EQ(r.stats.quads, 16);
-  EXPECT_EQ(r.stats.irregularVertices, 0);
-  EXPECT_EQ(r.stats.boundaryEdges, 16);
-  EXPECT_EQ(r.stats.eulerCharacteristic, 1);
-  EXPECT_EQ(r.failedTraces, 0);
-  EXPECT_NEAR(r.stats.aspectMedian, 1.0, 1e-9);
+  expectSquareGrid(remeshDesign(d, 0.45), 4);
 }
 
 TEST(QuadRemesh, AnAnnulusFollowingItsCirclesIsARegularGridBetweenThem) {
@@ -293,11 +295,7 @@ TEST(QuadRemesh, AnAnnulusFollowingItsCirclesIsARegularGridBetweenThem) {
   d.solve();
   ASSERT_TRUE(d.singularities().empty());
   const QuadRemeshResult r = remeshDesign(d, 0.1);
-  printResult(r);
-  EXPECT_EQ(r.stats.irregularVertices, 0);
-  EXPECT_EQ(r.stats.quads, r.stats.faces);
-  EXPECT_EQ(r.stats.eulerCharacteristic, 0);
-  EXPECT_EQ(r.stats.flippedFaces, 0);
+  expectRegular(r, 0);
   EXPECT_EQ(r.failedTraces, 0);
   // Both circles are the quad mesh's boundary: its vertices there lie on them.
   const std::vector<std::pair<int32_t, int32_t>> boundary = quadBoundaryEdges(r.mesh);
@@ -361,21 +359,15 @@ TEST(QuadRemesh, CreasesCloserThanAQuadAreLetGoAndTheRestFollowed) {
   d.solve();
   ASSERT_EQ(d.featureEdges().size(), 6u * 48);
   const QuadRemeshResult fine = remeshWithFeatures(d, 0.1);
-  printResult(fine);
+  expectRegular(fine, 0);
   EXPECT_EQ(fine.featureCurves, 6);
   EXPECT_EQ(fine.releasedFeatureCurves, 0);
-  EXPECT_EQ(fine.stats.irregularVertices, 0);
-  EXPECT_EQ(fine.stats.quads, fine.stats.faces);
-  EXPECT_EQ(fine.stats.eulerCharacteristic, 0);
   // At 0.6 the six creases cannot all be grid lines (the section's 2.1 would need six quads): some are let
   // go, and the grid is still whole.
   const QuadRemeshResult coarse = remeshWithFeatures(d, 0.6);
-  printResult(coarse);
+  expectRegular(coarse, 0);
   EXPECT_GT(coarse.releasedFeatureCurves, 0);
   EXPECT_EQ(coarse.flippedTriangles, 0);
-  EXPECT_EQ(coarse.stats.irregularVertices, 0);
-  EXPECT_EQ(coarse.stats.quads, coarse.stats.faces);
-  EXPECT_EQ(coarse.stats.eulerCharacteristic, 0);
 }
 
 TEST(QuadRemesh, RefusesWhatItCannotMeshByName) {
