@@ -407,15 +407,18 @@ class Extractor {
       if (!directed.count({b, a})) hole.insert({b, a});
     int32_t filled = 0;
     auto fill = [&](const std::vector<int32_t>& loop) {
-      // The surface's own boundary is not a hole.
-      if (loop.size() < 3 || std::all_of(loop.begin(), loop.end(), [&](int32_t v) { return onBoundary[v] != 0; }))
-        return;
+      // The surface's own boundary is not a hole, nor is it where a quad beside it is missing (the loop round
+      // the outside then detours inwards): a loop with two boundary points in a row runs along the boundary.
+      bool alongBoundary = false;
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        alongBoundary = alongBoundary || (onBoundary[loop[k]] && onBoundary[loop[(k + 1) % loop.size()]]);
+      if (loop.size() < 3 || alongBoundary) return;
       m.faceVertices.insert(m.faceVertices.end(), loop.begin(), loop.end());
       m.faceStart.push_back(static_cast<int32_t>(m.faceVertices.size()));
       ++filled;
     };
-    // Each walk along the holes' edges closes a loop whenever it comes back to a vertex it passed: a hole that
-    // touches itself at a vertex (a figure 8) is two polygons, none with a vertex twice.
+    // Each walk along the holes' edges closes a loop whenever it comes back to a vertex it passed: a hole
+    // that touches itself at a vertex (a figure 8) is two polygons, none with a vertex twice.
     std::vector<int32_t> path;
     while (!hole.empty()) {
       auto it = hole.begin();

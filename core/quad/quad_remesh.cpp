@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <tuple>
 
 #include "common/input_error.h"
 #include "field/singularities.h"
@@ -178,27 +179,40 @@ QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& t, cons
   };
   // The features are followed where they can be: a first parametrization with every curve long enough, and
   // up to two more with those near its folds let go (boundary edges are always followed).
-  const std::vector<FeatureCurve> curves = followedCurves(mesh, t, features, out.edgeLength);
+  std::vector<int32_t> interiorFeatures;  // the boundary is followed anyway, and never let go
+  for (int32_t e : features)
+    if (!t.isBoundaryEdge[e]) interiorFeatures.push_back(e);
+  const std::vector<FeatureCurve> curves = followedCurves(mesh, t, interiorFeatures, out.edgeLength);
   std::vector<uint8_t> kept(curves.size(), 1);
   constexpr double kPassProgress[] = {0.05, 0.45, 0.65, 0.75};
-  CrossFieldCut cut;
-  SeamlessParametrization param;
+  // Each pass is kept when it folds less than the best before it (letting curves go need not help).
+  CrossFieldCut cut, passCut;
+  SeamlessParametrization param, passParam;
+  int32_t released = 0;
+  std::tuple<int32_t, int32_t, int32_t, int32_t, int32_t> best;  // the kept pass's counts
   for (int pass = 0;; ++pass) {
     report("cutting", kPassProgress[pass]);
     Clock::time_point stage = Clock::now();
-    cut = cutCrossField(mesh, t, g, faceDirections, keptEdges(curves, kept));
-    out.cones = cut.cones;
-    out.cutEdges = cut.cutEdges;
+    passCut = cutCrossField(mesh, t, g, faceDirections, keptEdges(curves, kept));
     out.cutMs += msSince(stage);
     stage = Clock::now();
-    param = parametrize(mesh, t, g, cut, kPassProgress[pass], kPassProgress[pass + 1], progress, out);
+    passParam = parametrize(mesh, t, g, passCut, kPassProgress[pass], kPassProgress[pass + 1], progress, out);
     out.parametrizeMs += msSince(stage);
+    const bool better = pass == 0 || passParam.flippedFaces < param.flippedFaces;
+    if (better) {
+      cut = std::move(passCut), param = std::move(passParam);
+      best = {out.integerUnknowns, out.unenforcedConditions, out.roundingSolves, out.stiffenings, released};
+    }
     if (param.flippedFaces == 0 || pass == 2) break;
-    const int32_t released = releaseCurvesNearFolds(mesh, t, param, curves, kept);
-    if (released == 0) break;
-    out.releasedFeatureCurves += released;
+    const int32_t more = releaseCurvesNearFolds(mesh, t, better ? param : passParam, curves, kept);
+    if (more == 0) break;
+    released += more;
   }
+  std::tie(out.integerUnknowns, out.unenforcedConditions, out.roundingSolves, out.stiffenings,
+           out.releasedFeatureCurves) = best;
   out.featureCurves = static_cast<int32_t>(curves.size());
+  out.cones = cut.cones;
+  out.cutEdges = cut.cutEdges;
   out.flippedTriangles = param.flippedFaces;
 
   report("extracting", 0.75);

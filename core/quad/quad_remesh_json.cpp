@@ -1,5 +1,7 @@
 #include "quad/quad_remesh_json.h"
 
+#include <cstdint>
+
 #include "common/input_error.h"
 
 namespace tvf {
@@ -27,8 +29,9 @@ QuadRemeshOptions quadRemeshOptionsFromJson(const std::string& text) {
     const nlohmann::json& pairs = j["featureEdges"];
     if (!pairs.is_array()) throw InputError("quad mesh: featureEdges must be an array of vertex pairs");
     for (const nlohmann::json& v : pairs) {
-      if (!v.is_number_integer()) throw InputError("quad mesh: featureEdges must hold vertex indices");
-      o.featureEdges.push_back(v.get<int32_t>());
+      if (!v.is_number_integer() || v.get<int64_t>() < 0 || v.get<int64_t>() > INT32_MAX)
+        throw InputError("quad mesh: featureEdges must hold vertex indices");
+      o.featureEdges.push_back(static_cast<int32_t>(v.get<int64_t>()));
     }
   }
   return o;

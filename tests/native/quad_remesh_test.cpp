@@ -16,6 +16,7 @@
 #include "mesh/closest_point.h"
 #include "mesh/mesh_geometry.h"
 #include "quad/quad_mesh_stats.h"
+#include "quad/quad_remesh_json.h"
 #include "test_meshes.h"
 
 namespace tvf {
@@ -394,6 +395,10 @@ TEST(QuadRemesh, RefusesWhatItCannotMeshByName) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("is not an edge"), std::string::npos) << e.what();
   }
+  // A vertex index past 32 bits is refused, not wrapped round to another vertex.
+  EXPECT_THROW(quadRemeshOptionsFromJson(R"({"featureEdges": [4294967296, 1]})"), InputError);
+  EXPECT_EQ(quadRemeshOptionsFromJson(R"({"featureEdges": [3, 4]})").featureEdges,
+            (std::vector<int32_t>{3, 4}));
   // A Cancel from the progress callback ends it with RemeshCancelled.
   QuadRemeshOptions o;
   o.edgeLength = 0.2;
