@@ -6,7 +6,9 @@
 //
 // The continuous unknowns (hundreds of thousands) are eliminated once: K_CC is factored a single time and
 // the integers' Schur complement S = K_II - K_IC K_CC^-1 K_CI (dense, as small as the integers are few) is
-// what each rounding step solves. The continuous solution follows from the integers in one more solve.
+// what each rounding step solves. The continuous solution follows from the integers in one more solve. K_CC
+// gets a ridge of 1e-10 of its mean diagonal, so that a chart left free to slide (placed by integers in one
+// direction only) still factors.
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>

@@ -35,7 +35,8 @@ struct GridPoint {
   int32_t face;      // the face it lies in (a cone: the first of its fan)
   int32_t fan = -1;  // a cone's fan, -1 inside a face
   double bary[3];
-  long iu = 0, iv = 0;  // its (u, v) in its face's chart (inside a face)
+  long iu = 0, iv = 0;      // its (u, v) in its face's chart (inside a face)
+  bool onBoundary = false;  // on the surface's boundary (an open fan's vertex, or on a boundary edge)
 };
 
 // A cone's port: the direction (du, dv) in `face`'s chart.
@@ -61,7 +62,6 @@ class Extractor {
         cut_(cut),
         uv_(p.cornerUV),
         shift_(p.edgeShift),
-        fanOnGrid_(p.fanOnGrid),
         vertexPointAt_(3 * t.numFaces, -1) {}
 
   QuadExtraction run() {
@@ -101,21 +101,24 @@ class Extractor {
     dv = static_cast<int>(std::lround(d.v));
   }
 
-  // Vertices on grid points (cones, corners of features and of the boundary): their ports are the axis
-  // directions in their faces' wedges, counter-clockwise round the fan. A boundary vertex's fan is open: the
-  // direction along its last edge is a port too, and a gap (kOutside) closes the cycle.
+  // Vertices on grid points (cones, corners of features and of the boundary, whose (u, v) are whole by
+  // construction, and a tessellation's vertices the grid runs through, whole by the solve's snapping): their
+  // ports are the axis directions in their faces' wedges, counter-clockwise round the fan. A boundary
+  // vertex's fan is open: the direction along its last edge is a port too, and a gap (kOutside) closes the
+  // cycle.
   void findVertexPoints() {
     const int32_t numFans = static_cast<int32_t>(cut_.fanTurns.size());
     for (int32_t fan = 0; fan < numFans; ++fan) {
       const int32_t v = cut_.fanVertex[fan];
-      if (!fanOnGrid_[fan] && !onGridPoint(cut_.fanFaceList[cut_.fanFaceStart[fan]], v)) continue;
+      if (!onGridPoint(cut_.fanFaceList[cut_.fanFaceStart[fan]], v)) continue;
+      const int32_t last = cut_.fanFaceList[cut_.fanFaceStart[fan + 1] - 1];
+      const bool open = t_.otherFace(t_.edgeOf(last, (mesh_.cornerOf(last, v) + 2) % 3), last) < 0;
       GridPoint p{cut_.fanFaceList[cut_.fanFaceStart[fan]], fan, {1, 0, 0}};
+      p.onBoundary = open;
       const int32_t id = static_cast<int32_t>(points_.size());
       points_.push_back(p);
       ports_.emplace_back();
       std::vector<ConePort>& ports = conePorts_.emplace_back();
-      const int32_t last = cut_.fanFaceList[cut_.fanFaceStart[fan + 1] - 1];
-      const bool open = t_.otherFace(t_.edgeOf(last, (mesh_.cornerOf(last, v) + 2) % 3), last) < 0;
       for (int32_t k = cut_.fanFaceStart[fan]; k < cut_.fanFaceStart[fan + 1]; ++k) {
         const int32_t f = cut_.fanFaceList[k];
         const int c = mesh_.cornerOf(f, v);
@@ -138,14 +141,11 @@ class Extractor {
       if (open) {
         ports.push_back({-1, 0, 0});
         ports_.back().push_back(kOutside);
-        pointOnBoundary_.resize(points_.size(), 0);
-        pointOnBoundary_[id] = 1;
       }
     }
   }
 
-  // A vertex whose (u, v) happens to be a grid point (both whole after the solve's snapping): a regular
-  // tessellation's vertex the grid runs through.
+  // Whether vertex v's (u, v) in face f are both whole.
   bool onGridPoint(int32_t f, int32_t v) const {
     const Vec2 q = corner(f, mesh_.cornerOf(f, v));
     return q.u == std::round(q.u) && q.v == std::round(q.v);
@@ -184,13 +184,9 @@ class Extractor {
     }
     if (zeros > 1) return;  // a corner: only vertices on grid points sit there, found with their fans
     GridPoint p{f, -1, {l[0], l[1], l[2]}, i, j};
+    for (int k = 0; k < 3; ++k) p.onBoundary |= l[k] == 0 && t_.isBoundaryEdge[t_.edgeOf(f, (k + 1) % 3)];
     points_.push_back(p);
     ports_.emplace_back(4, PortRef{});
-    for (int k = 0; k < 3; ++k)
-      if (l[k] == 0 && t_.isBoundaryEdge[t_.edgeOf(f, (k + 1) % 3)]) {
-        pointOnBoundary_.resize(points_.size(), 0);
-        pointOnBoundary_.back() = 1;
-      }
   }
 
   // The grid point at integer (u, v) `x` of f's chart, or -1.
@@ -342,9 +338,8 @@ class Extractor {
       }
     out.mesh.faceStart.insert(out.mesh.faceStart.begin(), 0);
     std::vector<uint8_t> vertexOnBoundary(out.mesh.numVertices(), 0);
-    pointOnBoundary_.resize(points_.size(), 0);
     for (std::size_t id = 0; id < points_.size(); ++id)
-      if (remap[id] >= 0) vertexOnBoundary[remap[id]] = pointOnBoundary_[id];
+      if (remap[id] >= 0) vertexOnBoundary[remap[id]] = points_[id].onBoundary;
     out.filledHoles = fillHoles(out.mesh, vertexOnBoundary);
     removeSpikes(out.mesh);
     return out;
@@ -463,10 +458,7 @@ class Extractor {
   const CrossFieldCut& cut_;
   const std::vector<double>& uv_;
   const std::vector<double>& shift_;
-  const std::vector<uint8_t>& fanOnGrid_;
   std::vector<GridPoint> points_;
-  std::vector<uint8_t>
-      pointOnBoundary_;  // per point (resized as points are added): on the surface's boundary
   std::vector<std::vector<PortRef>> ports_;       // per point and port: where its iso-line arrives
   std::vector<std::vector<ConePort>> conePorts_;  // per vertex point (the first points), counter-clockwise
   std::vector<int32_t> vertexPointAt_;            // per face corner: its vertex point, -1 elsewhere

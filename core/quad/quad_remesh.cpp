@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <tuple>
 
 #include "common/input_error.h"
 #include "field/singularities.h"
@@ -132,36 +131,43 @@ int32_t releaseCurvesNearFolds(const SurfaceMesh& mesh, const MeshTopology& t,
   return released;
 }
 
+// One pass: the cut with the curves kept, and its parametrization with the counts the statistics report.
+struct Pass {
+  CrossFieldCut cut;
+  SeamlessParametrization param;
+  int32_t integerUnknowns = 0, unenforcedConditions = 0, roundingSolves = 0, stiffenings = 0;
+  int32_t releasedCurves = 0;  // let go before this pass
+};
+
 // Stiffening (after Bommes et al. 2009, Sec. 4.3): where a solve folds triangles over, their terms weigh more
 // and it is solved again, up to kStiffenings times. The integers rounded by the first solve are kept: each
 // further solve is one factorization (on bunny00 the folds went 26, 20, 3, 0; rounding again each time went
 // 26, 19, 12, 4, 10, 1, 1 at twice the cost). Progress goes from `from` to `to`.
-SeamlessParametrization parametrize(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
-                                    const CrossFieldCut& cut, double from, double to,
-                                    const RemeshProgress& progress, QuadRemeshResult& out) {
+void parametrize(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g, double edgeLength,
+                 double from, double to, const RemeshProgress& progress, Pass& pass) {
   constexpr int kStiffenings = 8;
-  const SeamlessSystem system(t, cut);
-  out.integerUnknowns = system.integerUnknowns();
-  out.unenforcedConditions = system.unenforcedConditions();
+  const SeamlessSystem system(t, pass.cut);
+  pass.integerUnknowns = system.integerUnknowns();
+  pass.unenforcedConditions = system.unenforcedConditions();
   std::vector<double> weight(t.numFaces, 1.0);
   SeamlessParametrization param, best;
   for (int round = 0; round <= kStiffenings; ++round) {
     bool stopped = false;
     const double span = (to - from) / (kStiffenings + 1), at = from + span * round;
-    param = system.solve(mesh, g, out.edgeLength, weight, round > 0 ? best.integers : std::vector<double>{},
+    param = system.solve(mesh, g, edgeLength, weight, round > 0 ? best.integers : std::vector<double>{},
                          [&](double fraction) {
                            stopped = progress && !progress("parametrizing", at + span * fraction);
                            return !stopped;
                          });
     if (stopped) throw RemeshCancelled();
-    if (round == 0) out.roundingSolves = param.roundingSteps;
+    if (round == 0) pass.roundingSolves = param.roundingSteps;
     // Folds can wander as the weights change: the solve with the fewest is the one kept.
     const bool better = round == 0 || param.flippedFaces < best.flippedFaces;
-    if (better) best = std::move(param), out.stiffenings = round;
+    if (better) best = std::move(param), pass.stiffenings = round;
     if (best.flippedFaces == 0 || round == kStiffenings) break;
     stiffenFolds(t, better ? best : param, weight);
   }
-  return best;
+  pass.param = std::move(best);
 }
 
 }  // namespace
@@ -186,34 +192,34 @@ QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& t, cons
   std::vector<uint8_t> kept(curves.size(), 1);
   constexpr double kPassProgress[] = {0.05, 0.45, 0.65, 0.75};
   // Each pass is kept when it folds less than the best before it (letting curves go need not help).
-  CrossFieldCut cut, passCut;
-  SeamlessParametrization param, passParam;
-  int32_t released = 0;
-  std::tuple<int32_t, int32_t, int32_t, int32_t, int32_t> best;  // the kept pass's counts
-  for (int pass = 0;; ++pass) {
-    report("cutting", kPassProgress[pass]);
+  Pass best, pass;
+  for (int k = 0;; ++k) {
+    report("cutting", kPassProgress[k]);
     Clock::time_point stage = Clock::now();
-    passCut = cutCrossField(mesh, t, g, faceDirections, keptEdges(curves, kept));
+    pass.cut = cutCrossField(mesh, t, g, faceDirections, keptEdges(curves, kept));
     out.cutMs += msSince(stage);
     stage = Clock::now();
-    passParam = parametrize(mesh, t, g, passCut, kPassProgress[pass], kPassProgress[pass + 1], progress, out);
+    parametrize(mesh, t, g, out.edgeLength, kPassProgress[k], kPassProgress[k + 1], progress, pass);
     out.parametrizeMs += msSince(stage);
-    const bool better = pass == 0 || passParam.flippedFaces < param.flippedFaces;
-    if (better) {
-      cut = std::move(passCut), param = std::move(passParam);
-      best = {out.integerUnknowns, out.unenforcedConditions, out.roundingSolves, out.stiffenings, released};
-    }
-    if (param.flippedFaces == 0 || pass == 2) break;
-    const int32_t more = releaseCurvesNearFolds(mesh, t, better ? param : passParam, curves, kept);
+    const int32_t releasedBefore = pass.releasedCurves;
+    const int32_t more =
+        pass.param.flippedFaces > 0 && k < 2 ? releaseCurvesNearFolds(mesh, t, pass.param, curves, kept) : 0;
+    if (k == 0 || pass.param.flippedFaces < best.param.flippedFaces) best = std::move(pass);
     if (more == 0) break;
-    released += more;
+    pass = Pass{};
+    pass.releasedCurves = releasedBefore + more;
   }
-  std::tie(out.integerUnknowns, out.unenforcedConditions, out.roundingSolves, out.stiffenings,
-           out.releasedFeatureCurves) = best;
   out.featureCurves = static_cast<int32_t>(curves.size());
-  out.cones = cut.cones;
-  out.cutEdges = cut.cutEdges;
-  out.flippedTriangles = param.flippedFaces;
+  out.releasedFeatureCurves = best.releasedCurves;
+  out.integerUnknowns = best.integerUnknowns;
+  out.unenforcedConditions = best.unenforcedConditions;
+  out.roundingSolves = best.roundingSolves;
+  out.stiffenings = best.stiffenings;
+  out.cones = best.cut.cones;
+  out.cutEdges = best.cut.cutEdges;
+  out.flippedTriangles = best.param.flippedFaces;
+  const CrossFieldCut& cut = best.cut;
+  const SeamlessParametrization& param = best.param;
 
   report("extracting", 0.75);
   Clock::time_point stage = Clock::now();

@@ -180,14 +180,13 @@ SeamlessSystem::SeamlessSystem(const MeshTopology& t, const CrossFieldCut& cut) 
   std::vector<std::optional<Combo>> baseCombo(2 * numFans);
   for (int32_t fan = 0; fan < numFans; ++fan)
     if (coneIndex[fan] >= 0) baseCombo[2 * fan] = coneOf(fan).u, baseCombo[2 * fan + 1] = coneOf(fan).v;
-  const std::vector<int32_t>& tri = cut.cornerCopy;
   for (int32_t k = 0; k < numIso; ++k) {
     const CrossFieldCut::IsoEdge& iso = cut.isoEdges[k];
     const int i = iso.coordinate;
     for (int corner = 0; corner < 3; ++corner) {
       if (t.edgeOf(iso.face, corner) != iso.edge) continue;
       for (int end = 0; end < 2; ++end) {
-        const int32_t copy = tri[3 * iso.face + (corner + end) % 3], fan = cut.copyFan[copy];
+        const int32_t copy = cut.cornerCopy[3 * iso.face + (corner + end) % 3], fan = cut.copyFan[copy];
         const auto [j, sign] = turnedComponent(copyTurns[copy], i);
         const Combo& shift = i == 0 ? copyShift[copy].u : copyShift[copy].v;
         const Combo value = sum(sum(Combo{{firstIso + k, 1}}, 1, shift, -1), sign, {}, 0);  // base[j]
@@ -204,12 +203,8 @@ SeamlessSystem::SeamlessSystem(const MeshTopology& t, const CrossFieldCut& cut) 
   // The unknowns: the base coordinates left continuous, then the integer unknowns left free.
   Layout layout;
   layout.baseColumn.assign(2 * numFans, -1);
-  fanOnGrid_.assign(numFans, 0);
-  for (int32_t fan = 0; fan < numFans; ++fan) {
-    for (int j = 0; j < 2; ++j)
-      if (!baseCombo[2 * fan + j]) layout.baseColumn[2 * fan + j] = layout.size++;
-    fanOnGrid_[fan] = baseCombo[2 * fan] && baseCombo[2 * fan + 1];
-  }
+  for (int32_t k = 0; k < 2 * numFans; ++k)
+    if (!baseCombo[k]) layout.baseColumn[k] = layout.size++;
   layout.integerZ.assign(numIntegers, -1);
   integer_.assign(layout.size, 0);
   for (int32_t x = 0; x < numIntegers; ++x)
@@ -332,7 +327,6 @@ SeamlessParametrization SeamlessSystem::solve(const SurfaceMesh& mesh, const Mes
     if (!(uvTwiceArea(out.cornerUV, f) > 0)) ++out.flippedFaces;
   }
   out.edgeShift.assign(shift.data(), shift.data() + shift.size());
-  out.fanOnGrid = fanOnGrid_;
   return out;
 }
 

@@ -30,9 +30,6 @@ struct SeamlessParametrization {
   int32_t flippedFaces = 0;       // faces whose (u, v) triangle is not counter-clockwise
   int32_t roundingSteps = 0;      // integers fixed one (or a batch) at a time; 0 when they were kept
   std::vector<double> integers;   // the rounded integer unknowns, to keep in a solve with other weights
-  // Per fan (quad/cross_field_cut.h): 1 where its vertex sits on a grid point by construction (a cone, or a
-  // corner of the features or of the boundary, where iso-lines of both coordinates meet).
-  std::vector<uint8_t> fanOnGrid;
 };
 
 using ParametrizationProgress = std::function<bool(double fraction)>;
@@ -67,7 +64,6 @@ class SeamlessSystem {
   SparseMatrix shift_;            // t_e of each edge (rows 2e, 2e + 1) from the unknowns (0 off the cut)
   std::vector<uint8_t> integer_;  // per unknown
   std::vector<std::pair<int32_t, double>> pinned_;
-  std::vector<uint8_t> fanOnGrid_;
   int32_t integerUnknowns_ = 0, unenforced_ = 0;
 };
 

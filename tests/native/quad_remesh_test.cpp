@@ -341,7 +341,6 @@ TEST(QuadRemesh, ACubesSharpEdgesBecomeChainsOfQuadEdges) {
       }
     EXPECT_TRUE(inOneSide) << "quad " << f;
   }
-  // Without the features the same field's quads need not keep to the sides.
 }
 
 QuadRemeshResult remeshWithFeatures(Designer& d, double edgeLength) {

@@ -11,8 +11,7 @@ export const vertexCount = ({ positions }) => positions.length / 3;
 
 // The mesh's undirected edges, each once, as vertex pairs (lower index first), ordered by (lower, higher).
 export function uniqueEdges({ positions, faceStart, faceVertices }) {
-  // Keys in one typed array, sorted in place: no Set or per-edge array on the main thread's heap, whose garbage
-  // set off a 200 ms collection of the whole page (a big model's) when an armadillo-sub2 quad mesh arrived.
+  // Keys in one typed array, sorted in place: no Set or per-edge array left to the main thread's collector.
   const nV = positions.length / 3, keys = new Float64Array(faceVertices.length);
   for (let f = 0, at = 0; f + 1 < faceStart.length; f++) {
     const s = faceStart[f], n = faceStart[f + 1] - s;
