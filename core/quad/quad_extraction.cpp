@@ -6,6 +6,7 @@
 #include <set>
 
 #include "mesh/mesh_geometry.h"
+#include "quad/polygon_quadrangulation.h"
 
 namespace tvf {
 namespace {
@@ -342,6 +343,7 @@ class Extractor {
       if (remap[id] >= 0) vertexOnBoundary[remap[id]] = points_[id].onBoundary;
     out.filledHoles = fillHoles(out.mesh, vertexOnBoundary);
     removeSpikes(out.mesh);
+    out.splitPolygons = quadrangulatePolygons(out.mesh, mesh_);
     return out;
   }
 

@@ -16,6 +16,9 @@ struct QuadExtraction {
   int32_t failedTraces = 0;  // iso-line walks that found no grid point where the next one should be
   int32_t openLoops = 0;     // face loops that did not close (holes in the quad mesh)
   int32_t filledHoles = 0;   // holes closed by one polygon each
+  // Polygons (holes closed, and faces the grid's own loops made where it folds) split into quads by chords
+  // (quad/polygon_quadrangulation.h).
+  int32_t splitPolygons = 0;
 };
 
 QuadExtraction extractQuads(const SurfaceMesh& mesh, const MeshTopology& topology, const CrossFieldCut& cut,

@@ -227,6 +227,7 @@ QuadRemeshResult quadRemesh(const SurfaceMesh& mesh, const MeshTopology& t, cons
   out.failedTraces = extraction.failedTraces;
   out.openLoops = extraction.openLoops;
   out.filledHoles = extraction.filledHoles;
+  out.splitPolygons = extraction.splitPolygons;
   out.mesh = std::move(extraction.mesh);
   out.extractMs = msSince(stage);
   if (out.mesh.numFaces() == 0)

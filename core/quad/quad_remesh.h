@@ -36,8 +36,9 @@ struct QuadRemeshResult {
   int32_t cones = 0, cutEdges = 0, flippedTriangles = 0, integerUnknowns = 0, roundingSolves = 0;
   int32_t unenforcedConditions = 0;  // closure equations the elimination could not keep (none expected)
   int32_t failedTraces = 0, openLoops = 0;
-  int32_t filledHoles = 0;  // holes the failed walks left, closed by a polygon each
-  int32_t stiffenings = 0;  // solves again with folded triangles stiffened
+  int32_t filledHoles = 0;    // holes the failed walks left, closed by a polygon each
+  int32_t splitPolygons = 0;  // polygons (holes closed or the grid's own) split into quads by chords
+  int32_t stiffenings = 0;    // solves again with folded triangles stiffened
   // Feature curves at least an edge length long, and of those, the ones let go because the grid folded
   // beside them (features closer together than a quad).
   int32_t featureCurves = 0, releasedFeatureCurves = 0;

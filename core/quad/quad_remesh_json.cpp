@@ -73,6 +73,7 @@ nlohmann::json quadRemeshJson(const QuadRemeshResult& r) {
           {"failedTraces", r.failedTraces},
           {"openLoops", r.openLoops},
           {"filledHoles", r.filledHoles},
+          {"splitPolygons", r.splitPolygons},
           {"ms", r.totalMs},
           {"stageMs",
            {{"cut", r.cutMs},

@@ -9,12 +9,14 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "common/input_error.h"
 #include "dec/boundary_condition.h"
 #include "design/designer.h"
 #include "mesh/closest_point.h"
 #include "mesh/mesh_geometry.h"
+#include "quad/polygon_quadrangulation.h"
 #include "quad/quad_mesh_stats.h"
 #include "quad/quad_remesh_json.h"
 #include "test_meshes.h"
@@ -207,6 +209,102 @@ TEST(QuadMeshStats, FlipsDegeneraciesHolesDistancesAndAnglesAreCounted) {
   s = measureQuadMesh(c.quads, c.surface, g, c.axisField, 4, c.corners, 1.0 / 3);
   EXPECT_NEAR(s.edgeAngleMedianDeg, 10.0, 1e-9);
   EXPECT_NEAR(s.edgeAngleP90Deg, 10.0, 1e-9);
+}
+
+// Faces f and g, which share an edge, made one polygon (the rest renumbered): a hole as the extraction closes
+// it where walks failed.
+void mergeFaces(QuadMesh& m, int32_t f, int32_t g) {
+  auto corners = [&](int32_t h) {
+    return std::vector<int32_t>(m.faceVertices.begin() + m.faceStart[h],
+                                m.faceVertices.begin() + m.faceStart[h + 1]);
+  };
+  const std::vector<int32_t> a = corners(f), b = corners(g);
+  std::vector<int32_t> loop;
+  for (std::size_t i = 0; i < a.size() && loop.empty(); ++i) {
+    const int32_t x = a[i], y = a[(i + 1) % a.size()];
+    const auto at = std::find(b.begin(), b.end(), y);
+    if (at == b.end() || b[(at - b.begin() + 1) % b.size()] != x) continue;
+    for (std::size_t k = 1; k <= a.size(); ++k) loop.push_back(a[(i + k) % a.size()]);  // y ... round to x
+    for (std::size_t k = 1; k + 1 < b.size(); ++k) loop.push_back(b[(at - b.begin() + 1 + k) % b.size()]);
+  }
+  ASSERT_FALSE(loop.empty()) << "faces " << f << " and " << g << " share no edge";
+  std::vector<int32_t> start{0}, vertices;
+  for (int32_t h = 0; h < m.numFaces(); ++h) {
+    if (h == g) continue;
+    const std::vector<int32_t> c = h == f ? loop : corners(h);
+    vertices.insert(vertices.end(), c.begin(), c.end());
+    start.push_back(static_cast<int32_t>(vertices.size()));
+  }
+  m.faceStart = std::move(start);
+  m.faceVertices = std::move(vertices);
+}
+
+// Where the grid folded the extraction closes a hole by one polygon; its corners that lost a grid line have
+// valence 3 although the grid is regular there. The split joins them again: the cube's grid comes back whole.
+TEST(PolygonQuadrangulation, AHoleInARegularGridIsSplitBackIntoItsQuads) {
+  for (int merged : {2, 3}) {
+    CubeQuads c = cubeQuads(4);
+    // Quads (i, 1), (i, 2) [, (i, 3)] of the first side: a strip of `merged` quads, a 6- or 8-gon.
+    for (int k = 1; k < merged; ++k) mergeFaces(c.quads, 4 + 1, 4 + 2);
+    ASSERT_EQ(c.quads.numFaces(), 96 - merged + 1);
+    const QuadMeshStats before = measureCube(c, 0.25);
+    EXPECT_EQ(before.irregularVertices, 8 + 2 * (merged - 1));  // each missing edge's two ends
+    EXPECT_EQ(quadrangulatePolygons(c.quads, c.surface), 1);
+    const QuadMeshStats after = measureCube(c, 0.25);
+    EXPECT_EQ(after.faces, 96);
+    EXPECT_EQ(after.quads, 96);
+    EXPECT_EQ(after.irregularVertices, 8);  // the cube's corners alone
+    EXPECT_EQ(after.eulerCharacteristic, 2);
+    EXPECT_TRUE(after.manifold);
+    EXPECT_TRUE(after.oriented);
+    EXPECT_EQ(after.flippedFaces, 0);
+    EXPECT_NEAR(after.aspectMedian, 1.0, 1e-12);
+    // The same grid as before the merge: every quad's corners a unit square of the grid.
+    const CubeQuads whole = cubeQuads(4);
+    std::set<std::set<int32_t>> quadsBefore, quadsAfter;
+    for (int32_t f = 0; f < 96; ++f) {
+      quadsBefore.insert({whole.quads.faceVertices.begin() + whole.quads.faceStart[f],
+                          whole.quads.faceVertices.begin() + whole.quads.faceStart[f + 1]});
+      quadsAfter.insert({c.quads.faceVertices.begin() + c.quads.faceStart[f],
+                         c.quads.faceVertices.begin() + c.quads.faceStart[f + 1]});
+    }
+    EXPECT_EQ(quadsAfter, quadsBefore);
+  }
+}
+
+// An odd polygon (a triangle and two quads merged: 7 corners) becomes two quads and a triangle, with no more
+// irregular vertices than before the merge.
+TEST(PolygonQuadrangulation, AnOddPolygonIsSplitIntoQuadsAndOneTriangle) {
+  CubeQuads c = cubeQuads(4);
+  // Quad (1, 0) of the first side as two triangles, the first of them beside quad (1, 1).
+  const int32_t* q = &c.quads.faceVertices[c.quads.faceStart[4]];
+  const std::vector<int32_t> t1{q[0], q[1], q[2]}, t2{q[0], q[2], q[3]};
+  std::vector<int32_t> vertices(c.quads.faceVertices.begin(), c.quads.faceVertices.begin() + 16);
+  std::vector<int32_t> start(c.quads.faceStart.begin(), c.quads.faceStart.begin() + 5);
+  vertices.insert(vertices.end(), t1.begin(), t1.end());
+  start.push_back(static_cast<int32_t>(vertices.size()));
+  vertices.insert(vertices.end(), t2.begin(), t2.end());
+  start.push_back(static_cast<int32_t>(vertices.size()));
+  for (int32_t f = 5; f < 96; ++f) {
+    vertices.insert(vertices.end(), c.quads.faceVertices.begin() + c.quads.faceStart[f],
+                    c.quads.faceVertices.begin() + c.quads.faceStart[f + 1]);
+    start.push_back(static_cast<int32_t>(vertices.size()));
+  }
+  c.quads.faceVertices = vertices, c.quads.faceStart = start;
+  const int32_t irregularWithTriangles = measureCube(c, 0.25).irregularVertices;
+  // The triangle t1 (face 4), quad (1, 1) (face 6) and quad (1, 2) (face 7).
+  mergeFaces(c.quads, 6, 7);
+  mergeFaces(c.quads, 4, 6);
+  ASSERT_EQ(c.quads.faceStart[5] - c.quads.faceStart[4], 7);
+  EXPECT_EQ(quadrangulatePolygons(c.quads, c.surface), 1);
+  const QuadMeshStats s = measureCube(c, 0.25);
+  EXPECT_EQ(s.faces, 97);
+  EXPECT_EQ(s.quads, 95);
+  EXPECT_LE(s.irregularVertices, irregularWithTriangles);
+  EXPECT_TRUE(s.manifold);
+  EXPECT_EQ(s.flippedFaces, 0);
+  EXPECT_EQ(s.degenerateFaces, 0);
+  EXPECT_EQ(s.eulerCharacteristic, 2);
 }
 
 TEST(QuadRemesh, KeepsTheEulerCharacteristicOfAGenusTwoSurface) {
