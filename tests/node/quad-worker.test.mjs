@@ -3,13 +3,13 @@
 // page's controller (web/quad/controller.js) driving that op: a sphere's smoothest cross field becomes a closed
 // quad mesh whose arrays agree with the core's statistics and with what the page derives from them (its
 // irregular vertices are exactly the vertices whose valence is not 4), the stages come as progress messages, the
-// arrays are transferred; a field that is not a cross field is refused by the core with its reason and by the
+// arrays (and the wireframe's edges, valences and normals, derived there) are transferred; a field that is not a cross field is refused by the core with its reason and by the
 // controller with the page's words before any worker is asked; the quad mesh goes stale with the next field.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import { QUAD_REFUSAL, QuadController } from '../../web/quad/controller.js';
 import { quadObj } from '../../web/quad/quad-files.js';
-import { valences } from '../../web/quad/quad-mesh.js';
+import { uniqueEdges, valences, vertexNormals } from '../../web/quad/quad-mesh.js';
 import { icosphere, offText } from './fakes.mjs';
 import { parseObj } from './quad-fixtures.mjs';
 import { serveCoreWorker } from './worker-harness.mjs';
@@ -69,7 +69,13 @@ test('the worker op: a cross field on a sphere becomes a quad mesh, its arrays a
   assert.equal(value.stats.manifold, true);
   assert.ok(value.stats.edgeLength > 0 && value.stats.ms >= 0);
   const transferred = ['positions', 'faceStart', 'faceVertices', 'irregular'].map((k) => value[k].buffer);
-  assert.deepEqual(reply.list, transferred, 'the four arrays are transferred');
+  const { edges, valence, normals } = value.derived;
+  transferred.push(edges.buffer, valence.buffer, normals.buffer);
+  assert.deepEqual(reply.list, transferred, 'the four arrays and the three derived ones are transferred');
+  // What the worker derives for the wireframe is what the page would derive from the four arrays.
+  assert.deepEqual(edges, uniqueEdges(value));
+  assert.deepEqual(valence, valences(value));
+  assert.deepEqual(normals, vertexNormals(value));
   const progress = posted.slice(before).filter((p) => p.data.seq === reply.seq && p.data.progress);
   assert.ok(progress.length > 0, 'the stages are posted');
   let last = 0;

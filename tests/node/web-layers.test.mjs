@@ -102,3 +102,13 @@ test(`no line over ${MAX_COLUMNS} columns in web/ (.js, .css) or core/ (.cpp, .h
   }
   assert.deepEqual(wide, []);
 });
+
+// A count written for people goes through dom.js's grouped(), never toLocaleString or Intl: their first call loads
+// the locale's data on the main thread (72 ms in a big model's load, 182 ms as armadillo-sub2's quad mesh arrived).
+test('counts are grouped without the locale data (no toLocaleString or Intl in web/)', async () => {
+  const found = files.filter((f) => /\.toLocaleString\(|\bIntl\./.test(readFileSync(f, 'utf8'))).map((f) => relative(WEB, f));
+  assert.deepEqual(found, []);
+  const { grouped } = await import('../../web/dom.js');
+  assert.deepEqual([0, 7, 999, 1000, 832000, 1248000.4, 999999.6].map(grouped),
+    ['0', '7', '999', '1,000', '832,000', '1,248,000', '1,000,000']);
+});

@@ -116,12 +116,12 @@ export class QuadController {
   }
 
   #adopt(value, input) {
-    const { positions, faceStart, faceVertices, irregular, stats } = value;
+    const { positions, faceStart, faceVertices, irregular, stats, derived } = value;
     this.result = { mesh: { positions, faceStart, faceVertices, irregular }, stats, version: input.version };
     // The field may have changed while the run was out: the mesh is of the field it was given.
     this.stale = this.fieldVersion() !== input.version;
     this.error = null;
-    this.view?.setMesh(this.result.mesh, { edgeLength: stats.edgeLength, stale: this.stale });
+    this.view?.setMesh(this.result.mesh, { edgeLength: stats.edgeLength, stale: this.stale, derived });
     this.onChange();
   }
 

@@ -5,7 +5,7 @@
 // from the model, its shape, flipped faces, the time), and the OBJ and GLB downloads. Built here and appended to
 // the given container; every control goes through the controller, as the API's calls do. Imports dom.js,
 // session/ (the download) and its own folder.
-import { el } from '../dom.js';
+import { el, grouped } from '../dom.js';
 import { downloadBlob } from '../session/documents.js';
 import { DEFAULT_TARGET, QUAD_REFUSAL } from './controller.js';
 
@@ -15,13 +15,12 @@ const percent = (x, digits = 1) => `${(100 * x).toFixed(digits)} %`;
 const degrees = (x) => `${x.toFixed(1)}°`;
 const seconds = (ms) => (ms < 1000 ? `${Math.round(ms)} ms` : `${(ms / 1000).toFixed(1)} s`);
 const threeSignificant = (x) => Number(x.toPrecision(3));
-const thousands = (n) => Math.round(n).toLocaleString('en-US');
 
 // The statistics (the core's statsJson) as the panel's lines.
 export function statsLines(s) {
   const near = s.irregularVertices > 0 ? `, ${percent(s.irregularNearSingularity, 0)} near one` : '';
   return [
-    `Quads: ${thousands(s.quads)} of ${thousands(s.faces)} faces (${percent(s.quadShare, 2)})`,
+    `Quads: ${grouped(s.quads)} of ${grouped(s.faces)} faces (${percent(s.quadShare, 2)})`,
     `Irregular vertices: ${s.irregularVertices} (field singularities: ${s.fieldSingularities}${near})`,
     `Edges off the field: median ${degrees(s.edgeAngleMedianDeg)}, p90 ${degrees(s.edgeAngleP90Deg)}`,
     `Hausdorff: ${percent(s.hausdorffRelative, 2)} of the diagonal`,

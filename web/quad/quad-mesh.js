@@ -9,7 +9,8 @@ import { normalizeEach3 } from '../geometry/mesh-geometry.js';
 export const faceCount = ({ faceStart }) => Math.max(0, faceStart.length - 1);
 export const vertexCount = ({ positions }) => positions.length / 3;
 
-// The mesh's undirected edges, each once, as vertex pairs (lower index first), ordered by (lower, higher).
+// The mesh's undirected edges, each once, as vertex pairs (lower index first), ordered by (lower, higher): a
+// Uint32Array, as WebGL takes an index (the view draws its lines with it as it is).
 export function uniqueEdges({ positions, faceStart, faceVertices }) {
   // Keys in one typed array, sorted in place: no Set or per-edge array left to the main thread's collector.
   const nV = positions.length / 3, keys = new Float64Array(faceVertices.length);
@@ -23,7 +24,7 @@ export function uniqueEdges({ positions, faceStart, faceVertices }) {
   keys.sort();
   let count = 0;
   for (let k = 0; k < keys.length; k++) if (k === 0 || keys[k] !== keys[k - 1]) count++;
-  const out = new Int32Array(2 * count);
+  const out = new Uint32Array(2 * count);
   for (let k = 0, at = 0; k < keys.length; k++) {
     if (k > 0 && keys[k] === keys[k - 1]) continue;
     out[at++] = Math.floor(keys[k] / nV);

@@ -35,35 +35,39 @@ export class QuadView {
     this.visible = true;
   }
 
-  // mesh: {positions, faceStart, faceVertices, irregular}; edgeLength: the core's target (else the mean edge).
-  setMesh(mesh, { edgeLength = 0, stale = false } = {}) {
-    const edges = uniqueEdges(mesh);
+  // mesh: {positions, faceStart, faceVertices, irregular}; edgeLength: the core's target (else the mean edge);
+  // derived: {edges, valence, normals} of the mesh (quad-mesh.js) where the worker made them, else made here.
+  // The lines are the mesh's vertices, lifted once each, joined by an index of its edges: one pass over the
+  // vertices on this thread, not two ends per edge.
+  setMesh(mesh, { edgeLength = 0, stale = false, derived = null } = {}) {
+    const edges = derived?.edges ?? uniqueEdges(mesh);
+    const valence = derived?.valence ?? valences(mesh, edges), normals = derived?.normals ?? vertexNormals(mesh);
     const length = edgeLength > 0 ? edgeLength : meanEdgeLength(mesh, edges);
-    const normals = vertexNormals(mesh), p = mesh.positions;
+    const p = mesh.positions;
     const lifted = (out, at, v, lift) => {
       for (let c = 0; c < 3; c++) out[at + c] = p[3 * v + c] + lift * normals[3 * v + c];
     };
-    const line = new Float32Array(3 * edges.length);
-    for (let k = 0; k < edges.length; k++) lifted(line, 3 * k, edges[k], LINE_LIFT * length);
-    const valence = valences(mesh, edges);
+    const vertices = new Float32Array(p.length);
+    for (let v = 0; v < p.length / 3; v++) lifted(vertices, 3 * v, v, LINE_LIFT * length);
     const point = new Float32Array(3 * mesh.irregular.length), colour = new Float32Array(point.length);
     const c = new Color();
     mesh.irregular.forEach((v, k) => {
       lifted(point, 3 * k, v, POINT_LIFT * length);
       c.setHex(VALENCE_COLORS[valence[v]] ?? OTHER_VALENCE_COLOR).toArray(colour, 3 * k);
     });
-    this.#geometry(this.lines, { position: line });
+    this.#geometry(this.lines, { position: vertices }, edges);
     this.#geometry(this.points, { position: point, color: colour });
     this.hasMesh = true;
     this.setStale(stale);
     this.#show();
   }
 
-  #geometry(object, attributes) {
+  #geometry(object, attributes, index = null) {
     object.geometry.dispose();
     object.geometry = new BufferGeometry();
     for (const [name, array] of Object.entries(attributes))
       object.geometry.setAttribute(name, new BufferAttribute(array, 3));
+    if (index) object.geometry.setIndex(new BufferAttribute(index, 1));
   }
 
   setVisible(visible) {

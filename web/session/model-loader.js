@@ -4,6 +4,7 @@
 // (opts.previewEdges, default core/progressive-core.js PREVIEW_EDGES) is adopted with its preview field, the
 // exact one following (session/core-follow.js exactLanded); should the exact load then fail, the previous model
 // comes back.
+import { grouped } from '../dom.js';
 import { modelKey } from './documents.js';
 import { readModel } from './model-files.js';
 import { Surface } from '../geometry/surface.js';
@@ -17,10 +18,6 @@ const LOAD_PHASE_LABELS = {
   factoring: 'Factoring…',
   previewSolved: 'Drawing the preview…',
 };
-
-// 832000 → "832,000". Not toLocaleString: its first call loads the locale's data, a 72 ms task in the middle
-// of a big model's load (a profile of the page).
-const grouped = (n) => String(n).replace(/\B(?=(\d{3})+(?!\d))/g, ',');
 
 export class ModelLoader {
   constructor(session) {
