@@ -82,28 +82,44 @@ class Splitter {
 
   bool chord(int i, int j) const { return allowed_[static_cast<std::size_t>(i) * n_ + j] != 0; }
 
-  // A part's corners turn left (convex) in the polygon's plane, and on the surface (about its normal at each
-  // corner, where the polygon is curved): its cost, the corners' departure from square (radians), or -1 when
-  // it is not convex.
-  double partCost(const std::array<int, 4>& part) const {
+  struct PartCost {
+    bool valid = false;
+    int reflex = 0;    // corners turning right: a quad with one is a dart
+    double angle = 0;  // the corners' departure from square (radians), quads only
+  };
+
+  // A part is valid when it is counter-clockwise and simple in the polygon's plane (a quad may have one
+  // reflex corner when the diagonal from it leaves two counter-clockwise triangles: a dart) and its vector
+  // area faces the surface's side at every corner (where the polygon is curved, or folds over a crease).
+  PartCost partCost(const std::array<int, 4>& part) const {
     const int k = part[3] < 0 ? 3 : 4;
-    double cost = 0;
+    auto area2 = [&](int a, int b, int c) {
+      const Eigen::Vector2d u = p_[part[b]] - p_[part[a]], w = p_[part[c]] - p_[part[a]];
+      return u.x() * w.y() - u.y() * w.x();
+    };
+    PartCost out;
+    const bool simple = k == 3 ? area2(0, 1, 2) > tiny_
+                               : (area2(0, 1, 2) > tiny_ && area2(0, 2, 3) > tiny_) ||
+                                     (area2(0, 1, 3) > tiny_ && area2(1, 2, 3) > tiny_);
+    if (!simple) return out;
+    Eigen::Vector3d vectorArea = Eigen::Vector3d::Zero();
+    for (int c = 0; c < k; ++c) vectorArea += x_[part[c]].cross(x_[part[(c + 1) % k]]);
     for (int c = 0; c < k; ++c) {
-      const Eigen::Vector2d a = p_[part[(c + k - 1) % k]], b = p_[part[c]], d = p_[part[(c + 1) % k]];
-      const Eigen::Vector2d in = b - a, out = d - b;
-      const double turn = in.x() * out.y() - in.y() * out.x();
-      const int before = part[(c + k - 1) % k], at = part[c], after = part[(c + 1) % k];
-      const Eigen::Vector3d bend = (x_[at] - x_[before]).cross(x_[after] - x_[at]);
-      if (!(turn > tiny_) || !(bend.dot(normal_[at]) > tiny_)) return -1;
-      if (k == 4) cost += std::abs(std::atan2(turn, in.dot(out)) - M_PI / 2);
+      if (!(vectorArea.dot(normal_[part[c]]) > 0)) return out;
+      const Eigen::Vector2d in = p_[part[c]] - p_[part[(c + k - 1) % k]],
+                            on = p_[part[(c + 1) % k]] - p_[part[c]];
+      const double turn = in.x() * on.y() - in.y() * on.x();
+      out.reflex += turn < 0;
+      if (k == 4) out.angle += std::abs(std::atan2(turn, in.dot(on)) - M_PI / 2);
     }
-    return cost;
+    out.valid = true;
+    return out;
   }
 
   void place(std::vector<std::pair<int, int>>& pending, int trianglesLeft, const std::array<int, 4>& part,
              const std::vector<std::pair<int, int>>& ranges) {
-    const double cost = partCost(part);
-    if (cost < 0) return;
+    const PartCost cost = partCost(part);
+    if (!cost.valid) return;
     int odd = 0;
     for (const auto& [i, j] : pending) odd += (j - i + 1) % 2;
     for (const auto& [i, j] : ranges) {
@@ -115,9 +131,9 @@ class Splitter {
     for (const auto& [i, j] : ranges)
       if (j - i >= 2) pending.push_back({i, j}), ++chords_[i], ++chords_[j];
     parts_.push_back(part);
-    angleCost_ += cost;
+    angleCost_ += cost.angle, reflex_ += cost.reflex;
     expand(pending, trianglesLeft);
-    angleCost_ -= cost;
+    angleCost_ -= cost.angle, reflex_ -= cost.reflex;
     parts_.pop_back();
     for (const auto& [i, j] : ranges)
       if (j - i >= 2) --chords_[i], --chords_[j];
@@ -128,7 +144,8 @@ class Splitter {
     if (leaves_ > kMostLeaves) return;
     if (pending.empty()) {
       ++leaves_;
-      int irregular = 0;
+      // A dart counts as an irregular corner: it is taken only where it spares one.
+      int irregular = reflex_;
       for (int v = 0; v < n_; ++v) irregular += base_[v] >= 0 && base_[v] + chords_[v] != 4;
       if (irregular < bestIrregular_ || (irregular == bestIrregular_ && angleCost_ < bestAngle_))
         bestIrregular_ = irregular, bestAngle_ = angleCost_, bestParts_ = parts_;
@@ -151,7 +168,7 @@ class Splitter {
   std::vector<int> chords_;
   std::vector<std::array<int, 4>> parts_, bestParts_;
   double angleCost_ = 0, bestAngle_ = 1e300, tiny_ = 0;
-  int bestIrregular_ = 1 << 30;
+  int bestIrregular_ = 1 << 30, reflex_ = 0;
   long leaves_ = 0;
 };
 
