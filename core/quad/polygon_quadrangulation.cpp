@@ -210,19 +210,24 @@ int32_t quadrangulatePolygons(QuadMesh& m, const SurfaceMesh& surface) {
     const int32_t* c = &m.faceVertices[m.faceStart[f]];
     const int n = m.faceStart[f + 1] - m.faceStart[f];
     std::vector<std::array<int, 4>> parts;
-    if (n >= 6 && n <= kLargestQuadrangulatedPolygon) {
+    // A polygon with a vertex twice is kept: a part could hold it twice (degenerate).
+    std::vector<int32_t> distinct(c, c + n);
+    std::sort(distinct.begin(), distinct.end());
+    const bool repeats = std::adjacent_find(distinct.begin(), distinct.end()) != distinct.end();
+    if (n >= 6 && n <= kLargestQuadrangulatedPolygon && !repeats) {
       std::vector<int32_t> base(n);
       int irregularNow = 0;
       for (int k = 0; k < n; ++k) {
         base[k] = v.onBoundary[c[k]] ? -1 : v.valence[c[k]];
         irregularNow += base[k] >= 0 && base[k] != 4;
       }
-      // A chord may not join corners that are joined already (round the polygon's outside, or twice in it).
+      // A chord may not join corners that are joined already (round the polygon's outside, or by a chord of a
+      // polygon split before this one).
       std::vector<uint8_t> allowed(static_cast<std::size_t>(n) * n, 0);
       for (int i = 0; i < n; ++i)
         for (int j = i + 2; j < n; ++j)
           allowed[static_cast<std::size_t>(i) * n + j] =
-              c[i] != c[j] && !(i == 0 && j == n - 1) && !v.edges.count(edgeKey(c[i], c[j]));
+              !(i == 0 && j == n - 1) && !v.edges.count(edgeKey(c[i], c[j]));
       int irregular = 0;
       std::vector<Eigen::Vector3d> x(n);
       for (int k = 0; k < n; ++k) x[k] = Eigen::Vector3d(&m.positions[3 * c[k]]);
