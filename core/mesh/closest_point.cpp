@@ -77,7 +77,7 @@ TriangleGrid::TriangleGrid(const std::vector<double>& positions, const std::vect
     forCells(t, [&](long c) { cellTriangles_[count[c]++] = static_cast<int32_t>(t); });
 }
 
-double TriangleGrid::distance(const Eigen::Vector3d& p) const {
+double TriangleGrid::distance(const Eigen::Vector3d& p, double bound) const {
   if (cellTriangles_.empty()) return std::numeric_limits<double>::infinity();
   long c0[3];
   for (int k = 0; k < 3; ++k)
@@ -96,6 +96,7 @@ double TriangleGrid::distance(const Eigen::Vector3d& p) const {
             const Eigen::Vector3d q = closestPointOnTriangle(
                 p, vertex(triangles_[3 * t]), vertex(triangles_[3 * t + 1]), vertex(triangles_[3 * t + 2]));
             best = std::min(best, (q - p).norm());
+            if (best <= bound) return best;
           }
         }
     // Every triangle not yet seen lies outside the cells within ring r, at least r cells away.

@@ -15,8 +15,10 @@ class TriangleGrid {
  public:
   // positions: 3 per vertex; triangles: 3 per triangle. Both must outlive the grid.
   TriangleGrid(const std::vector<double>& positions, const std::vector<int32_t>& triangles);
-  // The distance from p to the nearest triangle (infinity when there are none).
-  double distance(const Eigen::Vector3d& p) const;
+  // The distance from p to the nearest triangle (infinity when there are none). With a bound, the search
+  // stops at the first triangle within it and returns that triangle's distance (at most the bound): a
+  // Hausdorff distance needs a point's own distance only where it is beyond the largest one so far.
+  double distance(const Eigen::Vector3d& p, double bound = -1) const;
 
  private:
   Eigen::Vector3d vertex(int32_t v) const {

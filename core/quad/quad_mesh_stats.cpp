@@ -43,13 +43,14 @@ double hausdorff(const QuadMesh& q, const SurfaceMesh& surface) {
                           c = point(q.positions, tris[t + 2]);
     for (int i = 0; i <= 2; ++i)
       for (int j = 0; i + j <= 2; ++j)
-        worst = std::max(worst, toInput.distance(a + (b - a) * (i / 2.0) + (c - a) * (j / 2.0)));
+        worst = std::max(worst, toInput.distance(a + (b - a) * (i / 2.0) + (c - a) * (j / 2.0), worst));
   }
   const int32_t nf = static_cast<int32_t>(surface.triangles.size() / 3);
   for (int32_t f = 0; f < nf; ++f) {
     Eigen::Vector3d p[3];
     facePositions(surface, f, p);
-    worst = std::max({worst, toQuads.distance(p[0]), toQuads.distance((p[0] + p[1] + p[2]) / 3)});
+    worst = std::max(worst, toQuads.distance(p[0], worst));
+    worst = std::max(worst, toQuads.distance((p[0] + p[1] + p[2]) / 3, worst));
   }
   return worst;
 }

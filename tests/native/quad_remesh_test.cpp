@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <random>
 #include <set>
 
 #include "common/input_error.h"
@@ -148,6 +150,38 @@ QuadMeshStats measureCube(const CubeQuads& c, double h) {
   const MeshTopology t = buildTopology(c.surface);
   const MeshGeometry g = computeMeshGeometry(c.surface, t);
   return measureQuadMesh(c.quads, c.surface, g, c.axisField, 4, c.corners, h);
+}
+
+// The grid's distance against every triangle's, at points on, near and far from a torus; with a bound, the
+// exact distance wherever it is beyond the bound and at most the bound elsewhere (the Hausdorff distance's
+// early stop).
+TEST(TriangleGrid, DistancesAgreeWithEveryTriangleAndABoundStopsOnlyWithinIt) {
+  const SurfaceMesh m = torus(24, 12, 1.0, 0.3);
+  const TriangleGrid grid(m.positions, m.triangles);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coordinate(-2.0, 2.0), bound(0.0, 0.5);
+  int beyond = 0, within = 0;
+  for (int k = 0; k < 400; ++k) {
+    const Eigen::Vector3d p(coordinate(rng), coordinate(rng), 0.5 * coordinate(rng));
+    double exact = std::numeric_limits<double>::infinity();
+    for (std::size_t t = 0; t < m.triangles.size(); t += 3) {
+      const Eigen::Vector3d a(&m.positions[3 * m.triangles[t]]), b(&m.positions[3 * m.triangles[t + 1]]),
+          c(&m.positions[3 * m.triangles[t + 2]]);
+      exact = std::min(exact, (closestPointOnTriangle(p, a, b, c) - p).norm());
+    }
+    EXPECT_NEAR(grid.distance(p), exact, 1e-12);
+    const double b = bound(rng), bounded = grid.distance(p, b);
+    if (exact > b) {
+      EXPECT_NEAR(bounded, exact, 1e-12);
+      ++beyond;
+    } else {
+      EXPECT_LE(bounded, b);
+      EXPECT_GE(bounded, exact - 1e-12);
+      ++within;
+    }
+  }
+  EXPECT_GT(beyond, 50);
+  EXPECT_GT(within, 50);
 }
 
 TEST(QuadMeshStats, AHandMadeCubeGridMeasuresAsItsDefinitionsSay) {
