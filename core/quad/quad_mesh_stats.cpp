@@ -34,6 +34,21 @@ std::vector<int32_t> fanTriangles(const QuadMesh& q) {
   return tris;
 }
 
+// Singularities with another within h: swept in order of x, each compared with those less than h further
+// along.
+int32_t crowdedSingularities(const SurfaceMesh& surface, const std::vector<Singularity>& singularities,
+                             double h) {
+  std::vector<Eigen::Vector3d> x;
+  for (const Singularity& s : singularities) x.push_back(point(surface.positions, s.vertex));
+  std::sort(x.begin(), x.end(),
+            [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.x() < b.x(); });
+  std::vector<uint8_t> crowded(x.size(), 0);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (std::size_t j = i + 1; j < x.size() && x[j].x() - x[i].x() < h; ++j)
+      if ((x[j] - x[i]).norm() < h) crowded[i] = crowded[j] = 1;
+  return static_cast<int32_t>(std::count(crowded.begin(), crowded.end(), 1));
+}
+
 double hausdorff(const QuadMesh& q, const SurfaceMesh& surface) {
   const std::vector<int32_t> tris = fanTriangles(q);
   double worst = 0;
@@ -98,6 +113,7 @@ QuadMeshStats measureQuadMesh(const QuadMesh& q, const SurfaceMesh& surface, con
   s.eulerCharacteristic = s.vertices - s.edges + s.faces;
 
   s.fieldSingularities = static_cast<int32_t>(singularities.size());
+  s.crowdedSingularities = crowdedSingularities(surface, singularities, h);
   int32_t near = 0;
   for (int32_t v = 0; v < s.vertices; ++v) {
     if (onBoundary[v] || valence[v] == 4 || valence[v] == 0) continue;

@@ -24,6 +24,9 @@ struct QuadMeshStats {
   // Of the irregular vertices, the share within two edge lengths (straight-line) of a field singularity, and
   // the largest such distance in edge lengths (0 when there are none).
   double irregularNearSingularity = 1, irregularFarthest = 0;
+  // Field singularities within one edge length (straight line) of another: no grid of that size fits between
+  // them, so where they are many the parametrization folds (a noisy field, creases as bands of features).
+  int32_t crowdedSingularities = 0;
   // Per edge, the angle between its chord (projected into the input face each end lies in) and the nearest of
   // the field's directions there, the mean of the two ends: median and 90th percentile, in degrees.
   double edgeAngleMedianDeg = 0, edgeAngleP90Deg = 0;

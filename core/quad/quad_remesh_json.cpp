@@ -50,6 +50,7 @@ nlohmann::json quadRemeshJson(const QuadRemeshResult& r) {
           {"fieldSingularities", s.fieldSingularities},
           {"irregularNearSingularity", s.irregularNearSingularity},
           {"irregularFarthest", s.irregularFarthest},
+          {"crowdedSingularities", s.crowdedSingularities},
           {"edgeAngleMedianDeg", s.edgeAngleMedianDeg},
           {"edgeAngleP90Deg", s.edgeAngleP90Deg},
           {"hausdorffRelative", s.hausdorffRelative},

@@ -196,6 +196,10 @@ TEST(QuadMeshStats, AHandMadeCubeGridMeasuresAsItsDefinitionsSay) {
   EXPECT_EQ(s.valence3, 8);
   EXPECT_DOUBLE_EQ(s.irregularNearSingularity, 1.0);
   EXPECT_NEAR(s.irregularFarthest, 0.0, 1e-12);
+  EXPECT_EQ(s.crowdedSingularities, 0);  // the corners are an edge of the cube (3 h) apart
+  // Quads longer than the cube's edge: every corner has another closer than a quad.
+  EXPECT_EQ(measureCube(c, 1.01).crowdedSingularities, 8);
+  EXPECT_EQ(measureCube(c, 0.99).crowdedSingularities, 0);
   EXPECT_NEAR(s.edgeAngleMedianDeg, 0.0, 1e-9);
   EXPECT_NEAR(s.edgeAngleP90Deg, 0.0, 1e-9);
   EXPECT_NEAR(s.hausdorffRelative, 0.0, 1e-12);
@@ -226,6 +230,7 @@ TEST(QuadMeshStats, FlipsDegeneraciesHolesDistancesAndAnglesAreCounted) {
   EXPECT_EQ(s.eulerCharacteristic, 1);
   EXPECT_LT(s.irregularNearSingularity, 1.0);
   EXPECT_NEAR(s.irregularFarthest, 3 * std::sqrt(3.0), 1e-9);  // the opposite corner: sqrt(3) / h
+  EXPECT_EQ(s.crowdedSingularities, 8);                        // all eight at one vertex
   // A quad with a vertex twice is degenerate.
   c = cubeQuads(3);
   c.quads.faceVertices[c.quads.faceStart[1] + 2] = c.quads.faceVertices[c.quads.faceStart[1] + 1];

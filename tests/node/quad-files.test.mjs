@@ -11,6 +11,7 @@ import { quadGlb, quadObj } from '../../web/quad/quad-files.js';
 import {
   meanEdgeLength, remeshTarget, triangulate, uniqueEdges, valences, vertexNormals,
 } from '../../web/quad/quad-mesh.js';
+import { statsLines } from '../../web/quad/panel.js';
 import { cubeQuads, mixedPolygons, parseObj } from './quad-fixtures.mjs';
 
 const point = (p, v) => [p[3 * v], p[3 * v + 1], p[3 * v + 2]];
@@ -179,4 +180,22 @@ test('GLB: the Khronos glTF-Validator reports no error, and three.js loads the t
     assert.equal(geometry.getAttribute('position').count, mesh.positions.length / 3);
     assert.equal(geometry.index.count, triangulate(mesh).length);
   }
+});
+
+// The panel's lines from the core's statistics: counts grouped, and a line on singularities closer than a quad only
+// where there are some, with what helps only where the grid folded (a polygon left or a flipped face).
+test("the panel says where the field's singularities crowd closer than a quad, and what helps where it folded", () => {
+  const stats = {
+    quads: 18589, faces: 18597, quadShare: 18589 / 18597, irregularVertices: 166, irregularNearSingularity: 1,
+    fieldSingularities: 175, edgeAngleMedianDeg: 3.85, edgeAngleP90Deg: 11.4, hausdorffRelative: 0.0052,
+    aspectMedian: 1.106, flippedFaces: 0, degenerateFaces: 0, manifold: true, ms: 56083, crowdedSingularities: 0,
+  };
+  const clean = statsLines(stats);
+  assert.equal(clean[0], 'Quads: 18,589 of 18,597 faces (99.96 %)');
+  assert.ok(!clean.some((l) => l.startsWith('Singularities closer')));
+  const crowdedLine = (s) => statsLines(s).find((l) => l.startsWith('Singularities closer than a quad'));
+  assert.equal(crowdedLine({ ...stats, crowdedSingularities: 156 }),
+    'Singularities closer than a quad: 156: smaller quads, or fewer features, give cleaner quads');
+  assert.equal(crowdedLine({ ...stats, quads: 18597, crowdedSingularities: 2 }), 'Singularities closer than a quad: 2');
+  assert.match(crowdedLine({ ...stats, quads: 18597, flippedFaces: 1, crowdedSingularities: 2 }), /smaller quads/);
 });

@@ -16,9 +16,15 @@ const degrees = (x) => `${x.toFixed(1)}°`;
 const seconds = (ms) => (ms < 1000 ? `${Math.round(ms)} ms` : `${(ms / 1000).toFixed(1)} s`);
 const threeSignificant = (x) => Number(x.toPrecision(3));
 
-// The statistics (the core's statsJson) as the panel's lines.
+// The statistics (the core's statsJson) as the panel's lines; where the field's singularities crowd closer than a
+// quad, a line saying so, and where the grid folded there (polygons left, flipped faces) what helps.
 export function statsLines(s) {
   const near = s.irregularVertices > 0 ? `, ${percent(s.irregularNearSingularity, 0)} near one` : '';
+  const folded = s.flippedFaces > 0 || s.quads < s.faces;
+  const advice = folded ? ': smaller quads, or fewer features, give cleaner quads' : '';
+  const crowded = s.crowdedSingularities > 0 ?
+    [`Singularities closer than a quad: ${s.crowdedSingularities}${advice}`] :
+    [];
   return [
     `Quads: ${grouped(s.quads)} of ${grouped(s.faces)} faces (${percent(s.quadShare, 2)})`,
     `Irregular vertices: ${s.irregularVertices} (field singularities: ${s.fieldSingularities}${near})`,
@@ -26,6 +32,7 @@ export function statsLines(s) {
     `Hausdorff: ${percent(s.hausdorffRelative, 2)} of the diagonal`,
     `Aspect: median ${s.aspectMedian.toFixed(2)}`,
     `Flipped: ${s.flippedFaces}, degenerate: ${s.degenerateFaces}${s.manifold ? '' : ', not manifold'}`,
+    ...crowded,
     `Time: ${seconds(s.ms)}`,
   ];
 }
