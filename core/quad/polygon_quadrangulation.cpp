@@ -202,6 +202,14 @@ std::vector<Eigen::Vector3d> surfaceNormals(const QuadMesh& m, const SurfaceMesh
 }  // namespace
 
 int32_t quadrangulatePolygons(QuadMesh& m, const SurfaceMesh& surface) {
+  // Most meshes have no polygon to split: then the edge table is not built at all.
+  auto splittable = [&](int32_t f) {
+    const int32_t n = m.faceStart[f + 1] - m.faceStart[f];
+    return n >= 6 && n <= kLargestQuadrangulatedPolygon;
+  };
+  bool any = false;
+  for (int32_t f = 0; f < m.numFaces() && !any; ++f) any = splittable(f);
+  if (!any) return 0;
   Valences v = valences(m);
   std::vector<int32_t> start{0}, corners;
   corners.reserve(m.faceVertices.size());
@@ -211,10 +219,12 @@ int32_t quadrangulatePolygons(QuadMesh& m, const SurfaceMesh& surface) {
     const int n = m.faceStart[f + 1] - m.faceStart[f];
     std::vector<std::array<int, 4>> parts;
     // A polygon with a vertex twice is kept: a part could hold it twice (degenerate).
-    std::vector<int32_t> distinct(c, c + n);
-    std::sort(distinct.begin(), distinct.end());
-    const bool repeats = std::adjacent_find(distinct.begin(), distinct.end()) != distinct.end();
-    if (n >= 6 && n <= kLargestQuadrangulatedPolygon && !repeats) {
+    auto repeats = [&] {
+      std::vector<int32_t> distinct(c, c + n);
+      std::sort(distinct.begin(), distinct.end());
+      return std::adjacent_find(distinct.begin(), distinct.end()) != distinct.end();
+    };
+    if (splittable(f) && !repeats()) {
       std::vector<int32_t> base(n);
       int irregularNow = 0;
       for (int k = 0; k < n; ++k) {
