@@ -11,6 +11,7 @@
 //                             [--reopen [--reload]]   (the mesh opened again, over itself or in the page
 //                             reloaded: reopenExactFieldMs, loadModel to its exact field, the ordering, preview
 //                             parts and picking tree kept; with --texture its texture made again too)
+//                             [--trace-reopen FILE]   (a Chromium trace of every thread over the reopening)
 //                             [--undo N]   (after the strokes, N undos then N redos, each timed as a stroke
 //                             is: undoMs, redoMs (pageMs), undoUpdateMs/redoUpdateMs and undoSolveMs (the core's))
 //                             [--stripes N]   (then the stripes: turned on, and N strokes' updates: stripes*
@@ -292,6 +293,9 @@ async function reopenBench(page, url) {
     await page.evaluate(() => window.tvf.ready);
     await page.evaluate(() => window.tvf.settled());
   }
+  const traceFile = arg('--trace-reopen', null);
+  const categories = ['toplevel', 'v8', 'gpu', 'disabled-by-default-devtools.timeline', 'devtools.timeline'];
+  if (traceFile) await page.context().browser().startTracing(page, { path: traceFile, categories });
   const r = await page.evaluate(async (u) => {
     window.__longTasks.length = 0;
     const t0 = performance.now();
@@ -305,6 +309,7 @@ async function reopenBench(page, url) {
     const tasks = window.__longTasks.splice(0);
     return { firstMs, exactMs, analyzeMs, factorMs, analysisReused, previewTimings, pickingTreeKept, phases, tasks };
   }, url);
+  if (traceFile) await page.context().browser().stopTracing();
   return {
     reopenFirstFieldMs: r.firstMs,
     reopenExactFieldMs: r.exactMs,

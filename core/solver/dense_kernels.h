@@ -8,10 +8,21 @@
 // Small blocks, most of a mesh's supernodes, go to Eigen's kernels inline instead: a native BLAS may take a
 // lock of its own for each call's buffers (OpenBLAS's blas_memory_alloc), which threads factoring side by
 // side then wait on (bunny00 natively: each of two subtrees 45 ms alone, 95 ms together).
+//
+// In wasm every block goes to the two-lane kernels (solver/lane_kernels.h): Eigen 3.4 has no wasm SIMD, so
+// both its inline products and its BLAS run there one double at a time.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+#include "solver/lane_kernels.h"
+
 namespace tvf::blas {
+
+#ifdef __EMSCRIPTEN__
+constexpr bool kLaneKernels = true;
+#else
+constexpr bool kLaneKernels = false;
+#endif
 
 #ifdef __EMSCRIPTEN__
 using Status = int;
@@ -52,6 +63,7 @@ using ConstBlock = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
 
 // C (n x n, lower) = A A' for A n x k; column-major, leading dimensions as given.
 inline void syrkLower(int n, int k, const double* a, int lda, double* c, int ldc) {
+  if constexpr (kLaneKernels) return lanes::syrkLower(n, k, a, lda, c, ldc, false);
   if (0.5 * n * n * k > kInlineFlops) {
     const double one = 1, zero = 0;
     dsyrk_("L", "N", &n, &k, &one, a, &lda, &zero, c, &ldc);
@@ -66,6 +78,7 @@ inline void syrkLower(int n, int k, const double* a, int lda, double* c, int ldc
 // C (m x n) = A B' for A m x k, B n x k.
 inline void gemmNT(int m, int n, int k, const double* a, int lda, const double* b, int ldb, double* c,
                    int ldc) {
+  if constexpr (kLaneKernels) return lanes::gemmNT(m, n, k, a, lda, b, ldb, c, ldc, false);
   if (static_cast<double>(m) * n * k > kInlineFlops) {
     const double one = 1, zero = 0;
     dgemm_("N", "T", &m, &n, &k, &one, a, &lda, b, &ldb, &zero, c, &ldc);
@@ -81,6 +94,7 @@ inline void gemmNT(int m, int n, int k, const double* a, int lda, const double* 
 inline void gemmNTSubtract(int m, int n, int k, const double* a, int lda, const double* b, int ldb, double* c,
                            int ldc) {
   if (m <= 0 || n <= 0 || k <= 0) return;
+  if constexpr (kLaneKernels) return lanes::gemmNT(m, n, k, a, lda, b, ldb, c, ldc, true);
   if (static_cast<double>(m) * n * k > kInlineFlops) {
     const double minusOne = -1, one = 1;
     dgemm_("N", "T", &m, &n, &k, &minusOne, a, &lda, b, &ldb, &one, c, &ldc);
@@ -95,6 +109,7 @@ inline void gemmNTSubtract(int m, int n, int k, const double* a, int lda, const 
 // C (n x n, lower) -= A A' for A n x k.
 inline void syrkLowerSubtract(int n, int k, const double* a, int lda, double* c, int ldc) {
   if (n <= 0 || k <= 0) return;
+  if constexpr (kLaneKernels) return lanes::syrkLower(n, k, a, lda, c, ldc, true);
   if (0.5 * n * n * k > kInlineFlops) {
     const double minusOne = -1, one = 1;
     dsyrk_("L", "N", &n, &k, &minusOne, a, &lda, &one, c, &ldc);
@@ -108,6 +123,7 @@ inline void syrkLowerSubtract(int n, int k, const double* a, int lda, double* c,
 // B (m x n) = B L'^-1 for L n x n lower triangular.
 inline void trsmRightLowerTransposed(int m, int n, const double* l, int ldl, double* b, int ldb) {
   if (m <= 0 || n <= 0) return;
+  if constexpr (kLaneKernels) return lanes::trsmRightLowerTransposed(m, n, l, ldl, b, ldb);
   if (0.5 * m * n * n > kInlineFlops) {
     const double one = 1;
     dtrsm_("R", "L", "T", "N", &m, &n, &one, l, &ldl, b, &ldb);
@@ -121,6 +137,7 @@ inline void trsmRightLowerTransposed(int m, int n, const double* l, int ldl, dou
 // The lower Cholesky factor of the n x n block at a, in place; 0, or the 1-based column that is not
 // positive.
 inline int potrfLower(int n, double* a, int lda) {
+  if constexpr (kLaneKernels) return lanes::potrfLower(n, a, lda);
   int info = 0;
   if (n * n * (n / 3.0) > kInlineFlops) {
     dpotrf_("L", &n, a, &lda, &info);

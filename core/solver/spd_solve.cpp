@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "solver/cholmod_handles.h"
+#include "solver/supernodal_cholesky.h"
 
 namespace tvf {
 
@@ -36,7 +37,9 @@ struct SpdFactor::Impl {
       inner.assign(upper.innerIndexPtr(), upper.innerIndexPtr() + upper.nonZeros());
       factor.reset(cholmod_analyze(&A, &c));
     }
-    if (!factor || !cholmod_factorize(&A, factor.get(), &c) || c.status != CHOLMOD_OK) return;
+    // One thread: CHOLMOD's factorization natively, the project's in wasm (SIMD kernels there).
+    SupernodalReport report;
+    if (!factor || !factorSupernodal(A, *factor, 1, c, report) || c.status != CHOLMOD_OK) return;
     ok = factor->minor >= n;  // else not positive definite
   }
 };

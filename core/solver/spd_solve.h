@@ -1,6 +1,7 @@
 #pragma once
 // Sparse SPD systems factored for their own solves and then dropped: CHOLMOD's supernodal Cholesky with AMD
-// ordering. For systems made once each (an atlas chart's conformal map; a stripe pattern's LOBPCG), where
+// ordering (in wasm its numeric factorization is the project's, solver/supernodal_cholesky.h, on SIMD
+// kernels). For systems made once each (an atlas chart's conformal map; a stripe pattern's LOBPCG), where
 // FactoredSystem's machinery for updates (the conversion to LDL', the kept forward solution) would be
 // overhead. armadillo-sub2's 648 chart solves took 2.3 s this way, natively; Eigen's simplicial LDL' of A^T A
 // (its ordering, analysis, factorization and the product) had about 48 % of a 10 s run's profile.

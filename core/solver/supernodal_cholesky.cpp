@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <functional>
+#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +18,7 @@ namespace tvf {
 namespace {
 
 std::atomic<bool> failThreadsOnce{false};
+std::atomic<bool> ownFactorizationAlone{blas::kLaneKernels};
 
 // The supernodal factor's arrays (CHOLMOD's layout): supernode s holds columns super[s] .. super[s+1]-1,
 // its rows are ls[pi[s] .. pi[s+1]) (its own columns first, ascending), and its values the column-major
@@ -53,8 +56,12 @@ PermutedLower permutedLower(const cholmod_sparse& A, const std::vector<int>& inv
   splitRows(
       0, n, parts, [&](int j) { return static_cast<double>(Ap[j + 1] - Ap[j]); }, bounds.data());
   std::vector<std::vector<int>> next(parts, std::vector<int>(n + 1, 0));
-  ThreadTeam& team = ThreadTeam::shared();
-  team.run(parts, [&](int t) {
+  // One part runs here without the team, which may be what could not start.
+  const auto run = [parts](const std::function<void(int)>& task) {
+    if (parts == 1) return task(0);
+    ThreadTeam::shared().run(parts, task);
+  };
+  run([&](int t) {
     int* count = next[t].data();
     for (int j = bounds[t]; j < bounds[t + 1]; ++j)
       for (int q = Ap[j]; q < Ap[j + 1]; ++q) ++count[std::min(inverse[Ai[q]], inverse[j])];
@@ -69,7 +76,7 @@ PermutedLower permutedLower(const cholmod_sparse& A, const std::vector<int>& inv
   S.p[n] = at;
   S.i.resize(at);
   S.x.resize(at);
-  team.run(parts, [&](int t) {
+  run([&](int t) {
     int* place = next[t].data();
     for (int j = bounds[t]; j < bounds[t + 1]; ++j)
       for (int q = Ap[j]; q < Ap[j + 1]; ++q) {
@@ -315,37 +322,85 @@ bool factorSerially(cholmod_sparse& A, cholmod_factor& L, cholmod_common& c, Sup
   return cholmod_factorize(&A, &L, &c) != 0;
 }
 
+// L numeric and marked LL', ready for the project's factorization; false where CHOLMOD could not allocate.
+bool prepareNumeric(cholmod_factor& L, cholmod_common& c) {
+  if (L.xtype == CHOLMOD_PATTERN && !cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, &L, &c)) return false;
+  L.is_ll = 1;
+  return true;
+}
+
+PermutedLower permutedLower(const cholmod_sparse& A, const cholmod_factor& L, int parts) {
+  std::vector<int> inverse(L.n);
+  for (size_t k = 0; k < L.n; ++k) inverse[static_cast<const int*>(L.Perm)[k]] = static_cast<int>(k);
+  return permutedLower(A, inverse, parts);
+}
+
+// c.status and L.minor as cholmod_factorize leaves them.
+bool finish(cholmod_factor& L, cholmod_common& c, const Factorization& f) {
+  c.status = CHOLMOD_OK;
+  L.minor = static_cast<size_t>(f.failedColumn());
+  if (L.minor < L.n) c.status = CHOLMOD_NOT_POSDEF;
+  return true;
+}
+
+// The project's factorization on this thread alone, every supernode after its descendants.
+bool factorOnOneThread(cholmod_sparse& A, cholmod_factor& L, cholmod_common& c, SupernodalReport& report,
+                       std::string why) {
+  report = SupernodalReport();
+  report.singleThreadWhy = std::move(why);
+  if (!prepareNumeric(L, c)) return false;
+  PermutedLower S = permutedLower(A, L, 1);
+  Factorization f(supernodesOf(L), S);
+  std::vector<int> nodes(L.nsuper);
+  std::iota(nodes.rbegin(), nodes.rend(), 0);
+  const std::vector<char> mine(L.nsuper, 1);
+  Workspace w;
+  f.prepare(w, L.maxcsize);
+  f.factorAll(nodes, w, mine);
+  return finish(L, c, f);
+}
+
+// One thread's factorization of a supernodal L: in wasm the project's, whose dense kernels use the SIMD
+// lanes (CHOLMOD's would call Eigen's BLAS, one double at a time there); natively CHOLMOD's, with the BLAS.
+bool factorSupernodalAlone(cholmod_sparse& A, cholmod_factor& L, cholmod_common& c, SupernodalReport& report,
+                           std::string why) {
+  if (ownFactorizationAlone.load()) return factorOnOneThread(A, L, c, report, std::move(why));
+  return factorSerially(A, L, c, report, std::move(why));
+}
+
 }  // namespace
 
 void failNextSupernodalThreads() {
   failThreadsOnce = true;
 }
 
+bool setOwnFactorizationAlone(bool own) {
+  return ownFactorizationAlone.exchange(own);
+}
+
 bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_common& c,
                       SupernodalReport& report) {
   report = SupernodalReport();
-  if (parts <= 1) return factorSerially(A, L, c, report, "");
   if (!L.is_super)
-    return factorSerially(A, L, c, report, "the factor is simplicial (too little fill to split)");
+    return factorSerially(A, L, c, report,
+                          parts <= 1 ? "" : "the factor is simplicial (too little fill to split)");
+  if (parts <= 1) return factorSupernodalAlone(A, L, c, report, "");
   ThreadTeam* team = nullptr;
   try {
     team = &ThreadTeam::shared();
   } catch (const std::exception& e) {
-    return factorSerially(A, L, c, report, std::string("the helper threads could not start: ") + e.what());
+    return factorSupernodalAlone(A, L, c, report,
+                                 std::string("the helper threads could not start: ") + e.what());
   }
   parts = std::min(parts, ThreadTeam::maxParts());
-  if (L.xtype == CHOLMOD_PATTERN && !cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, &L, &c)) return false;
-  L.is_ll = 1;
+  if (!prepareNumeric(L, c)) return false;
   PermutedLower S;
   Factorization f(supernodesOf(L), S);
   const SubtreePartition partition = partitionSubtrees(f.parent(), f.work(), parts);
   if (partition.groups.size() < 2)
-    return factorSerially(A, L, c, report, "the elimination tree has no subtrees worth splitting");
+    return factorSupernodalAlone(A, L, c, report, "the elimination tree has no subtrees worth splitting");
   const int groups = static_cast<int>(partition.groups.size());
-  std::vector<int> inverse(L.n);
-  for (size_t k = 0; k < L.n; ++k) inverse[static_cast<const int*>(L.Perm)[k]] = static_cast<int>(k);
-  S = permutedLower(A, inverse, groups);
-  std::vector<int>().swap(inverse);
+  S = permutedLower(A, L, groups);
   std::vector<Workspace> spaces(groups);
   std::vector<std::vector<char>> mine(groups + 1, std::vector<char>(L.nsuper, 0));
   for (int g = 0; g < groups; ++g)
@@ -363,19 +418,17 @@ bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_c
     ran.fetch_add(1);
   });
   if (ran.load() < groups)
-    return factorSerially(A, L, c, report,
-                          "a helper thread did not run its part of the factorization (" +
-                              std::to_string(ran.load()) + " of " + std::to_string(groups) + " parts ran)");
+    return factorSupernodalAlone(A, L, c, report,
+                                 "a helper thread did not run its part of the factorization (" +
+                                     std::to_string(ran.load()) + " of " + std::to_string(groups) +
+                                     " parts ran)");
   for (Workspace& w : spaces) f.linkPending(w);
   for (int g = 0; g < groups; ++g) f.prepare(spaces[g], L.maxcsize, g == 0);
   f.factorTop(partition.top, spaces, groups, mine[groups]);
   report.parts = groups;
   report.subtreeShare =
       1.0 - static_cast<double>(partition.topWork) / static_cast<double>(partition.totalWork);
-  c.status = CHOLMOD_OK;
-  L.minor = static_cast<size_t>(f.failedColumn());
-  if (L.minor < L.n) c.status = CHOLMOD_NOT_POSDEF;
-  return true;
+  return finish(L, c, f);
 }
 
 }  // namespace tvf

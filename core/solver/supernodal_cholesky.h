@@ -25,12 +25,18 @@ struct SupernodalReport {
 // For a test: the next factorization's helper tasks fail as a thread that cannot start would, once.
 void failNextSupernodalThreads();
 
+// For a test: whether one thread runs the project's factorization (as in wasm) rather than CHOLMOD's;
+// returns the previous choice.
+bool setOwnFactorizationAlone(bool own);
+
 // A: symmetric, upper triangle stored (as for cholmod_factorize); L: CHOLMOD's symbolic supernodal analysis
 // of A (or a numeric supernodal factor of the same analysis, overwritten). Runs on up to `parts` threads
 // (common/thread_team.h); on one, or where the tree has no subtrees worth splitting, it is CHOLMOD's own
-// cholmod_factorize. Sets c.status and L.minor as cholmod_factorize does (CHOLMOD_NOT_POSDEF, with L.minor
-// the first column that failed, when A is not numerically positive definite; the factor is then not usable).
-// Returns false only when CHOLMOD could not allocate.
+// cholmod_factorize natively and the same supernode by supernode factorization on one thread in wasm (whose
+// dense kernels, solver/lane_kernels.h, are SIMD there where the BLAS is not). Sets c.status and L.minor as
+// cholmod_factorize does (CHOLMOD_NOT_POSDEF, with L.minor the first column that failed, when A is not
+// numerically positive definite; the factor is then not usable). Returns false only when CHOLMOD could not
+// allocate.
 bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_common& c,
                       SupernodalReport& report);
 

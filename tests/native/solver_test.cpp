@@ -796,6 +796,53 @@ TEST(FactoredSystem, ParallelFactorizationEqualsTheSerialOne) {
   expectParallelFactorEqualsSerial(smooth, "bi-Laplacian", 1e-9);
 }
 
+// The project's factorization on one thread (the wasm build's, whose kernels there are SIMD) gives CHOLMOD's
+// factor up to the order of its sums, and fails as CHOLMOD does where the matrix is not positive definite.
+TEST(FactoredSystem, TheOwnFactorizationOnOneThreadEqualsCholmods) {
+  for (const auto& [name, mesh] :
+       {std::pair{"sphere", icosphere(5)}, std::pair{"torus", torus(120, 60, 2.0, 0.7)}}) {
+    Designer d(mesh);
+    SparseMatrix A = d.baseMatrix();
+    SparseMatrix shift(A.rows(), A.cols());
+    shift.setIdentity();
+    A += (1e-4 * A.diagonal().mean()) * shift;
+    Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 1.0), cholmods, own;
+    const auto solveWith = [&](bool ownAlone, Eigen::VectorXd& x) {
+      const bool before = setOwnFactorizationAlone(ownAlone);
+      FactoredSystem f;
+      f.setThreads(1);
+      f.setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
+      const bool ok = f.factor(A);
+      setOwnFactorizationAlone(before);
+      ASSERT_TRUE(ok) << name;
+      EXPECT_EQ(f.timings().factorThreads, 1);
+      f.solve(b, x);
+    };
+    solveWith(false, cholmods);
+    solveWith(true, own);
+    EXPECT_LT(relativeDifference(own, cholmods), 1e-12) << name;
+    // Indefinite: a negative diagonal entry fails both.
+    SparseMatrix bad = A;
+    bad.coeffRef(A.rows() / 2, A.rows() / 2) = -bad.coeff(A.rows() / 2, A.rows() / 2) * 1e6;
+    const auto fails = [&](bool ownAlone) {
+      const bool before = setOwnFactorizationAlone(ownAlone);
+      FactoredSystem f;
+      f.setThreads(1);
+      f.setEdgeGraph(d.edgeVertices(), d.mesh().numVertices());
+      bool ok = true;
+      try {
+        ok = f.factor(bad);
+      } catch (const std::exception&) {
+        ok = false;
+      }
+      setOwnFactorizationAlone(before);
+      return !ok;
+    };
+    EXPECT_TRUE(fails(false)) << name;
+    EXPECT_TRUE(fails(true)) << name;
+  }
+}
+
 // A helper thread that cannot run its part (the test hook stands for a thread that fails to start) leaves the
 // factorization to one thread, with the reason in the session's stats, and the field is the same.
 TEST(Designer, AFailedFactorizationThreadFallsBackToOneWithTheReason) {

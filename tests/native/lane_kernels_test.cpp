@@ -1,0 +1,131 @@
+// The wasm build's dense kernels (solver/lane_kernels.h), compiled natively: each against its definition
+// evaluated by plain loops, on shapes that leave every remainder of the 4 x 4 blocks, inside larger arrays
+// (leading dimensions above the rows) whose other entries must stay as they were.
+#include "solver/lane_kernels.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace {
+
+using Matrix = std::vector<double>;  // column-major, with its leading dimension beside it
+
+Matrix randomMatrix(int rows, int cols, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Matrix m(static_cast<size_t>(rows) * cols);
+  for (double& x : m) x = u(rng);
+  return m;
+}
+
+double maxAbsDifference(const Matrix& a, const Matrix& b) {
+  double d = 0;
+  for (size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
+  return d;
+}
+
+const int kSizes[] = {1, 2, 3, 4, 5, 7, 8, 9, 17, 33, 70};
+
+TEST(LaneKernels, ProductsEqualTheirSumsAndLeaveTheRestAlone) {
+  std::mt19937 rng(7);
+  for (int m : kSizes)
+    for (int n : {1, 3, 4, 6, 13})
+      for (int k : {0, 1, 2, 5, 19})
+        for (bool subtract : {false, true}) {
+          const int lda = m + 3, ldb = n + 2, ldc = m + 5;
+          const Matrix a = randomMatrix(lda, std::max(k, 1), rng), b = randomMatrix(ldb, std::max(k, 1), rng);
+          Matrix c = randomMatrix(ldc, n, rng), expected = c;
+          for (int j = 0; j < n; ++j)
+            for (int i = 0; i < m; ++i) {
+              double s = 0;
+              for (int p = 0; p < k; ++p) s += a[i + p * lda] * b[j + p * ldb];
+              double& e = expected[i + j * ldc];
+              e = subtract ? e - s : s;
+            }
+          tvf::lanes::gemmNT(m, n, k, a.data(), lda, b.data(), ldb, c.data(), ldc, subtract);
+          EXPECT_LT(maxAbsDifference(c, expected), 1e-13) << m << " x " << n << " x " << k;
+        }
+}
+
+TEST(LaneKernels, SymmetricProductsWriteTheLowerTriangleOnly) {
+  std::mt19937 rng(11);
+  for (int n : kSizes)
+    for (int k : {0, 1, 4, 7, 32})
+      for (bool subtract : {false, true}) {
+        const int lda = n + 1, ldc = n + 4;
+        const Matrix a = randomMatrix(lda, std::max(k, 1), rng);
+        Matrix c = randomMatrix(ldc, n, rng), expected = c;
+        for (int j = 0; j < n; ++j)
+          for (int i = j; i < n; ++i) {
+            double s = 0;
+            for (int p = 0; p < k; ++p) s += a[i + p * lda] * a[j + p * lda];
+            double& e = expected[i + j * ldc];
+            e = subtract ? e - s : s;
+          }
+        tvf::lanes::syrkLower(n, k, a.data(), lda, c.data(), ldc, subtract);
+        EXPECT_LT(maxAbsDifference(c, expected), 1e-13) << n << " x " << k;
+      }
+}
+
+// A lower triangular L with a dominant diagonal, in an array of leading dimension ld.
+Matrix lowerTriangular(int n, int ld, std::mt19937& rng) {
+  Matrix l = randomMatrix(ld, n, rng);
+  for (int j = 0; j < n; ++j) l[j + j * ld] = 2 + std::abs(l[j + j * ld]);
+  return l;
+}
+
+TEST(LaneKernels, TheTriangularSolveInvertsItsProduct) {
+  std::mt19937 rng(13);
+  for (int m : kSizes)
+    for (int n : {1, 2, 5, 16, 17, 40}) {
+      const int ldl = n + 2, ldb = m + 3;
+      const Matrix l = lowerTriangular(n, ldl, rng);
+      const Matrix x = randomMatrix(ldb, n, rng);
+      Matrix b = x;  // B = X L', then solved back to X; rows past m stay as they were
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j < n; ++j) {
+          double s = 0;
+          for (int q = 0; q <= j; ++q) s += x[i + q * ldb] * l[j + q * ldl];
+          b[i + j * ldb] = s;
+        }
+      tvf::lanes::trsmRightLowerTransposed(m, n, l.data(), ldl, b.data(), ldb);
+      EXPECT_LT(maxAbsDifference(b, x), 1e-12) << m << " x " << n;
+    }
+}
+
+TEST(LaneKernels, TheCholeskyFactorMultipliesBackAndFindsTheFirstBadPivot) {
+  std::mt19937 rng(17);
+  for (int n : {1, 2, 3, 5, 31, 32, 33, 64, 97}) {
+    const int ld = n + 3;
+    const Matrix g = lowerTriangular(n, n, rng);
+    Matrix a = randomMatrix(ld, n, rng);  // A = G G' below the diagonal; above it, what must stay
+    for (int j = 0; j < n; ++j)
+      for (int i = j; i < n; ++i) {
+        double s = 0;
+        for (int q = 0; q <= j; ++q) s += g[i + q * n] * g[j + q * n];
+        a[i + j * ld] = s;
+      }
+    const Matrix before = a;
+    ASSERT_EQ(tvf::lanes::potrfLower(n, a.data(), ld), 0) << n;
+    double worst = 0;
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < j; ++i) EXPECT_EQ(a[i + j * ld], before[i + j * ld]);
+      for (int i = j; i < n; ++i) {
+        double s = 0;
+        for (int q = 0; q <= j; ++q) s += a[i + q * ld] * a[j + q * ld];
+        worst = std::max(worst, std::abs(s - before[i + j * ld]) / (1 + std::abs(before[i + j * ld])));
+      }
+    }
+    EXPECT_LT(worst, 1e-13) << n;
+    if (n < 3) continue;
+    // The same matrix with a pivot made negative part-way: that column, 1-based, and not before.
+    Matrix bad = before;
+    const int column = n / 2 + 1;
+    bad[column + column * ld] = -bad[column + column * ld];
+    EXPECT_EQ(tvf::lanes::potrfLower(n, bad.data(), ld), column + 1) << n;
+  }
+}
+
+}  // namespace
