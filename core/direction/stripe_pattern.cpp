@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -15,6 +16,7 @@
 #include "common/sparse_matrix.h"
 #include "dec/hodge_star.h"
 #include "mesh/mesh_geometry.h"
+#include "solver/lane_kernels.h"
 #include "solver/spd_solve.h"
 
 namespace tvf {
@@ -305,6 +307,31 @@ struct Basis {
   Eigen::MatrixXd q, fromS;  // q = S fromS
 };
 
+// X C for X tall (rows x cols, leading dimension ld) and C small, and X' Y for X and Y tall: on the lane
+// kernels (solver/lane_kernels.h), where Eigen's products pack their operands and, in wasm, run one double at
+// a time (bunny00's pattern in wasm: most of each step).
+Eigen::MatrixXd tallTimes(const double* x, Eigen::Index rows, Eigen::Index cols, Eigen::Index ld,
+                          const Eigen::MatrixXd& C) {
+  Eigen::MatrixXd out(rows, C.cols());
+  const Eigen::MatrixXd ct = C.transpose();
+  lanes::gemmNT(static_cast<int>(rows), static_cast<int>(C.cols()), static_cast<int>(cols), x,
+                static_cast<int>(ld), ct.data(), static_cast<int>(std::max<Eigen::Index>(ct.rows(), 1)),
+                out.data(), static_cast<int>(std::max<Eigen::Index>(rows, 1)), false);
+  return out;
+}
+
+Eigen::MatrixXd tallTimes(const Eigen::MatrixXd& X, const Eigen::MatrixXd& C) {
+  return tallTimes(X.data(), X.rows(), X.cols(), std::max<Eigen::Index>(X.rows(), 1), C);
+}
+
+Eigen::MatrixXd gramOf(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y) {
+  Eigen::MatrixXd out(X.cols(), Y.cols());
+  const int ld = static_cast<int>(std::max<Eigen::Index>(X.rows(), 1));
+  lanes::gemmTN(static_cast<int>(X.cols()), static_cast<int>(Y.cols()), static_cast<int>(X.rows()), X.data(),
+                ld, Y.data(), ld, out.data(), static_cast<int>(std::max<Eigen::Index>(X.cols(), 1)));
+  return out;
+}
+
 Basis orthonormalBasis(const Eigen::MatrixXd& S, const Eigen::VectorXd& mass) {
   // Columns scaled to unit B-norm first: a converging residual's direction is tiny beside the vectors, and
   // the Gram matrix's relative floor would drop it.
@@ -314,7 +341,7 @@ Basis orthonormalBasis(const Eigen::MatrixXd& S, const Eigen::VectorXd& mass) {
     scale[j] = norm > 0 ? 1.0 / norm : 0.0;
   }
   const Eigen::MatrixXd scaled = S * scale.asDiagonal();
-  const Eigen::MatrixXd gram = scaled.transpose() * mass.asDiagonal() * scaled;
+  const Eigen::MatrixXd gram = gramOf(scaled, mass.asDiagonal() * scaled);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (gram + gram.transpose()));
   const Eigen::VectorXd d = eig.eigenvalues();
   const double floor = 1e-10 * std::max(d.maxCoeff(), 1e-300);
@@ -326,7 +353,7 @@ Basis orthonormalBasis(const Eigen::MatrixXd& S, const Eigen::VectorXd& mass) {
   for (size_t j = 0; j < keep.size(); ++j)
     b.fromS.col(static_cast<Eigen::Index>(j)) = eig.eigenvectors().col(keep[j]) / std::sqrt(d[keep[j]]);
   b.fromS = scale.asDiagonal() * b.fromS;
-  b.q = S * b.fromS;
+  b.q = tallTimes(S, b.fromS);
   return b;
 }
 
@@ -363,16 +390,16 @@ void smallestEigenvector(const SparseMatrix& upper, const Eigen::VectorXd& mass,
   for (out.iterations = 0;;) {
     const Basis basis = orthonormalBasis(S, mass);
     const Eigen::MatrixXd aq = A * basis.q;
-    const Eigen::MatrixXd h = basis.q.transpose() * aq;
+    const Eigen::MatrixXd h = gramOf(basis.q, aq);
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ritz(0.5 * (h + h.transpose()));
     const Eigen::Index m = std::min<Eigen::Index>(k, ritz.eigenvalues().size());
     const Eigen::MatrixXd y = ritz.eigenvectors().leftCols(m);
     theta = ritz.eigenvalues().head(m);
     const Eigen::MatrixXd c = basis.fromS * y;  // the new vectors in S's columns
-    x = basis.q * y;
-    p = kx > 0 ? Eigen::MatrixXd(S.rightCols(S.cols() - kx) * c.bottomRows(c.rows() - kx))
+    x = tallTimes(basis.q, y);
+    p = kx > 0 ? tallTimes(S.data() + kx * n, n, S.cols() - kx, n, c.bottomRows(c.rows() - kx))
                : Eigen::MatrixXd(n, 0);
-    const Eigen::MatrixXd ax = aq * y;
+    const Eigen::MatrixXd ax = tallTimes(aq, y);
     const Eigen::MatrixXd r = ax - mass.asDiagonal() * x * theta.asDiagonal();
     ++out.iterations;
     const double residual = r.col(0).norm() / std::max(ax.col(0).norm(), 1e-300);

@@ -124,7 +124,53 @@ int factorDiagonalBlock(int w, double* d, size_t ld) {
   return 0;
 }
 
+// c[r][q] = the dot products of columns r of A and q of B (k long), R x C of them at once.
+template <int R, int C>
+void dots(int k, const double* a, size_t lda, const double* b, size_t ldb, double (&c)[R][C]) {
+  Lanes2 acc[R][C];
+  for (int r = 0; r < R; ++r)
+    for (int q = 0; q < C; ++q) acc[r][q] = splat(0);
+  int p = 0;
+  for (; p + 2 <= k; p += 2) {
+    Lanes2 bv[C];
+    for (int q = 0; q < C; ++q) bv[q] = load2(b + q * ldb + p);
+    for (int r = 0; r < R; ++r) {
+      const Lanes2 av = load2(a + r * lda + p);
+      for (int q = 0; q < C; ++q) acc[r][q] += av * bv[q];
+    }
+  }
+  for (int r = 0; r < R; ++r)
+    for (int q = 0; q < C; ++q) {
+      c[r][q] = acc[r][q][0] + acc[r][q][1];
+      if (p < k) c[r][q] += a[r * lda + p] * b[q * ldb + p];
+    }
+}
+
 }  // namespace
+
+void gemmTN(int m, int n, int k, const double* a, int lda, const double* b, int ldb, double* c, int ldc) {
+  const size_t la = static_cast<size_t>(lda), lb = static_cast<size_t>(ldb), lc = static_cast<size_t>(ldc);
+  for (int j = 0; j < n; j += 4) {
+    const int cols = std::min(4, n - j);
+    for (int i = 0; i < m; i += 2) {
+      double block[2][4];
+      const double* ai = a + i * la;
+      const double* bj = b + j * lb;
+      if (i + 2 <= m && cols == 4) {
+        dots<2, 4>(k, ai, la, bj, lb, block);
+      } else {  // an edge: one column pair at a time
+        for (int r = 0; r < std::min(2, m - i); ++r)
+          for (int q = 0; q < cols; ++q) {
+            double one[1][1];
+            dots<1, 1>(k, ai + r * la, la, bj + q * lb, lb, one);
+            block[r][q] = one[0][0];
+          }
+      }
+      for (int r = 0; r < std::min(2, m - i); ++r)
+        for (int q = 0; q < cols; ++q) c[i + r + (j + q) * lc] = block[r][q];
+    }
+  }
+}
 
 void gemmNT(int m, int n, int k, const double* a, int lda, const double* b, int ldb, double* c, int ldc,
             bool subtract) {

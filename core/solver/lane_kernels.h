@@ -11,6 +11,9 @@ namespace tvf::lanes {
 void gemmNT(int m, int n, int k, const double* a, int lda, const double* b, int ldb, double* c, int ldc,
             bool subtract);
 
+// C (m x n) = A' B for A k x m and B k x n: the Gram products of tall matrices (k long, m and n small).
+void gemmTN(int m, int n, int k, const double* a, int lda, const double* b, int ldb, double* c, int ldc);
+
 // C (n x n) = A A', or C -= A A', for A n x k: the lower triangle only, the strict upper left as it was.
 void syrkLower(int n, int k, const double* a, int lda, double* c, int ldc, bool subtract);
 

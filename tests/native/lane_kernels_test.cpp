@@ -49,6 +49,25 @@ TEST(LaneKernels, ProductsEqualTheirSumsAndLeaveTheRestAlone) {
         }
 }
 
+TEST(LaneKernels, GramProductsOfTallMatricesEqualTheirDotProducts) {
+  std::mt19937 rng(5);
+  for (int m : {1, 2, 3, 4, 5, 12})
+    for (int n : {1, 3, 4, 7, 12})
+      for (int k : {0, 1, 2, 7, 64, 1001}) {
+        const int lda = k + 3, ldb = k + 1, ldc = m + 2;
+        const Matrix a = randomMatrix(lda, m, rng), b = randomMatrix(ldb, n, rng);
+        Matrix c = randomMatrix(ldc, n, rng), expected = c;
+        for (int j = 0; j < n; ++j)
+          for (int i = 0; i < m; ++i) {
+            double s = 0;
+            for (int p = 0; p < k; ++p) s += a[p + i * lda] * b[p + j * ldb];
+            expected[i + j * ldc] = s;
+          }
+        tvf::lanes::gemmTN(m, n, k, a.data(), lda, b.data(), ldb, c.data(), ldc);
+        EXPECT_LT(maxAbsDifference(c, expected), 1e-12) << m << " x " << n << " x " << k;
+      }
+}
+
 TEST(LaneKernels, SymmetricProductsWriteTheLowerTriangleOnly) {
   std::mt19937 rng(11);
   for (int n : kSizes)
