@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "solver/cholmod_handles.h"
+#include "solver/dense_kernels.h"
 #include "solver/supernodal_cholesky.h"
+#include "solver/supernodal_solve.h"
 
 namespace tvf {
 
@@ -75,6 +77,12 @@ bool SpdFactor::solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) {
   if (!s.ok || static_cast<size_t>(b.rows()) != s.n) return false;
   x.resize(b.rows(), b.cols());
   if (s.n == 0 || b.cols() == 0) return true;
+  // A block in wasm: by supernodes on the lane kernels (CHOLMOD's would call Eigen's BLAS, one double at a
+  // time there); one column keeps CHOLMOD's, whose triangular solves by rows suit it.
+  if (blas::kLaneKernels && b.cols() > 1 && s.factor->is_super) {
+    solveSupernodal(*s.factor, b.data(), static_cast<int>(b.cols()), x.data());
+    return x.allFinite();
+  }
   cholmod_dense rhs{};
   rhs.nrow = s.n;
   rhs.ncol = static_cast<size_t>(b.cols());

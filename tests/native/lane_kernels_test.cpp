@@ -1,13 +1,18 @@
-// The wasm build's dense kernels (solver/lane_kernels.h), compiled natively: each against its definition
-// evaluated by plain loops, on shapes that leave every remainder of the 4 x 4 blocks, inside larger arrays
-// (leading dimensions above the rows) whose other entries must stay as they were.
+// The wasm build's dense kernels (solver/lane_kernels.h) and the supernodal solve on them, compiled natively:
+// each against its definition evaluated by plain loops, on shapes that leave every remainder of the 4 x 4
+// blocks, inside larger arrays (leading dimensions above the rows) whose other entries must stay as they
+// were.
 #include "solver/lane_kernels.h"
 
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseCholesky>
 #include <cmath>
 #include <random>
 #include <vector>
+
+#include "solver/cholmod_handles.h"
+#include "solver/supernodal_solve.h"
 
 namespace {
 
@@ -148,3 +153,41 @@ TEST(LaneKernels, TheCholeskyFactorMultipliesBackAndFindsTheFirstBadPivot) {
 }
 
 }  // namespace
+
+// The solve with CHOLMOD's supernodal factor on the lane kernels (solver/supernodal_solve.h) against Eigen's
+// own factorization of the same matrix: a 2D grid's Laplacian plus a shift and random long-range couplings
+// (so that the supernodes have rows below them of every kind), for 1 to 5 right-hand sides.
+TEST(SupernodalSolve, AgreesWithAnIndependentFactorization) {
+  const int side = 40, n = side * side;
+  std::vector<Eigen::Triplet<double>> t;
+  std::mt19937 rng(3);
+  const auto couple = [&](int i, int j, double w) {
+    t.emplace_back(i, j, -w), t.emplace_back(j, i, -w), t.emplace_back(i, i, w), t.emplace_back(j, j, w);
+  };
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
+      const int i = y * side + x;
+      t.emplace_back(i, i, 0.1);
+      if (x + 1 < side) couple(i, i + 1, 1.0);
+      if (y + 1 < side) couple(i, i + side, 1.0);
+      if (i % 97 == 0) couple(i, static_cast<int>(rng() % n), 0.5);
+    }
+  tvf::SparseMatrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  const tvf::SparseMatrix upper = tvf::upperTriangle(A);
+  tvf::CholmodCommon common;
+  common->supernodal = CHOLMOD_SUPERNODAL;
+  cholmod_sparse view = tvf::upperTriangleView(upper);
+  tvf::CholmodFactorPtr L(cholmod_analyze(&view, common.get()), {common.get()});
+  ASSERT_TRUE(L && cholmod_factorize(&view, L.get(), common.get()));
+  ASSERT_TRUE(L->is_super && L->is_ll);
+  const Eigen::SimplicialLDLT<tvf::SparseMatrix> truth(A);
+  for (int nrhs = 1; nrhs <= 5; ++nrhs) {
+    const Matrix b = randomMatrix(n, nrhs, rng);
+    Matrix x(b.size());
+    tvf::solveSupernodal(*L, b.data(), nrhs, x.data());
+    const Eigen::MatrixXd expected = truth.solve(Eigen::Map<const Eigen::MatrixXd>(b.data(), n, nrhs));
+    const Eigen::Map<const Eigen::MatrixXd> got(x.data(), n, nrhs);
+    EXPECT_LT((got - expected).cwiseAbs().maxCoeff() / expected.cwiseAbs().maxCoeff(), 1e-12) << nrhs;
+  }
+}
