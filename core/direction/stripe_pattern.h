@@ -41,14 +41,16 @@ struct StripeOptions {
   // between direction and spacing. A frequency factor e^u with du ^ (nu Y) = -d(nu Y) (a linear equation: u
   // is fixed along the field's lines, free across them), solved in the least-squares sense with some
   // smoothness (a cross field's two families together), makes nu e^u Y nearly closed: the stripes follow the
-  // field, their spacing changes along it (clamped to [1/4, 4] of the asked one, its area mean the asked one).
-  // Near the field's singularities, where that spacing runs off, the equation fades out.
+  // field, their spacing changes along it (clamped to [1/4, 4] of the asked one, its area mean the asked
+  // one). Near the field's singularities, where that spacing runs off, the equation fades out.
   bool adaptSpacing = false;
   // Optional, one per vertex: the frequency's factor there (the paper's Sec. 6.3 spacing from the field's
   // magnitude); empty for none.
   std::vector<double> vertexFrequencyScale;
   int maxIterations = 200;
-  double tolerance = 1e-6;  // on the first Ritz vector's relative residual |A x - theta B x| / |A x|
+  // On the first Ritz vector's relative residual |A x - theta B x| / |A x| (|A x| floored at 1e-4 |A| |x|,
+  // for an eigenvalue of 0).
+  double tolerance = 1e-6;
   // Optional: a start for psi (a pattern computed before for a field close to this one), 2 x families per
   // vertex.
   std::vector<double> initialPsi;
@@ -67,7 +69,8 @@ struct StripePattern {
   double residual = 0;      // |A psi - eigenvalue B psi| / |A psi| when the iteration stopped
   int iterations = 0;
   double factorMs = 0, iterateMs = 0, spacingMs = 0;
-  // adaptSpacing: the frequency's factor per vertex it chose (empty otherwise), on top of vertexFrequencyScale.
+  // adaptSpacing: the frequency's factor per vertex it chose (empty otherwise), on top of
+  // vertexFrequencyScale.
   std::vector<double> spacing;
   bool analysisReused = false;  // the factorization reused a workspace's symbolic analysis
 };
