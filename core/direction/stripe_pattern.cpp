@@ -314,7 +314,7 @@ struct Basis {
 
 // X C for X tall (rows x cols, leading dimension ld) and C small, and X' Y for X and Y tall: on the lane
 // kernels (solver/lane_kernels.h), where Eigen's products pack their operands and, in wasm, run one double at
-// a time (bunny00's pattern in wasm: most of each step).
+// a time (bunny00's pattern in wasm: about half of each step).
 Eigen::MatrixXd tallTimes(const double* x, Eigen::Index rows, Eigen::Index cols, Eigen::Index ld,
                           const Eigen::MatrixXd& C) {
   Eigen::MatrixXd out(rows, C.cols());
