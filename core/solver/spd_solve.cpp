@@ -78,7 +78,7 @@ bool SpdFactor::solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x) {
   x.resize(b.rows(), b.cols());
   if (s.n == 0 || b.cols() == 0) return true;
   // A block in wasm: by supernodes on the lane kernels (CHOLMOD's would call Eigen's BLAS, one double at a
-  // time there); one column keeps CHOLMOD's, whose triangular solves by rows suit it.
+  // time there); one column keeps CHOLMOD's, the kernels' one-row products being scalar.
   if (blas::kLaneKernels && b.cols() > 1 && s.factor->is_super) {
     solveSupernodal(*s.factor, b.data(), static_cast<int>(b.cols()), x.data());
     return x.allFinite();

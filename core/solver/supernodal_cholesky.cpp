@@ -13,30 +13,13 @@
 #include "solver/dense_cholesky.h"
 #include "solver/dense_kernels.h"
 #include "solver/subtree_partition.h"
+#include "solver/supernodes.h"
 
 namespace tvf {
 namespace {
 
 std::atomic<bool> failThreadsOnce{false};
 std::atomic<bool> ownFactorizationAlone{blas::kLaneKernels};
-
-// The supernodal factor's arrays (CHOLMOD's layout): supernode s holds columns super[s] .. super[s+1]-1,
-// its rows are ls[pi[s] .. pi[s+1]) (its own columns first, ascending), and its values the column-major
-// nsrow x nscol block at x + px[s].
-struct Supernodes {
-  int n, count;
-  const int *super, *pi, *px, *ls;
-  double* x;
-  int first(int s) const { return super[s]; }
-  int cols(int s) const { return super[s + 1] - super[s]; }
-  int rows(int s) const { return pi[s + 1] - pi[s]; }
-};
-
-Supernodes supernodesOf(cholmod_factor& L) {
-  return {static_cast<int>(L.n),         static_cast<int>(L.nsuper),    static_cast<const int*>(L.super),
-          static_cast<const int*>(L.pi), static_cast<const int*>(L.px), static_cast<const int*>(L.s),
-          static_cast<double*>(L.x)};
-}
 
 // The lower triangle of P A P', column by column (rows unsorted): what each supernode assembles its columns
 // from.
