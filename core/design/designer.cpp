@@ -477,7 +477,7 @@ bool Designer::adoptFieldOrdering(const KeptOrdering& kept) {
 }
 
 void Designer::releaseFactors() {
-  impl_->eachSystem([](FieldSystem& s) { s.factor().release(); });
+  impl_->eachSystem([](FieldSystem& s) { s.releaseMemory(); });
 }
 const std::vector<int32_t>& Designer::edgeVertices() const {
   return impl_->mesh.topology().edgeVertices;

@@ -154,9 +154,9 @@ class Designer {
   // (FactoredSystem::adoptOrdering).
   KeptOrdering fieldOrdering() const;
   bool adoptFieldOrdering(const KeptOrdering& kept);
-  // Frees the field systems' numeric factors (ShiftedFactor::release), keeping the design, the field and the
-  // orderings: the next solve factors again. For a model about to be replaced, whose factor would otherwise
-  // share the memory with its successor's factorization.
+  // Frees the field systems' numeric factors and what they are made from (FieldSystem::releaseMemory),
+  // keeping the design, the field and the orderings: the next solve assembles and factors again. For a model
+  // about to be replaced, whose memory its successor's then takes (solver/factor_memory.h).
   void releaseFactors();
   const std::vector<int32_t>& edgeVertices() const;  // 2 per edge, lower index first
   // Derived from the mesh once, at construction; exports and benchmarks read them rather than derive again.

@@ -71,6 +71,9 @@ class FieldSystem {
   // The singularities of the smoothest field of the design as it now is without prescriptions (the field the
   // system in use before this one solved last, unedited since), so that it need not be solved again.
   virtual void seedSmoothestSingularities(std::map<int32_t, double>) {}
+  // Lets the factor go, and what it is made from where that is large (a model being replaced: its memory is
+  // where the next model's will go, solver/factor_memory.h); the next solve makes them again.
+  virtual void releaseMemory() { factor().release(); }
   // Takes the constraint set as it now is after the system was out of use (other constraints may have come
   // and gone); throws InputError naming what it cannot take, unchanged then.
   virtual void resume() = 0;

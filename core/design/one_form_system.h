@@ -23,6 +23,7 @@ class OneFormSystem final : public FieldSystem {
   // strongly weighted rows of the base (a vector constraint's three edge rows), like a fixed boundary's.
   void setFeatures(const std::vector<int32_t>& edges) override;
   void resume() override;
+  void releaseMemory() override;
 
   int32_t add(const ConstraintSpec& spec, DesignStats& stats) override;
   void remove(const ConstraintSpec& spec, DesignStats& stats) override;

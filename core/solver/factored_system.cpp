@@ -13,8 +13,10 @@
 #include "solver/backward_substitution.h"
 #include "solver/cholmod_handles.h"
 #include "solver/edge_dissection.h"
+#include "solver/factor_memory.h"
 #include "solver/forward_solution.h"
 #include "solver/supernodal_cholesky.h"
+#include "solver/symbolic_analysis.h"
 #include "solver/woodbury_correction.h"
 
 namespace tvf {
@@ -139,8 +141,10 @@ struct FactoredSystem::Impl {
   std::vector<int32_t> edgeVertices;
   int32_t numVertices = 0;
   bool usedDissection = false;  // the mesh's dissection ordered the last analysis
+  PermutedTriangle lower;       // the analysis's P A P', until the factorization takes it
 
   explicit Impl(FillOrdering o) : ordering(o) {
+    factor_memory::install();
     backward.setParts(threads);
     chooseOrdering(*common.get(), o);
     common->supernodal = CHOLMOD_AUTO;
@@ -304,13 +308,10 @@ struct FactoredSystem::Impl {
     return L;
   }
 
-  cholmod_factor* analyzeGiven(cholmod_sparse& A, std::vector<int>& perm) {
-    cholmod_common& c = *common.get();
-    const auto saved = c.method[0];
-    c.method[0].ordering = CHOLMOD_GIVEN;
-    cholmod_factor* L = cholmod_analyze_p(&A, perm.data(), nullptr, 0, &c);
-    c.method[0] = saved;
-    return L;
+  // What cholmod_analyze_p makes of a given ordering (symbolic_analysis.h), with the permuted lower triangle
+  // kept for the factorization.
+  cholmod_factor* analyzeGiven(cholmod_sparse& A, const std::vector<int>& perm) {
+    return analyzeOrdering(A, perm, factorThreads, *common.get(), lower);
   }
 
   // Nested dissection of the mesh's vertex graph (edge cuts, widened where A couples edges further apart),
@@ -348,6 +349,10 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
 
 bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<double>& diagonal) {
   Impl& s = *impl_;
+  // What the factor let go last kept for this one's values, until it is made (factor_memory.h).
+  const struct KeptUntilMade {
+    ~KeptUntilMade() { factor_memory::releaseKept(); }
+  } kept;
   s.deferred.clear();  // the matrix given holds whatever was deferred
   s.factor.reset();    // the previous factor goes before the new one is made
   s.n = static_cast<int>(upper.rows());
@@ -382,7 +387,8 @@ bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<do
   }
   start = std::chrono::steady_clock::now();
   SupernodalReport threading;
-  factorSupernodal(view, *s.factor, s.factorThreads, *s.common.get(), threading);
+  factorSupernodal(view, *s.factor, s.factorThreads, *s.common.get(), threading, &s.lower);
+  s.lower = PermutedTriangle();
   s.timings.factorMs = msSince(start);
   s.timings.factorThreads = threading.parts;
   s.timings.singleThreadWhy = threading.singleThreadWhy;
@@ -559,6 +565,7 @@ bool FactoredSystem::factored() const {
 void FactoredSystem::release() {
   Impl& s = *impl_;
   s.deferred.clear();
+  factor_memory::keepWhatIsFreed();  // for the next factorization, most likely of a model like this one
   s.factor.reset();
   s.forward = ForwardSolution();
   s.backward = BackwardSubstitution();
@@ -591,7 +598,8 @@ std::string FactoredSystem::description() const {
   std::string threading;
   if (s.timings.factorThreads > 1)
     threading = " on " + std::to_string(s.timings.factorThreads) + " threads (" +
-                std::to_string(static_cast<int>(100 * s.timings.subtreeShare + 0.5)) + " % of its work in subtrees)";
+                std::to_string(static_cast<int>(100 * s.timings.subtreeShare + 0.5)) +
+                " % of its work in subtrees)";
   else if (!s.timings.singleThreadWhy.empty())
     threading = " on one thread (" + s.timings.singleThreadWhy + ")";
   return std::string(s.wasSupernodal ? "supernodal LL'" : "simplicial LDL'") + threading +

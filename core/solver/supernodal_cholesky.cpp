@@ -12,6 +12,7 @@
 #include "common/thread_team.h"
 #include "solver/dense_cholesky.h"
 #include "solver/dense_kernels.h"
+#include "solver/permuted_triangle.h"
 #include "solver/subtree_partition.h"
 #include "solver/supernodes.h"
 
@@ -20,56 +21,6 @@ namespace {
 
 std::atomic<bool> failThreadsOnce{false};
 std::atomic<bool> ownFactorizationAlone{blas::kLaneKernels};
-
-// The lower triangle of P A P', column by column (rows unsorted): what each supernode assembles its columns
-// from.
-struct PermutedLower {
-  std::vector<int> p, i;
-  std::vector<double> x;
-};
-
-// From A's upper triangle (column j: rows <= j) and the inverse permutation, on `parts` threads: each counts,
-// then places, the entries of its share of A's columns (its own counts per column of the result).
-PermutedLower permutedLower(const cholmod_sparse& A, const std::vector<int>& inverse, int parts) {
-  const int n = static_cast<int>(A.ncol);
-  const int* Ap = static_cast<const int*>(A.p);
-  const int* Ai = static_cast<const int*>(A.i);
-  const double* Ax = static_cast<const double*>(A.x);
-  std::vector<int> bounds(parts + 1);
-  splitRows(
-      0, n, parts, [&](int j) { return static_cast<double>(Ap[j + 1] - Ap[j]); }, bounds.data());
-  std::vector<std::vector<int>> next(parts, std::vector<int>(n + 1, 0));
-  // One part runs here without the team, which may be what could not start.
-  const auto run = [parts](const std::function<void(int)>& task) {
-    if (parts == 1) return task(0);
-    ThreadTeam::shared().run(parts, task);
-  };
-  run([&](int t) {
-    int* count = next[t].data();
-    for (int j = bounds[t]; j < bounds[t + 1]; ++j)
-      for (int q = Ap[j]; q < Ap[j + 1]; ++q) ++count[std::min(inverse[Ai[q]], inverse[j])];
-  });
-  PermutedLower S;
-  S.p.assign(n + 1, 0);
-  int at = 0;
-  for (int k = 0; k < n; ++k) {
-    S.p[k] = at;
-    for (int t = 0; t < parts; ++t) at += std::exchange(next[t][k], at);
-  }
-  S.p[n] = at;
-  S.i.resize(at);
-  S.x.resize(at);
-  run([&](int t) {
-    int* place = next[t].data();
-    for (int j = bounds[t]; j < bounds[t + 1]; ++j)
-      for (int q = Ap[j]; q < Ap[j + 1]; ++q) {
-        const int a = inverse[Ai[q]], b = inverse[j], slot = place[std::min(a, b)]++;
-        S.i[slot] = std::max(a, b);
-        S.x[slot] = Ax[q];
-      }
-  });
-  return S;
-}
 
 // One thread's scratch: row positions within the supernode being factored (indexed by row of L), the
 // descendants' rows mapped to them, and the update block of one descendant.
@@ -84,7 +35,7 @@ class Factorization {
   // A top supernode with dense work (nscol^2 nsrow) above this is factored on all threads.
   static constexpr double kSharedFlops = 4e6;
 
-  Factorization(const Supernodes& sn, const PermutedLower& S) : sn_(sn), S_(S) {
+  Factorization(const Supernodes& sn, const PermutedTriangle& S) : sn_(sn), S_(S) {
     superMap_.resize(sn.n);
     for (int s = 0; s < sn.count; ++s) std::fill(&superMap_[sn.super[s]], &superMap_[sn.super[s + 1]], s);
     head_.assign(sn.count, -1);
@@ -278,7 +229,7 @@ class Factorization {
   }
 
   Supernodes sn_;
-  const PermutedLower& S_;
+  const PermutedTriangle& S_;
   std::vector<int> superMap_, head_, next_, lpos_, parent_;
   std::vector<int64_t> work_;
   std::atomic<int> failed_{sn_.n};
@@ -312,10 +263,13 @@ bool prepareNumeric(cholmod_factor& L, cholmod_common& c) {
   return true;
 }
 
-PermutedLower permutedLower(const cholmod_sparse& A, const cholmod_factor& L, int parts) {
+// P A P's lower triangle with values, for L's permutation P, unless the analysis handed it on.
+PermutedTriangle permutedLower(const cholmod_sparse& A, const cholmod_factor& L, int parts,
+                               PermutedTriangle* given) {
+  if (given && !given->p.empty()) return std::exchange(*given, PermutedTriangle());
   std::vector<int> inverse(L.n);
   for (size_t k = 0; k < L.n; ++k) inverse[static_cast<const int*>(L.Perm)[k]] = static_cast<int>(k);
-  return permutedLower(A, inverse, parts);
+  return permutedTriangle(A, inverse, Triangle::Lower, true, parts);
 }
 
 // c.status and L.minor as cholmod_factorize leaves them.
@@ -328,11 +282,11 @@ bool finish(cholmod_factor& L, cholmod_common& c, const Factorization& f) {
 
 // The project's factorization on this thread alone, every supernode after its descendants.
 bool factorOnOneThread(cholmod_sparse& A, cholmod_factor& L, cholmod_common& c, SupernodalReport& report,
-                       std::string why) {
+                       std::string why, PermutedTriangle* lower) {
   report = SupernodalReport();
   report.singleThreadWhy = std::move(why);
   if (!prepareNumeric(L, c)) return false;
-  PermutedLower S = permutedLower(A, L, 1);
+  PermutedTriangle S = permutedLower(A, L, 1, lower);
   Factorization f(supernodesOf(L), S);
   std::vector<int> nodes(L.nsuper);
   std::iota(nodes.rbegin(), nodes.rend(), 0);
@@ -346,8 +300,8 @@ bool factorOnOneThread(cholmod_sparse& A, cholmod_factor& L, cholmod_common& c, 
 // One thread's factorization of a supernodal L: in wasm the project's, whose dense kernels use the SIMD
 // lanes (CHOLMOD's would call Eigen's BLAS, one double at a time there); natively CHOLMOD's, with the BLAS.
 bool factorSupernodalAlone(cholmod_sparse& A, cholmod_factor& L, cholmod_common& c, SupernodalReport& report,
-                           std::string why) {
-  if (ownFactorizationAlone.load()) return factorOnOneThread(A, L, c, report, std::move(why));
+                           std::string why, PermutedTriangle* lower) {
+  if (ownFactorizationAlone.load()) return factorOnOneThread(A, L, c, report, std::move(why), lower);
   return factorSerially(A, L, c, report, std::move(why));
 }
 
@@ -362,28 +316,29 @@ bool setOwnFactorizationAlone(bool own) {
 }
 
 bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_common& c,
-                      SupernodalReport& report) {
+                      SupernodalReport& report, PermutedTriangle* lower) {
   report = SupernodalReport();
   if (!L.is_super)
     return factorSerially(A, L, c, report,
                           parts <= 1 ? "" : "the factor is simplicial (too little fill to split)");
-  if (parts <= 1) return factorSupernodalAlone(A, L, c, report, "");
+  if (parts <= 1) return factorSupernodalAlone(A, L, c, report, "", lower);
   ThreadTeam* team = nullptr;
   try {
     team = &ThreadTeam::shared();
   } catch (const std::exception& e) {
     return factorSupernodalAlone(A, L, c, report,
-                                 std::string("the helper threads could not start: ") + e.what());
+                                 std::string("the helper threads could not start: ") + e.what(), lower);
   }
   parts = std::min(parts, ThreadTeam::maxParts());
   if (!prepareNumeric(L, c)) return false;
-  PermutedLower S;
+  PermutedTriangle S;
   Factorization f(supernodesOf(L), S);
   const SubtreePartition partition = partitionSubtrees(f.parent(), f.work(), parts);
   if (partition.groups.size() < 2)
-    return factorSupernodalAlone(A, L, c, report, "the elimination tree has no subtrees worth splitting");
+    return factorSupernodalAlone(A, L, c, report, "the elimination tree has no subtrees worth splitting",
+                                 lower);
   const int groups = static_cast<int>(partition.groups.size());
-  S = permutedLower(A, L, groups);
+  S = permutedLower(A, L, groups, lower);
   std::vector<Workspace> spaces(groups);
   std::vector<std::vector<char>> mine(groups + 1, std::vector<char>(L.nsuper, 0));
   for (int g = 0; g < groups; ++g)
@@ -404,7 +359,8 @@ bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_c
     return factorSupernodalAlone(A, L, c, report,
                                  "a helper thread did not run its part of the factorization (" +
                                      std::to_string(ran.load()) + " of " + std::to_string(groups) +
-                                     " parts ran)");
+                                     " parts ran)",
+                                 nullptr);
   for (Workspace& w : spaces) f.linkPending(w);
   for (int g = 0; g < groups; ++g) f.prepare(spaces[g], L.maxcsize, g == 0);
   f.factorTop(partition.top, spaces, groups, mine[groups]);

@@ -14,6 +14,8 @@
 
 #include <string>
 
+#include "solver/permuted_triangle.h"
+
 namespace tvf {
 
 struct SupernodalReport {
@@ -36,8 +38,9 @@ bool setOwnFactorizationAlone(bool own);
 // dense kernels, solver/lane_kernels.h, are SIMD there where the BLAS is not). Sets c.status and L.minor as
 // cholmod_factorize does (CHOLMOD_NOT_POSDEF, with L.minor the first column that failed, when A is not
 // numerically positive definite; the factor is then not usable). Returns false only when CHOLMOD could not
-// allocate.
+// allocate. lower: the lower triangle of P A P' with values where the analysis made it (symbolic_analysis.h),
+// taken instead of permuting A again; nullptr or empty: permuted here.
 bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_common& c,
-                      SupernodalReport& report);
+                      SupernodalReport& report, PermutedTriangle* lower = nullptr);
 
 }  // namespace tvf

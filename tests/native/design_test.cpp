@@ -230,3 +230,28 @@ TEST(Design, LazilyDerivedQuantitiesEqualEagerlyComputedOnes) {
     expectEager("the source's strength to zero", 1e-7);
   }
 }
+
+// A model about to be replaced lets its factor and base matrix go; kept after all (the replacement failed),
+// it solves to the same field, assembles and factors again once, and takes edits by updates as before.
+TEST(Design, ReleasingTheFactorsKeepsTheDesignAndItsField) {
+  for (const int symmetry : {1, 2}) {
+    Designer d(flatAnnulus(6, 48, 1.0, 2.0));
+    d.setSymmetry(symmetry);
+    d.setBoundary(BoundaryCondition::normal());
+    const double u[3] = {1, 0.3, 0};
+    d.addVector(10, u, 5.0);
+    if (symmetry == 1) d.addSource(3, 1.0);
+    d.solve();
+    const std::vector<double> before = d.faceVectors();
+    const int64_t factorizations = d.stats().factorizations;
+    d.releaseFactors();
+    d.solve();
+    SCOPED_TRACE(symmetry);
+    EXPECT_LT(relativeDifference(d.faceVectors(), before), 1e-9);
+    EXPECT_EQ(d.stats().factorizations, factorizations + 1);
+    d.addVector(40, u, 5.0);
+    d.solve();
+    EXPECT_EQ(d.stats().factorizations, factorizations + 1);  // an update, no factorization
+    EXPECT_GT(relativeDifference(d.faceVectors(), before), 1e-6);
+  }
+}

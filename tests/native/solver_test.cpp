@@ -14,12 +14,15 @@
 #include "design/designer.h"
 #include "mesh/mesh_checks.h"
 #include "mesh/mesh_topology.h"
+#include "solver/cholmod_handles.h"
 #include "solver/edge_dissection.h"
+#include "solver/factor_memory.h"
 #include "solver/factored_system.h"
 #include "solver/shifted_factor.h"
 #include "solver/spd_solve.h"
 #include "solver/subtree_partition.h"
 #include "solver/supernodal_cholesky.h"
+#include "solver/symbolic_analysis.h"
 #include "test_fields.h"
 #include "test_meshes.h"
 
@@ -1149,4 +1152,146 @@ TEST(SpdSolveOnce, MatchesAnIndependentFactorizationAndRefusesIndefinite) {
   SparseMatrix indefinite = A;
   indefinite.coeffRef(n / 2, n / 2) = -5.0;
   EXPECT_FALSE(solveSpdOnce(upperTriangle(indefinite), b, x));
+}
+
+namespace {
+
+// The settings FactoredSystem analyses with, the ordering given.
+void analysisSettings(cholmod_common& c) {
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_GIVEN;
+  c.postorder = 1;
+  c.supernodal = CHOLMOD_AUTO;
+  std::fill(std::begin(c.zrelax), std::end(c.zrelax), 0.0);
+  std::fill(std::begin(c.nrelax), std::end(c.nrelax), 0);
+  c.final_asis = 1;
+}
+
+template <typename T>
+std::vector<T> arrayOf(const void* p, size_t n) {
+  const T* t = static_cast<const T*>(p);
+  return std::vector<T>(t, t + n);
+}
+
+}  // namespace
+
+// The analysis on the project's permutations is cholmod_analyze_p's, array for array, for an ordering in no
+// particular order (the weighted postorder then relabels it), one already postordered (as a kept one is),
+// and the identity; its lower triangle of P A P' is Eigen's.
+TEST(SymbolicAnalysis, IsCholmodsForAGivenOrdering) {
+  for (const auto& [name, mesh] :
+       {std::pair{"sphere", icosphere(4)}, std::pair{"torus", torus(90, 40, 2.0, 0.7)}}) {
+    Designer d(mesh);
+    const SparseMatrix full = d.baseMatrix();
+    const SparseMatrix upper = upperTriangle(full);
+    cholmod_sparse A = upperTriangleView(upper);
+    const int n = static_cast<int>(A.ncol);
+    std::vector<int> shuffled(n);
+    std::iota(shuffled.begin(), shuffled.end(), 0);
+    std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(7));
+    CholmodCommon c;
+    analysisSettings(*c.get());
+    CholmodFactorPtr first(cholmod_analyze_p(&A, shuffled.data(), nullptr, 0, c.get()), {c.get()});
+    ASSERT_TRUE(first);
+    const std::vector<int> postordered = arrayOf<int>(first->Perm, n);
+    std::vector<int> identity(n);
+    std::iota(identity.begin(), identity.end(), 0);
+    int supernodal = 0;
+    for (const std::vector<int>& perm : {shuffled, postordered, identity})
+      for (const int parts : {1, 3}) {
+        CholmodFactorPtr theirs(cholmod_analyze_p(&A, const_cast<int*>(perm.data()), nullptr, 0, c.get()),
+                                {c.get()});
+        const double lnz = c->lnz, fl = c->fl;
+        PermutedTriangle lower;
+        CholmodFactorPtr ours(analyzeOrdering(A, perm, parts, *c.get(), lower), {c.get()});
+        ASSERT_TRUE(theirs && ours) << name;
+        EXPECT_EQ(c->lnz, lnz);
+        EXPECT_EQ(c->fl, fl);
+        ASSERT_EQ(ours->is_super, theirs->is_super) << name;
+        EXPECT_EQ(arrayOf<int>(ours->Perm, n), arrayOf<int>(theirs->Perm, n)) << name;
+        EXPECT_EQ(arrayOf<int>(ours->ColCount, n), arrayOf<int>(theirs->ColCount, n)) << name;
+        if (!theirs->is_super) continue;
+        ++supernodal;
+        ASSERT_EQ(ours->nsuper, theirs->nsuper) << name;
+        const size_t ns = theirs->nsuper + 1;
+        EXPECT_EQ(arrayOf<int>(ours->super, ns), arrayOf<int>(theirs->super, ns)) << name;
+        EXPECT_EQ(arrayOf<int>(ours->pi, ns), arrayOf<int>(theirs->pi, ns)) << name;
+        EXPECT_EQ(arrayOf<int>(ours->px, ns), arrayOf<int>(theirs->px, ns)) << name;
+        EXPECT_EQ(arrayOf<int>(ours->s, theirs->ssize), arrayOf<int>(theirs->s, theirs->ssize)) << name;
+        EXPECT_EQ(ours->maxcsize, theirs->maxcsize);
+        EXPECT_EQ(ours->maxesize, theirs->maxesize);
+        EXPECT_EQ(ours->xsize, theirs->xsize);
+        // The lower triangle of P A P' (row k of P A P' is row Perm[k] of A), by Eigen.
+        Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P(n);
+        for (int k = 0; k < n; ++k) P.indices()[static_cast<int>(static_cast<int*>(theirs->Perm)[k])] = k;
+        SparseMatrix permuted;
+        permuted = full.twistedBy(P);
+        ASSERT_EQ(lower.p.size(), static_cast<size_t>(n + 1));
+        for (int j = 0; j < n; ++j) {
+          std::vector<std::pair<int, double>> got, want;
+          for (int q = lower.p[j]; q < lower.p[j + 1]; ++q) got.emplace_back(lower.i[q], lower.x[q]);
+          for (SparseMatrix::InnerIterator it(permuted, j); it; ++it)
+            if (it.row() >= j) want.emplace_back(static_cast<int>(it.row()), it.value());
+          std::sort(got.begin(), got.end());
+          ASSERT_EQ(got, want) << name << " column " << j;
+        }
+      }
+    EXPECT_GT(supernodal, 0) << name;
+  }
+}
+
+// A bad ordering (a repeated column) is refused, not analysed.
+TEST(SymbolicAnalysis, RefusesWhatIsNotAPermutation) {
+  Designer d(icosphere(2));
+  const SparseMatrix upper = upperTriangle(d.baseMatrix());
+  cholmod_sparse A = upperTriangleView(upper);
+  std::vector<int> perm(A.ncol);
+  std::iota(perm.begin(), perm.end(), 0);
+  perm[3] = perm[4];
+  CholmodCommon c;
+  PermutedTriangle lower;
+  EXPECT_EQ(analyzeOrdering(A, perm, 1, *c.get(), lower), nullptr);
+  perm.pop_back();
+  EXPECT_EQ(analyzeOrdering(A, perm, 1, *c.get(), lower), nullptr);
+}
+
+// CHOLMOD's allocations through the factor memory's keeper (installed natively here as in wasm): the largest
+// block let go while keeping is held and given to the next request of about its size, a shrunk big block
+// keeps its room, and what is held is freed when asked.
+TEST(FactorMemory, KeepsTheLargestBlockLetGoForARequestOfItsSize) {
+  factor_memory::install(true);
+  CholmodCommon c;
+  const size_t big = factor_memory::kBigBytes / sizeof(double) + 1000;
+  double* values = static_cast<double*>(cholmod_malloc(big, sizeof(double), c.get()));
+  int* indices = static_cast<int*>(cholmod_malloc(big, sizeof(int), c.get()));
+  ASSERT_TRUE(values && indices);
+  values[big - 1] = 1;
+  // A shrunk big block stays where it is, with its room.
+  size_t count = big;
+  values = static_cast<double*>(cholmod_realloc(big - 10, sizeof(double), values, &count, c.get()));
+  EXPECT_EQ(count, big - 10);
+  void* const where = values;
+  factor_memory::keepWhatIsFreed();
+  cholmod_free(big - 10, sizeof(double), values, c.get());
+  cholmod_free(big, sizeof(int), indices, c.get());
+  EXPECT_GE(factor_memory::keptBytes(), big * sizeof(double));
+  // Too small a request (under three quarters of it) does not take it.
+  void* small = cholmod_malloc(big / 2, sizeof(double), c.get());
+  EXPECT_NE(small, where);
+  EXPECT_GT(factor_memory::keptBytes(), 0u);
+  cholmod_free(big / 2, sizeof(double), small, c.get());
+  // A request of its size does, zeroed when asked for by calloc.
+  double* again = static_cast<double*>(cholmod_calloc(big - 100, sizeof(double), c.get()));
+  EXPECT_EQ(again, where);
+  EXPECT_EQ(again[big - 101], 0.0);
+  EXPECT_EQ(factor_memory::keptBytes(), 0u);
+  // Freed while still keeping: held again; released: freed.
+  cholmod_free(big - 100, sizeof(double), again, c.get());
+  EXPECT_GT(factor_memory::keptBytes(), 0u);
+  factor_memory::releaseKept();
+  EXPECT_EQ(factor_memory::keptBytes(), 0u);
+  // No longer keeping: a block let go is freed.
+  double* later = static_cast<double*>(cholmod_malloc(big, sizeof(double), c.get()));
+  cholmod_free(big, sizeof(double), later, c.get());
+  EXPECT_EQ(factor_memory::keptBytes(), 0u);
 }
