@@ -39,23 +39,29 @@ using CholmodFactorPtr = std::unique_ptr<cholmod_factor, CholmodFactorDeleter>;
 using CholmodSparsePtr = std::unique_ptr<cholmod_sparse, CholmodSparseDeleter>;
 using CholmodDensePtr = std::unique_ptr<cholmod_dense, CholmodDenseDeleter>;
 
-// A view of a compressed upper triangle as CHOLMOD's packed, sorted, symmetric-upper sparse matrix: nothing
-// is copied, so it is valid while `upper` is.
-inline cholmod_sparse upperTriangleView(const SparseMatrix& upper) {
+// A view of compressed columns as CHOLMOD's packed sparse matrix (stype +1: the upper triangle of a symmetric
+// one, -1: its lower; x null: the pattern alone): nothing is copied, so it is valid while the arrays are.
+inline cholmod_sparse compressedView(size_t n, size_t nnz, const int* p, const int* i, const double* x,
+                                     int stype, bool sorted) {
   cholmod_sparse s{};
-  s.nrow = static_cast<size_t>(upper.rows());
-  s.ncol = static_cast<size_t>(upper.cols());
-  s.nzmax = static_cast<size_t>(upper.nonZeros());
-  s.p = const_cast<int*>(upper.outerIndexPtr());
-  s.i = const_cast<int*>(upper.innerIndexPtr());
-  s.x = const_cast<double*>(upper.valuePtr());
-  s.stype = 1;
+  s.nrow = s.ncol = n;
+  s.nzmax = nnz;
+  s.p = const_cast<int*>(p);
+  s.i = const_cast<int*>(i);
+  s.x = const_cast<double*>(x);
+  s.stype = stype;
   s.itype = CHOLMOD_INT;
-  s.xtype = CHOLMOD_REAL;
+  s.xtype = x ? CHOLMOD_REAL : CHOLMOD_PATTERN;
   s.dtype = CHOLMOD_DOUBLE;
-  s.sorted = 1;
+  s.sorted = sorted;
   s.packed = 1;
   return s;
+}
+
+// A compressed upper triangle as CHOLMOD's sorted, symmetric-upper sparse matrix.
+inline cholmod_sparse upperTriangleView(const SparseMatrix& upper) {
+  return compressedView(static_cast<size_t>(upper.cols()), static_cast<size_t>(upper.nonZeros()),
+                        upper.outerIndexPtr(), upper.innerIndexPtr(), upper.valuePtr(), 1, true);
 }
 
 }  // namespace tvf

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "common/thread_team.h"
+#include "solver/cholmod_handles.h"
 #include "solver/dense_cholesky.h"
 
 namespace tvf {
@@ -68,18 +69,8 @@ PermutedTriangle permutedTriangle(const cholmod_sparse& A, const std::vector<int
 }
 
 cholmod_sparse patternView(PermutedTriangle& t, Triangle which) {
-  cholmod_sparse s{};
-  s.nrow = s.ncol = t.p.size() - 1;
-  s.nzmax = t.i.size();
-  s.p = t.p.data();
-  s.i = t.i.data();
-  s.stype = which == Triangle::Upper ? 1 : -1;
-  s.itype = CHOLMOD_INT;
-  s.xtype = CHOLMOD_PATTERN;
-  s.dtype = CHOLMOD_DOUBLE;
-  s.sorted = 0;
-  s.packed = 1;
-  return s;
+  return compressedView(t.p.size() - 1, t.i.size(), t.p.data(), t.i.data(), nullptr,
+                        which == Triangle::Upper ? 1 : -1, false);
 }
 
 }  // namespace tvf
