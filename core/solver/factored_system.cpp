@@ -349,10 +349,15 @@ bool FactoredSystem::factor(const SparseMatrix& A) {
 
 bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<double>& diagonal) {
   Impl& s = *impl_;
-  // What the factor let go last kept for this one's values, until it is made (factor_memory.h).
-  const struct KeptUntilMade {
-    ~KeptUntilMade() { factor_memory::releaseKept(); }
-  } kept;
+  // Once made, or refused: the blocks the factor let go last, kept for this one (factor_memory.h), and the
+  // analysis's triangle are no longer wanted.
+  const struct Done {
+    Impl& s;
+    ~Done() {
+      s.lower = PermutedTriangle();
+      factor_memory::releaseKept();
+    }
+  } done{s};
   s.deferred.clear();  // the matrix given holds whatever was deferred
   s.factor.reset();    // the previous factor goes before the new one is made
   s.n = static_cast<int>(upper.rows());

@@ -263,7 +263,7 @@ bool prepareNumeric(cholmod_factor& L, cholmod_common& c) {
   return true;
 }
 
-// P A P's lower triangle with values, for L's permutation P, unless the analysis handed it on.
+// The lower triangle of P A P' with values, for L's permutation P, unless the analysis handed it on.
 PermutedTriangle permutedLower(const cholmod_sparse& A, const cholmod_factor& L, int parts,
                                PermutedTriangle* given) {
   if (given && !given->p.empty()) return std::exchange(*given, PermutedTriangle());
