@@ -48,6 +48,7 @@
 #include "field/whitney_reconstruction.h"
 #include "io/mesh_io.h"
 #include "mesh/icosphere.h"
+#include "solver/factor_memory.h"
 
 namespace {
 
@@ -210,8 +211,13 @@ class DesignerBinding {
     if (attempt(error, [&] {
           // The model being replaced lets its factor go first (its design and field stay): a big model opened
           // over itself otherwise factors beside a factor as big as its own in the same heap. Should the commit
-          // fail, the model kept factors again at its next solve.
-          if (designer_) designer_->releaseFactors();
+          // fail, the model kept factors again at its next solve. The same mesh opened again (same hash and N)
+          // gets the old factor's largest blocks for its own (solver/factor_memory.h); another model, the room.
+          if (designer_) {
+            if (designer_->meshHash() == pending_->meshHash() && designer_->symmetry() == pending_->symmetry())
+              tvf::factor_memory::keepWhatIsFreed();
+            designer_->releaseFactors();
+          }
           solvePrepared(*pending_, pendingRestored_);
           designer_ = std::move(pending_);
           ++modelSerial_;

@@ -21,7 +21,9 @@ constexpr int kHeldBlocks = 2;
 void install(bool natively = false);
 
 // The kHeldBlocks largest CHOLMOD blocks of at least kBigBytes freed from now until releaseKept() are held,
-// not freed; a request of the size of one, or up to a quarter less, is given it.
+// not freed; a request of the size of one, or up to a quarter less, is given it. For a model about to be
+// replaced by the same mesh (wasm/bindings.cpp commitModel): another model's factor, of other sizes, would
+// only find the held blocks in its way.
 void keepWhatIsFreed();
 
 // Frees the block held, if any, and ends keepWhatIsFreed().

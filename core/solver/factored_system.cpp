@@ -570,7 +570,6 @@ bool FactoredSystem::factored() const {
 void FactoredSystem::release() {
   Impl& s = *impl_;
   s.deferred.clear();
-  factor_memory::keepWhatIsFreed();  // for the next factorization, most likely of a model like this one
   s.factor.reset();
   s.forward = ForwardSolution();
   s.backward = BackwardSubstitution();
