@@ -54,9 +54,19 @@ cholmod_factor* analyzeOrdering(const cholmod_sparse& A, std::vector<int> perm, 
   std::vector<int> inverse;
   lower = PermutedTriangle();
   if (static_cast<int>(perm.size()) != n || !invert(perm, inverse)) return nullptr;
-  PermutedTriangle upper = permutedTriangle(A, inverse, Triangle::Upper, false, parts);
-  lower = permutedTriangle(A, inverse, Triangle::Lower, true, parts);
-  cholmod_sparse S = patternView(upper, Triangle::Upper), F = patternView(lower, Triangle::Lower);
+  // The upper pattern S of P A P' (the tree, the supernodes' rows) and its lower triangle F with values (the
+  // counts, then the factorization), for the ordering as it stands; the old ones go first.
+  PermutedTriangle upper;
+  cholmod_sparse S, F;
+  const auto permute = [&] {
+    upper = PermutedTriangle();
+    lower = PermutedTriangle();
+    upper = permutedTriangle(A, inverse, Triangle::Upper, false, parts);
+    lower = permutedTriangle(A, inverse, Triangle::Lower, true, parts);
+    S = patternView(upper, Triangle::Upper);
+    F = patternView(lower, Triangle::Lower);
+  };
+  permute();
   std::vector<int> parent(n), post(n), colCount(n), first(n), level(n);
   if (!cholmod_etree(&S, parent.data(), &c) ||
       cholmod_postorder(parent.data(), n, nullptr, post.data(), &c) != n ||
@@ -70,12 +80,7 @@ cholmod_factor* analyzeOrdering(const cholmod_sparse& A, std::vector<int> perm, 
     if (!isIdentity(post)) {
       relabel(post, perm, parent, colCount);
       invert(perm, inverse);
-      upper = PermutedTriangle();
-      lower = PermutedTriangle();
-      upper = permutedTriangle(A, inverse, Triangle::Upper, false, parts);
-      lower = permutedTriangle(A, inverse, Triangle::Lower, true, parts);
-      S = patternView(upper, Triangle::Upper);
-      F = patternView(lower, Triangle::Lower);
+      permute();
     }
   }
   cholmod_factor* L = cholmod_allocate_factor(n, &c);
