@@ -4,10 +4,10 @@
 // 800 MB of fresh heap took 280-740 ms there, 270 ms under node (docs/benchmarks.md). A model opened again
 // over itself lets its old factor go just before the new one is made (Designer::releaseFactors), but the
 // new model, built meanwhile, splits the room the old factor leaves, and the new factor's values land on
-// fresh heap above it: 0.65-0.95 s more for armadillo-sub2's 773 MB (96.7M doubles). So CHOLMOD's allocations go through a
-// keeper that holds the largest blocks of the factor let go aside, whole, for the next factorization's
-// values and row indices of about their size, and frees them when that factorization ends. Natively (memory
-// returned to the system, nothing to gain) CHOLMOD allocates as it always does.
+// fresh heap above it: 0.65-0.95 s more for armadillo-sub2's 773 MB (96.7M doubles). So CHOLMOD's
+// allocations go through a keeper that holds the largest blocks of the factor let go aside, whole, for the
+// next factorization's values and row indices of about their size, and frees them when that factorization
+// ends. Natively (memory returned to the system, nothing to gain) CHOLMOD allocates as it always does.
 #include <cstddef>
 
 namespace tvf::factor_memory {
