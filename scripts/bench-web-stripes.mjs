@@ -48,6 +48,12 @@ export async function stripesBench(page, strokes) {
     stripesOverFieldPerEdit: median(runs.map((r) => r.stripesMs / r.fieldMs)),
     stripesWorkerMs: median(runs.map((r) => r.stats?.workerMs)),
     stripesIterations: median(runs.map((r) => r.stats?.iterations)),
+    // The worker's pattern in parts (medians): the energy's factorization, the eigensolver's steps, the adapted
+    // spacing; and how many strokes' energies a shift below the last eigenvalue was refused for.
+    stripesWorkerParts: Object.fromEntries(
+      ['factorMs', 'iterateMs', 'spacingMs'].map((k) => [k, median(runs.map((r) => r.stats?.[k]))]),
+    ),
+    stripesShiftsRefused: runs.filter((r) => r.stats?.shiftRefused).length,
     stripesLongestStrokeTaskMs: longest(tasks),
     stripesStrokes: runs.length,
   };

@@ -465,6 +465,8 @@ class DesignerBinding {
                           {"eigenvalue", p.eigenvalue}, {"residual", p.residual},
                           {"iterations", p.iterations}, {"factorMs", p.factorMs},
                           {"iterateMs", p.iterateMs},   {"analysisReused", p.analysisReused},
+                          {"spacingMs", p.spacingMs},   {"shift", p.shift},
+                          {"shiftRefused", p.shiftRefused},
                           {"ms", stripesMs_}}
         .dump();
   }

@@ -101,6 +101,8 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
     along.iterations += across.iterations;
     along.factorMs += across.factorMs;
     along.iterateMs += across.iterateMs;
+    along.spacingMs += across.spacingMs;
+    along.shiftRefused = along.shiftRefused || across.shiftRefused;
     along.residual = std::max(along.residual, across.residual);
     along.psi.clear();  // each family's psi is its workspace's
   }

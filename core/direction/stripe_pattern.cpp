@@ -14,6 +14,7 @@
 
 #include "common/input_error.h"
 #include "common/sparse_matrix.h"
+#include "common/thread_team.h"
 #include "dec/hodge_star.h"
 #include "mesh/mesh_geometry.h"
 #include "solver/lane_kernels.h"
@@ -206,7 +207,8 @@ std::vector<double> spacingWeights(const SurfaceMesh& mesh, const MeshTopology& 
 // family (a cross field's two ask for it in the least-squares sense). Faces round which the field's
 // representatives do not match up are left out.
 std::vector<double> adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
-                                   const Families& fam, const EdgeTurns& turns, const StripeOptions& o) {
+                                   const Families& fam, const EdgeTurns& turns, const StripeOptions& o,
+                                   std::unique_ptr<SpdFactor>& kept) {
   constexpr double kSmooth = 3e-2;
   const int32_t nV = t.numVertices;
   const double k = kTwoPi * o.frequency;
@@ -244,7 +246,12 @@ std::vector<double> adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& 
   SparseMatrix upper(nV, nV);
   upper.setFromTriplets(entries.begin(), entries.end());
   Eigen::VectorXd u;
-  if (!solveSpdOnce(upper, rhs, u)) throw InputError("stripe pattern: the spacing could not be solved");
+  if (kept)
+    kept->refactor(upper);
+  else
+    kept = std::make_unique<SpdFactor>(upper, ThreadTeam::usefulParts());
+  if (!kept->ok() || !kept->solve(rhs, u))
+    throw InputError("stripe pattern: the spacing could not be solved");
   std::vector<double> scale(nV);
   double mean = 0, area = 0;
   for (int32_t v = 0; v < nV; ++v) {
@@ -299,8 +306,15 @@ SparseMatrix stripeEnergy(const MeshTopology& t, const MeshGeometry& g, const Ed
 // of kBlock vectors, preconditioned by A^-1 itself (one CHOLMOD factor, kBlock solves a step). The smallest
 // eigenvalues of these energies are often nearly repeated (a symmetric surface's pattern can shift along it),
 // where plain inverse iteration crawls: a block's next eigenvalue sets the rate instead, and the three-term
-// recurrence speeds it further (bunny00's line field: 16 steps to a residual of 1e-6).
-constexpr int kBlock = 4;
+// recurrence speeds it further (bunny00's line field: 16 steps to a residual of 1e-6). Preconditioned by
+// (A - sigma B)^-1 with sigma just below the eigenvalue (an edit's update), each step gains so much more that
+// a block of kShiftedBlock does (bunny00's line field after 15 strokes, twelve strokes more, natively: 4-13
+// steps of a block of two, 264-293 ms an edit on average with one or two, against 15-24 steps of four
+// and about 850 ms unshifted; one alone took 24 steps where two eigenvalues stayed close).
+constexpr int kBlock = 4, kShiftedBlock = 2;
+// The shift as a part of the last eigenvalue: an edit moved it by 4 % at most in those strokes, and a shift
+// above the new eigenvalue costs a factorization more (refused: factored again unshifted).
+constexpr double kShiftPart = 0.95;
 // The residual's scale never below this part of |A| |x| (|A| as its largest diagonal entry). Where the
 // pattern is exact (a flat patch: eigenvalue 0), |A x| is round-off, and the shifted factor's solves stall
 // about 1e-11 of |A| |x| away; every curved mesh measured has |A x| above it (bunny00 3.3e-4, knot2 4.3e-4, a
@@ -387,19 +401,42 @@ Basis orthonormalBasis(const Eigen::MatrixXd& S, const Eigen::VectorXd& mass) {
   return b;
 }
 
+// A - sigma B for A's upper triangle (its diagonal stored: stripeEnergy puts every one there).
+SparseMatrix shifted(const SparseMatrix& upper, const Eigen::VectorXd& mass, double sigma) {
+  SparseMatrix out = upper;
+  const int* outer = out.outerIndexPtr();
+  const int* inner = out.innerIndexPtr();
+  double* value = out.valuePtr();
+  for (Eigen::Index j = 0; j < out.outerSize(); ++j)
+    for (int q = outer[j]; q < outer[j + 1]; ++q)
+      if (inner[q] == j) value[q] -= sigma * mass[j];
+  return out;
+}
+
+// The energy's factor, shifted by sigma > 0 when given and positive definite so, else unshifted.
+SpdFactor& factorEnergy(const SparseMatrix& upper, const Eigen::VectorXd& mass, double sigma,
+                        std::unique_ptr<SpdFactor>& kept, StripePattern& out) {
+  const auto factor = [&kept](const SparseMatrix& a) {
+    if (kept)
+      kept->refactor(a);
+    else
+      kept = std::make_unique<SpdFactor>(a, ThreadTeam::usefulParts());
+    return kept->ok();
+  };
+  out.shift = sigma > 0 && factor(shifted(upper, mass, sigma)) ? sigma : 0.0;
+  out.shiftRefused = sigma > 0 && out.shift == 0;
+  if (out.shift == 0 && !factor(upper)) throw InputError("stripe pattern: the energy could not be factored");
+  return *kept;
+}
+
 void smallestEigenvector(const SparseMatrix& upper, const Eigen::VectorXd& mass, const StripeOptions& o,
-                         std::unique_ptr<SpdFactor>& kept, StripePattern& out) {
+                         double sigma, std::unique_ptr<SpdFactor>& kept, StripePattern& out) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (kept)
-    kept->refactor(upper);
-  else
-    kept = std::make_unique<SpdFactor>(upper);
-  SpdFactor& factor = *kept;
+  SpdFactor& factor = factorEnergy(upper, mass, sigma, kept, out);
   out.analysisReused = factor.analysisReused();
-  if (!factor.ok()) throw InputError("stripe pattern: the energy could not be factored");
   const auto t1 = std::chrono::steady_clock::now();
   out.factorMs = std::chrono::duration<double, std::milli>(t1 - t0).count();
-  const Eigen::Index n = upper.rows(), k = std::min<Eigen::Index>(kBlock, n);
+  const Eigen::Index n = upper.rows(), k = std::min<Eigen::Index>(out.shift > 0 ? kShiftedBlock : kBlock, n);
   const double normA = n > 0 ? upper.diagonal().cwiseAbs().maxCoeff() : 0.0;  // |A| within a small factor
   Eigen::MatrixXd x(n, k);
   uint32_t state = 12345u;
@@ -518,8 +555,10 @@ StripeWorkspace::~StripeWorkspace() = default;
 
 void StripeWorkspace::clear() {
   factor.reset();
+  spacingFactor.reset();
   psi.clear();
   symmetry = 0;
+  frequency = eigenvalue = 0;
 }
 
 StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& g,
@@ -529,12 +568,15 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   const Families fam =
       familiesOf(mesh, vertexDirections, options.symmetry, ((options.quarterTurns % 4) + 4) % 4);
   const int F = fam.count;
+  StripeWorkspace local;
+  StripeWorkspace& w = workspace ? *workspace : local;
   StripeOptions adapted = options;
   std::vector<double> spacing;
   double spacingMs = 0;
   if (options.adaptSpacing) {
     const auto t0 = std::chrono::steady_clock::now();
-    spacing = adaptedSpacing(mesh, topology, g, fam, edgeTurns(mesh, topology, fam, options), options);
+    spacing = adaptedSpacing(mesh, topology, g, fam, edgeTurns(mesh, topology, fam, options), options,
+                             w.spacingFactor);
     if (adapted.vertexFrequencyScale.empty()) adapted.vertexFrequencyScale.assign(spacing.size(), 1.0);
     for (size_t v = 0; v < spacing.size(); ++v) adapted.vertexFrequencyScale[v] *= spacing[v];
     spacingMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -543,24 +585,26 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
 
   // A shift small against the energy's scale keeps the factor definite where the turns are consistent (then
   // the smallest eigenvalue is 0: a phase exactly following the field).
-  const double shift = 1e-8 * std::max(g.star1.cwiseAbs().sum(), 1e-300) / std::max(g.star0.sum(), 1e-300);
-  const SparseMatrix upper = stripeEnergy(topology, g, turns, F, shift);
+  const double definite = 1e-8 * std::max(g.star1.cwiseAbs().sum(), 1e-300) / std::max(g.star0.sum(), 1e-300);
+  const SparseMatrix upper = stripeEnergy(topology, g, turns, F, definite);
   Eigen::VectorXd mass(upper.rows());
   for (int32_t v = 0; v < topology.numVertices; ++v) mass.segment(2 * v * F, 2 * F).setConstant(g.star0[v]);
 
   StripePattern out;
   out.families = F;
-  StripeWorkspace local;
-  StripeWorkspace& w = workspace ? *workspace : local;
   StripeOptions o = options;
-  if (o.initialPsi.empty() && w.symmetry == o.symmetry && w.psi.size() == static_cast<size_t>(upper.rows()))
-    o.initialPsi = w.psi;
-  smallestEigenvector(upper, mass, o, w.factor, out);
+  const bool update = w.symmetry == o.symmetry && w.psi.size() == static_cast<size_t>(upper.rows());
+  if (o.initialPsi.empty() && update) o.initialPsi = w.psi;
+  // The last eigenvalue is near this one only for the same frequency (it grows about as its square).
+  const double sigma = update && w.frequency == o.frequency ? kShiftPart * w.eigenvalue : 0.0;
+  smallestEigenvector(upper, mass, o, sigma, w.factor, out);
   w.psi = out.psi;
   w.symmetry = o.symmetry;
+  w.frequency = o.frequency;
+  w.eigenvalue = std::max(out.eigenvalue - definite, 0.0);
   out.spacing = std::move(spacing);
   out.spacingMs = spacingMs;
-  out.eigenvalue -= shift;
+  out.eigenvalue -= definite;
   out.cornerPhase.assign(3 * static_cast<size_t>(topology.numFaces) * F, 0.0f);
   out.branchIndex.assign(static_cast<size_t>(topology.numFaces) * F, 0);
   out.fieldSingular.assign(topology.numFaces, 0);

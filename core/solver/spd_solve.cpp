@@ -17,6 +17,7 @@ struct SpdFactor::Impl {
   CholmodFactorPtr factor{nullptr, {common.get()}};
   std::vector<int> outer, inner;  // the pattern the analysis was made for
   size_t n = 0;
+  int threads = 1;
   bool ok = false, reused = false;
 
   bool samePattern(const SparseMatrix& upper) const {
@@ -39,14 +40,14 @@ struct SpdFactor::Impl {
       inner.assign(upper.innerIndexPtr(), upper.innerIndexPtr() + upper.nonZeros());
       factor.reset(cholmod_analyze(&A, &c));
     }
-    // One thread: CHOLMOD's factorization natively, the project's in wasm (SIMD kernels there).
     SupernodalReport report;
-    if (!factor || !factorSupernodal(A, *factor, 1, c, report) || c.status != CHOLMOD_OK) return;
+    if (!factor || !factorSupernodal(A, *factor, threads, c, report) || c.status != CHOLMOD_OK) return;
     ok = factor->minor >= n;  // else not positive definite
   }
 };
 
-SpdFactor::SpdFactor(const SparseMatrix& upper) : impl_(std::make_unique<Impl>()) {
+SpdFactor::SpdFactor(const SparseMatrix& upper, int threads) : impl_(std::make_unique<Impl>()) {
+  impl_->threads = std::max(threads, 1);
   cholmod_common& c = *impl_->common.get();
   c.nmethods = 1;  // AMD alone: METIS's nested dissection pays off only far beyond these systems' sizes
   c.method[0].ordering = CHOLMOD_AMD;

@@ -15,8 +15,10 @@ namespace tvf {
 class SpdFactor {
  public:
   // Factors A, with `upper` its upper triangle (diagonal included, compressed; read, not kept). ok() says
-  // whether A was numerically positive definite.
-  explicit SpdFactor(const SparseMatrix& upper);
+  // whether A was numerically positive definite. threads: the numeric factorization's parts
+  // (solver/supernodal_cholesky.h); the many small systems of an atlas keep one, a system of the whole mesh
+  // made again after every edit (a stripe pattern's energy) takes the cores there are.
+  explicit SpdFactor(const SparseMatrix& upper, int threads = 1);
   ~SpdFactor();
   SpdFactor(const SpdFactor&) = delete;
   SpdFactor& operator=(const SpdFactor&) = delete;
