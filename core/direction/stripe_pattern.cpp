@@ -103,6 +103,16 @@ struct EdgeTurns {
   std::vector<double> omega;  // per edge and family at its lower vertex: the phase's advance from a to b
 };
 
+// Runs body(begin, end) over the faces' ranges on the threads there are (each face's results its own, so the
+// same whatever the parts): the per-face loops are about half of an edit's pattern besides its solves
+// (bunny00 in wasm: the spacing's terms and weights 33-37 ms, the corner phases 24-27 ms).
+template <typename Body>
+void forFaceRanges(int32_t faces, const Body& body) {
+  const int parts = faces < 20000 ? 1 : ThreadTeam::usefulParts();
+  ThreadTeam::shared().run(
+      parts, [&](int part) { body(partBegin(faces, part, parts), partBegin(faces, part + 1, parts)); });
+}
+
 double localFrequency(const StripeOptions& o, int32_t v) {
   return o.vertexFrequencyScale.empty() ? o.frequency : o.frequency * o.vertexFrequencyScale[v];
 }
@@ -132,13 +142,19 @@ EdgeTurns edgeTurns(const SurfaceMesh& mesh, const MeshTopology& t, const Famili
 
 // One face's term of adaptedSpacing for one family: r_f = |f| n_f . (grad u x w_f) + curl_f, w_f the mean of
 // the corners' target gradients nu Y (matched to the first corner's family and sign) and curl_f the advance
-// round the face, as rows of the normal equations (weight `weight` / |f|).
-void addSpacingTerms(const SurfaceMesh& mesh, const MeshGeometry& g, const Families& fam,
-                     const StripeOptions& o, int32_t face, const int32_t v[3], const int family[4],
-                     const int sign[4], double curl, double weight,
-                     std::vector<Eigen::Triplet<double>>& entries, Eigen::VectorXd& rhs) {
+// round the face, as rows of the normal equations (weight `weight` / |f|): coef[c] the row's entry at corner
+// c, scaled by 1 / sqrt(|f| / weight); none (used false) where the face has no weight or area.
+struct SpacingTerm {
+  double coef[3] = {0, 0, 0}, curl = 0;
+  bool used = false;
+};
+
+SpacingTerm spacingTerm(const SurfaceMesh& mesh, const MeshGeometry& g, const Families& fam,
+                        const StripeOptions& o, int32_t face, const int32_t v[3], const int family[4],
+                        const int sign[4], double curl, double weight) {
   const double area = g.faceArea[face] / weight;
-  if (!(weight > 0) || !(area > 0)) return;
+  SpacingTerm out;
+  if (!(weight > 0) || !(area > 0)) return out;
   Eigen::Vector3d p[3], grad[3];
   facePositions(mesh, face, p);
   barycentricGradients(p, grad);
@@ -147,13 +163,36 @@ void addSpacingTerms(const SurfaceMesh& mesh, const MeshGeometry& g, const Famil
     w += sign[c] * kTwoPi * localFrequency(o, v[c]) *
          fam.growth[static_cast<size_t>(v[c]) * fam.count + family[c]] / 3.0;
   const Eigen::Vector3d n(g.faceNormal[3 * face], g.faceNormal[3 * face + 1], g.faceNormal[3 * face + 2]);
-  double coef[3];
-  for (int c = 0; c < 3; ++c) coef[c] = g.faceArea[face] * n.dot(grad[c].cross(w));
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b)
-      if (v[a] <= v[b]) entries.emplace_back(v[a], v[b], coef[a] * coef[b] / area);
-    rhs[v[a]] -= coef[a] * curl / area;
+  const double scale = 1.0 / std::sqrt(area);
+  for (int c = 0; c < 3; ++c) out.coef[c] = scale * g.faceArea[face] * n.dot(grad[c].cross(w));
+  out.curl = scale * curl;
+  out.used = true;
+  return out;
+}
+
+// Whether the field turns round the face: a line or cross field's representatives that do not match up, or a
+// turn of more than pi (spacingWeights).
+bool turnsRoundFace(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                    const Families& fam, const EdgeTurns& turns, int32_t face) {
+  const int F = fam.count;
+  int32_t v[3];
+  int family[4] = {0, 0, 0, 0}, sign[4] = {1, 1, 1, 1};
+  for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
+  for (int c = 0; c < 3; ++c) {
+    const Match m = walk(t, turns.matches, F, t.edgeOf(face, c), v[c], family[c]);
+    family[c + 1] = m.family, sign[c + 1] = sign[c] * m.sign;
   }
+  const Eigen::Vector3d n(g.faceNormal[3 * face], g.faceNormal[3 * face + 1], g.faceNormal[3 * face + 2]);
+  double turn = 0;
+  for (int c = 0; c < 3; ++c) {
+    const int d = (c + 1) % 3;
+    const int fd = c < 2 ? family[d] : family[3], sd = c < 2 ? sign[d] : sign[3];
+    Eigen::Vector3d a = sign[c] * fam.growth[static_cast<size_t>(v[c]) * F + family[c]];
+    Eigen::Vector3d b = sd * fam.growth[static_cast<size_t>(v[d]) * F + fd];
+    a -= a.dot(n) * n, b -= b.dot(n) * n;
+    turn += std::atan2(n.dot(a.cross(b)), a.dot(b));
+  }
+  return sign[3] != 1 || family[3] != 0 || std::abs(turn) > M_PI;
 }
 
 // Faces round which the field turns (its singularities: a line or cross field's representatives that do not
@@ -162,28 +201,13 @@ void addSpacingTerms(const SurfaceMesh& mesh, const MeshGeometry& g, const Famil
 // off to 0 or infinity, and following it there only crowds the stripes the mesh can show.
 std::vector<double> spacingWeights(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
                                    const Families& fam, const EdgeTurns& turns, const StripeOptions& o) {
-  const int F = fam.count;
   std::vector<int32_t> hops(t.numFaces, -1), queue;
-  for (int32_t face = 0; face < t.numFaces; ++face) {
-    int32_t v[3];
-    int family[4] = {0, 0, 0, 0}, sign[4] = {1, 1, 1, 1};
-    for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
-    for (int c = 0; c < 3; ++c) {
-      const Match m = walk(t, turns.matches, F, t.edgeOf(face, c), v[c], family[c]);
-      family[c + 1] = m.family, sign[c + 1] = sign[c] * m.sign;
-    }
-    const Eigen::Vector3d n(g.faceNormal[3 * face], g.faceNormal[3 * face + 1], g.faceNormal[3 * face + 2]);
-    double turn = 0;
-    for (int c = 0; c < 3; ++c) {
-      const int d = (c + 1) % 3;
-      const int fd = c < 2 ? family[d] : family[3], sd = c < 2 ? sign[d] : sign[3];
-      Eigen::Vector3d a = sign[c] * fam.growth[static_cast<size_t>(v[c]) * F + family[c]];
-      Eigen::Vector3d b = sd * fam.growth[static_cast<size_t>(v[d]) * F + fd];
-      a -= a.dot(n) * n, b -= b.dot(n) * n;
-      turn += std::atan2(n.dot(a.cross(b)), a.dot(b));
-    }
-    if (sign[3] != 1 || family[3] != 0 || std::abs(turn) > M_PI) hops[face] = 0, queue.push_back(face);
-  }
+  forFaceRanges(t.numFaces, [&](int32_t begin, int32_t end) {
+    for (int32_t face = begin; face < end; ++face)
+      hops[face] = turnsRoundFace(mesh, t, g, fam, turns, face) ? 0 : -1;
+  });
+  for (int32_t face = 0; face < t.numFaces; ++face)
+    if (hops[face] == 0) queue.push_back(face);
   for (size_t head = 0; head < queue.size(); ++head) {
     const int32_t face = queue[head];
     for (int c = 0; c < 3; ++c) {
@@ -202,7 +226,7 @@ std::vector<double> spacingWeights(const SurfaceMesh& mesh, const MeshTopology& 
   return weight;
 }
 
-// adaptSpacing's factor (stripe_pattern.h): sum over faces and families of r_f^2 / |f| (addSpacingTerms) +
+// adaptSpacing's factor (stripe_pattern.h): sum over faces and families of r_f^2 / |f| (spacingTerm) +
 // eps (2 pi nu)^2 sum_e star1_e (u_a - u_b)^2 + eps^2 (2 pi nu)^2 sum_v A_v u_v^2, one factor for every
 // family (a cross field's two ask for it in the least-squares sense). Faces round which the field's
 // representatives do not match up are left out.
@@ -216,24 +240,39 @@ std::vector<double> adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& 
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nV);
   const int F = fam.count;
   const std::vector<double> weight = spacingWeights(mesh, t, g, fam, turns, o);
+  std::vector<SpacingTerm> terms(static_cast<size_t>(t.numFaces) * F);
+  forFaceRanges(t.numFaces, [&](int32_t begin, int32_t end) {
+    for (int32_t face = begin; face < end; ++face)
+      for (int f0 = 0; f0 < F; ++f0) {
+        int32_t v[3];
+        int family[4] = {f0, 0, 0, 0}, sign[4] = {1, 1, 1, 1};
+        for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
+        double curl = 0;
+        for (int c = 0; c < 3; ++c) {
+          const int32_t e = t.edgeOf(face, c);
+          const Match m = walk(t, turns.matches, F, e, v[c], family[c]);
+          // omega is the advance from the edge's lower vertex to its upper one, for the lower one's
+          // representative of the family it is stored under.
+          const bool forward = t.edgeVertices[2 * e] == v[c];
+          const double omega = turns.omega[static_cast<size_t>(e) * F + (forward ? family[c] : m.family)];
+          curl += sign[c] * (forward ? omega : -m.sign * omega);
+          family[c + 1] = m.family, sign[c + 1] = sign[c] * m.sign;
+        }
+        if (sign[3] != 1 || family[3] != f0) continue;
+        terms[static_cast<size_t>(face) * F + f0] =
+            spacingTerm(mesh, g, fam, o, face, v, family, sign, curl, weight[face]);
+      }
+  });
   for (int32_t face = 0; face < t.numFaces; ++face)
     for (int f0 = 0; f0 < F; ++f0) {
-      int32_t v[3];
-      int family[4] = {f0, 0, 0, 0}, sign[4] = {1, 1, 1, 1};
-      for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
-      double curl = 0;
-      for (int c = 0; c < 3; ++c) {
-        const int32_t e = t.edgeOf(face, c);
-        const Match m = walk(t, turns.matches, F, e, v[c], family[c]);
-        // omega is the advance from the edge's lower vertex to its upper one, for the lower one's
-        // representative of the family it is stored under.
-        const bool forward = t.edgeVertices[2 * e] == v[c];
-        const double omega = turns.omega[static_cast<size_t>(e) * F + (forward ? family[c] : m.family)];
-        curl += sign[c] * (forward ? omega : -m.sign * omega);
-        family[c + 1] = m.family, sign[c + 1] = sign[c] * m.sign;
+      const SpacingTerm& r = terms[static_cast<size_t>(face) * F + f0];
+      if (!r.used) continue;
+      const int32_t* v = &mesh.triangles[3 * face];
+      for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b)
+          if (v[a] <= v[b]) entries.emplace_back(v[a], v[b], r.coef[a] * r.coef[b]);
+        rhs[v[a]] -= r.coef[a] * r.curl;
       }
-      if (sign[3] != 1 || family[3] != f0) continue;
-      addSpacingTerms(mesh, g, fam, o, face, v, family, sign, curl, weight[face], entries, rhs);
     }
   const double smooth = kSmooth * k * k, pin = kSmooth * kSmooth * k * k;
   for (int32_t e = 0; e < t.numEdges; ++e) {
@@ -315,6 +354,8 @@ constexpr int kBlock = 4, kShiftedBlock = 2;
 // The shift as a part of the last eigenvalue: an edit moved it by 4 % at most in those strokes, and a shift
 // above the new eigenvalue costs a factorization more (refused: factored again unshifted).
 constexpr double kShiftPart = 0.95;
+// A shift below this part of the Ritz value is weak; the residual below which the Ritz value is trusted.
+constexpr double kWeakShift = 0.5, kReshiftResidual = 1e-2;
 // The residual's scale never below this part of |A| |x| (|A| as its largest diagonal entry). Where the
 // pattern is exact (a flat patch: eigenvalue 0), |A x| is round-off, and the shifted factor's solves stall
 // about 1e-11 of |A| |x| away; every curved mesh measured has |A x| above it (bunny00 3.3e-4, knot2 4.3e-4, a
@@ -413,7 +454,8 @@ SparseMatrix shifted(const SparseMatrix& upper, const Eigen::VectorXd& mass, dou
   return out;
 }
 
-// The energy's factor, shifted by sigma > 0 when given and positive definite so, else unshifted.
+// The energy's factor, shifted by sigma > 0 when given and positive definite so; refused (the eigenvalue fell
+// below it), by half of it, a shift that still gains much where two eigenvalues are close; else unshifted.
 SpdFactor& factorEnergy(const SparseMatrix& upper, const Eigen::VectorXd& mass, double sigma,
                         std::unique_ptr<SpdFactor>& kept, StripePattern& out) {
   const auto factor = [&kept](const SparseMatrix& a) {
@@ -423,9 +465,16 @@ SpdFactor& factorEnergy(const SparseMatrix& upper, const Eigen::VectorXd& mass, 
       kept = std::make_unique<SpdFactor>(a, ThreadTeam::usefulParts());
     return kept->ok();
   };
-  out.shift = sigma > 0 && factor(shifted(upper, mass, sigma)) ? sigma : 0.0;
-  out.shiftRefused = sigma > 0 && out.shift == 0;
-  if (out.shift == 0 && !factor(upper)) throw InputError("stripe pattern: the energy could not be factored");
+  out.shift = 0;
+  for (const double tried : {sigma, 0.5 * sigma}) {
+    if (!(tried > 0)) break;
+    if (factor(shifted(upper, mass, tried))) {
+      out.shift = tried;
+      return *kept;
+    }
+    out.shiftRefused = true;
+  }
+  if (!factor(upper)) throw InputError("stripe pattern: the energy could not be factored");
   return *kept;
 }
 
@@ -454,6 +503,8 @@ void smallestEigenvector(const SparseMatrix& upper, const Eigen::VectorXd& mass,
   Eigen::Index kx = 0;  // how many of S's first columns are the current vectors
   Eigen::MatrixXd p;
   Eigen::VectorXd theta;
+  bool reshifted = false;
+  double reshiftMs = 0;
   for (out.iterations = 0;;) {
     const Basis basis = orthonormalBasis(S, mass);
     const Eigen::MatrixXd aq = symmetricTimes(upper, basis.q);
@@ -474,6 +525,15 @@ void smallestEigenvector(const SparseMatrix& upper, const Eigen::VectorXd& mass,
     const double residual = r.col(0).norm() / std::max(scale, 1e-300);
     out.residual = residual;
     if (residual <= o.tolerance || out.iterations >= o.maxIterations) break;
+    // A weak shift (none at a first pattern, or one far below the eigenvalue an edit raised) made strong once
+    // the Ritz value has settled (its error about the residual squared): one factorization more, for the steps
+    // it saves.
+    if (!reshifted && residual < kReshiftResidual && out.shift < kWeakShift * theta[0]) {
+      reshifted = true;
+      const auto r0 = std::chrono::steady_clock::now();
+      factorEnergy(upper, mass, kShiftPart * theta[0], kept, out);
+      reshiftMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
+    }
     Eigen::MatrixXd w;
     if (!factor.solve(r, w)) throw InputError("stripe pattern: the solve failed");
     S.resize(n, x.cols() + w.cols() + p.cols());
@@ -482,7 +542,9 @@ void smallestEigenvector(const SparseMatrix& upper, const Eigen::VectorXd& mass,
   }
   out.eigenvalue = theta[0];
   out.psi.assign(x.col(0).data(), x.col(0).data() + n);
-  out.iterateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
+  out.iterateMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count() - reshiftMs;
+  out.factorMs += reshiftMs;
 }
 
 std::complex<double> psiOf(const StripePattern& p, int F, int32_t v, int f, int sign) {
@@ -608,12 +670,14 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   out.cornerPhase.assign(3 * static_cast<size_t>(topology.numFaces) * F, 0.0f);
   out.branchIndex.assign(static_cast<size_t>(topology.numFaces) * F, 0);
   out.fieldSingular.assign(topology.numFaces, 0);
-  for (int32_t face = 0; face < topology.numFaces; ++face)
-    for (int f = 0; f < F; ++f) {
-      bool singular = false;
-      facePhases(mesh, topology, fam, turns, adapted, face, f, out, singular);
-      if (singular) out.fieldSingular[face] = 1;
-    }
+  forFaceRanges(topology.numFaces, [&](int32_t begin, int32_t end) {
+    for (int32_t face = begin; face < end; ++face)
+      for (int f = 0; f < F; ++f) {
+        bool singular = false;
+        facePhases(mesh, topology, fam, turns, adapted, face, f, out, singular);
+        if (singular) out.fieldSingular[face] = 1;
+      }
+  });
   return out;
 }
 

@@ -69,8 +69,8 @@ struct StripePattern {
   double residual = 0;      // |A psi - eigenvalue B psi| / |A psi| when the iteration stopped
   int iterations = 0;
   double factorMs = 0, iterateMs = 0, spacingMs = 0;
-  // The shift sigma the energy was factored with (A - sigma B; 0: none), and whether a shift was tried and
-  // refused (A - sigma B not positive definite: the eigenvalue fell below it) before factoring unshifted.
+  // The shift sigma the energy was factored with (A - sigma B; 0: none), and whether a larger one was tried
+  // and refused first (A - sigma B not positive definite: the eigenvalue fell below it).
   double shift = 0;
   bool shiftRefused = false;
   // adaptSpacing: the frequency's factor per vertex it chose (empty otherwise), on top of

@@ -223,9 +223,9 @@ double meanStripeAngle(const SurfaceMesh& m, const StripePattern& a, const Strip
 
 // An edit's update (the workspace's last pattern of the same frequency; here a field's turn about the normal
 // from 0.3 to 0.31 rad at its largest, the eigenvalue 3 % higher) factors the energy just below the last
-// eigenvalue: it finds the pattern a cold start finds (the same eigenvalue and stripes), in fewer steps than
-// the same start without the shift. Where the edit lowered the eigenvalue below the shift, the shifted energy
-// is not positive definite: refused, and factored unshifted, to the same pattern again.
+// eigenvalue: it finds the pattern a cold start finds (the same eigenvalue and stripes). Where the edit
+// lowered the eigenvalue below the shift, the shifted energy is not positive definite: refused, and factored
+// with a smaller shift (or none), to the same pattern again.
 TEST(StripePattern, AnEditsUpdateFactoredBelowTheLastEigenvalueFindsTheSamePattern) {
   const SurfaceMesh m = torus(48, 18, 2.0, 0.7);
   const MeshTopology t = buildTopology(m);
@@ -236,7 +236,6 @@ TEST(StripePattern, AnEditsUpdateFactoredBelowTheLastEigenvalueFindsTheSamePatte
   o.adaptSpacing = true;
   StripeWorkspace w;
   const StripePattern before = stripePattern(m, t, g, turnedAroundTheTube(m, 0.3, 2), o, &w);
-  EXPECT_EQ(before.shift, 0.0);
   const std::vector<double> edited = turnedAroundTheTube(m, 0.31, 2);
   const StripePattern update = stripePattern(m, t, g, edited, o, &w);
   EXPECT_GT(update.shift, 0.9 * before.eigenvalue);
@@ -244,16 +243,13 @@ TEST(StripePattern, AnEditsUpdateFactoredBelowTheLastEigenvalueFindsTheSamePatte
   const StripePattern cold = stripePattern(m, t, g, edited, o);
   EXPECT_NEAR(update.eigenvalue, cold.eigenvalue, 1e-6 * cold.eigenvalue);
   EXPECT_LT(meanStripeAngle(m, update, cold), 1e-4);
-  StripeOptions unshifted = o;
-  unshifted.initialPsi = before.psi;
-  EXPECT_LT(update.iterations, stripePattern(m, t, g, edited, unshifted).iterations);  // 5 against 13
 
   StripeWorkspace rough;
   const StripePattern high = stripePattern(m, t, g, turnedAroundTheTube(m, 0.6, 0), o, &rough);
   ASSERT_GT(0.95 * high.eigenvalue, cold.eigenvalue);
   const StripePattern lowered = stripePattern(m, t, g, edited, o, &rough);
   EXPECT_TRUE(lowered.shiftRefused);
-  EXPECT_EQ(lowered.shift, 0.0);
+  EXPECT_LT(lowered.shift, cold.eigenvalue);
   EXPECT_NEAR(lowered.eigenvalue, cold.eigenvalue, 1e-6 * cold.eigenvalue);
   EXPECT_LT(meanStripeAngle(m, lowered, cold), 1e-4);
 }
