@@ -103,16 +103,6 @@ struct EdgeTurns {
   std::vector<double> omega;  // per edge and family at its lower vertex: the phase's advance from a to b
 };
 
-// Runs body(begin, end) over the faces' ranges on the threads there are (each face's results its own, so the
-// same whatever the parts): the per-face loops are about half of an edit's pattern besides its solves
-// (bunny00 in wasm: the spacing's terms and weights 33-37 ms, the corner phases 24-27 ms).
-template <typename Body>
-void forFaceRanges(int32_t faces, const Body& body) {
-  const int parts = faces < 20000 ? 1 : ThreadTeam::usefulParts();
-  ThreadTeam::shared().run(
-      parts, [&](int part) { body(partBegin(faces, part, parts), partBegin(faces, part + 1, parts)); });
-}
-
 double localFrequency(const StripeOptions& o, int32_t v) {
   return o.vertexFrequencyScale.empty() ? o.frequency : o.frequency * o.vertexFrequencyScale[v];
 }
@@ -202,12 +192,8 @@ bool turnsRoundFace(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGe
 std::vector<double> spacingWeights(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
                                    const Families& fam, const EdgeTurns& turns, const StripeOptions& o) {
   std::vector<int32_t> hops(t.numFaces, -1), queue;
-  forFaceRanges(t.numFaces, [&](int32_t begin, int32_t end) {
-    for (int32_t face = begin; face < end; ++face)
-      hops[face] = turnsRoundFace(mesh, t, g, fam, turns, face) ? 0 : -1;
-  });
   for (int32_t face = 0; face < t.numFaces; ++face)
-    if (hops[face] == 0) queue.push_back(face);
+    if (turnsRoundFace(mesh, t, g, fam, turns, face)) hops[face] = 0, queue.push_back(face);
   for (size_t head = 0; head < queue.size(); ++head) {
     const int32_t face = queue[head];
     for (int c = 0; c < 3; ++c) {
@@ -240,34 +226,25 @@ std::vector<double> adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& 
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nV);
   const int F = fam.count;
   const std::vector<double> weight = spacingWeights(mesh, t, g, fam, turns, o);
-  std::vector<SpacingTerm> terms(static_cast<size_t>(t.numFaces) * F);
-  forFaceRanges(t.numFaces, [&](int32_t begin, int32_t end) {
-    for (int32_t face = begin; face < end; ++face)
-      for (int f0 = 0; f0 < F; ++f0) {
-        int32_t v[3];
-        int family[4] = {f0, 0, 0, 0}, sign[4] = {1, 1, 1, 1};
-        for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
-        double curl = 0;
-        for (int c = 0; c < 3; ++c) {
-          const int32_t e = t.edgeOf(face, c);
-          const Match m = walk(t, turns.matches, F, e, v[c], family[c]);
-          // omega is the advance from the edge's lower vertex to its upper one, for the lower one's
-          // representative of the family it is stored under.
-          const bool forward = t.edgeVertices[2 * e] == v[c];
-          const double omega = turns.omega[static_cast<size_t>(e) * F + (forward ? family[c] : m.family)];
-          curl += sign[c] * (forward ? omega : -m.sign * omega);
-          family[c + 1] = m.family, sign[c + 1] = sign[c] * m.sign;
-        }
-        if (sign[3] != 1 || family[3] != f0) continue;
-        terms[static_cast<size_t>(face) * F + f0] =
-            spacingTerm(mesh, g, fam, o, face, v, family, sign, curl, weight[face]);
-      }
-  });
   for (int32_t face = 0; face < t.numFaces; ++face)
     for (int f0 = 0; f0 < F; ++f0) {
-      const SpacingTerm& r = terms[static_cast<size_t>(face) * F + f0];
+      int32_t v[3];
+      int family[4] = {f0, 0, 0, 0}, sign[4] = {1, 1, 1, 1};
+      for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
+      double curl = 0;
+      for (int c = 0; c < 3; ++c) {
+        const int32_t e = t.edgeOf(face, c);
+        const Match m = walk(t, turns.matches, F, e, v[c], family[c]);
+        // omega is the advance from the edge's lower vertex to its upper one, for the lower one's
+        // representative of the family it is stored under.
+        const bool forward = t.edgeVertices[2 * e] == v[c];
+        const double omega = turns.omega[static_cast<size_t>(e) * F + (forward ? family[c] : m.family)];
+        curl += sign[c] * (forward ? omega : -m.sign * omega);
+        family[c + 1] = m.family, sign[c + 1] = sign[c] * m.sign;
+      }
+      if (sign[3] != 1 || family[3] != f0) continue;
+      const SpacingTerm r = spacingTerm(mesh, g, fam, o, face, v, family, sign, curl, weight[face]);
       if (!r.used) continue;
-      const int32_t* v = &mesh.triangles[3 * face];
       for (int a = 0; a < 3; ++a) {
         for (int b = 0; b < 3; ++b)
           if (v[a] <= v[b]) entries.emplace_back(v[a], v[b], r.coef[a] * r.coef[b]);
@@ -526,8 +503,8 @@ void smallestEigenvector(const SparseMatrix& upper, const Eigen::VectorXd& mass,
     out.residual = residual;
     if (residual <= o.tolerance || out.iterations >= o.maxIterations) break;
     // A weak shift (none at a first pattern, or one far below the eigenvalue an edit raised) made strong once
-    // the Ritz value has settled (its error about the residual squared): one factorization more, for the steps
-    // it saves.
+    // the Ritz value has settled (its error about the residual squared): one factorization more, for the
+    // steps it saves.
     if (!reshifted && residual < kReshiftResidual && out.shift < kWeakShift * theta[0]) {
       reshifted = true;
       const auto r0 = std::chrono::steady_clock::now();
@@ -670,14 +647,12 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   out.cornerPhase.assign(3 * static_cast<size_t>(topology.numFaces) * F, 0.0f);
   out.branchIndex.assign(static_cast<size_t>(topology.numFaces) * F, 0);
   out.fieldSingular.assign(topology.numFaces, 0);
-  forFaceRanges(topology.numFaces, [&](int32_t begin, int32_t end) {
-    for (int32_t face = begin; face < end; ++face)
-      for (int f = 0; f < F; ++f) {
-        bool singular = false;
-        facePhases(mesh, topology, fam, turns, adapted, face, f, out, singular);
-        if (singular) out.fieldSingular[face] = 1;
-      }
-  });
+  for (int32_t face = 0; face < topology.numFaces; ++face)
+    for (int f = 0; f < F; ++f) {
+      bool singular = false;
+      facePhases(mesh, topology, fam, turns, adapted, face, f, out, singular);
+      if (singular) out.fieldSingular[face] = 1;
+    }
   return out;
 }
 
