@@ -90,6 +90,9 @@ struct StripeWorkspace {
   ~StripeWorkspace();
   void clear();  // for another mesh
   std::unique_ptr<SpdFactor> factor, spacingFactor;
+  // A nested-dissection ordering of the mesh's vertices, made once for both factors on a mesh of more than
+  // 50k vertices (empty below: AMD orders them).
+  std::vector<int> vertexOrdering;
   std::vector<double> psi;
   int symmetry = 0;
   double frequency = 0;   // the last pattern's options.frequency

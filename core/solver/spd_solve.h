@@ -1,12 +1,14 @@
 #pragma once
 // Sparse SPD systems factored for their own solves and then dropped: CHOLMOD's supernodal Cholesky with AMD
-// ordering (in wasm its numeric factorization is the project's, solver/supernodal_cholesky.h, on SIMD
-// kernels). For systems made once each (an atlas chart's conformal map; a stripe pattern's LOBPCG), where
+// ordering, METIS's nested dissection above 100k rows (in wasm its numeric factorization is the project's,
+// solver/supernodal_cholesky.h, on SIMD kernels). For systems made once each (an atlas chart's conformal map)
+// or again after every edit with their analysis kept (a stripe pattern's energy for LOBPCG), where
 // FactoredSystem's machinery for updates (the conversion to LDL', the kept forward solution) would be
 // overhead. armadillo-sub2's 648 chart solves took 2.3 s this way, natively; Eigen's simplicial LDL' of A^T A
 // (its ordering, analysis, factorization and the product) had about 48 % of a 10 s run's profile.
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "common/sparse_matrix.h"
 
@@ -18,7 +20,9 @@ class SpdFactor {
   // whether A was numerically positive definite. threads: the numeric factorization's parts
   // (solver/supernodal_cholesky.h); the many small systems of an atlas keep one, a system of the whole mesh
   // made again after every edit (a stripe pattern's energy) takes the cores there are.
-  explicit SpdFactor(const SparseMatrix& upper, int threads = 1);
+  // ordering: a fill-reducing permutation of A's rows (as CHOLMOD's UserPerm) to analyse with; empty: AMD, or
+  // METIS's nested dissection above 100k rows.
+  explicit SpdFactor(const SparseMatrix& upper, int threads = 1, std::vector<int> ordering = {});
   ~SpdFactor();
   SpdFactor(const SpdFactor&) = delete;
   SpdFactor& operator=(const SpdFactor&) = delete;
@@ -37,6 +41,10 @@ class SpdFactor {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// METIS's nested dissection of the graph of A (symmetric, `upper` its upper triangle), postordered: a
+// permutation as SpdFactor takes it. Empty where METIS failed.
+std::vector<int> nestedDissection(const SparseMatrix& upper);
 
 // Solves A x = b once. Returns false, leaving x unspecified, when A is not numerically positive definite or
 // the solution is not finite.
