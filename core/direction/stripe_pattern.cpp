@@ -14,7 +14,6 @@
 
 #include "common/input_error.h"
 #include "common/sparse_matrix.h"
-#include "common/thread_team.h"
 #include "dec/hodge_star.h"
 #include "mesh/mesh_geometry.h"
 #include "solver/lane_kernels.h"
@@ -296,7 +295,7 @@ std::vector<double> adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& 
   if (kept)
     kept->refactor(upper);
   else
-    kept = std::make_unique<SpdFactor>(upper, ThreadTeam::usefulParts(), vertexOrdering(t, w));
+    kept = std::make_unique<SpdFactor>(upper, vertexOrdering(t, w));
   if (!kept->ok() || !kept->solve(rhs, u))
     throw InputError("stripe pattern: the spacing could not be solved");
   std::vector<double> scale(nV);
@@ -471,7 +470,7 @@ SpdFactor& factorEnergy(const SparseMatrix& upper, const Eigen::VectorXd& mass, 
     if (kept)
       kept->refactor(a);
     else
-      kept = std::make_unique<SpdFactor>(a, ThreadTeam::usefulParts(), ordering);
+      kept = std::make_unique<SpdFactor>(a, ordering);
     return kept->ok();
   };
   out.shift = 0;

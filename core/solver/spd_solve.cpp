@@ -13,19 +13,11 @@
 
 namespace tvf {
 
-// Above this many rows the fill-reducing ordering is METIS's nested dissection, below it AMD: an atlas
-// chart's systems are far smaller, where nested dissection does not pay; a stripe pattern's energy on
-// armadillo-sub2 (832k rows) factored in 472-510 ms instead of 758-830 natively, its solves a little faster
-// too. (METIS compresses the rows of a vertex's real and imaginary parts, whose patterns are equal, into one
-// node.)
-constexpr size_t kNestedDissectionRows = 100000;
-
 struct SpdFactor::Impl {
   CholmodCommon common;
   CholmodFactorPtr factor{nullptr, {common.get()}};
   std::vector<int> outer, inner;  // the pattern the analysis was made for
   size_t n = 0;
-  int threads = 1;
   std::vector<int> ordering;  // given, or empty
   bool ok = false, reused = false;
 
@@ -42,35 +34,28 @@ struct SpdFactor::Impl {
     cholmod_sparse A = upperTriangleView(upper);
     cholmod_common& c = *common.get();
     reused = samePattern(upper);
+    PermutedTriangle lower;  // the lower triangle of P A P', made by the analysis of a given ordering
     if (!reused) {
       n = static_cast<size_t>(upper.rows());
       if (n == 0) return void(ok = true);
       outer.assign(upper.outerIndexPtr(), upper.outerIndexPtr() + n + 1);
       inner.assign(upper.innerIndexPtr(), upper.innerIndexPtr() + upper.nonZeros());
-      PermutedTriangle lower;
-      if (ordering.size() == n) {
-        factor.reset(analyzeOrdering(A, ordering, threads, c, lower));
-      } else {
-        c.method[0].ordering = n > kNestedDissectionRows ? CHOLMOD_METIS : CHOLMOD_AMD;
-        factor.reset(cholmod_analyze(&A, &c));
-      }
-      SupernodalReport report;
-      if (!factor || !factorSupernodal(A, *factor, threads, c, report, &lower) || c.status != CHOLMOD_OK)
-        return;
-      return void(ok = factor->minor >= n);
+      factor.reset(ordering.size() == n ? analyzeOrdering(A, ordering, 1, c, lower)
+                                        : cholmod_analyze(&A, &c));
     }
+    // One thread: CHOLMOD's factorization natively, the project's in wasm (SIMD kernels there).
     SupernodalReport report;
-    if (!factor || !factorSupernodal(A, *factor, threads, c, report) || c.status != CHOLMOD_OK) return;
+    if (!factor || !factorSupernodal(A, *factor, 1, c, report, &lower) || c.status != CHOLMOD_OK) return;
     ok = factor->minor >= n;  // else not positive definite
   }
 };
 
-SpdFactor::SpdFactor(const SparseMatrix& upper, int threads, std::vector<int> ordering)
-    : impl_(std::make_unique<Impl>()) {
-  impl_->threads = std::max(threads, 1);
+SpdFactor::SpdFactor(const SparseMatrix& upper, std::vector<int> ordering) : impl_(std::make_unique<Impl>()) {
   impl_->ordering = std::move(ordering);
   cholmod_common& c = *impl_->common.get();
-  c.nmethods = 1;  // one ordering, chosen by the size (factorize)
+  c.nmethods =
+      1;  // AMD alone where no ordering is given: METIS pays off only far beyond an atlas chart's size
+  c.method[0].ordering = CHOLMOD_AMD;
   c.postorder = 1;
   c.supernodal = CHOLMOD_SUPERNODAL;
   c.print = 0;

@@ -1,6 +1,6 @@
 #pragma once
 // Sparse SPD systems factored for their own solves and then dropped: CHOLMOD's supernodal Cholesky with AMD
-// ordering, METIS's nested dissection above 100k rows (in wasm its numeric factorization is the project's,
+// ordering or a given one (in wasm its numeric factorization is the project's,
 // solver/supernodal_cholesky.h, on SIMD kernels). For systems made once each (an atlas chart's conformal map)
 // or again after every edit with their analysis kept (a stripe pattern's energy for LOBPCG), where
 // FactoredSystem's machinery for updates (the conversion to LDL', the kept forward solution) would be
@@ -17,12 +17,11 @@ namespace tvf {
 class SpdFactor {
  public:
   // Factors A, with `upper` its upper triangle (diagonal included, compressed; read, not kept). ok() says
-  // whether A was numerically positive definite. threads: the numeric factorization's parts
-  // (solver/supernodal_cholesky.h); the many small systems of an atlas keep one, a system of the whole mesh
-  // made again after every edit (a stripe pattern's energy) takes the cores there are.
-  // ordering: a fill-reducing permutation of A's rows (as CHOLMOD's UserPerm) to analyse with; empty: AMD, or
-  // METIS's nested dissection above 100k rows.
-  explicit SpdFactor(const SparseMatrix& upper, int threads = 1, std::vector<int> ordering = {});
+  // whether A was numerically positive definite. ordering: a fill-reducing permutation of A's rows (as
+  // CHOLMOD's UserPerm) to analyse with, such as nestedDissection's; empty: AMD. One thread
+  // (a stripe pattern's energy on two, in the page beside its renderer, took no less: 0.80 against 0.77 s on
+  // armadillo-sub2).
+  explicit SpdFactor(const SparseMatrix& upper, std::vector<int> ordering = {});
   ~SpdFactor();
   SpdFactor(const SpdFactor&) = delete;
   SpdFactor& operator=(const SpdFactor&) = delete;
