@@ -104,8 +104,8 @@ struct EdgeTurns {
 
 // Above this many vertices both factors take one nested-dissection ordering of the vertex graph (the energy's
 // rows a vertex's 2F unknowns in its place): on armadillo-sub2 (416k vertices) in the page, an edit's energy
-// factored in 0.67 s instead of 1.38 s with AMD, the spacing's solve 0.60 s instead of 0.73 s, and METIS ran
-// once for both where ordering each factor itself added 3 s to the first pattern.
+// factored in 0.77-0.82 s instead of 1.38 s with AMD, the spacing's solve 0.59-0.64 s instead of 0.73 s, and
+// METIS ran once for both where ordering each factor itself added 3 s to the first pattern.
 constexpr int32_t kDissectedVertices = 50000;
 
 // The workspace's vertex ordering, made on first use (empty for a mesh small enough for AMD).
