@@ -359,7 +359,7 @@ SparseMatrix stripeEnergy(const MeshTopology& t, const MeshGeometry& g, const Ed
 // and about 850 ms unshifted; one alone took 24 steps where two eigenvalues stayed close).
 constexpr int kBlock = 4, kShiftedBlock = 2;
 // The shift as a part of the last eigenvalue: an edit moved it by 4 % at most in those strokes, and a shift
-// above the new eigenvalue costs a factorization more (refused: factored again unshifted).
+// above the new eigenvalue costs a factorization more (refused: factored again with half of it, or none).
 constexpr double kShiftPart = 0.95;
 // A shift below this part of the Ritz value is weak; the residual below which the Ritz value is trusted.
 constexpr double kWeakShift = 0.5, kReshiftResidual = 5e-2;
@@ -669,6 +669,7 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   out.families = F;
   StripeOptions o = options;
   const bool update = w.symmetry == o.symmetry && w.psi.size() == static_cast<size_t>(upper.rows());
+  if (!update) w.factor.reset();  // made again with the ordering for this many families
   if (o.initialPsi.empty() && update) o.initialPsi = w.psi;
   // The last eigenvalue is near this one only for the same frequency (it grows about as its square).
   const double sigma = update && w.frequency == o.frequency ? kShiftPart * w.eigenvalue : 0.0;
