@@ -16,6 +16,7 @@
 //                             is: undoMs, redoMs (pageMs), undoUpdateMs/redoUpdateMs and undoSolveMs (the core's))
 //                             [--stripes N]   (then the stripes: turned on, and N strokes' updates: stripes*
 //                             keys, bench-web-stripes.mjs)
+//                             [--profile-stripes FILE]   (a CPU profile of the page's thread over the stripes stage)
 //                             [--gpu]   (hardware WebGL: ANGLE on Vulkan, or TVF_GPU_ARGS; default SwiftShader)
 //                             [--profile-texture FILE]   (a CPU profile of the page's thread over the texture's runs)
 //                             [--trace FILE]   (a Chromium trace of every process and thread over the strokes:
@@ -173,7 +174,9 @@ async function strokeBench(page, meshPath) {
   const reopenAlone = process.argv.includes('--reopen') && arg('--texture', null) == null;
   const reopen = reopenAlone ? await reopenBench(page, `/bench-mesh/${name}`) : null;
   const texture = arg('--texture', null) == null ? null : await textureBench(page, strokes.slice(0, Number(arg('--texture'))), `/bench-mesh/${name}`);
+  const stripesProfile = await startProfile(page, arg('--profile-stripes', null));
   const stripes = arg('--stripes', null) == null ? null : await stripesBench(page, strokes.slice(0, Number(arg('--stripes'))));
+  await stripesProfile.stop();
   const pick = (f) => median(runs.map(f));
   const m = {
     updateMs: pick((r) => r.stats.updateMs),
