@@ -103,9 +103,10 @@ struct EdgeTurns {
 };
 
 // Above this many vertices both factors take one nested-dissection ordering of the vertex graph (the energy's
-// rows a vertex's 2F unknowns in its place): on armadillo-sub2 (416k vertices) in the page, an edit's energy
-// factored in 0.77-0.82 s instead of 1.38 s with AMD, the spacing's solve 0.59-0.64 s instead of 0.73 s, and
-// METIS ran once for both where ordering each factor itself added 3 s to the first pattern.
+// rows a vertex's 2F unknowns in its place). armadillo-sub2 (416k vertices): natively an edit's energy
+// factored in 556-568 ms instead of 758-830 with AMD; in the page 0.77-1.23 s (five runs) against 1.38 s (one
+// run with AMD), the spacing 0.59-0.64 s against 0.70-0.73 s. CHOLMOD's METIS for each factor instead took
+// the first pattern from 20.0 s (AMD) to 23.1 s; the one ordering, to 16.3-18.6 s.
 constexpr int32_t kDissectedVertices = 50000;
 
 // The workspace's vertex ordering, made on first use (empty for a mesh small enough for AMD).

@@ -43,11 +43,7 @@ void chooseOrdering(cholmod_common& c, FillOrdering ordering) {
   // On bunny00 METIS_NodeND on the whole graph costs 5-7x AMD's analysis, and NESDIS to CHOLMOD's default 200
   // more; stopping the recursion here keeps most of the fill reduction for a fraction of the time (README).
   c.method[0].nd_small = 20000;
-  c.method[0].nd_camd = 1;
-  // CHOLMOD probes METIS's memory with a trial allocation of 2 x (10 nnz + 50 n) words first; in wasm that
-  // grows the heap for good (~140 MB on bunny00, ~1.5 GB at 1.25M edges), and METIS 5 reports running out of
-  // memory itself (CHOLMOD then falls back to AMD).
-  c.metis_memory = 0;
+  c.method[0].nd_camd = 1;  // (METIS's memory probe is off in every CholmodCommon: cholmod_handles.h)
 }
 
 // Parts of the mesh's dissection with at most this many edges are left to CAMD whole. The vertex graph's cuts
