@@ -247,7 +247,7 @@ void writeInteropFiles(const tvf::Designer& designer, const std::string& singPat
 }
 
 // The design's stripe pattern (design/design_stripes.h) baked for the GLB: drawn into the export's atlas as a
-// PNG, and its phase as TEXCOORD_1.
+// PNG, and its phase as a texture coordinate (io/gltf_writer.h).
 struct BakedStripes {
   std::vector<uint8_t> png;
   std::vector<float> phaseTexcoords;

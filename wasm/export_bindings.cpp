@@ -33,7 +33,8 @@
 // the flow map too; unless they are the model's own, the GLB is a new document over the welded mesh with a
 // vertex per (welded vertex, UV) pair (io/gltf_writer.h). Or {stripes: {cornerPhase, branchIndex, families,
 // profile, light?, dark?}}: the page's stripe pattern (Designer.computeStripes), drawn into the export's atlas
-// (direction/stripe_texture.h) as `tvf export --stripes` draws it, its phase as TEXCOORD_1 on a new document.
+// (direction/stripe_texture.h) as `tvf export --stripes` draws it, its phase as a texture coordinate
+// (TEXCOORD_1, or a kept primitive's first free set: io/gltf_writer.h).
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 

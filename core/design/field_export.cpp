@@ -129,7 +129,7 @@ std::vector<uint8_t> fieldGlb(const SurfaceMesh& mesh, const MeshTopology& topol
   content.mesh = &mesh;
   content.source = source;
   content.cornerUVs = source ? std::vector<float>{} : cornerUVs;
-  if (!source) content.cornerTexcoord1 = phaseTexcoords;
+  content.cornerTexcoord1 = phaseTexcoords;
   content.vertexField = std::move(vertexField);
   content.vertexNormal = vertexNormals(mesh);
   content.vertexTangent = fieldTangents(mesh, content.vertexNormal, content.vertexField);

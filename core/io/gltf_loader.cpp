@@ -730,6 +730,7 @@ GltfSource loadGltfSource(const uint8_t* data, std::size_t size, bool binary, co
   if (source.document.is_discarded() || !source.document.is_object()) fail(name, "invalid glTF JSON");
   for (const tinygltf::Buffer& buffer : model.buffers) source.buffers.emplace_back(buffer.data);
   // The same walk as collectGeometry: instances in scene order, surface primitives only.
+  const AccessorReader reader(model, name);
   for (const MeshInstance& instance : sceneInstances(model, name)) {
     const auto& primitives = model.meshes[instance.mesh].primitives;
     for (std::size_t p = 0; p < primitives.size(); ++p) {
@@ -740,7 +741,12 @@ GltfSource loadGltfSource(const uint8_t* data, std::size_t size, bool binary, co
       entry.primitive = static_cast<int>(p);
       entry.vertexCount = static_cast<uint32_t>(model.accessors.at(position).count);
       entry.transform = instance.transform;
-      source.primitives.push_back(entry);
+      const std::string label = "mesh " + std::to_string(instance.mesh) + " primitive " + std::to_string(p);
+      std::vector<int32_t> triangles;
+      appendTriangles(primitiveCorners(reader, model, primitives[p], entry.vertexCount, label, name),
+                      primitives[p].mode, 0, label, name, triangles);
+      entry.corners.assign(triangles.begin(), triangles.end());
+      source.primitives.push_back(std::move(entry));
     }
   }
   return source;

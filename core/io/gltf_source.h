@@ -14,6 +14,9 @@ struct GltfPrimitiveInstance {
   int mesh = 0, primitive = 0;
   uint32_t vertexCount = 0;            // the POSITION accessor's count
   std::array<double, 16> transform{};  // node world transform, column-major
+  // The primitive's triangles as the loader takes them (strips and fans unrolled), 3 of its own vertex
+  // indices each: the welded mesh's faces are every instance's in turn.
+  std::vector<uint32_t> corners;
 };
 
 struct GltfSource {

@@ -7,6 +7,9 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <tuple>
+
+#include "io/gltf_vertex_split.h"
 
 namespace tvf {
 namespace {
@@ -54,6 +57,21 @@ class GlbBuilder {
       accessor["min"] = lo;
       accessor["max"] = hi;
     }
+    return push("accessors", accessor);
+  }
+
+  // A vertex attribute's elements, each on a 4-byte boundary as glTF asks (a stride where they are shorter).
+  int addElementsAccessor(const AccessorElements& e, bool bounds) {
+    const std::size_t stride = (e.elementSize + 3) / 4 * 4;
+    std::vector<uint8_t> bytes(e.count * stride, 0);
+    for (std::size_t i = 0; i < e.count; ++i)
+      std::memcpy(&bytes[i * stride], &e.bytes[i * e.elementSize], e.elementSize);
+    const int view = addBufferView(bytes.data(), bytes.size(), kArrayBuffer);
+    if (stride != e.elementSize) doc_["bufferViews"][view]["byteStride"] = stride;
+    json accessor = {
+        {"bufferView", view}, {"componentType", e.componentType}, {"count", e.count}, {"type", e.type}};
+    if (e.normalized) accessor["normalized"] = true;
+    if (bounds) std::tie(accessor["min"], accessor["max"]) = elementBounds(e);
     return push("accessors", accessor);
   }
 
@@ -198,10 +216,11 @@ bool hasNormalMap(const json& doc, const json& primitive) {
   return material.contains("normalTexture");
 }
 
-// Attributes of one source primitive: world directions taken back to the mesh's own space.
+// Attributes of one source primitive: world directions taken back to the mesh's own space. vertices: the
+// source vertex of each of the primitive's vertices (split ones: gltf_vertex_split.h), or empty: its own.
 void addPrimitiveAttributes(const FieldGlbContent& content, const GltfPrimitiveInstance& instance,
-                            std::size_t firstSource, bool keepTangents, json& primitive,
-                            GlbBuilder& builder) {
+                            std::size_t firstSource, const std::vector<uint32_t>& vertices, bool keepTangents,
+                            json& primitive, GlbBuilder& builder) {
   Eigen::Matrix3d linear;
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r) linear(r, c) = instance.transform[4 * c + r];
@@ -209,8 +228,9 @@ void addPrimitiveAttributes(const FieldGlbContent& content, const GltfPrimitiveI
   // Normals transform with the inverse transpose.
   const Eigen::Matrix3d normalToLocal = linear.transpose();
   std::vector<float> tangents, field, normals;
-  for (uint32_t s = 0; s < instance.vertexCount; ++s) {
-    const int32_t v = content.mesh->sourceToWelded.at(firstSource + s);
+  const std::size_t count = vertices.empty() ? instance.vertexCount : vertices.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    const int32_t v = content.mesh->sourceToWelded.at(firstSource + (vertices.empty() ? i : vertices[i]));
     const Eigen::Vector3d t = (toLocal * at(content.vertexTangent, v)).normalized();
     const Eigen::Vector3d u = toLocal * at(content.vertexField, v);
     for (int d = 0; d < 3; ++d) tangents.push_back(static_cast<float>(t[d]));
@@ -228,6 +248,46 @@ void addPrimitiveAttributes(const FieldGlbContent& content, const GltfPrimitiveI
   attributes["_FIELD"] = builder.addFloatAccessor(field, 3, "VEC3", false);
 }
 
+// The first TEXCOORD_n a primitive does not have (n >= 1: TEXCOORD_0 is the model's UVs).
+int freeTexcoordSet(const json& attributes) {
+  int n = 1;
+  while (attributes.contains("TEXCOORD_" + std::to_string(n))) ++n;
+  return n;
+}
+
+// A kept primitive given the stripe phase as a texture coordinate (content.cornerTexcoord1 of faces
+// [firstFace, ...)): its vertices split where the phase differs, every attribute and morph target gathered
+// for them (but those addPrimitiveAttributes writes), the phase as its first free TEXCOORD_n (named in the
+// primitive's extras), and its triangles indexed anew. Returns the new vertices' source vertices.
+std::vector<uint32_t> splitForPhase(const FieldGlbContent& content, const GltfPrimitiveInstance& instance,
+                                    std::size_t firstFace, bool keepTangents, json& primitive,
+                                    GlbBuilder& builder) {
+  VertexSplit split =
+      splitVertices(instance.vertexCount, instance.corners, &content.cornerTexcoord1[6 * firstFace]);
+  const auto gathered = [&](const json& index) {
+    if (!index.is_number_integer()) throw InputError("glTF export: an attribute names no accessor");
+    const AccessorElements elements =
+        readAccessorElements(*content.source, index.get<int>(), instance.vertexCount);
+    const json& original = content.source->document["accessors"][index.get<std::size_t>()];
+    return builder.addElementsAccessor(gatherElements(elements, split.sourceVertex),
+                                       original.contains("min") || original.contains("max"));
+  };
+  for (auto& [name, index] : primitive["attributes"].items()) {
+    if (name == "_FIELD" || (name == "TANGENT" && !keepTangents)) continue;
+    index = gathered(index);
+  }
+  if (primitive.contains("targets"))
+    for (json& target : primitive["targets"])
+      for (auto& [name, index] : target.items()) index = gathered(index);
+  const int set = freeTexcoordSet(primitive["attributes"]);
+  primitive["attributes"]["TEXCOORD_" + std::to_string(set)] =
+      builder.addFloatAccessor(split.values, 2, "VEC2", false);
+  primitive["extras"][kGlbExtrasKey]["stripePhaseTexCoord"] = set;
+  primitive["indices"] = builder.addIndexAccessor(split.indices);
+  primitive["mode"] = 4;  // strips and fans unrolled
+  return std::move(split.sourceVertex);
+}
+
 json fromSource(const FieldGlbContent& content, const FieldGlbOptions& options, GlbBuilder& builder,
                 int baseColorTexture) {
   const GltfSource& source = *content.source;
@@ -243,20 +303,29 @@ json fromSource(const FieldGlbContent& content, const FieldGlbOptions& options, 
   int anisotropyTexture = -1;
   if (!content.anisotropyPng.empty())
     anisotropyTexture = builder.addPngTexture(content.anisotropyPng, "anisotropy");
+  const bool phase = !content.cornerTexcoord1.empty();
+  std::size_t faces = 0;
+  for (const auto& p : source.primitives) faces += p.corners.size() / 3;
+  if (phase && faces != static_cast<std::size_t>(content.mesh->numFaces()))
+    throw InputError("the glTF document does not match the loaded mesh (" + std::to_string(faces) +
+                     " triangles, the mesh has " + std::to_string(content.mesh->numFaces()) + ")");
   int defaultMaterial = -1;
   std::map<std::pair<int, int>, bool> written;  // a mesh instanced twice takes its first instance's field
-  std::vector<bool> materialDone;
-  std::size_t firstSource = 0;
+  std::size_t firstSource = 0, firstFace = 0;
   for (const GltfPrimitiveInstance& instance : source.primitives) {
     json& primitive = doc["meshes"][instance.mesh]["primitives"][instance.primitive];
     if (!written[{instance.mesh, instance.primitive}]) {
       written[{instance.mesh, instance.primitive}] = true;
       const bool normalMapped = hasNormalMap(doc, primitive);
-      addPrimitiveAttributes(content, instance, firstSource, normalMapped, primitive, builder);
+      const std::vector<uint32_t> vertices =
+          phase ? splitForPhase(content, instance, firstFace, normalMapped, primitive, builder)
+                : std::vector<uint32_t>();
+      addPrimitiveAttributes(content, instance, firstSource, vertices, normalMapped, primitive, builder);
       json& material = materialOf(doc, primitive, defaultMaterial, baseColorTexture >= 0);
       addFieldMaterial(material, options, normalMapped ? anisotropyTexture : -1, baseColorTexture);
     }
     firstSource += instance.vertexCount;
+    firstFace += instance.corners.size() / 3;
   }
   return doc;
 }
@@ -305,10 +374,11 @@ void fromMesh(const FieldGlbContent& content, const FieldGlbOptions& options, Gl
   json material = fieldMaterial(baseColorTexture >= 0);
   addFieldMaterial(material, options, -1, baseColorTexture);
   const int materialIndex = builder.push("materials", material);
-  const json primitive = {{"attributes", attributes},
-                          {"indices", builder.addIndexAccessor(indices)},
-                          {"material", materialIndex},
-                          {"mode", 4}};
+  json primitive = {{"attributes", attributes},
+                    {"indices", builder.addIndexAccessor(indices)},
+                    {"material", materialIndex},
+                    {"mode", 4}};
+  if (second) primitive["extras"][kGlbExtrasKey]["stripePhaseTexCoord"] = 1;
   const int meshIndex = builder.push("meshes", {{"primitives", json::array({primitive})}});
   const int node = builder.push("nodes", {{"mesh", meshIndex}});
   builder.doc()["scenes"] = json::array({{{"nodes", json::array({node})}}});

@@ -20,10 +20,11 @@ struct FieldGlbContent {
   // document is built from the mesh, with cornerUVs (when not empty) as TEXCOORD_0 and a vertex per (welded
   // vertex, UV) pair: vertices split only at UV seams, so every chart imports as one connected surface.
   const GltfSource* source = nullptr;
-  std::vector<float> cornerUVs;        // 6 per face; only read when source is null
-  // 6 per face, TEXCOORD_1 (a stripe pattern's phase: direction/stripe_texture.h stripeTexcoords); only
-  // written when source is null (the source's layout has no room for what differs between faces); vertices
-  // split where it differs, as where the UVs do.
+  std::vector<float> cornerUVs;  // 6 per face; only read when source is null
+  // 6 per face, a stripe pattern's phase (direction/stripe_texture.h stripeTexcoords) as a texture
+  // coordinate: TEXCOORD_1 of a new document, the first free TEXCOORD_n of each kept primitive (its vertices
+  // split where the phase differs: io/gltf_vertex_split.h), named in the primitive's extras
+  // (stripePhaseTexCoord).
   std::vector<float> cornerTexcoord1;
   std::vector<double> vertexField;     // 3 per welded vertex, world space
   std::vector<double> vertexTangent;   // 3 per welded vertex, unit, in the tangent plane

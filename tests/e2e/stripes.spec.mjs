@@ -146,10 +146,13 @@ test.describe.serial('stripe patterns in the page', () => {
         if (Math.abs(data[i] - 0xec) + Math.abs(data[i + 1] - 0xe4) + Math.abs(data[i + 2] - 0xd4) < 12) light++;
         if (Math.abs(data[i] - 0x34) + Math.abs(data[i + 1] - 0x2c) + Math.abs(data[i + 2] - 0x28) < 12) dark++;
       }
-      return { width: bitmap.width, light: light / covered, dark: dark / covered };
+      const primitive = doc.meshes[0].primitives[0];
+      const phase = primitive.attributes[`TEXCOORD_${primitive.extras?.tangentFieldDesigner?.stripePhaseTexCoord}`];
+      return { width: bitmap.width, light: light / covered, dark: dark / covered, phase };
     });
     console.log(`[ measured ] baked stripes: ${JSON.stringify(shades)}`);
     expect(shades.width).toBe(256);
+    expect(shades.phase).toBeDefined(); // the phase goes with the baked colour, in the set the primitive names
     expect(shades.light).toBeGreaterThan(0.2);
     expect(shades.dark).toBeGreaterThan(0.2);
     // Refusals name the option and change nothing.

@@ -235,8 +235,10 @@ std::vector<float> accessorFloats(const Glb& glb, int index) {
 }
 
 // A height-field patch as a GLB: positions in the node's local frame (scaled by 2, translated), own UVs, a
-// material with a base colour, split vertices along no seam (one primitive, indexed).
-std::vector<uint8_t> curvedPatchGlb(bool normalMapped = false) {
+// material with a base colour, split vertices along no seam (one primitive, indexed). moreAttributes adds a
+// TEXCOORD_1 (the UVs halved), a COLOR_0 of three normalized bytes (elements shorter than 4 bytes) and a
+// morph target moving each vertex up by x / 10.
+std::vector<uint8_t> curvedPatchGlb(bool normalMapped = false, bool moreAttributes = false) {
   std::vector<float> positions, uvs;
   std::vector<uint32_t> indices;
   for (int j = 0; j <= kGrid; ++j)
@@ -288,6 +290,34 @@ std::vector<uint8_t> curvedPatchGlb(bool normalMapped = false) {
         {{"buffer", 0}, {"byteOffset", t}, {"byteLength", uvs.size() * 4}, {"target", 34962}},
         {{"buffer", 0}, {"byteOffset", x}, {"byteLength", indices.size() * 4}, {"target", 34963}}}},
       {"buffers", {{{"byteLength", bin.size()}}}}};
+  if (moreAttributes) {
+    std::vector<float> uv1, up;
+    std::vector<uint8_t> colours;
+    for (size_t v = 0; v < vertices; ++v) {
+      uv1.insert(uv1.end(), {0.5f * uvs[2 * v], 0.5f * uvs[2 * v + 1]});
+      up.insert(up.end(), {0.0f, 0.0f, 0.1f * positions[3 * v]});
+      colours.insert(colours.end(), {uint8_t(v % 251), uint8_t(v % 13), uint8_t(v % 7)});
+    }
+    const auto view = [&](const void* data, size_t size) {
+      bin.resize((bin.size() + 3) / 4 * 4, 0);
+      doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", put(data, size)}, {"byteLength", size}});
+      return doc["bufferViews"].size() - 1;
+    };
+    const auto accessor = [&](size_t view, int type, const char* shape) {
+      doc["accessors"].push_back(
+          {{"bufferView", view}, {"componentType", type}, {"count", vertices}, {"type", shape}});
+      return doc["accessors"].size() - 1;
+    };
+    json& primitive = doc["meshes"][0]["primitives"][0];
+    primitive["attributes"]["TEXCOORD_1"] = accessor(view(uv1.data(), uv1.size() * 4), 5126, "VEC2");
+    primitive["attributes"]["COLOR_0"] = accessor(view(colours.data(), colours.size()), 5121, "VEC3");
+    doc["accessors"].back()["normalized"] = true;
+    primitive["targets"] = {{{"POSITION", accessor(view(up.data(), up.size() * 4), 5126, "VEC3")}}};
+    doc["accessors"].back()["min"] = {0.0, 0.0, 0.0};
+    doc["accessors"].back()["max"] = {0.0, 0.0, 0.1};
+    bin.resize((bin.size() + 3) / 4 * 4, 0);
+    doc["buffers"][0]["byteLength"] = bin.size();
+  }
   if (normalMapped) {
     // A flat 1x1 normal map: enough to make the material normal-mapped.
     const std::vector<uint8_t> png = tvf::encodePngRgba({128, 128, 255, 255}, 1, 1, 8);
@@ -653,6 +683,94 @@ TEST_F(CurvedPatchExport, StripesAreBakedIntoTheBaseColourAlongTheStroke) {
       runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("z.glb") + " --stripes 0"), 2);
 }
 
+// Element i of an accessor as bytes (its bufferView's stride honoured).
+std::vector<uint8_t> elementBytes(const Glb& glb, int index, size_t i) {
+  const json& a = glb.doc["accessors"][index];
+  const json& view = glb.doc["bufferViews"][a["bufferView"].get<int>()];
+  const size_t components = a["type"] == "SCALAR" ? 1 : a["type"] == "VEC2" ? 2 : a["type"] == "VEC3" ? 3 : 4;
+  const int type = a["componentType"].get<int>();
+  const size_t size = components * (type == 5121 || type == 5120 ? 1 : type == 5123 || type == 5122 ? 2 : 4);
+  const size_t stride = view.value("byteStride", size);
+  const auto begin = glb.bin.begin() + view.value("byteOffset", 0) + a.value("byteOffset", 0) + i * stride;
+  return std::vector<uint8_t>(begin, begin + size);
+}
+
+std::vector<uint32_t> indicesOf(const Glb& glb, const json& primitive) {
+  const int index = primitive["indices"].get<int>();
+  std::vector<uint32_t> out;
+  for (size_t i = 0; i < glb.doc["accessors"][index]["count"].get<size_t>(); ++i) {
+    const std::vector<uint8_t> b = elementBytes(glb, index, i);
+    uint32_t v = 0;
+    for (size_t k = 0; k < b.size(); ++k) v |= uint32_t(b[k]) << (8 * k);
+    out.push_back(v);
+  }
+  return out;
+}
+
+// A glTF whose own layout is kept (its UVs are an atlas) gets the stripe phase too, in its first free texture
+// coordinate set (TEXCOORD_1 holds something of its own here), its vertices split where the phase jumps
+// (round the branch points a vortex's stripes have). Every corner keeps each of its attributes and its morph
+// target's value; its phase is the one the same welded mesh's GLB built anew carries (an OFF of it); and the
+// file opens as the same welded mesh, so its embedded design still fits.
+TEST_F(CurvedPatchExport, AKeptLayoutCarriesThePhaseSplitWhereItJumps) {
+  const std::vector<uint8_t> rich = curvedPatchGlb(false, true);
+  std::ofstream(dir_ / "rich.glb", std::ios::binary)
+      .write(reinterpret_cast<const char*>(rich.data()), static_cast<std::streamsize>(rich.size()));
+  const int centre = pointAbove(mesh_, 0.5, 0.5).face;
+  std::ofstream(dir_ / "vortex.json")
+      << json{{"constraints", {{{"type", "vortex"}, {"face", centre}, {"strength", 1}}}}}.dump();
+  {
+    std::ofstream off(dir_ / "welded.off");
+    off.precision(17);
+    off << "OFF\n" << mesh_.numVertices() << " " << mesh_.numFaces() << " 0\n";
+    for (int32_t v = 0; v < mesh_.numVertices(); ++v)
+      off << mesh_.positions[3 * v] << " " << mesh_.positions[3 * v + 1] << " " << mesh_.positions[3 * v + 2]
+          << "\n";
+    for (int32_t f = 0; f < mesh_.numFaces(); ++f)
+      off << "3 " << mesh_.triangles[3 * f] << " " << mesh_.triangles[3 * f + 1] << " "
+          << mesh_.triangles[3 * f + 2] << "\n";
+  }
+  ASSERT_EQ(runCli(path("rich.glb") + " " + path("vortex.json") + " --glb " + path("kept.glb") +
+                   " --stripes 6 --size 128"),
+            0);
+  ASSERT_EQ(runCli(path("welded.off") + " " + path("vortex.json") + " --glb " + path("anew.glb") +
+                   " --stripes 6 --size 128"),
+            0);
+  const Glb source = parseGlb(rich), kept = parseGlb(readBytes(dir_ / "kept.glb")),
+            anew = parseGlb(readBytes(dir_ / "anew.glb"));
+  const json& before = source.doc["meshes"][0]["primitives"][0];
+  const json& after = kept.doc["meshes"][0]["primitives"][0];
+  ASSERT_EQ(after["extras"]["tangentFieldDesigner"]["stripePhaseTexCoord"], 2);
+  ASSERT_TRUE(after["attributes"].contains("TEXCOORD_2"));
+  const std::vector<uint32_t> from = indicesOf(source, before), to = indicesOf(kept, after),
+                              anewCorners = indicesOf(anew, anew.doc["meshes"][0]["primitives"][0]);
+  ASSERT_EQ(to.size(), from.size());
+  ASSERT_EQ(anewCorners.size(), from.size());
+  const size_t sourceVertices = source.doc["accessors"][before["attributes"]["POSITION"].get<int>()]["count"];
+  const size_t keptVertices = kept.doc["accessors"][after["attributes"]["POSITION"].get<int>()]["count"];
+  std::cout << "[ measured ] kept layout: " << sourceVertices << " vertices split into " << keptVertices
+            << "\n";
+  EXPECT_GT(keptVertices, sourceVertices);  // the branch points' faces could not share their corners
+  size_t mismatches = 0;
+  for (size_t c = 0; c < from.size(); ++c) {
+    for (const char* name : {"POSITION", "TEXCOORD_0", "TEXCOORD_1", "COLOR_0"})
+      mismatches += elementBytes(source, before["attributes"][name].get<int>(), from[c]) !=
+                    elementBytes(kept, after["attributes"][name].get<int>(), to[c]);
+    mismatches += elementBytes(source, before["targets"][0]["POSITION"].get<int>(), from[c]) !=
+                  elementBytes(kept, after["targets"][0]["POSITION"].get<int>(), to[c]);
+    mismatches +=
+        elementBytes(kept, after["attributes"]["TEXCOORD_2"].get<int>(), to[c]) !=
+        elementBytes(anew, anew.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"].get<int>(),
+                     anewCorners[c]);
+  }
+  EXPECT_EQ(mismatches, 0u);
+  const json& bounds = kept.doc["accessors"][after["attributes"]["POSITION"].get<int>()];
+  EXPECT_EQ(bounds["min"], source.doc["accessors"][before["attributes"]["POSITION"].get<int>()]["min"]);
+  const SurfaceMesh reopened = tvf::loadMesh(path("kept.glb"));
+  EXPECT_EQ(reopened.positions, mesh_.positions);
+  EXPECT_EQ(reopened.triangles, mesh_.triangles);
+}
+
 TEST_F(CurvedPatchExport, NormalMappedMaterialsGetTheDirectionInAnisotropyTexture) {
   const double worst = anisotropyTextureDeviation("design.json", "mapped.out.glb", false);
   EXPECT_LT(worst, 2.0);
@@ -731,10 +849,10 @@ TEST_F(CurvedPatchExport, CrossFieldRawFieldReadsBackTheSameDirections) {
 
 }  // namespace
 
-// export --stripes writes the phase as TEXCOORD_1 on a GLB it builds anew (an OFF model: a generated atlas). A
-// flat square with a constant field along x: the first coordinate is the phase in periods, so it changes along
-// y at exactly the asked frequency and not along x (within 10^-3 of a period), and a flat field's phase has no
-// seam: every corner at one position carries the same value.
+// export --stripes writes the phase as TEXCOORD_1 on a GLB it builds anew (an OFF model: a generated atlas).
+// A flat square with a constant field along x: the first coordinate is the phase in periods, so it changes
+// along y at exactly the asked frequency and not along x (within 10^-3 of a period), and a flat field's phase
+// has no seam: every corner at one position carries the same value.
 TEST(StripeExport, ThePhaseIsWrittenAsASecondTextureCoordinate) {
   const fs::path dir = fs::temp_directory_path() / ("tvf_stripe_tex_" + std::to_string(getpid()));
   fs::create_directories(dir);
@@ -745,7 +863,8 @@ TEST(StripeExport, ThePhaseIsWrittenAsASecondTextureCoordinate) {
     for (int32_t v = 0; v < m.numVertices(); ++v)
       off << m.positions[3 * v] << " " << m.positions[3 * v + 1] << " " << m.positions[3 * v + 2] << "\n";
     for (int32_t f = 0; f < m.numFaces(); ++f)
-      off << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2] << "\n";
+      off << "3 " << m.triangles[3 * f] << " " << m.triangles[3 * f + 1] << " " << m.triangles[3 * f + 2]
+          << "\n";
     std::ofstream(dir / "design.json")
         << json{{"constraints", {{{"type", "vector"}, {"face", 0}, {"vector", {1, 0, 0}}}}}}.dump();
   }

@@ -9,7 +9,7 @@ import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import validator from 'gltf-validator';
-import { diagonalStrokeDesign, patchGlb, patchOff } from './export-fixtures.mjs';
+import { GRID, diagonalStrokeDesign, patchGlb, patchOff } from './export-fixtures.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const tvf = resolve(process.argv[2] ?? join(ROOT, 'build/tvf'));
@@ -77,6 +77,23 @@ try {
       check(`${model} (symmetry ${symmetry}): validator sees KHR_materials_anisotropy`,
         report.info.extensionsUsed.includes('KHR_materials_anisotropy'));
     }
+  }
+
+  // Stripes over a kept layout: the phase in the primitive's first free TEXCOORD_n, its vertices split round the
+  // branch points of a vortex's stripes (the centre face of the patch's 16 x 16 grid).
+  writeFileSync(join(dir, 'vortex.json'), JSON.stringify({ constraints: [{ type: 'vortex', face: 272, strength: 1 }] }));
+  for (const model of ['patch.glb', 'normal-mapped.glb']) {
+    const out = join(dir, `${model}.stripes.glb`);
+    run('export', join(dir, model), join(dir, 'vortex.json'), '--glb', out, '--size', '128', '--stripes', '8');
+    const bytes = readFileSync(out);
+    const report = await validate(`tvf export ${model} --stripes (kept layout)`, bytes);
+    const json = JSON.parse(new TextDecoder().decode(bytes.subarray(20, 20 + bytes.readUInt32LE(12))));
+    const primitive = json.meshes[0].primitives[0];
+    check(`${model} --stripes: the phase in TEXCOORD_1, named in the primitive's extras, vertices split ` +
+      `(${report.info.totalVertexCount} for ${(GRID + 1) ** 2})`,
+    primitive.attributes.TEXCOORD_1 !== undefined &&
+      primitive.extras?.tangentFieldDesigner?.stripePhaseTexCoord === 1 &&
+      report.info.totalVertexCount > (GRID + 1) ** 2);
   }
 
   // The wasm exporter as the page's worker drives it (web/core/core-export.js): the mesh the Designer loaded
