@@ -24,6 +24,22 @@ CombedDirections combDirections(const SurfaceMesh& mesh, const MeshTopology& top
                                 const MeshGeometry& geometry, const std::vector<double>& faceDirections,
                                 int symmetry, const std::vector<float>& cornerUVs);
 
+// One of the N directions per vertex, chosen so that neighbours agree: vertexDirections (3 per vertex, unit
+// representatives, zero where the field is) turned by multiples of 2 pi / N about each vertex's normal along
+// a spanning tree of the edges grown best-aligned first from each component's first vertex, so that the edges
+// across which they cannot agree (forced round singularities of fractional index) gather where the field
+// turns most. A stripe pattern's families (direction/stripe_pattern.h) follow these: a brick or weave swaps
+// its rows and columns only across such edges.
+// normals: 3 per vertex, unit (vertexNormals).
+std::vector<double> combVertexDirections(const SurfaceMesh& mesh, const MeshTopology& topology,
+                                         const std::vector<double>& normals,
+                                         const std::vector<double>& vertexDirections, int symmetry);
+
+// The interior edges across which the vertex directions (3 per vertex) do not agree: where, turned into the
+// plane of one of the edge's faces, the second is nearer a turn of 2 pi / N than the first.
+int32_t disagreeingEdges(const MeshTopology& topology, const std::vector<double>& normals,
+                         const std::vector<double>& vertexDirections, int symmetry);
+
 // The corner directions interpolated at a barycentric point of face f and normalised.
 Eigen::Vector3d combedDirection(const CombedDirections& combed, int32_t f, const double bary[3]);
 

@@ -15,6 +15,7 @@
 #include "common/input_error.h"
 #include "common/sparse_matrix.h"
 #include "dec/hodge_star.h"
+#include "direction/combing.h"
 #include "mesh/mesh_geometry.h"
 #include "solver/lane_kernels.h"
 #include "solver/spd_solve.h"
@@ -37,10 +38,9 @@ struct Families {
   std::vector<Eigen::Vector3d> growth;  // count per vertex: the direction the phase grows in (a quarter more)
 };
 
-Families familiesOf(const SurfaceMesh& mesh, const std::vector<double>& vertexDirections, int symmetry,
-                    int quarterTurns) {
+Families familiesOf(const SurfaceMesh& mesh, const std::vector<double>& normals,
+                    const std::vector<double>& vertexDirections, int symmetry, int quarterTurns) {
   const int32_t nV = mesh.numVertices();
-  const std::vector<double> normals = vertexNormals(mesh);
   Families out;
   out.count = symmetry == 4 ? 2 : 1;
   out.oriented = symmetry == 1;
@@ -597,6 +597,29 @@ void facePhases(const SurfaceMesh& mesh, const MeshTopology& t, const Families& 
     out.cornerPhase[3 * slot + k] = static_cast<float>(alpha[k] - n * kTwoPi * k / 3.0);
 }
 
+// The workspace's last psi in this field's representatives (the start of an edit's update): each family
+// and vertex takes the last pattern's family there whose growth direction is nearest its own, conjugated
+// where that one points the other way (the same stripes, the phase run backwards). Representatives chosen
+// afresh after an edit (a family's label, a line's sign) then cost the start nothing.
+std::vector<double> psiInNewFrames(const Families& fam, const StripeWorkspace& w, int32_t numVertices) {
+  const int F = fam.count;
+  std::vector<double> psi(w.psi.size());
+  for (int32_t v = 0; v < numVertices; ++v)
+    for (int f = 0; f < F; ++f) {
+      const Eigen::Vector3d& y = fam.growth[static_cast<size_t>(v) * F + f];
+      int from = 0;
+      double best = -1, sign = 1;
+      for (int g = 0; g < F; ++g) {
+        const double d = y.dot(w.growth[static_cast<size_t>(v) * F + g]);
+        if (std::abs(d) > best) best = std::abs(d), from = g, sign = d < 0 ? -1 : 1;
+      }
+      const size_t a = 2 * (static_cast<size_t>(v) * F + from), b = 2 * (static_cast<size_t>(v) * F + f);
+      psi[b] = w.psi[a];
+      psi[b + 1] = sign * w.psi[a + 1];
+    }
+  return psi;
+}
+
 void checkInput(const SurfaceMesh& mesh, const std::vector<double>& dirs, const StripeOptions& o) {
   if (o.symmetry != 1 && o.symmetry != 2 && o.symmetry != 4)
     throw InputError("stripe pattern: symmetry must be 1, 2 or 4 (got " + std::to_string(o.symmetry) + ")");
@@ -634,6 +657,7 @@ void StripeWorkspace::clear() {
   spacingFactor.reset();
   vertexOrdering.clear();
   psi.clear();
+  growth.clear();
   symmetry = 0;
   frequency = eigenvalue = 0;
 }
@@ -642,8 +666,14 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
                             const std::vector<double>& vertexDirections, const StripeOptions& options,
                             StripeWorkspace* workspace) {
   checkInput(mesh, vertexDirections, options);
-  const Families fam =
-      familiesOf(mesh, vertexDirections, options.symmetry, ((options.quarterTurns % 4) + 4) % 4);
+  // Combed, a line or cross field's families keep their labels across all but the fewest edges: a profile
+  // that tells them apart (bricks, weave) changes only there.
+  const std::vector<double> normals = vertexNormals(mesh);
+  const Families fam = familiesOf(
+      mesh, normals,
+      options.symmetry > 1 ? combVertexDirections(mesh, topology, normals, vertexDirections, options.symmetry)
+                           : vertexDirections,
+      options.symmetry, ((options.quarterTurns % 4) + 4) % 4);
   const int F = fam.count;
   StripeWorkspace local;
   StripeWorkspace& w = workspace ? *workspace : local;
@@ -671,7 +701,9 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   StripeOptions o = options;
   const bool update = w.symmetry == o.symmetry && w.psi.size() == static_cast<size_t>(upper.rows());
   if (!update) w.factor.reset();  // made again with the ordering for this many families
-  if (o.initialPsi.empty() && update) o.initialPsi = w.psi;
+  if (o.initialPsi.empty() && update)
+    o.initialPsi =
+        w.growth.size() == fam.growth.size() ? psiInNewFrames(fam, w, topology.numVertices) : w.psi;
   // The last eigenvalue is near this one only for the same frequency (it grows about as its square).
   const double sigma = update && w.frequency == o.frequency ? kShiftPart * w.eigenvalue : 0.0;
   smallestEigenvector(upper, mass, o, sigma, w.factor,
@@ -681,6 +713,7 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   w.symmetry = o.symmetry;
   w.frequency = o.frequency;
   w.eigenvalue = std::max(out.eigenvalue - definite, 0.0);
+  w.growth = fam.growth;
   out.spacing = std::move(spacing);
   out.spacingMs = spacingMs;
   out.eigenvalue -= definite;

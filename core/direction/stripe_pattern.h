@@ -20,6 +20,7 @@
 // neighbour has. Regular faces (n = 0) interpolate the corner phases linearly. A face round which a line or
 // cross field's representatives do not match up (the field's own singularity) is marked; its phase is
 // unwrapped along two of its edges.
+#include <Eigen/Core>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -94,6 +95,7 @@ struct StripeWorkspace {
   // 50k vertices (empty below: AMD orders them).
   std::vector<int> vertexOrdering;
   std::vector<double> psi;
+  std::vector<Eigen::Vector3d> growth;  // the last pattern's growth directions (families per vertex)
   int symmetry = 0;
   double frequency = 0;   // the last pattern's options.frequency
   double eigenvalue = 0;  // the last pattern's (0: none, or an exact pattern: no shift then)
