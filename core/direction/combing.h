@@ -28,8 +28,8 @@ CombedDirections combDirections(const SurfaceMesh& mesh, const MeshTopology& top
 // representatives, zero where the field is) turned by multiples of 2 pi / N about each vertex's normal along
 // a spanning tree of the edges grown best-aligned first from each component's first vertex, so that the edges
 // across which they cannot agree (forced round singularities of fractional index) gather where the field
-// turns most. A stripe pattern's families (direction/stripe_pattern.h) follow these: a brick or weave swaps
-// its rows and columns only across such edges.
+// turns most. A cross field's stripe families (direction/stripe_pattern.h) follow these: a brick or weave
+// swaps its rows and columns only across such edges.
 // normals: 3 per vertex, unit (vertexNormals).
 std::vector<double> combVertexDirections(const SurfaceMesh& mesh, const MeshTopology& topology,
                                          const std::vector<double>& normals,
