@@ -1,6 +1,7 @@
 // bench:web's stripes stage (scripts/bench-web.mjs --stripes N): the stripe pattern turned on over the field the
 // strokes left, then N strokes, each timed from addStroke to its field drawn and to its stripes drawn, with the
-// page's long tasks (PerformanceObserver 'longtask', collected by bench-web.mjs into window.__longTasks).
+// page's long tasks (PerformanceObserver 'longtask', collected by bench-web.mjs into window.__longTasks); then
+// the same strokes in quick succession, each next one's field timed while the last one's stripes are made.
 const median = (v) => {
   const s = v.filter(Number.isFinite).sort((a, b) => a - b);
   return s.length === 0 ? null : s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
@@ -36,6 +37,20 @@ export async function stripesBench(page, strokes) {
     }, points));
   }
   const tasks = await page.evaluate(() => window.__longTasks.splice(0));
+  // Strokes in quick succession: each next one as soon as the last one's field is drawn, while the worker makes
+  // that field's stripes. The next field's time shows whether it waited for them (a pattern gives way to a
+  // newer edit where the page is cross-origin isolated: core-proxy.js).
+  const quick = await page.evaluate(async (list) => {
+    const out = [];
+    for (const pts of list) {
+      const t0 = performance.now();
+      await window.tvf.addStroke(pts);
+      out.push(performance.now() - t0);
+    }
+    await window.tvf.settled();
+    await window.tvf.stripesIdle();
+    return out;
+  }, strokes);
   await page.evaluate(() => window.tvf.setStripes({ visible: false }));
   return {
     stripesFirstMs: first.ms,
@@ -56,5 +71,7 @@ export async function stripesBench(page, strokes) {
     stripesShiftsRefused: runs.filter((r) => r.stats?.shiftRefused).length,
     stripesLongestStrokeTaskMs: longest(tasks),
     stripesStrokes: runs.length,
+    // The same strokes again in quick succession (the first waits for nothing): the later ones' fields, median.
+    stripesQuickStrokeFieldMs: median(quick.slice(1)),
   };
 }

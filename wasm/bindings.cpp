@@ -437,25 +437,35 @@ class DesignerBinding {
   // The stripe pattern (design/design_stripes.h) of the field the page draws: vertexVectors, 3 per vertex (the
   // whole field or a Hodge part; null: the design's own). options: designStripeOptionsFromJson's JSON. '' or
   // the error. Kept per model, so that the next one starts from this one; read by the views below until then.
-  std::string computeStripes(const val& vertexVectors, const std::string& options) {
+  // interrupted: null, or a function asked between the computation's steps; true abandons it (''; then
+  // stripesInterrupted() is true and the last pattern stays).
+  std::string computeStripes(const val& vertexVectors, const std::string& options, const val& interrupted) {
+    stripesInterrupted_ = false;
     return run([&] {
       const tvf::Designer& d = need();
       if (stripesModel_ != modelSerial_) {
         stripes_.clear();
         stripesModel_ = modelSerial_;
       }
-      const tvf::DesignStripeOptions o = tvf::designStripeOptionsFromJson(options, d.symmetry());
+      tvf::DesignStripeOptions o = tvf::designStripeOptionsFromJson(options, d.symmetry());
+      if (interrupted.typeOf().as<std::string>() == "function")
+        o.interrupted = [&interrupted] { return interrupted().as<bool>(); };
       const std::vector<double> given =
           vertexVectors.isNull() || vertexVectors.isUndefined() ? std::vector<double>{}
                                    : emscripten::convertJSArrayToNumberVector<double>(vertexVectors);
       if (!given.empty() && given.size() != d.mesh().positions.size())
         throw tvf::InputError("stripes: expected 3 numbers per vertex of the model");
       const auto t0 = std::chrono::steady_clock::now();
-      stripes_.compute(d.mesh(), d.topology(), d.geometry(), d.symmetry(), given.empty() ? d.vertexVectors() : given,
-                       o);
+      try {
+        stripes_.compute(d.mesh(), d.topology(), d.geometry(), d.symmetry(),
+                         given.empty() ? d.vertexVectors() : given, o);
+      } catch (const tvf::StripesInterrupted&) {
+        stripesInterrupted_ = true;
+      }
       stripesMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     });
   }
+  bool stripesInterrupted() const { return stripesInterrupted_; }
   // families x 3 per face (family-major), radians; families per face (family-major).
   val stripeCornerPhase() const { return view(stripes_.pattern().cornerPhase); }
   val stripeBranchIndex() const { return view(stripes_.pattern().branchIndex); }
@@ -726,6 +736,7 @@ class DesignerBinding {
   tvf::DesignStripes stripes_;               // computeStripes's, of model stripesModel_
   int stripesModel_ = -1;
   double stripesMs_ = 0;
+  bool stripesInterrupted_ = false;  // the last computeStripes was abandoned for a newer request
   tvf::KeptOrdering kept_;                   // keptOrderingJson()'s, viewed by keptOrderingPerm()
   std::unique_ptr<tvf::SurfaceMesh> parsed_;  // readModel's mesh, until openParsed
   Restored pendingRestored_;
@@ -858,6 +869,7 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("stripeCornerPhase", &DesignerBinding::stripeCornerPhase)
       .function("stripeBranchIndex", &DesignerBinding::stripeBranchIndex)
       .function("stripeStatsJson", &DesignerBinding::stripeStatsJson)
+      .function("stripesInterrupted", &DesignerBinding::stripesInterrupted)
       .function("reconstruct", &DesignerBinding::reconstruct);
   function("warmUp", &warmUp);
   // 1 in the plain build; in the build with pthreads (tvf_core_threads.mjs) one more than the helper threads

@@ -865,7 +865,7 @@ t.delete();
     { type: 'vector', face: 0, vector: dir }] })) || s.solve();
   check('stripes: a square with a constant line field', designed === '', designed);
   const frequency = 4;
-  const err = s.computeStripes(null, JSON.stringify({ frequency }));
+  const err = s.computeStripes(null, JSON.stringify({ frequency }), null);
   check('stripes: computed', err === '', err);
   const positions = s.positions().slice(), triangles = s.triangles().slice(), phase = s.stripeCornerPhase().slice();
   let worstRate = 0, worstAngle = 0;
@@ -884,12 +884,12 @@ t.delete();
   check('stripes: the asked frequency, across the field', worstRate < 1e-4 && worstAngle < 1e-4,
     `rate ${worstRate}, cos ${worstAngle}`);
   const first = JSON.parse(s.stripeStatsJson());
-  const again = s.computeStripes(null, JSON.stringify({ frequency }));
+  const again = s.computeStripes(null, JSON.stringify({ frequency }), null);
   const second = JSON.parse(s.stripeStatsJson());
   check('stripes: a second compute starts from the first', again === '' && second.analysisReused === true &&
     second.iterations <= first.iterations, JSON.stringify(second));
   const turned = s.setSymmetry(3) || s.solve();
-  const refused = turned || s.computeStripes(null, JSON.stringify({ frequency }));
+  const refused = turned || s.computeStripes(null, JSON.stringify({ frequency }), null);
   check('stripes: symmetry 3 is refused by name', /symmetry 1, 2 or 4/.test(refused), refused);
   s.delete();
 }

@@ -89,6 +89,7 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
   o.maxIterations = options.maxIterations;
   o.tolerance = options.tolerance;
   o.adaptSpacing = options.adaptSpacing;
+  o.interrupted = options.interrupted;
   if (options.magnitudeSpacing > 0 && symmetry == 1)
     o.vertexFrequencyScale = magnitudeScale(vertexVectors, options.magnitudeSpacing);
   StripePattern along = stripePattern(mesh, topology, geometry, vertexVectors, o, &along_);

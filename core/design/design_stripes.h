@@ -6,6 +6,7 @@
 // A cross field has two families and draws only the profiles that use both: along one of its directions alone
 // a stripe would change direction across its singularities. Kept between edits on one mesh: each family's
 // StripeWorkspace (the factor's analysis, the last pattern as the next start).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,8 @@ struct DesignStripeOptions {
   double tolerance = 1e-6;
   // StripeOptions::adaptSpacing (the stripes follow the field, their spacing gives way).
   bool adaptSpacing = true;
+  // StripeOptions::interrupted, for each family's pattern (an interrupted one leaves the last pattern shown).
+  std::function<bool()> interrupted;
 };
 
 // The options from the page's JSON: {frequency, profile: "stripes" | "wood" | "grid" | "bricks" | "weave",

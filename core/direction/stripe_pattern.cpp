@@ -97,6 +97,10 @@ Match walk(const MeshTopology& t, const std::vector<Match>& matches, int F, int3
   return {};
 }
 
+void checkInterruption(const StripeOptions& o) {
+  if (o.interrupted && o.interrupted()) throw StripesInterrupted();
+}
+
 struct EdgeTurns {
   std::vector<Match> matches;
   std::vector<double> omega;  // per edge and family at its lower vertex: the phase's advance from a to b
@@ -493,6 +497,7 @@ void smallestEigenvector(const SparseMatrix& upper, const Eigen::VectorXd& mass,
   const auto t0 = std::chrono::steady_clock::now();
   SpdFactor& factor = factorEnergy(upper, mass, sigma, kept, ordering, out);
   out.analysisReused = factor.analysisReused();
+  checkInterruption(o);
   const auto t1 = std::chrono::steady_clock::now();
   out.factorMs = std::chrono::duration<double, std::milli>(t1 - t0).count();
   const Eigen::Index n = upper.rows();
@@ -536,6 +541,7 @@ void smallestEigenvector(const SparseMatrix& upper, const Eigen::VectorXd& mass,
     const double residual = r.col(0).norm() / std::max(scale, 1e-300);
     out.residual = residual;
     if (residual <= o.tolerance || out.iterations >= o.maxIterations) break;
+    checkInterruption(o);
     // A weak shift (none at a first pattern, or one far below the eigenvalue an edit raised) made strong once
     // the Ritz value has settled (its error about the residual squared): one factorization more, for the
     // steps it saves.
@@ -666,6 +672,7 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
                             const std::vector<double>& vertexDirections, const StripeOptions& options,
                             StripeWorkspace* workspace) {
   checkInput(mesh, vertexDirections, options);
+  checkInterruption(options);
   // Combed, a cross field's families keep their labels across all but the fewest edges: a profile that tells
   // them apart (bricks, weave) changes only there. A line field's sign needs no combing (every profile reads
   // the same with its phase run backwards), and armadillo-sub2's would cost 0.4 s an edit in the page.
@@ -688,6 +695,7 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
     if (adapted.vertexFrequencyScale.empty()) adapted.vertexFrequencyScale.assign(spacing.size(), 1.0);
     for (size_t v = 0; v < spacing.size(); ++v) adapted.vertexFrequencyScale[v] *= spacing[v];
     spacingMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    checkInterruption(options);
   }
   const EdgeTurns turns = edgeTurns(mesh, topology, fam, adapted);
 

@@ -22,6 +22,8 @@
 // unwrapped along two of its edges.
 #include <Eigen/Core>
 #include <cstdint>
+#include <exception>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -49,12 +51,22 @@ struct StripeOptions {
   // magnitude); empty for none.
   std::vector<double> vertexFrequencyScale;
   int maxIterations = 200;
+  // Asked between the computation's steps (the spacing, the factorization, each eigensolver step, the corner
+  // phases); true abandons it: stripePattern throws StripesInterrupted and leaves the workspace's last
+  // pattern (its psi, eigenvalue, representatives) as it was. The page's newer edit ranks above a pattern of
+  // the old field. Empty: never.
+  std::function<bool()> interrupted;
   // On the first Ritz vector's relative residual |A x - theta B x| / |A x| (|A x| floored at 1e-4 |A| |x|,
   // for an eigenvalue of 0).
   double tolerance = 1e-6;
   // Optional: a start for psi (a pattern computed before for a field close to this one), 2 x families per
   // vertex.
   std::vector<double> initialPsi;
+};
+
+// Thrown by stripePattern when StripeOptions::interrupted says so.
+struct StripesInterrupted : std::exception {
+  const char* what() const noexcept override { return "stripe pattern: interrupted by a newer request"; }
 };
 
 struct StripePattern {

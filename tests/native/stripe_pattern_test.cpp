@@ -254,6 +254,37 @@ TEST(StripePattern, AnEditsUpdateFactoredBelowTheLastEigenvalueFindsTheSamePatte
   EXPECT_LT(meanStripeAngle(m, lowered, cold), 1e-4);
 }
 
+// An interruption (StripeOptions::interrupted: the page sent a newer request) abandons the pattern at any of
+// its steps and leaves the workspace's last pattern as it was: the next computation, uninterrupted, is the
+// one a workspace that was never interrupted makes (the same steps, eigenvalue and stripes).
+TEST(StripePattern, AnInterruptionAbandonsThePatternAndLeavesTheLastOne) {
+  const SurfaceMesh m = torus(48, 18, 2.0, 0.7);
+  const MeshTopology t = buildTopology(m);
+  const MeshGeometry g = computeMeshGeometry(m, t);
+  StripeOptions o;
+  o.symmetry = 2;
+  o.frequency = 1.5;
+  o.adaptSpacing = true;
+  const std::vector<double> first = turnedAroundTheTube(m, 0.3, 2), edited = turnedAroundTheTube(m, 0.31, 2);
+  StripeWorkspace plain, interrupted;
+  stripePattern(m, t, g, first, o, &plain);
+  stripePattern(m, t, g, first, o, &interrupted);
+  const StripePattern expected = stripePattern(m, t, g, edited, o, &plain);
+  int asked = 0;
+  for (const int at : {1, 2, 3, 4}) {
+    StripeOptions stop = o;
+    int calls = 0;
+    stop.interrupted = [&calls, at] { return ++calls == at; };
+    EXPECT_THROW(stripePattern(m, t, g, edited, stop, &interrupted), StripesInterrupted) << "at check " << at;
+    asked = std::max(asked, calls);
+  }
+  EXPECT_GE(asked, 4);  // the start, after the spacing, after the factorization, after a step
+  const StripePattern resumed = stripePattern(m, t, g, edited, o, &interrupted);
+  EXPECT_EQ(resumed.iterations, expected.iterations);
+  EXPECT_NEAR(resumed.eigenvalue, expected.eigenvalue, 1e-9 * expected.eigenvalue);
+  EXPECT_LT(meanStripeAngle(m, resumed, expected), 1e-6);
+}
+
 // A flat square's stripes are exact (eigenvalue 0), where |A x| is round-off: the solver stops, and started
 // from them stops at once, where it had measured its residual against round-off and ran to its limit (the
 // cold start in 80 steps, the warm one in 200; found in wasm, where the order of the sums differs).

@@ -10,10 +10,12 @@ import { serveCoreWorker } from './worker-harness.mjs';
 const DIST = new URL('../../dist/', import.meta.url).href;
 
 // The entry serves `self`: here a stand-in that keeps what the worker posts (worker-harness.mjs).
-const { posted, call } = await serveCoreWorker();
+const { posted, call, callMarked } = await serveCoreWorker();
+// The page's count of requests that rank above a background one, as a cross-origin isolated page shares it.
+const interrupts = new Int32Array(new SharedArrayBuffer(4));
 
 test('the worker entry: a load, an edit, and read-outs of the version they name', async () => {
-  assert.deepEqual((await call('init', DIST)).value, { crossOriginIsolated: false });
+  assert.deepEqual((await call('init', DIST, interrupts)).value, { crossOriginIsolated: false });
   await assert.rejects(call('add', {}), /no mesh loaded/);
 
   const mesh = icosphere(3);
@@ -55,6 +57,26 @@ test('the worker entry: a load, an edit, and read-outs of the version they name'
   assert.deepEqual(shares.energyShares, hodge.value.energyShares);
 
   await assert.rejects(call('exportRawField'), /holds line and cross fields; this is a vector field/);
+});
+
+// A stripe pattern gives way to a request the page sent after it (an edit, whose field's pattern is asked for
+// next): the core's steps read the shared count, the op replies null and the last pattern stays; asked again
+// at the new count, it is made.
+test('a stripe pattern gives way to a request sent after it', async () => {
+  const { version } = (await call('read')).value;
+  const options = { frequency: 3, adaptSpacing: true };
+  const made = await callMarked(Atomics.load(interrupts, 0), 'stripes', version, 'whole', options);
+  assert.ok(made.value.phase.length > 0 && made.value.stats.residual < 1e-3);
+  const sentAt = Atomics.load(interrupts, 0);
+  Atomics.add(interrupts, 0, 1); // an edit sent behind the next request, before that request runs
+  const given = await callMarked(sentAt, 'stripes', version, 'whole', { ...options, frequency: 4 });
+  assert.equal(given.value, null);
+  const again = await callMarked(Atomics.load(interrupts, 0), 'stripes', version, 'whole', { ...options, frequency: 4 });
+  assert.ok(again.value.phase.length > 0 && again.value.stats.residual < 1e-3);
+  assert.notDeepEqual(Array.from(again.value.phase.slice(0, 30)), Array.from(made.value.phase.slice(0, 30)));
+  // A page that cannot share the count (no mark): never interrupted.
+  Atomics.add(interrupts, 0, 1);
+  assert.ok((await call('stripes', version, 'whole', options)).value.phase.length > 0);
 });
 
 test('the synthesis ops the entry composes: an exemplar analysed in the worker', async () => {

@@ -69,6 +69,7 @@ export class CoreProxy {
     this.pending = new Map();
     this.seq = 0;
     this.failure = null; // set by terminate(): the proxy is done for good
+    this.interrupts = null; // the count of requests that rank above a background one (#open), where shared
     this.onRestart = options.onRestart ?? null;
     this.onStatus = options.onStatus ?? (() => {});
     this.onDeferredUpdate = options.onDeferredUpdate ?? null; // ({seq, ms, at}): the worker's update after a reply
@@ -107,7 +108,12 @@ export class CoreProxy {
     worker.onmessageerror = () => mine() && this.#fail('error', 'the worker sent an unreadable message');
     clearInterval(this.heartbeat);
     this.heartbeat = setInterval(() => mine() && this.#beat(), this.heartbeatMs);
-    await this.#send('init', [new URL('./', this.assetBase).href]);
+    // How many requests that rank above a background one (an edit above a stripe pattern of the field before
+    // it) this side has sent, counted where the worker can read it while it runs (shared memory: a
+    // cross-origin isolated page only); each request carries the count it was sent at (dispatch.js).
+    const shared = globalThis.crossOriginIsolated === true && typeof SharedArrayBuffer === 'function';
+    this.interrupts = shared ? new Int32Array(new SharedArrayBuffer(4)) : null;
+    await this.#send('init', [new URL('./', this.assetBase).href, this.interrupts]);
   }
 
   // Resolves with the whole reply ({value, snapshot?, workerMs, timing}); rejects with the core's message.
@@ -126,10 +132,12 @@ export class CoreProxy {
     const seq = ++this.seq;
     const spare = this.spare.filter((b) => b.byteLength > 0 && !transfer.includes(b));
     this.spare = [];
+    const counted = this.interrupts;
+    const mark = !counted ? undefined : background ? Atomics.load(counted, 0) : Atomics.add(counted, 0, 1) + 1;
     return new Promise((resolve, reject) => {
       this.pending.set(seq, { resolve, reject, op, background, onProgress });
       try {
-        this.worker.postMessage({ seq, op, args, spare, wholeDesign }, [...transfer, ...spare]);
+        this.worker.postMessage({ seq, op, args, spare, wholeDesign, mark }, [...transfer, ...spare]);
       } catch (err) {
         this.pending.delete(seq);
         reject(new CoreError(`could not send ${op} to the core: ${err.message}`));

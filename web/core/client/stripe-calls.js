@@ -7,10 +7,14 @@ import { check, guard } from './checks.js';
 export const stripeCalls = (Base) =>
   class StripeCalls extends Base {
     // vertexVectors: 3 per vertex (a Hodge part the page draws) or null (the design's own field); options:
-    // {frequency, profile, magnitudeSpacing, ...} (design_stripes.h). Returns the pattern's stats.
-    computeStripes(vertexVectors, options) {
+    // {frequency, profile, magnitudeSpacing, ...} (design_stripes.h); interrupted: null, or a function the
+    // core asks between its steps (true abandons the pattern). Returns the pattern's stats, or null when it
+    // was abandoned (the last pattern stays).
+    computeStripes(vertexVectors, options, interrupted = null) {
       const json = JSON.stringify(options ?? {});
-      check('stripes', guard('stripes', () => this.designer.computeStripes(vertexVectors ?? null, json)));
+      const call = () => this.designer.computeStripes(vertexVectors ?? null, json, interrupted);
+      check('stripes', guard('stripes', call));
+      if (this.designer.stripesInterrupted()) return null;
       return JSON.parse(guard('stripes', () => this.designer.stripeStatsJson()));
     }
 

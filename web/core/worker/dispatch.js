@@ -72,7 +72,7 @@ async function serveRequest(scope, state, ops, data) {
 
 async function answer(state, data, entry, mutating) {
   const { seq, op } = data;
-  state.beginRequest(seq);
+  state.beginRequest(seq, data.mark);
   state.spares.take(data.spare);
   const t0 = performance.now();
   const timing = {};

@@ -20,8 +20,11 @@ export function loadOps(state) {
   const trees = new PickingCache();
   const anytime = {
     // assetBase: the folder holding wasm/tvf_core.mjs (the element's asset base; the worker may run from a
-    // blob: URL, where its own import.meta.url names nothing useful).
-    async init(assetBase) {
+    // blob: URL, where its own import.meta.url names nothing useful). interrupts: the page's count of the
+    // requests that rank above a background one (an Int32Array on shared memory), or null.
+    async init(assetBase, interrupts = null) {
+      if (interrupts instanceof Int32Array && interrupts.buffer instanceof SharedArrayBuffer)
+        state.interrupts = interrupts;
       const core = (state.core = await loadCore(assetBase));
       // Held for the worker's whole life: the page notices its release the moment this worker ends.
       holdLifeLock(state.scope);

@@ -24,6 +24,9 @@ export class WorkerState {
     this.warming = null;
     this.prepared = null; // the big model's coarse stand-in and map, until its preview opens
     this.previewMade = () => {}; // what a big model's load waits for before factoring
+    // The page's count of the requests it sent that rank above a background one (core-proxy.js), shared memory
+    // where the page is cross-origin isolated (else null): a long background op gives way when it moves.
+    this.interrupts = null;
     this.beginRequest(0);
   }
 
@@ -31,10 +34,20 @@ export class WorkerState {
   // undoEdit: how to take back the edit in flight when the solve after it fails (a factor that does not fit, a
   // field that is not finite), so that the core then holds exactly what it held before; set by each edit.
   // changedIds: the core ids whose entry in the design the edit changed; null: the whole document.
-  beginRequest(seq) {
+  // mark: the page's interrupt count when it sent this request (core-proxy.js), or undefined.
+  beginRequest(seq, mark) {
     this.seq = seq;
+    this.mark = mark;
     this.undoEdit = null;
     this.changedIds = null;
+  }
+
+  // For the request in flight: a function that says whether the page has sent a request that ranks above it
+  // since (the stripe pattern's steps ask it), or null where the page cannot say.
+  interruption() {
+    const { interrupts, mark } = this;
+    if (!interrupts || !Number.isInteger(mark)) return null;
+    return () => Atomics.load(interrupts, 0) !== mark;
   }
 
   progress(value, list = []) {
