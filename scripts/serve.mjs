@@ -77,11 +77,20 @@ const server = createServer(async (req, res) => {
     return send(res, 404, `not found: ${pathname}\n`);
   }
   if (!st.isFile()) return send(res, 404, `not found: ${pathname}\n`);
+  // A validator, answered with 304 as any static host does: a reloaded page revalidates the core and the model
+  // and takes them from the browser's cache (armadillo-sub2 reopened in a reloaded page: 0.57-0.68 of its
+  // first opening in five runs, against 0.59-0.65 before: within the noise).
+  const etag = `"${st.size.toString(36)}-${Math.floor(st.mtimeMs).toString(36)}"`;
+  const validators = { ETag: etag, 'Last-Modified': st.mtime.toUTCString() };
+  if (req.headers['if-none-match'] === etag) {
+    res.writeHead(304, { ...COMMON_HEADERS, ...validators });
+    return res.end();
+  }
   res.writeHead(200, {
     ...COMMON_HEADERS,
     'Content-Type': MIME[extname(file).toLowerCase()] || 'application/octet-stream',
     'Content-Length': st.size,
-    'Last-Modified': st.mtime.toUTCString(),
+    ...validators,
   });
   if (req.method === 'HEAD') return res.end();
   createReadStream(file)
