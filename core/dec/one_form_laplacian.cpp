@@ -24,9 +24,25 @@ FluxStencil boundaryFlux(const MeshTopology& t, const MeshGeometry& g, int32_t f
   return {{t.edgeOf(f, a), t.edgeOf(f, b)}, {cot[c] * t.signOf(f, a), -cot[a] * t.signOf(f, b)}};
 }
 
+// d0' *1, column by column (each edge's two vertices, lower first): no product temporaries.
+SparseMatrix weightedCoboundary(const MeshTopology& t, const MeshGeometry& g) {
+  SparseMatrix D(t.numVertices, t.numEdges);
+  D.resizeNonZeros(2 * static_cast<Eigen::Index>(t.numEdges));
+  int* outer = D.outerIndexPtr();
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    outer[e] = 2 * e;
+    D.innerIndexPtr()[2 * e] = t.edgeVertices[2 * e];
+    D.innerIndexPtr()[2 * e + 1] = t.edgeVertices[2 * e + 1];
+    D.valuePtr()[2 * e] = -g.star1[e];
+    D.valuePtr()[2 * e + 1] = g.star1[e];
+  }
+  outer[t.numEdges] = 2 * t.numEdges;
+  return D;
+}
+
 SparseMatrix divergenceOperator(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
-                                const SparseMatrix& d0, bool freeBoundary) {
-  SparseMatrix D = d0.transpose() * g.star1.asDiagonal();
+                                bool freeBoundary) {
+  SparseMatrix D = weightedCoboundary(t, g);
   if (freeBoundary) {
     Triplets extra;
     for (int32_t f = 0; f < t.numFaces; ++f)
@@ -77,7 +93,7 @@ OneFormOperators buildOneFormOperators(const SurfaceMesh& mesh, const MeshTopolo
   ops.d0 = exteriorDerivative0(t);
   ops.d1 = exteriorDerivative1(t);
   const bool freeBoundary = angles.empty();
-  ops.divergence = divergenceOperator(mesh, t, g, ops.d0, freeBoundary);
+  ops.divergence = divergenceOperator(mesh, t, g, freeBoundary);
   ops.boundaryRows = freeBoundary ? SparseMatrix(0, t.numEdges) : fixedAngleRows(t, g, angles);
   return ops;
 }

@@ -1,10 +1,11 @@
 #include "mesh/mesh_checks.h"
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <deque>
-#include <map>
 #include <numeric>
+#include <utility>
 
 #include "mesh/mesh_geometry.h"
 
@@ -133,6 +134,7 @@ void checkManifoldVertices(const SurfaceMesh& mesh, const MeshTopology& t, std::
   for (int32_t k = 0; k < static_cast<int32_t>(mesh.triangles.size()); ++k)
     corners[fill[mesh.triangles[k]]++] = k;
   std::vector<int32_t> fan;
+  std::vector<std::pair<int32_t, int32_t>> firstUser;  // (edge, the first of v's corners that uses it)
   for (int32_t v = 0; v < t.numVertices; ++v) {
     const int32_t n = start[v + 1] - start[v];
     if (n <= 1) continue;
@@ -142,13 +144,19 @@ void checkManifoldVertices(const SurfaceMesh& mesh, const MeshTopology& t, std::
       while (fan[x] != x) x = fan[x];
       return x;
     };
-    // The two edges at corner (f, c): the edge leaving v (corner c) and the one entering it (corner c+2).
-    std::map<int32_t, int32_t> firstUser;
+    // The two edges at corner (f, c): the edge leaving v (corner c) and the one entering it (corner c+2). A
+    // vertex has few edges: a flat list searched in place of a map (armadillo-sub2's 416k vertices: a map's
+    // nodes took 45 ms of the check in wasm).
+    firstUser.clear();
     for (int32_t a = 0; a < n; ++a) {
       const int32_t corner = corners[start[v] + a], f = corner / 3, c = corner % 3;
       for (const int32_t e : {t.edgeOf(f, c), t.edgeOf(f, (c + 2) % 3)}) {
-        const auto [it, inserted] = firstUser.emplace(e, a);
-        if (!inserted) fan[root(a)] = root(it->second);
+        const auto it =
+            std::find_if(firstUser.begin(), firstUser.end(), [e](const auto& u) { return u.first == e; });
+        if (it == firstUser.end())
+          firstUser.emplace_back(e, a);
+        else
+          fan[root(a)] = root(it->second);
       }
     }
     int32_t fans = 0;
