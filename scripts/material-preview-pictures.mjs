@@ -6,25 +6,18 @@
 //
 // Usage: node scripts/material-preview-pictures.mjs [--out DIR] [--port P]
 //   --out   where the pictures go (default docs/images)
-import { existsSync, mkdirSync } from 'node:fs';
+import { mkdirSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openDesigner } from '../tests/e2e/helpers.mjs';
-import { launchChromium, startServer } from './page-session.mjs';
+import { argument, launchChromium, requireBuiltPage, startServer } from './page-session.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
-const arg = (name, fallback) => {
-  const i = process.argv.indexOf(name);
-  return i > 0 ? process.argv[i + 1] : fallback;
-};
-const out = resolve(arg('--out', join(ROOT, 'docs/images')));
-const port = Number(arg('--port', process.env.PORT || 8196));
+const out = resolve(argument('--out', join(ROOT, 'docs/images')));
+const port = Number(argument('--port', process.env.PORT || 8196));
 const PRESETS = ['brushed metal', 'satin'];
 
-if (!existsSync(resolve(ROOT, 'dist/index.html'))) {
-  console.error('material-preview-pictures: dist/ not found; run npm run build:wasm && npm run build:web');
-  process.exit(1);
-}
+requireBuiltPage('material-preview-pictures');
 
 // A source at the lowest and a sink at the highest vertex of the default model: a field that sweeps over the
 // whole surface, so the highlights wrap around it.

@@ -2,7 +2,7 @@
 // real page outside the test runner (texture-sweep.mjs, material-preview-pictures.mjs, bench-web-quad.mjs), and
 // a CPU profile of the page (bench-web.mjs too). Never a downloaded browser: TVF_CHROMIUM or /usr/bin/chromium.
 import { spawn } from 'node:child_process';
-import { writeFileSync } from 'node:fs';
+import { existsSync, writeFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from '@playwright/test';
@@ -20,6 +20,19 @@ export async function startServer(port) {
     server.on('exit', (code) => fail(new Error(`the server exited (${code})`)));
   });
   return server;
+}
+
+// The value after `name` on the command line, or fallback.
+export function argument(name, fallback) {
+  const i = process.argv.indexOf(name);
+  return i > 0 ? process.argv[i + 1] : fallback;
+}
+
+// Ends the script (named in the message) when the page is not built in dist/.
+export function requireBuiltPage(script) {
+  if (existsSync(resolve(ROOT, 'dist/index.html'))) return;
+  console.error(`${script}: dist/ not found; run npm run build:wasm && npm run build:web`);
+  process.exit(1);
 }
 
 export function launchChromium() {

@@ -7,27 +7,20 @@
 // tests/e2e/stripes.spec.mjs's.
 //
 // Usage: node scripts/stripe-pictures.mjs [--out DIR] [--port P] [--size PX]
-import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
+import { mkdirSync, writeFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openDesigner } from '../tests/e2e/helpers.mjs';
-import { launchChromium, startServer } from './page-session.mjs';
+import { argument, launchChromium, requireBuiltPage, startServer } from './page-session.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
-const arg = (name, fallback) => {
-  const i = process.argv.indexOf(name);
-  return i > 0 ? process.argv[i + 1] : fallback;
-};
-const out = resolve(arg('--out', join(ROOT, 'docs/images')));
-const port = Number(arg('--port', process.env.PORT || 8197));
-const size = Number(arg('--size', 360));
+const out = resolve(argument('--out', join(ROOT, 'docs/images')));
+const port = Number(argument('--port', process.env.PORT || 8197));
+const size = Number(argument('--size', 360));
 // [symmetry, profile] in the order shown.
 const PROFILES = [[2, 'stripes'], [2, 'wood'], [4, 'grid'], [4, 'bricks'], [4, 'weave']];
 
-if (!existsSync(resolve(ROOT, 'dist/index.html'))) {
-  console.error('stripe-pictures: dist/ not found; run npm run build:wasm && npm run build:web');
-  process.exit(1);
-}
+requireBuiltPage('stripe-pictures');
 
 // One picture of the model per profile (PNG bytes), the panels, hint and view buttons out of the way.
 async function profilePictures(page) {

@@ -26,30 +26,21 @@ tvf::GltfSource strideAndSparseSource() {
   const float substitute[2] = {7, 8};
   std::memcpy(&bytes[40], substitute, 8);
   s.buffers.push_back(bytes);
-  s.document = {{"bufferViews",
-                 {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}, {"byteStride", 12}},
-                  {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 4}},
-                  {{"buffer", 0}, {"byteOffset", 40}, {"byteLength", 8}}}},
-                {"accessors",
-                 {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}},
-                  {{"bufferView", 0},
-                   {"componentType", 5126},
-                   {"count", 3},
-                   {"type", "VEC2"},
-                   {"sparse",
-                    {{"count", 1},
-                     {"indices", {{"bufferView", 1}, {"componentType", 5125}}},
-                     {"values", {{"bufferView", 2}}}}}},
-                  {{"componentType", 5126},
-                   {"count", 3},
-                   {"type", "VEC2"},
-                   {"sparse",
-                    {{"count", 1},
-                     {"indices", {{"bufferView", 1}, {"componentType", 5125}}},
-                     {"values", {{"bufferView", 2}}}}}},
-                  {{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
-                  {{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "MAT2"}},
-                  {{"bufferView", 9}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}}}}};
+  const json sparse = {{"count", 1},
+                       {"indices", {{"bufferView", 1}, {"componentType", 5125}}},
+                       {"values", {{"bufferView", 2}}}};
+  s.document = {
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}, {"byteStride", 12}},
+        {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 4}},
+        {{"buffer", 0}, {"byteOffset", 40}, {"byteLength", 8}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}},
+        {{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}, {"sparse", sparse}},
+        {{"componentType", 5126}, {"count", 3}, {"type", "VEC2"}, {"sparse", sparse}},
+        {{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+        {{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "MAT2"}},
+        {{"bufferView", 9}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}}}}};
   return s;
 }
 

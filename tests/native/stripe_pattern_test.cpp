@@ -211,6 +211,20 @@ std::vector<double> turnedAroundTheTube(const SurfaceMesh& m, double amplitude, 
   return out;
 }
 
+// A torus and the line-field options of the edit tests (its field turnedAroundTheTube, then turned further).
+struct EditedTorus {
+  SurfaceMesh m = torus(48, 18, 2.0, 0.7);
+  MeshTopology t = buildTopology(m);
+  MeshGeometry g = computeMeshGeometry(m, t);
+  StripeOptions o = [] {
+    StripeOptions o;
+    o.symmetry = 2;
+    o.frequency = 1.5;
+    o.adaptSpacing = true;
+    return o;
+  }();
+};
+
 // The mean angle between two patterns' stripes over the faces regular in both.
 double meanStripeAngle(const SurfaceMesh& m, const StripePattern& a, const StripePattern& b) {
   double sum = 0;
@@ -227,13 +241,8 @@ double meanStripeAngle(const SurfaceMesh& m, const StripePattern& a, const Strip
 // lowered the eigenvalue below the shift, the shifted energy is not positive definite: refused, and factored
 // with a smaller shift (or none), to the same pattern again.
 TEST(StripePattern, AnEditsUpdateFactoredBelowTheLastEigenvalueFindsTheSamePattern) {
-  const SurfaceMesh m = torus(48, 18, 2.0, 0.7);
-  const MeshTopology t = buildTopology(m);
-  const MeshGeometry g = computeMeshGeometry(m, t);
-  StripeOptions o;
-  o.symmetry = 2;
-  o.frequency = 1.5;
-  o.adaptSpacing = true;
+  const EditedTorus torusCase;
+  const auto& [m, t, g, o] = torusCase;
   StripeWorkspace w;
   const StripePattern before = stripePattern(m, t, g, turnedAroundTheTube(m, 0.3, 2), o, &w);
   const std::vector<double> edited = turnedAroundTheTube(m, 0.31, 2);
@@ -258,13 +267,8 @@ TEST(StripePattern, AnEditsUpdateFactoredBelowTheLastEigenvalueFindsTheSamePatte
 // its steps and leaves the workspace's last pattern as it was: the next computation, uninterrupted, is the
 // one a workspace that was never interrupted makes (the same steps, eigenvalue and stripes).
 TEST(StripePattern, AnInterruptionAbandonsThePatternAndLeavesTheLastOne) {
-  const SurfaceMesh m = torus(48, 18, 2.0, 0.7);
-  const MeshTopology t = buildTopology(m);
-  const MeshGeometry g = computeMeshGeometry(m, t);
-  StripeOptions o;
-  o.symmetry = 2;
-  o.frequency = 1.5;
-  o.adaptSpacing = true;
+  const EditedTorus torusCase;
+  const auto& [m, t, g, o] = torusCase;
   const std::vector<double> first = turnedAroundTheTube(m, 0.3, 2), edited = turnedAroundTheTube(m, 0.31, 2);
   StripeWorkspace plain, interrupted;
   stripePattern(m, t, g, first, o, &plain);
