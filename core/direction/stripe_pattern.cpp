@@ -675,7 +675,8 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   checkInterruption(options);
   // Combed, a cross field's families keep their labels across all but the fewest edges: a profile that tells
   // them apart (bricks, weave) changes only there. A line field's sign needs no combing (every profile reads
-  // the same with its phase run backwards), and armadillo-sub2's would cost 0.4 s an edit in the page.
+  // the same with its phase run backwards), and armadillo-sub2's costs 0.2 s an edit (natively and in the
+  // page).
   const std::vector<double> normals = vertexNormals(mesh);
   const Families fam =
       familiesOf(mesh, normals,

@@ -282,7 +282,12 @@ std::vector<uint32_t> splitForPhase(const FieldGlbContent& content, const GltfPr
   const int set = freeTexcoordSet(primitive["attributes"]);
   primitive["attributes"]["TEXCOORD_" + std::to_string(set)] =
       builder.addFloatAccessor(split.values, 2, "VEC2", false);
-  primitive["extras"][kGlbExtrasKey]["stripePhaseTexCoord"] = set;
+  // Named where the primitive's extras can hold it (glTF asks objects of them, but a file may not keep to
+  // it).
+  const bool named = !primitive.contains("extras") ||
+                     (primitive["extras"].is_object() && (!primitive["extras"].contains(kGlbExtrasKey) ||
+                                                          primitive["extras"][kGlbExtrasKey].is_object()));
+  if (named) primitive["extras"][kGlbExtrasKey]["stripePhaseTexCoord"] = set;
   primitive["indices"] = builder.addIndexAccessor(split.indices);
   primitive["mode"] = 4;  // strips and fans unrolled
   return std::move(split.sourceVertex);
