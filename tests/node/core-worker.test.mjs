@@ -59,9 +59,9 @@ test('the worker entry: a load, an edit, and read-outs of the version they name'
   await assert.rejects(call('exportRawField'), /holds line and cross fields; this is a vector field/);
 });
 
-// A stripe pattern gives way to a request the page sent after it (an edit, whose field's pattern is asked for
-// next): the core's steps read the shared count, the op replies null and the last pattern stays; asked again
-// at the new count, it is made.
+// A stripe pattern gives way to a request the page sent after it (an edit, an export): the core's steps read
+// the shared count, the op replies {interrupted: true} and the last pattern stays; asked again at the new count
+// (as the page does once that request is served), it is made.
 test('a stripe pattern gives way to a request sent after it', async () => {
   const { version } = (await call('read')).value;
   const options = { frequency: 3, adaptSpacing: true };
@@ -70,7 +70,7 @@ test('a stripe pattern gives way to a request sent after it', async () => {
   const sentAt = Atomics.load(interrupts, 0);
   Atomics.add(interrupts, 0, 1); // an edit sent behind the next request, before that request runs
   const given = await callMarked(sentAt, 'stripes', version, 'whole', { ...options, frequency: 4 });
-  assert.equal(given.value, null);
+  assert.deepEqual(given.value, { interrupted: true });
   const again = await callMarked(Atomics.load(interrupts, 0), 'stripes', version, 'whole', { ...options, frequency: 4 });
   assert.ok(again.value.phase.length > 0 && again.value.stats.residual < 1e-3);
   assert.notDeepEqual(Array.from(again.value.phase.slice(0, 30)), Array.from(made.value.phase.slice(0, 30)));

@@ -182,6 +182,10 @@ export class StripesController {
       this.again = true; // another field came meanwhile
       return;
     }
+    if (reply?.interrupted) {
+      this.again = true; // a newer request went first (an edit, an export): asked again, of the field then
+      return;
+    }
     if (!reply) return; // the worker is not at this version (yet): its field's change asks again
     this.#style();
     this.model.setPattern(reply);

@@ -27,16 +27,16 @@ export function stripeOps(state) {
   const onMesh = {
     // The pattern of field `forVersion` (null once that is no longer the current field: the page asks again),
     // of its `component` ('whole' or a Hodge part: the field the views draw), with `options`
-    // (core/design/design_stripes.h). Replies {families, phase, branch, stats}, the arrays transferred; or null
-    // when a request the page sent after this one came while it ran (an edit: its field's pattern is asked
-    // for next), the core's steps told so by state.interruption().
+    // (core/design/design_stripes.h). Replies {families, phase, branch, stats}, the arrays transferred; or
+    // {interrupted: true} when a request the page sent after this one came while it ran (the core's steps told
+    // so by state.interruption()): the page asks again once that request is served.
     stripes(forVersion, component, options) {
       if (forVersion !== state.field.version) return null;
       const t0 = performance.now();
       const part = component && component !== 'whole' ? state.field.hodge().component(component) : null;
       const vectors = part?.vertexVectors ?? null;
       const stats = state.core.computeStripes(vectors, options, state.interruption());
-      if (!stats) return null;
+      if (!stats) return { interrupted: true };
       const { phase, branch } = cornerAttributes(state.core.stripeArrays());
       const workerMs = performance.now() - t0;
       const value = { families: stats.families, phase, branch, stats: { ...stats, workerMs } };
