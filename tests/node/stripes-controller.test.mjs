@@ -1,0 +1,58 @@
+// The Stripes panel's controller (web/stripes/controller.js) against a worker stand-in: a pattern the worker
+// abandoned for a newer request ({interrupted: true}: an edit, an export, a texture step went first) is asked
+// for again at once, of the field drawn then, and shown; a reply for a field that is no longer drawn is not
+// shown. The model's drawing is replaced by a recorder (the WebGL side is the page tests').
+import assert from 'node:assert/strict';
+import test from 'node:test';
+import { StripesController } from '../../web/stripes/controller.js';
+import { icosphere, surfaceOf } from './fakes.mjs';
+
+const pattern = (version) => ({ families: 1, phase: new Float32Array(6), branch: new Int8Array(6), stats: { version } });
+
+function controllerWith(replies) {
+  const surface = surfaceOf(icosphere(1));
+  let field = { version: 1, component: 'whole', key: 'k1', symmetry: 2, surface };
+  const asked = [];
+  const controller = new StripesController({
+    viewer: {},
+    call: async (op, [version]) => {
+      asked.push(version);
+      return replies.shift()?.(version) ?? pattern(version);
+    },
+    getField: () => field,
+  });
+  const shown = [];
+  controller.model = {
+    setGeometry: async () => {},
+    setPattern: (reply) => shown.push(reply.stats.version),
+    setStyle: () => {},
+    setVisible: () => {},
+    dispose: () => {},
+  };
+  return { controller, asked, shown, setField: (f) => (field = { ...field, ...f }) };
+}
+
+test('an interrupted pattern is asked for again and shown', async () => {
+  const { controller, asked, shown } = controllerWith([() => ({ interrupted: true })]);
+  const state = await controller.setStripes({ visible: true });
+  assert.deepEqual(asked, [1, 1], 'asked twice: the interrupted ask, then again');
+  assert.deepEqual(shown, [1]);
+  assert.equal(state.stats.version, 1);
+});
+
+test('an interruption by an edit asks for the new field', async () => {
+  const fixture = controllerWith([]);
+  const { controller, asked, shown, setField } = fixture;
+  // The first ask is interrupted by an edit whose field is drawn by the time the reply comes.
+  fixture.controller.call = async (op, [version]) => {
+    asked.push(version);
+    if (asked.length === 1) {
+      setField({ version: 2, key: 'k2' });
+      return { interrupted: true };
+    }
+    return pattern(version);
+  };
+  await controller.setStripes({ visible: true });
+  assert.deepEqual(asked, [1, 2]);
+  assert.deepEqual(shown, [2]);
+});
