@@ -7,7 +7,12 @@ import test from 'node:test';
 import { StripesController } from '../../web/stripes/controller.js';
 import { icosphere, surfaceOf } from './fakes.mjs';
 
-const pattern = (version) => ({ families: 1, phase: new Float32Array(6), branch: new Int8Array(6), stats: { version } });
+const pattern = (version) => ({
+  families: 1,
+  phase: new Float32Array(6),
+  branch: new Int8Array(6),
+  stats: { version },
+});
 
 function controllerWith(replies) {
   const surface = surfaceOf(icosphere(1));
