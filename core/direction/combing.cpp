@@ -118,8 +118,7 @@ std::pair<Eigen::Vector3d, double> nearestTurn(const Eigen::Vector3d& d, const E
 
 }  // namespace
 
-std::vector<double> combVertexDirections(const SurfaceMesh& mesh, const MeshTopology& t,
-                                         const std::vector<double>& normals,
+std::vector<double> combVertexDirections(const MeshTopology& t, const std::vector<double>& normals,
                                          const std::vector<double>& vertexDirections, int symmetry) {
   std::vector<double> out = vertexDirections;
   if (symmetry < 2) return out;
@@ -139,7 +138,7 @@ std::vector<double> combVertexDirections(const SurfaceMesh& mesh, const MeshTopo
     return nearestTurn(own[v], combed[from] - n * n.dot(combed[from]), n, symmetry);
   };
   // Prim's tree by a bucket queue (the misalignment 1 - cos in kBuckets steps): the same tree up to ties
-  // within a step, at a fraction of a binary heap's cost (bunny00: 21 -> 7 ms natively).
+  // within a step, at a fraction of a binary heap's cost (bunny00: 21 -> 12-14 ms natively).
   constexpr int kBuckets = 4096;
   const double perBucket = kBuckets / (1.0 - std::cos(M_PI / symmetry) + 1e-9);
   struct Item {

@@ -31,8 +31,7 @@ CombedDirections combDirections(const SurfaceMesh& mesh, const MeshTopology& top
 // turns most. A cross field's stripe families (direction/stripe_pattern.h) follow these: a brick or weave
 // swaps its rows and columns only across such edges.
 // normals: 3 per vertex, unit (vertexNormals).
-std::vector<double> combVertexDirections(const SurfaceMesh& mesh, const MeshTopology& topology,
-                                         const std::vector<double>& normals,
+std::vector<double> combVertexDirections(const MeshTopology& topology, const std::vector<double>& normals,
                                          const std::vector<double>& vertexDirections, int symmetry);
 
 // The interior edges across which the vertex directions (3 per vertex) do not agree: where, turned into the

@@ -678,12 +678,11 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   // the same with its phase run backwards), and armadillo-sub2's costs 0.2 s an edit (natively and in the
   // page).
   const std::vector<double> normals = vertexNormals(mesh);
-  const Families fam =
-      familiesOf(mesh, normals,
-                 options.symmetry == 4
-                     ? combVertexDirections(mesh, topology, normals, vertexDirections, options.symmetry)
-                     : vertexDirections,
-                 options.symmetry, ((options.quarterTurns % 4) + 4) % 4);
+  const Families fam = familiesOf(
+      mesh, normals,
+      options.symmetry == 4 ? combVertexDirections(topology, normals, vertexDirections, options.symmetry)
+                            : vertexDirections,
+      options.symmetry, ((options.quarterTurns % 4) + 4) % 4);
   const int F = fam.count;
   StripeWorkspace local;
   StripeWorkspace& w = workspace ? *workspace : local;

@@ -291,6 +291,8 @@ std::vector<MeshInstance> sceneInstances(const tinygltf::Model& model, const std
 
 // ---- Accessors -----------------------------------------------------------------------------------------
 
+}  // namespace
+
 std::size_t componentSize(int componentType) {
   switch (componentType) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
@@ -307,6 +309,8 @@ std::size_t componentSize(int componentType) {
       return 0;
   }
 }
+
+namespace {
 
 int componentCount(int type) {
   switch (type) {
@@ -341,6 +345,8 @@ const char* typeName(int type) {
   }
 }
 
+}  // namespace
+
 // glTF data is little-endian whatever the host is.
 double readComponent(const uint8_t* p, int componentType, bool normalized) {
   uint32_t bits = 0;
@@ -372,17 +378,18 @@ double readComponent(const uint8_t* p, int componentType, bool normalized) {
   }
 }
 
-struct Bytes {
-  const uint8_t* data;
-  uint64_t size;
-};
-
-// True when `count` elements of `elementSize` bytes, `stride` apart, fit in `available` bytes after `offset`.
 bool fits(uint64_t offset, uint64_t count, uint64_t stride, uint64_t elementSize, uint64_t available) {
   if (count == 0) return offset <= available;
   if (offset > available || available - offset < elementSize) return false;
   return count - 1 <= (available - offset - elementSize) / stride;
 }
+
+namespace {
+
+struct Bytes {
+  const uint8_t* data;
+  uint64_t size;
+};
 
 class AccessorReader {
  public:

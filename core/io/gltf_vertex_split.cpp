@@ -9,27 +9,14 @@
 #include <map>
 
 #include "common/input_error.h"
+#include "io/loaders.h"
 
 namespace tvf {
 namespace {
 
+using io_detail::componentSize;
+using io_detail::fits;
 using nlohmann::json;
-
-std::size_t componentSize(int componentType) {
-  switch (componentType) {
-    case 5120:  // BYTE
-    case 5121:  // UNSIGNED_BYTE
-      return 1;
-    case 5122:  // SHORT
-    case 5123:  // UNSIGNED_SHORT
-      return 2;
-    case 5125:  // UNSIGNED_INT
-    case 5126:  // FLOAT
-      return 4;
-    default:
-      return 0;
-  }
-}
 
 std::size_t componentCount(const std::string& type) {
   if (type == "SCALAR") return 1;
@@ -72,13 +59,6 @@ ViewBytes viewBytes(const GltfSource& source, const json& index, const std::stri
   return {bytes.data() + offset, length, unsignedField(view, "byteStride", 0, label)};
 }
 
-// Whether n elements of `size` bytes, `stride` apart from `offset`, fit in `length` bytes.
-bool fits(uint64_t offset, uint64_t n, uint64_t stride, uint64_t size, uint64_t length) {
-  if (n == 0) return offset <= length;
-  if (offset > length || size > length - offset) return false;
-  return (n - 1) <= (length - offset - size) / std::max<uint64_t>(stride, 1);
-}
-
 void substituteSparse(const GltfSource& source, const json& sparse, const std::string& label,
                       AccessorElements& out) {
   const uint64_t count = unsignedField(sparse, "count", 0, label + " sparse");
@@ -103,35 +83,6 @@ void substituteSparse(const GltfSource& source, const json& sparse, const std::s
     if (target >= out.count) fail(label + " has a sparse index out of range");
     std::memcpy(&out.bytes[target * out.elementSize], by.data + byOffset + i * out.elementSize,
                 out.elementSize);
-  }
-}
-
-double componentValue(const uint8_t* p, int componentType) {
-  switch (componentType) {
-    case 5120:
-      return static_cast<int8_t>(p[0]);
-    case 5121:
-      return p[0];
-    case 5122: {
-      int16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case 5123: {
-      uint16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case 5125: {
-      uint32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    default: {
-      float v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
   }
 }
 
@@ -212,7 +163,8 @@ std::pair<json, json> elementBounds(const AccessorElements& e) {
   std::vector<double> lo(e.components, std::numeric_limits<double>::infinity()), hi(e.components, -lo[0]);
   for (std::size_t i = 0; i < e.count; ++i)
     for (std::size_t k = 0; k < e.components; ++k) {
-      const double v = componentValue(&e.bytes[i * e.elementSize + k * size], e.componentType);
+      const double v =
+          io_detail::readComponent(&e.bytes[i * e.elementSize + k * size], e.componentType, false);
       lo[k] = std::min(lo[k], v), hi[k] = std::max(hi[k], v);
     }
   json min = json::array(), max = json::array();

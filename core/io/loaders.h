@@ -19,6 +19,14 @@ SurfaceMesh loadObj(const uint8_t* data, std::size_t size, const std::string& na
 SurfaceMesh loadPly(const uint8_t* data, std::size_t size, const std::string& name);
 
 [[noreturn]] void fail(const std::string& name, const std::string& problem);
+
+// glTF accessors (gltf_loader.cpp; the export's vertex split reads them too): a component type's size in
+// bytes (0: not one glTF has), one component read little-endian (normalized integers mapped to [-1, 1] or [0,
+// 1]), and whether `count` elements of `elementSize` bytes, `stride` apart, fit in `available` bytes after
+// `offset`.
+std::size_t componentSize(int componentType);
+double readComponent(const uint8_t* p, int componentType, bool normalized);
+bool fits(uint64_t offset, uint64_t count, uint64_t stride, uint64_t elementSize, uint64_t available);
 [[noreturn]] void failAtLine(const std::string& name, std::size_t line, const std::string& problem);
 
 // A token for an error message; long tokens are cut so a hostile file cannot produce a huge message.

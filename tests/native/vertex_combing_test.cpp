@@ -41,7 +41,7 @@ TEST(VertexCombing, ASingularityFreeFieldAgreesAcrossEveryEdge) {
   const std::vector<double> normals = tvf::vertexNormals(m);
   for (const int symmetry : {2, 4}) {
     const std::vector<double> raw = scrambled(m, symmetry, 11u * symmetry);
-    const std::vector<double> combed = tvf::combVertexDirections(m, t, normals, raw, symmetry);
+    const std::vector<double> combed = tvf::combVertexDirections(t, normals, raw, symmetry);
     const int32_t before = tvf::disagreeingEdges(t, normals, raw, symmetry);
     std::cout << "[ measured ] N = " << symmetry << ": " << before << " of " << t.numEdges
               << " edges disagree before combing, " << tvf::disagreeingEdges(t, normals, combed, symmetry)
