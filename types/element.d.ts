@@ -61,6 +61,10 @@ export interface MeshInfo {
   eulerCharacteristic: number;
   genus: number;
   problems: unknown[];
+  /** How the interior edges fold (by the angle between their faces' normals): gradually is 3–35°, sharply over
+   * 35°. A new design starts at `suggestedFeatureAngle`: 35 where at least a fifth of the edges that fold fold
+   * sharply (a creased model), 0 (no features) on a curved surface made of facets. */
+  folds?: { interiorEdges: number; gradualEdges: number; sharpEdges: number; suggestedFeatureAngle: number };
   [key: string]: unknown;
 }
 
@@ -470,7 +474,7 @@ export declare class TangentFieldDesigner extends HTMLElement {
   moveSingularity(id: number, vertex: number): Promise<true>;
   /** Removes a prescribed singularity (as remove(id); undo brings back its vertex and index). */
   removeSingularity(id: number): Promise<true>;
-  /** Sets the sharp features the field follows: edges sharper than `angle` degrees (0: none; a new design starts at 35), plus `add`, minus `remove` (vertex pairs); keys left out keep their values. */
+  /** Sets the sharp features the field follows: edges sharper than `angle` degrees (0: none; a new design starts at 35 on a creased model, at 0 on a curved one made of facets: `info().folds`), plus `add`, minus `remove` (vertex pairs); keys left out keep their values. */
   setFeatures(features: Partial<FeatureSettings>): Promise<void>;
   /** The sharp features as set, and `edges`: the vertex pairs the field follows. */
   features(): Features;

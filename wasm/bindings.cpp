@@ -73,8 +73,15 @@ bool attempt(std::string& error, F&& f) {
 }
 
 // A model's info report from what its Designer derived when it was made (no second check of the mesh).
+// With how its edges fold: the feature angle a new design starts at on it, and why.
 nlohmann::json designerInfo(const tvf::Designer& d) {
-  return tvf::meshInfoJson(d.mesh(), d.meshNotes(), &d.topology());
+  nlohmann::json info = tvf::meshInfoJson(d.mesh(), d.meshNotes(), &d.topology());
+  const tvf::FoldProfile& p = d.foldProfile();
+  info["folds"] = {{"interiorEdges", p.interiorEdges},
+                   {"gradualEdges", p.gradualEdges},
+                   {"sharpEdges", p.sharpEdges},
+                   {"suggestedFeatureAngle", d.suggestedFeatureAngle()}};
+  return info;
 }
 
 bool parseFormat(std::string name, const uint8_t* data, std::size_t size, tvf::MeshFormat& out) {
@@ -659,11 +666,12 @@ class DesignerBinding {
             const nlohmann::json a = s.value("curvatureAlignment", nlohmann::json(0.0));
             if (!a.is_number()) throw tvf::InputError("curvatureAlignment must be a number");
             next->setCurvatureAlignment(a.get<double>());
-            // A new design's feature angle (the page starts designs at 35 degrees); a restored design's own
-            // features replace it below.
+            // A new design's feature angle: "auto" is the mesh's suggestion (35 degrees on a creased surface, 0
+            // on a faceted curved one: mesh/feature_edges.h); a restored design's own features replace it below.
             const nlohmann::json f = s.value("featureAngle", nlohmann::json(0.0));
-            if (!f.is_number()) throw tvf::InputError("featureAngle must be a number");
-            next->setFeatures(f.get<double>(), {}, {});
+            if (f == "auto") next->setFeatures(next->suggestedFeatureAngle(), {}, {});
+            else if (!f.is_number()) throw tvf::InputError("featureAngle must be a number or \"auto\"");
+            else next->setFeatures(f.get<double>(), {}, {});
             const nlohmann::json x = s.value("exactSingularities", nlohmann::json(false));
             if (!x.is_boolean()) throw tvf::InputError("exactSingularities must be true or false");
             next->setExactSingularities(x.get<bool>());

@@ -42,4 +42,9 @@ uint64_t DesignMesh::hash() const {
   return *hash_;
 }
 
+const FoldProfile& DesignMesh::foldProfile() const {
+  if (!foldProfile_) foldProfile_ = tvf::foldProfile(topology_, geometry_);
+  return *foldProfile_;
+}
+
 }  // namespace tvf

@@ -10,6 +10,7 @@
 #include "direction/levi_civita_connection.h"
 #include "direction/representative_directions.h"
 #include "field/whitney_reconstruction.h"
+#include "mesh/feature_edges.h"
 #include "mesh/mesh_checks.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
@@ -34,6 +35,8 @@ class DesignMesh {
   const FaceFrames& faceFrames() const;
   const FaceConnection& leviCivitaConnection() const;
   uint64_t hash() const;  // meshHash(mesh()), made on first use
+  // How its edges fold (mesh/feature_edges.h): the feature angle a new design starts at. Made on first use.
+  const FoldProfile& foldProfile() const;
 
  private:
   SurfaceMesh mesh_;
@@ -45,6 +48,7 @@ class DesignMesh {
   mutable std::optional<FaceFrames> faceFrames_;
   mutable std::optional<FaceConnection> leviCivitaConnection_;
   mutable std::optional<uint64_t> hash_;
+  mutable std::optional<FoldProfile> foldProfile_;
 };
 
 }  // namespace tvf

@@ -491,6 +491,12 @@ const MeshTopology& Designer::topology() const {
 const MeshGeometry& Designer::geometry() const {
   return impl_->mesh.geometry();
 }
+const FoldProfile& Designer::foldProfile() const {
+  return impl_->mesh.foldProfile();
+}
+double Designer::suggestedFeatureAngle() const {
+  return tvf::suggestedFeatureAngle(foldProfile());
+}
 
 void Designer::assembleSystem(SparseMatrix& A, Eigen::VectorXd& b) {
   impl_->system->assemble(A, b);

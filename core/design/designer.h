@@ -20,6 +20,7 @@
 #include "design/design_stats.h"
 #include "field/hodge_decomposition.h"
 #include "field/singularities.h"
+#include "mesh/feature_edges.h"
 #include "mesh/mesh_checks.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
@@ -122,8 +123,12 @@ class Designer {
   // InputError naming a pair that is not a mesh edge, or an angle outside [0, 180]; unchanged then.
   void setFeatures(double degrees, const std::vector<std::array<int32_t, 2>>& add,
                    const std::vector<std::array<int32_t, 2>>& remove);
-  // 0 (none) by default, so a design made before features keeps its field; the page starts designs at 35.
+  // 0 (none) by default, so a design made before features keeps its field; the page starts a design at
+  // suggestedFeatureAngle(): 35 on a creased surface, 0 on a faceted curved one.
   double featureAngle() const;
+  // How the mesh's edges fold, and the feature angle that suggests for a new design (mesh/feature_edges.h).
+  const FoldProfile& foldProfile() const;
+  double suggestedFeatureAngle() const;
   const std::vector<std::array<int32_t, 2>>& featureEdgesAdded() const;
   const std::vector<std::array<int32_t, 2>>& featureEdgesRemoved() const;
   const std::vector<int32_t>& featureEdges() const;  // the edges in use, ascending

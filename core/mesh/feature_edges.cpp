@@ -100,6 +100,25 @@ std::vector<int32_t> sharpEdges(const MeshTopology& t, const MeshGeometry& g, do
   return edges;
 }
 
+FoldProfile foldProfile(const MeshTopology& t, const MeshGeometry& g) {
+  const double flat = kFlatFoldDegrees * kPi / 180, sharp = kSharpFoldDegrees * kPi / 180;
+  FoldProfile p;
+  for (int32_t e = 0; e < t.numEdges; ++e) {
+    if (t.edgeFaceCount[e] != 2) continue;
+    const double fold = foldAngle(g, t.edgeFaces[2 * e], t.edgeFaces[2 * e + 1]);
+    if (!std::isfinite(fold)) continue;  // a degenerate face's normal
+    ++p.interiorEdges;
+    p.gradualEdges += fold > flat && fold <= sharp;
+    p.sharpEdges += fold > sharp;
+  }
+  return p;
+}
+
+double suggestedFeatureAngle(const FoldProfile& p) {
+  const bool creased = p.sharpEdges > 0 && p.sharpShare() >= kCreasedSharpShare;
+  return creased ? kSharpFoldDegrees : 0;
+}
+
 std::vector<int32_t> featureEdges(const MeshTopology& t, const MeshGeometry& g, double degrees,
                                   const std::vector<VertexPair>& add, const std::vector<VertexPair>& remove) {
   std::vector<uint8_t> isFeature(t.numEdges, 0);

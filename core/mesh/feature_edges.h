@@ -15,9 +15,36 @@ using VertexPair = std::array<int32_t, 2>;
 // Interior edges whose normals differ by more than `degrees` (0: none), ascending.
 std::vector<int32_t> sharpEdges(const MeshTopology& topology, const MeshGeometry& geometry, double degrees);
 
+// How a surface folds: its interior edges by the angle between their faces' normals. A creased surface (a
+// machined part, a hard-surface model, however coarse) folds sharply along its creases and gradually, if at
+// all, elsewhere; a curved one made of facets (a scan, a sculpt, a decimated character) folds gradually at
+// nearly every edge, and where its facets are coarse some of its edges pass any fixed angle without being
+// creases anyone would draw. Edges that fold less than kFlatFoldDegrees tell nothing (flat parts, and the
+// edges a subdivision adds inside a facet), so the measure is the sharp share of the edges that fold.
+struct FoldProfile {
+  int32_t interiorEdges = 0;  // with two faces and finite normals
+  int32_t gradualEdges = 0;   // folding by more than kFlatFoldDegrees and at most kSharpFoldDegrees
+  int32_t sharpEdges = 0;     // folding by more than kSharpFoldDegrees
+  double sharpShare() const {
+    const int32_t folded = gradualEdges + sharpEdges;
+    return folded ? static_cast<double>(sharpEdges) / folded : 0;
+  }
+};
+inline constexpr double kFlatFoldDegrees = 3;
+inline constexpr double kSharpFoldDegrees = 35;
+// The least sharp share of a creased surface (measured: machined and hard-surface models 24-100 %, scans,
+// sculpts and decimated characters 0-14 %; docs/method.md).
+inline constexpr double kCreasedSharpShare = 0.2;
+
+FoldProfile foldProfile(const MeshTopology& topology, const MeshGeometry& geometry);
+
+// The feature angle a new design starts at on this surface: kSharpFoldDegrees where it is creased (at least
+// kCreasedSharpShare of its folding edges fold sharply), 0 (no features) where it curves through facets.
+double suggestedFeatureAngle(const FoldProfile& profile);
+
 // sharpEdges(degrees), plus `add`, minus `remove`, ascending and without repeats. Throws InputError naming a
-// pair that is not a mesh edge (or is a boundary edge: the boundary condition owns those), or an angle that is
-// not a number in [0, 180].
+// pair that is not a mesh edge (or is a boundary edge: the boundary condition owns those), or an angle that
+// is not a number in [0, 180].
 std::vector<int32_t> featureEdges(const MeshTopology& topology, const MeshGeometry& geometry, double degrees,
                                   const std::vector<VertexPair>& add, const std::vector<VertexPair>& remove);
 

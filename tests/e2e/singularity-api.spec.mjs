@@ -52,6 +52,26 @@ test.describe.serial('prescribed singularities and sharp features through the AP
     await page.close();
   });
 
+  test('a new design starts without features on the faceted default model and at 35° on a box', async () => {
+    const start = await evaluate(() => ({ angle: window.tvf.features().angle, folds: window.tvf.info().folds }));
+    expect(start.angle).toBe(0);
+    expect(start.folds.suggestedFeatureAngle).toBe(0);
+    // The page's own count of the edges over 35°, from the normals: the core's profile counts the same ones.
+    const sharp = sharpEdges(await readMesh(page), 35).length;
+    expect(sharp).toBeGreaterThan(100);
+    expect(start.folds.sharpEdges).toBe(sharp);
+    expect(start.folds.gradualEdges).toBeGreaterThan(4 * sharp); // under a fifth of the folding edges sharp
+    await expect(page.locator('#feature-count')).toContainText('0 feature edges (a curved surface of facets');
+    const off = boxOff(4);
+    await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'box.off', restore: false }), off);
+    const box = await evaluate(() => ({ ...window.tvf.features(), folds: window.tvf.info().folds }));
+    expect(box.angle).toBe(35);
+    expect(keys(box.edges)).toEqual(sharpEdges(await readMesh(page), 35));
+    expect(box.edges.length).toBe(48);
+    expect(box.folds).toMatchObject({ sharpEdges: 48, gradualEdges: 0, suggestedFeatureAngle: 35 });
+    await expect(page.locator('#feature-count')).toHaveText('48 feature edges');
+  });
+
   test('singularities: placed, moved, removed and undone, each keeping its id; the refusals change nothing', async () => {
     const off = icosphereOff(2);
     await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'ico2.off', restore: false }),

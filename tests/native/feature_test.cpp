@@ -10,6 +10,7 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/input_error.h"
@@ -17,6 +18,7 @@
 #include "direction/feature_terms.h"
 #include "direction/levi_civita_connection.h"
 #include "mesh/feature_edges.h"
+#include "mesh/icosphere.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
 #include "test_meshes.h"
@@ -189,6 +191,110 @@ TEST(Feature, SharpEdgesOfACreaseRingAreTheRim) {
   });
   ASSERT_EQ(rim.size(), 16u);
   EXPECT_EQ(sharpEdges(m.topology, m.geometry, 35), rim);
+}
+
+// A sphere of facets pushed in and out along the normals by a hash of the vertex index (up to `bump` of the
+// radius): a scan's or a sculpt's surface, curved at every edge, some of its folds passing 35 degrees.
+SurfaceMesh bumpySphere(int subdivisions, double bump) {
+  SurfaceMesh m = icosphere(subdivisions);
+  for (int32_t v = 0; v < m.numVertices(); ++v) {
+    const double h = std::fmod(std::sin(12.9898 * v + 1.0) * 43758.5453, 1.0);  // in (-1, 1)
+    for (int c = 0; c < 3; ++c) m.positions[3 * v + c] *= 1 + bump * h;
+  }
+  return m;
+}
+
+TEST(Feature, ABoxIsCreasedAndStartsWithItsEdgesAsFeatures) {
+  for (const int k : {1, 3}) {
+    const Model m = model(box(k));
+    const FoldProfile p = foldProfile(m.topology, m.geometry);
+    EXPECT_EQ(p.interiorEdges, m.topology.numEdges);
+    EXPECT_EQ(p.sharpEdges, 12 * k);
+    EXPECT_EQ(p.gradualEdges, 0);
+    EXPECT_EQ(suggestedFeatureAngle(p), kSharpFoldDegrees);
+  }
+}
+
+// A closed cylinder of n sides, height 1 on the unit circle, each cap a fan round its centre.
+SurfaceMesh cappedCylinder(int n) {
+  SurfaceMesh m;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * 3.14159265358979323846 * k / n;
+    for (const double z : {0.0, 1.0}) m.positions.insert(m.positions.end(), {std::cos(a), std::sin(a), z});
+  }
+  m.positions.insert(m.positions.end(), {0, 0, 0, 0, 0, 1});
+  const int32_t bottom = 2 * n, top = 2 * n + 1;
+  for (int32_t k = 0; k < n; ++k) {
+    const int32_t a = 2 * k, b = 2 * ((k + 1) % n);
+    m.triangles.insert(m.triangles.end(), {a, b, b + 1, a, b + 1, a + 1, bottom, b, a, top, a + 1, b + 1});
+  }
+  return m;
+}
+
+TEST(Feature, ACylindersFacetsFoldGraduallyButItsRimsMakeItCreased) {
+  // 16 sides: the sides fold by 22.5 degrees (16 of 96 edges), the rims by 90 (32), the rest not at all.
+  const Model m = model(cappedCylinder(16));
+  const FoldProfile p = foldProfile(m.topology, m.geometry);
+  EXPECT_EQ(p.interiorEdges, 96);
+  EXPECT_EQ(p.gradualEdges, 16);
+  EXPECT_EQ(p.sharpEdges, 32);
+  EXPECT_EQ(suggestedFeatureAngle(p), kSharpFoldDegrees);
+}
+
+TEST(Feature, AFacetedCurvedSurfaceStartsWithoutFeatures) {
+  // Bumps of 4 % on a 642-vertex sphere fold most edges by 3-35 degrees and some (about 100 of 1,920) by more.
+  const Model bumpy = model(bumpySphere(3, 0.04));
+  const FoldProfile p = foldProfile(bumpy.topology, bumpy.geometry);
+  ASSERT_GT(p.sharpEdges, 0);
+  ASSERT_LT(p.sharpShare(), kCreasedSharpShare);
+  EXPECT_EQ(p.sharpEdges,
+            static_cast<int32_t>(sharpEdges(bumpy.topology, bumpy.geometry, kSharpFoldDegrees).size()));
+  EXPECT_EQ(suggestedFeatureAngle(p), 0);
+  // A smooth sphere folds by a few degrees at most: nothing to follow either.
+  const Model smooth = model(icosphere(4));
+  const FoldProfile q = foldProfile(smooth.topology, smooth.geometry);
+  EXPECT_EQ(q.sharpEdges, 0);
+  EXPECT_EQ(suggestedFeatureAngle(q), 0);
+}
+
+TEST(Feature, TheSharpShareOfTheFoldingEdgesDecides) {
+  // {interior, gradual, sharp}: a fifth of the folding edges sharp is creased, whatever the flat edges.
+  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{100, 40, 10}), kSharpFoldDegrees);
+  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{10000, 40, 10}), kSharpFoldDegrees);
+  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{100, 41, 10}), 0);
+  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{100, 0, 0}), 0);
+  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{}), 0);
+}
+
+TEST(Feature, ASubdividedFacetedSurfaceStillStartsWithoutFeatures) {
+  // Each triangle of the bumpy sphere cut in four: the new edges lie flat inside the old facets, the old
+  // edges keep their folds, so the profile's folding edges are the old ones twice over.
+  const SurfaceMesh coarse = bumpySphere(3, 0.04);
+  SurfaceMesh fine;
+  fine.positions = coarse.positions;
+  std::map<std::pair<int32_t, int32_t>, int32_t> middle;
+  const auto mid = [&](int32_t a, int32_t b) {
+    const auto key = std::minmax(a, b);
+    const auto found = middle.find(key);
+    if (found != middle.end()) return found->second;
+    const int32_t v = fine.numVertices();
+    for (int c = 0; c < 3; ++c)
+      fine.positions.push_back(0.5 * (coarse.positions[3 * a + c] + coarse.positions[3 * b + c]));
+    middle.emplace(key, v);
+    return v;
+  };
+  for (int32_t f = 0; f < coarse.numFaces(); ++f) {
+    const int32_t a = coarse.triangles[3 * f], b = coarse.triangles[3 * f + 1],
+                  c = coarse.triangles[3 * f + 2];
+    const int32_t ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+    fine.triangles.insert(fine.triangles.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca});
+  }
+  const Model before = model(coarse), after = model(fine);
+  const FoldProfile p = foldProfile(before.topology, before.geometry),
+                    q = foldProfile(after.topology, after.geometry);
+  EXPECT_EQ(q.sharpEdges, 2 * p.sharpEdges);
+  EXPECT_EQ(q.gradualEdges, 2 * p.gradualEdges);
+  EXPECT_EQ(suggestedFeatureAngle(q), 0);
 }
 
 TEST(Feature, AnAngleOutsideZeroTo180IsRefused) {

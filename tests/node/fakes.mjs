@@ -115,7 +115,10 @@ const checkAlignment = (s, n) => {
 // holds it). Core ids are handed out fresh on every add, as the core does, and start far from the page ids.
 // Messages go through structuredClone, as postMessage copies them.
 export class FakeCore {
-  constructor({ firstId = 100 } = {}) {
+  // suggestedFeatureAngle: what the core would suggest for every mesh loaded (mesh/feature_edges.h: 35 on a
+  // creased surface, 0 on a faceted curved one), taken for a load's featureAngle 'auto'.
+  constructor({ firstId = 100, suggestedFeatureAngle = 35 } = {}) {
+    this.suggestedFeatureAngle = suggestedFeatureAngle;
     this.mesh = null;
     this.ids = [];
     this.specs = new Map();
@@ -287,7 +290,8 @@ export class FakeCore {
       this.curvatureAlignment = 0;
       try {
         const { boundary, gamma, symmetry = 1, curvatureAlignment = 0, featureAngle = 0 } = settings;
-        this.features = { angle: featureAngle, add: [], remove: [] };
+        const angle = featureAngle === 'auto' ? this.suggestedFeatureAngle : featureAngle;
+        this.features = { angle, add: [], remove: [] };
         this.exactSingularities = settings.exactSingularities ?? false;
         this.#checkBoundary(boundary);
         this.#checkGamma(gamma);
@@ -305,7 +309,8 @@ export class FakeCore {
         }
       }
       const { positions, triangles, edges } = this.mesh;
-      const info = { vertices: positions.length / 3, faces: triangles.length / 3, edges: edges.length / 2 };
+      const info = { vertices: positions.length / 3, faces: triangles.length / 3, edges: edges.length / 2,
+        folds: { suggestedFeatureAngle: this.suggestedFeatureAngle } };
       const cornerUVs = new Float32Array(0);
       // The worker sends the Surface it built (its arrays, Surface.arrays()); before that change it sent the
       // mesh arrays and the page built the Surface. Both forms, so the fake speaks either protocol.

@@ -10,7 +10,7 @@ import { icosphereOff } from '../icosphere.mjs';
 import { FakeCore } from './fakes.mjs';
 import { Session } from '../../web/session/session.js';
 import { deserializeCommand } from '../../web/session/commands/index.js';
-import { NEW_DESIGN_FEATURE_ANGLE } from '../../web/session/constraint-table.js';
+import { CREASED_FEATURE_ANGLE } from '../../web/session/constraint-table.js';
 import { isEmptyDesign } from '../../web/session/documents.js';
 import { pointSpec } from '../../web/session/specs.js';
 
@@ -49,14 +49,39 @@ function nonEdge(core) {
   for (let b = 1; ; b++) if (!keys.has(`0,${b}`)) return [0, b];
 }
 
-test('a new design starts with the feature angle of 35 degrees; a design without one means 0', async () => {
-  assert.equal(NEW_DESIGN_FEATURE_ANGLE, 35);
+test('a new design starts at the model’s suggested feature angle; a chosen one carries to the next model', async () => {
+  assert.equal(CREASED_FEATURE_ANGLE, 35);
   const core = new FakeCore();
   const s = await open(core);
-  const [, [, , settings]] = core.log.find(([op]) => op === 'loadMesh');
-  assert.equal(settings.featureAngle, 35, 'the first model takes a new design’s angle');
+  const loads = () => core.log.filter(([op]) => op === 'loadMesh').map(([, [, , settings]]) => settings.featureAngle);
+  assert.deepEqual(loads(), ['auto'], 'the first model takes its own suggestion');
   assert.equal(core.features.angle, 35);
   assert.equal(s.design.featureAngle, 35);
+  // A faceted curved model next: the angle left at the last model's suggestion follows the new model's.
+  core.suggestedFeatureAngle = 0;
+  await s.loadModel(MODEL, { name: 'faceted.off' });
+  assert.deepEqual(loads(), ['auto', 'auto']);
+  assert.equal(core.features.angle, 0);
+  assert.equal(s.design.featureAngle, undefined, 'a document without an angle means 0');
+  // An angle the user chose carries.
+  await s.topology.setFeatures({ angle: 25 });
+  core.suggestedFeatureAngle = 35;
+  await s.loadModel(MODEL, { name: 'creased.off' });
+  assert.deepEqual(loads(), ['auto', 'auto', 25]);
+  assert.equal(core.features.angle, 25);
+  // Set back to this model's suggestion, it follows the next model's again.
+  await s.topology.setFeatures({ angle: 35 });
+  core.suggestedFeatureAngle = 0;
+  await s.loadModel(MODEL, { name: 'faceted-again.off' });
+  assert.deepEqual(loads(), ['auto', 'auto', 25, 'auto']);
+  assert.equal(core.features.angle, 0);
+  s.dispose();
+});
+
+test('features: the angle and edge edits are undoable steps; a design without an angle means 0', async () => {
+  const core = new FakeCore();
+  const s = await open(core);
+  assert.equal(core.features.angle, 35);
   assert.equal(isEmptyDesign(s.design), true, 'an untouched new design is not worth an autosave');
   await s.replaceDesign({ constraints: [] }, 'load design');
   assert.equal(core.features.angle, 0);

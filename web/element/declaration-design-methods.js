@@ -96,7 +96,8 @@ export const DESIGN_METHODS = [
     name: 'setFeatures', ...CONSTRAINTS,
     signatures: [['features: Partial<FeatureSettings>', 'Promise<void>']],
     description: 'Sets the sharp features the field follows: edges sharper than `angle` degrees (0: none; a new ' +
-      'design starts at 35), plus `add`, minus `remove` (vertex pairs); keys left out keep their values.',
+      'design starts at 35 on a creased model, at 0 on a curved one made of facets: `info().folds`), plus `add`, ' +
+      'minus `remove` (vertex pairs); keys left out keep their values.',
   },
   {
     name: 'features', ...CONSTRAINTS,

@@ -56,6 +56,10 @@ export interface MeshInfo {
   eulerCharacteristic: number;
   genus: number;
   problems: unknown[];
+  /** How the interior edges fold (by the angle between their faces' normals): gradually is 3–35°, sharply over
+   * 35°. A new design starts at `suggestedFeatureAngle`: 35 where at least a fifth of the edges that fold fold
+   * sharply (a creased model), 0 (no features) on a curved surface made of facets. */
+  folds?: { interiorEdges: number; gradualEdges: number; sharpEdges: number; suggestedFeatureAngle: number };
   [key: string]: unknown;
 }
 

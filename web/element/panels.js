@@ -118,12 +118,17 @@ export function bindPanels($, focused, actions, showError) {
   const exactSingularities = $('#exact-singularities');
   exactSingularities.addEventListener('change', () => actions.onExactSingularities(exactSingularities.checked));
 
-  // features: {angle, count} (count: the edges in use; null while unknown); summary: singularitySummaryText's.
-  function setFeatures({ angle, count }) {
+  // features: {angle, count, folds} (count: the edges in use, null while unknown; folds: the model's
+  // info.folds, which say why a faceted curved surface starts without features); summary: singularitySummaryText's.
+  function setFeatures({ angle, count, folds }) {
     if (Number.isFinite(angle) && focused() !== featureAngle) featureAngle.value = String(angle);
     const note = $('#feature-count');
     note.hidden = count == null;
     note.textContent = count === 1 ? '1 feature edge' : `${count} feature edges`;
+    if (count === 0 && angle === 0 && folds?.suggestedFeatureAngle === 0 && folds.sharpEdges > 0) {
+      const share = Math.round((100 * folds.sharpEdges) / (folds.sharpEdges + folds.gradualEdges));
+      note.textContent += ` (a curved surface of facets: ${share} % of its folds are sharp, too few for creases)`;
+    }
   }
   function setSingularitySummary(summary) {
     const text = singularitySummaryText(summary), note = $('#singularity-summary');

@@ -29,7 +29,8 @@ const TITLES = {
   singularityIndex: "The index of the singularity a click places, a multiple of 1/N (N: the field's symmetry)",
   feature: 'Click or drag along edges: sharp features the field follows (Alt or Shift: remove them) (K)',
   featureAngle: 'Edges where the surface folds by more than this many degrees are sharp features the field ' +
-    'follows (0: none; the Feature tool adds or removes edges)',
+    'follows (0: none; a new design starts at 35 on a creased model, at 0 on a curved one made of facets; the ' +
+    'Feature tool adds or removes edges)',
   exactSingularities: 'The field has exactly the singularities you prescribe, and none where you prescribe ' +
     'none (a torus then has none; on a sphere the field places what the prescribed ones leave out)',
   shares: "Share of the energy in each part: ‖part‖² / ‖c‖² in the decomposition's inner product",

@@ -270,7 +270,7 @@ export class ViewSync {
       this.shown.featureEdges = pairs;
     }
     // A big model's preview field knows no feature edges: the count waits for the exact one.
-    ui.setFeatures({ angle, count: pairs ? edges.length : null });
+    ui.setFeatures({ angle, count: pairs ? edges.length : null, folds: s.info?.folds });
     ui.setSingularitySummary(s.topology.summary());
   }
 

@@ -14,9 +14,17 @@ const DEFAULT_SETTINGS = Object.freeze({
   curvatureAlignment: 0,
   exactSingularities: false,
 });
-// A design the page starts (before any model, and carried to the first) takes edges sharper than this many
-// degrees as features; a document without "featureAngle" means 0 (none), as the core reads it.
-export const NEW_DESIGN_FEATURE_ANGLE = 35;
+// A new design's feature angle on a creased surface (the core's suggestion, mesh/feature_edges.h: edges sharper
+// than this many degrees are features where the surface folds sharply along a few edges and hardly elsewhere;
+// none, 0, on a faceted curved surface). A document without "featureAngle" means 0, as the core reads it.
+export const CREASED_FEATURE_ANGLE = 35;
+
+// The feature angle a model is loaded with: the design's own where it differs from the current model's
+// suggestion (the user's choice, carried to the next model), else 'auto' (the next model's own suggestion).
+// suggested: the current model's info.folds.suggestedFeatureAngle (undefined before the first model).
+export function featureAngleForNextModel(angle, suggested) {
+  return suggested === undefined || angle === suggested ? 'auto' : angle;
+}
 
 const isSingularity = (spec) => spec?.type === 'singularity';
 
@@ -29,7 +37,7 @@ function documentLists(specs) {
 
 export class ConstraintTable {
   constructor() {
-    this.design = { ...DEFAULT_SETTINGS, featureAngle: NEW_DESIGN_FEATURE_ANGLE, constraints: [] };
+    this.design = { ...DEFAULT_SETTINGS, constraints: [] };
     this.specByCore = new Map(); // core id → spec
     this.coreOrder = []; // core ids in the core's order (that of design.constraints)
     this.uids = new Map(); // uid → core id

@@ -4,7 +4,7 @@
 // share a name never receives a design whose indices mean nothing on it.
 
 import { fnv1a } from '../core/model-bytes.js';
-import { NEW_DESIGN_FEATURE_ANGLE } from './constraint-table.js';
+import { CREASED_FEATURE_ANGLE } from './constraint-table.js';
 
 const AUTOSAVE_PREFIX = 'tvf.autosave.v1:';
 
@@ -15,12 +15,12 @@ export function modelKey(name, bytes, digest = fnv1a(bytes)) {
 }
 
 // Nothing to keep: no constraint, no prescribed singularity, no feature edge edit and every setting at its
-// default (a feature angle of 0 or a new design's: a design left at either is not worth a version).
+// default (a feature angle of 0 or a creased surface's: a design left at either is not worth a version).
 export function isEmptyDesign(design) {
   const vectorField = (design.symmetry ?? 1) === 1 && !design.curvatureAlignment;
   const defaults = (design.boundary ?? 'free') === 'free' && !design.gamma && vectorField;
   const angle = design.featureAngle ?? 0;
-  const features = (angle === 0 || angle === NEW_DESIGN_FEATURE_ANGLE) && !design.featureEdges;
+  const features = (angle === 0 || angle === CREASED_FEATURE_ANGLE) && !design.featureEdges;
   return !design.constraints?.length && !design.singularities?.length && defaults && features;
 }
 

@@ -5,6 +5,7 @@
 // exact one following (session/core-follow.js exactLanded); should the exact load then fail, the previous model
 // comes back.
 import { grouped } from '../dom.js';
+import { featureAngleForNextModel } from './constraint-table.js';
 import { modelKey } from './documents.js';
 import { readModel } from './model-files.js';
 import { Surface } from '../geometry/surface.js';
@@ -55,8 +56,9 @@ export class ModelLoader {
         s.perf.loadPhases = { start: performance.now() };
         const previewEdges = opts.previewEdges ?? PREVIEW_EDGES;
         const load = { previewEdges, delayForTestMs: s.debugExactDelayMs ?? 0, onPhase: (p) => this.#phase(p) };
-        // The design's feature angle goes with the settings (a new design's: NEW_DESIGN_FEATURE_ANGLE).
-        const settings = { ...s.settings(), featureAngle: s.table.features().angle };
+        // The design's feature angle goes with the settings where the user chose it; else the model's own.
+        const angle = featureAngleForNextModel(s.table.features().angle, s.info?.folds?.suggestedFeatureAngle);
+        const settings = { ...s.settings(), featureAngle: angle };
         const args = [bytes, model.format, settings, saved?.design ?? null];
         try {
           reply = await s.call('loadMesh', args, [bytes.buffer], load);
