@@ -105,8 +105,9 @@ export class AtlasRaster {
   // line or cross field, {cornerVectors} (9 per face, corner k of face f at 9f + 3k: geometry/chart-comb.js);
   // rasterized at the finest level, dilated `o.gutter` texels past the charts, then averaged down. programs:
   // the synthesizer's; vao: its full-screen one. A generator: the field is filled and uploaded a slice of
-  // faces at a time, and it yields between slices so that the caller can give the page its frames (a
-  // synthesis run step by step, synthesizer.js). Returns the reference magnitude (area-weighted mean |field|).
+  // faces at a time, and it yields after each slice so that the caller can give the page its frames (a
+  // synthesis run step by step, synthesizer.js); the raster's draws are issued when it returns. Returns the
+  // reference magnitude (area-weighted mean |field|).
   *rasterSteps(programs, vao, field, o) {
     const gl = this.gl;
     const nF = this.triangles.length / 3;
@@ -124,7 +125,7 @@ export class AtlasRaster {
       gl.bindBuffer(gl.ARRAY_BUFFER, this.fieldBuffer);
       gl.bufferSubData(gl.ARRAY_BUFFER, 36 * f0, this.fieldData, 9 * f0, 9 * (f1 - f0));
       gl.bindBuffer(gl.ARRAY_BUFFER, null);
-      if (f1 < nF) yield;
+      yield; // the last slice too: its upload is waited for apart from the raster's draws
     }
     const magRef = sums.mag > 0 ? sums.mag / sums.area : 1;
     // Raster into the scratch target, dilate into the level-0 Jacobian (ping-pong for more than one ring).

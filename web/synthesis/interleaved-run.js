@@ -24,8 +24,9 @@ export async function interleavedRun(
     if (r.done) return { ...r.value, gpuMs: pacer.finish(clock), slices: pacer.slices, sliceTexels: pacer.texels };
     onProgress(r.value.progress);
     if (r.value.field) {
-      // The field goes to the GPU a slice of faces per task, each once the GPU has taken the one before.
-      await pacer.drain(clock, nextTask, cancelled, 'field to the GPU');
+      // The field goes to the GPU a slice of faces per task, each once the GPU has taken the one before, and
+      // is then rasterized into the atlas (its own phase, r.value.phase).
+      await pacer.drain(clock, nextTask, cancelled, r.value.phase ?? 'field to the GPU');
       if (cancelled()) return null;
       continue;
     }

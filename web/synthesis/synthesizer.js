@@ -213,6 +213,10 @@ export class Synthesizer {
       }
       yield { texels: Infinity, progress: 0, field: true };
     }
+    // The raster's draws (the triangles, the gutter's dilation, the coarser levels) waited for as a phase of
+    // their own: with software GL they take a bunny00 update 0.1-0.17 s, which the kernel's polls otherwise
+    // counted as waits between its slices.
+    yield { texels: Infinity, progress: 0, field: true, phase: 'field rasterized into the atlas (GPU)' };
     // Total shading work: the Jacobian and per level 4 upsample quarters, 4 x passes correction quarters
     // (weighted x8: they read ~90 texels each) and the unpack.
     let total = resolution * resolution * (1 + o.gutter);
