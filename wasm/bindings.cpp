@@ -75,13 +75,7 @@ bool attempt(std::string& error, F&& f) {
 // A model's info report from what its Designer derived when it was made (no second check of the mesh).
 // With how its edges fold: the feature angle a new design starts at on it, and why.
 nlohmann::json designerInfo(const tvf::Designer& d) {
-  nlohmann::json info = tvf::meshInfoJson(d.mesh(), d.meshNotes(), &d.topology());
-  const tvf::FoldProfile& p = d.foldProfile();
-  info["folds"] = {{"interiorEdges", p.interiorEdges},
-                   {"gradualEdges", p.gradualEdges},
-                   {"sharpEdges", p.sharpEdges},
-                   {"suggestedFeatureAngle", d.suggestedFeatureAngle()}};
-  return info;
+  return tvf::meshInfoJson(d);
 }
 
 bool parseFormat(std::string name, const uint8_t* data, std::size_t size, tvf::MeshFormat& out) {

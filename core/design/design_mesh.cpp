@@ -43,7 +43,7 @@ uint64_t DesignMesh::hash() const {
 }
 
 const FoldProfile& DesignMesh::foldProfile() const {
-  if (!foldProfile_) foldProfile_ = tvf::foldProfile(topology_, geometry_);
+  if (!foldProfile_) foldProfile_ = tvf::foldProfile(mesh_, topology_, geometry_);
   return *foldProfile_;
 }
 

@@ -1,12 +1,34 @@
 #include "design/mesh_info.h"
 
+#include "design/designer.h"
 #include "mesh/mesh_checks.h"
 
 namespace tvf {
 
 nlohmann::json meshInfoJson(const SurfaceMesh& mesh) {
   const MeshReport report = checkMesh(mesh);
-  return meshInfoJson(mesh, report.problems, report.topology ? &*report.topology : nullptr);
+  nlohmann::json info = meshInfoJson(mesh, report.problems, report.topology ? &*report.topology : nullptr);
+  if (info["usable"] && report.topology) {
+    const MeshGeometry geometry = computeMeshGeometry(mesh, *report.topology);
+    info["folds"] = foldsJson(foldProfile(mesh, *report.topology, geometry));
+  }
+  return info;
+}
+
+nlohmann::json meshInfoJson(const Designer& d) {
+  nlohmann::json info = meshInfoJson(d.mesh(), d.meshNotes(), &d.topology());
+  info["folds"] = foldsJson(d.foldProfile());
+  return info;
+}
+
+nlohmann::json foldsJson(const FoldProfile& p) {
+  return {{"interiorEdges", p.interiorEdges},
+          {"gradualEdges", p.gradualEdges},
+          {"sharpEdges", p.sharpEdges},
+          {"longCurveEdges", p.longCurveEdges},
+          {"sharpShare", p.sharpShare()},
+          {"longCurveShare", p.longCurveShare()},
+          {"suggestedFeatureAngle", suggestedFeatureAngle(p)}};
 }
 
 nlohmann::json meshInfoJson(const SurfaceMesh& mesh, const std::vector<MeshProblem>& problems,

@@ -100,22 +100,56 @@ std::vector<int32_t> sharpEdges(const MeshTopology& t, const MeshGeometry& g, do
   return edges;
 }
 
-FoldProfile foldProfile(const MeshTopology& t, const MeshGeometry& g) {
+namespace {
+
+double edgeLength(const SurfaceMesh& m, const MeshTopology& t, int32_t e) {
+  const double* a = &m.positions[3 * t.edgeVertices[2 * e]];
+  const double* b = &m.positions[3 * t.edgeVertices[2 * e + 1]];
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                   (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+double boundingDiagonal(const SurfaceMesh& m) {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (std::size_t i = 0; i < m.positions.size(); i += 3)
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = std::min(lo[c], m.positions[i + c]);
+      hi[c] = std::max(hi[c], m.positions[i + c]);
+    }
+  double d2 = 0;
+  for (int c = 0; c < 3; ++c) d2 += hi[c] > lo[c] ? (hi[c] - lo[c]) * (hi[c] - lo[c]) : 0;
+  return std::sqrt(d2);
+}
+
+}  // namespace
+
+FoldProfile foldProfile(const SurfaceMesh& m, const MeshTopology& t, const MeshGeometry& g) {
   const double flat = kFlatFoldDegrees * kPi / 180, sharp = kSharpFoldDegrees * kPi / 180;
   FoldProfile p;
+  std::vector<int32_t> sharpList;
   for (int32_t e = 0; e < t.numEdges; ++e) {
     if (t.edgeFaceCount[e] != 2) continue;
     const double fold = foldAngle(g, t.edgeFaces[2 * e], t.edgeFaces[2 * e + 1]);
     if (!std::isfinite(fold)) continue;  // a degenerate face's normal
     ++p.interiorEdges;
     p.gradualEdges += fold > flat && fold <= sharp;
-    p.sharpEdges += fold > sharp;
+    if (fold > sharp) sharpList.push_back(e);
+  }
+  p.sharpEdges = static_cast<int32_t>(sharpList.size());
+  const double longCurve = kLongCurveDiagonal * boundingDiagonal(m);
+  for (const FeatureCurve& curve : featureCurves(t, sharpList)) {
+    double length = 0;
+    for (const int32_t e : curve.edges) length += edgeLength(m, t, e);
+    if (length >= longCurve) p.longCurveEdges += static_cast<int32_t>(curve.edges.size());
   }
   return p;
 }
 
 double suggestedFeatureAngle(const FoldProfile& p) {
-  const bool creased = p.sharpEdges > 0 && p.sharpShare() >= kCreasedSharpShare;
+  const double sharp = p.sharpShare(), onLongCurves = p.longCurveShare();
+  const bool creased =
+      p.sharpEdges > 0 && ((sharp >= kCreasedSharpShare && onLongCurves >= kSomeLongCurveShare) ||
+                           onLongCurves >= kCreasedLongCurveShare);
   return creased ? kSharpFoldDegrees : 0;
 }
 

@@ -7,6 +7,7 @@
 
 #include "dec/hodge_star.h"
 #include "mesh/mesh_topology.h"
+#include "mesh/surface_mesh.h"
 
 namespace tvf {
 
@@ -19,27 +20,43 @@ std::vector<int32_t> sharpEdges(const MeshTopology& topology, const MeshGeometry
 // machined part, a hard-surface model, however coarse) folds sharply along its creases and gradually, if at
 // all, elsewhere; a curved one made of facets (a scan, a sculpt, a decimated character) folds gradually at
 // nearly every edge, and where its facets are coarse some of its edges pass any fixed angle without being
-// creases anyone would draw. Edges that fold less than kFlatFoldDegrees tell nothing (flat parts, and the
-// edges a subdivision adds inside a facet), so the measure is the sharp share of the edges that fold.
+// creases anyone would draw. Two measures tell them apart (docs/method.md has the models they were measured
+// on):
+// - the sharp share of the edges that fold (edges folding less than kFlatFoldDegrees tell nothing: flat
+// parts,
+//   and the edges a subdivision adds inside a facet);
+// - the share of the sharp edges on long feature curves, at least kLongCurveDiagonal of the bounding box's
+//   diagonal: a creased surface's creases run on, a faceted one's sharp edges come in short pieces (both
+//   unchanged by a subdivision).
 struct FoldProfile {
-  int32_t interiorEdges = 0;  // with two faces and finite normals
-  int32_t gradualEdges = 0;   // folding by more than kFlatFoldDegrees and at most kSharpFoldDegrees
-  int32_t sharpEdges = 0;     // folding by more than kSharpFoldDegrees
+  int32_t interiorEdges = 0;   // with two faces and finite normals
+  int32_t gradualEdges = 0;    // folding by more than kFlatFoldDegrees and at most kSharpFoldDegrees
+  int32_t sharpEdges = 0;      // folding by more than kSharpFoldDegrees
+  int32_t longCurveEdges = 0;  // sharp edges on feature curves of them at least kLongCurveDiagonal long
   double sharpShare() const {
     const int32_t folded = gradualEdges + sharpEdges;
     return folded ? static_cast<double>(sharpEdges) / folded : 0;
   }
+  double longCurveShare() const { return sharpEdges ? static_cast<double>(longCurveEdges) / sharpEdges : 0; }
 };
 inline constexpr double kFlatFoldDegrees = 3;
 inline constexpr double kSharpFoldDegrees = 35;
-// The least sharp share of a creased surface (measured: machined and hard-surface models 24-100 %, scans,
-// sculpts and decimated characters 0-14 %; docs/method.md).
+inline constexpr double kLongCurveDiagonal = 0.1;
+// A creased surface has at least kCreasedSharpShare of sharp share with some of its sharp edges on long
+// curves (kSomeLongCurveShare: noisy scans have the share, but in pieces), or most of its sharp edges on long
+// curves (kCreasedLongCurveShare: a machined part of gentle curves and a few long creases). Measured on 80
+// models: machined and hard-surface ones 24-100 % sharp share with 7.5-100 % on long curves, or 71-100 % on
+// long curves; scans, sculpts and decimated characters under 18 % sharp share or 0.4-1.3 % on long curves,
+// and under 49 % on long curves, but for a noisy scan of bones (29 %, 11 %) and coarse tubes (knot2: its
+// sharp folds run along it).
 inline constexpr double kCreasedSharpShare = 0.2;
+inline constexpr double kSomeLongCurveShare = 0.05;
+inline constexpr double kCreasedLongCurveShare = 0.6;
 
-FoldProfile foldProfile(const MeshTopology& topology, const MeshGeometry& geometry);
+FoldProfile foldProfile(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& geometry);
 
-// The feature angle a new design starts at on this surface: kSharpFoldDegrees where it is creased (at least
-// kCreasedSharpShare of its folding edges fold sharply), 0 (no features) where it curves through facets.
+// The feature angle a new design starts at on this surface: kSharpFoldDegrees where it is creased, 0 (no
+// features) where it curves through facets.
 double suggestedFeatureAngle(const FoldProfile& profile);
 
 // sharpEdges(degrees), plus `add`, minus `remove`, ascending and without repeats. Throws InputError naming a

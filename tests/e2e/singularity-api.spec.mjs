@@ -61,6 +61,7 @@ test.describe.serial('prescribed singularities and sharp features through the AP
     expect(sharp).toBeGreaterThan(100);
     expect(start.folds.sharpEdges).toBe(sharp);
     expect(start.folds.gradualEdges).toBeGreaterThan(4 * sharp); // under a fifth of the folding edges sharp
+    expect(start.folds.longCurveShare).toBeLessThan(0.6); // and most of those in short pieces
     await expect(page.locator('#feature-count')).toContainText('0 feature edges (a curved surface of facets');
     const off = boxOff(4);
     await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'box.off', restore: false }), off);
@@ -68,7 +69,7 @@ test.describe.serial('prescribed singularities and sharp features through the AP
     expect(box.angle).toBe(35);
     expect(keys(box.edges)).toEqual(sharpEdges(await readMesh(page), 35));
     expect(box.edges.length).toBe(48);
-    expect(box.folds).toMatchObject({ sharpEdges: 48, gradualEdges: 0, suggestedFeatureAngle: 35 });
+    expect(box.folds).toMatchObject({ sharpEdges: 48, gradualEdges: 0, longCurveEdges: 48, suggestedFeatureAngle: 35 });
     await expect(page.locator('#feature-count')).toHaveText('48 feature edges');
   });
 

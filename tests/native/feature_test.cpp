@@ -207,10 +207,11 @@ SurfaceMesh bumpySphere(int subdivisions, double bump) {
 TEST(Feature, ABoxIsCreasedAndStartsWithItsEdgesAsFeatures) {
   for (const int k : {1, 3}) {
     const Model m = model(box(k));
-    const FoldProfile p = foldProfile(m.topology, m.geometry);
+    const FoldProfile p = foldProfile(m.mesh, m.topology, m.geometry);
     EXPECT_EQ(p.interiorEdges, m.topology.numEdges);
     EXPECT_EQ(p.sharpEdges, 12 * k);
     EXPECT_EQ(p.gradualEdges, 0);
+    EXPECT_EQ(p.longCurveEdges, 12 * k);  // each cube edge a curve from corner to corner
     EXPECT_EQ(suggestedFeatureAngle(p), kSharpFoldDegrees);
   }
 }
@@ -234,35 +235,42 @@ SurfaceMesh cappedCylinder(int n) {
 TEST(Feature, ACylindersFacetsFoldGraduallyButItsRimsMakeItCreased) {
   // 16 sides: the sides fold by 22.5 degrees (16 of 96 edges), the rims by 90 (32), the rest not at all.
   const Model m = model(cappedCylinder(16));
-  const FoldProfile p = foldProfile(m.topology, m.geometry);
+  const FoldProfile p = foldProfile(m.mesh, m.topology, m.geometry);
   EXPECT_EQ(p.interiorEdges, 96);
   EXPECT_EQ(p.gradualEdges, 16);
   EXPECT_EQ(p.sharpEdges, 32);
+  EXPECT_EQ(p.longCurveEdges, 32);  // the two rims, closed loops
   EXPECT_EQ(suggestedFeatureAngle(p), kSharpFoldDegrees);
 }
 
 TEST(Feature, AFacetedCurvedSurfaceStartsWithoutFeatures) {
-  // Bumps of 4 % on a 642-vertex sphere fold most edges by 3-35 degrees and some (about 100 of 1,920) by more.
+  // Bumps of 4 % on a 642-vertex sphere fold most edges by 3-35 degrees and some (about 100 of 1,920) by
+  // more.
   const Model bumpy = model(bumpySphere(3, 0.04));
-  const FoldProfile p = foldProfile(bumpy.topology, bumpy.geometry);
+  const FoldProfile p = foldProfile(bumpy.mesh, bumpy.topology, bumpy.geometry);
   ASSERT_GT(p.sharpEdges, 0);
   ASSERT_LT(p.sharpShare(), kCreasedSharpShare);
+  ASSERT_LT(p.longCurveShare(), kCreasedLongCurveShare);  // its sharp edges come in short pieces
   EXPECT_EQ(p.sharpEdges,
             static_cast<int32_t>(sharpEdges(bumpy.topology, bumpy.geometry, kSharpFoldDegrees).size()));
   EXPECT_EQ(suggestedFeatureAngle(p), 0);
   // A smooth sphere folds by a few degrees at most: nothing to follow either.
   const Model smooth = model(icosphere(4));
-  const FoldProfile q = foldProfile(smooth.topology, smooth.geometry);
+  const FoldProfile q = foldProfile(smooth.mesh, smooth.topology, smooth.geometry);
   EXPECT_EQ(q.sharpEdges, 0);
   EXPECT_EQ(suggestedFeatureAngle(q), 0);
 }
 
-TEST(Feature, TheSharpShareOfTheFoldingEdgesDecides) {
-  // {interior, gradual, sharp}: a fifth of the folding edges sharp is creased, whatever the flat edges.
-  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{100, 40, 10}), kSharpFoldDegrees);
-  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{10000, 40, 10}), kSharpFoldDegrees);
-  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{100, 41, 10}), 0);
-  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{100, 0, 0}), 0);
+TEST(Feature, TheSharpShareAndTheLongCurvesDecide) {
+  // {interior, gradual, sharp, on long curves}. A fifth of the folding edges sharp, some of them on long
+  // curves, is creased, whatever the flat edges; so are sharp edges mostly on long curves (a machined part of
+  // gentle curves and a few long creases). Sharp edges in pieces are not (a noisy scan).
+  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{100, 40, 10, 1}), kSharpFoldDegrees);
+  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{10000, 40, 10, 1}), kSharpFoldDegrees);
+  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{100, 40, 10, 0}), 0);
+  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{100, 41, 10, 5}), 0);
+  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{1000, 900, 10, 6}), kSharpFoldDegrees);
+  EXPECT_EQ(suggestedFeatureAngle(FoldProfile{100, 0, 0, 0}), 0);
   EXPECT_EQ(suggestedFeatureAngle(FoldProfile{}), 0);
 }
 
@@ -290,10 +298,11 @@ TEST(Feature, ASubdividedFacetedSurfaceStillStartsWithoutFeatures) {
     fine.triangles.insert(fine.triangles.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca});
   }
   const Model before = model(coarse), after = model(fine);
-  const FoldProfile p = foldProfile(before.topology, before.geometry),
-                    q = foldProfile(after.topology, after.geometry);
+  const FoldProfile p = foldProfile(before.mesh, before.topology, before.geometry),
+                    q = foldProfile(after.mesh, after.topology, after.geometry);
   EXPECT_EQ(q.sharpEdges, 2 * p.sharpEdges);
   EXPECT_EQ(q.gradualEdges, 2 * p.gradualEdges);
+  EXPECT_EQ(q.longCurveEdges, 2 * p.longCurveEdges);  // the same curves, each edge in two
   EXPECT_EQ(suggestedFeatureAngle(q), 0);
 }
 

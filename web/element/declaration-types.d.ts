@@ -57,9 +57,13 @@ export interface MeshInfo {
   genus: number;
   problems: unknown[];
   /** How the interior edges fold (by the angle between their faces' normals): gradually is 3–35°, sharply over
-   * 35°. A new design starts at `suggestedFeatureAngle`: 35 where at least a fifth of the edges that fold fold
-   * sharply (a creased model), 0 (no features) on a curved surface made of facets. */
-  folds?: { interiorEdges: number; gradualEdges: number; sharpEdges: number; suggestedFeatureAngle: number };
+   * 35°; `longCurveEdges`, the sharp edges on feature curves at least a tenth of the bounding box's diagonal long.
+   * A new design starts at `suggestedFeatureAngle`: 35 where at least a fifth of the folding edges fold sharply or
+   * 60 % of the sharp ones lie on long curves (a creased model), 0 (no features) on a curved surface of facets. */
+  folds?: {
+    interiorEdges: number; gradualEdges: number; sharpEdges: number; longCurveEdges: number;
+    sharpShare: number; longCurveShare: number; suggestedFeatureAngle: number;
+  };
   [key: string]: unknown;
 }
 

@@ -126,8 +126,9 @@ export function bindPanels($, focused, actions, showError) {
     note.hidden = count == null;
     note.textContent = count === 1 ? '1 feature edge' : `${count} feature edges`;
     if (count === 0 && angle === 0 && folds?.suggestedFeatureAngle === 0 && folds.sharpEdges > 0) {
-      const share = Math.round((100 * folds.sharpEdges) / (folds.sharpEdges + folds.gradualEdges));
-      note.textContent += ` (a curved surface of facets: ${share} % of its folds are sharp, too few for creases)`;
+      const [sharp, long] = [folds.sharpShare, folds.longCurveShare].map((x) => Math.round(100 * x));
+      note.textContent += ` (a curved surface of facets: ${sharp} % of its folds sharp, ${long} % of those ` +
+        'on long lines)';
     }
   }
   function setSingularitySummary(summary) {
