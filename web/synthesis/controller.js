@@ -15,6 +15,7 @@ import { glbTexture, texturePng, textureReadback } from './texture-exports.js';
 import { TEXTURE_SYMMETRIES, textureRefusal } from '../session/symmetry.js';
 import { checkSynthesisOptions } from './options.js';
 import { fieldInput, runOptions } from './run-inputs.js';
+import { progressFollower } from './progress-follower.js';
 
 export class SynthesisController {
   // viewer: the page's Viewer (scene, surfaceMesh, requestRender).
@@ -202,24 +203,18 @@ export class SynthesisController {
     clock.mark(field.symmetry > 1 ? 'field combed for the atlas' : 'run options');
     let s;
     if (this.options.interleave) {
-      let shown = -1, shownAt = -Infinity;
       this.progress = { fraction: 0, preview };
       this.onChange();
+      const follow = progressFollower(() => this.progress, () => this.onChange());
       s = await this.synth.synthesizeInterleaved(field.input, { ...synthOptions, timing: 'total' }, {
         clock,
         cancelled: () => token !== this.runToken,
-        // The panel follows the progress at most ten times a second: every change of it is a frame the GPU
-        // draws beside the synthesis.
         onProgress: (f) => {
           this.progress = { fraction: f, preview };
-          const now = performance.now();
-          if (Math.floor(100 * f) !== shown && now - shownAt >= 100) {
-            shown = Math.floor(100 * f);
-            shownAt = now;
-            this.onChange();
-          }
+          follow();
         },
       });
+      follow.stop();
       this.progress = null;
       if (!s) return this.synthesisStats(); // superseded by a newer field change
     } else {

@@ -213,15 +213,17 @@ export class Synthesizer {
       }
       yield { texels: Infinity, progress: 0, field: true };
     }
-    // The raster's draws (the triangles, the gutter's dilation, the coarser levels) waited for as a phase of
-    // their own: with software GL they take a bunny00 update 0.1-0.17 s, which the kernel's polls otherwise
-    // counted as waits between its slices.
-    yield { texels: Infinity, progress: 0, field: true, phase: 'field rasterized into the atlas (GPU)' };
     // Total shading work: the Jacobian and per level 4 upsample quarters, 4 x passes correction quarters
     // (weighted x8: they read ~90 texels each) and the unpack.
-    let total = resolution * resolution * (1 + o.gutter);
+    const jacobianWork = resolution * resolution * (1 + o.gutter);
+    let total = jacobianWork;
     for (let k = finestLevel; k < this.levels.length; k++) total += this.levels[k].size ** 2 * (2 + 8 * o.passes);
-    yield work(resolution * resolution * (1 + o.gutter));
+    // The raster's draws (the triangles, the gutter's dilation, the coarser levels) waited for as a phase of
+    // their own: with software GL they take a bunny00 update 0.1-0.17 s, which the kernel's polls otherwise
+    // counted as waits between its slices. The progress shown meanwhile is the Jacobian's share.
+    const phase = 'field rasterized into the atlas (GPU)';
+    yield { texels: Infinity, progress: jacobianWork / total, field: true, phase };
+    yield work(jacobianWork);
     if (o.timing === 'levels') sync(gl, this.levels[0].jac);
     const tJac = performance.now();
 
