@@ -5,7 +5,8 @@
 //
 //   node scripts/bench-web-quad.mjs [--mesh MESH [--quads N] [--repeat R]]... [--port P] [--no-gc]
 //                                   [--feature-angle A]   (per mesh, as --quads: the design's sharp features, 0
-//                                   none; default the page's new design, 35°)
+//                                   none; default the page's new design: the model's suggestion, 35° on a
+//                                   creased model, 0 on a curved one of facets)
 //                                   [--profile FILE]   (a CPU profile of the page's main thread over the remeshes;
 //                                   with several meshes, MESH-FILE beside FILE for each)
 //
