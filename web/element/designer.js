@@ -168,7 +168,8 @@ export class Designer {
   }
 
   // After a model is shown, as the session warms the design's calls up: the model's texture atlas prepared
-  // in the core's worker (synthesis/atlas-ahead.js), or for a model too big for that, once, the texture's CPU
+  // in the core's worker (synthesis/atlas-ahead.js), then the synthesis programs compiled, or for a model too
+  // big for that, once, the texture's CPU
   // half warmed up on a torus (synthesis/warm-up.js: ~0.27 s there; the first texture's atlas choice for bunny00
   // 665 -> 436 ms, under node). Never fails anything: an optimization only.
   #prepareTextureLater() {
@@ -179,6 +180,7 @@ export class Designer {
       const request = (op, args) => s.request(op, args);
       const model = { positions, triangles, cornerUVs: s.cornerUVs };
       const prepared = await prepareAtlasAhead(request, this.synthesis, model).catch(() => null);
+      if (prepared && !s.disposed) this.synthesis.prepareProgramsAhead();
       if (prepared !== false || this.textureWarmed || s.disposed) return;
       this.textureWarmed = true;
       s.request('warmUpTexture').catch(() => {});

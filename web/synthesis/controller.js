@@ -76,6 +76,12 @@ export class SynthesisController {
   }
 
   // The synthesizer draws in the view's own WebGL context (its result shown where it is made: gl-guard.js).
+  // The programs compiled ahead of a first texture, as its atlas is (atlas-ahead.js): with the atlas kept, a
+  // first texture on bunny00 waited 0.2 s for them (SwiftShader). Never fails anything.
+  prepareProgramsAhead() {
+    if (this.viewer?.renderer) this.ensureSynth().programsReady().catch(() => {});
+  }
+
   ensureSynth() {
     if (this.synth) return this.synth;
     const renderer = this.viewer.renderer;
