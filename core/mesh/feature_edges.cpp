@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/input_error.h"
+#include "mesh/mesh_geometry.h"
 
 namespace tvf {
 namespace {
@@ -102,13 +103,6 @@ std::vector<int32_t> sharpEdges(const MeshTopology& t, const MeshGeometry& g, do
 
 namespace {
 
-double edgeLength(const SurfaceMesh& m, const MeshTopology& t, int32_t e) {
-  const double* a = &m.positions[3 * t.edgeVertices[2 * e]];
-  const double* b = &m.positions[3 * t.edgeVertices[2 * e + 1]];
-  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                   (a[2] - b[2]) * (a[2] - b[2]));
-}
-
 double boundingDiagonal(const SurfaceMesh& m) {
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (std::size_t i = 0; i < m.positions.size(); i += 3)
@@ -139,7 +133,7 @@ FoldProfile foldProfile(const SurfaceMesh& m, const MeshTopology& t, const MeshG
   const double longCurve = kLongCurveDiagonal * boundingDiagonal(m);
   for (const FeatureCurve& curve : featureCurves(t, sharpList)) {
     double length = 0;
-    for (const int32_t e : curve.edges) length += edgeLength(m, t, e);
+    for (const int32_t e : curve.edges) length += edgeVector(m, t, e).norm();
     if (length >= longCurve) p.longCurveEdges += static_cast<int32_t>(curve.edges.size());
   }
   return p;
