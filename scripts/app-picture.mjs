@@ -10,7 +10,7 @@ import { writeFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openDesigner } from '../tests/e2e/helpers.mjs';
-import { argument, launchChromium, requireBuiltPage, startServer } from './page-session.mjs';
+import { argument, requireBuiltPage, withServedPage } from './page-session.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const out = resolve(argument('--out', join(ROOT, 'docs/images/app.png')));
@@ -27,10 +27,8 @@ function pickAll(page, fractions) {
   }, fractions);
 }
 
-const server = await startServer(port);
-const browser = await launchChromium();
-try {
-  const page = await browser.newPage({ baseURL: `http://127.0.0.1:${port}`, viewport: { width: 1280, height: 760 } });
+await withServedPage('app-picture', port, async (browser, baseURL) => {
+  const page = await browser.newPage({ baseURL, viewport: { width: 1280, height: 760 } });
   await openDesigner(page);
   await page.evaluate(() => window.tvf.shadowRoot.querySelector('#hint .close')?.click());
   await page.evaluate(() => window.tvf.setViews({ arrows: true, streamlines: true, singularities: true }));
@@ -43,13 +41,10 @@ try {
   if (stroke.length < 10) throw new Error(`the stroke found the surface at ${stroke.length} points only`);
   await page.evaluate((points) => window.tvf.addStroke(points), stroke);
   const [vortexAt] = await pickAll(page, [[0.55, 0.74]]);
-  if (!vortexAt) throw new Error("the vortex found no surface");
+  if (!vortexAt) throw new Error('the vortex found no surface');
   await page.evaluate((face) => window.tvf.addVortex(face), vortexAt.face);
   await page.evaluate(() => window.tvf.settled());
   await page.waitForTimeout(1500); // the views' last frames
   writeFileSync(out, await page.screenshot());
   console.log(`app-picture: wrote ${out}`);
-} finally {
-  await browser.close();
-  server.kill();
-}
+});

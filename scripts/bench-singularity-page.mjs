@@ -8,7 +8,7 @@ import { readFileSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openDesigner } from '../tests/e2e/helpers.mjs';
-import { launchChromium, startServer } from './page-session.mjs';
+import { withServedPage } from './page-session.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const arg = (name, fallback) => {
@@ -69,17 +69,9 @@ async function measure(page) {
   };
 }
 
-const server = await startServer(port);
-const browser = await launchChromium();
-try {
-  const page = await browser.newPage({ viewport: { width: 1024, height: 720 }, baseURL: `http://127.0.0.1:${port}/` });
+await withServedPage('bench-singularity-page', port, async (browser, baseURL) => {
+  const page = await browser.newPage({ viewport: { width: 1024, height: 720 }, baseURL });
   page.setDefaultTimeout(600_000);
   await openDesigner(page);
   console.log(JSON.stringify(await measure(page), null, 1));
-} catch (err) {
-  console.error(`bench-singularity-page: ${err.message.split('\n')[0]}`);
-  process.exitCode = 1;
-} finally {
-  await browser.close();
-  server.kill();
-}
+});

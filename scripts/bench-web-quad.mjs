@@ -34,7 +34,7 @@
 import { copyFileSync, existsSync, mkdirSync, rmSync } from 'node:fs';
 import { basename, dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { launchChromium, startProfile, startServer } from './page-session.mjs';
+import { startProfile, withServedPage } from './page-session.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const SERVED = 'bench-mesh-quad'; // under dist/, removed at the end
@@ -249,17 +249,12 @@ async function benchMesh(browser, { path, quads, repeat, featureAngle = null }) 
   }
 }
 
-const server = await startServer(port);
-const browser = await launchChromium();
 try {
-  const results = [];
-  for (const m of meshes) results.push(await benchMesh(browser, m));
-  console.log(JSON.stringify(results.length === 1 ? results[0] : results, null, 1));
-} catch (err) {
-  console.error(`bench-web-quad: ${err.message.split('\n')[0]}`);
-  process.exitCode = 1;
+  await withServedPage('bench-web-quad', port, async (browser) => {
+    const results = [];
+    for (const m of meshes) results.push(await benchMesh(browser, m));
+    console.log(JSON.stringify(results.length === 1 ? results[0] : results, null, 1));
+  });
 } finally {
-  await browser.close();
-  server.kill();
   rmSync(resolve(ROOT, 'dist', SERVED), { recursive: true, force: true });
 }

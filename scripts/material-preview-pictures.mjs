@@ -10,7 +10,7 @@ import { mkdirSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openDesigner } from '../tests/e2e/helpers.mjs';
-import { argument, launchChromium, requireBuiltPage, startServer } from './page-session.mjs';
+import { argument, requireBuiltPage, withServedPage } from './page-session.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const out = resolve(argument('--out', join(ROOT, 'docs/images')));
@@ -57,16 +57,8 @@ async function pictures(page) {
 }
 
 mkdirSync(out, { recursive: true });
-const server = await startServer(port);
-const browser = await launchChromium();
-try {
-  const page = await browser.newPage({ viewport: { width: 1024, height: 720 }, baseURL: `http://127.0.0.1:${port}/` });
+await withServedPage('material-preview-pictures', port, async (browser, baseURL) => {
+  const page = await browser.newPage({ viewport: { width: 1024, height: 720 }, baseURL });
   page.setDefaultTimeout(180_000);
   await pictures(page);
-} catch (err) {
-  console.error(`material-preview-pictures: ${err.message.split('\n')[0]}`);
-  process.exitCode = 1;
-} finally {
-  await browser.close();
-  server.kill();
-}
+});

@@ -35,6 +35,22 @@ export function requireBuiltPage(script) {
   process.exit(1);
 }
 
+// The page served on `port` and Debian's Chromium around fn(browser, baseURL), both ended whatever happens; a
+// failure is reported as `script: ` and the first line of its message, with exit code 1.
+export async function withServedPage(script, port, fn) {
+  const server = await startServer(port);
+  const browser = await launchChromium();
+  try {
+    await fn(browser, `http://127.0.0.1:${port}/`);
+  } catch (err) {
+    console.error(`${script}: ${err.message.split('\n')[0]}`);
+    process.exitCode = 1;
+  } finally {
+    await browser.close();
+    server.kill();
+  }
+}
+
 export function launchChromium() {
   return chromium.launch({
     executablePath: process.env.TVF_CHROMIUM || '/usr/bin/chromium',

@@ -11,7 +11,7 @@ import { mkdirSync, writeFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openDesigner } from '../tests/e2e/helpers.mjs';
-import { argument, launchChromium, requireBuiltPage, startServer } from './page-session.mjs';
+import { argument, requireBuiltPage, withServedPage } from './page-session.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const out = resolve(argument('--out', join(ROOT, 'docs/images')));
@@ -62,19 +62,11 @@ async function composite(page, shots) {
 }
 
 mkdirSync(out, { recursive: true });
-const server = await startServer(port);
-const browser = await launchChromium();
-try {
-  const page = await browser.newPage({ viewport: { width: 720, height: 720 }, baseURL: `http://127.0.0.1:${port}/` });
+await withServedPage('stripe-pictures', port, async (browser, baseURL) => {
+  const page = await browser.newPage({ viewport: { width: 720, height: 720 }, baseURL });
   page.setDefaultTimeout(180_000);
   const shots = await profilePictures(page);
   const path = join(out, 'stripe-profiles.png');
   writeFileSync(path, await composite(page, shots));
   console.log(path);
-} catch (err) {
-  console.error(`stripe-pictures: ${err.message.split('\n')[0]}`);
-  process.exitCode = 1;
-} finally {
-  await browser.close();
-  server.kill();
-}
+});

@@ -19,7 +19,7 @@ import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { openDesigner, surfacePointsAlongScreenLine } from '../tests/e2e/helpers.mjs';
-import { launchChromium, startServer } from './page-session.mjs';
+import { withServedPage } from './page-session.mjs';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const MESHES = resolve(ROOT, 'bench-data/meshes');
@@ -106,19 +106,11 @@ async function sweep(page, name) {
 }
 
 mkdirSync(out, { recursive: true });
-const server = await startServer(port);
-const browser = await launchChromium();
-try {
+await withServedPage('texture-sweep', port, async (browser, baseURL) => {
   for (const name of models) {
-    const page = await browser.newPage({ viewport: { width: 1024, height: 720 }, baseURL: `http://127.0.0.1:${port}/` });
+    const page = await browser.newPage({ viewport: { width: 1024, height: 720 }, baseURL });
     page.setDefaultTimeout(1_800_000);
     await sweep(page, name);
     await page.close();
   }
-} catch (err) {
-  console.error(`texture-sweep: ${err.message.split('\n')[0]}`);
-  process.exitCode = 1;
-} finally {
-  await browser.close();
-  server.kill();
-}
+});
