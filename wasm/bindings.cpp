@@ -73,10 +73,6 @@ bool attempt(std::string& error, F&& f) {
 }
 
 // A model's info report from what its Designer derived when it was made (no second check of the mesh).
-// With how its edges fold: the feature angle a new design starts at on it, and why.
-nlohmann::json designerInfo(const tvf::Designer& d) {
-  return tvf::meshInfoJson(d);
-}
 
 bool parseFormat(std::string name, const uint8_t* data, std::size_t size, tvf::MeshFormat& out) {
   for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -233,7 +229,7 @@ class DesignerBinding {
     return nlohmann::json{{"ok", false}, {"error", error}}.dump();
   }
   std::string pendingInfoJson() const {
-    return pending_ ? designerInfo(*pending_).dump() : "null";
+    return pending_ ? tvf::meshInfoJson(*pending_).dump() : "null";
   }
   std::string pendingDesignJson() const {
     return json([&] { return pending_ ? tvf::designDocument(*pending_) : nlohmann::json(); });
@@ -292,7 +288,7 @@ class DesignerBinding {
 
   std::string infoJson() const {
     std::string out, error;
-    if (!attempt(error, [&] { out = designer_ ? designerInfo(*designer_).dump() : tvf::meshInfoJson(tvf::SurfaceMesh{}).dump(); }))
+    if (!attempt(error, [&] { out = designer_ ? tvf::meshInfoJson(*designer_).dump() : tvf::meshInfoJson(tvf::SurfaceMesh{}).dump(); }))
       return "null";
     return out;
   }
