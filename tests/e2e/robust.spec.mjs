@@ -247,6 +247,46 @@ test.describe.serial('nothing a user does or loads loses their work', () => {
     expect(await coverage()).toBeGreaterThan(0.2);
   });
 
+  // A model shown while the view's context is lost: its atlas is prepared ahead meanwhile, and the synthesis
+  // programs after it must wait for a context (it has no float targets while lost); once it is back, a texture.
+  test('a model loaded while the context is lost: no error, and a texture once it is back', async () => {
+    const before = errors.length;
+    await evaluate(async () => {
+      const canvas = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#viewport canvas');
+      const lost = new Promise((resolve) => canvas.addEventListener('webglcontextlost', resolve, { once: true }));
+      window.__loseContext.loseContext();
+      await lost;
+      await window.tvf.loadModel('models/bunny.glb', { restore: false });
+      await window.tvf.settled();
+      // The default model's atlas takes the worker ~0.1-0.3 s, a step per request; the programs come next.
+      await new Promise((resolve) => setTimeout(resolve, 2500));
+      const restored = new Promise((resolve) => canvas.addEventListener('webglcontextrestored', resolve, { once: true }));
+      window.__loseContext.restoreContext();
+      await restored;
+    });
+    expect(errors.slice(before)).toEqual([]);
+    const stats = await evaluate(async () => {
+      await window.tvf.synthesize({ seed: 3 });
+      return window.tvf.synthesisIdle();
+    });
+    expect(stats.atlas.charts).toBeGreaterThan(0);
+    expect(stats.atlas.cache.cached).toBe(true);
+    // An edit while the texture is shown and the context lost: no run (no banner); the restore makes the texture
+    // of the edited field.
+    await evaluate(() => new Promise((resolve) => {
+      const canvas = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#viewport canvas');
+      canvas.addEventListener('webglcontextlost', resolve, { once: true });
+      window.__loseContext.loseContext();
+    }));
+    await strokeWorks();
+    await evaluate(() => new Promise((resolve) => setTimeout(resolve, 1000)));
+    await expect(page.locator('#error-banner')).toBeHidden();
+    expect((await evaluate(() => window.tvf.synthesisStats())).fieldVersion).toBe(stats.fieldVersion);
+    await evaluate(() => window.__loseContext.restoreContext());
+    await page.waitForFunction((v) => window.tvf.synthesisStats()?.fieldVersion > v, stats.fieldVersion);
+    expect(errors.slice(before)).toEqual([]);
+  });
+
   test('no console errors', () => {
     expect(errors.filter((e) => !/CONTEXT_LOST|context lost/i.test(e))).toEqual([]);
   });

@@ -11,7 +11,7 @@ import { baseName } from '../session/documents.js';
 import { setupQuad } from '../quad/index.js';
 import { Session } from '../session/session.js';
 import { setupStripes } from '../stripes/index.js';
-import { prepareAtlasAhead, setupSynthesis } from '../synthesis/index.js';
+import { prepareAtlasAhead, prepareProgramsAhead, setupSynthesis } from '../synthesis/index.js';
 import { ToolController } from '../tools/tools.js';
 import { setPivotAt } from '../views/camera.js';
 import { Viewer } from '../views/viewer.js';
@@ -180,7 +180,7 @@ export class Designer {
       const request = (op, args) => s.request(op, args);
       const model = { positions, triangles, cornerUVs: s.cornerUVs };
       const prepared = await prepareAtlasAhead(request, this.synthesis, model).catch(() => null);
-      if (prepared && !s.disposed) this.synthesis.prepareProgramsAhead();
+      if (prepared && !s.disposed) prepareProgramsAhead(this.synthesis);
       if (prepared !== false || this.textureWarmed || s.disposed) return;
       this.textureWarmed = true;
       s.request('warmUpTexture').catch(() => {});

@@ -3,8 +3,10 @@
 // asked for, so that the first texture skips the charts, packing and seams (bunny00 on a real GPU: 1.47 s of a
 // 1.87 s first texture). A request per step (worker-ops.js prepareTextureAtlas): edits sent meanwhile go
 // between the steps, behind at most one of them (the core's atlas choice, the longest). The atlas stays in the
-// worker's memory only, until a texture uses it. Models over AHEAD_FACES faces are left alone: their atlas
-// takes seconds that the exact field's first edits would wait behind. Owned by the designer (its 'load').
+// worker's memory only, until a texture uses it; the synthesis programs are compiled next (a first texture on
+// bunny00 with the atlas kept waited 0.2 s for them on SwiftShader). Models over AHEAD_FACES faces are left
+// alone: their atlas takes seconds that the exact field's first edits would wait behind. Owned by the designer
+// (its 'load').
 import { atlasOptions } from './atlas-setup.js';
 
 export const AHEAD_FACES = 150_000;
@@ -18,4 +20,16 @@ export async function prepareAtlasAhead(request, controller, { positions, triang
   let r = await request('prepareTextureAtlas', [positions, triangles, cornerUVs ?? null, options]);
   while (!r.done) r = await request('prepareTextureAtlas', []);
   return r;
+}
+
+// The synthesizer's programs compiled ahead in the view's context (controller: the SynthesisController). Never
+// fails anything: with the context lost meanwhile (no float targets to find then), the next texture makes them.
+export function prepareProgramsAhead(controller) {
+  const gl = controller.viewer?.renderer?.getContext();
+  if (!gl || gl.isContextLost()) return;
+  try {
+    controller.ensureSynth().programsReady().catch(() => {});
+  } catch {
+    // lost between the check and the synthesizer's creation: the context's restore starts over
+  }
 }

@@ -76,15 +76,10 @@ export class SynthesisController {
   }
 
   // The synthesizer draws in the view's own WebGL context (its result shown where it is made: gl-guard.js).
-  // The programs compiled ahead of a first texture, as its atlas is (atlas-ahead.js): with the atlas kept, a
-  // first texture on bunny00 waited 0.2 s for them (SwiftShader). Never fails anything.
-  prepareProgramsAhead() {
-    if (this.viewer?.renderer) this.ensureSynth().programsReady().catch(() => {});
-  }
-
   ensureSynth() {
     if (this.synth) return this.synth;
     const renderer = this.viewer.renderer;
+    if (renderer.getContext().isContextLost()) throw new Error('the view\'s WebGL context is lost: no texture yet');
     this.synth = new Synthesizer(renderer.getContext(), { renderer });
     if (this.exemplar) this.synth.setExemplar(this.exemplar.tables); // a context lost and restored
     return this.synth;
@@ -308,7 +303,9 @@ export class SynthesisController {
         this.changedAt = null;
         clock.mark(p ? 'settle, queue (preview)' : 'queue (behind the page\'s tasks)');
         if (p) this.previewRuns++;
-        return this.active ? this.#run({ preview: p, clock }) : null;
+        // With the view's context lost, its restore starts the run (#watchContext).
+        const lost = this.viewer.renderer?.getContext().isContextLost();
+        return this.active && !lost ? this.#run({ preview: p, clock }) : null;
       };
       this.runsQueued++;
       this.exclusive(run)

@@ -8,7 +8,7 @@ import { formatBench } from './bench.js';
 import { SynthesisController } from './controller.js';
 import { mountSynthesisPanel } from './panel.js';
 
-export { prepareAtlasAhead } from './atlas-ahead.js';
+export { prepareAtlasAhead, prepareProgramsAhead } from './atlas-ahead.js';
 
 // Adds the texture-synthesis calls to window.tvf (docs/js-api.md). `deps` as for SynthesisController.
 export function installSynthesis(tvf, deps) {
