@@ -12,6 +12,7 @@
 //                             reloaded: reopenExactFieldMs, loadModel to its exact field, the ordering, preview
 //                             parts and picking tree kept; with --texture its texture made again too)
 //                             [--trace-reopen FILE]   (a Chromium trace of every thread over the reopening)
+//                             [--profile-reopen FILE]   (a CPU profile of the page's thread over the reopening)
 //                             [--undo N]   (after the strokes, N undos then N redos, each timed as a stroke
 //                             is: undoMs, redoMs (pageMs), undoUpdateMs/redoUpdateMs and undoSolveMs (the core's))
 //                             [--stripes N]   (then the stripes: turned on, and N strokes' updates: stripes*
@@ -299,6 +300,7 @@ async function reopenBench(page, url) {
   const traceFile = arg('--trace-reopen', null);
   const categories = ['toplevel', 'v8', 'gpu', 'disabled-by-default-devtools.timeline', 'devtools.timeline'];
   if (traceFile) await page.context().browser().startTracing(page, { path: traceFile, categories });
+  const profile = await startProfile(page, arg('--profile-reopen', null));
   const r = await page.evaluate(async (u) => {
     window.__longTasks.length = 0;
     const t0 = performance.now();
@@ -310,9 +312,10 @@ async function reopenBench(page, url) {
     const phases = Object.fromEntries(Object.entries(loadPhases ?? {}).map(([k, v]) => [k, Math.round(v - t0)]));
     const { analyzeMs, factorMs, analysisReused } = window.tvf.stats();
     const tasks = window.__longTasks.splice(0);
-    return { firstMs, exactMs, analyzeMs, factorMs, analysisReused, previewTimings, pickingTreeKept, phases, tasks };
+    return { t0, firstMs, exactMs, analyzeMs, factorMs, analysisReused, previewTimings, pickingTreeKept, phases, tasks };
   }, url);
   if (traceFile) await page.context().browser().stopTracing();
+  await profile.stop();
   return {
     reopenFirstFieldMs: r.firstMs,
     reopenExactFieldMs: r.exactMs,
@@ -322,6 +325,7 @@ async function reopenBench(page, url) {
     reopenPhasesMs: r.phases,
     reopenPreviewTimings: r.previewTimings,
     longestReopenLoadTaskMs: r.tasks.reduce((m, t) => Math.max(m, t.ms), 0),
+    reopenLoadLongTasks: r.tasks.map((t) => ({ at: Math.round(t.at - r.t0), ms: Math.round(t.ms) })),
   };
 }
 

@@ -23,8 +23,11 @@ const ARROW_LENGTH = 0.8; // × the spacing: neighbours never touch
 const RESAMPLE_RATIO = 1.25;
 // Beyond this many samples over the whole surface (zoomed far in), sample only the faces near the view.
 const MAX_SAMPLES = 12_000;
-// Darts thrown per task when the samples are made ahead (prepare): ~10 ms of a scan's.
-const DARTS_PER_TASK = 8000;
+// When the samples are made ahead (prepare), darts are thrown this many at a time until a task has run this
+// long: a fixed 8,000 a task (~10 ms warm) took 150-185 ms of one task as armadillo-sub2 reopened, its first
+// slices not yet optimized and the page's thread sharing two cores with a preview worker and software GL.
+const DARTS_PER_STEP = 1000;
+const TASK_MS = 8;
 
 export class ArrowsView {
   constructor(scene) {
@@ -69,7 +72,14 @@ export class ArrowsView {
     // Too many for the whole surface: the view's own local set, made when it draws.
     if (!(spacing > 0) || (POISSON_PACKING * surface.area) / (spacing * spacing) > MAX_SAMPLES) return;
     const sampler = new SurfaceSampler(surface, spacing, { maxSamples: MAX_SAMPLES });
-    while (!sampler.step(DARTS_PER_TASK)) await yieldToPage();
+    for (;;) {
+      const end = performance.now() + TASK_MS;
+      let done;
+      do done = sampler.step(DARTS_PER_STEP);
+      while (!done && performance.now() < end);
+      if (done) break;
+      await yieldToPage();
+    }
     this.prepared = { surface, spacing, samples: sampler.result() };
   }
 
