@@ -20,6 +20,7 @@
 //                             [--profile-stripes FILE]   (a CPU profile of the page's thread over the stripes stage)
 //                             [--gpu]   (hardware WebGL: ANGLE on Vulkan, or TVF_GPU_ARGS; default SwiftShader)
 //                             [--profile-texture FILE]   (a CPU profile of the page's thread over the texture's runs)
+//                             [--trace-texture FILE]   (a Chromium trace of every thread over the texture's runs)
 //                             [--trace FILE]   (a Chromium trace of every process and thread over the strokes:
 //                             the exact worker, the preview worker and the GPU process side by side)
 //   Edit latency: loads MESH (a path; served to the page under /bench-mesh/) through tvf.loadModel, then draws
@@ -356,6 +357,9 @@ async function undoBench(page, n) {
 async function textureBench(page, strokes, url) {
   await page.evaluate(() => window.__longTasks.splice(0));
   const profile = await startProfile(page, arg('--profile-texture', null));
+  const traceFile = arg('--trace-texture', null);
+  const categories = ['toplevel', 'v8', 'gpu', 'gpu.angle', 'disabled-by-default-gpu.service', 'disabled-by-default-gpu.decoder', 'devtools.timeline'];
+  if (traceFile) await page.context().browser().startTracing(page, { path: traceFile, categories });
   const first = await page.evaluate(async () => {
     const t0 = performance.now();
     await window.tvf.synthesize();
@@ -393,6 +397,7 @@ async function textureBench(page, strokes, url) {
   const reopenTasks = reopened ? await page.evaluate(() => [window.__reopenLoadTasks, window.__longTasks.splice(0)]) : null;
   const reopenExact = reopened ? await page.evaluate(() => window.__reopenExact) : null;
   await profile.stop();
+  if (traceFile) await page.context().browser().stopTracing();
   const longest = (tasks) => tasks.reduce((m, t) => Math.max(m, t.ms), 0);
   const byWall = [...updates].sort((a, b) => a.wallMs - b.wallMs);
   const medianUpdate = byWall[Math.floor((byWall.length - 1) / 2)];
