@@ -256,8 +256,8 @@ struct BakedStripes {
 BakedStripes bakeStripes(const tvf::Designer& designer, const tvf::ExportAtlas& atlas,
                          const tvf::FieldExportOptions& options, const tvf::DesignStripeOptions& stripes) {
   tvf::DesignStripes pattern;
-  pattern.compute(designer.mesh(), designer.topology(), designer.geometry(), designer.symmetry(),
-                  designer.vertexVectors(), stripes);
+  pattern.compute(designer.mesh(), designer.topology(), designer.geometry(), designer.vertexNormals(),
+                  designer.symmetry(), designer.vertexVectors(), stripes);
   const std::vector<uint8_t> rgba =
       tvf::stripeTextureRgba(designer.mesh(), pattern.pattern(), atlas.cornerUVs, options.size,
                              options.gutterTexels, {}, stripes.profile);

@@ -454,7 +454,7 @@ class DesignerBinding {
         throw tvf::InputError("stripes: expected 3 numbers per vertex of the model");
       const auto t0 = std::chrono::steady_clock::now();
       try {
-        stripes_.compute(d.mesh(), d.topology(), d.geometry(), d.symmetry(),
+        stripes_.compute(d.mesh(), d.topology(), d.geometry(), d.vertexNormals(), d.symmetry(),
                          given.empty() ? d.vertexVectors() : given, o);
       } catch (const tvf::StripesInterrupted&) {
         stripesInterrupted_ = true;

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "mesh/mesh_geometry.h"
 #include "mesh/mesh_hash.h"
 
 namespace tvf {
@@ -21,8 +22,13 @@ const VertexVectorMap& DesignMesh::vertexVectorMap() const {
   return vertexVectorMap_;
 }
 
+const std::vector<double>& DesignMesh::vertexNormals() const {
+  if (vertexNormals_.empty()) vertexNormals_ = tvf::vertexNormals(mesh_);
+  return vertexNormals_;
+}
+
 const VertexTangentAxes& DesignMesh::vertexTangentAxes() const {
-  if (vertexTangentAxes_.a.empty()) vertexTangentAxes_ = tvf::vertexTangentAxes(mesh_);
+  if (vertexTangentAxes_.a.empty()) vertexTangentAxes_ = tvf::vertexTangentAxes(vertexNormals());
   return vertexTangentAxes_;
 }
 

@@ -28,7 +28,10 @@ class DesignMesh {
   // The Whitney maps of Eq. 4 and 5 (geometry only), built on first use.
   const FaceVectorMap& faceVectorMap() const;
   const VertexVectorMap& vertexVectorMap() const;
-  // Each vertex's tangent axes (direction/representative_directions.h), built on first use.
+  // Unit area-weighted vertex normals (mesh/mesh_geometry.h), and each vertex's tangent axes in the plane
+  // they give (direction/representative_directions.h), built on first use: the vertex representatives, the
+  // stripes' families and their combing read these.
+  const std::vector<double>& vertexNormals() const;
   const VertexTangentAxes& vertexTangentAxes() const;
   // Each face's tangent frame and the discrete Levi-Civita connection between faces
   // (direction/levi_civita_connection.h), built on first use: every direction-field system reads these.
@@ -44,6 +47,7 @@ class DesignMesh {
   MeshGeometry geometry_;
   mutable FaceVectorMap faceVectorMap_;
   mutable VertexVectorMap vertexVectorMap_;
+  mutable std::vector<double> vertexNormals_;
   mutable VertexTangentAxes vertexTangentAxes_;
   mutable std::optional<FaceFrames> faceFrames_;
   mutable std::optional<FaceConnection> leviCivitaConnection_;

@@ -79,7 +79,8 @@ void DesignStripes::clear() {
 }
 
 const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshTopology& topology,
-                                            const MeshGeometry& geometry, int symmetry,
+                                            const MeshGeometry& geometry,
+                                            const std::vector<double>& vertexNormals, int symmetry,
                                             const std::vector<double>& vertexVectors,
                                             const DesignStripeOptions& options) {
   checkStripeOptions(symmetry, options);
@@ -92,10 +93,11 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
   o.interrupted = options.interrupted;
   if (options.magnitudeSpacing > 0 && symmetry == 1)
     o.vertexFrequencyScale = magnitudeScale(vertexVectors, options.magnitudeSpacing);
-  StripePattern along = stripePattern(mesh, topology, geometry, vertexVectors, o, &along_);
+  StripePattern along = stripePattern(mesh, topology, geometry, vertexNormals, vertexVectors, o, &along_);
   if (symmetry != 4 && stripeProfileHasTwoFamilies(options.profile)) {
     o.quarterTurns = 1;
-    const StripePattern across = stripePattern(mesh, topology, geometry, vertexVectors, o, &across_);
+    const StripePattern across =
+        stripePattern(mesh, topology, geometry, vertexNormals, vertexVectors, o, &across_);
     along.families = 2;
     along.cornerPhase.insert(along.cornerPhase.end(), across.cornerPhase.begin(), across.cornerPhase.end());
     along.branchIndex.insert(along.branchIndex.end(), across.branchIndex.begin(), across.branchIndex.end());

@@ -48,9 +48,11 @@ class DesignStripes {
   ~DesignStripes();
   // vertexVectors: 3 per vertex, the field drawn (the design's, or a part of its Hodge decomposition).
   // Throws checkStripeOptions's InputError, or stripePattern's.
+  // vertexNormals: the mesh's, as the design keeps them (Designer::vertexNormals).
   const StripePattern& compute(const SurfaceMesh& mesh, const MeshTopology& topology,
-                               const MeshGeometry& geometry, int symmetry,
-                               const std::vector<double>& vertexVectors, const DesignStripeOptions& options);
+                               const MeshGeometry& geometry, const std::vector<double>& vertexNormals,
+                               int symmetry, const std::vector<double>& vertexVectors,
+                               const DesignStripeOptions& options);
   const StripePattern& pattern() const { return pattern_; }
   StripeProfile profile() const { return profile_; }
   void clear();  // for another mesh

@@ -491,6 +491,9 @@ const MeshTopology& Designer::topology() const {
 const MeshGeometry& Designer::geometry() const {
   return impl_->mesh.geometry();
 }
+const std::vector<double>& Designer::vertexNormals() const {
+  return impl_->mesh.vertexNormals();
+}
 const FoldProfile& Designer::foldProfile() const {
   return impl_->mesh.foldProfile();
 }

@@ -169,6 +169,8 @@ class Designer {
   // What the construction's check noted but did not refuse (unused vertices, say), for the info report.
   const std::vector<MeshProblem>& meshNotes() const;
   const MeshGeometry& geometry() const;
+  // Unit area-weighted vertex normals, made once (DesignMesh): the stripes' families read them.
+  const std::vector<double>& vertexNormals() const;
 
   struct Impl;
 

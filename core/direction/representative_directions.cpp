@@ -59,8 +59,7 @@ std::vector<double> faceRepresentatives(const FaceFrames& frames, const Eigen::V
   return out;
 }
 
-VertexTangentAxes vertexTangentAxes(const SurfaceMesh& mesh) {
-  const std::vector<double> normals = vertexNormals(mesh);
+VertexTangentAxes vertexTangentAxes(const std::vector<double>& normals) {
   const size_t numVertices = normals.size() / 3;
   VertexTangentAxes axes;
   axes.a.resize(3 * numVertices);
@@ -83,7 +82,7 @@ std::vector<double> vertexRepresentatives(const SurfaceMesh& mesh, const MeshTop
                                           const MeshGeometry& g, const std::vector<double>& faceDirections,
                                           int symmetry) {
   std::vector<double> out;
-  vertexRepresentatives(vertexTangentAxes(mesh), mesh, t, g, faceDirections, symmetry, out);
+  vertexRepresentatives(vertexTangentAxes(vertexNormals(mesh)), mesh, t, g, faceDirections, symmetry, out);
   return out;
 }
 

@@ -26,7 +26,7 @@ std::vector<double> vertexRepresentatives(const SurfaceMesh& mesh, const MeshTop
 struct VertexTangentAxes {
   std::vector<double> a, b;  // 3 per vertex each, orthonormal, b = n x a
 };
-VertexTangentAxes vertexTangentAxes(const SurfaceMesh& mesh);
+VertexTangentAxes vertexTangentAxes(const std::vector<double>& vertexNormals);
 // The same representatives with the axes made beforehand (into out, reusing its room).
 void vertexRepresentatives(const VertexTangentAxes& axes, const SurfaceMesh& mesh,
                            const MeshTopology& topology, const MeshGeometry& geometry,

@@ -671,13 +671,20 @@ void StripeWorkspace::clear() {
 StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& g,
                             const std::vector<double>& vertexDirections, const StripeOptions& options,
                             StripeWorkspace* workspace) {
+  return stripePattern(mesh, topology, g, vertexNormals(mesh), vertexDirections, options, workspace);
+}
+
+StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& g,
+                            const std::vector<double>& normals, const std::vector<double>& vertexDirections,
+                            const StripeOptions& options, StripeWorkspace* workspace) {
   checkInput(mesh, vertexDirections, options);
+  if (normals.size() != vertexDirections.size())
+    throw InputError("stripe pattern: expected 3 normal components per vertex");
   checkInterruption(options);
   // Combed, a cross field's families keep their labels across all but the fewest edges: a profile that tells
   // them apart (bricks, weave) changes only there. A line field's sign needs no combing (every profile reads
   // the same with its phase run backwards), and armadillo-sub2's costs 0.2 s an edit (natively and in the
   // page).
-  const std::vector<double> normals = vertexNormals(mesh);
   const Families fam = familiesOf(
       mesh, normals,
       options.symmetry == 4 ? combVertexDirections(topology, normals, vertexDirections, options.symmetry)

@@ -122,6 +122,12 @@ struct StripeWorkspace {
 // sigma just below the last eigenvalue: an edit moves the smallest eigenvalue little (bunny00's line field:
 // by 4 % at most over twelve strokes), and each step then gains (lambda1 - sigma) / (lambda2 - sigma) where
 // A^-1 gains lambda1 / lambda2, which the nearly repeated smallest eigenvalues bring close to 1.
+// vertexNormals: the mesh's (mesh/mesh_geometry.h vertexNormals), which a design keeps (DesignMesh).
+StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology,
+                            const MeshGeometry& geometry, const std::vector<double>& vertexNormals,
+                            const std::vector<double>& vertexDirections, const StripeOptions& options,
+                            StripeWorkspace* workspace = nullptr);
+// The same, the vertex normals derived here (a one-off pattern).
 StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology,
                             const MeshGeometry& geometry, const std::vector<double>& vertexDirections,
                             const StripeOptions& options, StripeWorkspace* workspace = nullptr);

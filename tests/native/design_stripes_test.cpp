@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "common/input_error.h"
+#include "design/designer.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
 #include "stripe_test_fields.h"
@@ -49,6 +50,28 @@ TEST(StripeProfiles, ReadTheSameWhereTheLinePhaseRunsTheOtherWay) {
   EXPECT_THROW(stripeProfileNamed("plaid"), InputError);
 }
 
+// The vertex normals are derived once per design (DesignMesh) and every pattern reads those: the same pattern
+// as normals derived for it alone.
+TEST(DesignStripes, ThePatternReadsTheNormalsTheDesignKeeps) {
+  const SurfaceMesh m = torus(48, 18, 2.0, 0.7);
+  const Designer d(m);
+  EXPECT_EQ(&d.vertexNormals(), &d.vertexNormals());
+  EXPECT_EQ(d.vertexNormals(), vertexNormals(m));
+  DesignStripes kept;
+  DesignStripeOptions o;
+  o.frequency = 2.0;
+  const StripePattern& p =
+      kept.compute(d.mesh(), d.topology(), d.geometry(), d.vertexNormals(), 1, aroundTheTube(m), o);
+  StripeOptions plain;
+  plain.frequency = o.frequency * stripePatternFrequencyFactor(o.profile);
+  plain.adaptSpacing = o.adaptSpacing;
+  plain.maxIterations = o.maxIterations;
+  plain.tolerance = o.tolerance;
+  const StripePattern alone = stripePattern(m, d.topology(), d.geometry(), aroundTheTube(m), plain);
+  EXPECT_EQ(p.cornerPhase, alone.cornerPhase);
+  EXPECT_EQ(p.branchIndex, alone.branchIndex);
+}
+
 TEST(DesignStripes, AGridAlongAVectorFieldTakesASecondFamilyAcrossIt) {
   const SurfaceMesh m = torus(96, 36, 2.0, 0.7);
   const MeshTopology t = buildTopology(m);
@@ -57,7 +80,7 @@ TEST(DesignStripes, AGridAlongAVectorFieldTakesASecondFamilyAcrossIt) {
   DesignStripeOptions o;
   o.frequency = 2.0;
   o.profile = StripeProfile::GridLines;
-  const StripePattern& p = stripes.compute(m, t, g, 1, aroundTheTube(m), o);
+  const StripePattern& p = stripes.compute(m, t, g, vertexNormals(m), 1, aroundTheTube(m), o);
   ASSERT_EQ(p.families, 2);
   ASSERT_EQ(p.cornerPhase.size(), 6u * m.numFaces());
   // Each family against its own truth: the first's phase grows across the field, the second's along it.
@@ -90,7 +113,8 @@ TEST(DesignStripes, BricksAndWeaveAreDrawnFromAPatternAtHalfTheFrequency) {
     DesignStripeOptions o;
     o.frequency = 6.0;
     o.profile = profile;
-    const StripePattern& p = stripes.compute(m, t, g, 2, constantField(m, Eigen::Vector3d::UnitX()), o);
+    const StripePattern& p =
+        stripes.compute(m, t, g, vertexNormals(m), 2, constantField(m, Eigen::Vector3d::UnitX()), o);
     const double expected = 2 * M_PI * o.frequency * stripePatternFrequencyFactor(profile);
     for (int32_t f = 0; f < m.numFaces(); f += 37) {
       const Eigen::Vector3d grad = phaseGradient(m, p, 0, f);
@@ -121,7 +145,7 @@ TEST(DesignStripes, TheAdaptedSpacingLetsTheStripesFollowTheField) {
     DesignStripeOptions o;
     o.frequency = 1.5;
     o.adaptSpacing = adapt;
-    const StripePattern& p = stripes.compute(m, t, g, 1, field, o);
+    const StripePattern& p = stripes.compute(m, t, g, vertexNormals(m), 1, field, o);
     if (spacing) *spacing = p.spacing;
     double sum = 0, area = 0;
     for (int32_t f = 0; f < m.numFaces(); ++f) {
