@@ -7,7 +7,9 @@
 //                             [--preview-edges N]   (loadModel's previewEdges: 1 forces a preview, 0 none)
 //                             [--symmetry N]   (the strokes on an N-direction field: 2 line, 4 cross; default 1)
 //                             [--texture N]   (then the texture: its first synthesis and N strokes' updates,
-//                             each broken into its phases: textureFirstPhases, textureUpdatePhases)
+//                             each broken into its phases: textureFirstPhases, textureUpdatePhases; and
+//                             textureOnScreenMs, textureUpdateOnScreenMs: to the GPU done with the first frame
+//                             that draws it, *FirstFrameMs that frame alone)
 //                             [--reopen [--reload]]   (the mesh opened again, over itself or in the page
 //                             reloaded: reopenExactFieldMs, loadModel to its exact field, the ordering, preview
 //                             parts and picking tree kept; with --texture its texture made again too)
@@ -354,17 +356,34 @@ async function undoBench(page, n) {
   };
 }
 
+// window.__onScreen(t1): resolves with the milliseconds from t1 until the GPU has finished the view's next
+// frame (two animation frames, then a fence in the view's context).
+const ON_SCREEN = () => {
+  window.__onScreen = async (t1) => {
+    const root = document.querySelector('tangent-field-designer').shadowRoot;
+    const gl = root.querySelector('#viewport canvas').getContext('webgl2');
+    await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+    const fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+    gl.flush();
+    while (gl.getSyncParameter(fence, gl.SYNC_STATUS) !== gl.SIGNALED) await new Promise((r) => setTimeout(r, 1));
+    gl.deleteSync(fence);
+    return performance.now() - t1;
+  };
+};
+
 async function textureBench(page, strokes, url) {
   await page.evaluate(() => window.__longTasks.splice(0));
   const profile = await startProfile(page, arg('--profile-texture', null));
   const traceFile = arg('--trace-texture', null);
   const categories = ['toplevel', 'v8', 'gpu', 'gpu.angle', 'disabled-by-default-gpu.service', 'disabled-by-default-gpu.decoder', 'devtools.timeline'];
   if (traceFile) await page.context().browser().startTracing(page, { path: traceFile, categories });
+  await page.evaluate(ON_SCREEN);
   const first = await page.evaluate(async () => {
     const t0 = performance.now();
     await window.tvf.synthesize();
     const s = await window.tvf.synthesisIdle();
-    return { wallMs: performance.now() - t0, t0, t1: performance.now(), stats: s };
+    const t1 = performance.now();
+    return { wallMs: t1 - t0, t0, t1, stats: s, firstFrameMs: await window.__onScreen(t1) };
   });
   const firstTasks = await page.evaluate(() => window.__longTasks.splice(0));
   const updates = [];
@@ -375,7 +394,8 @@ async function textureBench(page, strokes, url) {
       await window.tvf.addStroke(pts);
       await window.tvf.settled();
       const s = await window.tvf.synthesisIdle();
-      return { wallMs: performance.now() - t0, t0, t1: performance.now(), stats: s };
+      const t1 = performance.now();
+      return { wallMs: t1 - t0, t0, t1, stats: s, firstFrameMs: await window.__onScreen(t1) };
     }, points));
   }
   const updateTasks = await page.evaluate(() => window.__longTasks.splice(0));
@@ -408,6 +428,12 @@ async function textureBench(page, strokes, url) {
     textureFirstPhases: phaseTable(first, 'before the run'),
     textureUpdatePhases: medianUpdate ? phaseTable(medianUpdate, 'stroke solved, field changed') : null,
     textureEachUpdatePhases: updates.map((u) => phaseTable(u, 'stroke solved, field changed')),
+    // From the texture shown to the GPU done with the first frame that draws it (the user sees it then): the
+    // next stroke starts after it, as a user's would.
+    textureFirstFrameMs: first.firstFrameMs,
+    textureUpdateFirstFrameMs: median(updates.map((u) => u.firstFrameMs)),
+    textureOnScreenMs: first.wallMs + first.firstFrameMs,
+    textureUpdateOnScreenMs: median(updates.map((u) => u.wallMs + u.firstFrameMs)),
     ...(reopened ? {
       reopenExactFieldMs: reopenExact.ms,
       reopenExactFactor: { analyzeMs: reopenExact.analyzeMs, factorMs: reopenExact.factorMs,
