@@ -46,8 +46,8 @@ class DesignStripes {
  public:
   DesignStripes();
   ~DesignStripes();
-  // vertexNormals: the mesh's, as the design keeps them (Designer::vertexNormals). vertexVectors: 3 per vertex,
-  // the field drawn (the design's, or a part of its Hodge decomposition). Throws checkStripeOptions's
+  // vertexNormals: the mesh's, as the design keeps them (Designer::vertexNormals). vertexVectors: 3 per
+  // vertex, the field drawn (the design's, or a part of its Hodge decomposition). Throws checkStripeOptions's
   // InputError, or stripePattern's.
   const StripePattern& compute(const SurfaceMesh& mesh, const MeshTopology& topology,
                                const MeshGeometry& geometry, const std::vector<double>& vertexNormals,
