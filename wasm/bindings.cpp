@@ -72,8 +72,6 @@ bool attempt(std::string& error, F&& f) {
   return false;
 }
 
-// A model's info report from what its Designer derived when it was made (no second check of the mesh).
-
 bool parseFormat(std::string name, const uint8_t* data, std::size_t size, tvf::MeshFormat& out) {
   for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (!name.empty() && name[0] == '.') name.erase(0, 1);

@@ -23,8 +23,7 @@ std::vector<int32_t> sharpEdges(const MeshTopology& topology, const MeshGeometry
 // creases anyone would draw. Two measures tell them apart (docs/method.md has the models they were measured
 // on):
 // - the sharp share of the edges that fold (edges folding less than kFlatFoldDegrees tell nothing: flat
-// parts,
-//   and the edges a subdivision adds inside a facet);
+//   parts, and the edges a subdivision adds inside a facet);
 // - the share of the sharp edges on long feature curves, at least kLongCurveDiagonal of the bounding box's
 //   diagonal: a creased surface's creases run on, a faceted one's sharp edges come in short pieces (both
 //   unchanged by a subdivision).

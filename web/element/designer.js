@@ -169,9 +169,9 @@ export class Designer {
 
   // After a model is shown, as the session warms the design's calls up: the model's texture atlas prepared
   // in the core's worker (synthesis/atlas-ahead.js), then the synthesis programs compiled, or for a model too
-  // big for that, once, the texture's CPU
-  // half warmed up on a torus (synthesis/warm-up.js: ~0.27 s there; the first texture's atlas choice for bunny00
-  // 665 -> 436 ms, under node). Never fails anything: an optimization only.
+  // big for that, once, the texture's CPU half warmed up on a torus (synthesis/warm-up.js: ~0.27 s there; the
+  // first texture's atlas choice for bunny00 665 -> 436 ms, under node). Never fails anything: an optimization
+  // only.
   #prepareTextureLater() {
     const s = this.session;
     setTimeout(async () => {

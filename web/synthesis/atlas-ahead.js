@@ -23,13 +23,13 @@ export async function prepareAtlasAhead(request, controller, { positions, triang
 }
 
 // The synthesizer's programs compiled ahead in the view's context (controller: the SynthesisController). Never
-// fails anything: with the context lost meanwhile (no float targets to find then), the next texture makes them.
+// fails anything: with the context lost meanwhile (ensureSynth refuses it: no float targets to find then), the
+// next texture makes them.
 export function prepareProgramsAhead(controller) {
-  const gl = controller.viewer?.renderer?.getContext();
-  if (!gl || gl.isContextLost()) return;
+  if (!controller.viewer?.renderer) return;
   try {
     controller.ensureSynth().programsReady().catch(() => {});
   } catch {
-    // lost between the check and the synthesizer's creation: the context's restore starts over
+    // the context lost: its restore starts over
   }
 }

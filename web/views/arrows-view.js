@@ -24,8 +24,8 @@ const RESAMPLE_RATIO = 1.25;
 // Beyond this many samples over the whole surface (zoomed far in), sample only the faces near the view.
 const MAX_SAMPLES = 12_000;
 // When the samples are made ahead (prepare), darts are thrown this many at a time until a task has run this
-// long: a fixed 8,000 a task (~10 ms warm) took 150-185 ms of one task as armadillo-sub2 reopened, its first
-// slices not yet optimized and the page's thread sharing two cores with a preview worker and software GL.
+// long: a fixed 8,000 a task (~10 ms warm) took 150-185 ms of one task as armadillo-sub2 reopened, 39-126 ms
+// of it in the darts, the page's thread sharing two cores with a preview worker and software GL.
 const DARTS_PER_STEP = 1000;
 const TASK_MS = 8;
 
