@@ -21,6 +21,7 @@ std::filesystem::path cachePath(const Designer& designer, const std::string& dir
 }  // namespace
 
 std::string adoptCachedOrdering(Designer& designer, const std::string& dir) {
+  designer.keepFieldSymbolic(true);  // for keepOrdering, where this run's analysis is the one to keep
   const std::filesystem::path path = cachePath(designer, dir);
   std::ifstream in(path, std::ios::binary);
   if (!in) return "none kept";
@@ -33,9 +34,10 @@ std::string adoptCachedOrdering(Designer& designer, const std::string& dir) {
 }
 
 void keepOrdering(const Designer& designer, const std::string& dir) {
-  if (designer.stats().analysisReused) return;
+  if (designer.stats().symbolicReused) return;
   const KeptOrdering kept = designer.fieldOrdering();
-  if (kept.perm.empty()) return;
+  // An ordering taken from the file, with no symbolic factor to add (a simplicial factor's), is there.
+  if (kept.perm.empty() || (designer.stats().analysisReused && kept.symbolic.empty())) return;
   std::filesystem::create_directories(dir);
   const std::filesystem::path path = cachePath(designer, dir);
   const std::filesystem::path part = path.string() + ".part";

@@ -301,7 +301,7 @@ async function reopenBench(page, url) {
     await page.evaluate(() => window.tvf.settled());
   }
   const traceFile = arg('--trace-reopen', null);
-  const categories = ['toplevel', 'v8', 'gpu', 'disabled-by-default-devtools.timeline', 'devtools.timeline'];
+  const categories = ['toplevel', 'v8', 'gpu', 'gpu.angle', 'disabled-by-default-gpu.service', 'disabled-by-default-gpu.decoder', 'disabled-by-default-devtools.timeline', 'devtools.timeline'];
   if (traceFile) await page.context().browser().startTracing(page, { path: traceFile, categories });
   const profile = await startProfile(page, arg('--profile-reopen', null));
   const r = await page.evaluate(async (u) => {

@@ -253,27 +253,56 @@ class DesignerBinding {
     std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(pending_->meshHash()));
     return key;
   }
-  bool adoptPendingOrdering(const val& perm, const std::string& patternHex, bool metis, bool dissection) {
+  // symbolic: null, or the ordering's supernodal symbolic factor as keptSymbolicBytes() gives it
+  // (FactoredSystem::adoptOrdering checks it against the matrix before it is used).
+  bool adoptPendingOrdering(const val& perm, const std::string& patternHex, bool metis, bool dissection,
+                            const val& symbolic) {
     if (!pending_) return false;
     tvf::KeptOrdering k;
     k.perm = emscripten::convertJSArrayToNumberVector<int32_t>(perm);
     k.pattern = std::strtoull(patternHex.c_str(), nullptr, 16);
     k.ordering = metis ? tvf::FillOrdering::Metis : tvf::FillOrdering::Amd;
     k.dissection = dissection;
-    return pending_->adoptFieldOrdering(k);
+    if (!symbolic.isNull() && !symbolic.isUndefined()) {
+      const std::vector<uint8_t> bytes = emscripten::convertJSArrayToNumberVector<uint8_t>(symbolic);
+      k.symbolic = tvf::symbolicFromBytes(bytes.data(), bytes.size());
+    }
+    return pending_->adoptFieldOrdering(std::move(k));
+  }
+  // The pending model's matrix assembled ahead of commitModel (Designer::prepareSystem); a failure is left for
+  // commitModel to meet and report.
+  void preparePendingSystem() {
+    std::string error;
+    if (pending_) attempt(error, [&] { pending_->prepareSystem(); });
+  }
+  // Whether the pending model's analysis is kept for keptOrderingJson (Designer::keepFieldSymbolic).
+  void keepPendingSymbolic(bool keep) {
+    if (pending_) pending_->keepFieldSymbolic(keep);
   }
   std::string keptOrderingJson() {
     kept_ = designer_ ? designer_->fieldOrdering() : tvf::KeptOrdering{};
+    symbolicBytes_ = tvf::symbolicBytes(kept_.symbolic);
+    kept_.symbolic = tvf::KeptSymbolic();
     char pattern[20];
     std::snprintf(pattern, sizeof pattern, "%016llx", static_cast<unsigned long long>(kept_.pattern));
     return nlohmann::json{{"n", kept_.perm.size()},
                           {"pattern", pattern},
                           {"metis", kept_.ordering == tvf::FillOrdering::Metis},
                           {"dissection", kept_.dissection},
-                          {"reused", designer_ && designer_->stats().analysisReused}}
+                          {"symbolic", !symbolicBytes_.empty()},
+                          {"reused", designer_ && designer_->stats().analysisReused},
+                          {"symbolicReused", designer_ && designer_->stats().symbolicReused}}
         .dump();
   }
   val keptOrderingPerm() const { return view(kept_.perm); }
+  // Its symbolic factor's bytes (tvf::symbolicBytes), or none.
+  val keptSymbolicBytes() const { return view(symbolicBytes_); }
+  // What keptOrderingJson copied, and the current model's copy of its symbolic factor, let go.
+  void releaseKeptOrdering() {
+    kept_ = tvf::KeptOrdering{};
+    std::vector<uint8_t>().swap(symbolicBytes_);
+    if (designer_) designer_->keepFieldSymbolic(false);
+  }
 
   // bytes <= 0: the address space left in wasm memory (the default); otherwise a fixed limit, for tests.
   std::string setFactorMemoryLimit(double bytes) {
@@ -734,6 +763,7 @@ class DesignerBinding {
   double stripesMs_ = 0;
   bool stripesInterrupted_ = false;  // the last computeStripes was abandoned for a newer request
   tvf::KeptOrdering kept_;                   // keptOrderingJson()'s, viewed by keptOrderingPerm()
+  std::vector<uint8_t> symbolicBytes_;       // its symbolic factor's, viewed by keptSymbolicBytes()
   std::unique_ptr<tvf::SurfaceMesh> parsed_;  // readModel's mesh, until openParsed
   Restored pendingRestored_;
   // reconstruct()'s Whitney maps for designer_'s mesh (built on first use; dropped when the model changes).
@@ -807,6 +837,10 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("adoptPendingOrdering", &DesignerBinding::adoptPendingOrdering)
       .function("keptOrderingJson", &DesignerBinding::keptOrderingJson)
       .function("keptOrderingPerm", &DesignerBinding::keptOrderingPerm)
+      .function("keptSymbolicBytes", &DesignerBinding::keptSymbolicBytes)
+      .function("releaseKeptOrdering", &DesignerBinding::releaseKeptOrdering)
+      .function("keepPendingSymbolic", &DesignerBinding::keepPendingSymbolic)
+      .function("preparePendingSystem", &DesignerBinding::preparePendingSystem)
       .function("setFactorMemoryLimit", &DesignerBinding::setFactorMemoryLimit)
       .function("gamma", &DesignerBinding::gamma)
       .function("infoJson", &DesignerBinding::infoJson)

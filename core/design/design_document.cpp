@@ -437,6 +437,7 @@ json statsJson(const DesignStats& s) {
           {"rowsMs", s.rowsMs},
           {"rhsMs", s.rhsMs},
           {"analysisReused", s.analysisReused},
+          {"symbolicReused", s.symbolicReused},
           {"precisionRefactors", s.precisionRefactors},
           {"incrementalSolves", s.incrementalSolves},
           {"supernodalSolves", s.supernodalSolves},

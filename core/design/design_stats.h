@@ -15,6 +15,7 @@ struct DesignStats {
   double rowsMs = 0;            // the last added constraint's rows (a stroke's surface walk)
   double rhsMs = 0;             // the last solve's right-hand side
   bool analysisReused = false;  // the last factorization reused the ordering (unchanged sparsity pattern)
+  bool symbolicReused = false;  // ... and a kept symbolic factor: no analysis at all (solver/kept_symbolic.h)
   // Solves that found the updated factor wanting (backward error beyond round-off) and refactored: a
   // benchmark that times updates must see none.
   int32_t precisionRefactors = 0;
@@ -34,7 +35,7 @@ struct DesignStats {
   // helper thread that failed to run, a tree with no subtrees worth splitting).
   int32_t factorThreads = 1;
   std::string singleThreadWhy;
-  int32_t symmetry = 1;    // N of the field solved last (1: a vector field, the paper's 1-form)
+  int32_t symmetry = 1;  // N of the field solved last (1: a vector field, the paper's 1-form)
   // Numeric factorizations of the system in use since it was made: a constraint edit adds none (rank
   // updates).
   int64_t factorizations = 0;

@@ -472,8 +472,16 @@ KeptOrdering Designer::fieldOrdering() const {
   return impl_->system->factor().keptOrdering();
 }
 
-bool Designer::adoptFieldOrdering(const KeptOrdering& kept) {
-  return impl_->system->factor().adoptOrdering(kept);
+bool Designer::adoptFieldOrdering(KeptOrdering kept) {
+  return impl_->system->factor().adoptOrdering(std::move(kept));
+}
+
+void Designer::keepFieldSymbolic(bool keep) {
+  impl_->system->factor().setKeepSymbolic(keep);
+}
+
+void Designer::prepareSystem() {
+  impl_->system->prepareBase();
 }
 
 void Designer::releaseFactors() {

@@ -157,12 +157,19 @@ class Designer {
   // factorization), to keep beyond this designer; and one kept from an earlier designer on the same mesh,
   // which the next factorization of the same pattern uses instead of ordering again
   // (FactoredSystem::adoptOrdering).
+  // keepFieldSymbolic: whether fieldOrdering() carries the symbolic factor of the field system's next
+  // analysis too (FactoredSystem::setKeepSymbolic), for a cache that skips the analysis as well.
   KeptOrdering fieldOrdering() const;
-  bool adoptFieldOrdering(const KeptOrdering& kept);
+  bool adoptFieldOrdering(KeptOrdering kept);
+  void keepFieldSymbolic(bool keep);
   // Frees the field systems' numeric factors and what they are made from (FieldSystem::releaseMemory),
   // keeping the design, the field and the orderings: the next solve assembles and factors again. For a model
   // about to be replaced, whose memory its successor's then takes (solver/factor_memory.h).
   void releaseFactors();
+  // The field system's matrix assembled now, as the next solve would (FieldSystem::prepareBase): a model
+  // about to be factored can have that done while its caller waits for something else (web/core/worker/
+  // load-ops.js: the kept analysis and the picking parts read from IndexedDB).
+  void prepareSystem();
   const std::vector<int32_t>& edgeVertices() const;  // 2 per edge, lower index first
   // Derived from the mesh once, at construction; exports and benchmarks read them rather than derive again.
   const MeshTopology& topology() const;

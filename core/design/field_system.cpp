@@ -27,6 +27,7 @@ void reportFactor(const ShiftedFactor& factor, int64_t unknowns, DesignStats& st
   const FactorReport& r = factor.report();
   stats.analyzeMs = r.analyzeMs;
   stats.analysisReused = r.analysisReused;
+  stats.symbolicReused = r.symbolicReused;
   stats.factorMs = r.factorMs;
   stats.nnzPerRowL =
       static_cast<double>(r.factorNonzeros) / static_cast<double>(std::max<int64_t>(1, unknowns));

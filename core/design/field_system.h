@@ -74,6 +74,10 @@ class FieldSystem {
   // Lets the factor go, and what it is made from where that is large (a model being replaced: its memory is
   // where the next model's will go, solver/factor_memory.h); the next solve makes them again.
   virtual void releaseMemory() { factor().release(); }
+  // The base matrix made now where it is made lazily and still to be made (the next factorization would make
+  // it), so that the caller can put that work beside a wait; a system that makes it with itself has nothing
+  // to do.
+  virtual void prepareBase() {}
   // Takes the constraint set as it now is after the system was out of use (other constraints may have come
   // and gone); throws InputError naming what it cannot take, unchanged then.
   virtual void resume() = 0;

@@ -24,6 +24,7 @@ class OneFormSystem final : public FieldSystem {
   void setFeatures(const std::vector<int32_t>& edges) override;
   void resume() override;
   void releaseMemory() override;
+  void prepareBase() override { requireBase(); }
 
   int32_t add(const ConstraintSpec& spec, DesignStats& stats) override;
   void remove(const ConstraintSpec& spec, DesignStats& stats) override;

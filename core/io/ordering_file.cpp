@@ -6,7 +6,7 @@ namespace tvf {
 namespace {
 
 constexpr char kMagic[8] = {'T', 'V', 'F', 'O', 'R', 'D', 'E', 'R'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;
 constexpr size_t kHeader = 8 + 4 + 4 + 8 + 8 + 8;
 
 uint64_t fnv1a(const uint8_t* data, size_t size) {
@@ -32,7 +32,8 @@ T get(const uint8_t* at) {
 
 std::vector<uint8_t> orderingFileBytes(uint64_t meshHash, const KeptOrdering& kept) {
   std::vector<uint8_t> out(kMagic, kMagic + 8);
-  out.reserve(kHeader + 4 * kept.perm.size() + 8);
+  const std::vector<uint8_t> symbolic = symbolicBytes(kept.symbolic);
+  out.reserve(kHeader + 4 * kept.perm.size() + 8 + symbolic.size() + 8);
   put<uint32_t>(out, kVersion);
   put<uint8_t>(out, kept.ordering == FillOrdering::Metis ? 1 : 0);
   put<uint8_t>(out, kept.dissection ? 1 : 0);
@@ -41,6 +42,8 @@ std::vector<uint8_t> orderingFileBytes(uint64_t meshHash, const KeptOrdering& ke
   put<uint64_t>(out, kept.pattern);
   put<uint64_t>(out, kept.perm.size());
   for (int32_t p : kept.perm) put<uint32_t>(out, static_cast<uint32_t>(p));
+  put<uint64_t>(out, symbolic.size());
+  out.insert(out.end(), symbolic.begin(), symbolic.end());
   put<uint64_t>(out, fnv1a(out.data(), out.size()));
   return out;
 }
@@ -61,11 +64,19 @@ OrderingFile readOrderingFile(const std::vector<uint8_t>& bytes, uint64_t meshHa
     return f;
   }
   const uint64_t n = get<uint64_t>(b + 32);
-  if (n > (bytes.size() - kHeader - 8) / 4 || bytes.size() != kHeader + 4 * n + 8) {
+  // The permutation, the symbolic factor's size and the checksum must fit; then the symbolic factor too.
+  const size_t room = bytes.size() - kHeader;
+  if (n > (room - 16) / 4) {
     f.ignored = "an ordering file cut short";
     return f;
   }
-  if (get<uint64_t>(b + kHeader + 4 * n) != fnv1a(b, kHeader + 4 * n)) {
+  const size_t symbolicAt = kHeader + 4 * n + 8;
+  const uint64_t m = get<uint64_t>(b + kHeader + 4 * n);
+  if (m > bytes.size() - symbolicAt - 8 || bytes.size() != symbolicAt + m + 8) {
+    f.ignored = "an ordering file cut short";
+    return f;
+  }
+  if (get<uint64_t>(b + symbolicAt + m) != fnv1a(b, symbolicAt + m)) {
     f.ignored = "an ordering file whose checksum does not match";
     return f;
   }
@@ -74,6 +85,7 @@ OrderingFile readOrderingFile(const std::vector<uint8_t>& bytes, uint64_t meshHa
   f.kept.pattern = get<uint64_t>(b + 24);
   f.kept.perm.resize(n);
   for (uint64_t i = 0; i < n; ++i) f.kept.perm[i] = static_cast<int32_t>(get<uint32_t>(b + kHeader + 4 * i));
+  f.kept.symbolic = symbolicFromBytes(b + symbolicAt, m);
   return f;
 }
 

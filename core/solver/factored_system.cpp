@@ -122,10 +122,12 @@ struct FactoredSystem::Impl {
   int n = 0;
   // The fill-reducing ordering of the last factored matrix and a hash of that matrix's pattern: a boundary or
   // gamma change that keeps the pattern is refactored without ordering again. Only the permutation is kept,
-  // not the symbolic factor (its supernodes' row indices: ~60 MB at 1.25M edges, at the memory peak); the
-  // symbolic analysis with a given permutation is a small part of the analysis.
+  // not the symbolic factor (its supernodes' row indices: 35 MB at 1.25M edges, at the memory peak), unless
+  // asked for (keepSymbolic: for a cache beyond this system) or adopted (for the next factorization alone).
   std::vector<int> orderingPerm;
   uint64_t orderingPattern = 0;
+  KeptSymbolic symbolic;
+  bool keepSymbolic = false;
   std::vector<int> updateOrder;  // update columns by position in L (see sortColumns)
   // The update columns of the last edit: positions in L, ascending, and weights.
   std::vector<int> positions;
@@ -296,11 +298,20 @@ struct FactoredSystem::Impl {
   cholmod_factor* analyzeOrReuse(cholmod_sparse& A, const SparseMatrix& upper) {
     const uint64_t pattern = patternHash(A);
     timings.analysisReused = orderingPerm.size() == A.ncol && pattern == orderingPattern;
-    cholmod_factor* L = timings.analysisReused ? analyzeGiven(A, orderingPerm) : analyze(A, upper);
+    timings.symbolicReused = false;
+    cholmod_factor* L = nullptr;
+    if (timings.analysisReused && !symbolic.empty()) {
+      L = symbolicFromKept(A, orderingPerm, symbolic, factorThreads, *common.get(), lower);
+      timings.symbolicReused = L != nullptr;
+    }
+    if (!L) L = timings.analysisReused ? analyzeGiven(A, orderingPerm) : analyze(A, upper);
     if (!L) return nullptr;
     const int* perm = static_cast<const int*>(L->Perm);
     orderingPerm.assign(perm, perm + L->n);
     orderingPattern = pattern;
+    // An adopted symbolic factor served this factorization; one kept for a cache is this analysis's.
+    if (!timings.symbolicReused) symbolic = keepSymbolic ? keptSymbolicOf(*L) : KeptSymbolic();
+    if (!keepSymbolic && timings.symbolicReused) symbolic = KeptSymbolic();
     return L;
   }
 
@@ -499,6 +510,7 @@ void FactoredSystem::setOrdering(FillOrdering ordering) {
   next->backwardKernel = impl_->backwardKernel;
   next->threads = impl_->threads;
   next->factorThreads = impl_->factorThreads;
+  next->keepSymbolic = impl_->keepSymbolic;
   next->backward.setParts(next->threads);
   impl_ = std::move(next);
 }
@@ -509,10 +521,11 @@ KeptOrdering FactoredSystem::keptOrdering() const {
   k.pattern = impl_->orderingPattern;
   k.ordering = impl_->ordering;
   k.dissection = impl_->usedDissection;
+  if (impl_->keepSymbolic) k.symbolic = impl_->symbolic;
   return k;
 }
 
-bool FactoredSystem::adoptOrdering(const KeptOrdering& kept) {
+bool FactoredSystem::adoptOrdering(KeptOrdering kept) {
   if (kept.ordering != impl_->ordering || kept.perm.empty()) return false;
   const size_t n = kept.perm.size();
   std::vector<uint8_t> seen(n, 0);
@@ -520,16 +533,23 @@ bool FactoredSystem::adoptOrdering(const KeptOrdering& kept) {
     if (p < 0 || static_cast<size_t>(p) >= n || seen[p]) return false;
     seen[p] = 1;
   }
-  impl_->orderingPerm.assign(kept.perm.begin(), kept.perm.end());
+  impl_->orderingPerm = std::move(kept.perm);
   impl_->orderingPattern = kept.pattern;
   impl_->usedDissection = kept.dissection;
+  impl_->symbolic = std::move(kept.symbolic);
   return true;
+}
+
+void FactoredSystem::setKeepSymbolic(bool keep) {
+  impl_->keepSymbolic = keep;
+  if (!keep) impl_->symbolic = KeptSymbolic();
 }
 
 void FactoredSystem::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices) {
   impl_->edgeVertices = std::move(edgeVertices);
   impl_->numVertices = numVertices;
   impl_->orderingPerm.clear();
+  impl_->symbolic = KeptSymbolic();
 }
 
 void FactoredSystem::setFactorThreads(int threads) {

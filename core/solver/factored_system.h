@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/sparse_matrix.h"
+#include "solver/kept_symbolic.h"
 
 namespace tvf {
 
@@ -35,6 +36,8 @@ struct FactorTimings {
   // The last factor() reused the previous symbolic analysis (same sparsity pattern): no ordering was
   // computed.
   bool analysisReused = false;
+  // ... and took its symbolic factor from a kept one (KeptOrdering::symbolic): no analysis at all.
+  bool symbolicReused = false;
   // Threads the last numeric factorization ran on (solver/supernodal_cholesky.h), and, when more were
   // asked for and it ran on one, why.
   int factorThreads = 1;
@@ -51,6 +54,10 @@ struct KeptOrdering {
   uint64_t pattern = 0;
   FillOrdering ordering = FillOrdering::Metis;
   bool dissection = false;  // METIS: the mesh's nested dissection (edge_dissection.h), not CHOLMOD's own
+  // The supernodal symbolic factor of perm on the pattern (solver/kept_symbolic.h), where one was kept: with
+  // it a factorization of the same pattern analyzes nothing. Empty: none (a simplicial factor, or not asked
+  // for: setKeepSymbolic).
+  KeptSymbolic symbolic;
 };
 
 class FactoredSystem {
@@ -75,9 +82,13 @@ class FactoredSystem {
   // The ordering of the last analysis (or the one adopted since), to keep beyond this system.
   KeptOrdering keptOrdering() const;
   // An ordering kept from an earlier system: the next factor() of a matrix with its pattern uses it instead
-  // of ordering again (one of another pattern is ignored then, as stale or foreign). Returns false, and
-  // adopts nothing, for one made with the other FillOrdering or that is not a permutation of 0 .. n-1.
-  bool adoptOrdering(const KeptOrdering& kept);
+  // of ordering again (one of another pattern is ignored then, as stale or foreign), and its symbolic factor,
+  // if it has one that fits the matrix, instead of the analysis. Returns false, and adopts nothing, for one
+  // made with the other FillOrdering or that is not a permutation of 0 .. n-1.
+  bool adoptOrdering(KeptOrdering kept);
+  // Whether keptOrdering() carries the symbolic factor of the last analysis (a copy of its supernodes' rows:
+  // 35 MB at 1.25M edges, so only while asked for). Off by default; turning it off lets the copy go.
+  void setKeepSymbolic(bool keep);
   // The mesh behind a 1-form system (2 vertices per edge, one edge per row of A): with it the METIS ordering
   // is a nested dissection of the vertex graph (solver/edge_dissection.h) instead of CHOLMOD's of A's graph.
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);

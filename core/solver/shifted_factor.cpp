@@ -22,12 +22,12 @@ constexpr double kMaxShift = 1e-4;
 // pivots it passes through: removing a 1e20 weight leaves nothing of the original pivot (all NaN), removing
 // 1e8 leaves 1e-8. The weights taken out by downdates since the last factorization are summed; a downdate
 // that would push the sum past the budget refactors instead. With a kernel shift the system is as badly
-// conditioned as the shift is small, and that round-off reaches the field amplified: the budget keeps it within
-// ~1e-12 of a fresh factor. Without one (every component closed and of genus 0) the round-off stays what it is,
-// and the solve after downdates checks its backward error anyway (solvesToRoundOff): there a stroke's rows,
-// which weigh 5e3-1e4 mean diagonals, would refactor at every second undo under the small budget (bunny00 in
-// the page: 150-270 ms instead of 25-30 ms; armadillo-sub2: seconds), and the large one lets about a hundred
-// strokes be undone between factorizations, the factor within ~1e-10 of a fresh one.
+// conditioned as the shift is small, and that round-off reaches the field amplified: the budget keeps it
+// within ~1e-12 of a fresh factor. Without one (every component closed and of genus 0) the round-off stays
+// what it is, and the solve after downdates checks its backward error anyway (solvesToRoundOff): there a
+// stroke's rows, which weigh 5e3-1e4 mean diagonals, would refactor at every second undo under the small
+// budget (bunny00 in the page: 150-270 ms instead of 25-30 ms; armadillo-sub2: seconds), and the large one
+// lets about a hundred strokes be undone between factorizations, the factor within ~1e-10 of a fresh one.
 constexpr double kDowndateBudgetShifted = 1e4;
 constexpr double kDowndateBudget = 1e6;
 // Backward error ||b - A x|| / (||A|| ||x|| + ||b||) (infinity norms) of a solve after downdates beyond
@@ -76,8 +76,12 @@ KeptOrdering ShiftedFactor::keptOrdering() const {
   return system_.keptOrdering();
 }
 
-bool ShiftedFactor::adoptOrdering(const KeptOrdering& kept) {
-  return system_.adoptOrdering(kept);
+bool ShiftedFactor::adoptOrdering(KeptOrdering kept) {
+  return system_.adoptOrdering(std::move(kept));
+}
+
+void ShiftedFactor::setKeepSymbolic(bool keep) {
+  system_.setKeepSymbolic(keep);
 }
 
 void ShiftedFactor::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices) {
@@ -141,6 +145,7 @@ void ShiftedFactor::factor(const SparseMatrix& base, double scale, const Diagona
   const FactorTimings& t = system_.timings();
   report_.analyzeMs = t.analyzeMs;
   report_.analysisReused = t.analysisReused;
+  report_.symbolicReused = t.symbolicReused;
   report_.factorMs = t.factorMs + t.convertMs;
   report_.factorThreads = t.factorThreads;
   report_.singleThreadWhy = t.singleThreadWhy;

@@ -30,6 +30,7 @@ SparseMatrix plusDiagonal(const SparseMatrix& base, const DiagonalTerms& terms);
 struct FactorReport {
   double analyzeMs = 0, factorMs = 0;
   bool analysisReused = false;
+  bool symbolicReused = false;  // FactorTimings::symbolicReused
   int64_t factorNonzeros = 0;
   double kernelShift = 0;      // sigma, relative to the mean diagonal
   std::string kernelHandling;  // how the kernel was made definite, in words
@@ -48,9 +49,10 @@ class ShiftedFactor {
   void setOrdering(FillOrdering ordering);  // forgets the factor and the ordering
   // The mesh's edges (2 vertices each): the METIS ordering dissects its vertex graph (FactoredSystem).
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);
-  void setThreads(int threads);                  // FactoredSystem::setThreads
-  KeptOrdering keptOrdering() const;             // FactoredSystem::keptOrdering
-  bool adoptOrdering(const KeptOrdering& kept);  // FactoredSystem::adoptOrdering
+  void setThreads(int threads);           // FactoredSystem::setThreads
+  KeptOrdering keptOrdering() const;      // FactoredSystem::keptOrdering
+  bool adoptOrdering(KeptOrdering kept);  // FactoredSystem::adoptOrdering
+  void setKeepSymbolic(bool keep);        // FactoredSystem::setKeepSymbolic
   int threads() const;
   void setMemoryLimit(double bytes);  // 0: the machine's physical memory
   double memoryLimit() const;

@@ -9,6 +9,7 @@
 
 #include <vector>
 
+#include "solver/kept_symbolic.h"
 #include "solver/permuted_triangle.h"
 
 namespace tvf {
@@ -19,5 +20,18 @@ namespace tvf {
 // CHOLMOD failed (c.status says why) or perm is not a permutation.
 cholmod_factor* analyzeOrdering(const cholmod_sparse& A, std::vector<int> perm, int parts, cholmod_common& c,
                                 PermutedTriangle& lower);
+
+// L's symbolic part, to keep (a supernodal factor, symbolic or numeric); empty for a simplicial one.
+KeptSymbolic keptSymbolicOf(const cholmod_factor& L);
+
+// The same symbolic factor from a kept one, with `lower` as analyzeOrdering hands it on. The kept one is
+// checked against A first: its arrays have the shapes and ranges of a supernodal factor of n columns, every
+// entry of P A P' lies in its pattern, and each supernode's rows below its columns lie in its parent's (the
+// pattern is closed under elimination), so that a numeric factorization on it stays in its arrays and gives L
+// (the pattern may hold zeros L lacks). nullptr, and `lower` empty, where it does not fit A (stale or
+// damaged) or CHOLMOD could not allocate: the caller analyzes instead.
+cholmod_factor* symbolicFromKept(const cholmod_sparse& A, const std::vector<int>& perm,
+                                 const KeptSymbolic& kept, int parts, cholmod_common& c,
+                                 PermutedTriangle& lower);
 
 }  // namespace tvf

@@ -35,6 +35,9 @@ export class KeptStore {
       if (!db) return;
       const store = db.transaction(this.storeName, 'readwrite').objectStore(this.storeName);
       await request(store.put(entry));
+      // Reading every entry to find the oldest (tens of MB each for a big mesh's analysis) only when there is
+      // one too many.
+      if ((await request(store.count())) <= this.kept) return;
       const all = await request(store.getAll());
       all.sort((x, y) => y.madeAt - x.madeAt);
       for (const old of all.slice(this.kept)) await request(store.delete(old.key));

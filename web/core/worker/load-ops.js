@@ -65,9 +65,10 @@ export function loadOps(state) {
       };
       const progress = (value, list) => state.progress(value, list);
       const { opened, info: pendingInfo, ahead } = openModelInSteps(core, steps, progress);
+      const found = orderings.find(core.designer);
       if (ahead) await sendAhead(state, trees);
-      // The ordering this mesh had when it was last opened (ordering-cache.js): its analysis skips METIS.
-      const ordering = await orderings.adopt(core.designer);
+      // The ordering and analysis this mesh had when it was last opened (ordering-cache.js): none is made.
+      const ordering = await orderings.adopt(core.designer, found);
       state.progress({ phase: 'factoring', info: pendingInfo });
       // Tests: an exact factorization that takes at least this long, so the preview surely leads.
       for (const end = performance.now() + (options.delayForTestMs ?? 0); performance.now() < end; );
@@ -99,8 +100,10 @@ export function loadOps(state) {
 }
 
 // A big model, opened: the page's surface goes now, and the picking parts and the factorization's two threads,
-// which would take the cores from the preview, wait for the page's word that it is made.
-// trees: the bounds trees kept per mesh (picking-cache.js).
+// which would take the cores from the preview, wait for the page's word that it is made; the matrix is then
+// assembled while the bounds tree and the ordering kept for the mesh are read (IndexedDB: 0.1-0.3 s for a big
+// mesh, and their copies into the worker wait for it to be free). trees: the bounds trees kept per mesh
+// (picking-cache.js).
 async function sendAhead(state, trees) {
   const m = state.core.pendingMesh();
   const { arrays, list } = pageSurface(new Surface(m.positions, m.triangles, m.edges), true, { picking: false });
@@ -112,6 +115,7 @@ async function sendAhead(state, trees) {
     state.previewMade = resolve;
     setTimeout(resolve, PREVIEW_WAIT_MS);
   });
+  designer.preparePendingSystem();
   const kept = await keptTree;
   // Views of the wasm heap, taken after the waits (the heap may have grown while the cache was read).
   const picking = pickingParts(designer.pendingPositions(), designer.pendingTriangles(), kept.bvh);
