@@ -280,6 +280,8 @@ class DesignerBinding {
     if (pending_) pending_->keepFieldSymbolic(keep);
   }
   std::string keptOrderingJson() {
+    // A symbolic factor taken from the page's cache is not copied out to be stored again.
+    if (designer_ && designer_->stats().symbolicReused) designer_->keepFieldSymbolic(false);
     kept_ = designer_ ? designer_->fieldOrdering() : tvf::KeptOrdering{};
     symbolicBytes_ = tvf::symbolicBytes(kept_.symbolic);
     kept_.symbolic = tvf::KeptSymbolic();

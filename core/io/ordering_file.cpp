@@ -66,7 +66,7 @@ OrderingFile readOrderingFile(const std::vector<uint8_t>& bytes, uint64_t meshHa
   const uint64_t n = get<uint64_t>(b + 32);
   // The permutation, the symbolic factor's size and the checksum must fit; then the symbolic factor too.
   const size_t room = bytes.size() - kHeader;
-  if (n > (room - 16) / 4) {
+  if (room < 16 || n > (room - 16) / 4) {
     f.ignored = "an ordering file cut short";
     return f;
   }

@@ -309,9 +309,12 @@ struct FactoredSystem::Impl {
     const int* perm = static_cast<const int*>(L->Perm);
     orderingPerm.assign(perm, perm + L->n);
     orderingPattern = pattern;
-    // An adopted symbolic factor served this factorization; one kept for a cache is this analysis's.
-    if (!timings.symbolicReused) symbolic = keepSymbolic ? keptSymbolicOf(*L) : KeptSymbolic();
-    if (!keepSymbolic && timings.symbolicReused) symbolic = KeptSymbolic();
+    // An adopted symbolic factor served this factorization alone, unless one is kept for a cache: then it is
+    // this factorization's, adopted or analyzed.
+    if (!keepSymbolic)
+      symbolic = KeptSymbolic();
+    else if (!timings.symbolicReused)
+      symbolic = keptSymbolicOf(*L);
     return L;
   }
 

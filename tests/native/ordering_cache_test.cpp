@@ -248,6 +248,9 @@ TEST(OrderingFile, RoundTripsAndRefusesStaleForeignOrDamagedFiles) {
   std::vector<uint8_t> flipped = bytes;
   flipped[50] ^= 1;
   EXPECT_EQ(readOrderingFile(flipped, 42).ignored, "an ordering file whose checksum does not match");
+  // A header and a checksum's room only (the permutation's and symbolic factor's sizes cannot be read).
+  const std::vector<uint8_t> headerOnly(bytes.begin(), bytes.begin() + 8 + 4 + 4 + 8 + 8 + 8 + 8);
+  EXPECT_EQ(readOrderingFile(headerOnly, 42).ignored, "an ordering file cut short");
   const std::vector<uint8_t> cut(bytes.begin(), bytes.end() - 3);
   EXPECT_EQ(readOrderingFile(cut, 42).ignored, "an ordering file cut short");
   std::vector<uint8_t> version = bytes;
