@@ -22,13 +22,15 @@ export async function prepareAtlasAhead(request, controller, { positions, triang
   return r;
 }
 
-// The synthesizer's programs compiled ahead in the view's context (controller: the SynthesisController). Never
-// fails anything: with the context lost meanwhile (ensureSynth refuses it: no float targets to find then), the
-// next texture makes them.
+// The synthesizer's programs compiled ahead in the view's context (controller: the SynthesisController), and
+// not looked at: without KHR_parallel_shader_compile (SwiftShader) a look waits for the link, which the GPU
+// process finishes on its own meanwhile (checked ahead, one program's link status held the page 124-154 ms in
+// some big models' openings; the first texture checks them). Never fails anything: with the context lost
+// meanwhile (ensureSynth refuses it: no float targets to find then), the next texture makes them.
 export function prepareProgramsAhead(controller) {
   if (!controller.viewer?.renderer) return;
   try {
-    controller.ensureSynth().programsReady().catch(() => {});
+    controller.ensureSynth();
   } catch {
     // the context lost: its restore starts over
   }
