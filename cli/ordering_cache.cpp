@@ -34,10 +34,8 @@ std::string adoptCachedOrdering(Designer& designer, const std::string& dir) {
 }
 
 void keepOrdering(const Designer& designer, const std::string& dir) {
-  if (designer.stats().symbolicReused) return;
+  if (!designer.fieldOrderingIsNew()) return;
   const KeptOrdering kept = designer.fieldOrdering();
-  // An ordering taken from the file, with no symbolic factor to add (a simplicial factor's), is there.
-  if (kept.perm.empty() || (designer.stats().analysisReused && kept.symbolic.empty())) return;
   std::filesystem::create_directories(dir);
   const std::filesystem::path path = cachePath(designer, dir);
   const std::filesystem::path part = path.string() + ".part";

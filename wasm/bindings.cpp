@@ -279,10 +279,9 @@ class DesignerBinding {
   void keepPendingSymbolic(bool keep) {
     if (pending_) pending_->keepFieldSymbolic(keep);
   }
+  // n = 0: nothing the page's cache lacks (Designer::fieldOrderingIsNew), and nothing copied out.
   std::string keptOrderingJson() {
-    // A symbolic factor taken from the page's cache is not copied out to be stored again.
-    if (designer_ && designer_->stats().symbolicReused) designer_->keepFieldSymbolic(false);
-    kept_ = designer_ ? designer_->fieldOrdering() : tvf::KeptOrdering{};
+    kept_ = designer_ && designer_->fieldOrderingIsNew() ? designer_->fieldOrdering() : tvf::KeptOrdering{};
     symbolicBytes_ = tvf::symbolicBytes(kept_.symbolic);
     kept_.symbolic = tvf::KeptSymbolic();
     char pattern[20];
@@ -292,8 +291,7 @@ class DesignerBinding {
                           {"metis", kept_.ordering == tvf::FillOrdering::Metis},
                           {"dissection", kept_.dissection},
                           {"symbolic", !symbolicBytes_.empty()},
-                          {"reused", designer_ && designer_->stats().analysisReused},
-                          {"symbolicReused", designer_ && designer_->stats().symbolicReused}}
+                          {"reused", designer_ && designer_->stats().analysisReused}}
         .dump();
   }
   val keptOrderingPerm() const { return view(kept_.perm); }

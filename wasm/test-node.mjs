@@ -218,12 +218,16 @@ check('failed load keeps the previous mesh', keep !== '' && d.positions().length
   check('adoptPendingOrdering with it: no analysis, the same field', again.adopted && again.stats.analysisReused &&
     again.stats.symbolicReused && maxAbsDiff(again.oneForm, first.oneForm) <= 1e-12 * maxAbs(first.oneForm),
     JSON.stringify({ adopted: again.adopted, symbolic: again.stats.symbolicReused }));
+  check('keptOrderingJson after it: nothing new to store (n = 0)', JSON.parse(b.keptOrderingJson()).n === 0);
   const bad = bytes.subarray(0, bytes.length - 1); // cut short
   const c = new Module.Designer();
   const refused = open(c, adopt(bad));
   check('a symbolic factor that does not fit: refused, analyzed anew, the same field', refused.adopted &&
     refused.stats.analysisReused && !refused.stats.symbolicReused &&
     maxAbsDiff(refused.oneForm, first.oneForm) <= 1e-12 * maxAbs(first.oneForm));
+  const replaced = JSON.parse(c.keptOrderingJson());
+  check('keptOrderingJson after it: the new analysis to store', replaced.n === kept.n && replaced.symbolic === true &&
+    Uint8Array.from(c.keptSymbolicBytes()).every((x, i) => x === bytes[i]));
   for (const x of [a, b, c]) x.delete();
 }
 

@@ -480,6 +480,10 @@ void Designer::keepFieldSymbolic(bool keep) {
   impl_->system->factor().setKeepSymbolic(keep);
 }
 
+bool Designer::fieldOrderingIsNew() const {
+  return impl_->system->factor().keptOrderingIsNew();
+}
+
 void Designer::prepareSystem() {
   impl_->system->prepareBase();
 }

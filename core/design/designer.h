@@ -158,10 +158,13 @@ class Designer {
   // which the next factorization of the same pattern uses instead of ordering again
   // (FactoredSystem::adoptOrdering).
   // keepFieldSymbolic: whether fieldOrdering() carries the symbolic factor of the field system's next
-  // analysis too (FactoredSystem::setKeepSymbolic), for a cache that skips the analysis as well.
+  // analysis too (FactoredSystem::setKeepSymbolic), for a cache that skips the analysis as well;
+  // fieldOrderingIsNew: whether there is anything in it for such a cache to store
+  // (FactoredSystem::keptOrderingIsNew).
   KeptOrdering fieldOrdering() const;
   bool adoptFieldOrdering(KeptOrdering kept);
   void keepFieldSymbolic(bool keep);
+  bool fieldOrderingIsNew() const;
   // Frees the field systems' numeric factors and what they are made from (FieldSystem::releaseMemory),
   // keeping the design, the field and the orderings: the next solve assembles and factors again. For a model
   // about to be replaced, whose memory its successor's then takes (solver/factor_memory.h).

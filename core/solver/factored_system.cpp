@@ -543,6 +543,13 @@ bool FactoredSystem::adoptOrdering(KeptOrdering kept) {
   return true;
 }
 
+bool FactoredSystem::keptOrderingIsNew() const {
+  const Impl& s = *impl_;
+  if (s.orderingPerm.empty()) return false;
+  if (!s.timings.analysisReused) return true;
+  return !s.timings.symbolicReused && s.keepSymbolic && !s.symbolic.empty();
+}
+
 void FactoredSystem::setKeepSymbolic(bool keep) {
   impl_->keepSymbolic = keep;
   if (!keep) impl_->symbolic = KeptSymbolic();

@@ -89,6 +89,10 @@ class FactoredSystem {
   // Whether keptOrdering() carries the symbolic factor of the last analysis (a copy of its supernodes' rows:
   // 35 MB at 1.25M edges, so only while asked for). Off by default; turning it off lets the copy go.
   void setKeepSymbolic(bool keep);
+  // Whether keptOrdering() holds what its factorization did not take from an adopted one, so that a cache of
+  // them has something to store: an ordering computed, or a symbolic factor analyzed (and kept) for an
+  // adopted ordering that came without one or with one that did not fit.
+  bool keptOrderingIsNew() const;
   // The mesh behind a 1-form system (2 vertices per edge, one edge per row of A): with it the METIS ordering
   // is a nested dissection of the vertex graph (solver/edge_dissection.h) instead of CHOLMOD's of A's graph.
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);

@@ -84,6 +84,10 @@ void ShiftedFactor::setKeepSymbolic(bool keep) {
   system_.setKeepSymbolic(keep);
 }
 
+bool ShiftedFactor::keptOrderingIsNew() const {
+  return system_.keptOrderingIsNew();
+}
+
 void ShiftedFactor::setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices) {
   system_.setEdgeGraph(std::move(edgeVertices), numVertices);
   stale_ = true;

@@ -53,6 +53,7 @@ class ShiftedFactor {
   KeptOrdering keptOrdering() const;      // FactoredSystem::keptOrdering
   bool adoptOrdering(KeptOrdering kept);  // FactoredSystem::adoptOrdering
   void setKeepSymbolic(bool keep);        // FactoredSystem::setKeepSymbolic
+  bool keptOrderingIsNew() const;         // FactoredSystem::keptOrderingIsNew
   int threads() const;
   void setMemoryLimit(double bytes);  // 0: the machine's physical memory
   double memoryLimit() const;

@@ -219,7 +219,10 @@ cholmod_factor* symbolicFromKept(const cholmod_sparse& A, const std::vector<int>
     return nullptr;
   }
   cholmod_factor* L = cholmod_allocate_factor(n, &c);
-  if (!L) return nullptr;
+  if (!L) {
+    lower = PermutedTriangle();
+    return nullptr;
+  }
   const int count = static_cast<int>(kept.super.size()) - 1;
   std::copy(perm.begin(), perm.end(), static_cast<int*>(L->Perm));
   // Column j of a supernode has the supernode's rows from j on (its pattern is closed: a count that bounds

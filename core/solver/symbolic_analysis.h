@@ -5,6 +5,8 @@
 // where cholmod_analyze_p transposes A four times on one (about 0.38 of the 1.25M-edge analysis's 0.64 s
 // with a kept ordering, profiled under node).
 // The lower triangle it permutes is the one the numeric factorization assembles from, so it is handed on.
+// The same symbolic factor can come instead from one kept beyond the system that made it (kept_symbolic.h),
+// checked against the matrix: then only that lower triangle is made.
 #include <cholmod.h>
 
 #include <vector>

@@ -29,6 +29,7 @@ TEST(KeptOrdering, AdoptedOnTheSameMeshSkipsTheOrderingAndGivesTheSameField) {
   Designer first(m);
   designEveryKind(first);
   EXPECT_FALSE(first.stats().analysisReused);
+  EXPECT_TRUE(first.fieldOrderingIsNew());
   const KeptOrdering kept = first.fieldOrdering();
   ASSERT_EQ(kept.perm.size(), static_cast<size_t>(first.topology().numEdges));
   EXPECT_TRUE(kept.dissection);  // the mesh's nested dissection ordered it
@@ -108,8 +109,10 @@ TEST(KeptSymbolic, AdoptedWithTheOrderingSkipsTheAnalysisAndGivesTheSameField) {
   EXPECT_LT(relativeDifference(second.oneForm(), truth), 1e-12);
   // The same factor: its nonzeros per row as the analysis's.
   EXPECT_DOUBLE_EQ(second.stats().nnzPerRowL, plain.stats().nnzPerRowL);
-  // It served that factorization alone (not asked to keep it): a stroke and its undo are updates still.
+  // It served that factorization alone (the design did not ask to keep one): nothing is left to hand on.
+  second.keepFieldSymbolic(true);
   EXPECT_TRUE(second.fieldOrdering().symbolic.empty());
+  EXPECT_FALSE(second.fieldOrderingIsNew());
 }
 
 TEST(KeptSymbolic, ItsBytesGiveItBackAndDamagedOnesNothing) {
@@ -179,13 +182,29 @@ TEST(KeptSymbolic, OneThatDoesNotFitTheMatrixIsRefusedAndTheAnalysisRuns) {
     bad.symbolic = symbolic;
     Designer other(m);
     ASSERT_TRUE(other.adoptFieldOrdering(bad)) << what;
+    other.keepFieldSymbolic(true);
     designEveryKind(other);
     EXPECT_TRUE(other.stats().analysisReused) << what;
     EXPECT_FALSE(other.stats().symbolicReused) << what;
     // Refused before the factorization: none failed on a pattern missing fill and was tried again.
     EXPECT_EQ(other.stats().kernelHandling, fresh.stats().kernelHandling) << what;
     EXPECT_LT(relativeDifference(other.oneForm(), truth), 1e-12) << what;
+    // The analysis made instead is there for the cache to store in place of the damaged one.
+    EXPECT_TRUE(other.fieldOrderingIsNew()) << what;
+    EXPECT_EQ(other.fieldOrdering().symbolic.s, k.s) << what;
   }
+  // An ordering kept without a symbolic factor (the page's first format): the analysis made is new too; the
+  // ordering alone, asked for no symbolic factor, is not.
+  KeptOrdering bare = kept;
+  bare.symbolic = KeptSymbolic();
+  Designer keeping(m), plain(m);
+  ASSERT_TRUE(keeping.adoptFieldOrdering(bare));
+  ASSERT_TRUE(plain.adoptFieldOrdering(bare));
+  keeping.keepFieldSymbolic(true);
+  designEveryKind(keeping);
+  designEveryKind(plain);
+  EXPECT_TRUE(keeping.fieldOrderingIsNew());
+  EXPECT_FALSE(plain.fieldOrderingIsNew());
   // A well-formed pattern that is not closed: a row below a supernode's columns dropped from its parent's
   // rows.
   int child = 0, r = 0, parent = 0;

@@ -44,13 +44,13 @@ export class OrderingCache {
     }
   }
 
-  // After it: the current model's ordering and symbolic factor stored, unless its factorization took both from
-  // the entry (or the ordering, and there is no symbolic factor to add: a simplicial one). The core's copies go
-  // in any case. The promise resolves once stored (or not: a full or refused store costs the next opening only).
+  // After it: the current model's ordering and symbolic factor stored, where the core made something the entry
+  // lacks (keptOrderingJson's n is 0 otherwise). The core's copies go in any case. The promise resolves once
+  // stored (or not: a full or refused store costs the next opening only).
   keep(designer, key) {
     try {
       const k = JSON.parse(designer.keptOrderingJson());
-      if (!key || k.symbolicReused || !(k.n > 0) || (k.reused && !k.symbolic)) return Promise.resolve();
+      if (!key || !(k.n > 0)) return Promise.resolve();
       const perm = designer.keptOrderingPerm().slice();
       const symbolic = k.symbolic ? designer.keptSymbolicBytes().slice() : null;
       const { pattern, metis, dissection } = k;
