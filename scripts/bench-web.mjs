@@ -93,6 +93,11 @@ async function strokeBench(page, meshPath) {
   await page.addInitScript(() => {
     window.__longTasks = [];
     new PerformanceObserver((list) => window.__longTasks.push(...list.getEntries().map((e) => ({ at: e.startTime, ms: e.duration })))).observe({ type: 'longtask', buffered: true });
+    // Frames over 100 ms with the scripts that ran in them (function, file and position, no profiler attached:
+    // with one, the tasks change), to name a long task's code: loadLongFrames, reopenLoadLongFrames.
+    window.__longFrames = [];
+    const script = (s) => ({ ms: Math.round(s.duration), fn: s.sourceFunctionName, at: `${s.sourceURL.split('/').pop()}:${s.sourceCharPosition}`, invoker: s.invoker });
+    new PerformanceObserver((list) => window.__longFrames.push(...list.getEntries().filter((e) => e.duration > 100).map((e) => ({ at: e.startTime, ms: Math.round(e.duration), blockingMs: Math.round(e.blockingDuration), scripts: e.scripts.filter((s) => s.duration > 20).map(script) })))).observe({ type: 'long-animation-frame', buffered: true });
   });
   page.on('console', (m) => m.type() === 'warning' && !m.text().includes('GL Driver') && console.error(`page: ${m.text()}`));
   await page.goto(`http://127.0.0.1:${port}/`);
@@ -116,6 +121,7 @@ async function strokeBench(page, meshPath) {
   await loadProfile.stop();
   // A task that began before loadModel was called (the page's own start, reported late) is not the load's.
   const loadTasks = (await page.evaluate(() => window.__longTasks.splice(0))).filter((t) => t.at >= load.t0);
+  const loadFrames = (await page.evaluate(() => window.__longFrames.splice(0))).filter((f) => f.at >= load.t0);
   // --symmetry N: the field the strokes are drawn on (its smoothest field solved and drawn before the first).
   const symmetry = Number(arg('--symmetry', 1));
   if (symmetry !== 1) await page.evaluate(async (n) => { await window.tvf.setSymmetry(n); await window.tvf.settled(); }, symmetry);
@@ -239,6 +245,7 @@ async function strokeBench(page, meshPath) {
     longestLoadTaskMs: longest(loadTasks),
     // The load's long tasks: when each began (ms after loadModel was called) and how long it took.
     loadLongTasks: loadTasks.map((t) => ({ at: Math.round(t.at - load.t0), ms: t.ms })),
+    loadLongFrames: loadFrames.map((f) => ({ ...f, at: Math.round(f.at - load.t0) })),
     longestStrokeTaskMs: longest(strokeTasks),
     heapPeakBytes: runs.at(-1)?.stats.heapBytes ?? null,
     // --undo N: N undos of the strokes, then N redos (medians).
@@ -306,16 +313,19 @@ async function reopenBench(page, url) {
   const profile = await startProfile(page, arg('--profile-reopen', null));
   const r = await page.evaluate(async (u) => {
     window.__longTasks.length = 0;
+    window.__longFrames.length = 0;
     const t0 = performance.now();
     await window.tvf.loadModel(u, { restore: false });
     const firstMs = performance.now() - t0;
+    const firstRefresh = window.tvf.perf().refresh; // the first field's views and frame, in its task
     await window.tvf.settled();
     const exactMs = performance.now() - t0;
     const { previewTimings, pickingTreeKept, loadPhases } = window.tvf.perf();
     const phases = Object.fromEntries(Object.entries(loadPhases ?? {}).map(([k, v]) => [k, Math.round(v - t0)]));
     const { analyzeMs, factorMs, analysisReused } = window.tvf.stats();
     const tasks = window.__longTasks.splice(0);
-    return { t0, firstMs, exactMs, analyzeMs, factorMs, analysisReused, previewTimings, pickingTreeKept, phases, tasks };
+    const frames = window.__longFrames.splice(0).map((f) => ({ ...f, at: Math.round(f.at - t0) }));
+    return { firstRefresh, frames, t0, firstMs, exactMs, analyzeMs, factorMs, analysisReused, previewTimings, pickingTreeKept, phases, tasks };
   }, url);
   if (traceFile) await page.context().browser().stopTracing();
   await profile.stop();
@@ -329,6 +339,8 @@ async function reopenBench(page, url) {
     reopenPreviewTimings: r.previewTimings,
     longestReopenLoadTaskMs: r.tasks.reduce((m, t) => Math.max(m, t.ms), 0),
     reopenLoadLongTasks: r.tasks.map((t) => ({ at: Math.round(t.at - r.t0), ms: Math.round(t.ms) })),
+    reopenLoadLongFrames: r.frames,
+    reopenFirstRefreshMs: { updateViews: r.firstRefresh?.updateViewsMs, render: r.firstRefresh?.renderMs },
   };
 }
 

@@ -101,10 +101,16 @@ export async function readModel(src, opts = {}, offThread = async () => null) {
 // smaller ones here, where a worker's start would cost more than the read (bunny00's 2.6 MB: ~0.5 s more).
 const OFF_THREAD_BYTES = 4 << 20;
 
-// The page fetches and looks at the size: a big body is left to the worker (the request is aborted once its
-// headers are in, and made again there), a small one read here. The same messages as the worker's read
-// (core/model-bytes.js).
+// The size is asked first (HEAD): a big body is left to the worker, a small one read here. Where the server
+// does not say, the page fetches and looks at the size, and a big body's request is aborted once its headers
+// are in and made again there: that abort cost the page's thread 250 ms in one task (Chromium's cancel of a
+// 33 MB body already in the HTTP cache, in a trace of a model opened again). The same messages as the
+// worker's read (core/model-bytes.js).
 async function fetchModel(url, offThread) {
+  if ((await sizeOf(url)) >= OFF_THREAD_BYTES) {
+    const elsewhere = await offThread(url.href);
+    if (elsewhere) return elsewhere;
+  }
   const abort = new AbortController();
   let res = await fetchChecked(url, abort.signal);
   if (Number(res.headers.get('content-length')) >= OFF_THREAD_BYTES) {
@@ -141,6 +147,16 @@ export async function bodyBytes(res) {
     size += value.length;
   }
   return size === bytes.length ? bytes : bytes.slice(0, size);
+}
+
+// The body's size by a HEAD request (a CORS-safelisted method: no preflight), or 0 when it cannot be had.
+async function sizeOf(url) {
+  try {
+    const res = await fetch(url, { method: 'HEAD' });
+    return res.ok ? Number(res.headers.get('content-length')) || 0 : 0;
+  } catch {
+    return 0;
+  }
 }
 
 async function fetchChecked(url, signal) {

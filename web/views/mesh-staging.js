@@ -17,7 +17,7 @@
 // step before (the first for everything issued before the staging began).
 //
 // Owned by viewer.js. Imports three.js only.
-import { BufferGeometry, Mesh, MeshBasicMaterial, Scene, WebGLRenderTarget } from 'three';
+import { BufferAttribute, BufferGeometry, Mesh, MeshBasicMaterial, Scene, WebGLRenderTarget } from 'three';
 
 // Bytes uploaded per task: ~20 ms each with software GL.
 const SLICE_BYTES = 2 << 20;
@@ -64,6 +64,26 @@ export class MeshStaging {
     });
   }
 
+  // The empty draw's program, compiled when the viewer starts (shader-warm-up.js reads it back later): made at
+  // a big model's first staging step, that step waited for its link.
+  warmUp() {
+    const standIn = new BufferGeometry();
+    standIn.setAttribute('position', new BufferAttribute(new Float32Array(9), 3));
+    standIn.setDrawRange(0, 0);
+    const mesh = new Mesh(standIn, this.#material());
+    const scene = new Scene();
+    scene.add(mesh);
+    const { renderer } = this;
+    const before = renderer.getRenderTarget();
+    try {
+      renderer.setRenderTarget(this.#target());
+      renderer.compile(scene, this.camera);
+    } finally {
+      renderer.setRenderTarget(before);
+      standIn.dispose();
+    }
+  }
+
   // The staged geometry of this surface (null if none, or not built yet): the viewer draws it, its uploads
   // done or not.
   take(surface) {
@@ -95,6 +115,14 @@ export class MeshStaging {
   #deleteFence(fence) {
     if (fence) this.renderer.getContext().deleteSync(fence);
     return null;
+  }
+
+  #material() {
+    return (this.material ??= new MeshBasicMaterial({ colorWrite: false, depthWrite: false, depthTest: false }));
+  }
+
+  #target() {
+    return (this.target ??= new WebGLRenderTarget(1, 1, { depthBuffer: false }));
   }
 
   #drop() {
@@ -130,9 +158,7 @@ export class MeshStaging {
     standIn.setDrawRange(0, 0);
     // The renderer sorts by the bounding sphere, which it would otherwise compute (24 ms over 416k positions).
     standIn.boundingSphere = geometry.boundingSphere;
-    this.material ??= new MeshBasicMaterial({ colorWrite: false, depthWrite: false, depthTest: false });
-    this.target ??= new WebGLRenderTarget(1, 1, { depthBuffer: false });
-    const mesh = new Mesh(standIn, this.material);
+    const mesh = new Mesh(standIn, this.#material());
     mesh.frustumCulled = false;
     const scene = new Scene();
     scene.add(mesh);
@@ -144,7 +170,7 @@ export class MeshStaging {
         bufferData.call(gl, target, data === attribute.array ? allocate : data, usage);
     const before = renderer.getRenderTarget();
     try {
-      renderer.setRenderTarget(this.target);
+      renderer.setRenderTarget(this.#target());
       renderer.render(scene, this.camera);
     } finally {
       delete gl.bufferData;

@@ -22,11 +22,10 @@ import {
   Mesh,
   MeshBasicMaterial,
   MeshStandardMaterial,
-  PlaneGeometry,
 } from 'three';
 import { arrowGeometry, glyphGeometry, markerSprite } from './markers.js';
 import { BandMaterial, bandGeometry, bandMesh } from './screen-ribbon.js';
-import { copyMaterial, layerTarget } from './surface-layer.js';
+import { layerTarget } from './surface-layer.js';
 
 // A triangle with the given attributes: a program depends on which attributes the geometry has.
 function triangle(...names) {
@@ -57,7 +56,6 @@ function samples(labels) {
   arrows.setColorAt(0, new Color(1, 1, 1));
   group.add(arrows);
   group.add(new LineSegments(triangle('position'), new LineBasicMaterial({ color: 0x111827 })));
-  group.add(new Mesh(new PlaneGeometry(2, 2), copyMaterial()));
   group.add(...surfaces());
   for (const object of group.children) object.frustumCulled = false;
   return group;
@@ -110,4 +108,25 @@ export async function warmUpShaders(renderer, scene, camera, labels) {
   } finally {
     scene.remove(group);
   }
+  readBackLater(renderer);
+}
+
+// A program's first draw still reads it back (three.js's first use: its link status, its uniforms and
+// attributes), and that round trip waits for whatever the GPU process has queued by then: in a big model's
+// first field, behind its mesh's uploads, 30-35 ms of the task that drew it. Read back now, a program per
+// task, while the page has nothing queued; without KHR_parallel_shader_compile a read-back waits for its link.
+function readBackLater(renderer) {
+  const programs = [...(renderer.info.programs ?? [])];
+  const next = () => {
+    const program = programs.shift();
+    if (!program) return;
+    try {
+      const live = renderer.info.programs?.includes(program); // not released since
+      if (live && !renderer.getContext().isContextLost()) program.getUniforms();
+    } catch {
+      // a program that failed to link is reported at its first draw, as three.js does
+    }
+    setTimeout(next, 0);
+  };
+  setTimeout(next, 0);
 }

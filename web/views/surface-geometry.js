@@ -1,7 +1,7 @@
 // The surface's three.js geometry, made from a Surface (geometry/surface.js) for viewer.js: the arrays the
 // worker handed over where it made them (a big model's Float32 copies and bounds tree), else copies of the
 // Surface's. Owns nothing; imports three, three-mesh-bvh and geometry/mesh-bvh-transfer.js.
-import { BufferAttribute, BufferGeometry, Sphere, Vector3 } from 'three';
+import { Box3, BufferAttribute, BufferGeometry, Sphere, Vector3 } from 'three';
 import { MeshBVH } from 'three-mesh-bvh';
 import { adoptBVH } from '../geometry/mesh-bvh-transfer.js';
 
@@ -27,6 +27,8 @@ export function meshGeometry(surface) {
     // A big model's BVH comes after its first field (Surface.adoptPicking); #boundsTree adopts it then.
     const [x, y, z, r] = float32.boundingSphere;
     geom.boundingSphere = new Sphere(new Vector3(x, y, z), r);
+    const box = float32.boundingBox;
+    geom.boundingBox = new Box3(new Vector3(box[0], box[1], box[2]), new Vector3(box[3], box[4], box[5]));
   } else {
     geom.computeBoundingSphere();
     // indirect: the default build reorders the index buffer, and then hit.faceIndex no longer names the

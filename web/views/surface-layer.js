@@ -3,9 +3,10 @@
 // field) on the cores the exact solve needs. The field's layers (arrows, lines, handles, markers) change far
 // more often than the surface's own picture, which depends only on the camera, the drawing buffer and the
 // surface's geometry and material: so on a mesh this big the surface is drawn into a target (colour and depth,
-// multisampled like the canvas) when one of those changes, and every frame copies that target onto the
-// canvas, depth included, before the scene is drawn over it without the surface. The depth copy keeps the
-// layers lying in the face planes (polygon offset) and the surface hiding what is behind it exactly as before.
+// multisampled like the canvas unless GL is software: layerSamples) when one of those changes, and every frame
+// copies that target onto the canvas, depth included, before the scene is drawn over it without the surface.
+// The depth copy keeps the layers lying in the face planes (polygon offset) and the surface hiding what is
+// behind it exactly as before.
 // A surface whose colours follow the field (the magnitude colour map), that another view replaces (material
 // preview) or that the flow texture draws over is drawn in the scene as usual. The synthesized texture's model
 // stands in for the surface (viewer.surfaceStandIn): its picture too depends on the view alone, and on the
@@ -55,7 +56,7 @@ void main() {
   #include <colorspace_fragment>
 }`;
 
-// The pass that copies the layer onto the canvas (also compiled ahead: shader-warm-up.js).
+// The pass that copies the layer onto the canvas (compiled ahead: SurfaceLayer.warmUp).
 export function copyMaterial() {
   return new ShaderMaterial({
     uniforms: { uColor: { value: null }, uDepth: { value: null } },
@@ -69,9 +70,22 @@ export function copyMaterial() {
 }
 
 // A target like the layer's, for compiling the surface's programs as they draw into it (linear output).
-export function layerTarget(width, height) {
+// samples: 4 like the canvas, or 0 with software GL (layerSamples).
+export function layerTarget(width, height, samples = 0) {
   const depthTexture = new DepthTexture(width, height, UnsignedIntType);
-  return new WebGLRenderTarget(width, height, { samples: 4, depthTexture, colorSpace: SRGBColorSpace });
+  return new WebGLRenderTarget(width, height, { samples, depthTexture, colorSpace: SRGBColorSpace });
+}
+
+// The layer's samples: 4, as the canvas's antialiasing has, except with software GL (SwiftShader, llvmpipe),
+// where the multisampled layer is what a big model's first frame costs: SwiftShader drew armadillo-sub2's
+// 832k faces into four samples in 5.1-7.9 s of the GPU process beside the exact solve on a 2-core machine
+// (the solve's factorization 8.2-8.5 s then), into one in 1.9 s (the factorization 6.4 s). The surface's
+// silhouette is then drawn without antialiasing; the layers over it keep the canvas's.
+export function layerSamples(renderer) {
+  const gl = renderer.getContext();
+  const info = gl.getExtension('WEBGL_debug_renderer_info');
+  const name = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER) ?? '');
+  return /swiftshader|llvmpipe|softpipe|software/i.test(name) ? 0 : 4;
 }
 
 // The pixels (x, y from the bottom left, width, height) of a width x height drawing buffer that `mesh` can
@@ -119,6 +133,7 @@ export class SurfaceLayer {
     this.drawn = 0; // times the surface was drawn into the layer
     this.copied = 0; // frames that copied it instead
     this.rect = null; // the drawing buffer's pixels the copy covers (screenRectOf; null: all)
+    this.samples = null; // the target's (layerSamples), asked once
     this.material = copyMaterial();
     this.copyScene = new Scene();
     this.copyScene.add(new Mesh(new PlaneGeometry(2, 2), this.material));
@@ -161,6 +176,20 @@ export class SurfaceLayer {
     // Its first draw would then fetch the program's uniforms, another round trip to the GPU process, which
     // behind a synthesis is busy for a while: fetched now, right after the link.
     renderer.properties.get(mesh.material).currentProgram?.getUniforms();
+  }
+
+  // The copy's program, compiled when the viewer starts (shader-warm-up.js reads it back later) for where it is
+  // drawn: onto the canvas, in a scene without lights. three.js keys a program by the scene's lights too, so
+  // compiled in the lit scene it was another program, and a big model's first field made this one (a 31-46 ms
+  // wait for its link in that task, with software GL).
+  warmUp(renderer) {
+    const previous = renderer.getRenderTarget();
+    try {
+      renderer.setRenderTarget(null);
+      renderer.compile(this.copyScene, this.copyCamera);
+    } finally {
+      renderer.setRenderTarget(previous);
+    }
   }
 
   // Draws scene with camera, the surface from the layer where that applies (else as part of the scene).
@@ -232,7 +261,7 @@ export class SurfaceLayer {
 
   #drawSurface(renderer, camera, mesh, key) {
     const { x, y } = this.size;
-    if (!this.target || this.target.width !== x || this.target.height !== y) this.#makeTarget(x, y);
+    if (!this.target || this.target.width !== x || this.target.height !== y) this.#makeTarget(renderer, x, y);
     const previous = renderer.getRenderTarget();
     // The surface alone, in the scene it belongs to (its lights), everything else hidden for the pass.
     const scene = mesh.parent;
@@ -251,9 +280,10 @@ export class SurfaceLayer {
     this.drawn++;
   }
 
-  #makeTarget(width, height) {
+  #makeTarget(renderer, width, height) {
     this.target?.dispose();
-    this.target = layerTarget(width, height);
+    this.samples ??= layerSamples(renderer);
+    this.target = layerTarget(width, height, this.samples);
     this.material.uniforms.uColor.value = this.target.texture;
     this.material.uniforms.uDepth.value = this.target.depthTexture;
   }

@@ -108,6 +108,8 @@ export class Viewer {
     this.renderCount = 0; // frames drawn, for measuring responsiveness while the worker is busy
     this._renderQueued = false;
     this.disposed = false;
+    this.surfaceLayer.warmUp(this.renderer);
+    this.staging.warmUp();
     warmUpShaders(this.renderer, this.scene, this.camera, this.labels).catch(() => {});
     this.resizeObserver = new ResizeObserver(() => this.resize());
     this.resizeObserver.observe(container);
