@@ -149,8 +149,10 @@ export async function bodyBytes(res) {
   return size === bytes.length ? bytes : bytes.slice(0, size);
 }
 
-// The body's size by a HEAD request (a CORS-safelisted method: no preflight), or 0 when it cannot be had.
+// The body's size by a HEAD request (a CORS-safelisted method: no preflight), or 0 when it cannot be had (blob:
+// and data: URLs take GET only, and the refusal would show in the console).
 async function sizeOf(url) {
+  if (url.protocol !== 'http:' && url.protocol !== 'https:') return 0;
   try {
     const res = await fetch(url, { method: 'HEAD' });
     return res.ok ? Number(res.headers.get('content-length')) || 0 : 0;
