@@ -15,6 +15,9 @@
 //                             parts and picking tree kept; with --texture its texture made again too)
 //                             [--trace-reopen FILE]   (a Chromium trace of every thread over the reopening)
 //                             [--profile-reopen FILE]   (a CPU profile of the page's thread over the reopening)
+//                             (the load's and the reopening's frames over 100 ms, with the scripts that ran in
+//                             them, are loadLongFrames and reopenLoadLongFrames; reopenFirstRefreshMs is the
+//                             first field's views and frame, drawn in the task that adopts it)
 //                             [--undo N]   (after the strokes, N undos then N redos, each timed as a stroke
 //                             is: undoMs, redoMs (pageMs), undoUpdateMs/redoUpdateMs and undoSolveMs (the core's))
 //                             [--stripes N]   (then the stripes: turned on, and N strokes' updates: stripes*
