@@ -108,8 +108,7 @@ const OFF_THREAD_BYTES = 4 << 20;
 // worker's read (core/model-bytes.js).
 async function fetchModel(url, offThread) {
   if ((await sizeOf(url)) >= OFF_THREAD_BYTES) {
-    const elsewhere = await offThread(url.href);
-    if (elsewhere) return elsewhere;
+    return (await offThread(url.href)) ?? { bytes: await bodyBytes(await fetchChecked(url)) };
   }
   const abort = new AbortController();
   let res = await fetchChecked(url, abort.signal);

@@ -113,7 +113,7 @@ export async function warmUpShaders(renderer, scene, camera, labels) {
 
 // A program's first draw still reads it back (three.js's first use: its link status, its uniforms and
 // attributes), and that round trip waits for whatever the GPU process has queued by then: in a big model's
-// first field, behind its mesh's uploads, 30-35 ms of the task that drew it. Read back now, a program per
+// first field, behind its mesh's uploads, 30-50 ms of the task that drew it. Read back now, a program per
 // task, while the page has nothing queued; without KHR_parallel_shader_compile a read-back waits for its link.
 function readBackLater(renderer) {
   const programs = [...(renderer.info.programs ?? [])];

@@ -76,7 +76,7 @@ export function layerTarget(width, height, samples = 0) {
   return new WebGLRenderTarget(width, height, { samples, depthTexture, colorSpace: SRGBColorSpace });
 }
 
-// The layer's samples: 4, as the canvas's antialiasing has, except with software GL (SwiftShader, llvmpipe),
+// The layer's samples: 4, as the canvas's antialiasing has, except with software GL (SwiftShader, llvmpipe, WARP),
 // where the multisampled layer is what a big model's first frame costs: SwiftShader drew armadillo-sub2's
 // 832k faces into four samples in 5.1-7.9 s of the GPU process beside the exact solve on a 2-core machine
 // (the solve's factorization 8.2-8.5 s then), into one in 1.9 s (the factorization 6.4 s). The surface's
@@ -85,7 +85,7 @@ export function layerSamples(renderer) {
   const gl = renderer.getContext();
   const info = gl.getExtension('WEBGL_debug_renderer_info');
   const name = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER) ?? '');
-  return /swiftshader|llvmpipe|softpipe|software/i.test(name) ? 0 : 4;
+  return /swiftshader|llvmpipe|softpipe|software|basic render/i.test(name) ? 0 : 4;
 }
 
 // The pixels (x, y from the bottom left, width, height) of a width x height drawing buffer that `mesh` can
