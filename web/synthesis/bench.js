@@ -6,6 +6,7 @@
 
 import { FloatTarget, drawFullscreen, sync } from './gl.js';
 import { Synthesizer } from './synthesizer.js';
+import { rendererName } from '../views/gl-renderer.js';
 
 // A flat square grid like the synthesis tests' (tests/node/export-fixtures.mjs flatSquareGlb), straight as arrays
 // (the bench needs no core).
@@ -66,8 +67,7 @@ export async function runSynthesisBench(
   const { tables } = await library.procedural(exemplar, 64, 1);
   const synth = new Synthesizer();
   const gl = synth.gl;
-  const dbg = gl.getExtension('WEBGL_debug_renderer_info');
-  const device = dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
+  const device = rendererName(gl);
   synth.setExemplar(tables);
   const sq = flatSquare(16);
   const t = Math.PI / 6;

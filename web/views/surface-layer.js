@@ -15,7 +15,7 @@
 // canvas's clear already gives, and with software GL the copy costs by the pixel (a full-screen copy into the
 // multisampled canvas was 20-30 of a field frame's 37-44 ms, drawn while the exact solve runs).
 //
-// Owns its render target and copy pass. Imports three.js only.
+// Owns its render target and copy pass. Imports three.js and gl-renderer.js.
 import {
   AlwaysDepth,
   Color,
@@ -32,6 +32,7 @@ import {
   Vector4,
   WebGLRenderTarget,
 } from 'three';
+import { isSoftwareGL } from './gl-renderer.js';
 
 // Above this many faces the surface is drawn into the layer (bunny00's 70k faces draw in a few ms; the cached
 // path costs a full-screen copy per frame and a target the size of the canvas).
@@ -82,10 +83,7 @@ export function layerTarget(width, height, samples = 0) {
 // (the solve's factorization 8.2-8.5 s then), into one in 1.9 s (the factorization 6.4 s). The surface's
 // silhouette is then drawn without antialiasing; the layers over it keep the canvas's.
 export function layerSamples(renderer) {
-  const gl = renderer.getContext();
-  const info = gl.getExtension('WEBGL_debug_renderer_info');
-  const name = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER) ?? '');
-  return /swiftshader|llvmpipe|softpipe|software|basic render/i.test(name) ? 0 : 4;
+  return isSoftwareGL(renderer.getContext()) ? 0 : 4;
 }
 
 // The pixels (x, y from the bottom left, width, height) of a width x height drawing buffer that `mesh` can
