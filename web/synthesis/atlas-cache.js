@@ -9,7 +9,7 @@ import { KeptStore } from '../core/worker/kept-store.js';
 
 const DB_NAME = 'tvf-atlas-cache';
 const STORE = 'atlases';
-const FORMAT = 1;
+const FORMAT = 2; // 2: the corners carry the gutter's quads
 const KEPT = 4; // entries in IndexedDB, the least recently made dropped first
 
 // Two 32-bit multiplicative hashes over the bytes of each array (as 32-bit words, the tail byte by byte).
@@ -39,9 +39,18 @@ function copied(atlas) {
     ...atlas,
     cornerUVs: atlas.cornerUVs.slice(),
     faceCharts: atlas.faceCharts?.slice(),
-    corners: { ...atlas.corners, data: atlas.corners.data.slice(), faceArea: atlas.corners.faceArea.slice() },
+    corners: {
+      ...atlas.corners,
+      data: atlas.corners.data.slice(),
+      faceArea: atlas.corners.faceArea.slice(),
+      gutter: copiedGutter(atlas.corners.gutter),
+    },
     seams: { ...atlas.seams, map: atlas.seams.map.slice() },
   };
+}
+
+function copiedGutter({ data, source, indices, ...rest }) {
+  return { ...rest, data: data.slice(), source: source.slice(), indices: indices.slice() };
 }
 
 export class AtlasCache {

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The atlas with what drawing into it needs, made in the core's worker (worker-ops.js textureAtlas): the atlas
-// itself (atlas.js), the per-corner data of its raster (atlas-corners.js), its seam indirection (seams.js) and
-// the shape complexity the default feature size follows (auto-settings.js). At 832k faces these took the
-// page's thread 1.7 s in the task that set the atlas up, and 0.17 s in the next.
+// itself (atlas.js), the per-corner data of its raster (atlas-corners.js) and its gutter (atlas-gutter.js), its
+// seam indirection (seams.js) and the shape complexity the default feature size follows (auto-settings.js). At
+// 832k faces these took the page's thread 1.7 s in the task that set the atlas up, and 0.17 s in the next.
 import { Surface } from '../geometry/surface.js';
 import { chooseAtlas } from './atlas.js';
 import { cornerData } from './atlas-corners.js';
+import { gutterQuads } from './atlas-gutter.js';
 import { defaultResolution, shapeComplexity } from './auto-settings.js';
 import { seamIndirection } from './seams.js';
 
@@ -56,6 +57,10 @@ export function* preparedAtlasSteps(Module, { positions, triangles, cornerUVs },
     options.resolution,
   );
   atlas.workerSteps.seamsMs = atlas.seams.ms = took();
+  const { cornerUVs: uv, corners, resolution } = atlas;
+  const quads = { triangles, cornerUVs: uv, corners, resolution, gutter: options.gutter ?? 2 };
+  atlas.corners.gutter = gutterQuads({ ...quads, neighbour: surface.neighbour });
+  atlas.workerSteps.gutterMs = took();
   return atlas;
 }
 
@@ -65,6 +70,9 @@ export function preparedBuffers(atlas) {
     atlas.cornerUVs.buffer,
     atlas.corners.data.buffer,
     atlas.corners.faceArea.buffer,
+    atlas.corners.gutter.data.buffer,
+    atlas.corners.gutter.source.buffer,
+    atlas.corners.gutter.indices.buffer,
     atlas.seams.map.buffer,
   ];
   if (atlas.faceCharts) out.push(atlas.faceCharts.buffer);

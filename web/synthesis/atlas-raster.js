@@ -5,17 +5,19 @@
 // levels. Kept apart from the level loop because it changes only when the model or the atlas does.
 import { FloatTarget, GLError, drawFullscreen, isPow2 } from './gl.js';
 import { CORNER_FLOATS as STRIDE, cornerData } from './atlas-corners.js';
+import { gutterQuads } from './atlas-gutter.js';
 import { coarserIndirection, seamIndirection } from './seams.js';
 
 export class AtlasRaster {
   // positions (3 per vertex), triangles (3 per face), cornerUVs (6 per face, in [0, 1]), resolution a power of
   // two; neighbour: the half-edge map of geometry/mesh-geometry.js when the caller holds one (the model's
-  // Surface), else it is derived for the seams. corners and seams: cornerData() and seamIndirection() of this
-  // mesh and atlas when made elsewhere (the core's worker, atlas-prepared.js), else made here.
+  // Surface), else it is derived for the seams. corners and seams: cornerData() (with its gutter quads,
+  // atlas-gutter.js, for `gutter` texels) and seamIndirection() of this mesh and atlas when made elsewhere (the
+  // core's worker, atlas-prepared.js), else made here.
   constructor(
     gl,
     jacobianProgram,
-    { resolution, positions, triangles, cornerUVs, neighbour = null, corners = null, seams = null },
+    { resolution, positions, triangles, cornerUVs, neighbour = null, corners = null, seams = null, gutter = 2 },
   ) {
     if (!isPow2(resolution) || resolution < 4 || resolution > 4096)
       throw new GLError(`atlas resolution must be a power of two in [4, 4096] (got ${resolution})`);
@@ -28,7 +30,11 @@ export class AtlasRaster {
     const { data, faceArea, used, area3, areaUV } = corners ?? cornerData(positions, triangles, cornerUVs);
     if (!used) throw new GLError('the atlas has no usable triangle (all degenerate in UV or 3D)');
     this.data = data;
-    this.fieldData = new Float32Array(9 * nF);
+    const quads = corners?.gutter ?? gutterQuads({ triangles, cornerUVs, corners: { data }, resolution, gutter });
+    this.gutterData = quads.data;
+    this.gutterSource = quads.source;
+    this.gutterIndices = quads.indices;
+    this.fieldData = new Float32Array(9 * nF + 3 * quads.source.length);
     this.faceArea = faceArea;
     this.vertexCount = 3 * nF;
     this.usedFaces = used;
@@ -36,7 +42,6 @@ export class AtlasRaster {
     // Surface length per atlas texel at the atlas's mean density.
     this.texelLength = Math.sqrt(area3 / areaUV) / resolution;
     this.#vertexArray(jacobianProgram.program);
-    this.jacScratch = null;
     this.levels = [];
     const t0 = performance.now();
     this.seamMaps = seams ?? seamIndirection({ positions, triangles, neighbour }, cornerUVs, resolution);
@@ -56,8 +61,6 @@ export class AtlasRaster {
   *allocate() {
     const { gl, resolution } = this;
     const target = (size) => new FloatTarget(gl, size, size, null, { check: false });
-    this.jacScratch = target(resolution);
-    yield;
     for (let r = resolution, k = 0; r >= 2; r >>= 1, k++) {
       const L = { size: r, quarters: [] };
       this.levels.push(L);
@@ -78,6 +81,7 @@ export class AtlasRaster {
     const gl = this.gl;
     this.buffer = gl.createBuffer();
     this.fieldBuffer = gl.createBuffer();
+    this.indexBuffer = gl.createBuffer();
     this.vao = gl.createVertexArray();
     gl.bindVertexArray(this.vao);
     const attrib = (name, size, stride, offset) => {
@@ -87,8 +91,9 @@ export class AtlasRaster {
       gl.vertexAttribPointer(loc, size, gl.FLOAT, false, stride * 4, offset * 4);
     };
     gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
-    // Allocated here, filled by the first synthesis a slice per task (rasterSteps): 110 MB at 832k faces.
-    gl.bufferData(gl.ARRAY_BUFFER, this.data.byteLength, gl.STATIC_DRAW);
+    // Allocated here, filled by the first synthesis a slice per task (rasterSteps): 110 MB at 832k faces. The
+    // gutter's vertices follow the corners'.
+    gl.bufferData(gl.ARRAY_BUFFER, this.data.byteLength + this.gutterData.byteLength, gl.STATIC_DRAW);
     this.facesUploaded = 0;
     attrib('aUV', 2, STRIDE, 0);
     attrib('aG1', 3, STRIDE, 2);
@@ -97,13 +102,17 @@ export class AtlasRaster {
     gl.bindBuffer(gl.ARRAY_BUFFER, this.fieldBuffer);
     gl.bufferData(gl.ARRAY_BUFFER, this.fieldData.byteLength, gl.DYNAMIC_DRAW);
     attrib('aField', 3, 3, 0);
+    // WebGL 2 has no base vertex: the gutter's indices are moved past the corners here.
+    const indices = this.gutterIndices.map((i) => i + this.vertexCount);
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.indexBuffer);
+    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, indices, gl.STATIC_DRAW);
     gl.bindVertexArray(null);
     gl.bindBuffer(gl.ARRAY_BUFFER, null);
   }
 
   // The Jacobian of every level for the field: the per-vertex `vertexVectors` (3 per vertex) or, for a combed
   // line or cross field, {cornerVectors} (9 per face, corner k of face f at 9f + 3k: geometry/chart-comb.js);
-  // rasterized at the finest level, dilated `o.gutter` texels past the charts, then averaged down. programs:
+  // rasterized at the finest level with the gutter's quads past the charts, then averaged down. programs:
   // the synthesizer's; vao: its full-screen one. A generator: the field is filled and uploaded a slice of
   // faces at a time, and it yields after each slice so that the caller can give the page its frames (a
   // synthesis run step by step, synthesizer.js); the raster's draws are issued when it returns. Returns the
@@ -127,13 +136,12 @@ export class AtlasRaster {
       gl.bindBuffer(gl.ARRAY_BUFFER, null);
       yield; // the last slice too: its upload is waited for apart from the raster's draws
     }
+    this.#fillGutter();
     const magRef = sums.mag > 0 ? sums.mag / sums.area : 1;
-    // Raster into the scratch target, dilate into the level-0 Jacobian (ping-pong for more than one ring).
+    // The gutter's quads first, then the triangles over them: a texel a triangle covers is always its own.
     const finest = this.levels[0];
     const rho = o.featureScale * this.texelLength;
-    let dst = o.gutter % 2 === 0 ? finest.jac : this.jacScratch;
-    let other = dst === finest.jac ? this.jacScratch : finest.jac;
-    dst.bindAsTarget();
+    finest.jac.bindAsTarget();
     gl.clearColor(0, 0, 0, 0);
     gl.clear(gl.COLOR_BUFFER_BIT);
     programs.jacobian
@@ -143,15 +151,10 @@ export class AtlasRaster {
       .float('uMagRef', magRef)
       .float('uMagExponent', o.magnitudeExponent);
     gl.bindVertexArray(this.vao);
+    const quads = this.gutterIndices.length;
+    if (quads) gl.drawElements(gl.TRIANGLES, quads, gl.UNSIGNED_INT, 0);
     gl.drawArrays(gl.TRIANGLES, 0, this.vertexCount);
     gl.bindVertexArray(null);
-    for (let g = 0; g < o.gutter; g++) {
-      [dst, other] = [other, dst];
-      dst.bindAsTarget();
-      programs.dilate.use().texture('uJac', other).ivec2('uSize', this.resolution, this.resolution);
-      drawFullscreen(gl, vao);
-    }
-    if (dst !== finest.jac) throw new Error('internal: Jacobian dilation ended in the wrong target');
     for (let k = 1; k < this.levels.length; k++) {
       this.levels[k].jac.bindAsTarget();
       programs.jacobianDown.use().texture('uJac', this.levels[k - 1].jac);
@@ -169,9 +172,33 @@ export class AtlasRaster {
       gl.bufferSubData(gl.ARRAY_BUFFER, 4 * floats * f0, this.data, floats * f0, floats * (f1 - f0));
       gl.bindBuffer(gl.ARRAY_BUFFER, null);
       this.facesUploaded = f1;
-      if (f1 === nF) this.data = null;
+      if (f1 === nF) this.#uploadGutter();
       else yield;
     }
+  }
+
+  #uploadGutter() {
+    const gl = this.gl;
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
+    gl.bufferSubData(gl.ARRAY_BUFFER, this.data.byteLength, this.gutterData);
+    gl.bindBuffer(gl.ARRAY_BUFFER, null);
+    this.data = null;
+    this.gutterData = null;
+  }
+
+  // The gutter's vertices take the field of the corners they were made from (after every face's field is in).
+  #fillGutter() {
+    const out = this.fieldData, src = this.gutterSource, base = 3 * this.vertexCount;
+    for (let i = 0; i < src.length; i++) {
+      const o = base + 3 * i, c = 3 * src[i];
+      out[o] = out[c];
+      out[o + 1] = out[c + 1];
+      out[o + 2] = out[c + 2];
+    }
+    const gl = this.gl;
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.fieldBuffer);
+    gl.bufferSubData(gl.ARRAY_BUFFER, 4 * base, out, base);
+    gl.bindBuffer(gl.ARRAY_BUFFER, null);
   }
 
   // The field per corner of faces f0 .. f1 - 1 from the vertices', and their part of the reference magnitude
@@ -216,10 +243,10 @@ export class AtlasRaster {
     const gl = this.gl;
     gl.deleteBuffer(this.buffer);
     gl.deleteBuffer(this.fieldBuffer);
+    gl.deleteBuffer(this.indexBuffer);
     gl.deleteVertexArray(this.vao);
     for (const L of this.levels)
       for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, ...L.quarters]) t?.dispose();
-    this.jacScratch?.dispose();
     this.levels = [];
   }
 }

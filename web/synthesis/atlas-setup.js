@@ -41,7 +41,8 @@ export async function setUpAtlas(c, model, clock) {
   const { corners = null, seams = null, ...atlas } = chosen;
   const { resolution } = atlas;
   const { positions, triangles, neighbour } = model.surface;
-  const spec = { resolution, positions, triangles, neighbour, cornerUVs: atlas.cornerUVs, corners, seams };
+  const { cornerUVs } = atlas;
+  const spec = { resolution, positions, triangles, neighbour, cornerUVs, corners, seams, gutter };
   if (c.options.interleave) await c.ensureSynth().drained(clock, "waits for the GPU (the view's frames)");
   let task = performance.now(); // a new task once the steps took the page a while (none for a blocking synthesis)
   for (const _ of c.ensureSynth().setAtlasSteps(spec))

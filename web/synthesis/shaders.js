@@ -80,28 +80,6 @@ void main() {
   outJ = k * vec4(dot(e1, vG1), dot(e2, vG1), dot(e1, vG2), dot(e2, vG2));
 }`;
 
-// Gutter: a texel outside every chart takes the mean Jacobian of its chart neighbours (one ring per pass), so
-// synthesis (and filtering when rendering) can read a little past the chart boundary.
-export const DILATE_FS = `${HEADER}
-uniform sampler2D uJac;
-uniform ivec2 uSize;
-out vec4 outJ;
-void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
-  vec4 j = texelFetch(uJac, p, 0);
-  if (j != vec4(0.0)) { outJ = j; return; }
-  vec4 sum = vec4(0.0);
-  float count = 0.0;
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      ivec2 q = p + ivec2(dx, dy);
-      if (q.x < 0 || q.y < 0 || q.x >= uSize.x || q.y >= uSize.y) continue;
-      vec4 jq = texelFetch(uJac, q, 0);
-      if (jq != vec4(0.0)) { sum += jq; count += 1.0; }
-    }
-  outJ = count > 0.0 ? sum / count : vec4(0.0);
-}`;
-
 // One level coarser: texels twice as large, so J doubles; the mean over the valid children.
 export const JACOBIAN_DOWN_FS = `${HEADER}
 uniform sampler2D uJac;   // the finer level

@@ -31,7 +31,6 @@ import { interleavedRun } from './interleaved-run.js';
 import {
   COPY_FS,
   CORRECT_FS,
-  DILATE_FS,
   JACOBIAN_DOWN_FS,
   JACOBIAN_FS,
   JACOBIAN_VS,
@@ -51,7 +50,7 @@ export const DEFAULTS = Object.freeze({
   passes: 2, // correction passes per level, each of 4 sub-passes
   kappa: 0.25, // extra cost of non-coherent (k-coherence) candidates, LH06's coherence bias
   seed: 1,
-  gutter: 2, // texels of Jacobian dilation around the charts
+  gutter: 2, // texels of border around each chart (the atlas's packing; the raster's gutter quads)
   seams: true, // follow the seam indirection across chart boundaries (atlases with seams only)
   timing: 'levels', // 'levels': wait for the GPU after each level (per-level times); 'total': only at the end
   // Faces whose field goes to the GPU per task (atlas-raster.js): 4.7 MB, so a model of up to 131k faces sends it
@@ -81,7 +80,6 @@ export class Synthesizer {
     this.vao = gl.createVertexArray();
     this.programs = {
       jacobian: new Program(gl, JACOBIAN_VS, JACOBIAN_FS, 'jacobian'),
-      dilate: new Program(gl, FULLSCREEN_VS, DILATE_FS, 'dilate'),
       jacobianDown: new Program(gl, FULLSCREEN_VS, JACOBIAN_DOWN_FS, 'jacobian-down'),
       upsample: new Program(gl, FULLSCREEN_VS, UPSAMPLE_FS, 'upsample'),
       correct: new Program(gl, FULLSCREEN_VS, CORRECT_FS, 'correct'),
@@ -215,10 +213,10 @@ export class Synthesizer {
     }
     // Total shading work: the Jacobian and per level 4 upsample quarters, 4 x passes correction quarters
     // (weighted x8: they read ~90 texels each) and the unpack.
-    const jacobianWork = resolution * resolution * (1 + o.gutter);
+    const jacobianWork = resolution * resolution;
     let total = jacobianWork;
     for (let k = finestLevel; k < this.levels.length; k++) total += this.levels[k].size ** 2 * (2 + 8 * o.passes);
-    // The raster's draws (the triangles, the gutter's dilation, the coarser levels) waited for as a phase of
+    // The raster's draws (the gutter's quads, the triangles, the coarser levels) waited for as a phase of
     // their own: with software GL they take a bunny00 update 0.1-0.17 s, which the kernel's polls otherwise
     // counted as waits between its slices. The progress shown meanwhile is the Jacobian's share.
     const phase = 'field rasterized into the atlas (GPU)';
