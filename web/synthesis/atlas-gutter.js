@@ -9,8 +9,9 @@ import { halfEdgeNeighbours } from '../geometry/mesh-geometry.js';
 import { CORNER_FLOATS as STRIDE } from './atlas-corners.js';
 
 // The quads' reach past the edge in texels: the texels that bilinear filtering at the chart's edge reads (centres
-// up to √2/2 + 1/2 away) and no more, so that a quad stays inside the border the packing gave its chart alone
-// (core/texture/texture_atlas.cpp chartShape: every texel within 1.7 texels of the chart is its own).
+// up to √2/2 + 1/2 away) and little more, so that a quad keeps to the border the packing gave its chart alone
+// (core/texture/texture_atlas.cpp chartShape: every texel within 1.7 texels of the chart is its own); only the
+// quads' square ends at a convex corner reach further, √2 times as far.
 export function gutterReach(gutter) {
   return gutter > 0 ? Math.min(1.5, gutter) : 0;
 }
