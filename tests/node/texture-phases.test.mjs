@@ -67,7 +67,7 @@ const prepared = (n) => ({
   corners: {
     data: new Float32Array(4).fill(n),
     faceArea: new Float32Array(1),
-    gutter: { data: new Float32Array(4).fill(n), source: new Int32Array(4), indices: new Uint32Array(6), edges: 1 },
+    gutter: { data: new Float32Array(4).fill(n), source: new Int32Array(4), indices: new Uint32Array(6) },
   },
   seams: { map: new Float32Array(2).fill(n) },
   source: 'generated',

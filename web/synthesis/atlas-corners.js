@@ -40,3 +40,14 @@ export function cornerData(positions, triangles, cornerUVs) {
   }
   return { data, faceArea, used, area3, areaUV };
 }
+
+// Whether half-edge h (corner h -> the next corner of its face; corners index cornerUVs as 2 per corner) and its
+// twin g (running the other way in the face across) have the same UVs at both ends: the edge lies inside a chart.
+export function edgeUVsAgree(cornerUVs, h, g) {
+  const next = (x) => (x % 3 === 2 ? x - 2 : x + 1);
+  return cornerUVsMeet(cornerUVs, h, next(g)) && cornerUVsMeet(cornerUVs, next(h), g);
+}
+
+function cornerUVsMeet(uv, p, q) {
+  return Math.hypot(uv[2 * p] - uv[2 * q], uv[2 * p + 1] - uv[2 * q + 1]) < 1e-7;
+}

@@ -4,9 +4,8 @@
 // the field held at the edge. It replaces two full-screen dilation passes per raster, which shaded every texel of
 // the atlas (98 of bunny00's 144 ms of raster on SwiftShader) to fill a ring a texel or two wide. A pure function
 // of the mesh, its atlas and the gutter width: the core's worker makes it with the atlas (atlas-prepared.js).
-// Imports only the half-edge map.
-import { halfEdgeNeighbours } from '../geometry/mesh-geometry.js';
-import { CORNER_FLOATS as STRIDE } from './atlas-corners.js';
+// Imports only atlas-corners.js.
+import { CORNER_FLOATS as STRIDE, edgeUVsAgree } from './atlas-corners.js';
 
 // The quads' reach past the edge in texels: the texels that bilinear filtering at the chart's edge reads (centres
 // up to √2/2 + 1/2 away) and little more, so that a quad keeps to the border the packing gave its chart alone
@@ -18,14 +17,12 @@ export function gutterReach(gutter) {
 
 // For each chart edge, four vertices (the edge's two ends moved `reach` texels outwards along it, and the same two
 // moved `reach` texels away from the face) and two triangles. corners: cornerData()'s {data}; neighbour: the
-// half-edge map when the caller has one. Returns {data: Float32Array (STRIDE floats per vertex, as the corners'),
-// source: Int32Array (per vertex, the corner 3f + k whose field it takes), indices: Uint32Array (6 per edge),
-// edges}.
-export function gutterQuads({ triangles, cornerUVs, corners, resolution, gutter, neighbour = null }) {
+// half-edge map (geometry/mesh-geometry.js). Returns {data: Float32Array (STRIDE floats per vertex, as the
+// corners'), source: Int32Array (per vertex, the corner 3f + k whose field it takes), indices: Uint32Array (6 per
+// edge)}.
+export function gutterQuads({ triangles, cornerUVs, corners, resolution, gutter, neighbour: twin }) {
   const reach = gutterReach(gutter) / resolution;
   const nF = triangles.length / 3;
-  const nV = triangles.reduce((m, v) => Math.max(m, v), -1) + 1;
-  const twin = neighbour ?? halfEdgeNeighbours(triangles, nV);
   const cd = corners.data;
   const used = new Uint8Array(nF);
   for (let f = 0; f < nF; f++) {
@@ -37,12 +34,12 @@ export function gutterQuads({ triangles, cornerUVs, corners, resolution, gutter,
   for (let h = 0; reach > 0 && h < 3 * nF; h++) {
     if (!used[(h / 3) | 0]) continue;
     const g = twin[h];
-    if (g >= 0 && used[(g / 3) | 0] && sameUVs(cornerUVs, h, g)) continue;
+    if (g >= 0 && used[(g / 3) | 0] && edgeUVsAgree(cornerUVs, h, g)) continue;
     edgeList[n++] = h;
   }
   const data = new Float32Array(4 * n * STRIDE), source = new Int32Array(4 * n), indices = new Uint32Array(6 * n);
   for (let e = 0; e < n; e++) quad(edgeList[e], e);
-  return { data, source, indices, edges: n };
+  return { data, source, indices };
 
   // Vertex i of edge e's quad: corner `corner`'s data at (u, v).
   function vertex(e, i, corner, u, v) {
@@ -74,11 +71,3 @@ export function gutterQuads({ triangles, cornerUVs, corners, resolution, gutter,
     indices[i + 5] = v + 3;
   }
 }
-
-// Whether half-edge h (i -> j in its face) and its twin g (j -> i) have the same UVs at both ends.
-function sameUVs(uv, h, g) {
-  const nh = h % 3 === 2 ? h - 2 : h + 1, ng = g % 3 === 2 ? g - 2 : g + 1;
-  return close(uv, h, ng) && close(uv, nh, g);
-}
-
-const close = (uv, p, q) => Math.abs(uv[2 * p] - uv[2 * q]) < 1e-7 && Math.abs(uv[2 * p + 1] - uv[2 * q + 1]) < 1e-7;

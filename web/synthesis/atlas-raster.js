@@ -6,14 +6,15 @@
 import { FloatTarget, GLError, drawFullscreen, isPow2 } from './gl.js';
 import { CORNER_FLOATS as STRIDE, cornerData } from './atlas-corners.js';
 import { gutterQuads } from './atlas-gutter.js';
+import { halfEdgeNeighbours } from '../geometry/mesh-geometry.js';
 import { coarserIndirection, seamIndirection } from './seams.js';
 
 export class AtlasRaster {
   // positions (3 per vertex), triangles (3 per face), cornerUVs (6 per face, in [0, 1]), resolution a power of
   // two; neighbour: the half-edge map of geometry/mesh-geometry.js when the caller holds one (the model's
-  // Surface), else it is derived for the seams. corners and seams: cornerData() (with its gutter quads,
-  // atlas-gutter.js, for `gutter` texels) and seamIndirection() of this mesh and atlas when made elsewhere (the
-  // core's worker, atlas-prepared.js), else made here.
+  // Surface), else it is derived, once, for what is made here. corners and seams: cornerData() (with its gutter
+  // quads, atlas-gutter.js, for `gutter` texels) and seamIndirection() of this mesh and atlas when made elsewhere
+  // (the core's worker, atlas-prepared.js), else made here.
   constructor(
     gl,
     jacobianProgram,
@@ -30,7 +31,9 @@ export class AtlasRaster {
     const { data, faceArea, used, area3, areaUV } = corners ?? cornerData(positions, triangles, cornerUVs);
     if (!used) throw new GLError('the atlas has no usable triangle (all degenerate in UV or 3D)');
     this.data = data;
-    const quads = corners?.gutter ?? gutterQuads({ triangles, cornerUVs, corners: { data }, resolution, gutter });
+    const halfEdges = () => (neighbour ??= halfEdgeNeighbours(triangles, positions.length / 3));
+    const made = { triangles, cornerUVs, corners: { data }, resolution, gutter };
+    const quads = corners?.gutter ?? gutterQuads({ ...made, neighbour: halfEdges() });
     this.gutterData = quads.data;
     this.gutterSource = quads.source;
     this.gutterIndices = quads.indices;
@@ -44,7 +47,7 @@ export class AtlasRaster {
     this.#vertexArray(jacobianProgram.program);
     this.levels = [];
     const t0 = performance.now();
-    this.seamMaps = seams ?? seamIndirection({ positions, triangles, neighbour }, cornerUVs, resolution);
+    this.seamMaps = seams ?? seamIndirection({ positions, triangles, neighbour: halfEdges() }, cornerUVs, resolution);
     this.seams = {
       edges: this.seamMaps.seamEdges,
       redirectedTexels: this.seamMaps.redirected,

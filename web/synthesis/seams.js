@@ -9,6 +9,7 @@
 
 import { halfEdgeNeighbours } from '../geometry/mesh-geometry.js';
 import { rasterCoverage } from './atlas.js';
+import { edgeUVsAgree } from './atlas-corners.js';
 
 const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
 const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -54,17 +55,13 @@ export function seamIndirection({ positions, triangles, neighbour = null }, corn
   const frames = new Array(nF);
   const frame = (f) =>
     frames[f] === undefined ? (frames[f] = faceFrame(positions, triangles, cornerUVs, f)) : frames[f];
-  const uv = (f, k) => [cornerUVs[6 * f + 2 * k], cornerUVs[6 * f + 2 * k + 1]];
   let redirected = 0, seamEdges = 0;
-  // Each interior edge once, from its lower half-edge: local edge k of face f runs i -> j, and is local edge kk
-  // of face g running j -> i.
+  // Each interior edge once, from its lower half-edge h (in face f), whose twin runs the other way in face g.
   for (let h = 0; h < 3 * nF; h++) {
     const other = halfEdges[h];
     if (other < h) continue;
-    const f = Math.floor(h / 3), k = h % 3, g = Math.floor(other / 3), kk = other % 3;
-    const fi = uv(f, k), fj = uv(f, (k + 1) % 3), gi = uv(g, (kk + 1) % 3), gj = uv(g, kk);
-    const same = Math.hypot(fi[0] - gi[0], fi[1] - gi[1]) < 1e-7 && Math.hypot(fj[0] - gj[0], fj[1] - gj[1]) < 1e-7;
-    if (same) continue;
+    if (edgeUVsAgree(cornerUVs, h, other)) continue;
+    const f = Math.floor(h / 3), g = Math.floor(other / 3);
     seamEdges++;
     // Both directions: g unfolded into f's chart, and f into g's.
     for (const [from, to] of [[f, g], [g, f]]) redirected += unfold(from, to);
