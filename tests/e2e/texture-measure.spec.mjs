@@ -7,7 +7,7 @@
 //   TVF_MEASURE_MODELS=refined_elephant,camel,..., low-poly ones made by scripts/decimate-off.mjs among them),
 //   reported for docs/benchmarks.md and held to its targets (slow under software WebGL: not part of `npm test`);
 //   TVF_MEASURE_SYMMETRY=2 measures a line field, TVF_MEASURE_EXEMPLAR_SIZE=32|128|... another size of
-//   the stripes exemplar.
+//   the stripes exemplar, TVF_MEASURE_SYNTHESIS='{"passes":4}' (JSON) options for the synthesis (default: none).
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 import bunny from 'bunny';
@@ -96,7 +96,7 @@ async function measureModel(page, testInfo, { name, bytes, exemplarSize = 64, sy
   expect(points.length).toBeGreaterThan(5);
   await page.evaluate((pts) => window.tvf.addStroke(pts), points);
   await page.evaluate((size) => window.tvf.setExemplar({ procedural: 'stripes', size }), exemplarSize);
-  const stats = await page.evaluate(() => window.tvf.synthesize());
+  const stats = await page.evaluate((o) => window.tvf.synthesize(o), JSON.parse(process.env.TVF_MEASURE_SYNTHESIS || '{}'));
   // The GLB comes back as base64: a number array of a 10 MB file (refined_elephant) took minutes.
   const data = await page.evaluate(async () => {
     const glb = await window.tvf.exportGlb();

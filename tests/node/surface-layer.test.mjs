@@ -1,10 +1,11 @@
 // The rectangle the surface layer's copy covers (web/views/surface-layer.js): every pixel the surface can
 // reach lies inside it, it is a real cut of the canvas when the model is framed, and it is the whole canvas
-// (null) when the camera is inside the bounds or the model lies behind it.
+// (null) when the camera is inside the bounds or the model lies behind it. And from which size a surface is
+// drawn into the layer: any with software GL, 200,000 faces on a GPU.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import { Box3, Mesh, MeshBasicMaterial, PerspectiveCamera, SphereGeometry, TorusKnotGeometry, Vector3 } from 'three';
-import { screenRectOf } from '../../web/views/surface-layer.js';
+import { layerMinFaces, screenRectOf } from '../../web/views/surface-layer.js';
 
 const W = 1024, H = 656;
 
@@ -84,4 +85,20 @@ test('a box the geometry came with is used as it is, until its positions change'
   mesh.geometry.getAttribute('position').needsUpdate = true;
   const own = screenRectOf(mesh, camera, W, H);
   assert.ok(own.width < wide.width - 50, `${JSON.stringify(wide)} -> ${JSON.stringify(own)}`);
+});
+
+// A renderer whose context names `name` as its (unmasked) renderer, as WEBGL_debug_renderer_info gives it.
+function rendererNamed(name) {
+  const info = { UNMASKED_RENDERER_WEBGL: 0x9246 };
+  const getParameter = (p) => (p === info.UNMASKED_RENDERER_WEBGL ? name : 'WebKit WebGL');
+  const gl = { RENDERER: 0x1f01, getExtension: () => info, getParameter };
+  return { getContext: () => gl };
+}
+
+test('with software GL every surface goes into the layer, on a GPU only a big one', () => {
+  const swiftShader = 'ANGLE (Google, Vulkan 1.3.0 (SwiftShader Device (Subzero) (0x0000C0DE)), SwiftShader driver)';
+  assert.equal(layerMinFaces(rendererNamed(swiftShader)), 1);
+  assert.equal(layerMinFaces(rendererNamed('llvmpipe (LLVM 15.0.6, 256 bits)')), 1);
+  const gpu = 'ANGLE (NVIDIA, Vulkan 1.4.312 (NVIDIA NVIDIA H200 (0x00002335)), NVIDIA)';
+  assert.equal(layerMinFaces(rendererNamed(gpu)), 200_000);
 });

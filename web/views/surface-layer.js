@@ -2,9 +2,10 @@
 // 832k-face scan costs the GPU process ~0.85 s of CPU, and every stroke draws two (its preview, its exact
 // field) on the cores the exact solve needs. The field's layers (arrows, lines, handles, markers) change far
 // more often than the surface's own picture, which depends only on the camera, the drawing buffer and the
-// surface's geometry and material: so on a mesh this big the surface is drawn into a target (colour and depth,
-// multisampled like the canvas unless GL is software: layerSamples) when one of those changes, and every frame
-// copies that target onto the canvas, depth included, before the scene is drawn over it without the surface.
+// surface's geometry and material: so on a mesh this big (with software GL, on any: layerMinFaces) the surface
+// is drawn into a target (colour and depth, multisampled like the canvas unless GL is software: layerSamples)
+// when one of those changes, and every frame copies that target onto the canvas, depth included, before the
+// scene is drawn over it without the surface.
 // The depth copy keeps the layers lying in the face planes (polygon offset) and the surface hiding what is
 // behind it exactly as before.
 // A surface whose colours follow the field (the magnitude colour map), that another view replaces (material
@@ -34,9 +35,21 @@ import {
 } from 'three';
 import { isSoftwareGL } from './gl-renderer.js';
 
-// Above this many faces the surface is drawn into the layer (bunny00's 70k faces draw in a few ms; the cached
-// path costs a full-screen copy per frame and a target the size of the canvas).
+// From this many faces the surface is drawn into the layer (on a GPU bunny00's 70k faces draw in a few ms; the
+// cached path costs a copy per frame and a target the size of the canvas).
 export const SURFACE_LAYER_FACES = 200_000;
+// With software GL, every surface: there the surface drawn into the multisampled canvas costs by the sample and
+// the small triangle, and the layer (single-sampled there, layerSamples) wins on an edit's frame and on an
+// orbit's alike, whatever the size. GPU-process ms a frame at 1024x720 on a 2-core machine (medians of 12, an
+// edit's / an orbit's), drawn directly against from the layer: the default bunny (3.7k faces) 93 / 102 against
+// 48 / 91, homer (9.9k) 105 / 114 against 44 / 83, camel (19.5k) 165 / 165 against 45 / 111, bunny00 (75k)
+// 319 / 295 against 48 / 187 (docs/benchmarks.md, "Views and layout").
+export const SOFTWARE_SURFACE_LAYER_FACES = 1;
+
+// The face count from which the layer applies for this renderer's GL.
+export function layerMinFaces(renderer) {
+  return isSoftwareGL(renderer.getContext()) ? SOFTWARE_SURFACE_LAYER_FACES : SURFACE_LAYER_FACES;
+}
 
 const COPY_VERTEX = /* glsl */ `
 varying vec2 vUv;
@@ -123,7 +136,7 @@ export function screenRectOf(mesh, camera, width, height) {
 
 export class SurfaceLayer {
   constructor() {
-    this.minFaces = SURFACE_LAYER_FACES;
+    this.minFaces = null; // layerMinFaces(), asked at the first frame or compile (unless a caller set it)
     this.target = null;
     this.key = null;
     this.size = new Vector2();
@@ -159,6 +172,7 @@ export class SurfaceLayer {
   // uniforms, which wait for the GPU process (~125 ms at 832k faces with software GL). Resolves when linked
   // (at once without KHR_parallel_shader_compile: then the GPU process links it while the page goes on).
   async compile(renderer, scene, camera, mesh) {
+    this.minFaces ??= layerMinFaces(renderer);
     const target = this.#bigEnough(mesh) ? layerTarget(1, 1) : null;
     const previous = renderer.getRenderTarget();
     let linked = null;
@@ -192,6 +206,7 @@ export class SurfaceLayer {
 
   // Draws scene with camera, the surface from the layer where that applies (else as part of the scene).
   render(renderer, scene, camera, surfaceMesh, licVisible) {
+    this.minFaces ??= layerMinFaces(renderer);
     if (!this.applies(surfaceMesh, licVisible)) {
       renderer.render(scene, camera);
       return;
