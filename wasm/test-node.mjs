@@ -432,9 +432,9 @@ d.delete();
 }
 // Threads: the plain module has one, the one built with pthreads (tvf_core_threads.mjs, run here too by
 // npm test) one more than the helpers its pool started with (wasm/node-pre.js: the cores less one, at most 7).
-// On two threads the factorization's subtrees go side by side (supernodal_cholesky.h), and the field agrees
-// with one thread's to 1e-12 relative, after the factorization and after strokes; a number of threads the
-// build lacks is cut to what it has.
+// On two threads the factorization's subtrees go side by side (supernodal_cholesky.h), and the field is one
+// thread's bit for bit, after the factorization and after strokes; a number of threads the build lacks is cut
+// to what it has.
 {
   const available = Module.solverThreadsAvailable();
   const threaded = /_threads\.mjs$/.test(modulePath);
@@ -480,7 +480,7 @@ d.delete();
     }
     worst = Math.max(worst, diff / scale);
   });
-  check('... and the fields equal one thread\'s to 1e-12 relative', worst <= 1e-12, `${worst}`);
+  check('... and the fields are one thread\'s bit for bit', worst === 0, `${worst}`);
 }
 // Line and cross fields (symmetry N): the binding's contract, the index invariants, and the page's field against
 // the native CLI's (tvf design, built before these tests by npm test) on the same mesh and design: the same

@@ -74,11 +74,19 @@ class Extractor {
 
  private:
   Vec2 corner(int32_t f, int k) const { return {uv_[6 * f + 2 * k], uv_[6 * f + 2 * k + 1]}; }
-  // Barycentric coordinates of x in f's (u, v) triangle.
+  // Barycentric coordinates of x in f's (u, v) triangle. Each is its edge's side of x (edgeSide), so a point
+  // on an edge that two faces of a chart share is inside one of them, or on the edge in both: never in both
+  // nor in neither, whatever the round-off of the corners (a grid point on a diagonal of a regular grid).
   void barycentric(int32_t f, Vec2 x, double l[3]) const {
     const double a = uvTwiceArea(uv_, f);
-    for (int k = 0; k < 3; ++k)
-      l[k] = cross(corner(f, (k + 2) % 3) - corner(f, (k + 1) % 3), x - corner(f, (k + 1) % 3)) / a;
+    for (int k = 0; k < 3; ++k) l[k] = edgeSide(corner(f, (k + 1) % 3), corner(f, (k + 2) % 3), x) / a;
+  }
+
+  // Twice the signed area of (p, q, x), computed from the lexicographically smaller end: for q, p the same
+  // number negated, bit for bit (from p's end and from q's, round-off would differ).
+  static double edgeSide(Vec2 p, Vec2 q, Vec2 x) {
+    if (q.u < p.u || (q.u == p.u && q.v < p.v)) return -cross(p - q, x - q);
+    return cross(q - p, x - p);
   }
 
   // Carries a point and a direction from f's chart into the chart of g across edge e.

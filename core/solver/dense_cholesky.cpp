@@ -1,6 +1,7 @@
 #include "solver/dense_cholesky.h"
 
 #include <algorithm>
+#include <functional>
 #include <vector>
 
 #ifndef __EMSCRIPTEN__
@@ -65,9 +66,19 @@ BlasOnCallingThread::~BlasOnCallingThread() {
 
 }  // namespace blas
 
-int factorBlockOnThreads(double* block, int nsrow, int nscol, int parts) {
-  std::vector<int> bounds(parts + 1);
-  ThreadTeam& team = ThreadTeam::shared();
+int factorBlockInBands(double* block, int nsrow, int nscol, int bands, int parts) {
+  std::vector<int> bounds(bands + 1);
+  parts = std::clamp(parts, 1, bands);
+  // Band b of the rows on part k, the bands in order on one thread.
+  const auto forBands = [&](const std::function<void(int)>& band) {
+    if (parts == 1) {
+      for (int b = 0; b < bands; ++b) band(b);
+      return;
+    }
+    ThreadTeam::shared().run(parts, [&](int k) {
+      for (int b = partBegin(bands, k, parts); b < partBegin(bands, k + 1, parts); ++b) band(b);
+    });
+  };
   for (int k0 = 0; k0 < nscol; k0 += kPanel) {
     const int k1 = std::min(nscol, k0 + kPanel), width = k1 - k0;
     double* diagonal = block + k0 + static_cast<size_t>(k0) * nsrow;
@@ -75,16 +86,16 @@ int factorBlockOnThreads(double* block, int nsrow, int nscol, int parts) {
     if (info != 0) return k0 + info;
     if (k1 == nsrow) break;
     splitRows(
-        k1, nsrow, parts, [](int) { return 1.0; }, bounds.data());
-    team.run(parts, [&](int k) {
-      blas::trsmRightLowerTransposed(bounds[k + 1] - bounds[k], width, diagonal, nsrow,
-                                     block + bounds[k] + static_cast<size_t>(k0) * nsrow, nsrow);
+        k1, nsrow, bands, [](int) { return 1.0; }, bounds.data());
+    forBands([&](int b) {
+      blas::trsmRightLowerTransposed(bounds[b + 1] - bounds[b], width, diagonal, nsrow,
+                                     block + bounds[b] + static_cast<size_t>(k0) * nsrow, nsrow);
     });
     if (k1 == nscol) break;
     splitRows(
-        k1, nsrow, parts, [&](int r) { return static_cast<double>(std::min(r + 1, nscol) - k1); },
+        k1, nsrow, bands, [&](int r) { return static_cast<double>(std::min(r + 1, nscol) - k1); },
         bounds.data());
-    team.run(parts, [&](int k) { updateRows(block, nsrow, nscol, k0, k1, bounds[k], bounds[k + 1]); });
+    forBands([&](int b) { updateRows(block, nsrow, nscol, k0, k1, bounds[b], bounds[b + 1]); });
   }
   return 0;
 }

@@ -7,7 +7,8 @@
 // diagonal block (lower triangle read), the rest the rows below. On return the diagonal block holds its
 // lower Cholesky factor L11 and the rows below L21 = B21 L11'^-1, as dpotrf and dtrsm leave them. Panels of
 // columns go one after another: each is factored on the calling thread, then the rows below it are solved
-// and the columns to its right updated in bands of rows, one band per thread.
+// and the columns to its right updated in a fixed number of bands of rows, which the threads share out: the
+// same operations, so the same block bit for bit, on any number of threads.
 namespace tvf {
 
 // Rows lo .. hi split into `parts` bands of about equal cost, rowCost(r) >= 0: bounds[k] .. bounds[k+1].
@@ -26,7 +27,8 @@ void splitRows(int lo, int hi, int parts, const Cost& rowCost, int* bounds) {
   bounds[parts] = hi;
 }
 
-// 0, or the 1-based column of the block whose pivot was not positive.
-int factorBlockOnThreads(double* block, int nsrow, int nscol, int parts);
+// 0, or the 1-based column of the block whose pivot was not positive. `bands` bands of rows on `parts`
+// threads (one: all on this thread).
+int factorBlockInBands(double* block, int nsrow, int nscol, int bands, int parts);
 
 }  // namespace tvf

@@ -112,7 +112,7 @@ struct FactoredSystem::Impl {
   ForwardSolution forward;
   int threads = ThreadTeam::usefulParts();
   int factorThreads = threads;
-  BackwardKernel backwardKernel = defaultBackwardKernel(threads);
+  BackwardKernel backwardKernel = kDefaultBackwardKernel;
   BackwardSubstitution backward;
   int64_t supernodalSolves = 0;
   std::vector<double> bPermuted, xPermuted;  // scratch: what solve() keeps is in `forward`
@@ -408,6 +408,7 @@ bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<do
   s.timings.factorThreads = threading.parts;
   s.timings.singleThreadWhy = threading.singleThreadWhy;
   s.timings.subtreeShare = threading.subtreeShare;
+  s.timings.bandedSupernodes = threading.bandedSupernodes;
   if (s.common->status == CHOLMOD_OUT_OF_MEMORY) {
     s.factor.reset();
     throw InputError("out of memory while factoring the " + std::to_string(s.n) + "-edge system (estimated " +
@@ -569,7 +570,6 @@ void FactoredSystem::setFactorThreads(int threads) {
 void FactoredSystem::setThreads(int threads) {
   impl_->threads = std::clamp(threads, 1, ThreadTeam::maxParts());
   impl_->factorThreads = impl_->threads;
-  impl_->backwardKernel = defaultBackwardKernel(impl_->threads);
   impl_->backward.setParts(impl_->threads);
 }
 

@@ -17,19 +17,13 @@ enum class FillOrdering { Amd, Metis };
 
 // How solve() substitutes backward: CHOLMOD's column-by-column L^-T (each entry a row index and a gather), or
 // supernode by supernode, gathering each supernode's rows once, on one thread or several
-// (solver/backward_substitution.h). On bunny00 the supernodes take wasm's solve after an edit from 12.7-12.9
-// to 10.4-10.5 ms, but natively, where CHOLMOD is compiled for the machine and its own groups of up to four
-// columns already share their gathers, the backward substitution by supernodes on one thread is ~10 % slower
-// (README): each build takes the faster one, and the supernodes wherever there are threads to share them.
+// (solver/backward_substitution.h), the same sums in the same order on any number of threads. On bunny00 the
+// supernodes take wasm's solve after an edit from 12.7-12.9 to 10.4-10.5 ms; natively, on one thread, they
+// are ~10 % slower than CHOLMOD's columns (docs/method.md), but the columns' sums differ from the
+// supernodes', and the field would then change with the number of threads: every build takes the supernodes.
 enum class BackwardKernel { Columns, Supernodes };
-constexpr BackwardKernel defaultBackwardKernel(int threads) {
-#ifdef __EMSCRIPTEN__
-  static_cast<void>(threads);
-  return BackwardKernel::Supernodes;
-#else
-  return threads > 1 ? BackwardKernel::Supernodes : BackwardKernel::Columns;
-#endif
-}
+
+constexpr BackwardKernel kDefaultBackwardKernel = BackwardKernel::Supernodes;
 
 struct FactorTimings {
   double analyzeMs = 0, factorMs = 0, convertMs = 0;
@@ -42,7 +36,8 @@ struct FactorTimings {
   // asked for and it ran on one, why.
   int factorThreads = 1;
   std::string singleThreadWhy;
-  double subtreeShare = 0;  // of its estimated work, the share factored side by side
+  double subtreeShare = 0;   // of its estimated work, the share factored side by side
+  int bandedSupernodes = 0;  // supernodes whose work was cut into bands (solver/supernodal_cholesky.h)
 };
 
 // A fill-reducing ordering kept beyond the system that computed it (the page's IndexedDB, the CLI's
@@ -98,8 +93,8 @@ class FactoredSystem {
   void setEdgeGraph(std::vector<int32_t> edgeVertices, int32_t numVertices);
   void setMemoryLimit(double bytes);  // 0: no limit
   // Threads for the numeric factorization's subtrees and the backward substitution (default: the cores
-  // there are; at most what common/thread_team.h provides, to which larger numbers are cut); also sets the
-  // backward kernel to defaultBackwardKernel(threads). CHOLMOD's columns run on one.
+  // there are; at most what common/thread_team.h provides, to which larger numbers are cut). The factor and
+  // the solves are the same bit for bit whatever the number (the default backward kernel's).
   void setThreads(int threads);
   int threads() const;
   // Threads for the numeric factorization alone (setThreads sets it too): a test compares the backward

@@ -20,20 +20,40 @@ namespace tvf {
 namespace {
 
 std::atomic<bool> failThreadsOnce{false};
-std::atomic<bool> ownFactorizationAlone{blas::kLaneKernels};
+std::atomic<bool> ownFactorizationAlone{true};
 
 // One thread's scratch: row positions within the supernode being factored (indexed by row of L), the
 // descendants' rows mapped to them, and the update block of one descendant.
 struct Workspace {
   std::vector<int> map, relativeMap;
   std::vector<double> c;
-  std::vector<int> pending;  // descendants whose next ancestor lies above the subtrees, for after them
+  std::vector<int> pending;      // descendants whose next ancestor lies above the subtrees, for after them
+  std::vector<int> descendants;  // the supernode's descendants in the order their updates are summed
 };
+
+// The parts of a large supernode's work, whatever the threads: its rows in kBands bands for the descendants'
+// updates and for its dense block (solver/dense_cholesky.h), which the threads share out. Each band's sums
+// are then the same operations in the same order on one thread or sixteen, and so is every other supernode's
+// (its descendants taken in index order, not in the order other threads finished them): the factor is the
+// same bit for bit on any number of threads.
+constexpr int kBands = 16;
+
+// Bands 0 .. kBands - 1, each band(b, k) on part k of `parts` (spaces[k]), or all on this thread.
+template <typename Band>
+void forBands(int parts, const Band& band) {
+  if (parts <= 1) {
+    for (int b = 0; b < kBands; ++b) band(b, 0);
+    return;
+  }
+  ThreadTeam::shared().run(parts, [&](int k) {
+    for (int b = partBegin(kBands, k, parts); b < partBegin(kBands, k + 1, parts); ++b) band(b, k);
+  });
+}
 
 class Factorization {
  public:
-  // A top supernode with dense work (nscol^2 nsrow) above this is factored on all threads.
-  static constexpr double kSharedFlops = 4e6;
+  // A supernode with dense work (nscol^2 nsrow) above this is factored in bands, on all threads at the top.
+  static constexpr double kBandedFlops = 4e6;
 
   Factorization(const Supernodes& sn, const PermutedTriangle& S) : sn_(sn), S_(S) {
     superMap_.resize(sn.n);
@@ -54,6 +74,7 @@ class Factorization {
   const std::vector<int>& parent() const { return parent_; }
   const std::vector<int64_t>& work() const { return work_; }
   int failedColumn() const { return failed_.load(); }
+  int bandedSupernodes() const { return banded_.load(); }
 
   void prepare(Workspace& w, size_t maxcsize, bool withMaps = true) const {
     if (withMaps) {
@@ -63,26 +84,28 @@ class Factorization {
     w.c.resize(maxcsize);
   }
 
-  // The top's supernodes (descending), after the subtrees: those with dense work enough on all `parts`
-  // threads (spaces[0] with maps, the others with an update block), the rest on this one.
+  // The top's supernodes (descending), after the subtrees: the banded ones on all `parts` threads
+  // (spaces[0] with maps, the others with an update block), the rest on this one.
   void factorTop(const std::vector<int>& nodes, std::vector<Workspace>& spaces, int parts,
                  const std::vector<char>& mine) {
     for (auto it = nodes.rbegin(); it != nodes.rend(); ++it) {
       if (failed_.load(std::memory_order_relaxed) < sn_.n) return;
-      const double nscol = sn_.cols(*it), nsrow = sn_.rows(*it);
-      if (parts > 1 && nscol * nscol * nsrow > kSharedFlops)
-        factorShared(*it, spaces, parts);
+      if (banded(*it))
+        factorBanded(*it, spaces.data(), std::min(parts, kBands), mine);
       else
         factorOne(*it, spaces[0], mine);
     }
   }
 
-  // Supernodes `nodes` (descending), each after its descendants; a descendant whose next ancestor is not
-  // `mine` (another thread's, or the top's) waits in w.pending.
+  // Supernodes `nodes` (descending) on this thread, each after its descendants; a descendant whose next
+  // ancestor is not `mine` (another thread's, or the top's) waits in w.pending.
   void factorAll(const std::vector<int>& nodes, Workspace& w, const std::vector<char>& mine) {
     for (auto it = nodes.rbegin(); it != nodes.rend(); ++it) {
       if (failed_.load(std::memory_order_relaxed) < sn_.n) return;
-      factorOne(*it, w, mine);
+      if (banded(*it))
+        factorBanded(*it, &w, 1, mine);
+      else
+        factorOne(*it, w, mine);
     }
   }
 
@@ -93,6 +116,19 @@ class Factorization {
   }
 
  private:
+  bool banded(int s) const {
+    const double nscol = sn_.cols(s), nsrow = sn_.rows(s);
+    return nscol * nscol * nsrow > kBandedFlops;
+  }
+
+  // s's descendants, in index order: the order of their updates' sums does not depend on when each was
+  // linked, which depends on the threads.
+  void collectDescendants(int s, std::vector<int>& out) const {
+    out.clear();
+    for (int d = head_[s]; d != -1; d = next_[d]) out.push_back(d);
+    std::sort(out.begin(), out.end());
+  }
+
   void link(int d, int ancestor) {
     next_[d] = head_[ancestor];
     head_[ancestor] = d;
@@ -175,8 +211,9 @@ class Factorization {
     }
   }
 
-  // factorOne's work with the descendants' updates split by rows of s, and the dense block on all threads.
-  void factorShared(int s, std::vector<Workspace>& spaces, int parts) {
+  // factorOne's work in kBands bands of s's rows: the descendants' updates band by band, then the dense
+  // block (factorBlockInBands), on `parts` threads (spaces[0 .. parts - 1]; spaces[0] holds the maps).
+  void factorBanded(int s, Workspace* spaces, int parts, const std::vector<char>& mine) {
     const int psi = sn_.pi[s], nscol = sn_.cols(s), nsrow = sn_.rows(s);
     const int k2 = sn_.first(s) + nscol;
     double* block = sn_.x + sn_.px[s];
@@ -184,27 +221,28 @@ class Factorization {
     std::fill(block, block + static_cast<size_t>(nsrow) * nscol, 0.0);
     for (int k = 0; k < nsrow; ++k) map[sn_.ls[psi + k]] = k;
     assembleMatrix(s, map, block);
-    std::vector<int> descendants;
-    for (int d = head_[s]; d != -1; d = next_[d]) descendants.push_back(d);
-    std::vector<int> bounds(parts + 1);
+    std::vector<int>& descendants = spaces[0].descendants;
+    collectDescendants(s, descendants);
+    int bounds[kBands + 1];
     // A row of s takes updates in its columns up to itself.
     splitRows(
-        0, nsrow, parts, [&](int r) { return static_cast<double>(std::min(r + 1, nscol)); }, bounds.data());
-    ThreadTeam::shared().run(parts, [&](int k) {
+        0, nsrow, kBands, [&](int r) { return static_cast<double>(std::min(r + 1, nscol)); }, bounds);
+    forBands(parts, [&](int b, int k) {
       for (const int d : descendants)
-        subtractUpdateRows(s, d, map, spaces[k], block, bounds[k], bounds[k + 1]);
+        subtractUpdateRows(s, d, map, spaces[k], block, bounds[b], bounds[b + 1]);
     });
     for (const int d : descendants) {
       const int* rows = sn_.ls + sn_.pi[d];
       lpos_[d] = static_cast<int>(std::lower_bound(rows + lpos_[d], rows + sn_.rows(d), k2) - rows);
-      if (lpos_[d] < sn_.rows(d)) link(d, superMap_[rows[lpos_[d]]]);
+      if (lpos_[d] < sn_.rows(d)) pass(d, superMap_[rows[lpos_[d]]], spaces[0], mine);
     }
     head_[s] = -1;
-    const int info = factorBlockOnThreads(block, nsrow, nscol, parts);
+    banded_.fetch_add(1, std::memory_order_relaxed);
+    const int info = factorBlockInBands(block, nsrow, nscol, kBands, parts);
     if (info != 0) return failAt(sn_.first(s) + info - 1);
     if (nsrow == nscol) return;
     lpos_[s] = nscol;
-    link(s, parent_[s]);
+    pass(s, parent_[s], spaces[0], mine);
   }
 
   void factorOne(int s, Workspace& w, const std::vector<char>& mine) {
@@ -213,11 +251,10 @@ class Factorization {
     std::fill(block, block + static_cast<size_t>(nsrow) * nscol, 0.0);
     for (int k = 0; k < nsrow; ++k) w.map[sn_.ls[psi + k]] = k;
     assembleMatrix(s, w.map, block);
-    for (int d = head_[s]; d != -1;) {
-      const int dnext = next_[d];
+    collectDescendants(s, w.descendants);
+    for (const int d : w.descendants) {
       lpos_[d] = subtractUpdate(s, d, w, block);
       if (lpos_[d] < sn_.rows(d)) pass(d, superMap_[sn_.ls[sn_.pi[d] + lpos_[d]]], w, mine);
-      d = dnext;
     }
     head_[s] = -1;
     const int info = blas::potrfLower(nscol, block, nsrow);
@@ -233,6 +270,7 @@ class Factorization {
   std::vector<int> superMap_, head_, next_, lpos_, parent_;
   std::vector<int64_t> work_;
   std::atomic<int> failed_{sn_.n};
+  std::atomic<int> banded_{0};
 };
 
 // The BLAS's first calls may set up state of its own (Eigen's cache sizes in wasm, whose objects are not
@@ -293,12 +331,15 @@ bool factorOnOneThread(cholmod_sparse& A, cholmod_factor& L, cholmod_common& c, 
   const std::vector<char> mine(L.nsuper, 1);
   Workspace w;
   f.prepare(w, L.maxcsize);
+  const blas::BlasOnCallingThread blasAlone;  // the calls the threads would make, made as they make them
   f.factorAll(nodes, w, mine);
+  report.bandedSupernodes = f.bandedSupernodes();
   return finish(L, c, f);
 }
 
-// One thread's factorization of a supernodal L: in wasm the project's, whose dense kernels use the SIMD
-// lanes (CHOLMOD's would call Eigen's BLAS, one double at a time there); natively CHOLMOD's, with the BLAS.
+// One thread's factorization of a supernodal L: the project's, the same operations as on any number of
+// threads (and in wasm its dense kernels use the SIMD lanes, where CHOLMOD's would call Eigen's BLAS, one
+// double at a time there); CHOLMOD's where a test asks for it.
 bool factorSupernodalAlone(cholmod_sparse& A, cholmod_factor& L, cholmod_common& c, SupernodalReport& report,
                            std::string why, PermutedTriangle* lower) {
   if (ownFactorizationAlone.load()) return factorOnOneThread(A, L, c, report, std::move(why), lower);
@@ -365,6 +406,7 @@ bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_c
   for (int g = 0; g < groups; ++g) f.prepare(spaces[g], L.maxcsize, g == 0);
   f.factorTop(partition.top, spaces, groups, mine[groups]);
   report.parts = groups;
+  report.bandedSupernodes = f.bandedSupernodes();
   report.subtreeShare =
       1.0 - static_cast<double>(partition.topWork) / static_cast<double>(partition.totalWork);
   return finish(L, c, f);

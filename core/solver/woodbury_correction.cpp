@@ -201,23 +201,26 @@ bool WoodburyCorrection::substituteForward(const FactorColumns& L, const int* sl
   return !outside;
 }
 
-// K = I + G' D^-1 G (its lower triangle), each part summing its rows (cut where the work, the square of
-// each row's range, is even) into its own matrix.
+// K = I + G' D^-1 G (its lower triangle), each chunk of rows (cut where the work, the square of each row's
+// range, is even) summed into its own matrix, the chunks then added in order. The chunks are the same
+// whatever the threads that share them out: K is the same bit for bit on any number of threads.
 Eigen::MatrixXd WoodburyCorrection::identityPlusGram(const FactorColumns& L, int parts) const {
+  constexpr int kGramChunks = 4;
   const int rows = static_cast<int>(path_.size()), k = k_;
   std::vector<double> work(static_cast<size_t>(rows) + 1, 0.0);
   for (int r = 0; r < rows; ++r) {
     const double width = high_[r] >= low_[r] ? high_[r] - low_[r] + 1 : 0;
     work[r + 1] = work[r] + width * width;
   }
-  const int gramParts = rows > 4096 ? std::max(1, parts) : 1;
+  const int gramParts = rows > 4096 ? kGramChunks : 1;
+  parts = std::clamp(parts, 1, gramParts);
   std::vector<int> cuts(gramParts + 1, rows);
   cuts[0] = 0;
   for (int t = 1; t < gramParts; ++t)
     cuts[t] = static_cast<int>(std::lower_bound(work.begin(), work.end(), work[rows] * t / gramParts) -
                                work.begin());
   std::vector<double> grams(static_cast<size_t>(gramParts) * k * k, 0.0);
-  ThreadTeam::shared().run(gramParts, [&](int t) {
+  const auto sumChunk = [&](int t) {
     double* gram = grams.data() + static_cast<size_t>(t) * k * k;
     for (int r = cuts[t]; r < cuts[t + 1]; ++r) {
       if (high_[r] < low_[r]) continue;
@@ -229,6 +232,9 @@ Eigen::MatrixXd WoodburyCorrection::identityPlusGram(const FactorColumns& L, int
         for (int b = a; b <= high_[r]; ++b) row[b] += ga * gr[b];
       }
     }
+  };
+  ThreadTeam::shared().run(parts, [&](int k) {
+    for (int t = partBegin(gramParts, k, parts); t < partBegin(gramParts, k + 1, parts); ++t) sumChunk(t);
   });
   Eigen::MatrixXd K = Eigen::MatrixXd::Identity(k, k);
   for (int t = 0; t < gramParts; ++t)
