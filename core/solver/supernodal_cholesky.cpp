@@ -31,29 +31,33 @@ struct Workspace {
   std::vector<int> descendants;  // the supernode's descendants in the order their updates are summed
 };
 
-// The parts of a large supernode's work, whatever the threads: its rows in kBands bands for the descendants'
-// updates and for its dense block (solver/dense_cholesky.h), which the threads share out. Each band's sums
-// are then the same operations in the same order on one thread or sixteen, and so is every other supernode's
-// (its descendants taken in index order, not in the order other threads finished them): the factor is the
-// same bit for bit on any number of threads.
+// The parts of a large supernode's work, whatever the threads: its rows in bands (2 to kBands, by its size
+// alone) for the descendants' updates and for its dense block (solver/dense_cholesky.h), which the threads
+// share out. Each band's sums are then the same operations in the same order on one thread or sixteen, and so
+// are every other supernode's (its descendants taken in index order, not in the order other threads finished
+// them): the factor is the same bit for bit on any number of threads. Every band costs a call per descendant,
+// so a supernode gets one per 5e8 multiply-adds (at least two): sixteen on bunny00 made one thread's
+// factorization 15 % slower, two took no more time than none.
 constexpr int kBands = 16;
 
-// Bands 0 .. kBands - 1, each band(b, k) on part k of `parts` (spaces[k]), or all on this thread.
+// Bands 0 .. bands - 1, each band(b, k) on part k of `parts` (spaces[k]), or all on this thread.
 template <typename Band>
-void forBands(int parts, const Band& band) {
+void forBands(int bands, int parts, const Band& band) {
+  parts = std::min(parts, bands);
   if (parts <= 1) {
-    for (int b = 0; b < kBands; ++b) band(b, 0);
+    for (int b = 0; b < bands; ++b) band(b, 0);
     return;
   }
   ThreadTeam::shared().run(parts, [&](int k) {
-    for (int b = partBegin(kBands, k, parts); b < partBegin(kBands, k + 1, parts); ++b) band(b, k);
+    for (int b = partBegin(bands, k, parts); b < partBegin(bands, k + 1, parts); ++b) band(b, k);
   });
 }
 
 class Factorization {
  public:
-  // A supernode with dense work (nscol^2 nsrow) above this is factored in bands, on all threads at the top.
-  static constexpr double kBandedFlops = 4e6;
+  // A supernode with dense work (nscol^2 nsrow) above kBandedFlops is factored in work / kFlopsPerBand bands
+  // (2 to kBands): on all threads at the top, on its group's thread in a subtree.
+  static constexpr double kBandedFlops = 4e6, kFlopsPerBand = 5e8;
 
   Factorization(const Supernodes& sn, const PermutedTriangle& S) : sn_(sn), S_(S) {
     superMap_.resize(sn.n);
@@ -90,8 +94,8 @@ class Factorization {
                  const std::vector<char>& mine) {
     for (auto it = nodes.rbegin(); it != nodes.rend(); ++it) {
       if (failed_.load(std::memory_order_relaxed) < sn_.n) return;
-      if (banded(*it))
-        factorBanded(*it, spaces.data(), std::min(parts, kBands), mine);
+      if (bandsOf(*it) > 0)
+        factorBanded(*it, spaces.data(), parts, mine);
       else
         factorOne(*it, spaces[0], mine);
     }
@@ -102,7 +106,7 @@ class Factorization {
   void factorAll(const std::vector<int>& nodes, Workspace& w, const std::vector<char>& mine) {
     for (auto it = nodes.rbegin(); it != nodes.rend(); ++it) {
       if (failed_.load(std::memory_order_relaxed) < sn_.n) return;
-      if (banded(*it))
+      if (bandsOf(*it) > 0)
         factorBanded(*it, &w, 1, mine);
       else
         factorOne(*it, w, mine);
@@ -116,9 +120,10 @@ class Factorization {
   }
 
  private:
-  bool banded(int s) const {
-    const double nscol = sn_.cols(s), nsrow = sn_.rows(s);
-    return nscol * nscol * nsrow > kBandedFlops;
+  int bandsOf(int s) const {
+    const double nscol = sn_.cols(s), nsrow = sn_.rows(s), flops = nscol * nscol * nsrow;
+    if (!(flops > kBandedFlops)) return 0;
+    return std::clamp(static_cast<int>(flops / kFlopsPerBand), 2, kBands);
   }
 
   // s's descendants, in index order: the order of their updates' sums does not depend on when each was
@@ -211,7 +216,7 @@ class Factorization {
     }
   }
 
-  // factorOne's work in kBands bands of s's rows: the descendants' updates band by band, then the dense
+  // factorOne's work in bandsOf(s) bands of s's rows: the descendants' updates band by band, then the dense
   // block (factorBlockInBands), on `parts` threads (spaces[0 .. parts - 1]; spaces[0] holds the maps).
   void factorBanded(int s, Workspace* spaces, int parts, const std::vector<char>& mine) {
     const int psi = sn_.pi[s], nscol = sn_.cols(s), nsrow = sn_.rows(s);
@@ -223,11 +228,12 @@ class Factorization {
     assembleMatrix(s, map, block);
     std::vector<int>& descendants = spaces[0].descendants;
     collectDescendants(s, descendants);
+    const int bands = bandsOf(s);
     int bounds[kBands + 1];
     // A row of s takes updates in its columns up to itself.
     splitRows(
-        0, nsrow, kBands, [&](int r) { return static_cast<double>(std::min(r + 1, nscol)); }, bounds);
-    forBands(parts, [&](int b, int k) {
+        0, nsrow, bands, [&](int r) { return static_cast<double>(std::min(r + 1, nscol)); }, bounds);
+    forBands(bands, parts, [&](int b, int k) {
       for (const int d : descendants)
         subtractUpdateRows(s, d, map, spaces[k], block, bounds[b], bounds[b + 1]);
     });
@@ -238,7 +244,7 @@ class Factorization {
     }
     head_[s] = -1;
     banded_.fetch_add(1, std::memory_order_relaxed);
-    const int info = factorBlockInBands(block, nsrow, nscol, kBands, parts);
+    const int info = factorBlockInBands(block, nsrow, nscol, bands, parts);
     if (info != 0) return failAt(sn_.first(s) + info - 1);
     if (nsrow == nscol) return;
     lpos_[s] = nscol;
