@@ -1,7 +1,6 @@
 #include "solver/dense_cholesky.h"
 
 #include <algorithm>
-#include <functional>
 #include <vector>
 
 #ifndef __EMSCRIPTEN__
@@ -68,17 +67,6 @@ BlasOnCallingThread::~BlasOnCallingThread() {
 
 int factorBlockInBands(double* block, int nsrow, int nscol, int bands, int parts) {
   std::vector<int> bounds(bands + 1);
-  parts = std::clamp(parts, 1, bands);
-  // Band b of the rows on part k, the bands in order on one thread.
-  const auto forBands = [&](const std::function<void(int)>& band) {
-    if (parts == 1) {
-      for (int b = 0; b < bands; ++b) band(b);
-      return;
-    }
-    ThreadTeam::shared().run(parts, [&](int k) {
-      for (int b = partBegin(bands, k, parts); b < partBegin(bands, k + 1, parts); ++b) band(b);
-    });
-  };
   for (int k0 = 0; k0 < nscol; k0 += kPanel) {
     const int k1 = std::min(nscol, k0 + kPanel), width = k1 - k0;
     double* diagonal = block + k0 + static_cast<size_t>(k0) * nsrow;
@@ -87,7 +75,7 @@ int factorBlockInBands(double* block, int nsrow, int nscol, int bands, int parts
     if (k1 == nsrow) break;
     splitRows(
         k1, nsrow, bands, [](int) { return 1.0; }, bounds.data());
-    forBands([&](int b) {
+    forBands(bands, parts, [&](int b, int) {
       blas::trsmRightLowerTransposed(bounds[b + 1] - bounds[b], width, diagonal, nsrow,
                                      block + bounds[b] + static_cast<size_t>(k0) * nsrow, nsrow);
     });
@@ -95,7 +83,8 @@ int factorBlockInBands(double* block, int nsrow, int nscol, int bands, int parts
     splitRows(
         k1, nsrow, bands, [&](int r) { return static_cast<double>(std::min(r + 1, nscol) - k1); },
         bounds.data());
-    forBands([&](int b) { updateRows(block, nsrow, nscol, k0, k1, bounds[b], bounds[b + 1]); });
+    forBands(bands, parts,
+             [&](int b, int) { updateRows(block, nsrow, nscol, k0, k1, bounds[b], bounds[b + 1]); });
   }
   return 0;
 }

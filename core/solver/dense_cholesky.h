@@ -9,6 +9,10 @@
 // columns go one after another: each is factored on the calling thread, then the rows below it are solved
 // and the columns to its right updated in a fixed number of bands of rows, which the threads share out: the
 // same operations, so the same block bit for bit, on any number of threads.
+#include <algorithm>
+
+#include "common/thread_team.h"
+
 namespace tvf {
 
 // Rows lo .. hi split into `parts` bands of about equal cost, rowCost(r) >= 0: bounds[k] .. bounds[k+1].
@@ -25,6 +29,20 @@ void splitRows(int lo, int hi, int parts, const Cost& rowCost, int* bounds) {
     bounds[k] = r;
   }
   bounds[parts] = hi;
+}
+
+// band(b, k) for the bands b = 0 .. bands - 1, those of part k of `parts` on thread k (common/thread_team.h),
+// or all in order on this thread: which thread takes a band changes nothing in it.
+template <typename Band>
+void forBands(int bands, int parts, const Band& band) {
+  parts = std::min(parts, bands);
+  if (parts <= 1) {
+    for (int b = 0; b < bands; ++b) band(b, 0);
+    return;
+  }
+  ThreadTeam::shared().run(parts, [&](int k) {
+    for (int b = partBegin(bands, k, parts); b < partBegin(bands, k + 1, parts); ++b) band(b, k);
+  });
 }
 
 // 0, or the 1-based column of the block whose pivot was not positive. `bands` bands of rows on `parts`

@@ -40,19 +40,6 @@ struct Workspace {
 // factorization 15 % slower, two took no more time than none.
 constexpr int kBands = 16;
 
-// Bands 0 .. bands - 1, each band(b, k) on part k of `parts` (spaces[k]), or all on this thread.
-template <typename Band>
-void forBands(int bands, int parts, const Band& band) {
-  parts = std::min(parts, bands);
-  if (parts <= 1) {
-    for (int b = 0; b < bands; ++b) band(b, 0);
-    return;
-  }
-  ThreadTeam::shared().run(parts, [&](int k) {
-    for (int b = partBegin(bands, k, parts); b < partBegin(bands, k + 1, parts); ++b) band(b, k);
-  });
-}
-
 class Factorization {
  public:
   // A supernode with dense work (nscol^2 nsrow) above kBandedFlops is factored in work / kFlopsPerBand bands
