@@ -7,8 +7,8 @@
 // diagonal block (lower triangle read), the rest the rows below. On return the diagonal block holds its
 // lower Cholesky factor L11 and the rows below L21 = B21 L11'^-1, as dpotrf and dtrsm leave them. Panels of
 // columns go one after another: each is factored on the calling thread, then the rows below it are solved
-// and the columns to its right updated in a fixed number of bands of rows, which the threads share out: the
-// same operations, so the same block bit for bit, on any number of threads.
+// and the columns to its right updated in the caller's number of bands of rows (by the block's size, not the
+// threads), which the threads share out: the same operations, so the same block bit for bit, on any number.
 #include <algorithm>
 
 #include "common/thread_team.h"
