@@ -83,7 +83,7 @@ namespace {
 
 // Timings of one ordering over the repeats.
 struct Samples {
-  std::vector<double> analyze, factor, solve, update, stroke, strokeUpdate, strokeRows, strokeRhs,
+  std::vector<double> analyze, factor, convert, solve, update, stroke, strokeUpdate, strokeRows, strokeRhs,
       strokeSolve, reconstruct, smoothest, deferredStroke, deferredCorrection, deferredUpdate;
   double nnzPerRowM = 0, nnzPerRowL = 0;
   int strokeEdges = 0;      // edges the benchmark stroke crosses (one per step between adjacent faces)
@@ -159,6 +159,7 @@ void runRepeat(Designer& designer, int r, bool metis, Samples& s) {
   designer.factor();
   s.analyze.push_back(designer.stats().analyzeMs);
   s.factor.push_back(designer.stats().factorMs);
+  s.convert.push_back(designer.stats().convertMs);
   const bool directions = designer.symmetry() > 1;
   if (directions) {
     designer.solve();  // the smoothest field: inverse iteration with the factor
@@ -235,6 +236,7 @@ nlohmann::json summary(const Samples& s, bool metis) {
           {"nnzPerRowL", s.nnzPerRowL},
           {"analyzeMs", median(s.analyze)},
           {"factorMs", median(s.factor)},
+          {"convertMs", median(s.convert)},
           {"solveMs", median(s.solve)},
           {"updateMs", median(s.update)},
           {"strokeUpdateSolveMs", median(s.stroke)},

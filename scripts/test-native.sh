@@ -7,7 +7,7 @@
 # in the release build's list), and checks afterwards that it ran every one of them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-SANITIZED='MeshIo|MeshChecks|Cli\.BadInput|Impossible|BadEntries|Robust|Fuzz|Truncat|Error|LaneKernels|SupernodalSolve|SymbolicAnalysis|FactorMemory'
+SANITIZED='MeshIo|MeshChecks|Cli\.BadInput|Impossible|BadEntries|Robust|Fuzz|Truncat|Error|LaneKernels|SupernodalSolve|SymbolicAnalysis|FactorMemory|LdlConversion'
 ctest --test-dir build --output-on-failure -j2
 
 # The selected tests of a build tree, by name.

@@ -430,6 +430,7 @@ json designDocument(const Designer& designer) {
 json statsJson(const DesignStats& s) {
   return {{"analyzeMs", s.analyzeMs},
           {"factorMs", s.factorMs},
+          {"convertMs", s.convertMs},
           {"updateMs", s.updateMs},
           {"deferredUpdateMs", s.deferredUpdateMs},
           {"solveMs", s.solveMs},

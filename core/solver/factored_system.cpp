@@ -15,6 +15,7 @@
 #include "solver/edge_dissection.h"
 #include "solver/factor_memory.h"
 #include "solver/forward_solution.h"
+#include "solver/ldl_conversion.h"
 #include "solver/supernodal_cholesky.h"
 #include "solver/symbolic_analysis.h"
 #include "solver/woodbury_correction.h"
@@ -421,7 +422,7 @@ bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<do
   // Updates need the simplicial LDL' form; converting once here keeps every later edit a pure update.
   start = std::chrono::steady_clock::now();
   if (ok) {
-    cholmod_change_factor(CHOLMOD_REAL, 0, 0, 1, 1, s.factor.get(), s.common.get());
+    convertToSimplicialLdl(*s.factor, *s.common.get(), threading.parts);
     if (s.bySupernodes()) s.backward.prepare(*s.factor);
   }
   // The factorization's workspace (the supernodal update matrices among it) would stay in the common object.

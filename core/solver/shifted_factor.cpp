@@ -151,6 +151,7 @@ void ShiftedFactor::factor(const SparseMatrix& base, double scale, const Diagona
   report_.analysisReused = t.analysisReused;
   report_.symbolicReused = t.symbolicReused;
   report_.factorMs = t.factorMs + t.convertMs;
+  report_.convertMs = t.convertMs;
   report_.factorThreads = t.factorThreads;
   report_.singleThreadWhy = t.singleThreadWhy;
   report_.factorNonzeros = system_.factorNonzeros();

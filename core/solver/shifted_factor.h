@@ -29,6 +29,7 @@ SparseMatrix plusDiagonal(const SparseMatrix& base, const DiagonalTerms& terms);
 // What the last factorization did, for the session's stats.
 struct FactorReport {
   double analyzeMs = 0, factorMs = 0;
+  double convertMs = 0;  // of factorMs, the factor turned into LDL' for the updates (solver/ldl_conversion.h)
   bool analysisReused = false;
   bool symbolicReused = false;  // FactorTimings::symbolicReused
   int64_t factorNonzeros = 0;
