@@ -9,6 +9,7 @@
 
 #include "design/designer.h"
 #include "solver/cholmod_handles.h"
+#include "test_fields.h"
 #include "test_meshes.h"
 
 using namespace tvf;
@@ -67,13 +68,9 @@ TEST(LdlConversion, IsCholmodsOnAnyNumberOfThreads) {
   for (const auto& [name, mesh] :
        {std::pair{"sphere", icosphere(4)}, std::pair{"torus", torus(90, 40, 2.0, 0.7)}}) {
     Designer d(mesh);
-    SparseMatrix A = d.baseMatrix();
-    SparseMatrix shift(A.rows(), A.cols());
-    shift.setIdentity();
-    A += (1e-4 * A.diagonal().mean()) * shift;
     CholmodCommon c;
     c->supernodal = CHOLMOD_SUPERNODAL;
-    const SparseMatrix upper = A.triangularView<Eigen::Upper>();
+    const SparseMatrix upper = definiteBaseMatrix(d).triangularView<Eigen::Upper>();
     expectConversionIsCholmods(upper, *c.get(), name);
   }
 }

@@ -742,10 +742,7 @@ double relativeDifference(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
 // update held beside the factor: the same bit for bit. The factorization ran on the threads asked for, its
 // subtrees holding most of the work, and cut the same supernodes into bands on every thread count.
 void expectParallelFactorIsTheSerialOne(Designer& d, const std::string& where, bool expectBands) {
-  SparseMatrix A = d.baseMatrix();
-  SparseMatrix shift(A.rows(), A.cols());
-  shift.setIdentity();
-  A += (1e-4 * A.diagonal().mean()) * shift;
+  const SparseMatrix A = definiteBaseMatrix(d);
   const int32_t n = static_cast<int32_t>(A.rows());
   std::vector<FactoredSystem> systems;
   for (int threads = 1; threads <= 4; ++threads) {
@@ -844,10 +841,7 @@ TEST(FactoredSystem, TheOwnFactorizationOnOneThreadEqualsCholmods) {
   for (const auto& [name, mesh] :
        {std::pair{"sphere", icosphere(5)}, std::pair{"torus", torus(120, 60, 2.0, 0.7)}}) {
     Designer d(mesh);
-    SparseMatrix A = d.baseMatrix();
-    SparseMatrix shift(A.rows(), A.cols());
-    shift.setIdentity();
-    A += (1e-4 * A.diagonal().mean()) * shift;
+    const SparseMatrix A = definiteBaseMatrix(d);
     Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 1.0), cholmods, own;
     const auto solveWith = [&](bool ownAlone, Eigen::VectorXd& x) {
       const bool before = setOwnFactorizationAlone(ownAlone);

@@ -21,6 +21,14 @@ void designEveryKind(Designer& d) {
   d.solve();
 }
 
+SparseMatrix definiteBaseMatrix(Designer& d) {
+  SparseMatrix A = d.baseMatrix();
+  SparseMatrix shift(A.rows(), A.cols());
+  shift.setIdentity();
+  A += (1e-4 * A.diagonal().mean()) * shift;
+  return A;
+}
+
 double relativeDifference(const std::vector<double>& a, const std::vector<double>& b) {
   return (asVector(a) - asVector(b)).norm() / std::max(1e-300, asVector(b).norm());
 }

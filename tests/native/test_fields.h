@@ -14,6 +14,9 @@ Eigen::VectorXd asVector(const std::vector<double>& v);
 // A stroke through the barycentres of a few faces, a source and a vortex, then a solve: every kind of
 // right-hand side, and rank-k updates of the factor.
 void designEveryKind(Designer& d);
+// The design's base matrix made definite (its kernel shifted by 1e-4 of the mean diagonal): a system any
+// factorization takes as it is.
+SparseMatrix definiteBaseMatrix(Designer& d);
 // |a - b| / |b|.
 double relativeDifference(const std::vector<double>& a, const std::vector<double>& b);
 
