@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <new>
 #include <vector>
 
 #include "common/thread_team.h"
@@ -98,6 +99,14 @@ bool convertToSimplicialLdl(cholmod_factor& L, cholmod_common& c, int parts) {
   Plan p;
   parts = std::min(parts, sn.count);
   while (parts > 1 && !plan(sn, start, parts, p)) --parts;
+  // The copies first: where there is no room for them, CHOLMOD converts on one thread.
+  try {
+    p.copied.resize(parts - 1);
+    for (int k = 0; k + 1 < parts; ++k)
+      p.copied[k].assign(sn.x + sn.px[p.fromCopy[k]], sn.x + sn.px[p.bounds[k + 1]]);
+  } catch (const std::bad_alloc&) {
+    parts = 1;
+  }
   if (parts <= 1) return cholmod_change_factor(CHOLMOD_REAL, 0, 0, 1, 1, &L, &c) != 0;
   c.status = CHOLMOD_OK;
   const size_t n = L.n, lnz = static_cast<size_t>(start[sn.count]);
@@ -115,9 +124,6 @@ bool convertToSimplicialLdl(cholmod_factor& L, cholmod_common& c, int parts) {
     return false;
   }
   naturalList(static_cast<int>(n), next, prev);
-  p.copied.resize(parts - 1);
-  for (int k = 0; k + 1 < parts; ++k)
-    p.copied[k].assign(sn.x + sn.px[p.fromCopy[k]], sn.x + sn.px[p.bounds[k + 1]]);
   ThreadTeam::shared().run(parts, [&](int k) {
     for (int s = p.bounds[k]; s < p.bounds[k + 1]; ++s) {
       const bool copied = k + 1 < parts && s >= p.fromCopy[k];
