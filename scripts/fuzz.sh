@@ -42,7 +42,7 @@ if [ ! -f "$BUILD/CMakeCache.txt" ]; then
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   CC=clang CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTVF_FUZZ=ON \
-    -DTVF_BUILD_TESTS=OFF -DTVF_BUILD_CLI=OFF "${launcher[@]}" >/dev/null
+    -DTVF_BUILD_TESTS=OFF -DTVF_BUILD_CLI=OFF -DTVF_UNITY_CORE=ON "${launcher[@]}" >/dev/null
 fi
 targets=()
 for t in "${TARGETS[@]}"; do targets+=("fuzz_$t"); done

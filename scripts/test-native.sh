@@ -24,7 +24,7 @@ done
 stems=$(printf '%s\n' "${files[@]}" | sort -u | paste -sd';')
 [ -n "$stems" ] || { echo "test-native: no test file holds the sanitizer's tests" >&2; exit 1; }
 
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DTVF_SANITIZE=ON "-DTVF_TEST_FILES=$stems" > /dev/null
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DTVF_SANITIZE=ON -DTVF_UNITY_CORE=ON "-DTVF_TEST_FILES=$stems" > /dev/null
 cmake --build build-asan -j2 --target tvf_tests
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j2 -R "$SANITIZED"

@@ -5,19 +5,12 @@
 #include <utility>
 
 #include "common/input_error.h"
+#include "common/stopwatch.h"
 #include "direction/direction_constraints.h"
 #include "direction/feature_terms.h"
 #include "direction/representative_directions.h"
 
 namespace tvf {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-}  // namespace
 
 // Sources, sinks, vortices and edge values are vector-field notions: the refusal names how many of each the
 // design holds, so the user knows what to remove.

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "common/input_error.h"
+#include "common/stopwatch.h"
 #include "constraints/edge_rows.h"
 #include "field/whitney_reconstruction.h"
 #include "mesh/feature_edges.h"
@@ -13,11 +14,6 @@
 
 namespace tvf {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Closed genus-0 components have no kernel; every other component (handles, boundary loops, and the extra
 // modes of free boundaries) gets the shift.

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "common/input_error.h"
+#include "common/stopwatch.h"
 #include "design/direction_field_system.h"
 #include "direction/direction_constraints.h"
 #include "direction/free_singularities.h"
@@ -17,11 +18,6 @@
 
 namespace tvf {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 const char* const kField = "a field with prescribed singularities";
 constexpr double kPi = 3.141592653589793;

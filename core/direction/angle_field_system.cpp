@@ -2,10 +2,11 @@
 
 #include <cmath>
 
+#include "common/angles.h"
+
 namespace tvf {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
 constexpr int kMaxBranchSolves = 6;
 
 SparseMatrix faceLaplacian(const MeshTopology& t, const FaceConnection& c) {

@@ -4,13 +4,12 @@
 #include <cmath>
 #include <queue>
 
+#include "common/angles.h"
 #include "direction/representative_directions.h"
 #include "mesh/mesh_geometry.h"
 
 namespace tvf {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 Eigen::Vector3d rotated(const Eigen::Vector3d& v, const Eigen::Vector3d& normal, double angle) {
   return std::cos(angle) * v + std::sin(angle) * normal.cross(v);

@@ -12,6 +12,7 @@
 #include <limits>
 #include <string>
 
+#include "common/angles.h"
 #include "common/input_error.h"
 #include "common/sparse_matrix.h"
 #include "dec/hodge_star.h"
@@ -22,8 +23,6 @@
 
 namespace tvf {
 namespace {
-
-constexpr double kTwoPi = 2.0 * M_PI;
 
 // A family of one vertex's stripes matched to one of its neighbour's: the neighbour's family, and -1 where
 // its direction points the other way (its phase then runs the other way: its psi is conjugated).

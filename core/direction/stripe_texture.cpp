@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/angles.h"
 #include "common/input_error.h"
 
 namespace tvf {
@@ -38,8 +39,6 @@ void dilate(std::vector<uint8_t>& rgba, int size, int passes) {
     if (!changed) break;
   }
 }
-
-constexpr double kTwoPi = 2.0 * M_PI;
 
 double smoothstep(double e0, double e1, double x) {
   const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);

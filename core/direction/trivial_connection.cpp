@@ -5,12 +5,11 @@
 #include <chrono>
 #include <cmath>
 
+#include "common/angles.h"
 #include "common/input_error.h"
 
 namespace tvf {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 double principal(double angle, int symmetry) {
   const double period = kTwoPi / symmetry;

@@ -3,12 +3,11 @@
 #include <cmath>
 #include <complex>
 
+#include "common/angles.h"
 #include "mesh/mesh_geometry.h"
 
 namespace tvf {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 // u as a complex number in the frame of `edge` (real axis) in the face with normal n: transport across the
 // edge by unfolding keeps this number, so the jump between two faces is the argument of their ratio.

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/input_error.h"
+#include "common/stopwatch.h"
 #include "field/singularities.h"
 #include "mesh/feature_edges.h"
 #include "mesh/mesh_geometry.h"
@@ -14,11 +15,6 @@
 
 namespace tvf {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 
 constexpr double kMostQuads = 4e6;
 

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "common/input_error.h"
+#include "common/stopwatch.h"
 #include "common/thread_team.h"
 #include "solver/backward_substitution.h"
 #include "solver/cholmod_handles.h"
@@ -22,10 +23,6 @@
 
 namespace tvf {
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Exactly one ordering: CHOLMOD's default (nmethods = 0) tries AMD, then METIS when AMD's fill looks high,
 // and keeps the better; an interactive session pays for one.

@@ -3,16 +3,10 @@
 #include <algorithm>
 #include <chrono>
 
+#include "common/stopwatch.h"
 #include "mesh/surface_mesh.h"
 
 namespace tvf {
-namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
 
 ExemplarAnalysis analyzeExemplar(const ExemplarImage& exemplar, const AnalysisOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -32,8 +26,8 @@ ExemplarAnalysis analyzeExemplar(const ExemplarImage& exemplar, const AnalysisOp
     level.appearance = appearanceLevel(out.stack, s, ao);
     out.timings.appearanceMs += msSince(t);
     t = std::chrono::steady_clock::now();
-    level.neighbourhood = neighbourhoodLevel(level.appearance, m, options.neighbourhoodDims,
-                                               options.covarianceSubsample);
+    level.neighbourhood =
+        neighbourhoodLevel(level.appearance, m, options.neighbourhoodDims, options.covarianceSubsample);
     out.timings.neighbourhoodMs += msSince(t);
     t = std::chrono::steady_clock::now();
     KCoherenceOptions ko;
@@ -53,8 +47,10 @@ ExemplarAnalysis analyzeExemplar(const ExemplarImage& exemplar, const AnalysisOp
 GpuLevelTables gpuTables(const ExemplarAnalysis& analysis, int s) {
   if (s < 0 || s >= analysis.numLevels()) throw InputError("gpuTables: no such level");
   const AnalysisLevel& level = analysis.levels[s];
-  if (level.appearance.vectors.cols() != 8 || level.neighbourhood.vectors.cols() != 8 || level.candidates.k < 2)
-    throw InputError("gpuTables: the GPU layout needs 8 appearance and 8 neighbourhood dimensions and k >= 2");
+  if (level.appearance.vectors.cols() != 8 || level.neighbourhood.vectors.cols() != 8 ||
+      level.candidates.k < 2)
+    throw InputError(
+        "gpuTables: the GPU layout needs 8 appearance and 8 neighbourhood dimensions and k >= 2");
   const int m = analysis.size(), n = m * m, k = level.candidates.k;
   GpuLevelTables g;
   g.colour.resize(4 * static_cast<size_t>(n));
