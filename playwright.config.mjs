@@ -43,7 +43,9 @@ export default defineConfig({
     {
       // Rebuilding the web part is cheap (esbuild) and keeps `npx playwright test` from testing a stale bundle;
       // the wasm core must already be built (npm run build:wasm).
-      command: 'node scripts/build-web.mjs && node scripts/serve.mjs',
+      // TVF_E2E_PREBUILT (scripts/e2e-queue.mjs): the page as `npm run build` left it, which another run's
+      // server may be serving.
+      command: `${process.env.TVF_E2E_PREBUILT ? '' : 'node scripts/build-web.mjs && '}node scripts/serve.mjs`,
       url: `http://127.0.0.1:${PORT}/`,
       env: { PORT: String(PORT) },
       reuseExistingServer: false,
