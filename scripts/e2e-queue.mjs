@@ -76,6 +76,7 @@ function runFile(file, i, runner, port) {
     const child = spawn('npx', args, { cwd: ROOT, env, stdio: ['ignore', 'pipe', 'pipe'] });
     const prefix = (stream, out) => {
       let rest = '';
+      stream.setEncoding('utf8'); // a character split between two chunks stays whole
       stream.on('data', (chunk) => {
         const lines = (rest + chunk).split('\n');
         rest = lines.pop();
