@@ -11,7 +11,8 @@
 //   node scripts/e2e-queue.mjs summary                   the totals; exit 1 if a file failed or did not run
 //
 // The order: the files' last measured times (tests/e2e/durations.json, rewritten by `summary --record`), the
-// files it does not know first. build/e2e-queue/ holds the queue, each file's JSON report and its log.
+// files it does not know first. build/e2e-queue/ holds the queue, the claims, and each file's JSON report and
+// exit; the runners' lines go to their own output, each with the runner's name in front.
 import { spawn } from 'node:child_process';
 import { mkdirSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { dirname, relative, resolve } from 'node:path';
@@ -127,20 +128,16 @@ function counts(report) {
 function summary(record) {
   const files = readJson(resolve(QUEUE, 'files.json'), []);
   const total = { passed: 0, failed: 0, skipped: 0, flaky: 0 };
-  const missing = [], failed = [], seconds = {};
+  const missing = [], failed = [], seconds = {}, byRunner = {};
   files.forEach((file, i) => {
     const done = readJson(resolve(QUEUE, `${i}.done.json`), null);
     if (!done) return missing.push(file);
     seconds[file] = done.seconds;
+    byRunner[done.runner] = (byRunner[done.runner] ?? 0) + done.seconds;
     const c = counts(readJson(resolve(QUEUE, `${i}.json`), null));
     for (const k of Object.keys(total)) total[k] += c[k];
     if (done.code !== 0 || c.failed > 0) failed.push(`${file} (exit ${done.code}, ${c.failed} failed)`);
   });
-  const byRunner = {};
-  for (const file of Object.keys(seconds)) {
-    const { runner } = readJson(resolve(QUEUE, `${files.indexOf(file)}.done.json`), {});
-    byRunner[runner] = (byRunner[runner] ?? 0) + seconds[file];
-  }
   const busy = Object.entries(byRunner).map(([r, s]) => `${r} ${Math.round(s)} s`).join(', ');
   console.log(`e2e-queue: ${total.passed} passed, ${total.skipped} skipped, ${total.flaky} flaky, ` +
     `${total.failed} failed in ${files.length} spec files (runners busy: ${busy})`);

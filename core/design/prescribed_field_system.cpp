@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "common/angles.h"
 #include "common/input_error.h"
 #include "common/stopwatch.h"
 #include "design/direction_field_system.h"
@@ -20,7 +21,6 @@ namespace tvf {
 namespace {
 
 const char* const kField = "a field with prescribed singularities";
-constexpr double kPi = 3.141592653589793;
 // The share of pi / N a prescribed index may turn the field across an edge of its vertex.
 constexpr double kTurningShare = 0.8;
 

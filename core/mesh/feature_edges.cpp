@@ -4,13 +4,12 @@
 #include <cmath>
 #include <string>
 
+#include "common/angles.h"
 #include "common/input_error.h"
 #include "mesh/mesh_geometry.h"
 
 namespace tvf {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 void checkAngle(double degrees) {
   if (!(degrees >= 0 && degrees <= 180))
