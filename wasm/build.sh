@@ -12,7 +12,8 @@
 #   wasm/build.sh --only plain|threads   # one of the two modules (default: both)
 #
 # Steps: CHOLMOD via wasm/build-cholmod.sh (cached in build-wasm/cholmod), then the top-level CMake project
-# configured with emcmake into build-wasm/core and build-wasm/core-threads (Release, -O3 -msimd128 -fexceptions, Eigen from
+# configured with emcmake into build-wasm/core and build-wasm/core-threads (Release, -O3 -msimd128 -fexceptions, the
+# core compiled in batches (TVF_UNITY_CORE: Eigen parsed once a batch, and one em++ start each), Eigen from
 # /usr/include/eigen3, nlohmann/tinygltf headers from /usr/include through a private include folder so that
 # no other host header can leak into the wasm build), whose `tvf_core` target (wasm/CMakeLists.txt) links the
 # module with embind. Prints the raw and gzipped size of the .wasm.
@@ -77,7 +78,7 @@ build_variant() {
   [ -f "$cholmod/lib/libcholmod_wasm.a" ] || die "build-cholmod.sh gave no archive in $cholmod"
 
   # Configure once (reconfigure only when the CHOLMOD folder changed or the cache is missing).
-  local want="$cholmod $extra"
+  local want="$cholmod $extra unity"
   if [ ! -f "$build/CMakeCache.txt" ] || [ "$(cat "$build/.cholmod" 2>/dev/null)" != "$want" ]; then
     log "configuring $build"
     emcmake cmake -S "$ROOT" -B "$build" \
@@ -91,6 +92,7 @@ build_variant() {
       -DTVF_WASM_OUTPUT_DIR="$OUT" \
       -DTVF_WASM_OUTPUT_NAME="$name" \
       -DTVF_WASM_THREADS="$([ "$variant" = threads ] && echo ON || echo OFF)" \
+      -DTVF_UNITY_CORE=ON \
       -DCMAKE_CROSSCOMPILING_EMULATOR="$(command -v node)" >&2
     printf '%s\n' "$want" > "$build/.cholmod"
   fi
