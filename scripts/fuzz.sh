@@ -1,22 +1,23 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-2.0-or-later
 #
-# fuzz.sh: builds the libFuzzer harnesses (tests/fuzz, clang + ASan + UBSan, in build-fuzz/) and runs each for
-# its share of the time: the glTF, GLB, OFF, OBJ and PLY loaders and the design-JSON parser.
+# fuzz.sh: builds the libFuzzer harnesses (tests/fuzz, clang + ASan + UBSan, in build-sanitized/, which the
+# sanitizer's tests share: scripts/configure-sanitized.sh) and runs each for its share of the time: the glTF, GLB,
+# OFF, OBJ and PLY loaders and the design-JSON parser.
 #
 # Usage: scripts/fuzz.sh [--seconds N] [target ...]
 #   --seconds N   total fuzzing time, split evenly over the targets (default 60)
 #   target        gltf glb off obj ply design (default: all)
 # Seeds: tests/fuzz/seeds/<target>/ (small files of our own), tests/native/data/, and bench-data/fuzz-seeds/
 # (assimp's test models and CGAL's small meshes, fetched by scripts/fetch-meshes.sh --fuzz-seeds; without
-# network the run goes on with the other seeds). The growing corpus lives in build-fuzz/corpus/<target>/.
-# Findings: libFuzzer writes the input to build-fuzz/findings/<target>/ and the script exits 1; turn each
+# network the run goes on with the other seeds). The growing corpus lives in build-sanitized/corpus/<target>/.
+# Findings: libFuzzer writes the input to build-sanitized/findings/<target>/ and the script exits 1; turn each
 # into a regression test in tests/native (see io_test.cpp / robust_test.cpp) before fixing it.
 # Prints one line per target: executions, corpus size, findings.
 
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
-BUILD=$ROOT/build-fuzz
+BUILD=$ROOT/build-sanitized
 SECONDS_TOTAL=60
 TARGETS=()
 
@@ -38,12 +39,8 @@ command -v clang++ >/dev/null || die "clang++ not found (apt-get install clang l
 # Seeds from Debian's assimp-testmodels and CGAL's data; a machine without network still fuzzes from ours.
 bash "$ROOT/scripts/fetch-meshes.sh" --fuzz-seeds >/dev/null 2>&1 || log "no assimp/CGAL seeds (offline?); using the project's own"
 
-if [ ! -f "$BUILD/CMakeCache.txt" ]; then
-  launcher=()
-  command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  CC=clang CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTVF_FUZZ=ON \
-    -DTVF_BUILD_TESTS=OFF -DTVF_BUILD_CLI=OFF -DTVF_UNITY_CORE=ON "${launcher[@]}" >/dev/null
-fi
+# Configured once; scripts/test-native.sh configures it first, with the test files it needs.
+[ -f "$BUILD/CMakeCache.txt" ] || bash "$ROOT/scripts/configure-sanitized.sh" >/dev/null
 targets=()
 for t in "${TARGETS[@]}"; do targets+=("fuzz_$t"); done
 cmake --build "$BUILD" -j2 --target "${targets[@]}" >/dev/null

@@ -3,8 +3,9 @@
 # kernels, solver/lane_kernels.h, whose vector loads run past an edge there first) again under
 # AddressSanitizer + UBSan, where a loader or check that reads out of bounds would show, then a bounded
 # libFuzzer run (60 s over the five loaders and the design parser; scripts/fuzz.sh --seconds N for longer).
-# The sanitizer build compiles the core, the CLI and only the test files that hold the bad-input tests (found
-# in the release build's list), and checks afterwards that it ran every one of them.
+# The tests and the fuzzers share one sanitizer build (scripts/configure-sanitized.sh), which compiles the core
+# once for both, the CLI, and only the test files that hold the bad-input tests (found in the release build's
+# list); it checks afterwards that it ran every one of them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SANITIZED='MeshIo|MeshChecks|Cli\.BadInput|Impossible|BadEntries|Robust|Fuzz|Truncat|Error|LaneKernels|SupernodalSolve|SymbolicAnalysis|FactorMemory|LdlConversion'
@@ -24,13 +25,13 @@ done
 stems=$(printf '%s\n' "${files[@]}" | sort -u | paste -sd';')
 [ -n "$stems" ] || { echo "test-native: no test file holds the sanitizer's tests" >&2; exit 1; }
 
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DTVF_SANITIZE=ON -DTVF_UNITY_CORE=ON "-DTVF_TEST_FILES=$stems" > /dev/null
-cmake --build build-asan -j2 --target tvf_tests
+sanitized=$(bash scripts/configure-sanitized.sh "-DTVF_TEST_FILES=$stems")
+cmake --build "$sanitized" -j2 --target tvf_tests
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-  ctest --test-dir build-asan --output-on-failure -j2 -R "$SANITIZED"
-if [ "$(listed build)" != "$(listed build-asan)" ]; then
+  ctest --test-dir "$sanitized" --output-on-failure -j2 -R "$SANITIZED"
+if [ "$(listed build)" != "$(listed "$sanitized")" ]; then
   echo "test-native: the sanitizer build lacks some of the release build's bad-input tests:" >&2
-  diff <(listed build) <(listed build-asan) >&2 || true
+  diff <(listed build) <(listed "$sanitized") >&2 || true
   exit 1
 fi
 bash scripts/fuzz.sh --seconds "${TVF_FUZZ_SECONDS:-60}"

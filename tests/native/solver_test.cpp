@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <string>
 
 #include "dec/hodge_star.h"
 #include "dec/one_form_laplacian.h"
@@ -337,8 +338,8 @@ TEST(FactoredSystem, IncrementalForwardSubstitutionEqualsAFreshSolve) {
         const auto [t, added] = held[random() % held.size()];
         kept.updateDiagonal(t.rows, t.weights, true);
         for (size_t k = 0; k < t.rows.size(); ++k) b[t.rows[k]] -= added[k];
-        held.erase(
-            std::find_if(held.begin(), held.end(), [&](const auto& h) { return h.first.rows == t.rows; }));
+        held.erase(std::find_if(held.begin(), held.end(),
+                                [&rows = t.rows](const auto& h) { return h.first.rows == rows; }));
       } else {
         DiagonalTerms t;
         std::vector<double> added;
@@ -404,8 +405,8 @@ TEST(FactoredSystem, DeferredUpdatesSolveTheUpdatedMatrix) {
           kept.updateDiagonal(t.rows, t.weights, true);
           EXPECT_FALSE(kept.hasDeferred()) << where;
           for (size_t k = 0; k < t.rows.size(); ++k) b[t.rows[k]] -= added[k];
-          held.erase(
-              std::find_if(held.begin(), held.end(), [&](const auto& h) { return h.first.rows == t.rows; }));
+          held.erase(std::find_if(held.begin(), held.end(),
+                                  [&rows = t.rows](const auto& h) { return h.first.rows == rows; }));
           continue;
         }
         DiagonalTerms t;
@@ -838,8 +839,9 @@ TEST(Designer, TheFieldIsTheSameOnAnyNumberOfThreads) {
 // The project's factorization on one thread (the wasm build's, whose kernels there are SIMD) gives CHOLMOD's
 // factor up to the order of its sums, and fails as CHOLMOD does where the matrix is not positive definite.
 TEST(FactoredSystem, TheOwnFactorizationOnOneThreadEqualsCholmods) {
-  for (const auto& [name, mesh] :
+  for (const auto& [label, mesh] :
        {std::pair{"sphere", icosphere(5)}, std::pair{"torus", torus(120, 60, 2.0, 0.7)}}) {
+    const std::string name = label;  // a structured binding cannot be captured in C++17
     Designer d(mesh);
     const SparseMatrix A = definiteBaseMatrix(d);
     Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 1.0), cholmods, own;
