@@ -77,7 +77,8 @@ build_variant() {
   fi
   [ -f "$cholmod/lib/libcholmod_wasm.a" ] || die "build-cholmod.sh gave no archive in $cholmod"
 
-  # Configure once (reconfigure only when the CHOLMOD folder changed or the cache is missing).
+  # Configure once: again only when the cache is missing or the CHOLMOD folder, the flags or the settings changed
+  # (the last word names them: "unity" since the core is compiled in batches).
   local want="$cholmod $extra unity"
   if [ ! -f "$build/CMakeCache.txt" ] || [ "$(cat "$build/.cholmod" 2>/dev/null)" != "$want" ]; then
     log "configuring $build"
