@@ -8,7 +8,8 @@
 //
 //   node scripts/e2e-queue.mjs init                      the queue made anew: every spec file, longest first
 //   node scripts/e2e-queue.mjs run --runner A --port P   take files until none is left; exit 1 if one failed
-//   node scripts/e2e-queue.mjs summary                   the totals; exit 1 if a file failed or did not run
+//   node scripts/e2e-queue.mjs summary                   the totals and the ten slowest tests; exit 1 if a file
+//                                                        failed or did not run
 //
 // The order: the files' last measured times (tests/e2e/durations.json, rewritten by `summary --record`), the
 // files it does not know first. build/e2e-queue/ holds the queue, the claims, and each file's JSON report and
@@ -125,22 +126,43 @@ function counts(report) {
   return c;
 }
 
+// Playwright's JSON report: every test's run as [seconds, title path].
+function testTimes(report) {
+  const times = [];
+  const walk = (suite, path) => {
+    for (const spec of suite.specs ?? [])
+      for (const test of spec.tests ?? [])
+        for (const result of test.results ?? [])
+          times.push([result.duration / 1000, [...path, spec.title].join(' › ')]);
+    for (const child of suite.suites ?? []) walk(child, [...path, child.title]);
+  };
+  for (const s of report?.suites ?? []) walk(s, [s.title]);
+  return times;
+}
+
 function summary(record) {
   const files = readJson(resolve(QUEUE, 'files.json'), []);
   const total = { passed: 0, failed: 0, skipped: 0, flaky: 0 };
-  const missing = [], failed = [], seconds = {}, byRunner = {};
+  const missing = [], failed = [], seconds = {}, byRunner = {}, tests = [];
   files.forEach((file, i) => {
     const done = readJson(resolve(QUEUE, `${i}.done.json`), null);
     if (!done) return missing.push(file);
     seconds[file] = done.seconds;
     byRunner[done.runner] = (byRunner[done.runner] ?? 0) + done.seconds;
-    const c = counts(readJson(resolve(QUEUE, `${i}.json`), null));
+    const report = readJson(resolve(QUEUE, `${i}.json`), null);
+    const c = counts(report);
+    tests.push(...testTimes(report));
     for (const k of Object.keys(total)) total[k] += c[k];
     if (done.code !== 0 || c.failed > 0) failed.push(`${file} (exit ${done.code}, ${c.failed} failed)`);
   });
   const busy = Object.entries(byRunner).map(([r, s]) => `${r} ${Math.round(s)} s`).join(', ');
   console.log(`e2e-queue: ${total.passed} passed, ${total.skipped} skipped, ${total.flaky} flaky, ` +
     `${total.failed} failed in ${files.length} spec files (runners busy: ${busy})`);
+  // The slowest tests, where a run's time is most worth looking for: each line is one test's own time.
+  tests.sort((a, b) => b[0] - a[0]);
+  const testSeconds = tests.reduce((sum, [t]) => sum + t, 0);
+  console.log(`e2e-queue: ${Math.round(testSeconds)} s in the tests themselves; the slowest:`);
+  for (const [t, title] of tests.slice(0, 10)) console.log(`e2e-queue: ${t.toFixed(1).padStart(6)} s  ${title}`);
   for (const f of failed) console.log(`e2e-queue: FAILED ${f}`);
   for (const f of missing) console.log(`e2e-queue: NOT RUN ${f}`);
   if (record && !missing.length) {
