@@ -27,12 +27,38 @@ export async function openDesignerPage(browser, options) {
   return { page, errors };
 }
 
+// Big arrays leave the page as base64, one string each: Playwright serializes a plain array number by number
+// (the 1024x656 canvas's grey values took 4.9-5.9 s, synthesisReadback()'s 800,000 numbers at 256² 5.4-6.2 s;
+// as strings 0.4 s and less). packInPage runs in the page: a typed array as {type, base64} of its bytes;
+// unpacked in the test process as a typed array of the same type and values.
+function packInPage(a) {
+  const bytes = new Uint8Array(a.buffer, a.byteOffset, a.byteLength);
+  let text = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return { type: a.constructor.name, base64: btoa(text) };
+}
+
+function unpack({ type, base64 }) {
+  const bytes = Uint8Array.from(Buffer.from(base64, 'base64')); // a copy: aligned for its element type
+  return new globalThis[type](bytes.buffer);
+}
+
+// window.tvf.synthesisReadback() with the arrays it names carried packed, as typed arrays; the rest as the page
+// gives it.
+export async function synthesisReadback(page, names) {
+  const r = await page.evaluate(`(async (names, pack) => {
+    const r = await window.tvf.synthesisReadback();
+    return { ...r, ...Object.fromEntries(names.map((name) => [name, pack(r[name])])) };
+  })(${JSON.stringify(names)}, ${packInPage})`);
+  for (const name of names) r[name] = unpack(r[name]);
+  return r;
+}
+
 // The designer's whole canvas read in the page (drawn into a 2D canvas, row 0 at the top) and carried out as
-// `as` says: 'grey', {w, h, sums, left, top, scale}, sums the pixels' r + g + b as 16-bit base64; 'rgb', its RGB
-// bytes as base64. One compact string out of the page: a plain array of the 1024x720 canvas's values took about
-// 5 s to carry (serialized number by number), the string half a second.
+// `as` says: 'grey', {w, h, sums, left, top, scale}, sums the pixels' r + g + b (packed); 'rgb', its RGB bytes
+// (packed).
 function readCanvas(page, as) {
-  return page.evaluate((as) => {
+  const read = (as, pack) => {
     const src = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
     const c = document.createElement('canvas');
     c.width = src.width;
@@ -40,35 +66,29 @@ function readCanvas(page, as) {
     const ctx = c.getContext('2d', { willReadFrequently: true });
     ctx.drawImage(src, 0, 0);
     const d = ctx.getImageData(0, 0, c.width, c.height).data;
-    const base64 = (bytes) => {
-      let text = '';
-      for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
-      return btoa(text);
-    };
     if (as === 'rgb') {
       const rgb = new Uint8Array((d.length / 4) * 3);
       for (let i = 0, j = 0; i < d.length; i += 4, j += 3) rgb.set(d.subarray(i, i + 3), j);
-      return base64(rgb);
+      return pack(rgb);
     }
     const sums = new Uint16Array(d.length / 4);
     for (let i = 0, j = 0; i < d.length; i += 4, j++) sums[j] = d[i] + d[i + 1] + d[i + 2];
     const r = src.getBoundingClientRect();
-    const sumsText = base64(new Uint8Array(sums.buffer));
-    return { w: c.width, h: c.height, sums: sumsText, left: r.left, top: r.top, scale: c.height / src.clientHeight };
-  }, as);
+    return { w: c.width, h: c.height, sums: pack(sums), left: r.left, top: r.top, scale: c.height / src.clientHeight };
+  };
+  return page.evaluate(`(${read})(${JSON.stringify(as)}, ${packInPage})`);
 }
 
 // The designer's whole canvas as grey values (row 0 at the top), with where it sits on the page: {w, h, grey,
 // left, top, scale} (scale: drawing-buffer pixels per CSS pixel).
 export async function readCanvasGrey(page) {
   const { sums, ...img } = await readCanvas(page, 'grey');
-  const rgbSums = new Uint16Array(Uint8Array.from(Buffer.from(sums, 'base64')).buffer); // a copy: aligned
-  return { ...img, grey: Array.from(rgbSums, (sum) => sum / 3) };
+  return { ...img, grey: Array.from(unpack(sums), (sum) => sum / 3) };
 }
 
 // The designer's whole canvas as RGB bytes (row 0 at the top), a Uint8Array of 3 per pixel.
 export async function readCanvasRgb(page) {
-  return new Uint8Array(Buffer.from(await readCanvas(page, 'rgb'), 'base64'));
+  return unpack(await readCanvas(page, 'rgb'));
 }
 
 // Fraction of pixels in the central box of the WebGL canvas that differ from the background colour.

@@ -13,7 +13,7 @@ import { Surface } from '../../web/geometry/surface.js';
 import { defaultFeatureScale, defaultResolution, shapeComplexity } from '../../web/synthesis/auto-settings.js';
 import { seamIndirection } from '../../web/synthesis/seams.js';
 import { icosphereOff } from '../icosphere.mjs';
-import { surfacePointsAlongScreenLine, openDesignerPage } from './helpers.mjs';
+import { surfacePointsAlongScreenLine, openDesignerPage, synthesisReadback } from './helpers.mjs';
 import {
   colourAt,
   colourHistogram,
@@ -47,10 +47,9 @@ function faceAt(mesh, x, y) {
 }
 
 async function readback(page) {
-  return page.evaluate(async () => {
-    const r = await window.tvf.synthesisReadback();
-    return { ...r, coords: Array.from(r.coords), jacobian: Array.from(r.jacobian), colour: Array.from(r.colour), exemplar: Array.from(r.exemplar), cornerUVs: Array.from(r.cornerUVs) };
-  });
+  const names = ['coords', 'jacobian', 'colour', 'exemplar', 'cornerUVs'];
+  const r = await synthesisReadback(page, names);
+  return { ...r, ...Object.fromEntries(names.map((name) => [name, Array.from(r[name])])) };
 }
 
 // The face whose centroid is nearest to (x, y) (flat square).

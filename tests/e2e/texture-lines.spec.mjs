@@ -11,7 +11,7 @@
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 import { flatSquareGlb } from '../node/export-fixtures.mjs';
-import { surfacePointsAlongScreenLine, openDesignerPage } from './helpers.mjs';
+import { surfacePointsAlongScreenLine, openDesignerPage, synthesisReadback } from './helpers.mjs';
 import { coordinateCoherence, exemplarImage, orientationError, stripeOrientation } from './synthesis-metrics.mjs';
 import { decodePng, pixelLength, seamJumpRatio, stripeAlignment } from './surface-texture-metrics.mjs';
 
@@ -122,12 +122,10 @@ test.describe.serial('texture synthesis along line fields', () => {
       await page.evaluate((d) => window.tvf.loadDesign(d, { ignoreFingerprint: true }), design);
       const reps = await page.evaluate(() => [...window.tvf.faceVectors(), ...window.tvf.vertexVectors()]);
       const stats = await page.evaluate(() => window.tvf.synthesize({ resolution: 256, featureScale: 2 }).then(() => window.tvf.synthesisIdle()));
-      const r = await page.evaluate(async () => {
-        const b = await window.tvf.synthesisReadback();
-        return { R: b.resolution, m: b.exemplarSize, coords: Array.from(b.coords), jacobian: Array.from(b.jacobian), exemplar: Array.from(b.exemplar) };
-      });
-      const coords = Float32Array.from(r.coords), jac = Float32Array.from(r.jacobian);
-      const orientation = stripeOrientation(exemplarImage(coords, Uint8Array.from(r.exemplar), r.m), r.R, r.R);
+      const b = await synthesisReadback(page, ['coords', 'jacobian', 'exemplar']);
+      const r = { R: b.resolution, m: b.exemplarSize };
+      const coords = b.coords, jac = b.jacobian;
+      const orientation = stripeOrientation(exemplarImage(coords, b.exemplar, r.m), r.R, r.R);
       // The direction the synthesis follows at every texel: the Jacobian's first row (atlas step → exemplar x)
       // is the field's direction in UV = (x, y); its sign and its angle to the line.
       let plus = 0, minus = 0, worst = 0;

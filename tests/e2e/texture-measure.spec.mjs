@@ -13,7 +13,7 @@ import { expect, test } from '@playwright/test';
 import bunny from 'bunny';
 import { generateAtlas } from '../../web/synthesis/atlas.js';
 import createTvfCore from '../../build-wasm/tvf_core.mjs';
-import { surfacePointsAlongScreenLine, openDesignerPage } from './helpers.mjs';
+import { surfacePointsAlongScreenLine, openDesignerPage, synthesisReadback } from './helpers.mjs';
 import { neighbourhoodEnergy, randomCoordinates } from './synthesis-metrics.mjs';
 import { pixelLength, readGlb, seamJumpRatio, stripeAlignment } from './surface-texture-metrics.mjs';
 
@@ -137,21 +137,9 @@ async function measureModel(page, testInfo, { name, bytes, exemplarSize = 64, sy
   }
   // LH05's neighbourhood energy of the synthesized coordinates (in the atlas, neighbours inside the charts and
   // their gutters), against the same atlas with random coordinates: comparable with the flat square's (docs/benchmarks.md).
-  const rb = await page.evaluate(async () => {
-    const r = await window.tvf.synthesisReadback();
-    const b64 = (a) => {
-      const u8 = new Uint8Array(a.buffer, a.byteOffset, a.byteLength);
-      let s = '';
-      for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode(...u8.subarray(i, i + 0x8000));
-      return btoa(s);
-    };
-    return { R: r.resolution, m: r.exemplarSize, coords: b64(r.coords), jacobian: b64(r.jacobian), exemplar: b64(r.exemplar) };
-  });
-  const f32 = (text) => {
-    const b = Buffer.from(text, 'base64');
-    return new Float32Array(b.buffer, b.byteOffset, b.byteLength / 4);
-  };
-  const coords = f32(rb.coords), jac = f32(rb.jacobian), ex = Uint8Array.from(Buffer.from(rb.exemplar, 'base64'));
+  const readback = await synthesisReadback(page, ['coords', 'jacobian', 'exemplar']);
+  const rb = { R: readback.resolution, m: readback.exemplarSize };
+  const coords = readback.coords, jac = readback.jacobian, ex = readback.exemplar;
   const energy = neighbourhoodEnergy(coords, jac, rb.R, rb.R, ex, rb.m);
   const energyRandom = neighbourhoodEnergy(randomCoordinates(coords, rb.m), jac, rb.R, rb.R, ex, rb.m);
   const report = {
