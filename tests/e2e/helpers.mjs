@@ -29,7 +29,7 @@ export async function openDesignerPage(browser, options) {
 
 // Big arrays leave the page as base64, one string each: Playwright serializes a plain array number by number
 // (the 1024x656 canvas's grey values took 4.9-5.9 s, synthesisReadback()'s 800,000 numbers at 256² 5.4-6.2 s;
-// as strings 0.4 s and less). packInPage runs in the page: a typed array as {type, base64} of its bytes;
+// as strings 0.36-0.37 s and 0.46-0.58 s). packInPage runs in the page: a typed array as {type, base64} of its bytes;
 // unpacked in the test process as a typed array of the same type and values.
 function packInPage(a) {
   const bytes = new Uint8Array(a.buffer, a.byteOffset, a.byteLength);
