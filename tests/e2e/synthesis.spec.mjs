@@ -356,6 +356,73 @@ test.describe.serial('texture synthesis on a curved model (the default bunny, ge
     expect(seams.seamJump).toBeLessThan(2 * seams.localVariation);
   });
 
+  // The Jacobian comes from the atlas's map of faces (drawn once) and one full-screen pass per field
+  // (web/synthesis/atlas-raster.js). Checked against the field itself: at every texel centre inside a face, J from
+  // the face's frame and its corners' field interpolated there (in double precision here); and a field sent in
+  // slices that cross the per-corner textures' rows gives the same Jacobian as sent whole.
+  test('the Jacobian is the field at each texel of its face, whole or sent in slices', async () => {
+    const points = await surfacePointsAlongScreenLine(page, { x0: 0.4, dx: 0.012, y: 0.6, count: 16 });
+    expect(points.length).toBeGreaterThan(4);
+    const run = async (sliceFaces) => {
+      await page.evaluate((o) => window.tvf.synthesize(o), { resolution: RESOLUTION, featureScale: 0.5, sliceFaces });
+      return (await synthesisReadback(page, ['jacobian'])).jacobian;
+    };
+    const before = await run(1 << 17);
+    await page.evaluate(() => window.tvf.setTextureAutoUpdate(false));
+    await page.evaluate((pts) => window.tvf.addStroke(pts.slice().reverse()), points);
+    const sliced = await run(1000); // 3,000 corners a slice: the 4,095-texel rows are crossed
+    const whole = await run(1 << 17);
+    await page.evaluate(() => window.tvf.setTextureAutoUpdate(true));
+    const { cornerUVs } = await synthesisReadback(page, ['cornerUVs']);
+    const m = await page.evaluate(() => {
+      const mesh = window.tvf.mesh();
+      return { P: Array.from(mesh.positions), T: Array.from(mesh.triangles), V: Array.from(window.tvf.vertexVectors()) };
+    });
+    const count = (a, b) => a.reduce((n, v, k) => n + (v !== b[k]), 0);
+    expect(m.T.length / 3, 'faces: more corners than one texture row holds').toBeGreaterThan(1365);
+    expect(count(sliced, whole), 'Jacobian texels that differ, sliced against whole').toBe(0);
+    expect(count(before, whole), 'the stroke changed the Jacobian').toBeGreaterThan(RESOLUTION * RESOLUTION);
+
+    const R = RESOLUTION, sub = (a, b) => a.map((x, k) => x - b[k]), dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    const at = (arr, i) => [arr[3 * i], arr[3 * i + 1], arr[3 * i + 2]];
+    const pairs = []; // [GPU J, reference J with k = 1]
+    for (let f = 0; f < m.T.length / 3; f++) {
+      const uv = cornerUVs.subarray(6 * f, 6 * f + 6);
+      const [a, b, c] = [0, 1, 2].map((k) => at(m.P, m.T[3 * f + k]));
+      const du1 = uv[2] - uv[0], dv1 = uv[3] - uv[1], du2 = uv[4] - uv[0], dv2 = uv[5] - uv[1];
+      const det = du1 * dv2 - du2 * dv1;
+      const e1 = sub(b, a), e2 = sub(c, a);
+      const G1 = [0, 1, 2].map((k) => (e1[k] * dv2 - e2[k] * dv1) / det);
+      const G2 = [0, 1, 2].map((k) => (e2[k] * du1 - e1[k] * du2) / det);
+      const nn = cross(e1, e2), n = nn.map((x) => x / Math.hypot(...nn));
+      const x0 = Math.floor(Math.min(uv[0], uv[2], uv[4]) * R), x1 = Math.ceil(Math.max(uv[0], uv[2], uv[4]) * R);
+      const y0 = Math.floor(Math.min(uv[1], uv[3], uv[5]) * R), y1 = Math.ceil(Math.max(uv[1], uv[3], uv[5]) * R);
+      for (let y = y0; y < y1; y++)
+        for (let x = x0; x < x1; x++) {
+          const pu = (x + 0.5) / R - uv[0], pv = (y + 0.5) / R - uv[1];
+          const b1 = (pu * dv2 - du2 * pv) / det, b2 = (du1 * pv - pu * dv1) / det, b0 = 1 - b1 - b2;
+          if (Math.min(b0, b1, b2) < 1e-3) continue; // on or near an edge: either face may own the texel
+          const F = [0, 1, 2].map((k) => b0 * m.V[3 * m.T[3 * f] + k] + b1 * m.V[3 * m.T[3 * f + 1] + k] + b2 * m.V[3 * m.T[3 * f + 2] + k]);
+          const v = F.map((x, k) => x - n[k] * dot(F, n)), mag = Math.hypot(...v);
+          if (mag < 1e-6 * Math.hypot(...F) || mag === 0) continue;
+          const u1 = v.map((x) => x / mag), u2 = cross(n, u1);
+          const o = 4 * (y * R + x);
+          pairs.push([whole.subarray(o, o + 4), [dot(u1, G1), dot(u2, G1), dot(u1, G2), dot(u2, G2)]]);
+        }
+    }
+    expect(pairs.length, 'texels strictly inside faces').toBeGreaterThan(0.4 * R * R);
+    // J = k [e1; e2] G with one k for the whole atlas (magnitude exponent 0): fitted, then every texel against it.
+    const num = pairs.reduce((s, [g, r]) => s + g.reduce((t, x, i) => t + x * r[i], 0), 0);
+    const k = num / pairs.reduce((s, [, r]) => s + r.reduce((t, x) => t + x * x, 0), 0);
+    const rel = pairs.map(([g, r]) => Math.hypot(...g.map((x, i) => x - k * r[i])) / Math.hypot(...r.map((x) => k * x)));
+    rel.sort((p, q) => p - q);
+    const q = (p) => rel[Math.floor(p * (rel.length - 1))];
+    console.log(JSON.stringify({ texels: rel.length, p50: q(0.5), p90: q(0.9), p99: q(0.99), p999: q(0.999), max: q(1) }));
+    expect(q(0.5), 'relative difference from the reference, median').toBeLessThan(1e-3);
+    expect(q(0.99), 'relative difference from the reference, 99th percentile').toBeLessThan(2e-2);
+  });
+
   test('no console errors', () => {
     expect(errors).toEqual([]);
   });

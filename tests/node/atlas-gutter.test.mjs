@@ -2,7 +2,7 @@
 // lie outside their face and cover the ring the gutter asks for, and what each vertex carries.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { cornerData, CORNER_FLOATS as STRIDE } from '../../web/synthesis/atlas-corners.js';
+import { cornerData, FRAME_FLOATS } from '../../web/synthesis/atlas-corners.js';
 import { gutterQuads, gutterReach } from '../../web/synthesis/atlas-gutter.js';
 import { halfEdgeNeighbours } from '../../web/geometry/mesh-geometry.js';
 
@@ -30,7 +30,7 @@ const inTriangle = (p, a, b, c) => {
 
 // The quads as triangles of UV points.
 function quadTriangles(q) {
-  const uv = (i) => [q.data[i * STRIDE], q.data[i * STRIDE + 1]];
+  const uv = (i) => [q.uv[2 * i], q.uv[2 * i + 1]];
   const out = [];
   for (let t = 0; t < q.indices.length; t += 3) out.push([0, 1, 2].map((k) => uv(q.indices[t + k])));
   return out;
@@ -88,15 +88,20 @@ test('the quads lie outside the chart and cover every texel centre within the re
   assert.ok(ring > 4 * 16, `the ring has ${ring} texel centres`);
 });
 
-test('each vertex carries its corner\'s face frame and names that corner for its field', () => {
+test('each vertex names the corner whose field it takes, one of its edge\'s, beside it', () => {
   const mesh = square(true);
   const q = gutterQuads({ ...mesh, gutter: 2 });
+  for (let e = 0; e < q.source.length / 4; e++) {
+    // A quad's four vertices take their field from its edge's two corners, of one face.
+    const cs = new Set(Array.from(q.source.subarray(4 * e, 4 * e + 4)));
+    assert.equal(cs.size, 2);
+    assert.equal(new Set([...cs].map((c) => Math.floor(c / 3))).size, 1);
+  }
   for (let i = 0; i < q.source.length; i++) {
     const c = q.source[i];
     assert.ok(c >= 0 && c < 6);
-    for (let k = 2; k < STRIDE; k++) assert.equal(q.data[i * STRIDE + k], mesh.corners.data[c * STRIDE + k]);
     // The vertex is within the reach (diagonally) of its corner's UV.
-    const du = q.data[i * STRIDE] - mesh.cornerUVs[2 * c], dv = q.data[i * STRIDE + 1] - mesh.cornerUVs[2 * c + 1];
+    const du = q.uv[2 * i] - mesh.cornerUVs[2 * c], dv = q.uv[2 * i + 1] - mesh.cornerUVs[2 * c + 1];
     assert.ok(Math.hypot(du, dv) * mesh.resolution <= Math.SQRT2 * 1.5 + 1e-4); // UVs in float32
   }
 });
@@ -109,4 +114,24 @@ test('faces degenerate in UV make no quads, and their neighbours\' edges towards
   assert.equal(corners.used, 1);
   const q = gutterQuads({ ...mesh, cornerUVs: uv, corners, gutter: 2 });
   assert.equal(edges(q), 3);
+});
+
+test('a face\'s frame maps its UV edges onto its 3D edges; a degenerate face keeps zeros', () => {
+  const mesh = square(true);
+  const { uv, frames } = mesh.corners;
+  const P = (v) => Array.from(mesh.positions.subarray(3 * v, 3 * v + 3));
+  for (let f = 0; f < 2; f++) {
+    const G = (j, k) => frames[FRAME_FLOATS * f + 4 * j + k];
+    const [a, b, c] = Array.from(mesh.triangles.subarray(3 * f, 3 * f + 3)).map(P);
+    for (const [to, k1] of [[b, 1], [c, 2]]) {
+      const du = uv[6 * f + 2 * k1] - uv[6 * f], dv = uv[6 * f + 2 * k1 + 1] - uv[6 * f + 1];
+      for (let k = 0; k < 3; k++) assert.ok(Math.abs(G(0, k) * du + G(1, k) * dv - (to[k] - a[k])) < 1e-5);
+    }
+    assert.deepEqual([G(2, 0), G(2, 1), G(2, 2)], [0, 0, 1]);
+  }
+  const flat = mesh.cornerUVs.slice();
+  flat.set([0.3, 0.3, 0.3, 0.3, 0.3, 0.3], 0);
+  const c = cornerData(mesh.positions, mesh.triangles, flat);
+  assert.ok(c.uv.subarray(0, 6).every((x) => x === 0) && c.frames.subarray(0, FRAME_FLOATS).every((x) => x === 0));
+  assert.ok(c.frames.subarray(FRAME_FLOATS).some((x) => x !== 0));
 });

@@ -65,9 +65,10 @@ const prepared = (n) => ({
   cornerUVs: new Float32Array(6).fill(n),
   faceCharts: new Int32Array(1),
   corners: {
-    data: new Float32Array(4).fill(n),
+    uv: new Float32Array(6).fill(n),
+    frames: new Float32Array(12).fill(n),
     faceArea: new Float32Array(1),
-    gutter: { data: new Float32Array(4).fill(n), source: new Int32Array(4), indices: new Uint32Array(6) },
+    gutter: { uv: new Float32Array(4).fill(n), source: new Int32Array(4), indices: new Uint32Array(6) },
   },
   seams: { map: new Float32Array(2).fill(n) },
   source: 'generated',
@@ -82,8 +83,10 @@ test('the cache hands out copies of its own input\'s atlas only', async () => {
   made.cornerUVs.fill(0); // the caller's arrays go elsewhere (transferred): the cache kept its own
   const got = await cache.get(id);
   assert.deepEqual(Array.from(got.cornerUVs), [7, 7, 7, 7, 7, 7]);
-  made.corners.gutter.data.fill(0);
-  assert.deepEqual(Array.from(got.corners.gutter.data), [7, 7, 7, 7]);
+  made.corners.gutter.uv.fill(0);
+  made.corners.frames.fill(0);
+  assert.deepEqual(Array.from(got.corners.gutter.uv), [7, 7, 7, 7]);
+  assert.equal(got.corners.frames[11], 7);
   got.cornerUVs.fill(1);
   assert.equal((await cache.get(id)).cornerUVs[0], 7);
   const other = AtlasCache.identify(mesh(), { resolution: 256, gutter: 2 });

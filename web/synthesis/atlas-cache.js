@@ -9,7 +9,7 @@ import { KeptStore } from '../core/worker/kept-store.js';
 
 const DB_NAME = 'tvf-atlas-cache';
 const STORE = 'atlases';
-const FORMAT = 2; // 2: the corners carry the gutter's quads
+const FORMAT = 3; // 2: the corners carry the gutter's quads; 3: UVs and frames per face, not corner data
 const KEPT = 4; // entries in IndexedDB, the least recently made dropped first
 
 // Two 32-bit multiplicative hashes over the bytes of each array (as 32-bit words, the tail byte by byte).
@@ -41,7 +41,8 @@ function copied(atlas) {
     faceCharts: atlas.faceCharts?.slice(),
     corners: {
       ...atlas.corners,
-      data: atlas.corners.data.slice(),
+      uv: atlas.corners.uv.slice(),
+      frames: atlas.corners.frames.slice(),
       faceArea: atlas.corners.faceArea.slice(),
       gutter: copiedGutter(atlas.corners.gutter),
     },
@@ -49,8 +50,8 @@ function copied(atlas) {
   };
 }
 
-function copiedGutter({ data, source, indices, ...rest }) {
-  return { ...rest, data: data.slice(), source: source.slice(), indices: indices.slice() };
+function copiedGutter({ uv, source, indices, ...rest }) {
+  return { ...rest, uv: uv.slice(), source: source.slice(), indices: indices.slice() };
 }
 
 export class AtlasCache {

@@ -1,16 +1,19 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// The fixed per-corner data the atlas raster draws (atlas-raster.js): a pure function of the mesh and its atlas,
+// The fixed per-face data the atlas raster draws from (atlas-raster.js): a pure function of the mesh and its atlas,
 // so the core's worker makes it with the atlas (atlas-prepared.js) and the page only uploads it. Imports nothing.
 
-// Floats per corner: uv (2), G1 (3), G2 (3), unit normal (3). The field (3 per corner) has a buffer of its own,
-// the only one a synthesis fills.
-export const CORNER_FLOATS = 11;
+// Floats per face of the frames: G1, G2 and the unit normal, each as an RGBA texel (w unused): texels 3f, 3f + 1,
+// 3f + 2 of the raster's per-corner textures, as the field's three corners are. RGBA, not RGB: GPUs without RGB32F
+// images (SwiftShader's Vulkan among them) have ANGLE widen every upload on the CPU.
+export const FRAME_FLOATS = 12;
 
-// Per corner: UV, the face's 3D-to-UV frame G = [e1 e2] [[du1 du2] [dv1 dv2]]^-1 (columns G1, G2) and unit
-// normal; faces degenerate in UV or in 3D keep zeros and draw nothing.
+// Per face: its UVs (6, as cornerUVs) and its 3D-to-UV frame G = [e1 e2] [[du1 du2] [dv1 dv2]]^-1 (columns G1,
+// G2) with its unit normal; faces degenerate in UV or in 3D keep zeros in both (their UVs collapse to a point, so
+// they draw nothing). Returns {uv, frames, faceArea, used, area3, areaUV}.
 export function cornerData(positions, triangles, cornerUVs) {
   const nF = triangles.length / 3;
-  const data = new Float32Array(3 * nF * CORNER_FLOATS);
+  const uv = new Float32Array(6 * nF);
+  const frames = new Float32Array(FRAME_FLOATS * nF);
   const faceArea = new Float64Array(nF);
   let area3 = 0, areaUV = 0, used = 0;
   for (let f = 0; f < nF; f++) {
@@ -27,18 +30,21 @@ export function cornerData(positions, triangles, cornerUVs) {
     used++;
     area3 += nl / 2;
     areaUV += Math.abs(det) / 2;
-    const G1 = [0, 1, 2].map((k) => (e1[k] * dv2 - e2[k] * dv1) / det);
-    const G2 = [0, 1, 2].map((k) => (e2[k] * du1 - e1[k] * du2) / det);
+    uv.set(u, 6 * f);
+    const o = FRAME_FLOATS * f;
     for (let k = 0; k < 3; k++) {
-      const o = (3 * f + k) * CORNER_FLOATS;
-      data[o] = u[2 * k];
-      data[o + 1] = u[2 * k + 1];
-      data.set(G1, o + 2);
-      data.set(G2, o + 5);
-      data.set([n[0] / nl, n[1] / nl, n[2] / nl], o + 8);
+      frames[o + k] = (e1[k] * dv2 - e2[k] * dv1) / det;
+      frames[o + 4 + k] = (e2[k] * du1 - e1[k] * du2) / det;
+      frames[o + 8 + k] = n[k] / nl;
     }
   }
-  return { data, faceArea, used, area3, areaUV };
+  return { uv, frames, faceArea, used, area3, areaUV };
+}
+
+// Whether face f has a frame (cornerData's `frames`): not degenerate in UV or in 3D.
+export function faceUsed(frames, f) {
+  const o = FRAME_FLOATS * f;
+  return frames[o] !== 0 || frames[o + 1] !== 0 || frames[o + 2] !== 0;
 }
 
 // Whether half-edge h (corner h -> the next corner of its face; corners index cornerUVs as 2 per corner) and its

@@ -4,8 +4,8 @@
 // the field held at the edge. It replaces two full-screen dilation passes per raster, which shaded every texel of
 // the atlas (98 of bunny00's 144 ms of raster on SwiftShader) to fill a ring a texel or two wide. A pure function
 // of the mesh, its atlas and the gutter width: the core's worker makes it with the atlas (atlas-prepared.js).
-// Imports only atlas-corners.js.
-import { CORNER_FLOATS as STRIDE, edgeUVsAgree } from './atlas-corners.js';
+// The raster draws the quads once per atlas, into its map of faces (atlas-raster.js). Imports only atlas-corners.js.
+import { edgeUVsAgree, faceUsed } from './atlas-corners.js';
 
 // The quads' reach past the edge in texels: the texels that bilinear filtering at the chart's edge reads (centres
 // up to √2/2 + 1/2 away) and little more, so that a quad keeps to the border the packing gave its chart alone
@@ -16,19 +16,15 @@ export function gutterReach(gutter) {
 }
 
 // For each chart edge, four vertices (the edge's two ends moved `reach` texels outwards along it, and the same two
-// moved `reach` texels away from the face) and two triangles. corners: cornerData()'s {data}; neighbour: the
-// half-edge map (geometry/mesh-geometry.js). Returns {data: Float32Array (STRIDE floats per vertex, as the
-// corners'), source: Int32Array (per vertex, the corner 3f + k whose field it takes), indices: Uint32Array (6 per
-// edge)}.
+// moved `reach` texels away from the face) and two triangles. corners: cornerData()'s {frames}; neighbour: the
+// half-edge map (geometry/mesh-geometry.js). Returns {uv: Float32Array (2 per vertex), source: Int32Array (per
+// vertex, the corner 3f + k whose field it takes: the quad's texels take their face's frame and the field
+// interpolated between the edge's two corners), indices: Uint32Array (6 per edge)}.
 export function gutterQuads({ triangles, cornerUVs, corners, resolution, gutter, neighbour: twin }) {
   const reach = gutterReach(gutter) / resolution;
   const nF = triangles.length / 3;
-  const cd = corners.data;
   const used = new Uint8Array(nF);
-  for (let f = 0; f < nF; f++) {
-    const o = 3 * f * STRIDE;
-    used[f] = cd[o + 2] !== 0 || cd[o + 3] !== 0 || cd[o + 4] !== 0 ? 1 : 0;
-  }
+  for (let f = 0; f < nF; f++) used[f] = faceUsed(corners.frames, f) ? 1 : 0;
   const edgeList = new Int32Array(3 * nF);
   let n = 0;
   for (let h = 0; reach > 0 && h < 3 * nF; h++) {
@@ -37,16 +33,15 @@ export function gutterQuads({ triangles, cornerUVs, corners, resolution, gutter,
     if (g >= 0 && used[(g / 3) | 0] && edgeUVsAgree(cornerUVs, h, g)) continue;
     edgeList[n++] = h;
   }
-  const data = new Float32Array(4 * n * STRIDE), source = new Int32Array(4 * n), indices = new Uint32Array(6 * n);
+  const uv = new Float32Array(8 * n), source = new Int32Array(4 * n), indices = new Uint32Array(6 * n);
   for (let e = 0; e < n; e++) quad(edgeList[e], e);
-  return { data, source, indices };
+  return { uv, source, indices };
 
-  // Vertex i of edge e's quad: corner `corner`'s data at (u, v).
+  // Vertex i of edge e's quad: at (u, v), taking corner `corner`'s field.
   function vertex(e, i, corner, u, v) {
-    const o = (4 * e + i) * STRIDE, c = corner * STRIDE;
-    data[o] = u;
-    data[o + 1] = v;
-    for (let k = 2; k < STRIDE; k++) data[o + k] = cd[c + k];
+    const o = 2 * (4 * e + i);
+    uv[o] = u;
+    uv[o + 1] = v;
     source[4 * e + i] = corner;
   }
 

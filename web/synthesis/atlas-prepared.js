@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The atlas with what drawing into it needs, made in the core's worker (worker-ops.js textureAtlas): the atlas
-// itself (atlas.js), the per-corner data of its raster (atlas-corners.js) and its gutter (atlas-gutter.js), its
+// itself (atlas.js), the per-face data of its raster (atlas-corners.js) and its gutter (atlas-gutter.js), its
 // seam indirection (seams.js) and the shape complexity the default feature size follows (auto-settings.js). At
 // 832k faces these took the page's thread 1.7 s in the task that set the atlas up, and 0.17 s in the next.
 import { Surface } from '../geometry/surface.js';
@@ -68,9 +68,10 @@ export function* preparedAtlasSteps(Module, { positions, triangles, cornerUVs },
 export function preparedBuffers(atlas) {
   const out = [
     atlas.cornerUVs.buffer,
-    atlas.corners.data.buffer,
+    atlas.corners.uv.buffer,
+    atlas.corners.frames.buffer,
     atlas.corners.faceArea.buffer,
-    atlas.corners.gutter.data.buffer,
+    atlas.corners.gutter.uv.buffer,
     atlas.corners.gutter.source.buffer,
     atlas.corners.gutter.indices.buffer,
     atlas.seams.map.buffer,

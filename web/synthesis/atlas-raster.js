@@ -1,23 +1,34 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// The mesh laid out in one atlas on the synthesis context: the per-corner vertex data that rasterizes the
-// per-texel Jacobian (UV, field, 3D-to-UV frame, normal), the render targets of every pyramid level, and the
-// seam indirection (seams.js) per level. One per atlas (resolution and UVs); the synthesizer works in its
-// levels. Kept apart from the level loop because it changes only when the model or the atlas does.
+// The mesh laid out in one atlas on the synthesis context: the atlas's map of faces (per texel its face and
+// barycentric coordinates, drawn once per atlas from the faces' UVs and the gutter's quads), the faces' frames
+// (3D-to-UV map and normal), the field per corner, the render targets of every pyramid level, and the seam
+// indirection (seams.js) per level. A field's Jacobian is then one full-screen pass over the map, whatever the
+// face count (drawing bunny00's 75k triangles took SwiftShader 100-130 ms an update, whatever their shader did;
+// armadillo-sub2's 832k, 0.75-0.9 s). One per atlas (resolution and UVs); the synthesizer works in its levels.
+// Kept apart from the level loop because it changes only when the model or the atlas does.
 import { FloatTarget, GLError, drawFullscreen, isPow2 } from './gl.js';
-import { CORNER_FLOATS as STRIDE, cornerData } from './atlas-corners.js';
+import { cornerData } from './atlas-corners.js';
 import { gutterQuads } from './atlas-gutter.js';
 import { halfEdgeNeighbours } from '../geometry/mesh-geometry.js';
 import { coarserIndirection, seamIndirection } from './seams.js';
+
+// Texels per row of the per-corner textures (at most; a multiple of 3, so that a face's corners share a row):
+// bunny00's 225k corners fill 55 rows.
+const CORNER_ROW = 4095;
+
+// The phase (phase-clock.js) of the steps that the first field of an atlas takes for its map of faces.
+const FIXED_PHASE = "the atlas's faces to the GPU, their map drawn (once per atlas)";
 
 export class AtlasRaster {
   // positions (3 per vertex), triangles (3 per face), cornerUVs (6 per face, in [0, 1]), resolution a power of
   // two; neighbour: the half-edge map of geometry/mesh-geometry.js when the caller holds one (the model's
   // Surface), else it is derived, once, for what is made here. corners and seams: cornerData() (with its gutter
   // quads, atlas-gutter.js, for `gutter` texels) and seamIndirection() of this mesh and atlas when made elsewhere
-  // (the core's worker, atlas-prepared.js), else made here.
+  // (the core's worker, atlas-prepared.js), else made here. locatorProgram: the synthesizer's map-of-faces
+  // program (its attributes' locations).
   constructor(
     gl,
-    jacobianProgram,
+    locatorProgram,
     { resolution, positions, triangles, cornerUVs, neighbour = null, corners = null, seams = null, gutter = 2 },
   ) {
     if (!isPow2(resolution) || resolution < 4 || resolution > 4096)
@@ -28,23 +39,27 @@ export class AtlasRaster {
     this.gl = gl;
     this.resolution = resolution;
     this.triangles = Int32Array.from(triangles);
-    const { data, faceArea, used, area3, areaUV } = corners ?? cornerData(positions, triangles, cornerUVs);
+    const made = corners ?? cornerData(positions, triangles, cornerUVs);
+    const { uv, frames, faceArea, used, area3, areaUV } = made;
     if (!used) throw new GLError('the atlas has no usable triangle (all degenerate in UV or 3D)');
-    this.data = data;
+    this.vertexCount = 3 * nF;
+    this.#cornerTextureSize(gl);
+    this.uv = uv;
+    this.frames = frames;
     const halfEdges = () => (neighbour ??= halfEdgeNeighbours(triangles, positions.length / 3));
-    const made = { triangles, cornerUVs, corners: { data }, resolution, gutter };
-    const quads = corners?.gutter ?? gutterQuads({ ...made, neighbour: halfEdges() });
-    this.gutterData = quads.data;
+    const quads =
+      made.gutter ?? gutterQuads({ triangles, cornerUVs, corners: made, resolution, gutter, neighbour: halfEdges() });
+    this.gutterUV = quads.uv;
     this.gutterSource = quads.source;
     this.gutterIndices = quads.indices;
-    this.fieldData = new Float32Array(9 * nF + 3 * quads.source.length);
+    this.fieldData = new Float32Array(12 * nF); // RGBA per corner (atlas-corners.js FRAME_FLOATS)
     this.faceArea = faceArea;
-    this.vertexCount = 3 * nF;
     this.usedFaces = used;
     this.coverage = areaUV;
     // Surface length per atlas texel at the atlas's mean density.
     this.texelLength = Math.sqrt(area3 / areaUV) / resolution;
-    this.#vertexArray(jacobianProgram.program);
+    this.#vertexArray(locatorProgram.program);
+    this.located = false;
     this.levels = [];
     const t0 = performance.now();
     this.seamMaps = seams ?? seamIndirection({ positions, triangles, neighbour: halfEdges() }, cornerUVs, resolution);
@@ -55,15 +70,34 @@ export class AtlasRaster {
     };
   }
 
+  // The per-corner textures' size: CORNER_ROW texels wide (or the context's limit), as many rows as the corners
+  // need.
+  #cornerTextureSize(gl) {
+    const max = gl.getParameter(gl.MAX_TEXTURE_SIZE);
+    this.cornerRow = Math.min(max - (max % 3), CORNER_ROW);
+    this.cornerRows = Math.max(1, Math.ceil(this.vertexCount / this.cornerRow));
+    if (this.cornerRows > max)
+      throw new GLError(
+        `the texture's atlas raster holds at most ${Math.floor((max * this.cornerRow) / 3)} faces on this GPU ` +
+          `(the model has ${this.vertexCount / 3})`,
+      );
+  }
+
   // The GPU textures, one per step, for a caller to yield between them: each allocation can wait for the GPU
-  // process (a 16 MB target took 55-88 ms behind an 832k-face view with software GL). Per level (finest first,
-  // down to 2x2): the Jacobian, the state as four parity-class quarters plus a spare (sub-passes write a quarter
-  // into the spare, which then takes its place), the unpacked result, and the seam indirection (an all-zero map
-  // where the atlas has no seams). Not checked for completeness: the context has float render targets
-  // (createContext), and a check waits for the GPU process.
+  // process (a 16 MB target took 55-88 ms behind an 832k-face view with software GL). The map of faces, the
+  // per-corner textures (frames and field), then per level (finest first, down to 2x2): the Jacobian, the state
+  // as four parity-class quarters plus a spare (sub-passes write a quarter into the spare, which then takes its
+  // place), the unpacked result, and the seam indirection (an all-zero map where the atlas has no seams). Not
+  // checked for completeness: the context has float render targets (createContext), and a check waits for the
+  // GPU process.
   *allocate() {
     const { gl, resolution } = this;
     const target = (size) => new FloatTarget(gl, size, size, null, { check: false });
+    this.locator = target(resolution);
+    yield;
+    this.frameTexture = this.#cornerTexture();
+    this.fieldTexture = this.#cornerTexture();
+    yield;
     for (let r = resolution, k = 0; r >= 2; r >>= 1, k++) {
       const L = { size: r, quarters: [] };
       this.levels.push(L);
@@ -80,84 +114,105 @@ export class AtlasRaster {
     this.seamMaps = null;
   }
 
+  // An RGBA32F texture of a float triple per corner (corner c at texel c, row by row; w unused), read with
+  // texelFetch.
+  #cornerTexture() {
+    const gl = this.gl;
+    const texture = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, texture);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, this.cornerRow, this.cornerRows);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    gl.bindTexture(gl.TEXTURE_2D, null);
+    return texture;
+  }
+
+  // Corners first .. end - 1 of `data` (4 floats per corner, corner 0 first) into a per-corner texture: at most
+  // three uploads (a partial row, whole rows, a partial row).
+  #uploadCorners(texture, data, first, end) {
+    const gl = this.gl, W = this.cornerRow;
+    gl.bindTexture(gl.TEXTURE_2D, texture);
+    for (let c = first; c < end; ) {
+      const x = c % W, y = (c - x) / W;
+      const rows = x === 0 ? Math.floor((end - c) / W) : 0;
+      const [w, h] = rows > 0 ? [W, rows] : [Math.min(W - x, end - c), 1];
+      gl.texSubImage2D(gl.TEXTURE_2D, 0, x, y, w, h, gl.RGBA, gl.FLOAT, data, 4 * c);
+      c += w * h;
+    }
+    gl.bindTexture(gl.TEXTURE_2D, null);
+  }
+
+  // The map of faces' vertices: each face's corners (UV, and the corner's own index), then the gutter's quads'
+  // (UV, and the corner whose field each takes), indexed past the corners (WebGL 2 has no base vertex).
   #vertexArray(program) {
     const gl = this.gl;
-    this.buffer = gl.createBuffer();
-    this.fieldBuffer = gl.createBuffer();
+    const vertices = this.vertexCount + this.gutterSource.length;
+    this.uvBuffer = gl.createBuffer();
+    this.cornerBuffer = gl.createBuffer();
     this.indexBuffer = gl.createBuffer();
     this.vao = gl.createVertexArray();
     gl.bindVertexArray(this.vao);
-    const attrib = (name, size, stride, offset) => {
-      const loc = gl.getAttribLocation(program, name);
-      if (loc < 0) return;
-      gl.enableVertexAttribArray(loc);
-      gl.vertexAttribPointer(loc, size, gl.FLOAT, false, stride * 4, offset * 4);
-    };
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
-    // Allocated here, filled by the first synthesis a slice per task (rasterSteps): 110 MB at 832k faces. The
-    // gutter's vertices follow the corners'.
-    gl.bufferData(gl.ARRAY_BUFFER, this.data.byteLength + this.gutterData.byteLength, gl.STATIC_DRAW);
-    this.facesUploaded = 0;
-    attrib('aUV', 2, STRIDE, 0);
-    attrib('aG1', 3, STRIDE, 2);
-    attrib('aG2', 3, STRIDE, 5);
-    attrib('aNormal', 3, STRIDE, 8);
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.fieldBuffer);
-    gl.bufferData(gl.ARRAY_BUFFER, this.fieldData.byteLength, gl.DYNAMIC_DRAW);
-    attrib('aField', 3, 3, 0);
-    // WebGL 2 has no base vertex: the gutter's indices are moved past the corners here.
+    // Allocated here, filled by the first synthesis a slice per task (#uploadFixed).
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.uvBuffer);
+    gl.bufferData(gl.ARRAY_BUFFER, 8 * vertices, gl.STATIC_DRAW);
+    const uvAt = gl.getAttribLocation(program, 'aUV');
+    gl.enableVertexAttribArray(uvAt);
+    gl.vertexAttribPointer(uvAt, 2, gl.FLOAT, false, 8, 0);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.cornerBuffer);
+    gl.bufferData(gl.ARRAY_BUFFER, 4 * vertices, gl.STATIC_DRAW);
+    const cornerAt = gl.getAttribLocation(program, 'aCorner');
+    gl.enableVertexAttribArray(cornerAt);
+    gl.vertexAttribIPointer(cornerAt, 1, gl.INT, 4, 0);
     const indices = this.gutterIndices.map((i) => i + this.vertexCount);
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.indexBuffer);
     gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, indices, gl.STATIC_DRAW);
     gl.bindVertexArray(null);
     gl.bindBuffer(gl.ARRAY_BUFFER, null);
+    this.facesUploaded = 0;
   }
 
   // The Jacobian of every level for the field: the per-vertex `vertexVectors` (3 per vertex) or, for a combed
   // line or cross field, {cornerVectors} (9 per face, corner k of face f at 9f + 3k: geometry/chart-comb.js);
-  // rasterized at the finest level with the gutter's quads past the charts, then averaged down. programs:
-  // the synthesizer's; vao: its full-screen one. A generator: the field is filled and uploaded a slice of
-  // faces at a time, and it yields after each slice so that the caller can give the page its frames (a
-  // synthesis run step by step, synthesizer.js); the raster's draws are issued when it returns. Returns the
-  // reference magnitude (area-weighted mean |field|).
+  // the first time, the fixed data goes up and the map of faces is drawn; then the field per corner, and a
+  // full-screen pass at the finest level, averaged down. programs: the synthesizer's; vao: its full-screen one.
+  // A generator: the data go up a slice of faces at a time, and it yields after each slice so that the caller can
+  // give the page its frames (a synthesis run step by step, synthesizer.js), the name of the phase it ends, if
+  // not the field's; the draws are issued when it returns. Returns the reference magnitude (area-weighted mean
+  // |field|).
   *rasterSteps(programs, vao, field, o) {
     const gl = this.gl;
     const nF = this.triangles.length / 3;
     const sums = { mag: 0, area: 0 };
-    yield* this.#uploadFixed(Math.max(1, o.sliceFaces >> 2)); // 11 floats a corner against the field's 3
+    if (!this.located) {
+      yield* this.#uploadFixed(Math.max(1, o.sliceFaces >> 1)); // 21 numbers a face against the field's 12
+      this.#drawLocator(programs.locator);
+      yield FIXED_PHASE;
+    }
     const corners = field?.cornerVectors ?? null;
     if (corners && corners.length !== 9 * nF)
       throw new GLError(`cornerVectors must hold 9 numbers per face (${9 * nF}), got ${corners.length}`);
-    // A slice of o.sliceFaces faces per task: at 832k faces the whole field in one bufferSubData (with the fixed
-    // data beside it, 140 MB) held the page for 5-7 s while the GPU process caught up; 32k faces are ~1 MB.
+    // A slice of o.sliceFaces faces per task: at 832k faces the whole field in one upload (with the fixed data
+    // beside it, 140 MB) held the page for 5-7 s while the GPU process caught up; 32k faces are ~1 MB.
     for (let f0 = 0; f0 < nF; f0 += o.sliceFaces) {
       const f1 = Math.min(nF, f0 + o.sliceFaces);
       if (corners) this.#fillCorners(corners, f0, f1, sums);
       else this.#fillField(field, f0, f1, sums);
-      gl.bindBuffer(gl.ARRAY_BUFFER, this.fieldBuffer);
-      gl.bufferSubData(gl.ARRAY_BUFFER, 36 * f0, this.fieldData, 9 * f0, 9 * (f1 - f0));
-      gl.bindBuffer(gl.ARRAY_BUFFER, null);
+      this.#uploadCorners(this.fieldTexture, this.fieldData, 3 * f0, 3 * f1);
       yield; // the last slice too: its upload is waited for apart from the raster's draws
     }
-    this.#fillGutter();
     const magRef = sums.mag > 0 ? sums.mag / sums.area : 1;
-    // The gutter's quads first, then the triangles over them: a texel a triangle covers is always its own.
-    const finest = this.levels[0];
     const rho = o.featureScale * this.texelLength;
-    finest.jac.bindAsTarget();
-    gl.clearColor(0, 0, 0, 0);
-    gl.clear(gl.COLOR_BUFFER_BIT);
+    this.levels[0].jac.bindAsTarget();
     programs.jacobian
       .use()
+      .texture('uLocator', this.locator)
+      .texture('uField', this.fieldTexture)
+      .texture('uFrames', this.frameTexture)
       .float('uInvRho', 1 / rho)
       .float('uTexel', 1 / this.resolution)
       .float('uMagRef', magRef)
       .float('uMagExponent', o.magnitudeExponent);
-    gl.bindVertexArray(this.vao);
-    const quads = this.gutterIndices.length;
-    if (quads) gl.drawElements(gl.TRIANGLES, quads, gl.UNSIGNED_INT, 0);
-    gl.drawArrays(gl.TRIANGLES, 0, this.vertexCount);
-    gl.bindVertexArray(null);
+    drawFullscreen(gl, vao);
     for (let k = 1; k < this.levels.length; k++) {
       this.levels[k].jac.bindAsTarget();
       programs.jacobianDown.use().texture('uJac', this.levels[k - 1].jac);
@@ -166,42 +221,53 @@ export class AtlasRaster {
     return magRef;
   }
 
-  // The fixed data still to go to the GPU, `slice` faces per task; the array is let go once all is there.
+  // The fixed data to the GPU, `slice` faces per task: UVs, corner indices and frames; then the gutter's quads.
+  // The arrays are let go once all is there.
   *#uploadFixed(slice) {
-    const gl = this.gl, nF = this.vertexCount / 3, floats = 3 * STRIDE;
+    const gl = this.gl, nF = this.vertexCount / 3;
     while (this.facesUploaded < nF) {
       const f0 = this.facesUploaded, f1 = Math.min(nF, f0 + slice);
-      gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
-      gl.bufferSubData(gl.ARRAY_BUFFER, 4 * floats * f0, this.data, floats * f0, floats * (f1 - f0));
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.uvBuffer);
+      gl.bufferSubData(gl.ARRAY_BUFFER, 24 * f0, this.uv, 6 * f0, 6 * (f1 - f0));
+      const ids = new Int32Array(3 * (f1 - f0));
+      for (let i = 0; i < ids.length; i++) ids[i] = 3 * f0 + i;
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.cornerBuffer);
+      gl.bufferSubData(gl.ARRAY_BUFFER, 12 * f0, ids);
       gl.bindBuffer(gl.ARRAY_BUFFER, null);
+      this.#uploadCorners(this.frameTexture, this.frames, 3 * f0, 3 * f1);
       this.facesUploaded = f1;
-      if (f1 === nF) this.#uploadGutter();
-      else yield;
+      if (f1 < nF) yield FIXED_PHASE;
     }
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.uvBuffer);
+    gl.bufferSubData(gl.ARRAY_BUFFER, 8 * this.vertexCount, this.gutterUV);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.cornerBuffer);
+    gl.bufferSubData(gl.ARRAY_BUFFER, 4 * this.vertexCount, this.gutterSource);
+    gl.bindBuffer(gl.ARRAY_BUFFER, null);
+    this.uv = this.frames = this.gutterUV = null;
   }
 
-  #uploadGutter() {
+  // The map of faces, once per atlas: the gutter's quads first, then the triangles over them (a texel a triangle
+  // covers is always its own). Its vertices are let go once drawn.
+  #drawLocator(program) {
     const gl = this.gl;
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.buffer);
-    gl.bufferSubData(gl.ARRAY_BUFFER, this.data.byteLength, this.gutterData);
-    gl.bindBuffer(gl.ARRAY_BUFFER, null);
-    this.data = null;
-    this.gutterData = null;
+    this.locator.bindAsTarget();
+    gl.clearColor(0, 0, 0, 0);
+    gl.clear(gl.COLOR_BUFFER_BIT);
+    program.use().int('uWidth', this.cornerRow);
+    gl.bindVertexArray(this.vao);
+    const quads = this.gutterIndices.length;
+    if (quads) gl.drawElements(gl.TRIANGLES, quads, gl.UNSIGNED_INT, 0);
+    gl.drawArrays(gl.TRIANGLES, 0, this.vertexCount);
+    gl.bindVertexArray(null);
+    this.#deleteVertices();
+    this.located = true;
   }
 
-  // The gutter's vertices take the field of the corners they were made from (after every face's field is in).
-  #fillGutter() {
-    const out = this.fieldData, src = this.gutterSource, base = 3 * this.vertexCount;
-    for (let i = 0; i < src.length; i++) {
-      const o = base + 3 * i, c = 3 * src[i];
-      out[o] = out[c];
-      out[o + 1] = out[c + 1];
-      out[o + 2] = out[c + 2];
-    }
+  #deleteVertices() {
     const gl = this.gl;
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.fieldBuffer);
-    gl.bufferSubData(gl.ARRAY_BUFFER, 4 * base, out, base);
-    gl.bindBuffer(gl.ARRAY_BUFFER, null);
+    for (const b of [this.uvBuffer, this.cornerBuffer, this.indexBuffer]) gl.deleteBuffer(b);
+    gl.deleteVertexArray(this.vao);
+    this.uvBuffer = this.cornerBuffer = this.indexBuffer = this.vao = null;
   }
 
   // The field per corner of faces f0 .. f1 - 1 from the vertices', and their part of the reference magnitude
@@ -213,7 +279,7 @@ export class AtlasRaster {
     for (let f = f0; f < f1; f++) {
       let mag = 0;
       for (let k = 0; k < 3; k++) {
-        const v = 3 * T[3 * f + k], o = 9 * f + 3 * k;
+        const v = 3 * T[3 * f + k], o = 12 * f + 4 * k;
         const x = vertexVectors[v], y = vertexVectors[v + 1], z = vertexVectors[v + 2];
         out[o] = x;
         out[o + 1] = y;
@@ -230,11 +296,14 @@ export class AtlasRaster {
   // The same from a per-corner field (9 per face).
   #fillCorners(C, f0, f1, sums) {
     const out = this.fieldData;
-    out.set(C.subarray(9 * f0, 9 * f1), 9 * f0);
     for (let f = f0; f < f1; f++) {
       let mag = 0;
-      for (let c = 9 * f; c < 9 * f + 9; c += 3) {
+      for (let k = 0; k < 3; k++) {
+        const c = 9 * f + 3 * k, o = 12 * f + 4 * k;
         const x = C[c], y = C[c + 1], z = C[c + 2];
+        out[o] = x;
+        out[o + 1] = y;
+        out[o + 2] = z;
         mag += Math.sqrt(x * x + y * y + z * z) / 3;
       }
       sums.mag += mag * this.faceArea[f];
@@ -244,10 +313,9 @@ export class AtlasRaster {
 
   dispose() {
     const gl = this.gl;
-    gl.deleteBuffer(this.buffer);
-    gl.deleteBuffer(this.fieldBuffer);
-    gl.deleteBuffer(this.indexBuffer);
-    gl.deleteVertexArray(this.vao);
+    if (this.vao) this.#deleteVertices();
+    for (const t of [this.frameTexture, this.fieldTexture]) if (t) gl.deleteTexture(t);
+    this.locator?.dispose();
     for (const L of this.levels)
       for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, ...L.quarters]) t?.dispose();
     this.levels = [];

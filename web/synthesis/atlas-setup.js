@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The atlas a synthesis run works in, set up for the current model (controller.js): chosen or generated in the
-// core's worker (which keeps it per mesh, worker-ops.js), its corner data rasterized on the synthesizer's GPU
+// core's worker (which keeps it per mesh, worker-ops.js), its targets and per-face data set up on the synthesizer's GPU
 // context, the textured model's geometry built for it. Each step is a phase of the run's clock
 // (phase-clock.js). Owns nothing: the controller keeps the atlas and the textured model.
 import { DEFAULTS } from './synthesizer.js';

@@ -33,51 +33,68 @@ vec2 hash2(ivec2 p, int level, int seed) {
 `;
 
 // ---------------------------------------------------------------------------------------------- Jacobian raster
-// The atlas triangles drawn in texture space. Per corner: its UV, the per-vertex field (3D), and per face (flat):
-// G1 = dX/du, G2 = dX/dv (surface displacement per unit of u and v) and the unit normal. At each texel the field,
-// projected into the face plane, gives the orthonormal frame (e1 along the field, e2 = n x e1) that the exemplar's
-// (x, y) axes map to; an atlas displacement du then moves the exemplar coordinate by ([e1; e2] G du) / rho, so the
-// texture has unit physical scale on the surface whatever the atlas's (even anisotropic) distortion is.
-export const JACOBIAN_VS = `#version 300 es
+// The atlas's map of faces, drawn once per atlas: the triangles (and the gutter's quads) in texture space, each
+// texel getting where its face's data begin in the per-corner textures and its barycentric coordinates there
+// (RGBA32F: column + 1, row, b1, b2; 0 where no face is). aCorner: the corner 3f + k whose field the vertex takes
+// (a gutter quad's vertex takes one of its edge's). uWidth, a multiple of 3, keeps a face's corners in one row.
+export const LOCATOR_VS = `#version 300 es
 in vec2 aUV;
-in vec3 aField;
-in vec3 aG1;
-in vec3 aG2;
-in vec3 aNormal;
-out vec3 vField;
-flat out vec3 vG1;
-flat out vec3 vG2;
-flat out vec3 vNormal;
+in int aCorner;
+uniform int uWidth;
+flat out vec2 vAt;
+out vec2 vBary;
 void main() {
-  vField = aField;
-  vG1 = aG1;
-  vG2 = aG2;
-  vNormal = aNormal;
+  int k = aCorner % 3, first = aCorner - k;
+  vAt = vec2(float(first % uWidth + 1), float(first / uWidth));
+  vBary = vec2(k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0);
   gl_Position = vec4(aUV * 2.0 - 1.0, 0.0, 1.0);
 }`;
 
+export const LOCATOR_FS = `${HEADER}
+flat in vec2 vAt;
+in vec2 vBary;
+out vec4 outL;
+void main() { outL = vec4(vAt, vBary); }`;
+
+// The Jacobian of every texel, a full-screen pass per field: the texel's face and barycentric coordinates from
+// the map, that face's three corners' field (3D) interpolated there, and the face's G1 = dX/du, G2 = dX/dv
+// (surface displacement per unit of u and v) and unit normal. Per-corner data lives in RGBA32F textures, corner
+// c (= 3f + k) at texel c row by row: the field's corners, and the frames (G1, G2, normal at 3f, 3f + 1, 3f + 2);
+// the map says where a face's three begin, so no texel here divides (SwiftShader shades every texel of the atlas).
+// At each texel the field, projected into the face plane, gives the orthonormal frame (e1 along
+// the field, e2 = n x e1) that the exemplar's (x, y) axes map to; an atlas displacement du then moves the exemplar
+// coordinate by ([e1; e2] G du) / rho, so the texture has unit physical scale on the surface whatever the atlas's
+// (even anisotropic) distortion is.
 export const JACOBIAN_FS = `${HEADER}
-in vec3 vField;
-flat in vec3 vG1;
-flat in vec3 vG2;
-flat in vec3 vNormal;
+uniform sampler2D uLocator;   // the atlas's map of faces
+uniform sampler2D uField;     // per corner
+uniform sampler2D uFrames;    // per face: G1, G2, normal
 uniform float uInvRho;        // exemplar pixels per surface length unit
 uniform float uTexel;         // UV units per atlas texel (1 / resolution)
 uniform float uMagRef;        // reference field magnitude (magnitude scale 1)
 uniform float uMagExponent;   // features scale with (|field| / ref)^exponent; 0 = direction only
 out vec4 outJ;
+vec3 corner(sampler2D t, ivec2 c, int k) { return texelFetch(t, c + ivec2(k, 0), 0).xyz; }
 void main() {
-  vec3 n = vNormal;
-  vec3 v = vField - n * dot(vField, n);
+  vec4 at = texelFetch(uLocator, ivec2(gl_FragCoord.xy), 0);
+  if (at.x == 0.0) {
+    outJ = vec4(0.0);
+    return;
+  }
+  ivec2 c = ivec2(at.xy) - ivec2(1, 0);
+  vec3 field = (1.0 - at.z - at.w) * corner(uField, c, 0) + at.z * corner(uField, c, 1);
+  field += at.w * corner(uField, c, 2);
+  vec3 G1 = corner(uFrames, c, 0), G2 = corner(uFrames, c, 1), n = corner(uFrames, c, 2);
+  vec3 v = field - n * dot(field, n);
   float mag = length(v);
   // A vanishing field (singularities, no constraints yet) keeps the exemplar's x-axis along the chart's u-axis.
-  vec3 e1 = mag > 1e-12 ? v / mag : normalize(vG1 - n * dot(vG1, n));
+  vec3 e1 = mag > 1e-12 ? v / mag : normalize(G1 - n * dot(G1, n));
   vec3 e2 = cross(n, e1);
   float scale = 1.0;
   if (uMagExponent != 0.0) scale = clamp(pow(max(mag, 1e-12) / uMagRef, uMagExponent), 0.125, 8.0);
   float k = uInvRho * uTexel / scale;
   // Column-major: (J e_u, J e_v).
-  outJ = k * vec4(dot(e1, vG1), dot(e2, vG1), dot(e1, vG2), dot(e2, vG2));
+  outJ = k * vec4(dot(e1, G1), dot(e2, G1), dot(e1, G2), dot(e2, G2));
 }`;
 
 // One level coarser: texels twice as large, so J doubles; the mean over the valid children.

@@ -33,7 +33,8 @@ import {
   CORRECT_FS,
   JACOBIAN_DOWN_FS,
   JACOBIAN_FS,
-  JACOBIAN_VS,
+  LOCATOR_FS,
+  LOCATOR_VS,
   RESOLVE_FS,
   SEAM_RESOLVE_FS,
   UNPACK_FS,
@@ -53,9 +54,10 @@ export const DEFAULTS = Object.freeze({
   gutter: 2, // texels of border around each chart (the atlas's packing; the raster's gutter quads)
   seams: true, // follow the seam indirection across chart boundaries (atlases with seams only)
   timing: 'levels', // 'levels': wait for the GPU after each level (per-level times); 'total': only at the end
-  // Faces whose field goes to the GPU per task (atlas-raster.js): 4.7 MB, so a model of up to 131k faces sends it
-  // in one go (each further slice waits for the GPU: 3 slices were 32 ms of bunny00's update on a real GPU).
-  sliceFaces: 1 << 17,
+  // Faces whose field goes to the GPU per task (atlas-raster.js, an RGBA texel per corner): 4.7 MB, so a model of
+  // up to 98k faces sends it in one go (each further slice waits for the GPU: 3 slices were 32 ms of bunny00's
+  // update on a real GPU).
+  sliceFaces: 3 << 15,
 });
 
 const defaultNextFrame = () =>
@@ -79,7 +81,8 @@ export class Synthesizer {
   #create(gl) {
     this.vao = gl.createVertexArray();
     this.programs = {
-      jacobian: new Program(gl, JACOBIAN_VS, JACOBIAN_FS, 'jacobian'),
+      locator: new Program(gl, LOCATOR_VS, LOCATOR_FS, 'atlas-locator'),
+      jacobian: new Program(gl, FULLSCREEN_VS, JACOBIAN_FS, 'jacobian'),
       jacobianDown: new Program(gl, FULLSCREEN_VS, JACOBIAN_DOWN_FS, 'jacobian-down'),
       upsample: new Program(gl, FULLSCREEN_VS, UPSAMPLE_FS, 'upsample'),
       correct: new Program(gl, FULLSCREEN_VS, CORRECT_FS, 'correct'),
@@ -147,8 +150,8 @@ export class Synthesizer {
   }
 
   *#atlasSteps(spec) {
-    this.programs.jacobian.check();
-    const atlas = new AtlasRaster(this.gl, this.programs.jacobian, spec);
+    this.programs.locator.check();
+    const atlas = new AtlasRaster(this.gl, this.programs.locator, spec);
     let done = false;
     try {
       yield* atlas.allocate();
@@ -209,16 +212,17 @@ export class Synthesizer {
         this.magRef = r.value;
         break;
       }
-      yield { texels: Infinity, progress: 0, field: true };
+      yield { texels: Infinity, progress: 0, field: true, phase: r.value };
     }
     // Total shading work: the Jacobian and per level 4 upsample quarters, 4 x passes correction quarters
     // (weighted x8: they read ~90 texels each) and the unpack.
     const jacobianWork = resolution * resolution;
     let total = jacobianWork;
     for (let k = finestLevel; k < this.levels.length; k++) total += this.levels[k].size ** 2 * (2 + 8 * o.passes);
-    // The raster's draws (the gutter's quads, the triangles, the coarser levels) waited for as a phase of
-    // their own: with software GL they take a bunny00 update 0.1-0.17 s, which the kernel's polls otherwise
-    // counted as waits between its slices. The progress shown meanwhile is the Jacobian's share.
+    // The raster's draws (an atlas's map of faces the first time, the Jacobian's full-screen pass, the coarser
+    // levels) waited for as a phase of their own: with software GL they take a bunny00 update tens of ms, which
+    // the kernel's polls otherwise counted as waits between its slices. The progress shown meanwhile is the
+    // Jacobian's share.
     const phase = 'field rasterized into the atlas (GPU)';
     yield { texels: Infinity, progress: jacobianWork / total, field: true, phase };
     yield work(jacobianWork);
