@@ -8,6 +8,7 @@ import { buildSerializedBVH } from '../../web/geometry/mesh-bvh-transfer.js';
 import { Preview } from '../../web/core/preview/preview.js';
 import { torus } from '../../web/core/preview/warm-up.js';
 import { meshKey } from '../../web/core/worker/mesh-key.js';
+import { restoredForm, storedForm } from '../../web/core/worker/kept-store.js';
 import { usableBVH } from '../../web/core/worker/picking-cache.js';
 import { usablePreviewParts } from '../../web/core/worker/preview-cache.js';
 
@@ -87,4 +88,24 @@ test('a kept bounds tree is refused when it does not fit the mesh or is damaged'
   assert.equal(damaged((b) => nodes(b, (n, u32, u16) => u16[2 * n + 15] === 0xffff && (u32[n + 6] = nF))), false);
   assert.equal(damaged((b) => nodes(b, (n, u32, u16) => u16[2 * n + 15] !== 0xffff && (u32[n + 6] = 1e6))), false);
   assert.equal(damaged((b) => (new Float32Array(b.roots[0])[0] = NaN)), false);
+});
+
+test('an entry stored with its big typed arrays as Blobs comes back the same, small ones and the rest as they were', async () => {
+  const big = new Float64Array(20000).map((_, i) => Math.sin(i));
+  const view = new Int32Array(new Int32Array(40000).map((_, i) => i * 7).buffer, 4 * 1000, 30000); // a view inside a buffer
+  const entry = { key: 'k', madeAt: 3, atlas: { big, parts: [view, new Uint8Array([1, 2, 3])], name: 'x', n: 5, none: null } };
+  const stored = storedForm(entry);
+  assert.ok(stored.atlas.big.keptBlob instanceof Blob);
+  assert.equal(stored.atlas.big.keptBlob.size, big.byteLength);
+  assert.ok(stored.atlas.parts[0].keptBlob instanceof Blob);
+  assert.ok(stored.atlas.parts[1] instanceof Uint8Array); // under the threshold: as it is
+  assert.equal(big[5], Math.sin(5)); // the entry itself untouched
+  const back = await restoredForm(stored);
+  assert.ok(back.atlas.big instanceof Float64Array);
+  assert.deepEqual(back.atlas.big, big);
+  assert.ok(back.atlas.parts[0] instanceof Int32Array);
+  assert.deepEqual(back.atlas.parts[0], view);
+  assert.deepEqual(back.atlas.parts[1], new Uint8Array([1, 2, 3]));
+  assert.deepEqual({ ...back, atlas: null }, { key: 'k', madeAt: 3, atlas: null });
+  assert.deepEqual([back.atlas.name, back.atlas.n, back.atlas.none], ['x', 5, null]);
 });

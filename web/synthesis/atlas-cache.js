@@ -56,7 +56,7 @@ function copiedGutter({ uv, source, indices, ...rest }) {
 
 export class AtlasCache {
   constructor({ persistent = !!globalThis.indexedDB } = {}) {
-    this.store = new KeptStore(DB_NAME, STORE, KEPT, { persistent });
+    this.store = new KeptStore(DB_NAME, STORE, KEPT, { persistent, blobs: true });
     this.memory = null; // {key, sizes, atlas}
   }
 
