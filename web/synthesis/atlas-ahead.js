@@ -22,15 +22,16 @@ export async function prepareAtlasAhead(request, controller, { positions, triang
   return r;
 }
 
-// The synthesizer's programs compiled ahead in the view's context (controller: the SynthesisController), and
-// not looked at: without KHR_parallel_shader_compile (SwiftShader) a look waits for the link, which the GPU
-// process finishes on its own meanwhile (checked ahead, one program's link status held the page 124-154 ms in
-// some big models' openings; the first texture checks them). Never fails anything: with the context lost
-// meanwhile (ensureSynth refuses it: no float targets to find then), the next texture makes them.
+// The synthesizer's programs compiled ahead in the view's context (controller: the SynthesisController), then,
+// once a fence says the GPU process has linked them (Synthesizer.programsReady: without
+// KHR_parallel_shader_compile, as on SwiftShader, a look at a link status before that waits for the link, which
+// held the page 124-154 ms in some big models' openings), drawn once each (pipeline-warm-up.js). Never fails
+// anything: with the context lost meanwhile (ensureSynth refuses it: no float targets to find then), the next
+// texture makes them.
 export function prepareProgramsAhead(controller) {
   if (!controller.viewer?.renderer) return;
   try {
-    controller.ensureSynth();
+    controller.ensureSynth().warmUpPipelines().catch(() => {}); // a context lost meanwhile: nothing to warm
   } catch {
     // the context lost: its restore starts over
   }

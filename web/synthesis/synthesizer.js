@@ -27,6 +27,7 @@ import {
 import { disposeExemplar, uploadExemplar } from './gpu-exemplar.js';
 import { GLGuard } from './gl-guard.js';
 import { levelPlan } from './level-plan.js';
+import { warmUpPipelines } from './pipeline-warm-up.js';
 import { interleavedRun } from './interleaved-run.js';
 import {
   COPY_FS,
@@ -120,6 +121,13 @@ export class Synthesizer {
     }
     if (!gl.isContextLost()) this.checkPrograms();
     this.programsChecked = true;
+  }
+
+  // Every program drawn once into a small target (pipeline-warm-up.js), once they are linked: software GL
+  // compiles at the first draw. For the time before a first texture.
+  async warmUpPipelines(nextFrame = defaultNextFrame) {
+    await this.programsReady(nextFrame);
+    if (!this.gl.isContextLost()) this.guard.run(() => warmUpPipelines(this.gl, this.programs, this.vao));
   }
 
   // The pyramid levels of the current atlas, finest first.
