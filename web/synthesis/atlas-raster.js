@@ -19,6 +19,19 @@ const CORNER_ROW = 4095;
 // The phase (phase-clock.js) of the steps that the first field of an atlas takes for its map of faces.
 const FIXED_PHASE = "the atlas's faces to the GPU, their map drawn (once per atlas)";
 
+// The locator program's attributes (aUV: 2 floats, aCorner: an int, a vertex each) from the two buffers, in the
+// vertex array bound.
+export function locatorAttributes(gl, program, uvBuffer, cornerBuffer) {
+  gl.bindBuffer(gl.ARRAY_BUFFER, uvBuffer);
+  const uvAt = gl.getAttribLocation(program, 'aUV');
+  gl.enableVertexAttribArray(uvAt);
+  gl.vertexAttribPointer(uvAt, 2, gl.FLOAT, false, 8, 0);
+  gl.bindBuffer(gl.ARRAY_BUFFER, cornerBuffer);
+  const cornerAt = gl.getAttribLocation(program, 'aCorner');
+  gl.enableVertexAttribArray(cornerAt);
+  gl.vertexAttribIPointer(cornerAt, 1, gl.INT, 4, 0);
+}
+
 export class AtlasRaster {
   // positions (3 per vertex), triangles (3 per face), cornerUVs (6 per face, in [0, 1]), resolution a power of
   // two; neighbour: the half-edge map of geometry/mesh-geometry.js when the caller holds one (the model's
@@ -155,14 +168,9 @@ export class AtlasRaster {
     // Allocated here, filled by the first synthesis a slice per task (#uploadFixed).
     gl.bindBuffer(gl.ARRAY_BUFFER, this.uvBuffer);
     gl.bufferData(gl.ARRAY_BUFFER, 8 * vertices, gl.STATIC_DRAW);
-    const uvAt = gl.getAttribLocation(program, 'aUV');
-    gl.enableVertexAttribArray(uvAt);
-    gl.vertexAttribPointer(uvAt, 2, gl.FLOAT, false, 8, 0);
     gl.bindBuffer(gl.ARRAY_BUFFER, this.cornerBuffer);
     gl.bufferData(gl.ARRAY_BUFFER, 4 * vertices, gl.STATIC_DRAW);
-    const cornerAt = gl.getAttribLocation(program, 'aCorner');
-    gl.enableVertexAttribArray(cornerAt);
-    gl.vertexAttribIPointer(cornerAt, 1, gl.INT, 4, 0);
+    locatorAttributes(gl, program, this.uvBuffer, this.cornerBuffer);
     const indices = this.gutterIndices.map((i) => i + this.vertexCount);
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.indexBuffer);
     gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, indices, gl.STATIC_DRAW);

@@ -6,6 +6,7 @@
 // is drawn with a vertex array of its own attributes. Everything made here is deleted before it returns; the
 // caller holds the GL state (the synthesizer's guard).
 import { FloatTarget, drawFullscreen } from './gl.js';
+import { locatorAttributes } from './atlas-raster.js';
 
 const UNITS = 8; // at least the most samplers a synthesis program reads
 
@@ -50,22 +51,17 @@ export function warmUpPipelines(gl, programs, vao) {
   }
 }
 
-// One triangle for the locator program, with its attributes as the atlas raster sets them (atlas-raster.js).
+// One triangle for the locator program, with its attributes as the atlas raster sets them.
 function locatorVertices(gl, program) {
   const vao = gl.createVertexArray();
   gl.bindVertexArray(vao);
   const uv = gl.createBuffer();
   gl.bindBuffer(gl.ARRAY_BUFFER, uv);
   gl.bufferData(gl.ARRAY_BUFFER, new Float32Array([0, 0, 1, 0, 0, 1]), gl.STATIC_DRAW);
-  const uvAt = gl.getAttribLocation(program, 'aUV');
-  gl.enableVertexAttribArray(uvAt);
-  gl.vertexAttribPointer(uvAt, 2, gl.FLOAT, false, 8, 0);
   const corner = gl.createBuffer();
   gl.bindBuffer(gl.ARRAY_BUFFER, corner);
   gl.bufferData(gl.ARRAY_BUFFER, new Int32Array([0, 1, 2]), gl.STATIC_DRAW);
-  const cornerAt = gl.getAttribLocation(program, 'aCorner');
-  gl.enableVertexAttribArray(cornerAt);
-  gl.vertexAttribIPointer(cornerAt, 1, gl.INT, 4, 0);
+  locatorAttributes(gl, program, uv, corner);
   gl.bindVertexArray(null);
   gl.bindBuffer(gl.ARRAY_BUFFER, null);
   return { vao, uv, corner };
