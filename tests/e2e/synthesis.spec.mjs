@@ -10,7 +10,7 @@ import { checkAtlasUVs, generateAtlas, rasterCoverage } from '../../web/synthesi
 import createTvfCore from '../../build-wasm/tvf_core.mjs';
 import { flatSquareGlb } from '../node/export-fixtures.mjs';
 import { Surface } from '../../web/geometry/surface.js';
-import { defaultFeatureScale, defaultResolution, shapeComplexity } from '../../web/synthesis/auto-settings.js';
+import { defaultFeatureScale, defaultResolution, defaultTiles, shapeComplexity, shapeMeasures } from '../../web/synthesis/auto-settings.js';
 import { seamIndirection } from '../../web/synthesis/seams.js';
 import { icosphereOff } from '../icosphere.mjs';
 import { surfacePointsAlongScreenLine, openDesignerPage, synthesisReadback } from './helpers.mjs';
@@ -376,8 +376,13 @@ test.describe.serial('texture synthesis on a curved model (the default bunny, ge
     const { cornerUVs } = await synthesisReadback(page, ['cornerUVs']);
     const m = await page.evaluate(() => {
       const mesh = window.tvf.mesh();
-      return { P: Array.from(mesh.positions), T: Array.from(mesh.triangles), V: Array.from(window.tvf.vertexVectors()) };
+      return { P: Array.from(mesh.positions), T: Array.from(mesh.triangles), E: Array.from(window.tvf.edges()), w: Array.from(window.tvf.oneForm()) };
     });
+    // A vector field's texture follows its Whitney reconstruction (Eq. 4): per face, sum over its edges i -> j of
+    // the 1-form's value times b_i grad b_j - b_j grad b_i.
+    const edgeOf = new Map();
+    for (let e = 0; e < m.E.length / 2; e++) edgeOf.set(`${m.E[2 * e]},${m.E[2 * e + 1]}`, e);
+    const oneFormAlong = (i, j) => (i < j ? m.w[edgeOf.get(`${i},${j}`)] : -m.w[edgeOf.get(`${j},${i}`)]);
     const count = (a, b) => a.reduce((n, v, k) => n + (v !== b[k]), 0);
     expect(m.T.length / 3, 'faces: more corners than one texture row holds').toBeGreaterThan(1365);
     expect(count(sliced, whole), 'Jacobian texels that differ, sliced against whole').toBe(0);
@@ -395,7 +400,10 @@ test.describe.serial('texture synthesis on a curved model (the default bunny, ge
       const e1 = sub(b, a), e2 = sub(c, a);
       const G1 = [0, 1, 2].map((k) => (e1[k] * dv2 - e2[k] * dv1) / det);
       const G2 = [0, 1, 2].map((k) => (e2[k] * du1 - e1[k] * du2) / det);
-      const nn = cross(e1, e2), n = nn.map((x) => x / Math.hypot(...nn));
+      const nn = cross(e1, e2), n = nn.map((x) => x / Math.hypot(...nn)), n2 = dot(nn, nn);
+      const corners = [a, b, c];
+      const grad = [0, 1, 2].map((k) => cross(nn, sub(corners[(k + 2) % 3], corners[(k + 1) % 3])).map((x) => x / n2));
+      const w = [0, 1, 2].map((k) => oneFormAlong(m.T[3 * f + k], m.T[3 * f + ((k + 1) % 3)]));
       const x0 = Math.floor(Math.min(uv[0], uv[2], uv[4]) * R), x1 = Math.ceil(Math.max(uv[0], uv[2], uv[4]) * R);
       const y0 = Math.floor(Math.min(uv[1], uv[3], uv[5]) * R), y1 = Math.ceil(Math.max(uv[1], uv[3], uv[5]) * R);
       for (let y = y0; y < y1; y++)
@@ -403,7 +411,9 @@ test.describe.serial('texture synthesis on a curved model (the default bunny, ge
           const pu = (x + 0.5) / R - uv[0], pv = (y + 0.5) / R - uv[1];
           const b1 = (pu * dv2 - du2 * pv) / det, b2 = (du1 * pv - pu * dv1) / det, b0 = 1 - b1 - b2;
           if (Math.min(b0, b1, b2) < 1e-3) continue; // on or near an edge: either face may own the texel
-          const F = [0, 1, 2].map((k) => b0 * m.V[3 * m.T[3 * f] + k] + b1 * m.V[3 * m.T[3 * f + 1] + k] + b2 * m.V[3 * m.T[3 * f + 2] + k]);
+          const bary = [b0, b1, b2];
+          const F = [0, 1, 2].map((d) =>
+            [0, 1, 2].reduce((t, k) => t + w[k] * (bary[k] * grad[(k + 1) % 3][d] - bary[(k + 1) % 3] * grad[k][d]), 0));
           const v = F.map((x, k) => x - n[k] * dot(F, n)), mag = Math.hypot(...v);
           if (mag < 1e-6 * Math.hypot(...F) || mag === 0) continue;
           const u1 = v.map((x) => x / mag), u2 = cross(n, u1);
@@ -528,6 +538,38 @@ test.describe('default feature size from the shape (node)', () => {
     expect(Math.abs(complexity(c.positions, c.triangles) - truth)).toBeLessThan(0.02 * truth);
     const flat = { positions: Float64Array.from([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0]), triangles: Int32Array.from([0, 1, 2, 0, 2, 3]) };
     expect(complexity(flat.positions, flat.triangles)).toBe(0);
+  });
+
+  test("the facets' fold: the icosahedron's angle between every two faces, less on finer spheres", () => {
+    const fold = (levels) => {
+      const m = fromOff(icosphereOff(levels));
+      return shapeMeasures(new Surface(m.positions, m.triangles, null)).foldDegrees;
+    };
+    // The regular icosahedron's faces meet at 138.19°: their normals 41.81° apart, on every edge.
+    expect(fold(0)).toBeCloseTo(180 - (Math.acos(-Math.sqrt(5) / 3) * 180) / Math.PI, 9);
+    // Each subdivision about halves the angle between neighbouring faces.
+    expect(fold(3)).toBeLessThan(fold(2));
+    expect(fold(3)).toBeGreaterThan(fold(2) / 2.5);
+    const flat = { positions: Float64Array.from([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0]), triangles: Int32Array.from([0, 1, 2, 0, 2, 3]) };
+    expect(shapeMeasures(new Surface(flat.positions, flat.triangles, null)).foldDegrees).toBe(0);
+  });
+
+  test('a coarse curved model gets finer features where its facets fold sharply, on a larger atlas', () => {
+    // Measured (docs/texture-synthesis.md): the default bunny (complexity 13.8, folds 11.1°), homer (18.3, 8.2°)
+    // and lion-head-7000 (16.2, 9.0°) keep the curvature's tiles; refined_elephant-5500 (20.5, 12.5°) and
+    // camel-6000 (24.7, 13.4°) get 40, on 2048².
+    expect(defaultTiles(13.8, 11.1)).toBe(defaultTiles(13.8));
+    expect(defaultTiles(18.3, 8.2)).toBe(defaultTiles(18.3));
+    expect(defaultTiles(16.2, 9.0)).toBe(defaultTiles(16.2));
+    expect(defaultTiles(20.5, 12.5)).toBe(40);
+    expect(defaultTiles(24.7, 13.4)).toBe(40);
+    expect(defaultTiles(18, 10)).toBeGreaterThan(defaultTiles(18));
+    expect(defaultTiles(18, 10)).toBeLessThan(40);
+    expect(defaultResolution(3674, 13.8, 11.1)).toBe(512);
+    expect(defaultResolution(5500, 20.5, 12.5)).toBe(2048);
+    // A big model is never taken past 1024² by its face count alone, nor by folds it does not have.
+    expect(defaultResolution(800000, 19, 3.4)).toBe(1024);
+    expect(defaultFeatureScale(2048, 0.62, 64, 20.5, 12.5)).toBeCloseTo((2048 * Math.sqrt(0.62)) / (40 * 64), 9);
   });
 
   test('more curved shapes get smaller features, within the tile and texel limits', () => {

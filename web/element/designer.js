@@ -113,6 +113,8 @@ export class Designer {
               // starting from the core's own face representatives (a copy, as above).
               symmetry: s.field.symmetry ?? 1,
               faceVectors: (s.field.symmetry ?? 1) > 1 ? s.field.faceVectors.slice() : null,
+              // N = 1: the texture follows the field's Whitney reconstruction, per texel (a copy, as above).
+              oneForm: (s.field.symmetry ?? 1) === 1 ? this.viewSync.drawnOneForm().slice() : null,
             }
           : null,
     });

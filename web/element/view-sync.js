@@ -55,6 +55,12 @@ export class ViewSync {
     return this.drawn?.field.vertexVectors ?? this.session.field.vertexVectors;
   }
 
+  // The drawn field's 1-form (N = 1): a part's own, or the whole field's (derived from a preview's vectors).
+  drawnOneForm() {
+    const d = this.drawn;
+    return d?.field.oneForm ?? (d?.derived ?? this.session.field).requireOneForm();
+  }
+
   drawnVersion() {
     return this.drawn?.key ?? this.session.fieldVersion;
   }

@@ -2,6 +2,7 @@
 // Face f here is face f of the core; local edge k of a face runs from corner k to corner k+1. Normals, areas
 // and the edge→face maps come from mesh-geometry.js.
 import { angleDefects, faceNormals, halfEdgeNeighbours, vertexFaceMap, vertexNormals } from './mesh-geometry.js';
+import { edgeRows } from './whitney-corners.js';
 
 export class Surface {
   // positions: Float64Array (3 per vertex), triangles: Int32Array (3 per face), edges: Int32Array (2 per edge,
@@ -27,6 +28,14 @@ export class Surface {
   }
   set normals(a) {
     this.#normals = a;
+  }
+
+  // The edges by their lower vertex (whitney-corners.js edgeRows), built on first use: a vector field's texture
+  // reads its 1-form along each face's edges (armadillo-sub2's 1.25M edges: ~30 ms).
+  #edgeRows = null;
+  get edgeRows() {
+    this.#edgeRows ??= edgeRows(this.edges, this.nV);
+    return this.#edgeRows;
   }
 
   // The adjacency (tracing, singularities, N-field combing, texture seams): neighbour, vertexFaceStart and

@@ -7,7 +7,7 @@ import { Surface } from '../geometry/surface.js';
 import { chooseAtlas } from './atlas.js';
 import { cornerData } from './atlas-corners.js';
 import { gutterQuads } from './atlas-gutter.js';
-import { defaultResolution, shapeComplexity } from './auto-settings.js';
+import { defaultResolution, shapeMeasures } from './auto-settings.js';
 import { seamIndirection } from './seams.js';
 
 export function preparedAtlas(Module, input, options) {
@@ -15,14 +15,15 @@ export function preparedAtlas(Module, input, options) {
 }
 
 // The model's atlas options with an 'auto' resolution chosen (auto-settings.js defaultResolution, from the face
-// count and the shape complexity, which needs the model's Surface: both made here, in the worker, once per
-// request, and handed on to preparedAtlasSteps). Returns {options, shape: {surface, complexity} | null}.
+// count, the shape complexity and the facets' folds, which need the model's Surface: all made here, in the worker,
+// once per request, and handed on to preparedAtlasSteps). Returns {options, shape: {surface, complexity,
+// foldDegrees} | null}.
 export function resolvedAtlasOptions({ positions, triangles }, options) {
   if (options.resolution !== 'auto') return { options, shape: null };
   const surface = new Surface(positions, triangles, null);
-  const complexity = shapeComplexity(surface);
-  const resolution = defaultResolution(triangles.length / 3, complexity);
-  return { options: { ...options, resolution }, shape: { surface, complexity } };
+  const { complexity, foldDegrees } = shapeMeasures(surface);
+  const resolution = defaultResolution(triangles.length / 3, complexity, foldDegrees);
+  return { options: { ...options, resolution }, shape: { surface, complexity, foldDegrees } };
 }
 
 // The rest of a generator's steps, at once; its value.
@@ -46,7 +47,7 @@ export function* preparedAtlasSteps(Module, { positions, triangles, cornerUVs },
   atlas.corners = cornerData(positions, triangles, atlas.cornerUVs);
   atlas.workerSteps.cornersMs = took();
   const surface = shape?.surface ?? new Surface(positions, triangles, null);
-  atlas.complexity = shape?.complexity ?? shapeComplexity(surface);
+  ({ complexity: atlas.complexity, foldDegrees: atlas.foldDegrees } = shape ?? shapeMeasures(surface));
   atlas.resolution = options.resolution;
   atlas.workerSteps.complexityMs = took();
   yield;

@@ -10,6 +10,7 @@ import { FloatTarget, GLError, drawFullscreen, isPow2 } from './gl.js';
 import { cornerData } from './atlas-corners.js';
 import { gutterQuads } from './atlas-gutter.js';
 import { halfEdgeNeighbours } from '../geometry/mesh-geometry.js';
+import { whitneyCorners } from '../geometry/whitney-corners.js';
 import { coarserIndirection, seamIndirection } from './seams.js';
 
 // Texels per row of the per-corner textures (at most; a multiple of 3, so that a face's corners share a row):
@@ -179,8 +180,10 @@ export class AtlasRaster {
     this.facesUploaded = 0;
   }
 
-  // The Jacobian of every level for the field: the per-vertex `vertexVectors` (3 per vertex) or, for a combed
-  // line or cross field, {cornerVectors} (9 per face, corner k of face f at 9f + 3k: geometry/chart-comb.js);
+  // The Jacobian of every level for the field: the per-vertex `vertexVectors` (3 per vertex); for a vector field,
+  // {whitney: {positions, rows, oneForm}}, its Whitney reconstruction at each face's corners
+  // (geometry/whitney-corners.js), made a slice at a time; or, for a combed line or cross field, {cornerVectors}
+  // (9 per face, corner k of face f at 9f + 3k: geometry/chart-comb.js);
   // the first time, the fixed data goes up and the map of faces is drawn; then the field per corner, and a
   // full-screen pass at the finest level, averaged down. programs: the synthesizer's; vao: its full-screen one.
   // A generator: the data go up a slice of faces at a time, and it yields after each slice so that the caller can
@@ -204,6 +207,7 @@ export class AtlasRaster {
     for (let f0 = 0; f0 < nF; f0 += o.sliceFaces) {
       const f1 = Math.min(nF, f0 + o.sliceFaces);
       if (corners) this.#fillCorners(corners, f0, f1, sums);
+      else if (field?.whitney) this.#fillWhitney(field.whitney, f0, f1, sums);
       else this.#fillField(field, f0, f1, sums);
       this.#uploadCorners(this.fieldTexture, this.fieldData, 3 * f0, 3 * f1);
       yield; // the last slice too: its upload is waited for apart from the raster's draws
@@ -299,6 +303,12 @@ export class AtlasRaster {
     }
     sums.mag += magSum;
     sums.area += areaSum;
+  }
+
+  // The same from a vector field's 1-form: its Whitney field at the corners.
+  #fillWhitney({ positions, rows, oneForm }, f0, f1, sums) {
+    sums.mag += whitneyCorners(positions, this.triangles, rows, oneForm, f0, f1, this.fieldData, 12);
+    for (let f = f0; f < f1; f++) sums.area += this.faceArea[f];
   }
 
   // The same from a per-corner field (9 per face).

@@ -28,21 +28,38 @@ const TYPICAL_COVERAGE = 0.55;
 // there (11.0° / 64 %), and a 6,000-face camel 9.7 (8.7° / 71 %).
 const TILES_KEPT = 0.8;
 
-// The tiles across sqrt(area) the model's shape complexity asks for.
-export function defaultTiles(complexity = MIN_TILES / TILES_PER_COMPLEXITY) {
-  return Math.min(MAX_TILES, Math.max(MIN_TILES, TILES_PER_COMPLEXITY * complexity));
+// A coarse model's facets turn the field at every edge by up to the fold between its faces, and a stripe period
+// that spans such turns cannot follow them (issue 45's low-poly models; docs/texture-synthesis.md). Where the
+// shape complexity times the length-weighted mean fold between faces (degrees) exceeds FOLD_REFERENCE, the
+// curvature's tiles are multiplied by (that product / FOLD_REFERENCE)^FOLD_EXPONENT, up to MAX_FOLDED_TILES
+// (what a 2048² atlas holds at MIN_TILE_TEXELS). Measured products: the default bunny 153, homer 150, lion-head-7000
+// 146 (all within the targets as they were), refined_elephant-5500 256 (16 tiles 7.70° / 75 %, 32 tiles 5.63° /
+// 85.0 %, 40 tiles below), camel-6000 331 (16: 6.61° / 82 %, 24: 5.51° / 87 %, 32: 4.97° / 90 %); fine meshes
+// score 60-130 (bunny00 61, refined_elephant 65, diplodocus 126).
+const FOLD_REFERENCE = 160;
+const FOLD_EXPONENT = 2;
+const MAX_FOLDED_TILES = 40;
+
+// The tiles across sqrt(area) the model's shape complexity asks for, more where its facets fold sharply
+// (foldDegrees: shapeMeasures()'s).
+export function defaultTiles(complexity = MIN_TILES / TILES_PER_COMPLEXITY, foldDegrees = 0) {
+  const curvature = Math.min(MAX_TILES, Math.max(MIN_TILES, TILES_PER_COMPLEXITY * complexity));
+  const folds = Math.max(1, (complexity * foldDegrees) / FOLD_REFERENCE) ** FOLD_EXPONENT;
+  return Math.min(MAX_FOLDED_TILES, curvature * folds);
 }
 
-// The atlas resolution a model gets by default, between 256² and 1024²: enough texels per face for the Jacobian
-// to vary smoothly (≈ 16 texels per face at ~60 % coverage), and, given the shape complexity, for a tile to span
-// MIN_TILE_TEXELS at TILES_KEPT of the tiles the curvature asks for (a coarse but curved model would otherwise
-// get the face count's resolution and too few texels per stripe).
-export function defaultResolution(numFaces, complexity = null) {
+// The atlas resolution a model gets by default, between 256² and 1024² (2048² where a coarse model's folds ask
+// for more tiles than 1024² holds): enough texels per face for the Jacobian to vary smoothly (≈ 16 texels per
+// face at ~60 % coverage), and, given the shape complexity, for a tile to span MIN_TILE_TEXELS at TILES_KEPT of
+// the tiles the curvature asks for (a coarse but curved model would otherwise get the face count's resolution
+// and too few texels per stripe).
+export function defaultResolution(numFaces, complexity = null, foldDegrees = 0) {
   const forFaces = Math.sqrt((numFaces * 16) / 0.6);
-  const forTiles =
-    complexity == null ? 0 : (TILES_KEPT * defaultTiles(complexity) * MIN_TILE_TEXELS) / Math.sqrt(TYPICAL_COVERAGE);
+  const tiles = complexity == null ? 0 : defaultTiles(complexity, foldDegrees);
+  const forTiles = (TILES_KEPT * tiles * MIN_TILE_TEXELS) / Math.sqrt(TYPICAL_COVERAGE);
+  const limit = tiles > MAX_TILES ? 2048 : 1024;
   let r = 256;
-  while (r < Math.max(forFaces, forTiles) && r < 1024) r *= 2;
+  while (r < Math.max(forFaces, forTiles) && r < limit) r *= 2;
   return r;
 }
 
@@ -50,9 +67,15 @@ export function defaultResolution(numFaces, complexity = null) {
 // over 2 x area (1 / radius on a sphere, so a sphere scores sqrt(4 pi) = 3.5). Scale-free. surface: the model's
 // Surface (geometry/surface.js: positions, triangles, face normals and areas, the half-edge map `neighbour`);
 // degenerate faces take no part.
-export function shapeComplexity({ positions, triangles, normals, areas, neighbour }) {
+export function shapeComplexity(surface) {
+  return shapeMeasures(surface).complexity;
+}
+
+// {complexity: shapeComplexity()'s, foldDegrees: the mean dihedral angle between neighbouring faces, in degrees,
+// weighted by the edges' lengths: how coarsely the facets approximate the shape}.
+export function shapeMeasures({ positions, triangles, normals, areas, neighbour }) {
   const nF = triangles.length / 3;
-  let area = 0, bend = 0;
+  let area = 0, bend = 0, length = 0;
   for (let f = 0; f < nF; f++) area += areas[f];
   for (let h = 0; h < 3 * nF; h++) {
     const other = neighbour[h];
@@ -70,14 +93,19 @@ export function shapeComplexity({ positions, triangles, normals, areas, neighbou
       positions[i + 2] - positions[j + 2],
     );
     bend += Math.acos(Math.min(1, Math.max(-1, d))) * len;
+    length += len;
   }
-  return area > 0 ? (bend / (2 * area)) * Math.sqrt(area) : 0;
+  return {
+    complexity: area > 0 ? (bend / (2 * area)) * Math.sqrt(area) : 0,
+    foldDegrees: length > 0 ? ((bend / length) * 180) / Math.PI : 0,
+  };
 }
 
 // The feature scale (atlas texels per exemplar pixel at the atlas's mean density) that makes one exemplar tile
 // span sqrt(area) / tiles on the surface, tiles from the shape complexity (above): tile length
 // m * featureScale * texelLength, with texelLength = sqrt(area / coverage) / R; a tile at least MIN_TILE_TEXELS.
-export function defaultFeatureScale(resolution, coverage, exemplarSize, complexity) {
-  const fs = (resolution * Math.sqrt(Math.max(coverage, 0.05))) / (defaultTiles(complexity) * exemplarSize);
+export function defaultFeatureScale(resolution, coverage, exemplarSize, complexity, foldDegrees = 0) {
+  const tiles = defaultTiles(complexity, foldDegrees);
+  const fs = (resolution * Math.sqrt(Math.max(coverage, 0.05))) / (tiles * exemplarSize);
   return Math.min(8, Math.max(MIN_TILE_TEXELS / exemplarSize, fs));
 }

@@ -201,7 +201,7 @@ export class SynthesisController {
     const tAtlas = performance.now() - t0;
     const synthOptions = runOptions(this.options, model, atlas, this.exemplar.tables.size, preview);
     const field = fieldInput(model, atlas);
-    clock.mark(field.symmetry > 1 ? 'field combed for the atlas' : 'run options');
+    clock.mark(field.symmetry > 1 ? 'field combed for the atlas' : 'field per corner (Whitney)');
     let s;
     if (this.options.interleave) {
       this.progress = { fraction: 0, preview };

@@ -4,29 +4,38 @@
 // (auto-settings.js), and the field it follows, a line or cross field combed per corner for the atlas
 // (geometry/chart-comb.js). Owns nothing.
 import { atlasCombedCorners } from '../geometry/chart-comb.js';
-import { defaultFeatureScale, shapeComplexity } from './auto-settings.js';
+import { defaultFeatureScale, shapeMeasures } from './auto-settings.js';
 import { OPTION_KEYS } from './options.js';
 
 // The synthesizer's options for one run. preview: stop one level short of the finest (quick edits). The
-// model's shape complexity, once computed, stays with its atlas (atlas.complexity).
+// model's shape complexity and folds, once computed, stay with its atlas (atlas.complexity, atlas.foldDegrees;
+// an atlas kept by an earlier version may lack the folds).
 export function runOptions(options, model, atlas, exemplarSize, preview) {
   const synthOptions = {};
   for (const k of OPTION_KEYS) if (options[k] !== undefined) synthOptions[k] = options[k];
   const coverage = atlas.stats.coverage ?? atlas.stats.check?.coverage ?? 0.5;
   if (synthOptions.featureScale === 'auto') {
-    atlas.complexity ??= shapeComplexity(model.surface);
-    synthOptions.featureScale = defaultFeatureScale(atlas.resolution, coverage, exemplarSize, atlas.complexity);
+    if (atlas.complexity == null || atlas.foldDegrees == null)
+      ({ complexity: atlas.complexity, foldDegrees: atlas.foldDegrees } = shapeMeasures(model.surface));
+    const { complexity, foldDegrees } = atlas;
+    synthOptions.featureScale = defaultFeatureScale(atlas.resolution, coverage, exemplarSize, complexity, foldDegrees);
   }
   if (preview) synthOptions.finestLevel = 1;
   return synthOptions;
 }
 
-// What the synthesizer follows: a vector field's vertexVectors as they are; a line or cross field's
-// representatives combed per corner for the atlas (geometry/chart-comb.js), its cuts along the chart seams
-// where it can (model.faceVectors, the field's own face representatives, when the model hands them in).
+// What the synthesizer follows: a vector field's Whitney reconstruction (paper Eq. 4: linear over each face,
+// exact at every texel; made per slice of faces by the raster), or its vertexVectors where the model hands in no
+// 1-form; a line or cross field's representatives combed per corner for the atlas (geometry/chart-comb.js), its
+// cuts along the chart seams where it can (model.faceVectors, the field's own face representatives, when the
+// model hands them in).
 export function fieldInput(model, atlas) {
   const symmetry = model.symmetry ?? 1;
-  if (symmetry === 1) return { symmetry, input: model.vertexVectors };
+  if (symmetry === 1 && !model.oneForm) return { symmetry, input: model.vertexVectors };
+  if (symmetry === 1) {
+    const S = model.surface;
+    return { symmetry, input: { whitney: { positions: S.positions, rows: S.edgeRows, oneForm: model.oneForm } } };
+  }
   const t0 = performance.now();
   const faceVectors = model.faceVectors ?? null;
   const comb = atlasCombedCorners(model.surface, model.vertexVectors, faceVectors, symmetry, atlas.cornerUVs);

@@ -171,8 +171,9 @@ export class Synthesizer {
     this.atlas = atlas;
   }
 
-  // Runs the whole pyramid for the per-vertex field `vertexVectors` (3 per vertex, the core's vertexVectors), or
-  // for {cornerVectors} (9 per face: a line or cross field combed for the atlas, AtlasRaster.rasterSteps).
+  // Runs the whole pyramid for the per-vertex field `vertexVectors` (3 per vertex, the core's vertexVectors), a
+  // vector field's {whitney} or {cornerVectors} (9 per face: a line or cross field combed for the atlas; both
+  // AtlasRaster.rasterSteps).
   // Returns {levels: [{size, stackLevel, spacing, ms}], jacobianMs, totalMs, ...}.
   synthesize(vertexVectors, options = {}) {
     return this.guard.run(() => {

@@ -1,0 +1,88 @@
+// A vector field's Whitney reconstruction (paper Eq. 4) at the corners of each face: the field its 1-form
+// defines is linear over a face, so its three corner values, interpolated by barycentric coordinates, give it
+// exactly at every point of the face (the texture's Jacobian pass does that per texel). Its tangential part is
+// continuous across edges; its value at the barycentre is the core's face vector.
+//
+// Owns nothing. Imports nothing.
+
+// The mesh's edges by their lower vertex, to find the edge joining two vertices: {start (nV + 1), upper, id}
+// (row v: upper[start[v] .. start[v + 1]) the edges' other vertices, id their indices). edges: 2 per edge, the
+// core's order (lower vertex first).
+export function edgeRows(edges, nV) {
+  const nE = edges.length / 2;
+  const start = new Int32Array(nV + 1);
+  for (let e = 0; e < nE; e++) start[edges[2 * e] + 1]++;
+  for (let v = 0; v < nV; v++) start[v + 1] += start[v];
+  const fill = start.slice(0, nV), upper = new Int32Array(nE), id = new Int32Array(nE);
+  for (let e = 0; e < nE; e++) {
+    const at = fill[edges[2 * e]]++;
+    upper[at] = edges[2 * e + 1];
+    id[at] = e;
+  }
+  return { start, upper, id };
+}
+
+// The edge from a to b as e + 1 where it runs that way (its lower vertex a), -(e + 1) where it runs the other;
+// 0 where there is none.
+export function signedEdge({ start, upper, id }, a, b) {
+  const lo = a < b ? a : b, hi = a < b ? b : a;
+  for (let at = start[lo]; at < start[lo + 1]; at++) if (upper[at] === hi) return a < b ? id[at] + 1 : -(id[at] + 1);
+  return 0;
+}
+
+// Faces f0 .. f1 - 1 of the field whose 1-form is `oneForm` (1 per edge, the integral from its lower vertex to
+// its upper), at their corners: corner k of face f at out[stride f + (stride / 3) k ...] (x, y, z; stride 9, or
+// 12 for RGBA texels). rows: edgeRows(). With w_k the integral along local edge k (corner k to k + 1) and ∇b_k
+// the gradient of corner k's barycentric coordinate, the Whitney field at corner k is
+// w_k ∇b_(k+1) − w_(k−1) ∇b_(k−1). Returns the sum over the faces of the mean corner length times the area.
+export function whitneyCorners(positions, triangles, rows, oneForm, f0, f1, out, stride = 9) {
+  const P = positions, T = triangles, step = stride / 3;
+  const w = (a, b) => {
+    const e = signedEdge(rows, a, b);
+    if (e === 0) throw new Error(`the edge ${a}-${b} of a face is not among the mesh's edges`);
+    return e > 0 ? oneForm[e - 1] : -oneForm[-e - 1];
+  };
+  let magnitude = 0;
+  for (let f = f0; f < f1; f++) {
+    const i = T[3 * f], j = T[3 * f + 1], k = T[3 * f + 2];
+    const a = 3 * i, b = 3 * j, c = 3 * k;
+    // Edges opposite each corner (k + 1 to k + 2) and the unnormalized normal n (|n| = 2 area).
+    const ax = P[c] - P[b], ay = P[c + 1] - P[b + 1], az = P[c + 2] - P[b + 2];
+    const bx = P[a] - P[c], by = P[a + 1] - P[c + 1], bz = P[a + 2] - P[c + 2];
+    const cx = P[b] - P[a], cy = P[b + 1] - P[a + 1], cz = P[b + 2] - P[a + 2];
+    const nx = cy * -bz + cz * by, ny = cz * -bx + cx * bz, nz = cx * -by + cy * bx;
+    const n2 = nx * nx + ny * ny + nz * nz;
+    const o = stride * f;
+    if (!(n2 > 0)) {
+      for (let d = 0; d < stride; d++) out[o + d] = 0; // a degenerate face has no field (the core refuses them)
+      continue;
+    }
+    // ∇b_k = n × (edge opposite k) / |n|².
+    const g0x = (ny * az - nz * ay) / n2, g0y = (nz * ax - nx * az) / n2, g0z = (nx * ay - ny * ax) / n2;
+    const g1x = (ny * bz - nz * by) / n2, g1y = (nz * bx - nx * bz) / n2, g1z = (nx * by - ny * bx) / n2;
+    const g2x = (ny * cz - nz * cy) / n2, g2y = (nz * cx - nx * cz) / n2, g2z = (nx * cy - ny * cx) / n2;
+    const w0 = w(i, j), w1 = w(j, k), w2 = w(k, i);
+    const x0 = w0 * g1x - w2 * g2x, y0 = w0 * g1y - w2 * g2y, z0 = w0 * g1z - w2 * g2z;
+    const x1 = w1 * g2x - w0 * g0x, y1 = w1 * g2y - w0 * g0y, z1 = w1 * g2z - w0 * g0z;
+    const x2 = w2 * g0x - w1 * g1x, y2 = w2 * g0y - w1 * g1y, z2 = w2 * g0z - w1 * g1z;
+    out[o] = x0;
+    out[o + 1] = y0;
+    out[o + 2] = z0;
+    out[o + step] = x1;
+    out[o + step + 1] = y1;
+    out[o + step + 2] = z1;
+    out[o + 2 * step] = x2;
+    out[o + 2 * step + 1] = y2;
+    out[o + 2 * step + 2] = z2;
+    const mean = (Math.hypot(x0, y0, z0) + Math.hypot(x1, y1, z1) + Math.hypot(x2, y2, z2)) / 3;
+    magnitude += mean * 0.5 * Math.sqrt(n2);
+  }
+  return magnitude;
+}
+
+// All faces' corners, 9 per face (corner k of face f at 9f + 3k).
+export function whitneyCornerVectors(positions, triangles, rows, oneForm) {
+  const out = new Float64Array(3 * triangles.length);
+  whitneyCorners(positions, triangles, rows, oneForm, 0, triangles.length / 3, out, 9);
+  return out;
+}
