@@ -37,10 +37,13 @@ export function signedEdge({ start, upper, id }, a, b) {
 // w_k ∇b_(k+1) − w_(k−1) ∇b_(k−1). Returns the sum over the faces of the mean corner length times the area.
 export function whitneyCorners(positions, triangles, rows, oneForm, f0, f1, out, stride = 9) {
   const P = positions, T = triangles, step = stride / 3;
-  const w = (a, b) => {
-    const e = signedEdge(rows, a, b);
-    if (e === 0) throw new Error(`the edge ${a}-${b} of a face is not among the mesh's edges`);
-    return e > 0 ? oneForm[e - 1] : -oneForm[-e - 1];
+  const { start, upper, id } = rows;
+  // The 1-form along a -> b (signedEdge, inlined: three lookups a face).
+  const along = (a, b) => {
+    const lo = a < b ? a : b, hi = a < b ? b : a;
+    for (let at = start[lo], end = start[lo + 1]; at < end; at++)
+      if (upper[at] === hi) return a < b ? oneForm[id[at]] : -oneForm[id[at]];
+    throw new Error(`the edge ${a}-${b} of a face is not among the mesh's edges`);
   };
   let magnitude = 0;
   for (let f = f0; f < f1; f++) {
@@ -50,18 +53,18 @@ export function whitneyCorners(positions, triangles, rows, oneForm, f0, f1, out,
     const ax = P[c] - P[b], ay = P[c + 1] - P[b + 1], az = P[c + 2] - P[b + 2];
     const bx = P[a] - P[c], by = P[a + 1] - P[c + 1], bz = P[a + 2] - P[c + 2];
     const cx = P[b] - P[a], cy = P[b + 1] - P[a + 1], cz = P[b + 2] - P[a + 2];
-    const nx = cy * -bz + cz * by, ny = cz * -bx + cx * bz, nz = cx * -by + cy * bx;
+    const nx = cz * by - cy * bz, ny = cx * bz - cz * bx, nz = cy * bx - cx * by;
     const n2 = nx * nx + ny * ny + nz * nz;
     const o = stride * f;
     if (!(n2 > 0)) {
       for (let d = 0; d < stride; d++) out[o + d] = 0; // a degenerate face has no field (the core refuses them)
       continue;
     }
-    // ∇b_k = n × (edge opposite k) / |n|².
-    const g0x = (ny * az - nz * ay) / n2, g0y = (nz * ax - nx * az) / n2, g0z = (nx * ay - ny * ax) / n2;
-    const g1x = (ny * bz - nz * by) / n2, g1y = (nz * bx - nx * bz) / n2, g1z = (nx * by - ny * bx) / n2;
-    const g2x = (ny * cz - nz * cy) / n2, g2y = (nz * cx - nx * cz) / n2, g2z = (nx * cy - ny * cx) / n2;
-    const w0 = w(i, j), w1 = w(j, k), w2 = w(k, i);
+    // ∇b_k = n × (edge opposite k) / |n|², with the 1-form's values folded in.
+    const s = 1 / n2, w0 = along(i, j) * s, w1 = along(j, k) * s, w2 = along(k, i) * s;
+    const g0x = ny * az - nz * ay, g0y = nz * ax - nx * az, g0z = nx * ay - ny * ax;
+    const g1x = ny * bz - nz * by, g1y = nz * bx - nx * bz, g1z = nx * by - ny * bx;
+    const g2x = ny * cz - nz * cy, g2y = nz * cx - nx * cz, g2z = nx * cy - ny * cx;
     const x0 = w0 * g1x - w2 * g2x, y0 = w0 * g1y - w2 * g2y, z0 = w0 * g1z - w2 * g2z;
     const x1 = w1 * g2x - w0 * g0x, y1 = w1 * g2y - w0 * g0y, z1 = w1 * g2z - w0 * g0z;
     const x2 = w2 * g0x - w1 * g1x, y2 = w2 * g0y - w1 * g1y, z2 = w2 * g0z - w1 * g1z;
@@ -74,8 +77,11 @@ export function whitneyCorners(positions, triangles, rows, oneForm, f0, f1, out,
     out[o + 2 * step] = x2;
     out[o + 2 * step + 1] = y2;
     out[o + 2 * step + 2] = z2;
-    const mean = (Math.hypot(x0, y0, z0) + Math.hypot(x1, y1, z1) + Math.hypot(x2, y2, z2)) / 3;
-    magnitude += mean * 0.5 * Math.sqrt(n2);
+    const lengths =
+      Math.sqrt(x0 * x0 + y0 * y0 + z0 * z0) +
+      Math.sqrt(x1 * x1 + y1 * y1 + z1 * z1) +
+      Math.sqrt(x2 * x2 + y2 * y2 + z2 * z2);
+    magnitude += (lengths / 3) * 0.5 * Math.sqrt(n2);
   }
   return magnitude;
 }
