@@ -37,13 +37,13 @@ async function storedOrderings(page, count) {
         r.onerror = () => resolve([]);
       });
       const permutation = (p) => new Set(p).size === p.length;
-      const summary = (e) => ({
-        key: e.key,
-        n: e.perm.length,
-        permutation: permutation(e.perm),
-        symbolic: e.symbolic?.length ?? 0,
-      });
-      if (entries.length >= count) return entries.map(summary);
+      // Big arrays are kept as Blobs (kept-store.js storedForm): {keptBlob, type}.
+      const restored = async (x) => (x?.keptBlob ? new globalThis[x.type](await x.keptBlob.arrayBuffer()) : x);
+      const summary = async (e) => {
+        const [perm, symbolic] = [await restored(e.perm), await restored(e.symbolic)];
+        return { key: e.key, n: perm.length, permutation: permutation(perm), symbolic: symbolic?.length ?? 0 };
+      };
+      if (entries.length >= count) return Promise.all(entries.map(summary));
       await new Promise((resolve) => setTimeout(resolve, 50));
     }
     return [];
@@ -57,13 +57,18 @@ function damageEntry(page, n, what) {
       new Promise((resolve, reject) => {
         const r = indexedDB.open('tvf-ordering-cache', 1);
         r.onsuccess = () => {
-          const store = r.result.transaction('orderings', 'readwrite').objectStore('orderings');
-          const all = store.getAll();
-          all.onsuccess = () => {
-            const e = all.result.find((x) => x.perm.length === n);
+          const all = r.result.transaction('orderings').objectStore('orderings').getAll();
+          all.onsuccess = async () => {
+            // Read whole (big arrays are kept as Blobs), damaged, put back as plain arrays (which a store reads too).
+            const restored = async (x) => (x?.keptBlob ? new globalThis[x.type](await x.keptBlob.arrayBuffer()) : x);
+            const entries = await Promise.all(
+              all.result.map(async (x) => ({ ...x, perm: await restored(x.perm), symbolic: await restored(x.symbolic) })),
+            );
+            const e = entries.find((x) => x.perm.length === n);
             if (what === 'perm') e.perm[1] = e.perm[0];
             else e.symbolic = e.symbolic.slice(0, e.symbolic.length - 1);
-            store.put(e).onsuccess = () => (r.result.close(), resolve());
+            const write = r.result.transaction('orderings', 'readwrite').objectStore('orderings');
+            write.put(e).onsuccess = () => (r.result.close(), resolve());
           };
         };
         r.onerror = () => reject(r.error);

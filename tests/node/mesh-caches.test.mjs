@@ -109,3 +109,15 @@ test('an entry stored with its big typed arrays as Blobs comes back the same, sm
   assert.deepEqual({ ...back, atlas: null }, { key: 'k', madeAt: 3, atlas: null });
   assert.deepEqual([back.atlas.name, back.atlas.n, back.atlas.none], ['x', 5, null]);
 });
+
+test("a picking tree's roots, ArrayBuffers, stored as Blobs come back as ArrayBuffers of the same bytes", async () => {
+  const root = new Uint32Array(30000).map((_, i) => i * 2654435761).buffer;
+  const small = new Uint8Array([9, 8, 7]).buffer;
+  const stored = storedForm({ key: 'k', bvh: { roots: [root, small] } });
+  assert.ok(stored.bvh.roots[0].keptBlob instanceof Blob);
+  assert.ok(stored.bvh.roots[1] instanceof ArrayBuffer); // under the threshold: as it is
+  const back = await restoredForm(stored);
+  assert.ok(back.bvh.roots[0] instanceof ArrayBuffer);
+  assert.deepEqual(new Uint32Array(back.bvh.roots[0]), new Uint32Array(root));
+  assert.deepEqual(new Uint8Array(back.bvh.roots[1]), new Uint8Array([9, 8, 7]));
+});

@@ -11,9 +11,11 @@ const BLOB_BYTES = 1 << 16;
 
 const isPlain = (x) => x !== null && typeof x === 'object' && Object.getPrototypeOf(x) === Object.prototype;
 
-// The entry as stored: its big typed arrays (in plain objects and arrays, at any depth) as {keptBlob, type}.
+// The entry as stored: its big typed arrays and ArrayBuffers (in plain objects and arrays, at any depth) as
+// {keptBlob, type}.
 export function storedForm(x) {
   if (ArrayBuffer.isView(x) && x.byteLength >= BLOB_BYTES) return { keptBlob: new Blob([x]), type: x.constructor.name };
+  if (x instanceof ArrayBuffer && x.byteLength >= BLOB_BYTES) return { keptBlob: new Blob([x]), type: 'ArrayBuffer' };
   if (Array.isArray(x)) return x.map(storedForm);
   if (isPlain(x)) return Object.fromEntries(Object.entries(x).map(([k, v]) => [k, storedForm(v)]));
   return x;
@@ -21,7 +23,10 @@ export function storedForm(x) {
 
 // The entry as it was put: storedForm undone (the Blobs read back as typed arrays of their type).
 export async function restoredForm(x) {
-  if (isPlain(x) && x.keptBlob instanceof Blob) return new globalThis[x.type](await x.keptBlob.arrayBuffer());
+  if (isPlain(x) && x.keptBlob instanceof Blob) {
+    const bytes = await x.keptBlob.arrayBuffer();
+    return x.type === 'ArrayBuffer' ? bytes : new globalThis[x.type](bytes);
+  }
   if (Array.isArray(x)) return Promise.all(x.map(restoredForm));
   if (!isPlain(x)) return x;
   const out = {};

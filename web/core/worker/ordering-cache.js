@@ -14,7 +14,7 @@ const FORMAT = 2; // 1: the ordering alone
 
 export class OrderingCache {
   constructor(options) {
-    this.store = new KeptStore('tvf-ordering-cache', 'orderings', 4, options);
+    this.store = new KeptStore('tvf-ordering-cache', 'orderings', 4, { blobs: true, ...options });
   }
 
   // The entry kept for the pending model, read (IndexedDB: ~0.2 s for a big mesh's 40 MB, so started as soon

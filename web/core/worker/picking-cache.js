@@ -40,7 +40,7 @@ export function usableBVH(entry, nV, nF) {
 
 export class PickingCache {
   constructor(options) {
-    this.store = new KeptStore('tvf-picking-cache', 'trees', 2, options);
+    this.store = new KeptStore('tvf-picking-cache', 'trees', 2, { blobs: true, ...options });
   }
 
   // hash: the core's mesh hash (the float positions' bits and the triangles: what the tree is built on); nV, nF

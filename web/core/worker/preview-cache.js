@@ -27,7 +27,7 @@ export function usablePreviewParts(entry, nV) {
 
 export class PreviewCache {
   constructor(options) {
-    this.store = new KeptStore('tvf-preview-cache', 'previews', 2, options);
+    this.store = new KeptStore('tvf-preview-cache', 'previews', 2, { blobs: true, ...options });
   }
 
   // fine: {positions, triangles}. Resolves with {key, kept}: kept is the parts kept for this mesh, or null.
