@@ -31,7 +31,7 @@ export class Surface {
   }
 
   // The edges by their lower vertex (whitney-corners.js edgeRows), built on first use: a vector field's texture
-  // reads its 1-form along each face's edges (armadillo-sub2's 1.25M edges: ~30 ms).
+  // reads its 1-form along each face's edges (armadillo-sub2's 1.25M edges: 42-77 ms, node).
   #edgeRows = null;
   get edgeRows() {
     this.#edgeRows ??= edgeRows(this.edges, this.nV);

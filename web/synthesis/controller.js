@@ -233,6 +233,7 @@ export class SynthesisController {
       ...s,
       autoFeatureScale: this.options.featureScale === 'auto',
       shapeComplexity: atlas.complexity ?? null,
+      shapeFoldDegrees: atlas.foldDegrees ?? null,
       autoResolution: this.options.resolution === 'auto',
       exemplar: this.exemplarInfo(),
       atlas: { source: atlas.source, reason: atlas.reason, resolution: atlas.resolution, ...atlas.stats, ms: tAtlas,

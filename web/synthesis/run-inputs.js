@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // What one synthesis run (controller.js) hands the synthesizer, made from the model, its atlas and the
 // controller's options: the synthesizer's options, an 'auto' feature scale chosen from the model and the exemplar
-// (auto-settings.js), and the field it follows, a line or cross field combed per corner for the atlas
+// (auto-settings.js), and the field it follows: a vector field's 1-form, whose Whitney field the raster makes
+// per corner (geometry/whitney-corners.js), or a line or cross field combed per corner for the atlas
 // (geometry/chart-comb.js). Owns nothing.
 import { atlasCombedCorners } from '../geometry/chart-comb.js';
 import { defaultFeatureScale, shapeMeasures } from './auto-settings.js';
