@@ -18,7 +18,8 @@ export class OrderingCache {
   }
 
   // The entry kept for the pending model, read (IndexedDB: ~0.2 s for a big mesh's 40 MB, so started as soon
-  // as the model is open, beside what else comes before its factorization). Resolves with {key, entry}.
+  // as the model is open, beside what else comes before its factorization; its arrays kept as Blobs, whose bytes
+  // the browser reads off this thread). Resolves with {key, entry}.
   async find(designer) {
     try {
       const key = designer.pendingOrderingKey();
