@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The synthesis settings chosen for the user ('auto'): the atlas resolution from the face count and the model's
-// curvature, and the feature scale from the curvature, the atlas's texel density and the exemplar's size. Pure
+// curvature and facets, and the feature scale from them, the atlas's texel density and the exemplar's size. Pure
 // functions of the model, kept apart from the controller so the tests can check them against analytic shapes
 // (docs/texture-synthesis.md, "How the resolution and the feature size are chosen").
 
@@ -34,8 +34,8 @@ const TILES_KEPT = 0.8;
 // curvature's tiles are multiplied by (that product / FOLD_REFERENCE)^FOLD_EXPONENT, up to MAX_FOLDED_TILES
 // (what a 2048² atlas holds at MIN_TILE_TEXELS). Measured products: the default bunny 153, homer 150, lion-head-7000
 // 146 (all within the targets as they were), refined_elephant-5500 256 (16 tiles 7.70° / 75 %, 32 tiles 5.63° /
-// 85.0 %, 40 tiles below), camel-6000 331 (16: 6.61° / 82 %, 24: 5.51° / 87 %, 32: 4.97° / 90 %); fine meshes
-// score 60-130 (bunny00 61, refined_elephant 65, diplodocus 126).
+// 85.0 %, 40 tiles 5.27° / 87.2 %), camel-6000 331 (16: 6.61° / 82 %, 24: 5.51° / 87 %, 32: 4.97° / 90 %);
+// finely meshed models 60-130 (bunny00 61, refined_elephant 65, diplodocus 126), but camel 189 and knot2 515.
 const FOLD_REFERENCE = 160;
 const FOLD_EXPONENT = 2;
 const MAX_FOLDED_TILES = 40;
