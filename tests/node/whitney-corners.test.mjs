@@ -5,7 +5,14 @@
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import { grid, icosphere } from './fakes.mjs';
-import { edgeRows, signedEdge, whitneyCornerVectors } from '../../web/geometry/whitney-corners.js';
+import { edgeRows, signedEdge, whitneyCorners } from '../../web/geometry/whitney-corners.js';
+
+// Every face's corners, 9 per face (corner k of face f at 9f + 3k).
+function whitneyCornerVectors(positions, triangles, rows, oneForm) {
+  const out = new Float64Array(3 * triangles.length);
+  whitneyCorners(positions, triangles, rows, oneForm, 0, triangles.length / 3, out, 9);
+  return out;
+}
 import { Surface } from '../../web/geometry/surface.js';
 
 const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];

@@ -104,17 +104,19 @@ export class Designer {
               // The mesh's derived geometry (normals, areas, adjacency, angle defects), computed once per mesh.
               surface: s.surface,
               cornerUVs: s.cornerUVs,
-              // A copy: synthesis and exports hold it across awaits, and the session's own array goes back to
-              // the worker once a newer field replaces it.
-              // The field the views draw: the whole field or the Hodge component chosen in the Views panel.
-              vertexVectors: this.viewSync.drawnVertexVectors().slice(),
+              // The field the views draw (the whole field or the Hodge component chosen in the Views panel), as
+              // the texture reads it, a copy: synthesis holds it across awaits, and the session's own array goes
+              // back to the worker once a newer field replaces it. N = 1: the 1-form, whose Whitney field the
+              // texture follows per texel; N ≥ 2: the vertex representatives of a line or cross field, which
+              // synthesis combs per chart starting from the core's own face representatives.
+              ...((s.field.symmetry ?? 1) === 1
+                ? { oneForm: this.viewSync.drawnOneForm().slice() }
+                : {
+                    vertexVectors: this.viewSync.drawnVertexVectors().slice(),
+                    faceVectors: s.field.faceVectors.slice(),
+                  }),
               fieldVersion: this.viewSync.drawnVersion(),
-              // N ≥ 2: the vectors are representatives of a line or cross field, which synthesis combs per chart
-              // starting from the core's own face representatives (a copy, as above).
               symmetry: s.field.symmetry ?? 1,
-              faceVectors: (s.field.symmetry ?? 1) > 1 ? s.field.faceVectors.slice() : null,
-              // N = 1: the texture follows the field's Whitney reconstruction, per texel (a copy, as above).
-              oneForm: (s.field.symmetry ?? 1) === 1 ? this.viewSync.drawnOneForm().slice() : null,
             }
           : null,
     });

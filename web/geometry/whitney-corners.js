@@ -93,10 +93,3 @@ export function whitneyCorners(positions, triangles, rows, oneForm, f0, f1, out,
   }
   return magnitude;
 }
-
-// All faces' corners, 9 per face (corner k of face f at 9f + 3k).
-export function whitneyCornerVectors(positions, triangles, rows, oneForm) {
-  const out = new Float64Array(3 * triangles.length);
-  whitneyCorners(positions, triangles, rows, oneForm, 0, triangles.length / 3, out, 9);
-  return out;
-}

@@ -25,14 +25,12 @@ export function runOptions(options, model, atlas, exemplarSize, preview) {
   return synthOptions;
 }
 
-// What the synthesizer follows: a vector field's Whitney reconstruction (paper Eq. 4: linear over each face,
-// exact at every texel; made per slice of faces by the raster), or its vertexVectors where the model hands in no
-// 1-form; a line or cross field's representatives combed per corner for the atlas (geometry/chart-comb.js), its
-// cuts along the chart seams where it can (model.faceVectors, the field's own face representatives, when the
-// model hands them in).
+// What the synthesizer follows: a vector field's Whitney reconstruction from model.oneForm (paper Eq. 4: linear
+// over each face, exact at every texel; made per slice of faces by the raster); a line or cross field's
+// model.vertexVectors combed per corner for the atlas (geometry/chart-comb.js), its cuts along the chart seams
+// where it can (model.faceVectors, the field's own face representatives, when the model hands them in).
 export function fieldInput(model, atlas) {
   const symmetry = model.symmetry ?? 1;
-  if (symmetry === 1 && !model.oneForm) return { symmetry, input: model.vertexVectors };
   if (symmetry === 1) {
     const S = model.surface;
     return { symmetry, input: { whitney: { positions: S.positions, rows: S.edgeRows, oneForm: model.oneForm } } };
