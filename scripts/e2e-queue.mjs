@@ -1,19 +1,21 @@
 #!/usr/bin/env node
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The browser tests as a queue of spec files that more than one Playwright run takes from (scripts/test-all.sh):
-// one run starts after the node tests, a second one when the native tests have finished and left their core
-// idle. Each file runs in a Playwright process of its own, on the runner's own ports and output folder, with
-// the page as built (no rebuild of dist/ under the other runner's server). A file is claimed by creating its
-// folder in the queue (mkdir is atomic), so no file runs twice and none is left out.
+// each runner takes the next item until none is left. An item is a spec file, or several short ones run in one
+// Playwright process: a process of its own costs each file about 5 s of CPU (Playwright, the two servers, the
+// browser) before its first test. Each item runs on the runner's own ports and output folder, with the page as
+// built (no rebuild of dist/ under the other runner's server). An item is claimed by creating its folder in the
+// queue (mkdir is atomic), so no file runs twice and none is left out.
 //
 //   node scripts/e2e-queue.mjs init                      the queue made anew: every spec file, longest first
-//   node scripts/e2e-queue.mjs run --runner A --port P   take files until none is left; exit 1 if one failed
+//   node scripts/e2e-queue.mjs run --runner A --port P   take items until none is left; exit 1 if one failed
 //   node scripts/e2e-queue.mjs summary                   the totals and the ten slowest tests; exit 1 if a file
 //                                                        failed or did not run
 //
 // The order: the files' last measured times (tests/e2e/durations.json, rewritten by `summary --record`), the
-// files it does not know first. build/e2e-queue/ holds the queue, the claims, and each file's JSON report and
-// exit; the runners' lines go to their own output, each with the runner's name in front.
+// files it does not know first, each alone; files shorter than BATCH_SECONDS go together, up to that many
+// seconds an item. build/e2e-queue/ holds the queue, the claims, and each item's JSON report and exit; the
+// runners' lines go to their own output, each with the runner's name in front.
 import { spawn } from 'node:child_process';
 import { mkdirSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { dirname, relative, resolve } from 'node:path';
@@ -22,6 +24,7 @@ import { fileURLToPath } from 'node:url';
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const QUEUE = resolve(ROOT, 'build/e2e-queue');
 const DURATIONS = resolve(ROOT, 'tests/e2e/durations.json');
+const BATCH_SECONDS = 40;
 
 function specFiles(dir = resolve(ROOT, 'tests/e2e')) {
   return readdirSync(dir, { withFileTypes: true }).flatMap((d) => {
@@ -39,13 +42,26 @@ function readJson(path, fallback) {
   }
 }
 
+// Longest first; the short files packed into items of up to BATCH_SECONDS, first fit, in that order.
+function items(files, known) {
+  const sorted = [...files].sort((a, b) => (known[b] ?? Infinity) - (known[a] ?? Infinity) || a.localeCompare(b));
+  const out = [];
+  for (const file of sorted) {
+    const t = known[file] ?? Infinity;
+    const open = t < BATCH_SECONDS && out.find((it) => it.seconds + t <= BATCH_SECONDS);
+    if (open) (open.files.push(file), (open.seconds += t));
+    else out.push({ files: [file], seconds: t });
+  }
+  return out.map((it) => it.files);
+}
+
 function init() {
   rmSync(QUEUE, { recursive: true, force: true });
   mkdirSync(resolve(QUEUE, 'claims'), { recursive: true });
-  const known = readJson(DURATIONS, {});
-  const files = specFiles().sort((a, b) => (known[b] ?? Infinity) - (known[a] ?? Infinity) || a.localeCompare(b));
-  writeFileSync(resolve(QUEUE, 'files.json'), JSON.stringify(files, null, 1));
-  console.log(`e2e-queue: ${files.length} spec files queued`);
+  const files = specFiles();
+  const queue = items(files, readJson(DURATIONS, {}));
+  writeFileSync(resolve(QUEUE, 'files.json'), JSON.stringify(queue, null, 1));
+  console.log(`e2e-queue: ${files.length} spec files queued in ${queue.length} items`);
 }
 
 function claimNext(files) {
@@ -60,8 +76,8 @@ function claimNext(files) {
   return -1;
 }
 
-// One spec file in a Playwright process of its own; its lines go out with the runner's name in front.
-function runFile(file, i, runner, port) {
+// One item's spec files in a Playwright process of its own; its lines go out with the runner's name in front.
+function runItem(files, i, runner, port) {
   const report = resolve(QUEUE, `${i}.json`);
   const env = {
     ...process.env,
@@ -69,10 +85,10 @@ function runFile(file, i, runner, port) {
     TVF_E2E_PREBUILT: '1',
     PLAYWRIGHT_JSON_OUTPUT_NAME: report,
   };
-  const output = resolve(ROOT, 'test-results/e2e', file.replace(/^tests\/e2e\//, '').replace(/\.spec\.mjs$/, ''));
-  // The argument is a regular expression over the files' paths: this one matches this file alone.
-  const only = `${file.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}$`;
-  const args = ['playwright', 'test', only, '--reporter=list,json', `--output=${output}`];
+  const output = resolve(ROOT, 'test-results/e2e', String(i));
+  // The arguments are regular expressions over the files' paths: each matches its file alone.
+  const only = files.map((file) => `${file.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}$`);
+  const args = ['playwright', 'test', ...only, '--reporter=list,json', `--output=${output}`];
   const t0 = Date.now();
   return new Promise((done) => {
     const child = spawn('npx', args, { cwd: ROOT, env, stdio: ['ignore', 'pipe', 'pipe'] });
@@ -90,19 +106,19 @@ function runFile(file, i, runner, port) {
     prefix(child.stderr, process.stderr);
     child.on('close', (code) => {
       const seconds = (Date.now() - t0) / 1000;
-      writeFileSync(resolve(QUEUE, `${i}.done.json`), JSON.stringify({ file, runner, code, seconds }));
+      writeFileSync(resolve(QUEUE, `${i}.done.json`), JSON.stringify({ files, runner, code, seconds }));
       done(code === 0);
     });
   });
 }
 
 async function run(runner, port) {
-  const files = readJson(resolve(QUEUE, 'files.json'), null);
-  if (!files) throw new Error('no queue: run `node scripts/e2e-queue.mjs init` first');
+  const queue = readJson(resolve(QUEUE, 'files.json'), null);
+  if (!queue) throw new Error('no queue: run `node scripts/e2e-queue.mjs init` first');
   let ok = true, taken = 0;
-  for (let i = claimNext(files); i >= 0; i = claimNext(files)) {
-    taken++;
-    ok = (await runFile(files[i], i, runner, port)) && ok;
+  for (let i = claimNext(queue); i >= 0; i = claimNext(queue)) {
+    taken += queue[i].length;
+    ok = (await runItem(queue[i], i, runner, port)) && ok;
   }
   console.log(`e2e-queue: runner ${runner} ran ${taken} spec files${ok ? '' : ', some FAILED'}`);
   return ok;
@@ -140,24 +156,36 @@ function testTimes(report) {
   return times;
 }
 
+// An item's seconds shared among its files by their tests' own times (for durations.json's order).
+function fileSeconds(files, seconds, times) {
+  const own = files.map((file) => {
+    const name = file.replace(/^tests\/e2e\//, '');
+    return times.filter(([, title]) => title.startsWith(`${name} › `)).reduce((sum, [t]) => sum + t, 0);
+  });
+  const total = own.reduce((a, b) => a + b, 0);
+  return files.map((file, k) => [file, total > 0 ? (seconds * own[k]) / total : seconds / files.length]);
+}
+
 function summary(record) {
-  const files = readJson(resolve(QUEUE, 'files.json'), []);
+  const queue = readJson(resolve(QUEUE, 'files.json'), []);
   const total = { passed: 0, failed: 0, skipped: 0, flaky: 0 };
   const missing = [], failed = [], seconds = {}, byRunner = {}, tests = [];
-  files.forEach((file, i) => {
+  queue.forEach((files, i) => {
     const done = readJson(resolve(QUEUE, `${i}.done.json`), null);
-    if (!done) return missing.push(file);
-    seconds[file] = done.seconds;
+    if (!done) return missing.push(...files);
     byRunner[done.runner] = (byRunner[done.runner] ?? 0) + done.seconds;
     const report = readJson(resolve(QUEUE, `${i}.json`), null);
     const c = counts(report);
-    tests.push(...testTimes(report));
+    const times = testTimes(report);
+    tests.push(...times);
+    for (const [file, t] of fileSeconds(files, done.seconds, times)) seconds[file] = t;
     for (const k of Object.keys(total)) total[k] += c[k];
-    if (done.code !== 0 || c.failed > 0) failed.push(`${file} (exit ${done.code}, ${c.failed} failed)`);
+    if (done.code !== 0 || c.failed > 0) failed.push(`${files.join(', ')} (exit ${done.code}, ${c.failed} failed)`);
   });
+  const nfiles = queue.reduce((n, files) => n + files.length, 0);
   const busy = Object.entries(byRunner).map(([r, s]) => `${r} ${Math.round(s)} s`).join(', ');
   console.log(`e2e-queue: ${total.passed} passed, ${total.skipped} skipped, ${total.flaky} flaky, ` +
-    `${total.failed} failed in ${files.length} spec files (runners busy: ${busy})`);
+    `${total.failed} failed in ${nfiles} spec files, ${queue.length} items (runners busy: ${busy})`);
   // The slowest tests, where a run's time is most worth looking for: each line is one test's own time.
   tests.sort((a, b) => b[0] - a[0]);
   const testSeconds = tests.reduce((sum, [t]) => sum + t, 0);
@@ -169,7 +197,7 @@ function summary(record) {
     const rounded = Object.fromEntries(Object.entries(seconds).map(([f, s]) => [f, Math.round(s)]));
     writeFileSync(DURATIONS, JSON.stringify(rounded, null, 1) + '\n');
   }
-  return files.length > 0 && !failed.length && !missing.length;
+  return nfiles > 0 && !failed.length && !missing.length;
 }
 
 function option(name, fallback) {

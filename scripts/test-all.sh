@@ -1,45 +1,71 @@
 #!/usr/bin/env bash
-# Every test, after `npm run build` (the last step of `npm test`). Two chains run side by side:
-# - the native tests (scripts/test-native.sh: ctest, the sanitizer build and its bad-input tests, 60 s of
-#   fuzzing), compiler-bound, with their output in build/test-native.log, shown when they fail; then, on the
-#   core they leave idle, a second runner of the browser tests;
+# Every test, after `npm run build` (the last step of `npm test`). Three lines of work run side by side:
+# - the native tests (scripts/test-native.sh: ctest, the sanitizer build and its bad-input tests) at a lower
+#   priority (nice), then 60 s of fuzzing at the normal one, with their output in build/test-native.log, shown
+#   when they fail;
+# - a browser-test runner from the start;
 # - the wasm node tests, the export validation and the node unit tests (`npm run test:js` without its
-#   Playwright run), then the first runner of the browser tests, whose Playwright with software GL keeps about
-#   one of two cores busy.
+#   Playwright run), then a second browser-test runner.
+# A browser test mostly waits (on the page's frames, workers, timers: one Playwright worker with software GL
+# keeps 0.6-0.7 of a core busy), and a compiler never does; so the browser tests have the cores first, and the
+# compiling takes what they leave, instead of the browser tests waiting for a core the compiler holds. The
+# fuzzing runs for a fixed time, so it must not wait: niced under two runners it made a few hundred executions
+# a target where it makes tens of thousands.
 # The browser tests are one queue of spec files that both runners take from (scripts/e2e-queue.mjs), so that
-# neither core idles while the other still has tests to run. Exits non-zero when any part failed.
+# neither idles while the other still has tests to run. Each line says when it ended and the CPU seconds its
+# processes took. Exits non-zero when any part failed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 mkdir -p build
-log=build/test-native.log
-start=$(date +%s)
+export TEST_ALL_LOG=build/test-native.log TEST_ALL_START=$(date +%s)
 rm -f build/test-native.rc
 node scripts/e2e-queue.mjs init || exit 1
 
-# In a process group of its own (setsid), so that an interrupt ends all of it, compilers and ctest included.
-setsid bash -c "bash scripts/test-native.sh > '$log' 2>&1; echo \$? > build/test-native.rc
-  echo \"test-all: the native tests finished (\$((\$(date +%s) - $start)) s); a second browser-test runner starts\"
-  node scripts/e2e-queue.mjs run --runner B --port 8193" &
+# "<what> (<s> s, <cpu> s of CPU)": the time since the start, and the user + system time of the calling
+# shell's finished children (/proc/PID/stat's cutime and cstime, in clock ticks).
+ended() {
+  local ticks
+  ticks=$(awk -v hz="$(getconf CLK_TCK)" '{ sub(/^.*\) /, ""); printf "%.0f", ($14 + $15) / hz }' "/proc/$1/stat")
+  echo "test-all: $2 ($(($(date +%s) - TEST_ALL_START)) s, $ticks s of CPU)"
+}
+native_chain() {
+  nice -n 10 env TVF_FUZZ_SECONDS=0 bash scripts/test-native.sh > "$TEST_ALL_LOG" 2>&1 &&
+    bash scripts/fuzz.sh --seconds "${TVF_FUZZ_SECONDS:-60}" >> "$TEST_ALL_LOG" 2>&1
+  echo $? > build/test-native.rc
+  ended $$ "the native tests finished"
+}
+runner_b() {
+  node scripts/e2e-queue.mjs run --runner B --port 8193
+  ended $$ "runner B found the queue empty"
+}
+export -f ended native_chain runner_b
+
+# Each in a process group of its own (setsid), so that an interrupt ends all of it, compilers and ctest included.
+setsid bash -c native_chain &
 native=$!
-trap 'kill -TERM -- "-$native" 2>/dev/null; exit 130' INT TERM
+setsid bash -c runner_b &
+runnerB=$!
+trap 'kill -TERM -- "-$native" "-$runnerB" 2>/dev/null; exit 130' INT TERM
 
 js=0
 node --disallow-code-generation-from-strings wasm/test-node.mjs || js=1
 node --disallow-code-generation-from-strings wasm/test-node.mjs build-wasm/tvf_core_threads.mjs || js=1
 node tests/node/export-validate.mjs || js=1
 npm run --silent test:unit || js=1
-echo "test-all: the wasm and node tests finished ($(($(date +%s) - start)) s); the browser tests' runner A starts"
+ended $$ "the wasm and node tests finished; the browser tests' runner A starts"
 node scripts/e2e-queue.mjs run --runner A --port 8191 || js=1
-echo "test-all: runner A found the queue empty ($(($(date +%s) - start)) s); waiting for the native chain"
+ended $$ "runner A found the queue empty"
+wait "$runnerB"
 wait "$native"
 node scripts/e2e-queue.mjs summary || js=1
 nat=$(cat build/test-native.rc 2>/dev/null || echo 1)
 if [ "$nat" -ne 0 ]; then
-  echo "test-all: the native tests FAILED (exit $nat); their output, $log:"
-  cat "$log"
+  echo "test-all: the native tests FAILED (exit $nat); their output, $TEST_ALL_LOG:"
+  cat "$TEST_ALL_LOG"
 else
   # ctest's summaries and the fuzzing's lines.
-  grep -E 'tests passed|^\[fuzz\]' "$log"
+  grep -E 'tests passed|^\[fuzz\]' "$TEST_ALL_LOG"
 fi
-echo "test-all: done in $(($(date +%s) - start)) s (native tests: exit $nat; wasm, node and browser tests: exit $js)"
+echo "test-all: done in $(($(date +%s) - TEST_ALL_START)) s (native tests: exit $nat; wasm, node and browser" \
+  "tests: exit $js)"
 [ "$js" -eq 0 ] && [ "$nat" -eq 0 ]

@@ -126,7 +126,7 @@ TEST(Cli, BenchPrintsTheTableKeys) {
 // field (the same bit for bit), beside the serial field with the other ordering (the system's own
 // sensitivity to the order of sums).
 TEST(Cli, BenchOnTwoThreadsChecksTheFieldAgainstOneThreads) {
-  const fs::path mesh = writeOff("cli_bench_threads.off", tvf::icosphere(6));
+  const fs::path mesh = writeOff("cli_bench_threads.off", tvf::icosphere(5));
   const CliRun r = runTvf("bench " + mesh.string() + " --repeat 1 --threads 2 --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto b = nlohmann::json::parse(r.out);

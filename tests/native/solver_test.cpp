@@ -797,7 +797,7 @@ void expectParallelFactorIsTheSerialOne(Designer& d, const std::string& where, b
 // annulus (kernels, shifted) and with the bi-Laplacian (condition number ~1e10, which magnifies any change
 // in the order of the sums into ~2e-11 between two factorizations).
 TEST(FactoredSystem, ParallelFactorizationIsTheSerialOneBitForBit) {
-  Designer sphere(icosphere(6));
+  Designer sphere(icosphere(5));
   expectParallelFactorIsTheSerialOne(sphere, "sphere", true);
   Designer ring(torus(160, 80, 2.0, 0.7));
   expectParallelFactorIsTheSerialOne(ring, "torus", true);
@@ -889,10 +889,10 @@ TEST(Designer, AFailedFactorizationThreadFallsBackToOneWithTheReason) {
     x.addSink(x.mesh().numVertices() - 1, 1.0);
     x.solve();
   };
-  Designer serial(icosphere(6));
+  Designer serial(icosphere(5));
   serial.setSolverThreads(1);
   design(serial);
-  Designer d(icosphere(6));
+  Designer d(icosphere(5));
   d.setSolverThreads(2);
   failNextSupernodalThreads();
   design(d);
@@ -905,7 +905,7 @@ TEST(Designer, AFailedFactorizationThreadFallsBackToOneWithTheReason) {
                                              static_cast<Eigen::Index>(x.oneForm().size()));
   };
   EXPECT_TRUE(values(d) == values(serial)) << relativeDifference(values(d), values(serial));
-  Designer again(icosphere(6));
+  Designer again(icosphere(5));
   again.setSolverThreads(2);
   design(again);
   EXPECT_EQ(again.stats().factorThreads, 2) << again.stats().singleThreadWhy;
