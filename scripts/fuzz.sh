@@ -5,8 +5,10 @@
 # sanitizer's tests share: scripts/configure-sanitized.sh) and runs each for its share of the time: the glTF, GLB,
 # OFF, OBJ and PLY loaders and the design-JSON parser.
 #
-# Usage: scripts/fuzz.sh [--seconds N] [target ...]
+# Usage: scripts/fuzz.sh [--seconds N] [--jobs J] [--build-only] [target ...]
 #   --seconds N   total fuzzing time, split evenly over the targets (default 60)
+#   --jobs J      targets fuzzed at a time (default 1): J cores for N / J seconds
+#   --build-only  build the harnesses and stop (scripts/test-all.sh builds them at a low priority first)
 #   target        gltf glb off obj ply design (default: all)
 # Seeds: tests/fuzz/seeds/<target>/ (small files of our own), tests/native/data/, and bench-data/fuzz-seeds/
 # (assimp's test models and CGAL's small meshes, fetched by scripts/fetch-meshes.sh --fuzz-seeds; without
@@ -20,6 +22,8 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
 BUILD=$ROOT/build-sanitized
 SECONDS_TOTAL=60
 TARGETS=()
+JOBS=1
+BUILD_ONLY=0
 
 log() { printf '[fuzz] %s\n' "$*" >&2; }
 die() { printf '[fuzz] ERROR: %s\n' "$*" >&2; exit 2; }
@@ -27,6 +31,8 @@ die() { printf '[fuzz] ERROR: %s\n' "$*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
     --seconds) SECONDS_TOTAL=${2:?--seconds needs a number}; shift 2 ;;
+    --jobs) JOBS=${2:?--jobs needs a number}; shift 2 ;;
+    --build-only) BUILD_ONLY=1; shift ;;
     -h|--help) sed -n '4,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -n 's/^# \{0,1\}//p' >&2; exit 0 ;;
     gltf|glb|off|obj|ply|design) TARGETS+=("$1"); shift ;;
     *) die "unknown argument: $1 (try --help)" ;;
@@ -44,13 +50,14 @@ bash "$ROOT/scripts/fetch-meshes.sh" --fuzz-seeds >/dev/null 2>&1 || log "no ass
 targets=()
 for t in "${TARGETS[@]}"; do targets+=("fuzz_$t"); done
 cmake --build "$BUILD" -j2 --target "${targets[@]}" >/dev/null
+[ "$BUILD_ONLY" = 0 ] || exit 0
 
 per=$((SECONDS_TOTAL / ${#TARGETS[@]}))
 [ "$per" -ge 1 ] || per=1
-status=0
-for t in "${TARGETS[@]}"; do
-  corpus=$BUILD/corpus/$t
-  findings=$BUILD/findings/$t
+
+# One target's run; its line goes to $BUILD/fuzz-$t.line, its exit is the finding's.
+fuzz_one() {
+  local t=$1 corpus=$BUILD/corpus/$1 findings=$BUILD/findings/$1 seeds existing=() logfile result runs
   mkdir -p "$corpus" "$findings"
   seeds=("$ROOT/tests/fuzz/seeds/$t")
   case "$t" in
@@ -60,7 +67,6 @@ for t in "${TARGETS[@]}"; do
     gltf) seeds+=("$ROOT/bench-data/fuzz-seeds/gltf") ;;
     glb) seeds+=("$ROOT/bench-data/fuzz-seeds/glb" "$ROOT/bench-data/fuzz-seeds/gltf") ;;
   esac
-  existing=()
   for s in "${seeds[@]}"; do [ -d "$s" ] && existing+=("$s"); done
   if [ "$t" = off ] || [ "$t" = obj ]; then existing+=("$ROOT/tests/native/data"); fi
   logfile=$BUILD/fuzz-$t.log
@@ -71,10 +77,22 @@ for t in "${TARGETS[@]}"; do
     result=ok
   else
     result="FINDING (see $logfile and $findings/)"
-    status=1
   fi
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$logfile" | grep -o '[0-9]*$' || echo '?')
   printf '[fuzz] %-6s %ss  %s executions  corpus %s files  %s\n' "$t" "$per" "$runs" \
-    "$(ls "$corpus" | wc -l)" "$result"
+    "$(ls "$corpus" | wc -l)" "$result" > "$BUILD/fuzz-$t.line"
+}
+
+# JOBS targets at a time; the lines in the targets' order, a finding's saying so.
+for t in "${TARGETS[@]}"; do rm -f "$BUILD/fuzz-$t.line"; done
+for t in "${TARGETS[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do wait -n || true; done
+  fuzz_one "$t" &
+done
+wait
+status=0
+for t in "${TARGETS[@]}"; do
+  if [ -f "$BUILD/fuzz-$t.line" ]; then cat "$BUILD/fuzz-$t.line"; else echo "[fuzz] $t: no result"; status=1; fi
+  grep -q ' ok$' "$BUILD/fuzz-$t.line" 2>/dev/null || status=1
 done
 exit $status

@@ -1,19 +1,20 @@
 #!/usr/bin/env bash
 # Every test, after `npm run build` (the last step of `npm test`). Three lines of work run side by side:
 # - the native tests (scripts/test-native.sh: ctest, the sanitizer build and its bad-input tests) at a lower
-#   priority (nice), then 60 s of fuzzing at the normal one, with their output in build/test-native.log, shown
-#   when they fail;
+#   priority (nice), then 60 s of fuzzing at the normal one (two targets at a time), with their output in
+#   build/test-native.log, shown when they fail;
 # - a browser-test runner from the start;
 # - the wasm node tests, the export validation and the node unit tests (`npm run test:js` without its
 #   Playwright run), then a second browser-test runner.
-# A browser test mostly waits (on the page's frames, workers, timers: one Playwright worker with software GL
-# keeps 0.6-0.7 of a core busy), and a compiler never does; so the browser tests have the cores first, and the
-# compiling takes what they leave, instead of the browser tests waiting for a core the compiler holds. The
-# fuzzing runs for a fixed time, so it must not wait: niced under two runners it made a few hundred executions
-# a target where it makes tens of thousands.
+# The browser tests are the longest line of work: a runner keeps about 1.4 cores busy (its page and the core's
+# worker, SwiftShader's GL, the test process; views.spec.mjs: 35 s of CPU in 24.5 s), so they have the cores
+# first and the compiling takes what they leave, instead of the browser tests waiting for a core the compiler
+# holds. The fuzzing runs for a fixed time, so it must not wait: niced under two runners it made a few hundred
+# executions a target where it makes thousands.
 # The browser tests are one queue of spec files that both runners take from (scripts/e2e-queue.mjs), so that
-# neither idles while the other still has tests to run. Each line says when it ended and the CPU seconds its
-# processes took. Exits non-zero when any part failed.
+# neither idles while the other still has tests to run. Each line says when it ended and the CPU seconds of the
+# processes it waited for (a runner's count misses most of Chromium's, whose processes its launcher does not
+# wait for). Exits non-zero when any part failed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 mkdir -p build
@@ -30,7 +31,8 @@ ended() {
 }
 native_chain() {
   nice -n 10 env TVF_FUZZ_SECONDS=0 bash scripts/test-native.sh > "$TEST_ALL_LOG" 2>&1 &&
-    bash scripts/fuzz.sh --seconds "${TVF_FUZZ_SECONDS:-60}" >> "$TEST_ALL_LOG" 2>&1
+    nice -n 10 bash scripts/fuzz.sh --build-only >> "$TEST_ALL_LOG" 2>&1 &&
+    bash scripts/fuzz.sh --seconds "${TVF_FUZZ_SECONDS:-60}" --jobs 2 >> "$TEST_ALL_LOG" 2>&1
   echo $? > build/test-native.rc
   ended $$ "the native tests finished"
 }
