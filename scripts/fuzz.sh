@@ -55,7 +55,7 @@ cmake --build "$BUILD" -j2 --target "${targets[@]}" >/dev/null
 per=$((SECONDS_TOTAL / ${#TARGETS[@]}))
 [ "$per" -ge 1 ] || per=1
 
-# One target's run; its line goes to $BUILD/fuzz-$t.line, its exit is the finding's.
+# One target's run; its line, ending in "ok" or naming the finding, goes to $BUILD/fuzz-$t.line.
 fuzz_one() {
   local t=$1 corpus=$BUILD/corpus/$1 findings=$BUILD/findings/$1 seeds existing=() logfile result runs
   mkdir -p "$corpus" "$findings"
