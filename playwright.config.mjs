@@ -24,9 +24,9 @@ export default defineConfig({
     actionTimeout: 30_000,
     navigationTimeout: 60_000,
     screenshot: 'only-on-failure',
-    // A trace records screenshots and DOM snapshots all through every test, kept or not: views.spec.mjs took
-    // 40.9 s without, 47.2 s with (the CPU its launcher counts: 25.4 and 31.1 s). Off unless asked for (TVF_E2E_TRACE=retain-on-failure,
-    // or `--trace on` on the command line) to look into a failure.
+    // A trace records screenshots and DOM snapshots all through every test, kept or not: views.spec.mjs took 40.9 s
+    // without, 47.2 s with (the CPU its launcher counts: 25.4 and 31.1 s). Off unless asked for
+    // (TVF_E2E_TRACE=retain-on-failure, or `--trace on` on the command line) to look into a failure.
     trace: process.env.TVF_E2E_TRACE || 'off',
     launchOptions: {
       executablePath: process.env.TVF_CHROMIUM || '/usr/bin/chromium',

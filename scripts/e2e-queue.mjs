@@ -3,9 +3,9 @@
 // The browser tests as a queue of spec files that more than one Playwright run takes from (scripts/test-all.sh):
 // each runner takes the next item until none is left. An item is a spec file, or several short ones run in one
 // Playwright process: a process of its own cost a file 3.3-3.8 s before its first test (an empty spec file,
-// measured 2026-12-02: Playwright, the two servers, the browser). Each item runs on the runner's own ports and output folder, with the page as
-// built (no rebuild of dist/ under the other runner's server). An item is claimed by creating its folder in the
-// queue (mkdir is atomic), so no file runs twice and none is left out.
+// measured 2026-12-02: Playwright, the two servers, the browser). Each item runs on the runner's own ports and
+// output folder, with the page as built (no rebuild of dist/ under the other runner's server). An item is claimed
+// by creating its folder in the queue (mkdir is atomic), so no file runs twice and none is left out.
 //
 //   node scripts/e2e-queue.mjs init                      the queue made anew: every spec file, longest first
 //   node scripts/e2e-queue.mjs run --runner A --port P   take items until none is left; exit 1 if one failed
