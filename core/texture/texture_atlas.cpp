@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Sparse>
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -199,6 +200,129 @@ void inPlaneCorners(const Eigen::Vector3d p[3], const Eigen::Vector3d& normal, E
   q[2] = {(p[2] - p[0]).dot(x), (p[2] - p[0]).dot(y)};
 }
 
+// A face's two Cauchy-Riemann residuals (rot90(grad u) - grad v = 0, weighted by sqrt(area)) as linear
+// forms: for corner k, its free column (or -1 when pinned) and its coefficients on u and v per residual; the
+// pinned corners' part summed into `constant`.
+struct FaceResidual {
+  int32_t column[3];
+  double cu[3][2], cv[3][2], constant[2];
+};
+
+// `local`: chart vertex of each mesh vertex; `column`: free column of each chart vertex, or -1 where pinned
+// at pinnedAt(chart vertex).
+template <class PinnedAt>
+std::vector<FaceResidual> conformalResiduals(const SurfaceMesh& mesh, const FaceGeometry& g,
+                                             const std::vector<int32_t>& faces,
+                                             const std::vector<int32_t>& local,
+                                             const std::vector<int32_t>& column, PinnedAt pinnedAt) {
+  std::vector<FaceResidual> out(faces.size());
+  for (size_t j = 0; j < faces.size(); ++j) {
+    const int32_t f = faces[j];
+    Eigen::Vector3d p[3];
+    facePositions(mesh, f, p);
+    Eigen::Vector2d q[3];
+    inPlaneCorners(p, g.normals[f], q);
+    const double w = 1.0 / (2.0 * std::sqrt(g.areas[f]));
+    FaceResidual& r = out[j];
+    r.constant[0] = r.constant[1] = 0;
+    for (int k = 0; k < 3; ++k) {
+      // Edge opposite corner k, counter-clockwise: grad u = sum_k u_k rot90(e_k) / 2A.
+      const Eigen::Vector2d& a = q[(k + 1) % 3];
+      const Eigen::Vector2d& b = q[(k + 2) % 3];
+      const double ex = b.x() - a.x(), ey = b.y() - a.y();
+      const int32_t i = local[mesh.triangles[3 * f + k]];
+      // rot90(grad u) - grad v = (-sum u_k e_k - sum v_k rot90(e_k)) / 2A, rot90(e) = (-ey, ex).
+      r.cu[k][0] = -ex * w, r.cu[k][1] = -ey * w;
+      r.cv[k][0] = ey * w, r.cv[k][1] = -ex * w;
+      r.column[k] = column[i];
+      if (column[i] < 0) {
+        const Eigen::Vector2d pv = pinnedAt(i);
+        for (int t = 0; t < 2; ++t) r.constant[t] += r.cu[k][t] * pv.x() + r.cv[k][t] * pv.y();
+      }
+    }
+  }
+  return out;
+}
+
+// The normal equations' matrix of the residuals, upper triangle, unknowns interleaved: the pattern is each
+// free vertex's free neighbours (itself included) in the chart, 2 x 2 blocks; every face adds its residual
+// rows' outer products into the blocks of its corner pairs.
+SparseMatrix conformalNormalEquations(const std::vector<FaceResidual>& residuals, int32_t nFree) {
+  // Per free vertex, the free vertices at or below it that share a face with it (sorted, unique).
+  std::vector<int32_t> start(nFree + 1, 0);
+  for (const FaceResidual& r : residuals)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        if (r.column[a] >= 0 && r.column[b] >= 0 && r.column[a] <= r.column[b]) ++start[r.column[b] + 1];
+  for (int32_t c = 0; c < nFree; ++c) start[c + 1] += start[c];
+  std::vector<int32_t> below(start[nFree]), fill(start.begin(), start.end() - 1);
+  for (const FaceResidual& r : residuals)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        if (r.column[a] >= 0 && r.column[b] >= 0 && r.column[a] <= r.column[b])
+          below[fill[r.column[b]]++] = r.column[a];
+  std::vector<int32_t> count(nFree);
+  for (int32_t c = 0; c < nFree; ++c) {
+    const auto first = below.begin() + start[c], last = below.begin() + start[c + 1];
+    std::sort(first, last);
+    count[c] = static_cast<int32_t>(std::unique(first, last) - first);
+  }
+  // Column 2c (u_c): rows 2a, 2a + 1 of each neighbour a < c, then 2c. Column 2c + 1: the same and 2c + 1.
+  SparseMatrix upper(2 * nFree, 2 * nFree);
+  int* outer = upper.outerIndexPtr();
+  outer[0] = 0;
+  for (int32_t c = 0; c < nFree; ++c) {
+    outer[2 * c + 1] = outer[2 * c] + 2 * count[c] - 1;
+    outer[2 * c + 2] = outer[2 * c + 1] + 2 * count[c];
+  }
+  upper.resizeNonZeros(outer[2 * nFree]);
+  int* inner = upper.innerIndexPtr();
+  double* value = upper.valuePtr();
+  std::fill(value, value + outer[2 * nFree], 0.0);
+  for (int32_t c = 0; c < nFree; ++c)
+    for (int side = 0; side < 2; ++side) {
+      int* rows = inner + outer[2 * c + side];
+      for (int32_t k = 0; k < count[c]; ++k) {
+        const int32_t a = below[start[c] + k];
+        *rows++ = 2 * a;
+        if (a != c || side == 1) *rows++ = 2 * a + 1;
+      }
+    }
+  // The entry (x, y), x <= y, of unknowns x of vertex a and y of vertex b (a <= b): b's block column, a's
+  // place.
+  const auto at = [&](int32_t a, int32_t b, int ya, int yb) -> double& {
+    const int32_t* first = below.data() + start[b];
+    const int32_t k = static_cast<int32_t>(std::lower_bound(first, first + count[b], a) - first);
+    return value[outer[2 * b + yb] + 2 * k + ya];
+  };
+  for (const FaceResidual& r : residuals)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const int32_t a = r.column[i], b = r.column[j];
+        if (a < 0 || b < 0 || a > b) continue;
+        const double* coef[2][2] = {{r.cu[i], r.cv[i]}, {r.cu[j], r.cv[j]}};
+        for (int ya = 0; ya < 2; ++ya)
+          for (int yb = 0; yb < 2; ++yb) {
+            if (a == b && ya > yb) continue;  // the diagonal block's lower half
+            at(a, b, ya, yb) += coef[0][ya][0] * coef[1][yb][0] + coef[0][ya][1] * coef[1][yb][1];
+          }
+      }
+  return upper;
+}
+
+// The normal equations' right-hand side: the residuals' pinned part moved across.
+Eigen::VectorXd conformalRightHandSide(const std::vector<FaceResidual>& residuals, int32_t nFree) {
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * nFree);
+  for (const FaceResidual& r : residuals)
+    for (int k = 0; k < 3; ++k)
+      if (r.column[k] >= 0)
+        for (int t = 0; t < 2; ++t) {
+          rhs[2 * r.column[k]] -= r.cu[k][t] * r.constant[t];
+          rhs[2 * r.column[k] + 1] -= r.cv[k][t] * r.constant[t];
+        }
+  return rhs;
+}
+
 // Least-squares conformal map of the faces (Levy et al. 2002) with two far-apart vertices pinned. In each
 // face's own orthonormal frame the map's gradients must satisfy grad v = rot90(grad u) (Cauchy-Riemann,
 // orientation preserving); each face contributes those two residuals weighted by sqrt(area). Returns false if
@@ -235,66 +359,26 @@ bool lscm(const SurfaceMesh& mesh, const FaceGeometry& g, Chart& chart, std::vec
   const int32_t pinB = farthestFrom(vertexPosition(mesh, verts[pinA]));
   const double span = (vertexPosition(mesh, verts[pinA]) - vertexPosition(mesh, verts[pinB])).norm();
   if (pinA == pinB || !(span > 0)) return false;
-  // Unknowns: u of every free vertex, then v; pinned values move to the right-hand side.
+  // Unknowns: (u, v) of free vertex c at 2c and 2c + 1 (the matrix is then the chart's vertex graph in 2 x 2
+  // blocks, its pattern read from the faces); pinned values move to the right-hand side.
   std::vector<int32_t> column(n, -1);
   int32_t nFree = 0;
   for (int32_t i = 0; i < n; ++i)
     if (i != pinA && i != pinB) column[i] = nFree++;
   const Eigen::Vector2d pinned[2] = {{0, 0}, {span, 0}};
-  auto pinIndex = [&](int32_t i) { return i == pinA ? 0 : 1; };
-
-  // The normal equations' matrix, upper triangle, assembled face by face: each face's two residual rows a
-  // add a a^T (6 free unknowns at most), and their pinned part moves to the right-hand side.
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(42 * chart.faces.size());
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * nFree);
-  for (int32_t f : chart.faces) {
-    Eigen::Vector3d p[3];
-    facePositions(mesh, f, p);
-    Eigen::Vector2d q[3];
-    inPlaneCorners(p, g.normals[f], q);
-    const double w = 1.0 / (2.0 * std::sqrt(g.areas[f]));
-    int32_t col[2][6];
-    double coef[2][6], constant[2] = {0, 0};
-    int used = 0;
-    for (int j = 0; j < 3; ++j) {
-      // Edge opposite corner j, counter-clockwise: grad u = sum_j u_j rot90(e_j) / 2A.
-      const Eigen::Vector2d& a = q[(j + 1) % 3];
-      const Eigen::Vector2d& b = q[(j + 2) % 3];
-      const double ex = b.x() - a.x(), ey = b.y() - a.y();
-      const int32_t i = local[mesh.triangles[3 * f + j]];
-      // rot90(grad u) - grad v = (-sum u_j e_j - sum v_j rot90(e_j)) / 2A, rot90(e) = (-ey, ex).
-      const double cu[2] = {-ex * w, -ey * w};
-      const double cv[2] = {ey * w, -ex * w};
-      if (column[i] >= 0) {
-        for (int r = 0; r < 2; ++r) {
-          col[r][used] = column[i], coef[r][used] = cu[r];
-          col[r][used + 1] = nFree + column[i], coef[r][used + 1] = cv[r];
-        }
-        used += 2;
-      } else {
-        const Eigen::Vector2d& pv = pinned[pinIndex(i)];
-        for (int r = 0; r < 2; ++r) constant[r] += cu[r] * pv.x() + cv[r] * pv.y();
-      }
-    }
-    for (int r = 0; r < 2; ++r)
-      for (int a = 0; a < used; ++a) {
-        rhs[col[r][a]] -= coef[r][a] * constant[r];
-        for (int b = 0; b < used; ++b)
-          if (col[r][a] <= col[r][b]) triplets.emplace_back(col[r][a], col[r][b], coef[r][a] * coef[r][b]);
-      }
-  }
+  const std::vector<FaceResidual> residuals = conformalResiduals(
+      mesh, g, chart.faces, local, column, [&](int32_t i) { return pinned[i == pinA ? 0 : 1]; });
   chart.uv.assign(6 * chart.faces.size(), 0.0);
   std::vector<Eigen::Vector2d> uvOf(n, Eigen::Vector2d::Zero());
   uvOf[pinA] = pinned[0];
   uvOf[pinB] = pinned[1];
   if (nFree > 0) {
-    SparseMatrix upper(2 * nFree, 2 * nFree);
-    upper.setFromTriplets(triplets.begin(), triplets.end());
     Eigen::VectorXd x;
-    if (!solveSpdOnce(upper, rhs, x)) return false;
+    if (!solveSpdOnce(conformalNormalEquations(residuals, nFree), conformalRightHandSide(residuals, nFree),
+                      x))
+      return false;
     for (int32_t i = 0; i < n; ++i)
-      if (column[i] >= 0) uvOf[i] = {x[column[i]], x[nFree + column[i]]};
+      if (column[i] >= 0) uvOf[i] = {x[2 * column[i]], x[2 * column[i] + 1]};
   }
   for (size_t j = 0; j < chart.faces.size(); ++j)
     for (int k = 0; k < 3; ++k) {
@@ -305,18 +389,23 @@ bool lscm(const SurfaceMesh& mesh, const FaceGeometry& g, Chart& chart, std::vec
   return true;
 }
 
-// Area-weighted quantile of values.
-double weightedQuantile(std::vector<std::pair<double, double>> valueWeight, double q) {
-  if (valueWeight.empty()) return 0;
+// Area-weighted quantiles of values, at each of qs (ascending), sorting them once.
+template <size_t N>
+std::array<double, N> weightedQuantiles(std::vector<std::pair<double, double>> valueWeight,
+                                        const std::array<double, N>& qs) {
+  std::array<double, N> out{};
+  if (valueWeight.empty()) return out;
   std::sort(valueWeight.begin(), valueWeight.end());
   double total = 0;
   for (const auto& [v, w] : valueWeight) total += w;
   double acc = 0;
+  size_t k = 0;
   for (const auto& [v, w] : valueWeight) {
     acc += w;
-    if (acc >= q * total) return v;
+    for (; k < N && acc >= qs[k] * total; ++k) out[k] = v;
   }
-  return valueWeight.back().first;
+  for (; k < N; ++k) out[k] = valueWeight.back().first;
+  return out;
 }
 
 // Whether the flattened chart covers some point twice. Its faces keep their orientation (checked first), so
@@ -407,7 +496,7 @@ bool chartAcceptable(const SurfaceMesh& mesh, const Chart& chart, const FaceGeom
     density.push_back({std::sqrt(a / g.areas[chart.faces[j]]), g.areas[chart.faces[j]]});
   }
   if (chart.faces.size() == 1) return true;
-  const double p05 = weightedQuantile(density, 0.05), p95 = weightedQuantile(density, 0.95);
+  const auto [p05, p95] = weightedQuantiles(std::move(density), std::array<double, 2>{0.05, 0.95});
   if (!(p95 <= kMaxDensityRatio * p05)) return false;
   return !selfOverlaps(mesh, g.topology, chart);
 }
@@ -1047,11 +1136,12 @@ AtlasMeasures measure(const SurfaceMesh& mesh, const FaceGeometry& g, const std:
   std::vector<std::pair<double, double>> density;
   for (int32_t f = 0; f < nF; ++f)
     if (g.areas[f] > 0) density.push_back({std::sqrt(std::abs(uvArea[f]) / g.areas[f]), g.areas[f]});
-  const double median = weightedQuantile(density, 0.5);
+  const auto [p05, median, p95] =
+      weightedQuantiles(std::move(density), std::array<double, 3>{0.05, 0.5, 0.95});
   m.texelsPerUnitLength = median;
   if (!(median > 0)) return m;
-  m.densityP05 = weightedQuantile(density, 0.05) / median;
-  m.densityP95 = weightedQuantile(density, 0.95) / median;
+  m.densityP05 = p05 / median;
+  m.densityP95 = p95 / median;
   m.densityMin = 1e300, m.densityMax = 0;
   double stretch2 = 0, area = 0;
   for (int32_t f = 0; f < nF; ++f) {
