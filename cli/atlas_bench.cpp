@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // tvf_atlas_bench: the generated texture atlas measured on meshes, one JSON object per mesh and resolution
-// (generation time as the median over --repeat runs).
+// (generation time as the median over --repeat runs; `hash` of its UVs and charts, to compare two builds).
 //   tvf_atlas_bench MESH... [--resolution N|auto]... [--gutter G] [--repeat N]
 // 'auto' is the page's default resolution (web/synthesis/index.js defaultResolution: 256-1024 by face count).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -23,6 +25,20 @@ int pageDefaultResolution(int32_t numFaces) {
   int r = 256;
   while (r < want && r < 1024) r *= 2;
   return r;
+}
+
+// FNV-1a over the atlas's corner UVs and charts: two builds made the same atlas when their hashes agree.
+std::string atlasHash(const tvf::TextureAtlas& atlas) {
+  uint64_t h = 1469598103934665603ull;
+  const auto add = [&](const void* data, size_t bytes) {
+    for (size_t i = 0; i < bytes; ++i)
+      h = (h ^ static_cast<const unsigned char*>(data)[i]) * 1099511628211ull;
+  };
+  add(atlas.cornerUVs.data(), atlas.cornerUVs.size() * sizeof(float));
+  add(atlas.faceChart.data(), atlas.faceChart.size() * sizeof(int32_t));
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
 }
 
 // The atlas as an image: each chart's covered texels in a colour of its own, the rest black.
@@ -95,6 +111,7 @@ int main(int argc, char** argv) {
                                     {"resolution", r},
                                     {"gutter", gutter},
                                     {"charts", atlas.numCharts},
+                                    {"hash", atlasHash(atlas)},
                                     {"coverage", m.coverage},
                                     {"used", atlas.used},
                                     {"seamShare", m.seamShare},

@@ -183,8 +183,27 @@ std::vector<std::vector<int32_t>> growCharts(const FaceGeometry& g) {
 struct Chart {
   std::vector<int32_t> faces;
   std::vector<double> uv;
+  std::vector<int32_t>
+      boundary;  // corners 3j + k whose edge (to corner k + 1) no other face of the chart has
   double surfaceArea = 0;
 };
+
+// The corners whose edges bound the faces (3j + k for corner k of faces[j], the edge from it to the next).
+std::vector<int32_t> boundaryCorners(const MeshTopology& t, const std::vector<int32_t>& faces) {
+  std::vector<std::pair<int32_t, int32_t>> all;  // (edge, corner)
+  all.reserve(3 * faces.size());
+  for (size_t j = 0; j < faces.size(); ++j)
+    for (int k = 0; k < 3; ++k) all.emplace_back(t.edgeOf(faces[j], k), static_cast<int32_t>(3 * j + k));
+  std::sort(all.begin(), all.end());
+  std::vector<int32_t> out;
+  for (size_t i = 0; i < all.size();) {
+    size_t j = i;
+    while (j < all.size() && all[j].first == all[i].first) ++j;
+    if (j - i == 1) out.push_back(all[i].second);
+    i = j;
+  }
+  return out;
+}
 
 double signedArea2(const double* t) {
   return (t[2] - t[0]) * (t[5] - t[1]) - (t[4] - t[0]) * (t[3] - t[1]);
@@ -411,31 +430,21 @@ std::array<double, N> weightedQuantiles(std::vector<std::pair<double, double>> v
 // Whether the flattened chart covers some point twice. Its faces keep their orientation (checked first), so
 // it does exactly when two of its boundary edges cross or touch away from a shared vertex. Boundary edges are
 // bucketed on a grid of about one edge length; exact for any resolution the chart is later drawn at.
-bool selfOverlaps(const SurfaceMesh& mesh, const MeshTopology& t, const Chart& chart) {
+bool selfOverlaps(const SurfaceMesh& mesh, const Chart& chart) {
   struct Edge {
     int32_t a, b;  // mesh vertices
     Eigen::Vector2d p, q;
   };
-  // The chart's boundary edges are those only one of its faces has.
-  std::vector<std::pair<int32_t, size_t>> all;  // (edge, corner)
-  for (size_t j = 0; j < chart.faces.size(); ++j)
-    for (int k = 0; k < 3; ++k) all.emplace_back(t.edgeOf(chart.faces[j], k), 3 * j + k);
-  std::sort(all.begin(), all.end());
   std::vector<Edge> edges;
   double length = 0;
-  for (size_t i = 0; i < all.size();) {
-    size_t j = i;
-    while (j < all.size() && all[j].first == all[i].first) ++j;
-    if (j - i == 1) {
-      const size_t c = all[i].second, face = c / 3, k = c % 3, k1 = (k + 1) % 3;
-      Edge e{mesh.triangles[3 * chart.faces[face] + k],
-             mesh.triangles[3 * chart.faces[face] + k1],
-             {chart.uv[6 * face + 2 * k], chart.uv[6 * face + 2 * k + 1]},
-             {chart.uv[6 * face + 2 * k1], chart.uv[6 * face + 2 * k1 + 1]}};
-      length += std::hypot(e.q.x() - e.p.x(), e.q.y() - e.p.y());
-      edges.push_back(e);
-    }
-    i = j;
+  for (const int32_t c : chart.boundary) {
+    const size_t face = c / 3, k = c % 3, k1 = (k + 1) % 3;
+    Edge e{mesh.triangles[3 * chart.faces[face] + k],
+           mesh.triangles[3 * chart.faces[face] + k1],
+           {chart.uv[6 * face + 2 * k], chart.uv[6 * face + 2 * k + 1]},
+           {chart.uv[6 * face + 2 * k1], chart.uv[6 * face + 2 * k1 + 1]}};
+    length += std::hypot(e.q.x() - e.p.x(), e.q.y() - e.p.y());
+    edges.push_back(e);
   }
   if (edges.size() < 3) return false;
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
@@ -488,17 +497,22 @@ bool selfOverlaps(const SurfaceMesh& mesh, const MeshTopology& t, const Chart& c
 }
 
 // Whether a flattened chart can be used as it is: no flipped triangle, a bounded density spread, no overlap.
-bool chartAcceptable(const SurfaceMesh& mesh, const Chart& chart, const FaceGeometry& g) {
+// Finds the chart's boundary on the way.
+bool chartAcceptable(const SurfaceMesh& mesh, Chart& chart, const FaceGeometry& g) {
   std::vector<std::pair<double, double>> density;
   for (size_t j = 0; j < chart.faces.size(); ++j) {
     const double a = signedArea2(&chart.uv[6 * j]) / 2;
     if (!(a > 0)) return false;  // flipped or degenerate
     density.push_back({std::sqrt(a / g.areas[chart.faces[j]]), g.areas[chart.faces[j]]});
   }
-  if (chart.faces.size() == 1) return true;
+  if (chart.faces.size() == 1) {
+    chart.boundary = {0, 1, 2};
+    return true;
+  }
   const auto [p05, p95] = weightedQuantiles(std::move(density), std::array<double, 2>{0.05, 0.95});
   if (!(p95 <= kMaxDensityRatio * p05)) return false;
-  return !selfOverlaps(mesh, g.topology, chart);
+  chart.boundary = boundaryCorners(g.topology, chart.faces);
+  return !selfOverlaps(mesh, chart);
 }
 
 // The cut between the halves (mark 1 and 2) of a chart being split, shortened as smoothChartBorders does: a
@@ -682,6 +696,7 @@ ChartOutcome flattenOrSplit(const SurfaceMesh& mesh, const FaceGeometry& g, std:
     Eigen::Vector2d q[3];
     inPlaneCorners(p, g.normals[f], q);
     chart.uv = {q[0].x(), q[0].y(), q[1].x(), q[1].y(), q[2].x(), q[2].y()};
+    chart.boundary = {0, 1, 2};
     normalizeChart(chart, g);
     out.accepted = true;
     return out;
@@ -745,54 +760,27 @@ struct Bitmap {
   }
 };
 
-double pointTriangleDistance2(double px, double py, const double* t) {
-  auto side = [&](int a, int b) {
-    return (t[2 * b] - t[2 * a]) * (py - t[2 * a + 1]) - (t[2 * b + 1] - t[2 * a + 1]) * (px - t[2 * a]);
-  };
-  const double s0 = side(0, 1), s1 = side(1, 2), s2 = side(2, 0);
-  if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) return 0;
-  double best = 1e300;
-  for (int k = 0; k < 3; ++k) {
-    const double ax = t[2 * k], ay = t[2 * k + 1], bx = t[2 * ((k + 1) % 3)], by = t[2 * ((k + 1) % 3) + 1];
-    const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
-    const double s = l2 > 0 ? std::clamp(((px - ax) * dx + (py - ay) * dy) / l2, 0.0, 1.0) : 0.0;
-    const double ex = ax + s * dx - px, ey = ay + s * dy - py;
-    best = std::min(best, ex * ex + ey * ey);
-  }
-  return best;
+// Squared distance from p to the segment a-b.
+double segmentDistance2(double px, double py, double ax, double ay, double bx, double by) {
+  const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+  const double s = l2 > 0 ? std::clamp(((px - ax) * dx + (py - ay) * dy) / l2, 0.0, 1.0) : 0.0;
+  const double ex = ax + s * dx - px, ey = ay + s * dy - py;
+  return ex * ex + ey * ey;
 }
 
-// The triangle's edge lines, normalized and facing out: a point's distance beyond any of them is a lower
-// bound of its distance to the triangle, which rules most texels around a small triangle out without the
-// exact distance.
-struct EdgeBounds {
-  double nx[3] = {}, ny[3] = {}, c[3] = {};
-  bool usable = false;
-  bool fartherThanReach(double px, double py) const {
-    constexpr double kReach = 0.70710678118654757 + 1e-6;  // sqrt(0.5), with room for rounding
-    if (!usable) return false;
-    for (int k = 0; k < 3; ++k)
-      if (nx[k] * px + ny[k] * py + c[k] > kReach) return true;
-    return false;
-  }
-};
+// Which side of the line a -> b p lies on, evaluated with a and b in one fixed (lexicographic) order and the
+// sign turned for the other: the two faces of a shared edge then get the same value with opposite signs.
+double edgeSide(double ax, double ay, double bx, double by, double px, double py) {
+  if (ax > bx || (ax == bx && ay > by)) return -edgeSide(bx, by, ax, ay, px, py);
+  return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+}
 
-EdgeBounds edgeBounds(const double* t) {
-  EdgeBounds b;
-  const double area2 = (t[2] - t[0]) * (t[5] - t[1]) - (t[3] - t[1]) * (t[4] - t[0]);
-  if (!(std::abs(area2) > 1e-12)) return b;
-  const double orient = area2 > 0 ? 1.0 : -1.0;
-  for (int k = 0; k < 3; ++k) {
-    const double ax = t[2 * k], ay = t[2 * k + 1], bx = t[2 * ((k + 1) % 3)], by = t[2 * ((k + 1) % 3) + 1];
-    const double len = std::hypot(bx - ax, by - ay);
-    if (!(len > 1e-12)) return b;
-    // Outward distance of p: -orient * ((b - a) x (p - a)) / |b - a|.
-    b.nx[k] = orient * (by - ay) / len;
-    b.ny[k] = -orient * (bx - ax) / len;
-    b.c[k] = -(b.nx[k] * ax + b.ny[k] * ay);
-  }
-  b.usable = true;
-  return b;
+// Whether p lies in the triangle (6 coordinates), its edges included, in either orientation. Watertight: a
+// point on or beside an edge two triangles share is in one of them (or both), never in neither.
+bool inTriangle(double px, double py, const double* t) {
+  const double s0 = edgeSide(t[0], t[1], t[2], t[3], px, py), s1 = edgeSide(t[2], t[3], t[4], t[5], px, py),
+               s2 = edgeSide(t[4], t[5], t[0], t[1], px, py);
+  return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
 }
 
 // A chart laid out in texels at one density and rotation: corner positions (texels, from the bitmap's origin)
@@ -849,20 +837,33 @@ ChartShape chartShape(const Chart& chart, double density, int gutter) {
   const int w = static_cast<int>(std::ceil(x1 + sx)) + margin + 1;
   const int h = static_cast<int>(std::ceil(y1 + sy)) + margin + 1;
   // Touched: the texel's square meets a triangle (its centre within half a diagonal). Covered: its centre is
-  // in a triangle (with a margin for the rounding of UVs to floats), i.e. the texels synthesis writes.
+  // in a triangle (with a margin for the rounding of UVs to floats), i.e. the texels synthesis writes. The
+  // chart does not overlap itself (chartAcceptable), so a centre outside its triangles is as far from the
+  // chart as from its boundary's edges: those alone are measured, the triangles only rasterized.
   Bitmap touched(w, h), covered(w, h);
-  constexpr double kReach2 = 0.5 + 1e-9, kCoveredReach2 = 1e-6;
+  constexpr double kReach = 0.70710678118654757 + 1e-6, kReach2 = 0.5 + 1e-9, kCoveredReach2 = 1e-6;
   for (size_t j = 0; j < s.texel.size(); j += 6) {
     const double* t = &s.texel[j];
-    const int tx0 = std::max(0, static_cast<int>(std::floor(std::min({t[0], t[2], t[4]}))) - 1);
-    const int tx1 = std::min(w - 1, static_cast<int>(std::floor(std::max({t[0], t[2], t[4]}))) + 1);
-    const int ty0 = std::max(0, static_cast<int>(std::floor(std::min({t[1], t[3], t[5]}))) - 1);
-    const int ty1 = std::min(h - 1, static_cast<int>(std::floor(std::max({t[1], t[3], t[5]}))) + 1);
-    const EdgeBounds bounds = edgeBounds(t);
+    const int tx0 = std::max(0, static_cast<int>(std::ceil(std::min({t[0], t[2], t[4]}) - 0.5)));
+    const int tx1 = std::min(w - 1, static_cast<int>(std::floor(std::max({t[0], t[2], t[4]}) - 0.5)));
+    const int ty0 = std::max(0, static_cast<int>(std::ceil(std::min({t[1], t[3], t[5]}) - 0.5)));
+    const int ty1 = std::min(h - 1, static_cast<int>(std::floor(std::max({t[1], t[3], t[5]}) - 0.5)));
+    for (int y = ty0; y <= ty1; ++y)
+      for (int x = tx0; x <= tx1; ++x)
+        if (inTriangle(x + 0.5, y + 0.5, t)) covered.set(x, y), touched.set(x, y);
+  }
+  for (const int32_t c : chart.boundary) {
+    const int k = c % 3;
+    const double* a = &s.texel[2 * static_cast<size_t>(c)];
+    const double* b = &s.texel[2 * static_cast<size_t>(c - k + (k + 1) % 3)];
+    const int tx0 = std::max(0, static_cast<int>(std::floor(std::min(a[0], b[0]) - kReach - 0.5)));
+    const int tx1 = std::min(w - 1, static_cast<int>(std::ceil(std::max(a[0], b[0]) + kReach - 0.5)));
+    const int ty0 = std::max(0, static_cast<int>(std::floor(std::min(a[1], b[1]) - kReach - 0.5)));
+    const int ty1 = std::min(h - 1, static_cast<int>(std::ceil(std::max(a[1], b[1]) + kReach - 0.5)));
     for (int y = ty0; y <= ty1; ++y)
       for (int x = tx0; x <= tx1; ++x) {
-        if (covered.get(x, y) || bounds.fartherThanReach(x + 0.5, y + 0.5)) continue;
-        const double d2 = pointTriangleDistance2(x + 0.5, y + 0.5, t);
+        if (covered.get(x, y)) continue;
+        const double d2 = segmentDistance2(x + 0.5, y + 0.5, a[0], a[1], b[0], b[1]);
         if (d2 <= kReach2) touched.set(x, y);
         if (d2 <= kCoveredReach2) covered.set(x, y);
       }
