@@ -2,7 +2,6 @@
 #include "texture/texture_atlas.h"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/Sparse>
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -16,6 +15,7 @@
 #include <tuple>
 #include <utility>
 
+#include "common/sparse_matrix.h"
 #include "common/thread_team.h"
 #include "mesh/mesh_geometry.h"
 #include "solver/spd_solve.h"

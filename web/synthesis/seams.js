@@ -42,6 +42,12 @@ function faceFrame(positions, triangles, cornerUVs, f) {
   return F;
 }
 
+// The corner (0-2) of `face` at vertex v, or -1.
+function cornerOf(triangles, face, v) {
+  for (let k = 0; k < 3; k++) if (triangles[3 * face + k] === v) return k;
+  return -1;
+}
+
 // Gutter texel -> the same surface point across the seam at `resolution`, in texel units (continuous: texel i spans
 // [i, i + 1), so floor() names the target texel and the fraction where inside it the point lies). mesh:
 // {positions, triangles, neighbour?}, neighbour the half-edge map of geometry/mesh-geometry.js (the model's
@@ -105,19 +111,16 @@ export function seamIndirection({ positions, triangles, neighbour = null }, corn
   function unfold(from, to) {
     const A = frame(from), B = frame(to);
     if (!A || !B) return 0;
-    // The shared vertices' corners (i, j in `from`; ti, tj in `to`), `to`'s opposite corner to, `from`'s fo.
-    const corner = (face, v) => {
-      for (let k = 0; k < 3; k++) if (triangles[3 * face + k] === v) return k;
-      return -1;
-    };
+    // The shared vertices' corners (i, j in `from`; ti, tj in `to`), `to`'s opposite corner to3, `from`'s fo.
     let ti = -1, tj = -1, to3 = -1;
     for (let k = 0; k < 3; k++) {
-      if (corner(from, triangles[3 * to + k]) < 0) to3 = k;
+      if (cornerOf(triangles, from, triangles[3 * to + k]) < 0) to3 = k;
       else if (ti < 0) ti = k;
       else tj = k;
     }
     if (tj < 0 || to3 < 0) return 0;
-    const i = corner(from, triangles[3 * to + ti]), j = corner(from, triangles[3 * to + tj]), fo = 3 - i - j;
+    const i = cornerOf(triangles, from, triangles[3 * to + ti]);
+    const j = cornerOf(triangles, from, triangles[3 * to + tj]), fo = 3 - i - j;
     const Xi = 3 * i, Xj = 3 * j, Xo = 3 * to3, Fo = 3 * fo;
     const ex = A[Xj] - A[Xi], ey = A[Xj + 1] - A[Xi + 1], ez = A[Xj + 2] - A[Xi + 2];
     const el = Math.hypot(ex, ey, ez);
