@@ -123,7 +123,8 @@ int main(int argc, char** argv) {
                                     {"msMedian", ms[ms.size() / 2]},
                                     {"chartMs", atlas.chartMilliseconds},
                                     {"packAttempts", atlas.packAttempts},
-                                    {"splits", atlas.splits}}
+                                    {"splits", atlas.splits},
+                                    {"keptPieces", atlas.keptPieces}}
                          .dump()
                   << std::endl;
       }

@@ -142,7 +142,8 @@ class TextureAtlasBinding {
   val faceCharts() const {
     return val(emscripten::typed_memory_view(atlas_.faceChart.size(), atlas_.faceChart.data()));
   }
-  // {resolution, gutter, charts, splits, packAttempts, ms, chartMs, coverage, overlap, flippedFaces,
+  // {resolution, gutter, charts, splits, keptPieces, packAttempts, ms, chartMs, coverage, overlap,
+  // flippedFaces,
   //  degenerateFaces, densityP05, densityP95, densityMin, densityMax, texelsPerUnitLength, stretchL2,
   //  seamShare, used}
   std::string statsJson() const {
@@ -151,6 +152,7 @@ class TextureAtlasBinding {
                           {"gutter", atlas_.gutter},
                           {"charts", atlas_.numCharts},
                           {"splits", atlas_.splits},
+                          {"keptPieces", atlas_.keptPieces},
                           {"packAttempts", atlas_.packAttempts},
                           {"ms", atlas_.milliseconds},
                           {"chartMs", atlas_.chartMilliseconds},

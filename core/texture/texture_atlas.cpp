@@ -664,11 +664,13 @@ void runParts(int parts, const std::function<void(int)>& task) {
   if (failure) std::rethrow_exception(failure);
 }
 
-// A chart flattened and checked, or, when its map is not acceptable, the pieces to try instead.
+// A chart flattened and checked, or, when its map is not acceptable, the pieces to try instead; of those, the
+// ones that the failed map already serves are kept as charts on it.
 struct ChartOutcome {
   Chart chart;
   bool accepted = false;
   std::vector<std::vector<int32_t>> pieces;
+  std::vector<Chart> kept;
 };
 
 // What one thread needs to flatten charts: scratch the size of the mesh, cleared as it is used.
@@ -678,12 +680,40 @@ struct ChartScratch {
       : vertexLocal(mesh.numVertices(), -1), faceMark(mesh.numFaces(), 0) {}
 };
 
+// The pieces of a chart whose map failed that are acceptable on that map, moved from out.pieces to out.kept.
+// A conformal map restricted to a piece is a conformal map of the piece, face for face as conformal; a piece
+// whose density spread and overlap pass on it needs no map of its own. `slot`: one entry per mesh face, all
+// 0, left so.
+void keepPiecesOnMap(const SurfaceMesh& mesh, const FaceGeometry& g, const Chart& failed, ChartOutcome& out,
+                     std::vector<int32_t>& slot) {
+  for (size_t j = 0; j < failed.faces.size(); ++j) slot[failed.faces[j]] = static_cast<int32_t>(j) + 1;
+  std::vector<std::vector<int32_t>> left;
+  for (std::vector<int32_t>& piece : out.pieces) {
+    Chart chart;
+    chart.uv.resize(6 * piece.size());
+    for (size_t i = 0; i < piece.size(); ++i) {
+      const double* from = &failed.uv[6 * static_cast<size_t>(slot[piece[i]] - 1)];
+      std::copy(from, from + 6, &chart.uv[6 * i]);
+    }
+    chart.faces = std::move(piece);
+    if (chartAcceptable(mesh, chart, g)) {
+      normalizeChart(chart, g);
+      out.kept.push_back(std::move(chart));
+    } else {
+      left.push_back(std::move(chart.faces));
+    }
+  }
+  out.pieces = std::move(left);
+  for (int32_t f : failed.faces) slot[f] = 0;
+}
+
 ChartOutcome flattenOrSplit(const SurfaceMesh& mesh, const FaceGeometry& g, std::vector<int32_t> faces,
                             ChartScratch& scratch) {
   ChartOutcome out;
   out.chart.faces = std::move(faces);
   Chart& chart = out.chart;
-  if (lscm(mesh, g, chart, scratch.vertexLocal) && chartAcceptable(mesh, chart, g)) {
+  const bool mapped = lscm(mesh, g, chart, scratch.vertexLocal);
+  if (mapped && chartAcceptable(mesh, chart, g)) {
     normalizeChart(chart, g);
     out.accepted = true;
     return out;
@@ -702,6 +732,7 @@ ChartOutcome flattenOrSplit(const SurfaceMesh& mesh, const FaceGeometry& g, std:
     return out;
   }
   out.pieces = splitFaces(chart.faces, g, scratch.faceMark);
+  if (mapped) keepPiecesOnMap(mesh, g, chart, out, scratch.faceMark);
   return out;
 }
 
@@ -709,10 +740,10 @@ ChartOutcome flattenOrSplit(const SurfaceMesh& mesh, const FaceGeometry& g, std:
 // round are independent: they are flattened on the thread team's parts (common/thread_team.h), biggest first,
 // each part taking the next chart left; the pieces of those split make the next round. The result does not
 // depend on the number of parts.
-std::vector<Chart> makeCharts(const SurfaceMesh& mesh, const FaceGeometry& g, int& splits) {
+std::vector<Chart> makeCharts(const SurfaceMesh& mesh, const FaceGeometry& g, int& splits, int& keptPieces) {
   std::vector<std::vector<int32_t>> pending = growCharts(g);
   std::vector<Chart> charts;
-  splits = 0;
+  splits = keptPieces = 0;
   const int parts = ThreadTeam::usefulParts();
   std::vector<ChartScratch> scratch;
   for (int k = 0; k < parts; ++k) scratch.emplace_back(mesh);
@@ -732,6 +763,8 @@ std::vector<Chart> makeCharts(const SurfaceMesh& mesh, const FaceGeometry& g, in
         continue;
       }
       ++splits;
+      keptPieces += static_cast<int>(o.kept.size());
+      for (Chart& kept : o.kept) charts.push_back(std::move(kept));
       for (auto& piece : o.pieces) pending.push_back(std::move(piece));
     }
   }
@@ -1195,7 +1228,7 @@ TextureAtlas generateAtlas(const SurfaceMesh& mesh, const MeshTopology& topology
   TextureAtlas atlas;
   atlas.resolution = resolution;
   atlas.gutter = gutterTexels;
-  const std::vector<Chart> charts = makeCharts(mesh, g, atlas.splits);
+  const std::vector<Chart> charts = makeCharts(mesh, g, atlas.splits, atlas.keptPieces);
   atlas.chartMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (charts.empty()) throw InputError("atlas: every face of the mesh has zero area");

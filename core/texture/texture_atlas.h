@@ -3,10 +3,11 @@
 //
 // generateAtlas() cuts the surface into charts (grown over faces whose normals stay inside a cone, in order
 // of distance from the seed so they come out round), flattens each by least-squares conformal maps (LSCM,
-// Levy et al. 2002; CHOLMOD's supernodal Cholesky), splits any chart whose map flips a face, overlaps itself or
-// stretches area too unevenly, scales every chart to one texel density (texels per unit surface length), and
-// packs them into the square by first fit over texel bitmaps of the charts (4 rotations each, `gutter` texels
-// of exclusive border around every chart), raising the density until the packing no longer fits.
+// Levy et al. 2002; CHOLMOD's supernodal Cholesky), splits any chart whose map flips a face, overlaps itself
+// or stretches area too unevenly (keeping the pieces that the failed map serves), scales every chart to one
+// texel density (texels per unit surface length), and packs them into the square by first fit over texel
+// bitmaps of the charts (4 rotations each, `gutter` texels of exclusive border around every chart), raising
+// the density until the packing no longer fits.
 //
 // Conventions: per face corner (u, v), 6 floats per face, in the face's own winding; texel (i, j) of an R x R
 // image covers [i, i+1] x [j, j+1] / R, so v = 0 is image row 0 (as glTF samples an image).
@@ -43,7 +44,8 @@ struct TextureAtlas {
   std::vector<float> cornerUVs;    // 6 per face
   std::vector<int32_t> faceChart;  // chart per face; -1 for faces of zero surface area (UVs left at 0)
   int numCharts = 0;
-  int splits = 0;  // charts split again because their map flipped, overlapped or stretched
+  int splits = 0;      // charts split again because their map flipped, overlapped or stretched
+  int keptPieces = 0;  // pieces of those kept on the split chart's map (not flattened again)
   int packAttempts = 0;
   double used = 0;  // share of the square given to charts: their texels and their gutters   // packings tried
                     // while searching the densest that fits
