@@ -106,11 +106,11 @@ export class Designer {
               cornerUVs: s.cornerUVs,
               // The field the views draw (the whole field or the Hodge component chosen in the Views panel), as
               // the texture reads it, a copy: synthesis holds it across awaits, and the session's own array goes
-              // back to the worker once a newer field replaces it. N = 1: the 1-form, whose Whitney field the
-              // texture follows per texel; N ≥ 2: the vertex representatives of a line or cross field, which
-              // synthesis combs per chart starting from the core's own face representatives.
+              // back to the worker once a newer field replaces it. N = 1: #textureVectorField(); N ≥ 2: the vertex
+              // representatives of a line or cross field, which synthesis combs per chart starting from the
+              // core's own face representatives.
               ...((s.field.symmetry ?? 1) === 1
-                ? { oneForm: this.viewSync.drawnOneForm().slice() }
+                ? this.#textureVectorField()
                 : {
                     vertexVectors: this.viewSync.drawnVertexVectors().slice(),
                     faceVectors: s.field.faceVectors.slice(),
@@ -120,6 +120,15 @@ export class Designer {
             }
           : null,
     });
+  }
+
+  // A vector field as the texture reads it, a copy: its 1-form, whose Whitney field the texture follows per
+  // texel; a big model's preview, known by its vertex vectors alone, by those (linear over each face, as the
+  // preview gives it): deriving its 1-form on the page held armadillo-sub2's update 140 ms in one task.
+  #textureVectorField() {
+    const sync = this.viewSync, known = sync.drawnOneForm({ derive: false });
+    if (known || !this.session.field.stats?.preview) return { oneForm: (known ?? sync.drawnOneForm()).slice() };
+    return { vertexVectors: sync.drawnVertexVectors().slice() };
   }
 
   // Stripe patterns (web/stripes/, docs/stripes.md): of the field the views draw, made in the core's worker.

@@ -55,10 +55,11 @@ export class ViewSync {
     return this.drawn?.field.vertexVectors ?? this.session.field.vertexVectors;
   }
 
-  // The drawn field's 1-form (N = 1): a part's own, or the whole field's (derived from a preview's vectors).
-  drawnOneForm() {
-    const d = this.drawn;
-    return d?.field.oneForm ?? (d?.derived ?? this.session.field).requireOneForm();
+  // The drawn field's 1-form (N = 1): a part's own, or the whole field's (derived from a preview's vectors, or,
+  // with derive false, null where it would have to be).
+  drawnOneForm({ derive = true } = {}) {
+    const d = this.drawn, field = d?.derived ?? this.session.field;
+    return d?.field.oneForm ?? (derive ? field.requireOneForm() : field.oneForm ?? null);
   }
 
   drawnVersion() {

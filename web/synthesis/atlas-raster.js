@@ -17,6 +17,9 @@ import { coarserIndirection, seamIndirection } from './seams.js';
 // bunny00's 225k corners fill 55 rows.
 const CORNER_ROW = 4095;
 
+// Texels of a seam map sent to the GPU per step (RGBA32F: 1 MB).
+const BAND_TEXELS = 1 << 16;
+
 // The phase (phase-clock.js) of the steps that the first field of an atlas takes for its map of faces.
 const FIXED_PHASE = "the atlas's faces to the GPU, their map drawn (once per atlas)";
 
@@ -97,8 +100,8 @@ export class AtlasRaster {
       );
   }
 
-  // The GPU textures, one per step, for a caller to yield between them: each allocation can wait for the GPU
-  // process (a 16 MB target took 55-88 ms behind an 832k-face view with software GL). The map of faces, the
+  // The GPU textures, one per step (a seam map's upload a band of rows per step), for a caller to yield between
+  // them: what goes up with them can wait for the GPU process. The map of faces, the
   // per-corner textures (frames and field), then per level (finest first, down to 2x2): the Jacobian, the state
   // as four parity-class quarters plus a spare (sub-passes write a quarter into the spare, which then takes its
   // place), the unpacked result, and the seam indirection (an all-zero map where the atlas has no seams). Not
@@ -122,10 +125,25 @@ export class AtlasRaster {
       for (let q = 0; q < 4; q++) L.quarters.push(target(r / 2));
       yield;
       const map = k === 0 ? this.seamMaps.map : coarserIndirection(this.seamMaps.map, resolution, k);
-      L.indirection = new FloatTarget(gl, r, r, map, { target: false });
-      yield;
+      L.indirection = new FloatTarget(gl, r, r, null, { target: false });
+      yield* this.#uploadRows(L.indirection, map);
     }
     this.seamMaps = null;
+  }
+
+  // A level's map into its texture a band of rows per step: a 1024² map (16 MB) in one call held the page
+  // 20-40 ms with nothing else to do and over 100 ms behind a big model's frames (the copy through the GPU
+  // process's transfer buffer), where a 1 MB band takes about 1 ms.
+  *#uploadRows(target, data) {
+    const gl = this.gl, size = target.width;
+    const rows = Math.max(1, Math.floor(BAND_TEXELS / size));
+    for (let y = 0; y < size; y += rows) {
+      const h = Math.min(rows, size - y);
+      gl.bindTexture(gl.TEXTURE_2D, target.texture);
+      gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, y, size, h, gl.RGBA, gl.FLOAT, data, 4 * size * y);
+      gl.bindTexture(gl.TEXTURE_2D, null);
+      yield;
+    }
   }
 
   // An RGBA32F texture of a float triple per corner (corner c at texel c, row by row; w unused), read with

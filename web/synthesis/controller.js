@@ -19,9 +19,9 @@ import { progressFollower } from './progress-follower.js';
 
 export class SynthesisController {
   // viewer: the page's Viewer (scene, surfaceMesh, requestRender).
-  // getModel(): {key, name, positions, triangles, surface, cornerUVs | null, symmetry, oneForm (N = 1) or
-  // vertexVectors and faceVectors (N ≥ 2), fieldVersion} of the current model and field (surface:
-  // geometry/surface.js, with normals and the half-edge map).
+  // getModel(): {key, name, positions, triangles, surface, cornerUVs | null, symmetry, oneForm (N = 1; a big
+  // model's preview: vertexVectors) or vertexVectors and faceVectors (N ≥ 2), fieldVersion} of the current model
+  // and field (surface: geometry/surface.js, with normals and the half-edge map).
   // computeAtlas(model, {resolution, gutter}) and analyzeExemplar(spec): preparedAtlas (atlas-prepared.js) and
   // analyzeExemplar (exemplar.js) off the page's thread (the element's core worker), resolving with their results.
   // getFieldVersion(): the model's fieldVersion without the copies getModel() makes (tens of ms at 400k

@@ -26,11 +26,14 @@ export function runOptions(options, model, atlas, exemplarSize, preview) {
 }
 
 // What the synthesizer follows: a vector field's Whitney reconstruction from model.oneForm (paper Eq. 4: linear
-// over each face, exact at every texel; made per slice of faces by the raster); a line or cross field's
+// over each face, exact at every texel; made per slice of faces by the raster), or a preview's
+// model.vertexVectors as they are; a line or cross field's
 // model.vertexVectors combed per corner for the atlas (geometry/chart-comb.js), its cuts along the chart seams
 // where it can (model.faceVectors, the field's own face representatives, when the model hands them in).
 export function fieldInput(model, atlas) {
   const symmetry = model.symmetry ?? 1;
+  // A big model's preview, known by its vertex vectors alone: those, linear over each face.
+  if (symmetry === 1 && !model.oneForm) return { symmetry, input: model.vertexVectors };
   if (symmetry === 1) {
     const S = model.surface;
     return { symmetry, input: { whitney: { positions: S.positions, rows: S.edgeRows, oneForm: model.oneForm } } };
