@@ -27,16 +27,29 @@ function scrambledOneForm(nE) {
   return w;
 }
 
+// The edges (2 each) reordered by key (lower vertex, then upper), or reversed.
+function reorderedEdges(edges, how) {
+  const order = Array.from({ length: edges.length / 2 }, (_, e) => e);
+  if (how === 'sorted') order.sort((p, q) => edges[2 * p] - edges[2 * q] || edges[2 * p + 1] - edges[2 * q + 1]);
+  else order.reverse();
+  return Int32Array.from(order.flatMap((e) => [edges[2 * e], edges[2 * e + 1]]));
+}
+
 test('edge rows: each face edge is the mesh edge joining its corners, signed by direction', () => {
   const m = icosphere(2);
-  const rows = edgeRows(m.edges, m.positions.length / 3);
-  for (let f = 0; f < m.triangles.length / 3; f++)
-    for (let k = 0; k < 3; k++) {
-      const a = m.triangles[3 * f + k], b = m.triangles[3 * f + ((k + 1) % 3)];
-      const s = signedEdge(rows, a, b), e = Math.abs(s) - 1;
-      assert.deepEqual([m.edges[2 * e], m.edges[2 * e + 1]], s > 0 ? [a, b] : [b, a]);
-    }
-  assert.equal(signedEdge(rows, 0, m.positions.length - 1), 0, 'two vertices far apart share no edge');
+  // Listed by lower vertex (the core's order), the rows are the list itself; in any other order, they are sorted.
+  for (const how of ['sorted', 'reversed']) {
+    const edges = reorderedEdges(m.edges, how);
+    const rows = edgeRows(edges, m.positions.length / 3);
+    assert.equal(rows.id === null, how === 'sorted', how);
+    for (let f = 0; f < m.triangles.length / 3; f++)
+      for (let k = 0; k < 3; k++) {
+        const a = m.triangles[3 * f + k], b = m.triangles[3 * f + ((k + 1) % 3)];
+        const s = signedEdge(rows, a, b), e = Math.abs(s) - 1;
+        assert.deepEqual([edges[2 * e], edges[2 * e + 1]], s > 0 ? [a, b] : [b, a], how);
+      }
+    assert.equal(signedEdge(rows, 0, m.positions.length - 1), 0, 'two vertices far apart share no edge');
+  }
   const missing = edgeRows(m.edges.slice(0, -2), m.positions.length / 3);
   assert.throws(() => whitneyCornerVectors(m.positions, m.triangles, missing, new Float64Array(m.edges.length / 2)), /not among/);
 });
