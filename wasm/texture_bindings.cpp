@@ -143,9 +143,8 @@ class TextureAtlasBinding {
     return val(emscripten::typed_memory_view(atlas_.faceChart.size(), atlas_.faceChart.data()));
   }
   // {resolution, gutter, charts, splits, keptPieces, packAttempts, ms, chartMs, coverage, overlap,
-  // flippedFaces,
-  //  degenerateFaces, densityP05, densityP95, densityMin, densityMax, texelsPerUnitLength, stretchL2,
-  //  seamShare, used}
+  //  flippedFaces, degenerateFaces, densityP05, densityP95, densityMin, densityMax, texelsPerUnitLength,
+  //  stretchL2, seamShare, used}
   std::string statsJson() const {
     const tvf::AtlasMeasures& m = atlas_.measures;
     return nlohmann::json{{"resolution", atlas_.resolution},

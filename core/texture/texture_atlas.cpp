@@ -90,8 +90,7 @@ void smoothChartBorders(const FaceGeometry& g, std::vector<int32_t>& chartOf,
   for (int32_t f = 0; f < nF; ++f)
     if (chartOf[f] >= 0) normalSum[chartOf[f]] += g.normals[f] * g.areas[f];
   // Only a face next to another chart can move, and a face becomes one only when a neighbour moves: the
-  // passes visit those alone, in the same order (armadillo-sub2: 65k of 832k faces; its smoothing 269 -> 161
-  // ms).
+  // passes visit those alone, in the same order (armadillo-sub2: 65k of its 832k faces; 269 -> 161 ms).
   std::vector<uint8_t> mayMove(nF, 0);
   for (int32_t f = 0; f < nF; ++f)
     for (int k = 0; k < 3 && chartOf[f] >= 0; ++k) {
