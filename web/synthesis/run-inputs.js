@@ -32,9 +32,9 @@ export function runOptions(options, model, atlas, exemplarSize, preview) {
 // where it can (model.faceVectors, the field's own face representatives, when the model hands them in).
 export function fieldInput(model, atlas) {
   const symmetry = model.symmetry ?? 1;
-  // A big model's preview, known by its vertex vectors alone: those, linear over each face.
-  if (symmetry === 1 && !model.oneForm) return { symmetry, input: model.vertexVectors };
   if (symmetry === 1) {
+    // A big model's preview, known by its vertex vectors alone: those, linear over each face.
+    if (!model.oneForm) return { symmetry, input: model.vertexVectors };
     const S = model.surface;
     return { symmetry, input: { whitney: { positions: S.positions, rows: S.edgeRows, oneForm: model.oneForm } } };
   }
