@@ -1,5 +1,6 @@
 // bench:web's stripes stage (scripts/bench-web.mjs --stripes N): the stripe pattern turned on over the field the
-// strokes left, then N strokes, each timed from addStroke to its field drawn and to its stripes drawn, with the
+// strokes left, then N strokes, each timed from addStroke to its field drawn, to its stripes drawn (the core's
+// local update where it took one) and to its whole pattern drawn (asked for at once: stripesIdle settled), with the
 // page's long tasks (PerformanceObserver 'longtask', collected by bench-web.mjs into window.__longTasks); then
 // the same strokes in quick succession, each next one's field timed while the last one's stripes are made.
 const median = (v) => {
@@ -33,7 +34,10 @@ export async function stripesBench(page, strokes) {
         state = await window.tvf.stripesIdle();
       }
       await frames();
-      return { fieldMs, stripesMs: performance.now() - t0, stats: state.stats };
+      const stripesMs = performance.now() - t0;
+      const settled = await window.tvf.stripesIdle({ settled: true });
+      await frames();
+      return { fieldMs, stripesMs, stats: state.stats, settledMs: performance.now() - t0, settledStats: settled.stats };
     }, points));
   }
   const tasks = await page.evaluate(() => window.__longTasks.splice(0));
@@ -69,6 +73,12 @@ export async function stripesBench(page, strokes) {
       ['factorMs', 'iterateMs', 'spacingMs'].map((k) => [k, median(runs.map((r) => r.stats?.[k]))]),
     ),
     stripesShiftsRefused: runs.filter((r) => r.stats?.shiftRefused).length,
+    // How many strokes' stripes came as a local update, on how many vertices (median), and the whole pattern
+    // after it, asked for as soon as the local update was drawn: from addStroke, and the worker's part.
+    stripesLocalUpdates: runs.filter((r) => r.stats?.localUpdate).length,
+    stripesLocalVertices: median(runs.filter((r) => r.stats?.localUpdate).map((r) => r.stats.localVertices)),
+    stripesStrokeSettledMs: median(runs.map((r) => r.settledMs)),
+    stripesSettledWorkerMs: median(runs.map((r) => r.settledStats?.workerMs)),
     stripesLongestStrokeTaskMs: longest(tasks),
     stripesStrokes: runs.length,
     // The same strokes again in quick succession (the first waits for nothing): the later ones' fields, median.

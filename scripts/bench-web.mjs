@@ -188,7 +188,12 @@ async function strokeBench(page, meshPath) {
   const reopen = reopenAlone ? await reopenBench(page, `/bench-mesh/${name}`) : null;
   const texture = arg('--texture', null) == null ? null : await textureBench(page, strokes.slice(0, Number(arg('--texture'))), `/bench-mesh/${name}`);
   const stripesProfile = await startProfile(page, arg('--profile-stripes', null));
-  const stripes = arg('--stripes', null) == null ? null : await stripesBench(page, strokes.slice(0, Number(arg('--stripes'))));
+  // The stripes' strokes are new ones (elsewhere on the mesh): a stroke drawn again over itself barely moves the
+  // field, and the stripes' update is of where the field moved.
+  const stripeStarts = Array.from({ length: Number(arg('--stripes', 0)) },
+    (_, s) => (s * 104729 + 52361) % load.info.faces);
+  const stripes = arg('--stripes', null) == null ? null
+    : await stripesBench(page, await page.evaluate(stripStrokesInPage, { starts: stripeStarts, crossings }));
   await stripesProfile.stop();
   const pick = (f) => median(runs.map(f));
   const m = {

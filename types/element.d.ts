@@ -162,7 +162,18 @@ export interface StripeState {
   adaptSpacing: boolean;
   light: string;
   dark: string;
-  stats: { families: number; iterations: number; residual: number; workerMs: number; roundTripMs: number } | null;
+  stats: {
+    families: number;
+    iterations: number;
+    residual: number;
+    /** An edit's local update (solved where its field changed), not yet followed by the whole pattern. */
+    localUpdate: boolean;
+    localVertices: number;
+    workerMs: number;
+    roundTripMs: number;
+  } | null;
+  /** The stripes shown are a whole pattern (false: an edit's local update, the whole pattern to follow). */
+  settled: boolean;
   error: string | null;
 }
 
@@ -587,8 +598,8 @@ export declare class TangentFieldDesigner extends HTMLElement {
   setStripes(options: Partial<StripeOptions>): Promise<StripeState>;
   /** The stripe pattern's options in force, whether it is shown, and the last pattern's stats. */
   stripes(): StripeState;
-  /** Resolves once the stripes shown are of the field the views draw and of the options. */
-  stripesIdle(): Promise<StripeState>;
+  /** Resolves once the stripes shown are of the field the views draw and of the options; with settled, once they are the whole pattern (an edit is first solved where its field changed). */
+  stripesIdle(options?: { settled?: boolean }): Promise<StripeState>;
 
   // Quad meshes.
   /** A quad mesh whose edges follow the cross field, made on a worker of its own (the design stays editable); no edit. Rejects with 'Quad meshes need a cross field' for another symmetry, or the core's reason. */

@@ -501,6 +501,7 @@ class DesignerBinding {
                           {"iterateMs", p.iterateMs},   {"analysisReused", p.analysisReused},
                           {"spacingMs", p.spacingMs},   {"shift", p.shift},
                           {"shiftRefused", p.shiftRefused},
+                          {"localUpdate", p.localUpdate},   {"localVertices", p.localVertices},
                           {"ms", stripesMs_}}
         .dump();
   }

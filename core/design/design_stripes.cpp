@@ -57,14 +57,14 @@ DesignStripeOptions designStripeOptionsFromJson(const std::string& json, int sym
     out.maxIterations = o.value("maxIterations", out.maxIterations);
     out.tolerance = o.value("tolerance", out.tolerance);
     out.adaptSpacing = o.value("adaptSpacing", out.adaptSpacing);
+    out.localUpdate = o.value("localUpdate", out.localUpdate);
     out.profile = o.contains("profile") ? stripeProfileNamed(o.at("profile").get<std::string>())
                   : symmetry == 4       ? StripeProfile::GridLines
                                         : StripeProfile::Stripes;
   } catch (const nlohmann::json::type_error&) {
     throw InputError(
-        "stripes: frequency, magnitudeSpacing, maxIterations and tolerance are numbers, adaptSpacing a "
-        "boolean, "
-        "profile a name");
+        "stripes: frequency, magnitudeSpacing, maxIterations and tolerance are numbers, adaptSpacing and "
+        "localUpdate booleans, profile a name");
   }
   return out;
 }
@@ -90,6 +90,7 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
   o.maxIterations = options.maxIterations;
   o.tolerance = options.tolerance;
   o.adaptSpacing = options.adaptSpacing;
+  o.localUpdate = options.localUpdate;
   o.interrupted = options.interrupted;
   if (options.magnitudeSpacing > 0 && symmetry == 1)
     o.vertexFrequencyScale = magnitudeScale(vertexVectors, options.magnitudeSpacing);
@@ -102,6 +103,8 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
     along.cornerPhase.insert(along.cornerPhase.end(), across.cornerPhase.begin(), across.cornerPhase.end());
     along.branchIndex.insert(along.branchIndex.end(), across.branchIndex.begin(), across.branchIndex.end());
     along.iterations += across.iterations;
+    along.localUpdate = along.localUpdate && across.localUpdate;
+    along.localVertices += across.localVertices;
     along.factorMs += across.factorMs;
     along.iterateMs += across.iterateMs;
     along.spacingMs += across.spacingMs;

@@ -29,6 +29,8 @@ struct DesignStripeOptions {
   double tolerance = 1e-6;
   // StripeOptions::adaptSpacing (the stripes follow the field, their spacing gives way).
   bool adaptSpacing = true;
+  // StripeOptions::localUpdate: an edit's pattern solved where the field changed, the rest held.
+  bool localUpdate = true;
   // StripeOptions::interrupted, for each family's pattern (an interrupted one leaves the last pattern shown).
   std::function<bool()> interrupted;
 };

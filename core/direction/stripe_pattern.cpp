@@ -17,6 +17,7 @@
 #include "common/sparse_matrix.h"
 #include "dec/hodge_star.h"
 #include "direction/combing.h"
+#include "direction/stripe_region.h"
 #include "mesh/mesh_geometry.h"
 #include "solver/lane_kernels.h"
 #include "solver/spd_solve.h"
@@ -218,15 +219,32 @@ bool turnsRoundFace(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGe
   return sign[3] != 1 || family[3] != 0 || std::abs(turn) > M_PI;
 }
 
+// Per face, whether the field turns round it (turnsRoundFace). With a region (a local update), computed for
+// the faces with a vertex in it, and taken from the last pattern's elsewhere (where the field has not
+// changed).
+std::vector<uint8_t> fieldTurns(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                                const Families& fam, const EdgeTurns& turns, const StripeRegion* region,
+                                const std::vector<uint8_t>& last) {
+  const bool reuse = region && last.size() == static_cast<size_t>(t.numFaces);
+  std::vector<uint8_t> out = reuse ? last : std::vector<uint8_t>(t.numFaces, 0);
+  for (int32_t face = 0; face < t.numFaces; ++face) {
+    const int32_t* v = &mesh.triangles[3 * face];
+    if (!reuse || region->local[v[0]] >= 0 || region->local[v[1]] >= 0 || region->local[v[2]] >= 0)
+      out[face] = turnsRoundFace(mesh, t, g, fam, turns, face);
+  }
+  return out;
+}
+
 // Faces round which the field turns (its singularities: a line or cross field's representatives that do not
 // match up, or a turn of more than pi round the face), and each face's weight in adaptedSpacing: 0 there,
 // growing as (distance / period)^2 to 1 a period away. Near a singularity the spacing the field asks for runs
 // off to 0 or infinity, and following it there only crowds the stripes the mesh can show.
-std::vector<double> spacingWeights(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
-                                   const Families& fam, const EdgeTurns& turns, const StripeOptions& o) {
+// faceTurns: per face, whether the field turns round it (fieldTurns).
+std::vector<double> spacingWeights(const MeshTopology& t, const MeshGeometry& g,
+                                   const std::vector<uint8_t>& faceTurns, const StripeOptions& o) {
   std::vector<int32_t> hops(t.numFaces, -1), queue;
   for (int32_t face = 0; face < t.numFaces; ++face)
-    if (turnsRoundFace(mesh, t, g, fam, turns, face)) hops[face] = 0, queue.push_back(face);
+    if (faceTurns[face]) hops[face] = 0, queue.push_back(face);
   for (size_t head = 0; head < queue.size(); ++head) {
     const int32_t face = queue[head];
     for (int c = 0; c < 3; ++c) {
@@ -245,25 +263,37 @@ std::vector<double> spacingWeights(const SurfaceMesh& mesh, const MeshTopology& 
   return weight;
 }
 
-// adaptSpacing's factor (stripe_pattern.h): sum over faces and families of r_f^2 / |f| (spacingTerm) +
-// eps (2 pi nu)^2 sum_e star1_e (u_a - u_b)^2 + eps^2 (2 pi nu)^2 sum_v A_v u_v^2, one factor for every
-// family (a cross field's two ask for it in the least-squares sense). Faces round which the field's
-// representatives do not match up are left out.
-std::vector<double> adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
-                                   const Families& fam, const EdgeTurns& turns, const StripeOptions& o,
-                                   StripeWorkspace& w) {
+struct SpacingSystem {
+  std::vector<Eigen::Triplet<double>> entries;  // the upper triangle's
+  Eigen::VectorXd rhs;
+  std::vector<uint8_t> faceTurns;  // fieldTurns's
+};
+
+// adaptSpacing's system (stripe_pattern.h): sum over faces and families of r_f^2 / |f| (spacingTerm) +
+// eps (2 pi nu)^2 sum_e star1_e (u_a - u_b)^2 + eps^2 (2 pi nu)^2 sum_v A_v u_v^2, one for every family (a
+// cross field's two ask for it in the least-squares sense). Faces round which the field's representatives do
+// not match up are left out. With a region (a local update), only the terms that reach its vertices.
+SpacingSystem spacingSystem(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                            const Families& fam, const EdgeTurns& turns, const StripeOptions& o,
+                            const StripeRegion* region, const std::vector<uint8_t>& lastTurns) {
+  const auto reaches = [region](const int32_t* v, int count) {
+    if (!region) return true;
+    for (int c = 0; c < count; ++c)
+      if (region->local[v[c]] >= 0) return true;
+    return false;
+  };
   constexpr double kSmooth = 3e-2;
   const int32_t nV = t.numVertices;
   const double k = kTwoPi * o.frequency;
-  std::vector<Eigen::Triplet<double>> entries;
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nV);
+  SpacingSystem out{{}, Eigen::VectorXd::Zero(nV), fieldTurns(mesh, t, g, fam, turns, region, lastTurns)};
   const int F = fam.count;
-  const std::vector<double> weight = spacingWeights(mesh, t, g, fam, turns, o);
+  const std::vector<double> weight = spacingWeights(t, g, out.faceTurns, o);
   for (int32_t face = 0; face < t.numFaces; ++face)
     for (int f0 = 0; f0 < F; ++f0) {
       int32_t v[3];
       int family[4] = {f0, 0, 0, 0}, sign[4] = {1, 1, 1, 1};
       for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
+      if (!reaches(v, 3)) break;
       double curl = 0;
       for (int c = 0; c < 3; ++c) {
         const int32_t e = t.edgeOf(face, c);
@@ -280,43 +310,81 @@ std::vector<double> adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& 
       if (!r.used) continue;
       for (int a = 0; a < 3; ++a) {
         for (int b = 0; b < 3; ++b)
-          if (v[a] <= v[b]) entries.emplace_back(v[a], v[b], r.coef[a] * r.coef[b]);
-        rhs[v[a]] -= r.coef[a] * r.curl;
+          if (v[a] <= v[b]) out.entries.emplace_back(v[a], v[b], r.coef[a] * r.coef[b]);
+        out.rhs[v[a]] -= r.coef[a] * r.curl;
       }
     }
   const double smooth = kSmooth * k * k, pin = kSmooth * kSmooth * k * k;
   for (int32_t e = 0; e < t.numEdges; ++e) {
     const double w = smooth * std::max(g.star1[e], 0.0);
-    const int32_t a = std::min(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1]);
-    const int32_t b = std::max(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1]);
-    entries.emplace_back(a, a, w), entries.emplace_back(b, b, w), entries.emplace_back(a, b, -w);
+    const int32_t ends[2] = {std::min(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1]),
+                             std::max(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1])};
+    if (!reaches(ends, 2)) continue;
+    out.entries.emplace_back(ends[0], ends[0], w), out.entries.emplace_back(ends[1], ends[1], w);
+    out.entries.emplace_back(ends[0], ends[1], -w);
   }
-  for (int32_t v = 0; v < nV; ++v) entries.emplace_back(v, v, pin * g.star0[v]);
-  SparseMatrix upper(nV, nV);
-  upper.setFromTriplets(entries.begin(), entries.end());
+  for (int32_t v = 0; v < nV; ++v)
+    if (reaches(&v, 1)) out.entries.emplace_back(v, v, pin * g.star0[v]);
+  return out;
+}
+
+// The spacing's solution u, the frequency's factor e^u / mean (clamped), and the mean: the area mean of e^u
+// (a whole solve), or the last one (a local update, whose spacing elsewhere is the last one).
+struct Spacing {
+  std::vector<double> u, scale;
+  double mean = 1;
+  std::vector<uint8_t> faceTurns;  // fieldTurns's, kept for the next local update
+};
+
+Spacing spacingOf(const MeshGeometry& g, const Eigen::VectorXd& u, double mean) {
+  Spacing out{std::vector<double>(u.data(), u.data() + u.size()), std::vector<double>(u.size()), mean, {}};
+  double sum = 0, area = 0;
+  for (Eigen::Index v = 0; v < u.size(); ++v) {
+    out.scale[v] = std::exp(std::clamp(u[v], -3.0, 3.0));
+    sum += g.star0[v] * out.scale[v], area += g.star0[v];
+  }
+  if (!(mean > 0)) out.mean = sum / std::max(area, 1e-300);
+  for (double& x : out.scale) x = std::clamp(x / out.mean, 0.25, 4.0);
+  return out;
+}
+
+// With a region (a local update) only its vertices are solved for, the workspace's last solution held
+// around them. The workspace is read, not changed (an interrupted pattern leaves it as it was), but for the
+// spacing's factor.
+Spacing adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                       const Families& fam, const EdgeTurns& turns, const StripeOptions& o,
+                       StripeWorkspace& w, const StripeRegion* region) {
+  SpacingSystem system = spacingSystem(mesh, t, g, fam, turns, o, region, w.faceTurns);
+  const int32_t nV = t.numVertices;
   Eigen::VectorXd u;
+  if (region) {
+    u = Eigen::Map<const Eigen::VectorXd>(w.spacingU.data(), nV);
+    if (region->size > 0 && !solveOnRegion(system.entries, system.rhs, *region, 1, u, w.vertexOrdering))
+      throw InputError("stripe pattern: the spacing could not be solved");
+    Spacing out = spacingOf(g, u, w.spacingMean);
+    out.faceTurns = std::move(system.faceTurns);
+    return out;
+  }
+  SparseMatrix upper(nV, nV);
+  upper.setFromTriplets(system.entries.begin(), system.entries.end());
   std::unique_ptr<SpdFactor>& kept = w.spacingFactor;
   if (kept)
     kept->refactor(upper);
   else
     kept = std::make_unique<SpdFactor>(upper, vertexOrdering(t, w));
-  if (!kept->ok() || !kept->solve(rhs, u))
+  if (!kept->ok() || !kept->solve(system.rhs, u))
     throw InputError("stripe pattern: the spacing could not be solved");
-  std::vector<double> scale(nV);
-  double mean = 0, area = 0;
-  for (int32_t v = 0; v < nV; ++v) {
-    scale[v] = std::exp(std::clamp(u[v], -3.0, 3.0));
-    mean += g.star0[v] * scale[v], area += g.star0[v];
-  }
-  mean /= std::max(area, 1e-300);
-  for (double& x : scale) x = std::clamp(x / mean, 0.25, 4.0);
-  return scale;
+  Spacing out = spacingOf(g, u, 0);
+  out.faceTurns = std::move(system.faceTurns);
+  return out;
 }
 
 // The energy sum w_e |C^s psi_b^g - e^(i omega) psi_a^f|^2 (C: conjugation) as the upper triangle of a real
 // symmetric matrix, unknowns (re, im) of vertex v's family f at 2 (v F + f).
-SparseMatrix stripeEnergy(const MeshTopology& t, const MeshGeometry& g, const EdgeTurns& turns, int F,
-                          double shift) {
+// With a region, only the entries that reach its vertices.
+std::vector<Eigen::Triplet<double>> energyEntries(const MeshTopology& t, const MeshGeometry& g,
+                                                  const EdgeTurns& turns, int F, double shift,
+                                                  const StripeRegion* region = nullptr) {
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(static_cast<size_t>(t.numEdges) * F * 12 + 2 * static_cast<size_t>(t.numVertices) * F);
   std::vector<double> diagonal(2 * static_cast<size_t>(t.numVertices) * F, 0.0);
@@ -325,6 +393,7 @@ SparseMatrix stripeEnergy(const MeshTopology& t, const MeshGeometry& g, const Ed
         std::max(g.star1[e], 0.0);  // an obtuse pair's negative cotan weight would break definiteness
     if (!(w > 0)) continue;
     const int32_t a = t.edgeVertices[2 * e], b = t.edgeVertices[2 * e + 1];
+    if (region && region->local[a] < 0 && region->local[b] < 0) continue;
     for (int f = 0; f < F; ++f) {
       const Match m = turns.matches[static_cast<size_t>(e) * F + f];
       const double c = std::cos(turns.omega[static_cast<size_t>(e) * F + f]);
@@ -343,10 +412,17 @@ SparseMatrix stripeEnergy(const MeshTopology& t, const MeshGeometry& g, const Ed
     }
   }
   for (int32_t v = 0; v < t.numVertices; ++v)
-    for (int k = 0; k < 2 * F; ++k) {
-      const int32_t i = 2 * v * F + k;
-      entries.emplace_back(i, i, diagonal[i] + shift * g.star0[v]);
-    }
+    if (!region || region->local[v] >= 0)
+      for (int k = 0; k < 2 * F; ++k) {
+        const int32_t i = 2 * v * F + k;
+        entries.emplace_back(i, i, diagonal[i] + shift * g.star0[v]);
+      }
+  return entries;
+}
+
+SparseMatrix stripeEnergy(const MeshTopology& t, const MeshGeometry& g, const EdgeTurns& turns, int F,
+                          double shift) {
+  const std::vector<Eigen::Triplet<double>> entries = energyEntries(t, g, turns, F, shift);
   SparseMatrix upper(2 * t.numVertices * F, 2 * t.numVertices * F);
   upper.setFromTriplets(entries.begin(), entries.end());
   return upper;
@@ -625,6 +701,109 @@ std::vector<double> psiInNewFrames(const Families& fam, const StripeWorkspace& w
   return psi;
 }
 
+// The vertices where the field's direction moved by more than options.localUpdateDegrees (each family against
+// the last pattern's nearest one, a line's sign aside) or its frequency by more than 1 % since the
+// workspace's last pattern, grown by two periods (none where nothing changed); no vertex map at all where the
+// last pattern cannot be updated so (there is none, or it is of another symmetry, frequency or spacing mode).
+StripeRegion changedRegion(const MeshTopology& t, const MeshGeometry& g, const Families& fam,
+                           const StripeWorkspace& w, const StripeOptions& o) {
+  const int F = fam.count;
+  const size_t nV = static_cast<size_t>(t.numVertices);
+  const bool same = w.symmetry == o.symmetry && w.frequency == o.frequency &&
+                    w.adaptSpacing == o.adaptSpacing && w.followed.size() == fam.growth.size() &&
+                    w.psi.size() == 2 * fam.growth.size() && (!o.adaptSpacing || w.spacingU.size() == nV) &&
+                    w.frequencyScale.size() == o.vertexFrequencyScale.size() && o.initialPsi.empty();
+  if (!same) return {};
+  const double cosine = std::cos(o.localUpdateDegrees * M_PI / 180.0);
+  std::vector<uint8_t> changed(nV, 0);
+  for (size_t v = 0; v < nV; ++v) {
+    for (int f = 0; f < F && !changed[v]; ++f) {
+      double best = -1;
+      for (int g = 0; g < F; ++g) {
+        const double d = fam.growth[v * F + f].dot(w.followed[v * F + g]);
+        best = std::max(best, fam.oriented ? d : std::abs(d));
+      }
+      changed[v] = best < cosine;
+    }
+    if (!o.vertexFrequencyScale.empty() &&
+        std::abs(o.vertexFrequencyScale[v] - w.frequencyScale[v]) > 1e-2 * w.frequencyScale[v])
+      changed[v] = 1;
+  }
+  // Two periods of edges (at least two, and no more than 64: a period of under 1/32 of an edge is not drawn).
+  constexpr double kHealingPeriods = 2;
+  const double periodsPerEdge = std::max(g.meanEdgeLength * o.frequency, kHealingPeriods / 64);
+  return grownRegion(t, changed, std::max(2, static_cast<int>(std::ceil(kHealingPeriods / periodsPerEdge))));
+}
+
+// A local update's psi: the energy's rows of the region's vertices, A_RR psi_R = -A_RB psi_B with the last
+// psi (in this field's representatives) held outside, shifted by just below the last eigenvalue as the whole
+// pattern's factor is (the region's Dirichlet problem has no smaller one), else not at all; unit B-norm.
+std::vector<double> psiOnRegion(const MeshTopology& t, const MeshGeometry& g, const Families& fam,
+                                const EdgeTurns& turns, const StripeWorkspace& w, const StripeRegion& region,
+                                double definite) {
+  const int F = fam.count;
+  const std::vector<double> last = psiInNewFrames(fam, w, t.numVertices);
+  if (region.size == 0) return last;
+  Eigen::VectorXd x;
+  bool solved = false;
+  for (const double shift : {definite - kShiftPart * w.eigenvalue, definite}) {
+    x = Eigen::Map<const Eigen::VectorXd>(last.data(), static_cast<Eigen::Index>(last.size()));
+    if ((solved = solveOnRegion(energyEntries(t, g, turns, F, shift, &region), {}, region, 2 * F, x,
+                                w.vertexOrdering)))
+      break;
+  }
+  if (!solved) throw InputError("stripe pattern: the energy could not be solved where the field changed");
+  double norm = 0;
+  for (int32_t v = 0; v < t.numVertices; ++v)
+    norm += g.star0[v] * x.segment(2 * static_cast<Eigen::Index>(v) * F, 2 * F).squaredNorm();
+  x /= std::sqrt(std::max(norm, 1e-300));
+  return std::vector<double>(x.data(), x.data() + x.size());
+}
+
+// The whole pattern: the energy's smallest eigenvector, from the workspace's last pattern where it has one of
+// this symmetry (shifted below its eigenvalue for the same frequency).
+void wholePattern(const MeshTopology& t, const MeshGeometry& g, const Families& fam, const EdgeTurns& turns,
+                  const StripeOptions& options, double definite, StripeWorkspace& w, StripePattern& out) {
+  const int F = fam.count;
+  const SparseMatrix upper = stripeEnergy(t, g, turns, F, definite);
+  Eigen::VectorXd mass(upper.rows());
+  for (int32_t v = 0; v < t.numVertices; ++v) mass.segment(2 * v * F, 2 * F).setConstant(g.star0[v]);
+  StripeOptions o = options;
+  const bool update = w.symmetry == o.symmetry && w.psi.size() == static_cast<size_t>(upper.rows());
+  if (!update) w.factor.reset();  // made again with the ordering for this many families
+  if (o.initialPsi.empty() && update)
+    o.initialPsi = w.growth.size() == fam.growth.size() ? psiInNewFrames(fam, w, t.numVertices) : w.psi;
+  // The last eigenvalue is near this one only for the same frequency (it grows about as its square).
+  const double sigma = update && w.frequency == o.frequency ? kShiftPart * w.eigenvalue : 0.0;
+  smallestEigenvector(upper, mass, o, sigma, w.factor,
+                      w.factor ? std::vector<int>() : expandedOrdering(vertexOrdering(t, w), 2 * F), out);
+  out.eigenvalue -= definite;
+  w.eigenvalue = std::max(out.eigenvalue, 0.0);
+}
+
+// The pattern made, kept as the next one's start. What it follows: the field everywhere after a whole
+// pattern, the field in the region after a local update (outside it, the field it was made for).
+void keepPattern(const Families& fam, const StripeOptions& options, const StripeRegion* region,
+                 const StripePattern& out, StripeWorkspace& w) {
+  const int F = fam.count;
+  w.psi = out.psi;
+  w.symmetry = options.symmetry;
+  w.frequency = options.frequency;
+  w.adaptSpacing = options.adaptSpacing;
+  if (region) {
+    for (size_t v = 0; v < region->local.size(); ++v)
+      if (region->local[v] >= 0) {
+        std::copy_n(fam.growth.begin() + static_cast<ptrdiff_t>(v * F), F,
+                    w.followed.begin() + static_cast<ptrdiff_t>(v * F));
+        if (!w.frequencyScale.empty()) w.frequencyScale[v] = options.vertexFrequencyScale[v];
+      }
+  } else {
+    w.followed = fam.growth;
+    w.frequencyScale = options.vertexFrequencyScale;
+  }
+  w.growth = fam.growth;
+}
+
 void checkInput(const SurfaceMesh& mesh, const std::vector<double>& dirs, const StripeOptions& o) {
   if (o.symmetry != 1 && o.symmetry != 2 && o.symmetry != 4)
     throw InputError("stripe pattern: symmetry must be 1, 2 or 4 (got " + std::to_string(o.symmetry) + ")");
@@ -663,6 +842,12 @@ void StripeWorkspace::clear() {
   vertexOrdering.clear();
   psi.clear();
   growth.clear();
+  followed.clear();
+  spacingU.clear();
+  frequencyScale.clear();
+  faceTurns.clear();
+  spacingMean = 0;
+  adaptSpacing = false;
   symmetry = 0;
   frequency = eigenvalue = 0;
 }
@@ -692,14 +877,20 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   const int F = fam.count;
   StripeWorkspace local;
   StripeWorkspace& w = workspace ? *workspace : local;
+  // A local update where the last pattern allows one and the field changed on at most half the vertices
+  // (none: the last pattern stands).
+  StripeRegion region =
+      options.localUpdate && workspace ? changedRegion(topology, g, fam, w, options) : StripeRegion{};
+  const bool onRegion = !region.local.empty() && region.size <= 3 * (topology.numVertices / 4);
   StripeOptions adapted = options;
-  std::vector<double> spacing;
+  Spacing spacing;
   double spacingMs = 0;
   if (options.adaptSpacing) {
     const auto t0 = std::chrono::steady_clock::now();
-    spacing = adaptedSpacing(mesh, topology, g, fam, edgeTurns(mesh, topology, fam, options), options, w);
-    if (adapted.vertexFrequencyScale.empty()) adapted.vertexFrequencyScale.assign(spacing.size(), 1.0);
-    for (size_t v = 0; v < spacing.size(); ++v) adapted.vertexFrequencyScale[v] *= spacing[v];
+    spacing = adaptedSpacing(mesh, topology, g, fam, edgeTurns(mesh, topology, fam, options), options, w,
+                             onRegion ? &region : nullptr);
+    if (adapted.vertexFrequencyScale.empty()) adapted.vertexFrequencyScale.assign(spacing.scale.size(), 1.0);
+    for (size_t v = 0; v < spacing.scale.size(); ++v) adapted.vertexFrequencyScale[v] *= spacing.scale[v];
     spacingMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     checkInterruption(options);
   }
@@ -708,31 +899,27 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   // A shift small against the energy's scale keeps the factor definite where the turns are consistent (then
   // the smallest eigenvalue is 0: a phase exactly following the field).
   const double definite = 1e-8 * std::max(g.star1.cwiseAbs().sum(), 1e-300) / std::max(g.star0.sum(), 1e-300);
-  const SparseMatrix upper = stripeEnergy(topology, g, turns, F, definite);
-  Eigen::VectorXd mass(upper.rows());
-  for (int32_t v = 0; v < topology.numVertices; ++v) mass.segment(2 * v * F, 2 * F).setConstant(g.star0[v]);
-
   StripePattern out;
   out.families = F;
-  StripeOptions o = options;
-  const bool update = w.symmetry == o.symmetry && w.psi.size() == static_cast<size_t>(upper.rows());
-  if (!update) w.factor.reset();  // made again with the ordering for this many families
-  if (o.initialPsi.empty() && update)
-    o.initialPsi =
-        w.growth.size() == fam.growth.size() ? psiInNewFrames(fam, w, topology.numVertices) : w.psi;
-  // The last eigenvalue is near this one only for the same frequency (it grows about as its square).
-  const double sigma = update && w.frequency == o.frequency ? kShiftPart * w.eigenvalue : 0.0;
-  smallestEigenvector(upper, mass, o, sigma, w.factor,
-                      w.factor ? std::vector<int>() : expandedOrdering(vertexOrdering(topology, w), 2 * F),
-                      out);
-  w.psi = out.psi;
-  w.symmetry = o.symmetry;
-  w.frequency = o.frequency;
-  w.eigenvalue = std::max(out.eigenvalue - definite, 0.0);
-  w.growth = fam.growth;
-  out.spacing = std::move(spacing);
+  if (onRegion) {
+    const auto t0 = std::chrono::steady_clock::now();
+    out.psi = psiOnRegion(topology, g, fam, turns, w, region, definite);
+    out.eigenvalue = w.eigenvalue;
+    out.localUpdate = true;
+    out.localVertices = region.size;
+    out.factorMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  } else {
+    wholePattern(topology, g, fam, turns, options, definite, w, out);
+  }
+  checkInterruption(options);
+  keepPattern(fam, options, onRegion ? &region : nullptr, out, w);
+  if (options.adaptSpacing) {
+    w.spacingU = std::move(spacing.u);
+    w.spacingMean = spacing.mean;
+    w.faceTurns = std::move(spacing.faceTurns);
+  }
+  out.spacing = std::move(spacing.scale);
   out.spacingMs = spacingMs;
-  out.eigenvalue -= definite;
   out.cornerPhase.assign(3 * static_cast<size_t>(topology.numFaces) * F, 0.0f);
   out.branchIndex.assign(static_cast<size_t>(topology.numFaces) * F, 0);
   out.fieldSingular.assign(topology.numFaces, 0);

@@ -51,14 +51,26 @@ struct StripeOptions {
   // magnitude); empty for none.
   std::vector<double> vertexFrequencyScale;
   int maxIterations = 200;
-  // Asked between the computation's steps (the spacing, the factorization, each eigensolver step, the corner
-  // phases); true abandons it: stripePattern throws StripesInterrupted and leaves the workspace's last
-  // pattern (its psi, eigenvalue, representatives) as it was. The page's newer edit ranks above a pattern of
-  // the old field. Empty: never.
+  // Asked between the computation's steps (the spacing, the factorization, each eigensolver step or a local
+  // update's solve, the corner phases); true abandons it: stripePattern throws StripesInterrupted and leaves
+  // the workspace's last pattern (its psi, eigenvalue, representatives) as it was. The page's newer edit
+  // ranks above a pattern of the old field. Empty: never.
   std::function<bool()> interrupted;
   // On the first Ritz vector's relative residual |A x - theta B x| / |A x| (|A x| floored at 1e-4 |A| |x|,
   // for an eigenvalue of 0).
   double tolerance = 1e-6;
+  // An edit's update solved only where the field changed (direction/stripe_region.h): the vertices whose
+  // field direction moved by more than localUpdateDegrees (or whose frequency moved by more than 1 %) since
+  // the pattern followed it there, and two periods around them, the last pattern held fixed beyond. The
+  // stripes stay where the field did not change, and the update costs a solve of the energy (and of the
+  // spacing) on those vertices where a whole pattern takes a factorization and the eigensolver's steps on all
+  // of them; its stripes are the last pattern's eigenvector's, bent where the field changed, not the new
+  // energy's eigenvector (a caller makes that one, without localUpdate, once the edits pause). Taken with a
+  // workspace whose last pattern was of the same symmetry, frequency and spacing mode, where the region is at
+  // most three quarters of the vertices; otherwise the whole pattern is computed again
+  // (StripePattern::localUpdate says which).
+  bool localUpdate = false;
+  double localUpdateDegrees = 0.25;
   // Optional: a start for psi (a pattern computed before for a field close to this one), 2 x families per
   // vertex.
   std::vector<double> initialPsi;
@@ -90,6 +102,11 @@ struct StripePattern {
   // vertexFrequencyScale.
   std::vector<double> spacing;
   bool analysisReused = false;  // the factorization reused a workspace's symbolic analysis
+  // StripeOptions::localUpdate: whether this was a local update (else the whole pattern was computed, as an
+  // eigenvector), and how many vertices it solved for (0: the field had not changed). A local update's
+  // eigenvalue is the last whole pattern's.
+  bool localUpdate = false;
+  int32_t localVertices = 0;
 };
 
 class SpdFactor;
@@ -108,6 +125,16 @@ struct StripeWorkspace {
   std::vector<int> vertexOrdering;
   std::vector<double> psi;
   std::vector<Eigen::Vector3d> growth;  // the last pattern's growth directions (families per vertex)
+  // The growth directions the pattern follows at each vertex: growth, except outside a local update's region,
+  // where the pattern was made for an earlier field (a local update's change is measured against these).
+  std::vector<Eigen::Vector3d> followed;
+  // The last spacing's solution before its exponential (adaptSpacing) and the mean that normalized it, and
+  // the last options' vertexFrequencyScale where the pattern follows it: what a local update holds fixed
+  // outside its region.
+  std::vector<double> spacingU, frequencyScale;
+  double spacingMean = 0;
+  std::vector<uint8_t> faceTurns;  // per face: the field turns round it (the spacing's singular faces)
+  bool adaptSpacing = false;
   int symmetry = 0;
   double frequency = 0;   // the last pattern's options.frequency
   double eigenvalue = 0;  // the last pattern's (0: none, or an exact pattern: no shift then)

@@ -123,6 +123,15 @@ test.describe.serial('stripe patterns in the page', () => {
     await evaluate((faces) => window.tvf.addStroke(faces.map((face) => ({ face, bary: [1 / 3, 1 / 3, 1 / 3] }))), faces);
     const after = await evaluate(() => window.tvf.stripesIdle());
     expect(after.stats.fieldKey).not.toBe(before.stats.fieldKey);
+    // Solved first where the field changed (or whole, where it changed on most of the model), then whole.
+    expect(after.settled).toBe(!after.stats.localUpdate);
+    const whole = await evaluate(() => window.tvf.stripesIdle({ settled: true }));
+    console.log(`[ measured ] the stroke's stripes: local ${after.stats.localUpdate} (${after.stats.localVertices} ` +
+      `vertices, ${after.stats.workerMs.toFixed(0)} ms), then whole (${whole.stats.workerMs.toFixed(0)} ms)`);
+    expect(whole.settled).toBe(true);
+    expect(whole.stats.localUpdate).toBe(false);
+    expect(whole.stats.fieldKey).toBe(after.stats.fieldKey);
+    expect(whole.stats.residual).toBeLessThan(1e-3);
     // The GLB bakes the stripes shown into its base colour: an image with both colours in it.
     const shades = await evaluate(async () => {
       const glb = await window.tvf.exportGlb({ size: 256 });

@@ -61,3 +61,44 @@ test('an interruption by an edit asks for the new field', async () => {
   assert.deepEqual(asked, [1, 2]);
   assert.deepEqual(shown, [2]);
 });
+
+// An edit's local update (the core solved where the field changed: stats.localUpdate) is shown at once and
+// followed by the whole pattern of the same field, asked for with localUpdate false: once the edits pause, or
+// at once for whenIdle({settled: true}) (the export bakes that one).
+test('a local update is followed by the whole pattern', async () => {
+  const { controller, shown } = controllerWith([]);
+  const options = [];
+  controller.call = async (op, [version, , asked]) => {
+    options.push(asked.localUpdate);
+    return { ...pattern(version), stats: { version, localUpdate: asked.localUpdate !== false } };
+  };
+  await controller.setStripes({ visible: true });
+  assert.equal(controller.state().settled, false, 'a local update shown');
+  const state = await controller.whenIdle({ settled: true });
+  assert.equal(state.settled, true);
+  assert.deepEqual(options, [undefined, false], 'then the whole pattern, of the same field');
+  assert.deepEqual(shown, [1, 1]);
+  await controller.whenIdle({ settled: true });
+  assert.equal(options.length, 2, 'nothing more to settle');
+  controller.dispose();
+});
+
+test('the whole pattern follows by itself once the edits pause', async () => {
+  const { controller, shown, setField } = controllerWith([]);
+  const options = [];
+  controller.call = async (op, [version, , asked]) => {
+    options.push(asked.localUpdate);
+    return { ...pattern(version), stats: { version, localUpdate: asked.localUpdate !== false } };
+  };
+  await controller.setStripes({ visible: true });
+  setField({ version: 2, key: 'k2' }); // an edit before the pause: its own local update, the settle later
+  controller.fieldChanged();
+  await controller.whenIdle();
+  assert.deepEqual(shown, [1, 2]);
+  await new Promise((resolve) => setTimeout(resolve, 600));
+  await controller.whenIdle();
+  assert.deepEqual(shown, [1, 2, 2]);
+  assert.deepEqual(options, [undefined, undefined, false]);
+  assert.equal(controller.state().settled, true);
+  controller.dispose();
+});

@@ -114,7 +114,7 @@ export const api = {
   // Stripe patterns (web/stripes/, docs/js-api.md): the options, shown or not, and the pattern's stats.
   setStripes: (d, opts) => d.stripes.setStripes(opts),
   stripes: (d) => d.stripes.state(),
-  stripesIdle: (d) => d.stripes.whenIdle(),
+  stripesIdle: (d, options) => d.stripes.whenIdle(options),
   // Quad meshes (web/quad/, docs/js-api.md): no edit, no history entry; each run on a worker of its own.
   remesh: async (d, options) => {
     d.session.requireReady();

@@ -157,7 +157,18 @@ export interface StripeState {
   adaptSpacing: boolean;
   light: string;
   dark: string;
-  stats: { families: number; iterations: number; residual: number; workerMs: number; roundTripMs: number } | null;
+  stats: {
+    families: number;
+    iterations: number;
+    residual: number;
+    /** An edit's local update (solved where its field changed), not yet followed by the whole pattern. */
+    localUpdate: boolean;
+    localVertices: number;
+    workerMs: number;
+    roundTripMs: number;
+  } | null;
+  /** The stripes shown are a whole pattern (false: an edit's local update, the whole pattern to follow). */
+  settled: boolean;
   error: string | null;
 }
 

@@ -47,8 +47,9 @@ export const VIEW_METHODS = [
   },
   {
     name: 'stripesIdle', ...STRIPES,
-    signatures: [['', 'Promise<StripeState>']],
-    description: 'Resolves once the stripes shown are of the field the views draw and of the options.',
+    signatures: [['options?: { settled?: boolean }', 'Promise<StripeState>']],
+    description: 'Resolves once the stripes shown are of the field the views draw and of the options; with ' +
+      'settled, once they are the whole pattern (an edit is first solved where its field changed).',
   },
 
   {

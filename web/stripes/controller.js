@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Stripe patterns on the page (docs/stripes.md): the options (frequency, profile, spacing by magnitude, colours),
 // whether the stripes are shown, and when the core's pattern is asked for — once per field version the views
-// draw while they are shown, the newest field winning when edits come faster than patterns. The pattern itself
+// draw while they are shown, the newest field winning when edits come faster than patterns; an edit's first
+// solved where its field changed, the whole pattern of it asked for once the edits pause. The pattern itself
 // is the core's (core/design/design_stripes.h), made in the worker (worker-ops.js) and drawn by stripe-model.js.
 // Owns its StripeModel; imports views/ (through stripe-model.js) and its own folder.
 import { PROFILES, TWO_FAMILY_PROFILES } from './profiles.js';
@@ -9,6 +10,9 @@ import { StripeModel } from './stripe-model.js';
 
 const DEFAULT_LIGHT = 0xece4d4;
 const DEFAULT_DARK = 0x342c28;
+// An edit's pattern is first solved where its field changed (the core's local update: the stripes elsewhere stay
+// put); the whole pattern, the energy's eigenvector, follows once the edits pause this long.
+const SETTLE_MS = 400;
 // Default spacing: this many stripes across the model's bounding-box diagonal, but no period under four mean
 // edge lengths (a narrower one is more than the mesh can show).
 const STRIPES_PER_DIAGONAL = 40;
@@ -59,6 +63,9 @@ export class StripesController {
     this.error = null;
     this.running = null; // the update in flight
     this.again = false;
+    this.settled = true; // the stripes shown are a whole pattern, not an edit's local update
+    this.settleTimer = null;
+    this.settleNow = false; // the next update makes the whole pattern of the stripes shown
   }
 
   // The options in force: the frequency and profile the model and field choose when none was set.
@@ -83,6 +90,7 @@ export class StripesController {
       light: hex(this.options.light),
       dark: hex(this.options.dark),
       stats: this.stats ? { ...this.stats } : null,
+      settled: this.settled,
       error: this.error,
     };
   }
@@ -168,11 +176,14 @@ export class StripesController {
     }
     const options = this.effective();
     const wanted = JSON.stringify([field.key, field.component, options]);
-    if (this.shown === wanted) return;
+    const settling = this.shown === wanted;
+    if (settling && (this.settled || !this.settleNow)) return;
+    this.#cancelSettle();
     const t0 = performance.now();
     let reply;
     try {
-      reply = await this.call('stripes', [field.version, field.component, options]);
+      const asked = settling ? { ...options, localUpdate: false } : options;
+      reply = await this.call('stripes', [field.version, field.component, asked]);
     } catch (err) {
       this.error = err.message;
       this.onChange();
@@ -190,15 +201,40 @@ export class StripesController {
     this.#style();
     this.model.setPattern(reply);
     this.shown = wanted;
+    this.settled = !reply.stats?.localUpdate;
+    this.settleNow = false;
+    if (!this.settled) this.#scheduleSettle();
     this.error = null;
     this.stats = { ...reply.stats, fieldKey: field.key, roundTripMs: performance.now() - t0 };
     this.onChange();
   }
 
-  // Resolves once no update is in flight (tests, benchmarks).
-  async whenIdle() {
-    while (this.running) await this.running.catch(() => {});
-    return this.state();
+  // Resolves once no update is in flight (tests, benchmarks); with `settled`, once the stripes shown are a whole
+  // pattern (an edit's local update is followed by it at once).
+  async whenIdle({ settled = false } = {}) {
+    for (;;) {
+      while (this.running) await this.running.catch(() => {});
+      if (!settled || this.settled || !this.visible || this.error) return this.state();
+      this.#cancelSettle();
+      this.settleNow = true;
+      await this.update().catch(() => {});
+      if (this.settleNow) return this.state(); // nothing to settle: the field is no longer the one shown
+    }
+  }
+
+  // The whole pattern of the stripes shown, once the edits have paused.
+  #scheduleSettle() {
+    this.#cancelSettle();
+    this.settleTimer = setTimeout(() => {
+      this.settleTimer = null;
+      this.settleNow = true;
+      if (this.visible) this.update().catch((err) => this.onError(err));
+    }, SETTLE_MS);
+  }
+
+  #cancelSettle() {
+    clearTimeout(this.settleTimer);
+    this.settleTimer = null;
   }
 
   // What the one GLB export bakes into the base colour when the stripes are shown: the options the worker
@@ -206,6 +242,7 @@ export class StripesController {
   async exportStripes() {
     if (!this.visible) return null;
     await this.update();
+    await this.whenIdle({ settled: true });
     const { profile } = this.effective();
     const rgb = (c) => [(c >> 16) & 255, (c >> 8) & 255, c & 255];
     return { profile, light: rgb(this.options.light), dark: rgb(this.options.dark) };
@@ -218,6 +255,7 @@ export class StripesController {
 
   dispose() {
     this.visible = false;
+    this.#cancelSettle();
     this.model.dispose();
   }
 }

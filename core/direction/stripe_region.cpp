@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "direction/stripe_region.h"
+
+#include "common/sparse_matrix.h"
+#include "solver/spd_solve.h"
+
+namespace tvf {
+
+StripeRegion grownRegion(const MeshTopology& t, const std::vector<uint8_t>& changed, int rings) {
+  std::vector<int32_t> hops(changed.size(), -1), queue;
+  for (size_t v = 0; v < changed.size(); ++v)
+    if (changed[v]) hops[v] = 0, queue.push_back(static_cast<int32_t>(v));
+  for (size_t head = 0; head < queue.size(); ++head) {
+    const int32_t v = queue[head];
+    if (hops[v] >= rings) continue;
+    for (int32_t k = t.vertexEdgeStart[v]; k < t.vertexEdgeStart[v + 1]; ++k) {
+      const int32_t e = t.vertexEdgeList[k];
+      const int32_t u = t.edgeVertices[2 * e] == v ? t.edgeVertices[2 * e + 1] : t.edgeVertices[2 * e];
+      if (hops[u] < 0) hops[u] = hops[v] + 1, queue.push_back(u);
+    }
+  }
+  StripeRegion out;
+  out.local.assign(changed.size(), -1);
+  for (size_t v = 0; v < changed.size(); ++v)
+    if (hops[v] >= 0) out.local[v] = out.size++;
+  return out;
+}
+
+bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen::VectorXd& b,
+                   const StripeRegion& region, int per, Eigen::VectorXd& x,
+                   const std::vector<int>& vertexOrdering) {
+  const auto localOf = [&](Eigen::Index i) -> Eigen::Index {
+    const int32_t v = region.local[i / per];
+    return v < 0 ? -1 : static_cast<Eigen::Index>(v) * per + i % per;
+  };
+  const Eigen::Index n = static_cast<Eigen::Index>(region.size) * per;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  if (b.size() == x.size())
+    for (Eigen::Index i = 0; i < x.size(); ++i)
+      if (const Eigen::Index li = localOf(i); li >= 0) rhs[li] = b[i];
+  std::vector<Eigen::Triplet<double>> inner;
+  inner.reserve(upper.size());
+  for (const auto& e : upper) {
+    const Eigen::Index li = localOf(e.row()), lj = localOf(e.col());
+    if (li >= 0 && lj >= 0)
+      inner.emplace_back(std::min(li, lj), std::max(li, lj), e.value());
+    else if (li >= 0)
+      rhs[li] -= e.value() * x[e.col()];
+    else if (lj >= 0)
+      rhs[lj] -= e.value() * x[e.row()];
+  }
+  SparseMatrix a(n, n);
+  a.setFromTriplets(inner.begin(), inner.end());
+  std::vector<int> ordering;
+  ordering.reserve(vertexOrdering.empty() ? 0 : static_cast<size_t>(n));
+  for (const int v : vertexOrdering)
+    if (region.local[v] >= 0)
+      for (int k = 0; k < per; ++k) ordering.push_back(region.local[v] * per + k);
+  SpdFactor factor(a, std::move(ordering));
+  Eigen::VectorXd y;
+  if (!factor.solve(rhs, y)) return false;
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    if (const Eigen::Index li = localOf(i); li >= 0) x[i] = y[li];
+  return true;
+}
+
+}  // namespace tvf
