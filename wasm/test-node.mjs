@@ -928,10 +928,17 @@ t.delete();
   check('stripes: the asked frequency, across the field', worstRate < 1e-4 && worstAngle < 1e-4,
     `rate ${worstRate}, cos ${worstAngle}`);
   const first = JSON.parse(s.stripeStatsJson());
-  const again = s.computeStripes(null, JSON.stringify({ frequency }), null);
+  // The same field again: nothing changed, so the local update keeps the pattern as it was.
+  const kept = s.computeStripes(null, JSON.stringify({ frequency }), null);
+  const keptStats = JSON.parse(s.stripeStatsJson());
+  const samePhase = s.stripeCornerPhase().every((x, i) => x === phase[i]);
+  check('stripes: an unchanged field keeps its pattern', kept === '' && keptStats.localUpdate === true &&
+    keptStats.localVertices === 0 && samePhase, JSON.stringify(keptStats));
+  // The whole pattern asked for (as the page does when the edits pause): it starts from the first.
+  const again = s.computeStripes(null, JSON.stringify({ frequency, localUpdate: false }), null);
   const second = JSON.parse(s.stripeStatsJson());
   check('stripes: a second compute starts from the first', again === '' && second.analysisReused === true &&
-    second.iterations <= first.iterations, JSON.stringify(second));
+    second.localUpdate === false && second.iterations <= first.iterations, JSON.stringify(second));
   const turned = s.setSymmetry(3) || s.solve();
   const refused = turned || s.computeStripes(null, JSON.stringify({ frequency }), null);
   check('stripes: symmetry 3 is refused by name', /symmetry 1, 2 or 4/.test(refused), refused);

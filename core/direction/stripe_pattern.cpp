@@ -778,7 +778,6 @@ void wholePattern(const MeshTopology& t, const MeshGeometry& g, const Families& 
   smallestEigenvector(upper, mass, o, sigma, w.factor,
                       w.factor ? std::vector<int>() : expandedOrdering(vertexOrdering(t, w), 2 * F), out);
   out.eigenvalue -= definite;
-  w.eigenvalue = std::max(out.eigenvalue, 0.0);
 }
 
 // The pattern made, kept as the next one's start. What it follows: the field everywhere after a whole
@@ -798,6 +797,7 @@ void keepPattern(const Families& fam, const StripeOptions& options, const Stripe
         if (!w.frequencyScale.empty()) w.frequencyScale[v] = options.vertexFrequencyScale[v];
       }
   } else {
+    w.eigenvalue = std::max(out.eigenvalue, 0.0);  // a local update's is the last whole pattern's
     w.followed = fam.growth;
     w.frequencyScale = options.vertexFrequencyScale;
   }
@@ -877,8 +877,8 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   const int F = fam.count;
   StripeWorkspace local;
   StripeWorkspace& w = workspace ? *workspace : local;
-  // A local update where the last pattern allows one and the field changed on at most half the vertices
-  // (none: the last pattern stands).
+  // A local update where the last pattern allows one and the field changed on at most three quarters of the
+  // vertices (on none: the last pattern stands).
   StripeRegion region =
       options.localUpdate && workspace ? changedRegion(topology, g, fam, w, options) : StripeRegion{};
   const bool onRegion = !region.local.empty() && region.size <= 3 * (topology.numVertices / 4);
