@@ -359,7 +359,8 @@ Spacing adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& t, const Mes
   Eigen::VectorXd u;
   if (region) {
     u = Eigen::Map<const Eigen::VectorXd>(w.spacingU.data(), nV);
-    if (region->size > 0 && !solveOnRegion(system.entries, system.rhs, *region, 1, u, w.vertexOrdering))
+    if (region->size > 0 &&
+        !solveOnRegion(system.entries, system.rhs, *region, 1, u, regionOrdering(*region, w.vertexOrdering)))
       throw InputError("stripe pattern: the spacing could not be solved");
     Spacing out = spacingOf(g, u, w.spacingMean);
     out.faceTurns = std::move(system.faceTurns);
@@ -749,7 +750,7 @@ std::vector<double> psiOnRegion(const MeshTopology& t, const MeshGeometry& g, co
   for (const double shift : {definite - kShiftPart * w.eigenvalue, definite}) {
     x = Eigen::Map<const Eigen::VectorXd>(last.data(), static_cast<Eigen::Index>(last.size()));
     if ((solved = solveOnRegion(energyEntries(t, g, turns, F, shift, &region), {}, region, 2 * F, x,
-                                w.vertexOrdering)))
+                                expandedOrdering(regionOrdering(region, w.vertexOrdering), 2 * F))))
       break;
   }
   if (!solved) throw InputError("stripe pattern: the energy could not be solved where the field changed");
@@ -879,7 +880,7 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   StripeWorkspace& w = workspace ? *workspace : local;
   // A local update where the last pattern allows one and the field changed on at most three quarters of the
   // vertices (on none: the last pattern stands).
-  StripeRegion region =
+  const StripeRegion region =
       options.localUpdate && workspace ? changedRegion(topology, g, fam, w, options) : StripeRegion{};
   const bool onRegion = !region.local.empty() && region.size <= 3 * (topology.numVertices / 4);
   StripeOptions adapted = options;

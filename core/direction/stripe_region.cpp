@@ -27,8 +27,7 @@ StripeRegion grownRegion(const MeshTopology& t, const std::vector<uint8_t>& chan
 }
 
 bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen::VectorXd& b,
-                   const StripeRegion& region, int per, Eigen::VectorXd& x,
-                   const std::vector<int>& vertexOrdering) {
+                   const StripeRegion& region, int per, Eigen::VectorXd& x, std::vector<int> ordering) {
   const auto localOf = [&](Eigen::Index i) -> Eigen::Index {
     const int32_t v = region.local[i / per];
     return v < 0 ? -1 : static_cast<Eigen::Index>(v) * per + i % per;
@@ -51,17 +50,20 @@ bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen
   }
   SparseMatrix a(n, n);
   a.setFromTriplets(inner.begin(), inner.end());
-  std::vector<int> ordering;
-  ordering.reserve(vertexOrdering.empty() ? 0 : static_cast<size_t>(n));
-  for (const int v : vertexOrdering)
-    if (region.local[v] >= 0)
-      for (int k = 0; k < per; ++k) ordering.push_back(region.local[v] * per + k);
   SpdFactor factor(a, std::move(ordering));
   Eigen::VectorXd y;
   if (!factor.solve(rhs, y)) return false;
   for (Eigen::Index i = 0; i < x.size(); ++i)
     if (const Eigen::Index li = localOf(i); li >= 0) x[i] = y[li];
   return true;
+}
+
+std::vector<int> regionOrdering(const StripeRegion& region, const std::vector<int>& vertexOrdering) {
+  std::vector<int> out;
+  out.reserve(vertexOrdering.empty() ? 0 : static_cast<size_t>(region.size));
+  for (const int v : vertexOrdering)
+    if (region.local[v] >= 0) out.push_back(region.local[v]);
+  return out;
 }
 
 }  // namespace tvf

@@ -28,11 +28,14 @@ StripeRegion grownRegion(const MeshTopology& t, const std::vector<uint8_t>& chan
 
 // Solves the rows of A x = b that belong to the region with x held at its given values elsewhere:
 // A_RR x_R = b_R - A_RB x_B. `upper`: A's upper-triangle entries (repeated entries summed) over n unknowns,
-// of which `per` consecutive ones belong to each vertex. b: empty for 0. vertexOrdering: a fill-reducing
-// ordering of all the mesh's vertices (a big mesh's nested dissection), which the region's rows then follow;
-// empty: AMD. Returns false where A_RR is not positive definite or the solve fails (x untouched then).
+// of which `per` consecutive ones belong to each vertex. b: empty for 0. ordering: a fill-reducing ordering
+// of the region's unknowns (SpdFactor's); empty: AMD. Returns false where A_RR is not positive definite or
+// the solve fails (x untouched then).
 bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen::VectorXd& b,
-                   const StripeRegion& region, int per, Eigen::VectorXd& x,
-                   const std::vector<int>& vertexOrdering = {});
+                   const StripeRegion& region, int per, Eigen::VectorXd& x, std::vector<int> ordering = {});
+
+// The region's vertices (their indices in it) in the order a fill-reducing ordering of all the mesh's
+// vertices (a big mesh's nested dissection) puts them; empty for an empty ordering.
+std::vector<int> regionOrdering(const StripeRegion& region, const std::vector<int>& vertexOrdering);
 
 }  // namespace tvf
