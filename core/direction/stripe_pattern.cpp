@@ -242,11 +242,19 @@ std::vector<uint8_t> fieldTurns(const SurfaceMesh& mesh, const MeshTopology& t, 
 // faceTurns: per face, whether the field turns round it (fieldTurns).
 std::vector<double> spacingWeights(const MeshTopology& t, const MeshGeometry& g,
                                    const std::vector<uint8_t>& faceTurns, const StripeOptions& o) {
+  constexpr double kQuietPeriods = 2;
+  const double perEdge = g.meanEdgeLength * o.frequency;  // periods per hop
+  // Only the faces nearer than the quiet periods differ from 1: the search stops there.
+  const int32_t reach = perEdge > 0 ? static_cast<int32_t>(std::ceil(kQuietPeriods / perEdge)) : t.numFaces;
+  std::vector<double> weight(t.numFaces, 1.0);
   std::vector<int32_t> hops(t.numFaces, -1), queue;
   for (int32_t face = 0; face < t.numFaces; ++face)
     if (faceTurns[face]) hops[face] = 0, queue.push_back(face);
   for (size_t head = 0; head < queue.size(); ++head) {
     const int32_t face = queue[head];
+    const double x = hops[face] * perEdge / kQuietPeriods;
+    weight[face] = std::min(1.0, x * x);
+    if (hops[face] >= reach) continue;
     for (int c = 0; c < 3; ++c) {
       const int32_t e = t.edgeOf(face, c);
       const int32_t other = t.edgeFaces[2 * e] == face ? t.edgeFaces[2 * e + 1] : t.edgeFaces[2 * e];
@@ -255,11 +263,6 @@ std::vector<double> spacingWeights(const MeshTopology& t, const MeshGeometry& g,
       queue.push_back(other);
     }
   }
-  std::vector<double> weight(t.numFaces, 1.0);
-  constexpr double kQuietPeriods = 2;
-  const double perEdge = g.meanEdgeLength * o.frequency;  // periods per hop
-  for (int32_t face = 0; face < t.numFaces; ++face)
-    if (hops[face] >= 0) weight[face] = std::min(1.0, std::pow(hops[face] * perEdge / kQuietPeriods, 2));
   return weight;
 }
 
@@ -731,7 +734,7 @@ StripeRegion changedRegion(const MeshTopology& t, const MeshGeometry& g, const F
       changed[v] = 1;
   }
   // Two periods of edges (at least two, and no more than 64: a period of under 1/32 of an edge is not drawn).
-  constexpr double kHealingPeriods = 2;
+  const double kHealingPeriods = o.localUpdatePeriods;
   const double periodsPerEdge = std::max(g.meanEdgeLength * o.frequency, kHealingPeriods / 64);
   return grownRegion(t, changed, std::max(2, static_cast<int>(std::ceil(kHealingPeriods / periodsPerEdge))));
 }
@@ -805,6 +808,35 @@ void keepPattern(const Families& fam, const StripeOptions& options, const Stripe
   w.growth = fam.growth;
 }
 
+// Every face's corner phases, branch indices and singular flags; with a region (a local update), those of the
+// faces with a vertex in it, the others as the workspace's last pattern has them (their psi did not change).
+// Kept in the workspace for the next local update.
+void facesOf(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam, const EdgeTurns& turns,
+             const StripeOptions& o, const StripeRegion* region, StripeWorkspace& w, StripePattern& out) {
+  const int F = fam.count;
+  const size_t nF = static_cast<size_t>(t.numFaces);
+  const bool reuse = region && w.branchIndex.size() == nF * F && w.fieldSingular.size() == nF;
+  if (reuse) {
+    out.cornerPhase = w.cornerPhase, out.branchIndex = w.branchIndex, out.fieldSingular = w.fieldSingular;
+  } else {
+    out.cornerPhase.assign(3 * nF * F, 0.0f);
+    out.branchIndex.assign(nF * F, 0);
+    out.fieldSingular.assign(nF, 0);
+  }
+  for (int32_t face = 0; face < t.numFaces; ++face) {
+    const int32_t* v = &mesh.triangles[3 * static_cast<size_t>(face)];
+    if (reuse && region->local[v[0]] < 0 && region->local[v[1]] < 0 && region->local[v[2]] < 0) continue;
+    bool singular = false;
+    for (int f = 0; f < F; ++f) {
+      bool one = false;
+      facePhases(mesh, t, fam, turns, o, face, f, out, one);
+      singular = singular || one;
+    }
+    out.fieldSingular[face] = singular;
+  }
+  w.cornerPhase = out.cornerPhase, w.branchIndex = out.branchIndex, w.fieldSingular = out.fieldSingular;
+}
+
 void checkInput(const SurfaceMesh& mesh, const std::vector<double>& dirs, const StripeOptions& o) {
   if (o.symmetry != 1 && o.symmetry != 2 && o.symmetry != 4)
     throw InputError("stripe pattern: symmetry must be 1, 2 or 4 (got " + std::to_string(o.symmetry) + ")");
@@ -847,6 +879,9 @@ void StripeWorkspace::clear() {
   spacingU.clear();
   frequencyScale.clear();
   faceTurns.clear();
+  cornerPhase.clear();
+  branchIndex.clear();
+  fieldSingular.clear();
   spacingMean = 0;
   adaptSpacing = false;
   symmetry = 0;
@@ -921,15 +956,7 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   }
   out.spacing = std::move(spacing.scale);
   out.spacingMs = spacingMs;
-  out.cornerPhase.assign(3 * static_cast<size_t>(topology.numFaces) * F, 0.0f);
-  out.branchIndex.assign(static_cast<size_t>(topology.numFaces) * F, 0);
-  out.fieldSingular.assign(topology.numFaces, 0);
-  for (int32_t face = 0; face < topology.numFaces; ++face)
-    for (int f = 0; f < F; ++f) {
-      bool singular = false;
-      facePhases(mesh, topology, fam, turns, adapted, face, f, out, singular);
-      if (singular) out.fieldSingular[face] = 1;
-    }
+  facesOf(mesh, topology, fam, turns, adapted, onRegion ? &region : nullptr, w, out);
   return out;
 }
 

@@ -9,6 +9,7 @@ import { WorkerState } from '../../web/core/worker/state.js';
 import { editOps } from '../../web/core/worker/edit-ops.js';
 import { readOps } from '../../web/core/worker/read-ops.js';
 import { testHooks } from '../../web/core/worker/hooks.js';
+import { stripeOps } from '../../web/stripes/worker-ops.js';
 import { icosphere } from './fakes.mjs';
 
 // A core of one constraint (id 1) over a fixed field; its solve fails while any weight is negative, as a
@@ -64,6 +65,14 @@ class TinyCore {
   applyDeferredUpdates() {
     this.calls.push('deferred');
   }
+  computeStripes(vectors, options) {
+    this.calls.push(`stripes ${JSON.stringify(options)}`);
+    return { families: 1, localUpdate: options.localUpdate !== false };
+  }
+  stripeArrays() {
+    const nF = this.meshArrays.triangles.length / 3;
+    return { families: 1, cornerPhase: new Float32Array(3 * nF), branchIndex: new Int8Array(nF) };
+  }
   hodge() {
     this.calls.push('hodge');
     const n = this.meshArrays.edges.length / 2;
@@ -88,7 +97,7 @@ function worker() {
   const scope = { postMessage: (data, list = []) => posted.push({ data, list }) };
   const state = new WorkerState(scope);
   state.core = new TinyCore(icosphere(2));
-  serve(scope, state, [editOps(state), readOps(state), testHooks(state)]);
+  serve(scope, state, [editOps(state), readOps(state), stripeOps(state), testHooks(state)]);
   let seq = 0;
   const call = async (op, args = [], extra = {}) => {
     const mine = ++seq;
@@ -227,4 +236,56 @@ test('an op that waits is not overtaken by the request behind it; notes are take
   await Promise.all([first, second]);
   assert.deepEqual(order, ['slow begins', 'note', 'slow ends', 'fast']);
   assert.deepEqual(posted.filter((p) => p.seq).map((p) => [p.seq, p.value]), [[1, 1], [2, 2]]);
+});
+
+// What the page will ask for next, made ahead (stripes/worker-ops.js): once the page has asked for the whole
+// field's stripes, each edit's pattern is made after the edit's reply and its factor update, with the options of
+// that last request, and served when the page asks for it; not while another request waits behind the edit, not
+// for a settling request's whole pattern, not after the page says it no longer shows them, not on another mesh.
+test("an edit's stripes are made ahead for the page's next request, and only then", async () => {
+  const { state, call, scope } = worker();
+  const stripeCalls = () => state.core.calls.filter((c) => c.startsWith('stripes'));
+  await call('setWeight', [1, 2]);
+  assert.deepEqual(stripeCalls(), [], 'none before the page asks');
+  const options = { frequency: 3, profile: 'stripes' };
+  const first = await call('stripes', [1, 'whole', options]);
+  assert.equal(first.data.value.stats.madeAhead, undefined);
+  assert.equal(first.list.length, 2, 'the arrays are transferred');
+  await call('setWeight', [1, 3]);
+  const asked = 'stripes {"frequency":3,"profile":"stripes"}';
+  assert.deepEqual(stripeCalls(), [asked, asked]);
+  const afterSolve = state.core.calls.slice(state.core.calls.lastIndexOf('solve'));
+  assert.deepEqual(afterSolve.filter((c) => c === 'deferred' || c.startsWith('stripes')).map((c) => c.slice(0, 7)),
+    ['deferre', 'stripes'], 'after the reply and the factor update');
+  const ahead = await call('stripes', [2, 'whole', options]);
+  assert.equal(ahead.data.value.stats.madeAhead, true);
+  assert.equal(ahead.list.length, 2);
+  assert.equal(stripeCalls().length, 2, 'served as made');
+  // A settling request (the whole pattern) is made when asked; the next edit's is a local update again.
+  await call('stripes', [2, 'whole', { ...options, localUpdate: false }]);
+  assert.match(stripeCalls().at(-1), /"localUpdate":false/);
+  await call('setWeight', [1, 4]);
+  assert.equal(stripeCalls().at(-1), asked);
+  // Other options than those made ahead: made as asked.
+  const other = await call('stripes', [3, 'whole', { frequency: 5, profile: 'stripes' }]);
+  assert.equal(other.data.value.stats.madeAhead, undefined);
+  // An edit with another request behind it: none made ahead.
+  const before = stripeCalls().length;
+  const edit = scope.onmessage({ data: { seq: 100, op: 'setWeight', args: [1, 5] } });
+  const read = scope.onmessage({ data: { seq: 101, op: 'hodgeShares', args: [4] } });
+  await Promise.all([edit, read]);
+  assert.equal(stripeCalls().length, before, 'the request waiting behind the edit goes first');
+  // Hidden (or another model): none.
+  await call('stripes', [4, 'whole', options]);
+  scope.onmessage({ data: { stripesUnfollow: true } });
+  await call('setWeight', [1, 6]);
+  assert.equal(stripeCalls().length, before + 1);
+  await call('stripes', [5, 'whole', options]);
+  state.meshChanged();
+  await call('setWeight', [1, 7]);
+  assert.equal(stripeCalls().length, before + 2);
+  // A Hodge part's stripes are not made ahead.
+  await call('stripes', [6, 'exact', options]);
+  await call('setWeight', [1, 8]);
+  assert.equal(stripeCalls().length, before + 3);
 });

@@ -165,7 +165,10 @@ export interface StripeState {
     localUpdate: boolean;
     localVertices: number;
     workerMs: number;
+    /** From the page's request to the stripes drawn. */
     roundTripMs: number;
+    /** When they were drawn (performance.now()). */
+    drawnAt: number;
   } | null;
   /** The stripes shown are a whole pattern (false: an edit's local update, the whole pattern to follow). */
   settled: boolean;

@@ -139,6 +139,7 @@ export class Designer {
       panel,
       onError: (err) => s.fail('stripes', err),
       call: async (op, args) => (await s.proxy.call(op, args, [], { background: true })).value,
+      notify: (message) => s.proxy?.notify(message),
       getField: () => {
         const drawn = this.viewSync.drawn;
         if (!s.surface || !s.field) return null;

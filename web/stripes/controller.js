@@ -41,13 +41,18 @@ export function defaultFrequency(surface) {
 
 export class StripesController {
   // viewer: the page's Viewer; call(op, args): the worker's op, resolving to its value (null when the field
-  // version asked for is no longer the worker's); getField(): {version, component, key, symmetry, surface} of
+  // version asked for is no longer the worker's); notify(message): a word for the worker outside its requests
+  // (stripes/worker-ops.js makes each edit's stripes ahead until told the page no longer shows them);
+  // getField(): {version, component, key, symmetry, surface} of
   // the field the views draw, or null; onChange(): the state changed (the panel redraws); onError(err);
   // onShow(shown): the stripes are about to show (true), or have just gone (false): another stand-in for the
   // surface (the synthesized texture) makes way or comes back.
-  constructor({ viewer, call, getField, onChange = () => {}, onError = () => {}, onShow = () => {} }) {
+  constructor({
+    viewer, call, notify = () => {}, getField, onChange = () => {}, onError = () => {}, onShow = () => {},
+  }) {
     this.viewer = viewer;
     this.call = call;
+    this.notify = notify;
     this.getField = getField;
     this.onChange = onChange;
     this.onError = onError;
@@ -129,7 +134,10 @@ export class StripesController {
     this.#style();
     if (this.visible && !wasVisible) this.onShow(true);
     this.model.setVisible(this.visible);
-    if (!this.visible && wasVisible) this.onShow(false);
+    if (!this.visible && wasVisible) {
+      this.notify({ stripesUnfollow: true });
+      this.onShow(false);
+    }
     this.onChange();
     if (this.visible) await this.update();
     return this.state();
@@ -142,6 +150,7 @@ export class StripesController {
 
   // Another model: its geometry is built on the next update.
   modelChanged() {
+    this.notify({ stripesUnfollow: true });
     this.shown = null;
     this.stats = null;
     if (this.visible) this.update().catch((err) => this.onError(err));
@@ -200,12 +209,15 @@ export class StripesController {
     if (!reply) return; // the worker is not at this version (yet): its field's change asks again
     this.#style();
     this.model.setPattern(reply);
+    // Drawn at once, as a field is (view-sync.js), not at the next animation frame.
+    this.viewer.renderNow?.();
+    const drawnAt = performance.now();
     this.shown = wanted;
     this.settled = !reply.stats?.localUpdate;
     this.settleNow = false;
     if (!this.settled) this.#scheduleSettle();
     this.error = null;
-    this.stats = { ...reply.stats, fieldKey: field.key, roundTripMs: performance.now() - t0 };
+    this.stats = { ...reply.stats, fieldKey: field.key, roundTripMs: drawnAt - t0, drawnAt };
     this.onChange();
   }
 
@@ -254,6 +266,7 @@ export class StripesController {
   }
 
   dispose() {
+    this.notify({ stripesUnfollow: true });
     this.visible = false;
     this.#cancelSettle();
     this.model.dispose();

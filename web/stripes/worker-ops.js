@@ -22,8 +22,25 @@ export function cornerAttributes({ families, cornerPhase, branchIndex }) {
   return { phase, branch };
 }
 
+// The pattern of the current field's `component` with `options`, as the page takes it.
+function pattern(state, component, options) {
+  const t0 = performance.now();
+  const part = component && component !== 'whole' ? state.field.hodge().component(component) : null;
+  const vectors = part?.vertexVectors ?? null;
+  const stats = state.core.computeStripes(vectors, options, state.interruption());
+  if (!stats) return { interrupted: true };
+  const { phase, branch } = cornerAttributes(state.core.stripeArrays());
+  const workerMs = performance.now() - t0;
+  const value = { families: stats.families, phase, branch, stats: { ...stats, workerMs } };
+  return new Transfer(value, [phase.buffer, branch.buffer]);
+}
+
 // state: the core worker's (core/worker/state.js).
 export function stripeOps(state) {
+  // What the page draws, made ahead after each edit: the whole field's stripes with the options of its last
+  // request (an edit's local update), until the page says it no longer shows them. ahead: that pattern, until asked.
+  let follow = null, ahead = null;
+  const keyOf = (component, options) => JSON.stringify([component, options]);
   const onMesh = {
     // The pattern of field `forVersion` (null once that is no longer the current field: the page asks again),
     // of its `component` ('whole' or a Hodge part: the field the views draw), with `options`
@@ -32,16 +49,35 @@ export function stripeOps(state) {
     // so by state.interruption()): the page asks again once that request is served.
     stripes(forVersion, component, options) {
       if (forVersion !== state.field.version) return null;
-      const t0 = performance.now();
-      const part = component && component !== 'whole' ? state.field.hodge().component(component) : null;
-      const vectors = part?.vertexVectors ?? null;
-      const stats = state.core.computeStripes(vectors, options, state.interruption());
-      if (!stats) return { interrupted: true };
-      const { phase, branch } = cornerAttributes(state.core.stripeArrays());
-      const workerMs = performance.now() - t0;
-      const value = { families: stats.families, phase, branch, stats: { ...stats, workerMs } };
-      return new Transfer(value, [phase.buffer, branch.buffer]);
+      const following = { ...options };
+      delete following.localUpdate; // a settling request's whole pattern: the next edit's is a local update again
+      follow = component === 'whole' ? { key: keyOf(component, following), mesh: state.meshSerial } : null;
+      const made = ahead;
+      ahead = null;
+      if (made?.version === forVersion && made.mesh === state.meshSerial && made.key === keyOf(component, options)) {
+        made.value.value.stats.madeAhead = true;
+        return made.value;
+      }
+      return pattern(state, component, options);
     },
   };
-  return { onMesh };
+  const notes = {
+    // The page no longer shows the stripes (or another model came): none made ahead.
+    stripesUnfollow() {
+      follow = ahead = null;
+    },
+  };
+  const afterEdit = () => {
+    ahead = null;
+    if (!follow || follow.mesh !== state.meshSerial || !state.core?.hasMesh) return;
+    const [component, options] = JSON.parse(follow.key);
+    let value;
+    try {
+      value = pattern(state, component, options);
+    } catch {
+      return; // options the edit made wrong (a cross field's one-family profile): the page's own request says so
+    }
+    if (value instanceof Transfer) ahead = { version: state.field.version, mesh: follow.mesh, key: follow.key, value };
+  };
+  return { onMesh, notes, afterEdit };
 }

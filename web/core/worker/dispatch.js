@@ -11,6 +11,8 @@
 //   onMesh   need a mesh; the reply carries the op's value only
 //   anytime  need no mesh
 //   notes    {key: fn(value)}: a message {key: value} outside the request sequence
+// and may give `afterEdit()`: run once an edit has replied and its update is in the factor, when no request waits
+// (what the page will ask for next about the new field, made ahead: the stripes' pattern).
 // Imports the worker's state's parts it drives.
 import { CoreError } from '../core-error.js';
 import { snapshot } from './snapshot.js';
@@ -19,11 +21,12 @@ import { Transfer } from './transfer.js';
 
 const KINDS = ['edits', 'opens', 'onMesh', 'anytime'];
 
-// groups: op groups as above. Returns {ops: Map name -> {run, kind}, notes: Map key -> fn}; an op or a note
-// that two groups define is an error (one would silently shadow the other).
+// groups: op groups as above. Returns {ops: Map name -> {run, kind}, notes: Map key -> fn, afterEdit: [fn]}; an
+// op or a note that two groups define is an error (one would silently shadow the other).
 export function composeOps(groups) {
   const ops = new Map();
   const notes = new Map();
+  const afterEdit = groups.map((group) => group.afterEdit).filter(Boolean);
   const claim = (table, name, entry) => {
     if (table.has(name)) throw new Error(`the worker's op ${name} is defined twice`);
     table.set(name, entry);
@@ -33,12 +36,13 @@ export function composeOps(groups) {
       for (const [name, run] of Object.entries(group[kind] ?? {})) claim(ops, name, { run, kind });
     for (const [key, fn] of Object.entries(group.notes ?? {})) claim(notes, key, fn);
   }
-  return { ops, notes };
+  return { ops, notes, afterEdit };
 }
 
 // Serves the composed groups on scope (the worker's global, or a stand-in with postMessage in tests).
 export function serve(scope, state, groups) {
-  const { ops, notes } = composeOps(groups);
+  const { ops, notes, afterEdit } = composeOps(groups);
+  let waiting = 0; // requests received and not yet begun
   // Requests run one after another, in the order they came, each once the one before has replied: an op that
   // waits (a big model's load for the page's word that its preview is made, the ordering cache for IndexedDB)
   // is not overtaken by the edits the page sends behind it, which would change the model it is replacing and
@@ -47,13 +51,19 @@ export function serve(scope, state, groups) {
   scope.onmessage = ({ data }) => {
     if (data.ping) return void scope.postMessage({ pong: true });
     for (const [key, note] of notes) if (data[key]) return void note(data[key]);
-    queue = queue.then(() => serveRequest(scope, state, ops, data)).catch((err) => console.error(err));
+    waiting++;
+    const after = () => (waiting === 0 ? afterEdit : []);
+    queue = queue.then(() => {
+      waiting--;
+      return serveRequest(scope, state, ops, data, after);
+    }).catch((err) => console.error(err));
     return queue; // resolves once this request is served (a stand-in scope in tests awaits it)
   };
 }
 
-// One request: its op answered and replied, then the update its solve held beside the factor put into it.
-async function serveRequest(scope, state, ops, data) {
+// One request: its op answered and replied, then the update its solve held beside the factor put into it, then
+// (an edit's, with no request waiting) the groups' afterEdit().
+async function serveRequest(scope, state, ops, data, after) {
   const entry = ops.get(data.op);
   const mutating = entry?.kind === 'edits' || entry?.kind === 'opens';
   const t0 = performance.now();
@@ -68,6 +78,14 @@ async function serveRequest(scope, state, ops, data) {
   const t = performance.now();
   state.core.applyDeferredUpdates();
   scope.postMessage({ deferredUpdate: { seq: data.seq, ms: performance.now() - t } });
+  if (entry.kind !== 'edits' || !reply.ok) return;
+  for (const hook of after()) {
+    try {
+      hook();
+    } catch (err) {
+      console.error(err); // made ahead only: the page's own request reports what fails
+    }
+  }
 }
 
 async function answer(state, data, entry, mutating) {

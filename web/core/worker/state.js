@@ -15,6 +15,7 @@ export class WorkerState {
     this.core = null; // the CoreClient, once `init` has loaded it
     this.coreExport = null;
     this.meshSurface = null; // built on first use, per mesh
+    this.meshSerial = 0; // one more at every new mesh
     // The field's version: one more after every solve the page is told about. Requests for derived read-outs
     // name the version they are for, so a reply never pairs one field with another field's read-outs.
     this.field = this.#derived(0);
@@ -70,6 +71,7 @@ export class WorkerState {
   // A new mesh is current: the previous one's Surface goes.
   meshChanged() {
     this.meshSurface = null;
+    this.meshSerial++;
   }
 
   // The field has a new version (snapshot.js): what was derived from the previous one goes with it.
