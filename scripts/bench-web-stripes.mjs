@@ -72,6 +72,10 @@ export async function stripesBench(page, strokes) {
     stripesStrokeOnScreenMs: median(runs.map((r) => r.onScreenMs)),
     stripesOverFieldPerEdit: median(runs.map((r) => r.stripesMs / r.fieldMs)),
     stripesWorkerMs: median(runs.map((r) => r.stats?.workerMs)),
+    // From the page's request (once the field is drawn) to the stripes drawn, and the drawing alone (the page's
+    // part after the reply: the pattern's attributes and the frame).
+    stripesRoundTripMs: median(runs.map((r) => r.stats?.roundTripMs)),
+    stripesDrawMs: median(runs.map((r) => r.stats?.drawMs)),
     stripesIterations: median(runs.map((r) => r.stats?.iterations)),
     // The worker's pattern in parts (medians): the energy's factorization, the eigensolver's steps, the adapted
     // spacing; and how many strokes' energies a shift below the last eigenvalue was refused for.

@@ -63,10 +63,12 @@ Families familiesOf(const SurfaceMesh& mesh, const std::vector<double>& normals,
 }
 
 // Per edge (canonical orientation a -> b) and family f at a: the family at b and the sign it matches with.
-std::vector<Match> edgeMatches(const MeshTopology& t, const Families& fam) {
+// Only the edges `only` marks where given (the rest left unmatched).
+std::vector<Match> edgeMatches(const MeshTopology& t, const Families& fam, const std::vector<uint8_t>* only) {
   const int F = fam.count;
   std::vector<Match> out(static_cast<size_t>(t.numEdges) * F);
   for (int32_t e = 0; e < t.numEdges; ++e) {
+    if (only && !(*only)[e]) continue;
     const int32_t a = t.edgeVertices[2 * e], b = t.edgeVertices[2 * e + 1];
     const Eigen::Vector3d& da = fam.direction[static_cast<size_t>(a) * F];
     Match m;
@@ -148,11 +150,14 @@ double advance(const SurfaceMesh& mesh, const StripeOptions& o, int32_t a, int32
   return kTwoPi * nu * 0.5 * (ya + yb).dot(vertexPosition(mesh, b) - vertexPosition(mesh, a));
 }
 
+// The matches and advances of every edge, or of those `only` marks (a local update's: the edges of the faces
+// that reach its region, all that its systems and faces read).
 EdgeTurns edgeTurns(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam,
-                    const StripeOptions& o) {
+                    const StripeOptions& o, const std::vector<uint8_t>* only = nullptr) {
   const int F = fam.count;
-  EdgeTurns out{edgeMatches(t, fam), std::vector<double>(static_cast<size_t>(t.numEdges) * F)};
+  EdgeTurns out{edgeMatches(t, fam, only), std::vector<double>(static_cast<size_t>(t.numEdges) * F)};
   for (int32_t e = 0; e < t.numEdges; ++e) {
+    if (only && !(*only)[e]) continue;
     const int32_t a = t.edgeVertices[2 * e], b = t.edgeVertices[2 * e + 1];
     for (int f = 0; f < F; ++f) {
       const Match m = out.matches[static_cast<size_t>(e) * F + f];
@@ -362,8 +367,8 @@ Spacing adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& t, const Mes
   Eigen::VectorXd u;
   if (region) {
     u = Eigen::Map<const Eigen::VectorXd>(w.spacingU.data(), nV);
-    if (region->size > 0 &&
-        !solveOnRegion(system.entries, system.rhs, *region, 1, u, regionOrdering(*region, w.vertexOrdering)))
+    if (region->size > 0 && !solveOnRegion(system.entries, system.rhs, *region, 1, u,
+                                           regionOrdering(t, *region, w.vertexOrdering)))
       throw InputError("stripe pattern: the spacing could not be solved");
     Spacing out = spacingOf(g, u, w.spacingMean);
     out.faceTurns = std::move(system.faceTurns);
@@ -390,7 +395,10 @@ std::vector<Eigen::Triplet<double>> energyEntries(const MeshTopology& t, const M
                                                   const EdgeTurns& turns, int F, double shift,
                                                   const StripeRegion* region = nullptr) {
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(t.numEdges) * F * 12 + 2 * static_cast<size_t>(t.numVertices) * F);
+  // A region's vertices have about three edges each to count (and as many more at its border).
+  const size_t vertices = region ? static_cast<size_t>(region->size) : static_cast<size_t>(t.numVertices);
+  const size_t edges = region ? 4 * vertices : static_cast<size_t>(t.numEdges);
+  entries.reserve(edges * F * 12 + 2 * vertices * F);
   std::vector<double> diagonal(2 * static_cast<size_t>(t.numVertices) * F, 0.0);
   for (int32_t e = 0; e < t.numEdges; ++e) {
     const double w =
@@ -739,6 +747,18 @@ StripeRegion changedRegion(const MeshTopology& t, const MeshGeometry& g, const F
   return grownRegion(t, changed, std::max(2, static_cast<int>(std::ceil(kHealingPeriods / periodsPerEdge))));
 }
 
+// Per edge: whether it is an edge of a face with a vertex in the region.
+std::vector<uint8_t> reachedEdges(const SurfaceMesh& mesh, const MeshTopology& t,
+                                  const StripeRegion& region) {
+  std::vector<uint8_t> out(t.numEdges, 0);
+  for (int32_t face = 0; face < t.numFaces; ++face) {
+    const int32_t* v = &mesh.triangles[3 * static_cast<size_t>(face)];
+    if (region.local[v[0]] >= 0 || region.local[v[1]] >= 0 || region.local[v[2]] >= 0)
+      for (int c = 0; c < 3; ++c) out[t.edgeOf(face, c)] = 1;
+  }
+  return out;
+}
+
 // A local update's psi: the energy's rows of the region's vertices, A_RR psi_R = -A_RB psi_B with the last
 // psi (in this field's representatives) held outside, shifted by just below the last eigenvalue as the whole
 // pattern's factor is (the region's Dirichlet problem has no smaller one), else not at all; unit B-norm.
@@ -753,7 +773,7 @@ std::vector<double> psiOnRegion(const MeshTopology& t, const MeshGeometry& g, co
   for (const double shift : {definite - kShiftPart * w.eigenvalue, definite}) {
     x = Eigen::Map<const Eigen::VectorXd>(last.data(), static_cast<Eigen::Index>(last.size()));
     if ((solved = solveOnRegion(energyEntries(t, g, turns, F, shift, &region), {}, region, 2 * F, x,
-                                expandedOrdering(regionOrdering(region, w.vertexOrdering), 2 * F))))
+                                expandedOrdering(regionOrdering(t, region, w.vertexOrdering), 2 * F))))
       break;
   }
   if (!solved) throw InputError("stripe pattern: the energy could not be solved where the field changed");
@@ -918,19 +938,26 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   const StripeRegion region =
       options.localUpdate && workspace ? changedRegion(topology, g, fam, w, options) : StripeRegion{};
   const bool onRegion = !region.local.empty() && region.size <= 3 * (topology.numVertices / 4);
+  // A local update reads the edges of the faces that reach its region alone (the spacing's singular faces
+  // elsewhere are the last pattern's, kept whenever the spacing adapts).
+  const bool reachedOnly =
+      onRegion && (!options.adaptSpacing || w.faceTurns.size() == static_cast<size_t>(topology.numFaces));
+  const std::vector<uint8_t> reached =
+      reachedOnly ? reachedEdges(mesh, topology, region) : std::vector<uint8_t>();
+  const std::vector<uint8_t>* only = reachedOnly ? &reached : nullptr;
   StripeOptions adapted = options;
   Spacing spacing;
   double spacingMs = 0;
   if (options.adaptSpacing) {
     const auto t0 = std::chrono::steady_clock::now();
-    spacing = adaptedSpacing(mesh, topology, g, fam, edgeTurns(mesh, topology, fam, options), options, w,
-                             onRegion ? &region : nullptr);
+    spacing = adaptedSpacing(mesh, topology, g, fam, edgeTurns(mesh, topology, fam, options, only), options,
+                             w, onRegion ? &region : nullptr);
     if (adapted.vertexFrequencyScale.empty()) adapted.vertexFrequencyScale.assign(spacing.scale.size(), 1.0);
     for (size_t v = 0; v < spacing.scale.size(); ++v) adapted.vertexFrequencyScale[v] *= spacing.scale[v];
     spacingMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     checkInterruption(options);
   }
-  const EdgeTurns turns = edgeTurns(mesh, topology, fam, adapted);
+  const EdgeTurns turns = edgeTurns(mesh, topology, fam, adapted, only);
 
   // A shift small against the energy's scale keeps the factor definite where the turns are consistent (then
   // the smallest eigenvalue is 0: a phase exactly following the field).

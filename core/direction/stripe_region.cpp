@@ -58,9 +58,35 @@ bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen
   return true;
 }
 
-std::vector<int> regionOrdering(const StripeRegion& region, const std::vector<int>& vertexOrdering) {
+namespace {
+
+// The region's vertex graph: its vertices (local indices) and the edges between them, upper triangle.
+SparseMatrix regionGraph(const MeshTopology& t, const StripeRegion& region) {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(4 * static_cast<size_t>(region.size));
+  for (int32_t v = 0; v < t.numVertices; ++v) {
+    const int32_t a = region.local[v];
+    if (a < 0) continue;
+    entries.emplace_back(a, a, 1.0);
+    for (int32_t k = t.vertexEdgeStart[v]; k < t.vertexEdgeStart[v + 1]; ++k) {
+      const int32_t e = t.vertexEdgeList[k];
+      const int32_t u = t.edgeVertices[2 * e] == v ? t.edgeVertices[2 * e + 1] : t.edgeVertices[2 * e];
+      if (const int32_t b = region.local[u]; b > a) entries.emplace_back(a, b, 1.0);
+    }
+  }
+  SparseMatrix graph(region.size, region.size);
+  graph.setFromTriplets(entries.begin(), entries.end());
+  return graph;
+}
+
+}  // namespace
+
+std::vector<int> regionOrdering(const MeshTopology& t, const StripeRegion& region,
+                                const std::vector<int>& vertexOrdering) {
+  if (vertexOrdering.empty())
+    return region.size > 0 ? minimumDegree(regionGraph(t, region)) : std::vector<int>();
   std::vector<int> out;
-  out.reserve(vertexOrdering.empty() ? 0 : static_cast<size_t>(region.size));
+  out.reserve(static_cast<size_t>(region.size));
   for (const int v : vertexOrdering)
     if (region.local[v] >= 0) out.push_back(region.local[v]);
   return out;

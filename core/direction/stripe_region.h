@@ -36,7 +36,10 @@ bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen
                    const StripeRegion& region, int per, Eigen::VectorXd& x, std::vector<int> ordering = {});
 
 // The region's vertices (their indices in it) in the order a fill-reducing ordering of all the mesh's
-// vertices (a big mesh's nested dissection) puts them; empty for an empty ordering.
-std::vector<int> regionOrdering(const StripeRegion& region, const std::vector<int>& vertexOrdering);
+// vertices (a big mesh's nested dissection) puts them; for an empty one, AMD's ordering of the region's own
+// vertex graph (a system of several unknowns a vertex, expanded, is analysed in a fraction of the time AMD
+// takes on its rows: bunny00's local updates' energy, 7-14k rows, 3-7 ms).
+std::vector<int> regionOrdering(const MeshTopology& t, const StripeRegion& region,
+                                const std::vector<int>& vertexOrdering);
 
 }  // namespace tvf

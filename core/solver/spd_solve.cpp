@@ -123,6 +123,19 @@ std::vector<int> nestedDissection(const SparseMatrix& upper) {
   return perm;
 }
 
+std::vector<int> minimumDegree(const SparseMatrix& upper) {
+  const size_t n = static_cast<size_t>(upper.rows());
+  if (n == 0 || upper.cols() != upper.rows() || !upper.isCompressed()) return {};
+  CholmodCommon common;
+  cholmod_common& c = *common.get();
+  c.print = 0;
+  c.error_handler = nullptr;
+  cholmod_sparse A = upperTriangleView(upper);
+  std::vector<int> perm(n);
+  if (!cholmod_amd(&A, nullptr, 0, perm.data(), &c) || c.status != CHOLMOD_OK) return {};
+  return perm;
+}
+
 bool solveSpdOnce(const SparseMatrix& upper, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   SpdFactor factor(upper);
   return factor.solve(b, x);

@@ -45,6 +45,10 @@ class SpdFactor {
 // permutation as SpdFactor takes it. Empty where METIS failed.
 std::vector<int> nestedDissection(const SparseMatrix& upper);
 
+// AMD's approximate minimum degree ordering of the same graph, as SpdFactor takes it (which then postorders
+// it). Empty where AMD failed.
+std::vector<int> minimumDegree(const SparseMatrix& upper);
+
 // Solves A x = b once. Returns false, leaving x unspecified, when A is not numerically positive definite or
 // the solution is not finite.
 bool solveSpdOnce(const SparseMatrix& upper, const Eigen::VectorXd& b, Eigen::VectorXd& x);

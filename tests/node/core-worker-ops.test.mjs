@@ -256,7 +256,7 @@ test("an edit's stripes are made ahead for the page's next request, and only the
   assert.deepEqual(stripeCalls(), [asked, asked]);
   const afterSolve = state.core.calls.slice(state.core.calls.lastIndexOf('solve'));
   assert.deepEqual(afterSolve.filter((c) => c === 'deferred' || c.startsWith('stripes')).map((c) => c.slice(0, 7)),
-    ['deferre', 'stripes'], 'after the reply and the factor update');
+    ['stripes', 'deferre'], 'after the reply, before the factor takes the update');
   const ahead = await call('stripes', [2, 'whole', options]);
   assert.equal(ahead.data.value.stats.madeAhead, true);
   assert.equal(ahead.list.length, 2);
@@ -275,6 +275,9 @@ test("an edit's stripes are made ahead for the page's next request, and only the
   const read = scope.onmessage({ data: { seq: 101, op: 'hodgeShares', args: [4] } });
   await Promise.all([edit, read]);
   assert.equal(stripeCalls().length, before, 'the request waiting behind the edit goes first');
+  const tail = state.core.calls.slice(state.core.calls.lastIndexOf('solve'));
+  assert.deepEqual(tail.filter((c) => c === 'deferred' || c === 'hodge'), ['hodge', 'deferred'],
+    'a read waiting behind an edit goes before its factor update, which follows once nothing waits');
   // Hidden (or another model): none.
   await call('stripes', [4, 'whole', options]);
   scope.onmessage({ data: { stripesUnfollow: true } });

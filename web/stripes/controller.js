@@ -207,6 +207,7 @@ export class StripesController {
       return;
     }
     if (!reply) return; // the worker is not at this version (yet): its field's change asks again
+    const repliedAt = performance.now();
     this.#style();
     this.model.setPattern(reply);
     // Drawn at once, as a field is (view-sync.js), not at the next animation frame.
@@ -217,7 +218,8 @@ export class StripesController {
     this.settleNow = false;
     if (!this.settled) this.#scheduleSettle();
     this.error = null;
-    this.stats = { ...reply.stats, fieldKey: field.key, roundTripMs: drawnAt - t0, drawnAt };
+    const roundTripMs = drawnAt - t0, drawMs = drawnAt - repliedAt;
+    this.stats = { ...reply.stats, fieldKey: field.key, roundTripMs, drawMs, drawnAt };
     this.onChange();
   }
 

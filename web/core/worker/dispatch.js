@@ -43,6 +43,7 @@ export function composeOps(groups) {
 export function serve(scope, state, groups) {
   const { ops, notes, afterEdit } = composeOps(groups);
   let waiting = 0; // requests received and not yet begun
+  const idle = () => waiting === 0;
   // Requests run one after another, in the order they came, each once the one before has replied: an op that
   // waits (a big model's load for the page's word that its preview is made, the ordering cache for IndexedDB)
   // is not overtaken by the edits the page sends behind it, which would change the model it is replacing and
@@ -52,18 +53,23 @@ export function serve(scope, state, groups) {
     if (data.ping) return void scope.postMessage({ pong: true });
     for (const [key, note] of notes) if (data[key]) return void note(data[key]);
     waiting++;
-    const after = () => (waiting === 0 ? afterEdit : []);
     queue = queue.then(() => {
       waiting--;
-      return serveRequest(scope, state, ops, data, after);
+      return serveRequest(scope, state, ops, data, { idle, afterEdit });
     }).catch((err) => console.error(err));
     return queue; // resolves once this request is served (a stand-in scope in tests awaits it)
   };
 }
 
-// One request: its op answered and replied, then the update its solve held beside the factor put into it, then
-// (an edit's, with no request waiting) the groups' afterEdit().
-async function serveRequest(scope, state, ops, data, after) {
+// A task's turn: the messages that came while the thread was busy are received (and counted as waiting).
+const nextTask = () => new Promise((resolve) => setTimeout(resolve, 0));
+
+// One request: its op answered and replied; then, after an edit and while no request waits, the groups'
+// afterEdit() (the stripes the page will ask for next); then, once no request waits, the update the solves went
+// through put into the factor (Designer::setDeferredUpdates). A read the page sent meanwhile (its request for
+// those stripes) goes first; an edit puts the update in itself before its own (every other change of the factor
+// does), the next idle moment after it the edit's.
+async function serveRequest(scope, state, ops, data, { idle, afterEdit }) {
   const entry = ops.get(data.op);
   const mutating = entry?.kind === 'edits' || entry?.kind === 'opens';
   const t0 = performance.now();
@@ -72,19 +78,26 @@ async function serveRequest(scope, state, ops, data, after) {
   reply.seq = data.seq;
   reply.workerMs = performance.now() - t0;
   scope.postMessage(reply, transfer);
-  // The update the solve went through (Designer::setDeferredUpdates) goes into the factor once the field has
-  // gone.
-  if (!mutating || !state.core?.hasMesh) return;
+  if (!state.core?.hasMesh) return;
+  if (mutating) state.deferredFor = data.seq;
+  if (entry?.kind === 'edits' && reply.ok && afterEdit.length) {
+    await nextTask();
+    if (idle()) afterEdit.forEach((hook) => runHook(hook));
+  }
+  if (state.deferredFor === null) return;
+  await nextTask();
+  if (!idle()) return;
   const t = performance.now();
   state.core.applyDeferredUpdates();
-  scope.postMessage({ deferredUpdate: { seq: data.seq, ms: performance.now() - t } });
-  if (entry.kind !== 'edits' || !reply.ok) return;
-  for (const hook of after()) {
-    try {
-      hook();
-    } catch (err) {
-      console.error(err); // made ahead only: the page's own request reports what fails
-    }
+  scope.postMessage({ deferredUpdate: { seq: state.deferredFor, ms: performance.now() - t } });
+  state.deferredFor = null;
+}
+
+function runHook(hook) {
+  try {
+    hook();
+  } catch (err) {
+    console.error(err); // made ahead only: the page's own request reports what fails
   }
 }
 

@@ -16,6 +16,7 @@ export class WorkerState {
     this.coreExport = null;
     this.meshSurface = null; // built on first use, per mesh
     this.meshSerial = 0; // one more at every new mesh
+    this.deferredFor = null; // the seq of the edit whose update the factor holds beside it, until put in
     // The field's version: one more after every solve the page is told about. Requests for derived read-outs
     // name the version they are for, so a reply never pairs one field with another field's read-outs.
     this.field = this.#derived(0);
