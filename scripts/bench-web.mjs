@@ -226,6 +226,7 @@ async function strokeBench(page, meshPath) {
   };
   const updateSolve = m.updateMs + m.solveMs;
   const strokeTasks = await page.evaluate(() => window.__longTasks.splice(0));
+  const strokeFrames = await page.evaluate(() => window.__longFrames.splice(0));
   const longest = (tasks) => tasks.reduce((m, t) => Math.max(m, t.ms), 0);
   const result = {
     mesh: meshPath,
@@ -255,6 +256,9 @@ async function strokeBench(page, meshPath) {
     loadLongTasks: loadTasks.map((t) => ({ at: Math.round(t.at - load.t0), ms: t.ms })),
     loadLongFrames: loadFrames.map((f) => ({ ...f, at: Math.round(f.at - load.t0) })),
     longestStrokeTaskMs: longest(strokeTasks),
+    // The frames over 100 ms from the load's end to the strokes' (the symmetry's change included), with their
+    // scripts: what a long task there was.
+    strokeLongFrames: strokeFrames.map((f) => ({ ...f, at: Math.round(f.at - load.t0) })),
     heapPeakBytes: runs.at(-1)?.stats.heapBytes ?? null,
     // --undo N: N undos of the strokes, then N redos (medians).
     ...(undo ?? {}),

@@ -170,8 +170,11 @@ export interface StripeState {
     localUpdate: boolean;
     localVertices: number;
     workerMs: number;
-    /** From the page's request to the stripes drawn. */
+    /** Made by the worker right after the edit's field, before the page asked. */
+    madeAhead?: boolean;
+    /** From the page's request to the stripes drawn, and the drawing alone. */
     roundTripMs: number;
+    drawMs: number;
     /** When they were drawn (performance.now()). */
     drawnAt: number;
   } | null;

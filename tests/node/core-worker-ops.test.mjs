@@ -278,17 +278,24 @@ test("an edit's stripes are made ahead for the page's next request, and only the
   const tail = state.core.calls.slice(state.core.calls.lastIndexOf('solve'));
   assert.deepEqual(tail.filter((c) => c === 'deferred' || c === 'hodge'), ['hodge', 'deferred'],
     'a read waiting behind an edit goes before its factor update, which follows once nothing waits');
-  // Hidden (or another model): none.
+  // A background read waiting (the page's request for a big model's preview field's stripes, of a version this
+  // worker does not have): made ahead all the same, the read served after it.
   await call('stripes', [4, 'whole', options]);
+  const edited = scope.onmessage({ data: { seq: 200, op: 'setWeight', args: [1, 5.5] } });
+  const stale = scope.onmessage({ data: { seq: 201, op: 'stripes', args: [4, 'whole', options], background: true } });
+  await Promise.all([edited, stale]);
+  assert.equal(stripeCalls().length, before + 2, 'made ahead');
+  assert.equal((await call('stripes', [5, 'whole', options])).data.value.stats.madeAhead, true);
+  // Hidden (or another model): none.
   scope.onmessage({ data: { stripesUnfollow: true } });
   await call('setWeight', [1, 6]);
-  assert.equal(stripeCalls().length, before + 1);
-  await call('stripes', [5, 'whole', options]);
+  assert.equal(stripeCalls().length, before + 2);
+  await call('stripes', [6, 'whole', options]);
   state.meshChanged();
   await call('setWeight', [1, 7]);
-  assert.equal(stripeCalls().length, before + 2);
-  // A Hodge part's stripes are not made ahead.
-  await call('stripes', [6, 'exact', options]);
-  await call('setWeight', [1, 8]);
   assert.equal(stripeCalls().length, before + 3);
+  // A Hodge part's stripes are not made ahead.
+  await call('stripes', [7, 'exact', options]);
+  await call('setWeight', [1, 8]);
+  assert.equal(stripeCalls().length, before + 4);
 });

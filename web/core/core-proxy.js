@@ -137,7 +137,7 @@ export class CoreProxy {
     return new Promise((resolve, reject) => {
       this.pending.set(seq, { resolve, reject, op, background, onProgress });
       try {
-        this.worker.postMessage({ seq, op, args, spare, wholeDesign, mark }, [...transfer, ...spare]);
+        this.worker.postMessage({ seq, op, args, spare, wholeDesign, mark, background }, [...transfer, ...spare]);
       } catch (err) {
         this.pending.delete(seq);
         reject(new CoreError(`could not send ${op} to the core: ${err.message}`));

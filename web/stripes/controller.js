@@ -13,6 +13,10 @@ const DEFAULT_DARK = 0x342c28;
 // An edit's pattern is first solved where its field changed (the core's local update: the stripes elsewhere stay
 // put); the whole pattern, the energy's eigenvector, follows once the edits pause this long.
 const SETTLE_MS = 400;
+// Up to this many faces the stripes are drawn at once, in the task that takes them, as a field is (view-sync.js):
+// bunny00's (75k faces) upload and frame take that task 2-4 ms. A bigger model's go to the next animation frame,
+// a task of their own (armadillo-sub2's 832k faces: 20 MB of corner attributes).
+const DRAW_AT_ONCE_FACES = 200_000;
 // Default spacing: this many stripes across the model's bounding-box diagonal, but no period under four mean
 // edge lengths (a narrower one is more than the mesh can show).
 const STRIPES_PER_DIAGONAL = 40;
@@ -210,9 +214,7 @@ export class StripesController {
     const repliedAt = performance.now();
     this.#style();
     this.model.setPattern(reply);
-    // Drawn at once, as a field is (view-sync.js), not at the next animation frame.
-    this.viewer.renderNow?.();
-    const drawnAt = performance.now();
+    const drawnAt = await this.#draw(reply.branch.length / 6);
     this.shown = wanted;
     this.settled = !reply.stats?.localUpdate;
     this.settleNow = false;
@@ -221,6 +223,18 @@ export class StripesController {
     const roundTripMs = drawnAt - t0, drawMs = drawnAt - repliedAt;
     this.stats = { ...reply.stats, fieldKey: field.key, roundTripMs, drawMs, drawnAt };
     this.onChange();
+  }
+
+  // Draws the pattern just set; resolves to when its frame was issued (performance.now()).
+  #draw(faces) {
+    const { viewer } = this;
+    if (faces <= DRAW_AT_ONCE_FACES || !viewer.afterRender || viewer.disposed) {
+      viewer.renderNow?.();
+      return performance.now();
+    }
+    const drawn = new Promise((resolve) => viewer.afterRender.push(resolve));
+    viewer.requestRender();
+    return drawn;
   }
 
   // Resolves once no update is in flight (tests, benchmarks); with `settled`, once the stripes shown are a whole

@@ -42,8 +42,13 @@ export function composeOps(groups) {
 // Serves the composed groups on scope (the worker's global, or a stand-in with postMessage in tests).
 export function serve(scope, state, groups) {
   const { ops, notes, afterEdit } = composeOps(groups);
-  let waiting = 0; // requests received and not yet begun
+  // Requests received and not yet begun, and those of them that rank above a background one (core-proxy.js):
+  // what the page will ask for next is made ahead only when no such request waits (a background read that
+  // waits, such as the page's request for the stripes of a big model's preview field, which this worker does
+  // not make, is served after it).
+  let waiting = 0, foreground = 0;
   const idle = () => waiting === 0;
+  const noForeground = () => foreground === 0;
   // Requests run one after another, in the order they came, each once the one before has replied: an op that
   // waits (a big model's load for the page's word that its preview is made, the ordering cache for IndexedDB)
   // is not overtaken by the edits the page sends behind it, which would change the model it is replacing and
@@ -53,9 +58,11 @@ export function serve(scope, state, groups) {
     if (data.ping) return void scope.postMessage({ pong: true });
     for (const [key, note] of notes) if (data[key]) return void note(data[key]);
     waiting++;
+    if (!data.background) foreground++;
     queue = queue.then(() => {
       waiting--;
-      return serveRequest(scope, state, ops, data, { idle, afterEdit });
+      if (!data.background) foreground--;
+      return serveRequest(scope, state, ops, data, { idle, noForeground, afterEdit });
     }).catch((err) => console.error(err));
     return queue; // resolves once this request is served (a stand-in scope in tests awaits it)
   };
@@ -64,12 +71,12 @@ export function serve(scope, state, groups) {
 // A task's turn: the messages that came while the thread was busy are received (and counted as waiting).
 const nextTask = () => new Promise((resolve) => setTimeout(resolve, 0));
 
-// One request: its op answered and replied; then, after an edit and while no request waits, the groups'
-// afterEdit() (the stripes the page will ask for next); then, once no request waits, the update the solves went
-// through put into the factor (Designer::setDeferredUpdates). A read the page sent meanwhile (its request for
-// those stripes) goes first; an edit puts the update in itself before its own (every other change of the factor
-// does), the next idle moment after it the edit's.
-async function serveRequest(scope, state, ops, data, { idle, afterEdit }) {
+// One request: its op answered and replied; then, after an edit and while no foreground request waits, the
+// groups' afterEdit() (the stripes the page will ask for next); then, once no request waits, the update the
+// solves went through put into the factor (Designer::setDeferredUpdates). A read the page sent meanwhile (its
+// request for those stripes) goes first; an edit puts the update in itself before its own (every other change
+// of the factor does), the next idle moment after it the edit's.
+async function serveRequest(scope, state, ops, data, { idle, noForeground, afterEdit }) {
   const entry = ops.get(data.op);
   const mutating = entry?.kind === 'edits' || entry?.kind === 'opens';
   const t0 = performance.now();
@@ -82,7 +89,7 @@ async function serveRequest(scope, state, ops, data, { idle, afterEdit }) {
   if (mutating) state.deferredFor = data.seq;
   if (entry?.kind === 'edits' && reply.ok && afterEdit.length) {
     await nextTask();
-    if (idle()) afterEdit.forEach((hook) => runHook(hook));
+    if (noForeground()) afterEdit.forEach((hook) => runHook(hook));
   }
   if (state.deferredFor === null) return;
   await nextTask();
