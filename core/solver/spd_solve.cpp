@@ -110,7 +110,12 @@ bool SpdFactor::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   return true;
 }
 
-std::vector<int> nestedDissection(const SparseMatrix& upper) {
+namespace {
+
+// A fill-reducing permutation of A's graph by one of CHOLMOD's orderings, order(A, perm, common) -> ok; empty
+// where it failed.
+template <class Order>
+std::vector<int> orderingBy(const SparseMatrix& upper, Order order) {
   const size_t n = static_cast<size_t>(upper.rows());
   if (n == 0 || upper.cols() != upper.rows() || !upper.isCompressed()) return {};
   CholmodCommon common;
@@ -119,21 +124,22 @@ std::vector<int> nestedDissection(const SparseMatrix& upper) {
   c.error_handler = nullptr;
   cholmod_sparse A = upperTriangleView(upper);
   std::vector<int> perm(n);
-  if (!cholmod_metis(&A, nullptr, 0, 1, perm.data(), &c) || c.status != CHOLMOD_OK) return {};
+  if (!order(A, perm.data(), c) || c.status != CHOLMOD_OK) return {};
   return perm;
 }
 
+}  // namespace
+
+std::vector<int> nestedDissection(const SparseMatrix& upper) {
+  return orderingBy(upper, [](cholmod_sparse& A, int* perm, cholmod_common& c) {
+    return cholmod_metis(&A, nullptr, 0, 1, perm, &c);
+  });
+}
+
 std::vector<int> minimumDegree(const SparseMatrix& upper) {
-  const size_t n = static_cast<size_t>(upper.rows());
-  if (n == 0 || upper.cols() != upper.rows() || !upper.isCompressed()) return {};
-  CholmodCommon common;
-  cholmod_common& c = *common.get();
-  c.print = 0;
-  c.error_handler = nullptr;
-  cholmod_sparse A = upperTriangleView(upper);
-  std::vector<int> perm(n);
-  if (!cholmod_amd(&A, nullptr, 0, perm.data(), &c) || c.status != CHOLMOD_OK) return {};
-  return perm;
+  return orderingBy(upper, [](cholmod_sparse& A, int* perm, cholmod_common& c) {
+    return cholmod_amd(&A, nullptr, 0, perm, &c);
+  });
 }
 
 bool solveSpdOnce(const SparseMatrix& upper, const Eigen::VectorXd& b, Eigen::VectorXd& x) {

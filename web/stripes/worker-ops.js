@@ -2,6 +2,8 @@
 // The stripe pattern's worker op, served by the element's core worker (web/core-worker.js composes it with the
 // core's ops; core/worker/dispatch.js files it as `onMesh`): the core's pattern of one field version, laid out
 // per corner for the page's non-indexed stripe geometry, so that the page's thread only hands it to the GPU.
+// After each edit (dispatch.js afterEdit) it makes the pattern the page will ask for, while the page draws the
+// field; a note (`stripesUnfollow`) stops that when the page no longer shows the stripes.
 // Imports the core worker's Transfer.
 import { Transfer } from '../core/worker/transfer.js';
 

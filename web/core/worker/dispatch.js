@@ -11,8 +11,8 @@
 //   onMesh   need a mesh; the reply carries the op's value only
 //   anytime  need no mesh
 //   notes    {key: fn(value)}: a message {key: value} outside the request sequence
-// and may give `afterEdit()`: run once an edit has replied and its update is in the factor, when no request waits
-// (what the page will ask for next about the new field, made ahead: the stripes' pattern).
+// and may give `afterEdit()`: run once an edit has replied, when no foreground request waits, before the edit's
+// update goes into the factor (what the page will ask for next about the new field, made ahead: the stripes).
 // Imports the worker's state's parts it drives.
 import { CoreError } from '../core-error.js';
 import { snapshot } from './snapshot.js';
