@@ -234,8 +234,7 @@ std::vector<uint8_t> fieldTurns(const SurfaceMesh& mesh, const MeshTopology& t, 
   std::vector<uint8_t> out = reuse ? last : std::vector<uint8_t>(t.numFaces, 0);
   for (int32_t face = 0; face < t.numFaces; ++face) {
     const int32_t* v = &mesh.triangles[3 * face];
-    if (!reuse || region->local[v[0]] >= 0 || region->local[v[1]] >= 0 || region->local[v[2]] >= 0)
-      out[face] = turnsRoundFace(mesh, t, g, fam, turns, face);
+    if (!reuse || faceReaches(*region, v)) out[face] = turnsRoundFace(mesh, t, g, fam, turns, face);
   }
   return out;
 }
@@ -715,7 +714,7 @@ std::vector<double> psiInNewFrames(const Families& fam, const StripeWorkspace& w
 
 // The vertices where the field's direction moved by more than options.localUpdateDegrees (each family against
 // the last pattern's nearest one, a line's sign aside) or its frequency by more than 1 % since the
-// workspace's last pattern, grown by two periods (none where nothing changed); no vertex map at all where the
+// workspace's last pattern, grown by localUpdatePeriods periods (none where nothing changed); no vertex map at all where the
 // last pattern cannot be updated so (there is none, or it is of another symmetry, frequency or spacing mode).
 StripeRegion changedRegion(const MeshTopology& t, const MeshGeometry& g, const Families& fam,
                            const StripeWorkspace& w, const StripeOptions& o) {
@@ -741,10 +740,10 @@ StripeRegion changedRegion(const MeshTopology& t, const MeshGeometry& g, const F
         std::abs(o.vertexFrequencyScale[v] - w.frequencyScale[v]) > 1e-2 * w.frequencyScale[v])
       changed[v] = 1;
   }
-  // Two periods of edges (at least two, and no more than 64: a period of under 1/32 of an edge is not drawn).
-  const double kHealingPeriods = o.localUpdatePeriods;
-  const double periodsPerEdge = std::max(g.meanEdgeLength * o.frequency, kHealingPeriods / 64);
-  return grownRegion(t, changed, std::max(2, static_cast<int>(std::ceil(kHealingPeriods / periodsPerEdge))));
+  // localUpdatePeriods periods of edges (at least two edges, and no more than 64).
+  const double periodsPerEdge = std::max(g.meanEdgeLength * o.frequency, o.localUpdatePeriods / 64);
+  return grownRegion(t, changed,
+                     std::max(2, static_cast<int>(std::ceil(o.localUpdatePeriods / periodsPerEdge))));
 }
 
 // Per edge: whether it is an edge of a face with a vertex in the region.
@@ -753,7 +752,7 @@ std::vector<uint8_t> reachedEdges(const SurfaceMesh& mesh, const MeshTopology& t
   std::vector<uint8_t> out(t.numEdges, 0);
   for (int32_t face = 0; face < t.numFaces; ++face) {
     const int32_t* v = &mesh.triangles[3 * static_cast<size_t>(face)];
-    if (region.local[v[0]] >= 0 || region.local[v[1]] >= 0 || region.local[v[2]] >= 0)
+    if (faceReaches(region, v))
       for (int c = 0; c < 3; ++c) out[t.edgeOf(face, c)] = 1;
   }
   return out;
@@ -845,7 +844,7 @@ void facesOf(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam
   }
   for (int32_t face = 0; face < t.numFaces; ++face) {
     const int32_t* v = &mesh.triangles[3 * static_cast<size_t>(face)];
-    if (reuse && region->local[v[0]] < 0 && region->local[v[1]] < 0 && region->local[v[2]] < 0) continue;
+    if (reuse && !faceReaches(*region, v)) continue;
     bool singular = false;
     for (int f = 0; f < F; ++f) {
       bool one = false;

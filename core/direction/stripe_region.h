@@ -24,6 +24,11 @@ struct StripeRegion {
   int32_t size = 0;
 };
 
+// Whether a face (its three vertices) has a vertex in the region.
+inline bool faceReaches(const StripeRegion& region, const int32_t* v) {
+  return region.local[v[0]] >= 0 || region.local[v[1]] >= 0 || region.local[v[2]] >= 0;
+}
+
 // The vertices where `changed` is set, and those up to `rings` edges away from them.
 StripeRegion grownRegion(const MeshTopology& t, const std::vector<uint8_t>& changed, int rings);
 
