@@ -714,9 +714,9 @@ std::vector<double> psiInNewFrames(const Families& fam, const StripeWorkspace& w
 
 // The vertices where the field's direction moved by more than options.localUpdateDegrees (each family against
 // the last pattern's nearest one, a line's sign aside) or its frequency by more than 1 % since the
-// workspace's last pattern, grown by localUpdatePeriods periods (none where nothing changed); no vertex map at
-// all where the last pattern cannot be updated so (there is none, or it is of another symmetry, frequency or
-// spacing mode).
+// workspace's last pattern, grown by localUpdatePeriods periods (none where nothing changed); no vertex map
+// at all where the last pattern cannot be updated so (there is none, or it is of another symmetry, frequency
+// or spacing mode).
 StripeRegion changedRegion(const MeshTopology& t, const MeshGeometry& g, const Families& fam,
                            const StripeWorkspace& w, const StripeOptions& o) {
   const int F = fam.count;
