@@ -63,12 +63,12 @@ Families familiesOf(const SurfaceMesh& mesh, const std::vector<double>& normals,
 }
 
 // Per edge (canonical orientation a -> b) and family f at a: the family at b and the sign it matches with.
-// Only the edges `only` marks where given (the rest left unmatched).
-std::vector<Match> edgeMatches(const MeshTopology& t, const Families& fam, const std::vector<uint8_t>* only) {
+// Only the edges given (the rest left unmatched).
+std::vector<Match> edgeMatches(const MeshTopology& t, const Families& fam, Elements edges) {
   const int F = fam.count;
   std::vector<Match> out(static_cast<size_t>(t.numEdges) * F);
-  for (int32_t e = 0; e < t.numEdges; ++e) {
-    if (only && !(*only)[e]) continue;
+  for (int32_t i = 0; i < edges.size(); ++i) {
+    const int32_t e = edges[i];
     const int32_t a = t.edgeVertices[2 * e], b = t.edgeVertices[2 * e + 1];
     const Eigen::Vector3d& da = fam.direction[static_cast<size_t>(a) * F];
     Match m;
@@ -150,14 +150,14 @@ double advance(const SurfaceMesh& mesh, const StripeOptions& o, int32_t a, int32
   return kTwoPi * nu * 0.5 * (ya + yb).dot(vertexPosition(mesh, b) - vertexPosition(mesh, a));
 }
 
-// The matches and advances of every edge, or of those `only` marks (a local update's: the edges of the faces
-// that reach its region, all that its systems and faces read).
+// The matches and advances of the edges given: every edge, or a local update's (the edges of the faces that
+// reach its region, all that its systems and faces read).
 EdgeTurns edgeTurns(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam,
-                    const StripeOptions& o, const std::vector<uint8_t>* only = nullptr) {
+                    const StripeOptions& o, Elements edges) {
   const int F = fam.count;
-  EdgeTurns out{edgeMatches(t, fam, only), std::vector<double>(static_cast<size_t>(t.numEdges) * F)};
-  for (int32_t e = 0; e < t.numEdges; ++e) {
-    if (only && !(*only)[e]) continue;
+  EdgeTurns out{edgeMatches(t, fam, edges), std::vector<double>(static_cast<size_t>(t.numEdges) * F)};
+  for (int32_t i = 0; i < edges.size(); ++i) {
+    const int32_t e = edges[i];
     const int32_t a = t.edgeVertices[2 * e], b = t.edgeVertices[2 * e + 1];
     for (int f = 0; f < F; ++f) {
       const Match m = out.matches[static_cast<size_t>(e) * F + f];
@@ -211,17 +211,21 @@ bool turnsRoundFace(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGe
     const Match m = walk(t, turns.matches, F, t.edgeOf(face, c), v[c], family[c]);
     family[c + 1] = m.family, sign[c + 1] = sign[c] * m.sign;
   }
+  if (sign[3] != 1 || family[3] != 0) return true;
+  // The three turns from corner to corner (each the shorter way, in (-pi, pi)) close up to 0 or +-2 pi, and
+  // to +-2 pi exactly when all three go the same way: the signs of their sines, no angle needed. (A normal
+  // part of the directions changes no sine about n.)
   const Eigen::Vector3d n(g.faceNormal[3 * face], g.faceNormal[3 * face + 1], g.faceNormal[3 * face + 2]);
-  double turn = 0;
+  int positive = 0, negative = 0;
   for (int c = 0; c < 3; ++c) {
     const int d = (c + 1) % 3;
     const int fd = c < 2 ? family[d] : family[3], sd = c < 2 ? sign[d] : sign[3];
-    Eigen::Vector3d a = sign[c] * fam.growth[static_cast<size_t>(v[c]) * F + family[c]];
-    Eigen::Vector3d b = sd * fam.growth[static_cast<size_t>(v[d]) * F + fd];
-    a -= a.dot(n) * n, b -= b.dot(n) * n;
-    turn += std::atan2(n.dot(a.cross(b)), a.dot(b));
+    const Eigen::Vector3d a = sign[c] * fam.growth[static_cast<size_t>(v[c]) * F + family[c]];
+    const Eigen::Vector3d b = sd * fam.growth[static_cast<size_t>(v[d]) * F + fd];
+    const double sine = n.dot(a.cross(b));
+    positive += sine > 0, negative += sine < 0;
   }
-  return sign[3] != 1 || family[3] != 0 || std::abs(turn) > M_PI;
+  return positive == 3 || negative == 3;
 }
 
 // Per face, whether the field turns round it (turnsRoundFace). With a region (a local update), computed for
@@ -232,10 +236,8 @@ std::vector<uint8_t> fieldTurns(const SurfaceMesh& mesh, const MeshTopology& t, 
                                 const std::vector<uint8_t>& last) {
   const bool reuse = region && last.size() == static_cast<size_t>(t.numFaces);
   std::vector<uint8_t> out = reuse ? last : std::vector<uint8_t>(t.numFaces, 0);
-  for (int32_t face = 0; face < t.numFaces; ++face) {
-    const int32_t* v = &mesh.triangles[3 * face];
-    if (!reuse || faceReaches(*region, v)) out[face] = turnsRoundFace(mesh, t, g, fam, turns, face);
-  }
+  const Elements faces{reuse ? &region->faces : nullptr, t.numFaces};
+  for (int32_t i = 0; i < faces.size(); ++i) out[faces[i]] = turnsRoundFace(mesh, t, g, fam, turns, faces[i]);
   return out;
 }
 
@@ -295,12 +297,16 @@ SpacingSystem spacingSystem(const SurfaceMesh& mesh, const MeshTopology& t, cons
   SpacingSystem out{{}, Eigen::VectorXd::Zero(nV), fieldTurns(mesh, t, g, fam, turns, region, lastTurns)};
   const int F = fam.count;
   const std::vector<double> weight = spacingWeights(t, g, out.faceTurns, o);
-  for (int32_t face = 0; face < t.numFaces; ++face)
-    for (int f0 = 0; f0 < F; ++f0) {
+  const Elements faces{region ? &region->faces : nullptr, t.numFaces};
+  const Elements edges{region ? &region->edges : nullptr, t.numEdges};
+  const Elements vertices{region ? &region->vertices : nullptr, nV};
+  out.entries.reserve(6 * static_cast<size_t>(faces.size()) * F + 3 * static_cast<size_t>(edges.size()) +
+                      static_cast<size_t>(vertices.size()));
+  for (int32_t i = 0; i < faces.size(); ++i)
+    for (int f0 = 0, face = faces[i]; f0 < F; ++f0) {
       int32_t v[3];
       int family[4] = {f0, 0, 0, 0}, sign[4] = {1, 1, 1, 1};
       for (int c = 0; c < 3; ++c) v[c] = mesh.triangles[3 * face + c];
-      if (!reaches(v, 3)) break;
       double curl = 0;
       for (int c = 0; c < 3; ++c) {
         const int32_t e = t.edgeOf(face, c);
@@ -322,7 +328,8 @@ SpacingSystem spacingSystem(const SurfaceMesh& mesh, const MeshTopology& t, cons
       }
     }
   const double smooth = kSmooth * k * k, pin = kSmooth * kSmooth * k * k;
-  for (int32_t e = 0; e < t.numEdges; ++e) {
+  for (int32_t i = 0; i < edges.size(); ++i) {
+    const int32_t e = edges[i];
     const double w = smooth * std::max(g.star1[e], 0.0);
     const int32_t ends[2] = {std::min(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1]),
                              std::max(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1])};
@@ -330,8 +337,8 @@ SpacingSystem spacingSystem(const SurfaceMesh& mesh, const MeshTopology& t, cons
     out.entries.emplace_back(ends[0], ends[0], w), out.entries.emplace_back(ends[1], ends[1], w);
     out.entries.emplace_back(ends[0], ends[1], -w);
   }
-  for (int32_t v = 0; v < nV; ++v)
-    if (reaches(&v, 1)) out.entries.emplace_back(v, v, pin * g.star0[v]);
+  for (int32_t i = 0; i < vertices.size(); ++i)
+    out.entries.emplace_back(vertices[i], vertices[i], pin * g.star0[vertices[i]]);
   return out;
 }
 
@@ -366,8 +373,7 @@ Spacing adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& t, const Mes
   Eigen::VectorXd u;
   if (region) {
     u = Eigen::Map<const Eigen::VectorXd>(w.spacingU.data(), nV);
-    if (region->size > 0 && !solveOnRegion(system.entries, system.rhs, *region, 1, u,
-                                           regionOrdering(t, *region, w.vertexOrdering)))
+    if (region->size > 0 && !solveOnRegion(system.entries, system.rhs, *region, 1, u, region->ordering))
       throw InputError("stripe pattern: the spacing could not be solved");
     Spacing out = spacingOf(g, u, w.spacingMean);
     out.faceTurns = std::move(system.faceTurns);
@@ -396,15 +402,18 @@ std::vector<Eigen::Triplet<double>> energyEntries(const MeshTopology& t, const M
   std::vector<Eigen::Triplet<double>> entries;
   // A region's vertices have about three edges each to count (and as many more at its border).
   const size_t vertices = region ? static_cast<size_t>(region->size) : static_cast<size_t>(t.numVertices);
-  const size_t edges = region ? 4 * vertices : static_cast<size_t>(t.numEdges);
-  entries.reserve(edges * F * 12 + 2 * vertices * F);
-  std::vector<double> diagonal(2 * static_cast<size_t>(t.numVertices) * F, 0.0);
-  for (int32_t e = 0; e < t.numEdges; ++e) {
+  entries.reserve((region ? 4 * vertices : static_cast<size_t>(t.numEdges)) * F * 12 + 2 * vertices * F);
+  // Each vertex's diagonal at its index in the region (outside it, none is read).
+  const auto slot = [region](int32_t v) { return region ? region->local[v] : v; };
+  std::vector<double> diagonal(2 * vertices * F, 0.0);
+  const Elements edges{region ? &region->edges : nullptr, t.numEdges};
+  for (int32_t i = 0; i < edges.size(); ++i) {
+    const int32_t e = edges[i];
     const double w =
         std::max(g.star1[e], 0.0);  // an obtuse pair's negative cotan weight would break definiteness
     if (!(w > 0)) continue;
     const int32_t a = t.edgeVertices[2 * e], b = t.edgeVertices[2 * e + 1];
-    if (region && region->local[a] < 0 && region->local[b] < 0) continue;
+    if (slot(a) < 0 && slot(b) < 0) continue;
     for (int f = 0; f < F; ++f) {
       const Match m = turns.matches[static_cast<size_t>(e) * F + f];
       const double c = std::cos(turns.omega[static_cast<size_t>(e) * F + f]);
@@ -412,7 +421,9 @@ std::vector<Eigen::Triplet<double>> energyEntries(const MeshTopology& t, const M
       // M = C^s R(omega): the coupling block -w M sits at (b's rows, a's columns).
       const double M[2][2] = {{c, -s}, {m.sign * s, m.sign * c}};
       const int32_t ia = 2 * (a * F + f), ib = 2 * (b * F + m.family);
-      diagonal[ia] += w, diagonal[ia + 1] += w, diagonal[ib] += w, diagonal[ib + 1] += w;
+      for (const auto& [v, k] : {std::pair{a, f}, std::pair{b, static_cast<int>(m.family)}})
+        if (const int32_t s = slot(v); s >= 0)
+          diagonal[2 * (s * F + k)] += w, diagonal[2 * (s * F + k) + 1] += w;
       for (int r = 0; r < 2; ++r)
         for (int k = 0; k < 2; ++k) {
           if (ib < ia)
@@ -422,12 +433,12 @@ std::vector<Eigen::Triplet<double>> energyEntries(const MeshTopology& t, const M
         }
     }
   }
-  for (int32_t v = 0; v < t.numVertices; ++v)
-    if (!region || region->local[v] >= 0)
-      for (int k = 0; k < 2 * F; ++k) {
-        const int32_t i = 2 * v * F + k;
-        entries.emplace_back(i, i, diagonal[i] + shift * g.star0[v]);
-      }
+  const Elements all{region ? &region->vertices : nullptr, t.numVertices};
+  for (int32_t s = 0; s < all.size(); ++s)
+    for (int k = 0; k < 2 * F; ++k) {
+      const int32_t i = 2 * all[s] * F + k;
+      entries.emplace_back(i, i, diagonal[2 * s * F + k] + shift * g.star0[all[s]]);
+    }
   return entries;
 }
 
@@ -680,7 +691,9 @@ void facePhases(const SurfaceMesh& mesh, const MeshTopology& t, const Families& 
     const Eigen::Vector3d yb = sb * fam.growth[static_cast<size_t>(b) * F + fb];
     const double omega = advance(mesh, o, a, b, ya, yb);
     const std::complex<double> pa = psiOf(out, F, a, family[k], sign[k]), pb = psiOf(out, F, b, fb, sb);
-    alpha[k + 1] = alpha[k] + omega + std::arg(pb * std::conj(std::polar(1.0, omega) * pa));
+    // arg(pb / (e^(i omega) pa)), wrapped to (-pi, pi]: one angle, no sine and cosine of omega.
+    const double turn = std::arg(pb * std::conj(pa)) - omega;
+    alpha[k + 1] = alpha[k] + omega + (turn - kTwoPi * std::ceil(turn / kTwoPi - 0.5));
   }
   const int n = fieldSingular ? 0 : static_cast<int>(std::lround((alpha[3] - alpha[0]) / kTwoPi));
   const size_t slot = static_cast<size_t>(f0) * t.numFaces + face;
@@ -717,8 +730,8 @@ std::vector<double> psiInNewFrames(const Families& fam, const StripeWorkspace& w
 // workspace's last pattern, grown by localUpdatePeriods periods (none where nothing changed); no vertex map
 // at all where the last pattern cannot be updated so (there is none, or it is of another symmetry, frequency
 // or spacing mode).
-StripeRegion changedRegion(const MeshTopology& t, const MeshGeometry& g, const Families& fam,
-                           const StripeWorkspace& w, const StripeOptions& o) {
+StripeRegion changedRegion(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                           const Families& fam, const StripeWorkspace& w, const StripeOptions& o) {
   const int F = fam.count;
   const size_t nV = static_cast<size_t>(t.numVertices);
   const bool same = w.symmetry == o.symmetry && w.frequency == o.frequency &&
@@ -743,20 +756,8 @@ StripeRegion changedRegion(const MeshTopology& t, const MeshGeometry& g, const F
   }
   // localUpdatePeriods periods of edges (at least two edges, and no more than 64).
   const double periodsPerEdge = std::max(g.meanEdgeLength * o.frequency, o.localUpdatePeriods / 64);
-  return grownRegion(t, changed,
+  return grownRegion(t, mesh.triangles, changed,
                      std::max(2, static_cast<int>(std::ceil(o.localUpdatePeriods / periodsPerEdge))));
-}
-
-// Per edge: whether it is an edge of a face with a vertex in the region.
-std::vector<uint8_t> reachedEdges(const SurfaceMesh& mesh, const MeshTopology& t,
-                                  const StripeRegion& region) {
-  std::vector<uint8_t> out(t.numEdges, 0);
-  for (int32_t face = 0; face < t.numFaces; ++face) {
-    const int32_t* v = &mesh.triangles[3 * static_cast<size_t>(face)];
-    if (faceReaches(region, v))
-      for (int c = 0; c < 3; ++c) out[t.edgeOf(face, c)] = 1;
-  }
-  return out;
 }
 
 // A local update's psi: the energy's rows of the region's vertices, A_RR psi_R = -A_RB psi_B with the last
@@ -773,7 +774,7 @@ std::vector<double> psiOnRegion(const MeshTopology& t, const MeshGeometry& g, co
   for (const double shift : {definite - kShiftPart * w.eigenvalue, definite}) {
     x = Eigen::Map<const Eigen::VectorXd>(last.data(), static_cast<Eigen::Index>(last.size()));
     if ((solved = solveOnRegion(energyEntries(t, g, turns, F, shift, &region), {}, region, 2 * F, x,
-                                expandedOrdering(regionOrdering(t, region, w.vertexOrdering), 2 * F))))
+                                expandedOrdering(region.ordering, 2 * F))))
       break;
   }
   if (!solved) throw InputError("stripe pattern: the energy could not be solved where the field changed");
@@ -843,9 +844,9 @@ void facesOf(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam
     out.branchIndex.assign(nF * F, 0);
     out.fieldSingular.assign(nF, 0);
   }
-  for (int32_t face = 0; face < t.numFaces; ++face) {
-    const int32_t* v = &mesh.triangles[3 * static_cast<size_t>(face)];
-    if (reuse && !faceReaches(*region, v)) continue;
+  const Elements faces{reuse ? &region->faces : nullptr, t.numFaces};
+  for (int32_t i = 0; i < faces.size(); ++i) {
+    const int32_t face = faces[i];
     bool singular = false;
     for (int f = 0; f < F; ++f) {
       bool one = false;
@@ -935,16 +936,15 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   StripeWorkspace& w = workspace ? *workspace : local;
   // A local update where the last pattern allows one and the field changed on at most three quarters of the
   // vertices (on none: the last pattern stands).
-  const StripeRegion region =
-      options.localUpdate && workspace ? changedRegion(topology, g, fam, w, options) : StripeRegion{};
+  StripeRegion region =
+      options.localUpdate && workspace ? changedRegion(mesh, topology, g, fam, w, options) : StripeRegion{};
   const bool onRegion = !region.local.empty() && region.size <= 3 * (topology.numVertices / 4);
+  if (onRegion) region.ordering = regionOrdering(topology, region, w.vertexOrdering);
   // A local update reads the edges of the faces that reach its region alone (the spacing's singular faces
   // elsewhere are the last pattern's, kept whenever the spacing adapts).
   const bool reachedOnly =
       onRegion && (!options.adaptSpacing || w.faceTurns.size() == static_cast<size_t>(topology.numFaces));
-  const std::vector<uint8_t> reached =
-      reachedOnly ? reachedEdges(mesh, topology, region) : std::vector<uint8_t>();
-  const std::vector<uint8_t>* only = reachedOnly ? &reached : nullptr;
+  const Elements only{reachedOnly ? &region.edges : nullptr, topology.numEdges};
   StripeOptions adapted = options;
   Spacing spacing;
   double spacingMs = 0;

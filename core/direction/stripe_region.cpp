@@ -6,7 +6,8 @@
 
 namespace tvf {
 
-StripeRegion grownRegion(const MeshTopology& t, const std::vector<uint8_t>& changed, int rings) {
+StripeRegion grownRegion(const MeshTopology& t, const std::vector<int32_t>& triangles,
+                         const std::vector<uint8_t>& changed, int rings) {
   std::vector<int32_t> hops(changed.size(), -1), queue;
   for (size_t v = 0; v < changed.size(); ++v)
     if (changed[v]) hops[v] = 0, queue.push_back(static_cast<int32_t>(v));
@@ -22,25 +23,29 @@ StripeRegion grownRegion(const MeshTopology& t, const std::vector<uint8_t>& chan
   StripeRegion out;
   out.local.assign(changed.size(), -1);
   for (size_t v = 0; v < changed.size(); ++v)
-    if (hops[v] >= 0) out.local[v] = out.size++;
+    if (hops[v] >= 0) out.local[v] = out.size++, out.vertices.push_back(static_cast<int32_t>(v));
+  std::vector<uint8_t> edgeReached(static_cast<size_t>(t.numEdges), 0);
+  for (int32_t face = 0; face < t.numFaces; ++face)
+    if (faceReaches(out, &triangles[3 * static_cast<size_t>(face)])) {
+      out.faces.push_back(face);
+      for (int c = 0; c < 3; ++c) edgeReached[t.edgeOf(face, c)] = 1;
+    }
+  for (int32_t e = 0; e < t.numEdges; ++e)
+    if (edgeReached[e]) out.edges.push_back(e);
   return out;
 }
 
-bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen::VectorXd& b,
-                   const StripeRegion& region, int per, Eigen::VectorXd& x, std::vector<int> ordering) {
-  const auto localOf = [&](Eigen::Index i) -> Eigen::Index {
-    const int32_t v = region.local[i / per];
-    return v < 0 ? -1 : static_cast<Eigen::Index>(v) * per + i % per;
-  };
-  const Eigen::Index n = static_cast<Eigen::Index>(region.size) * per;
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
-  if (b.size() == x.size())
-    for (Eigen::Index i = 0; i < x.size(); ++i)
-      if (const Eigen::Index li = localOf(i); li >= 0) rhs[li] = b[i];
-  std::vector<Eigen::Triplet<double>> inner;
+namespace {
+
+// A_RR's entries in the region's numbering (localOf: an unknown's index there, or -1), and A_RB x_B taken
+// from the right-hand side.
+template <class LocalOf>
+void splitEntries(const std::vector<Eigen::Triplet<double>>& upper, const LocalOf& localOf,
+                  const Eigen::VectorXd& x, std::vector<Eigen::Triplet<double>>& inner,
+                  Eigen::VectorXd& rhs) {
   inner.reserve(upper.size());
   for (const auto& e : upper) {
-    const Eigen::Index li = localOf(e.row()), lj = localOf(e.col());
+    const int li = localOf(e.row()), lj = localOf(e.col());
     if (li >= 0 && lj >= 0)
       inner.emplace_back(std::min(li, lj), std::max(li, lj), e.value());
     else if (li >= 0)
@@ -48,13 +53,55 @@ bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen
     else if (lj >= 0)
       rhs[lj] -= e.value() * x[e.row()];
   }
+}
+
+// An unknown's index in the region, `per` of them to a vertex: a constant for the counts the patterns have
+// (the spacing's 1, a line or vector field's energy 2, a cross field's 4), where the index is a shift and a
+// mask rather than a division (4 of the wasm page's 27 ms on bunny00's local update went to them).
+template <int Per>
+void splitEntries(const std::vector<Eigen::Triplet<double>>& upper, const StripeRegion& region,
+                  const Eigen::VectorXd& x, std::vector<Eigen::Triplet<double>>& inner,
+                  Eigen::VectorXd& rhs) {
+  splitEntries(
+      upper,
+      [&region](int i) {
+        const int32_t v = region.local[static_cast<size_t>(i / Per)];
+        return v < 0 ? -1 : v * Per + i % Per;
+      },
+      x, inner, rhs);
+}
+
+}  // namespace
+
+bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen::VectorXd& b,
+                   const StripeRegion& region, int per, Eigen::VectorXd& x, std::vector<int> ordering) {
+  const Eigen::Index n = static_cast<Eigen::Index>(region.size) * per;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  if (b.size() == x.size())
+    for (int32_t a = 0; a < region.size; ++a)
+      rhs.segment(a * per, per) = b.segment(static_cast<Eigen::Index>(region.vertices[a]) * per, per);
+  std::vector<Eigen::Triplet<double>> inner;
+  if (per == 1)
+    splitEntries<1>(upper, region, x, inner, rhs);
+  else if (per == 2)
+    splitEntries<2>(upper, region, x, inner, rhs);
+  else if (per == 4)
+    splitEntries<4>(upper, region, x, inner, rhs);
+  else
+    splitEntries(
+        upper,
+        [&region, per](int i) {
+          const int32_t v = region.local[static_cast<size_t>(i / per)];
+          return v < 0 ? -1 : v * per + i % per;
+        },
+        x, inner, rhs);
   SparseMatrix a(n, n);
   a.setFromTriplets(inner.begin(), inner.end());
   SpdFactor factor(a, std::move(ordering));
   Eigen::VectorXd y;
   if (!factor.solve(rhs, y)) return false;
-  for (Eigen::Index i = 0; i < x.size(); ++i)
-    if (const Eigen::Index li = localOf(i); li >= 0) x[i] = y[li];
+  for (int32_t a = 0; a < region.size; ++a)
+    x.segment(static_cast<Eigen::Index>(region.vertices[a]) * per, per) = y.segment(a * per, per);
   return true;
 }
 
@@ -64,9 +111,8 @@ namespace {
 SparseMatrix regionGraph(const MeshTopology& t, const StripeRegion& region) {
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(4 * static_cast<size_t>(region.size));
-  for (int32_t v = 0; v < t.numVertices; ++v) {
-    const int32_t a = region.local[v];
-    if (a < 0) continue;
+  for (int32_t a = 0; a < region.size; ++a) {
+    const int32_t v = region.vertices[a];
     entries.emplace_back(a, a, 1.0);
     for (int32_t k = t.vertexEdgeStart[v]; k < t.vertexEdgeStart[v + 1]; ++k) {
       const int32_t e = t.vertexEdgeList[k];

@@ -18,9 +18,16 @@
 
 namespace tvf {
 
-// Per vertex: its index among the region's vertices, or -1 outside it.
+// The vertices an edit's pattern is solved for, and what its systems read around them: the faces with a
+// vertex in it and their edges. A local update loops over these lists alone (bunny00's 2.6-10k of 38k
+// vertices), never over the whole mesh.
 struct StripeRegion {
-  std::vector<int32_t> local;
+  std::vector<int32_t> local;     // per vertex: its index among the region's vertices, or -1 outside it
+  std::vector<int32_t> vertices;  // by index in the region
+  std::vector<int32_t> faces;     // ascending: the faces with a vertex in the region
+  std::vector<int32_t> edges;     // ascending: the edges of those faces
+  // A fill-reducing ordering of the region's vertices (regionOrdering), made once for both of its systems.
+  std::vector<int> ordering;
   int32_t size = 0;
 };
 
@@ -29,8 +36,18 @@ inline bool faceReaches(const StripeRegion& region, const int32_t* v) {
   return region.local[v[0]] >= 0 || region.local[v[1]] >= 0 || region.local[v[2]] >= 0;
 }
 
-// The vertices where `changed` is set, and those up to `rings` edges away from them.
-StripeRegion grownRegion(const MeshTopology& t, const std::vector<uint8_t>& changed, int rings);
+// The vertices where `changed` is set and those up to `rings` edges away from them, with the faces and edges
+// that reach them (triangles: the mesh's, three per face).
+StripeRegion grownRegion(const MeshTopology& t, const std::vector<int32_t>& triangles,
+                         const std::vector<uint8_t>& changed, int rings);
+
+// The elements a loop visits: all n of a mesh's, or those a list names (a region's).
+struct Elements {
+  const std::vector<int32_t>* list = nullptr;
+  int32_t n = 0;
+  int32_t size() const { return list ? static_cast<int32_t>(list->size()) : n; }
+  int32_t operator[](int32_t i) const { return list ? (*list)[static_cast<size_t>(i)] : i; }
+};
 
 // Solves the rows of A x = b that belong to the region with x held at its given values elsewhere:
 // A_RR x_R = b_R - A_RB x_B. `upper`: A's upper-triangle entries (repeated entries summed) over n unknowns,
