@@ -70,11 +70,12 @@ struct StripeOptions {
   // pattern was of the same symmetry, frequency and spacing mode, where the region is at most three quarters
   // of the vertices; otherwise the whole pattern is computed again (StripePattern::localUpdate says which).
   // The defaults make it a preview that a whole pattern follows: after a stroke on bunny00 (a line field,
-  // fifteen strokes before) 3.5-7.5k of 37.7k vertices, 30-49 ms natively, where the field's faces there
-  // read about as far from it as the whole pattern's (4.9-10.3 degrees against 4.8-10.4; the last pattern
-  // 7.2-19.9); 0.25 degrees and two periods took 10-27k vertices and 134-203 ms. Where a field turns gently
-  // over a wide area (a torus's 20-degree bump) the preview follows it less: 4.6 degrees where two periods
-  // round every vertex moved by a quarter of a degree give 3.0 and the whole pattern 2.2 (the last: 5.7).
+  // fifteen strokes before) 3.4-10.2k of 37.7k vertices, 20-43 ms natively (docs/stripes.md: where it goes),
+  // where the field's faces there read about as far from it as the whole pattern's (4.9-10.3 degrees against
+  // 4.8-10.4; the last pattern 7.2-19.9); 0.25 degrees and two periods took 10-27k vertices and 134-203 ms.
+  // Where a field turns gently over a wide area (a torus's 20-degree bump) the preview follows it less: 4.6
+  // degrees where two periods round every vertex moved by a quarter of a degree give 3.0 and the whole
+  // pattern 2.2 (the last: 5.7).
   bool localUpdate = false;
   double localUpdateDegrees = 5;
   double localUpdatePeriods = 1;

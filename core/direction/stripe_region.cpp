@@ -35,44 +35,6 @@ StripeRegion grownRegion(const MeshTopology& t, const std::vector<int32_t>& tria
   return out;
 }
 
-namespace {
-
-// A_RR's entries in the region's numbering (localOf: an unknown's index there, or -1), and A_RB x_B taken
-// from the right-hand side.
-template <class LocalOf>
-void splitEntries(const std::vector<Eigen::Triplet<double>>& upper, const LocalOf& localOf,
-                  const Eigen::VectorXd& x, std::vector<Eigen::Triplet<double>>& inner,
-                  Eigen::VectorXd& rhs) {
-  inner.reserve(upper.size());
-  for (const auto& e : upper) {
-    const int li = localOf(e.row()), lj = localOf(e.col());
-    if (li >= 0 && lj >= 0)
-      inner.emplace_back(std::min(li, lj), std::max(li, lj), e.value());
-    else if (li >= 0)
-      rhs[li] -= e.value() * x[e.col()];
-    else if (lj >= 0)
-      rhs[lj] -= e.value() * x[e.row()];
-  }
-}
-
-// An unknown's index in the region, `per` of them to a vertex: a constant for the counts the patterns have
-// (the spacing's 1, a line or vector field's energy 2, a cross field's 4), where the index is a shift and a
-// mask rather than a division (4 of the wasm page's 27 ms on bunny00's local update went to them).
-template <int Per>
-void splitEntries(const std::vector<Eigen::Triplet<double>>& upper, const StripeRegion& region,
-                  const Eigen::VectorXd& x, std::vector<Eigen::Triplet<double>>& inner,
-                  Eigen::VectorXd& rhs) {
-  splitEntries(
-      upper,
-      [&region](int i) {
-        const int32_t v = region.local[static_cast<size_t>(i / Per)];
-        return v < 0 ? -1 : v * Per + i % Per;
-      },
-      x, inner, rhs);
-}
-
-}  // namespace
-
 bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen::VectorXd& b,
                    const StripeRegion& region, int per, Eigen::VectorXd& x, std::vector<int> ordering) {
   const Eigen::Index n = static_cast<Eigen::Index>(region.size) * per;
@@ -80,21 +42,21 @@ bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen
   if (b.size() == x.size())
     for (int32_t a = 0; a < region.size; ++a)
       rhs.segment(a * per, per) = b.segment(static_cast<Eigen::Index>(region.vertices[a]) * per, per);
+  const auto localOf = [&](Eigen::Index i) -> Eigen::Index {
+    const int32_t v = region.local[i / per];
+    return v < 0 ? -1 : static_cast<Eigen::Index>(v) * per + i % per;
+  };
   std::vector<Eigen::Triplet<double>> inner;
-  if (per == 1)
-    splitEntries<1>(upper, region, x, inner, rhs);
-  else if (per == 2)
-    splitEntries<2>(upper, region, x, inner, rhs);
-  else if (per == 4)
-    splitEntries<4>(upper, region, x, inner, rhs);
-  else
-    splitEntries(
-        upper,
-        [&region, per](int i) {
-          const int32_t v = region.local[static_cast<size_t>(i / per)];
-          return v < 0 ? -1 : v * per + i % per;
-        },
-        x, inner, rhs);
+  inner.reserve(upper.size());
+  for (const auto& e : upper) {
+    const Eigen::Index li = localOf(e.row()), lj = localOf(e.col());
+    if (li >= 0 && lj >= 0)
+      inner.emplace_back(std::min(li, lj), std::max(li, lj), e.value());
+    else if (li >= 0)
+      rhs[li] -= e.value() * x[e.col()];
+    else if (lj >= 0)
+      rhs[lj] -= e.value() * x[e.row()];
+  }
   SparseMatrix a(n, n);
   a.setFromTriplets(inner.begin(), inner.end());
   SpdFactor factor(a, std::move(ordering));
