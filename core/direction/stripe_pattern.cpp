@@ -272,19 +272,31 @@ std::vector<double> spacingWeights(const MeshTopology& t, const MeshGeometry& g,
   return weight;
 }
 
-struct SpacingSystem {
-  std::vector<Eigen::Triplet<double>> entries;  // the upper triangle's
+// A whole system's entries, upper triangle, and right-hand side (a region's: RegionSystem, stripe_region.h).
+struct TripletSystem {
+  std::vector<Eigen::Triplet<double>> entries;
   Eigen::VectorXd rhs;
-  std::vector<uint8_t> faceTurns;  // fieldTurns's
+  void add(int32_t i, int32_t j, double value) {
+    entries.emplace_back(std::min(i, j), std::max(i, j), value);
+  }
+  void addRhs(int32_t i, double value) { rhs[i] += value; }
+  void reserve(size_t n) { entries.reserve(n); }
+  SparseMatrix upper(Eigen::Index n) const {
+    SparseMatrix out(n, n);
+    out.setFromTriplets(entries.begin(), entries.end());
+    return out;
+  }
 };
 
 // adaptSpacing's system (stripe_pattern.h): sum over faces and families of r_f^2 / |f| (spacingTerm) +
 // eps (2 pi nu)^2 sum_e star1_e (u_a - u_b)^2 + eps^2 (2 pi nu)^2 sum_v A_v u_v^2, one for every family (a
 // cross field's two ask for it in the least-squares sense). Faces round which the field's representatives do
-// not match up are left out. With a region (a local update), only the terms that reach its vertices.
-SpacingSystem spacingSystem(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
-                            const Families& fam, const EdgeTurns& turns, const StripeOptions& o,
-                            const StripeRegion* region, const std::vector<uint8_t>& lastTurns) {
+// not match up are left out (faceTurns: fieldTurns's). With a region (a local update), only the terms that
+// reach its vertices. Into `system`: a TripletSystem or a RegionSystem.
+template <class System>
+void spacingSystem(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g, const Families& fam,
+                   const EdgeTurns& turns, const StripeOptions& o, const StripeRegion* region,
+                   const std::vector<uint8_t>& faceTurns, System& out) {
   const auto reaches = [region](const int32_t* v, int count) {
     if (!region) return true;
     for (int c = 0; c < count; ++c)
@@ -294,14 +306,13 @@ SpacingSystem spacingSystem(const SurfaceMesh& mesh, const MeshTopology& t, cons
   constexpr double kSmooth = 3e-2;
   const int32_t nV = t.numVertices;
   const double k = kTwoPi * o.frequency;
-  SpacingSystem out{{}, Eigen::VectorXd::Zero(nV), fieldTurns(mesh, t, g, fam, turns, region, lastTurns)};
   const int F = fam.count;
-  const std::vector<double> weight = spacingWeights(t, g, out.faceTurns, o);
+  const std::vector<double> weight = spacingWeights(t, g, faceTurns, o);
   const Elements faces{region ? &region->faces : nullptr, t.numFaces};
   const Elements edges{region ? &region->edges : nullptr, t.numEdges};
   const Elements vertices{region ? &region->vertices : nullptr, nV};
-  out.entries.reserve(6 * static_cast<size_t>(faces.size()) * F + 3 * static_cast<size_t>(edges.size()) +
-                      static_cast<size_t>(vertices.size()));
+  out.reserve(6 * static_cast<size_t>(faces.size()) * F + 3 * static_cast<size_t>(edges.size()) +
+              static_cast<size_t>(vertices.size()));
   for (int32_t i = 0; i < faces.size(); ++i)
     for (int f0 = 0, face = faces[i]; f0 < F; ++f0) {
       int32_t v[3];
@@ -323,8 +334,8 @@ SpacingSystem spacingSystem(const SurfaceMesh& mesh, const MeshTopology& t, cons
       if (!r.used) continue;
       for (int a = 0; a < 3; ++a) {
         for (int b = 0; b < 3; ++b)
-          if (v[a] <= v[b]) out.entries.emplace_back(v[a], v[b], r.coef[a] * r.coef[b]);
-        out.rhs[v[a]] -= r.coef[a] * r.curl;
+          if (v[a] <= v[b]) out.add(v[a], v[b], r.coef[a] * r.coef[b]);
+        out.addRhs(v[a], -r.coef[a] * r.curl);
       }
     }
   const double smooth = kSmooth * k * k, pin = kSmooth * kSmooth * k * k;
@@ -334,12 +345,9 @@ SpacingSystem spacingSystem(const SurfaceMesh& mesh, const MeshTopology& t, cons
     const int32_t ends[2] = {std::min(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1]),
                              std::max(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1])};
     if (!reaches(ends, 2)) continue;
-    out.entries.emplace_back(ends[0], ends[0], w), out.entries.emplace_back(ends[1], ends[1], w);
-    out.entries.emplace_back(ends[0], ends[1], -w);
+    out.add(ends[0], ends[0], w), out.add(ends[1], ends[1], w), out.add(ends[0], ends[1], -w);
   }
-  for (int32_t i = 0; i < vertices.size(); ++i)
-    out.entries.emplace_back(vertices[i], vertices[i], pin * g.star0[vertices[i]]);
-  return out;
+  for (int32_t i = 0; i < vertices.size(); ++i) out.add(vertices[i], vertices[i], pin * g.star0[vertices[i]]);
 }
 
 // The spacing's solution u, the frequency's factor e^u / mean (clamped), and the mean: the area mean of e^u
@@ -368,19 +376,22 @@ Spacing spacingOf(const MeshGeometry& g, const Eigen::VectorXd& u, double mean) 
 Spacing adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
                        const Families& fam, const EdgeTurns& turns, const StripeOptions& o,
                        StripeWorkspace& w, const StripeRegion* region) {
-  SpacingSystem system = spacingSystem(mesh, t, g, fam, turns, o, region, w.faceTurns);
+  std::vector<uint8_t> faceTurns = fieldTurns(mesh, t, g, fam, turns, region, w.faceTurns);
   const int32_t nV = t.numVertices;
   Eigen::VectorXd u;
   if (region) {
     u = Eigen::Map<const Eigen::VectorXd>(w.spacingU.data(), nV);
-    if (region->size > 0 && !solveOnRegion(system.entries, system.rhs, *region, 1, u, region->ordering))
+    RegionSystem system(t, *region, 1, u);
+    spacingSystem(mesh, t, g, fam, turns, o, region, faceTurns, system);
+    if (region->size > 0 && !system.solve(region->ordering, u))
       throw InputError("stripe pattern: the spacing could not be solved");
     Spacing out = spacingOf(g, u, w.spacingMean);
-    out.faceTurns = std::move(system.faceTurns);
+    out.faceTurns = std::move(faceTurns);
     return out;
   }
-  SparseMatrix upper(nV, nV);
-  upper.setFromTriplets(system.entries.begin(), system.entries.end());
+  TripletSystem system{{}, Eigen::VectorXd::Zero(nV)};
+  spacingSystem(mesh, t, g, fam, turns, o, region, faceTurns, system);
+  const SparseMatrix upper = system.upper(nV);
   std::unique_ptr<SpdFactor>& kept = w.spacingFactor;
   if (kept)
     kept->refactor(upper);
@@ -389,17 +400,16 @@ Spacing adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& t, const Mes
   if (!kept->ok() || !kept->solve(system.rhs, u))
     throw InputError("stripe pattern: the spacing could not be solved");
   Spacing out = spacingOf(g, u, 0);
-  out.faceTurns = std::move(system.faceTurns);
+  out.faceTurns = std::move(faceTurns);
   return out;
 }
 
 // The energy sum w_e |C^s psi_b^g - e^(i omega) psi_a^f|^2 (C: conjugation) as the upper triangle of a real
 // symmetric matrix, unknowns (re, im) of vertex v's family f at 2 (v F + f).
-// With a region, only the entries that reach its vertices.
-std::vector<Eigen::Triplet<double>> energyEntries(const MeshTopology& t, const MeshGeometry& g,
-                                                  const EdgeTurns& turns, int F, double shift,
-                                                  const StripeRegion* region = nullptr) {
-  std::vector<Eigen::Triplet<double>> entries;
+// With a region, only the entries that reach its vertices. Into `entries`: a TripletSystem or a RegionSystem.
+template <class System>
+void energyEntries(const MeshTopology& t, const MeshGeometry& g, const EdgeTurns& turns, int F, double shift,
+                   const StripeRegion* region, System& entries) {
   // A region's vertices have about three edges each to count (and as many more at its border).
   const size_t vertices = region ? static_cast<size_t>(region->size) : static_cast<size_t>(t.numVertices);
   entries.reserve((region ? 4 * vertices : static_cast<size_t>(t.numEdges)) * F * 12 + 2 * vertices * F);
@@ -426,10 +436,7 @@ std::vector<Eigen::Triplet<double>> energyEntries(const MeshTopology& t, const M
           diagonal[2 * (s * F + k)] += w, diagonal[2 * (s * F + k) + 1] += w;
       for (int r = 0; r < 2; ++r)
         for (int k = 0; k < 2; ++k) {
-          if (ib < ia)
-            entries.emplace_back(ib + r, ia + k, -w * M[r][k]);
-          else
-            entries.emplace_back(ia + k, ib + r, -w * M[r][k]);
+          entries.add(ib + r, ia + k, -w * M[r][k]);
         }
     }
   }
@@ -437,17 +444,15 @@ std::vector<Eigen::Triplet<double>> energyEntries(const MeshTopology& t, const M
   for (int32_t s = 0; s < all.size(); ++s)
     for (int k = 0; k < 2 * F; ++k) {
       const int32_t i = 2 * all[s] * F + k;
-      entries.emplace_back(i, i, diagonal[2 * s * F + k] + shift * g.star0[all[s]]);
+      entries.add(i, i, diagonal[2 * s * F + k] + shift * g.star0[all[s]]);
     }
-  return entries;
 }
 
 SparseMatrix stripeEnergy(const MeshTopology& t, const MeshGeometry& g, const EdgeTurns& turns, int F,
                           double shift) {
-  const std::vector<Eigen::Triplet<double>> entries = energyEntries(t, g, turns, F, shift);
-  SparseMatrix upper(2 * t.numVertices * F, 2 * t.numVertices * F);
-  upper.setFromTriplets(entries.begin(), entries.end());
-  return upper;
+  TripletSystem entries;
+  energyEntries(t, g, turns, F, shift, nullptr, entries);
+  return entries.upper(2 * t.numVertices * F);
 }
 
 // The smallest eigenvector of A psi = lambda B psi (B: the vertex areas) by LOBPCG (Knyazev 2001) on a block
@@ -773,9 +778,9 @@ std::vector<double> psiOnRegion(const MeshTopology& t, const MeshGeometry& g, co
   bool solved = false;
   for (const double shift : {definite - kShiftPart * w.eigenvalue, definite}) {
     x = Eigen::Map<const Eigen::VectorXd>(last.data(), static_cast<Eigen::Index>(last.size()));
-    if ((solved = solveOnRegion(energyEntries(t, g, turns, F, shift, &region), {}, region, 2 * F, x,
-                                expandedOrdering(region.ordering, 2 * F))))
-      break;
+    RegionSystem system(t, region, 2 * F, x);
+    energyEntries(t, g, turns, F, shift, &region, system);
+    if ((solved = system.solve(expandedOrdering(region.ordering, 2 * F), x))) break;
   }
   if (!solved) throw InputError("stripe pattern: the energy could not be solved where the field changed");
   double norm = 0;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "direction/stripe_region.h"
 
+#include <algorithm>
+
 #include "common/sparse_matrix.h"
 #include "solver/spd_solve.h"
 
@@ -35,35 +37,78 @@ StripeRegion grownRegion(const MeshTopology& t, const std::vector<int32_t>& tria
   return out;
 }
 
-bool solveOnRegion(const std::vector<Eigen::Triplet<double>>& upper, const Eigen::VectorXd& b,
-                   const StripeRegion& region, int per, Eigen::VectorXd& x, std::vector<int> ordering) {
-  const Eigen::Index n = static_cast<Eigen::Index>(region.size) * per;
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
-  if (b.size() == x.size())
-    for (int32_t a = 0; a < region.size; ++a)
-      rhs.segment(a * per, per) = b.segment(static_cast<Eigen::Index>(region.vertices[a]) * per, per);
-  const auto localOf = [&](Eigen::Index i) -> Eigen::Index {
-    const int32_t v = region.local[i / per];
-    return v < 0 ? -1 : static_cast<Eigen::Index>(v) * per + i % per;
-  };
-  std::vector<Eigen::Triplet<double>> inner;
-  inner.reserve(upper.size());
-  for (const auto& e : upper) {
-    const Eigen::Index li = localOf(e.row()), lj = localOf(e.col());
-    if (li >= 0 && lj >= 0)
-      inner.emplace_back(std::min(li, lj), std::max(li, lj), e.value());
-    else if (li >= 0)
-      rhs[li] -= e.value() * x[e.col()];
-    else if (lj >= 0)
-      rhs[lj] -= e.value() * x[e.row()];
+RegionSystem::RegionSystem(const MeshTopology& t, const StripeRegion& region, int per,
+                           const Eigen::VectorXd& x)
+    : region_(region),
+      per_(per),
+      held_(x),
+      rhs_(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(region.size) * per)) {
+  // Column (b, q) holds the rows of every unknown of b's neighbours before b in the region, then b's own up
+  // to q: the upper triangle, rows ascending.
+  const int32_t n = region.size * per;
+  std::vector<int32_t> before;  // per region vertex b: its neighbours a < b, ascending, then b
+  std::vector<int32_t> start(static_cast<size_t>(region.size) + 1, 0);
+  for (int32_t b = 0; b < region.size; ++b) {
+    const int32_t v = region.vertices[b];
+    const size_t first = before.size();
+    for (int32_t k = t.vertexEdgeStart[v]; k < t.vertexEdgeStart[v + 1]; ++k) {
+      const int32_t e = t.vertexEdgeList[k];
+      const int32_t u = t.edgeVertices[2 * e] == v ? t.edgeVertices[2 * e + 1] : t.edgeVertices[2 * e];
+      if (const int32_t a = region.local[u]; a >= 0 && a < b) before.push_back(a);
+    }
+    std::sort(before.begin() + static_cast<ptrdiff_t>(first), before.end());
+    before.push_back(b);
+    start[b + 1] = static_cast<int32_t>(before.size());
   }
-  SparseMatrix a(n, n);
-  a.setFromTriplets(inner.begin(), inner.end());
-  SpdFactor factor(a, std::move(ordering));
+  size_t nnz = 0;
+  for (int32_t b = 0; b < region.size; ++b)
+    nnz += static_cast<size_t>(start[b + 1] - start[b] - 1) * per * per + per * (per + 1) / 2;
+  upper_.resize(n, n);
+  upper_.resizeNonZeros(static_cast<Eigen::Index>(nnz));
+  int* outer = upper_.outerIndexPtr();
+  int* inner = upper_.innerIndexPtr();
+  int32_t at = 0;
+  for (int32_t b = 0; b < region.size; ++b)
+    for (int q = 0; q < per; ++q) {
+      outer[b * per + q] = at;
+      for (int32_t k = start[b]; k < start[b + 1]; ++k) {
+        const int32_t a = before[k];
+        for (int p = 0; p < (a < b ? per : q + 1); ++p) inner[at++] = a * per + p;
+      }
+    }
+  outer[n] = at;
+  std::fill_n(upper_.valuePtr(), nnz, 0.0);
+}
+
+void RegionSystem::add(int32_t i, int32_t j, double value) {
+  const int32_t li = localOf(i), lj = localOf(j);
+  if (li >= 0 && lj >= 0) {
+    const int32_t row = std::min(li, lj), col = std::max(li, lj);
+    const int* first = upper_.innerIndexPtr() + upper_.outerIndexPtr()[col];
+    const int* last = upper_.innerIndexPtr() + upper_.outerIndexPtr()[col + 1];
+    const int* at = std::lower_bound(first, last, row);
+    if (at == last || *at != row)
+      missed_ = true;
+    else
+      upper_.valuePtr()[at - upper_.innerIndexPtr()] += value;
+  } else if (li >= 0) {
+    rhs_[li] -= value * held_[j];
+  } else if (lj >= 0) {
+    rhs_[lj] -= value * held_[i];
+  }
+}
+
+void RegionSystem::addRhs(int32_t i, double value) {
+  if (const int32_t li = localOf(i); li >= 0) rhs_[li] += value;
+}
+
+bool RegionSystem::solve(std::vector<int> ordering, Eigen::VectorXd& x) const {
+  if (missed_) return false;
+  SpdFactor factor(upper_, std::move(ordering));
   Eigen::VectorXd y;
-  if (!factor.solve(rhs, y)) return false;
-  for (int32_t a = 0; a < region.size; ++a)
-    x.segment(static_cast<Eigen::Index>(region.vertices[a]) * per, per) = y.segment(a * per, per);
+  if (!factor.solve(rhs_, y)) return false;
+  for (int32_t a = 0; a < region_.size; ++a)
+    x.segment(static_cast<Eigen::Index>(region_.vertices[a]) * per_, per_) = y.segment(a * per_, per_);
   return true;
 }
 
