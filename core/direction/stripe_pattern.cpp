@@ -297,12 +297,6 @@ template <class System>
 void spacingSystem(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g, const Families& fam,
                    const EdgeTurns& turns, const StripeOptions& o, const StripeRegion* region,
                    const std::vector<uint8_t>& faceTurns, System& out) {
-  const auto reaches = [region](const int32_t* v, int count) {
-    if (!region) return true;
-    for (int c = 0; c < count; ++c)
-      if (region->local[v[c]] >= 0) return true;
-    return false;
-  };
   constexpr double kSmooth = 3e-2;
   const int32_t nV = t.numVertices;
   const double k = kTwoPi * o.frequency;
@@ -342,10 +336,8 @@ void spacingSystem(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeo
   for (int32_t i = 0; i < edges.size(); ++i) {
     const int32_t e = edges[i];
     const double w = smooth * std::max(g.star1[e], 0.0);
-    const int32_t ends[2] = {std::min(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1]),
-                             std::max(t.edgeVertices[2 * e], t.edgeVertices[2 * e + 1])};
-    if (!reaches(ends, 2)) continue;
-    out.add(ends[0], ends[0], w), out.add(ends[1], ends[1], w), out.add(ends[0], ends[1], -w);
+    const int32_t a = t.edgeVertices[2 * e], b = t.edgeVertices[2 * e + 1];
+    out.add(a, a, w), out.add(b, b, w), out.add(a, b, -w);
   }
   for (int32_t i = 0; i < vertices.size(); ++i) out.add(vertices[i], vertices[i], pin * g.star0[vertices[i]]);
 }
@@ -435,9 +427,7 @@ void energyEntries(const MeshTopology& t, const MeshGeometry& g, const EdgeTurns
         if (const int32_t s = slot(v); s >= 0)
           diagonal[2 * (s * F + k)] += w, diagonal[2 * (s * F + k) + 1] += w;
       for (int r = 0; r < 2; ++r)
-        for (int k = 0; k < 2; ++k) {
-          entries.add(ib + r, ia + k, -w * M[r][k]);
-        }
+        for (int k = 0; k < 2; ++k) entries.add(ib + r, ia + k, -w * M[r][k]);
     }
   }
   const Elements all{region ? &region->vertices : nullptr, t.numVertices};
