@@ -130,15 +130,6 @@ const std::vector<int>& vertexOrdering(const MeshTopology& t, StripeWorkspace& w
   return w.vertexOrdering;
 }
 
-// A vertex ordering for `per` unknowns to a vertex, each vertex's kept together in its place.
-std::vector<int> expandedOrdering(const std::vector<int>& vertices, int per) {
-  std::vector<int> out;
-  out.reserve(vertices.size() * per);
-  for (const int v : vertices)
-    for (int k = 0; k < per; ++k) out.push_back(per * v + k);
-  return out;
-}
-
 double localFrequency(const StripeOptions& o, int32_t v) {
   return o.vertexFrequencyScale.empty() ? o.frequency : o.frequency * o.vertexFrequencyScale[v];
 }
@@ -348,10 +339,12 @@ struct Spacing {
   std::vector<double> u, scale;
   double mean = 1;
   std::vector<uint8_t> faceTurns;  // fieldTurns's, kept for the next local update
+  RegionAnalysis analysis;         // a local update's, for its energy's solve
 };
 
 Spacing spacingOf(const MeshGeometry& g, const Eigen::VectorXd& u, double mean) {
-  Spacing out{std::vector<double>(u.data(), u.data() + u.size()), std::vector<double>(u.size()), mean, {}};
+  Spacing out{
+      std::vector<double>(u.data(), u.data() + u.size()), std::vector<double>(u.size()), mean, {}, {}};
   double sum = 0, area = 0;
   for (Eigen::Index v = 0; v < u.size(); ++v) {
     out.scale[v] = std::exp(std::clamp(u[v], -3.0, 3.0));
@@ -375,10 +368,12 @@ Spacing adaptedSpacing(const SurfaceMesh& mesh, const MeshTopology& t, const Mes
     u = Eigen::Map<const Eigen::VectorXd>(w.spacingU.data(), nV);
     RegionSystem system(t, *region, 1, u);
     spacingSystem(mesh, t, g, fam, turns, o, region, faceTurns, system);
-    if (region->size > 0 && !system.solve(region->ordering, u))
+    RegionAnalysis analysis;
+    if (region->size > 0 && !system.solve(region->ordering, u, nullptr, &analysis))
       throw InputError("stripe pattern: the spacing could not be solved");
     Spacing out = spacingOf(g, u, w.spacingMean);
     out.faceTurns = std::move(faceTurns);
+    out.analysis = std::move(analysis);
     return out;
   }
   TripletSystem system{{}, Eigen::VectorXd::Zero(nV)};
@@ -758,9 +753,11 @@ StripeRegion changedRegion(const SurfaceMesh& mesh, const MeshTopology& t, const
 // A local update's psi: the energy's rows of the region's vertices, A_RR psi_R = -A_RB psi_B with the last
 // psi (in this field's representatives) held outside, shifted by just below the last eigenvalue as the whole
 // pattern's factor is (the region's Dirichlet problem has no smaller one), else not at all; unit B-norm.
+// spacing: the analysis of the region's spacing, where it was solved (the same graph: no analysis of its
+// own).
 std::vector<double> psiOnRegion(const MeshTopology& t, const MeshGeometry& g, const Families& fam,
                                 const EdgeTurns& turns, const StripeWorkspace& w, const StripeRegion& region,
-                                double definite) {
+                                double definite, const RegionAnalysis* spacing) {
   const int F = fam.count;
   const std::vector<double> last = psiInNewFrames(fam, w, t.numVertices);
   if (region.size == 0) return last;
@@ -770,7 +767,7 @@ std::vector<double> psiOnRegion(const MeshTopology& t, const MeshGeometry& g, co
     x = Eigen::Map<const Eigen::VectorXd>(last.data(), static_cast<Eigen::Index>(last.size()));
     RegionSystem system(t, region, 2 * F, x);
     energyEntries(t, g, turns, F, shift, &region, system);
-    if ((solved = system.solve(expandedOrdering(region.ordering, 2 * F), x))) break;
+    if ((solved = system.solve(region.ordering, x, spacing))) break;
   }
   if (!solved) throw InputError("stripe pattern: the energy could not be solved where the field changed");
   double norm = 0;
@@ -961,7 +958,8 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
   out.families = F;
   if (onRegion) {
     const auto t0 = std::chrono::steady_clock::now();
-    out.psi = psiOnRegion(topology, g, fam, turns, w, region, definite);
+    out.psi = psiOnRegion(topology, g, fam, turns, w, region, definite,
+                          options.adaptSpacing ? &spacing.analysis : nullptr);
     out.eigenvalue = w.eigenvalue;
     out.localUpdate = true;
     out.localVertices = region.size;

@@ -2,6 +2,7 @@
 #include "direction/stripe_region.h"
 
 #include <algorithm>
+#include <memory>
 
 #include "common/sparse_matrix.h"
 #include "solver/spd_solve.h"
@@ -102,14 +103,29 @@ void RegionSystem::addRhs(int32_t i, double value) {
   if (const int32_t li = localOf(i); li >= 0) rhs_[li] += value;
 }
 
-bool RegionSystem::solve(std::vector<int> ordering, Eigen::VectorXd& x) const {
+bool RegionSystem::solve(const std::vector<int>& vertexOrdering, Eigen::VectorXd& x,
+                         const RegionAnalysis* given, RegionAnalysis* made) const {
   if (missed_) return false;
-  SpdFactor factor(upper_, std::move(ordering));
+  const bool expand = given && given->per > 0 && per_ % given->per == 0 && !given->symbolic.empty();
+  const int k = expand ? per_ / given->per : 1;
+  const std::unique_ptr<SpdFactor> factor =
+      expand ? std::make_unique<SpdFactor>(upper_, expandedOrdering(given->permutation, k),
+                                           expandedSymbolic(given->symbolic, k))
+             : std::make_unique<SpdFactor>(upper_, expandedOrdering(vertexOrdering, per_));
+  if (made) *made = {factor->symbolic(), factor->permutation(), per_};
   Eigen::VectorXd y;
-  if (!factor.solve(rhs_, y)) return false;
+  if (!factor->solve(rhs_, y)) return false;
   for (int32_t a = 0; a < region_.size; ++a)
     x.segment(static_cast<Eigen::Index>(region_.vertices[a]) * per_, per_) = y.segment(a * per_, per_);
   return true;
+}
+
+std::vector<int> expandedOrdering(const std::vector<int>& vertices, int per) {
+  std::vector<int> out;
+  out.reserve(vertices.size() * per);
+  for (const int v : vertices)
+    for (int k = 0; k < per; ++k) out.push_back(per * v + k);
+  return out;
 }
 
 namespace {

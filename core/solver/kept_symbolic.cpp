@@ -27,6 +27,19 @@ bool getVarint(const uint8_t* bytes, size_t size, size_t& at, int64_t& v) {
 
 }  // namespace
 
+KeptSymbolic expandedSymbolic(const KeptSymbolic& k, int per) {
+  KeptSymbolic out;
+  if (k.empty()) return out;
+  out.super.reserve(k.super.size());
+  for (const int32_t j : k.super) out.super.push_back(per * j);
+  out.pi.reserve(k.pi.size());
+  for (const int32_t i : k.pi) out.pi.push_back(per * i);
+  out.s.reserve(per * k.s.size());
+  for (const int32_t r : k.s)
+    for (int p = 0; p < per; ++p) out.s.push_back(per * r + p);
+  return out;
+}
+
 std::vector<uint8_t> symbolicBytes(const KeptSymbolic& k) {
   std::vector<uint8_t> out;
   if (k.empty()) return out;

@@ -22,6 +22,11 @@ struct KeptSymbolic {
   bool empty() const { return super.empty(); }
 };
 
+// The symbolic factor of the same graph with `per` unknowns to each of its nodes, a node's kept together and
+// in its place (rows r -> per r .. per r + per - 1, as the ordering expanded so): block elimination fills
+// whole blocks where the node's elimination filled an entry. Empty for an empty one.
+KeptSymbolic expandedSymbolic(const KeptSymbolic& k, int per);
+
 // Its bytes for a cache: per supernode, its number of columns and of rows below them, then those rows as
 // increasing steps from its last column, each an unsigned LEB128 varint (armadillo-sub2: 8.8 MB where the
 // three arrays take 38 MB). Empty for an empty one.

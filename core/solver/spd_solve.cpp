@@ -19,6 +19,7 @@ struct SpdFactor::Impl {
   std::vector<int> outer, inner;  // the pattern the analysis was made for
   size_t n = 0;
   std::vector<int> ordering;  // given, or empty
+  KeptSymbolic symbolic;      // given with the ordering, or empty
   bool ok = false, reused = false;
 
   bool samePattern(const SparseMatrix& upper) const {
@@ -40,8 +41,14 @@ struct SpdFactor::Impl {
       if (n == 0) return void(ok = true);
       outer.assign(upper.outerIndexPtr(), upper.outerIndexPtr() + n + 1);
       inner.assign(upper.innerIndexPtr(), upper.innerIndexPtr() + upper.nonZeros());
-      factor.reset(ordering.size() == n ? analyzeOrdering(A, ordering, 1, c, lower)
-                                        : cholmod_analyze(&A, &c));
+      // A given symbolic factor is tried for the first pattern only; where it does not fit, an analysis.
+      cholmod_factor* made = ordering.size() == n && !symbolic.empty()
+                                 ? symbolicFromKept(A, ordering, symbolic, 1, c, lower)
+                                 : nullptr;
+      symbolic = KeptSymbolic();
+      if (!made)
+        made = ordering.size() == n ? analyzeOrdering(A, ordering, 1, c, lower) : cholmod_analyze(&A, &c);
+      factor.reset(made);
     }
     // One thread: CHOLMOD's factorization natively, the project's in wasm (SIMD kernels there).
     SupernodalReport report;
@@ -50,8 +57,13 @@ struct SpdFactor::Impl {
   }
 };
 
-SpdFactor::SpdFactor(const SparseMatrix& upper, std::vector<int> ordering) : impl_(std::make_unique<Impl>()) {
+SpdFactor::SpdFactor(const SparseMatrix& upper, std::vector<int> ordering)
+    : SpdFactor(upper, std::move(ordering), KeptSymbolic()) {}
+
+SpdFactor::SpdFactor(const SparseMatrix& upper, std::vector<int> ordering, KeptSymbolic symbolic)
+    : impl_(std::make_unique<Impl>()) {
   impl_->ordering = std::move(ordering);
+  impl_->symbolic = std::move(symbolic);
   cholmod_common& c = *impl_->common.get();
   c.nmethods =
       1;  // AMD alone where no ordering is given: METIS pays off only far beyond an atlas chart's size
@@ -66,6 +78,17 @@ SpdFactor::SpdFactor(const SparseMatrix& upper, std::vector<int> ordering) : imp
 bool SpdFactor::refactor(const SparseMatrix& upper) {
   impl_->factorize(upper);
   return impl_->ok;
+}
+
+KeptSymbolic SpdFactor::symbolic() const {
+  return impl_->factor ? keptSymbolicOf(*impl_->factor) : KeptSymbolic();
+}
+
+std::vector<int> SpdFactor::permutation() const {
+  const cholmod_factor* L = impl_->factor.get();
+  if (!L || !L->is_super) return {};
+  const int* perm = static_cast<const int*>(L->Perm);
+  return std::vector<int>(perm, perm + L->n);
 }
 
 bool SpdFactor::analysisReused() const {

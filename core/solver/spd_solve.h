@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/sparse_matrix.h"
+#include "solver/kept_symbolic.h"
 
 namespace tvf {
 
@@ -22,6 +23,10 @@ class SpdFactor {
   // (a stripe pattern's energy on two, in the page beside its renderer, took no less: 0.80 against 0.77 s on
   // armadillo-sub2).
   explicit SpdFactor(const SparseMatrix& upper, std::vector<int> ordering = {});
+  // The same with a symbolic factor made before for `ordering` (symbolic(), or its expandedSymbolic with the
+  // ordering expanded as well), checked against A (symbolicFromKept): no analysis where it fits, an analysis
+  // where it does not.
+  SpdFactor(const SparseMatrix& upper, std::vector<int> ordering, KeptSymbolic symbolic);
   ~SpdFactor();
   SpdFactor(const SpdFactor&) = delete;
   SpdFactor& operator=(const SpdFactor&) = delete;
@@ -35,6 +40,10 @@ class SpdFactor {
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   // The same for every column of b at once.
   bool solve(const Eigen::MatrixXd& b, Eigen::MatrixXd& x);
+  // The symbolic factor and the permutation it was made for (the ordering with its postorder folded in);
+  // empty where the factor is not supernodal.
+  KeptSymbolic symbolic() const;
+  std::vector<int> permutation() const;
 
  private:
   struct Impl;
