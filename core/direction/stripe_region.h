@@ -51,12 +51,6 @@ struct Elements {
   int32_t operator[](int32_t i) const { return list ? (*list)[static_cast<size_t>(i)] : i; }
 };
 
-// The rows of A x = b that belong to the region, with x held at its given values elsewhere: A_RR x_R = b_R -
-// A_RB x_B, assembled in the region's own numbering as the entries come (in wasm, a 23 ms local update on
-// bunny00 spent 4.5 ms listing its entries, moving them into the region's numbering and sorting them; in
-// place, 2 ms less in all). `per` consecutive unknowns of x belong to each vertex. A_RR's pattern holds every
-// pair of unknowns of one region vertex or of two neighbouring ones: the spacing's and the energy's entries
-// all lie there.
 // What a region system's solve was analysed with: the symbolic factor and the permutation of its unknowns
 // (the ordering with its postorder folded in), `per` unknowns to a vertex. The spacing's (one a vertex)
 // serves the energy's (2F), whose graph is the same with whole blocks: its analysis was 2.5 of its 8 ms in
@@ -67,6 +61,12 @@ struct RegionAnalysis {
   int per = 0;
 };
 
+// The rows of A x = b that belong to the region, with x held at its given values elsewhere: A_RR x_R = b_R -
+// A_RB x_B, assembled in the region's own numbering as the entries come (in wasm, a 23 ms local update on
+// bunny00 spent 4.5 ms listing its entries, moving them into the region's numbering and sorting them; in
+// place, 1-2 ms less in all). `per` consecutive unknowns of x belong to each vertex. A_RR's pattern holds
+// every pair of unknowns of one region vertex or of two neighbouring ones: the spacing's and the energy's
+// entries all lie there.
 class RegionSystem {
  public:
   // x: the held values (read as entries come, until solve()).
@@ -75,7 +75,7 @@ class RegionSystem {
   // numbering; nothing where neither is in the region.
   void add(int32_t i, int32_t j, double value);
   void addRhs(int32_t i, double value);  // to b's entry i
-  void reserve(size_t) {}
+  void reserve(size_t) {}                // as TripletSystem's: nothing to do, the pattern is made up front
   // Factors A_RR with `vertexOrdering` (of the region's vertices: regionOrdering; empty: AMD's of its
   // unknowns), or with `given`'s analysis expanded where it has fewer unknowns to a vertex, solves, and
   // writes x_R into x; `made`: this one's analysis. False where an entry fell outside the pattern, A_RR is

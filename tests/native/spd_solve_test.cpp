@@ -87,14 +87,21 @@ TEST(SpdFactor, ASymbolicFactorThatDoesNotFitIsRefusedAndTheMatrixAnalysed) {
   const SparseMatrix graph = gridMatrix(16);
   SpdFactor nodes(graph, minimumDegree(graph));
   ASSERT_TRUE(nodes.ok());
-  // The graph's own analysis, not expanded, for the block matrix: the wrong size.
-  const SparseMatrix blocks = blockExpanded(graph);
   std::vector<int> expandedPermutation;
   for (const int v : nodes.permutation())
     expandedPermutation.insert(expandedPermutation.end(), {2 * v, 2 * v + 1});
-  SpdFactor refused(blocks, expandedPermutation, nodes.symbolic());
+  // Of the right size but another graph's: the nodes alone, no edge (an identity's analysis), expanded.
+  SparseMatrix identity(graph.rows(), graph.cols());
+  identity.setIdentity();
+  SpdFactor lone(identity, nodes.permutation());
+  ASSERT_TRUE(lone.ok());
+  const KeptSymbolic wrong = expandedSymbolic(lone.symbolic(), 2);
+  ASSERT_FALSE(wrong.empty());
+
+  const SparseMatrix blocks = blockExpanded(graph);
+  SpdFactor refused(blocks, expandedPermutation, wrong);
   ASSERT_TRUE(refused.ok());
-  EXPECT_NE(refused.symbolic().super, nodes.symbolic().super);
+  EXPECT_NE(refused.symbolic().s, wrong.s);
   Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(blocks.rows(), -1.0, 2.0), x;
   ASSERT_TRUE(refused.solve(b, x));
   EXPECT_LT((fullFromUpper(blocks) * x - b).norm(), 1e-12 * b.norm());
