@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # How the core's factorization and edits scale with the machine's cores, on bunny00 and armadillo-sub2: natively
 # (`tvf bench --threads N`: the factorization's subtrees and the backward substitution on N threads, OpenBLAS on N)
-# at 1, 2, 4, 8 and 16 threads, and in wasm under node (wasm/bench.mjs) at 1 and 2 threads (the module with
-# pthreads has one helper fewer than the cores, at most 7). Prints one JSON object {machine, rows: [{mesh, edges, build, threads, analyzeMs, factorMs, solveMs,
-# updateMs, strokeUpdateSolveMs}]} (medians over the repeats) and writes it to bench-data/bench-cores.json.
+# at 1, 2, 4, 8 and 16 threads, and in wasm under node (wasm/bench.mjs) at the same counts up to the module's
+# (the module with pthreads has one helper fewer than the cores, at most 7: up to 8 threads). Prints one JSON
+# object {machine, rows: [{mesh, edges, build, threads, analyzeMs, factorMs, solveMs, updateMs, strokeUpdateSolveMs}]}
+# (medians over the repeats) and writes it to bench-data/bench-cores.json.
 # Each run's result is also kept as it comes, a line of bench-data/bench-cores.jsonl (and on stderr), so that a
 # run stopped early (a lent machine's time running out: the whole set took over 400 s on a 16-core one) still
-# leaves what it measured.
+# leaves what it measured; a run that fails is named on stderr and the others go on.
 #   bash scripts/bench-cores.sh [--threads "1 2 4 8 16"] [--repeat N] [--big-repeat N] [--tvf PATH] [--no-wasm]
 # Run it on the biggest machine at hand; docs/benchmarks.md ("Every core") records the tables with the machine.
 set -euo pipefail
@@ -27,22 +28,23 @@ m=bench-data/meshes
 [ -f $m/armadillo-sub2.off ] || node scripts/subdivide-off.mjs $m/armadillo.off $m/armadillo-sub2.off --levels 2 >&2
 mkdir -p bench-data; rows=bench-data/bench-cores.jsonl; : > "$rows"
 keep() { tee -a "$rows" >&2; }
+cores=$(nproc); wasm_max=$(( cores < 8 ? cores : 8 ))
 for mesh in bunny00 armadillo-sub2; do
   r=$repeat; [ $mesh = armadillo-sub2 ] && r=$big_repeat
   for n in $threads; do
     echo "bench-cores: $mesh native, $n thread(s)" >&2
     OPENBLAS_NUM_THREADS=$n "$tvf" bench $m/$mesh.off --json --repeat "$r" --threads "$n" |
       node -e 'let s="";process.stdin.on("data",d=>s+=d).on("end",()=>console.log(JSON.stringify({...JSON.parse(s),
-        build:"native",meshName:process.argv[1]})))' $mesh | keep
+        build:"native",meshName:process.argv[1]})))' $mesh | keep || echo "bench-cores: $mesh native, $n failed" >&2
   done
   [ $wasm = 1 ] || continue
-  for n in 1 2; do
-    case " $threads " in *" $n "*) ;; *) continue ;; esac
+  for n in $threads; do
+    [ "$n" -le $wasm_max ] || continue
     echo "bench-cores: $mesh wasm, $n thread(s)" >&2
     node wasm/bench.mjs --json --no-native --threads "$n" --repeat "$r" --big-repeat "$r" $m/$mesh.off |
       node -e 'let s="";process.stdin.on("data",d=>s+=d).on("end",()=>{const j=JSON.parse(s);
         console.log(JSON.stringify({...j.wasm,edges:j.edges,threads:j.wasm.threads,build:"wasm",meshName:process.argv[1]}))})' \
-        $mesh | keep
+        $mesh | keep || echo "bench-cores: $mesh wasm, $n failed" >&2
   done
 done
 node -e '
