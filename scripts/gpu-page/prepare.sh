@@ -19,7 +19,7 @@ if [ "${1:-}" = --cores ]; then
   done
   mkdir -p "$p/proj/build-wasm"; cp build/tvf "$p/proj/build/"
   cp build-wasm/*.mjs build-wasm/*.js build-wasm/*.wasm build-wasm/package.json "$p/proj/build-wasm/"
-  cp package.json "$p/proj/"; cp wasm/bench.mjs "$p/proj/wasm/"
+  cp package.json "$p/proj/"; cp wasm/bench.mjs wasm/quad-bench.mjs "$p/proj/wasm/"
   cp scripts/bench-cores.sh scripts/bench.mjs scripts/subdivide-off.mjs "$p/proj/scripts/"
   cp bench-data/meshes/{bunny00,armadillo}.off "$p/proj/bench-data/meshes/"
   (cd "$p" && tar cf - . | xz -T2 -6 > "$root/.gpu/c/c.tar.xz"); xz -6 -T2 -c "$(command -v node)" > .gpu/c/node.xz
