@@ -151,7 +151,7 @@ void timeSingularityEdits(Designer& designer, int r, Samples& s) {
   designer.clearConstraints();
 }
 
-void runRepeat(Designer& designer, int r, bool metis, Samples& s) {
+void runRepeat(Designer& designer, int r, bool metis, bool scaling, Samples& s) {
   const int32_t nF = designer.mesh().numFaces();
   designer.clearConstraints();
   // A fresh factored system: the designer would otherwise reuse the previous repeat's ordering.
@@ -221,7 +221,7 @@ void runRepeat(Designer& designer, int r, bool metis, Samples& s) {
   s.nnzPerRowM = designer.stats().nnzPerRowM;
   s.nnzPerRowL = designer.stats().nnzPerRowL;
   s.factorKind = designer.stats().factorKind;
-  timeSingularityEdits(designer, r, s);
+  if (!scaling) timeSingularityEdits(designer, r, s);
 }
 
 // The median of the exact placing and moving edits together: what one singularity edit costs the page.
@@ -326,7 +326,7 @@ SparseMatrix shiftedBase(Designer& designer) {
 }  // namespace
 
 nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
-                        const std::vector<bool>& orderings, int threads, int symmetry) {
+                        const std::vector<bool>& orderings, int threads, int symmetry, bool scaling) {
   Designer designer(loadMesh(meshPath));
   designer.setGamma(gamma);
   designer.setSymmetry(symmetry);
@@ -334,15 +334,16 @@ nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
   std::vector<Samples> samples(orderings.size());
   // Orderings interleaved repeat by repeat, so that their ratios see the same machine state.
   for (int r = 0; r < repeat; ++r)
-    for (size_t o = 0; o < orderings.size(); ++o) runRepeat(designer, r, orderings[o], samples[o]);
+    for (size_t o = 0; o < orderings.size(); ++o) runRepeat(designer, r, orderings[o], scaling, samples[o]);
   nlohmann::json out = {{"mesh", meshPath},     {"edges", designer.edgeVertices().size() / 2},
                         {"repeat", repeat},     {"gamma", gamma},
-                        {"symmetry", symmetry}, {"threads", designer.solverThreads()}};
-  if (designer.solverThreads() > 1 && symmetry == 1)
+                        {"symmetry", symmetry}, {"threads", designer.solverThreads()},
+                        {"scaling", scaling}};
+  if (designer.solverThreads() > 1 && symmetry == 1 && !scaling)
     out.update(parallelFieldDifference(designer, orderings[0]));
   if (symmetry == 1) {
     out["steadyUpdateMs"] = steadyUpdateMs(designer);
-    out.update(cholmodBaseline(shiftedBase(designer), 15));
+    if (!scaling) out.update(cholmodBaseline(shiftedBase(designer), 15));
   }
   if (orderings.size() == 1) {
     out.update(summary(samples[0], orderings[0]));

@@ -22,6 +22,10 @@ namespace tvf {
 // scale, plain CHOLMOD's simplicial LDL' with AMD on the same matrix (cli/cholmod_baseline.h:
 // plainAmdSolveMs, plainAmdUpdateMs); with threads, parallelFieldDifference and orderingFieldDifference (the
 // field on them against one thread's, and the serial field with the other ordering against it).
+// scaling: only what scripts/bench-cores.sh tabulates (the analysis, factorization, solves, updates and
+// strokes), without the singularity edits, plain CHOLMOD's baseline and the threads' field check, each of
+// which refactors: a 1.25M-edge mesh's run then takes a fraction of the time on a lent machine.
 nlohmann::json runBench(const std::string& meshPath, int repeat, double gamma,
-                        const std::vector<bool>& orderings, int threads = 0, int symmetry = 1);
+                        const std::vector<bool>& orderings, int threads = 0, int symmetry = 1,
+                        bool scaling = false);
 }  // namespace tvf

@@ -45,7 +45,7 @@ int usage() {
          "             [--ordering-cache DIR]\n"
          "  tvf quad MESH DESIGN.json -o OUT.obj [--edge-length L | --quads N] [--json]\n"
          "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
-         "            [--threads N] [--symmetry N]\n"
+         "            [--threads N] [--symmetry N] [--scaling]\n"
          "  tvf bench MESH --quads N [--repeat R]   (the quad remesher, JSON)\n"
          "--ordering-cache DIR keeps the field's fill-reducing ordering and symbolic factor in DIR, one\n"
          "file per mesh and symmetry: the same mesh again skips the analysis (a stale or foreign file\n"
@@ -63,9 +63,11 @@ int usage() {
          "potentials, energyShares). --component: export that part of the field instead of the whole.\n"
          "A design's \"symmetry\" (1 vector, 2 line, 4 cross field; up to 6) makes design write\n"
          "faceDirections (one unit representative per face) and fractional singularity indices;\n"
-         "bench --symmetry N times that field's system. export of such a design combs the directions\n"
-         "per atlas chart for the flow map and the GLB (KHR_materials_anisotropy, _FIELD); --rawfield\n"
-         "writes all N directions per face in Directional's raw field format (docs/export.md).\n"
+         "bench --symmetry N times that field's system; bench --scaling times only the factorization,\n"
+         "solves, updates and strokes (scripts/bench-cores.sh). export of such a design combs the\n"
+         "directions per atlas chart for the flow map and the GLB (KHR_materials_anisotropy, _FIELD);\n"
+         "--rawfield writes all N directions per face in Directional's raw field format\n"
+         "(docs/export.md).\n"
          "Prescribed singularities and sharp features: a design's \"singularities\",\n"
          "\"featureAngle\" and \"featureEdges\" (docs/design-format.md). design --sing adds a\n"
          "Directional .sing file's singularities to the design's (the file's N is the symmetry of\n"
@@ -424,6 +426,7 @@ int bench(int argc, char** argv) {
   bool json = false;
   int threads = 0, symmetry = 1;
   int64_t quads = 0;
+  bool scaling = false;
   std::vector<bool> orderings{true};
   for (int k = 3; k < argc; ++k) {
     const std::string a = argv[k];
@@ -444,6 +447,8 @@ int bench(int argc, char** argv) {
       quads = std::atoll(argv[++k]);
       if (quads < 1 || quads > 4000000)
         throw tvf::InputError("--quads must be a whole number from 1 to 4000000");
+    } else if (a == "--scaling") {
+      scaling = true;
     } else if (a == "--metis") {
       orderings = {true};
     } else if (a == "--amd") {
@@ -459,7 +464,7 @@ int bench(int argc, char** argv) {
     std::cout << tvf::cli::quadBench(argv[2], quads, repeat).dump() << "\n";
     return 0;
   }
-  const nlohmann::json r = tvf::runBench(argv[2], repeat, gamma, orderings, threads, symmetry);
+  const nlohmann::json r = tvf::runBench(argv[2], repeat, gamma, orderings, threads, symmetry, scaling);
   if (json)
     std::cout << r.dump() << "\n";
   else

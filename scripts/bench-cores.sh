@@ -8,11 +8,15 @@
 # Each run's result is also kept as it comes, a line of bench-data/bench-cores.jsonl (and on stderr), so that a
 # run stopped early (a lent machine's time running out: the whole set took over 400 s on a 16-core one) still
 # leaves what it measured; a run that fails is named on stderr and the others go on.
+# Both benches run with --scaling: the factorization, solves, updates and strokes alone (`tvf bench`'s singularity
+# edits, plain CHOLMOD's baseline and the threads' field check each refactor; on the 16-core machine they made an
+# armadillo-sub2 run about 150 s); --full runs them too.
 #   bash scripts/bench-cores.sh [--threads "1 2 4 8 16"] [--repeat N] [--big-repeat N] [--tvf PATH] [--no-wasm]
+#                               [--full]
 # Run it on the biggest machine at hand; docs/benchmarks.md ("Every core") records the tables with the machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-threads="1 2 4 8 16" repeat=5 big_repeat=2 tvf=build/tvf wasm=1
+threads="1 2 4 8 16" repeat=5 big_repeat=2 tvf=build/tvf wasm=1 scaling=--scaling
 while [ $# -gt 0 ]; do
   case $1 in
     --threads) threads=$2; shift 2 ;;
@@ -20,6 +24,7 @@ while [ $# -gt 0 ]; do
     --big-repeat) big_repeat=$2; shift 2 ;;
     --tvf) tvf=$2; shift 2 ;;
     --no-wasm) wasm=0; shift ;;
+    --full) scaling=; shift ;;
     *) echo "bench-cores: unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -33,7 +38,7 @@ for mesh in bunny00 armadillo-sub2; do
   r=$repeat; [ $mesh = armadillo-sub2 ] && r=$big_repeat
   for n in $threads; do
     echo "bench-cores: $mesh native, $n thread(s)" >&2
-    OPENBLAS_NUM_THREADS=$n "$tvf" bench $m/$mesh.off --json --repeat "$r" --threads "$n" |
+    OPENBLAS_NUM_THREADS=$n "$tvf" bench $m/$mesh.off --json --repeat "$r" --threads "$n" $scaling |
       node -e 'let s="";process.stdin.on("data",d=>s+=d).on("end",()=>console.log(JSON.stringify({...JSON.parse(s),
         build:"native",meshName:process.argv[1]})))' $mesh | keep || echo "bench-cores: $mesh native, $n failed" >&2
   done
@@ -41,7 +46,8 @@ for mesh in bunny00 armadillo-sub2; do
   for n in $threads; do
     [ "$n" -le $wasm_max ] || continue
     echo "bench-cores: $mesh wasm, $n thread(s)" >&2
-    node wasm/bench.mjs --json --no-native --threads "$n" --repeat "$r" --big-repeat "$r" $m/$mesh.off |
+    node wasm/bench.mjs --json --no-native --threads "$n" --repeat "$r" --big-repeat "$r" $scaling \
+      $m/$mesh.off |
       node -e 'let s="";process.stdin.on("data",d=>s+=d).on("end",()=>{const j=JSON.parse(s);
         console.log(JSON.stringify({...j.wasm,edges:j.edges,threads:j.wasm.threads,build:"wasm",meshName:process.argv[1]}))})' \
         $mesh | keep || echo "bench-cores: $mesh wasm, $n failed" >&2

@@ -32,6 +32,8 @@
 //   --symmetry N (1: a vector field; 2 a line, 4 a cross field: their power-field system, a direction constraint
 //   as the single update, smoothestMs for the unconstrained field; the native side with tvf bench --symmetry N),
 //   --quads N (instead of all else: the quad remesher at about N quads, wasm/quad-bench.mjs; JSON).
+//   --scaling (what scripts/bench-cores.sh tabulates: no singularity edits, no cold first factorization in a
+//   child process, and the native side with tvf bench --scaling).
 // Every repeat ends with prescribed singularities' edits, as tvf bench times them (timeSingularityEdits):
 // singularityEditMs (the median of placing a pair and moving one, with every index the surface needs
 // prescribed), singularityPlaceMs, singularityMoveMs, singularityFactorizations (expected 0), singularityMode
@@ -325,7 +327,7 @@ async function measureWasm(mesh, opts) {
         ok('defer', d.setDeferredUpdates(false));
       }
       last[o] = stats;
-      const edits = timeSingularityEdits(d, ring, chi, r);
+      const edits = opts.scaling ? null : timeSingularityEdits(d, ring, chi, r);
       if (edits) {
         s.singularityPlace.push(edits.placeMs);
         s.singularityMove.push(edits.moveMs);
@@ -418,6 +420,7 @@ function commonArgs(opts) {
   else a.push('--warmup', String(opts.warmup));
   if (opts.native) a.push('--native', opts.native);
   if (opts['no-native']) a.push('--no-native');
+  if (opts.scaling) a.push('--scaling');
   return a;
 }
 
@@ -431,7 +434,7 @@ function nativeFor(mesh, opts, threads) {
   // Like with like: the same ordering(s) as the wasm side.
   const ordering = opts.compare ? ['--compare'] : opts.amd ? ['--amd'] : [];
   return runNative(opts.tvf, mesh, repeatFor(opts, mesh), [...ordering, '--threads', String(threads),
-    '--symmetry', String(opts.symmetry ?? 1)]);
+    '--symmetry', String(opts.symmetry ?? 1), ...(opts.scaling ? ['--scaling'] : [])]);
 }
 
 async function main() {
@@ -439,7 +442,7 @@ async function main() {
   const opts = parseArgs(argv, {
     json: false, 'first-factor-only': false, 'no-warmup': false, warmup: '3,1', settle: '100', native: '',
     'no-native': false, 'node-flags': '', module: '', amd: false, compare: false, threads: '', symmetry: '1',
-    quads: '',
+    quads: '', scaling: false,
   });
   if (opts.threads && !(Number.isInteger(Number(opts.threads)) && Number(opts.threads) >= 1))
     fail('--threads', `must be a whole number of at least 1 (got ${opts.threads})`);
@@ -475,7 +478,7 @@ async function main() {
     ensureNativeCli(opts);
     opts.repeat = repeatFor(opts, mesh);
     const wasm = await measureWasm(mesh, opts);
-    if (opts.warmup !== false) {
+    if (opts.warmup !== false && !opts.scaling) {
       const cold = child(['--first-factor-only', '--no-warmup', mesh, '--symmetry', String(opts.symmetry),
         ...(opts.module ? ['--module', opts.module] : []),
         ...(opts.threads ? ['--threads', String(opts.threads)] : [])], opts);

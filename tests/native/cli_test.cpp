@@ -138,6 +138,21 @@ TEST(Cli, BenchOnTwoThreadsChecksTheFieldAgainstOneThreads) {
                    .out.find("parallelFieldDifference") != std::string::npos);
 }
 
+// --scaling (scripts/bench-cores.sh): the table's timings alone, without the parts that refactor (the
+// singularity edits, plain CHOLMOD's baseline, the threads' field check).
+TEST(Cli, BenchScalingTimesTheTableAlone) {
+  const fs::path mesh = writeOff("cli_bench_scaling.off", tvf::icosphere(5));
+  const CliRun r = runTvf("bench " + mesh.string() + " --repeat 1 --threads 2 --scaling --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto b = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(b["scaling"].get<bool>());
+  for (const char* key :
+       {"analyzeMs", "factorMs", "solveMs", "updateMs", "strokeUpdateSolveMs", "steadyUpdateMs"})
+    EXPECT_GT(b[key].get<double>(), 0.0) << key;
+  for (const char* key : {"plainAmdSolveMs", "parallelFieldDifference"}) EXPECT_FALSE(b.contains(key)) << key;
+  EXPECT_TRUE(b["singularityPlaceMs"].is_null() || b["singularityPlaceMs"].get<double>() == 0.0);
+}
+
 TEST(Cli, BenchCompareReportsBothOrderings) {
   const fs::path mesh = writeOff("cli_bench_compare.off", tvf::testing::torus(40, 20, 2, 0.7));
   const CliRun r = runTvf("bench " + mesh.string() + " --repeat 1 --compare");
