@@ -83,8 +83,8 @@ namespace {
 
 // Timings of one ordering over the repeats.
 struct Samples {
-  std::vector<double> analyze, factor, convert, solve, update, stroke, strokeUpdate, strokeRows, strokeRhs,
-      strokeSolve, reconstruct, smoothest, deferredStroke, deferredCorrection, deferredUpdate;
+  std::vector<double> analyze, dissection, factor, convert, solve, update, stroke, strokeUpdate, strokeRows,
+      strokeRhs, strokeSolve, reconstruct, smoothest, deferredStroke, deferredCorrection, deferredUpdate;
   double nnzPerRowM = 0, nnzPerRowL = 0;
   int strokeEdges = 0;      // edges the benchmark stroke crosses (one per step between adjacent faces)
   int strokeRefactors = 0;  // stroke solves that refactored (an updated factor found wanting): timings void
@@ -158,6 +158,7 @@ void runRepeat(Designer& designer, int r, bool metis, bool scaling, Samples& s) 
   designer.setMetisOrdering(metis);
   designer.factor();
   s.analyze.push_back(designer.stats().analyzeMs);
+  s.dissection.push_back(designer.stats().dissectionMs);
   s.factor.push_back(designer.stats().factorMs);
   s.convert.push_back(designer.stats().convertMs);
   const bool directions = designer.symmetry() > 1;
@@ -235,6 +236,7 @@ nlohmann::json summary(const Samples& s, bool metis) {
   return {{"nnzPerRowM", s.nnzPerRowM},
           {"nnzPerRowL", s.nnzPerRowL},
           {"analyzeMs", median(s.analyze)},
+          {"dissectionMs", median(s.dissection)},
           {"factorMs", median(s.factor)},
           {"convertMs", median(s.convert)},
           {"solveMs", median(s.solve)},

@@ -247,7 +247,7 @@ async function measureWasm(mesh, opts) {
   const { eulerCharacteristic, boundaryLoops } = JSON.parse(d.infoJson());
   const chi = boundaryLoops ? 0 : eulerCharacteristic; // with a boundary nothing needs prescribing
   const orderings = opts.compare ? [true, false] : [!opts.amd];
-  const samples = orderings.map(() => ({ analyze: [], factor: [], convert: [], solve: [], update: [], stroke: [],
+  const samples = orderings.map(() => ({ analyze: [], dissection: [], factor: [], convert: [], solve: [], update: [], stroke: [],
     strokeUpdate: [], strokeRows: [], strokeRhs: [], strokeSolve: [], reconstruct: [], factorCall: [], solveCall: [],
     updateCall: [],
     strokeRefactors: 0, strokeIncrementalSolves: 0, smoothest: [], deferredStroke: [], deferredCorrection: [], deferredUpdate: [],
@@ -266,6 +266,7 @@ async function measureWasm(mesh, opts) {
       s.factorCall.push(performance.now() - t);
       let stats = statsNow();
       s.analyze.push(stats.analyzeMs);
+      s.dissection.push(stats.dissectionMs);
       s.factor.push(stats.factorMs);
       s.convert.push(stats.convertMs);
       // N >= 2 (--symmetry): the smoothest field first, then a direction where a vector field has a source.
@@ -340,7 +341,7 @@ async function measureWasm(mesh, opts) {
   const summary = (s, stats, metis) => ({
     ...result,
     nnzPerRowM: stats.nnzPerRowM, nnzPerRowL: stats.nnzPerRowL,
-    analyzeMs: median(s.analyze), factorMs: median(s.factor), convertMs: median(s.convert), solveMs: median(s.solve),
+    analyzeMs: median(s.analyze), dissectionMs: median(s.dissection), factorMs: median(s.factor), convertMs: median(s.convert), solveMs: median(s.solve),
     updateMs: median(s.update),
     strokeUpdateSolveMs: median(s.stroke), strokeUpdateMs: median(s.strokeUpdate), strokeRowsMs: median(s.strokeRows),
     strokeRhsMs: median(s.strokeRhs), strokeSolveMs: median(s.strokeSolve), strokeEdges: s.strokeEdges,

@@ -53,7 +53,9 @@
 #   they touch (the extracted tree stays pristine). cholmod-updown-row-pairs.patch: cholmod_updown's numeric
 #   kernel updates two rows of L at a time in the lanes of a two-double vector (simd128 in wasm), with each
 #   lane doing the scalar code's exact operations; a 50-edge stroke's update on bunny00 goes from 22 to about
-#   10.5 ms in wasm (docs/benchmarks.md). Nothing else is patched.
+#   10.5 ms in wasm (docs/benchmarks.md). metis-gklib-thread-random.patch: GKlib's random generator (built with
+#   -DUSE_GKRAND, as METIS's own CMake build can, not libc's rand()) keeps its state per thread, so that METIS
+#   calls on several threads give the results each gives alone. Nothing else is patched.
 # * Link consumers with -Wl,--fatal-warnings so any future signature mismatch fails the link instead of trapping.
 # * Debian's emscripten 3.1.6 has a frozen cache (no ports); node links at -O1+ need NODE_PATH=/usr/share/nodejs.
 # * The output folder name carries a RECIPE number (bump it when flags/sources in this script change) and the
@@ -77,7 +79,7 @@
 
 set -euo pipefail
 
-RECIPE=3
+RECIPE=4
 SMOKE=0
 REFRESH=0
 NATIVE=0
@@ -300,6 +302,7 @@ nint=$(grep -cE '^int[[:space:]]+(BLAS_|LAPACK_)' "$INC/cholmod_blas.h" || true)
 PSRC=$BLD/src
 rm -rf "$PSRC"; mkdir -p "$PSRC/CHOLMOD"
 cp -r "$SS/CHOLMOD/Modify" "$PSRC/CHOLMOD/"
+mkdir -p "$PSRC/GKlib"; cp "$METIS/GKlib/random.c" "$PSRC/GKlib/"
 for p in "$ROOT"/wasm/patches/*.patch; do
   patch --quiet --forward --no-backup-if-mismatch -d "$PSRC" -p1 < "$p" >&2 || die "$(basename "$p") did not apply"
 done
@@ -312,8 +315,9 @@ printf '#define SCALAR        std::complex<double>\n#define SCALAR_SUFFIX z\n#de
   "$EIG" > "$GEN/lapack_cholesky_z.cpp"
 
 CFLAGS="-O3 -DNDEBUG -msimd128"
-# METIS's own CMake flags on Linux (GKlibSystem.cmake), without OpenMP
-METISFLAGS="-O3 -msimd128 -DLINUX -D_FILE_OFFSET_BITS=64 -std=c99 -fno-strict-aliasing -DNDEBUG -DNDEBUG2 -I$METIS/include -I$METIS/GKlib -I$METIS/libmetis"
+# METIS's own CMake flags on Linux (GKlibSystem.cmake), without OpenMP, with GKlib's own random generator (its
+# GKRAND option) for a state per thread
+METISFLAGS="-O3 -msimd128 -DLINUX -D_FILE_OFFSET_BITS=64 -std=c99 -fno-strict-aliasing -DNDEBUG -DNDEBUG2 -DUSE_GKRAND -I$METIS/include -I$METIS/GKlib -I$METIS/libmetis"
 CXXFLAGS="-O3 -DNDEBUG -msimd128"
 CC=emcc CXX=em++ AR=emar ARCHIVE=libcholmod_wasm.a
 if [ "$NATIVE" = 1 ]; then
@@ -349,7 +353,10 @@ done
 add emcc - "$SS/COLAMD/Source/colamd.c" colamd
 add emcc - "$SS/CCOLAMD/Source/ccolamd.c" ccolamd
 add emcc - "$SS/SuiteSparse_config/SuiteSparse_config.c" SuiteSparse_config
-for f in "$METIS"/GKlib/*.c; do add metis - "$f" "gklib_$(basename "$f" .c)"; done
+for f in "$METIS"/GKlib/*.c; do
+  p=$PSRC/GKlib/$(basename "$f"); [ -f "$p" ] || p=$f  # the patched copy where there is one
+  add metis - "$p" "gklib_$(basename "$f" .c)"
+done
 for f in "$METIS"/libmetis/*.c; do add metis - "$f" "metis_$(basename "$f" .c)"; done
 
 compile_one() {  # cc extra src obj

@@ -431,6 +431,7 @@ json statsJson(const DesignStats& s) {
   return {{"analyzeMs", s.analyzeMs},
           {"factorMs", s.factorMs},
           {"convertMs", s.convertMs},
+          {"dissectionMs", s.dissectionMs},
           {"updateMs", s.updateMs},
           {"deferredUpdateMs", s.deferredUpdateMs},
           {"solveMs", s.solveMs},

@@ -9,7 +9,8 @@ namespace tvf {
 
 struct DesignStats {
   double analyzeMs = 0, factorMs = 0, updateMs = 0, solveMs = 0, reconstructMs = 0;
-  double convertMs = 0;  // of factorMs, the factor turned into LDL' for the updates
+  double convertMs = 0;     // of factorMs, the factor turned into LDL' for the updates
+  double dissectionMs = 0;  // of analyzeMs, the nested dissection of the mesh's vertex graph (on the threads)
   // The last deferred update put into the factor after its solve (setDeferredUpdates); updateMs is then
   // what the edit itself took: the update's correction for the solves.
   double deferredUpdateMs = 0;

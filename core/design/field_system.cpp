@@ -30,6 +30,7 @@ void reportFactor(const ShiftedFactor& factor, int64_t unknowns, DesignStats& st
   stats.symbolicReused = r.symbolicReused;
   stats.factorMs = r.factorMs;
   stats.convertMs = r.convertMs;
+  stats.dissectionMs = r.dissectionMs;
   stats.nnzPerRowL =
       static_cast<double>(r.factorNonzeros) / static_cast<double>(std::max<int64_t>(1, unknowns));
   stats.kernelShift = r.kernelShift;

@@ -3,8 +3,11 @@
 #include <metis.h>
 
 #include <algorithm>
+#include <memory>
 #include <numeric>
 #include <utility>
+
+#include "common/thread_team.h"
 
 namespace tvf {
 namespace {
@@ -28,23 +31,99 @@ struct Part {
   }
 };
 
+// A node of the dissection tree: a leaf's edges, or a separator's edges and the two parts it separates.
+struct Node {
+  std::vector<int32_t> edges;
+  std::unique_ptr<Node> child[2];
+};
+
 class Dissector {
  public:
   Dissector(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
-            const SparseMatrix& A)
-      : ev_(edgeVertices), A_(A), leafEdges_(leafEdges), numVertices_(numVertices) {
+            const SparseMatrix& A, int parts)
+      : ev_(edgeVertices), A_(A), leafEdges_(leafEdges), numVertices_(numVertices), parts_(parts) {
     const int32_t nE = static_cast<int32_t>(edgeVertices.size() / 2);
     edgeSide_.assign(nE, -1);
     out_.constraintSet.assign(nE, 0);
     widen_ = !couplesOnlyThroughVertices();
   }
 
+  // The tree is grown first, the top levels one at a time with their parts side by side until there is a
+  // subtree per thread, then those subtrees on the threads; its sets are numbered after, in postorder, so the
+  // dissection is the same on any number of threads.
   EdgeDissection run() {
-    dissect(wholeGraph());
+    Node root;
+    std::vector<Growing> frontier;
+    frontier.push_back({&root, wholeGraph()});
+    ThreadTeam* team = nullptr;
+    if (parts_ > 1) {
+      try {
+        team = &ThreadTeam::shared();
+        parts_ = std::min(parts_, ThreadTeam::maxParts());
+      } catch (const std::exception&) {
+        team = nullptr;
+      }
+    }
+    if (!team) parts_ = 1;
+    while (parts_ > 1 && !frontier.empty() && static_cast<int>(frontier.size()) < parts_) {
+      std::vector<std::vector<Growing>> next(frontier.size());
+      team->run(static_cast<int>(frontier.size()), [&](int k) { next[k] = split(frontier[k]); });
+      std::vector<Growing> deeper;
+      for (std::vector<Growing>& kids : next)
+        for (Growing& kid : kids) deeper.push_back(std::move(kid));
+      frontier.swap(deeper);
+    }
+    if (parts_ > 1 && frontier.size() > 1) {
+      const std::vector<std::vector<int>> groups = largestFirst(frontier, parts_);
+      team->run(static_cast<int>(groups.size()), [&](int g) {
+        for (const int k : groups[g]) grow(frontier[k]);
+      });
+    } else {
+      for (Growing& f : frontier) grow(f);
+    }
+    number(root);
     return std::move(out_);
   }
 
  private:
+  struct Growing {
+    Node* node;
+    Part graph;
+  };
+
+  // The frontier's parts in at most `parts` groups of about equal edges, the largest first to the lightest.
+  static std::vector<std::vector<int>> largestFirst(const std::vector<Growing>& frontier, int parts) {
+    std::vector<int> order(frontier.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return frontier[a].graph.edges() > frontier[b].graph.edges(); });
+    const int groups = std::min(parts, static_cast<int>(frontier.size()));
+    std::vector<std::vector<int>> out(groups);
+    std::vector<int64_t> load(groups, 0);
+    for (const int k : order) {
+      const int g = static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
+      out[g].push_back(k);
+      load[g] += frontier[k].graph.edges();
+    }
+    return out;
+  }
+
+  void grow(Growing& g) {
+    for (Growing& kid : split(g)) grow(kid);
+  }
+
+  // Sets numbered in postorder: each part's before the separator above it.
+  void number(const Node& node) {
+    const int32_t first = static_cast<int32_t>(out_.firstSet.size());
+    if (node.child[0]) {
+      number(*node.child[0]);
+      number(*node.child[1]);
+    }
+    out_.firstSet.push_back(first);
+    const int32_t set = static_cast<int32_t>(out_.firstSet.size()) - 1;
+    for (const int32_t e : node.edges) out_.constraintSet[e] = set;
+  }
+
   // The mesh's vertex graph: each vertex's edges in edge order, as the incidence lists list them.
   Part wholeGraph() const {
     const int32_t nV = numVertices_, nE = static_cast<int32_t>(ev_.size() / 2);
@@ -78,22 +157,17 @@ class Dissector {
     return true;
   }
 
-  int32_t newSet(int32_t first) {
-    out_.firstSet.push_back(first);
-    return static_cast<int32_t>(out_.firstSet.size()) - 1;
-  }
-
-  void assign(const Part& g, int32_t set) {
-    g.forEachEdge([&](int32_t e) { out_.constraintSet[e] = set; });
-  }
-
-  void dissect(Part g) {
-    const int32_t first = static_cast<int32_t>(out_.firstSet.size());
+  // One bisection of the node's part: its two sides to grow (the node then holds the separator), or none (the
+  // node is a leaf and holds the part's edges). The part's arrays are let go here.
+  std::vector<Growing> split(Growing& growing) {
+    Node& node = *growing.node;
+    Part g = std::move(growing.graph);
     std::vector<idx_t> part;
-    if (g.edges() <= leafEdges_ || !bisect(g, part)) {
-      assign(g, newSet(first));
-      return;
-    }
+    const auto leaf = [&] {
+      g.forEachEdge([&](int32_t e) { node.edges.push_back(e); });
+      return std::vector<Growing>();
+    };
+    if (g.edges() <= leafEdges_ || !bisect(g, part)) return leaf();
     std::vector<int32_t> separator, sideEdges[2];
     const idx_t n = g.vertices();
     for (idx_t k = 0; k < n; ++k)
@@ -107,17 +181,16 @@ class Dissector {
       }
     if (widen_) widenSeparator(sideEdges, separator);
     Part sides[2] = {side(g, part, 0), side(g, part, 1)};
-    if (sides[0].edges() == 0 || sides[1].edges() == 0) {  // no useful cut
+    if (widen_)
       for (const int32_t e : separator) edgeSide_[e] = -1;
-      assign(g, newSet(first));
-      return;
+    if (sides[0].edges() == 0 || sides[1].edges() == 0) return leaf();  // no useful cut
+    node.edges = std::move(separator);
+    std::vector<Growing> kids;
+    for (int s = 0; s < 2; ++s) {
+      node.child[s] = std::make_unique<Node>();
+      kids.push_back({node.child[s].get(), std::move(sides[s])});
     }
-    for (const int32_t e : separator) edgeSide_[e] = -1;
-    g = Part();
-    dissect(std::move(sides[0]));
-    dissect(std::move(sides[1]));
-    const int32_t set = newSet(first);
-    for (const int32_t e : separator) out_.constraintSet[e] = set;
+    return kids;
   }
 
   // The vertices of `g` on side `s` and the edges between them that are not in the separator (marked
@@ -182,7 +255,9 @@ class Dissector {
     // analysis (bunny00 223-266 against 164-185 ms, 1.25M edges 4.9-5.3 against 3.3-3.8 s; README).
     part.assign(n, 0);
     idx_t nv = n;
-    // METIS takes the arrays as non-const but only reads them.
+    // METIS takes the arrays as non-const but only reads them. Its random generator is per thread (the
+    // build's wasm/patches/metis-gklib-thread-random.patch), seeded on entry: the same part gives the same
+    // cut on any thread.
     auto* xadj = const_cast<idx_t*>(g.xadj.data());
     auto* adjncy = const_cast<idx_t*>(g.adjncy.data());
     return METIS_PartGraphRecursive(&nv, &constraints, xadj, adjncy, weight.data(), nullptr, nullptr, &parts,
@@ -192,6 +267,7 @@ class Dissector {
   const std::vector<int32_t>& ev_;
   const SparseMatrix& A_;
   int32_t leafEdges_, numVertices_;
+  int parts_;
   std::vector<int32_t> edgeSide_;
   bool widen_ = true;
   EdgeDissection out_;
@@ -200,8 +276,8 @@ class Dissector {
 }  // namespace
 
 EdgeDissection dissectEdges(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
-                            const SparseMatrix& A) {
-  return Dissector(edgeVertices, numVertices, leafEdges, A).run();
+                            const SparseMatrix& A, int parts) {
+  return Dissector(edgeVertices, numVertices, leafEdges, A, parts).run();
 }
 
 bool separatesPattern(const EdgeDissection& dissection, const SparseMatrix& A) {

@@ -24,9 +24,10 @@ struct EdgeDissection {
 
 // edgeVertices: 2 per edge. A: the system (symmetric, one triangle or both stored; one row and column per
 // edge), whose pattern decides which edges the separators must part. Parts with at most leafEdges edges are
-// not cut further.
+// not cut further. parts: threads to cut independent parts on (common/thread_team.h); the dissection is the
+// same on any number.
 EdgeDissection dissectEdges(const std::vector<int32_t>& edgeVertices, int32_t numVertices, int32_t leafEdges,
-                            const SparseMatrix& A);
+                            const SparseMatrix& A, int parts = 1);
 
 // Whether A (symmetric, one triangle or both stored) couples no two edges whose sets lie in different
 // subtrees, i.e. the dissection's separators separate A.

@@ -329,7 +329,9 @@ struct FactoredSystem::Impl {
   std::vector<int> dissectionOrdering(cholmod_sparse& A, const SparseMatrix& upper) {
     const int32_t n = static_cast<int32_t>(A.ncol);
     if (ordering != FillOrdering::Metis || static_cast<int32_t>(edgeVertices.size()) != 2 * n) return {};
-    EdgeDissection d = dissectEdges(edgeVertices, numVertices, kDissectionLeafEdges, upper);
+    const auto start = std::chrono::steady_clock::now();
+    EdgeDissection d = dissectEdges(edgeVertices, numVertices, kDissectionLeafEdges, upper, factorThreads);
+    timings.dissectionMs = msSince(start);
     if (!separatesPattern(d, upper)) return {};
     std::vector<int> perm(n);
     if (!cholmod_camd(&A, nullptr, 0, d.constraintSet.data(), perm.data(), common.get())) return {};
@@ -382,6 +384,7 @@ bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<do
   cholmod_sparse view = upperTriangleView(upper);
   if (!values.empty()) view.x = values.data();
   auto start = std::chrono::steady_clock::now();
+  s.timings.dissectionMs = 0;
   s.forward.invalidate();
   s.backward.invalidate();
   std::vector<double>().swap(s.bPermuted);

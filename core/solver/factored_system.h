@@ -27,6 +27,9 @@ constexpr BackwardKernel kDefaultBackwardKernel = BackwardKernel::Supernodes;
 
 struct FactorTimings {
   double analyzeMs = 0, factorMs = 0, convertMs = 0;
+  // Of analyzeMs, the nested dissection of the mesh's vertex graph (solver/edge_dissection.h; 0 when none
+  // was made).
+  double dissectionMs = 0;
   // The last factor() reused the previous symbolic analysis (same sparsity pattern): no ordering was
   // computed.
   bool analysisReused = false;

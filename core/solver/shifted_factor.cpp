@@ -152,6 +152,7 @@ void ShiftedFactor::factor(const SparseMatrix& base, double scale, const Diagona
   report_.symbolicReused = t.symbolicReused;
   report_.factorMs = t.factorMs + t.convertMs;
   report_.convertMs = t.convertMs;
+  report_.dissectionMs = t.dissectionMs;
   report_.factorThreads = t.factorThreads;
   report_.singleThreadWhy = t.singleThreadWhy;
   report_.factorNonzeros = system_.factorNonzeros();

@@ -30,6 +30,7 @@ SparseMatrix plusDiagonal(const SparseMatrix& base, const DiagonalTerms& terms);
 struct FactorReport {
   double analyzeMs = 0, factorMs = 0;
   double convertMs = 0;  // of factorMs, the factor turned into LDL' for the updates (solver/ldl_conversion.h)
+  double dissectionMs = 0;  // of analyzeMs, FactorTimings::dissectionMs
   bool analysisReused = false;
   bool symbolicReused = false;  // FactorTimings::symbolicReused
   int64_t factorNonzeros = 0;

@@ -78,6 +78,27 @@ std::vector<int32_t> componentsWithout(const SparseMatrix& A, const std::vector<
 
 }  // namespace
 
+// The parts of the vertex graph are cut side by side on threads (METIS's random generator per thread, seeded
+// on each call): the dissection is the one made on one thread, set for set, for the plain Laplacian and for
+// the bi-Laplacian whose separators are widened; and each of those separates its matrix.
+TEST(EdgeDissection, TheSameOnAnyNumberOfThreads) {
+  const SurfaceMesh m = torus(120, 80, 2.0, 0.7);  // 28,800 edges: parts of 500 edges lie six levels down
+  const MeshTopology t = buildTopology(m);
+  const MeshGeometry g = computeMeshGeometry(m, t);
+  const SparseMatrix M = oneFormLaplacian(buildOneFormOperators(m, t, g, {}), g);
+  const SparseMatrix B = upperTriangle(fullFromUpper(biLaplacianUpper(M, g, 0.1 * g.totalArea)));
+  for (const SparseMatrix* A : {&M, &B}) {
+    const EdgeDissection one = dissectEdges(t.edgeVertices, t.numVertices, 500, *A, 1);
+    EXPECT_GE(one.firstSet.size(), 63u);
+    EXPECT_TRUE(separatesPattern(one, *A));
+    for (const int parts : {2, 3, 8}) {
+      const EdgeDissection many = dissectEdges(t.edgeVertices, t.numVertices, 500, *A, parts);
+      EXPECT_EQ(many.constraintSet, one.constraintSet) << parts << " threads";
+      EXPECT_EQ(many.firstSet, one.firstSet) << parts << " threads";
+    }
+  }
+}
+
 // The dissection of the vertex graph: removing the top separator's edges leaves no path in the matrix's graph
 // between the edges of its two sides (checked by a breadth-first search of the matrix's own pattern), so its
 // ordering keeps the fill local. The bi-Laplacian couples edges two vertex-steps apart: the plain edge cut
