@@ -94,6 +94,9 @@ function warmUpLayer(renderer, scene, camera) {
   }
 }
 
+// How often a read-back looks again at its fence or its program's link.
+const POLL_MS = 8;
+
 // Resolves when the programs are linked (or at once where compiling in the background is not offered). The
 // samples' materials are left undisposed: disposing the last material of a program deletes the program.
 export async function warmUpShaders(renderer, scene, camera, labels) {
@@ -114,19 +117,39 @@ export async function warmUpShaders(renderer, scene, camera, labels) {
 // A program's first draw still reads it back (three.js's first use: its link status, its uniforms and
 // attributes), and that round trip waits for whatever the GPU process has queued by then: in a big model's
 // first field, behind its mesh's uploads, 30-50 ms of the task that drew it. Read back now, a program per
-// task, while the page has nothing queued; without KHR_parallel_shader_compile a read-back waits for its link.
+// task, each once a fence shows the GPU process idle and its link done (polled, never waited on): a read-back
+// issued behind a model's first uploads held the page for 386 ms at the start of one load. Without
+// KHR_parallel_shader_compile a read-back waits for its link.
 function readBackLater(renderer) {
+  const gl = renderer.getContext();
+  const name = 'KHR_parallel_shader_compile';
+  const parallel = renderer.extensions.has(name) ? renderer.extensions.get(name) : null;
   const programs = [...(renderer.info.programs ?? [])];
+  let fence = null;
+  const later = (ms) => setTimeout(next, ms);
   const next = () => {
+    if (gl.isContextLost()) return;
+    if (!fence) {
+      fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+      gl.flush();
+      return later(POLL_MS);
+    }
+    if (gl.getSyncParameter(fence, gl.SYNC_STATUS) !== gl.SIGNALED) return later(POLL_MS);
+    gl.deleteSync(fence);
+    fence = null;
     const program = programs.shift();
     if (!program) return;
+    const live = renderer.info.programs?.includes(program); // not released since
+    if (live && parallel && !gl.getProgramParameter(program.program, parallel.COMPLETION_STATUS_KHR)) {
+      programs.push(program); // still linking: the others first
+      return later(POLL_MS);
+    }
     try {
-      const live = renderer.info.programs?.includes(program); // not released since
-      if (live && !renderer.getContext().isContextLost()) program.getUniforms();
+      if (live) program.getUniforms();
     } catch {
       // a program that failed to link is reported at its first draw, as three.js does
     }
-    setTimeout(next, 0);
+    later(0);
   };
-  setTimeout(next, 0);
+  later(0);
 }
