@@ -3,6 +3,7 @@
 #include <metis.h>
 
 #include <algorithm>
+#include <exception>
 #include <memory>
 #include <numeric>
 #include <utility>
@@ -67,7 +68,7 @@ class Dissector {
     if (!team) parts_ = 1;
     while (parts_ > 1 && !frontier.empty() && static_cast<int>(frontier.size()) < parts_) {
       std::vector<std::vector<Growing>> next(frontier.size());
-      team->run(static_cast<int>(frontier.size()), [&](int k) { next[k] = split(frontier[k]); });
+      runEach(*team, static_cast<int>(frontier.size()), [&](int k) { next[k] = split(frontier[k]); });
       std::vector<Growing> deeper;
       for (std::vector<Growing>& kids : next)
         for (Growing& kid : kids) deeper.push_back(std::move(kid));
@@ -75,7 +76,7 @@ class Dissector {
     }
     if (parts_ > 1 && frontier.size() > 1) {
       const std::vector<std::vector<int>> groups = largestFirst(frontier, parts_);
-      team->run(static_cast<int>(groups.size()), [&](int g) {
+      runEach(*team, static_cast<int>(groups.size()), [&](int g) {
         for (const int k : groups[g]) grow(frontier[k]);
       });
     } else {
@@ -90,6 +91,22 @@ class Dissector {
     Node* node;
     Part graph;
   };
+
+  // task(k) for k < parts on the team; a task's exception (memory running out) is rethrown here, since the
+  // team's tasks must not throw.
+  template <class Task>
+  static void runEach(ThreadTeam& team, int parts, const Task& task) {
+    std::vector<std::exception_ptr> failed(parts);
+    team.run(parts, [&](int k) {
+      try {
+        task(k);
+      } catch (...) {
+        failed[k] = std::current_exception();
+      }
+    });
+    for (const std::exception_ptr& e : failed)
+      if (e) std::rethrow_exception(e);
+  }
 
   // The frontier's parts in at most `parts` groups of about equal edges, the largest first to the lightest.
   static std::vector<std::vector<int>> largestFirst(const std::vector<Growing>& frontier, int parts) {
