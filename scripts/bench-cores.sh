@@ -4,8 +4,7 @@
 # at 1, 2, 4, 8 and 16 threads, and in wasm under node (wasm/bench.mjs) at the same counts up to the module's
 # (the module with pthreads has one helper fewer than the cores, at most 7: up to 8 threads). Prints one JSON
 # object {machine, rows: [{mesh, edges, build, threads, analyzeMs, dissectionMs, factorMs, solveMs, updateMs,
-# strokeUpdateSolveMs}]}
-# (medians over the repeats) and writes it to bench-data/bench-cores.json.
+# strokeUpdateSolveMs}]} (medians over the repeats) and writes it to bench-data/bench-cores.json.
 # Each run's result is also kept as it comes, a line of bench-data/bench-cores.jsonl (and on stderr), so that a
 # run stopped early (a lent machine's time running out: the whole set took over 400 s on a 16-core one) still
 # leaves what it measured; a run that fails is named on stderr and the others go on.

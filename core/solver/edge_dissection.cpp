@@ -3,6 +3,7 @@
 #include <metis.h>
 
 #include <algorithm>
+#include <array>
 #include <exception>
 #include <memory>
 #include <numeric>
@@ -197,40 +198,41 @@ class Dissector {
           sideEdges[part[k]].push_back(g.edge[p]);
       }
     if (widen_) widenSeparator(sideEdges, separator);
-    Part sides[2] = {side(g, part, 0), side(g, part, 1)};
+    std::array<Part, 2> halves = sides(g, part);
     if (widen_)
       for (const int32_t e : separator) edgeSide_[e] = -1;
-    if (sides[0].edges() == 0 || sides[1].edges() == 0) return leaf();  // no useful cut
+    if (halves[0].edges() == 0 || halves[1].edges() == 0) return leaf();  // no useful cut
     node.edges = std::move(separator);
     std::vector<Growing> kids;
     for (int s = 0; s < 2; ++s) {
       node.child[s] = std::make_unique<Node>();
-      kids.push_back({node.child[s].get(), std::move(sides[s])});
+      kids.push_back({node.child[s].get(), std::move(halves[s])});
     }
     return kids;
   }
 
-  // The vertices of `g` on side `s` and the edges between them that are not in the separator (marked
-  // kSeparator in edgeSide_ where the separator was widened), numbered in g's order.
-  Part side(const Part& g, const std::vector<idx_t>& part, idx_t s) const {
+  // The two sides of `g`: each side's vertices and the edges between them that are not in the separator
+  // (marked kSeparator in edgeSide_ where the separator was widened), numbered in g's order; one pass over g.
+  std::array<Part, 2> sides(const Part& g, const std::vector<idx_t>& part) const {
     const idx_t n = g.vertices();
-    std::vector<idx_t> local(n, -1);
-    idx_t count = 0;
-    for (idx_t k = 0; k < n; ++k)
-      if (part[k] == s) local[k] = count++;
-    Part c;
-    c.xadj.reserve(count + 1);
-    c.adjncy.reserve(g.adjncy.size() / 2);
-    c.edge.reserve(g.adjncy.size() / 2);
+    std::vector<idx_t> local(n);
+    idx_t count[2] = {0, 0};
+    for (idx_t k = 0; k < n; ++k) local[k] = count[part[k]]++;
+    std::array<Part, 2> c;
+    for (int s = 0; s < 2; ++s) {
+      c[s].xadj.reserve(count[s] + 1);
+      c[s].adjncy.reserve(g.adjncy.size() / 2);
+      c[s].edge.reserve(g.adjncy.size() / 2);
+    }
     for (idx_t k = 0; k < n; ++k) {
-      if (part[k] != s) continue;
+      Part& side = c[part[k]];
       for (idx_t p = g.xadj[k]; p < g.xadj[k + 1]; ++p) {
         const idx_t j = g.adjncy[p];
-        if (part[j] != s || (widen_ && edgeSide_[g.edge[p]] == kSeparator)) continue;
-        c.adjncy.push_back(local[j]);
-        c.edge.push_back(g.edge[p]);
+        if (part[j] != part[k] || (widen_ && edgeSide_[g.edge[p]] == kSeparator)) continue;
+        side.adjncy.push_back(local[j]);
+        side.edge.push_back(g.edge[p]);
       }
-      c.xadj.push_back(static_cast<idx_t>(c.adjncy.size()));
+      side.xadj.push_back(static_cast<idx_t>(side.adjncy.size()));
     }
     return c;
   }
