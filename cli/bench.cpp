@@ -95,6 +95,7 @@ struct Samples {
   int64_t singularityFactorizations = 0;  // numeric factorizations the exact edits made
   std::string singularityMode;            // the mode of the exact edits' field, as the designer reports it
   std::string factorKind;
+  int factorGroups = 1;  // DesignStats::factorGroups
 };
 
 // Prescribed singularities edited as the page's Singularity tool does, each edit timed with its solve and
@@ -222,6 +223,7 @@ void runRepeat(Designer& designer, int r, bool metis, bool scaling, Samples& s) 
   s.nnzPerRowM = designer.stats().nnzPerRowM;
   s.nnzPerRowL = designer.stats().nnzPerRowL;
   s.factorKind = designer.stats().factorKind;
+  s.factorGroups = designer.stats().factorGroups;
   if (!scaling) timeSingularityEdits(designer, r, s);
 }
 
@@ -261,7 +263,8 @@ nlohmann::json summary(const Samples& s, bool metis) {
           {"singularityMode", s.singularityMode},
           {"singularityFreeMoveMs", median(s.singularityFreeMove)},
           {"ordering", metis ? "metis" : "amd"},
-          {"factorKind", s.factorKind}};
+          {"factorKind", s.factorKind},
+          {"factorGroups", s.factorGroups}};
 }
 
 // A source and a stroke solved: the field the factorization on threads is checked by.

@@ -3,8 +3,9 @@
 # (`tvf bench --threads N`: the factorization's subtrees and the backward substitution on N threads, OpenBLAS on N)
 # at 1, 2, 4, 8 and 16 threads, and in wasm under node (wasm/bench.mjs) at the same counts up to the module's
 # (the module with pthreads has one helper fewer than the cores, at most 7: up to 8 threads). Prints one JSON
-# object {machine, rows: [{mesh, edges, build, threads, analyzeMs, dissectionMs, factorMs, solveMs, updateMs,
-# strokeUpdateSolveMs}]} (medians over the repeats) and writes it to bench-data/bench-cores.json.
+# object {machine, rows: [{mesh, edges, build, threads, groups (the factorization's groups of subtrees), analyzeMs,
+# dissectionMs, factorMs, solveMs, updateMs, strokeUpdateSolveMs}]} (medians over the repeats) and writes it to
+# bench-data/bench-cores.json.
 # Each run's result is also kept as it comes, a line of bench-data/bench-cores.jsonl (and on stderr), so that a
 # run stopped early (a lent machine's time running out: the whole set took over 400 s on a 16-core one) still
 # leaves what it measured; a run that fails is named on stderr and the others go on.
@@ -57,7 +58,7 @@ node -e '
 const fs = require("fs"), os = require("os");
 const keys = ["analyzeMs", "dissectionMs", "factorMs", "solveMs", "updateMs", "strokeUpdateSolveMs"];
 const rows = fs.readFileSync(process.argv[1], "utf8").trim().split("\n").map((l) => JSON.parse(l)).map((j) =>
-  ({ mesh: j.meshName, edges: j.edges, build: j.build, threads: j.threads,
+  ({ mesh: j.meshName, edges: j.edges, build: j.build, threads: j.threads, groups: j.factorGroups ?? null,
      ...Object.fromEntries(keys.map((k) => [k, j[k] == null ? null : Math.round(100 * j[k]) / 100])) }));
 const machine = { cpus: os.cpus().length, model: os.cpus()[0]?.model, node: process.version };
 const out = JSON.stringify({ date: new Date().toISOString(), machine, rows }, null, 1);

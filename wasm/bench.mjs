@@ -357,7 +357,7 @@ async function measureWasm(mesh, opts) {
     singularityFactorizations: s.singularityFactorizations, singularityMode: s.singularityMode,
     singularityFreeMoveMs: median(s.singularityFreeMove),
     repeat: opts.repeat, warmUp: opts.warmup === false ? 'none' : String(opts.warmup), settleMs: opts.settle,
-    ordering: metis ? 'metis' : 'amd', factorKind: stats.factorKind,
+    ordering: metis ? 'metis' : 'amd', factorKind: stats.factorKind, factorGroups: stats.factorGroups,
     // The wasm heap after the factorization and edits (it only grows): what this mesh needs in the browser.
     heapBytes: Module.HEAPU8.length,
   });

@@ -450,6 +450,7 @@ json statsJson(const DesignStats& s) {
           {"kernelShift", s.kernelShift},
           {"factorKind", s.factorKind},
           {"factorThreads", s.factorThreads},
+          {"factorGroups", s.factorGroups},
           {"singleThreadWhy", s.singleThreadWhy},
           {"symmetry", s.symmetry},
           {"factorizations", s.factorizations},

@@ -36,6 +36,7 @@ struct DesignStats {
   // Threads the last numeric factorization ran on; when more were asked for and it ran on one, why (a
   // helper thread that failed to run, a tree with no subtrees worth splitting).
   int32_t factorThreads = 1;
+  int32_t factorGroups = 1;  // of them, the groups of subtrees factored side by side before the top
   std::string singleThreadWhy;
   int32_t symmetry = 1;  // N of the field solved last (1: a vector field, the paper's 1-form)
   // Numeric factorizations of the system in use since it was made: a constraint edit adds none (rank

@@ -37,6 +37,7 @@ void reportFactor(const ShiftedFactor& factor, int64_t unknowns, DesignStats& st
   stats.kernelHandling = r.kernelHandling;
   stats.factorKind = r.factorKind;
   stats.factorThreads = r.factorThreads;
+  stats.factorGroups = r.factorGroups;
   stats.singleThreadWhy = r.singleThreadWhy;
   stats.factorizations = r.factorizations;
   stats.precisionRefactors = factor.precisionRefactors();

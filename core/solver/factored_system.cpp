@@ -407,6 +407,7 @@ bool FactoredSystem::factorUpper(const SparseMatrix& upper, const std::vector<do
   s.lower = PermutedTriangle();  // already, before the conversion's peak
   s.timings.factorMs = msSince(start);
   s.timings.factorThreads = threading.parts;
+  s.timings.factorGroups = threading.groups;
   s.timings.singleThreadWhy = threading.singleThreadWhy;
   s.timings.subtreeShare = threading.subtreeShare;
   s.timings.bandedSupernodes = threading.bandedSupernodes;
@@ -629,8 +630,10 @@ std::string FactoredSystem::description() const {
   std::string threading;
   if (s.timings.factorThreads > 1)
     threading = " on " + std::to_string(s.timings.factorThreads) + " threads (" +
-                std::to_string(static_cast<int>(100 * s.timings.subtreeShare + 0.5)) +
-                " % of its work in subtrees)";
+                std::to_string(static_cast<int>(100 * s.timings.subtreeShare + 0.5)) + " % of its work in " +
+                (s.timings.factorGroups < s.timings.factorThreads
+                     ? std::to_string(s.timings.factorGroups) + " groups of subtrees)"
+                     : "subtrees)");
   else if (!s.timings.singleThreadWhy.empty())
     threading = " on one thread (" + s.timings.singleThreadWhy + ")";
   return std::string(s.wasSupernodal ? "supernodal LL'" : "simplicial LDL'") + threading +

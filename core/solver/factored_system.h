@@ -38,6 +38,7 @@ struct FactorTimings {
   // Threads the last numeric factorization ran on (solver/supernodal_cholesky.h), and, when more were
   // asked for and it ran on one, why.
   int factorThreads = 1;
+  int factorGroups = 1;  // the groups of subtrees factored side by side (at most factorThreads)
   std::string singleThreadWhy;
   double subtreeShare = 0;   // of its estimated work, the share factored side by side
   int bandedSupernodes = 0;  // supernodes whose work was cut into bands (solver/supernodal_cholesky.h)

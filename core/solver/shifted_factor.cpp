@@ -154,6 +154,7 @@ void ShiftedFactor::factor(const SparseMatrix& base, double scale, const Diagona
   report_.convertMs = t.convertMs;
   report_.dissectionMs = t.dissectionMs;
   report_.factorThreads = t.factorThreads;
+  report_.factorGroups = t.factorGroups;
   report_.singleThreadWhy = t.singleThreadWhy;
   report_.factorNonzeros = system_.factorNonzeros();
   ++report_.factorizations;

@@ -39,6 +39,7 @@ struct FactorReport {
   std::string factorKind;      // e.g. "supernodal LL' (AMD)"
   int64_t factorizations = 0;  // numeric factorizations since the factor was made (edits must add none)
   int factorThreads = 1;       // FactorTimings::factorThreads
+  int factorGroups = 1;        // FactorTimings::factorGroups
   std::string singleThreadWhy;
 };
 

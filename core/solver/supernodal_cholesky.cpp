@@ -396,9 +396,12 @@ bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_c
                                      " parts ran)",
                                  nullptr);
   for (Workspace& w : spaces) f.linkPending(w);
-  for (int g = 0; g < groups; ++g) f.prepare(spaces[g], L.maxcsize, g == 0);
-  f.factorTop(partition.top, spaces, groups, mine[groups]);
-  report.parts = groups;
+  // The top's bands on every thread asked for, also where the cut made fewer groups than threads.
+  spaces.resize(parts);  // groups <= parts
+  for (int g = 0; g < static_cast<int>(spaces.size()); ++g) f.prepare(spaces[g], L.maxcsize, g == 0);
+  f.factorTop(partition.top, spaces, static_cast<int>(spaces.size()), mine[groups]);
+  report.parts = static_cast<int>(spaces.size());
+  report.groups = groups;
   report.bandedSupernodes = f.bandedSupernodes();
   report.subtreeShare =
       1.0 - static_cast<double>(partition.topWork) / static_cast<double>(partition.totalWork);

@@ -21,9 +21,10 @@
 namespace tvf {
 
 struct SupernodalReport {
-  int parts = 1;                // threads the factorization ran on
-  double subtreeShare = 0;      // of the estimated work, the share in the subtrees factored side by side
-  int bandedSupernodes = 0;     // supernodes whose work went in bands (dense work above 4e6 multiply-adds)
+  int parts = 1;             // threads the factorization ran on
+  int groups = 1;            // groups of subtrees they factored side by side, before the top on all of them
+  double subtreeShare = 0;   // of the estimated work, the share in the subtrees factored side by side
+  int bandedSupernodes = 0;  // supernodes whose work went in bands (dense work above 4e6 multiply-adds)
   std::string singleThreadWhy;  // when more threads were asked for and one ran: why
 };
 
