@@ -4,12 +4,17 @@
 // Runs the native `tvf export --stripes` (the page's exportGlb() bakes with the same core code) on each model with
 // a design of the asked symmetry (the smoothest field, or aligned with the principal curvatures), and prints JSON.
 //   node scripts/stripe-quality.mjs [--symmetry 2] [--curvature 0] [--size 2048] [--per-diagonal 40 | --frequency F]
-//     MESH...
+//     [--truth] MESH...
+// Each model's figures come twice: by stripeAlignment (the window's tensor against the middle face's field) and by
+// stripeAlignmentAlongField (each texel against its own face's field). --truth adds both measures of a texture
+// of known direction: the same atlas repainted with straight 3D stripes and their exact field.
 // Writes into .cache/stripe-quality/ (ignored).
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { basename, join } from 'node:path';
-import { readGlb, seamJumpRatio, stripeAlignment } from '../tests/e2e/surface-texture-metrics.mjs';
+import {
+  paintHeightStripes, readGlb, seamJumpRatio, stripeAlignment, stripeAlignmentAlongField,
+} from '../tests/e2e/surface-texture-metrics.mjs';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => {
@@ -19,6 +24,7 @@ const option = (name, fallback) => {
   return Number(value);
 };
 const symmetry = option('symmetry', 2), curvature = option('curvature', 0), size = option('size', 2048);
+const truth = args.includes('--truth') && args.splice(args.indexOf('--truth'), 1).length > 0;
 const perDiagonal = option('per-diagonal', 40), fixedFrequency = option('frequency', 0), profile = symmetry === 4 ? 'grid' : 'stripes';
 const out = '.cache/stripe-quality';
 mkdirSync(out, { recursive: true });
@@ -70,28 +76,42 @@ for (const meshPath of args) {
   const faceVectors = Float64Array.from((field.faceDirections ?? field.faceVectors).flat());
   const glb = readGlb(readFileSync(glbPath));
   const period = 1 / frequency;
-  const align = stripeAlignment(glb, faceVectors, period);
-  // Area-weighted shares within 1 and 5 degrees, and the same away (> 2 periods) from the field's singularities.
+  // Area-weighted means and shares within 1 and 5 degrees, and the same away (> 2 periods) from the field's
+  // singularities.
   const singular = (field.singularities ?? []).map((s) => mesh.positions.slice(3 * s.vertex, 3 * s.vertex + 3));
-  let area = 0, w1 = 0, w5 = 0, sum = 0, areaFar = 0, sumFar = 0, w5Far = 0;
-  for (let f = 0; f < mesh.triangles.length / 3; f++) {
-    const e = align.errors[f];
-    if (!Number.isFinite(e)) continue;
-    const P = [0, 1, 2].map((k) => mesh.positions.slice(3 * mesh.triangles[3 * f + k], 3 * mesh.triangles[3 * f + k] + 3));
-    const u = [0, 1, 2].map((c) => P[1][c] - P[0][c]), v = [0, 1, 2].map((c) => P[2][c] - P[0][c]);
-    const a = 0.5 * Math.hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
-    const c = [0, 1, 2].map((k) => (P[0][k] + P[1][k] + P[2][k]) / 3);
-    const near = singular.some((s) => Math.hypot(s[0] - c[0], s[1] - c[1], s[2] - c[2]) < 2 * period);
-    area += a, sum += a * e, w1 += e <= 1 ? a : 0, w5 += e <= 5 ? a : 0;
-    if (!near) (areaFar += a), (sumFar += a * e), (w5Far += e <= 5 ? a : 0);
-  }
+  const summary = (errors) => {
+    let area = 0, w1 = 0, w5 = 0, sum = 0, areaFar = 0, sumFar = 0, w1Far = 0, w5Far = 0;
+    for (let f = 0; f < mesh.triangles.length / 3; f++) {
+      const e = errors[f];
+      if (!Number.isFinite(e)) continue;
+      const P = [0, 1, 2].map((k) => mesh.positions.slice(3 * mesh.triangles[3 * f + k], 3 * mesh.triangles[3 * f + k] + 3));
+      const u = [0, 1, 2].map((c) => P[1][c] - P[0][c]), v = [0, 1, 2].map((c) => P[2][c] - P[0][c]);
+      const a = 0.5 * Math.hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
+      const c = [0, 1, 2].map((k) => (P[0][k] + P[1][k] + P[2][k]) / 3);
+      const near = singular.some((s) => Math.hypot(s[0] - c[0], s[1] - c[1], s[2] - c[2]) < 2 * period);
+      area += a, sum += a * e, w1 += e <= 1 ? a : 0, w5 += e <= 5 ? a : 0;
+      if (!near) (areaFar += a), (sumFar += a * e), (w1Far += e <= 1 ? a : 0), (w5Far += e <= 5 ? a : 0);
+    }
+    return {
+      meanDegrees: sum / area, within1: w1 / area, within5: w5 / area, meanDegreesAwayFromSingularities: sumFar / areaFar,
+      within1AwayFromSingularities: w1Far / areaFar, within5AwayFromSingularities: w5Far / areaFar,
+    };
+  };
   const seams = seamJumpRatio(glb, mesh.triangles);
   const r = {
     model: name, faces: mesh.triangles.length / 3, frequency, size, profile, symmetry, exportMs: Math.round(exportMs),
-    singularities: singular.length, meanDegrees: sum / area, within1: w1 / area, within5: w5 / area,
-    meanDegreesAwayFromSingularities: sumFar / areaFar, within5AwayFromSingularities: w5Far / areaFar,
+    singularities: singular.length, ...summary(stripeAlignment(glb, faceVectors, period).errors),
+    alongField: summary(stripeAlignmentAlongField(glb, faceVectors, period, symmetry).errors),
     seamRatio: seams.ratio, seamEdges: seams.seamEdges,
   };
+  // The measures' own error: the texture repainted with straight 3D stripes and their exact field.
+  if (truth) {
+    const painted = paintHeightStripes(glb, [1, 2, 3].map((x) => x / Math.sqrt(14)), frequency);
+    r.truth = {
+      stripeAlignment: summary(stripeAlignment(painted.glb, painted.field, period).errors),
+      alongField: summary(stripeAlignmentAlongField(painted.glb, painted.field, period, 2).errors),
+    };
+  }
   results.push(r);
   console.error(JSON.stringify(r));
 }

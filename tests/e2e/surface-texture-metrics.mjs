@@ -250,3 +250,103 @@ export function pixelLength(glb) {
   }
   return Math.sqrt(a3 / a2);
 }
+
+// Stripe direction against the field, each texel's gradient read in its own face's frame of the field (the
+// field's direction X and n x X there), so that the field's turning and the surface's bending inside the window
+// are not read as error, where stripeAlignment compares a window's 3D tensor with the middle face's field alone
+// (on a thin tube, stripes painted exactly along their own field read 7.8-8.8° so). Each texel adds |g|^2 (cos
+// m t, sin m t), t its gradient's angle from X; a face's sum is taken over the faces within 2 periods (Gaussian,
+// sigma = period, as stripeAlignment) and its angle, atan2 / m, is the gradient's mean angle from the field.
+// Stripes along the field have their gradient across it: m = 2, error = 90° - |angle|. A grid (symmetry 4, the
+// face's direction any one of the four): m = 4, both families' gradients at 0 mod 90°, error = |angle|.
+// fieldPerFace: 3 per face. Returns the area-weighted mean error (degrees), the shares within 1, 5 and 10°, and
+// the error per face (NaN where unmeasured).
+export function stripeAlignmentAlongField(glb, fieldPerFace, period, symmetry = 2) {
+  const m = symmetry === 4 ? 4 : 2;
+  const { width: W, height: H } = glb.image;
+  const { L, alpha } = luminance(glb.image);
+  const F = faces(glb);
+  const moments = new Float64Array(2 * F.length);
+  F.forEach((face, f) => {
+    const v = fieldPerFace.slice(3 * f, 3 * f + 3);
+    const inPlane = sub(v, face.n.map((x) => x * dot(v, face.n)));
+    const l = norm(inPlane);
+    if (!(face.area > 0) || !(l > 1e-12)) return;
+    const X = inPlane.map((x) => x / l), Y = cross(face.n, X);
+    facePixels(face, W, H, (x, y, A) => {
+      if (x < 1 || y < 1 || x >= W - 1 || y >= H - 1) return;
+      const i = y * W + x;
+      if (!alpha[i - 1] || !alpha[i + 1] || !alpha[i - W] || !alpha[i + W]) return;
+      const gx = (L[i + 1] - L[i - 1]) / 2, gy = (L[i + W] - L[i - W]) / 2;
+      const a = dot(A[0], A[0]), b = dot(A[0], A[1]), c = dot(A[1], A[1]), d = a * c - b * b;
+      if (!(d > 0)) return;
+      const s = (c * gx - b * gy) / d, t = (-b * gx + a * gy) / d;
+      const g = [0, 1, 2].map((k) => A[0][k] * s + A[1][k] * t);
+      const gX = dot(g, X), gY = dot(g, Y), e = gX * gX + gY * gY;
+      if (!(e > 0)) return;
+      const angle = m * Math.atan2(gY, gX);
+      moments[2 * f] += e * Math.cos(angle);
+      moments[2 * f + 1] += e * Math.sin(angle);
+    });
+  });
+  const cell = 2 * period;
+  const grid = new Map();
+  const key = (p) => p.map((x) => Math.floor(x / cell)).join(',');
+  F.forEach((face, f) => {
+    const k = key(face.centroid);
+    if (!grid.has(k)) grid.set(k, []);
+    grid.get(k).push(f);
+  });
+  const errors = new Float64Array(F.length).fill(NaN);
+  let area = 0, sum = 0, w1 = 0, w5 = 0, w10 = 0;
+  F.forEach((face, f) => {
+    if (!(face.area > 0) || !(norm(fieldPerFace.slice(3 * f, 3 * f + 3)) > 1e-9)) return;
+    let C = 0, S = 0;
+    const c = face.centroid.map((x) => Math.floor(x / cell));
+    for (let dx = -1; dx <= 1; dx++)
+      for (let dy = -1; dy <= 1; dy++)
+        for (let dz = -1; dz <= 1; dz++)
+          for (const g of grid.get(`${c[0] + dx},${c[1] + dy},${c[2] + dz}`) ?? []) {
+            const d = norm(sub(F[g].centroid, face.centroid));
+            if (d > cell) continue;
+            const w = Math.exp(-(d * d) / (2 * period * period));
+            C += w * moments[2 * g];
+            S += w * moments[2 * g + 1];
+          }
+    if (!(C * C + S * S > 0)) return;
+    const angle = (Math.atan2(S, C) / m) * (180 / Math.PI);
+    const deg = m === 2 ? 90 - Math.abs(angle) : Math.abs(angle);
+    errors[f] = deg;
+    area += face.area, sum += face.area * deg;
+    w1 += deg <= 1 ? face.area : 0, w5 += deg <= 5 ? face.area : 0, w10 += deg <= 10 ? face.area : 0;
+  });
+  return { meanDegrees: sum / area, within1: w1 / area, within5: w5 / area, within10: w10 / area, errors };
+}
+
+// A truth for the measures above: the GLB's texture repainted, inside its faces, with the level sets of the
+// height along `direction` (unit; the planes d·P = k / frequency cutting the surface), grey 1 + 127 (1 + cos 2π
+// f d·P), the texels outside the faces untextured, and the field those stripes follow exactly, per face:
+// n x (d - (d·n) n). A face across which the
+// height barely changes (|d - (d·n) n| < 0.3) gets no field, and is not measured. Returns {glb, field}.
+export function paintHeightStripes(glb, direction, frequency) {
+  const { width: W, height: H } = glb.image;
+  // Texels outside every face (the gutters, which the bake fills with its own pattern) left untextured, so that
+  // no gradient mixes the two.
+  const pixels = new Uint8Array(glb.image.pixels.length);
+  const F = faces(glb);
+  const field = new Float64Array(3 * F.length);
+  F.forEach((face, f) => {
+    const along = sub(direction, face.n.map((x) => x * dot(direction, face.n)));
+    if (norm(along) >= 0.3) field.set(cross(face.n, along), 3 * f);
+    const [q0] = face.Q;
+    facePixels(face, W, H, (x, y, A) => {
+      const dx = x + 0.5 - q0[0], dy = y + 0.5 - q0[1];
+      const P = [0, 1, 2].map((k) => face.P[0][k] + A[0][k] * dx + A[1][k] * dy);
+      const grey = 1 + Math.round(127 * (1 + Math.cos(2 * Math.PI * frequency * dot(direction, P))));
+      const i = 4 * (y * W + x);
+      pixels[i] = pixels[i + 1] = pixels[i + 2] = grey;
+      pixels[i + 3] = 255;
+    });
+  });
+  return { glb: { ...glb, image: { ...glb.image, pixels } }, field };
+}

@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The instrument that reads a baked texture's stripe direction (tests/e2e/surface-texture-metrics.mjs), checked
+// against a texture of known direction: a cylinder as thin as two of its stripes' periods, unrolled into one
+// chart, painted with the level sets of a height along a slanted direction (paintHeightStripes), whose exact
+// field is known per face. Read in each face's own frame of the field (stripeAlignmentAlongField), the stripes
+// lie along it; the same field turned by 10° reads 10°; a window's tensor against its middle face
+// (stripeAlignment) reads the bending of the surface as error. Run: node --test tests/node/stripe-measure.test.mjs
+import assert from 'node:assert/strict';
+import test from 'node:test';
+import {
+  paintHeightStripes, stripeAlignment, stripeAlignmentAlongField,
+} from '../e2e/surface-texture-metrics.mjs';
+
+// A GLB-like model (unwelded faces, one chart: u along the circumference, v along the axis) on a blank image.
+function unrolledCylinder(radius, length, around, along, size) {
+  const positions = [], uvs = [];
+  const point = (i, j) => {
+    const a = (2 * Math.PI * i) / around;
+    return [radius * Math.cos(a), radius * Math.sin(a), (length * j) / along];
+  };
+  const uv = (i, j) => [0.05 + (0.9 * i) / around, 0.05 + (0.9 * j) / along];
+  for (let i = 0; i < around; i++)
+    for (let j = 0; j < along; j++)
+      for (const [di, dj] of [[0, 0], [1, 0], [1, 1], [0, 0], [1, 1], [0, 1]]) {
+        positions.push(...point(i + di, j + dj));
+        uvs.push(...uv(i + di, j + dj));
+      }
+  const indices = Uint32Array.from({ length: positions.length / 3 }, (_, k) => k);
+  const image = { width: size, height: size, pixels: new Uint8Array(4 * size * size) };
+  return { positions: Float32Array.from(positions), uvs: Float32Array.from(uvs), indices, image };
+}
+
+// Each face's vector turned by `degrees` about the face's normal.
+function turned(field, glb, degrees) {
+  const out = new Float64Array(field.length);
+  const c = Math.cos((degrees * Math.PI) / 180), s = Math.sin((degrees * Math.PI) / 180);
+  for (let f = 0; f < field.length / 3; f++) {
+    const P = [0, 1, 2].map((k) => Array.from(glb.positions.subarray(9 * f + 3 * k, 9 * f + 3 * k + 3)));
+    const e1 = P[1].map((x, k) => x - P[0][k]), e2 = P[2].map((x, k) => x - P[0][k]);
+    const n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+    const l = Math.hypot(...n);
+    const u = n.map((x) => x / l), v = Array.from(field.subarray(3 * f, 3 * f + 3));
+    const w = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    for (let k = 0; k < 3; k++) out[3 * f + k] = c * v[k] + s * w[k];
+  }
+  return out;
+}
+
+const mean = (errors) => {
+  let sum = 0, n = 0;
+  for (const e of errors) if (Number.isFinite(e)) (sum += e), n++;
+  return { mean: sum / n, faces: n };
+};
+
+test('straight stripes on a thin cylinder read along their own field, and a turned field reads its turn', () => {
+  const frequency = 8, period = 1 / frequency;
+  const model = unrolledCylinder(0.15, 1, 64, 32, 512);
+  const { glb, field } = paintHeightStripes(model, [1, 2, 3].map((x) => x / Math.sqrt(14)), frequency);
+  const exact = mean(stripeAlignmentAlongField(glb, field, period, 2).errors);
+  assert.ok(exact.faces > 2000, `${exact.faces} faces measured`);
+  assert.ok(exact.mean < 0.3, `stripes along their exact field read ${exact.mean.toFixed(3)}°`);
+  const off = mean(stripeAlignmentAlongField(glb, turned(field, glb, 10), period, 2).errors);
+  assert.ok(Math.abs(off.mean - 10) < 0.5, `the field turned by 10° reads ${off.mean.toFixed(3)}°`);
+  const windowed = mean(stripeAlignment(glb, field, period).errors);
+  assert.ok(windowed.mean > 2 * exact.mean + 1, `the window's tensor reads ${windowed.mean.toFixed(3)}°`);
+});
