@@ -4,7 +4,8 @@
 // chart, painted with the level sets of a height along a slanted direction (paintHeightStripes), whose exact
 // field is known per face. Read in each face's own frame of the field (stripeAlignmentAlongField), the stripes
 // lie along it; the same field turned by 10° reads 10°; a window's tensor against its middle face
-// (stripeAlignment) reads the bending of the surface as error. Run: node --test tests/node/stripe-measure.test.mjs
+// (stripeAlignment) reads the bending of the surface as error. A grid of lines along and round the cylinder reads
+// along its cross field the same way. Run: node --test tests/node/stripe-measure.test.mjs
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import {
@@ -63,4 +64,45 @@ test('straight stripes on a thin cylinder read along their own field, and a turn
   assert.ok(Math.abs(off.mean - 10) < 0.5, `the field turned by 10° reads ${off.mean.toFixed(3)}°`);
   const windowed = mean(stripeAlignment(glb, field, period).errors);
   assert.ok(windowed.mean > 2 * exact.mean + 1, `the window's tensor reads ${windowed.mean.toFixed(3)}°`);
+});
+
+// A grid on the same cylinder: lines along its axis and round it (eight round it, eight a unit along it), the
+// field round it; every texel's grey and its face's field painted here.
+function paintCylinderGrid(model) {
+  const { width: W, height: H } = model.image;
+  const pixels = new Uint8Array(4 * W * H);
+  const field = new Float64Array(model.positions.length / 3);
+  for (let f = 0; f < model.indices.length / 3; f++) {
+    const corner = (k) => Array.from(model.positions.subarray(9 * f + 3 * k, 9 * f + 3 * k + 3));
+    const uv = (k) => [model.uvs[6 * f + 2 * k] * W, model.uvs[6 * f + 2 * k + 1] * H];
+    const P = [0, 1, 2].map(corner), Q = [0, 1, 2].map(uv);
+    const c = [0, 1, 2].map((k) => (P[0][k] + P[1][k] + P[2][k]) / 3), r = Math.hypot(c[0], c[1]);
+    field.set([-c[1] / r, c[0] / r, 0], 3 * f);
+    const det = (Q[1][0] - Q[0][0]) * (Q[2][1] - Q[0][1]) - (Q[2][0] - Q[0][0]) * (Q[1][1] - Q[0][1]);
+    for (let y = Math.floor(Math.min(Q[0][1], Q[1][1], Q[2][1])); y <= Math.max(Q[0][1], Q[1][1], Q[2][1]); y++)
+      for (let x = Math.floor(Math.min(Q[0][0], Q[1][0], Q[2][0])); x <= Math.max(Q[0][0], Q[1][0], Q[2][0]); x++) {
+        const px = x + 0.5 - Q[0][0], py = y + 0.5 - Q[0][1];
+        const b1 = (px * (Q[2][1] - Q[0][1]) - py * (Q[2][0] - Q[0][0])) / det;
+        const b2 = (py * (Q[1][0] - Q[0][0]) - px * (Q[1][1] - Q[0][1])) / det;
+        if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
+        const p = [0, 1, 2].map((k) => P[0][k] + b1 * (P[1][k] - P[0][k]) + b2 * (P[2][k] - P[0][k]));
+        const line = (phase) => Math.exp(-8 * (1 - Math.cos(2 * Math.PI * phase)));
+        const around = (8 * Math.atan2(p[1], p[0])) / (2 * Math.PI);
+        const grey = 1 + Math.round(254 * (1 - Math.max(line(8 * p[2]), line(around))));
+        const i = 4 * (y * W + x);
+        pixels[i] = pixels[i + 1] = pixels[i + 2] = grey;
+        pixels[i + 3] = 255;
+      }
+  }
+  return { glb: { ...model, image: { ...model.image, pixels } }, field };
+}
+
+test("a grid's lines read along its cross field's directions, and a turned field reads its turn", () => {
+  const period = 1 / 8;
+  const { glb, field } = paintCylinderGrid(unrolledCylinder(0.15, 1, 64, 32, 512));
+  const exact = mean(stripeAlignmentAlongField(glb, field, period, 4).errors);
+  assert.ok(exact.faces > 2000, `${exact.faces} faces measured`);
+  assert.ok(exact.mean < 0.5, `grid lines along their exact field read ${exact.mean.toFixed(3)}°`);
+  const off = mean(stripeAlignmentAlongField(glb, turned(field, glb, 10), period, 4).errors);
+  assert.ok(Math.abs(off.mean - 10) < 0.7, `the field turned by 10° reads ${off.mean.toFixed(3)}°`);
 });
