@@ -117,32 +117,25 @@ function facePixels(face, W, H, visit) {
     }
 }
 
-// Stripe direction vs the field per face (texture-quality.md): every pixel's luminance gradient (central
-// differences, only where all 4 neighbours are textured) carried to the surface, g = A (A^T A)^-1 g_px,
-// accumulated as g g^T per face, summed over faces within 2 periods (Gaussian, sigma = period, by centroid
-// distance: across chart seams), the dominant direction projected into the face's plane; stripe direction =
-// n x that. fieldPerFace: 3 per face. Returns area-weighted mean error (degrees, mod 180) and share within 10°.
-export function stripeAlignment(glb, fieldPerFace, period) {
-  const { width: W, height: H } = glb.image;
-  const { L, alpha } = luminance(glb.image);
-  const F = faces(glb);
-  const tensors = new Float64Array(6 * F.length);
-  F.forEach((face, f) => {
-    facePixels(face, W, H, (x, y, A) => {
-      if (x < 1 || y < 1 || x >= W - 1 || y >= H - 1) return;
-      const i = y * W + x;
-      if (!alpha[i - 1] || !alpha[i + 1] || !alpha[i - W] || !alpha[i + W]) return;
-      const gx = (L[i + 1] - L[i - 1]) / 2, gy = (L[i + W] - L[i - W]) / 2;
-      // (A^T A)^-1 g_px, then A times it.
-      const a = dot(A[0], A[0]), b = dot(A[0], A[1]), c = dot(A[1], A[1]), d = a * c - b * b;
-      if (!(d > 0)) return;
-      const s = (c * gx - b * gy) / d, t = (-b * gx + a * gy) / d;
-      const g = [0, 1, 2].map((k) => A[0][k] * s + A[1][k] * t);
-      const T = tensors.subarray(6 * f, 6 * f + 6);
-      T[0] += g[0] * g[0], T[1] += g[0] * g[1], T[2] += g[0] * g[2], T[3] += g[1] * g[1], T[4] += g[1] * g[2], T[5] += g[2] * g[2];
-    });
+// Every textured pixel of face f (central differences, only where all 4 neighbours are textured) with its
+// luminance gradient carried onto the surface: g = A (A^T A)^-1 g_px.
+function faceGradients(face, image, { L, alpha }, visit) {
+  const { width: W, height: H } = image;
+  facePixels(face, W, H, (x, y, A) => {
+    if (x < 1 || y < 1 || x >= W - 1 || y >= H - 1) return;
+    const i = y * W + x;
+    if (!alpha[i - 1] || !alpha[i + 1] || !alpha[i - W] || !alpha[i + W]) return;
+    const gx = (L[i + 1] - L[i - 1]) / 2, gy = (L[i + W] - L[i - W]) / 2;
+    const a = dot(A[0], A[0]), b = dot(A[0], A[1]), c = dot(A[1], A[1]), d = a * c - b * b;
+    if (!(d > 0)) return;
+    const s = (c * gx - b * gy) / d, t = (-b * gx + a * gy) / d;
+    visit([0, 1, 2].map((k) => A[0][k] * s + A[1][k] * t));
   });
-  // Spatial hash of centroids at cell size 2 periods.
+}
+
+// The faces within 2 periods of each face (by centroid distance: across chart seams), with their Gaussian weight
+// (sigma = period): neighbours(f, visit(g, w)).
+function windowOf(F, period) {
   const cell = 2 * period;
   const grid = new Map();
   const key = (p) => p.map((x) => Math.floor(x / cell)).join(',');
@@ -151,22 +144,43 @@ export function stripeAlignment(glb, fieldPerFace, period) {
     if (!grid.has(k)) grid.set(k, []);
     grid.get(k).push(f);
   });
+  return (f, visit) => {
+    const c = F[f].centroid.map((x) => Math.floor(x / cell));
+    for (let dx = -1; dx <= 1; dx++)
+      for (let dy = -1; dy <= 1; dy++)
+        for (let dz = -1; dz <= 1; dz++)
+          for (const g of grid.get(`${c[0] + dx},${c[1] + dy},${c[2] + dz}`) ?? []) {
+            const d = norm(sub(F[g].centroid, F[f].centroid));
+            if (d <= cell) visit(g, Math.exp(-(d * d) / (2 * period * period)));
+          }
+  };
+}
+
+// Stripe direction vs the field per face (texture-quality.md): every pixel's luminance gradient (central
+// differences, only where all 4 neighbours are textured) carried to the surface, g = A (A^T A)^-1 g_px,
+// accumulated as g g^T per face, summed over faces within 2 periods (Gaussian, sigma = period, by centroid
+// distance: across chart seams), the dominant direction projected into the face's plane; stripe direction =
+// n x that. fieldPerFace: 3 per face. Returns area-weighted mean error (degrees, mod 180) and share within 10°.
+export function stripeAlignment(glb, fieldPerFace, period) {
+  const F = faces(glb);
+  const tensors = new Float64Array(6 * F.length);
+  const lum = luminance(glb.image);
+  F.forEach((face, f) => {
+    faceGradients(face, glb.image, lum, (g) => {
+      const T = tensors.subarray(6 * f, 6 * f + 6);
+      T[0] += g[0] * g[0], T[1] += g[0] * g[1], T[2] += g[0] * g[2], T[3] += g[1] * g[1], T[4] += g[1] * g[2], T[5] += g[2] * g[2];
+    });
+  });
+  const neighbours = windowOf(F, period);
   let sumW = 0, sumErr = 0, within = 0, measured = 0;
   const errors = new Float64Array(F.length).fill(NaN);
   F.forEach((face, f) => {
     const v = fieldPerFace.slice(3 * f, 3 * f + 3);
     if (!(face.area > 0) || !(norm(v) > 1e-9)) return;
     const S = new Float64Array(6);
-    const c = face.centroid.map((x) => Math.floor(x / cell));
-    for (let dx = -1; dx <= 1; dx++)
-      for (let dy = -1; dy <= 1; dy++)
-        for (let dz = -1; dz <= 1; dz++)
-          for (const g of grid.get(`${c[0] + dx},${c[1] + dy},${c[2] + dz}`) ?? []) {
-            const d = norm(sub(F[g].centroid, face.centroid));
-            if (d > cell) continue;
-            const w = Math.exp(-(d * d) / (2 * period * period));
-            for (let k = 0; k < 6; k++) S[k] += w * tensors[6 * g + k];
-          }
+    neighbours(f, (g, w) => {
+      for (let k = 0; k < 6; k++) S[k] += w * tensors[6 * g + k];
+    });
     // In-plane basis and the 2x2 tensor.
     const n = face.n;
     const b1 = (() => {
@@ -263,9 +277,8 @@ export function pixelLength(glb) {
 // the error per face (NaN where unmeasured).
 export function stripeAlignmentAlongField(glb, fieldPerFace, period, symmetry = 2) {
   const m = symmetry === 4 ? 4 : 2;
-  const { width: W, height: H } = glb.image;
-  const { L, alpha } = luminance(glb.image);
   const F = faces(glb);
+  const lum = luminance(glb.image);
   const moments = new Float64Array(2 * F.length);
   F.forEach((face, f) => {
     const v = fieldPerFace.slice(3 * f, 3 * f + 3);
@@ -273,46 +286,23 @@ export function stripeAlignmentAlongField(glb, fieldPerFace, period, symmetry = 
     const l = norm(inPlane);
     if (!(face.area > 0) || !(l > 1e-12)) return;
     const X = inPlane.map((x) => x / l), Y = cross(face.n, X);
-    facePixels(face, W, H, (x, y, A) => {
-      if (x < 1 || y < 1 || x >= W - 1 || y >= H - 1) return;
-      const i = y * W + x;
-      if (!alpha[i - 1] || !alpha[i + 1] || !alpha[i - W] || !alpha[i + W]) return;
-      const gx = (L[i + 1] - L[i - 1]) / 2, gy = (L[i + W] - L[i - W]) / 2;
-      const a = dot(A[0], A[0]), b = dot(A[0], A[1]), c = dot(A[1], A[1]), d = a * c - b * b;
-      if (!(d > 0)) return;
-      const s = (c * gx - b * gy) / d, t = (-b * gx + a * gy) / d;
-      const g = [0, 1, 2].map((k) => A[0][k] * s + A[1][k] * t);
+    faceGradients(face, glb.image, lum, (g) => {
       const gX = dot(g, X), gY = dot(g, Y), e = gX * gX + gY * gY;
-      if (!(e > 0)) return;
       const angle = m * Math.atan2(gY, gX);
       moments[2 * f] += e * Math.cos(angle);
       moments[2 * f + 1] += e * Math.sin(angle);
     });
   });
-  const cell = 2 * period;
-  const grid = new Map();
-  const key = (p) => p.map((x) => Math.floor(x / cell)).join(',');
-  F.forEach((face, f) => {
-    const k = key(face.centroid);
-    if (!grid.has(k)) grid.set(k, []);
-    grid.get(k).push(f);
-  });
+  const neighbours = windowOf(F, period);
   const errors = new Float64Array(F.length).fill(NaN);
   let area = 0, sum = 0, w1 = 0, w5 = 0, w10 = 0;
   F.forEach((face, f) => {
     if (!(face.area > 0) || !(norm(fieldPerFace.slice(3 * f, 3 * f + 3)) > 1e-9)) return;
     let C = 0, S = 0;
-    const c = face.centroid.map((x) => Math.floor(x / cell));
-    for (let dx = -1; dx <= 1; dx++)
-      for (let dy = -1; dy <= 1; dy++)
-        for (let dz = -1; dz <= 1; dz++)
-          for (const g of grid.get(`${c[0] + dx},${c[1] + dy},${c[2] + dz}`) ?? []) {
-            const d = norm(sub(F[g].centroid, face.centroid));
-            if (d > cell) continue;
-            const w = Math.exp(-(d * d) / (2 * period * period));
-            C += w * moments[2 * g];
-            S += w * moments[2 * g + 1];
-          }
+    neighbours(f, (g, w) => {
+      C += w * moments[2 * g];
+      S += w * moments[2 * g + 1];
+    });
     if (!(C * C + S * S > 0)) return;
     const angle = (Math.atan2(S, C) / m) * (180 / Math.PI);
     const deg = m === 2 ? 90 - Math.abs(angle) : Math.abs(angle);
