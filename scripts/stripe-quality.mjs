@@ -24,7 +24,8 @@ const option = (name, fallback) => {
   return Number(value);
 };
 const symmetry = option('symmetry', 2), curvature = option('curvature', 0), size = option('size', 2048);
-const truth = args.includes('--truth') && args.splice(args.indexOf('--truth'), 1).length > 0;
+const truth = args.includes('--truth');
+if (truth) args.splice(args.indexOf('--truth'), 1);
 const perDiagonal = option('per-diagonal', 40), fixedFrequency = option('frequency', 0), profile = symmetry === 4 ? 'grid' : 'stripes';
 const out = '.cache/stripe-quality';
 mkdirSync(out, { recursive: true });

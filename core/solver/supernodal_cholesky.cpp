@@ -398,9 +398,9 @@ bool factorSupernodal(cholmod_sparse& A, cholmod_factor& L, int parts, cholmod_c
   for (Workspace& w : spaces) f.linkPending(w);
   // The top's bands on every thread asked for, also where the cut made fewer groups than threads.
   spaces.resize(parts);  // groups <= parts
-  for (int g = 0; g < static_cast<int>(spaces.size()); ++g) f.prepare(spaces[g], L.maxcsize, g == 0);
-  f.factorTop(partition.top, spaces, static_cast<int>(spaces.size()), mine[groups]);
-  report.parts = static_cast<int>(spaces.size());
+  for (int g = 0; g < parts; ++g) f.prepare(spaces[g], L.maxcsize, g == 0);
+  f.factorTop(partition.top, spaces, parts, mine[groups]);
+  report.parts = parts;
   report.groups = groups;
   report.bandedSupernodes = f.bandedSupernodes();
   report.subtreeShare =
