@@ -6,14 +6,15 @@
 //   node scripts/stripe-quality.mjs [--symmetry 2] [--curvature 0] [--size 2048] [--per-diagonal 40 | --frequency F]
 //     [--truth] MESH...
 // Each model's figures come twice: by stripeAlignment (the window's tensor against the middle face's field) and by
-// stripeAlignmentAlongField (each texel against its own face's field). --truth adds both measures of a texture
-// of known direction: the same atlas repainted with straight 3D stripes and their exact field.
+// stripeAlignmentAlongField (each texel against its own face's field); a grid (--symmetry 4) also each family
+// apart (gridFamiliesAlongField: the lines along each face's field direction X, and along n x X). --truth adds
+// both measures of a texture of known direction: the same atlas repainted with straight 3D stripes and their exact field.
 // Writes into .cache/stripe-quality/ (ignored).
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { basename, join } from 'node:path';
 import {
-  paintHeightStripes, readGlb, seamJumpRatio, stripeAlignment, stripeAlignmentAlongField,
+  gridFamiliesAlongField, paintHeightStripes, readGlb, seamJumpRatio, stripeAlignment, stripeAlignmentAlongField,
 } from '../tests/e2e/surface-texture-metrics.mjs';
 
 const args = process.argv.slice(2);
@@ -105,6 +106,13 @@ for (const meshPath of args) {
     alongField: summary(stripeAlignmentAlongField(glb, faceVectors, period, symmetry).errors),
     seamRatio: seams.ratio, seamEdges: seams.seamEdges,
   };
+  // A grid's families apart, each against its own direction of the cross field; which family is which changes
+  // round a +1/4 singularity, so per face the worse of its two and the better.
+  if (symmetry === 4) {
+    const [a, b] = gridFamiliesAlongField(glb, faceVectors, period);
+    const worse = a.map((e, f) => Math.max(e, b[f])), better = a.map((e, f) => Math.min(e, b[f]));
+    r.families = { worse: summary(worse), better: summary(better) };
+  }
   // The measures' own error: the texture repainted with straight 3D stripes and their exact field.
   if (truth) {
     const painted = paintHeightStripes(glb, [1, 2, 3].map((x) => x / Math.sqrt(14)), frequency);

@@ -43,9 +43,9 @@ struct StripeOptions {
   // nu Y (Y the field turned a quarter) rarely is on a curved surface: at one spacing the pattern compromises
   // between direction and spacing. A frequency factor e^u with du ^ (nu Y) = -d(nu Y) (a linear equation: u
   // is fixed along the field's lines, free across them), solved in the least-squares sense with some
-  // smoothness (a cross field's two families together), makes nu e^u Y nearly closed: the stripes follow the
-  // field, their spacing changes along it (clamped to [1/4, 4] of the asked one, its area mean the asked
-  // one). Near the field's singularities, where that spacing runs off, the equation fades out.
+  // smoothness (a cross field's families each their own u), makes nu e^u Y nearly closed: the stripes follow
+  // the field, their spacing changes along it (clamped to [1/4, 4] of the asked one, each family's area mean
+  // the asked one). Near the field's singularities, where that spacing runs off, the equation fades out.
   bool adaptSpacing = false;
   // Optional, one per vertex: the frequency's factor there (the paper's Sec. 6.3 spacing from the field's
   // magnitude); empty for none.
@@ -106,8 +106,8 @@ struct StripePattern {
   // and refused first (A - sigma B not positive definite: the eigenvalue fell below it).
   double shift = 0;
   bool shiftRefused = false;
-  // adaptSpacing: the frequency's factor per vertex it chose (empty otherwise), on top of
-  // vertexFrequencyScale.
+  // adaptSpacing: the frequency's factor it chose, families per vertex (each family's own; empty otherwise),
+  // on top of vertexFrequencyScale.
   std::vector<double> spacing;
   bool analysisReused = false;  // the factorization reused a workspace's symbolic analysis
   // StripeOptions::localUpdate: whether this was a local update (else the whole pattern was computed, as an
@@ -136,11 +136,11 @@ struct StripeWorkspace {
   // The growth directions the pattern follows at each vertex: growth, except outside a local update's region,
   // where the pattern was made for an earlier field (a local update's change is measured against these).
   std::vector<Eigen::Vector3d> followed;
-  // The last spacing's solution before its exponential (adaptSpacing) and the mean that normalized it, and
-  // the last options' vertexFrequencyScale where the pattern follows it: what a local update holds fixed
-  // outside its region.
+  // The last spacing's solution before its exponential (adaptSpacing; families per vertex) and the means that
+  // normalized it (one a family), and the last options' vertexFrequencyScale where the pattern follows it:
+  // what a local update holds fixed outside its region.
   std::vector<double> spacingU, frequencyScale;
-  double spacingMean = 0;
+  std::vector<double> spacingMean;
   std::vector<uint8_t> faceTurns;  // per face: the field turns round it (the spacing's singular faces)
   // The last pattern's faces (StripePattern's cornerPhase, branchIndex, fieldSingular): a local update
   // computes the faces with a vertex in its region and takes the others from here.

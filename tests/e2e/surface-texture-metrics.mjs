@@ -265,6 +265,15 @@ export function pixelLength(glb) {
   return Math.sqrt(a3 / a2);
 }
 
+// The face's frame of the field: X its direction in the face's plane, Y = n x X (null where it has none).
+function fieldFrame(face, v) {
+  const inPlane = sub(v, face.n.map((x) => x * dot(v, face.n)));
+  const l = norm(inPlane);
+  if (!(face.area > 0) || !(l > 1e-12)) return null;
+  const X = inPlane.map((x) => x / l);
+  return { X, Y: cross(face.n, X) };
+}
+
 // Stripe direction against the field, each texel's gradient read in its own face's frame of the field (the
 // field's direction X and n x X there), so that the field's turning and the surface's bending inside the window
 // are not read as error, where stripeAlignment compares a window's 3D tensor with the middle face's field alone
@@ -282,11 +291,9 @@ export function stripeAlignmentAlongField(glb, fieldPerFace, period, symmetry = 
   const lum = luminance(glb.image);
   const moments = new Float64Array(2 * F.length);
   F.forEach((face, f) => {
-    const v = fieldPerFace.slice(3 * f, 3 * f + 3);
-    const inPlane = sub(v, face.n.map((x) => x * dot(v, face.n)));
-    const l = norm(inPlane);
-    if (!(face.area > 0) || !(l > 1e-12)) return;
-    const X = inPlane.map((x) => x / l), Y = cross(face.n, X);
+    const frame = fieldFrame(face, fieldPerFace.slice(3 * f, 3 * f + 3));
+    if (!frame) return;
+    const { X, Y } = frame;
     faceGradients(face, glb.image, lum, (g) => {
       const gX = dot(g, X), gY = dot(g, Y), e = gX * gX + gY * gY;
       const angle = m * Math.atan2(gY, gX);
@@ -312,6 +319,50 @@ export function stripeAlignmentAlongField(glb, fieldPerFace, period, symmetry = 
     w1 += deg <= 1 ? face.area : 0, w5 += deg <= 5 ? face.area : 0, w10 += deg <= 10 ? face.area : 0;
   });
   return { meanDegrees: sum / area, within1: w1 / area, within5: w5 / area, within10: w10 / area, errors };
+}
+
+// A grid's two families apart, each against its own direction of a cross field: each texel's gradient, in its
+// face's frame of the field, belongs to the lines along X where it lies nearer Y, else to those along Y, and adds
+// |g|^2 (cos 2t, sin 2t) to that family's moments, t its angle from the family's gradient direction (Y or X). A
+// window (as above) takes each neighbour's families in the middle face's order: a cross field's face direction is
+// any one of its four, so a neighbour whose X lies nearer the middle face's Y has its two swapped. Returns, per
+// family (0: along X, 1: along Y of each face), the error per face (degrees; NaN where unmeasured).
+export function gridFamiliesAlongField(glb, fieldPerFace, period) {
+  const F = faces(glb);
+  const lum = luminance(glb.image);
+  const moments = new Float64Array(4 * F.length);
+  const frames = F.map((face, f) => fieldFrame(face, fieldPerFace.slice(3 * f, 3 * f + 3)));
+  F.forEach((face, f) => {
+    if (!frames[f]) return;
+    const { X, Y } = frames[f];
+    faceGradients(face, glb.image, lum, (g) => {
+      const gX = dot(g, X), gY = dot(g, Y), e = gX * gX + gY * gY;
+      const family = Math.abs(gY) >= Math.abs(gX) ? 0 : 1;
+      const t = Math.atan2(gY, gX) - (family === 0 ? Math.PI / 2 : 0);
+      moments[4 * f + 2 * family] += e * Math.cos(2 * t);
+      moments[4 * f + 2 * family + 1] += e * Math.sin(2 * t);
+    });
+  });
+  const neighbours = windowOf(F, period);
+  const families = [new Float64Array(F.length).fill(NaN), new Float64Array(F.length).fill(NaN)];
+  F.forEach((face, f) => {
+    if (!frames[f] || !(norm(fieldPerFace.slice(3 * f, 3 * f + 3)) > 1e-9)) return;
+    const sums = [0, 0, 0, 0];
+    neighbours(f, (g, w) => {
+      if (!frames[g]) return;
+      const swap = Math.abs(dot(frames[g].X, frames[f].Y)) > Math.abs(dot(frames[g].X, frames[f].X));
+      for (let k = 0; k < 2; k++) {
+        const into = swap ? 1 - k : k;
+        sums[2 * into] += w * moments[4 * g + 2 * k];
+        sums[2 * into + 1] += w * moments[4 * g + 2 * k + 1];
+      }
+    });
+    for (let k = 0; k < 2; k++) {
+      const [C, S] = [sums[2 * k], sums[2 * k + 1]];
+      if (C * C + S * S > 0) families[k][f] = Math.abs((Math.atan2(S, C) / 2) * (180 / Math.PI));
+    }
+  });
+  return families;
 }
 
 // A truth for the measures above: the GLB's texture repainted, inside its faces, with the level sets of the

@@ -76,6 +76,62 @@ TEST(StripePattern, CrossFieldGivesTwoFamiliesAtRightAngles) {
   }
 }
 
+// A cross field along the rays and the circles round a point beside a flat square. The stripes along the rays
+// have their phase grow round the point (r dtheta) and close only with a frequency falling as 1 / r; those
+// along the circles grow as r (dr is closed already) and keep the asked spacing. Each family adapts its own:
+// the circles stay evenly spaced, where one spacing for both crowded them towards the point as the rays'
+// (its factor 1.48 near the point and 0.71 far for both families), and both follow their directions.
+TEST(StripePattern, EachFamilyOfACrossFieldAdaptsItsOwnSpacing) {
+  SurfaceMesh m = flatGrid(40, 1.0);
+  for (int32_t v = 0; v < m.numVertices(); ++v) m.positions[3 * v] += 0.6, m.positions[3 * v + 1] -= 0.5;
+  const MeshTopology t = buildTopology(m);
+  const MeshGeometry g = computeMeshGeometry(m, t);
+  std::vector<double> rays;
+  for (int32_t v = 0; v < m.numVertices(); ++v) {
+    const Eigen::Vector3d r = vertexPosition(m, v).normalized();
+    rays.insert(rays.end(), {r.x(), r.y(), 0.0});
+  }
+  StripeOptions o;
+  o.symmetry = 4;
+  o.frequency = 8.0;
+  o.adaptSpacing = true;
+  const StripePattern p = stripePattern(m, t, g, rays, o);
+  ASSERT_EQ(p.families, 2);
+  ASSERT_EQ(p.spacing.size(), 2u * m.numVertices());
+  // Each family against the nearer of the ray and the circle at the face's centroid.
+  double mean[2] = {0, 0};
+  for (int32_t f = 0; f < m.numFaces(); ++f) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) c += vertexPosition(m, m.triangles[3 * f + k]) / 3;
+    const Eigen::Vector3d ray = c.normalized(), circle = Eigen::Vector3d::UnitZ().cross(ray);
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_EQ(p.branchIndex[static_cast<size_t>(k) * m.numFaces() + f], 0);
+      const Eigen::Vector3d grad = phaseGradient(m, p, k, f);
+      mean[k] += std::min(angleBetweenLines(grad, ray), angleBetweenLines(grad, circle)) * 180 / M_PI;
+    }
+  }
+  std::cout << "[ measured ] a cross field of rays and circles: its families " << mean[0] / m.numFaces()
+            << " and " << mean[1] / m.numFaces() << " deg off their directions on average\n";
+  EXPECT_LT(mean[0] / m.numFaces(), 0.6);
+  EXPECT_LT(mean[1] / m.numFaces(), 0.6);
+  // Which family is which: the one whose phase grows along the ray at the square's first corner.
+  const int circles = angleBetweenLines(phaseGradient(m, p, 0, 0), vertexPosition(m, m.triangles[0])) <
+                              angleBetweenLines(phaseGradient(m, p, 1, 0), vertexPosition(m, m.triangles[0]))
+                          ? 0
+                          : 1;
+  double evenest = 0, lo = 1e9, hi = 0;
+  for (int32_t v = 0; v < m.numVertices(); ++v) {
+    const double r = vertexPosition(m, v).norm();
+    evenest = std::max(evenest, std::abs(p.spacing[2 * v + circles] - 1));
+    lo = std::min(lo, p.spacing[2 * v + 1 - circles] * r),
+    hi = std::max(hi, p.spacing[2 * v + 1 - circles] * r);
+  }
+  std::cout << "[ measured ] the circles' frequency factor within " << evenest
+            << " of 1; the rays' times r from " << lo << " to " << hi << "\n";
+  EXPECT_LT(evenest, 0.02);
+  EXPECT_LT(hi / lo, 1.1);
+}
+
 TEST(StripePattern, StripesFollowTheFieldOnATorus) {
   const SurfaceMesh m = torus(96, 36, 2.0, 0.7);
   const MeshTopology t = buildTopology(m);

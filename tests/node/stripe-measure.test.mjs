@@ -9,7 +9,7 @@
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import {
-  paintHeightStripes, stripeAlignment, stripeAlignmentAlongField,
+  gridFamiliesAlongField, paintHeightStripes, stripeAlignment, stripeAlignmentAlongField,
 } from '../e2e/surface-texture-metrics.mjs';
 
 // A GLB-like model (unwelded faces, one chart: u along the circumference, v along the axis) on a blank image.
@@ -67,8 +67,9 @@ test('straight stripes on a thin cylinder read along their own field, and a turn
 });
 
 // A grid on the same cylinder: lines along its axis and round it (eight round it, eight a unit along it), the
-// field round it; every texel's grey and its face's field painted here.
-function paintCylinderGrid(model) {
+// field round it; every texel's grey and its face's field painted here. With `helix` the lines round it climb
+// one period per turn (a helix, atan(1 / (8 2π r)) = 7.55° off the field at r = 0.15), those along it stay.
+function paintCylinderGrid(model, helix = false) {
   const { width: W, height: H } = model.image;
   const pixels = new Uint8Array(4 * W * H);
   const field = new Float64Array(model.positions.length / 3);
@@ -88,7 +89,8 @@ function paintCylinderGrid(model) {
         const p = [0, 1, 2].map((k) => P[0][k] + b1 * (P[1][k] - P[0][k]) + b2 * (P[2][k] - P[0][k]));
         const line = (phase) => Math.exp(-8 * (1 - Math.cos(2 * Math.PI * phase)));
         const around = (8 * Math.atan2(p[1], p[0])) / (2 * Math.PI);
-        const grey = 1 + Math.round(254 * (1 - Math.max(line(8 * p[2]), line(around))));
+        const round = 8 * p[2] + (helix ? Math.atan2(p[1], p[0]) / (2 * Math.PI) : 0);
+        const grey = 1 + Math.round(254 * (1 - Math.max(line(round), line(around))));
         const i = 4 * (y * W + x);
         pixels[i] = pixels[i + 1] = pixels[i + 2] = grey;
         pixels[i + 3] = 255;
@@ -105,4 +107,29 @@ test("a grid's lines read along its cross field's directions, and a turned field
   assert.ok(exact.mean < 0.5, `grid lines along their exact field read ${exact.mean.toFixed(3)}°`);
   const off = mean(stripeAlignmentAlongField(glb, turned(field, glb, 10), period, 4).errors);
   assert.ok(Math.abs(off.mean - 10) < 0.7, `the field turned by 10° reads ${off.mean.toFixed(3)}°`);
+});
+
+test("a grid's two families read apart: lines round the cylinder turned into a helix, those along it not", () => {
+  const period = 1 / 8, helixDegrees = (Math.atan(1 / (8 * 2 * Math.PI * 0.15)) * 180) / Math.PI;
+  const straight = paintCylinderGrid(unrolledCylinder(0.15, 1, 64, 32, 512));
+  const [round, along] = gridFamiliesAlongField(straight.glb, straight.field, period).map(mean);
+  assert.ok(round.faces > 2000 && along.faces > 2000, `${round.faces} and ${along.faces} faces measured`);
+  assert.ok(round.mean < 0.5 && along.mean < 0.5,
+    `families read ${round.mean.toFixed(3)}° and ${along.mean.toFixed(3)}°`);
+  const helix = paintCylinderGrid(unrolledCylinder(0.15, 1, 64, 32, 512), true);
+  const [helical, kept] = gridFamiliesAlongField(helix.glb, helix.field, period).map(mean);
+  assert.ok(Math.abs(helical.mean - helixDegrees) < 0.7,
+    `the helix reads ${helical.mean.toFixed(3)}° (${helixDegrees.toFixed(2)}°)`);
+  assert.ok(kept.mean < 0.5, `the lines along the axis read ${kept.mean.toFixed(3)}°`);
+  // Both at once (the fourth-order reading) splits the difference; the families' own readings do not.
+  const both = mean(stripeAlignmentAlongField(helix.glb, helix.field, period, 4).errors);
+  assert.ok(both.mean > 2 && both.mean < helixDegrees - 2, `both families at once read ${both.mean.toFixed(3)}°`);
+  // A cross field's face direction is any one of its four: the field turned a quarter on every other face, whose
+  // families then swap, reads the same.
+  const quarter = turned(helix.field, helix.glb, 90).map((x, i) => (Math.floor(i / 3) % 2 ? x : helix.field[i]));
+  const mixed = gridFamiliesAlongField(helix.glb, quarter, period);
+  const byFamily = (k) => mixed[0].map((_, f) => mixed[f % 2 ? 1 - k : k][f]);
+  const [again0, again1] = [0, 1].map((k) => mean(byFamily(k)));
+  assert.ok(Math.abs(again0.mean - helical.mean) < 0.2 && Math.abs(again1.mean - kept.mean) < 0.2,
+    `with mixed representatives ${again0.mean.toFixed(3)}° and ${again1.mean.toFixed(3)}°`);
 });
