@@ -8,7 +8,8 @@
 // Each model's figures come twice: by stripeAlignment (the window's tensor against the middle face's field) and by
 // stripeAlignmentAlongField (each texel against its own face's field); a grid (--symmetry 4) also each family
 // apart (gridFamiliesAlongField: the lines along each face's field direction X, and along n x X). --truth adds
-// both measures of a texture of known direction: the same atlas repainted with straight 3D stripes and their exact field.
+// both measures of a texture of known direction: the same atlas repainted with straight 3D stripes and their
+// exact field.
 // Writes into .cache/stripe-quality/ (ignored).
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
