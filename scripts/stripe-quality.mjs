@@ -7,7 +7,8 @@
 //     [--truth] MESH...
 // Each model's figures come twice: by stripeAlignment (the window's tensor against the middle face's field) and by
 // stripeAlignmentAlongField (each texel against its own face's field); a grid (--symmetry 4) also each family
-// apart (gridFamiliesAlongField: the lines along each face's field direction X, and along n x X). --truth adds
+// apart (gridFamiliesAlongField: the lines along each face's field direction X, and along n x X), labelled by
+// the pattern's own families (familiesByPhase: the phase the GLB carries) and per face the worse and the better.
 // both measures of a texture of known direction: the same atlas repainted with straight 3D stripes and their
 // exact field.
 // Writes into .cache/stripe-quality/ (ignored).
@@ -17,6 +18,7 @@ import { basename, join } from 'node:path';
 import {
   gridFamiliesAlongField, paintHeightStripes, readGlb, seamJumpRatio, stripeAlignment, stripeAlignmentAlongField,
 } from '../tests/e2e/surface-texture-metrics.mjs';
+import { familiesByPhase } from '../tests/e2e/stripe-phase-families.mjs';
 
 const args = process.argv.slice(2);
 const option = (name, fallback) => {
@@ -107,12 +109,13 @@ for (const meshPath of args) {
     alongField: summary(stripeAlignmentAlongField(glb, faceVectors, period, symmetry).errors),
     seamRatio: seams.ratio, seamEdges: seams.seamEdges,
   };
-  // A grid's families apart, each against its own direction of the cross field; which family is which changes
-  // round a +1/4 singularity, so per face the worse of its two and the better.
+  // A grid's families apart, each against its own direction of the cross field: the pattern's first and second
+  // (told by the phase the GLB carries), and per face the worse of its two and the better.
   if (symmetry === 4) {
     const [a, b] = gridFamiliesAlongField(glb, faceVectors, period);
     const worse = a.map((e, f) => Math.max(e, b[f])), better = a.map((e, f) => Math.min(e, b[f]));
-    r.families = { worse: summary(worse), better: summary(better) };
+    const [first, second] = familiesByPhase(glb, faceVectors, [a, b]);
+    r.families = { first: summary(first), second: summary(second), worse: summary(worse), better: summary(better) };
   }
   // The measures' own error: the texture repainted with straight 3D stripes and their exact field.
   if (truth) {

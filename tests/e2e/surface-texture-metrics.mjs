@@ -63,7 +63,8 @@ export function readGlb(bytes) {
   const material = json.materials[prim.material];
   const texture = json.textures[material.pbrMetallicRoughness.baseColorTexture.index];
   const image = decodePng(view(json.images[texture.source].bufferView));
-  return { positions: accessor(prim.attributes.POSITION), uvs: accessor(prim.attributes.TEXCOORD_0), indices: accessor(prim.indices), image };
+  const phases = prim.attributes.TEXCOORD_1 === undefined ? null : accessor(prim.attributes.TEXCOORD_1);
+  return { positions: accessor(prim.attributes.POSITION), uvs: accessor(prim.attributes.TEXCOORD_0), indices: accessor(prim.indices), image, phases };
 }
 
 const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
@@ -72,7 +73,7 @@ const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a
 const norm = (a) => Math.hypot(a[0], a[1], a[2]);
 
 // Per face of the GLB (non-indexed or indexed): 3D corners, pixel-space corners (u W, v H), normal, area.
-function faces({ positions, uvs, indices, image }) {
+export function faces({ positions, uvs, indices, image }) {
   const W = image.width, H = image.height;
   const out = [];
   for (let f = 0; f < indices.length / 3; f++) {
@@ -266,7 +267,7 @@ export function pixelLength(glb) {
 }
 
 // The face's frame of the field: X its direction in the face's plane, Y = n x X (null where it has none).
-function fieldFrame(face, v) {
+export function fieldFrame(face, v) {
   const inPlane = sub(v, face.n.map((x) => x * dot(v, face.n)));
   const l = norm(inPlane);
   if (!(face.area > 0) || !(l > 1e-12)) return null;

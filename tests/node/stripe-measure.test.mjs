@@ -11,6 +11,7 @@ import test from 'node:test';
 import {
   gridFamiliesAlongField, paintHeightStripes, stripeAlignment, stripeAlignmentAlongField,
 } from '../e2e/surface-texture-metrics.mjs';
+import { familiesByPhase } from '../e2e/stripe-phase-families.mjs';
 
 // A GLB-like model (unwelded faces, one chart: u along the circumference, v along the axis) on a blank image.
 function unrolledCylinder(radius, length, around, along, size) {
@@ -132,4 +133,41 @@ test("a grid's two families read apart: lines round the cylinder turned into a h
   const [again0, again1] = [0, 1].map((k) => mean(byFamily(k)));
   assert.ok(Math.abs(again0.mean - helical.mean) < 0.2 && Math.abs(again1.mean - kept.mean) < 0.2,
     `with mixed representatives ${again0.mean.toFixed(3)}° and ${again1.mean.toFixed(3)}°`);
+});
+
+// The painted grid's phases as an exported GLB carries them (TEXCOORD_1, in periods): the lines round the cylinder
+// as the first family and those along it as the second, or the other way with `swap`; each face's corners
+// unwrapped about its centroid's angle, as the export splits vertices where the phase differs.
+function withPhases(glb, helix, swap) {
+  const phases = new Float32Array((2 * glb.positions.length) / 3);
+  for (let f = 0; f < glb.indices.length / 3; f++) {
+    const P = [0, 1, 2].map((k) => Array.from(glb.positions.subarray(9 * f + 3 * k, 9 * f + 3 * k + 3)));
+    const middle = Math.atan2(P[0][1] + P[1][1] + P[2][1], P[0][0] + P[1][0] + P[2][0]);
+    P.forEach((p, k) => {
+      let a = Math.atan2(p[1], p[0]) - middle;
+      a -= 2 * Math.PI * Math.round(a / (2 * Math.PI));
+      const angle = (middle + a) / (2 * Math.PI);
+      const round = 8 * p[2] + (helix ? angle : 0), around = 8 * angle;
+      phases.set(swap ? [around, round] : [round, around], 2 * (3 * f + k));
+    });
+  }
+  return { ...glb, phases };
+}
+
+test("a grid's families are told apart by the pattern's own phases, whatever the field's face directions", () => {
+  const period = 1 / 8, helixDegrees = (Math.atan(1 / (8 * 2 * Math.PI * 0.15)) * 180) / Math.PI;
+  const helix = paintCylinderGrid(unrolledCylinder(0.15, 1, 64, 32, 512), true);
+  // The field turned a quarter on every other face: gridFamiliesAlongField's labels then alternate.
+  const quarter = turned(helix.field, helix.glb, 90).map((x, i) => (Math.floor(i / 3) % 2 ? x : helix.field[i]));
+  for (const swap of [false, true]) {
+    const glb = withPhases(helix.glb, true, swap);
+    const [first, second] = familiesByPhase(glb, quarter, gridFamiliesAlongField(glb, quarter, period)).map(mean);
+    const [helical, kept] = swap ? [second, first] : [first, second];
+    assert.ok(helical.faces > 2000 && kept.faces > 2000, `${helical.faces} and ${kept.faces} faces labelled`);
+    const which = swap ? 'second' : 'first';
+    assert.ok(Math.abs(helical.mean - helixDegrees) < 0.7,
+      `the helical family (${which}) reads ${helical.mean.toFixed(3)}° (${helixDegrees.toFixed(2)}°)`);
+    assert.ok(kept.mean < 0.5, `the family along the axis reads ${kept.mean.toFixed(3)}°`);
+  }
+  assert.throws(() => familiesByPhase(helix.glb, helix.field, [[], []]), /no phase/);
 });
