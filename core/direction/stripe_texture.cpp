@@ -58,11 +58,13 @@ double line(double x, double half, double w) {
 
 // A texel's profile is filtered over this many texels' phase change: a renderer samples the baked texture
 // bilinearly, a texel's reach each side, and a thin line filtered over one texel alone steps along the texel
-// grid: bunny00's grid lines (its smoothest cross field, 2048 texels square, scripts/stripe-quality.mjs
-// --symmetry 4) read, away from singularities, the worse family 3.30 and the better 1.70 degrees off the
-// field filtered over one texel, 2.44 and 0.98 over two; the one-family stripes, softer already, 0.76 either
-// way.
-constexpr double kTexelsFiltered = 2;
+// grid. Grid lines (the smoothest cross fields, 2048 texels square, scripts/stripe-quality.mjs --symmetry 4),
+// each family of the pattern away from singularities: bunny00 1.80 / 1.62 degrees off the field filtered over
+// two texels, 1.50 / 1.34 over three; homer 1.30 / 1.06 -> 0.63 / 0.53; lion-head 0.86 / 0.78 -> 0.58 / 0.53;
+// camel 1.30 / 1.26 -> 1.03 / 0.96 (one texel: bunny00's worse and better family per face 3.30 / 1.70, two
+// 2.44 / 0.98). The lines stay sharp (bunny00: 43 texels a period, a line 5 wide). The one-family stripes,
+// softer already, read the same (bunny00 0.76, homer 0.75).
+constexpr double kTexelsFiltered = 3;
 
 // The phase's change per texel of face f's UV triangle (u, v in texels), in periods: the footprint the
 // profile is filtered over (the linear part's gradient; a branch face's turn about its centre adds little).
