@@ -499,7 +499,8 @@ class DesignerBinding {
                           {"eigenvalue", p.eigenvalue}, {"residual", p.residual},
                           {"iterations", p.iterations}, {"factorMs", p.factorMs},
                           {"iterateMs", p.iterateMs},   {"analysisReused", p.analysisReused},
-                          {"spacingMs", p.spacingMs},   {"shift", p.shift},
+                          {"spacingMs", p.spacingMs},   {"smoothMs", p.smoothMs},
+                          {"shift", p.shift},
                           {"shiftRefused", p.shiftRefused},
                           {"localUpdate", p.localUpdate},   {"localVertices", p.localVertices},
                           {"ms", stripesMs_}}

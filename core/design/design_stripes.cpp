@@ -108,6 +108,7 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
     along.factorMs += across.factorMs;
     along.iterateMs += across.iterateMs;
     along.spacingMs += across.spacingMs;
+    along.smoothMs += across.smoothMs;
     along.shiftRefused = along.shiftRefused || across.shiftRefused;
     along.residual = std::max(along.residual, across.residual);
     along.psi.clear();  // each family's psi is its workspace's

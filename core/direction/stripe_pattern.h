@@ -96,12 +96,15 @@ struct StripePattern {
   std::vector<float> cornerPhase;
   std::vector<int8_t> branchIndex;  // families per face (family-major): n
   std::vector<uint8_t>
-      fieldSingular;        // per face: 1 where the field's representatives do not match up round it
-  std::vector<double> psi;  // 2 x families per vertex (re, im), unit B-norm
-  double eigenvalue = 0;    // the energy's Rayleigh quotient at psi
-  double residual = 0;      // |A psi - eigenvalue B psi| / |A psi| when the iteration stopped
+      fieldSingular;  // per face: 1 where the field's representatives do not match up round it
+  // 2 x families per vertex (re, im), unit B-norm: the energy's smallest eigenvector; a cross field's with
+  // each family made unit and smoothed (stripe_pattern.cpp unitSmoothing)
+  std::vector<double> psi;
+  double eigenvalue = 0;  // the energy's Rayleigh quotient at that eigenvector
+  double residual = 0;    // |A psi - eigenvalue B psi| / |A psi| when the iteration stopped
   int iterations = 0;
   double factorMs = 0, iterateMs = 0, spacingMs = 0;
+  double smoothMs = 0;  // a cross field's families made unit and smoothed (stripe_pattern.cpp unitSmoothing)
   // The shift sigma the energy was factored with (A - sigma B; 0: none), and whether a larger one was tried
   // and refused first (A - sigma B not positive definite: the eigenvalue fell below it).
   double shift = 0;

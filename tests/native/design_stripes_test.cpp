@@ -175,6 +175,78 @@ TEST(DesignStripes, TheAdaptedSpacingLetsTheStripesFollowTheField) {
   EXPECT_GT(inner / nIn, 1.3 * (outer / nOut));
 }
 
+// The smoothest cross field of a bumpy sphere, as a grid: each family's stripes along its own direction of
+// the field (each face's phase gradient against the nearer of the field's two lines) away from the
+// field's singularities (a face farther than two periods from every face round which the field turns), and no
+// stripe ends there (a face where a family's phase winds).
+TEST(DesignStripes, AGridsFamiliesBothFollowTheSmoothestCrossField) {
+  SurfaceMesh m = icosphere(4);
+  for (size_t v = 0; 3 * v < m.positions.size(); ++v) {
+    double* p = &m.positions[3 * v];
+    const double r =
+        1 + 0.15 * std::sin(3 * p[0] + 1) * std::cos(2 * p[1]) + 0.1 * std::sin(5 * p[2] + 2 * p[0]);
+    for (int k = 0; k < 3; ++k) p[k] *= r;
+  }
+  Designer d(m);
+  d.setSymmetry(4);
+  d.solve();
+  DesignStripes stripes;
+  DesignStripeOptions o;
+  o.frequency = 6;
+  o.profile = StripeProfile::GridLines;
+  const StripePattern& p =
+      stripes.compute(d.mesh(), d.topology(), d.geometry(), d.vertexNormals(), 4, d.vertexVectors(), o);
+  ASSERT_EQ(p.families, 2);
+  const int32_t nF = m.numFaces();
+  const auto centroid = [&m](int32_t f) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) c += vertexPosition(m, m.triangles[3 * f + k]) / 3;
+    return c;
+  };
+  std::vector<Eigen::Vector3d> singular;
+  for (int32_t f = 0; f < nF; ++f)
+    if (p.fieldSingular[f]) singular.push_back(centroid(f));
+  ASSERT_FALSE(singular.empty());
+  const std::vector<double>& field = d.vertexVectors();
+  double sum[2] = {0, 0}, area = 0;
+  int ends[2] = {0, 0};
+  for (int32_t f = 0; f < nF; ++f) {
+    const Eigen::Vector3d c = centroid(f);
+    double nearest = 1e300;
+    for (const Eigen::Vector3d& s : singular) nearest = std::min(nearest, (c - s).norm());
+    if (nearest * o.frequency < 2) continue;
+    Eigen::Vector3d pos[3];
+    facePositions(m, f, pos);
+    const auto na = faceNormalArea(pos);
+    // The field's representatives at the corners, matched to the first's (a quarter turn apart at most).
+    const Eigen::Vector3d first = Eigen::Vector3d(&field[3 * m.triangles[3 * f]]);
+    Eigen::Vector3d dir = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      Eigen::Vector3d x = Eigen::Vector3d(&field[3 * m.triangles[3 * f + k]]).normalized();
+      for (int turn = 0; turn < 4 && x.dot(first) < std::sqrt(0.5) - 1e-12; ++turn) x = na.normal.cross(x);
+      dir += x;
+    }
+    const Eigen::Vector3d along = (dir - dir.dot(na.normal) * na.normal).normalized();
+    const Eigen::Vector3d across = na.normal.cross(along);
+    area += na.area;
+    for (int k = 0; k < 2; ++k) {
+      ends[k] += p.branchIndex[static_cast<size_t>(k) * nF + f] != 0;
+      const Eigen::Vector3d grad = phaseGradient(m, p, k, f).normalized();
+      const double toAlong = std::acos(std::min(1.0, std::abs(grad.dot(along))));
+      const double toAcross = std::acos(std::min(1.0, std::abs(grad.dot(across))));
+      sum[k] += na.area * std::min(toAlong, toAcross) * 180 / M_PI;
+    }
+  }
+  ASSERT_GT(area, 0);
+  std::cout << "[ measured ] the smoothest cross field of a bumpy sphere as a grid, away from its "
+            << singular.size() << " singular faces: its families " << sum[0] / area << " and "
+            << sum[1] / area << " deg off the field, " << ends[0] << " and " << ends[1] << " stripe ends\n";
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_LT(sum[k] / area, 1.0) << "family " << k;
+    EXPECT_EQ(ends[k], 0) << "family " << k;
+  }
+}
+
 TEST(DesignStripes, BadOptionsAreRefusedByName) {
   const auto refusal = [](int symmetry, const std::string& json) {
     try {
