@@ -180,13 +180,7 @@ TEST(DesignStripes, TheAdaptedSpacingLetsTheStripesFollowTheField) {
 // field's singularities (a face farther than two periods from every face round which the field turns), and no
 // stripe ends there (a face where a family's phase winds).
 TEST(DesignStripes, AGridsFamiliesBothFollowTheSmoothestCrossField) {
-  SurfaceMesh m = icosphere(4);
-  for (size_t v = 0; 3 * v < m.positions.size(); ++v) {
-    double* p = &m.positions[3 * v];
-    const double r =
-        1 + 0.15 * std::sin(3 * p[0] + 1) * std::cos(2 * p[1]) + 0.1 * std::sin(5 * p[2] + 2 * p[0]);
-    for (int k = 0; k < 3; ++k) p[k] *= r;
-  }
+  const SurfaceMesh m = bumpySphere(4);
   Designer d(m);
   d.setSymmetry(4);
   d.solve();

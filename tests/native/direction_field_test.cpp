@@ -33,18 +33,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A sphere with smooth random bumps: curved everywhere, no symmetry to make indices come out whole.
-SurfaceMesh bumpySphere(int subdivisions = 3) {
-  SurfaceMesh m = icosphere(subdivisions);
-  for (size_t v = 0; 3 * v < m.positions.size(); ++v) {
-    double* p = &m.positions[3 * v];
-    const double r =
-        1 + 0.15 * std::sin(3 * p[0] + 1) * std::cos(2 * p[1]) + 0.1 * std::sin(5 * p[2] + 2 * p[0]);
-    for (int k = 0; k < 3; ++k) p[k] *= r;
-  }
-  return m;
-}
-
 double indexSum(const Designer& d) {
   double sum = 0;
   for (const Singularity& s : d.singularities()) sum += s.index;

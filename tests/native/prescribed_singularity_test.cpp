@@ -36,7 +36,8 @@ double principal(double angle, int symmetry) {
   return angle - period * std::round(angle / period);
 }
 
-SurfaceMesh bumpySphere(int subdivisions) {
+// Bumps half as high as test_meshes.h bumpySphere's.
+SurfaceMesh gentleBumpySphere(int subdivisions) {
   SurfaceMesh m = icosphere(subdivisions);
   for (size_t v = 0; 3 * v < m.positions.size(); ++v) {
     double* p = &m.positions[3 * v];
@@ -141,7 +142,7 @@ TEST(PrescribedSingularities, RandomCompleteSetsAreExactlyTheFieldsSingularities
     SurfaceMesh mesh;
   };
   const Case cases[] = {
-      {"sphere", bumpySphere(3)}, {"torus", torus(40, 16, 1.0, 0.4)}, {"genus 2", genusTwo()}};
+      {"sphere", gentleBumpySphere(3)}, {"torus", torus(40, 16, 1.0, 0.4)}, {"genus 2", genusTwo()}};
   for (const Case& c : cases)
     for (const int symmetry : {1, 2, 4})
       for (unsigned seed = 1; seed <= 3; ++seed) {
@@ -160,7 +161,7 @@ TEST(PrescribedSingularities, RandomCompleteSetsAreExactlyTheFieldsSingularities
 
 TEST(PrescribedSingularities, OddAndSixFoldSymmetriesToo) {
   // N = 3 and 6 (the range is 1 to 6): random complete sets on a sphere and a torus, exactly found.
-  const SurfaceMesh meshes[] = {bumpySphere(3), torus(40, 16, 1.0, 0.4)};
+  const SurfaceMesh meshes[] = {gentleBumpySphere(3), torus(40, 16, 1.0, 0.4)};
   for (const SurfaceMesh& mesh : meshes)
     for (const int symmetry : {3, 6}) {
       Designer d(mesh);
@@ -215,7 +216,7 @@ TEST(PrescribedSingularities, ATorusCrossFieldWithNoneHasNone) {
 }
 
 TEST(PrescribedSingularities, MovingOneMovesExactlyThatOneWithoutRefactoring) {
-  Designer d(bumpySphere(3));
+  Designer d(gentleBumpySphere(3));
   d.setSymmetry(4);
   const std::map<int32_t, double> set = prescribeRandom(d, 4, 2, 5);
   d.solve();
@@ -242,7 +243,7 @@ TEST(PrescribedSingularities, MovingOneMovesExactlyThatOneWithoutRefactoring) {
   expectSameSet(expected, found(d), "after the move");
   EXPECT_EQ(d.stats().factorizations, factorizations) << "a move must only change right-hand sides";
   // Removing a +- pair leaves the others where they were.
-  Designer e(bumpySphere(3));
+  Designer e(gentleBumpySphere(3));
   e.setSymmetry(2);
   std::map<int32_t, double> base = prescribeRandom(e, 2, 0, 8);
   const int32_t plus = e.addSingularity(0, 0.5);
@@ -423,7 +424,7 @@ TEST(PrescribedSingularities, PlacingOnePullsTheNearestFreeOneToIt) {
   // The free singularities are the smoothest field's, less the one nearest each prescription: on a bumpy
   // sphere's cross field, a +1/4 placed anywhere takes the place of the nearest natural +1/4, the others
   // stay.
-  const SurfaceMesh mesh = bumpySphere(3);
+  const SurfaceMesh mesh = gentleBumpySphere(3);
   Designer smooth(mesh);
   smooth.setSymmetry(4);
   smooth.solve();

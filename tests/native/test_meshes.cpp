@@ -58,6 +58,17 @@ SurfaceMesh flatAnnulus(int rings, int sectors, double r0, double r1) {
   return m;
 }
 
+SurfaceMesh bumpySphere(int subdivisions) {
+  SurfaceMesh m = icosphere(subdivisions);
+  for (size_t v = 0; 3 * v < m.positions.size(); ++v) {
+    double* p = &m.positions[3 * v];
+    const double r =
+        1 + 0.15 * std::sin(3 * p[0] + 1) * std::cos(2 * p[1]) + 0.1 * std::sin(5 * p[2] + 2 * p[0]);
+    for (int k = 0; k < 3; ++k) p[k] *= r;
+  }
+  return m;
+}
+
 SurfaceMesh torus(int n, int m, double R, double r) {
   SurfaceMesh t;
   for (int j = 0; j < m; ++j)

@@ -16,6 +16,9 @@ SurfaceMesh flatGrid(int n, double size = 1.0, bool alternate = false);
 SurfaceMesh flatAnnulus(int rings, int sectors, double r0, double r1);
 // Torus of revolution, valence 6 everywhere.
 SurfaceMesh torus(int n, int m, double R, double r);
+// icosphere(subdivisions) with smooth random bumps: curved everywhere, no symmetry to make a field's
+// indices come out whole.
+SurfaceMesh bumpySphere(int subdivisions = 3);
 // The mesh as an OFF file's text, positions to 17 digits (what the CLI's tests hand it).
 std::string offText(const SurfaceMesh& m);
 // Surface of a one-voxel-thick plate of width x depth cells with a hole at every listed cell, each unit face
