@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "common/angles.h"
 #include "common/input_error.h"
@@ -78,6 +79,101 @@ double texelFootprint(const StripePattern& p, int32_t nF, int32_t f, const doubl
     w = std::max(w, 0.5 * (std::abs(dx) + std::abs(dy)) / kTwoPi);
   }
   return w;
+}
+
+// Each vertex's footprint, the largest of its faces': a line drawn either side of a chart seam, where the two
+// charts' texel densities differ, is then filtered alike at the same point of the surface, and within a chart
+// the filter changes smoothly from face to face.
+std::vector<double> vertexFootprints(const SurfaceMesh& mesh, const StripePattern& p,
+                                     const std::vector<float>& cornerUVs, int size) {
+  const int32_t nF = mesh.numFaces();
+  std::vector<double> out(mesh.numVertices(), 0.0);
+  for (int32_t f = 0; f < nF; ++f) {
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k)
+      u[k] = cornerUVs[6 * f + 2 * k] * size, v[k] = cornerUVs[6 * f + 2 * k + 1] * size;
+    const double det = (u[1] - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (v[1] - v[0]);
+    if (!(std::abs(det) > 1e-12)) continue;
+    const double w = texelFootprint(p, nF, f, u, v, det);
+    for (int k = 0; k < 3; ++k) {
+      double& at = out[mesh.triangles[3 * f + k]];
+      at = std::max(at, w);
+    }
+  }
+  return out;
+}
+
+// A chart's texels just outside its triangles, which a renderer's bilinear sample at the chart's edge mixes
+// in, carry the pattern continued from the nearest face rather than an average of their neighbours: grid
+// lines crossing a seam then read alike from both charts.
+constexpr double kExtrapolatedTexels = 1.5;
+
+struct Bake {
+  const SurfaceMesh& mesh;
+  const StripePattern& pattern;
+  const std::vector<float>& cornerUVs;
+  int size;
+  const StripeColours& colours;
+  StripeProfile profile;
+  std::vector<double> footprint;  // per vertex
+};
+
+// The texture, and each texel's distance outside the face that painted it (0 inside, +inf where unpainted).
+struct BakedTexels {
+  explicit BakedTexels(int size)
+      : rgba(4 * static_cast<size_t>(size) * size, 0),
+        outside(static_cast<size_t>(size) * size, std::numeric_limits<float>::infinity()) {}
+  std::vector<uint8_t> rgba;
+  std::vector<float> outside;
+};
+
+// Paints face f's texels: with margin 0 those whose centre it covers (the first face to cover one keeps it),
+// else those within `margin` texels outside it that no face covers, each from the nearest such face.
+void paintFace(const Bake& bake, int32_t f, double margin, BakedTexels& texels) {
+  const int32_t nF = bake.mesh.numFaces();
+  const int size = bake.size;
+  double u[3], v[3], w[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = bake.cornerUVs[6 * f + 2 * k] * size, v[k] = bake.cornerUVs[6 * f + 2 * k + 1] * size;
+    w[k] = kTexelsFiltered * bake.footprint[bake.mesh.triangles[3 * f + k]];
+  }
+  const double det = (u[1] - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (v[1] - v[0]);
+  if (!(std::abs(det) > 1e-12)) return;
+  // Texels per unit of barycentric coordinate k across the opposite edge: a coordinate's distance in texels.
+  double height[3];
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    height[k] = std::abs(det) / std::max(std::hypot(u[j] - u[i], v[j] - v[i]), 1e-12);
+  }
+  const int x0 = std::max(0, static_cast<int>(std::floor(std::min({u[0], u[1], u[2]}) - 0.5 - margin)));
+  const int x1 = std::min(size - 1, static_cast<int>(std::ceil(std::max({u[0], u[1], u[2]}) - 0.5 + margin)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(std::min({v[0], v[1], v[2]}) - 0.5 - margin)));
+  const int y1 = std::min(size - 1, static_cast<int>(std::ceil(std::max({v[0], v[1], v[2]}) - 0.5 + margin)));
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const double px = x + 0.5, py = y + 0.5;
+      double b[3];
+      b[1] = ((px - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (py - v[0])) / det;
+      b[2] = ((u[1] - u[0]) * (py - v[0]) - (px - u[0]) * (v[1] - v[0])) / det;
+      b[0] = 1 - b[1] - b[2];
+      double out = 0;
+      for (int k = 0; k < 3; ++k) out = std::max(out, -b[k] * height[k]);
+      const size_t texel = static_cast<size_t>(y) * size + x;
+      constexpr double kSlack = 1e-9;
+      if (margin == 0 ? (out > kSlack || texels.outside[texel] == 0)
+                      : (out > margin || out >= texels.outside[texel]))
+        continue;
+      texels.outside[texel] = margin == 0 ? 0.0f : static_cast<float>(out);
+      const double first = stripePhase(bake.pattern, nF, 0, f, b) / kTwoPi;
+      const double second = bake.pattern.families > 1 ? stripePhase(bake.pattern, nF, 1, f, b) / kTwoPi : 0.0;
+      const double width = b[0] * w[0] + b[1] * w[1] + b[2] * w[2];
+      const double t = std::clamp(stripeProfileValue(bake.profile, first, second, width), 0.0, 1.0);
+      uint8_t* rgba = &texels.rgba[4 * texel];
+      for (int c = 0; c < 3; ++c)
+        rgba[c] = static_cast<uint8_t>(
+            std::lround(bake.colours.dark[c] + t * (bake.colours.light[c] - bake.colours.dark[c])));
+      rgba[3] = 255;
+    }
 }
 
 }  // namespace
@@ -210,40 +306,13 @@ std::vector<uint8_t> stripeTextureRgba(const SurfaceMesh& mesh, const StripePatt
   if (stripeProfileHasTwoFamilies(profile) && pattern.families < 2)
     throw InputError(std::string("stripe texture: the ") + stripeProfileName(profile) +
                      " profile needs two families of stripes");
-  std::vector<uint8_t> rgba(4 * static_cast<size_t>(size) * size, 0);
-  for (int32_t f = 0; f < nF; ++f) {
-    double u[3], v[3];
-    for (int k = 0; k < 3; ++k)
-      u[k] = cornerUVs[6 * f + 2 * k] * size, v[k] = cornerUVs[6 * f + 2 * k + 1] * size;
-    const double det = (u[1] - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (v[1] - v[0]);
-    if (!(std::abs(det) > 1e-12)) continue;
-    const double w = kTexelsFiltered * texelFootprint(pattern, nF, f, u, v, det);
-    const int x0 = std::max(0, static_cast<int>(std::floor(std::min({u[0], u[1], u[2]}) - 0.5)));
-    const int x1 = std::min(size - 1, static_cast<int>(std::ceil(std::max({u[0], u[1], u[2]}) - 0.5)));
-    const int y0 = std::max(0, static_cast<int>(std::floor(std::min({v[0], v[1], v[2]}) - 0.5)));
-    const int y1 = std::min(size - 1, static_cast<int>(std::ceil(std::max({v[0], v[1], v[2]}) - 0.5)));
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        const double px = x + 0.5, py = y + 0.5;
-        double b[3];
-        b[1] = ((px - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (py - v[0])) / det;
-        b[2] = ((u[1] - u[0]) * (py - v[0]) - (px - u[0]) * (v[1] - v[0])) / det;
-        b[0] = 1 - b[1] - b[2];
-        constexpr double kSlack = -1e-9;
-        if (b[0] < kSlack || b[1] < kSlack || b[2] < kSlack) continue;
-        uint8_t* out = &rgba[4 * (static_cast<size_t>(y) * size + x)];
-        if (out[3]) continue;  // the first face to cover a texel keeps it
-        const double first = stripePhase(pattern, nF, 0, f, b) / kTwoPi;
-        const double second = pattern.families > 1 ? stripePhase(pattern, nF, 1, f, b) / kTwoPi : 0.0;
-        const double t = std::clamp(stripeProfileValue(profile, first, second, w), 0.0, 1.0);
-        for (int c = 0; c < 3; ++c)
-          out[c] =
-              static_cast<uint8_t>(std::lround(colours.dark[c] + t * (colours.light[c] - colours.dark[c])));
-        out[3] = 255;
-      }
-  }
-  dilate(rgba, size, gutterTexels);
-  return rgba;
+  const Bake bake{
+      mesh, pattern, cornerUVs, size, colours, profile, vertexFootprints(mesh, pattern, cornerUVs, size)};
+  BakedTexels texels(size);
+  for (int32_t f = 0; f < nF; ++f) paintFace(bake, f, 0.0, texels);
+  for (int32_t f = 0; f < nF; ++f) paintFace(bake, f, kExtrapolatedTexels, texels);
+  dilate(texels.rgba, size, gutterTexels);
+  return std::move(texels.rgba);
 }
 
 }  // namespace tvf

@@ -3,9 +3,12 @@
 // texel centre inside a face's UV triangle, the face's phase at the texel's barycentric point (branch faces
 // with their piecewise-linear angle), through a profile (StripeProfile), filtered over the texel's footprint.
 // The page draws the same profiles per fragment (web/stripes/profiles.js): the same formulas, so that a GLB
-// shows what the page showed. Texels outside every triangle take a covered neighbour's colour, `gutter`
-// texels out, so bilinear lookups at chart borders read stripes, not background. Texel (x, y) has its centre
-// at UV ((x + 0.5) / size, (y + 0.5) / size): row 0 is v = 0, as glTF samples.
+// shows what the page showed. The footprint is each vertex's largest over its faces, interpolated, so a line
+// is filtered alike either side of a chart seam. Texels within 1.5 texels outside a chart take the pattern
+// continued from its nearest face (a bilinear lookup at the chart's edge reads the pattern there), and those
+// further out a covered neighbour's colour, `gutter` texels out, so lookups at chart borders read stripes, not
+// background. Texel (x, y) has its centre at UV ((x + 0.5) / size, (y + 0.5) / size): row 0 is v = 0, as
+// glTF samples.
 #include <cstdint>
 #include <string>
 #include <vector>

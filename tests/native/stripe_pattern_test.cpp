@@ -402,6 +402,58 @@ TEST(StripeTexture, FlatSquareStripesAtTheAskedFrequency) {
   EXPECT_THROW(stripeTextureRgba(m, p, std::vector<float>(5), size, 2), InputError);
 }
 
+// Grid lines across a chart seam: a flat square cut at x = 0.5 into two charts, the second turned a quarter in
+// the atlas and packed apart, with a cross field at an angle to the cut. A renderer's bilinear sample half a
+// texel inside a chart's edge mixes in texels outside the chart; where those hold the pattern continued from the
+// nearest face, the colour jump from one chart's sample to the other's at the same point of the surface is that
+// of two samples as far apart inside one chart (measured: 0.97; with the outside texels an average of their
+// neighbours, 1.39, and 2.71 a quarter texel inside).
+TEST(StripeTexture, GridLinesReadAlikeFromBothChartsOfASeam) {
+  const SurfaceMesh m = flatGrid(20, 1.0, true);
+  const MeshTopology t = buildTopology(m);
+  StripeOptions o;
+  o.symmetry = 4;
+  o.frequency = 7.0;
+  const StripePattern p =
+      stripePattern(m, t, computeMeshGeometry(m, t), constantField(m, Eigen::Vector3d(0.8, 0.6, 0)), o);
+  ASSERT_EQ(p.families, 2);
+  constexpr double kScale = 0.45;  // atlas units per surface unit
+  const auto atlas = [&](double x, double y, bool second) {
+    return second ? Eigen::Vector2d(0.5 + kScale * (1 - y), 0.5 + kScale * (x - 0.5))  // turned a quarter
+                  : Eigen::Vector2d(0.02 + kScale * x, 0.02 + kScale * y);
+  };
+  std::vector<float> uvs;
+  for (int32_t f = 0; f < m.numFaces(); ++f) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) centroid += vertexPosition(m, m.triangles[3 * f + k]) / 3;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d q = vertexPosition(m, m.triangles[3 * f + k]);
+      const Eigen::Vector2d uv = atlas(q.x(), q.y(), centroid.x() > 0.5);
+      uvs.insert(uvs.end(), {static_cast<float>(uv.x()), static_cast<float>(uv.y())});
+    }
+  }
+  const int size = 512;
+  const std::vector<uint8_t> rgba = stripeTextureRgba(m, p, uvs, size, 4, {}, StripeProfile::GridLines);
+  const auto bilinear = [&](const Eigen::Vector2d& uv) {
+    const double x = uv.x() * size - 0.5, y = uv.y() * size - 0.5;
+    const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+    const double fx = x - x0, fy = y - y0;
+    const auto at = [&](int xx, int yy) { return double(rgba[4 * (static_cast<size_t>(yy) * size + xx)]); };
+    return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+           fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+  };
+  const double inset = 0.5 / (kScale * size);  // half a texel, in surface units
+  double seam = 0, inside = 0;
+  const int samples = 400;
+  for (int i = 0; i < samples; ++i) {
+    const double y = 0.05 + 0.9 * (i + 0.5) / samples;
+    seam += std::abs(bilinear(atlas(0.5 - inset, y, false)) - bilinear(atlas(0.5 + inset, y, true)));
+    inside += std::abs(bilinear(atlas(0.25 - inset, y, false)) - bilinear(atlas(0.25 + inset, y, false)));
+  }
+  ASSERT_GT(inside, samples * 5.0);  // the lines cross the samples' path
+  EXPECT_LE(seam / inside, 1.05);
+}
+
 // A workspace kept between computations on one mesh (an edit's update): the next field's pattern reuses the
 // factor's analysis and starts from the pattern before, in fewer steps, to the pattern a cold computation
 // finds.
