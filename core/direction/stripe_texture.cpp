@@ -81,6 +81,13 @@ double texelFootprint(const StripePattern& p, int32_t nF, int32_t f, const doubl
   return w;
 }
 
+// Face f's UV triangle in texels (u, v), and twice its signed area there.
+double texelTriangle(const std::vector<float>& cornerUVs, int32_t f, int size, double u[3], double v[3]) {
+  for (int k = 0; k < 3; ++k)
+    u[k] = cornerUVs[6 * f + 2 * k] * size, v[k] = cornerUVs[6 * f + 2 * k + 1] * size;
+  return (u[1] - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (v[1] - v[0]);
+}
+
 // Each vertex's footprint, the largest of its faces': a line drawn either side of a chart seam, where the two
 // charts' texel densities differ, is then filtered alike at the same point of the surface, and within a chart
 // the filter changes smoothly from face to face.
@@ -90,9 +97,7 @@ std::vector<double> vertexFootprints(const SurfaceMesh& mesh, const StripePatter
   std::vector<double> out(mesh.numVertices(), 0.0);
   for (int32_t f = 0; f < nF; ++f) {
     double u[3], v[3];
-    for (int k = 0; k < 3; ++k)
-      u[k] = cornerUVs[6 * f + 2 * k] * size, v[k] = cornerUVs[6 * f + 2 * k + 1] * size;
-    const double det = (u[1] - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (v[1] - v[0]);
+    const double det = texelTriangle(cornerUVs, f, size, u, v);
     if (!(std::abs(det) > 1e-12)) continue;
     const double w = texelFootprint(p, nF, f, u, v, det);
     for (int k = 0; k < 3; ++k) {
@@ -133,12 +138,9 @@ void paintFace(const Bake& bake, int32_t f, double margin, BakedTexels& texels) 
   const int32_t nF = bake.mesh.numFaces();
   const int size = bake.size;
   double u[3], v[3], w[3];
-  for (int k = 0; k < 3; ++k) {
-    u[k] = bake.cornerUVs[6 * f + 2 * k] * size, v[k] = bake.cornerUVs[6 * f + 2 * k + 1] * size;
-    w[k] = kTexelsFiltered * bake.footprint[bake.mesh.triangles[3 * f + k]];
-  }
-  const double det = (u[1] - u[0]) * (v[2] - v[0]) - (u[2] - u[0]) * (v[1] - v[0]);
+  const double det = texelTriangle(bake.cornerUVs, f, size, u, v);
   if (!(std::abs(det) > 1e-12)) return;
+  for (int k = 0; k < 3; ++k) w[k] = kTexelsFiltered * bake.footprint[bake.mesh.triangles[3 * f + k]];
   // Texels per unit of barycentric coordinate k across the opposite edge: a coordinate's distance in texels.
   double height[3];
   for (int k = 0; k < 3; ++k) {
