@@ -23,6 +23,7 @@
 //                             [--stripes N]   (then the stripes: turned on, and N strokes' updates: stripes*
 //                             keys, bench-web-stripes.mjs)
 //                             [--profile-stripes FILE]   (a CPU profile of the page's thread over the stripes stage)
+//                             [--trace-stripes FILE]   (a Chromium trace of every thread over the stripes stage)
 //                             [--gpu]   (hardware WebGL: ANGLE on Vulkan, or TVF_GPU_ARGS; default SwiftShader)
 //                             [--profile-texture FILE]   (a CPU profile of the page's thread over the texture's runs)
 //                             [--trace-texture FILE]   (a Chromium trace of every thread over the texture's runs)
@@ -188,6 +189,8 @@ async function strokeBench(page, meshPath) {
   const reopen = reopenAlone ? await reopenBench(page, `/bench-mesh/${name}`) : null;
   const texture = arg('--texture', null) == null ? null : await textureBench(page, strokes.slice(0, Number(arg('--texture'))), `/bench-mesh/${name}`);
   const stripesProfile = await startProfile(page, arg('--profile-stripes', null));
+  const stripesTrace = arg('--trace-stripes', null);
+  if (stripesTrace) await page.context().browser().startTracing(page, { path: stripesTrace, categories: ['toplevel', 'v8', 'gpu', 'disabled-by-default-gpu.service', 'devtools.timeline'] });
   // The stripes' strokes are new ones (elsewhere on the mesh): a stroke drawn again over itself barely moves the
   // field, and the stripes' update is of where the field moved.
   const stripeStarts = Array.from({ length: Number(arg('--stripes', 0)) },
@@ -195,6 +198,7 @@ async function strokeBench(page, meshPath) {
   const stripes = arg('--stripes', null) == null ? null
     : await stripesBench(page, await page.evaluate(stripStrokesInPage, { starts: stripeStarts, crossings }));
   await stripesProfile.stop();
+  if (stripesTrace) await page.context().browser().stopTracing();
   const pick = (f) => median(runs.map(f));
   const m = {
     updateMs: pick((r) => r.stats.updateMs),
