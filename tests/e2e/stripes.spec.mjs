@@ -3,7 +3,8 @@
 // A flat square with a constant field shows straight stripes at exactly the asked frequency (the transitions'
 // spacing down the picture against the projection of the model's units; the adapted spacing, on by default, has
 // nothing to adapt there), and its GLB carries the phase as TEXCOORD_1; on the default model the stripes show,
-// follow an edit (a new pattern for the new field), and the GLB bakes them into its base colour; a cross field
+// follow an edit (a new pattern for the new field), new patterns leave no WebGL buffer behind, and the GLB
+// bakes them into its base colour; a cross field
 // takes grid, bricks or weave only, and bad options are refused by name with nothing changed. On a sphere's
 // smoothest line field the stripes' own direction, read from the pixels, turns by pi round each +1/2 singularity
 // (one stripe ends there, the others turn round it) and not at all where the field is calm; a cross field's
@@ -108,6 +109,19 @@ test.describe.serial('stripe patterns in the page', () => {
   });
 
   test('on the default model: shown, following an edit, baked into the GLB; bad options refused by name', async () => {
+    // WebGL buffers alive (created less deleted), to see that new patterns take the old ones' place.
+    await page.addInitScript(() => {
+      const count = (window.__glBuffers = { created: 0, deleted: 0 });
+      const proto = WebGL2RenderingContext.prototype, create = proto.createBuffer, remove = proto.deleteBuffer;
+      proto.createBuffer = function createBuffer() {
+        count.created++;
+        return create.call(this);
+      };
+      proto.deleteBuffer = function deleteBuffer(buffer) {
+        count.deleted++;
+        return remove.call(this, buffer);
+      };
+    });
     await page.reload();
     await page.waitForFunction(() => window.tvf && window.tvf.ready);
     await evaluate(() => window.tvf.ready);
@@ -164,6 +178,20 @@ test.describe.serial('stripe patterns in the page', () => {
     expect(shades.phase).toBeDefined(); // the phase goes with the baked colour, in the set the primitive names
     expect(shades.light).toBeGreaterThan(0.2);
     expect(shades.dark).toBeGreaterThan(0.2);
+    // Six new patterns (six frequencies) drawn: each uploads into the buffers the last one had (2.25 MB a pattern
+    // on bunny00's 75k faces, 20 MB on armadillo-sub2's 832k), where a new attribute each time left the old
+    // buffers behind (two a pattern: 12 here, measured before the fix).
+    const alive = () => evaluate(() => window.__glBuffers.created - window.__glBuffers.deleted);
+    const frames = () => evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    await frames();
+    const buffersBefore = await alive();
+    for (const frequency of [3, 4, 5, 6, 7, 8]) {
+      await evaluate((f) => window.tvf.setStripes({ frequency: f }), frequency);
+      await evaluate(() => window.tvf.stripesIdle());
+      await frames();
+    }
+    console.log(`[ measured ] WebGL buffers alive: ${buffersBefore} before six patterns, ${await alive()} after`);
+    expect((await alive()) - buffersBefore).toBeLessThanOrEqual(1);
     // Refusals name the option and change nothing.
     expect(await refusal(() => window.tvf.setStripes({ profile: 'plaid' }))).toContain('plaid');
     expect(await refusal(() => window.tvf.setStripes({ frequency: -1 }))).toContain('frequency');

@@ -106,12 +106,17 @@ export class StripeModel {
   }
 
   // phase, branch: 2 per corner (stripes/worker-ops.js cornerAttributes), taken as they are. Returns false
-  // without a mesh of that many corners.
+  // without a mesh of that many corners. They become the attributes' arrays, uploaded into the attributes' own
+  // buffers: a new attribute each time would leave the last one's buffer behind (three.js frees a geometry's
+  // buffers with the geometry only), two a pattern.
   setPattern({ phase, branch }) {
     const g = this.mesh?.geometry;
-    if (!g || g.getAttribute('position').count * 2 !== phase.length) return false;
-    g.setAttribute('stripePhase', new BufferAttribute(phase, 2));
-    g.setAttribute('stripeBranch', new BufferAttribute(branch, 2));
+    if (!g || g.getAttribute('position').count * 2 !== phase.length || branch.length !== phase.length) return false;
+    for (const [name, array] of [['stripePhase', phase], ['stripeBranch', branch]]) {
+      const attribute = g.getAttribute(name);
+      attribute.array = array;
+      attribute.needsUpdate = true;
+    }
     this.hasPattern = true;
     this.#changed();
     return true;
