@@ -178,9 +178,9 @@ test.describe.serial('stripe patterns in the page', () => {
     expect(shades.phase).toBeDefined(); // the phase goes with the baked colour, in the set the primitive names
     expect(shades.light).toBeGreaterThan(0.2);
     expect(shades.dark).toBeGreaterThan(0.2);
-    // Six new patterns (six frequencies) drawn: each uploads into the buffers the last one had (2.25 MB a pattern
-    // on bunny00's 75k faces, 20 MB on armadillo-sub2's 832k), where a new attribute each time left the old
-    // buffers behind (two a pattern: 12 here, measured before the fix).
+    // Six new patterns (six frequencies) drawn: each uploads into the buffers the last one had (10 bytes a
+    // corner: 2.3 MB a pattern on bunny00's 75k faces, 25 MB on armadillo-sub2's 832k), where a new attribute
+    // each time left the old buffers behind (two a pattern: 12 here, measured before the fix).
     const alive = () => evaluate(() => window.__glBuffers.created - window.__glBuffers.deleted);
     const frames = () => evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     await frames();
