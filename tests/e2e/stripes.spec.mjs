@@ -4,8 +4,8 @@
 // spacing down the picture against the projection of the model's units; the adapted spacing, on by default, has
 // nothing to adapt there), and its GLB carries the phase as TEXCOORD_1; on the default model the stripes show,
 // follow an edit (a new pattern for the new field), new patterns leave no WebGL buffer behind, and the GLB
-// bakes them into its base colour; a cross field
-// takes grid, bricks or weave only, and bad options are refused by name with nothing changed. On a sphere's
+// bakes them into its base colour; a cross field takes grid, bricks or weave only, and bad options are refused
+// by name with nothing changed. On a sphere's
 // smoothest line field the stripes' own direction, read from the pixels, turns by pi round each +1/2 singularity
 // (one stripe ends there, the others turn round it) and not at all where the field is calm; a cross field's
 // grid turns by pi/2 round each of its eight +1/4 (three of its lines meet there) (stripe-topology.mjs).
