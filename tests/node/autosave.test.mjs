@@ -5,7 +5,7 @@ import assert from 'node:assert/strict';
 import test from 'node:test';
 import { icosphereOff } from '../icosphere.mjs';
 import { FakeCore, FakeIndexedDB, FakeLocalStorage } from './fakes.mjs';
-import { AutosaveStore, VERSIONS_KEPT, finiteDesign } from '../../web/session/autosave-store.js';
+import { AutosaveStore, OTHER_VERSIONS_KEPT, VERSIONS_KEPT, finiteDesign } from '../../web/session/autosave-store.js';
 import { loadAutosave, modelKey, saveAutosave } from '../../web/session/documents.js';
 import { Session } from '../../web/session/session.js';
 
@@ -123,6 +123,36 @@ test('two tabs keep their own versions; each hears of the other saving the same 
   for (let n = 20; n < 30; n++) await b.save('bunny', design(n));
   assert.equal((await a.versions('bunny')).filter((v) => v.mine).length, VERSIONS_KEPT);
   assert.equal((await a.versions('bunny')).filter((v) => !v.mine).length, VERSIONS_KEPT);
+});
+
+test(`earlier page loads' versions are kept up to ${OTHER_VERSIONS_KEPT} a model, and a save reads no design`, async (t) => {
+  freshStorage();
+  const make = stores(t);
+  // Six page loads of the app, one after the other, each a tab of its own saving seven versions of the bunny.
+  for (let load = 0; load < 6; load++) {
+    const store = make('');
+    for (let n = 1; n <= 7; n++) await store.save('bunny', design(10 * load + n));
+    store.close();
+  }
+  // And one of the knot, which the bunny's trimming must leave alone.
+  const knot = make('');
+  await knot.save('knot', design(99));
+  const now = make('');
+  const before = globalThis.indexedDB.valuesRead;
+  await now.save('bunny', design(100));
+  assert.equal(globalThis.indexedDB.valuesRead, before, 'a save reads ids, not the versions kept');
+  const versions = await now.versions('bunny');
+  // Each earlier load kept its newest five; the newest twenty of those 30 stay, with the new one.
+  const earlier = Array.from({ length: 6 }, (_, load) => newest(10 * load + 7, VERSIONS_KEPT).reverse()).flat();
+  assert.deepEqual(versions.map((v) => v.constraints), [100, ...earlier.slice(-OTHER_VERSIONS_KEPT).reverse()]);
+  assert.deepEqual(versions.map((v) => v.mine), [true, ...Array(OTHER_VERSIONS_KEPT).fill(false)]);
+  assert.deepEqual((await now.versions('knot')).map((v) => v.constraints), [99]);
+  // This tab's own versions are trimmed to five as before, the others' twenty untouched by it.
+  for (let n = 101; n <= 107; n++) await now.save('bunny', design(n));
+  const after = await now.versions('bunny');
+  assert.deepEqual(after.filter((v) => v.mine).map((v) => v.constraints), newest(107, VERSIONS_KEPT));
+  assert.equal(after.filter((v) => !v.mine).length, OTHER_VERSIONS_KEPT);
+  assert.deepEqual((await now.load('bunny')).design, design(107));
 });
 
 test('a design with a non-finite number is refused and nothing is stored', async (t) => {

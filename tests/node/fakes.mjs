@@ -549,7 +549,8 @@ export class FakeLocalStorage {
 // ------------------------------------------------------------------------------------------ IndexedDB
 
 // An in-memory IndexedDB with what the autosave uses: open with an upgrade, object stores with an
-// auto-incremented key path, an index, get / getAll / add / delete, readonly and readwrite transactions.
+// auto-incremented key path, an index, get / getAll / getAllKeys / add / delete, readonly and readwrite
+// transactions.
 // As in browsers: requests complete asynchronously and in order; a transaction commits on its own once a
 // task ends with none of its requests pending, after which it accepts no more (TransactionInactiveError);
 // values are stored and returned as structured clones; a failed request aborts its transaction and rolls it
@@ -722,12 +723,16 @@ class FakeObjectStore {
   get(key) {
     return this.transaction.request(this, (work) => {
       const record = this.#data(work).records.get(key);
+      if (record !== undefined) this.transaction.db.data.factory.valuesRead++;
       return record === undefined ? undefined : structuredClone(record);
     });
   }
 
   getAll() {
-    return this.transaction.request(this, (work) => sortedByKey(this.#data(work).records));
+    return this.transaction.request(this, (work) => {
+      this.transaction.db.data.factory.valuesRead += this.#data(work).records.size;
+      return sortedByKey(this.#data(work).records);
+    });
   }
 
   delete(key) {
@@ -752,8 +757,18 @@ class FakeObjectStore {
     return {
       // Records whose key path equals `key`, in primary-key order (one index key).
       getAll: (key) =>
+        store.transaction.request(store, (work) => {
+          const matching = [...store.#data(work).records].filter(([, r]) => key === undefined || r[keyPath] === key);
+          store.transaction.db.data.factory.valuesRead += matching.length;
+          return sortedByKey(matching);
+        }),
+      // Their primary keys, ascending: no value is read.
+      getAllKeys: (key) =>
         store.transaction.request(store, (work) =>
-          sortedByKey([...store.#data(work).records].filter(([, r]) => key === undefined || r[keyPath] === key)),
+          [...store.#data(work).records]
+            .filter(([, r]) => key === undefined || r[keyPath] === key)
+            .map(([k]) => k)
+            .sort((a, b) => (a < b ? -1 : a > b ? 1 : 0)),
         ),
     };
   }
@@ -806,6 +821,7 @@ export class FakeIndexedDB {
     this.databases = new Map(); // name → {name, version, stores: Map(name → StoreData)}
     this.opened = 0;
     this.failWrites = false; // every add fails, as on a full disk
+    this.valuesRead = 0; // records read out (get, getAll), for tests of what a request reads
   }
 
   open(name, version = 1) {

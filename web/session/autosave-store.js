@@ -1,15 +1,22 @@
 // Durable autosave: designs kept in IndexedDB (no 5 MB localStorage cap), the last few versions per model and
 // per tab, so that a full localStorage never loses an edit and two tabs editing one model both keep their
-// designs. A BroadcastChannel tells the other tabs of the same origin when a model's design was saved, so each
-// tab can say that another one is editing the same model. One store per element (its autosave name).
+// designs. Every page load is a tab of its own, so the versions other tabs and earlier page loads left are kept
+// up to a number per model (the newest), or a model edited over many days would gather versions without end,
+// and each save would have to read them. A save reads the model's version ids only, never a design, so it costs
+// the same however many are kept. A BroadcastChannel tells the other tabs of the same origin when a model's
+// design was saved, so each tab can say that another one is editing the same model. One store per element (its
+// autosave name).
 //
-// Records: {id, key, tab, savedAt, design}; key = element's autosave name + the model key (documents.js).
+// Records: {id, key, tab, savedAt, design}; key = element's autosave name + the model key (documents.js); ids
+// grow with every save, so a model's ids in ascending order are its versions from the oldest.
 import { isEmptyDesign, loadAutosave as loadMirror, saveAutosave as saveMirror } from './documents.js';
 
 const DB_NAME = 'tvf-autosave';
 const STORE = 'versions';
 const CHANNEL = 'tvf-autosave';
 export const VERSIONS_KEPT = 5; // per model and tab
+// Per model, of the other tabs and earlier page loads: four other tabs' whole histories.
+export const OTHER_VERSIONS_KEPT = 4 * VERSIONS_KEPT;
 
 function request(req) {
   return new Promise((resolve, reject) => {
@@ -42,6 +49,8 @@ export class AutosaveStore {
     this.name = name ?? '';
     this.tab = `${Date.now().toString(36)}-${Math.random().toString(36).slice(2, 8)}`;
     this.onOtherTab = onOtherTab;
+    this.db = null;
+    this.mine = new Map(); // record key → the ids this tab added, ascending
     this.db = null;
     this.channel = typeof BroadcastChannel === 'function' ? new BroadcastChannel(CHANNEL) : null;
     if (this.channel)
@@ -115,8 +124,8 @@ export class AutosaveStore {
     return mirror && mirror.savedAt > latest.savedAt ? mirror : latest;
   }
 
-  // Appends a version and trims this tab's versions of the model to VERSIONS_KEPT; the other tabs' versions
-  // are never touched. Rejects (with the browser's reason) when the design could not be stored.
+  // Appends a version; trims this tab's versions of the model to VERSIONS_KEPT and the other tabs' to the newest
+  // OTHER_VERSIONS_KEPT. Rejects (with the browser's reason) when the design could not be stored.
   async save(modelKey, design) {
     if (!finiteDesign(design)) throw new Error('the design holds non-finite numbers and was not saved');
     const savedAt = new Date().toISOString();
@@ -126,13 +135,21 @@ export class AutosaveStore {
     const key = this.#key(modelKey);
     const tx = db.transaction(STORE, 'readwrite');
     const store = tx.objectStore(STORE);
-    const all = await request(store.index('byKey').getAll(key));
-    const mine = all.filter((r) => r.tab === this.tab).sort((a, b) => b.id - a.id);
+    const ids = await request(store.index('byKey').getAllKeys(key));
     // An empty design is saved too once the model has a version, whichever tab or page load saved it (a cleared
     // design must stay cleared, also when the design it cleared was restored from an earlier page load).
-    if (!(isEmptyDesign(design) && !all.length)) {
-      store.add({ key, tab: this.tab, savedAt, design: structuredClone(design) });
-      for (const old of mine.slice(VERSIONS_KEPT - 1)) store.delete(old.id);
+    if (!(isEmptyDesign(design) && !ids.length)) {
+      const present = new Set(ids);
+      const mine = (this.mine.get(key) ?? []).filter((id) => present.has(id));
+      const own = new Set(mine);
+      const others = ids.filter((id) => !own.has(id));
+      const dropped = [...mine.slice(0, -(VERSIONS_KEPT - 1)), ...others.slice(0, -OTHER_VERSIONS_KEPT)];
+      for (const id of dropped) store.delete(id);
+      const kept = mine.slice(-(VERSIONS_KEPT - 1));
+      request(store.add({ key, tab: this.tab, savedAt, design: structuredClone(design) })).then(
+        (id) => this.mine.set(key, [...kept, id]),
+        () => {}, // the transaction fails with it (the deletions undone): done() reports it
+      );
     }
     await done(tx);
     this.channel?.postMessage({ store: this.name, key: modelKey, tab: this.tab });
