@@ -125,7 +125,7 @@ test('two tabs keep their own versions; each hears of the other saving the same 
   assert.equal((await a.versions('bunny')).filter((v) => !v.mine).length, VERSIONS_KEPT);
 });
 
-test(`earlier page loads' versions are kept up to ${OTHER_VERSIONS_KEPT} a model, and a save reads no design`, async (t) => {
+test(`earlier page loads' versions: the newest ${OTHER_VERSIONS_KEPT} kept, and a save reads none`, async (t) => {
   freshStorage();
   const make = stores(t);
   // Six page loads of the app, one after the other, each a tab of its own saving seven versions of the bunny.
