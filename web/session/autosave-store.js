@@ -32,14 +32,21 @@ function done(tx) {
   });
 }
 
-// A design whose numbers are all finite (JSON would turn NaN and Infinity into null and lose them).
+// A design whose numbers are all finite (JSON would turn NaN and Infinity into null and lose them). A walk
+// over its values: JSON.stringify with a replacer, as before, took a 200-stroke design 11 ms an edit.
 export function finiteDesign(design) {
-  let ok = true;
-  JSON.stringify(design, (k, v) => {
-    if (typeof v === 'number' && !Number.isFinite(v)) ok = false;
-    return v;
-  });
-  return ok;
+  const stack = [design];
+  while (stack.length) {
+    const v = stack.pop();
+    if (typeof v === 'number') {
+      if (!Number.isFinite(v)) return false;
+    } else if (Array.isArray(v)) {
+      for (let i = 0; i < v.length; i++) stack.push(v[i]);
+    } else if (v !== null && typeof v === 'object') {
+      for (const value of Object.values(v)) stack.push(value);
+    }
+  }
+  return true;
 }
 
 export class AutosaveStore {
@@ -146,7 +153,8 @@ export class AutosaveStore {
       const dropped = [...mine.slice(0, -(VERSIONS_KEPT - 1)), ...others.slice(0, -OTHER_VERSIONS_KEPT)];
       for (const id of dropped) store.delete(id);
       const kept = mine.slice(-(VERSIONS_KEPT - 1));
-      request(store.add({ key, tab: this.tab, savedAt, design: structuredClone(design) })).then(
+      // add() stores a structured clone of the record, made in the call: the design needs no copy of its own.
+      request(store.add({ key, tab: this.tab, savedAt, design })).then(
         (id) => this.mine.set(key, [...kept, id]),
         () => {}, // the transaction fails with it (the deletions undone): done() reports it
       );
