@@ -216,3 +216,37 @@ test('a broken file shows a readable error and keeps the current model usable', 
   await expect(page.locator('#constraint-list li')).toHaveCount(1);
   expect(errors).toEqual([]);
 });
+
+test('the constraint list keeps the rows an edit leaves alone, and shows every change', async ({ page }) => {
+  const errors = trackErrors(page);
+  await openDesigner(page);
+  const r = await page.evaluate(async () => {
+    const t = window.tvf;
+    const list = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#constraint-list');
+    const row = (id) => list.querySelector(`[data-constraint-id="${id}"]`);
+    const shown = () => [...list.children].map((li) => Number(li.dataset.constraintId));
+    const nF = t.info().faces;
+    const ids = [];
+    for (let k = 0; k < 3; k++) ids.push(await t.addVector((k * 7919) % nF, [1, 0.2 * k, 0]));
+    const before = ids.map(row);
+    const source = await t.addSource(5);
+    const keptOnAdd = ids.map((id, k) => row(id) === before[k]);
+    await t.setWeight(ids[1], 123);
+    const reweighted = { same: row(ids[1]) === before[1], text: row(ids[1]).textContent };
+    reweighted.others = row(ids[0]) === before[0];
+    t.select(ids[2]);
+    await new Promise((resolve) => requestAnimationFrame(resolve));
+    const selected = [...list.children].map((li) => li.classList.contains('selected'));
+    await t.remove(ids[0]);
+    const afterRemove = { order: shown(), kept: row(ids[2]) === before[2] };
+    return { ids, source, keptOnAdd, reweighted, selected, afterRemove };
+  });
+  expect(r.keptOnAdd).toEqual([true, true, true]);
+  expect(r.reweighted.same).toBe(false);
+  expect(r.reweighted.text).toContain('weight 123');
+  expect(r.reweighted.others).toBe(true);
+  expect(r.selected).toEqual([false, false, true, false]);
+  expect(r.afterRemove.order).toEqual([r.ids[1], r.ids[2], r.source]);
+  expect(r.afterRemove.kept).toBe(true);
+  expect(errors).toEqual([]);
+});
