@@ -291,6 +291,17 @@ test('signals: constraintschange only when the list changed, fieldchange after e
   await s.remove(1);
   assert.deepEqual(seen.filter((t) => t !== 'history'), ['fieldchange', 'constraintschange']);
   assert.ok(seen.includes('history'));
+  // The event's list is the one it was sent with, also when read after a later edit, and a copy.
+  const details = [];
+  s.on('constraintschange', (detail) => details.push(detail));
+  await s.setParameter('weight', 3, 40);
+  await s.addConstraint(specs.vector);
+  assert.equal(details.length, 2);
+  assert.deepEqual(details[0].constraints.map((c) => [c.id, c.weight]), [[2, undefined], [3, 40]]);
+  assert.deepEqual(details[1].constraints.map((c) => c.id), [2, 3, 4]);
+  assert.deepEqual(details[1].constraints, s.constraintList());
+  details[1].constraints[1].points[0].face = -1;
+  assert.notEqual(s.constraintList()[1].points[0].face, -1);
   s.dispose();
 });
 

@@ -247,7 +247,7 @@ export class ViewSync {
     viewer.handles.setConstraints(s.table.entries());
     viewer.handles.setSelected(s.selected);
     this.#showDesignTopology();
-    ui.setConstraints(s.constraintList(), s.selected);
+    ui.setConstraints(s.table.views(), s.selected);
     ui.setSettings(s.settings());
     ui.setStatus({ name: s.modelName, info: s.info, stats: s.field.stats });
     this.refreshHistory();
@@ -267,7 +267,7 @@ export class ViewSync {
   // field (the Field panel).
   #showDesignTopology() {
     const { viewer, ui, session: s } = this, N = this.#symmetry();
-    const prescribed = s.constraintList().filter((c) => c.type === 'singularity');
+    const prescribed = s.table.views().filter((c) => c.type === 'singularity');
     viewer.singularities.setPrescribed(prescribed.map(({ id, vertex, index }) => ({ id, vertex, index })), N);
     viewer.singularities.setSelected(s.selected);
     const { angle, edges } = s.topology.features();
@@ -291,7 +291,7 @@ export class ViewSync {
   selectionChanged(selected) {
     this.viewer.handles.setSelected(selected);
     this.viewer.singularities.setSelected(selected);
-    this.ui.setConstraints(this.session.constraintList(), selected);
+    this.ui.setConstraints(this.session.table.views(), selected);
     this.viewer.requestRender();
   }
 

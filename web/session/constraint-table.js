@@ -118,6 +118,13 @@ export class ConstraintTable {
     return uids.map((uid) => ({ id: uid, ...structuredClone(this.specOf(uid)) }));
   }
 
+  // The same without the copies, sharing the table's specs: for reads that keep and change nothing (the panels;
+  // an edit replaces a spec, never changes it). Deep copies of 300 constraints took ~5 ms an edit, three times.
+  views() {
+    const uids = [...this.uids.keys()].sort((a, b) => a - b);
+    return uids.map((uid) => ({ id: uid, ...this.specOf(uid) }));
+  }
+
   // [{uid, spec}] for the views (the specs themselves, not copies).
   entries() {
     return [...this.uids.keys()].map((uid) => ({ uid, spec: this.specOf(uid) }));
@@ -148,4 +155,14 @@ export class ConstraintTable {
     const prescribed = singularities.map(({ vertex, index }) => [vertex, index]);
     return JSON.stringify({ ...this.settings(), constraints, prescribed, features: this.features() });
   }
+}
+
+// Whether two views() lists show the same constraints: entry by entry the same values (a spec left as it was),
+// or else the same JSON (a document sent again with its specs anew).
+export function sameConstraints(a, b) {
+  const same = (x, y) => {
+    const keys = Object.keys(x);
+    return keys.length === Object.keys(y).length && keys.every((key) => x[key] === y[key]);
+  };
+  return a.length === b.length && a.every((x, k) => same(x, b[k]) || JSON.stringify(x) === JSON.stringify(b[k]));
 }

@@ -24,7 +24,7 @@ import {
   SetSymmetry,
 } from './commands/index.js';
 import { Autosave } from './autosave.js';
-import { ConstraintTable } from './constraint-table.js';
+import { ConstraintTable, sameConstraints } from './constraint-table.js';
 import { DerivedField } from './derived-field.js';
 import { Emitter } from './emitter.js';
 import { FieldTopology } from './field-topology.js';
@@ -72,7 +72,7 @@ export class Session extends Emitter {
     this.disposed = false;
     // Every mutation runs alone and in call order: the worker's state and the session's copies move together.
     this.queue = Promise.resolve();
-    this.lastConstraintsJson = '[]';
+    this.lastConstraints = []; // the constraints as the last constraintschange had them (table.views())
     this.savedDesignJson = null; // the design as last saved, loaded or found with the model
   }
 
@@ -141,12 +141,11 @@ export class Session extends Emitter {
 
   emitChanges() {
     this.emit('fieldchange', { version: this.fieldVersion, stats: structuredClone(this.field.stats) });
-    const constraints = this.constraintList();
-    const json = JSON.stringify(constraints);
-    if (json !== this.lastConstraintsJson) {
-      this.lastConstraintsJson = json;
-      this.emit('constraintschange', { constraints });
-    }
+    const views = this.table.views();
+    if (sameConstraints(views, this.lastConstraints)) return;
+    this.lastConstraints = views;
+    let copies = null; // made for a listener that reads them, of the list as it was here
+    this.emit('constraintschange', { get constraints() { return (copies ??= structuredClone(views)); } });
   }
 
   // The field and design changed (or must be shown again): listeners redraw synchronously; afterwards the
