@@ -76,7 +76,6 @@ export class AutosaveStore {
     this.db = null;
     this.mine = new Map(); // record key → the ids this tab added, ascending
     this.finiteItems = new WeakSet(); // the designs' list items found finite (finiteDesign)
-    this.db = null;
     this.channel = typeof BroadcastChannel === 'function' ? new BroadcastChannel(CHANNEL) : null;
     if (this.channel)
       this.channel.onmessage = ({ data }) => {
