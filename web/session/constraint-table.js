@@ -114,8 +114,7 @@ export class ConstraintTable {
 
   // Every constraint with its page id, in page-id order (copies).
   list() {
-    const uids = [...this.uids.keys()].sort((a, b) => a - b);
-    return uids.map((uid) => ({ id: uid, ...structuredClone(this.specOf(uid)) }));
+    return structuredClone(this.views());
   }
 
   // The same without the copies, sharing the table's specs: for reads that keep and change nothing (the panels;
