@@ -71,6 +71,76 @@ function pngSize(bytes) {
   return { width: b.readUInt32BE(16), height: b.readUInt32BE(20) };
 }
 
+// 1 per texel whose RGBA32F values differ between a and b.
+function changedTexels(a, b) {
+  const out = new Uint8Array(a.length / 4);
+  for (let t = 0; t < out.length; t++) out[t] = [0, 1, 2, 3].some((k) => a[4 * t + k] !== b[4 * t + k]) ? 1 : 0;
+  return out;
+}
+
+// Per texel, how far the field turned between two Jacobians of the same atlas (degrees; 0 outside the charts):
+// the angle of the rotation J1 J0⁻¹ (each J = k [e1; e2] G, G the atlas's map: only the frame turns).
+function fieldTurnDegrees(J0, J1) {
+  const turn = new Float64Array(J0.length / 4);
+  for (let t = 0; t < turn.length; t++) {
+    const [a, b, c, d] = J0.subarray(4 * t, 4 * t + 4); // column-major: [[a, c], [b, d]]
+    const det = a * d - b * c;
+    if (det === 0) continue;
+    const [p, q, r, u] = J1.subarray(4 * t, 4 * t + 4);
+    const m00 = (p * d - r * b) / det, m01 = (r * a - p * c) / det;
+    const m10 = (q * d - u * b) / det, m11 = (u * a - q * c) / det;
+    turn[t] = (Math.abs(Math.atan2(m10 - m01, m00 + m11)) * 180) / Math.PI;
+  }
+  return turn;
+}
+
+// 1 within `radius` texels (a square) of any texel of the R x R grid whose value exceeds `above`.
+function widenedMask(values, R, above, radius) {
+  const out = new Uint8Array(R * R);
+  for (let y = 0; y < R; y++)
+    for (let x = 0; x < R; x++) {
+      if (!(values[y * R + x] > above)) continue;
+      for (let yy = Math.max(0, y - radius); yy <= Math.min(R - 1, y + radius); yy++)
+        out.fill(1, yy * R + Math.max(0, x - radius), yy * R + Math.min(R - 1, x + radius) + 1);
+    }
+  return out;
+}
+
+// The texture read back (r) against the page's current field: the mean stripe error of fieldAlignment's windows
+// and the patches' coherence.
+async function textureAgainstField(page, r) {
+  const R = r.resolution;
+  const m = await page.evaluate(() => ({
+    P: Array.from(window.tvf.mesh().positions),
+    T: Array.from(window.tvf.mesh().triangles),
+    vv: Array.from(window.tvf.vertexVectors()),
+  }));
+  const jumps = seamJumps(r.coords, r.jacobian, R, r.exemplar, r.exemplarSize, m.T, r.cornerUVs);
+  const image = exemplarImage(r.coords, r.exemplar, r.exemplarSize);
+  const windows = fieldAlignment(image, R, jumps.covered, m.P, m.T, r.cornerUVs, m.vv, { win: 16, step: 8 });
+  return {
+    windows: windows.length,
+    meanErrorDegrees: windows.reduce((a, w) => a + w.errorDegrees, 0) / windows.length,
+    coherence: coordinateCoherence(r.coords, r.jacobian, R, R, r.exemplarSize),
+  };
+}
+
+// In the page: a vector constraint at the face under the view's point (x, y) (fractions of the view), turning the
+// field there a quarter (or asking for it as it is, `turn` false). Resolves with its id.
+function turnFieldAt(x, y, turn = true, weight = 1e4) {
+  const view = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#view');
+  const rect = view.getBoundingClientRect();
+  const { face } = window.tvf.pick(rect.left + x * rect.width, rect.top + y * rect.height);
+  const { positions: P, triangles: T } = window.tvf.mesh(), vv = window.tvf.vertexVectors();
+  const at = (a, k) => [0, 1, 2].map((d) => a[3 * k + d]);
+  const [a, b, c] = [0, 1, 2].map((k) => T[3 * face + k]);
+  const u = at(P, b).map((x, d) => x - at(P, a)[d]), w = at(P, c).map((x, d) => x - at(P, a)[d]);
+  const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+  const v = [0, 1, 2].map((d) => vv[3 * a + d] + vv[3 * b + d] + vv[3 * c + d]);
+  const turned = [n[1] * v[2] - n[2] * v[1], n[2] * v[0] - n[0] * v[2], n[0] * v[1] - n[1] * v[0]];
+  return window.tvf.addVector(face, turn ? turned : v, { weight });
+}
+
 test.describe.serial('texture synthesis on a flat square', () => {
   let page, errors, mesh;
 
@@ -431,6 +501,110 @@ test.describe.serial('texture synthesis on a curved model (the default bunny, ge
     console.log(JSON.stringify({ texels: rel.length, p50: q(0.5), p90: q(0.9), p99: q(0.99), p999: q(0.999), max: q(1) }));
     expect(q(0.5), 'relative difference from the reference, median').toBeLessThan(1e-3);
     expect(q(0.99), 'relative difference from the reference, 99th percentile').toBeLessThan(2e-2);
+  });
+
+  // A run after one with the same atlas, exemplar and options synthesizes again only the texels whose field moved
+  // by more than localDegrees, and two texels round them (web/synthesis/local-update.js). Checked here against the
+  // Jacobians read back before and after a short stroke: the field's turn at each texel is the rotation
+  // J_after J_before⁻¹ (the atlas's map is the same), and a texel whose coordinates stayed must have turned by at
+  // most the threshold; every texel two texels from any turned by more must have stayed, every texel turned
+  // clearly more must have been made again; and the texture follows the new field as a whole synthesis does.
+  test('after a stroke only the texels whose field moved are synthesized again, the texture as good', async () => {
+    await page.evaluate(() => window.tvf.setTextureAutoUpdate(false));
+    // A design constrained over the whole body (strokes a little apart), in which an edit moves the field nearby.
+    for (const y of [0.3, 0.38, 0.7, 0.76]) {
+      const pts = await surfacePointsAlongScreenLine(page, { x0: 0.25, dx: 0.02, y, count: 20 });
+      await page.evaluate((p) => window.tvf.addStroke(p), pts);
+    }
+    const opts = { resolution: RESOLUTION, featureScale: 0.5, seams: false };
+    const synthesize = (o) => page.evaluate((o) => window.tvf.synthesize(o), o);
+    const names = ['coords', 'jacobian', 'colour', 'exemplar', 'cornerUVs'];
+    const whole = await synthesize({ ...opts, localDegrees: 0 });
+    expect([whole.local, whole.localReason]).toEqual([false, 'off']);
+    const before = await synthesisReadback(page, names);
+    const same = await synthesize({ ...opts, localDegrees: 1 });
+    expect(same.local, 'the same atlas, exemplar and options: a local run').toBe(true);
+    const sum = (a) => a.reduce((n, v) => n + v, 0);
+    const unchanged = changedTexels(before.coords, (await synthesisReadback(page, ['coords'])).coords);
+    expect(sum(unchanged), 'texels made again with no field change').toBe(0);
+
+    // One face on the back asked to turn its field a quarter: the field turns round it, less far away.
+    await page.evaluate(`(${turnFieldAt})(0.5, 0.46)`);
+    const local = await synthesize(opts);
+    expect(local.local).toBe(true);
+    const after = await synthesisReadback(page, names);
+    const R = after.resolution;
+    const turn = fieldTurnDegrees(before.jacobian, after.jacobian);
+    const redone = changedTexels(before.coords, after.coords);
+    const near = widenedMask(turn, R, 0.99, 2);
+    let keptTurned = 0, farRedone = 0, mustRedo = 0, redoneOfMust = 0, inside = 0, maxKeptTurn = 0;
+    for (let t = 0; t < R * R; t++) {
+      if (after.coords[4 * t + 3] === 0) continue;
+      inside++;
+      if (!redone[t]) maxKeptTurn = Math.max(maxKeptTurn, turn[t]);
+      if (!redone[t] && turn[t] > 1.01) keptTurned++;
+      if (redone[t] && !near[t]) farRedone++;
+      if (turn[t] > 1.01) (mustRedo++, (redoneOfMust += redone[t]));
+    }
+    const share = sum(redone) / inside;
+    console.log(JSON.stringify({ inside, redoneShare: +share.toFixed(3), mustRedo, redoneOfMust, maxKeptTurn }));
+    expect(mustRedo, 'the stroke turned the field by over 1° somewhere').toBeGreaterThan(0.02 * inside);
+    expect(share, 'a share of the texels made again, not all').toBeLessThan(0.8);
+    expect(keptTurned, 'texels kept although their field turned by over 1°').toBe(0);
+    expect(farRedone, 'texels made again more than two texels from any whose field turned').toBe(0);
+    expect(redoneOfMust / mustRedo, 'texels whose field turned by over 1° made again').toBeGreaterThan(0.99);
+
+    // As good as a whole synthesis of the same field: the stripes against the field, and the patches' coherence.
+    const localQuality = await textureAgainstField(page, after);
+    await synthesize({ ...opts, localDegrees: 0 });
+    const wholeQuality = await textureAgainstField(page, await synthesisReadback(page, names));
+    console.log(JSON.stringify({ localQuality, wholeQuality }));
+    expect(localQuality.meanErrorDegrees).toBeLessThan(wholeQuality.meanErrorDegrees + 1);
+    expect(localQuality.coherence).toBeGreaterThan(wholeQuality.coherence - 0.05);
+    await page.evaluate(() => window.tvf.setTextureAutoUpdate(true));
+  });
+
+  // A run cancelled half-way by the next edit leaves the texels it had begun to the run after it: a level's moved
+  // texels are flagged as never synthesized until the level is done (local-update.js). Checked exactly: an edit B
+  // is made and undone (the texture made for each), then made again, and its run is cancelled in its finest level
+  // by the undo. The runs after the undo must then make again what the first undo's run made, from the same
+  // inputs, so the texture must be the one of that first undo; left half-made, the finest level's texels round B
+  // would still be B's (a third of the texels differed so, with that flag left out). The field after the second undo equals the first one's to
+  // round-off only (the factor's updates), which can move a coordinate across an exemplar pixel here and there.
+  test('a run cancelled half-way by the next edit leaves no texel half-made', async () => {
+    await page.evaluate(() => window.tvf.setTextureAutoUpdate(false));
+    // A finer atlas than the other tests': with software GL a draw of its finest level is a slice of its own.
+    const opts = { resolution: 2 * RESOLUTION, featureScale: 1, seams: false, localDegrees: 1 };
+    const synthesize = (o) => page.evaluate((o) => window.tvf.synthesize(o), o);
+    await synthesize(opts);
+    await page.evaluate(`(${turnFieldAt})(0.45, 0.52)`);
+    expect((await synthesize(opts)).local).toBe(true);
+    await page.evaluate(() => window.tvf.undo());
+    const undone = await synthesize(opts);
+    const expected = (await synthesisReadback(page, ['coords'])).coords;
+
+    await page.evaluate(() => window.tvf.setTextureAutoUpdate(true));
+    const seen = await page.evaluate(`(async () => {
+      const task = () => new Promise((resolve) => setTimeout(resolve, 0));
+      await window.tvf.redo();
+      let p = null;
+      for (let k = 0; k < 100000 && !((p = window.tvf.synthesisProgress()) && p.fraction >= 0.3); k++) await task();
+      await window.tvf.undo();
+      await window.tvf.synthesisIdle();
+      return p;
+    })()`);
+    const stats = await page.evaluate(() => window.tvf.synthesisStats());
+    const differ = changedTexels(expected, (await synthesisReadback(page, ['coords'])).coords);
+    const inside = expected.filter((_, i) => i % 4 === 3 && expected[i] !== 0).length;
+    const share = differ.reduce((n, v) => n + v, 0) / inside;
+    console.log(JSON.stringify({ seen, cancelled: stats.cancelledRuns, differShare: share }));
+    expect(seen.preview, "the redo's run was a whole one").toBe(false);
+    expect(stats.cancelledRuns.count).toBe(undone.cancelledRuns.count + 1);
+    // The finest level's work is the last 72 % of a run's (its upsampling first).
+    expect(stats.cancelledRuns.lastAt, "the redo's run cancelled in its finest level").toBeGreaterThan(0.28);
+    expect(stats.cancelledRuns.lastAt).toBeLessThan(0.95);
+    expect(stats.local).toBe(true);
+    expect(share, 'texels that differ from the first undo').toBeLessThan(0.002);
   });
 
   test('no console errors', () => {

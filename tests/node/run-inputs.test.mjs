@@ -3,7 +3,8 @@
 // (deriving its 1-form on the page held an armadillo-sub2 update 140 ms in one task).
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
-import { fieldInput } from '../../web/synthesis/run-inputs.js';
+import { checkSynthesisOptions } from '../../web/synthesis/options.js';
+import { fieldInput, runOptions } from '../../web/synthesis/run-inputs.js';
 
 const surface = { positions: new Float64Array(9), edgeRows: new Int32Array(3) };
 
@@ -20,4 +21,13 @@ test("a preview's vertex vectors are followed as they are", () => {
   const { symmetry, input } = fieldInput({ symmetry: 1, surface, vertexVectors }, {});
   assert.equal(symmetry, 1);
   assert.equal(input, vertexVectors);
+});
+
+test('localDegrees is an option a run takes, an angle from 0 (every run whole) to 180', () => {
+  for (const localDegrees of [0, 1, 180]) assert.doesNotThrow(() => checkSynthesisOptions({ localDegrees }));
+  for (const localDegrees of [-1, 181, NaN, '1', null])
+    assert.throws(() => checkSynthesisOptions({ localDegrees }), /localDegrees must be a number of degrees/);
+  const synth = runOptions({ localDegrees: 0.5, resolution: 'auto' }, {}, { stats: {} }, 64, false);
+  assert.equal(synth.localDegrees, 0.5);
+  assert.equal(synth.resolution, undefined);
 });

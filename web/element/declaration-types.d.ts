@@ -354,8 +354,13 @@ export interface SynthesisOptions {
   seams?: boolean;
   gutter?: number;
   timing?: 'levels' | 'total';
-  /** Faces whose field goes to the GPU per task (default 131072): a big model's field is uploaded a slice per frame. */
+  /** Faces whose field goes to the GPU per task (default 98304): a big model's field is uploaded a slice per frame. */
   sliceFaces?: number;
+  /**
+   * Degrees (default 1): a run with the atlas, exemplar and options of the one before makes again only the texels
+   * whose field turned or scaled by more than this since they were made, and two texels round them; 0: every run whole.
+   */
+  localDegrees?: number;
 }
 
 export type ExemplarSource =

@@ -353,7 +353,8 @@ export class AtlasRaster {
     for (const t of [this.frameTexture, this.fieldTexture]) if (t) gl.deleteTexture(t);
     this.locator?.dispose();
     for (const L of this.levels)
-      for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, ...L.quarters]) t?.dispose();
+      for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, L.kept, L.moved, L.redo, ...L.quarters])
+        t?.dispose();
     this.levels = [];
   }
 }

@@ -16,6 +16,7 @@ export const OPTION_KEYS = [
   'seams',
   'timing',
   'sliceFaces',
+  'localDegrees',
 ];
 // The controller's: the atlas side, resynthesis on field changes, yielding to the page between draws.
 export const CONTROLLER_KEYS = ['resolution', 'autoUpdate', 'interleave'];
@@ -32,6 +33,9 @@ export function checkSynthesisOptions(options) {
   }
   if (options.featureScale !== undefined && options.featureScale !== 'auto' && !(options.featureScale > 0))
     throw new Error("featureScale must be 'auto' or > 0");
+  const degrees = options.localDegrees;
+  if (degrees !== undefined && !(typeof degrees === 'number' && degrees >= 0 && degrees <= 180))
+    throw new Error(`localDegrees must be a number of degrees in [0, 180] (got ${options.localDegrees})`);
   if (options.sliceFaces !== undefined && !(Number.isInteger(options.sliceFaces) && options.sliceFaces > 0))
     throw new Error(`sliceFaces must be a positive integer (got ${options.sliceFaces})`);
 }

@@ -147,9 +147,13 @@ uniform float uJitter;
 uniform int uLevel;
 uniform int uSeed;
 uniform float uM;
+uniform sampler2D uRedo;    // a local run's texels to synthesize again (local-update.js), read where uLocal = 1
+uniform int uLocal;
+uniform sampler2D uOld;     // this class's quarter as it was: what the other texels keep
 out vec4 outS;
 void main() {
   ivec2 p = 2 * ivec2(gl_FragCoord.xy) + uClass;
+  if (uLocal == 1 && texelFetch(uRedo, p, 0).r < 0.5) { outS = texelFetch(uOld, ivec2(gl_FragCoord.xy), 0); return; }
   vec4 jv = texelFetch(uJac, p, 0);
   if (jv == vec4(0.0)) { outS = vec4(0.0); return; }
   mat2 J = mat2(jv.xy, jv.zw);
@@ -186,6 +190,8 @@ uniform int uMask;
 uniform float uM;
 uniform float uH;
 uniform float uKappa;
+uniform sampler2D uRedo;    // as the upsampling's
+uniform int uLocal;
 out vec4 outS;
 
 const ivec2 OFFSETS[8] = ivec2[8](ivec2(-1, -1), ivec2(0, -1), ivec2(1, -1), ivec2(-1, 0),
@@ -201,7 +207,7 @@ float score(vec2 c, vec4 y0, vec4 y1) {
 void main() {
   ivec2 p = 2 * ivec2(gl_FragCoord.xy) + uClass;
   vec4 self = fetchS(p);
-  if (self.w == 0.0) { outS = self; return; }
+  if (self.w == 0.0 || (uLocal == 1 && texelFetch(uRedo, p, 0).r < 0.5)) { outS = self; return; }
   vec4 jv = texelFetch(uJac, p, 0);
   mat2 J = mat2(jv.xy, jv.zw);
   mat2 Ji = inverse(J);

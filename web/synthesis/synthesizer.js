@@ -4,7 +4,8 @@
 // sub-pass correction; anisometric synthesis through a per-texel Jacobian) with the appearance-space exemplar and
 // k-coherence of Lefebvre & Hoppe 2006. The exemplar analysis (Gaussian stack, appearance PCA, neighbourhood PCA,
 // k-coherence) comes from the wasm core (core/texture/, ExemplarAnalysis binding); everything per texel runs here
-// in float render targets, with no read-back inside the level loop.
+// in float render targets, with no read-back inside the level loop. A run after one with the same atlas, exemplar
+// and options makes again only the texels whose field moved (local-update.js).
 //
 // Usage:
 //   const syn = new Synthesizer();                 // its own WebGL2 context (or the view's: gl-guard.js)
@@ -27,6 +28,8 @@ import {
 import { disposeExemplar, uploadExemplar } from './gpu-exemplar.js';
 import { GLGuard } from './gl-guard.js';
 import { levelPlan } from './level-plan.js';
+import { correctClass, upsampleClass } from './level-passes.js';
+import { LocalUpdate } from './local-update.js';
 import { warmUpPipelines } from './pipeline-warm-up.js';
 import { interleavedRun } from './interleaved-run.js';
 import {
@@ -52,6 +55,10 @@ export const DEFAULTS = Object.freeze({
   passes: 2, // correction passes per level, each of 4 sub-passes
   kappa: 0.25, // extra cost of non-coherent (k-coherence) candidates, LH06's coherence bias
   seed: 1,
+  // A run after one with the same atlas, exemplar and options synthesizes again only the texels whose field
+  // turned (or scaled) by more than this many degrees since they were made, and two texels round them
+  // (local-update.js); 0: every run synthesizes every texel.
+  localDegrees: 1,
   gutter: 2, // texels of border around each chart (the atlas's packing; the raster's gutter quads)
   seams: true, // follow the seam indirection across chart boundaries (atlases with seams only)
   timing: 'levels', // 'levels': wait for the GPU after each level (per-level times); 'total': only at the end
@@ -92,12 +99,18 @@ export class Synthesizer {
       copy: new Program(gl, FULLSCREEN_VS, COPY_FS, 'copy'),
       seamResolve: new Program(gl, FULLSCREEN_VS, SEAM_RESOLVE_FS, 'seam-resolve'),
     };
+    this.localUpdate = new LocalUpdate(gl);
+  }
+
+  // Every program, the local runs' too (pipeline warm-up, checks).
+  get allPrograms() {
+    return { ...this.programs, ...this.localUpdate.programs };
   }
 
   // Every program checked (compiled and linked, or a GLError): waits for the driver where it is not done yet.
   checkPrograms() {
     this.guard.run(() => {
-      for (const p of Object.values(this.programs)) p.check();
+      for (const p of Object.values(this.allPrograms)) p.check();
     });
   }
 
@@ -112,7 +125,7 @@ export class Synthesizer {
     gl.flush();
     const done = () =>
       parallel
-        ? Object.values(this.programs).every((p) => p.ready(parallel))
+        ? Object.values(this.allPrograms).every((p) => p.ready(parallel))
         : !fence || gl.getSyncParameter(fence, gl.SYNC_STATUS) === gl.SIGNALED;
     try {
       while (!gl.isContextLost() && !done()) await nextFrame();
@@ -127,7 +140,7 @@ export class Synthesizer {
   // compiles at the first draw. For the time before a first texture.
   async warmUpPipelines(nextFrame = defaultNextFrame) {
     await this.programsReady(nextFrame);
-    if (!this.gl.isContextLost()) this.guard.run(() => warmUpPipelines(this.gl, this.programs, this.vao));
+    if (!this.gl.isContextLost()) this.guard.run(() => warmUpPipelines(this.gl, this.allPrograms, this.vao));
   }
 
   // The pyramid levels of the current atlas, finest first.
@@ -187,9 +200,15 @@ export class Synthesizer {
   // Resolves to null when cancelled (the previous result stays). Options as synthesize(), plus `finestLevel`
   // (0, or 1 for a quarter-cost preview that stops one level short: the result then lives at half the atlas
   // resolution, see resultLevel).
+  // Runs cancelled so far, and the share of its work the last one had done (later runs' stats carry them).
   async synthesizeInterleaved(vertexVectors, options = {}, run = {}) {
     this.pacer ??= new SlicePacer(this.gl);
-    return interleavedRun(this.pacer, () => this.guard.steps(this.#steps(vertexVectors, options)), run);
+    let done = 0;
+    const onProgress = (f) => run.onProgress?.((done = f));
+    const makeSteps = () => this.guard.steps(this.#steps(vertexVectors, options));
+    const result = await interleavedRun(this.pacer, makeSteps, { ...run, onProgress });
+    if (!result) this.cancelledRuns = { count: (this.cancelledRuns?.count ?? 0) + 1, lastAt: done };
+    return result;
   }
 
   // Resolves once the GPU has done everything issued in this context so far (the view's frames included),
@@ -239,6 +258,7 @@ export class Synthesizer {
     const tJac = performance.now();
 
     const plan = levelPlan(o, this.levels.length, stackTop, finestLevel);
+    const local = this.localUpdate.begin(this.atlas, this.exemplar, o, this.vao);
 
     const levelStats = [];
     let parent = null;
@@ -246,52 +266,14 @@ export class Synthesizer {
     for (const step of plan) {
       const L = this.levels[step.k];
       const E = this.exemplar.levels[step.stackLevel];
-      const half = L.size / 2;
+      const redo = { redo: this.localUpdate.before(L), local };
       // Upsample (or initialise) each parity class into its quarter.
-      for (let c = 0; c < 4; c++) {
-        L.quarters[c].bindAsTarget();
-        this.programs.upsample
-          .use()
-          .texture('uParent', parent ?? L.jac)
-          .texture('uJac', L.jac)
-          .int('uCoarsest', parent ? 0 : 1)
-          .ivec2('uClass', c & 1, c >> 1)
-          .float('uJitter', step.jitter)
-          .int('uLevel', step.k)
-          .int('uSeed', o.seed | 0)
-          .float('uM', m);
-        drawFullscreen(gl, this.vao);
-      }
+      for (let c = 0; c < 4; c++) upsampleClass(this, L, parent, step, c, o, redo);
       yield work(L.size * L.size);
       // Correction: passes x 4 sub-passes, one parity class each, in LH05's order (0,0), (1,1), (1,0), (0,1).
-      const prog = this.programs.correct;
       for (let pass = 0; pass < o.passes; pass++) {
         for (const c of [0, 3, 1, 2]) {
-          L.spare.bindAsTarget();
-          prog
-            .use()
-            .texture('uS0', L.quarters[0])
-            .texture('uS1', L.quarters[1])
-            .texture('uS2', L.quarters[2])
-            .texture('uS3', L.quarters[3])
-            .texture('uJac', L.jac)
-            .texture('uIndir', L.indirection)
-            .int('uSeams', o.seams ? 1 : 0)
-            .texture('uApp0', E.app0)
-            .texture('uApp1', E.app1)
-            .texture('uNbr0', E.nbr0)
-            .texture('uNbr1', E.nbr1)
-            .texture('uCand', E.cand)
-            .mat4v('uProj', E.proj)
-            .vec4v('uProjOff', E.projOff)
-            .ivec2('uSize', L.size, L.size)
-            .ivec2('uClass', c & 1, c >> 1)
-            .int('uMask', m - 1)
-            .float('uM', m)
-            .float('uH', step.spacing)
-            .float('uKappa', o.kappa);
-          drawFullscreen(gl, this.vao);
-          [L.quarters[c], L.spare] = [L.spare, L.quarters[c]];
+          correctClass(this, L, E, step, c, o, redo);
           yield work(2 * L.size * L.size);
         }
       }
@@ -303,6 +285,7 @@ export class Synthesizer {
         .texture('uS2', L.quarters[2])
         .texture('uS3', L.quarters[3]);
       drawFullscreen(gl, this.vao);
+      this.localUpdate.after(L);
       parent = L.result;
       if (step.k === finestLevel && o.seams) {
         // Gutter texels next to seams take the coordinates across the seam (for the magnified rendering).
@@ -348,6 +331,8 @@ export class Synthesizer {
       passes: o.passes,
       subpasses: 4,
       seed: o.seed,
+      ...this.localUpdate.summary(),
+      cancelledRuns: this.cancelledRuns ?? { count: 0, lastAt: null },
       levels: levelStats,
       jacobianMs: tJac - t0,
       seams: o.seams ? this.atlas.seams : null,
@@ -392,7 +377,7 @@ export class Synthesizer {
     this.guard.run(() => {
       this.#disposeExemplar();
       this.#disposeAtlas();
-      for (const p of Object.values(this.programs)) p.dispose();
+      for (const p of Object.values(this.allPrograms)) p.dispose();
       this.gl.deleteVertexArray(this.vao);
     });
     if (!this.guard.renderer) this.gl.getExtension('WEBGL_lose_context')?.loseContext();

@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// A synthesis run redone only where the field moved (synthesizer.js). LH05's synthesis is local: a texel's
+// coordinate depends on its parent's and on its level's neighbours a texel or two away, and the rest of the
+// pyramid on the same jitter (a hash of the texel, level and seed). So each level keeps the Jacobian its texels were
+// last synthesized with, and a run whose options, exemplar and atlas are those of the run before marks, level by
+// level, the texels whose Jacobian moved by more than `localDegrees` (or was never synthesized), widened by
+// two texels so that the new patches are corrected against their kept neighbours; only those are upsampled and
+// corrected, the others keep their coordinates. A texel kept thus follows the field within that angle (scale
+// alike: the Jacobian's relative change), however many runs it is kept through: it is compared with the
+// Jacobian it was made with, not the last run's. A level's moved texels are flagged as never synthesized before
+// its passes, and all it made get their new Jacobian after them: a run cancelled half-way leaves the next run
+// the texels it had begun.
+// Owns the per-level kept Jacobians and masks (on the atlas's levels, disposed with it) and its programs (the
+// synthesizer disposes them with its own).
+import { ByteTarget, FloatTarget, FULLSCREEN_VS, Program, drawFullscreen } from './gl.js';
+
+const HEADER = `#version 300 es
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+`;
+// Stands for "never synthesized" in a kept Jacobian (a real one is a few exemplar pixels per texel).
+const UNSYNTHESIZED = 1e30;
+const WIDEN = 2; // texels round a moved one that are synthesized again with it, at every level
+
+// 1 where the texel's Jacobian moved from the kept one by more than uTol relative to the larger (the angle's
+// chord: a rotation by θ moves a 2x2 Jacobian by 2 sin(θ/2) of its norm), or was never synthesized.
+const MOVED_FS = `${HEADER}
+uniform sampler2D uJac;
+uniform sampler2D uKept;
+uniform float uTol;
+out vec4 outM;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 a = texelFetch(uJac, p, 0), b = texelFetch(uKept, p, 0);
+  bool moved = b.x >= ${UNSYNTHESIZED.toExponential()} || length(a - b) > uTol * max(length(a), length(b));
+  outM = vec4(moved ? 1.0 : 0.0);
+}`;
+
+// The moved texels widened by WIDEN texels (a square).
+const WIDEN_FS = `${HEADER}
+uniform sampler2D uMoved;
+out vec4 outM;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy), last = textureSize(uMoved, 0) - 1;
+  float m = 0.0;
+  for (int y = -${WIDEN}; y <= ${WIDEN}; ++y)
+    for (int x = -${WIDEN}; x <= ${WIDEN}; ++x)
+      m = max(m, texelFetch(uMoved, clamp(p + ivec2(x, y), ivec2(0), last), 0).r);
+  outM = vec4(m);
+}`;
+
+// Writes uValue (uFromJac = 0) or the texel's Jacobian (1) into the kept Jacobian where the mask is set (or
+// everywhere: uAll).
+const KEEP_FS = `${HEADER}
+uniform sampler2D uMask;
+uniform sampler2D uJac;
+uniform int uAll;
+uniform int uFromJac;
+out vec4 outJ;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  if (uAll == 0 && texelFetch(uMask, p, 0).r < 0.5) discard;
+  outJ = uFromJac == 1 ? texelFetch(uJac, p, 0) : vec4(${UNSYNTHESIZED.toExponential()});
+}`;
+
+// What makes a run's kept coordinates reusable by the next: the same atlas and exemplar on the GPU and the same
+// options (the field apart; the finest level does not matter, each level keeps its own).
+const KEY_OPTIONS = ['featureScale', 'magnitudeExponent', 'jitter', 'finestJitter', 'passes', 'kappa', 'seed', 'seams'];
+
+export class LocalUpdate {
+  constructor(gl) {
+    this.gl = gl;
+    this.programs = {
+      moved: new Program(gl, FULLSCREEN_VS, MOVED_FS, 'local-moved'),
+      widen: new Program(gl, FULLSCREEN_VS, WIDEN_FS, 'local-widen'),
+      keep: new Program(gl, FULLSCREEN_VS, KEEP_FS, 'local-keep'),
+    };
+    this.key = null;
+  }
+
+  check() {
+    for (const p of Object.values(this.programs)) p.check();
+  }
+
+  // At a run's start: whether it can be local (the same atlas, exemplar and options as the run before, and
+  // o.localDegrees > 0). A run that cannot marks every level never synthesized: a run cancelled on its way leaves
+  // nothing the next could take for made under these options.
+  begin(atlas, exemplar, o, vao) {
+    const key = [atlas, exemplar, ...KEY_OPTIONS.map((k) => JSON.stringify(o[k]))];
+    const same = this.key !== null && key.every((v, i) => v === this.key[i]);
+    this.key = key;
+    this.vao = vao;
+    this.tolerance = 2 * Math.sin(((o.localDegrees ?? 0) * Math.PI) / 360);
+    this.local = same && o.localDegrees > 0;
+    this.reason = o.localDegrees > 0 ? (same ? null : 'first run of this atlas, exemplar and options') : 'off';
+    if (!this.local) for (const L of atlas.levels) if (L.kept) this.#fill(L.kept, UNSYNTHESIZED);
+    return this.local;
+  }
+
+  // Before level L's passes: its mask of texels to synthesize again (a run that is not local synthesizes every
+  // texel and does not read it). The moved ones are flagged as never synthesized until after(): a run cancelled
+  // before then leaves the next one the same mask again, the ring round them included.
+  before(L) {
+    this.#allocate(L);
+    if (!this.local) return L.redo;
+    const gl = this.gl;
+    L.moved.bindAsTarget();
+    this.programs.moved.use().texture('uJac', L.jac).texture('uKept', L.kept).float('uTol', this.tolerance);
+    drawFullscreen(gl, this.vao);
+    L.redo.bindAsTarget();
+    this.programs.widen.use().texture('uMoved', L.moved);
+    drawFullscreen(gl, this.vao);
+    this.#keep(L, L.moved, { all: false, fromJac: false });
+    return L.redo;
+  }
+
+  // After level L's passes: its texels synthesized (all, or those of its mask) keep the Jacobian they were made with.
+  after(L) {
+    this.#keep(L, L.redo, { all: !this.local, fromJac: true });
+  }
+
+  #keep(L, mask, { all, fromJac }) {
+    L.kept.bindAsTarget();
+    this.programs.keep
+      .use()
+      .texture('uMask', mask)
+      .texture('uJac', L.jac)
+      .int('uAll', all ? 1 : 0)
+      .int('uFromJac', fromJac ? 1 : 0);
+    drawFullscreen(this.gl, this.vao);
+  }
+
+  #allocate(L) {
+    if (L.kept) return;
+    L.kept = new FloatTarget(this.gl, L.size, L.size, null, { check: false });
+    this.#fill(L.kept, UNSYNTHESIZED);
+    L.moved = new ByteTarget(this.gl, L.size, L.size);
+    L.redo = new ByteTarget(this.gl, L.size, L.size);
+  }
+
+  #fill(target, value) {
+    target.bindAsTarget();
+    this.gl.clearBufferfv(this.gl.COLOR, 0, [value, value, value, value]);
+  }
+
+  // The run's account for its stats.
+  summary() {
+    return { local: this.local, localReason: this.reason };
+  }
+}
