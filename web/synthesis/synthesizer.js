@@ -199,8 +199,8 @@ export class Synthesizer {
   // while the GPU works through the pyramid (interleaved-run.js; run: its onProgress, cancelled, clock).
   // Resolves to null when cancelled (the previous result stays). Options as synthesize(), plus `finestLevel`
   // (0, or 1 for a quarter-cost preview that stops one level short: the result then lives at half the atlas
-  // resolution, see resultLevel).
-  // Runs cancelled so far, and the share of its work the last one had done (later runs' stats carry them).
+  // resolution, see resultLevel). A cancelled run is counted, with the share of its work it had done
+  // (`cancelledRuns` in later runs' stats).
   async synthesizeInterleaved(vertexVectors, options = {}, run = {}) {
     this.pacer ??= new SlicePacer(this.gl);
     let done = 0;
@@ -266,6 +266,7 @@ export class Synthesizer {
     for (const step of plan) {
       const L = this.levels[step.k];
       const E = this.exemplar.levels[step.stackLevel];
+      // The texels to make again (a local run's; every texel otherwise).
       const redo = { redo: this.localUpdate.before(L), local };
       // Upsample (or initialise) each parity class into its quarter.
       for (let c = 0; c < 4; c++) upsampleClass(this, L, parent, step, c, o, redo);
