@@ -10,6 +10,8 @@
 //                             each broken into its phases: textureFirstPhases, textureUpdatePhases; and
 //                             textureOnScreenMs, textureUpdateOnScreenMs: to the GPU done with the first frame
 //                             that draws it, *FirstFrameMs that frame alone)
+//                             [--texture-redone]   (with --texture: textureUpdateRedoneShare, each update's share
+//                             of the texels whose coordinates changed, read back after it was timed)
 //                             [--reopen [--reload]]   (the mesh opened again, over itself or in the page
 //                             reloaded: reopenExactFieldMs, loadModel to its exact field, the ordering, preview
 //                             parts and picking tree kept; with --texture its texture made again too)
@@ -399,6 +401,20 @@ const ON_SCREEN = () => {
   };
 };
 
+// In the page: the share of the texture's texels (inside the charts) whose synthesized coordinates changed since
+// the last call (1 at the first), read back after the timing.
+const REDONE_SHARE = `(async () => {
+  const c = (await window.tvf.synthesisReadback()).coords, last = window.__lastCoords;
+  window.__lastCoords = c;
+  let changed = 0, inside = 0;
+  for (let t = 0; t < c.length; t += 4) {
+    if (c[t + 3] === 0) continue;
+    inside++;
+    if (!last || c[t] !== last[t] || c[t + 1] !== last[t + 1]) changed++;
+  }
+  return changed / inside;
+})()`;
+
 async function textureBench(page, strokes, url) {
   await page.evaluate(() => window.__longTasks.splice(0));
   const profile = await startProfile(page, arg('--profile-texture', null));
@@ -414,6 +430,8 @@ async function textureBench(page, strokes, url) {
     return { wallMs: t1 - t0, t0, t1, stats: s, firstFrameMs: await window.__onScreen(t1) };
   });
   const firstTasks = await page.evaluate(() => window.__longTasks.splice(0));
+  const redone = process.argv.includes('--texture-redone') ? [] : null;
+  if (redone) await page.evaluate(REDONE_SHARE);
   const updates = [];
   for (const points of strokes) {
     updates.push(await page.evaluate(async (pts) => {
@@ -425,6 +443,7 @@ async function textureBench(page, strokes, url) {
       const t1 = performance.now();
       return { wallMs: t1 - t0, t0, t1, stats: s, firstFrameMs: await window.__onScreen(t1) };
     }, points));
+    if (redone) redone.push(await page.evaluate(REDONE_SHARE));
   }
   const updateTasks = await page.evaluate(() => window.__longTasks.splice(0));
   // --reopen: the same mesh opened again, its texture made again (the atlas from the worker's cache).
@@ -462,6 +481,7 @@ async function textureBench(page, strokes, url) {
     textureUpdateFirstFrameMs: median(updates.map((u) => u.firstFrameMs)),
     textureOnScreenMs: first.wallMs + first.firstFrameMs,
     textureUpdateOnScreenMs: median(updates.map((u) => u.wallMs + u.firstFrameMs)),
+    ...(redone ? { textureUpdateRedoneShare: redone.map((f) => +f.toFixed(4)) } : {}),
     ...(reopened ? {
       reopenExactFieldMs: reopenExact.ms,
       reopenExactFactor: { analyzeMs: reopenExact.analyzeMs, factorMs: reopenExact.factorMs,
