@@ -79,10 +79,6 @@ export class LocalUpdate {
     this.key = null;
   }
 
-  check() {
-    for (const p of Object.values(this.programs)) p.check();
-  }
-
   // At a run's start: whether it can be local (the same atlas, exemplar and options as the run before, and
   // o.localDegrees > 0). A run that cannot marks every level never synthesized: a run cancelled on its way leaves
   // nothing the next could take for made under these options.
