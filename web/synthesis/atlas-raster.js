@@ -352,9 +352,11 @@ export class AtlasRaster {
     if (this.vao) this.#deleteVertices();
     for (const t of [this.frameTexture, this.fieldTexture]) if (t) gl.deleteTexture(t);
     this.locator?.dispose();
-    for (const L of this.levels)
-      for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, L.kept, L.moved, L.redo, ...L.quarters])
+    for (const L of this.levels) {
+      for (const t of [L.jac, L.result, L.spare, L.spare2, L.indirection, L.kept, L.moved, L.redo, L.blocks])
         t?.dispose();
+      for (const t of L.quarters) t.dispose();
+    }
     this.levels = [];
   }
 }

@@ -2,13 +2,41 @@
 // The draws of one pyramid level (synthesizer.js, LH05 Sec. 3): each parity class upsampled (or initialised) into
 // its quarter, and one correction sub-pass of a class. Both write into the level's spare quarter, which then takes
 // the class's place, and both keep a texel as it was where a local run (local-update.js) leaves it: `redo` is
-// the level's mask of texels to synthesize again, `local` whether to read it. Owns nothing.
+// the level's mask of texels to synthesize again, `local` whether to read it, `rects` (level texels) where it may
+// be set, or null for the whole level. Drawn within the rectangles only, the spare is copied back into the
+// quarter there instead of taking its place. Owns nothing.
 import { drawFullscreen } from './gl.js';
+
+// The spare drawn by draw(): made the class's quarter, or copied into it where `rects` (level texels) say.
+function drawIntoQuarter(s, L, c, rects, draw) {
+  const gl = s.gl;
+  L.spare.bindAsTarget();
+  if (!rects) {
+    draw();
+    [L.quarters[c], L.spare] = [L.spare, L.quarters[c]];
+    return;
+  }
+  const quarter = rects.map(({ x, y, w, h }) => [x >> 1, y >> 1, w >> 1, h >> 1]);
+  gl.enable(gl.SCISSOR_TEST);
+  for (const [x, y, w, h] of quarter) {
+    gl.scissor(x, y, w, h);
+    draw();
+  }
+  gl.disable(gl.SCISSOR_TEST);
+  gl.bindFramebuffer(gl.READ_FRAMEBUFFER, L.spare.framebuffer);
+  gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, L.quarters[c].framebuffer);
+  for (const [x, y, w, h] of quarter) gl.blitFramebuffer(x, y, x + w, y + h, x, y, x + w, y + h, gl.COLOR_BUFFER_BIT, gl.NEAREST);
+  gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
+  gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
+}
 
 // s: the synthesizer (gl, vao, programs, exemplar); L: the level; parent: the coarser level's result or null;
 // step: levelPlan()'s; c: the class; o: the run's options.
-export function upsampleClass(s, L, parent, step, c, o, { redo, local }) {
-  L.spare.bindAsTarget();
+export function upsampleClass(s, L, parent, step, c, o, { redo, local, rects }) {
+  drawIntoQuarter(s, L, c, rects, () => upsample(s, L, parent, step, c, o, redo, local));
+}
+
+function upsample(s, L, parent, step, c, o, redo, local) {
   s.programs.upsample
     .use()
     .texture('uRedo', redo)
@@ -23,13 +51,15 @@ export function upsampleClass(s, L, parent, step, c, o, { redo, local }) {
     .int('uSeed', o.seed | 0)
     .float('uM', s.exemplar.size);
   drawFullscreen(s.gl, s.vao);
-  [L.quarters[c], L.spare] = [L.spare, L.quarters[c]];
 }
 
 // One correction sub-pass of class c with the exemplar's stack level E.
-export function correctClass(s, L, E, step, c, o, { redo, local }) {
+export function correctClass(s, L, E, step, c, o, { redo, local, rects }) {
+  drawIntoQuarter(s, L, c, rects, () => correct(s, L, E, step, c, o, redo, local));
+}
+
+function correct(s, L, E, step, c, o, redo, local) {
   const m = s.exemplar.size;
-  L.spare.bindAsTarget();
   s.programs.correct
     .use()
     .texture('uRedo', redo)
@@ -55,5 +85,4 @@ export function correctClass(s, L, E, step, c, o, { redo, local }) {
     .float('uKappa', o.kappa)
     .int('uLocal', local ? 1 : 0);
   drawFullscreen(s.gl, s.vao);
-  [L.quarters[c], L.spare] = [L.spare, L.quarters[c]];
 }

@@ -22,6 +22,11 @@ precision highp sampler2D;
 // Stands for "never synthesized" in a kept Jacobian (a real one is a few exemplar pixels per texel).
 const UNSYNTHESIZED = 1e30;
 const WIDEN = 2; // texels round a moved one that are synthesized again with it, at every level
+// A level of at least TILE x BANDS texels a side is drawn only round its TILE-texel blocks that hold a moved texel
+// (a block more each way: the widening stays within it), in BANDS bands of block rows each drawn over the
+// columns it needs; a smaller level whole.
+const TILE = 16;
+const BANDS = 8;
 
 // 1 where the texel's Jacobian moved from the kept one by more than uTol relative to the larger (the angle's
 // chord: a rotation by θ moves a 2x2 Jacobian by 2 sin(θ/2) of its norm), or was never synthesized.
@@ -50,6 +55,18 @@ void main() {
   outM = vec4(m);
 }`;
 
+// 1 for a TILE x TILE block of the level with a moved texel.
+const TILES_FS = `${HEADER}
+uniform sampler2D uMoved;
+out vec4 outT;
+void main() {
+  ivec2 corner = ${TILE} * ivec2(gl_FragCoord.xy);
+  float m = 0.0;
+  for (int y = 0; y < ${TILE}; ++y)
+    for (int x = 0; x < ${TILE}; ++x) m = max(m, texelFetch(uMoved, corner + ivec2(x, y), 0).r);
+  outT = vec4(m);
+}`;
+
 // Writes uValue (uFromJac = 0) or the texel's Jacobian (1) into the kept Jacobian where the mask is set (or
 // everywhere: uAll).
 const KEEP_FS = `${HEADER}
@@ -75,6 +92,7 @@ export class LocalUpdate {
       moved: new Program(gl, FULLSCREEN_VS, MOVED_FS, 'local-moved'),
       widen: new Program(gl, FULLSCREEN_VS, WIDEN_FS, 'local-widen'),
       keep: new Program(gl, FULLSCREEN_VS, KEEP_FS, 'local-keep'),
+      tiles: new Program(gl, FULLSCREEN_VS, TILES_FS, 'local-tiles'),
     };
     this.key = null;
   }
@@ -94,37 +112,74 @@ export class LocalUpdate {
     return this.local;
   }
 
-  // Before level L's passes: its mask of texels to synthesize again (a run that is not local synthesizes every
-  // texel and does not read it). The moved ones are flagged as never synthesized until after(): a run cancelled
-  // before then leaves the next one the same mask again, the ring round them included.
-  before(L) {
-    this.#allocate(L);
-    if (!this.local) return L.redo;
-    const gl = this.gl;
-    L.moved.bindAsTarget();
-    this.programs.moved.use().texture('uJac', L.jac).texture('uKept', L.kept).float('uTol', this.tolerance);
-    drawFullscreen(gl, this.vao);
-    L.redo.bindAsTarget();
-    this.programs.widen.use().texture('uMoved', L.moved);
-    drawFullscreen(gl, this.vao);
-    this.#keep(L, L.moved, { all: false, fromJac: false });
-    return L.redo;
+  // A local run, once the field is rasterized, for every level it makes (levels: the atlas's, finest first; plan:
+  // levelPlan()'s): its mask of moved texels, and of blocks that hold one. The run then waits for the GPU (a
+  // phase of the kernel's) before readBlocks().
+  find(levels, plan) {
+    for (const { k } of plan) {
+      const L = levels[k];
+      this.#allocate(L);
+      L.rects = null;
+      const { moved, tiles } = this.programs;
+      this.#pass(L.moved, null, () =>
+        moved.use().texture('uJac', L.jac).texture('uKept', L.kept).float('uTol', this.tolerance),
+      );
+      if (L.blocks) this.#pass(L.blocks, null, () => tiles.use().texture('uMoved', L.moved));
+    }
   }
 
-  // After level L's passes: its texels synthesized (all, or those of its mask) keep the Jacobian they were made with.
+  // Once the GPU is done with find()'s passes: where each level is to be drawn (`rects`, level texels, in bands of
+  // block rows; an empty list where nothing is to be made again).
+  readBlocks(levels, plan) {
+    if (!this.local) return;
+    for (const { k } of plan) {
+      const L = levels[k];
+      if (L.blocks) L.rects = bandRects(L.blocks.read(), L.blocks.width);
+    }
+  }
+
+  // Before level L's passes: its mask of texels to make again (the moved ones widened), and where it may be set
+  // ({redo, local, rects}; a run that is not local makes every texel and reads neither; outside rects the mask is
+  // not made). The moved texels are flagged as never made until after(): a run cancelled before then leaves
+  // the next one the same mask again, the ring round them included.
+  before(L) {
+    this.#allocate(L);
+    if (!this.local) L.rects = null;
+    else {
+      this.#pass(L.redo, L.rects, () => this.programs.widen.use().texture('uMoved', L.moved));
+      this.#keep(L, L.moved, { all: false, fromJac: false });
+    }
+    return { redo: L.redo, local: this.local, rects: L.rects };
+  }
+
+  // After level L's passes: its texels made (all, or those of its mask) keep the Jacobian they were made with.
   after(L) {
     this.#keep(L, L.redo, { all: !this.local, fromJac: true });
   }
 
   #keep(L, mask, { all, fromJac }) {
-    L.kept.bindAsTarget();
-    this.programs.keep
-      .use()
-      .texture('uMask', mask)
-      .texture('uJac', L.jac)
-      .int('uAll', all ? 1 : 0)
-      .int('uFromJac', fromJac ? 1 : 0);
-    drawFullscreen(this.gl, this.vao);
+    this.#pass(L.kept, all ? null : L.rects, () =>
+      this.programs.keep
+        .use()
+        .texture('uMask', mask)
+        .texture('uJac', L.jac)
+        .int('uAll', all ? 1 : 0)
+        .int('uFromJac', fromJac ? 1 : 0),
+    );
+  }
+
+  // One full-screen pass into target of the program setUp() readies, within rects (null: all of it).
+  #pass(target, rects, setUp) {
+    const gl = this.gl;
+    target.bindAsTarget();
+    setUp();
+    if (!rects) return drawFullscreen(gl, this.vao);
+    gl.enable(gl.SCISSOR_TEST);
+    for (const { x, y, w, h } of rects) {
+      gl.scissor(x, y, w, h);
+      drawFullscreen(gl, this.vao);
+    }
+    gl.disable(gl.SCISSOR_TEST);
   }
 
   #allocate(L) {
@@ -133,6 +188,7 @@ export class LocalUpdate {
     this.#fill(L.kept, UNSYNTHESIZED);
     L.moved = new ByteTarget(this.gl, L.size, L.size);
     L.redo = new ByteTarget(this.gl, L.size, L.size);
+    if (L.size >= TILE * BANDS) L.blocks = new ByteTarget(this.gl, L.size / TILE, L.size / TILE);
   }
 
   #fill(target, value) {
@@ -144,4 +200,21 @@ export class LocalUpdate {
   summary() {
     return { local: this.local, localReason: this.reason };
   }
+}
+
+// The blocks' mask (RGBA8, n x n, row 0 first) as rectangles in level texels: the rows in BANDS bands, each band
+// drawn from its first to its last row with a block set and over the columns of those, a block more each way
+// (bands may overlap then: a texel drawn twice in a pass is drawn the same).
+function bandRects(bytes, n) {
+  const rects = [], rows = n / BANDS;
+  for (let b = 0; b < BANDS; b++) {
+    let x0 = n, x1 = -1, y0 = n, y1 = -1;
+    for (let y = b * rows; y < (b + 1) * rows; y++)
+      for (let x = 0; x < n; x++)
+        if (bytes[4 * (y * n + x)]) (x0 = Math.min(x0, x)), (x1 = Math.max(x1, x)), (y0 = Math.min(y0, y)), (y1 = y);
+    if (x1 < 0) continue;
+    [x0, y0, x1, y1] = [Math.max(0, x0 - 1), Math.max(0, y0 - 1), Math.min(n - 1, x1 + 1), Math.min(n - 1, y1 + 1)];
+    rects.push({ x: TILE * x0, y: TILE * y0, w: TILE * (x1 - x0 + 1), h: TILE * (y1 - y0 + 1) });
+  }
+  return rects;
 }

@@ -253,12 +253,17 @@ export class Synthesizer {
     // Jacobian's share.
     const phase = 'field rasterized into the atlas (GPU)';
     yield { texels: Infinity, progress: jacobianWork / total, field: true, phase };
+    // A local run's texels to make again (local-update.js), found on the GPU and waited for as the kernel's first
+    // phase: where each level is drawn is read back then.
+    const plan = levelPlan(o, this.levels.length, stackTop, finestLevel);
+    if (this.localUpdate.begin(this.atlas, this.exemplar, o, this.vao)) {
+      this.localUpdate.find(this.levels, plan);
+      yield { texels: Infinity, progress: jacobianWork / total, field: true, phase: 'kernel: texels to make again' };
+    }
+    this.localUpdate.readBlocks(this.levels, plan);
     yield work(jacobianWork);
     if (o.timing === 'levels') sync(gl, this.levels[0].jac);
     const tJac = performance.now();
-
-    const plan = levelPlan(o, this.levels.length, stackTop, finestLevel);
-    const local = this.localUpdate.begin(this.atlas, this.exemplar, o, this.vao);
 
     const levelStats = [];
     let parent = null;
@@ -267,7 +272,7 @@ export class Synthesizer {
       const L = this.levels[step.k];
       const E = this.exemplar.levels[step.stackLevel];
       // The texels to make again (a local run's; every texel otherwise).
-      const redo = { redo: this.localUpdate.before(L), local };
+      const redo = this.localUpdate.before(L);
       // Upsample (or initialise) each parity class into its quarter.
       for (let c = 0; c < 4; c++) upsampleClass(this, L, parent, step, c, o, redo);
       yield work(L.size * L.size);
