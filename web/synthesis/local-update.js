@@ -9,7 +9,7 @@
 // alike: the Jacobian's relative change), however many runs it is kept through: it is compared with the
 // Jacobian it was made with, not the last run's. A level's moved texels are flagged as never synthesized before
 // its passes, and all it made get their new Jacobian after them: a run cancelled half-way leaves the next run
-// the texels it had begun.
+// the texels it had begun. The passes are drawn only round the blocks of texels that moved (level-passes.js).
 // Owns the per-level kept Jacobians and masks (on the atlas's levels, disposed with it) and its programs (the
 // synthesizer disposes them with its own).
 import { ByteTarget, FloatTarget, FULLSCREEN_VS, Program, drawFullscreen } from './gl.js';
