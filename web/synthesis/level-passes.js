@@ -7,12 +7,14 @@
 // quarter there instead of taking its place. Owns nothing.
 import { drawFullscreen } from './gl.js';
 
-// The spare drawn by draw(): made the class's quarter, or copied into it where `rects` (level texels) say.
-function drawIntoQuarter(s, L, c, rects, draw) {
+// The spare drawn with the program setUp() readies: made the class's quarter, or copied into it where `rects`
+// (level texels) say.
+function drawIntoQuarter(s, L, c, rects, setUp) {
   const gl = s.gl;
   L.spare.bindAsTarget();
+  setUp();
   if (!rects) {
-    draw();
+    drawFullscreen(gl, s.vao);
     [L.quarters[c], L.spare] = [L.spare, L.quarters[c]];
     return;
   }
@@ -20,12 +22,13 @@ function drawIntoQuarter(s, L, c, rects, draw) {
   gl.enable(gl.SCISSOR_TEST);
   for (const [x, y, w, h] of quarter) {
     gl.scissor(x, y, w, h);
-    draw();
+    drawFullscreen(gl, s.vao);
   }
   gl.disable(gl.SCISSOR_TEST);
   gl.bindFramebuffer(gl.READ_FRAMEBUFFER, L.spare.framebuffer);
   gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, L.quarters[c].framebuffer);
-  for (const [x, y, w, h] of quarter) gl.blitFramebuffer(x, y, x + w, y + h, x, y, x + w, y + h, gl.COLOR_BUFFER_BIT, gl.NEAREST);
+  for (const [x, y, w, h] of quarter)
+    gl.blitFramebuffer(x, y, x + w, y + h, x, y, x + w, y + h, gl.COLOR_BUFFER_BIT, gl.NEAREST);
   gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
   gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
 }
@@ -33,10 +36,10 @@ function drawIntoQuarter(s, L, c, rects, draw) {
 // s: the synthesizer (gl, vao, programs, exemplar); L: the level; parent: the coarser level's result or null;
 // step: levelPlan()'s; c: the class; o: the run's options.
 export function upsampleClass(s, L, parent, step, c, o, { redo, local, rects }) {
-  drawIntoQuarter(s, L, c, rects, () => upsample(s, L, parent, step, c, o, redo, local));
+  drawIntoQuarter(s, L, c, rects, () => useUpsample(s, L, parent, step, c, o, redo, local));
 }
 
-function upsample(s, L, parent, step, c, o, redo, local) {
+function useUpsample(s, L, parent, step, c, o, redo, local) {
   s.programs.upsample
     .use()
     .texture('uRedo', redo)
@@ -50,15 +53,14 @@ function upsample(s, L, parent, step, c, o, redo, local) {
     .int('uLevel', step.k)
     .int('uSeed', o.seed | 0)
     .float('uM', s.exemplar.size);
-  drawFullscreen(s.gl, s.vao);
 }
 
 // One correction sub-pass of class c with the exemplar's stack level E.
 export function correctClass(s, L, E, step, c, o, { redo, local, rects }) {
-  drawIntoQuarter(s, L, c, rects, () => correct(s, L, E, step, c, o, redo, local));
+  drawIntoQuarter(s, L, c, rects, () => useCorrection(s, L, E, step, c, o, redo, local));
 }
 
-function correct(s, L, E, step, c, o, redo, local) {
+function useCorrection(s, L, E, step, c, o, redo, local) {
   const m = s.exemplar.size;
   s.programs.correct
     .use()
@@ -84,5 +86,4 @@ function correct(s, L, E, step, c, o, redo, local) {
     .float('uH', step.spacing)
     .float('uKappa', o.kappa)
     .int('uLocal', local ? 1 : 0);
-  drawFullscreen(s.gl, s.vao);
 }
