@@ -236,6 +236,17 @@ export function drawFullscreen(gl, vao) {
   gl.bindVertexArray(null);
 }
 
+// The full-screen pass drawn only within `rects` ([{x, y, w, h}] in the target's pixels), or everywhere (null).
+export function drawWithin(gl, vao, rects) {
+  if (!rects) return drawFullscreen(gl, vao);
+  gl.enable(gl.SCISSOR_TEST);
+  for (const { x, y, w, h } of rects) {
+    gl.scissor(x, y, w, h);
+    drawFullscreen(gl, vao);
+  }
+  gl.disable(gl.SCISSOR_TEST);
+}
+
 // Waits for the GPU: a 1x1 readPixels from the current framebuffer (gl.finish() does not wait in Chromium).
 export function sync(gl, target) {
   const px = new Float32Array(4);

@@ -5,7 +5,7 @@
 // the level's mask of texels to synthesize again, `local` whether to read it, `rects` (level texels) where it may
 // be set, or null for the whole level. Drawn within the rectangles only, the spare is copied back into the
 // quarter there instead of taking its place. Owns nothing.
-import { drawFullscreen } from './gl.js';
+import { drawFullscreen, drawWithin } from './gl.js';
 
 // The spare drawn with the program setUp() readies: made the class's quarter, or copied into it where `rects`
 // (level texels) say.
@@ -18,16 +18,11 @@ function drawIntoQuarter(s, L, c, rects, setUp) {
     [L.quarters[c], L.spare] = [L.spare, L.quarters[c]];
     return;
   }
-  const quarter = rects.map(({ x, y, w, h }) => [x >> 1, y >> 1, w >> 1, h >> 1]);
-  gl.enable(gl.SCISSOR_TEST);
-  for (const [x, y, w, h] of quarter) {
-    gl.scissor(x, y, w, h);
-    drawFullscreen(gl, s.vao);
-  }
-  gl.disable(gl.SCISSOR_TEST);
+  const quarter = rects.map(({ x, y, w, h }) => ({ x: x >> 1, y: y >> 1, w: w >> 1, h: h >> 1 }));
+  drawWithin(gl, s.vao, quarter);
   gl.bindFramebuffer(gl.READ_FRAMEBUFFER, L.spare.framebuffer);
   gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, L.quarters[c].framebuffer);
-  for (const [x, y, w, h] of quarter)
+  for (const { x, y, w, h } of quarter)
     gl.blitFramebuffer(x, y, x + w, y + h, x, y, x + w, y + h, gl.COLOR_BUFFER_BIT, gl.NEAREST);
   gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
   gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);

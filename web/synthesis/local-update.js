@@ -12,7 +12,7 @@
 // the texels it had begun. The passes are drawn only round the blocks of texels that moved (level-passes.js).
 // Owns the per-level kept Jacobians and masks (on the atlas's levels, disposed with it) and its programs (the
 // synthesizer disposes them with its own).
-import { ByteTarget, FloatTarget, FULLSCREEN_VS, Program, drawFullscreen } from './gl.js';
+import { ByteTarget, FloatTarget, FULLSCREEN_VS, Program, drawWithin } from './gl.js';
 
 const HEADER = `#version 300 es
 precision highp float;
@@ -67,8 +67,8 @@ void main() {
   outT = vec4(m);
 }`;
 
-// Writes uValue (uFromJac = 0) or the texel's Jacobian (1) into the kept Jacobian where the mask is set (or
-// everywhere: uAll).
+// Writes "never synthesized" (uFromJac = 0) or the texel's Jacobian (1) into the kept Jacobian where the mask is
+// set (or everywhere: uAll).
 const KEEP_FS = `${HEADER}
 uniform sampler2D uMask;
 uniform sampler2D uJac;
@@ -86,8 +86,10 @@ void main() {
 const KEY_OPTIONS = ['featureScale', 'magnitudeExponent', 'jitter', 'finestJitter', 'passes', 'kappa', 'seed', 'seams'];
 
 export class LocalUpdate {
-  constructor(gl) {
+  // gl and vao: the synthesizer's context and full-screen vertex array.
+  constructor(gl, vao) {
     this.gl = gl;
+    this.vao = vao;
     this.programs = {
       moved: new Program(gl, FULLSCREEN_VS, MOVED_FS, 'local-moved'),
       widen: new Program(gl, FULLSCREEN_VS, WIDEN_FS, 'local-widen'),
@@ -100,11 +102,10 @@ export class LocalUpdate {
   // At a run's start: whether it can be local (the same atlas, exemplar and options as the run before, and
   // o.localDegrees > 0). A run that cannot marks every level never synthesized: a run cancelled on its way leaves
   // nothing the next could take for made under these options.
-  begin(atlas, exemplar, o, vao) {
+  begin(atlas, exemplar, o) {
     const key = [atlas, exemplar, ...KEY_OPTIONS.map((k) => JSON.stringify(o[k]))];
     const same = this.key !== null && key.every((v, i) => v === this.key[i]);
     this.key = key;
-    this.vao = vao;
     this.tolerance = 2 * Math.sin(((o.localDegrees ?? 0) * Math.PI) / 360);
     this.local = same && o.localDegrees > 0;
     this.reason = o.localDegrees > 0 ? (same ? null : 'first run of this atlas, exemplar and options') : 'off';
@@ -116,11 +117,11 @@ export class LocalUpdate {
   // levelPlan()'s): its mask of moved texels, and of blocks that hold one. The run then waits for the GPU (a
   // phase of the kernel's) before readBlocks().
   find(levels, plan) {
+    const { moved, tiles } = this.programs;
     for (const { k } of plan) {
       const L = levels[k];
       this.#allocate(L);
       L.rects = null;
-      const { moved, tiles } = this.programs;
       this.#pass(L.moved, null, () =>
         moved.use().texture('uJac', L.jac).texture('uKept', L.kept).float('uTol', this.tolerance),
       );
@@ -170,16 +171,9 @@ export class LocalUpdate {
 
   // One full-screen pass into target of the program setUp() readies, within rects (null: all of it).
   #pass(target, rects, setUp) {
-    const gl = this.gl;
     target.bindAsTarget();
     setUp();
-    if (!rects) return drawFullscreen(gl, this.vao);
-    gl.enable(gl.SCISSOR_TEST);
-    for (const { x, y, w, h } of rects) {
-      gl.scissor(x, y, w, h);
-      drawFullscreen(gl, this.vao);
-    }
-    gl.disable(gl.SCISSOR_TEST);
+    drawWithin(this.gl, this.vao, rects);
   }
 
   #allocate(L) {

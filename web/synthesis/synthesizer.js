@@ -99,7 +99,7 @@ export class Synthesizer {
       copy: new Program(gl, FULLSCREEN_VS, COPY_FS, 'copy'),
       seamResolve: new Program(gl, FULLSCREEN_VS, SEAM_RESOLVE_FS, 'seam-resolve'),
     };
-    this.localUpdate = new LocalUpdate(gl);
+    this.localUpdate = new LocalUpdate(gl, this.vao);
   }
 
   // Every program, the local runs' too (pipeline warm-up, checks).
@@ -256,7 +256,7 @@ export class Synthesizer {
     // A local run's texels to make again (local-update.js), found on the GPU and waited for as the kernel's first
     // phase: where each level is drawn is read back then.
     const plan = levelPlan(o, this.levels.length, stackTop, finestLevel);
-    if (this.localUpdate.begin(this.atlas, this.exemplar, o, this.vao)) {
+    if (this.localUpdate.begin(this.atlas, this.exemplar, o)) {
       this.localUpdate.find(this.levels, plan);
       yield { texels: Infinity, progress: jacobianWork / total, field: true, phase: 'kernel: texels to make again' };
     }
