@@ -482,6 +482,8 @@ async function textureBench(page, strokes, url) {
     textureOnScreenMs: first.wallMs + first.firstFrameMs,
     textureUpdateOnScreenMs: median(updates.map((u) => u.wallMs + u.firstFrameMs)),
     ...(redone ? { textureUpdateRedoneShare: redone.map((f) => +f.toFixed(4)) } : {}),
+    // Per update, the faces whose Jacobian was drawn again (synthesisStats().raster).
+    textureUpdateRaster: updates.map((u) => u.stats?.raster ?? null),
     ...(reopened ? {
       reopenExactFieldMs: reopenExact.ms,
       reopenExactFactor: { analyzeMs: reopenExact.analyzeMs, factorMs: reopenExact.factorMs,

@@ -691,6 +691,8 @@ export declare class TangentFieldDesigner extends HTMLElement {
   debugTraceStreamlines(): number[][];
   /** @internal How many shader programs the viewer's renderer holds (views/shader-warm-up.js makes them all at the start). */
   debugGlPrograms(): number;
+  /** @internal From now on, the time (performance.now()) of every frame the view draws, pushed onto the array returned. */
+  debugRecordFrames(): number[];
   /** @internal Draws a surface of at least minFaces faces once per view and copies it under the field (views/surface-layer.js); how often it was drawn and copied, and the drawing-buffer pixels the copy covers (null: all). */
   debugSurfaceLayer(minFaces?: number): { minFaces: number; drawn: number; copied: number; rect: { x: number; y: number; width: number; height: number } | null };
   /** @internal The worker's component op: one part of the current field with its reconstructed vectors. */

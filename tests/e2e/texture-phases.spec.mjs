@@ -135,6 +135,47 @@ test.describe.serial('texture phases, a single edit, the atlas kept per mesh (bu
     expect(r.same).toBe(true);
   });
 
+  // After an update that came within a frame or two (web/synthesis/quick-edits.js followsWithin, FOLLOW_MS), the
+  // next edit on its own has its field drawn with its texture in one frame: none drawn between the edit and the
+  // texture shown, one after it; after a slower update the field is drawn first, as before. The edits: the field at
+  // a face asked to turn by 10° (as long as it is), which moves a part of the texture only; the run before the
+  // first was the whole one after the context's restore (above).
+  test('an edit on its own after a quick update: its field and its texture drawn in one frame', async () => {
+    const edit = (face) =>
+      page.evaluate(async (face) => {
+        const t = window.tvf;
+        await new Promise((resolve) => setTimeout(resolve, 600));
+        const before = t.synthesisStats();
+        const { positions: P, triangles: T } = t.mesh(), vv = t.vertexVectors();
+        const at = (a, k, d) => a[3 * T[3 * face + k] + d];
+        const v = [0, 1, 2].map((d) => (at(vv, 0, d) + at(vv, 1, d) + at(vv, 2, d)) / 3);
+        const e = [1, 2].map((k) => [0, 1, 2].map((d) => at(P, k, d) - at(P, 0, d)));
+        const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+        const m = cross(e[0], e[1]), n = m.map((x) => x / Math.hypot(...m)), nv = cross(n, v);
+        const c = Math.cos(Math.PI / 18), sn = Math.sin(Math.PI / 18);
+        const frames = t.debugRecordFrames();
+        const t0 = performance.now();
+        await t.addVector(face, v.map((x, d) => c * x + sn * nv[d]));
+        await t.settled();
+        const s = await t.synthesisIdle();
+        await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+        return { before, s, t0, frames: frames.slice() };
+      }, face);
+    const runs = [await edit(1200), await edit(2400), await edit(600)];
+    for (const r of runs) {
+      const quick = r.before.local && !r.before.preview && r.before.wallMs < 250;
+      const early = r.frames.filter((x) => x < r.s.shownAt);
+      console.log(JSON.stringify({ before: r.before.wallMs, quick, wallMs: r.s.wallMs, waited: r.s.fieldFrameWaited,
+        frames: r.frames.map((x) => Math.round(x - r.t0)), shownAt: Math.round(r.s.shownAt - r.t0) }));
+      expect(r.s.fieldFrameWaited > 0, 'the field\'s frame waited for its texture').toBe(quick);
+      if (quick) expect(early, 'frames drawn before the texture was shown').toEqual([]);
+      else expect(early.length, 'the field drawn first').toBeGreaterThan(0);
+      expect(r.frames.some((x) => x >= r.s.shownAt), 'the frame with the field and its texture').toBe(true);
+    }
+    expect(runs[0].s.fieldFrameWaited, 'after a whole run').toBe(0);
+    expect(runs.some((r) => r.s.fieldFrameWaited > 0), 'an edit whose frame waited for its texture').toBe(true);
+  });
+
   // On a big model (here forced: previewEdges 1) an edit brings a preview field, then the exact one: the texture
   // ends on the exact field, and synthesisIdle() resolves with it (the queue's own race is
   // tests/node/synthesis-idle.test.mjs's).

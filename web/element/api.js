@@ -167,6 +167,8 @@ export const api = {
     }),
   debugTraceStreamlines: read((d) => d.viewSync.traceStreamlinesHere().map((l) => Array.from(l))),
   debugGlPrograms: (d) => d.viewer.renderer.info.programs.length,
+  // From now on, the time of every frame the view draws, pushed onto the array returned (in the page).
+  debugRecordFrames: (d) => (d.viewer.frameLog = []),
   // The big-surface layer (views/surface-layer.js) from minFaces faces on (when given), and its counts.
   debugSurfaceLayer: (d, minFaces) => {
     const layer = d.viewer.surfaceLayer;

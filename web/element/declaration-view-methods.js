@@ -240,6 +240,12 @@ export const VIEW_METHODS = [
       'the start).',
   },
   {
+    name: 'debugRecordFrames', ...TEST_HOOKS,
+    signatures: [['', 'number[]']],
+    description: 'From now on, the time (performance.now()) of every frame the view draws, pushed onto the array ' +
+      'returned.',
+  },
+  {
     name: 'debugSurfaceLayer', ...TEST_HOOKS,
     signatures: [
       [

@@ -61,6 +61,7 @@ export class Designer {
       this.synthesis.fieldChanged();
       this.stripes.fieldChanged();
     };
+    this.viewSync.frameMayWait = () => this.synthesis.followsWithin();
     this.exports = setupExport({
       viewer: this.viewer,
       panel: $('#side-panel'),

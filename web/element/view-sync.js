@@ -33,6 +33,7 @@ export class ViewSync {
     this.inFlight = { component: false, hodgeShares: false };
     this.requests = { component: 0, hodgeShares: 0 }; // requests sent to the worker (perf().hodgeViews)
     this.onRefreshed = () => {}; // after each redraw (texture synthesis follows the field)
+    this.frameMayWait = () => 0; // ms a field's frame may wait for what follows it (0: drawn at once)
   }
 
   // ---- the field the views draw
@@ -252,7 +253,10 @@ export class ViewSync {
     ui.setStatus({ name: s.modelName, info: s.info, stats: s.field.stats });
     this.refreshHistory();
     const t1 = performance.now();
-    viewer.renderNow();
+    // The texture's update shown with the field in one frame when it follows within a frame or two.
+    const wait = this.frameMayWait();
+    if (wait > 0) viewer.deferFrame(wait);
+    else viewer.renderNow();
     const t2 = performance.now();
     // drawnAt: when the change's draw was issued (what bench:web times an exact field landing by).
     s.perf.refresh = { updateViewsMs: t1 - t0, renderMs: t2 - t1, drawnAt: t2 };

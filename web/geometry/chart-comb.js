@@ -8,6 +8,7 @@
 import { closestRotation, matchedCorners } from './nfield.js';
 
 const TWO_PI = 2 * Math.PI;
+const STEP = 8192; // faces combed between two yields of combForAtlasSteps
 
 // Per face, one direction of the N-field from the three vertex representatives: their N-th powers averaged in
 // the face's frame (symmetric in the three, whatever rotation each came with), as a unit vector in the face's
@@ -52,20 +53,16 @@ function isSeam(cornerUVs, f, k, g, kk) {
   );
 }
 
-// Binary min-heap of (cost, item) pairs in parallel arrays.
+// Binary min-heap of (cost, item) pairs in typed arrays of a fixed capacity.
 class MinHeap {
-  constructor() {
-    this.cost = [];
-    this.item = [];
-  }
-  get size() {
-    return this.cost.length;
+  constructor(capacity) {
+    this.cost = new Float64Array(capacity);
+    this.item = new Int32Array(capacity);
+    this.size = 0;
   }
   push(c, x) {
     const C = this.cost, I = this.item;
-    let i = C.length;
-    C.push(c);
-    I.push(x);
+    let i = this.size++;
     while (i > 0) {
       const p = (i - 1) >> 1;
       if (C[p] <= c) break;
@@ -78,8 +75,7 @@ class MinHeap {
   }
   pop() {
     const C = this.cost, I = this.item, top = I[0];
-    const c = C.pop(), x = I.pop();
-    const n = C.length;
+    const n = --this.size, c = C[n], x = I[n];
     if (n) {
       let i = 0;
       for (;;) {
@@ -98,6 +94,30 @@ class MinHeap {
   }
 }
 
+// Per connected component of faces (across the half-edge map), its largest face (the lowest index among equals):
+// the roots the comb grows from, in no particular order.
+function componentRoots(neighbour, areas, nF) {
+  const seen = new Uint8Array(nF), stack = new Int32Array(nF), roots = [];
+  for (let start = 0; start < nF; start++) {
+    if (seen[start]) continue;
+    seen[start] = 1;
+    let top = 0, best = start;
+    stack[top++] = start;
+    while (top) {
+      const f = stack[--top];
+      if (areas && (areas[f] > areas[best] || (areas[f] === areas[best] && f < best))) best = f;
+      for (let k = 0; k < 3; k++) {
+        const h = neighbour[3 * f + k];
+        if (h < 0 || seen[(h / 3) | 0]) continue;
+        seen[(h / 3) | 0] = 1;
+        stack[top++] = (h / 3) | 0;
+      }
+    }
+    roots.push(areas ? best : start);
+  }
+  return roots;
+}
+
 // The angle in [0, π/N] between two tangent directions u (at ui in U) and w (at wi in W) of the face with unit
 // normal n (at ni in Nm), as N-directions.
 function misalignment(U, ui, W, wi, Nm, ni, N) {
@@ -111,8 +131,13 @@ function misalignment(U, ui, W, wi, Nm, ni, N) {
 // tree of the faces grown cheapest edge first from the largest face of each connected component. An edge costs
 // the angle between its faces' directions (mod 2π/N, after transport across it), plus π where cornerUVs (6 per
 // face, optional) put a seam on it. Returns {faces: Float64Array(3 · nF), flips: the edges (as [f, g]) across
-// which the combed directions still disagree by more than π/2N, i.e. the cuts}.
+// which the combed directions still disagree by more than π/2N, i.e. the cuts}. combForAtlasSteps yields every
+// STEP faces combed (a caller may give the page its frames there: bunny00's 75k faces took 125 ms, node).
 export function combForAtlas(surface, faceDirs, N, cornerUVs = null) {
+  return drain(combForAtlasSteps(surface, faceDirs, N, cornerUVs));
+}
+
+export function* combForAtlasSteps(surface, faceDirs, N, cornerUVs = null) {
   const out = Float64Array.from(faceDirs);
   const { triangles: T, normals: Nm, positions: P, neighbour, areas, nF } = surface;
   const seen = new Uint8Array(nF);
@@ -140,9 +165,7 @@ export function combForAtlas(surface, faceDirs, N, cornerUVs = null) {
     c[2] = along * ez + across * (gx * ey - gy * ex);
     return c;
   };
-  const order = Array.from({ length: nF }, (_, f) => f);
-  if (areas) order.sort((a, b) => areas[b] - areas[a] || a - b);
-  const heap = new MinHeap();
+  const heap = new MinHeap(3 * nF);
   const push = (f) => {
     for (let k = 0; k < 3; k++) {
       const h = neighbour[3 * f + k];
@@ -153,8 +176,8 @@ export function combForAtlas(surface, faceDirs, N, cornerUVs = null) {
       heap.push(misalignment(carry(f, k, g), 0, out, 3 * g, Nm, 3 * g, N) + (seam ? Math.PI : 0), 3 * f + k);
     }
   };
-  for (const root of order) {
-    if (seen[root]) continue;
+  let combed = 0;
+  for (const root of componentRoots(neighbour, areas, nF)) {
     seen[root] = 1;
     push(root);
     while (heap.size) {
@@ -162,6 +185,7 @@ export function combForAtlas(surface, faceDirs, N, cornerUVs = null) {
       const f = (h / 3) | 0, k = h % 3, g = (neighbour[h] / 3) | 0;
       if (seen[g]) continue;
       seen[g] = 1;
+      if (++combed % STEP === 0) yield;
       const ng = [Nm[3 * g], Nm[3 * g + 1], Nm[3 * g + 2]];
       out.set(closestRotation([out[3 * g], out[3 * g + 1], out[3 * g + 2]], carry(f, k, g), ng, N), 3 * g);
       push(g);
@@ -189,9 +213,23 @@ export function combForAtlas(surface, faceDirs, N, cornerUVs = null) {
 // own face representatives (3 per face) or null (then made from the vertex ones); cornerUVs: the atlas (6 per
 // face) whose seams the cuts should follow, or null. Also returns the combed face directions and the cut edges.
 export function atlasCombedCorners(surface, vertexVectors, faceVectors, N, cornerUVs = null) {
+  return drain(atlasCombedCornersSteps(surface, vertexVectors, faceVectors, N, cornerUVs));
+}
+
+// The same a step at a time (combForAtlasSteps).
+export function* atlasCombedCornersSteps(surface, vertexVectors, faceVectors, N, cornerUVs = null) {
   const dirs = faceVectors ? projected(surface, faceVectors) : faceDirections(surface, vertexVectors, N);
-  const { faces, flips } = combForAtlas(surface, dirs, N, cornerUVs);
+  yield;
+  const { faces, flips } = yield* combForAtlasSteps(surface, dirs, N, cornerUVs);
   return { corners: matchedCorners(surface, vertexVectors, faces, N), faces, flips };
+}
+
+// A generator run to its end: its value.
+function drain(steps) {
+  for (;;) {
+    const r = steps.next();
+    if (r.done) return r.value;
+  }
 }
 
 // Face vectors projected into their faces' planes and normalised (zero ones stay zero).

@@ -6,16 +6,20 @@
 // face count (drawing bunny00's 75k triangles took SwiftShader 100-130 ms an update, whatever their shader did;
 // armadillo-sub2's 832k, 0.75-0.9 s). One per atlas (resolution and UVs); the synthesizer works in its levels.
 // Kept apart from the level loop because it changes only when the model or the atlas does.
-import { FloatTarget, GLError, drawFullscreen, isPow2 } from './gl.js';
+import { FloatTarget, GLError, drawWithin, isPow2 } from './gl.js';
 import { cornerData } from './atlas-corners.js';
-import { gutterQuads } from './atlas-gutter.js';
+import { gutterQuads, gutterReach } from './atlas-gutter.js';
+import { RASTER_SHARE, blockRects, coarserRects, faceBoxes, faceMoved, faceNormals } from './raster-delta.js';
 import { halfEdgeNeighbours } from '../geometry/mesh-geometry.js';
-import { whitneyCorners } from '../geometry/whitney-corners.js';
+import { fillCornerField } from './corner-field.js';
 import { coarserIndirection, seamIndirection } from './seams.js';
 
 // Texels per row of the per-corner textures (at most; a multiple of 3, so that a face's corners share a row):
 // bunny00's 225k corners fill 55 rows.
 const CORNER_ROW = 4095;
+
+// Faces apart (in the mesh's order) that two moved faces' corners may be and still go to the GPU in one upload.
+const UPLOAD_GAP = 64;
 
 // Texels of a seam map sent to the GPU per step (RGBA32F: 1 MB).
 const BAND_TEXELS = 1 << 16;
@@ -69,7 +73,11 @@ export class AtlasRaster {
     this.gutterUV = quads.uv;
     this.gutterSource = quads.source;
     this.gutterIndices = quads.indices;
-    this.fieldData = new Float32Array(12 * nF); // RGBA per corner (atlas-corners.js FRAME_FLOATS)
+    this.fieldData = new Float32Array(12 * nF); // RGBA per corner (atlas-corners.js FRAME_FLOATS): as drawn
+    this.nextData = null; // a field to compare with the one drawn (a run that may draw only where it moved)
+    this.drawnKey = null; // the options the Jacobian was last drawn with in full; null: none, or a draw cut short
+    this.normals = faceNormals(frames);
+    this.boxes = faceBoxes(cornerUVs, resolution, Math.ceil(Math.SQRT2 * gutterReach(gutter)) + 1);
     this.faceArea = faceArea;
     this.usedFaces = used;
     this.coverage = areaUV;
@@ -203,13 +211,13 @@ export class AtlasRaster {
   // (geometry/whitney-corners.js), made a slice at a time; or, for a combed line or cross field, {cornerVectors}
   // (9 per face, corner k of face f at 9f + 3k: geometry/chart-comb.js);
   // the first time, the fixed data goes up and the map of faces is drawn; then the field per corner, and a
-  // full-screen pass at the finest level, averaged down. programs: the synthesizer's; vao: its full-screen one.
+  // full-screen pass at the finest level, averaged down; after a field drawn so, only round the faces whose field
+  // moved (raster-delta.js; `lastDraw` says how many). programs: the synthesizer's; vao: its full-screen one.
   // A generator: the data go up a slice of faces at a time, and it yields after each slice so that the caller can
   // give the page its frames (a synthesis run step by step, synthesizer.js), the name of the phase it ends, if
   // not the field's; the draws are issued when it returns. Returns the reference magnitude (area-weighted mean
   // |field|).
   *rasterSteps(programs, vao, field, o) {
-    const gl = this.gl;
     const nF = this.triangles.length / 3;
     const sums = { mag: 0, area: 0 };
     if (!this.located) {
@@ -220,17 +228,61 @@ export class AtlasRaster {
     const corners = field?.cornerVectors ?? null;
     if (corners && corners.length !== 9 * nF)
       throw new GLError(`cornerVectors must hold 9 numbers per face (${9 * nF}), got ${corners.length}`);
+    // Drawn only where the field moved when the last draw was under the same options (the angle kept too: a face
+    // left as drawn is within it) and was not cut short, and the magnitude does not scale the features (the
+    // reference magnitude, over the whole mesh, moves with any edit).
+    const key = `${o.featureScale} ${o.magnitudeExponent} ${o.localDegrees}`;
+    const sinTol = Math.sin((RASTER_SHARE * (o.localDegrees ?? 0) * Math.PI) / 180);
+    const delta = this.drawnKey === key && sinTol > 0 && o.magnitudeExponent === 0;
+    this.drawnKey = null; // until this draw is issued
+    const out = delta ? (this.nextData ??= new Float32Array(12 * nF)) : this.fieldData;
+    const moved = delta ? new Int32Array(nF) : null;
+    let count = 0;
     // A slice of o.sliceFaces faces per task: at 832k faces the whole field in one upload (with the fixed data
     // beside it, 140 MB) held the page for 5-7 s while the GPU process caught up; 32k faces are ~1 MB.
     for (let f0 = 0; f0 < nF; f0 += o.sliceFaces) {
       const f1 = Math.min(nF, f0 + o.sliceFaces);
-      if (corners) this.#fillCorners(corners, f0, f1, sums);
-      else if (field?.whitney) this.#fillWhitney(field.whitney, f0, f1, sums);
-      else this.#fillField(field, f0, f1, sums);
-      this.#uploadCorners(this.fieldTexture, this.fieldData, 3 * f0, 3 * f1);
+      fillCornerField(field, this.triangles, this.faceArea, f0, f1, sums, out);
+      const from = count;
+      if (delta) count = this.#takeMoved(f0, f1, sinTol, moved, count);
+      if (!delta) this.#uploadCorners(this.fieldTexture, this.fieldData, 3 * f0, 3 * f1);
+      else this.#uploadRuns(moved, from, count);
       yield; // the last slice too: its upload is waited for apart from the raster's draws
     }
+    const rects = delta ? blockRects(this.boxes, moved, count, this.resolution) : null;
+    this.lastDraw = { faces: delta ? count : nF, whole: !delta, rects: rects?.length ?? null };
     const magRef = sums.mag > 0 ? sums.mag / sums.area : 1;
+    if (!rects || rects.length) this.#drawJacobian(programs, vao, o, magRef, rects);
+    this.drawnKey = key;
+    return magRef;
+  }
+
+  // Faces f0 .. f1 - 1 of nextData whose field moved (raster-delta.js faceMoved) into fieldData and onto
+  // `moved` from `count`; returns the new count.
+  #takeMoved(f0, f1, sinTol, moved, count) {
+    const next = this.nextData, drawn = this.fieldData, normals = this.normals;
+    for (let f = f0; f < f1; f++) {
+      if (!faceMoved(next, drawn, normals, f, sinTol)) continue;
+      drawn.set(next.subarray(12 * f, 12 * f + 12), 12 * f);
+      moved[count++] = f;
+    }
+    return count;
+  }
+
+  // The faces moved[from .. count - 1] (ascending) to the field's texture, in runs of faces a few apart (those
+  // between go as drawn): a few small uploads where one of the whole slice took software GL 10-20 ms.
+  #uploadRuns(moved, from, count) {
+    for (let i = from; i < count; ) {
+      let j = i + 1;
+      while (j < count && moved[j] - moved[j - 1] <= UPLOAD_GAP) j++;
+      this.#uploadCorners(this.fieldTexture, this.fieldData, 3 * moved[i], 3 * moved[j - 1] + 3);
+      i = j;
+    }
+  }
+
+  // The Jacobian's pass at the finest level within rects (null: everywhere), averaged down level by level.
+  #drawJacobian(programs, vao, o, magRef, rects) {
+    const gl = this.gl;
     const rho = o.featureScale * this.texelLength;
     this.levels[0].jac.bindAsTarget();
     programs.jacobian
@@ -242,13 +294,12 @@ export class AtlasRaster {
       .float('uTexel', 1 / this.resolution)
       .float('uMagRef', magRef)
       .float('uMagExponent', o.magnitudeExponent);
-    drawFullscreen(gl, vao);
+    drawWithin(gl, vao, rects);
     for (let k = 1; k < this.levels.length; k++) {
       this.levels[k].jac.bindAsTarget();
       programs.jacobianDown.use().texture('uJac', this.levels[k - 1].jac);
-      drawFullscreen(gl, vao);
+      drawWithin(gl, vao, rects && coarserRects(rects, k));
     }
-    return magRef;
   }
 
   // The fixed data to the GPU, `slice` faces per task: UVs, corner indices and frames; then the gutter's quads.
@@ -298,53 +349,6 @@ export class AtlasRaster {
     for (const b of [this.uvBuffer, this.cornerBuffer, this.indexBuffer]) gl.deleteBuffer(b);
     gl.deleteVertexArray(this.vao);
     this.uvBuffer = this.cornerBuffer = this.indexBuffer = this.vao = null;
-  }
-
-  // The field per corner of faces f0 .. f1 - 1 from the vertices', and their part of the reference magnitude
-  // (area-weighted mean over faces of the corner mean). Math.sqrt, not Math.hypot: 5 x faster in V8, and this
-  // is on the path from a stroke to its texture (bunny00: 7 -> 1.3 ms).
-  #fillField(vertexVectors, f0, f1, sums) {
-    const T = this.triangles, out = this.fieldData, A = this.faceArea;
-    let magSum = 0, areaSum = 0;
-    for (let f = f0; f < f1; f++) {
-      let mag = 0;
-      for (let k = 0; k < 3; k++) {
-        const v = 3 * T[3 * f + k], o = 12 * f + 4 * k;
-        const x = vertexVectors[v], y = vertexVectors[v + 1], z = vertexVectors[v + 2];
-        out[o] = x;
-        out[o + 1] = y;
-        out[o + 2] = z;
-        mag += Math.sqrt(x * x + y * y + z * z);
-      }
-      magSum += (mag / 3) * A[f];
-      areaSum += A[f];
-    }
-    sums.mag += magSum;
-    sums.area += areaSum;
-  }
-
-  // The same from a vector field's 1-form: its Whitney field at the corners.
-  #fillWhitney({ positions, rows, oneForm }, f0, f1, sums) {
-    sums.mag += whitneyCorners(positions, this.triangles, rows, oneForm, f0, f1, this.fieldData, 12);
-    for (let f = f0; f < f1; f++) sums.area += this.faceArea[f];
-  }
-
-  // The same from a per-corner field (9 per face).
-  #fillCorners(C, f0, f1, sums) {
-    const out = this.fieldData;
-    for (let f = f0; f < f1; f++) {
-      let mag = 0;
-      for (let k = 0; k < 3; k++) {
-        const c = 9 * f + 3 * k, o = 12 * f + 4 * k;
-        const x = C[c], y = C[c + 1], z = C[c + 2];
-        out[o] = x;
-        out[o + 1] = y;
-        out[o + 2] = z;
-        mag += Math.sqrt(x * x + y * y + z * z) / 3;
-      }
-      sums.mag += mag * this.faceArea[f];
-      sums.area += this.faceArea[f];
-    }
   }
 
   dispose() {

@@ -9,13 +9,14 @@ import { runSynthesisBench } from './bench.js';
 import { ExemplarLibrary, PROCEDURAL_SIZE, USER_EXEMPLAR_SIZE, imageToRGBA8 } from './exemplar.js';
 import { setUpAtlas } from './atlas-setup.js';
 import { PhaseClock } from './phase-clock.js';
-import { QUICK_EDIT_MS, isQuickEdit } from './quick-edits.js';
+import { QUICK_EDIT_MS, followsWithin, isQuickEdit } from './quick-edits.js';
 import { DEFAULTS, Synthesizer } from './synthesizer.js';
 import { glbTexture, texturePng, textureReadback } from './texture-exports.js';
 import { TEXTURE_SYMMETRIES, textureRefusal } from '../session/symmetry.js';
 import { checkSynthesisOptions } from './options.js';
-import { fieldInput, runOptions } from './run-inputs.js';
+import { fieldInputSteps, runOptions, stepped } from './run-inputs.js';
 import { progressFollower } from './progress-follower.js';
+import { watchContext } from './context-loss.js';
 
 export class SynthesisController {
   // viewer: the page's Viewer (scene, surfaceMesh, requestRender).
@@ -66,7 +67,7 @@ export class SynthesisController {
     this.previewFieldShown = false; // the last field change was a big model's preview field
     this.runsQueued = 0; // field changes' runs queued or running (quick-edits.js)
     this.previewRuns = 0; // runs made as previews of quick edits (synthesisStats().previewRuns)
-    this.#watchContext();
+    watchContext(this);
   }
 
   // Runs fn after everything queued before it (texture-exports.js reads through this too).
@@ -84,24 +85,6 @@ export class SynthesisController {
     this.synth = new Synthesizer(renderer.getContext(), { renderer });
     if (this.exemplar) this.synth.setExemplar(this.exemplar.tables); // a context lost and restored
     return this.synth;
-  }
-
-  // The view's context was lost: everything made in it is gone (the synthesizer, the atlas's raster, the
-  // texture shown); once it is back, a texture that was shown is made again (the atlas from the worker's cache).
-  #watchContext() {
-    const canvas = this.viewer?.renderer?.domElement;
-    if (!canvas?.addEventListener) return;
-    this.onContextLost = () => {
-      this.runToken++;
-      this.synth = null;
-      this.atlas = null;
-      this.lastFieldVersion = undefined;
-      this.runVersion = undefined;
-      this.render?.dropTextures();
-    };
-    this.onContextRestored = () => this.active && this.fieldChanged();
-    canvas.addEventListener('webglcontextlost', this.onContextLost);
-    canvas.addEventListener('webglcontextrestored', this.onContextRestored);
   }
 
   // A new one in a task of its own (its programs are created there); null if disposed meanwhile.
@@ -201,7 +184,8 @@ export class SynthesisController {
     const atlas = await setUpAtlas(this, model, clock);
     const tAtlas = performance.now() - t0;
     const synthOptions = runOptions(this.options, model, atlas, this.exemplar.tables.size, preview);
-    const field = fieldInput(model, atlas);
+    const field = await stepped(fieldInputSteps(model, atlas), this.options.interleave, () => token !== this.runToken);
+    if (!field) return this.synthesisStats(); // superseded by a newer field change
     clock.mark(field.symmetry > 1 ? 'field combed for the atlas' : 'field per corner (Whitney)');
     let s;
     if (this.options.interleave) {
@@ -228,6 +212,7 @@ export class SynthesisController {
     const t2 = performance.now();
     const { rgba8: exemplar, size: exemplarSize } = this.exemplar.tables;
     if (!this.render.setTexture({ ...this.synth.displayCopy(), exemplar, exemplarSize })) return this.synthesisStats();
+    this.viewer.drawDeferred?.(); // the field's frame, if it waited for this texture (followsWithin)
     clock.mark('to the view (copied on the GPU)');
     this.stale = false;
     this.stats = {
@@ -246,6 +231,7 @@ export class SynthesisController {
       fieldVersion: model.fieldVersion,
       previewRuns: this.previewRuns,
       viewFrames: this.viewer.renderCount - frames0, // the view's frames drawn during the run (beside it on the GPU)
+      fieldFrameWaited: this.frameWaited ?? 0, // ms the field's frame could wait for this texture (0: drawn first)
       symmetry: field.symmetry,
       ...(field.symmetry > 1 ? { combMs: field.ms, combCutEdges: field.cutEdges } : {}),
     };
@@ -286,6 +272,12 @@ export class SynthesisController {
       }, QUICK_EDIT_MS);
     }
     this.#schedule(quick && this.stats !== null);
+  }
+
+  // The milliseconds the view's frame of a field change may wait for this texture to be shown with it in one
+  // frame (0: drawn at once): asked before the change is drawn (quick-edits.js followsWithin).
+  followsWithin() {
+    return (this.frameWaited = followsWithin(this));
   }
 
   #schedule(preview) {

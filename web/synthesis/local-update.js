@@ -3,16 +3,19 @@
 // coordinate depends on its parent's and on its level's neighbours a texel or two away, and the rest of the
 // pyramid on the same jitter (a hash of the texel, level and seed). So each level keeps the Jacobian its texels were
 // last synthesized with, and a run whose options, exemplar and atlas are those of the run before marks, level by
-// level, the texels whose Jacobian moved by more than `localDegrees` (or was never synthesized), widened by
-// two texels so that the new patches are corrected against their kept neighbours; only those are upsampled and
-// corrected, the others keep their coordinates. A texel kept thus follows the field within that angle (scale
-// alike: the Jacobian's relative change), however many runs it is kept through: it is compared with the
-// Jacobian it was made with, not the last run's. A level's moved texels are flagged as never synthesized before
-// its passes, and all it made get their new Jacobian after them: a run cancelled half-way leaves the next run
-// the texels it had begun. The passes are drawn only round the blocks of texels that moved (level-passes.js).
+// level, the texels whose Jacobian moved by more than three quarters of `localDegrees` (or was never
+// synthesized), widened by two texels so that the new patches are corrected against their kept neighbours; only
+// those are upsampled and corrected, the others keep their coordinates. The Jacobian itself is drawn again only
+// where the field moved by more than the last quarter (atlas-raster.js), so a texel kept follows the field within
+// localDegrees (scale alike: the Jacobian's relative change), however many runs it is kept through: it is
+// compared with the Jacobian it was made with, not the last run's. A level's moved texels are flagged as never
+// synthesized before its passes, and all it made get their new Jacobian after them: a run cancelled half-way
+// leaves the next run the texels it had begun. The passes are drawn only round the blocks of texels that moved
+// (level-passes.js).
 // Owns the per-level kept Jacobians and masks (on the atlas's levels, disposed with it) and its programs (the
 // synthesizer disposes them with its own).
 import { ByteTarget, FloatTarget, FULLSCREEN_VS, Program, drawWithin } from './gl.js';
+import { RASTER_SHARE } from './raster-delta.js';
 
 const HEADER = `#version 300 es
 precision highp float;
@@ -106,8 +109,10 @@ export class LocalUpdate {
     const key = [atlas, exemplar, ...KEY_OPTIONS.map((k) => JSON.stringify(o[k]))];
     const same = this.key !== null && key.every((v, i) => v === this.key[i]);
     this.key = key;
-    this.tolerance = 2 * Math.sin(((o.localDegrees ?? 0) * Math.PI) / 360);
+    // The raster is within RASTER_SHARE of the angle of the field (atlas-raster.js), this the rest.
+    this.tolerance = 2 * Math.sin(((1 - RASTER_SHARE) * (o.localDegrees ?? 0) * Math.PI) / 360);
     this.local = same && o.localDegrees > 0;
+    this.drawnShare = 1;
     this.reason = o.localDegrees > 0 ? (same ? null : 'first run of this atlas, exemplar and options') : 'off';
     if (!this.local) for (const L of atlas.levels) if (L.kept) this.#fill(L.kept, UNSYNTHESIZED);
     return this.local;
@@ -130,13 +135,15 @@ export class LocalUpdate {
   }
 
   // Once the GPU is done with find()'s passes: where each level is to be drawn (`rects`, level texels, in bands of
-  // block rows; an empty list where nothing is to be made again).
+  // block rows; an empty list where nothing is to be made again), and the share of the finest level that is.
   readBlocks(levels, plan) {
     if (!this.local) return;
     for (const { k } of plan) {
       const L = levels[k];
       if (L.blocks) L.rects = bandRects(L.blocks.read(), L.blocks.width);
     }
+    const finest = levels[plan.at(-1).k];
+    this.drawnShare = (finest.rects?.reduce((a, r) => a + r.w * r.h, 0) ?? finest.size ** 2) / finest.size ** 2;
   }
 
   // Before level L's passes: its mask of texels to make again (the moved ones widened), and where it may be set
@@ -190,25 +197,38 @@ export class LocalUpdate {
     this.gl.clearBufferfv(this.gl.COLOR, 0, [value, value, value, value]);
   }
 
-  // The run's account for its stats.
+  // The run's account for its stats (localDrawnShare: the share of the finest level its passes were drawn over).
   summary() {
-    return { local: this.local, localReason: this.reason };
+    return { local: this.local, localReason: this.reason, localDrawnShare: this.drawnShare };
   }
 }
 
-// The blocks' mask (RGBA8, n x n, row 0 first) as rectangles in level texels: the rows in BANDS bands, each band
-// drawn from its first to its last row with a block set and over the columns of those, a block more each way
-// (bands may overlap then: a texel drawn twice in a pass is drawn the same).
+// The blocks' mask (RGBA8, n x n, row 0 first) widened by a block each way (the widening's texels stay within
+// it), as rectangles in level texels: the rows in BANDS bands, each band drawn from its first to its last row
+// with a block set, over each run of columns with one set. A band over all the columns between its first and
+// last block, widened by a block row into the bands beside it, drew the atlas's scattered charts whole, up to
+// twice over: 1.1-1.8 times the level for an edit that moved half of the default bunny's faces.
 function bandRects(bytes, n) {
-  const rects = [], rows = n / BANDS;
+  const set = new Uint8Array(n * n);
+  for (let y = 0; y < n; y++)
+    for (let x = 0; x < n; x++) {
+      if (!bytes[4 * (y * n + x)]) continue;
+      for (let yy = Math.max(0, y - 1); yy <= Math.min(n - 1, y + 1); yy++)
+        set.fill(1, yy * n + Math.max(0, x - 1), yy * n + Math.min(n, x + 2));
+    }
+  const rects = [], rows = n / BANDS, cols = new Uint8Array(n);
   for (let b = 0; b < BANDS; b++) {
-    let x0 = n, x1 = -1, y0 = n, y1 = -1;
+    let y0 = n, y1 = -1;
+    cols.fill(0);
     for (let y = b * rows; y < (b + 1) * rows; y++)
-      for (let x = 0; x < n; x++)
-        if (bytes[4 * (y * n + x)]) (x0 = Math.min(x0, x)), (x1 = Math.max(x1, x)), (y0 = Math.min(y0, y)), (y1 = y);
-    if (x1 < 0) continue;
-    [x0, y0, x1, y1] = [Math.max(0, x0 - 1), Math.max(0, y0 - 1), Math.min(n - 1, x1 + 1), Math.min(n - 1, y1 + 1)];
-    rects.push({ x: TILE * x0, y: TILE * y0, w: TILE * (x1 - x0 + 1), h: TILE * (y1 - y0 + 1) });
+      for (let x = 0; x < n; x++) if (set[y * n + x]) (cols[x] = 1), (y0 = Math.min(y0, y)), (y1 = y);
+    for (let x = 0; x < n && y1 >= 0; x++) {
+      if (!cols[x]) continue;
+      let end = x;
+      while (end + 1 < n && cols[end + 1]) end++;
+      rects.push({ x: TILE * x, y: TILE * y0, w: TILE * (end - x + 1), h: TILE * (y1 - y0 + 1) });
+      x = end;
+    }
   }
   return rects;
 }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // When a field change is a quick edit (controller.js fieldChanged): the texture follows quick edits with a
 // preview (one level short of the finest, a quarter of the work) and is made in full once they stop for
-// QUICK_EDIT_MS; any other change gets the full texture at once. Owns nothing.
+// QUICK_EDIT_MS; any other change gets the full texture at once, and may have the view's frame of the field wait
+// for it (followsWithin). Owns nothing.
 export const QUICK_EDIT_MS = 400;
 
 // c: the controller (runsQueued, pendingField, settleTimer, lastFieldChange). A change is quick while something is
@@ -14,4 +15,20 @@ export function isQuickEdit(c, { interactive, landing, now }) {
   if (landing) return false;
   const behind = c.runsQueued > 0 || c.pendingField || c.settleTimer !== null;
   return behind && now - c.lastFieldChange < QUICK_EDIT_MS;
+}
+
+// A field change whose texture follows it within this many ms (its last update's time) is shown with it.
+export const FOLLOW_MS = 250;
+
+// How long (ms) the view's frame of a field change about to be drawn may wait for its texture, so that both show
+// in one frame (0: drawn at once). With software GL each frame of a textured model costs the GPU process 45-60 ms
+// that the texture's update then waited for; on a GPU the wait is the update's own few milliseconds. Only a change
+// on its own (the texture caught up), answered by a local update like the last one, which took under FOLLOW_MS.
+export function followsWithin(c) {
+  if (!c.active || !c.options.autoUpdate || !c.stats?.local || c.stats.preview) return 0;
+  const behind = c.runsQueued > 0 || c.pendingField || c.settleTimer !== null;
+  const version = c.getFieldVersion();
+  if (behind || version === undefined || version === c.lastFieldVersion) return 0;
+  const took = c.stats.wallMs;
+  return took < FOLLOW_MS ? Math.min(FOLLOW_MS, 2 * took) : 0;
 }

@@ -4,7 +4,7 @@
 // (auto-settings.js), and the field it follows: a vector field's 1-form, whose Whitney field the raster makes
 // per corner (geometry/whitney-corners.js), or a line or cross field combed per corner for the atlas
 // (geometry/chart-comb.js). Owns nothing.
-import { atlasCombedCorners } from '../geometry/chart-comb.js';
+import { atlasCombedCornersSteps } from '../geometry/chart-comb.js';
 import { defaultFeatureScale, shapeMeasures } from './auto-settings.js';
 import { OPTION_KEYS } from './options.js';
 
@@ -31,6 +31,16 @@ export function runOptions(options, model, atlas, exemplarSize, preview) {
 // model.vertexVectors combed per corner for the atlas (geometry/chart-comb.js), its cuts along the chart seams
 // where it can (model.faceVectors, the field's own face representatives, when the model hands them in).
 export function fieldInput(model, atlas) {
+  const steps = fieldInputSteps(model, atlas);
+  for (;;) {
+    const r = steps.next();
+    if (r.done) return r.value;
+  }
+}
+
+// The same a step at a time: the comb of a line or cross field yields between slices of faces (bunny00's 75k
+// faces took the page 160-210 ms in one task).
+export function* fieldInputSteps(model, atlas) {
   const symmetry = model.symmetry ?? 1;
   if (symmetry === 1) {
     // A big model's preview, known by its vertex vectors alone: those, linear over each face.
@@ -40,6 +50,21 @@ export function fieldInput(model, atlas) {
   }
   const t0 = performance.now();
   const faceVectors = model.faceVectors ?? null;
-  const comb = atlasCombedCorners(model.surface, model.vertexVectors, faceVectors, symmetry, atlas.cornerUVs);
+  const { surface, vertexVectors } = model;
+  const comb = yield* atlasCombedCornersSteps(surface, vertexVectors, faceVectors, symmetry, atlas.cornerUVs);
   return { symmetry, input: { cornerVectors: comb.corners }, ms: performance.now() - t0, cutEdges: comb.flips.length };
+}
+
+// Runs `steps` (a generator) to its end, giving the page's thread back (a task) whenever they have held it for
+// 8 ms, if `interleave`. Resolves with its value, or null once cancelled() turns true.
+export async function stepped(steps, interleave, cancelled) {
+  let t = performance.now();
+  for (;;) {
+    const r = steps.next();
+    if (r.done) return r.value;
+    if (!interleave || performance.now() - t < 8) continue;
+    await new Promise((resolve) => setTimeout(resolve, 0));
+    if (cancelled()) return null;
+    t = performance.now();
+  }
 }

@@ -338,6 +338,7 @@ export class Synthesizer {
       subpasses: 4,
       seed: o.seed,
       ...this.localUpdate.summary(),
+      raster: this.atlas.lastDraw, // {faces drawn again, whole, rects}
       cancelledRuns: this.cancelledRuns ?? { count: 0, lastAt: null },
       levels: levelStats,
       jacobianMs: tJac - t0,

@@ -162,8 +162,27 @@ export class Viewer {
     });
   }
 
+  // A frame owed for a change that another will follow soon (a stroke's field, then its texture): drawn once
+  // drawDeferred() is called, when any frame is drawn meanwhile, or after `ms` at the latest. With software GL a
+  // frame of a textured model costs the GPU process 45-60 ms, which the texture's own work then waited for.
+  deferFrame(ms) {
+    clearTimeout(this.deferTimer);
+    this.deferTimer = setTimeout(() => this.drawDeferred(), ms);
+  }
+
+  // The frame deferFrame() held back, if it is still owed, at the next animation frame.
+  drawDeferred() {
+    if (this.deferTimer === null || this.deferTimer === undefined) return;
+    clearTimeout(this.deferTimer);
+    this.deferTimer = null;
+    this.requestRender();
+  }
+
   renderNow() {
     if (this.disposed) return;
+    clearTimeout(this.deferTimer);
+    this.deferTimer = null;
+    this.frameLog?.push(performance.now()); // the page tests' record of frames (element/api.js)
     this.arrows.updateView(this.camera, this.controls.target, this.canvas.clientHeight || this.canvas.height);
     this.singularities.updateScale(this.camera, this.renderer);
     this.handles.updateScale(this.camera, this.renderer);
