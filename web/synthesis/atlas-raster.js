@@ -76,8 +76,11 @@ export class AtlasRaster {
     this.fieldData = new Float32Array(12 * nF); // RGBA per corner (atlas-corners.js FRAME_FLOATS): as drawn
     this.nextData = null; // a field to compare with the one drawn (a run that may draw only where it moved)
     this.drawnKey = null; // the options the Jacobian was last drawn with in full; null: none, or a draw cut short
+    // For the draws where the field moved: the normals now (the frames are let go once on the GPU), the faces'
+    // boxes at the first such draw (armadillo-sub2's 832k faces: 30-60 ms).
     this.normals = faceNormals(frames);
-    this.boxes = faceBoxes(cornerUVs, resolution, Math.ceil(Math.SQRT2 * gutterReach(gutter)) + 1);
+    const margin = Math.ceil(Math.SQRT2 * gutterReach(gutter)) + 1; // texels the gutter's quads reach
+    this.boxes = () => (this.faceBoxes ??= faceBoxes(cornerUVs, resolution, margin));
     this.faceArea = faceArea;
     this.usedFaces = used;
     this.coverage = areaUV;
@@ -249,7 +252,7 @@ export class AtlasRaster {
       else this.#uploadRuns(moved, from, count);
       yield; // the last slice too: its upload is waited for apart from the raster's draws
     }
-    const rects = delta ? blockRects(this.boxes, moved, count, this.resolution) : null;
+    const rects = delta ? blockRects(this.boxes(), moved, count, this.resolution) : null;
     this.lastDraw = { faces: delta ? count : nF, whole: !delta, rects: rects?.length ?? null };
     const magRef = sums.mag > 0 ? sums.mag / sums.area : 1;
     if (!rects || rects.length) this.#drawJacobian(programs, vao, o, magRef, rects);

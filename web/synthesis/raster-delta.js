@@ -19,16 +19,15 @@ const BANDS = 8; // bands of block rows, each drawn as one rectangle
 // Per face, the texels its Jacobian reaches: its UVs' box (the atlas's `resolution`) widened by `margin` texels
 // (the gutter's quads reach past a chart's edge: atlas-gutter.js gutterReach), as x0, y0, x1, y1 (exclusive).
 export function faceBoxes(cornerUVs, resolution, margin) {
-  const nF = cornerUVs.length / 6;
+  const nF = cornerUVs.length / 6, R = resolution;
   const boxes = new Uint16Array(4 * nF);
   for (let f = 0; f < nF; f++) {
-    const u = cornerUVs.subarray(6 * f, 6 * f + 6);
-    const lo = (a, b, c) => Math.max(0, Math.floor(Math.min(a, b, c) * resolution) - margin);
-    const hi = (a, b, c) => Math.min(resolution, Math.ceil(Math.max(a, b, c) * resolution) + margin);
-    boxes[4 * f] = lo(u[0], u[2], u[4]);
-    boxes[4 * f + 1] = lo(u[1], u[3], u[5]);
-    boxes[4 * f + 2] = hi(u[0], u[2], u[4]);
-    boxes[4 * f + 3] = hi(u[1], u[3], u[5]);
+    const o = 6 * f, u0 = cornerUVs[o], u1 = cornerUVs[o + 2], u2 = cornerUVs[o + 4];
+    const v0 = cornerUVs[o + 1], v1 = cornerUVs[o + 3], v2 = cornerUVs[o + 5];
+    boxes[4 * f] = Math.max(0, Math.floor(Math.min(u0, u1, u2) * R) - margin);
+    boxes[4 * f + 1] = Math.max(0, Math.floor(Math.min(v0, v1, v2) * R) - margin);
+    boxes[4 * f + 2] = Math.min(R, Math.ceil(Math.max(u0, u1, u2) * R) + margin);
+    boxes[4 * f + 3] = Math.min(R, Math.ceil(Math.max(v0, v1, v2) * R) + margin);
   }
   return boxes;
 }
