@@ -138,7 +138,7 @@ test.describe.serial('texture phases, a single edit, the atlas kept per mesh (bu
   // After an update that came within a frame or two (web/synthesis/quick-edits.js followsWithin, FOLLOW_MS), the
   // next edit on its own has its field drawn with its texture in one frame: none drawn between the edit and the
   // texture shown, one after it; after a slower update the field is drawn first, as before. The edits: the field at
-  // a face asked to turn by 10° (as long as it is), which moves a part of the texture only; the run before the
+  // a face asked to turn by 2° (as long as it is), which moves a part of the texture only; the run before the
   // first was the whole one after the context's restore (above).
   test('an edit on its own after a quick update: its field and its texture drawn in one frame', async () => {
     const edit = (face) =>
@@ -152,7 +152,7 @@ test.describe.serial('texture phases, a single edit, the atlas kept per mesh (bu
         const e = [1, 2].map((k) => [0, 1, 2].map((d) => at(P, k, d) - at(P, 0, d)));
         const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
         const m = cross(e[0], e[1]), n = m.map((x) => x / Math.hypot(...m)), nv = cross(n, v);
-        const c = Math.cos(Math.PI / 18), sn = Math.sin(Math.PI / 18);
+        const c = Math.cos(Math.PI / 90), sn = Math.sin(Math.PI / 90);
         const frames = t.debugRecordFrames();
         const t0 = performance.now();
         await t.addVector(face, v.map((x, d) => c * x + sn * nv[d]));

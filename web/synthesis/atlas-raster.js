@@ -237,7 +237,7 @@ export class AtlasRaster {
     const key = `${o.featureScale} ${o.magnitudeExponent} ${o.localDegrees}`;
     const sinTol = Math.sin((RASTER_SHARE * (o.localDegrees ?? 0) * Math.PI) / 180);
     const delta = this.drawnKey === key && sinTol > 0 && o.magnitudeExponent === 0;
-    this.drawnKey = null; // until this draw is issued
+    if (!delta) this.drawnKey = null; // until this draw is issued
     const out = delta ? (this.nextData ??= new Float32Array(12 * nF)) : this.fieldData;
     const moved = delta ? new Int32Array(nF) : null;
     let count = 0;
@@ -246,11 +246,16 @@ export class AtlasRaster {
     for (let f0 = 0; f0 < nF; f0 += o.sliceFaces) {
       const f1 = Math.min(nF, f0 + o.sliceFaces);
       fillCornerField(field, this.triangles, this.faceArea, f0, f1, sums, out);
-      const from = count;
-      if (delta) count = this.#takeMoved(f0, f1, sinTol, moved, count);
-      if (!delta) this.#uploadCorners(this.fieldTexture, this.fieldData, 3 * f0, 3 * f1);
-      else this.#uploadRuns(moved, from, count);
+      if (delta) count = this.#findMoved(f0, f1, sinTol, moved, count);
+      else this.#uploadCorners(this.fieldTexture, this.fieldData, 3 * f0, 3 * f1);
       yield; // the last slice too: its upload is waited for apart from the raster's draws
+    }
+    // The moved faces' field to the GPU: at once with the draw where they are few (a run cut short before then
+    // leaves the field drawn as it was, for the next to compare with), else a slice of faces per task.
+    for (let i = 0; delta && i < count; i += o.sliceFaces) {
+      this.drawnKey = null;
+      this.#takeMoved(moved, i, Math.min(count, i + o.sliceFaces));
+      if (count > o.sliceFaces) yield;
     }
     const rects = delta ? blockRects(this.boxes(), moved, count, this.resolution) : null;
     this.lastDraw = { faces: delta ? count : nF, whole: !delta, rects: rects?.length ?? null };
@@ -260,24 +265,22 @@ export class AtlasRaster {
     return magRef;
   }
 
-  // Faces f0 .. f1 - 1 of nextData whose field moved (raster-delta.js faceMoved) into fieldData and onto
-  // `moved` from `count`; returns the new count.
-  #takeMoved(f0, f1, sinTol, moved, count) {
+  // Faces f0 .. f1 - 1 of nextData whose field moved from fieldData's (raster-delta.js faceMoved) onto `moved`
+  // from `count`; returns the new count.
+  #findMoved(f0, f1, sinTol, moved, count) {
     const next = this.nextData, drawn = this.fieldData, normals = this.normals;
-    for (let f = f0; f < f1; f++) {
-      if (!faceMoved(next, drawn, normals, f, sinTol)) continue;
-      drawn.set(next.subarray(12 * f, 12 * f + 12), 12 * f);
-      moved[count++] = f;
-    }
+    for (let f = f0; f < f1; f++) if (faceMoved(next, drawn, normals, f, sinTol)) moved[count++] = f;
     return count;
   }
 
-  // The faces moved[from .. count - 1] (ascending) to the field's texture, in runs of faces a few apart (those
-  // between go as drawn): a few small uploads where one of the whole slice took software GL 10-20 ms.
-  #uploadRuns(moved, from, count) {
-    for (let i = from; i < count; ) {
+  // The faces moved[from .. to - 1] (ascending) from nextData into fieldData and the field's texture, in runs of
+  // faces a few apart (those between go as drawn): a few small uploads where one of the whole slice took software
+  // GL 10-20 ms.
+  #takeMoved(moved, from, to) {
+    for (const f of moved.subarray(from, to)) this.fieldData.set(this.nextData.subarray(12 * f, 12 * f + 12), 12 * f);
+    for (let i = from; i < to; ) {
       let j = i + 1;
-      while (j < count && moved[j] - moved[j - 1] <= UPLOAD_GAP) j++;
+      while (j < to && moved[j] - moved[j - 1] <= UPLOAD_GAP) j++;
       this.#uploadCorners(this.fieldTexture, this.fieldData, 3 * moved[i], 3 * moved[j - 1] + 3);
       i = j;
     }
