@@ -25,9 +25,9 @@ precision highp sampler2D;
 // Stands for "never synthesized" in a kept Jacobian (a real one is a few exemplar pixels per texel).
 const UNSYNTHESIZED = 1e30;
 const WIDEN = 2; // texels round a moved one that are synthesized again with it, at every level
-// A level of at least TILE x BANDS texels a side is drawn only round its TILE-texel blocks that hold a moved texel
-// (a block more each way: the widening stays within it), in BANDS bands of block rows each drawn over the
-// columns it needs; a smaller level whole.
+// A level of at least TILE texels a side is drawn only round its TILE-texel blocks that hold a moved texel (a block
+// more each way: the widening stays within it), in BANDS bands of block rows (bandRects); a smaller level whole,
+// and a level with no moved texel not at all (synthesizer.js).
 const TILE = 16;
 const BANDS = 8;
 
@@ -189,7 +189,7 @@ export class LocalUpdate {
     this.#fill(L.kept, UNSYNTHESIZED);
     L.moved = new ByteTarget(this.gl, L.size, L.size);
     L.redo = new ByteTarget(this.gl, L.size, L.size);
-    if (L.size >= TILE * BANDS) L.blocks = new ByteTarget(this.gl, L.size / TILE, L.size / TILE);
+    if (L.size >= TILE) L.blocks = new ByteTarget(this.gl, L.size / TILE, L.size / TILE);
   }
 
   #fill(target, value) {
@@ -216,11 +216,11 @@ function bandRects(bytes, n) {
       for (let yy = Math.max(0, y - 1); yy <= Math.min(n - 1, y + 1); yy++)
         set.fill(1, yy * n + Math.max(0, x - 1), yy * n + Math.min(n, x + 2));
     }
-  const rects = [], rows = n / BANDS, cols = new Uint8Array(n);
-  for (let b = 0; b < BANDS; b++) {
+  const rects = [], rows = Math.ceil(n / BANDS), cols = new Uint8Array(n);
+  for (let b = 0; b * rows < n; b++) {
     let y0 = n, y1 = -1;
     cols.fill(0);
-    for (let y = b * rows; y < (b + 1) * rows; y++)
+    for (let y = b * rows; y < Math.min(n, (b + 1) * rows); y++)
       for (let x = 0; x < n; x++) if (set[y * n + x]) (cols[x] = 1), (y0 = Math.min(y0, y)), (y1 = y);
     for (let x = 0; x < n && y1 >= 0; x++) {
       if (!cols[x]) continue;

@@ -219,6 +219,34 @@ export class Synthesizer {
     await this.pacer.drain(clock, nextTask, () => false, phase);
   }
 
+  // Level L's quarters into its result, its texels made keeping their Jacobian; at the finest level with `seams`,
+  // gutter texels next to seams take the coordinates across the seam (for the magnified rendering; m: the
+  // exemplar's size). Returns the result.
+  #unpack(L, seams, m) {
+    const gl = this.gl;
+    L.result.bindAsTarget();
+    this.programs.unpack
+      .use()
+      .texture('uS0', L.quarters[0])
+      .texture('uS1', L.quarters[1])
+      .texture('uS2', L.quarters[2])
+      .texture('uS3', L.quarters[3]);
+    drawFullscreen(gl, this.vao);
+    this.localUpdate.after(L);
+    if (!seams) return L.result;
+    L.spare2 ??= new FloatTarget(gl, L.size, L.size, null, { check: false }); // as the atlas's (atlas-raster.js)
+    L.spare2.bindAsTarget();
+    this.programs.seamResolve
+      .use()
+      .texture('uCoord', L.result)
+      .texture('uJac', L.jac)
+      .texture('uIndir', L.indirection)
+      .float('uM', m);
+    drawFullscreen(gl, this.vao);
+    [L.result, L.spare2] = [L.spare2, L.result];
+    return L.result;
+  }
+
   *#steps(vertexVectors, options) {
     if (!this.exemplar) throw new GLError('no exemplar set');
     if (!this.atlas) throw new GLError('no atlas set');
@@ -268,11 +296,21 @@ export class Synthesizer {
     const levelStats = [];
     let parent = null;
     let tLevel = performance.now();
+    const levelDone = ({ size }, { stackLevel, spacing, jitter }) => {
+      const now = performance.now();
+      levelStats.push({ size, stackLevel, spacing, jitter, ms: now - tLevel });
+      tLevel = now;
+    };
     for (const step of plan) {
       const L = this.levels[step.k];
       const E = this.exemplar.levels[step.stackLevel];
-      // The texels to make again (a local run's; every texel otherwise).
+      // The texels to make again (a local run's; every texel otherwise). A level with none keeps its result.
       const redo = this.localUpdate.before(L);
+      if (redo.local && redo.rects?.length === 0) {
+        parent = L.result;
+        levelDone(L, step);
+        continue;
+      }
       // Upsample (or initialise) each parity class into its quarter.
       for (let c = 0; c < 4; c++) upsampleClass(this, L, parent, step, c, o, redo);
       yield work(L.size * L.size);
@@ -283,41 +321,10 @@ export class Synthesizer {
           yield work(2 * L.size * L.size);
         }
       }
-      L.result.bindAsTarget();
-      this.programs.unpack
-        .use()
-        .texture('uS0', L.quarters[0])
-        .texture('uS1', L.quarters[1])
-        .texture('uS2', L.quarters[2])
-        .texture('uS3', L.quarters[3]);
-      drawFullscreen(gl, this.vao);
-      this.localUpdate.after(L);
-      parent = L.result;
-      if (step.k === finestLevel && o.seams) {
-        // Gutter texels next to seams take the coordinates across the seam (for the magnified rendering).
-        L.spare2 ??= new FloatTarget(gl, L.size, L.size, null, { check: false }); // as the atlas's (atlas-raster.js)
-        L.spare2.bindAsTarget();
-        this.programs.seamResolve
-          .use()
-          .texture('uCoord', L.result)
-          .texture('uJac', L.jac)
-          .texture('uIndir', L.indirection)
-          .float('uM', m);
-        drawFullscreen(gl, this.vao);
-        [L.result, L.spare2] = [L.spare2, L.result];
-        parent = L.result;
-      }
+      parent = this.#unpack(L, step.k === finestLevel && o.seams, m);
       yield work(L.size * L.size);
       if (o.timing === 'levels') sync(gl, L.result);
-      const now = performance.now();
-      levelStats.push({
-        size: L.size,
-        stackLevel: step.stackLevel,
-        spacing: step.spacing,
-        jitter: step.jitter,
-        ms: now - tLevel,
-      });
-      tLevel = now;
+      levelDone(L, step);
     }
     // Interleaved, the last slice is waited for like every other, so that the one-texel read that ends a
     // blocking run's timing finds the GPU done here.
