@@ -76,9 +76,9 @@ export class AtlasRaster {
     this.fieldData = new Float32Array(12 * nF); // RGBA per corner (atlas-corners.js FRAME_FLOATS): as drawn
     this.nextData = null; // a field to compare with the one drawn (a run that may draw only where it moved)
     this.drawnKey = null; // the options the Jacobian was last drawn with in full; null: none, or a draw cut short
-    // For the draws where the field moved: the normals now (the frames are let go once on the GPU), the faces'
-    // boxes at the first such draw (armadillo-sub2's 832k faces: 30-60 ms).
-    this.normals = faceNormals(frames);
+    // For the draws where the field moved: the faces' normals, taken from the frames as they go to the GPU (they
+    // are let go then), and their boxes, made at the first such draw (armadillo-sub2's 832k faces: 30-60 ms).
+    this.normals = new Float32Array(3 * nF);
     const margin = Math.ceil(Math.SQRT2 * gutterReach(gutter)) + 1; // texels the gutter's quads reach
     this.boxes = () => (this.faceBoxes ??= faceBoxes(cornerUVs, resolution, margin));
     this.faceArea = faceArea;
@@ -322,6 +322,7 @@ export class AtlasRaster {
       gl.bufferSubData(gl.ARRAY_BUFFER, 12 * f0, ids);
       gl.bindBuffer(gl.ARRAY_BUFFER, null);
       this.#uploadCorners(this.frameTexture, this.frames, 3 * f0, 3 * f1);
+      faceNormals(this.frames, this.normals, f0, f1);
       this.facesUploaded = f1;
       if (f1 < nF) yield FIXED_PHASE;
     }

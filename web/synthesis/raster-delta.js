@@ -32,11 +32,10 @@ export function faceBoxes(cornerUVs, resolution, margin) {
   return boxes;
 }
 
-// The faces' unit normals (3 a face) from the atlas's frames (atlas-corners.js: G1, G2, n, 4 floats each).
-export function faceNormals(frames) {
-  const nF = frames.length / 12, normals = new Float32Array(3 * nF);
-  for (let f = 0; f < nF; f++) for (let d = 0; d < 3; d++) normals[3 * f + d] = frames[12 * f + 8 + d];
-  return normals;
+// Faces f0 .. f1 - 1's unit normals (3 a face) into `normals`, from the atlas's frames (atlas-corners.js: G1, G2,
+// n, 4 floats each).
+export function faceNormals(frames, normals, f0, f1) {
+  for (let f = f0; f < f1; f++) for (let d = 0; d < 3; d++) normals[3 * f + d] = frames[12 * f + 8 + d];
 }
 
 // Whether face f's field in `next` (4 floats a corner, 12 a face) may differ from the one in `drawn` by more than
