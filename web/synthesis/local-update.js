@@ -15,7 +15,7 @@
 // Owns the per-level kept Jacobians and masks (on the atlas's levels, disposed with it) and its programs (the
 // synthesizer disposes them with its own).
 import { ByteTarget, FloatTarget, FULLSCREEN_VS, Program, drawWithin } from './gl.js';
-import { RASTER_SHARE } from './raster-delta.js';
+import { RASTER_SHARE, TILE, blockMaskRects } from './raster-delta.js';
 
 const HEADER = `#version 300 es
 precision highp float;
@@ -26,10 +26,8 @@ precision highp sampler2D;
 const UNSYNTHESIZED = 1e30;
 const WIDEN = 2; // texels round a moved one that are synthesized again with it, at every level
 // A level of at least TILE texels a side is drawn only round its TILE-texel blocks that hold a moved texel (a block
-// more each way: the widening stays within it), in BANDS bands of block rows (bandRects); a smaller level whole,
-// and a level with no moved texel not at all (synthesizer.js).
-const TILE = 16;
-const BANDS = 8;
+// more each way: the widening stays within it: bandRects); a smaller level whole, and a level with no moved texel
+// not at all (synthesizer.js).
 
 // 1 where the texel's Jacobian moved from the kept one by more than uTol relative to the larger (the angle's
 // chord: a rotation by θ moves a 2x2 Jacobian by 2 sin(θ/2) of its norm), or was never synthesized.
@@ -204,10 +202,10 @@ export class LocalUpdate {
 }
 
 // The blocks' mask (RGBA8, n x n, row 0 first) widened by a block each way (the widening's texels stay within
-// it), as rectangles in level texels: the rows in BANDS bands, each band drawn from its first to its last row
-// with a block set, over each run of columns with one set. A band over all the columns between its first and
-// last block, widened by a block row into the bands beside it, drew the atlas's scattered charts whole, up to
-// twice over: 1.1-1.8 times the level for an edit that moved half of the default bunny's faces.
+// it), as rectangles in level texels (raster-delta.js blockMaskRects: bands of block rows, a rectangle per run of
+// columns). Bands over all the columns between their first and last block, widened by a block row into the bands
+// beside them, drew up to twice the level: 1.1-1.8 times it for an edit that moved half of the default bunny's
+// faces.
 function bandRects(bytes, n) {
   const set = new Uint8Array(n * n);
   for (let y = 0; y < n; y++)
@@ -216,19 +214,5 @@ function bandRects(bytes, n) {
       for (let yy = Math.max(0, y - 1); yy <= Math.min(n - 1, y + 1); yy++)
         set.fill(1, yy * n + Math.max(0, x - 1), yy * n + Math.min(n, x + 2));
     }
-  const rects = [], rows = Math.ceil(n / BANDS), cols = new Uint8Array(n);
-  for (let b = 0; b * rows < n; b++) {
-    let y0 = n, y1 = -1;
-    cols.fill(0);
-    for (let y = b * rows; y < Math.min(n, (b + 1) * rows); y++)
-      for (let x = 0; x < n; x++) if (set[y * n + x]) (cols[x] = 1), (y0 = Math.min(y0, y)), (y1 = y);
-    for (let x = 0; x < n && y1 >= 0; x++) {
-      if (!cols[x]) continue;
-      let end = x;
-      while (end + 1 < n && cols[end + 1]) end++;
-      rects.push({ x: TILE * x, y: TILE * y0, w: TILE * (end - x + 1), h: TILE * (y1 - y0 + 1) });
-      x = end;
-    }
-  }
-  return rects;
+  return blockMaskRects(set, n);
 }

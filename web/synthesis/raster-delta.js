@@ -13,8 +13,8 @@
 // localDegrees.
 export const RASTER_SHARE = 0.25;
 
-const TILE = 16; // texels a side of the blocks the faces' boxes are gathered into
-const BANDS = 8; // bands of block rows, each drawn as one rectangle
+export const TILE = 16; // texels a side of the blocks that moved faces and texels are gathered into
+const BANDS = 8; // bands of block rows
 
 // Per face, the texels its Jacobian reaches: its UVs' box (the atlas's `resolution`) widened by `margin` texels
 // (the gutter's quads reach past a chart's edge: atlas-gutter.js gutterReach), as x0, y0, x1, y1 (exclusive).
@@ -73,8 +73,7 @@ export function faceMoved(next, drawn, normals, f, sinTol) {
 }
 
 // The rectangles (finest-level texels, [{x, y, w, h}]) that hold the boxes of `faces` (their ids, `count` of
-// them): the TILE-texel blocks they touch, in BANDS bands of block rows, each band one rectangle over the
-// columns of its blocks. Empty when no face is listed.
+// them): the TILE-texel blocks they touch (blockMaskRects). Empty when no face is listed.
 export function blockRects(boxes, faces, count, resolution) {
   const n = Math.ceil(resolution / TILE), blocks = new Uint8Array(n * n);
   for (let i = 0; i < count; i++) {
@@ -83,15 +82,27 @@ export function blockRects(boxes, faces, count, resolution) {
     const x1 = Math.ceil(boxes[b + 2] / TILE), y1 = Math.ceil(boxes[b + 3] / TILE);
     for (let y = y0; y < y1; y++) blocks.fill(1, y * n + x0, y * n + x1);
   }
-  const rects = [], rows = Math.ceil(n / BANDS);
-  for (let r0 = 0; r0 < n; r0 += rows) {
-    let x0 = n, x1 = -1, y0 = n, y1 = -1;
-    for (let y = r0; y < Math.min(n, r0 + rows); y++)
-      for (let x = 0; x < n; x++)
-        if (blocks[y * n + x]) (x0 = Math.min(x0, x)), (x1 = Math.max(x1, x)), (y0 = Math.min(y0, y)), (y1 = y);
-    if (x1 < 0) continue;
-    const x = TILE * x0, y = TILE * y0;
-    rects.push({ x, y, w: Math.min(resolution, TILE * (x1 + 1)) - x, h: Math.min(resolution, TILE * (y1 + 1)) - y });
+  return blockMaskRects(blocks, n);
+}
+
+// A mask of TILE-texel blocks (n x n, 1 where set, row 0 first) as rectangles in texels: the rows in BANDS bands,
+// each band drawn from its first to its last row with a block set, over each run of columns with one set (the
+// raster's and the local update's, local-update.js). A band over all the columns between its first and last
+// block drew the atlas's scattered charts whole.
+export function blockMaskRects(set, n) {
+  const rects = [], rows = Math.ceil(n / BANDS), cols = new Uint8Array(n);
+  for (let b = 0; b * rows < n; b++) {
+    let y0 = n, y1 = -1;
+    cols.fill(0);
+    for (let y = b * rows; y < Math.min(n, (b + 1) * rows); y++)
+      for (let x = 0; x < n; x++) if (set[y * n + x]) (cols[x] = 1), (y0 = Math.min(y0, y)), (y1 = y);
+    for (let x = 0; x < n && y1 >= 0; x++) {
+      if (!cols[x]) continue;
+      let end = x;
+      while (end + 1 < n && cols[end + 1]) end++;
+      rects.push({ x: TILE * x, y: TILE * y0, w: TILE * (end - x + 1), h: TILE * (y1 - y0 + 1) });
+      x = end;
+    }
   }
   return rects;
 }

@@ -172,7 +172,7 @@ export class Viewer {
 
   // The frame deferFrame() held back, if it is still owed, at the next animation frame.
   drawDeferred() {
-    if (this.deferTimer === null || this.deferTimer === undefined) return;
+    if (!this.deferTimer) return; // none owed (a timer's id is never 0)
     clearTimeout(this.deferTimer);
     this.deferTimer = null;
     this.requestRender();
