@@ -255,8 +255,11 @@ export class ViewSync {
     const t1 = performance.now();
     // The texture's update shown with the field in one frame when it follows within a frame or two.
     const wait = this.frameMayWait();
-    if (wait > 0) viewer.deferFrame(wait);
-    else viewer.renderNow();
+    if (wait > 0) {
+      viewer.deferFrame(wait);
+    } else {
+      viewer.renderNow();
+    }
     const t2 = performance.now();
     // drawnAt: when the change's draw was issued (what bench:web times an exact field landing by).
     s.perf.refresh = { updateViewsMs: t1 - t0, renderMs: t2 - t1, drawnAt: t2 };
