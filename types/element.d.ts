@@ -677,6 +677,8 @@ export declare class TangentFieldDesigner extends HTMLElement {
   // Test hooks (internal).
   /** @internal Makes the exact factorization of the next loads wait ms first, so a preview surely leads. */
   debugDelayExact(ms: number): void;
+  /** @internal The texture's update time under which a field's frame waits for its texture (null: 250 ms), so that a page test sees that wait whatever the machine. */
+  debugTextureFollowMs(ms: number | null): void;
   /** @internal Ends the core worker as a crash would. */
   debugTerminateCore(): void;
   /** @internal Makes the core worker stop answering for ms milliseconds. */

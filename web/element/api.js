@@ -151,6 +151,9 @@ export const api = {
   debugDelayExact: (d, ms) => {
     d.session.debugExactDelayMs = ms;
   },
+  debugTextureFollowMs: (d, ms) => {
+    d.synthesis.followMs = ms ?? undefined;
+  },
   debugTerminateCore: (d) => d.session.proxy?.terminateForTest(),
   debugHangCore: (d, ms) => d.session.proxy?.hangForTest(ms),
   debugTrapCore: (d) => d.session.exclusive(() => d.session.proxy.call('trapForTest')),

@@ -204,6 +204,12 @@ export const VIEW_METHODS = [
     description: 'Makes the exact factorization of the next loads wait ms first, so a preview surely leads.',
   },
   {
+    name: 'debugTextureFollowMs', ...TEST_HOOKS,
+    signatures: [['ms: number | null', 'void']],
+    description: "The texture's update time under which a field's frame waits for its texture (null: 250 ms), so " +
+      'that a page test sees that wait whatever the machine.',
+  },
+  {
     name: 'debugTerminateCore', ...TEST_HOOKS,
     signatures: [['', 'void']],
     description: 'Ends the core worker as a crash would.',

@@ -23,12 +23,13 @@ export const FOLLOW_MS = 250;
 // How long (ms) the view's frame of a field change about to be drawn may wait for its texture, so that both show
 // in one frame (0: drawn at once). With software GL each frame of a textured model costs the GPU process 45-60 ms
 // that the texture's update then waited for; on a GPU the wait is the update's own few milliseconds. Only a change
-// on its own (the texture caught up), answered by a local update like the last one, which took under FOLLOW_MS.
+// on its own (the texture caught up), answered by a local update like the last one, which took under FOLLOW_MS
+// (c.followMs where a test set another).
 export function followsWithin(c) {
   if (!c.active || !c.options.autoUpdate || !c.stats?.local || c.stats.preview) return 0;
   const behind = c.runsQueued > 0 || c.pendingField || c.settleTimer !== null;
   const version = c.getFieldVersion();
   if (behind || version === undefined || version === c.lastFieldVersion) return 0;
-  const took = c.stats.wallMs;
-  return took < FOLLOW_MS ? Math.min(FOLLOW_MS, 2 * took) : 0;
+  const took = c.stats.wallMs, budget = c.followMs ?? FOLLOW_MS;
+  return took < budget ? Math.min(budget, 2 * took) : 0;
 }
