@@ -4,21 +4,23 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { checkSynthesisOptions } from '../../web/synthesis/options.js';
-import { fieldInput, runOptions } from '../../web/synthesis/run-inputs.js';
+import { fieldInputSteps, runOptions, stepped } from '../../web/synthesis/run-inputs.js';
+
+const fieldInput = (model, atlas) => stepped(fieldInputSteps(model, atlas), false, () => false);
 
 const surface = { positions: new Float64Array(9), edgeRows: new Int32Array(3) };
 
-test('a vector field with a 1-form is followed by its Whitney reconstruction', () => {
+test('a vector field with a 1-form is followed by its Whitney reconstruction', async () => {
   const oneForm = new Float64Array([1, 2, 3]);
-  const { symmetry, input } = fieldInput({ symmetry: 1, surface, oneForm }, {});
+  const { symmetry, input } = await fieldInput({ symmetry: 1, surface, oneForm }, {});
   assert.equal(symmetry, 1);
   assert.equal(input.whitney.oneForm, oneForm);
   assert.equal(input.whitney.rows, surface.edgeRows);
 });
 
-test("a preview's vertex vectors are followed as they are", () => {
+test("a preview's vertex vectors are followed as they are", async () => {
   const vertexVectors = new Float64Array([1, 0, 0, 0, 1, 0, 0, 0, 1]);
-  const { symmetry, input } = fieldInput({ symmetry: 1, surface, vertexVectors }, {});
+  const { symmetry, input } = await fieldInput({ symmetry: 1, surface, vertexVectors }, {});
   assert.equal(symmetry, 1);
   assert.equal(input, vertexVectors);
 });

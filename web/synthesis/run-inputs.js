@@ -30,16 +30,8 @@ export function runOptions(options, model, atlas, exemplarSize, preview) {
 // model.vertexVectors as they are; a line or cross field's
 // model.vertexVectors combed per corner for the atlas (geometry/chart-comb.js), its cuts along the chart seams
 // where it can (model.faceVectors, the field's own face representatives, when the model hands them in).
-export function fieldInput(model, atlas) {
-  const steps = fieldInputSteps(model, atlas);
-  for (;;) {
-    const r = steps.next();
-    if (r.done) return r.value;
-  }
-}
-
-// The same a step at a time: the comb of a line or cross field yields between slices of faces (bunny00's 75k
-// faces took the page 160-210 ms in one task).
+// A step at a time (stepped() runs it): the comb of a line or cross field yields between slices of faces
+// (bunny00's 75k faces took the page 160-210 ms in one task).
 export function* fieldInputSteps(model, atlas) {
   const symmetry = model.symmetry ?? 1;
   if (symmetry === 1) {
