@@ -436,12 +436,15 @@ async function textureBench(page, strokes, url) {
   for (const points of strokes) {
     updates.push(await page.evaluate(async (pts) => {
       await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+      const frames = window.tvf.debugRecordFrames();
       const t0 = performance.now();
       await window.tvf.addStroke(pts);
       await window.tvf.settled();
       const s = await window.tvf.synthesisIdle();
       const t1 = performance.now();
-      return { wallMs: t1 - t0, t0, t1, stats: s, firstFrameMs: await window.__onScreen(t1) };
+      const firstFrameMs = await window.__onScreen(t1);
+      // The view's frames from the stroke to the texture on screen (ms from the stroke).
+      return { wallMs: t1 - t0, t0, t1, stats: s, firstFrameMs, frames: frames.map((t) => Math.round(t - t0)) };
     }, points));
     if (redone) redone.push(await page.evaluate(REDONE_SHARE));
   }
@@ -484,6 +487,7 @@ async function textureBench(page, strokes, url) {
     ...(redone ? { textureUpdateRedoneShare: redone.map((f) => +f.toFixed(4)) } : {}),
     // Per update, the faces whose Jacobian was drawn again (synthesisStats().raster).
     textureUpdateRaster: updates.map((u) => u.stats?.raster ?? null),
+    textureUpdateFrames: updates.map((u) => u.frames), // the view's frames, ms from each stroke
     ...(reopened ? {
       reopenExactFieldMs: reopenExact.ms,
       reopenExactFactor: { analyzeMs: reopenExact.analyzeMs, factorMs: reopenExact.factorMs,

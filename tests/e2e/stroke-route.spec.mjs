@@ -15,9 +15,10 @@ const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const SECTION = 'One stroke, from pointer-up to the drawn field';
 
 // A file of web/ as the doc names it: in full (web/session/session.js) or from its layer's folder
-// (session/specs.js); C++ sources (core/…/*.cpp) end otherwise.
-const WEB_FILE = /(?:web\/)?((?:element|export|synthesis|stripes|tools|views|session|core|geometry)\/[\w/.-]*?\.js)\b/g;
-const webFiles = (text) => [...text.matchAll(WEB_FILE)].map((m) => `web/${m[1]}`);
+// (session/specs.js), and one at web/'s root in full (web/dom.js); C++ sources (core/…/*.cpp) end otherwise.
+const WEB_FILE =
+  /(?:web\/)?((?:element|export|synthesis|stripes|tools|views|session|core|geometry)\/[\w/.-]*?\.js)\b|web\/([\w-]+\.js)\b/g;
+const webFiles = (text) => [...text.matchAll(WEB_FILE)].map((m) => `web/${m[1] ?? m[2]}`);
 
 // The doc's list: {steps, files, count, participants}. steps: the file each numbered item names first, in order;
 // files: every web/ file the items name (the steps and the helpers they call); count: the number of files the

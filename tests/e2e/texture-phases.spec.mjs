@@ -137,7 +137,9 @@ test.describe.serial('texture phases, a single edit, the atlas kept per mesh (bu
 
   // After an update that came within a frame or two (web/synthesis/quick-edits.js followsWithin, FOLLOW_MS), the
   // next edit on its own has its field drawn with its texture in one frame: none drawn between the edit and the
-  // texture shown, one after it; after a slower update the field is drawn first, as before. The budget is raised
+  // texture shown, one after it; after a slower update the field is drawn first, as before; after the whole run
+  // (whose next is local) the field's frame waits half the budget. The panels are shown with that frame: the
+  // constraint list has the edit's row once the frame is drawn. The budget is raised
   // to 2 s here (tvf.debugTextureFollowMs), so that the wait is seen on a loaded machine too (the updates took
   // 87-191 ms alone, 350-470 ms beside the other runner). The edits: the field at
   // a face asked to turn by 2° (as long as it is), which moves a part of the texture only; the run before the
@@ -161,13 +163,15 @@ test.describe.serial('texture phases, a single edit, the atlas kept per mesh (bu
         await t.settled();
         const s = await t.synthesisIdle();
         await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
-        return { before, s, t0, frames: frames.slice() };
+        const root = document.querySelector('tangent-field-designer').shadowRoot;
+        const rows = root.querySelectorAll('#constraint-list li');
+        return { before, s, t0, frames: frames.slice(), rows: rows.length, constraints: t.constraints().length };
       }, face);
     await page.evaluate(() => window.tvf.debugTextureFollowMs(2000));
     const runs = [await edit(1200), await edit(2400), await edit(600)];
     await page.evaluate(() => window.tvf.debugTextureFollowMs(null));
     for (const r of runs) {
-      const quick = r.before.local && !r.before.preview && r.before.wallMs < 2000;
+      const quick = !r.before.preview && (r.before.local ? r.before.wallMs < 2000 : r.before.localNext);
       const early = r.frames.filter((x) => x < r.s.shownAt);
       console.log(JSON.stringify({ before: r.before.wallMs, quick, wallMs: r.s.wallMs, waited: r.s.fieldFrameWaited,
         frames: r.frames.map((x) => Math.round(x - r.t0)), shownAt: Math.round(r.s.shownAt - r.t0) }));
@@ -178,8 +182,10 @@ test.describe.serial('texture phases, a single edit, the atlas kept per mesh (bu
       if (quick) expect(tooEarly, 'frames drawn before the texture or the deadline').toEqual([]);
       else expect(early.length, 'the field drawn first').toBeGreaterThan(0);
       expect(r.frames.some((x) => x >= r.s.shownAt), 'the frame with the field and its texture').toBe(true);
+      expect(r.rows, 'the constraint list shown with the frame').toBe(r.constraints);
     }
-    expect(runs[0].s.fieldFrameWaited, 'after a whole run').toBe(0);
+    expect(runs[0].before.local, 'the first edit comes after a whole run').toBe(false);
+    expect(runs[0].s.fieldFrameWaited, 'after a whole run, half the budget').toBe(1000);
     expect(runs.some((r) => r.s.fieldFrameWaited > 0), 'an edit whose frame waited for its texture').toBe(true);
   });
 

@@ -1,5 +1,6 @@
 // The Texture panel's progress bar during a run (web/synthesis/progress-follower.js): the first step past 0 at
-// once, then at most one update per 100 ms, and a change held back by that limit shown when it ends.
+// once, then at most one update per 100 ms, and a change held back by that limit shown when it ends; with a
+// delay, nothing for a run that ends within it.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import { progressFollower } from '../../web/synthesis/progress-follower.js';
@@ -44,4 +45,29 @@ test('a run that ends while a change is held back shows nothing more', async () 
   progress = null;
   await sleep(150);
   assert.deepEqual(shown, [0.5]);
+});
+
+test('a run shorter than the delay shows no bar; a longer one shows it once the delay is over', async () => {
+  let progress = { fraction: 0.3 };
+  const shown = [];
+  const quick = progressFollower(() => progress, () => shown.push(progress?.fraction), { delayMs: 80 });
+  quick();
+  progress = { fraction: 0.9 };
+  quick();
+  quick.stop();
+  progress = null;
+  await sleep(150);
+  assert.deepEqual(shown, [], 'ended within the delay: nothing shown');
+
+  progress = { fraction: 0.1 };
+  const slow = progressFollower(() => progress, () => shown.push(progress?.fraction), { delayMs: 80 });
+  slow();
+  assert.deepEqual(shown, [], 'not before the delay');
+  await until(() => shown.length > 0);
+  assert.deepEqual(shown, [0.1], 'at the delay, with no step after it');
+  progress = { fraction: 0.5 };
+  await sleep(110);
+  slow();
+  assert.deepEqual(shown, [0.1, 0.5], 'then it follows as without a delay');
+  slow.stop();
 });

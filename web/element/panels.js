@@ -2,6 +2,7 @@
 // the prescribed singularities leave to the field), the views and their legend, and the constraint list with the
 // selection editor. Reports user intent through `actions` and renders the state it
 // is handed; a box the user is typing in is never overwritten.
+import { setText } from '../dom.js';
 import { checkedNumber, fmtNum, guarded } from './numbers.js';
 import { alignsToCurvature } from '../session/symmetry.js';
 import { indexLabel, PRESCRIBED_RING } from '../views/singularity-style.js';
@@ -150,17 +151,17 @@ export function bindPanels($, focused, actions, showError) {
     if (Number.isFinite(angle) && focused() !== featureAngle) featureAngle.value = String(angle);
     const note = $('#feature-count');
     note.hidden = count == null;
-    note.textContent = count === 1 ? '1 feature edge' : `${count} feature edges`;
+    let text = count === 1 ? '1 feature edge' : `${count} feature edges`;
     if (count === 0 && angle === 0 && folds?.suggestedFeatureAngle === 0 && folds.sharpEdges > 0) {
       const [sharp, long] = [folds.sharpShare, folds.longCurveShare].map((x) => Math.round(100 * x));
-      note.textContent += ` (a curved surface of facets: ${sharp} % of its folds sharp, ${long} % of those ` +
-        'on long lines)';
+      text += ` (a curved surface of facets: ${sharp} % of its folds sharp, ${long} % of those on long lines)`;
     }
+    setText(note, text);
   }
   function setSingularitySummary(summary) {
     const text = singularitySummaryText(summary), note = $('#singularity-summary');
     note.hidden = !text;
-    note.textContent = text;
+    setText(note, text);
   }
 
   // ---- symmetry and curvature alignment: the checkbox turns the alignment on at the strength in the box.
@@ -263,7 +264,7 @@ export function bindPanels($, focused, actions, showError) {
 
   function setLegend(max) {
     $('#legend').hidden = max == null;
-    if (max != null) $('#legend-max').textContent = `≥ ${fmtNum(max)}`;
+    if (max != null) setText($('#legend-max'), `≥ ${fmtNum(max)}`);
   }
 
   // ---- constraint list and selection editor

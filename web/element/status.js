@@ -1,6 +1,7 @@
 // What the element tells the user without being asked: the error banner (with an optional action), the
 // in-element confirmation, the status line (model, sizes, timings; a passing message over it) and the
 // progress indicator of a long operation.
+import { setText } from '../dom.js';
 import { fmtMs } from './numbers.js';
 
 const PROGRESS_DELAY_MS = 200; // shorter operations show no indicator at all
@@ -68,7 +69,7 @@ export function bindStatus($, host, { onCancel }) {
 
   // ---- status line
   function renderStatus() {
-    status.textContent = flashText ?? statusText;
+    setText(status, flashText ?? statusText);
   }
 
   // model: {name, info, stats}
@@ -128,6 +129,8 @@ export function bindStatus($, host, { onCancel }) {
     const end = () => {
       clearTimeout(show);
       clearInterval(ticker);
+      if (!shown) return; // never shown: the panel is left untouched (a write is a repaint)
+      shown = false;
       progress.hidden = true;
       host.classList.remove('busy');
     };

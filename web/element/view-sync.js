@@ -239,7 +239,7 @@ export class ViewSync {
 
   // Pushes the current field, constraints and settings to the view and the panels, and draws.
   refresh() {
-    const { viewer, ui, session: s } = this;
+    const { viewer, session: s } = this;
     if (!s.field || !s.surface) return;
     const t0 = performance.now();
     const target = this.#target();
@@ -248,16 +248,17 @@ export class ViewSync {
     viewer.handles.setConstraints(s.table.entries());
     viewer.handles.setSelected(s.selected);
     this.#showDesignTopology();
-    ui.setConstraints(s.table.views(), s.selected);
-    ui.setSettings(s.settings());
-    ui.setStatus({ name: s.modelName, info: s.info, stats: s.field.stats });
-    this.refreshHistory();
     const t1 = performance.now();
-    // The texture's update shown with the field in one frame when it follows within a frame or two.
+    // The texture's update shown with the field in one frame when it follows within a frame or two, and the
+    // panels with them: with software GL a change of the panels is a raster and a read-back of their tiles in the
+    // GPU process (15-26 ms for bunny00's side panel) that the texture's update waited for.
     const wait = this.frameMayWait();
     if (wait > 0) {
+      if (!this.panelsOwed) viewer.afterRender.push(() => this.#showPanels());
+      this.panelsOwed = true;
       viewer.deferFrame(wait);
     } else {
+      this.#showPanels();
       viewer.renderNow();
     }
     const t2 = performance.now();
@@ -269,23 +270,36 @@ export class ViewSync {
     this.onRefreshed();
   }
 
-  // The prescribed singularities (the design's, always drawn), the feature edges in use (their lines rebuilt only
-  // when they changed: a stroke's solve sends the same edges again), and what the prescribed indices leave to the
-  // field (the Field panel).
+  // The panels' part of refresh(): the constraints, settings, status, history, and what the prescribed indices
+  // and features leave to the field (the Field panel), from the state as it is when they are shown.
+  #showPanels() {
+    const { ui, session: s } = this;
+    this.panelsOwed = false;
+    if (!s.field || !s.surface || s.disposed) return;
+    const { angle } = s.topology.features();
+    ui.setFeatures({ angle, count: s.field.featureEdges ? this.shown.featureEdgeCount : null, folds: s.info?.folds });
+    ui.setSingularitySummary(s.topology.summary());
+    ui.setConstraints(s.table.views(), s.selected);
+    ui.setSettings(s.settings());
+    ui.setStatus({ name: s.modelName, info: s.info, stats: s.field.stats });
+    this.refreshHistory();
+  }
+
+  // The prescribed singularities (the design's, always drawn) and the feature edges in use (their lines rebuilt
+  // only when they changed: a stroke's solve sends the same edges again).
   #showDesignTopology() {
-    const { viewer, ui, session: s } = this, N = this.#symmetry();
+    const { viewer, session: s } = this, N = this.#symmetry();
     const prescribed = s.table.views().filter((c) => c.type === 'singularity');
     viewer.singularities.setPrescribed(prescribed.map(({ id, vertex, index }) => ({ id, vertex, index })), N);
     viewer.singularities.setSelected(s.selected);
-    const { angle, edges } = s.topology.features();
+    const { edges } = s.topology.features();
     const pairs = s.field.featureEdges, last = this.shown.featureEdges;
     if (!pairs || !last || pairs.length !== last.length || pairs.some((v, k) => v !== last[k])) {
       viewer.features.setEdges(edges);
       this.shown.featureEdges = pairs;
     }
-    // A big model's preview field knows no feature edges: the count waits for the exact one.
-    ui.setFeatures({ angle, count: pairs ? edges.length : null, folds: s.info?.folds });
-    ui.setSingularitySummary(s.topology.summary());
+    // A big model's preview field knows no feature edges: the count waits for the exact one (#showPanels).
+    this.shown.featureEdgeCount = edges.length;
   }
 
   refreshHistory() {

@@ -3,7 +3,7 @@
 // rotation, the Flow map and GLB downloads, the quad meshers' files (.sing, .rosy, .sharp), and the material
 // preview with its presets. Built here and appended to the given container; `actions` receives what the user
 // chose.
-import { el } from '../dom.js';
+import { el, setText } from '../dom.js';
 
 function select(id, title, values, value) {
   const s = el('select', { id, title });
@@ -131,7 +131,7 @@ export function mountExportPanel(container, actions) {
       // .rosy holds a cross field alone: disabled otherwise, with the reason where the user looks.
       rosy.disabled = n !== 4;
       rosy.title = n === 4 ? rosyTitle : `${rosyTitle}; a .rosy holds a cross field (N = 4): choose Cross`;
-      glb.textContent = n === 2 ? 'Anisotropy GLB' : 'GLB';
+      setText(glb, n === 2 ? 'Anisotropy GLB' : 'GLB');
       const combed =
         `the ${n === 2 ? 'line' : 'cross'} field combed to one direction per region ` +
         '(KHR_materials_anisotropy does not see its sign)';

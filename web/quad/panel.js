@@ -5,7 +5,7 @@
 // from the model, its shape, flipped faces, the time), and the OBJ and GLB downloads. Built here and appended to
 // the given container; every control goes through the controller, as the API's calls do. Imports dom.js,
 // session/ (the download) and its own folder.
-import { el, grouped } from '../dom.js';
+import { el, grouped, setText } from '../dom.js';
 import { downloadBlob } from '../session/documents.js';
 import { DEFAULT_TARGET, QUAD_REFUSAL } from './controller.js';
 
@@ -141,14 +141,14 @@ export function mountQuadPanel(controller, container, { area = () => 0, onError 
     cancel.disabled = !s.running;
     running.hidden = !s.running;
     progress.value = s.fraction;
-    stage.textContent = s.running ? `${s.stage ?? ''} ${percent(s.fraction, 0)}` : '';
+    setText(stage, s.running ? `${s.stage ?? ''} ${percent(s.fraction, 0)}` : '');
     const cross = controller.symmetry() === 4;
     remesh.title = cross ? REMESH_TITLE : `${QUAD_REFUSAL}: choose Cross (N = 4) in the Field panel`;
     const error = refused && !s.running ? size.title : s.error;
-    if (error) status.textContent = error;
-    else if (s.running) status.textContent = 'Remeshing; the design stays editable.';
-    else if (s.stale) status.textContent = STALE;
-    else status.textContent = s.hasResult ? '' : 'No quad mesh yet.';
+    if (error) setText(status, error);
+    else if (s.running) setText(status, 'Remeshing; the design stays editable.');
+    else if (s.stale) setText(status, STALE);
+    else setText(status, s.hasResult ? '' : 'No quad mesh yet.');
     status.classList.toggle('error', !!error);
     stats.replaceChildren(...(s.stats ? statsLines(s.stats).map((line) => el('div', { text: line })) : []));
     stats.classList.toggle('stale', s.stale);

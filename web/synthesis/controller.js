@@ -15,7 +15,7 @@ import { glbTexture, texturePng, textureReadback } from './texture-exports.js';
 import { TEXTURE_SYMMETRIES, textureRefusal } from '../session/symmetry.js';
 import { checkSynthesisOptions } from './options.js';
 import { fieldInputSteps, runOptions, stepped } from './run-inputs.js';
-import { progressFollower } from './progress-follower.js';
+import { BAR_DELAY_MS, progressFollower } from './progress-follower.js';
 import { watchContext } from './context-loss.js';
 
 export class SynthesisController {
@@ -54,6 +54,7 @@ export class SynthesisController {
     // defaultFeatureScale). autoUpdate: resynthesize on field changes. interleave: yield to the page between draws.
     this.options = { ...DEFAULTS, resolution: 'auto', featureScale: 'auto', autoUpdate: true, interleave: true };
     this.progress = null; // {fraction, preview} while a synthesis runs
+    this.progressShown = null; // the progress the panel shows (none for a run's first BAR_DELAY_MS)
     this.stale = false; // the field changed since the texture was made (autoUpdate off)
     this.runToken = 0;
     this.lastFieldChange = -Infinity;
@@ -190,8 +191,10 @@ export class SynthesisController {
     let s;
     if (this.options.interleave) {
       this.progress = { fraction: 0, preview };
-      this.onChange();
-      const follow = progressFollower(() => this.progress, () => this.onChange());
+      const follow = progressFollower(() => this.progress, () => {
+        this.progressShown = this.progress;
+        this.onChange();
+      }, { delayMs: BAR_DELAY_MS });
       s = await this.synth.synthesizeInterleaved(field.input, { ...synthOptions, timing: 'total' }, {
         clock,
         cancelled: () => token !== this.runToken,
@@ -201,7 +204,7 @@ export class SynthesisController {
         },
       });
       follow.stop();
-      this.progress = null;
+      this.progress = this.progressShown = null;
       if (!s) return this.synthesisStats(); // superseded by a newer field change
     } else {
       s = this.synth.synthesize(field.input, synthOptions);

@@ -98,6 +98,7 @@ export class LocalUpdate {
       tiles: new Program(gl, FULLSCREEN_VS, TILES_FS, 'local-tiles'),
     };
     this.key = null;
+    this.next = false; // whether the next run of the same atlas, exemplar and options is local
   }
 
   // At a run's start: whether it can be local (the same atlas, exemplar and options as the run before, and
@@ -112,6 +113,7 @@ export class LocalUpdate {
     this.local = same && o.localDegrees > 0;
     this.drawnShare = 1;
     this.reason = o.localDegrees > 0 ? (same ? null : 'first run of this atlas, exemplar and options') : 'off';
+    this.next = o.localDegrees > 0;
     if (!this.local) for (const L of atlas.levels) if (L.kept) this.#fill(L.kept, UNSYNTHESIZED);
     return this.local;
   }
@@ -196,8 +198,9 @@ export class LocalUpdate {
   }
 
   // The run's account for its stats (localDrawnShare: the share of the finest level its passes were drawn over).
+  // localNext: the next run of the same atlas, exemplar and options will be local.
   summary() {
-    return { local: this.local, localReason: this.reason, localDrawnShare: this.drawnShare };
+    return { local: this.local, localReason: this.reason, localNext: this.next, localDrawnShare: this.drawnShare };
   }
 }
 

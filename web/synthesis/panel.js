@@ -137,7 +137,7 @@ export function mountSynthesisPanel(
     .catch(() => {});
 
   function showStats() {
-    const p = controller.progress;
+    const p = controller.progressShown;
     progress.hidden = !p;
     if (p) {
       progress.value = p.fraction;

@@ -24,12 +24,16 @@ export const FOLLOW_MS = 250;
 // in one frame (0: drawn at once). With software GL each frame of a textured model costs the GPU process 45-60 ms
 // that the texture's update then waited for; on a GPU the wait is the update's own few milliseconds. Only a change
 // on its own (the texture caught up), answered by a local update like the last one, which took under FOLLOW_MS
-// (c.followMs where a test set another).
+// (c.followMs where a test set another): twice that update's time. After a whole texture the next run is local
+// with no time of its own to go by: half the budget (bunny00 with software GL: the first stroke after its texture
+// waited 58-82 ms for the field's frame, then took 170-200 ms in all against 90-120 for the strokes after it).
 export function followsWithin(c) {
-  if (!c.active || !c.options.autoUpdate || !c.stats?.local || c.stats.preview) return 0;
+  if (!c.active || !c.options.autoUpdate || !c.stats || c.stats.preview) return 0;
   const behind = c.runsQueued > 0 || c.pendingField || c.settleTimer !== null;
   const version = c.getFieldVersion();
   if (behind || version === undefined || version === c.lastFieldVersion) return 0;
-  const took = c.stats.wallMs, budget = c.followMs ?? FOLLOW_MS;
+  const budget = c.followMs ?? FOLLOW_MS;
+  if (!c.stats.local) return c.stats.localNext ? budget / 2 : 0;
+  const took = c.stats.wallMs;
   return took < budget ? Math.min(budget, 2 * took) : 0;
 }
