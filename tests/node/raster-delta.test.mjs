@@ -120,9 +120,14 @@ test('a field\'s frame waits for its texture only after a quick local update, th
   assert.equal(followsWithin({ ...c, stats: { ...c.stats, wallMs: FOLLOW_MS + 1 } }), 0); // a slow update
   assert.equal(followsWithin({ ...c, followMs: 2000, stats: { ...c.stats, wallMs: 400 } }), 800); // a test's budget
   assert.equal(followsWithin({ ...c, stats: { ...c.stats, local: false } }), 0); // a whole run, none local after
-  // A whole run whose next is local (its first of the atlas): half the budget, its own time unknown.
-  assert.equal(followsWithin({ ...c, stats: { ...c.stats, local: false, localNext: true, wallMs: 4000 } }), FOLLOW_MS / 2);
-  assert.equal(followsWithin({ ...c, followMs: 2000, stats: { ...c.stats, local: false, localNext: true } }), 1000);
+  // A whole run whose next is local (its first of the atlas): half the budget, its own time unknown, unless its
+  // field upload (which a local run makes again) took over a quarter of the budget.
+  const whole = { ...c.stats, local: false, localNext: true, wallMs: 4000, phases: { 'field to the GPU': 27 } };
+  assert.equal(followsWithin({ ...c, stats: whole }), FOLLOW_MS / 2);
+  assert.equal(followsWithin({ ...c, followMs: 2000, stats: whole }), 1000);
+  assert.equal(followsWithin({ ...c, stats: { ...whole, phases: { 'field to the GPU': 204 } } }), 0);
+  assert.equal(followsWithin({ ...c, stats: { ...whole, phases: {} } }), 0);
+  assert.equal(followsWithin({ ...c, isPreviewField: () => true }), 0); // a big model's preview: its exact one follows
   assert.equal(followsWithin({ ...c, stats: { ...c.stats, preview: true } }), 0); // a quick edit's preview
   assert.equal(followsWithin({ ...c, runsQueued: 1 }), 0); // behind: this change is a quick edit
   assert.equal(followsWithin({ ...c, settleTimer: 1 }), 0);

@@ -26,14 +26,20 @@ export const FOLLOW_MS = 250;
 // on its own (the texture caught up), answered by a local update like the last one, which took under FOLLOW_MS
 // (c.followMs where a test set another): twice that update's time. After a whole texture the next run is local
 // with no time of its own to go by: half the budget (bunny00 with software GL: the first stroke after its texture
-// waited 58-82 ms for the field's frame, then took 170-200 ms in all against 90-120 for the strokes after it).
+// waited 58-82 ms for the field's frame, then took 170-200 ms in all against 90-120 for the strokes after it),
+// unless the whole run's field upload, which a local run makes again, took over a quarter of it (armadillo-sub2:
+// 204 ms, its updates 0.5 s; bunny00 27 ms). Never for a big model's preview field (c.isPreviewField()): its
+// exact field follows, and its texture later.
 export function followsWithin(c) {
-  if (!c.active || !c.options.autoUpdate || !c.stats || c.stats.preview) return 0;
+  if (!c.active || !c.options.autoUpdate || !c.stats || c.stats.preview || c.isPreviewField?.()) return 0;
   const behind = c.runsQueued > 0 || c.pendingField || c.settleTimer !== null;
   const version = c.getFieldVersion();
   if (behind || version === undefined || version === c.lastFieldVersion) return 0;
   const budget = c.followMs ?? FOLLOW_MS;
-  if (!c.stats.local) return c.stats.localNext ? budget / 2 : 0;
+  if (!c.stats.local) return c.stats.localNext && wholeUpload(c.stats) < budget / 4 ? budget / 2 : 0;
   const took = c.stats.wallMs;
   return took < budget ? Math.min(budget, 2 * took) : 0;
 }
+
+// A whole run's time taking the field to the GPU (its phase; Infinity where it was not timed).
+const wholeUpload = (stats) => stats.phases?.['field to the GPU'] ?? Infinity;
