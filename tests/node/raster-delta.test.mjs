@@ -4,7 +4,8 @@
 // texels; and when a field's frame waits for its texture (quick-edits.js followsWithin).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { blockRects, coarserRects, faceBoxes, faceMoved } from '../../web/synthesis/raster-delta.js';
+import { blockRects, blocksOf, coarserRects, faceBoxes, faceMoved } from '../../web/synthesis/raster-delta.js';
+import { noteJacobianDrawn } from '../../web/synthesis/raster-delta.js';
 import { FOLLOW_MS, followsWithin } from '../../web/synthesis/quick-edits.js';
 
 // A small deterministic generator (mulberry32).
@@ -102,6 +103,34 @@ test('the rectangles drawn hold every texel of the moved faces\' boxes, and the 
     }
   }
   assert.deepEqual(blockRects(boxes, faces, 0, R), []);
+});
+
+// Each level keeps where its Jacobian was drawn since the local update last compared it (local-update.js find
+// compares only there): every draw's rectangles at the level's scale, anywhere (null) after a whole draw or before
+// the first comparison, and the blocks that hold them.
+test('each level knows where its Jacobian was drawn since it was compared, and the blocks that hold it', () => {
+  const levels = [{}, {}, {}];
+  const inside = (rs, x, y) => rs.some((r) => x >= r.x && x < r.x + r.w && y >= r.y && y < r.y + r.h);
+  noteJacobianDrawn(levels, [{ x: 32, y: 48, w: 16, h: 32 }]);
+  assert.deepEqual(levels.map((L) => L.jacDrawn), [null, null, null], 'never compared: anywhere');
+  for (const L of levels) L.jacDrawn = []; // compared and made (local-update.js after)
+  const a = { x: 32, y: 48, w: 16, h: 32 }, b = { x: 200, y: 0, w: 48, h: 16 };
+  noteJacobianDrawn(levels, [a]);
+  noteJacobianDrawn(levels, [b]);
+  for (let k = 0; k < 3; k++) {
+    for (const r of [a, b])
+      for (let y = r.y; y < r.y + r.h; y++)
+        for (let x = r.x; x < r.x + r.w; x++) {
+          assert.ok(inside(levels[k].jacDrawn, x >> k, y >> k), `level ${k} at ${x},${y}`);
+          assert.ok(inside(blocksOf(levels[k].jacDrawn), (x >> k) >> 4, (y >> k) >> 4), `its block`);
+        }
+    assert.ok(!inside(levels[k].jacDrawn, 100 >> k, 100 >> k), 'a texel drawn in neither');
+  }
+  noteJacobianDrawn(levels, null);
+  assert.deepEqual(levels.map((L) => L.jacDrawn), [null, null, null], 'drawn whole: anywhere');
+  for (const L of levels) L.jacDrawn = [];
+  noteJacobianDrawn(levels, Array.from({ length: 600 }, (_, i) => ({ x: i, y: 0, w: 1, h: 1 })));
+  assert.equal(levels[0].jacDrawn, null, 'too many rectangles: anywhere');
 });
 
 test('a field\'s frame waits for its texture only after a quick local update, the texture caught up', () => {

@@ -10,6 +10,7 @@ import { FloatTarget, GLError, drawWithin, isPow2 } from './gl.js';
 import { cornerData } from './atlas-corners.js';
 import { gutterQuads, gutterReach } from './atlas-gutter.js';
 import { RASTER_SHARE, blockRects, coarserRects, faceBoxes, faceMoved, faceNormals } from './raster-delta.js';
+import { noteJacobianDrawn } from './raster-delta.js';
 import { halfEdgeNeighbours } from '../geometry/mesh-geometry.js';
 import { fillCornerField } from './corner-field.js';
 import { coarserIndirection, seamIndirection } from './seams.js';
@@ -260,7 +261,10 @@ export class AtlasRaster {
     const rects = delta ? blockRects(this.boxes(), moved, count, this.resolution) : null;
     this.lastDraw = { faces: delta ? count : nF, whole: !delta, rects: rects?.length ?? null };
     const magRef = sums.mag > 0 ? sums.mag / sums.area : 1;
-    if (!rects || rects.length) this.#drawJacobian(programs, vao, o, magRef, rects);
+    if (!rects || rects.length) {
+      this.#drawJacobian(programs, vao, o, magRef, rects);
+      noteJacobianDrawn(this.levels, rects);
+    }
     this.drawnKey = key;
     return magRef;
   }

@@ -15,7 +15,7 @@
 // Owns the per-level kept Jacobians and masks (on the atlas's levels, disposed with it) and its programs (the
 // synthesizer disposes them with its own).
 import { ByteTarget, FloatTarget, FULLSCREEN_VS, Program, drawWithin } from './gl.js';
-import { RASTER_SHARE, TILE, blockMaskRects } from './raster-delta.js';
+import { RASTER_SHARE, TILE, blockMaskRects, blocksOf } from './raster-delta.js';
 
 const HEADER = `#version 300 es
 precision highp float;
@@ -111,6 +111,7 @@ export class LocalUpdate {
     // The raster is within RASTER_SHARE of the angle of the field (atlas-raster.js), this the rest.
     this.tolerance = 2 * Math.sin(((1 - RASTER_SHARE) * (o.localDegrees ?? 0) * Math.PI) / 360);
     this.local = same && o.localDegrees > 0;
+    if (!this.local) for (const L of atlas.levels) L.jacDrawn = null; // every texel to make: compared anywhere
     this.drawnShare = 1;
     this.reason = o.localDegrees > 0 ? (same ? null : 'first run of this atlas, exemplar and options') : 'off';
     this.next = o.localDegrees > 0;
@@ -121,16 +122,21 @@ export class LocalUpdate {
   // A local run, once the field is rasterized, for every level it makes (levels: the atlas's, finest first; plan:
   // levelPlan()'s): its mask of moved texels, and of blocks that hold one. The run then waits for the GPU (a
   // phase of the kernel's) before readBlocks().
+  // Only where the level's Jacobian was drawn since its last run (L.jacDrawn, raster-delta.js
+  // noteJacobianDrawn) can a texel have moved: elsewhere it was compared before and made again if it had (the
+  // passes over the whole pyramid were most of the kernel's time in a bunny00 update with software GL).
   find(levels, plan) {
     const { moved, tiles } = this.programs;
     for (const { k } of plan) {
       const L = levels[k];
       this.#allocate(L);
       L.rects = null;
-      this.#pass(L.moved, null, () =>
+      const where = L.jacDrawn ?? null;
+      if (where) for (const t of [L.moved, L.blocks]) if (t) this.#fill(t, 0);
+      this.#pass(L.moved, where, () =>
         moved.use().texture('uJac', L.jac).texture('uKept', L.kept).float('uTol', this.tolerance),
       );
-      if (L.blocks) this.#pass(L.blocks, null, () => tiles.use().texture('uMoved', L.moved));
+      if (L.blocks) this.#pass(L.blocks, where && blocksOf(where), () => tiles.use().texture('uMoved', L.moved));
     }
   }
 
@@ -153,6 +159,7 @@ export class LocalUpdate {
   before(L) {
     this.#allocate(L);
     if (!this.local) L.rects = null;
+    else if (L.rects?.length === 0) L.jacDrawn = []; // nothing moved: every texel follows its Jacobian as drawn
     else {
       this.#pass(L.redo, L.rects, () => this.programs.widen.use().texture('uMoved', L.moved));
       this.#keep(L, L.moved, { all: false, fromJac: false });
@@ -160,9 +167,12 @@ export class LocalUpdate {
     return { redo: L.redo, local: this.local, rects: L.rects };
   }
 
-  // After level L's passes: its texels made (all, or those of its mask) keep the Jacobian they were made with.
+  // After level L's passes: its texels made (all, or those of its mask) keep the Jacobian they were made with, and
+  // the next run compares them only where the Jacobian is drawn again (a run cancelled before then compares them
+  // where it did, the texels it flagged never made included).
   after(L) {
     this.#keep(L, L.redo, { all: !this.local, fromJac: true });
+    L.jacDrawn = [];
   }
 
   #keep(L, mask, { all, fromJac }) {

@@ -107,6 +107,26 @@ export function blockMaskRects(set, n) {
   return rects;
 }
 
+// Where each level's Jacobian was drawn since the local update last compared it with the one its texels were
+// made with (local-update.js find): L.jacDrawn, rectangles in level texels, or null for anywhere (never compared,
+// drawn whole, or too many rectangles to be worth it). rects: the finest level's rectangles of this draw (null:
+// whole).
+const MAX_DRAWN_RECTS = 512;
+export function noteJacobianDrawn(levels, rects) {
+  levels.forEach((L, k) => {
+    if (!rects || !L.jacDrawn || L.jacDrawn.length + rects.length > MAX_DRAWN_RECTS) L.jacDrawn = null;
+    else L.jacDrawn.push(...coarserRects(rects, k));
+  });
+}
+
+// The blocks (TILE texels a side, in block units) that hold `rects` (level texels).
+export function blocksOf(rects) {
+  return rects.map(({ x, y, w, h }) => {
+    const x0 = Math.floor(x / TILE), y0 = Math.floor(y / TILE);
+    return { x: x0, y: y0, w: Math.ceil((x + w) / TILE) - x0, h: Math.ceil((y + h) / TILE) - y0 };
+  });
+}
+
 // The same rectangles at the level `k` steps coarser (each texel there the mean of 2^k x 2^k finest ones): every
 // texel whose children the finer rectangles hold.
 export function coarserRects(rects, k) {
