@@ -27,6 +27,7 @@
 //                             [--profile-stripes FILE]   (a CPU profile of the page's thread over the stripes stage)
 //                             [--trace-stripes FILE]   (a Chromium trace of every thread over the stripes stage)
 //                             [--gpu]   (hardware WebGL: ANGLE on Vulkan, or TVF_GPU_ARGS; default SwiftShader)
+//                             [--texture-new]   (the texture's strokes new ones, elsewhere, not the first N again)
 //                             [--profile-texture FILE]   (a CPU profile of the page's thread over the texture's runs)
 //                             [--trace-texture FILE]   (a Chromium trace of every thread over the texture's runs)
 //                             [--trace FILE]   (a Chromium trace of every process and thread over the strokes:
@@ -189,7 +190,13 @@ async function strokeBench(page, meshPath) {
   const undo = arg('--undo', null) == null ? null : await undoBench(page, Number(arg('--undo')));
   const reopenAlone = process.argv.includes('--reopen') && arg('--texture', null) == null;
   const reopen = reopenAlone ? await reopenBench(page, `/bench-mesh/${name}`) : null;
-  const texture = arg('--texture', null) == null ? null : await textureBench(page, strokes.slice(0, Number(arg('--texture'))), `/bench-mesh/${name}`);
+  // The texture's strokes: the first N again (over themselves: the field barely moves, and a local update may
+  // make no texel again), or with --texture-new N new ones elsewhere, which move the field where they go.
+  const textureCount = Number(arg('--texture', 0));
+  const textureStrokes = !process.argv.includes('--texture-new') ? strokes.slice(0, textureCount)
+    : await page.evaluate(stripStrokesInPage, {
+      starts: Array.from({ length: textureCount }, (_, s) => (s * 7919 + 2029) % load.info.faces), crossings });
+  const texture = arg('--texture', null) == null ? null : await textureBench(page, textureStrokes, `/bench-mesh/${name}`);
   const stripesProfile = await startProfile(page, arg('--profile-stripes', null));
   const stripesTrace = arg('--trace-stripes', null);
   if (stripesTrace) await page.context().browser().startTracing(page, { path: stripesTrace, categories: ['toplevel', 'v8', 'gpu', 'disabled-by-default-gpu.service', 'devtools.timeline'] });
@@ -270,7 +277,8 @@ async function strokeBench(page, meshPath) {
     ...(undo ?? {}),
     // --reopen without --texture: the mesh opened again.
     ...(reopen ?? {}),
-    // --texture N: the texture synthesized on the field, then N of the strokes again with the texture shown.
+    // --texture N: the texture synthesized on the field, then N of the strokes again (or N new ones, --texture-new)
+    // with the texture shown.
     ...(texture ?? {}),
     // --stripes N: the stripe pattern turned on, then N of the strokes again with the stripes shown.
     ...(stripes ?? {}),
