@@ -111,20 +111,24 @@ export class LocalUpdate {
     // The raster is within RASTER_SHARE of the angle of the field (atlas-raster.js), this the rest.
     this.tolerance = 2 * Math.sin(((1 - RASTER_SHARE) * (o.localDegrees ?? 0) * Math.PI) / 360);
     this.local = same && o.localDegrees > 0;
-    if (!this.local) for (const L of atlas.levels) L.jacDrawn = null; // every texel to make: compared anywhere
     this.drawnShare = 1;
     this.reason = o.localDegrees > 0 ? (same ? null : 'first run of this atlas, exemplar and options') : 'off';
     this.next = o.localDegrees > 0;
-    if (!this.local) for (const L of atlas.levels) if (L.kept) this.#fill(L.kept, UNSYNTHESIZED);
+    // Every texel to make: a run cut short leaves the next one to compare them anywhere.
+    if (!this.local)
+      for (const L of atlas.levels) {
+        if (L.kept) this.#fill(L.kept, UNSYNTHESIZED);
+        L.jacDrawn = null;
+      }
     return this.local;
   }
 
   // A local run, once the field is rasterized, for every level it makes (levels: the atlas's, finest first; plan:
   // levelPlan()'s): its mask of moved texels, and of blocks that hold one. The run then waits for the GPU (a
-  // phase of the kernel's) before readBlocks().
-  // Only where the level's Jacobian was drawn since its last run (L.jacDrawn, raster-delta.js
-  // noteJacobianDrawn) can a texel have moved: elsewhere it was compared before and made again if it had (the
-  // passes over the whole pyramid were most of the kernel's time in a bunny00 update with software GL).
+  // phase of the kernel's) before readBlocks(). Both are drawn only where the level's Jacobian was drawn since the
+  // level was last made (L.jacDrawn, raster-delta.js noteJacobianDrawn): a texel elsewhere was compared then and
+  // made again if it had moved (over the whole pyramid they were most of a bunny00 update's kernel with software
+  // GL).
   find(levels, plan) {
     const { moved, tiles } = this.programs;
     for (const { k } of plan) {
