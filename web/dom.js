@@ -17,7 +17,7 @@ export function el(tag, attrs = {}, ...children) {
 }
 
 // e's text, written only when it changes: writing the same text again replaces its text node, a layout and paint
-// of its panel (with software GL a raster and read-back of the panel's tiles in the GPU process, 15-26 ms for the
+// of its panel (with software GL a raster and read-back of the panel's tiles in the GPU process, 15-32 ms for the
 // side panel, which a stroke's texture update waited for).
 export function setText(e, text) {
   if (e.textContent !== text) e.textContent = text;

@@ -251,7 +251,7 @@ export class ViewSync {
     const t1 = performance.now();
     // The texture's update shown with the field in one frame when it follows within a frame or two, and the
     // panels with them: with software GL a change of the panels is a raster and a read-back of their tiles in the
-    // GPU process (15-26 ms for bunny00's side panel) that the texture's update waited for.
+    // GPU process (15-32 ms for bunny00's side panel) that the texture's update waited for.
     const wait = this.frameMayWait();
     if (wait > 0) {
       if (!this.panelsOwed) viewer.afterRender.push(() => this.#showPanels());

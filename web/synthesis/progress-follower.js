@@ -2,7 +2,7 @@
 // How the Texture panel's progress bar follows a synthesis run (controller.js). Owns nothing.
 
 // A run that ends within this many ms shows no bar at all: with software GL each change of the panel is a raster
-// and a read-back of its tiles in the GPU process (15-26 ms a change for bunny00's side panel), which a stroke's
+// and a read-back of its tiles in the GPU process (15-32 ms a change for bunny00's side panel), which a stroke's
 // texture update (~100 ms, three changes: the bar, a step, the stats) waited for.
 export const BAR_DELAY_MS = 200;
 
