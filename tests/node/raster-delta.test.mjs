@@ -7,6 +7,7 @@ import assert from 'node:assert/strict';
 import { blockRects, blocksOf, coarserRects, faceBoxes, faceMoved } from '../../web/synthesis/raster-delta.js';
 import { noteJacobianDrawn } from '../../web/synthesis/raster-delta.js';
 import { FOLLOW_MS, followsWithin } from '../../web/synthesis/quick-edits.js';
+import { FIELD_UPLOAD_PHASE } from '../../web/synthesis/phase-clock.js';
 
 // A small deterministic generator (mulberry32).
 function random(seed) {
@@ -151,10 +152,10 @@ test('a field\'s frame waits for its texture only after a quick local update, th
   assert.equal(followsWithin({ ...c, stats: { ...c.stats, local: false } }), 0); // a whole run, none local after
   // A whole run whose next is local (its first of the atlas): half the budget, its own time unknown, unless its
   // field upload (which a local run makes again) took over a quarter of the budget.
-  const whole = { ...c.stats, local: false, localNext: true, wallMs: 4000, phases: { 'field to the GPU': 27 } };
+  const whole = { ...c.stats, local: false, localNext: true, wallMs: 4000, phases: { [FIELD_UPLOAD_PHASE]: 27 } };
   assert.equal(followsWithin({ ...c, stats: whole }), FOLLOW_MS / 2);
   assert.equal(followsWithin({ ...c, followMs: 2000, stats: whole }), 1000);
-  assert.equal(followsWithin({ ...c, stats: { ...whole, phases: { 'field to the GPU': 204 } } }), 0);
+  assert.equal(followsWithin({ ...c, stats: { ...whole, phases: { [FIELD_UPLOAD_PHASE]: 204 } } }), 0);
   assert.equal(followsWithin({ ...c, stats: { ...whole, phases: {} } }), 0);
   assert.equal(followsWithin({ ...c, isPreviewField: () => true }), 0); // a big model's preview: its exact one follows
   assert.equal(followsWithin({ ...c, stats: { ...c.stats, preview: true } }), 0); // a quick edit's preview

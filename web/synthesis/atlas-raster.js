@@ -9,8 +9,15 @@
 import { FloatTarget, GLError, drawWithin, isPow2 } from './gl.js';
 import { cornerData } from './atlas-corners.js';
 import { gutterQuads, gutterReach } from './atlas-gutter.js';
-import { RASTER_SHARE, blockRects, coarserRects, faceBoxes, faceMoved, faceNormals } from './raster-delta.js';
-import { noteJacobianDrawn } from './raster-delta.js';
+import {
+  RASTER_SHARE,
+  blockRects,
+  coarserRects,
+  faceBoxes,
+  faceMoved,
+  faceNormals,
+  noteJacobianDrawn,
+} from './raster-delta.js';
 import { halfEdgeNeighbours } from '../geometry/mesh-geometry.js';
 import { fillCornerField } from './corner-field.js';
 import { coarserIndirection, seamIndirection } from './seams.js';

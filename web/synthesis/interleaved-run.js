@@ -4,7 +4,7 @@
 // drained before the run and between the field's slices (each a big upload that would otherwise wait for a
 // busy GPU process on the page's thread), and the pyramid's draws are paced by slice-pacer.js. Every wait is a
 // phase of the run's clock (phase-clock.js). Owns nothing.
-import { PhaseClock } from './phase-clock.js';
+import { FIELD_UPLOAD_PHASE, PhaseClock } from './phase-clock.js';
 import { nextTask as nextTaskDefault } from './slice-pacer.js';
 
 // pacer: the synthesizer's SlicePacer; makeSteps(): the steps' generator (made once the GPU is drained). Options:
@@ -26,13 +26,13 @@ export async function interleavedRun(
     if (r.value.field) {
       // The field goes to the GPU a slice of faces per task, each once the GPU has taken the one before, and
       // is then rasterized into the atlas (its own phase, r.value.phase).
-      await pacer.drain(clock, nextTask, cancelled, r.value.phase ?? 'field to the GPU');
+      await pacer.drain(clock, nextTask, cancelled, r.value.phase ?? FIELD_UPLOAD_PHASE);
       if (cancelled()) return null;
       continue;
     }
     if (!kernel) {
       kernel = true;
-      clock.mark('field to the GPU');
+      clock.mark(FIELD_UPLOAD_PHASE);
       pacer.begin();
     }
     pending += r.value.texels;

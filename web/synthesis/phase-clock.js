@@ -2,6 +2,9 @@
 // Where a texture's wall time goes (synthesisStats().phases, bench:web --texture): consecutive phases, each mark
 // taking the time since the one before, so that the phases add up to the wall time and a step that is not named
 // shows as what it was waiting behind instead of vanishing. Keys that hold the synthesis kernel contain `kernel`.
+// The phase of a run that takes the field to the GPU (interleaved-run.js), which quick-edits.js reads too.
+export const FIELD_UPLOAD_PHASE = 'field to the GPU';
+
 export class PhaseClock {
   constructor(t0 = performance.now()) {
     this.t0 = t0;

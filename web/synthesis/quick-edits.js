@@ -3,6 +3,8 @@
 // preview (one level short of the finest, a quarter of the work) and is made in full once they stop for
 // QUICK_EDIT_MS; any other change gets the full texture at once, and may have the view's frame of the field wait
 // for it (followsWithin). Owns nothing.
+import { FIELD_UPLOAD_PHASE } from './phase-clock.js';
+
 export const QUICK_EDIT_MS = 400;
 
 // c: the controller (runsQueued, pendingField, settleTimer, lastFieldChange). A change is quick while something is
@@ -26,7 +28,7 @@ export const FOLLOW_MS = 250;
 // on its own (the texture caught up), answered by a local update like the last one, which took under FOLLOW_MS
 // (c.followMs where a test set another): twice that update's time. After a whole texture the next run is local
 // with no time of its own to go by: half the budget (bunny00 with software GL: the first stroke after its texture
-// waited 58-82 ms for the field's frame, then took 170-200 ms in all against 90-120 for the strokes after it),
+// waited 58-82 ms for the field's frame, then took 178-206 ms in all against 84-136 for the third to sixth),
 // unless the whole run's field upload, which a local run makes again, took over a quarter of it (armadillo-sub2:
 // 204 ms, its updates 0.5 s; bunny00 27 ms). Never for a big model's preview field (c.isPreviewField()): its
 // exact field follows, and its texture later.
@@ -42,4 +44,4 @@ export function followsWithin(c) {
 }
 
 // A whole run's time taking the field to the GPU (its phase; Infinity where it was not timed).
-const wholeUpload = (stats) => stats.phases?.['field to the GPU'] ?? Infinity;
+const wholeUpload = (stats) => stats.phases?.[FIELD_UPLOAD_PHASE] ?? Infinity;

@@ -120,12 +120,7 @@ export function noteJacobianDrawn(levels, rects) {
 }
 
 // The blocks (TILE texels a side, in block units) that hold `rects` (level texels).
-export function blocksOf(rects) {
-  return rects.map(({ x, y, w, h }) => {
-    const x0 = Math.floor(x / TILE), y0 = Math.floor(y / TILE);
-    return { x: x0, y: y0, w: Math.ceil((x + w) / TILE) - x0, h: Math.ceil((y + h) / TILE) - y0 };
-  });
-}
+export const blocksOf = (rects) => coarserRects(rects, Math.log2(TILE));
 
 // The same rectangles at the level `k` steps coarser (each texel there the mean of 2^k x 2^k finest ones): every
 // texel whose children the finer rectangles hold.
