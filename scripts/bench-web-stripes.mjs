@@ -72,6 +72,8 @@ export async function stripesBench(page, strokes) {
     stripesStrokeOnScreenMs: median(runs.map((r) => r.onScreenMs)),
     stripesOverFieldPerEdit: median(runs.map((r) => r.stripesMs / r.fieldMs)),
     stripesWorkerMs: median(runs.map((r) => r.stats?.workerMs)),
+    // Of it the core's computation (DesignStripes::compute, timed in wasm); the rest lays its arrays out per corner.
+    stripesCoreMs: median(runs.map((r) => r.stats?.ms)),
     // From the page's request (once the field is drawn) to the stripes drawn, and the drawing alone (the page's
     // part after the reply: the pattern's attributes and the frame).
     stripesRoundTripMs: median(runs.map((r) => r.stats?.roundTripMs)),
@@ -88,11 +90,17 @@ export async function stripesBench(page, strokes) {
     stripesLocalUpdates: runs.filter((r) => r.stats?.localUpdate).length,
     // How many were made ahead: by the worker after the edit's field, before the page asked (stripes/worker-ops.js).
     stripesMadeAhead: runs.filter((r) => r.stats?.madeAhead).length,
+    // How many strokes' field frames waited for their stripes (one frame for both: StripesController.followsWithin),
+    // and for how long they could have (median).
+    stripesFieldFramesWaited: runs.filter((r) => r.stats?.fieldFrameWaited > 0).length,
+    stripesFieldFrameWaitMs: median(runs.map((r) => r.stats?.fieldFrameWaited)),
     stripesLocalVertices: median(runs.filter((r) => r.stats?.localUpdate).map((r) => r.stats.localVertices)),
     stripesStrokeSettledMs: median(runs.map((r) => r.settledMs)),
     stripesSettledWorkerMs: median(runs.map((r) => r.settledStats?.workerMs)),
     stripesLongestStrokeTaskMs: longest(tasks),
     stripesStrokes: runs.length,
+    // Each stroke's [field drawn, stripes drawn, the core's computation] (ms), in order.
+    stripesEachStroke: runs.map((r) => [r.fieldMs, r.stripesMs, r.stats?.ms].map((x) => Math.round(x * 10) / 10)),
     // The same strokes again in quick succession (the first waits for nothing): the later ones' fields, median.
     stripesQuickStrokeFieldMs: median(quick.slice(1)),
   };

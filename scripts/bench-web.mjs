@@ -27,6 +27,7 @@
 //                             [--profile-stripes FILE]   (a CPU profile of the page's thread over the stripes stage)
 //                             [--trace-stripes FILE]   (a Chromium trace of every thread over the stripes stage)
 //                             [--gpu]   (hardware WebGL: ANGLE on Vulkan, or TVF_GPU_ARGS; default SwiftShader)
+//                             (TVF_JS_FLAGS in the environment: V8 flags for the page, as Chromium's --js-flags)
 //                             [--texture-new]   (the texture's strokes new ones, elsewhere, not the first N again)
 //                             [--profile-texture FILE]   (a CPU profile of the page's thread over the texture's runs)
 //                             [--trace-texture FILE]   (a Chromium trace of every thread over the texture's runs)
@@ -557,7 +558,7 @@ const glArgs = process.argv.includes('--gpu')
   : ['--enable-unsafe-swiftshader', '--use-angle=swiftshader'];
 const browser = await chromium.launch({
   executablePath: process.env.TVF_CHROMIUM || '/usr/bin/chromium',
-  args: [...glArgs, '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+  args: [...glArgs, ...(process.env.TVF_JS_FLAGS ? [`--js-flags=${process.env.TVF_JS_FLAGS}`] : []), '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
 });
 try {
   const page = await browser.newPage({ viewport: { width: 1024, height: 720 } });

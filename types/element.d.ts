@@ -679,6 +679,8 @@ export declare class TangentFieldDesigner extends HTMLElement {
   debugDelayExact(ms: number): void;
   /** @internal The texture's update time under which a field's frame waits for its texture (null: 250 ms), so that a page test sees that wait whatever the machine. */
   debugTextureFollowMs(ms: number | null): void;
+  /** @internal An edit's stripes' time under which the next field's frame waits for its stripes (null: 250 ms), so that a page test sees that wait whatever the machine. */
+  debugStripesFollowMs(ms: number | null): void;
   /** @internal Ends the core worker as a crash would. */
   debugTerminateCore(): void;
   /** @internal Makes the core worker stop answering for ms milliseconds. */

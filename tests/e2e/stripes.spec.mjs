@@ -5,7 +5,8 @@
 // nothing to adapt there), and its GLB carries the phase as TEXCOORD_1; on the default model the stripes show,
 // follow an edit (a new pattern for the new field), new patterns leave no WebGL buffer behind, and the GLB
 // bakes them into its base colour; a cross field takes grid, bricks or weave only, and bad options are refused
-// by name with nothing changed. On a sphere's
+// by name with nothing changed; after an edit whose stripes came as a local update made ahead, the next edit's
+// field and stripes are drawn in one frame. On a sphere's
 // smoothest line field the stripes' own direction, read from the pixels, turns by pi round each +1/2 singularity
 // (one stripe ends there, the others turn round it) and not at all where the field is calm; a cross field's
 // grid turns by pi/2 round each of its eight +1/4 (three of its lines meet there) (stripe-topology.mjs).
@@ -204,6 +205,65 @@ test.describe.serial('stripe patterns in the page', () => {
     expect(cross.profile).toBe('grid');
     expect(cross.stats.families).toBe(2);
     await evaluate(() => window.tvf.setStripes({ visible: false }));
+  });
+
+  // After an edit whose stripes came as a local update made ahead by the worker, the next edit's field is drawn
+  // with its stripes in one frame (StripesController.followsWithin): no frame between the edit and the stripes'
+  // arrival (unless they came after the deadline, twice the last edit's time), one with them. The first edit
+  // after the stripes are shown (their first pattern is whole) has its field drawn first, as before. The budget
+  // is raised to 2 s (debugStripesFollowMs) so that a loaded machine sees the wait too. The edits: the field at
+  // a face asked to turn by 30 degrees, which moves it near that face only.
+  test('an edit after a local update: its field and its stripes drawn in one frame', async () => {
+    await evaluate(() => window.tvf.setSymmetry(2));
+    // Vectors at faces spread over the model, each along the field there: the field's shape held, so that an
+    // edit moves it near its face only (a local update; on the bare model it moves everywhere: a whole pattern).
+    await evaluate(async () => {
+      const t = window.tvf, nF = t.mesh().triangles.length / 3, vv = t.faceVectors();
+      for (let k = 1; k <= 8; k++) {
+        const face = Math.floor((k * nF) / 9);
+        await t.addVector(face, [0, 1, 2].map((d) => vv[3 * face + d]));
+      }
+      await t.settled();
+    });
+    await evaluate(() => window.tvf.debugStripesFollowMs(2000));
+    await evaluate(() => window.tvf.setStripes({ visible: true, profile: 'stripes' }));
+    const edit = (face) =>
+      evaluate(async (face) => {
+        const t = window.tvf;
+        const { positions: P, triangles: T } = t.mesh(), vv = t.vertexVectors();
+        const at = (a, k, d) => a[3 * T[3 * face + k] + d];
+        const v = [0, 1, 2].map((d) => (at(vv, 0, d) + at(vv, 1, d) + at(vv, 2, d)) / 3);
+        const e = [1, 2].map((k) => [0, 1, 2].map((d) => at(P, k, d) - at(P, 0, d)));
+        const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+        const m = cross(e[0], e[1]), n = m.map((x) => x / Math.hypot(...m)), nv = cross(n, v);
+        const c = Math.cos(Math.PI / 6), sn = Math.sin(Math.PI / 6);
+        const frames = t.debugRecordFrames();
+        const t0 = performance.now();
+        await t.addVector(face, v.map((x, d) => c * x + sn * nv[d]));
+        await t.settled();
+        const { stats } = await t.stripesIdle();
+        await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+        await t.stripesIdle({ settled: true }); // the whole pattern, as when the edits pause
+        return { t0, frames: frames.slice(), stats };
+      }, face);
+    await evaluate(() => window.tvf.stripesIdle({ settled: true }));
+    const runs = [await edit(1200), await edit(2400), await edit(600)];
+    await evaluate(() => window.tvf.debugStripesFollowMs(null));
+    await evaluate(() => window.tvf.setStripes({ visible: false }));
+    runs.forEach((r, k) => {
+      const s = r.stats, repliedAt = s.drawnAt - s.drawMs, asked = s.drawnAt - s.roundTripMs;
+      const quick = k > 0 && runs[k - 1].stats.localUpdate && runs[k - 1].stats.madeAhead;
+      const early = r.frames.filter((x) => x < repliedAt);
+      console.log(`[ measured ] ${JSON.stringify({ local: s.localUpdate, madeAhead: s.madeAhead, quick,
+        waited: s.fieldFrameWaited, roundTripMs: Math.round(s.roundTripMs),
+        vertices: s.localVertices, frames: r.frames.map((x) => Math.round(x - r.t0)),
+        stripes: Math.round(s.drawnAt - r.t0) })}`);
+      expect(s.fieldFrameWaited > 0, "the field's frame waited for its stripes").toBe(quick);
+      if (quick) expect(early.filter((x) => x < asked + s.fieldFrameWaited - 5), 'frames before the stripes').toEqual([]);
+      else expect(early.length, 'the field drawn first').toBeGreaterThan(0);
+      expect(r.frames.some((x) => x >= repliedAt), 'the frame with the field and its stripes').toBe(true);
+    });
+    expect(runs.filter((r) => r.stats.fieldFrameWaited > 0).length, 'edits whose frame waited').toBeGreaterThan(0);
   });
 
   test('a sphere: one stripe ends at each +1/2 of a line field, grid lines meet three to a junction at a +1/4',

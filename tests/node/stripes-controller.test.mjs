@@ -102,3 +102,56 @@ test('the whole pattern follows by itself once the edits pause', async () => {
   assert.equal(controller.state().settled, true);
   controller.dispose();
 });
+
+// The field's frame waits for its stripes (followsWithin, asked by view-sync.js before it draws a field change)
+// only after an edit whose stripes came as a local update made ahead by the worker, for twice the time that
+// took (at most the budget), whether the whole pattern settled since or not; never for the field already shown,
+// while an update is in flight, after a whole pattern alone or one not made ahead, or after a slow edit.
+test("the field's frame waits for its stripes after a quick local update made ahead", async () => {
+  const { controller, setField } = controllerWith([]);
+  let reply = { localUpdate: true, madeAhead: true }, delay = 5;
+  controller.call = async (op, [version, , asked]) => {
+    await new Promise((resolve) => setTimeout(resolve, delay));
+    const whole = asked.localUpdate === false;
+    return { ...pattern(version), stats: { version, ...(whole ? { localUpdate: false } : reply) } };
+  };
+  const edit = async (version) => {
+    setField({ version, key: `k${version}` });
+    const wait = controller.followsWithin();
+    controller.fieldChanged();
+    await controller.whenIdle();
+    return wait;
+  };
+  reply = { localUpdate: false };
+  await controller.setStripes({ visible: true }); // a first pattern: whole
+  assert.equal(await edit(2), 0, 'after a whole pattern: drawn at once');
+  reply = { localUpdate: true, madeAhead: true };
+  assert.equal(await edit(3), 0, 'the edit before was whole');
+  const took = controller.state().stats.roundTripMs;
+  assert.ok(took > 0);
+  assert.equal(controller.followsWithin(), 0, 'the field shown already: nothing to wait for');
+  const wait = await edit(4);
+  assert.ok(Math.abs(wait - 2 * took) < 1e-9, `twice the last edit's time (${wait} for ${took})`);
+  assert.equal(controller.state().stats.fieldFrameWaited, wait, 'the stripes say how long their field could wait');
+  await controller.whenIdle({ settled: true });
+  assert.ok((await edit(5)) > 0, 'after the whole pattern settled, the next edit still waits');
+  setField({ version: 6, key: 'k6' });
+  controller.fieldChanged();
+  assert.equal(controller.followsWithin(), 0, 'an update in flight');
+  await controller.whenIdle();
+  reply = { localUpdate: true, madeAhead: false };
+  await edit(7);
+  assert.equal(await edit(8), 0, 'the edit before was not made ahead');
+  reply = { localUpdate: true, madeAhead: true };
+  delay = 300;
+  await edit(9);
+  assert.equal(await edit(10), 0, 'the edit before took longer than the budget');
+  delay = 5;
+  controller.followMs = 1000; // a test's budget (debugStripesFollowMs)
+  await edit(11);
+  assert.ok((await edit(12)) > 0);
+  await controller.setStripes({ visible: false });
+  setField({ version: 13, key: 'k13' });
+  assert.equal(controller.followsWithin(), 0, 'hidden');
+  controller.dispose();
+});

@@ -154,6 +154,9 @@ export const api = {
   debugTextureFollowMs: (d, ms) => {
     d.synthesis.followMs = ms ?? undefined;
   },
+  debugStripesFollowMs: (d, ms) => {
+    d.stripes.followMs = ms ?? undefined;
+  },
   debugTerminateCore: (d) => d.session.proxy?.terminateForTest(),
   debugHangCore: (d, ms) => d.session.proxy?.hangForTest(ms),
   debugTrapCore: (d) => d.session.exclusive(() => d.session.proxy.call('trapForTest')),

@@ -210,6 +210,12 @@ export const VIEW_METHODS = [
       'that a page test sees that wait whatever the machine.',
   },
   {
+    name: 'debugStripesFollowMs', ...TEST_HOOKS,
+    signatures: [['ms: number | null', 'void']],
+    description: "An edit's stripes' time under which the next field's frame waits for its stripes (null: 250 ms), " +
+      'so that a page test sees that wait whatever the machine.',
+  },
+  {
     name: 'debugTerminateCore', ...TEST_HOOKS,
     signatures: [['', 'void']],
     description: 'Ends the core worker as a crash would.',

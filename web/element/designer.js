@@ -61,7 +61,8 @@ export class Designer {
       this.synthesis.fieldChanged();
       this.stripes.fieldChanged();
     };
-    this.viewSync.frameMayWait = () => this.synthesis.followsWithin();
+    // The field's frame waits for the texture or the stripes that follow it, whichever is shown.
+    this.viewSync.frameMayWait = () => Math.max(this.synthesis.followsWithin(), this.stripes.followsWithin());
     this.exports = setupExport({
       viewer: this.viewer,
       panel: $('#side-panel'),

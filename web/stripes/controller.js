@@ -17,6 +17,8 @@ const SETTLE_MS = 400;
 // bunny00's (75k faces) upload and frame take that task 2-4 ms. A bigger model's go to the next animation frame,
 // a task of their own (armadillo-sub2's 832k faces: 20 MB of corner attributes).
 const DRAW_AT_ONCE_FACES = 200_000;
+// A field change whose stripes follow it within this many ms (the last edit's) is drawn with them (followsWithin).
+const FOLLOW_MS = 250;
 // Default spacing: this many stripes across the model's bounding-box diagonal, but no period under four mean
 // edge lengths (a narrower one is more than the mesh can show).
 const STRIPES_PER_DIAGONAL = 40;
@@ -75,6 +77,8 @@ export class StripesController {
     this.settled = true; // the stripes shown are a whole pattern, not an edit's local update
     this.settleTimer = null;
     this.settleNow = false; // the next update makes the whole pattern of the stripes shown
+    this.frameWaited = 0; // ms the last field change's frame could wait for its stripes (followsWithin)
+    this.localFollowMs = null; // the last edit's local update made ahead: from the page's request to its frame
   }
 
   // The options in force: the frequency and profile the model and field choose when none was set.
@@ -147,6 +151,21 @@ export class StripesController {
     return this.state();
   }
 
+  // How long (ms) the view's frame of a field change about to be drawn may wait for its stripes, so that both show
+  // in one frame (0: drawn at once; the stripes' own frame draws it, view-sync.js). With software GL the field's
+  // frame is rasterized on the CPU while the worker makes its stripes: on a 2-core machine a bunny00 stroke's
+  // local update took 42-47 ms in the page against 22-33 ms under node. Only for a new field while nothing is in
+  // flight, when the last edit's stripes came as a local update made ahead by the worker within FOLLOW_MS (or
+  // this.followMs, a test's) of their request (the next edit's likely come alike, whether the whole pattern
+  // settled between them or not): twice that. Asked before the change is drawn.
+  followsWithin() {
+    this.frameWaited = 0;
+    const field = this.getField(), t = this.stats, took = this.localFollowMs, budget = this.followMs ?? FOLLOW_MS;
+    if (!this.visible || this.running || !field || !t || this.error || took === null || !(took < budget)) return 0;
+    if (this.surface !== field.surface || t.fieldKey === field.key) return 0;
+    return (this.frameWaited = Math.min(budget, 2 * took));
+  }
+
   // The field drawn changed (a new version or another component): new stripes when they are shown.
   fieldChanged() {
     if (this.visible) this.update().catch((err) => this.onError(err));
@@ -157,6 +176,7 @@ export class StripesController {
     this.notify({ stripesUnfollow: true });
     this.shown = null;
     this.stats = null;
+    this.localFollowMs = null;
     if (this.visible) this.update().catch((err) => this.onError(err));
   }
 
@@ -192,7 +212,8 @@ export class StripesController {
     const settling = this.shown === wanted;
     if (settling && (this.settled || !this.settleNow)) return;
     this.#cancelSettle();
-    const t0 = performance.now();
+    const t0 = performance.now(), fieldFrameWaited = this.frameWaited;
+    this.frameWaited = 0;
     let reply;
     try {
       const asked = settling ? { ...options, localUpdate: false } : options;
@@ -221,7 +242,9 @@ export class StripesController {
     if (!this.settled) this.#scheduleSettle();
     this.error = null;
     const roundTripMs = drawnAt - t0, drawMs = drawnAt - repliedAt;
-    this.stats = { ...reply.stats, fieldKey: field.key, roundTripMs, drawMs, drawnAt };
+    if (!settling) this.localFollowMs = reply.stats?.localUpdate && reply.stats.madeAhead ? roundTripMs : null;
+    // fieldFrameWaited: ms the field's frame could wait for these stripes (0: it was drawn first).
+    this.stats = { ...reply.stats, fieldKey: field.key, roundTripMs, drawMs, drawnAt, fieldFrameWaited };
     this.onChange();
   }
 
