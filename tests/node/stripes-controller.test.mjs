@@ -106,7 +106,8 @@ test('the whole pattern follows by itself once the edits pause', async () => {
 // The field's frame waits for its stripes (followsWithin, asked by view-sync.js before it draws a field change)
 // only after an edit whose stripes came as a local update made ahead by the worker, for twice the time that
 // took (at most the budget), whether the whole pattern settled since or not; never for the field already shown,
-// while an update is in flight, after a whole pattern alone or one not made ahead, or after a slow edit.
+// while an update is in flight, for a preview field, after a whole pattern alone or one not made ahead, or after
+// a slow edit.
 test("the field's frame waits for its stripes after a quick local update made ahead", async () => {
   const { controller, setField } = controllerWith([]);
   let reply = { localUpdate: true, madeAhead: true }, delay = 5;
@@ -150,8 +151,10 @@ test("the field's frame waits for its stripes after a quick local update made ah
   controller.followMs = 1000; // a test's budget (debugStripesFollowMs)
   await edit(11);
   assert.ok((await edit(12)) > 0);
+  setField({ version: 13, key: 'k13', preview: true });
+  assert.equal(controller.followsWithin(), 0, "a big model's preview field: its stripes come with the exact one");
   await controller.setStripes({ visible: false });
-  setField({ version: 13, key: 'k13' });
+  setField({ version: 14, key: 'k14', preview: false });
   assert.equal(controller.followsWithin(), 0, 'hidden');
   controller.dispose();
 });

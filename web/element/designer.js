@@ -148,7 +148,9 @@ export class Designer {
         const derived = drawn?.derived ?? s.field;
         const component = drawn?.name ?? 'whole';
         const symmetry = s.field.symmetry ?? 1;
-        return { version: derived.version, component, key: this.viewSync.drawnVersion(), symmetry, surface: s.surface };
+        const preview = !!s.field.stats?.preview; // a big model's preview field: its stripes wait for the exact one
+        return { version: derived.version, component, key: this.viewSync.drawnVersion(), symmetry, surface: s.surface,
+          preview };
       },
       // Shown, they take the texture's place; hidden, they give it back.
       onShow: (shown) => this.synthesis.setTextureVisible(!shown && this.synthesis.active),

@@ -49,7 +49,7 @@ export class StripesController {
   // viewer: the page's Viewer; call(op, args): the worker's op, resolving to its value (null when the field
   // version asked for is no longer the worker's); notify(message): a word for the worker outside its requests
   // (stripes/worker-ops.js makes each edit's stripes ahead until told the page no longer shows them);
-  // getField(): {version, component, key, symmetry, surface} of
+  // getField(): {version, component, key, symmetry, surface, preview} of
   // the field the views draw, or null; onChange(): the state changed (the panel redraws); onError(err);
   // onShow(shown): the stripes are about to show (true), or have just gone (false): another stand-in for the
   // surface (the synthesized texture) makes way or comes back.
@@ -152,17 +152,18 @@ export class StripesController {
   }
 
   // How long (ms) the view's frame of a field change about to be drawn may wait for its stripes, so that both show
-  // in one frame (0: drawn at once; the stripes' own frame draws it, view-sync.js). With software GL the field's
-  // frame is rasterized on the CPU while the worker makes its stripes: on a 2-core machine a bunny00 stroke's
-  // local update took 42-47 ms in the page against 22-33 ms under node. Only for a new field while nothing is in
-  // flight, when the last edit's stripes came as a local update made ahead by the worker within FOLLOW_MS (or
-  // this.followMs, a test's) of their request (the next edit's likely come alike, whether the whole pattern
-  // settled between them or not): twice that. Asked before the change is drawn.
+  // in one frame (0: drawn at once; the stripes' own frame draws it, view-sync.js). With software GL each frame
+  // is rasterized on the CPU, and the stripes' frame came after the field's: a bunny00 stroke's stripes were on
+  // screen 127-156 ms after it, 91-114 ms with one frame for both (docs/stripes.md). Only for a new field while
+  // nothing is in flight (not a big model's preview, whose stripes come with the exact field), when the last
+  // edit's stripes came as a local update made ahead by the worker within FOLLOW_MS (this.followMs, a test's)
+  // of their request (the next edit's likely come alike, whether the whole pattern settled between them or
+  // not): twice that. Asked before the change is drawn.
   followsWithin() {
     this.frameWaited = 0;
     const field = this.getField(), t = this.stats, took = this.localFollowMs, budget = this.followMs ?? FOLLOW_MS;
     if (!this.visible || this.running || !field || !t || this.error || took === null || !(took < budget)) return 0;
-    if (this.surface !== field.surface || t.fieldKey === field.key) return 0;
+    if (this.surface !== field.surface || t.fieldKey === field.key || field.preview) return 0;
     return (this.frameWaited = Math.min(budget, 2 * took));
   }
 

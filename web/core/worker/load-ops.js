@@ -115,7 +115,9 @@ async function sendAhead(state, trees) {
     state.previewMade = resolve;
     setTimeout(resolve, PREVIEW_WAIT_MS);
   });
+  state.progress({ phase: 'previewWord' });
   designer.preparePendingSystem();
+  state.progress({ phase: 'assembled' });
   const kept = await keptTree;
   // Views of the wasm heap, taken after the waits (the heap may have grown while the cache was read).
   const picking = pickingParts(designer.pendingPositions(), designer.pendingTriangles(), kept.bvh);
