@@ -326,3 +326,22 @@ export function stripStrokesInPage({ starts, crossings, every = 1 }) {
     return faces.filter((_, i) => i % every === 0 || i === faces.length - 1).map((face) => ({ face, bary: [1 / 3, 1 / 3, 1 / 3] }));
   });
 }
+
+// The field at `face` (its corners' vertex vectors averaged) turned by `radians` about the face's normal: what an
+// edit asks there to move the field near that face only (the frame tests of texture-phases and stripes).
+export async function fieldTurnedAt(page, face, radians) {
+  // The face's three corners: their positions and vertex vectors, 9 numbers each.
+  const { P, V } = await page.evaluate((f) => {
+    const { positions, triangles } = window.tvf.mesh(), vectors = window.tvf.vertexVectors();
+    const corners = (a) => [0, 1, 2].flatMap((k) => {
+      const v = triangles[3 * f + k];
+      return [a[3 * v], a[3 * v + 1], a[3 * v + 2]];
+    });
+    return { P: corners(positions), V: corners(vectors) };
+  }, face);
+  const at = (a, k) => a.slice(3 * k, 3 * k + 3);
+  const v = [0, 1, 2].map((d) => (V[d] + V[3 + d] + V[6 + d]) / 3);
+  const m = cross(sub(at(P, 1), at(P, 0)), sub(at(P, 2), at(P, 0)));
+  const nv = cross(m.map((x) => x / norm(m)), v);
+  return v.map((x, d) => Math.cos(radians) * x + Math.sin(radians) * nv[d]);
+}

@@ -12,7 +12,7 @@
 // grid turns by pi/2 round each of its eight +1/4 (three of its lines meet there) (stripe-topology.mjs).
 import { expect, test } from '@playwright/test';
 import { icosphereOff } from '../icosphere.mjs';
-import { openDesignerPage, readCanvasGrey } from './helpers.mjs';
+import { fieldTurnedAt, openDesignerPage, readCanvasGrey } from './helpers.mjs';
 import { directionTurns } from './stripe-topology.mjs';
 
 // A flat n × n grid over the unit square in z = 0, as OFF text.
@@ -227,25 +227,22 @@ test.describe.serial('stripe patterns in the page', () => {
     });
     await evaluate(() => window.tvf.debugStripesFollowMs(2000));
     await evaluate(() => window.tvf.setStripes({ visible: true, profile: 'stripes' }));
-    const edit = (face) =>
-      evaluate(async (face) => {
+    const edit = async (face) => {
+      const turned = await fieldTurnedAt(page, face, Math.PI / 6);
+      return evaluate(async ({ face, turned }) => {
         const t = window.tvf;
-        const { positions: P, triangles: T } = t.mesh(), vv = t.vertexVectors();
-        const at = (a, k, d) => a[3 * T[3 * face + k] + d];
-        const v = [0, 1, 2].map((d) => (at(vv, 0, d) + at(vv, 1, d) + at(vv, 2, d)) / 3);
-        const e = [1, 2].map((k) => [0, 1, 2].map((d) => at(P, k, d) - at(P, 0, d)));
-        const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-        const m = cross(e[0], e[1]), n = m.map((x) => x / Math.hypot(...m)), nv = cross(n, v);
-        const c = Math.cos(Math.PI / 6), sn = Math.sin(Math.PI / 6);
+        const frames2 = () => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+        await frames2(); // a frame the last edit's whole pattern left asked for is drawn before the count starts
         const frames = t.debugRecordFrames();
         const t0 = performance.now();
-        await t.addVector(face, v.map((x, d) => c * x + sn * nv[d]));
+        await t.addVector(face, turned);
         await t.settled();
         const { stats } = await t.stripesIdle();
-        await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+        await frames2();
         await t.stripesIdle({ settled: true }); // the whole pattern, as when the edits pause
         return { t0, frames: frames.slice(), stats };
-      }, face);
+      }, { face, turned });
+    };
     await evaluate(() => window.tvf.stripesIdle({ settled: true }));
     const runs = [await edit(1200), await edit(2400), await edit(600)];
     await evaluate(() => window.tvf.debugStripesFollowMs(null));

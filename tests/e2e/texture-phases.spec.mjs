@@ -5,7 +5,7 @@
 // - one edit on its own (nothing else changing) is answered by a full synthesis started at once: no preview,
 //   no settle timer in its phases.
 import { expect, test } from '@playwright/test';
-import { openDesigner, openDesignerPage, readMesh, subdividedOff } from './helpers.mjs';
+import { fieldTurnedAt, openDesigner, openDesignerPage, readMesh, subdividedOff } from './helpers.mjs';
 
 const OPTIONS = { resolution: 256, featureScale: 1, seed: 3 };
 
@@ -145,28 +145,23 @@ test.describe.serial('texture phases, a single edit, the atlas kept per mesh (bu
   // a face asked to turn by 2° (as long as it is), which moves a part of the texture only; the run before the
   // first was the whole one after the context's restore (above).
   test('an edit on its own after a quick update: its field and its texture drawn in one frame', async () => {
-    const edit = (face) =>
-      page.evaluate(async (face) => {
+    const edit = async (face) => {
+      const turned = await fieldTurnedAt(page, face, Math.PI / 90);
+      return page.evaluate(async ({ face, turned }) => {
         const t = window.tvf;
         await new Promise((resolve) => setTimeout(resolve, 600));
         const before = t.synthesisStats();
-        const { positions: P, triangles: T } = t.mesh(), vv = t.vertexVectors();
-        const at = (a, k, d) => a[3 * T[3 * face + k] + d];
-        const v = [0, 1, 2].map((d) => (at(vv, 0, d) + at(vv, 1, d) + at(vv, 2, d)) / 3);
-        const e = [1, 2].map((k) => [0, 1, 2].map((d) => at(P, k, d) - at(P, 0, d)));
-        const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-        const m = cross(e[0], e[1]), n = m.map((x) => x / Math.hypot(...m)), nv = cross(n, v);
-        const c = Math.cos(Math.PI / 90), sn = Math.sin(Math.PI / 90);
         const frames = t.debugRecordFrames();
         const t0 = performance.now();
-        await t.addVector(face, v.map((x, d) => c * x + sn * nv[d]));
+        await t.addVector(face, turned);
         await t.settled();
         const s = await t.synthesisIdle();
         await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
         const root = document.querySelector('tangent-field-designer').shadowRoot;
         const rows = root.querySelectorAll('#constraint-list li');
         return { before, s, t0, frames: frames.slice(), rows: rows.length, constraints: t.constraints().length };
-      }, face);
+      }, { face, turned });
+    };
     await page.evaluate(() => window.tvf.debugTextureFollowMs(2000));
     const runs = [await edit(1200), await edit(2400), await edit(600)];
     await page.evaluate(() => window.tvf.debugTextureFollowMs(null));
