@@ -556,9 +556,11 @@ const GPU_ARGS = ['--use-angle=vulkan', '--enable-features=Vulkan,VulkanFromANGL
 const glArgs = process.argv.includes('--gpu')
   ? (process.env.TVF_GPU_ARGS ? process.env.TVF_GPU_ARGS.split(/\s+/).filter(Boolean) : GPU_ARGS)
   : ['--enable-unsafe-swiftshader', '--use-angle=swiftshader'];
+const jsFlags = process.env.TVF_JS_FLAGS ? [`--js-flags=${process.env.TVF_JS_FLAGS}`] : [];
 const browser = await chromium.launch({
   executablePath: process.env.TVF_CHROMIUM || '/usr/bin/chromium',
-  args: [...glArgs, ...(process.env.TVF_JS_FLAGS ? [`--js-flags=${process.env.TVF_JS_FLAGS}`] : []), '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+  args: [...glArgs, ...jsFlags, '--no-first-run', '--disable-background-networking', '--disable-component-update',
+    '--disable-sync'],
 });
 try {
   const page = await browser.newPage({ viewport: { width: 1024, height: 720 } });

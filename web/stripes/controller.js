@@ -154,7 +154,7 @@ export class StripesController {
   // How long (ms) the view's frame of a field change about to be drawn may wait for its stripes, so that both show
   // in one frame (0: drawn at once; the stripes' own frame draws it, view-sync.js). With software GL each frame
   // is rasterized on the CPU, and the stripes' frame came after the field's: a bunny00 stroke's stripes were on
-  // screen 127-156 ms after it, 91-114 ms with one frame for both (docs/stripes.md). Only for a new field while
+  // screen 127-156 ms after it, 81-114 ms with one frame for both (docs/stripes.md). Only for a new field while
   // nothing is in flight (not a big model's preview, whose stripes come with the exact field), when the last
   // edit's stripes came as a local update made ahead by the worker within FOLLOW_MS (this.followMs, a test's)
   // of their request (the next edit's likely come alike, whether the whole pattern settled between them or
