@@ -34,6 +34,7 @@ export class ViewSync {
     this.requests = { component: 0, hodgeShares: 0 }; // requests sent to the worker (perf().hodgeViews)
     this.onRefreshed = () => {}; // after each redraw (texture synthesis follows the field)
     this.frameMayWait = () => 0; // ms a field's frame may wait for what follows it (0: drawn at once)
+    this.panelsOwed = false; // the panels wait to be shown with a frame that waits (refresh)
   }
 
   // ---- the field the views draw

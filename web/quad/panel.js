@@ -145,10 +145,8 @@ export function mountQuadPanel(controller, container, { area = () => 0, onError 
     const cross = controller.symmetry() === 4;
     remesh.title = cross ? REMESH_TITLE : `${QUAD_REFUSAL}: choose Cross (N = 4) in the Field panel`;
     const error = refused && !s.running ? size.title : s.error;
-    if (error) setText(status, error);
-    else if (s.running) setText(status, 'Remeshing; the design stays editable.');
-    else if (s.stale) setText(status, STALE);
-    else setText(status, s.hasResult ? '' : 'No quad mesh yet.');
+    const idle = s.stale ? STALE : s.hasResult ? '' : 'No quad mesh yet.';
+    setText(status, error || (s.running ? 'Remeshing; the design stays editable.' : idle));
     status.classList.toggle('error', !!error);
     stats.replaceChildren(...(s.stats ? statsLines(s.stats).map((line) => el('div', { text: line })) : []));
     stats.classList.toggle('stale', s.stale);
