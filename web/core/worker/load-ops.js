@@ -73,6 +73,8 @@ export function loadOps(state) {
       // Tests: an exact factorization that takes at least this long, so the preview surely leads.
       for (const end = performance.now() + (options.delayForTestMs ?? 0); performance.now() < end; );
       const committed = core.commitModel();
+      // Factored and solved: what the page does with the field after this is its own time (loadPhases).
+      state.progress({ phase: 'committed' });
       orderings.keep(core.designer, ordering.key); // behind the reply
       coreExport.modelLoaded(bytes, format);
       state.meshChanged();
