@@ -19,7 +19,7 @@
 #                (cholmod_blas.h is a patched copy, see below)
 #     lib/libcholmod_wasm.a   SuiteSparse_config + AMD + CAMD + COLAMD + CCOLAMD + CHOLMOD (int32 API, cholmod_*)
 #                             + METIS 5.1 with its GKlib (idx_t 32-bit, as Debian's libmetis5)
-#                             + Eigen BLAS (double, complex double, xerbla) + Eigen LAPACK potrf/potrs (d, z)
+#                             + Eigen BLAS (double, xerbla) + Eigen LAPACK potrf/potrs (d) + complex stand-ins
 #     versions   the source package versions and flags used
 #     stamp      written last; its presence (with the current recipe number) means "complete"
 #   build-wasm/cholmod/current  name of the last completed folder (the instant path of a rerun reads only this)
@@ -41,11 +41,13 @@
 #   METIS: GKlib/*.c and libmetis/*.c with the flags of METIS's own CMake build on Linux (-DLINUX
 #   -D_FILE_OFFSET_BITS=64 -std=c99 -fno-strict-aliasing -DNDEBUG -DNDEBUG2). Only the int32 API (cholmod_*) is
 #   built, no cholmod_l_*.
-# * BLAS/LAPACK: Eigen's blas/{double,complex_double,xerbla}.cpp; for LAPACK only lapack/cholesky.cpp (dpotrf_,
-#   zpotrf_, dpotrs_, zpotrs_) is compiled, through two tiny generated wrappers that set SCALAR like
-#   lapack/{double,complex_double}.cpp do: CHOLMOD needs no other LAPACK routine, and lu/svd/eigenvalues would
-#   only add compile time. Symbols CHOLMOD uses: d/z gemm, gemv, trsm, trsv, dsyrk, zherk, d/z potrf (checked at
-#   the end by `llvm-nm`-style inspection of the archive).
+# * BLAS/LAPACK: Eigen's blas/{double,xerbla}.cpp; for LAPACK only lapack/cholesky.cpp (dpotrf_, dpotrs_) is
+#   compiled, through a tiny generated wrapper that sets SCALAR like lapack/double.cpp does: CHOLMOD needs no
+#   other LAPACK routine, and lu/svd/eigenvalues would only add compile time. Symbols CHOLMOD uses: d/z gemm,
+#   gemv, trsm, trsv, dsyrk, zherk, d/z potrf (checked at the end by `llvm-nm`-style inspection of the archive).
+#   The complex ones (z*) come from wasm/cholmod-complex-blas.c, which stops the program if one is ever called:
+#   the project factors real matrices only, and Eigen's complex BLAS and Cholesky were the build's two slowest
+#   files (recipe 4 compiled them).
 # * PATCH 1 (wasm): the build uses a copy of CHOLMOD/Include in the work tree, with cholmod_blas.h's BLAS/LAPACK
 #   prototypes changed from `void` to `int` (Eigen's return int; in wasm the mismatch links with only a warning
 #   and then traps with "unreachable" at run time).
@@ -79,7 +81,7 @@
 
 set -euo pipefail
 
-RECIPE=4
+RECIPE=5
 SMOKE=0
 REFRESH=0
 NATIVE=0
@@ -308,11 +310,9 @@ for p in "$ROOT"/wasm/patches/*.patch; do
 done
 moddir() { if [ "$1" = Modify ]; then echo "$PSRC/CHOLMOD/Modify"; else echo "$SS/CHOLMOD/$1"; fi; }
 
-# LAPACK subset: only the Cholesky routines, set up exactly like lapack/double.cpp and lapack/complex_double.cpp
+# LAPACK subset: only the real Cholesky routines, set up exactly like lapack/double.cpp
 printf '#define SCALAR        double\n#define SCALAR_SUFFIX d\n#define SCALAR_SUFFIX_UP "D"\n#define ISCOMPLEX     0\n#include "%s/lapack/cholesky.cpp"\n' \
   "$EIG" > "$GEN/lapack_cholesky_d.cpp"
-printf '#define SCALAR        std::complex<double>\n#define SCALAR_SUFFIX z\n#define SCALAR_SUFFIX_UP "Z"\n#define REAL_SCALAR_SUFFIX d\n#define ISCOMPLEX     1\n#include "%s/lapack/cholesky.cpp"\n' \
-  "$EIG" > "$GEN/lapack_cholesky_z.cpp"
 
 CFLAGS="-O3 -DNDEBUG -msimd128"
 # METIS's own CMake flags on Linux (GKlibSystem.cmake), without OpenMP, with GKlib's own random generator (its
@@ -334,10 +334,10 @@ JOBLIST=$BLD/jobs.txt
 : > "$JOBLIST"
 add() { printf '%s %s %s %s\n' "$1" "$2" "$3" "$OBJ/$4.o" >> "$JOBLIST"; }
 if [ "$NATIVE" = 0 ]; then
-  for f in double complex_double; do add em++ - "$EIG/blas/$f.cpp" "eigen_blas_$f"; done
+  add em++ - "$EIG/blas/double.cpp" eigen_blas_double
   add em++ - "$GEN/lapack_cholesky_d.cpp" eigen_lapack_cholesky_d
-  add em++ - "$GEN/lapack_cholesky_z.cpp" eigen_lapack_cholesky_z
   add em++ - "$EIG/blas/xerbla.cpp" eigen_blas_xerbla
+  add emcc - "$ROOT/wasm/cholmod-complex-blas.c" cholmod_complex_blas
 fi
 for m in Supernodal Cholesky Modify MatrixOps Core Check Partition; do
   for f in "$(moddir "$m")"/cholmod_*.c; do add emcc - "$f" "$(basename "$f" .c)"; done
@@ -428,7 +428,7 @@ fi
     echo "patches: $(cd "$ROOT/wasm/patches" && echo *.patch)"
   else
     echo "patches: cholmod_blas.h void->int BLAS/LAPACK prototypes; $(cd "$ROOT/wasm/patches" && echo *.patch)"
-    echo "lapack: Eigen lapack/cholesky.cpp only (d, z)"
+    echo "lapack: Eigen lapack/cholesky.cpp only (d); complex BLAS/LAPACK: wasm/cholmod-complex-blas.c (stops)"
   fi
 } > "$STAGE/versions"
 printf 'recipe=%s patches=%s\nbuilt %s in %s\n' "$RECIPE" "$PATCHSUM" "$(date -u +%Y-%m-%dT%H:%M:%SZ)" "$(elapsed)" > "$STAGE/stamp.tmp"
