@@ -47,6 +47,7 @@
 #include "field/hodge_decomposition.h"
 #include "field/whitney_reconstruction.h"
 #include "io/mesh_io.h"
+#include "mesh/face_adjacency.h"
 #include "mesh/icosphere.h"
 #include "solver/factor_memory.h"
 
@@ -119,6 +120,9 @@ val copyOf(const double* data, std::size_t size) {
   return val::global("Float64Array").new_(val(emscripten::typed_memory_view(size, data)));
 }
 val copyOf(const std::vector<double>& v) { return copyOf(v.data(), v.size()); }
+val copyOf(const std::vector<int32_t>& v) {
+  return val::global("Int32Array").new_(val(emscripten::typed_memory_view(v.size(), v.data())));
+}
 val copyOf(const Eigen::VectorXd& v) { return copyOf(v.data(), static_cast<std::size_t>(v.size())); }
 
 // Vertex pairs from a flat list of numbers [a, b, a, b, ...] (feature edges to add or remove).
@@ -236,6 +240,19 @@ class DesignerBinding {
   val pendingTriangles() const { return pending_ ? view(pending_->mesh().triangles) : view(emptyI_); }
   val pendingEdges() const { return pending_ ? view(pending_->edgeVertices()) : view(emptyI_); }
   val pendingCornerUVs() const { return pending_ ? view(pending_->mesh().cornerUVs) : view(emptyF_); }
+  // The pending mesh's face adjacency for the page's picking (mesh/face_adjacency.h), in arrays of its own that
+  // the worker hands over: {neighbour, vertexFaceStart, vertexFaces, normals}, or null.
+  val pendingFaceAdjacency() const {
+    if (!pending_) return val::null();
+    const tvf::SurfaceMesh& mesh = pending_->mesh();
+    const tvf::VertexFaces round = tvf::vertexFaces(mesh, pending_->topology().numVertices);
+    val out = val::object();
+    out.set("neighbour", copyOf(tvf::halfEdgeTwins(pending_->topology())));
+    out.set("vertexFaceStart", copyOf(round.start));
+    out.set("vertexFaces", copyOf(round.faces));
+    out.set("normals", copyOf(tvf::unitFaceNormals(mesh)));
+    return out;
+  }
 
   // The fill-reducing ordering kept per mesh by the page (web/core/worker/ordering-cache.js): the pending
   // model's key (its mesh hash and field symmetry), an ordering kept for it adopted before commitModel factors
@@ -832,6 +849,7 @@ EMSCRIPTEN_BINDINGS(tvf_core) {
       .function("pendingDesignJson", &DesignerBinding::pendingDesignJson)
       .function("pendingPositions", &DesignerBinding::pendingPositions)
       .function("pendingTriangles", &DesignerBinding::pendingTriangles)
+      .function("pendingFaceAdjacency", &DesignerBinding::pendingFaceAdjacency)
       .function("pendingEdges", &DesignerBinding::pendingEdges)
       .function("pendingCornerUVs", &DesignerBinding::pendingCornerUVs)
       .function("pendingOrderingKey", &DesignerBinding::pendingOrderingKey)

@@ -10,6 +10,7 @@ import { tmpdir } from 'node:os';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { icosphereOff as icosphere } from '../tests/icosphere.mjs';
+import { faceNormals, halfEdgeNeighbours, vertexFaceMap } from '../web/geometry/mesh-geometry.js';
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const modulePath = resolve(process.argv[2] ?? resolve(ROOT, 'build-wasm/tvf_core.mjs'));
@@ -132,6 +133,14 @@ check('failed load keeps the previous mesh', keep !== '' && d.positions().length
   check('openParsed: the mesh opened is the mesh read',
     d.pendingPositions().every((x, k) => x === parsedP[k]) && d.pendingTriangles().every((x, k) => x === parsedT[k]));
   check('openParsed: the mesh read is consumed', d.parsedPositions().length === 0);
+  // The picking's adjacency from the core's topology is what the page derived from the triangles itself; the
+  // normals to the last bit or one unit in it (the core's length sums the squares in another order).
+  const adjacency = d.pendingFaceAdjacency(), round = vertexFaceMap(parsedT, 162);
+  const near = (a, b, tol = 0) => a.length === b.length && a.every((x, k) => Math.abs(x - b[k]) <= tol);
+  check('pendingFaceAdjacency: the page\'s half-edge pairs, faces round vertices and face normals',
+    near(adjacency.neighbour, halfEdgeNeighbours(parsedT, 162)) && near(adjacency.vertexFaceStart, round.start) &&
+    near(adjacency.vertexFaces, round.faces) && near(adjacency.normals, faceNormals(parsedP, parsedT), 2.3e-16) &&
+    adjacency.neighbour instanceof Int32Array && adjacency.normals instanceof Float64Array);
   check('openParsed: the current model is untouched until the commit', d.positions().length === 3 * nV &&
     d.oneForm().every((x, k) => x === before[k]));
   const committed = JSON.parse(d.commitModel());

@@ -6,7 +6,9 @@
 
 #include "design/designer.h"
 #include "design/mesh_info.h"
+#include "mesh/face_adjacency.h"
 #include "mesh/mesh_checks.h"
+#include "mesh/mesh_geometry.h"
 #include "test_meshes.h"
 
 using namespace tvf;
@@ -97,6 +99,54 @@ std::string firstFatal(const SurfaceMesh& m) {
   return checkMesh(m).firstFatal();
 }
 }  // namespace
+
+// The picking's adjacency from the topology: each half-edge's twin runs between the same two vertices the
+// other way, twins pair up, and only boundary edges have none; each face is listed at its three vertices, in
+// face order; the normals are unit, along p01 x p02, and (0, 0, 1) on a face of zero area.
+TEST(FaceAdjacency, TwinsFacesRoundVerticesAndNormalsFollowTheTriangles) {
+  SurfaceMesh m = disjointUnion(torus(7, 5, 2, 0.7), flatAnnulus(3, 12, 1, 2));
+  const int32_t nV = m.numVertices();
+  m.positions.insert(m.positions.end(), {5, 5, 5, 6, 6, 6, 7, 7, 7});  // a face of zero area, on a line
+  m.triangles.insert(m.triangles.end(), {nV, nV + 1, nV + 2});
+  const MeshTopology t = buildTopology(m);
+  const std::vector<int32_t> twin = halfEdgeTwins(t);
+  const std::vector<int32_t>& T = m.triangles;
+  const auto to = [&](int32_t h) { return T[h - h % 3 + (h % 3 + 1) % 3]; };
+  int boundary = 0;
+  for (int32_t h = 0; h < static_cast<int32_t>(T.size()); ++h) {
+    if (twin[h] < 0) {
+      ++boundary;
+      EXPECT_TRUE(t.isBoundaryEdge[t.faceEdges[h]]) << h;
+      continue;
+    }
+    EXPECT_EQ(twin[twin[h]], h);
+    EXPECT_NE(twin[h] / 3, h / 3);
+    EXPECT_EQ(T[twin[h]], to(h));
+    EXPECT_EQ(to(twin[h]), T[h]);
+  }
+  EXPECT_EQ(boundary, 12 + 12 + 3);  // the annulus's two loops and the lone face's three edges
+  const VertexFaces round = vertexFaces(m, m.numVertices());
+  ASSERT_EQ(round.start.back(), static_cast<int32_t>(T.size()));
+  for (int32_t v = 0; v < m.numVertices(); ++v) {
+    std::vector<int32_t> expected;
+    for (int32_t f = 0; f < m.numFaces(); ++f)
+      if (T[3 * f] == v || T[3 * f + 1] == v || T[3 * f + 2] == v) expected.push_back(f);
+    EXPECT_EQ(
+        std::vector<int32_t>(round.faces.begin() + round.start[v], round.faces.begin() + round.start[v + 1]),
+        expected)
+        << v;
+  }
+  const std::vector<double> n = unitFaceNormals(m);
+  for (int32_t f = 0; f + 1 < m.numFaces(); ++f) {
+    Eigen::Vector3d p[3];
+    facePositions(m, f, p);
+    const Eigen::Vector3d cross = twiceAreaNormal(p), unit(n[3 * f], n[3 * f + 1], n[3 * f + 2]);
+    EXPECT_NEAR(unit.norm(), 1, 1e-15);
+    EXPECT_NEAR(unit.dot(cross), cross.norm(), 1e-12 * cross.norm());
+  }
+  const size_t last = 3 * static_cast<size_t>(m.numFaces() - 1);
+  EXPECT_EQ(std::vector<double>(n.begin() + last, n.end()), (std::vector<double>{0, 0, 1}));
+}
 
 TEST(MeshChecks, NamesTheFirstOffendingElement) {
   SurfaceMesh m = flatGrid(2);

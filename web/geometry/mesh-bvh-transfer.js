@@ -155,12 +155,16 @@ export function pageSurface(surface, own = false, { picking = true } = {}) {
 // What a surface sent with picking false lacks (Surface.adoptPicking): the adjacency, the face normals and the
 // serialized BVH without the positions and index the page already draws from (adoptBVH takes the geometry's
 // own). positions, triangles: the mesh's (views of the wasm heap will do: nothing here calls into it); keptBVH:
-// value.bvh of an earlier call on this very mesh, or null to build it. Returns {value, list}.
-export function pickingParts(positions, triangles, keptBVH = null) {
+// value.bvh of an earlier call on this very mesh, or null to build it; adjacency: the same parts but the BVH
+// as the core derives them from its own topology (designer.pendingFaceAdjacency(): {neighbour, vertexFaceStart,
+// vertexFaces, normals}, arrays of their own), or null to derive them here. Returns {value, list}.
+export function pickingParts(positions, triangles, keptBVH = null, adjacency = null) {
   const nV = positions.length / 3;
-  const neighbour = halfEdgeNeighbours(triangles, nV);
-  const { start: vertexFaceStart, faces: vertexFaces } = vertexFaceMap(triangles, nV);
-  const normals = faceNormals(positions, triangles);
+  const neighbour = adjacency?.neighbour ?? halfEdgeNeighbours(triangles, nV);
+  const round = adjacency ? null : vertexFaceMap(triangles, nV);
+  const vertexFaceStart = adjacency?.vertexFaceStart ?? round.start;
+  const vertexFaces = adjacency?.vertexFaces ?? round.faces;
+  const normals = adjacency?.normals ?? faceNormals(positions, triangles);
   const bvh = keptBVH ?? { ...buildSerializedBVH(positions, triangles), positions: null, index: null };
   const value = { neighbour, vertexFaceStart, vertexFaces, normals, bvh };
   return { value, list: transferList(value) };

@@ -122,7 +122,8 @@ async function sendAhead(state, trees) {
   state.progress({ phase: 'assembled' });
   const kept = await keptTree;
   // Views of the wasm heap, taken after the waits (the heap may have grown while the cache was read).
-  const picking = pickingParts(designer.pendingPositions(), designer.pendingTriangles(), kept.bvh);
+  const adjacency = designer.pendingFaceAdjacency();
+  const picking = pickingParts(designer.pendingPositions(), designer.pendingTriangles(), kept.bvh, adjacency);
   if (!kept.bvh) trees.keep(kept.key, picking.value.bvh);
   state.progress({ phase: 'picking', picking: picking.value, treeKept: !!kept.bvh }, picking.list);
 }
