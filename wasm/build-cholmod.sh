@@ -46,8 +46,8 @@
 #   other LAPACK routine, and lu/svd/eigenvalues would only add compile time. Symbols CHOLMOD uses: d/z gemm,
 #   gemv, trsm, trsv, dsyrk, zherk, d/z potrf (checked at the end by `llvm-nm`-style inspection of the archive).
 #   The complex ones (z*) come from wasm/cholmod-complex-blas.c, which stops the program if one is ever called:
-#   the project factors real matrices only, and Eigen's complex BLAS and Cholesky were the build's two slowest
-#   files (recipe 4 compiled them).
+#   the project factors real matrices only, and Eigen's complex BLAS was the build's slowest file (recipe 4
+#   compiled it and the complex Cholesky).
 # * PATCH 1 (wasm): the build uses a copy of CHOLMOD/Include in the work tree, with cholmod_blas.h's BLAS/LAPACK
 #   prototypes changed from `void` to `int` (Eigen's return int; in wasm the mismatch links with only a warning
 #   and then traps with "unreachable" at run time).
