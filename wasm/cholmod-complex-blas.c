@@ -3,9 +3,9 @@
  * factorizations share an object file with the real one), for the wasm archive of wasm/build-cholmod.sh.
  * The project factors real matrices only (CHOLMOD_REAL, never CHOLMOD_COMPLEX or CHOLMOD_ZOMPLEX), so none of
  * these is ever called: each one stops the program rather than return a wrong factor. Eigen's complex BLAS
- * (blas/complex_double.cpp, the archive's slowest file to compile) and complex Cholesky were about 650 KB of its
- * objects, for code no field reaches.
- * The prototypes are the patched cholmod_blas.h's (int results), so the compiler checks these against them.
+ * (blas/complex_double.cpp, the archive's slowest file to compile) and complex Cholesky were about 650 KB of
+ * its objects, for code no field reaches. The prototypes are the patched cholmod_blas.h's (int results), so
+ * the compiler checks these against them.
  */
 #include <stdio.h>
 #include <stdlib.h>
