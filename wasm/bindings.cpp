@@ -250,7 +250,7 @@ class DesignerBinding {
     out.set("neighbour", copyOf(tvf::halfEdgeTwins(pending_->topology())));
     out.set("vertexFaceStart", copyOf(round.start));
     out.set("vertexFaces", copyOf(round.faces));
-    out.set("normals", copyOf(tvf::unitFaceNormals(mesh)));
+    out.set("normals", copyOf(tvf::pageFaceNormals(pending_->geometry())));
     return out;
   }
 

@@ -1,7 +1,5 @@
 #include "mesh/face_adjacency.h"
 
-#include "mesh/mesh_geometry.h"
-
 namespace tvf {
 
 std::vector<int32_t> halfEdgeTwins(const MeshTopology& t) {
@@ -29,17 +27,10 @@ VertexFaces vertexFaces(const SurfaceMesh& mesh, int32_t numVertices) {
   return out;
 }
 
-std::vector<double> unitFaceNormals(const SurfaceMesh& mesh) {
-  const int32_t nF = mesh.numFaces();
-  std::vector<double> normals(3 * static_cast<size_t>(nF), 0.0);
-  for (int32_t f = 0; f < nF; ++f) {
-    const Eigen::Vector3d n = faceNormal(mesh, f);
-    if (n.squaredNorm() == 0) {
-      normals[3 * f + 2] = 1;
-      continue;
-    }
-    for (int k = 0; k < 3; ++k) normals[3 * f + k] = n[k];
-  }
+std::vector<double> pageFaceNormals(const MeshGeometry& geometry) {
+  std::vector<double> normals = geometry.faceNormal;
+  for (size_t f = 0; f < normals.size(); f += 3)
+    if (normals[f] == 0 && normals[f + 1] == 0 && normals[f + 2] == 0) normals[f + 2] = 1;
   return normals;
 }
 

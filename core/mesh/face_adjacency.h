@@ -2,10 +2,11 @@
 // A face's neighbours, as the page's picking and surface tracing walk them (web/geometry/mesh-bvh-transfer.js
 // pickingParts): each corner's half-edge paired with its twin in the face across, and the faces round each
 // vertex. Read off the topology the core already built, where the page derived them again from the triangles
-// (262-331 ms under node at 832k faces, on the way to a big model's factorization; the core 99-126 ms).
+// (262-331 ms under node at 832k faces, on the way to a big model's factorization; the core 83-129 ms).
 #include <cstdint>
 #include <vector>
 
+#include "dec/hodge_star.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
 
@@ -21,8 +22,8 @@ struct VertexFaces {
 };
 VertexFaces vertexFaces(const SurfaceMesh& mesh, int32_t numVertices);
 
-// Unit face normals, 3 per face, from the faces' winding; (0, 0, 1) for a face of zero area, as the page has
-// it (faceNormal gives zero there).
-std::vector<double> unitFaceNormals(const SurfaceMesh& mesh);
+// The unit face normals the geometry holds (MeshGeometry::faceNormal), with (0, 0, 1) for a face of zero area
+// where it has zero, as the page has it.
+std::vector<double> pageFaceNormals(const MeshGeometry& geometry);
 
 }  // namespace tvf

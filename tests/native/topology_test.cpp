@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 
+#include "dec/hodge_star.h"
 #include "design/designer.h"
 #include "design/mesh_info.h"
 #include "mesh/face_adjacency.h"
@@ -136,7 +137,7 @@ TEST(FaceAdjacency, TwinsFacesRoundVerticesAndNormalsFollowTheTriangles) {
         expected)
         << v;
   }
-  const std::vector<double> n = unitFaceNormals(m);
+  const std::vector<double> n = pageFaceNormals(computeMeshGeometry(m, t));
   for (int32_t f = 0; f + 1 < m.numFaces(); ++f) {
     Eigen::Vector3d p[3];
     facePositions(m, f, p);
