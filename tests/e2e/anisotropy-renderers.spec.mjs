@@ -65,9 +65,11 @@ test.describe.serial('the line-field GLB in three.js and Babylon.js', () => {
   let dir, page, bundles;
   test.beforeAll(async ({ browser }) => {
     dir = mkdtempSync(join(tmpdir(), 'tvf-renderers-'));
+    // Without whitespace (the names kept, for a failure's stack): less for the page to parse.
     const bundle = async (file, globalName) =>
       (await build({ entryPoints: [resolve(ROOT, 'tests/e2e/renderers', file)], bundle: true, format: 'iife',
-        globalName, write: false, logLevel: 'silent' })).outputFiles[0].text;
+        globalName, write: false, logLevel: 'silent', minifyWhitespace: true, minifySyntax: true }))
+        .outputFiles[0].text;
     bundles = { three: await bundle('three-scene.mjs', 'TvfThreeScene'),
       babylon: await bundle('babylon-scene.mjs', 'TvfBabylonScene') };
     page = await browser.newPage();
