@@ -139,6 +139,30 @@ export class Program {
   }
 }
 
+// The next animation frame (a task where there is none: node, workers).
+export const animationFrame = () =>
+  new Promise((resolve) =>
+    typeof requestAnimationFrame === 'function' ? requestAnimationFrame(() => resolve()) : setTimeout(resolve, 0),
+  );
+
+// Each program checked (Program.check), in turn: once the questions of a task have taken `budgetMs`, the rest
+// wait for nextFrame(). Every question waits for the GPU process, which software GL keeps busy drawing: 8-17 ms
+// each beside a big model's first frames, where the synthesis's thirteen in one task held the page 66-108 ms.
+// run(f): the caller's GL guard. Resolves false, the rest unchecked, where lost() says the context went.
+export async function checkInTurn(programs, nextFrame, { budgetMs = 8, run = (f) => f(), lost = () => false } = {}) {
+  let start = performance.now();
+  for (const p of programs) {
+    if (p.checked) continue;
+    if (performance.now() - start > budgetMs) {
+      await nextFrame();
+      start = performance.now();
+    }
+    if (lost()) return false;
+    run(() => p.check());
+  }
+  return true;
+}
+
 // An RGBA32F texture (optionally a render target) of width x height.
 export class FloatTarget {
   // check: ask the driver whether the target is complete. That call waits for the GPU process, which with

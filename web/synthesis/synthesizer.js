@@ -20,6 +20,8 @@ import {
   FULLSCREEN_VS,
   GLError,
   Program,
+  animationFrame,
+  checkInTurn,
   createContext,
   drawFullscreen,
   requireFloatTargets,
@@ -68,11 +70,6 @@ export const DEFAULTS = Object.freeze({
   sliceFaces: 3 << 15,
 });
 
-const defaultNextFrame = () =>
-  new Promise((resolve) =>
-    typeof requestAnimationFrame === 'function' ? requestAnimationFrame(() => resolve()) : setTimeout(resolve, 0),
-  );
-
 export class Synthesizer {
   // gl: a context of its own by default; or the view's, with its three.js `renderer`, whose state each batch of
   // GL calls here leaves as it found it (gl-guard.js).
@@ -117,9 +114,10 @@ export class Synthesizer {
   // Resolves once the driver has compiled and linked every program, looked at once per nextFrame() (the
   // compilation goes on beside the page: KHR_parallel_shader_compile), then checks them. Without that extension
   // (SwiftShader), a fence issued after the link commands says when the GPU process has come to them: asked
-  // earlier, the check waited for it on the page's thread (~0.1-0.2 s at the first texture).
+  // earlier, the check waited for it on the page's thread (~0.1-0.2 s at the first texture). inTurn: checked
+  // a few a frame (checkInTurn), for work ahead of any texture; else in one task, as a texture asked for now.
   // A context lost meanwhile (dispose()) ends the wait unchecked.
-  async programsReady(nextFrame = defaultNextFrame) {
+  async programsReady(nextFrame = animationFrame, { inTurn = false } = {}) {
     const gl = this.gl, parallel = gl.getExtension('KHR_parallel_shader_compile');
     const fence = parallel || this.programsChecked ? null : gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
     gl.flush();
@@ -132,14 +130,16 @@ export class Synthesizer {
     } finally {
       if (fence) gl.deleteSync(fence);
     }
-    if (!gl.isContextLost()) this.checkPrograms();
+    const lost = () => gl.isContextLost();
+    if (inTurn) await checkInTurn(Object.values(this.allPrograms), nextFrame, { run: (f) => this.guard.run(f), lost });
+    else if (!lost()) this.checkPrograms();
     this.programsChecked = true;
   }
 
   // Every program drawn once into a small target (pipeline-warm-up.js), once they are linked: software GL
   // compiles at the first draw. For the time before a first texture.
-  async warmUpPipelines(nextFrame = defaultNextFrame) {
-    await this.programsReady(nextFrame);
+  async warmUpPipelines(nextFrame = animationFrame) {
+    await this.programsReady(nextFrame, { inTurn: true });
     if (!this.gl.isContextLost()) this.guard.run(() => warmUpPipelines(this.gl, this.allPrograms, this.vao));
   }
 
