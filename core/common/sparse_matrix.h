@@ -14,4 +14,16 @@ using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 SparseMatrix upperTriangle(const SparseMatrix& symmetric);
 SparseMatrix fullFromUpper(const SparseMatrix& upper);
 
+// Eigen 3.4's SparseMatrix has no move operations: assigning a matrix just made copies it, and assigning an
+// empty one keeps the old one's storage. These take a matrix without a copy (`made` is left with the old
+// one) and give a matrix's storage back (armadillo-sub2's 1-form Laplacian, 90 MB, was copied once and its
+// operators twice at every assembly).
+inline void takeMatrix(SparseMatrix& into, SparseMatrix& made) {
+  into.swap(made);
+}
+inline void releaseMatrix(SparseMatrix& m) {
+  SparseMatrix empty;
+  m.swap(empty);
+}
+
 }  // namespace tvf

@@ -53,9 +53,12 @@ SparseMatrix divergenceOperator(const SurfaceMesh& mesh, const MeshTopology& t, 
           for (int k = 0; k < 2; ++k)
             extra.emplace_back(mesh.triangles[3 * f + corner], flux.edge[k], 0.5 * flux.coefficient[k]);
       }
-    SparseMatrix X(t.numVertices, t.numEdges);
-    X.setFromTriplets(extra.begin(), extra.end());
-    D += X;
+    if (!extra.empty()) {  // a mesh with a boundary
+      SparseMatrix X(t.numVertices, t.numEdges);
+      X.setFromTriplets(extra.begin(), extra.end());
+      SparseMatrix sum = D + X;
+      takeMatrix(D, sum);
+    }
   } else {
     Eigen::VectorXd interior(t.numVertices);
     for (int32_t v = 0; v < t.numVertices; ++v) interior[v] = t.isBoundaryVertex[v] ? 0.0 : 1.0;
@@ -89,12 +92,13 @@ SparseMatrix fixedAngleRows(const MeshTopology& t, const MeshGeometry& g, const 
 
 OneFormOperators buildOneFormOperators(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
                                        const std::vector<double>& angles) {
-  OneFormOperators ops;
-  ops.d0 = exteriorDerivative0(t);
-  ops.d1 = exteriorDerivative1(t);
   const bool freeBoundary = angles.empty();
-  ops.divergence = divergenceOperator(mesh, t, g, freeBoundary);
-  ops.boundaryRows = freeBoundary ? SparseMatrix(0, t.numEdges) : fixedAngleRows(t, g, angles);
+  SparseMatrix d1 = exteriorDerivative1(t), divergence = divergenceOperator(mesh, t, g, freeBoundary);
+  SparseMatrix rows = freeBoundary ? SparseMatrix(0, t.numEdges) : fixedAngleRows(t, g, angles);
+  OneFormOperators ops;
+  takeMatrix(ops.d1, d1);
+  takeMatrix(ops.divergence, divergence);
+  takeMatrix(ops.boundaryRows, rows);
   return ops;
 }
 

@@ -12,12 +12,28 @@
 namespace tvf {
 
 struct OneFormOperators {
-  SparseMatrix d0, d1;
+  SparseMatrix d1;
   // Divergence operator D (|V| x |E|): d0' *1, plus the half boundary fluxes for free boundaries; for
   // fixed-angle boundaries its boundary-vertex rows are empty. Right-hand sides of sources use it too.
   SparseMatrix divergence;
   // Fixed-angle rows c_ij cos(b) + f_ij sin(b) (one per boundary edge; empty for free boundaries).
   SparseMatrix boundaryRows;
+
+  OneFormOperators() = default;
+  // Moved by swapping the matrices (takeMatrix, common/sparse_matrix.h), where Eigen would copy them; a
+  // default one assigned gives the storage back.
+  OneFormOperators(OneFormOperators&& other) noexcept { swap(other); }
+  OneFormOperators& operator=(OneFormOperators&& other) noexcept {
+    OneFormOperators old;
+    old.swap(other);
+    swap(old);
+    return *this;
+  }
+  void swap(OneFormOperators& other) noexcept {
+    d1.swap(other.d1);
+    divergence.swap(other.divergence);
+    boundaryRows.swap(other.boundaryRows);
+  }
 };
 
 // angles: per-edge beta (NaN on interior edges), or empty for free boundaries.

@@ -63,7 +63,8 @@ DiagonalTerms AngleFieldSystem::allTerms() const {
 void AngleFieldSystem::setFixedTerms(std::vector<FaceDirectionTerm> terms, double weight) {
   fixed_ = std::move(terms);
   fixedWeight_ = weight;
-  base_ = upperTriangle(plusDiagonal(laplacian_, termsOf(fixed_, weight)));
+  SparseMatrix made = upperTriangle(plusDiagonal(laplacian_, termsOf(fixed_, weight)));
+  takeMatrix(base_, made);
   factor_.invalidate();
 }
 

@@ -72,7 +72,8 @@ void PowerFieldSystem::setBoundaryTerms(std::vector<FaceDirectionTerm> terms, do
   boundaryTerms_ = std::move(terms);
   boundaryWeight_ = weight;
   const DiagonalTerms diagonal = termsOf(Entry{boundaryTerms_, weight}, weight);
-  base_ = upperTriangle(plusDiagonal(connection_, diagonal));
+  SparseMatrix made = upperTriangle(plusDiagonal(connection_, diagonal));
+  takeMatrix(base_, made);
   factor_.invalidate();
 }
 

@@ -32,9 +32,9 @@ Built build(SurfaceMesh mesh) {
 // The plain M (no boundary modification: every vertex in the divergence term).
 SparseMatrix plainLaplacian(const Built& b) {
   OneFormOperators ops;
-  ops.d0 = exteriorDerivative0(b.topology);
+  const SparseMatrix d0 = exteriorDerivative0(b.topology);
   ops.d1 = exteriorDerivative1(b.topology);
-  ops.divergence = ops.d0.transpose() * b.geometry.star1.asDiagonal();
+  ops.divergence = d0.transpose() * b.geometry.star1.asDiagonal();
   return oneFormLaplacian(ops, b.geometry);
 }
 
