@@ -41,7 +41,7 @@ int usage() {
          "             [--convention gltf|opengl] [--bits 8|16] [--strength S] [--rotation RADIANS]\n"
          "             [--no-embed-flowmap] [--component whole|exact|coexact|harmonic]\n"
          "             [--rawfield OUT.rawfield] [--sing OUT.sing] [--rosy OUT.rosy]\n"
-         "             [--sharp OUT.sharp] [--stripes FREQ] [--stripe-profile NAME]\n"
+         "             [--sharp OUT.sharp] [--stripes FREQ] [--stripe-profile NAME] [--stripe-width W]\n"
          "             [--ordering-cache DIR]\n"
          "  tvf quad MESH DESIGN.json -o OUT.obj [--edge-length L | --quads N] [--json]\n"
          "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
@@ -75,7 +75,8 @@ int usage() {
          "--rosy the cross field (QuadWild; symmetry 4), --sharp the feature edges (QuadWild).\n"
          "export --stripes FREQ bakes the field's stripe pattern (FREQ stripes per unit length) into the\n"
          "GLB's base colour over the export's atlas (docs/export.md); --stripe-profile stripes, wood,\n"
-         "grid, bricks or weave (default: stripes, grid for a cross field).\n"
+         "grid, bricks or weave (default: stripes, grid for a cross field); --stripe-width W the lines'\n"
+         "width as a share of a period, in (0, 1] (default: the profile's own, 1/2 for stripes).\n"
          "quad: a quad mesh following the design's cross field (symmetry 4; a closed surface), at an\n"
          "edge length or about N quads (default 5000), as OBJ; --json prints its statistics\n"
          "(docs/quad-meshes.md).\n";
@@ -263,7 +264,7 @@ BakedStripes bakeStripes(const tvf::Designer& designer, const tvf::ExportAtlas& 
                   designer.symmetry(), designer.vertexVectors(), stripes);
   const std::vector<uint8_t> rgba =
       tvf::stripeTextureRgba(designer.mesh(), pattern.pattern(), atlas.cornerUVs, options.size,
-                             options.gutterTexels, {}, stripes.profile);
+                             options.gutterTexels, {}, stripes.profile, stripes.width);
   return {tvf::encodePngRgba(std::vector<uint16_t>(rgba.begin(), rgba.end()), options.size, options.size, 8),
           tvf::stripeTexcoords(designer.mesh(), designer.topology(), pattern.pattern())};
 }
@@ -276,6 +277,7 @@ int exportCommand(int argc, char** argv) {
   tvf::FieldComponent component = tvf::FieldComponent::Whole;
   double stripes = 0;
   std::string stripeProfile;
+  double stripeWidth = 0;
   for (int k = 4; k < argc; ++k) {
     const std::string a = argv[k];
     if (a == "--no-embed-flowmap") {
@@ -316,6 +318,10 @@ int exportCommand(int argc, char** argv) {
       if (!(stripes > 0))
         throw tvf::InputError(
             "--stripes: the frequency must be a positive number of stripes per unit length");
+    } else if (a == "--stripe-width") {
+      stripeWidth = numberArgument(a, value);
+      if (!(stripeWidth > 0 && stripeWidth <= 1))
+        throw tvf::InputError("--stripe-width: the lines' width is a share of a period, in (0, 1]");
     } else if (a == "--stripe-profile") {
       stripeProfile = tvf::stripeProfileName(tvf::stripeProfileNamed(value));
     } else {
@@ -341,10 +347,13 @@ int exportCommand(int argc, char** argv) {
     throw tvf::InputError("--stripes bakes the stripes into the GLB's base colour: give --glb too");
   if (!stripeProfile.empty() && !(stripes > 0))
     throw tvf::InputError("--stripe-profile draws the stripes of --stripes FREQ: give --stripes too");
+  if (stripeWidth > 0 && !(stripes > 0))
+    throw tvf::InputError("--stripe-width draws the stripes of --stripes FREQ: give --stripes too");
   tvf::DesignStripeOptions stripeOptions;
   if (stripes > 0) {
     nlohmann::json o{{"frequency", stripes}};
     if (!stripeProfile.empty()) o["profile"] = stripeProfile;
+    if (stripeWidth > 0) o["width"] = stripeWidth;
     stripeOptions = tvf::designStripeOptionsFromJson(o.dump(), symmetry);
     tvf::checkStripeOptions(symmetry, stripeOptions);  // before the solve: a refusal costs nothing
   }

@@ -148,6 +148,8 @@ export interface StripeOptions {
   magnitudeSpacing: number;
   /** The spacing gives way so that the stripes follow the field exactly (default true). */
   adaptSpacing: boolean;
+  /** The lines' share of a period, in (0, 1] (dark bands, grid lines, mortar, threads); null: the profile's own. */
+  width: number | null;
   /** '#rrggbb' (or 0xrrggbb). */
   light: string | number;
   dark: string | number;
@@ -160,6 +162,8 @@ export interface StripeState {
   profile: 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave';
   magnitudeSpacing: number;
   adaptSpacing: boolean;
+  /** The lines' width drawn: the one asked, or the profile's (stripes 0.5, wood 0.7, grid, bricks 0.12, weave 1). */
+  width: number;
   light: string;
   dark: string;
   stats: {
@@ -605,7 +609,7 @@ export declare class TangentFieldDesigner extends HTMLElement {
   selected(): number | null;
 
   // Stripe patterns.
-  /** Shows or hides the field's stripe pattern and sets its frequency, profile, spacing and colours. */
+  /** Shows or hides the field's stripe pattern and sets its frequency, profile, spacing, line width and colours. */
   setStripes(options: Partial<StripeOptions>): Promise<StripeState>;
   /** The stripe pattern's options in force, whether it is shown, and the last pattern's stats. */
   stripes(): StripeState;

@@ -40,6 +40,9 @@ void checkStripeOptions(int symmetry, const DesignStripeOptions& o) {
     throw InputError("stripes: the frequency must be a positive number of stripes per unit length");
   if (!(o.magnitudeSpacing >= 0 && o.magnitudeSpacing <= 1))
     throw InputError("stripes: magnitudeSpacing must be in [0, 1]");
+  if (!(o.width == 0 || (o.width > 0 && o.width <= 1)))
+    throw InputError(
+        "stripes: the line width must be in (0, 1] (a share of a period), or 0 for the profile's own");
 }
 
 DesignStripeOptions designStripeOptionsFromJson(const std::string& json, int symmetry) {
@@ -58,13 +61,14 @@ DesignStripeOptions designStripeOptionsFromJson(const std::string& json, int sym
     out.tolerance = o.value("tolerance", out.tolerance);
     out.adaptSpacing = o.value("adaptSpacing", out.adaptSpacing);
     out.localUpdate = o.value("localUpdate", out.localUpdate);
+    out.width = o.value("width", out.width);
     out.profile = o.contains("profile") ? stripeProfileNamed(o.at("profile").get<std::string>())
                   : symmetry == 4       ? StripeProfile::GridLines
                                         : StripeProfile::Stripes;
   } catch (const nlohmann::json::type_error&) {
     throw InputError(
-        "stripes: frequency, magnitudeSpacing, maxIterations and tolerance are numbers, adaptSpacing and "
-        "localUpdate booleans, profile a name");
+        "stripes: frequency, magnitudeSpacing, maxIterations, tolerance and width are numbers, adaptSpacing "
+        "and localUpdate booleans, profile a name");
   }
   return out;
 }

@@ -21,6 +21,9 @@ namespace tvf {
 struct DesignStripeOptions {
   double frequency = 1.0;  // stripes per unit length
   StripeProfile profile = StripeProfile::Stripes;
+  // The profile's lines as a share of a period, in (0, 1]; 0: the profile's own (stripeDefaultWidth). Only
+  // how the phase is drawn: the pattern is the same at any width.
+  double width = 0;
   // 0: even spacing; up to 1: the frequency scaled by (|X| / mean |X|)^magnitudeSpacing, clamped to
   // [1/8, 8] (the paper's Sec. 6.3: denser stripes where the field is stronger). A line or cross field's
   // vertex directions are unit representatives: there it changes nothing.

@@ -120,6 +120,7 @@ struct Bake {
   int size;
   const StripeColours& colours;
   StripeProfile profile;
+  double lineWidth;
   std::vector<double> footprint;  // per vertex
 };
 
@@ -169,7 +170,8 @@ void paintFace(const Bake& bake, int32_t f, double margin, BakedTexels& texels) 
       const double first = stripePhase(bake.pattern, nF, 0, f, b) / kTwoPi;
       const double second = bake.pattern.families > 1 ? stripePhase(bake.pattern, nF, 1, f, b) / kTwoPi : 0.0;
       const double width = b[0] * w[0] + b[1] * w[1] + b[2] * w[2];
-      const double t = std::clamp(stripeProfileValue(bake.profile, first, second, width), 0.0, 1.0);
+      const double t =
+          std::clamp(stripeProfileValue(bake.profile, first, second, width, bake.lineWidth), 0.0, 1.0);
       uint8_t* rgba = &texels.rgba[4 * texel];
       for (int c = 0; c < 3; ++c)
         rgba[c] = static_cast<uint8_t>(
@@ -211,28 +213,48 @@ double stripePatternFrequencyFactor(StripeProfile profile) {
   return profile == StripeProfile::Bricks || profile == StripeProfile::Weave ? 0.5 : 1.0;
 }
 
-double stripeProfileValue(StripeProfile profile, double x, double y, double w) {
+double stripeDefaultWidth(StripeProfile profile) {
+  switch (profile) {
+    case StripeProfile::Stripes:
+      return 0.5;
+    case StripeProfile::WoodRings:
+      return 0.7;
+    case StripeProfile::GridLines:
+    case StripeProfile::Bricks:
+      return 0.12;
+    case StripeProfile::Weave:
+      return 1.0;
+  }
+  return 0.5;
+}
+
+double stripeProfileValue(StripeProfile profile, double x, double y, double w, double width) {
+  if (!(width > 0)) width = stripeDefaultWidth(profile);
+  const double half = 0.5 * std::min(width, 1.0);
   switch (profile) {
     case StripeProfile::Stripes: {
-      const double soft = std::max(w, 0.1);
-      return smoothstep(0.25 - soft, 0.25 + soft, offWhole(x));
+      // The edges softened over 0.4 of the narrower of band and gap (0.1 of a period at the default width),
+      // or the pixel's footprint where that is wider.
+      const double soft = std::max(w, 0.4 * std::min(half, 0.5 - half));
+      return smoothstep(half - soft, half + soft, offWhole(x));
     }
     case StripeProfile::WoodRings: {
-      const double late = 1 - smoothstep(0.0, 0.35 + w, offWhole(x));
+      const double late = 1 - smoothstep(0.0, half + w, offWhole(x));
       return 1 - 0.8 * late * late;
     }
     case StripeProfile::GridLines:
-      return std::min(line(x, 0.06, w), line(y, 0.06, w));
+      return std::min(line(x, half, w), line(y, half, w));
     case StripeProfile::Bricks: {
       const double X = 2 * x, Y = 2 * y, row = std::floor(X + 0.5);
       const double along = 0.5 * Y + 0.5 * (row - 2 * std::floor(0.5 * row));
-      return std::min(line(X + 0.5, 0.06, 2 * w), line(along, 0.03, w));
+      return std::min(line(X + 0.5, half, 2 * w), line(along, 0.5 * half, w));
     }
     case StripeProfile::Weave: {
       const double X = 2 * x, Y = 2 * y, i = std::floor(X + 0.5), j = std::floor(Y + 0.5);
       const bool alongOnTop = (i + j) - 2 * std::floor(0.5 * (i + j)) < 0.5;
-      const double across = std::cos(M_PI * (alongOnTop ? X - i : Y - j));
-      return 0.2 + 0.8 * std::sqrt(std::max(across, 0.0));
+      const double d = alongOnTop ? X - i : Y - j;  // across the thread on top, in [-1/2, 1/2]
+      if (std::abs(d) > half) return 0;             // the gap between threads narrower than a period
+      return 0.2 + 0.8 * std::sqrt(std::max(std::cos(M_PI * d * 0.5 / half), 0.0));
     }
   }
   return 1;
@@ -298,9 +320,13 @@ std::vector<float> stripeTexcoords(const SurfaceMesh& mesh, const MeshTopology& 
 
 std::vector<uint8_t> stripeTextureRgba(const SurfaceMesh& mesh, const StripePattern& pattern,
                                        const std::vector<float>& cornerUVs, int size, int gutterTexels,
-                                       const StripeColours& colours, StripeProfile profile) {
+                                       const StripeColours& colours, StripeProfile profile, double width) {
   const int32_t nF = mesh.numFaces();
   if (size < 1 || size > 8192) throw InputError("stripe texture: the size must be in [1, 8192]");
+  if (!(width == 0 || (width > 0 && width <= 1)))
+    throw InputError(
+        "stripe texture: the line width must be in (0, 1] (a share of a period), or 0 for the "
+        "profile's own");
   if (cornerUVs.size() != 6 * static_cast<size_t>(nF))
     throw InputError("stripe texture: expected 6 UV coordinates per face");
   if (pattern.cornerPhase.size() != 3 * static_cast<size_t>(nF) * pattern.families)
@@ -308,8 +334,8 @@ std::vector<uint8_t> stripeTextureRgba(const SurfaceMesh& mesh, const StripePatt
   if (stripeProfileHasTwoFamilies(profile) && pattern.families < 2)
     throw InputError(std::string("stripe texture: the ") + stripeProfileName(profile) +
                      " profile needs two families of stripes");
-  const Bake bake{
-      mesh, pattern, cornerUVs, size, colours, profile, vertexFootprints(mesh, pattern, cornerUVs, size)};
+  const Bake bake{mesh,    pattern, cornerUVs, size,
+                  colours, profile, width,     vertexFootprints(mesh, pattern, cornerUVs, size)};
   BakedTexels texels(size);
   for (int32_t f = 0; f < nF; ++f) paintFace(bake, f, 0.0, texels);
   for (int32_t f = 0; f < nF; ++f) paintFace(bake, f, kExtrapolatedTexels, texels);

@@ -6,8 +6,8 @@
 // shows what the page showed. The footprint is each vertex's largest over its faces, interpolated, so a line
 // is filtered alike either side of a chart seam. Texels within 1.5 texels outside a chart take the pattern
 // continued from its nearest face (a bilinear lookup at the chart's edge reads the pattern there), and those
-// further out a covered neighbour's colour, `gutter` texels out, so lookups at chart borders read stripes, not
-// background. Texel (x, y) has its centre at UV ((x + 0.5) / size, (y + 0.5) / size): row 0 is v = 0, as
+// further out a covered neighbour's colour, `gutter` texels out, so lookups at chart borders read stripes,
+// not background. Texel (x, y) has its centre at UV ((x + 0.5) / size, (y + 0.5) / size): row 0 is v = 0, as
 // glTF samples.
 #include <cstdint>
 #include <string>
@@ -21,7 +21,8 @@ namespace tvf {
 
 // How a phase becomes a colour. x = phase / 2 pi of the first family (periods), y of the second. Every
 // profile reads the same where a line field's phase runs the other way (x -> -x + k, k whole): the
-// representatives' signs leave no seam.
+// representatives' signs leave no seam. The widths below are the defaults (stripeDefaultWidth); a width asked
+// for sets the dark share of a period instead.
 //  Stripes: dark bands half a period wide round whole x (their edges where cos(phase) = 0).
 //  WoodRings: a ring per period, light early wood darkening towards a late-wood line at whole x.
 //  GridLines: lines 0.12 of a period wide at whole x and at whole y.
@@ -44,16 +45,22 @@ struct StripeColours {
   uint8_t dark[3] = {52, 44, 40};
 };
 
-// The profile's value in [0, 1] (0 dark, 1 light) at x, y (periods), filtered over a footprint of w periods.
-double stripeProfileValue(StripeProfile profile, double x, double y, double w);
+// The width of a profile's lines as a share of a period (in [0, 1]), unless asked otherwise: the dark bands
+// of Stripes (1/2), WoodRings' darkening late wood (0.7), GridLines' lines and Bricks' mortar (0.12; the head
+// joints half as wide, in the rows' units), and Weave's threads (1: no gap between them).
+double stripeDefaultWidth(StripeProfile profile);
+
+// The profile's value in [0, 1] (0 dark, 1 light) at x, y (periods), filtered over a footprint of w periods,
+// its lines `width` of a period wide (not > 0: stripeDefaultWidth).
+double stripeProfileValue(StripeProfile profile, double x, double y, double w, double width = 0);
 
 // RGBA8, 4 per texel, row 0 first; alpha 255 where covered or filled, 0 elsewhere. cornerUVs: 6 per face.
 // Throws InputError for a size outside [1, 8192], cornerUVs of the wrong size, or a profile that needs two
-// families drawn from a pattern of one.
+// families drawn from a pattern of one, or a width outside (0, 1] (0: the profile's own).
 std::vector<uint8_t> stripeTextureRgba(const SurfaceMesh& mesh, const StripePattern& pattern,
                                        const std::vector<float>& cornerUVs, int size, int gutterTexels,
                                        const StripeColours& colours = {},
-                                       StripeProfile profile = StripeProfile::Stripes);
+                                       StripeProfile profile = StripeProfile::Stripes, double width = 0);
 
 // The phase as a texture coordinate (an engine's own pattern reads it: TEXCOORD_1 of the GLB), 2 per face
 // corner: each family's phase at the corner in periods (the second 0 for one family). Each face is shifted by

@@ -2,7 +2,8 @@
 // wasm core in its worker and the real WebGL view: the pictures are read back from the canvas and measured here.
 // A flat square with a constant field shows straight stripes at exactly the asked frequency (the transitions'
 // spacing down the picture against the projection of the model's units; the adapted spacing, on by default, has
-// nothing to adapt there), and its GLB carries the phase as TEXCOORD_1; on the default model the stripes show,
+// nothing to adapt there), a line width asked for as the dark share of the picture and of the baked GLB, and its
+// GLB carries the phase as TEXCOORD_1; on the default model the stripes show,
 // follow an edit (a new pattern for the new field), new patterns leave no WebGL buffer behind, and the GLB
 // bakes them into its base colour; a cross field takes grid, bricks or weave only, and bad options are refused
 // by name with nothing changed; after an edit whose stripes came as a local update made ahead, the next edit's
@@ -107,6 +108,55 @@ test.describe.serial('stripe patterns in the page', () => {
       return Math.max(...x) - Math.min(...x);
     });
     expect(Math.abs(span - frequency)).toBeLessThan(0.01 * frequency);
+    // The lines' width: the dark share of the column, 1/2 at the profile's own, then 0.2 asked for; only drawn
+    // again (no new pattern), and the GLB bakes the same share.
+    const darkShare = (g) => g.filter((v) => v < 128).length / g.length;
+    const column = (image) => greyColumn(image, (a.x - image.left) * image.scale)
+      .slice(Math.round(Math.min(ya, yb)), Math.round(Math.max(ya, yb)));
+    const own = darkShare(column(img));
+    const narrow = await evaluate(() => window.tvf.setStripes({ width: 0.2 }));
+    expect(narrow.width).toBe(0.2);
+    expect(narrow.stats.drawnAt).toBe(state.stats.drawnAt);
+    await page.waitForTimeout(300);
+    const drawn = darkShare(column(await readCanvasGrey(page)));
+    const baked = await evaluate(async () => {
+      const glb = await window.tvf.exportGlb({ size: 512 });
+      const jsonLength = new DataView(glb.buffer, glb.byteOffset).getUint32(12, true);
+      const doc = JSON.parse(new TextDecoder().decode(glb.subarray(20, 20 + jsonLength)));
+      const bin = glb.subarray(20 + jsonLength + 8);
+      const texture = doc.materials[0].pbrMetallicRoughness.baseColorTexture.index;
+      const view = doc.bufferViews[doc.images[doc.textures[texture].source].bufferView];
+      const png = bin.slice(view.byteOffset ?? 0, (view.byteOffset ?? 0) + view.byteLength);
+      const bitmap = await createImageBitmap(new Blob([png], { type: 'image/png' }));
+      const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
+      const context = canvas.getContext('2d');
+      context.drawImage(bitmap, 0, 0);
+      const { data } = context.getImageData(0, 0, bitmap.width, bitmap.height);
+      let covered = 0, dark = 0;
+      for (let i = 0; i < data.length; i += 4) {
+        if (data[i + 3] < 255) continue;
+        covered++;
+        dark += data[i] < 128;
+      }
+      return dark / covered;
+    });
+    console.log(`[ measured ] flat square: dark share ${own.toFixed(3)} at the profile's width, ${drawn.toFixed(3)} ` +
+      `at 0.2, baked ${baked.toFixed(3)}`);
+    expect(Math.abs(own - 0.5)).toBeLessThan(0.03);
+    expect(Math.abs(drawn - 0.2)).toBeLessThan(0.03);
+    expect(Math.abs(baked - 0.2)).toBeLessThan(0.03);
+    expect(await refusal(() => window.tvf.setStripes({ width: 1.5 }))).toMatch(/width must be a share of a period/);
+    expect((await evaluate(() => window.tvf.setStripes({ width: null }))).width).toBe(0.5);
+    // The Stripes panel's Line width slider goes through the same call, and shows the width in force.
+    const slider = await evaluate(async () => {
+      const input = document.querySelector('tangent-field-designer').shadowRoot.querySelector('#stripes-width');
+      const shown = input.value;
+      input.value = '0.3';
+      input.dispatchEvent(new Event('change'));
+      await window.tvf.stripesIdle();
+      return { shown, width: window.tvf.stripes().width };
+    });
+    expect(slider).toEqual({ shown: '0.5', width: 0.3 });
   });
 
   test('on the default model: shown, following an edit, baked into the GLB; bad options refused by name', async () => {

@@ -36,18 +36,50 @@ TEST(StripeProfiles, ReadTheSameWhereTheLinePhaseRunsTheOtherWay) {
     for (int i = 0; i < 997; ++i) {
       const double x = -3.0 + 6.0 * std::fmod(0.6180339887 * i, 1.0);
       const double y = -3.0 + 6.0 * std::fmod(0.7548776662 * i + 0.1, 1.0);
-      for (const int k : {-2, -1, 0, 1, 2, 3}) {
-        const double base = stripeProfileValue(profile, x, y, 0.01);
-        worst = std::max(worst, std::abs(base - stripeProfileValue(profile, -x + k, y, 0.01)));
-        if (stripeProfileHasTwoFamilies(profile))
-          worst = std::max(worst, std::abs(base - stripeProfileValue(profile, x, -y + k, 0.01)));
-      }
+      for (const int k : {-2, -1, 0, 1, 2, 3})
+        for (const double width : {0.0, 0.2, 0.9}) {
+          const double base = stripeProfileValue(profile, x, y, 0.01, width);
+          worst = std::max(worst, std::abs(base - stripeProfileValue(profile, -x + k, y, 0.01, width)));
+          if (stripeProfileHasTwoFamilies(profile))
+            worst = std::max(worst, std::abs(base - stripeProfileValue(profile, x, -y + k, 0.01, width)));
+        }
     }
     EXPECT_LT(worst, 1e-9) << stripeProfileName(profile);
   }
   for (const StripeProfile profile : kProfiles)
     EXPECT_EQ(stripeProfileNamed(stripeProfileName(profile)), profile);
   EXPECT_THROW(stripeProfileNamed("plaid"), InputError);
+}
+
+// A width asked for is the dark share of a period (sampled finely, no footprint): the stripes' bands W (value
+// under 1/2), wood's darkening late wood W (under 1), grid lines both ways 1 - (1 - W)^2, bricks' mortar rows
+// W and head joints W / 2 of each row, 1 - (1 - W)(1 - W / 2), the weave's gaps 1 - W (value 0: each cell's
+// top thread W of it wide). A width of 0 draws the profile's own.
+TEST(StripeProfiles, AWidthIsTheDarkShareOfAPeriod) {
+  constexpr int kSamples = 400;
+  auto share = [&](StripeProfile profile, double width, double threshold) {
+    int dark = 0;
+    for (int i = 0; i < kSamples; ++i)
+      for (int j = 0; j < kSamples; ++j) {
+        const double x = (i + 0.5) / kSamples, y = (j + 0.5) / kSamples;
+        dark += stripeProfileValue(profile, x, y, 0.0, width) < threshold;
+      }
+    return static_cast<double>(dark) / (static_cast<double>(kSamples) * kSamples);
+  };
+  for (const double W : {0.1, 0.3, 0.5, 0.8}) {
+    EXPECT_NEAR(share(StripeProfile::Stripes, W, 0.5), W, 0.01) << W;
+    EXPECT_NEAR(share(StripeProfile::WoodRings, W, 1 - 1e-9), W, 0.01) << W;
+    EXPECT_NEAR(share(StripeProfile::GridLines, W, 0.5), 1 - (1 - W) * (1 - W), 0.01) << W;
+    EXPECT_NEAR(share(StripeProfile::Bricks, W, 0.5), 1 - (1 - W) * (1 - 0.5 * W), 0.01) << W;
+    EXPECT_NEAR(share(StripeProfile::Weave, W, 1e-9), 1 - W, 0.01) << W;
+  }
+  for (const StripeProfile profile : kProfiles) {
+    const double own = stripeDefaultWidth(profile);
+    for (int i = 0; i < 97; ++i) {
+      const double x = 0.013 * i, y = 0.029 * i;
+      EXPECT_EQ(stripeProfileValue(profile, x, y, 0.01), stripeProfileValue(profile, x, y, 0.01, own));
+    }
+  }
 }
 
 // The vertex normals are derived once per design (DesignMesh) and every pattern reads those: the same pattern
@@ -260,5 +292,9 @@ TEST(DesignStripes, BadOptionsAreRefusedByName) {
   EXPECT_NE(refusal(1, R"({"frequency": "x"})").find("numbers"), std::string::npos);
   EXPECT_NE(refusal(1, R"({"magnitudeSpacing": 2})").find("magnitudeSpacing"), std::string::npos);
   EXPECT_NE(refusal(1, R"({"profile": "plaid"})").find("plaid"), std::string::npos);
+  EXPECT_NE(refusal(1, R"({"width": 1.5})").find("line width"), std::string::npos);
+  EXPECT_NE(refusal(1, R"({"width": -0.1})").find("line width"), std::string::npos);
+  EXPECT_EQ(refusal(1, R"({"width": 0.3})"), "accepted");
+  EXPECT_EQ(designStripeOptionsFromJson(R"({"width": 0.3})", 1).width, 0.3);
   EXPECT_NE(refusal(1, "[1").find("not JSON"), std::string::npos);
 }

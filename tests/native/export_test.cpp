@@ -640,21 +640,24 @@ TEST_F(CurvedPatchExport, AModelWithoutUVsGetsAGeneratedAtlas) {
 // export --stripes bakes the field's stripe pattern into the GLB's base colour over the model's own UVs:
 // along the stroke the colour hardly changes, across it it goes through whole stripes (the grey's variance
 // over a segment of about one period, in both directions, at every stroke sample). --stripes without --glb,
-// or with no frequency, is refused by name.
+// or with no frequency, is refused by name. --stripe-width sets the dark share of the baked texels.
 TEST_F(CurvedPatchExport, StripesAreBakedIntoTheBaseColourAlongTheStroke) {
   const int n = 512;
   ASSERT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("s.glb") +
                    " --stripes 6 --size 512"),
             0);
-  const Glb glb = parseGlb(readBytes(dir_ / "s.glb"));
-  const json& pbr = glb.doc["materials"][0]["pbrMetallicRoughness"];
-  ASSERT_TRUE(pbr.contains("baseColorTexture"));
-  const json& image =
-      glb.doc["images"]
-             [glb.doc["textures"][pbr["baseColorTexture"]["index"].get<int>()]["source"].get<int>()];
-  const json& view = glb.doc["bufferViews"][image["bufferView"].get<int>()];
-  const auto begin = glb.bin.begin() + view.value("byteOffset", 0);
-  const Image map = decodePng(std::vector<uint8_t>(begin, begin + view["byteLength"].get<long>()));
+  const auto baseColour = [&](const std::string& name) {
+    const Glb glb = parseGlb(readBytes(dir_ / name));
+    const json& pbr = glb.doc["materials"][0]["pbrMetallicRoughness"];
+    EXPECT_TRUE(pbr.contains("baseColorTexture"));
+    const json& image =
+        glb.doc["images"]
+               [glb.doc["textures"][pbr["baseColorTexture"]["index"].get<int>()]["source"].get<int>()];
+    const json& view = glb.doc["bufferViews"][image["bufferView"].get<int>()];
+    const auto begin = glb.bin.begin() + view.value("byteOffset", 0);
+    return decodePng(std::vector<uint8_t>(begin, begin + view["byteLength"].get<long>()));
+  };
+  const Image map = baseColour("s.glb");
   ASSERT_EQ(map.width, n);
   const auto variance = [&](const Eigen::Vector2d& q, const Eigen::Vector2d& d) {
     double sum = 0, sum2 = 0;
@@ -681,6 +684,32 @@ TEST_F(CurvedPatchExport, StripesAreBakedIntoTheBaseColourAlongTheStroke) {
       2);
   EXPECT_EQ(
       runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("z.glb") + " --stripes 0"), 2);
+  // The dark share of the texels the faces cover (grey under the middle of light and dark): 1/2 at the
+  // profile's own width, 0.2 asked.
+  ASSERT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("w.glb") +
+                   " --stripes 6 --size 512 --stripe-width 0.2"),
+            0);
+  const auto darkShare = [&](const Image& image) {
+    double dark = 0, covered = 0;
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        if (image.at(x, y, 3) < 255) continue;
+        ++covered;
+        dark += image.at(x, y, 0) < (236 + 52) / 2;
+      }
+    return dark / std::max(covered, 1.0);
+  };
+  const double own = darkShare(map), narrow = darkShare(baseColour("w.glb"));
+  std::cout << "[ measured ] stripes: dark share " << own << " at the profile's width, " << narrow
+            << " at 0.2\n";
+  EXPECT_NEAR(own, 0.5, 0.05);
+  EXPECT_NEAR(narrow, 0.2, 0.05);
+  EXPECT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("z.glb") +
+                   " --stripes 6 --stripe-width 1.5"),
+            2);
+  EXPECT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("z.glb") +
+                   " --stripe-width 0.2"),
+            2);
 }
 
 // Element i of an accessor as bytes (its bufferView's stride honoured).

@@ -158,3 +158,24 @@ test("the field's frame waits for its stripes after a quick local update made ah
   assert.equal(controller.followsWithin(), 0, 'hidden');
   controller.dispose();
 });
+
+// The lines' width is how the phase is drawn: a width asked for (or the profile's own) goes to the model's style
+// and to the export, and no new pattern is asked for; a width outside (0, 1] is refused before anything changes.
+test('a line width restyles the pattern shown without asking for another', async () => {
+  const { controller, asked } = controllerWith([]);
+  const styles = [];
+  controller.model.setStyle = (style) => styles.push(style);
+  let state = await controller.setStripes({ visible: true, profile: 'stripes' });
+  assert.equal(state.width, 0.5, "the stripes' own width");
+  state = await controller.setStripes({ width: 0.2 });
+  assert.equal(state.width, 0.2);
+  assert.deepEqual(asked, [1], 'one pattern for both');
+  assert.equal(styles.at(-1).width, 0.2);
+  await assert.rejects(controller.setStripes({ width: 0 }), /width must be a share of a period/);
+  await assert.rejects(controller.setStripes({ width: 1.5, profile: 'grid' }), /width must be a share of a period/);
+  assert.equal(controller.state().profile, 'stripes', 'a refused call changes nothing');
+  assert.equal((await controller.exportStripes()).width, 0.2);
+  state = await controller.setStripes({ width: null, profile: 'grid' });
+  assert.equal(state.width, 0.12, "the grid's own width");
+  assert.equal(styles.at(-1).width, 0.12);
+});

@@ -143,6 +143,8 @@ export interface StripeOptions {
   magnitudeSpacing: number;
   /** The spacing gives way so that the stripes follow the field exactly (default true). */
   adaptSpacing: boolean;
+  /** The lines' share of a period, in (0, 1] (dark bands, grid lines, mortar, threads); null: the profile's own. */
+  width: number | null;
   /** '#rrggbb' (or 0xrrggbb). */
   light: string | number;
   dark: string | number;
@@ -155,6 +157,8 @@ export interface StripeState {
   profile: 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave';
   magnitudeSpacing: number;
   adaptSpacing: boolean;
+  /** The lines' width drawn: the one asked, or the profile's (stripes 0.5, wood 0.7, grid, bricks 0.12, weave 1). */
+  width: number;
   light: string;
   dark: string;
   stats: {

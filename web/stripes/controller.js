@@ -5,7 +5,7 @@
 // solved where its field changed, the whole pattern of it asked for once the edits pause. The pattern itself
 // is the core's (core/design/design_stripes.h), made in the worker (worker-ops.js) and drawn by stripe-model.js.
 // Owns its StripeModel; imports views/ (through stripe-model.js) and its own folder.
-import { PROFILES, TWO_FAMILY_PROFILES } from './profiles.js';
+import { DEFAULT_WIDTHS, PROFILES, TWO_FAMILY_PROFILES } from './profiles.js';
 import { StripeModel } from './stripe-model.js';
 
 const DEFAULT_LIGHT = 0xece4d4;
@@ -65,7 +65,8 @@ export class StripesController {
     this.onShow = onShow;
     this.model = new StripeModel(viewer);
     this.options = {
-      frequency: null, profile: null, magnitudeSpacing: 0, adaptSpacing: true, light: DEFAULT_LIGHT, dark: DEFAULT_DARK,
+      frequency: null, profile: null, magnitudeSpacing: 0, adaptSpacing: true, width: null, light: DEFAULT_LIGHT,
+      dark: DEFAULT_DARK,
     };
     this.visible = false;
     this.surface = null; // the Surface the model's geometry was built from
@@ -92,6 +93,12 @@ export class StripesController {
     return { frequency, profile, magnitudeSpacing, adaptSpacing: this.options.adaptSpacing };
   }
 
+  // The lines' width drawn: the one asked for, or the profile's own. Only how the phase is drawn, so it is not in
+  // effective() (whose options the pattern is computed with).
+  width() {
+    return this.options.width ?? DEFAULT_WIDTHS[this.effective().profile];
+  }
+
   state() {
     const { frequency, profile, magnitudeSpacing, adaptSpacing } = this.effective();
     return {
@@ -100,6 +107,7 @@ export class StripesController {
       profile,
       magnitudeSpacing,
       adaptSpacing,
+      width: this.width(),
       light: hex(this.options.light),
       dark: hex(this.options.dark),
       stats: this.stats ? { ...this.stats } : null,
@@ -109,7 +117,8 @@ export class StripesController {
   }
 
   // opts: any of {visible, frequency (> 0, or null: the default), profile, magnitudeSpacing (0..1), adaptSpacing,
-  // light, dark}; checked before anything changes. Resolves with state() once the stripes shown are of these options.
+  // width (0 < width <= 1: the lines' share of a period, or null: the profile's own), light, dark}; checked before
+  // anything changes. Resolves with state() once the stripes shown are of these options.
   async setStripes(opts = {}) {
     const next = { ...this.options };
     if ('frequency' in opts) {
@@ -133,6 +142,13 @@ export class StripesController {
       if (typeof opts.adaptSpacing !== 'boolean')
         throw new Error(`setStripes: adaptSpacing must be true or false (got ${JSON.stringify(opts.adaptSpacing)})`);
       next.adaptSpacing = opts.adaptSpacing;
+    }
+    if ('width' in opts) {
+      const w = opts.width;
+      const what = "a share of a period in (0, 1], or null for the profile's own";
+      if (w !== null && !(typeof w === 'number' && w > 0 && w <= 1))
+        throw new Error(`setStripes: width must be ${what} (got ${w})`);
+      next.width = w;
     }
     if ('light' in opts) next.light = colourOf(opts.light, 'light');
     if ('dark' in opts) next.dark = colourOf(opts.dark, 'dark');
@@ -297,12 +313,12 @@ export class StripesController {
     await this.whenIdle({ settled: true });
     const { profile } = this.effective();
     const rgb = (c) => [(c >> 16) & 255, (c >> 8) & 255, c & 255];
-    return { profile, light: rgb(this.options.light), dark: rgb(this.options.dark) };
+    return { profile, width: this.width(), light: rgb(this.options.light), dark: rgb(this.options.dark) };
   }
 
   #style() {
     const { profile } = this.effective();
-    this.model.setStyle({ profile, light: this.options.light, dark: this.options.dark });
+    this.model.setStyle({ profile, width: this.width(), light: this.options.light, dark: this.options.dark });
   }
 
   dispose() {

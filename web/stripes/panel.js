@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The "Stripes" section of the side panel: show, profile, stripes per unit length (or the model's default),
-// spacing by the field's magnitude (vector fields), the spacing adapted to the field, the two colours, and a
-// status line with the pattern's times. Built here and appended to the given container; every control goes
-// through the controller's setStripes, as the API's calls do. Imports dom.js and its own folder.
+// spacing by the field's magnitude (vector fields), the spacing adapted to the field, the lines' width, the two
+// colours, and a status line with the pattern's times. Built here and appended to the given container; every
+// control goes through the controller's setStripes, as the API's calls do. Imports dom.js and its own folder.
 import { el } from '../dom.js';
 import { PROFILE_LABELS, PROFILES, TWO_FAMILY_PROFILES } from './profiles.js';
 
@@ -33,6 +33,14 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     type: 'checkbox',
     title: 'The spacing gives way so that the stripes follow the field exactly (off: even spacing)',
   });
+  const width = el('input', {
+    id: 'stripes-width',
+    type: 'range',
+    min: '0.02',
+    max: '1',
+    step: '0.02',
+    title: "The lines' width, a share of a period (stripes' dark bands, grid lines, mortar, threads)",
+  });
   const light = el('input', { id: 'stripes-light', type: 'color', title: 'Light colour' });
   const dark = el('input', { id: 'stripes-dark', type: 'color', title: 'Dark colour' });
   const status = el('p', { id: 'stripes-status', class: 'note', text: 'Stripes follow the field exactly.' });
@@ -45,6 +53,7 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     el('label', {}, 'Per unit ', frequency),
     el('label', {}, 'By magnitude ', magnitude),
     el('label', { class: 'check' }, adapt, ' follow the field exactly'),
+    el('label', {}, 'Line width ', width),
     el('label', {}, 'Colours ', light, ' ', dark),
     status,
   );
@@ -59,6 +68,7 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
   });
   magnitude.addEventListener('change', () => set({ magnitudeSpacing: Number(magnitude.value) }));
   adapt.addEventListener('change', () => set({ adaptSpacing: adapt.checked }));
+  width.addEventListener('change', () => set({ width: Number(width.value) }));
   light.addEventListener('change', () => set({ light: light.value }));
   dark.addEventListener('change', () => set({ dark: dark.value }));
 
@@ -71,6 +81,7 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     magnitude.value = String(s.magnitudeSpacing);
     magnitude.disabled = symmetry !== 1;
     adapt.checked = s.adaptSpacing;
+    width.value = String(s.width);
     light.value = s.light;
     dark.value = s.dark;
     if (s.error) status.textContent = s.error;

@@ -19,6 +19,11 @@ export const PROFILE_LABELS = {
 
 export const profileIndex = (name) => PROFILES.indexOf(name);
 
+// The width of a profile's lines as a share of a period, where none is asked for (core/direction/
+// stripe_texture.h stripeDefaultWidth): stripes' dark bands, wood's late wood, grid lines, bricks' mortar, weave's
+// threads.
+export const DEFAULT_WIDTHS = { stripes: 0.5, wood: 0.7, grid: 0.12, bricks: 0.12, weave: 1 };
+
 export const STRIPE_GLSL = /* glsl */ `
 const float STRIPE_PI = 3.14159265358979;
 float stripeFract(float x) { return x - floor(x); }
@@ -34,26 +39,28 @@ float stripeAngle(vec3 b) {
   return l >= 2.0 * STRIPE_PI ? l - 2.0 * STRIPE_PI : l;
 }
 
-// profile: the index in PROFILES.
-float stripeProfile(int profile, float x, float y, float w) {
+// profile: the index in PROFILES; width: its lines' share of a period (DEFAULT_WIDTHS where none is asked for).
+float stripeProfile(int profile, float x, float y, float w, float width) {
+  float h = 0.5 * min(width, 1.0);
   if (profile == 0) {
-    float soft = max(w, 0.1);
-    return smoothstep(0.25 - soft, 0.25 + soft, offWhole(x));
+    float soft = max(w, 0.4 * min(h, 0.5 - h));
+    return smoothstep(h - soft, h + soft, offWhole(x));
   }
   if (profile == 1) {
-    float late = 1.0 - smoothstep(0.0, 0.35 + w, offWhole(x));
+    float late = 1.0 - smoothstep(0.0, h + w, offWhole(x));
     return 1.0 - 0.8 * late * late;
   }
-  if (profile == 2) return min(stripeLine(x, 0.06, w), stripeLine(y, 0.06, w));
+  if (profile == 2) return min(stripeLine(x, h, w), stripeLine(y, h, w));
   float X = 2.0 * x, Y = 2.0 * y;
   if (profile == 3) {
     float row = floor(X + 0.5);
     float along = 0.5 * Y + 0.5 * (row - 2.0 * floor(0.5 * row));
-    return min(stripeLine(X + 0.5, 0.06, 2.0 * w), stripeLine(along, 0.03, w));
+    return min(stripeLine(X + 0.5, h, 2.0 * w), stripeLine(along, 0.5 * h, w));
   }
   float i = floor(X + 0.5), j = floor(Y + 0.5);
   bool alongOnTop = (i + j) - 2.0 * floor(0.5 * (i + j)) < 0.5;
-  float across = cos(STRIPE_PI * (alongOnTop ? X - i : Y - j));
-  return 0.2 + 0.8 * sqrt(max(across, 0.0));
+  float d = alongOnTop ? X - i : Y - j;
+  if (abs(d) > h) return 0.0;
+  return 0.2 + 0.8 * sqrt(max(cos(STRIPE_PI * d * 0.5 / h), 0.0));
 }
 `;

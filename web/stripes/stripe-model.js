@@ -25,6 +25,7 @@ vStripeBary = vec3(stripeCorner == 0, stripeCorner == 1, stripeCorner == 2);
 `;
 const FRAGMENT_PARS = /* glsl */ `
 uniform int uStripeProfile;
+uniform float uStripeWidth; // the lines' share of a period
 uniform vec3 uStripeLight; // sRGB, 0..1: mixed there, as the core's bake mixes bytes
 uniform vec3 uStripeDark;
 varying vec2 vStripePhase;
@@ -43,7 +44,7 @@ const FRAGMENT_MAP = /* glsl */ `
   float turn = stripeAngle(b);
   vec2 phase = (vStripePhase + vStripeBranch * turn) / (2.0 * STRIPE_PI);
   float w = 0.5 * max(fwidth(vStripePhase.x), fwidth(vStripePhase.y)) / (2.0 * STRIPE_PI);
-  float t = clamp(stripeProfile(uStripeProfile, phase.x, phase.y, w), 0.0, 1.0);
+  float t = clamp(stripeProfile(uStripeProfile, phase.x, phase.y, w, uStripeWidth), 0.0, 1.0);
   diffuseColor.rgb *= stripeToLinear(mix(uStripeDark, uStripeLight, t));
 }
 `;
@@ -65,6 +66,7 @@ export class StripeModel {
     this.replaced = null; // the stand-in this one replaced while shown (the synthesized texture's)
     this.uniforms = {
       uStripeProfile: { value: 0 },
+      uStripeWidth: { value: 0.5 },
       uStripeLight: { value: srgb(0xece4d4) },
       uStripeDark: { value: srgb(0x342c28) },
     };
@@ -122,9 +124,11 @@ export class StripeModel {
     return true;
   }
 
-  // profile: a name of profiles.js PROFILES; light, dark: sRGB colours as numbers (0xrrggbb).
-  setStyle({ profile, light, dark }) {
+  // profile: a name of profiles.js PROFILES; width: its lines' share of a period; light, dark: sRGB colours as
+  // numbers (0xrrggbb).
+  setStyle({ profile, width, light, dark }) {
     this.uniforms.uStripeProfile.value = profileIndex(profile);
+    this.uniforms.uStripeWidth.value = width;
     this.uniforms.uStripeLight.value = srgb(light);
     this.uniforms.uStripeDark.value = srgb(dark);
     this.#changed();
