@@ -42,6 +42,7 @@ int usage() {
          "             [--no-embed-flowmap] [--component whole|exact|coexact|harmonic]\n"
          "             [--rawfield OUT.rawfield] [--sing OUT.sing] [--rosy OUT.rosy]\n"
          "             [--sharp OUT.sharp] [--stripes FREQ] [--stripe-profile NAME] [--stripe-width W]\n"
+         "             [--stripes-across]\n"
          "             [--ordering-cache DIR]\n"
          "  tvf quad MESH DESIGN.json -o OUT.obj [--edge-length L | --quads N] [--json]\n"
          "  tvf bench MESH [--repeat N] [--gamma G] [--amd | --metis | --compare] [--json]\n"
@@ -76,7 +77,9 @@ int usage() {
          "export --stripes FREQ bakes the field's stripe pattern (FREQ stripes per unit length) into the\n"
          "GLB's base colour over the export's atlas (docs/export.md); --stripe-profile stripes, wood,\n"
          "grid, bricks or weave (default: stripes, grid for a cross field); --stripe-width W the lines'\n"
-         "width as a share of a period, in (0, 1] (default: the profile's own, 1/2 for stripes).\n"
+         "width as a share of a period, in (0, 1] (default: the profile's own, 1/2 for stripes);\n"
+         "--stripes-across turns a vector or line field's stripes across it (a two-family profile's\n"
+         "families swap).\n"
          "quad: a quad mesh following the design's cross field (symmetry 4; a closed surface), at an\n"
          "edge length or about N quads (default 5000), as OBJ; --json prints its statistics\n"
          "(docs/quad-meshes.md).\n";
@@ -278,10 +281,15 @@ int exportCommand(int argc, char** argv) {
   double stripes = 0;
   std::string stripeProfile;
   double stripeWidth = 0;
+  bool stripesAcross = false;
   for (int k = 4; k < argc; ++k) {
     const std::string a = argv[k];
     if (a == "--no-embed-flowmap") {
       options.embedFlowMap = false;
+      continue;
+    }
+    if (a == "--stripes-across") {
+      stripesAcross = true;
       continue;
     }
     if (k + 1 >= argc) return usage();
@@ -349,11 +357,14 @@ int exportCommand(int argc, char** argv) {
     throw tvf::InputError("--stripe-profile draws the stripes of --stripes FREQ: give --stripes too");
   if (stripeWidth > 0 && !(stripes > 0))
     throw tvf::InputError("--stripe-width draws the stripes of --stripes FREQ: give --stripes too");
+  if (stripesAcross && !(stripes > 0))
+    throw tvf::InputError("--stripes-across turns the stripes of --stripes FREQ: give --stripes too");
   tvf::DesignStripeOptions stripeOptions;
   if (stripes > 0) {
     nlohmann::json o{{"frequency", stripes}};
     if (!stripeProfile.empty()) o["profile"] = stripeProfile;
     if (stripeWidth > 0) o["width"] = stripeWidth;
+    if (stripesAcross) o["across"] = true;
     stripeOptions = tvf::designStripeOptionsFromJson(o.dump(), symmetry);
     tvf::checkStripeOptions(symmetry, stripeOptions);  // before the solve: a refusal costs nothing
   }

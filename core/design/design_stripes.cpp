@@ -62,13 +62,14 @@ DesignStripeOptions designStripeOptionsFromJson(const std::string& json, int sym
     out.adaptSpacing = o.value("adaptSpacing", out.adaptSpacing);
     out.localUpdate = o.value("localUpdate", out.localUpdate);
     out.width = o.value("width", out.width);
+    out.across = o.value("across", out.across);
     out.profile = o.contains("profile") ? stripeProfileNamed(o.at("profile").get<std::string>())
                   : symmetry == 4       ? StripeProfile::GridLines
                                         : StripeProfile::Stripes;
   } catch (const nlohmann::json::type_error&) {
     throw InputError(
-        "stripes: frequency, magnitudeSpacing, maxIterations, tolerance and width are numbers, adaptSpacing "
-        "and localUpdate booleans, profile a name");
+        "stripes: frequency, magnitudeSpacing, maxIterations, tolerance and width are numbers, adaptSpacing, "
+        "localUpdate and across booleans, profile a name");
   }
   return out;
 }
@@ -98,11 +99,16 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
   o.interrupted = options.interrupted;
   if (options.magnitudeSpacing > 0 && symmetry == 1)
     o.vertexFrequencyScale = magnitudeScale(vertexVectors, options.magnitudeSpacing);
-  StripePattern along = stripePattern(mesh, topology, geometry, vertexNormals, vertexVectors, o, &along_);
+  // Each workspace keeps one turn of the field (its analysis, its last psi, a local update's start): the
+  // first family is the across one's when the stripes run across.
+  const bool turned = options.across && symmetry != 4;
+  o.quarterTurns = turned ? 1 : 0;
+  StripePattern along =
+      stripePattern(mesh, topology, geometry, vertexNormals, vertexVectors, o, turned ? &across_ : &along_);
   if (symmetry != 4 && stripeProfileHasTwoFamilies(options.profile)) {
-    o.quarterTurns = 1;
+    o.quarterTurns = turned ? 0 : 1;
     const StripePattern across =
-        stripePattern(mesh, topology, geometry, vertexNormals, vertexVectors, o, &across_);
+        stripePattern(mesh, topology, geometry, vertexNormals, vertexVectors, o, turned ? &along_ : &across_);
     along.families = 2;
     along.cornerPhase.insert(along.cornerPhase.end(), across.cornerPhase.begin(), across.cornerPhase.end());
     along.branchIndex.insert(along.branchIndex.end(), across.branchIndex.begin(), across.branchIndex.end());

@@ -24,6 +24,10 @@ struct DesignStripeOptions {
   // The profile's lines as a share of a period, in (0, 1]; 0: the profile's own (stripeDefaultWidth). Only
   // how the phase is drawn: the pattern is the same at any width.
   double width = 0;
+  // A vector or line field's stripes run across the field instead of along it (the field turned a quarter:
+  // StripeOptions::quarterTurns); a two-family profile's families swap (bricks' rows across). A cross field
+  // has both directions already: nothing changes there.
+  bool across = false;
   // 0: even spacing; up to 1: the frequency scaled by (|X| / mean |X|)^magnitudeSpacing, clamped to
   // [1/8, 8] (the paper's Sec. 6.3: denser stripes where the field is stronger). A line or cross field's
   // vertex directions are unit representatives: there it changes nothing.
@@ -39,7 +43,8 @@ struct DesignStripeOptions {
 };
 
 // The options from the page's JSON: {frequency, profile: "stripes" | "wood" | "grid" | "bricks" | "weave",
-// magnitudeSpacing, maxIterations, tolerance}; the profile defaults to stripes, or grid for a cross field.
+// magnitudeSpacing, maxIterations, tolerance, adaptSpacing, localUpdate, width, across}; the profile defaults
+// to stripes, or grid for a cross field.
 // Throws InputError naming a bad value.
 DesignStripeOptions designStripeOptionsFromJson(const std::string& json, int symmetry);
 

@@ -2,8 +2,8 @@
 // wasm core in its worker and the real WebGL view: the pictures are read back from the canvas and measured here.
 // A flat square with a constant field shows straight stripes at exactly the asked frequency (the transitions'
 // spacing down the picture against the projection of the model's units; the adapted spacing, on by default, has
-// nothing to adapt there), a line width asked for as the dark share of the picture and of the baked GLB, and its
-// GLB carries the phase as TEXCOORD_1; on the default model the stripes show,
+// nothing to adapt there), a line width asked for as the dark share of the picture and of the baked GLB, stripes
+// across the field turned a quarter, and its GLB carries the phase as TEXCOORD_1; on the default model the stripes show,
 // follow an edit (a new pattern for the new field), new patterns leave no WebGL buffer behind, and the GLB
 // bakes them into its base colour; a cross field takes grid, bricks or weave only, and bad options are refused
 // by name with nothing changed; after an edit whose stripes came as a local update made ahead, the next edit's
@@ -157,6 +157,30 @@ test.describe.serial('stripe patterns in the page', () => {
       return { shown, width: window.tvf.stripes().width };
     });
     expect(slider).toEqual({ shown: '0.5', width: 0.3 });
+    // Across the field: the stripes turn a quarter. A row across the square crosses them at the asked frequency,
+    // and the column down it none.
+    const across = await evaluate(async () => {
+      await window.tvf.setStripes({ across: true, width: null });
+      return window.tvf.stripesIdle({ settled: true });
+    });
+    expect(across.across).toBe(true);
+    await page.waitForTimeout(300);
+    const turned = await readCanvasGrey(page);
+    const [l, r] = await evaluate(() => [window.tvf.projectToScreen([0.2, 0.5, 0]), window.tvf.projectToScreen([0.8, 0.5, 0])]);
+    const y = Math.round((l.y - turned.top) * turned.scale);
+    const row = Array.from({ length: turned.w }, (_, x) => turned.grey[y * turned.w + x]);
+    const xl = (l.x - turned.left) * turned.scale, xr = (r.x - turned.left) * turned.scale;
+    const pxPerUnitX = Math.abs(xr - xl) / 0.6;
+    const window_ = Math.round(pxPerUnitX / frequency);
+    const inRow = crossings(row, Math.round(Math.min(xl, xr)), Math.round(Math.max(xl, xr)), window_);
+    const measuredAcross = (inRow.length - 1) / 2 / ((inRow.at(-1) - inRow[0]) / pxPerUnitX);
+    const inColumn = crossings(greyColumn(turned, (a.x - turned.left) * turned.scale), Math.round(Math.min(ya, yb)),
+      Math.round(Math.max(ya, yb)), Math.round(pxPerUnit / frequency));
+    console.log(`[ measured ] flat square across the field: ${inRow.length} transitions along a row, ` +
+      `${measuredAcross.toFixed(3)} stripes per unit; ${inColumn.length} down the column`);
+    expect(inRow.length).toBeGreaterThan(10);
+    expect(Math.abs(measuredAcross - frequency)).toBeLessThan(0.01 * frequency);
+    expect(inColumn.length).toBe(0);
   });
 
   test('on the default model: shown, following an edit, baked into the GLB; bad options refused by name', async () => {

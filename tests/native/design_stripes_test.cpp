@@ -135,6 +135,61 @@ TEST(DesignStripes, AGridAlongAVectorFieldTakesASecondFamilyAcrossIt) {
   EXPECT_LT(along / counted, 3.0);
 }
 
+// Across the field: a vector field's one family has its phase grow along the field (its stripes cross it)
+// where it grows across by default, and a grid's two families swap; a workspace each way, so going back and
+// forth gives the same patterns.
+TEST(DesignStripes, StripesAcrossTheFieldTurnAQuarter) {
+  const SurfaceMesh m = torus(96, 36, 2.0, 0.7);
+  const MeshTopology t = buildTopology(m);
+  const MeshGeometry g = computeMeshGeometry(m, t);
+  const std::vector<double> field = aroundTheTube(m);
+  // The area-free mean angle (degrees) of a family's phase gradient from the field's direction, mod pi.
+  const auto fromField = [&](const StripePattern& p, int family) {
+    double sum = 0;
+    int32_t counted = 0;
+    for (int32_t f = 0; f < m.numFaces(); ++f) {
+      if (p.branchIndex[static_cast<size_t>(family) * m.numFaces() + f]) continue;
+      Eigen::Vector3d d = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) d += Eigen::Vector3d(&field[3 * m.triangles[3 * f + k]]);
+      const Eigen::Vector3d a = phaseGradient(m, p, family, f).normalized();
+      sum += std::acos(std::min(1.0, std::abs(a.dot(d.normalized())))) * 180 / M_PI;
+      ++counted;
+    }
+    return sum / std::max(counted, 1);
+  };
+  DesignStripes stripes;
+  DesignStripeOptions o;
+  o.frequency = 2.0;
+  const StripePattern along = stripes.compute(m, t, g, vertexNormals(m), 1, field, o);
+  o.across = true;
+  const StripePattern across = stripes.compute(m, t, g, vertexNormals(m), 1, field, o);
+  std::cout << "[ measured ] a torus's field: the phase gradient " << fromField(along, 0) << " deg from it, "
+            << fromField(across, 0) << " across it\n";
+  EXPECT_GT(fromField(along, 0), 87.0);  // the phase grows across the field: stripes along it
+  EXPECT_LT(fromField(across, 0), 3.0);  // along it: stripes across it
+  o.profile = StripeProfile::GridLines;
+  const StripePattern grid = stripes.compute(m, t, g, vertexNormals(m), 1, field, o);
+  ASSERT_EQ(grid.families, 2);
+  EXPECT_LT(fromField(grid, 0), 3.0);
+  EXPECT_GT(fromField(grid, 1), 87.0);
+  // Back along it: the along workspace's pattern again (started from itself), to round-off.
+  const auto largestTurn = [](const StripePattern& a, const StripePattern& b) {
+    double worst = 0;
+    for (size_t i = 0; i < a.cornerPhase.size(); ++i)
+      worst = std::max(worst, std::abs(std::remainder(a.cornerPhase[i] - b.cornerPhase[i], 2 * M_PI)));
+    return worst;
+  };
+  o.profile = StripeProfile::Stripes;
+  o.across = false;
+  EXPECT_LT(largestTurn(stripes.compute(m, t, g, vertexNormals(m), 1, field, o), along), 1e-4);
+  // A cross field has both directions: across changes nothing.
+  o.profile = StripeProfile::GridLines;
+  DesignStripes cross;
+  const StripePattern plain = cross.compute(m, t, g, vertexNormals(m), 4, field, o);
+  o.across = true;
+  EXPECT_LT(largestTurn(cross.compute(m, t, g, vertexNormals(m), 4, field, o), plain), 1e-4);
+}
+
 TEST(DesignStripes, BricksAndWeaveAreDrawnFromAPatternAtHalfTheFrequency) {
   const SurfaceMesh m = flatGrid(24, 1.0, true);
   const MeshTopology t = buildTopology(m);

@@ -659,26 +659,42 @@ TEST_F(CurvedPatchExport, StripesAreBakedIntoTheBaseColourAlongTheStroke) {
   };
   const Image map = baseColour("s.glb");
   ASSERT_EQ(map.width, n);
-  const auto variance = [&](const Eigen::Vector2d& q, const Eigen::Vector2d& d) {
-    double sum = 0, sum2 = 0;
-    for (int s = -16; s <= 16; ++s) {
-      const Eigen::Vector2d p = q + s * d;
-      const int x = std::clamp(int(p.x()), 0, n - 1), y = std::clamp(int(p.y()), 0, n - 1);
-      sum += map.at(x, y, 0), sum2 += double(map.at(x, y, 0)) * map.at(x, y, 0);
+  // The grey's variance along the stroke and across it, summed over the stroke's samples.
+  const auto variances = [&](const Image& image) {
+    const auto variance = [&](const Eigen::Vector2d& q, const Eigen::Vector2d& d) {
+      double sum = 0, sum2 = 0;
+      for (int s = -16; s <= 16; ++s) {
+        const Eigen::Vector2d p = q + s * d;
+        const int x = std::clamp(int(p.x()), 0, n - 1), y = std::clamp(int(p.y()), 0, n - 1);
+        sum += image.at(x, y, 0), sum2 += double(image.at(x, y, 0)) * image.at(x, y, 0);
+      }
+      return sum2 / 33 - (sum / 33) * (sum / 33);
+    };
+    std::pair<double, double> out{0, 0};
+    for (size_t k = 5; k + 6 < stroke_.size(); ++k) {
+      const Eigen::Vector2d t = toUV(mesh_, mesh_.cornerUVs, stroke_[k].face, strokeTangent(k)).normalized();
+      const Eigen::Vector2d q = uvAt(mesh_.cornerUVs, stroke_[k]) * n;
+      out.first += variance(q, t);
+      out.second += variance(q, Eigen::Vector2d(-t.y(), t.x()));
     }
-    return sum2 / 33 - (sum / 33) * (sum / 33);
+    return out;
   };
-  double along = 0, across = 0;
-  for (size_t k = 5; k + 6 < stroke_.size(); ++k) {
-    const Eigen::Vector2d t = toUV(mesh_, mesh_.cornerUVs, stroke_[k].face, strokeTangent(k)).normalized();
-    const Eigen::Vector2d q = uvAt(mesh_.cornerUVs, stroke_[k]) * n;
-    along += variance(q, t);
-    across += variance(q, Eigen::Vector2d(-t.y(), t.x()));
-  }
+  const auto [along, across] = variances(map);
   std::cout << "[ measured ] stripes: grey variance along the stroke " << along << ", across " << across
             << "\n";
   EXPECT_GT(across, 1000.0 * (stroke_.size() - 11));  // whole stripes: a light-dark contrast of ~180 levels
   EXPECT_LT(along, 0.05 * across);
+  // --stripes-across: the other way round.
+  ASSERT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("a.glb") +
+                   " --stripes 6 --size 512 --stripes-across"),
+            0);
+  const auto [turnedAlong, turnedAcross] = variances(baseColour("a.glb"));
+  std::cout << "[ measured ] stripes across: grey variance along the stroke " << turnedAlong << ", across "
+            << turnedAcross << "\n";
+  EXPECT_GT(turnedAlong, 1000.0 * (stroke_.size() - 11));
+  // (The lines across a curved stroke fan out and bend a little, so along them the grey varies more: 0.045
+  // here.)
+  EXPECT_LT(turnedAcross, 0.1 * turnedAlong);
   EXPECT_EQ(
       runCli(path("patch.glb") + " " + path("design.json") + " --flowmap " + path("f.png") + " --stripes 6"),
       2);
@@ -704,7 +720,7 @@ TEST_F(CurvedPatchExport, StripesAreBakedIntoTheBaseColourAlongTheStroke) {
             << " at 0.2\n";
   EXPECT_NEAR(own, 0.5, 0.05);
   EXPECT_NEAR(narrow, 0.2, 0.05);
-  for (const char* bad : {" --stripes 6 --stripe-width 1.5", " --stripe-width 0.2"})
+  for (const char* bad : {" --stripes 6 --stripe-width 1.5", " --stripe-width 0.2", " --stripes-across"})
     EXPECT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("z.glb") + bad), 2)
         << bad;
 }

@@ -179,3 +179,25 @@ test('a line width restyles the pattern shown without asking for another', async
   assert.equal(state.width, 0.12, "the grid's own width");
   assert.equal(styles.at(-1).width, 0.12);
 });
+
+// Across the field changes the pattern (the core computes it of the field turned a quarter): a new one is asked for
+// with across in its options; a cross field has both directions, so it asks for nothing new there.
+test('stripes across the field ask for a new pattern, except of a cross field', async () => {
+  const { controller, setField } = controllerWith([]);
+  const options = [];
+  controller.call = async (op, [version, , asked]) => {
+    options.push(asked.across);
+    return pattern(version);
+  };
+  await controller.setStripes({ visible: true });
+  let state = await controller.setStripes({ across: true });
+  assert.equal(state.across, true);
+  assert.deepEqual(options, [false, true]);
+  await assert.rejects(controller.setStripes({ across: 'yes' }), /across must be true or false/);
+  setField({ version: 2, key: 'k2', symmetry: 4 });
+  state = await controller.setStripes({ profile: 'grid' });
+  assert.equal(state.across, false, 'a cross field has both directions');
+  assert.deepEqual(options, [false, true, false]);
+  await controller.setStripes({ across: false });
+  assert.deepEqual(options, [false, true, false], 'nothing new to ask for');
+});

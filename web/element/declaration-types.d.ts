@@ -143,6 +143,8 @@ export interface StripeOptions {
   magnitudeSpacing: number;
   /** The spacing gives way so that the stripes follow the field exactly (default true). */
   adaptSpacing: boolean;
+  /** A vector or line field's stripes across it instead of along it (default false; a cross field has both). */
+  across: boolean;
   /** The lines' share of a period, in (0, 1] (dark bands, grid lines, mortar, threads); null: the profile's own. */
   width: number | null;
   /** '#rrggbb' (or 0xrrggbb). */
@@ -157,6 +159,8 @@ export interface StripeState {
   profile: 'stripes' | 'wood' | 'grid' | 'bricks' | 'weave';
   magnitudeSpacing: number;
   adaptSpacing: boolean;
+  /** Stripes across the field (false for a cross field, which has both directions). */
+  across: boolean;
   /** The lines' width drawn: the one asked, or the profile's (stripes 0.5, wood 0.7, grid, bricks 0.12, weave 1). */
   width: number;
   light: string;

@@ -38,8 +38,8 @@ export const VIEW_METHODS = [
   {
     name: 'setStripes', ...STRIPES,
     signatures: [['options: Partial<StripeOptions>', 'Promise<StripeState>']],
-    description: "Shows or hides the field's stripe pattern and sets its frequency, profile, spacing, line width and " +
-      'colours.',
+    description: "Shows or hides the field's stripe pattern and sets its frequency, profile, spacing, direction, " +
+      'line width and colours.',
   },
   {
     name: 'stripes', ...STRIPES,

@@ -65,8 +65,8 @@ export class StripesController {
     this.onShow = onShow;
     this.model = new StripeModel(viewer);
     this.options = {
-      frequency: null, profile: null, magnitudeSpacing: 0, adaptSpacing: true, width: null, light: DEFAULT_LIGHT,
-      dark: DEFAULT_DARK,
+      frequency: null, profile: null, magnitudeSpacing: 0, adaptSpacing: true, across: false, width: null,
+      light: DEFAULT_LIGHT, dark: DEFAULT_DARK,
     };
     this.visible = false;
     this.surface = null; // the Surface the model's geometry was built from
@@ -90,7 +90,8 @@ export class StripesController {
     if (symmetry === 4 && !TWO_FAMILY_PROFILES.includes(profile)) profile = 'grid';
     const frequency = this.options.frequency ?? (f ? defaultFrequency(f.surface) : 1);
     const magnitudeSpacing = symmetry === 1 ? this.options.magnitudeSpacing : 0;
-    return { frequency, profile, magnitudeSpacing, adaptSpacing: this.options.adaptSpacing };
+    const across = symmetry !== 4 && this.options.across; // a cross field's grid has both directions
+    return { frequency, profile, magnitudeSpacing, adaptSpacing: this.options.adaptSpacing, across };
   }
 
   // The lines' width drawn: the one asked for, or the profile's own. Only how the phase is drawn, so it is not in
@@ -100,13 +101,14 @@ export class StripesController {
   }
 
   state() {
-    const { frequency, profile, magnitudeSpacing, adaptSpacing } = this.effective();
+    const { frequency, profile, magnitudeSpacing, adaptSpacing, across } = this.effective();
     return {
       visible: this.visible,
       frequency,
       profile,
       magnitudeSpacing,
       adaptSpacing,
+      across,
       width: this.width(),
       light: hex(this.options.light),
       dark: hex(this.options.dark),
@@ -117,8 +119,9 @@ export class StripesController {
   }
 
   // opts: any of {visible, frequency (> 0, or null: the default), profile, magnitudeSpacing (0..1), adaptSpacing,
-  // width (0 < width <= 1: the lines' share of a period, or null: the profile's own), light, dark}; checked before
-  // anything changes. Resolves with state() once the stripes shown are of these options.
+  // across (a vector or line field's stripes across it), width (0 < width <= 1: the lines' share of a period, or
+  // null: the profile's own), light, dark}; checked before anything changes. Resolves with state() once the stripes
+  // shown are of these options.
   async setStripes(opts = {}) {
     const next = { ...this.options };
     if ('frequency' in opts) {
@@ -142,6 +145,11 @@ export class StripesController {
       if (typeof opts.adaptSpacing !== 'boolean')
         throw new Error(`setStripes: adaptSpacing must be true or false (got ${JSON.stringify(opts.adaptSpacing)})`);
       next.adaptSpacing = opts.adaptSpacing;
+    }
+    if ('across' in opts) {
+      if (typeof opts.across !== 'boolean')
+        throw new Error(`setStripes: across must be true or false (got ${JSON.stringify(opts.across)})`);
+      next.across = opts.across;
     }
     if ('width' in opts) {
       const w = opts.width;

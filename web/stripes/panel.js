@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The "Stripes" section of the side panel: show, profile, stripes per unit length (or the model's default),
-// spacing by the field's magnitude (vector fields), the spacing adapted to the field, the lines' width, the two
-// colours, and a status line with the pattern's times. Built here and appended to the given container; every
-// control goes through the controller's setStripes, as the API's calls do. Imports dom.js and its own folder.
+// spacing by the field's magnitude (vector fields), the spacing adapted to the field, stripes across the field,
+// the lines' width, the two colours, and a status line with the pattern's times. Built here and appended to the
+// given container; every control goes through the controller's setStripes, as the API's calls do. Imports dom.js
+// and its own folder.
 import { el } from '../dom.js';
 import { PROFILE_LABELS, PROFILES, TWO_FAMILY_PROFILES } from './profiles.js';
 
@@ -33,6 +34,11 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     type: 'checkbox',
     title: 'The spacing gives way so that the stripes follow the field exactly (off: even spacing)',
   });
+  const across = el('input', {
+    id: 'stripes-across',
+    type: 'checkbox',
+    title: "A vector or line field's stripes across it instead of along it (a cross field has both)",
+  });
   const width = el('input', {
     id: 'stripes-width',
     type: 'range',
@@ -53,6 +59,7 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     el('label', {}, 'Per unit ', frequency),
     el('label', {}, 'By magnitude ', magnitude),
     el('label', { class: 'check' }, adapt, ' follow the field exactly'),
+    el('label', { class: 'check' }, across, ' across the field'),
     el('label', {}, 'Line width ', width),
     el('label', {}, 'Colours ', light, ' ', dark),
     status,
@@ -68,6 +75,7 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
   });
   magnitude.addEventListener('change', () => set({ magnitudeSpacing: Number(magnitude.value) }));
   adapt.addEventListener('change', () => set({ adaptSpacing: adapt.checked }));
+  across.addEventListener('change', () => set({ across: across.checked }));
   width.addEventListener('change', () => set({ width: Number(width.value) }));
   light.addEventListener('change', () => set({ light: light.value }));
   dark.addEventListener('change', () => set({ dark: dark.value }));
@@ -81,6 +89,8 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     magnitude.value = String(s.magnitudeSpacing);
     magnitude.disabled = symmetry !== 1;
     adapt.checked = s.adaptSpacing;
+    across.checked = s.across;
+    across.disabled = symmetry === 4;
     width.value = String(s.width);
     light.value = s.light;
     dark.value = s.dark;
