@@ -32,8 +32,8 @@
 // UVs (e.g. the synthesized texture in its atlas; image row 0 = v 0, as glTF samples it). Those UVs then index
 // the flow map too; unless they are the model's own, the GLB is a new document over the welded mesh with a
 // vertex per (welded vertex, UV) pair (io/gltf_writer.h). Or {stripes: {cornerPhase, branchIndex, families,
-// profile, width?, light?, dark?}}: the page's stripe pattern (Designer.computeStripes), drawn into the export's atlas
-// (direction/stripe_texture.h) as `tvf export --stripes` draws it, its phase as a texture coordinate
+// profile, width?, light?, dark?}}: the page's stripe pattern (Designer.computeStripes), drawn into the export's
+// atlas (direction/stripe_texture.h) as `tvf export --stripes` draws it, its phase as a texture coordinate
 // (TEXCOORD_1, or a kept primitive's first free set: io/gltf_writer.h).
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
@@ -247,8 +247,8 @@ class FieldExporterBinding {
   };
 
   // The atlas a GLB uses: the export's own, or the texture's UVs when a texture goes with it. A texture
-  // {stripes: {cornerPhase, branchIndex, families, profile, width?, light?, dark?}} is the page's stripe pattern
-  // (design/design_stripes.h), drawn here into the export's atlas as `tvf export --stripes` draws it.
+  // {stripes: {cornerPhase, branchIndex, families, profile, width?, light?, dark?}} is the page's stripe
+  // pattern (design/design_stripes.h), drawn here into the export's atlas as `tvf export --stripes` draws it.
   static tvf::ExportAtlas atlasFor(const Mesh& m, const tvf::FieldExportOptions& o, const val& texture,
                                    std::vector<uint8_t>& baseColor, std::vector<float>& phaseTexcoords) {
     tvf::ExportAtlas atlas;
