@@ -201,17 +201,23 @@ test.describe.serial('stripe patterns in the page', () => {
     await page.waitForFunction(() => window.tvf && window.tvf.ready);
     await evaluate(() => window.tvf.ready);
     await evaluate(() => window.tvf.setViews({ arrows: false }));
+    // The new model's vector field is zero: no direction to follow, so no pattern (the Stripes panel says so), and
+    // none to bake.
     const before = await evaluate(() => window.tvf.setStripes({ visible: true }));
     expect(before.profile).toBe('stripes');
     expect(before.adaptSpacing).toBe(true);
-    expect(before.stats.families).toBe(1);
-    expect(before.stats.residual).toBeLessThan(1e-3);
+    expect(before.stats.zeroField).toBe(true);
+    expect(before.stats.families).toBe(0);
+    expect(await evaluate(() => document.querySelector('tangent-field-designer').shadowRoot
+      .querySelector('#stripes-status').textContent)).toMatch(/field is zero everywhere/);
+    expect(await refusal(() => window.tvf.exportGlb({ size: 64, stripes: true }))).toMatch(/a field that is not zero/);
     // A stroke: a new field, and the stripes follow it (a new pattern of the new field version).
     const mesh = await evaluate(() => window.tvf.mesh());
     const faces = [0, 1, 2].map((k) => Math.floor(((k + 1) * mesh.triangles.length) / 3 / 4));
     await evaluate((faces) => window.tvf.addStroke(faces.map((face) => ({ face, bary: [1 / 3, 1 / 3, 1 / 3] }))), faces);
     const after = await evaluate(() => window.tvf.stripesIdle());
     expect(after.stats.fieldKey).not.toBe(before.stats.fieldKey);
+    expect(after.stats.families).toBe(1);
     // Solved first where the field changed (or whole, where it changed on most of the model), then whole.
     expect(after.settled).toBe(!after.stats.localUpdate);
     const whole = await evaluate(() => window.tvf.stripesIdle({ settled: true }));

@@ -201,3 +201,21 @@ test('stripes across the field ask for a new pattern, except of a cross field', 
   await controller.setStripes({ across: false });
   assert.deepEqual(options, [false, true, false], 'nothing new to ask for');
 });
+
+// A field zero everywhere has no direction to follow: the worker says so, the pattern shown goes (the surface
+// shows), nothing is baked, and the next field's pattern shows again.
+test('a zero field shows no pattern and bakes none', async () => {
+  const { controller, shown, setField } = controllerWith([() => ({ zeroField: true })]);
+  let cleared = 0;
+  controller.model.clearPattern = () => cleared++;
+  let state = await controller.setStripes({ visible: true });
+  assert.equal(state.stats.zeroField, true);
+  assert.equal(state.stats.families, 0);
+  assert.equal(cleared, 1);
+  assert.deepEqual(shown, []);
+  assert.equal(await controller.exportStripes(), null);
+  setField({ version: 2, key: 'k2' });
+  state = await controller.whenIdle({ settled: true }).then(() => controller.update()).then(() => controller.state());
+  assert.equal(state.stats.zeroField, undefined);
+  assert.deepEqual(shown, [2]);
+});

@@ -166,6 +166,8 @@ export interface StripeState {
   light: string;
   dark: string;
   stats: {
+    /** The field is zero everywhere (no direction to follow): no pattern is shown, families 0, nothing else. */
+    zeroField?: boolean;
     families: number;
     iterations: number;
     residual: number;

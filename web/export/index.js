@@ -50,7 +50,7 @@ export function setupExport({
     // The stripes shown are baked by the core into the export's atlas, in the texture's place.
     const pattern = o.stripes === false ? null : await stripes?.exportStripes();
     if (o.stripes === true && !pattern)
-      throw new Error('exportGlb: stripes: true needs the stripes shown (setStripes)');
+      throw new Error('exportGlb: stripes: true needs the stripes shown (setStripes) of a field that is not zero');
     if (pattern) return call('exportGlb', [coreOptions(o), { stripes: pattern }]);
     const image =
       o.texture === false || (!texture && o.texture === 'auto')

@@ -257,6 +257,7 @@ export class StripesController {
       return;
     }
     if (!reply) return; // the worker is not at this version (yet): its field's change asks again
+    if (reply.zeroField) return this.#showZeroField(wanted, field.key);
     const repliedAt = performance.now();
     this.#style();
     this.model.setPattern(reply);
@@ -270,6 +271,18 @@ export class StripesController {
     if (!settling) this.localFollowMs = reply.stats?.localUpdate && reply.stats.madeAhead ? roundTripMs : null;
     // fieldFrameWaited: ms the field's frame could wait for these stripes (0: it was drawn first).
     this.stats = { ...reply.stats, fieldKey: field.key, roundTripMs, drawMs, drawnAt, fieldFrameWaited };
+    this.onChange();
+  }
+
+  // A field that is zero everywhere has no direction to follow: no pattern is shown (the surface is), and the
+  // status says why, until a field with one comes.
+  #showZeroField(wanted, fieldKey) {
+    this.model.clearPattern();
+    this.shown = wanted;
+    this.settled = true;
+    this.settleNow = false;
+    this.error = null;
+    this.stats = { zeroField: true, families: 0, fieldKey };
     this.onChange();
   }
 
@@ -319,6 +332,7 @@ export class StripesController {
     if (!this.visible) return null;
     await this.update();
     await this.whenIdle({ settled: true });
+    if (this.stats?.zeroField) return null; // nothing to bake
     const { profile } = this.effective();
     const rgb = (c) => [(c >> 16) & 255, (c >> 8) & 255, c & 255];
     return { profile, width: this.width(), light: rgb(this.options.light), dark: rgb(this.options.dark) };

@@ -95,6 +95,8 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
     light.value = s.light;
     dark.value = s.dark;
     if (s.error) status.textContent = s.error;
+    else if (s.stats?.zeroField)
+      status.textContent = 'The field is zero everywhere: draw a stroke or drop a source for the stripes to follow.';
     else if (s.stats) {
       const t = s.stats;
       status.textContent = `${t.families === 2 ? 'Two families' : 'One family'}: ${t.iterations} steps, ` +

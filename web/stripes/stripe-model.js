@@ -124,6 +124,12 @@ export class StripeModel {
     return true;
   }
 
+  // No pattern: the surface shows as it is until the next one.
+  clearPattern() {
+    this.hasPattern = false;
+    this.#changed();
+  }
+
   // profile: a name of profiles.js PROFILES; width: its lines' share of a period; light, dark: sRGB colours as
   // numbers (0xrrggbb).
   setStyle({ profile, width, light, dark }) {

@@ -24,11 +24,14 @@ export function cornerAttributes({ families, cornerPhase, branchIndex }) {
   return { phase, branch };
 }
 
-// The pattern of the current field's `component` with `options`, as the page takes it.
+// The pattern of the current field's `component` with `options`, as the page takes it; {zeroField: true} for a
+// field that is zero everywhere (a new model's vector field before its first edit, a Hodge part it lacks), which
+// has no direction for stripes to follow (its pattern would be one flat colour).
 function pattern(state, component, options) {
   const t0 = performance.now();
   const part = component && component !== 'whole' ? state.field.hodge().component(component) : null;
   const vectors = part?.vertexVectors ?? null;
+  if (!(vectors ?? state.core.vertexVectors((view) => view)).some((x) => x !== 0)) return { zeroField: true };
   const stats = state.core.computeStripes(vectors, options, state.interruption());
   if (!stats) return { interrupted: true };
   const { phase, branch } = cornerAttributes(state.core.stripeArrays());
