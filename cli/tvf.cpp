@@ -262,6 +262,10 @@ struct BakedStripes {
 
 BakedStripes bakeStripes(const tvf::Designer& designer, const tvf::ExportAtlas& atlas,
                          const tvf::FieldExportOptions& options, const tvf::DesignStripeOptions& stripes) {
+  if (tvf::fieldIsZero(designer.vertexVectors()))
+    throw tvf::InputError(
+        "--stripes: the field is zero everywhere (the design has nothing to shape it): there is no direction "
+        "for stripes to follow");
   tvf::DesignStripes pattern;
   pattern.compute(designer.mesh(), designer.topology(), designer.geometry(), designer.vertexNormals(),
                   designer.symmetry(), designer.vertexVectors(), stripes);

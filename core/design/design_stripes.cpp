@@ -74,6 +74,10 @@ DesignStripeOptions designStripeOptionsFromJson(const std::string& json, int sym
   return out;
 }
 
+bool fieldIsZero(const std::vector<double>& vertexVectors) {
+  return std::all_of(vertexVectors.begin(), vertexVectors.end(), [](double x) { return x == 0; });
+}
+
 DesignStripes::DesignStripes() = default;
 DesignStripes::~DesignStripes() = default;
 

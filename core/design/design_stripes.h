@@ -52,6 +52,11 @@ DesignStripeOptions designStripeOptionsFromJson(const std::string& json, int sym
 // that is not positive and finite, or a magnitudeSpacing outside [0, 1].
 void checkStripeOptions(int symmetry, const DesignStripeOptions& options);
 
+// Whether a field (3 per vertex) is zero everywhere: a vector field with nothing to shape it (a design with
+// no constraints, a Hodge part the design lacks) has no direction for stripes to follow; its pattern would be
+// one flat colour. The page shows none then (web/stripes/worker-ops.js), `tvf export --stripes` refuses it.
+bool fieldIsZero(const std::vector<double>& vertexVectors);
+
 class DesignStripes {
  public:
   DesignStripes();

@@ -720,6 +720,11 @@ TEST_F(CurvedPatchExport, StripesAreBakedIntoTheBaseColourAlongTheStroke) {
             << " at 0.2\n";
   EXPECT_NEAR(own, 0.5, 0.05);
   EXPECT_NEAR(narrow, 0.2, 0.05);
+  // A design with nothing to shape its field: no direction for stripes, refused (the page shows none).
+  std::ofstream(dir_ / "empty.json") << json{{"boundary", "free"}, {"constraints", json::array()}}.dump();
+  EXPECT_EQ(runCli(path("patch.glb") + " " + path("empty.json") + " --glb " + path("e.glb") + " --stripes 6"),
+            2);
+  EXPECT_EQ(runCli(path("patch.glb") + " " + path("empty.json") + " --glb " + path("e.glb")), 0);
   for (const char* bad : {" --stripes 6 --stripe-width 1.5", " --stripe-width 0.2", " --stripes-across"})
     EXPECT_EQ(runCli(path("patch.glb") + " " + path("design.json") + " --glb " + path("z.glb") + bad), 2)
         << bad;

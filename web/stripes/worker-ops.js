@@ -26,7 +26,8 @@ export function cornerAttributes({ families, cornerPhase, branchIndex }) {
 
 // The pattern of the current field's `component` with `options`, as the page takes it; {zeroField: true} for a
 // field that is zero everywhere (a new model's vector field before its first edit, a Hodge part it lacks), which
-// has no direction for stripes to follow (its pattern would be one flat colour).
+// has no direction for stripes to follow (its pattern would be one flat colour; core/design/design_stripes.h
+// fieldIsZero, by which `tvf export --stripes` refuses it).
 function pattern(state, component, options) {
   const t0 = performance.now();
   const part = component && component !== 'whole' ? state.field.hodge().component(component) : null;
