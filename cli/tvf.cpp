@@ -268,7 +268,7 @@ BakedStripes bakeStripes(const tvf::Designer& designer, const tvf::ExportAtlas& 
         "for stripes to follow");
   tvf::DesignStripes pattern;
   pattern.compute(designer.mesh(), designer.topology(), designer.geometry(), designer.vertexNormals(),
-                  designer.symmetry(), designer.vertexVectors(), stripes);
+                  designer.symmetry(), designer.vertexVectors(), stripes, &designer.faceVectors());
   const std::vector<uint8_t> rgba =
       tvf::stripeTextureRgba(designer.mesh(), pattern.pattern(), atlas.cornerUVs, options.size,
                              options.gutterTexels, {}, stripes.profile, stripes.width);

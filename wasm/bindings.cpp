@@ -498,8 +498,10 @@ class DesignerBinding {
         throw tvf::InputError("stripes: expected 3 numbers per vertex of the model");
       const auto t0 = std::chrono::steady_clock::now();
       try {
+        // The design's own field has its faces' too; a given one (a Hodge part) its vertices' alone.
         stripes_.compute(d.mesh(), d.topology(), d.geometry(), d.vertexNormals(), d.symmetry(),
-                         given.empty() ? d.vertexVectors() : given, o);
+                         given.empty() ? d.vertexVectors() : given, o,
+                         given.empty() ? &d.faceVectors() : nullptr);
       } catch (const tvf::StripesInterrupted&) {
         stripesInterrupted_ = true;
       }
@@ -517,7 +519,7 @@ class DesignerBinding {
                           {"iterations", p.iterations}, {"factorMs", p.factorMs},
                           {"iterateMs", p.iterateMs},   {"analysisReused", p.analysisReused},
                           {"spacingMs", p.spacingMs},   {"smoothMs", p.smoothMs},
-                          {"shift", p.shift},
+                          {"alignMs", p.alignMs},       {"shift", p.shift},
                           {"shiftRefused", p.shiftRefused},
                           {"localUpdate", p.localUpdate},   {"localVertices", p.localVertices},
                           {"ms", stripesMs_}}

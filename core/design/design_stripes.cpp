@@ -91,7 +91,8 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
                                             const MeshGeometry& geometry,
                                             const std::vector<double>& vertexNormals, int symmetry,
                                             const std::vector<double>& vertexVectors,
-                                            const DesignStripeOptions& options) {
+                                            const DesignStripeOptions& options,
+                                            const std::vector<double>* faceVectors) {
   checkStripeOptions(symmetry, options);
   StripeOptions o;
   o.symmetry = symmetry;
@@ -101,6 +102,7 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
   o.adaptSpacing = options.adaptSpacing;
   o.localUpdate = options.localUpdate;
   o.interrupted = options.interrupted;
+  if (faceVectors) o.faceDirections = *faceVectors;
   if (options.magnitudeSpacing > 0 && symmetry == 1)
     o.vertexFrequencyScale = magnitudeScale(vertexVectors, options.magnitudeSpacing);
   // Each workspace keeps one turn of the field (its analysis, its last psi, a local update's start): the
@@ -123,6 +125,7 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
     along.iterateMs += across.iterateMs;
     along.spacingMs += across.spacingMs;
     along.smoothMs += across.smoothMs;
+    along.alignMs += across.alignMs;
     along.shiftRefused = along.shiftRefused || across.shiftRefused;
     along.residual = std::max(along.residual, across.residual);
     along.psi.clear();  // each family's psi is its workspace's

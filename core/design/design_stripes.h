@@ -62,12 +62,14 @@ class DesignStripes {
   DesignStripes();
   ~DesignStripes();
   // vertexNormals: the mesh's, as the design keeps them (Designer::vertexNormals). vertexVectors: 3 per
-  // vertex, the field drawn (the design's, or a part of its Hodge decomposition). Throws checkStripeOptions's
-  // InputError, or stripePattern's.
+  // vertex, the field drawn (the design's, or a part of its Hodge decomposition); faceVectors: optional, 3
+  // per face, the same field at the faces (Designer::faceVectors), which the stripes' phase then follows
+  // (StripeOptions::faceDirections). Throws checkStripeOptions's InputError, or stripePattern's.
   const StripePattern& compute(const SurfaceMesh& mesh, const MeshTopology& topology,
                                const MeshGeometry& geometry, const std::vector<double>& vertexNormals,
                                int symmetry, const std::vector<double>& vertexVectors,
-                               const DesignStripeOptions& options);
+                               const DesignStripeOptions& options,
+                               const std::vector<double>* faceVectors = nullptr);
   const StripePattern& pattern() const { return pattern_; }
   StripeProfile profile() const { return profile_; }
   void clear();  // for another mesh

@@ -694,51 +694,168 @@ void smallestEigenvector(const SparseMatrix& upper, const Eigen::VectorXd& mass,
   out.factorMs += reshiftMs;
 }
 
-std::complex<double> psiOf(const StripePattern& p, int F, int32_t v, int f, int sign) {
-  const size_t i = 2 * (static_cast<size_t>(v) * F + f);
-  return {p.psi[i], sign * p.psi[i + 1]};
+// One face's corners for one family of its first corner, unwrapped: each corner's vertex, family and sign
+// (matched from the first corner's), their phases alpha[k] lifted along the face's edges (alpha[3]: back at
+// the first corner), whether the field's representatives do not match up round it, and its branch index n.
+struct FaceLift {
+  int32_t v[3];
+  int family[4], sign[4];
+  double alpha[4];
+  bool fieldSingular = false;
+  int n = 0;
+};
+
+FaceLift liftFace(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam, const EdgeTurns& turns,
+                  const StripeOptions& o, const std::vector<double>& psi, int32_t face, int f0) {
+  const int F = fam.count;
+  FaceLift l;
+  for (int k = 0; k < 3; ++k) l.v[k] = mesh.triangles[3 * face + k];
+  l.family[0] = f0, l.sign[0] = 1;
+  for (int k = 0; k < 3; ++k) {
+    const Match m = walk(t, turns.matches, F, t.edgeOf(face, k), l.v[k], l.family[k]);
+    l.family[k + 1] = m.family, l.sign[k + 1] = l.sign[k] * m.sign;
+  }
+  l.fieldSingular = l.family[3] != f0 || l.sign[3] != 1;
+  const auto psiAt = [&psi, F](int32_t v, int f, int sign) {
+    const size_t i = 2 * (static_cast<size_t>(v) * F + f);
+    return std::complex<double>(psi[i], sign * psi[i + 1]);
+  };
+  l.alpha[0] = std::arg(psiAt(l.v[0], l.family[0], l.sign[0]));
+  for (int k = 0; k < 3; ++k) {
+    const int32_t a = l.v[k], b = l.v[(k + 1) % 3];
+    const int fb = k < 2 ? l.family[k + 1] : f0, sb = k < 2 ? l.sign[k + 1] : 1;
+    const Eigen::Vector3d ya = l.sign[k] * fam.growth[static_cast<size_t>(a) * F + l.family[k]];
+    const Eigen::Vector3d yb = sb * fam.growth[static_cast<size_t>(b) * F + fb];
+    const double omega = advance(mesh, o, F, a, l.family[k], b, fb, ya, yb);
+    const std::complex<double> pa = psiAt(a, l.family[k], l.sign[k]), pb = psiAt(b, fb, sb);
+    // arg(pb / (e^(i omega) pa)), wrapped to (-pi, pi]: one angle, no sine and cosine of omega.
+    const double turn = std::arg(pb * std::conj(pa)) - omega;
+    l.alpha[k + 1] = l.alpha[k] + omega + (turn - kTwoPi * std::ceil(turn / kTwoPi - 0.5));
+  }
+  l.n = l.fieldSingular ? 0 : static_cast<int>(std::lround((l.alpha[3] - l.alpha[0]) / kTwoPi));
+  return l;
 }
 
 // Corner phases and branch index of one face and one family of its first corner.
 void facePhases(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam, const EdgeTurns& turns,
                 const StripeOptions& o, int32_t face, int f0, StripePattern& out, bool& fieldSingular) {
-  const int F = fam.count;
-  int32_t v[3];
-  int family[4], sign[4];
-  for (int k = 0; k < 3; ++k) v[k] = mesh.triangles[3 * face + k];
-  family[0] = f0, sign[0] = 1;
-  for (int k = 0; k < 3; ++k) {
-    const Match m = walk(t, turns.matches, F, t.edgeOf(face, k), v[k], family[k]);
-    family[k + 1] = m.family, sign[k + 1] = sign[k] * m.sign;
-  }
-  fieldSingular = family[3] != f0 || sign[3] != 1;
-  double alpha[4];
-  alpha[0] = std::arg(psiOf(out, F, v[0], family[0], sign[0]));
-  for (int k = 0; k < 3; ++k) {
-    const int32_t a = v[k], b = v[(k + 1) % 3];
-    const int fb = k < 2 ? family[k + 1] : f0, sb = k < 2 ? sign[k + 1] : 1;
-    const Eigen::Vector3d ya = sign[k] * fam.growth[static_cast<size_t>(a) * F + family[k]];
-    const Eigen::Vector3d yb = sb * fam.growth[static_cast<size_t>(b) * F + fb];
-    const double omega = advance(mesh, o, F, a, family[k], b, fb, ya, yb);
-    const std::complex<double> pa = psiOf(out, F, a, family[k], sign[k]), pb = psiOf(out, F, b, fb, sb);
-    // arg(pb / (e^(i omega) pa)), wrapped to (-pi, pi]: one angle, no sine and cosine of omega.
-    const double turn = std::arg(pb * std::conj(pa)) - omega;
-    alpha[k + 1] = alpha[k] + omega + (turn - kTwoPi * std::ceil(turn / kTwoPi - 0.5));
-  }
-  const int n = fieldSingular ? 0 : static_cast<int>(std::lround((alpha[3] - alpha[0]) / kTwoPi));
+  const FaceLift l = liftFace(mesh, t, fam, turns, o, out.psi, face, f0);
+  fieldSingular = l.fieldSingular;
   const size_t slot = static_cast<size_t>(f0) * t.numFaces + face;
-  out.branchIndex[slot] = static_cast<int8_t>(std::clamp(n, -127, 127));
-  for (int k = 0; k < 3; ++k)
-    out.cornerPhase[3 * slot + k] = static_cast<float>(alpha[k] - n * kTwoPi * k / 3.0);
+  out.branchIndex[slot] = static_cast<int8_t>(std::clamp(l.n, -127, 127));
+  const bool turned = out.phaseTurn.size() == static_cast<size_t>(t.numVertices) * fam.count;
+  for (int k = 0; k < 3; ++k) {
+    const double turn =
+        turned ? l.sign[k] * out.phaseTurn[static_cast<size_t>(l.v[k]) * fam.count + l.family[k]] : 0;
+    out.cornerPhase[3 * slot + k] = static_cast<float>(l.alpha[k] + turn - l.n * kTwoPi * k / 3.0);
+  }
 }
 
-// The workspace's last psi in this field's representatives (the start of an edit's update): each family
+// The phase turned where its stripes cross the field: each (vertex, family) phase moved by delta minimizing
+//   sum_f |f| [q_f ((grad a_f) . X_f)^2 + kAlignRate ((grad delta_f) . Y_f)^2]
+//     + kAlignSmoothness sum_f |f| |grad delta_f|^2 + kAlignMass sum_v A_v delta_v^2 / mean A,
+// a_f the face's lifted corner phases (liftFace) with each corner's delta (its sign: a line's phase may run
+// the other way) interpolated linearly, X_f the field there (the face's own where given, else its corners'
+// matched to the first's, in the face's plane) and Y_f = n_f x X_f. The first term is the stripes' direction
+// error (their gradient across the field) on regular faces (no branch point, the field's representatives
+// matched round it), faded near the field's singularities as the adapted spacing is (q_f: spacingWeights);
+// the second keeps each face's stripe rate where the eigenvector has it; the third keeps the turn smooth.
+// Each edge's lift (its turn within (-pi, pi]) stays psi's: no branch point moves or appears, and psi itself
+// is not changed.
+// Why: the eigenvector's compromise between direction and spacing is the energy's, weighted by |psi|^2 (a
+// small |psi| makes an error cheap), and a cross field's families trade against each other: bunny00's grid
+// read 0.90 / 1.07 degrees off the field away from singularities on the GLB, knot2-5000's coarse tube 2.69.
+// The fade matters: without it the faces round the singularities, where the field turns faster than any
+// stripe can, pulled the turn their way and set homer's stripes further off elsewhere (each face's phase
+// gradient 1.02 -> 1.04 degrees, 0.83 with it). The rate's weight trades direction against the spacing's
+// evenness (bunny00's grid: 0.58 / 0.68 degrees at 0 and the spread of the log of each face's rate 0.254 ->
+// 0.283, 0.70 / 0.78 and 0.270 at 0.03, 0.79 / 0.89 and 0.263 at 0.1); docs/stripes.md has the sweep.
+constexpr double kAlignRate = 0.03;
+constexpr double kAlignSmoothness = 1e-2;
+constexpr double kAlignMass = 1e-6;
+
+// The field at a face (3 per face, in its plane), of its four quarter turns the one nearest `near`: the
+// representative the face's corners matched to their first; `near` where the face has none.
+Eigen::Vector3d faceDirectionNear(const std::vector<double>& faceDirections, int32_t face,
+                                  const Eigen::Vector3d& normal, const Eigen::Vector3d& near) {
+  Eigen::Vector3d d(&faceDirections[3 * static_cast<size_t>(face)]);
+  d -= d.dot(normal) * normal;
+  const double length = d.norm();
+  if (!(length > 0) || !std::isfinite(length)) return near;
+  d /= length;
+  Eigen::Vector3d best = d;
+  for (int q = 1; q < 4; ++q) {
+    d = normal.cross(d);
+    if (d.dot(near) > best.dot(near)) best = d;
+  }
+  return best;
+}
+
+// The turn's normal equations over the faces given (every face, or a local update's: those reaching its
+// region), in the numbering v F + f. Into `system`: a TripletSystem or a RegionSystem.
+template <class System>
+void alignmentEntries(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                      const Families& fam, const EdgeTurns& turns, const StripeOptions& o,
+                      const std::vector<double>& psi, const std::vector<double>& weight, Elements faces,
+                      Elements vertices, System& system) {
+  const int F = fam.count;
+  system.reserve(static_cast<size_t>(faces.size()) * F * 12);
+  for (int32_t i = 0; i < faces.size(); ++i) {
+    const int32_t face = faces[i];
+    Eigen::Vector3d p[3], grad[3];
+    facePositions(mesh, face, p);
+    const FaceNormalArea na = faceNormalArea(p);
+    if (!(na.area > 0)) continue;
+    barycentricGradients(p, grad);
+    for (int f0 = 0; f0 < F; ++f0) {
+      const FaceLift l = liftFace(mesh, t, fam, turns, o, psi, face, f0);
+      int32_t idx[3];
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) {
+        idx[k] = l.v[k] * F + l.family[k];
+        x += l.sign[k] * fam.direction[static_cast<size_t>(l.v[k]) * F + l.family[k]];
+      }
+      for (int k = 0; k < 3; ++k)
+        for (int m = k; m < 3; ++m)
+          system.add(idx[k], idx[m],
+                     kAlignSmoothness * na.area * l.sign[k] * l.sign[m] * grad[k].dot(grad[m]));
+      x -= x.dot(na.normal) * na.normal;
+      if (!o.faceDirections.empty()) x = faceDirectionNear(o.faceDirections, face, na.normal, x);
+      const double length = x.norm();
+      if (l.fieldSingular || l.n != 0 || !(length > 0)) continue;
+      x /= length;
+      // (grad a_f + grad delta) . X_f, the stripes' cross-gradient, and (grad delta) . Y_f, the turn's change
+      // of their rate.
+      const auto row = [&](const Eigen::Vector3d& along, bool fromPhase, double weight) {
+        double c[3], c0 = 0;
+        for (int k = 0; k < 3; ++k) {
+          c[k] = l.sign[k] * grad[k].dot(along);
+          if (fromPhase) c0 += grad[k].dot(along) * l.alpha[k];
+        }
+        for (int k = 0; k < 3; ++k) {
+          if (fromPhase) system.addRhs(idx[k], -weight * na.area * c0 * c[k]);
+          for (int m = k; m < 3; ++m) system.add(idx[k], idx[m], weight * na.area * c[k] * c[m]);
+        }
+      };
+      if (weight[face] > 0) row(x, true, weight[face]);
+      row(na.normal.cross(x), false, kAlignRate);
+    }
+  }
+  const double mass = kAlignMass * t.numVertices / std::max(g.star0.sum(), 1e-300);
+  for (int32_t i = 0; i < vertices.size(); ++i)
+    for (int f = 0; f < F; ++f)
+      system.add(vertices[i] * F + f, vertices[i] * F + f, mass * g.star0[vertices[i]]);
+}
+
+// The workspace's last pattern in this field's representatives (the start of an edit's update): each family
 // and vertex takes the last pattern's family there whose growth direction is nearest its own, conjugated
 // where that one points the other way (the same stripes, the phase run backwards). Representatives chosen
-// afresh after an edit (a family's label, a line's sign) then cost the start nothing.
-std::vector<double> psiInNewFrames(const Families& fam, const StripeWorkspace& w, int32_t numVertices) {
+// afresh after an edit (a family's label, a line's sign) then cost the start nothing. For psi (2 a family)
+// or the phase's turn (1 a family: its sign follows the conjugation).
+std::vector<double> inNewFrames(const Families& fam, const StripeWorkspace& w,
+                                const std::vector<double>& last, int per, int32_t numVertices) {
   const int F = fam.count;
-  std::vector<double> psi(w.psi.size());
+  std::vector<double> out(last.size());
   for (int32_t v = 0; v < numVertices; ++v)
     for (int f = 0; f < F; ++f) {
       const Eigen::Vector3d& y = fam.growth[static_cast<size_t>(v) * F + f];
@@ -748,11 +865,63 @@ std::vector<double> psiInNewFrames(const Families& fam, const StripeWorkspace& w
         const double d = y.dot(w.growth[static_cast<size_t>(v) * F + g]);
         if (std::abs(d) > best) best = std::abs(d), from = g, sign = d < 0 ? -1 : 1;
       }
-      const size_t a = 2 * (static_cast<size_t>(v) * F + from), b = 2 * (static_cast<size_t>(v) * F + f);
-      psi[b] = w.psi[a];
-      psi[b + 1] = sign * w.psi[a + 1];
+      const size_t a = per * (static_cast<size_t>(v) * F + from), b = per * (static_cast<size_t>(v) * F + f);
+      if (per == 2) {
+        out[b] = last[a];
+        out[b + 1] = sign * last[a + 1];
+      } else {
+        out[b] = sign * last[a];
+      }
     }
-  return psi;
+  return out;
+}
+
+std::vector<double> psiInNewFrames(const Families& fam, const StripeWorkspace& w, int32_t numVertices) {
+  return inNewFrames(fam, w, w.psi, 2, numVertices);
+}
+
+// The turn (alignmentEntries) solved, into out.phaseTurn: on every vertex, or a local update's region alone,
+// the last pattern's turn (in this field's representatives) held around it and taken up by its rows there
+// (the region's analysis is its spacing's where that was solved). A whole pattern's takes the spacing's
+// analysis where its pattern fits. Where the solve fails, no turn (the region's: none within it).
+void alignPhase(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g, const Families& fam,
+                const EdgeTurns& turns, const StripeOptions& o, const StripeRegion* region,
+                const RegionAnalysis* regionSpacing, const std::vector<uint8_t>& faceTurns,
+                const StripeWorkspace& w, StripePattern& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<double> weight = spacingWeights(t, g, faceTurns, o);
+  const int32_t n = t.numVertices * fam.count;
+  const bool held =
+      region && w.phaseTurn.size() == static_cast<size_t>(n) && w.growth.size() == fam.growth.size();
+  const std::vector<double> last =
+      held ? inNewFrames(fam, w, w.phaseTurn, 1, t.numVertices) : std::vector<double>();
+  Eigen::VectorXd delta = Eigen::VectorXd::Zero(n);
+  if (held) delta = Eigen::Map<const Eigen::VectorXd>(last.data(), n);
+  bool solved = false;
+  if (region) {
+    RegionSystem system(t, *region, fam.count, delta);
+    alignmentEntries(mesh, t, g, fam, turns, o, out.psi, weight, Elements{&region->faces, t.numFaces},
+                     Elements{&region->vertices, t.numVertices}, system);
+    solved = system.solve(region->ordering, delta, regionSpacing);
+    if (!solved)
+      for (int32_t v : region->vertices)
+        delta.segment(static_cast<Eigen::Index>(v) * fam.count, fam.count).setZero();
+  } else {
+    TripletSystem system;
+    system.rhs = Eigen::VectorXd::Zero(n);
+    alignmentEntries(mesh, t, g, fam, turns, o, out.psi, weight, Elements{nullptr, t.numFaces},
+                     Elements{nullptr, t.numVertices}, system);
+    const SparseMatrix upper = system.upper(n);
+    if (w.spacingFactor && w.spacingFactor->permutation().size() == static_cast<size_t>(n)) {
+      SpdFactor factor(upper, w.spacingFactor->permutation(), w.spacingFactor->symbolic());
+      solved = factor.ok() && factor.solve(system.rhs, delta);
+    } else {
+      solved = solveSpdOnce(upper, system.rhs, delta);
+    }
+    if (!solved) delta.setZero();
+  }
+  out.phaseTurn.assign(delta.data(), delta.data() + n);
+  out.alignMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // The vertices where the field's direction moved by more than options.localUpdateDegrees (each family against
@@ -884,6 +1053,7 @@ void keepPattern(const Families& fam, const StripeOptions& options, const Stripe
                  const StripePattern& out, StripeWorkspace& w) {
   const int F = fam.count;
   w.psi = out.psi;
+  w.phaseTurn = out.phaseTurn;
   w.symmetry = options.symmetry;
   w.frequency = options.frequency;
   w.adaptSpacing = options.adaptSpacing;
@@ -938,6 +1108,8 @@ void checkInput(const SurfaceMesh& mesh, const std::vector<double>& dirs, const 
     throw InputError("stripe pattern: the frequency must be positive and finite");
   if (dirs.size() != 3 * static_cast<size_t>(mesh.numVertices()))
     throw InputError("stripe pattern: expected 3 direction components per vertex");
+  if (!o.faceDirections.empty() && o.faceDirections.size() != 3 * static_cast<size_t>(mesh.numFaces()))
+    throw InputError("stripe pattern: expected 3 face direction components per face");
   if (!o.vertexFrequencyScale.empty()) {
     if (o.vertexFrequencyScale.size() != static_cast<size_t>(mesh.numVertices()))
       throw InputError("stripe pattern: expected one frequency scale per vertex");
@@ -968,6 +1140,7 @@ void StripeWorkspace::clear() {
   spacingFactor.reset();
   vertexOrdering.clear();
   psi.clear();
+  phaseTurn.clear();
   growth.clear();
   followed.clear();
   spacingU.clear();
@@ -1051,6 +1224,16 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
     wholePattern(topology, g, fam, turns, options, definite, w, out);
   }
   checkInterruption(options);
+  if (options.alignPhase) {
+    // The faces round which the field turns, as the spacing found them (else found here, for every face).
+    const std::vector<uint8_t> turning = options.adaptSpacing
+                                             ? std::vector<uint8_t>()
+                                             : fieldTurns(mesh, topology, g, fam, turns, nullptr, {});
+    alignPhase(mesh, topology, g, fam, turns, adapted, onRegion ? &region : nullptr,
+               onRegion && options.adaptSpacing ? &spacing.analysis : nullptr,
+               options.adaptSpacing ? spacing.faceTurns : turning, w, out);
+    checkInterruption(options);
+  }
   keepPattern(fam, options, onRegion ? &region : nullptr, out, w);
   if (options.adaptSpacing) {
     w.spacingU = std::move(spacing.u);

@@ -79,6 +79,14 @@ struct StripeOptions {
   bool localUpdate = false;
   double localUpdateDegrees = 5;
   double localUpdatePeriods = 1;
+  // The phase turned where its stripes cross the field (StripePattern::phaseTurn): each corner's phase moved
+  // so that the stripes of every regular face follow the field in the least-squares sense, the lifts and
+  // branch points the eigenvector's (stripe_pattern.cpp alignPhase). false: the eigenvector's phase as it is.
+  bool alignPhase = true;
+  // Optional, 3 per face: the field at each face (any representative, any length; zero for none), which the
+  // phase's turn (StripePattern::phaseTurn) follows; empty: the corners' directions averaged. A design's
+  // field is its faces' (Designer::faceVectors), which the vertices' only average.
+  std::vector<double> faceDirections;
   // Optional: a start for psi (a pattern computed before for a field close to this one), 2 x families per
   // vertex.
   std::vector<double> initialPsi;
@@ -100,11 +108,15 @@ struct StripePattern {
   // 2 x families per vertex (re, im), unit B-norm: the energy's smallest eigenvector; a cross field's with
   // each family made unit and smoothed (stripe_pattern.cpp unitSmoothing)
   std::vector<double> psi;
+  // Families per vertex, radians: the turn added to psi's phase at each corner (stripe_pattern.cpp
+  // alignPhase: where the stripes crossed the field), the branch indices and lifts being psi's own.
+  std::vector<double> phaseTurn;
   double eigenvalue = 0;  // the energy's Rayleigh quotient at that eigenvector
   double residual = 0;    // |A psi - eigenvalue B psi| / |A psi| when the iteration stopped
   int iterations = 0;
   double factorMs = 0, iterateMs = 0, spacingMs = 0;
   double smoothMs = 0;  // a cross field's families made unit and smoothed (stripe_pattern.cpp unitSmoothing)
+  double alignMs = 0;  // the phase turned where its stripes crossed the field (stripe_pattern.cpp alignPhase)
   // The shift sigma the energy was factored with (A - sigma B; 0: none), and whether a larger one was tried
   // and refused first (A - sigma B not positive definite: the eigenvalue fell below it).
   double shift = 0;
@@ -135,6 +147,7 @@ struct StripeWorkspace {
   // 50k vertices (empty below: AMD orders them).
   std::vector<int> vertexOrdering;
   std::vector<double> psi;
+  std::vector<double> phaseTurn;        // the last pattern's StripePattern::phaseTurn
   std::vector<Eigen::Vector3d> growth;  // the last pattern's growth directions (families per vertex)
   // The growth directions the pattern follows at each vertex: growth, except outside a local update's region,
   // where the pattern was made for an earlier field (a local update's change is measured against these).

@@ -328,6 +328,78 @@ TEST(DesignStripes, AGridsFamiliesBothFollowTheSmoothestCrossField) {
   }
 }
 
+// The phase turned where its stripes cross the field (StripeOptions::alignPhase) on the smoothest cross field
+// of a bumpy sphere, against its faces' own field (StripeOptions::faceDirections): the same psi and branch
+// faces, the phase still agreeing across every edge, each family nearer its direction away from the field's
+// singularities (each face's phase gradient against the nearer of the face's two lines, area-weighted), and
+// the spacing's spread (of the log of each face's phase rate) grown by 15 % at most.
+TEST(DesignStripes, ThePhaseTurnedOntoTheFieldKeepsItsBranchPoints) {
+  const SurfaceMesh m = bumpySphere(4);
+  Designer d(m);
+  d.setSymmetry(4);
+  d.solve();
+  StripeOptions o;
+  o.symmetry = 4;
+  o.frequency = 6;
+  o.adaptSpacing = true;
+  o.faceDirections = d.faceVectors();
+  o.alignPhase = false;
+  const StripePattern plain =
+      stripePattern(m, d.topology(), d.geometry(), d.vertexNormals(), d.vertexVectors(), o);
+  o.alignPhase = true;
+  const StripePattern turned =
+      stripePattern(m, d.topology(), d.geometry(), d.vertexNormals(), d.vertexVectors(), o);
+  EXPECT_TRUE(plain.phaseTurn.empty());
+  ASSERT_EQ(turned.phaseTurn.size(), 2 * static_cast<size_t>(m.numVertices()));
+  EXPECT_EQ(turned.psi, plain.psi);
+  EXPECT_EQ(turned.branchIndex, plain.branchIndex);
+  EXPECT_EQ(turned.fieldSingular, plain.fieldSingular);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_LT(worstEdgeDisagreement(m, d.topology(), plain, k, 2, true), 1e-4);
+    EXPECT_LT(worstEdgeDisagreement(m, d.topology(), turned, k, 2, true), 1e-4);
+  }
+  const int32_t nF = m.numFaces();
+  const auto centroid = [&m](int32_t f) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) c += vertexPosition(m, m.triangles[3 * f + k]) / 3;
+    return c;
+  };
+  std::vector<Eigen::Vector3d> singular;
+  for (int32_t f = 0; f < nF; ++f)
+    if (plain.fieldSingular[f]) singular.push_back(centroid(f));
+  ASSERT_FALSE(singular.empty());
+  const auto read = [&](const StripePattern& p, int k, double& spread) {
+    double sum = 0, area = 0, rate = 0, rate2 = 0;
+    for (int32_t f = 0; f < nF; ++f) {
+      double nearest = 1e300;
+      for (const Eigen::Vector3d& s : singular) nearest = std::min(nearest, (centroid(f) - s).norm());
+      if (nearest * o.frequency < 2 || p.branchIndex[static_cast<size_t>(k) * nF + f]) continue;
+      Eigen::Vector3d pos[3];
+      facePositions(m, f, pos);
+      const auto na = faceNormalArea(pos);
+      const Eigen::Vector3d field(&d.faceVectors()[3 * f]);
+      const Eigen::Vector3d along = (field - field.dot(na.normal) * na.normal).normalized();
+      const Eigen::Vector3d grad = phaseGradient(m, p, k, f);
+      const double toAlong = std::acos(std::min(1.0, std::abs(grad.normalized().dot(along))));
+      const double toAcross = std::asin(std::min(1.0, std::abs(grad.normalized().dot(along))));
+      sum += na.area * std::min(toAlong, toAcross) * 180 / M_PI;
+      const double r = std::log(grad.norm());
+      rate += na.area * r, rate2 += na.area * r * r, area += na.area;
+    }
+    spread = std::sqrt(std::max(0.0, rate2 / area - (rate / area) * (rate / area)));
+    return sum / area;
+  };
+  for (int k = 0; k < 2; ++k) {
+    double plainSpread = 0, turnedSpread = 0;
+    const double before = read(plain, k, plainSpread), after = read(turned, k, turnedSpread);
+    std::cout << "[ measured ] a bumpy sphere's grid, family " << k << ": " << before
+              << " deg off the field, " << after << " with the phase turned; the spacing's spread "
+              << plainSpread << " -> " << turnedSpread << "\n";
+    EXPECT_LT(after, 0.7 * before) << "family " << k;
+    EXPECT_LT(turnedSpread, 1.15 * plainSpread) << "family " << k;
+  }
+}
+
 TEST(DesignStripes, BadOptionsAreRefusedByName) {
   const auto refusal = [](int symmetry, const std::string& json) {
     try {
