@@ -767,7 +767,7 @@ void facePhases(const SurfaceMesh& mesh, const MeshTopology& t, const Families& 
 // read 0.90 / 1.07 degrees off the field away from singularities on the GLB, knot2-5000's coarse tube 2.69.
 // The fade matters: without it the faces round the singularities, where the field turns faster than any
 // stripe can, pulled the turn their way and set homer's stripes further off elsewhere (each face's phase
-// gradient 1.02 -> 1.04 degrees, 0.83 with it). The rate's weight trades direction against the spacing's
+// gradient 1.02 -> 1.01 degrees, 0.83 with it). The rate's weight trades direction against the spacing's
 // evenness (bunny00's grid: 0.58 / 0.68 degrees at 0 and the spread of the log of each face's rate 0.254 ->
 // 0.283, 0.70 / 0.78 and 0.270 at 0.03, 0.79 / 0.89 and 0.263 at 0.1); docs/stripes.md has the sweep.
 constexpr double kAlignRate = 0.03;
@@ -791,17 +791,15 @@ Eigen::Vector3d faceDirectionNear(const std::vector<double>& faceDirections, int
   return best;
 }
 
-// The turn's normal equations over the faces given (every face, or a local update's: those reaching its
-// region), in the numbering v F + f. Into `system`: a TripletSystem or a RegionSystem.
-template <class System>
-void alignmentEntries(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
-                      const Families& fam, const EdgeTurns& turns, const StripeOptions& o,
-                      const std::vector<double>& psi, const std::vector<double>& weight, Elements faces,
-                      Elements vertices, System& system) {
+// The turn's normal equations, in the numbering v F + f: each face's 3 x 3 block summed, then its entries.
+TripletSystem alignmentSystem(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
+                              const Families& fam, const EdgeTurns& turns, const StripeOptions& o,
+                              const std::vector<double>& psi, const std::vector<double>& weight) {
   const int F = fam.count;
-  system.reserve(static_cast<size_t>(faces.size()) * F * 12);
-  for (int32_t i = 0; i < faces.size(); ++i) {
-    const int32_t face = faces[i];
+  TripletSystem system;
+  system.rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(t.numVertices) * F);
+  system.reserve(static_cast<size_t>(t.numFaces) * F * 6 + system.rhs.size());
+  for (int32_t face = 0; face < t.numFaces; ++face) {
     Eigen::Vector3d p[3], grad[3];
     facePositions(mesh, face, p);
     const FaceNormalArea na = faceNormalArea(p);
@@ -809,42 +807,40 @@ void alignmentEntries(const SurfaceMesh& mesh, const MeshTopology& t, const Mesh
     barycentricGradients(p, grad);
     for (int f0 = 0; f0 < F; ++f0) {
       const FaceLift l = liftFace(mesh, t, fam, turns, o, psi, face, f0);
-      int32_t idx[3];
       Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      Eigen::Matrix3d signedGrad;  // column k: corner k's barycentric gradient times its sign
       for (int k = 0; k < 3; ++k) {
-        idx[k] = l.v[k] * F + l.family[k];
         x += l.sign[k] * fam.direction[static_cast<size_t>(l.v[k]) * F + l.family[k]];
+        signedGrad.col(k) = l.sign[k] * grad[k];
       }
-      for (int k = 0; k < 3; ++k)
-        for (int m = k; m < 3; ++m)
-          system.add(idx[k], idx[m],
-                     kAlignSmoothness * na.area * l.sign[k] * l.sign[m] * grad[k].dot(grad[m]));
+      Eigen::Matrix3d h = kAlignSmoothness * signedGrad.transpose() * signedGrad;
+      Eigen::Vector3d r = Eigen::Vector3d::Zero();
       x -= x.dot(na.normal) * na.normal;
       if (!o.faceDirections.empty()) x = faceDirectionNear(o.faceDirections, face, na.normal, x);
       const double length = x.norm();
-      if (l.fieldSingular || l.n != 0 || !(length > 0)) continue;
-      x /= length;
-      // (grad a_f + grad delta) . X_f, the stripes' cross-gradient, and (grad delta) . Y_f, the turn's change
-      // of their rate.
-      const auto row = [&](const Eigen::Vector3d& along, bool fromPhase, double weight) {
-        double c[3], c0 = 0;
-        for (int k = 0; k < 3; ++k) {
-          c[k] = l.sign[k] * grad[k].dot(along);
-          if (fromPhase) c0 += grad[k].dot(along) * l.alpha[k];
-        }
-        for (int k = 0; k < 3; ++k) {
-          if (fromPhase) system.addRhs(idx[k], -weight * na.area * c0 * c[k]);
-          for (int m = k; m < 3; ++m) system.add(idx[k], idx[m], weight * na.area * c[k] * c[m]);
-        }
-      };
-      if (weight[face] > 0) row(x, true, weight[face]);
-      row(na.normal.cross(x), false, kAlignRate);
+      if (!l.fieldSingular && l.n == 0 && length > 0) {
+        x /= length;
+        // (grad a_f + grad delta) . X_f, the stripes' cross-gradient; (grad delta) . Y_f, the turn's change
+        // of their rate.
+        const Eigen::Vector3d across = signedGrad.transpose() * x;
+        const Eigen::Vector3d along = signedGrad.transpose() * na.normal.cross(x);
+        double c0 = 0;
+        for (int k = 0; k < 3; ++k) c0 += grad[k].dot(x) * l.alpha[k];
+        h += weight[face] * across * across.transpose() + kAlignRate * along * along.transpose();
+        r = -weight[face] * c0 * across;
+      }
+      int32_t idx[3];
+      for (int k = 0; k < 3; ++k) idx[k] = l.v[k] * F + l.family[k];
+      for (int k = 0; k < 3; ++k) {
+        system.addRhs(idx[k], na.area * r[k]);
+        for (int m = k; m < 3; ++m) system.add(idx[k], idx[m], na.area * h(k, m));
+      }
     }
   }
   const double mass = kAlignMass * t.numVertices / std::max(g.star0.sum(), 1e-300);
-  for (int32_t i = 0; i < vertices.size(); ++i)
-    for (int f = 0; f < F; ++f)
-      system.add(vertices[i] * F + f, vertices[i] * F + f, mass * g.star0[vertices[i]]);
+  for (int32_t v = 0; v < t.numVertices; ++v)
+    for (int f = 0; f < F; ++f) system.add(v * F + f, v * F + f, mass * g.star0[v]);
+  return system;
 }
 
 // The workspace's last pattern in this field's representatives (the start of an edit's update): each family
@@ -880,48 +876,33 @@ std::vector<double> psiInNewFrames(const Families& fam, const StripeWorkspace& w
   return inNewFrames(fam, w, w.psi, 2, numVertices);
 }
 
-// The turn (alignmentEntries) solved, into out.phaseTurn: on every vertex, or a local update's region alone,
-// the last pattern's turn (in this field's representatives) held around it and taken up by its rows there
-// (the region's analysis is its spacing's where that was solved). A whole pattern's takes the spacing's
-// analysis where its pattern fits. Where the solve fails, no turn (the region's: none within it).
+// The turn (alignmentEntries) solved on every vertex, into out.phaseTurn (none where the solve failed), on
+// the adapted spacing's symbolic factor where its pattern fits (the same graph).
 void alignPhase(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g, const Families& fam,
-                const EdgeTurns& turns, const StripeOptions& o, const StripeRegion* region,
-                const RegionAnalysis* regionSpacing, const std::vector<uint8_t>& faceTurns,
+                const EdgeTurns& turns, const StripeOptions& o, const std::vector<uint8_t>& faceTurns,
                 const StripeWorkspace& w, StripePattern& out) {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<double> weight = spacingWeights(t, g, faceTurns, o);
   const int32_t n = t.numVertices * fam.count;
-  const bool held =
-      region && w.phaseTurn.size() == static_cast<size_t>(n) && w.growth.size() == fam.growth.size();
-  const std::vector<double> last =
-      held ? inNewFrames(fam, w, w.phaseTurn, 1, t.numVertices) : std::vector<double>();
-  Eigen::VectorXd delta = Eigen::VectorXd::Zero(n);
-  if (held) delta = Eigen::Map<const Eigen::VectorXd>(last.data(), n);
+  const TripletSystem system =
+      alignmentSystem(mesh, t, g, fam, turns, o, out.psi, spacingWeights(t, g, faceTurns, o));
+  const SparseMatrix upper = system.upper(n);
+  Eigen::VectorXd delta;
   bool solved = false;
-  if (region) {
-    RegionSystem system(t, *region, fam.count, delta);
-    alignmentEntries(mesh, t, g, fam, turns, o, out.psi, weight, Elements{&region->faces, t.numFaces},
-                     Elements{&region->vertices, t.numVertices}, system);
-    solved = system.solve(region->ordering, delta, regionSpacing);
-    if (!solved)
-      for (int32_t v : region->vertices)
-        delta.segment(static_cast<Eigen::Index>(v) * fam.count, fam.count).setZero();
+  if (w.spacingFactor && w.spacingFactor->permutation().size() == static_cast<size_t>(n)) {
+    SpdFactor factor(upper, w.spacingFactor->permutation(), w.spacingFactor->symbolic());
+    solved = factor.ok() && factor.solve(system.rhs, delta);
   } else {
-    TripletSystem system;
-    system.rhs = Eigen::VectorXd::Zero(n);
-    alignmentEntries(mesh, t, g, fam, turns, o, out.psi, weight, Elements{nullptr, t.numFaces},
-                     Elements{nullptr, t.numVertices}, system);
-    const SparseMatrix upper = system.upper(n);
-    if (w.spacingFactor && w.spacingFactor->permutation().size() == static_cast<size_t>(n)) {
-      SpdFactor factor(upper, w.spacingFactor->permutation(), w.spacingFactor->symbolic());
-      solved = factor.ok() && factor.solve(system.rhs, delta);
-    } else {
-      solved = solveSpdOnce(upper, system.rhs, delta);
-    }
-    if (!solved) delta.setZero();
+    solved = solveSpdOnce(upper, system.rhs, delta);
   }
-  out.phaseTurn.assign(delta.data(), delta.data() + n);
+  out.phaseTurn = solved ? std::vector<double>(delta.data(), delta.data() + n) : std::vector<double>();
   out.alignMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The last pattern's turn in this field's representatives (none where it had none).
+std::vector<double> heldTurn(const Families& fam, const StripeWorkspace& w, int32_t numVertices) {
+  const bool fits = w.phaseTurn.size() == static_cast<size_t>(numVertices) * fam.count &&
+                    w.growth.size() == fam.growth.size();
+  return fits ? inNewFrames(fam, w, w.phaseTurn, 1, numVertices) : std::vector<double>();
 }
 
 // The vertices where the field's direction moved by more than options.localUpdateDegrees (each family against
@@ -1224,14 +1205,17 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
     wholePattern(topology, g, fam, turns, options, definite, w, out);
   }
   checkInterruption(options);
-  if (options.alignPhase) {
-    // The faces round which the field turns, as the spacing found them (else found here, for every face).
-    const std::vector<uint8_t> turning = options.adaptSpacing
-                                             ? std::vector<uint8_t>()
-                                             : fieldTurns(mesh, topology, g, fam, turns, nullptr, {});
-    alignPhase(mesh, topology, g, fam, turns, adapted, onRegion ? &region : nullptr,
-               onRegion && options.adaptSpacing ? &spacing.analysis : nullptr,
-               options.adaptSpacing ? spacing.faceTurns : turning, w, out);
+  if (options.alignPhase && onRegion) {
+    // A local update is a preview that the whole pattern follows: it keeps the last turn, continuous with
+    // the faces it holds, where solving its own took 12-14 ms of its 41-51 in the page (bunny00's line
+    // field).
+    out.phaseTurn = heldTurn(fam, w, topology.numVertices);
+  } else if (options.alignPhase) {
+    // The faces round which the field turns, as the spacing found them (else found here).
+    alignPhase(
+        mesh, topology, g, fam, turns, adapted,
+        options.adaptSpacing ? spacing.faceTurns : fieldTurns(mesh, topology, g, fam, turns, nullptr, {}), w,
+        out);
     checkInterruption(options);
   }
   keepPattern(fam, options, onRegion ? &region : nullptr, out, w);

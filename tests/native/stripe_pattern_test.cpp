@@ -529,9 +529,12 @@ TEST(StripePattern, ALocalUpdateChangesThePatternOnlyWhereTheFieldChanged) {
     }
   EXPECT_GT(away, m.numFaces() / 3);
 
-  // Where it changed, the new field's stripes, as well as a whole pattern's.
+  // Where it changed, the new field's stripes, as well as a whole pattern's eigenvector (a local update keeps
+  // the last pattern's turn onto the field, StripeOptions::alignPhase: the whole pattern that follows it
+  // turns its own).
   StripeOptions whole = o;
   whole.localUpdate = false;
+  whole.alignPhase = false;
   const StripePattern fresh = stripePattern(m, t, g, bumped, whole);
   const auto near = [&](int32_t f) { return distance(f) < 0.9; };
   const double localAngle = meanFieldAngle(m, local, bumped, near);
