@@ -81,7 +81,8 @@ struct StripeOptions {
   double localUpdatePeriods = 1;
   // The phase turned where its stripes cross the field (StripePattern::phaseTurn): each corner's phase moved
   // so that the stripes of every regular face follow the field in the least-squares sense, the lifts and
-  // branch points the eigenvector's (stripe_pattern.cpp alignPhase). false: the eigenvector's phase as it is.
+  // branch points the eigenvector's (stripe_pattern.cpp alignPhase); a local update keeps the last
+  // pattern's turn (the whole pattern that follows it turns its own). false: the eigenvector's phase as it is.
   bool alignPhase = true;
   // Optional, 3 per face: the field at each face (any representative, any length; zero for none), which the
   // phase's turn (StripePattern::phaseTurn) follows; empty: the corners' directions averaged. A design's
