@@ -876,7 +876,7 @@ std::vector<double> psiInNewFrames(const Families& fam, const StripeWorkspace& w
   return inNewFrames(fam, w, w.psi, 2, numVertices);
 }
 
-// The turn (alignmentEntries) solved on every vertex, into out.phaseTurn (none where the solve failed), on
+// The turn (alignmentSystem) solved on every vertex, into out.phaseTurn (none where the solve failed), on
 // the adapted spacing's symbolic factor where its pattern fits (the same graph).
 void alignPhase(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g, const Families& fam,
                 const EdgeTurns& turns, const StripeOptions& o, const std::vector<uint8_t>& faceTurns,
