@@ -82,7 +82,8 @@ export async function stripesBench(page, strokes) {
     // The worker's pattern in parts (medians): the energy's factorization, the eigensolver's steps, the adapted
     // spacing; and how many strokes' energies a shift below the last eigenvalue was refused for.
     stripesWorkerParts: Object.fromEntries(
-      ['factorMs', 'iterateMs', 'spacingMs', 'smoothMs', 'alignMs'].map((k) => [k, median(runs.map((r) => r.stats?.[k]))]),
+      ['factorMs', 'iterateMs', 'spacingMs', 'smoothMs', 'alignMs', 'closeMs']
+        .map((k) => [k, median(runs.map((r) => r.stats?.[k]))]),
     ),
     stripesShiftsRefused: runs.filter((r) => r.stats?.shiftRefused).length,
     // How many strokes' stripes came as a local update, on how many vertices (median), and the whole pattern

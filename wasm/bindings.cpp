@@ -520,7 +520,8 @@ class DesignerBinding {
                           {"iterateMs", p.iterateMs},   {"analysisReused", p.analysisReused},
                           {"spacingMs", p.spacingMs},   {"smoothMs", p.smoothMs},
                           {"alignMs", p.alignMs},       {"shift", p.shift},
-                          {"shiftRefused", p.shiftRefused},
+                          {"shiftRefused", p.shiftRefused}, {"closeMs", p.closeMs},
+                          {"breaksClosed", p.breaksClosed}, {"breaksLeft", p.breaksLeft},
                           {"localUpdate", p.localUpdate},   {"localVertices", p.localVertices},
                           {"ms", stripesMs_}}
         .dump();

@@ -82,8 +82,15 @@ struct StripeOptions {
   // The phase turned where its stripes cross the field (StripePattern::phaseTurn): each corner's phase moved
   // so that the stripes of every regular face follow the field in the least-squares sense, the lifts and
   // branch points the eigenvector's (stripe_pattern.cpp alignPhase); a local update keeps the last
-  // pattern's turn (the whole pattern that follows it turns its own). false: the eigenvector's phase as it is.
+  // pattern's turn (the whole pattern that follows it turns its own). false: the eigenvector's phase as it
+  // is.
   bool alignPhase = true;
+  // With adaptSpacing, a whole pattern's breaks away from the field's singularities (a stripe that ends in
+  // the open) closed in pairs before the turn (direction/stripe_breaks.h), where every one of them can be:
+  // the eigenvector's phase replaced on a disc round each pair, the extra stripe spread as a change of
+  // spacing. At one spacing (adaptSpacing false) the breaks are how the pattern keeps it: none is closed. A
+  // local update keeps the last pattern's psi outside its region and closes none. false: the eigenvector's.
+  bool closeBreaks = true;
   // Optional, 3 per face: the field at each face (any representative, any length; zero for none), which the
   // phase's turn (StripePattern::phaseTurn) follows; empty: the corners' directions averaged. A design's
   // field is its faces' (Designer::faceVectors), which the vertices' only average.
@@ -118,6 +125,10 @@ struct StripePattern {
   double factorMs = 0, iterateMs = 0, spacingMs = 0;
   double smoothMs = 0;  // a cross field's families made unit and smoothed (stripe_pattern.cpp unitSmoothing)
   double alignMs = 0;  // the phase turned where its stripes crossed the field (stripe_pattern.cpp alignPhase)
+  // StripeOptions::closeBreaks: the pairs of breaks closed (0 where some break away from the singularities
+  // could not be, and the eigenvector's phase was kept), the breaks away from them left, and the time taken.
+  int32_t breaksClosed = 0, breaksLeft = 0;
+  double closeMs = 0;
   // The shift sigma the energy was factored with (A - sigma B; 0: none), and whether a larger one was tried
   // and refused first (A - sigma B not positive definite: the eigenvalue fell below it).
   double shift = 0;
