@@ -17,16 +17,16 @@ namespace tvf::stripe {
 namespace {
 
 // A pair's partner is looked for this many periods round a break (across faces), among its nearest
-// kCandidates breaks; its disc reaches kDiscPeriods round the path between them at most (no less than the
-// pair's distance, and no less than a period), shrunk by kShrink down to kMinDiscPeriods while it holds
-// another break or cannot be a disc. On bunny00's smoothest line field (25 stripes per unit) the pair that
-// was closed lay 7-14 periods apart; its disc's size changed the stripes' direction error by under 0.01
-// degrees (the phase's turn that follows spreads the extra stripe wider still).
+// kCandidates breaks; its disc reaches round the path between them as far as the pair's distance (at least a
+// period, at most kDiscPeriods), short of any other break (discReach), shrunk by kShrink down to
+// kMinDiscPeriods while it still cannot close them. On bunny00's smoothest line field (25 stripes per unit)
+// the pair that was closed lay 7-14 periods apart; its disc's size changed the stripes' direction error by
+// under 0.01 degrees (the phase's turn that follows spreads the extra stripe wider still).
 constexpr double kPairPeriods = 12;
 constexpr double kDiscPeriods = 8;
 constexpr double kMinDiscPeriods = 0.75;
-constexpr double kShrink = 0.75;
-constexpr size_t kCandidates = 6;
+constexpr double kShrink = 0.6;
+constexpr size_t kCandidates = 4;
 
 struct Closer {
   const SurfaceMesh& mesh;
@@ -254,14 +254,28 @@ bool solveDisc(const Closer& c, const std::vector<int32_t>& faces, int32_t unkno
 
 // What a closed disc changed: psi's entries and the faces' indices, as they were.
 struct Undo {
-  std::vector<std::pair<size_t, std::complex<double>>> psi;
-  std::vector<std::pair<std::pair<int, int32_t>, int8_t>> index;
+  struct Entry {
+    size_t i;  // psi's, 2 (v F + f)
+    std::complex<double> before, after;
+  };
+  struct Index {
+    int family;
+    int32_t face;
+    int8_t before, after;
+  };
+  std::vector<Entry> psi;
+  std::vector<Index> index;
   double increase = 0;  // the disc's energy over psi's (solveDisc)
 };
 
 void undo(Closer& c, const Undo& u) {
-  for (const auto& [i, z] : u.psi) c.psi[i] = z.real(), c.psi[i + 1] = z.imag();
-  for (const auto& [slot, n] : u.index) indexAt(c, slot.first, slot.second) = n;
+  for (const Undo::Entry& e : u.psi) c.psi[e.i] = e.before.real(), c.psi[e.i + 1] = e.before.imag();
+  for (const Undo::Index& n : u.index) indexAt(c, n.family, n.face) = n.before;
+}
+
+void redo(Closer& c, const Undo& u) {
+  for (const Undo::Entry& e : u.psi) c.psi[e.i] = e.after.real(), c.psi[e.i + 1] = e.after.imag();
+  for (const Undo::Index& n : u.index) indexAt(c, n.family, n.face) = n.after;
 }
 
 // psi on the inner vertices set to phi (its modulus kept), then every disc face checked for a branch point
@@ -272,9 +286,9 @@ bool setAndCheck(Closer& c, const std::vector<int32_t>& faces, const std::vector
   for (const int32_t v : vertices) {
     if (c.unknown[v] < 0) continue;
     const size_t i = 2 * (static_cast<size_t>(v) * c.F + c.frameFamily[v]);
-    before.psi.push_back({i, {c.psi[i], c.psi[i + 1]}});
     const std::complex<double> z =
         std::polar(std::hypot(c.psi[i], c.psi[i + 1]), c.frameSign[v] * phi[c.unknown[v]]);
+    before.psi.push_back({i, {c.psi[i], c.psi[i + 1]}, z});
     c.psi[i] = z.real(), c.psi[i + 1] = z.imag();
   }
   std::vector<int8_t> indices;
@@ -293,7 +307,7 @@ bool setAndCheck(Closer& c, const std::vector<int32_t>& faces, const std::vector
   before.index.clear();
   for (const int32_t f : faces)
     for (int s = 0; s < c.F; ++s)
-      before.index.push_back({{s, f}, indexAt(c, s, f)}), indexAt(c, s, f) = indices[k++];
+      before.index.push_back({s, f, indexAt(c, s, f), indices[k]}), indexAt(c, s, f) = indices[k++];
   return true;
 }
 
@@ -326,11 +340,30 @@ bool closeOnDisc(Closer& c, const std::vector<int32_t>& faces, int32_t a, int fa
                setAndCheck(c, faces, vertices, phi, change));
 }
 
-// Tries the pair (a, b) on discs round `path` from `cap` down, shrinking.
-bool closePair(Closer& c, const std::vector<int32_t>& path, int32_t a, int fa, int32_t b, double cap,
+bool anyBreak(Closer& c, int32_t face) {
+  for (int s = 0; s < c.F; ++s)
+    if (indexAt(c, s, face) != 0) return true;
+  return false;
+}
+
+// How far a disc round `path` may reach (at most `cap`): for one family, short of the nearest break but the
+// pair's own (a disc that holds another cannot close). A grid's other family's breaks may lie in the disc,
+// and which family a face's break is in the disc's frame is known only once the disc is: there, `cap`.
+double discReach(Closer& c, const std::vector<int32_t>& path, double cap) {
+  if (c.F > 1) return cap;
+  const std::vector<int32_t> ball = dualBall(c, path, cap);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const int32_t h : ball)
+    if (h != path.front() && h != path.back() && anyBreak(c, h)) nearest = std::min(nearest, c.distance[h]);
+  resetDistances(c, ball);
+  return std::min(cap, 0.9 * nearest);
+}
+
+// Tries the pair (a, b) on discs round `path` from `reach` down, shrinking; the radius that closed it.
+bool closePair(Closer& c, const std::vector<int32_t>& path, int32_t a, int fa, int32_t b, double reach,
                double smallest, Undo& change) {
-  for (double r = cap; r >= smallest; r *= kShrink) {
-    const std::vector<int32_t> ball = dualBall(c, path, r);
+  for (double radius = reach; radius >= smallest; radius *= kShrink) {
+    const std::vector<int32_t> ball = dualBall(c, path, radius);
     const std::vector<int32_t> disc = discFrom(c, ball, a);
     resetDistances(c, ball);
     const bool closed =
@@ -344,21 +377,34 @@ bool closePair(Closer& c, const std::vector<int32_t>& path, int32_t a, int fa, i
   return false;
 }
 
+// Whether the break at the path's far end is of opposite index to a's in a's family, in the frames walked
+// along the path's faces (true where the walk does not agree with itself: the disc will tell).
+bool oppositeAlong(Closer& c, const std::vector<int32_t>& path, int32_t a, int fa) {
+  for (const int32_t f : path) c.inDisc[f] = 1;
+  const std::vector<int32_t> vertices = discFrames(c, a, fa);
+  bool opposite = vertices.empty();
+  if (!opposite) {
+    const int32_t b = path.front(), first = c.mesh.triangles[3 * b];
+    opposite = indexAt(c, c.frameFamily[first], b) * c.frameSign[first] == -indexAt(c, fa, a);
+  }
+  for (const int32_t v : vertices) c.frameFamily[v] = -1;
+  for (const int32_t f : path) c.inDisc[f] = 0;
+  return opposite;
+}
+
 // The nearest breaks round face a (any family), with the paths to them, nearest first.
-std::vector<std::vector<int32_t>> partnerPaths(Closer& c, int32_t a, double radius) {
+std::vector<std::vector<int32_t>> partnerPaths(Closer& c, int32_t a, int fa, double radius) {
   const std::vector<int32_t> ball = dualBall(c, {a}, radius);
   std::vector<std::pair<double, int32_t>> near;
-  for (const int32_t h : ball) {
-    bool any = false;
-    for (int s = 0; s < c.F; ++s) any = any || indexAt(c, s, h) != 0;
-    if (h != a && any) near.push_back({c.distance[h], h});
-  }
+  for (const int32_t h : ball)
+    if (h != a && anyBreak(c, h)) near.push_back({c.distance[h], h});
   std::sort(near.begin(), near.end());
-  if (near.size() > kCandidates) near.resize(kCandidates);
   std::vector<std::vector<int32_t>> paths;
   for (const auto& [d, b] : near) {
-    paths.emplace_back();
-    for (int32_t h = b; h >= 0; h = c.parent[h]) paths.back().push_back(h);
+    if (paths.size() == kCandidates) break;
+    std::vector<int32_t> path;
+    for (int32_t h = b; h >= 0; h = c.parent[h]) path.push_back(h);
+    if (oppositeAlong(c, path, a, fa)) paths.push_back(std::move(path));
   }
   resetDistances(c, ball);
   return paths;
@@ -429,27 +475,30 @@ BreakClosing closeStripeBreaks(const SurfaceMesh& mesh, const MeshTopology& t, c
   for (const auto& [a, fa] : away) {
     if (indexAt(c, fa, a) == 0) continue;  // closed with an earlier one
     // Of the partners it can be closed with, the one whose disc's phase follows the connection best (the
-    // least energy added): on a torus whose stripes ring the tube, pairing each break with the next one
-    // round it turned the rings into a helix.
-    const std::vector<std::vector<int32_t>> paths = partnerPaths(c, a, kPairPeriods * period);
-    size_t best = paths.size();
-    double least = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < paths.size(); ++i) {
+    // least energy added): with the spacing held, on a torus whose stripes ring the tube, pairing each break
+    // with the nearest one round it turned the rings into a helix.
+    const std::vector<std::vector<int32_t>> paths = partnerPaths(c, a, fa, kPairPeriods * period);
+    Undo best;
+    bool closed = false;
+    for (const std::vector<int32_t>& path : paths) {
       Undo change;
-      if (!closePair(c, paths[i], a, fa, paths[i].front(), discCap(c, paths[i], period),
-                     kMinDiscPeriods * period, change))
-        continue;
-      if (change.increase < least) least = change.increase, best = i;
+      const double reach = discReach(c, path, discCap(c, path, period));
+      if (!closePair(c, path, a, fa, path.front(), reach, kMinDiscPeriods * period, change)) continue;
       undo(c, change);
+      if (!closed || change.increase < best.increase) best = std::move(change);
+      closed = true;
     }
-    Undo change;
-    if (best < paths.size() && closePair(c, paths[best], a, fa, paths[best].front(),
-                                         discCap(c, paths[best], period), kMinDiscPeriods * period, change))
-      ++out.closed;
+    if (!closed) {
+      // One that cannot be closed keeps them all (see closeStripeBreaks): the rest is not tried.
+      psi = eigenvector;
+      out.left = static_cast<int32_t>(away.size());
+      out.closed = 0;
+      return out;
+    }
+    redo(c, best);
+    ++out.closed;
   }
-  for (const auto& [a, fa] : away) out.left += indexAt(c, fa, a) != 0;
-  out.kept = out.left == 0;
-  if (!out.kept) psi = eigenvector, out.left = static_cast<int32_t>(away.size());
+  out.kept = true;
   return out;
 }
 
