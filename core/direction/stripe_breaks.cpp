@@ -252,7 +252,7 @@ bool solveDisc(const Closer& c, const std::vector<int32_t>& faces, int32_t unkno
   return true;
 }
 
-// What a closed disc changed: psi's entries and the faces' indices, as they were.
+// What a closed disc changed: psi's entries and the faces' indices, before and after (undo, redo).
 struct Undo {
   struct Entry {
     size_t i;  // psi's, 2 (v F + f)
@@ -359,7 +359,8 @@ double discReach(Closer& c, const std::vector<int32_t>& path, double cap) {
   return std::min(cap, 0.9 * nearest);
 }
 
-// Tries the pair (a, b) on discs round `path` from `reach` down, shrinking; the radius that closed it.
+// Tries the pair (a, b) on discs round `path` from `reach` down, shrinking: true, with its change, once one
+// closes them.
 bool closePair(Closer& c, const std::vector<int32_t>& path, int32_t a, int fa, int32_t b, double reach,
                double smallest, Undo& change) {
   for (double radius = reach; radius >= smallest; radius *= kShrink) {

@@ -29,8 +29,8 @@ constexpr double kBreakAwayPeriods = 2.0;
 // index in the same family within 12 periods that a disc holds with no other break in it, the disc at most 8
 // periods round the path between them (faces only: never a singular face, never round one). psi changes only
 // on the discs' inner vertices, and only where every break away from the singularities could be closed: a
-// pattern that keeps some break anyway would trade direction for nothing (bunny00's grid: 3 of 8 left
-// after six pairs, each family's stripes 0.3 degrees further off the field).
+// pattern that keeps some break anyway would trade direction for nothing (bunny00's grid: six pairs
+// closed, three breaks left in each family, its stripes 0.3 degrees further off the field).
 BreakClosing closeStripeBreaks(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
                                const Families& fam, const EdgeTurns& turns, const StripeOptions& o,
                                std::vector<double>& psi);
