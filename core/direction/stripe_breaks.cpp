@@ -9,7 +9,6 @@
 #include <queue>
 #include <utility>
 
-#include "common/angles.h"
 #include "mesh/mesh_geometry.h"
 #include "solver/spd_solve.h"
 
@@ -49,11 +48,6 @@ struct Closer {
   std::vector<double> phase;                   // per vertex: the rim's phase, lifted
 };
 
-std::complex<double> psiIn(const std::vector<double>& psi, int F, int32_t v, int f, int sign) {
-  const size_t i = 2 * (static_cast<size_t>(v) * F + f);
-  return {psi[i], sign * psi[i + 1]};
-}
-
 int8_t& indexAt(Closer& c, int family, int32_t face) {
   return c.index[static_cast<size_t>(family) * c.t.numFaces + face];
 }
@@ -77,13 +71,10 @@ double omegaOf(const Closer& c, int32_t a, int32_t b) {
   return advance(c.mesh, c.o, c.F, a, fa, b, fb, ya, yb);
 }
 
-// psi's phase step a -> b in the disc's frame: omega and psi's turn beyond it in (-pi, pi], as liftFace.
+// psi's phase step a -> b in the disc's frame (liftFace's).
 double psiStep(const Closer& c, int32_t a, int32_t b) {
-  const double omega = omegaOf(c, a, b);
-  const double turn = std::arg(psiIn(c.psi, c.F, b, c.frameFamily[b], c.frameSign[b]) *
-                               std::conj(psiIn(c.psi, c.F, a, c.frameFamily[a], c.frameSign[a]))) -
-                      omega;
-  return omega + (turn - kTwoPi * std::ceil(turn / kTwoPi - 0.5));
+  return liftedStep(psiAt(c.psi, c.F, a, c.frameFamily[a], c.frameSign[a]),
+                    psiAt(c.psi, c.F, b, c.frameFamily[b], c.frameSign[b]), omegaOf(c, a, b));
 }
 
 int32_t otherEnd(const MeshTopology& t, int32_t e, int32_t v) {
@@ -196,7 +187,7 @@ bool liftRim(Closer& c, const std::vector<int32_t>& vertices, int32_t& unknowns)
   std::vector<int32_t> lifted{rim[0]};
   c.unknown[rim[0]] = -2;  // lifted
   bool agrees = true;
-  c.phase[rim[0]] = std::arg(psiIn(c.psi, c.F, rim[0], c.frameFamily[rim[0]], c.frameSign[rim[0]]));
+  c.phase[rim[0]] = std::arg(psiAt(c.psi, c.F, rim[0], c.frameFamily[rim[0]], c.frameSign[rim[0]]));
   for (size_t i = 0; i < lifted.size(); ++i) {
     const int32_t v = lifted[i];
     for (int32_t j = c.t.vertexEdgeStart[v]; j < c.t.vertexEdgeStart[v + 1]; ++j) {
@@ -217,37 +208,34 @@ bool liftRim(Closer& c, const std::vector<int32_t>& vertices, int32_t& unknowns)
   return agrees && lifted.size() == rim.size();
 }
 
-// The inner vertices' phase: least squares of sum_e w_e (phi_b - phi_a - omega_ab)^2 over the disc's edges,
-// the rim held (w_e the cotan weight, floored: an obtuse mesh's may be negative).
-bool solveDisc(const Closer& c, const std::vector<int32_t>& faces, int32_t unknowns, Eigen::VectorXd& phi,
+// The inner vertices' phase: least squares of sum_e w_e (phi_b - phi_a - omega_ab)^2 over the disc's edges
+// (`edges`, each once), the rim held (w_e the cotan weight, floored: an obtuse mesh's may be negative).
+bool solveDisc(const Closer& c, const std::vector<int32_t>& edges, int32_t unknowns, Eigen::VectorXd& phi,
                double& increase) {
-  std::vector<int32_t> edges;
-  for (const int32_t f : faces)
-    for (int k = 0; k < 3; ++k) edges.push_back(c.t.edgeOf(f, k));
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<double> omega(edges.size());
   TripletSystem system;
   system.rhs = Eigen::VectorXd::Zero(unknowns);
-  for (const int32_t e : edges) {
-    const int32_t p = c.t.edgeVertices[2 * e], q = c.t.edgeVertices[2 * e + 1];
+  for (size_t i = 0; i < edges.size(); ++i) {
+    const int32_t e = edges[i], p = c.t.edgeVertices[2 * e], q = c.t.edgeVertices[2 * e + 1];
     const int32_t up = c.unknown[p], uq = c.unknown[q];
     if (up < 0 && uq < 0) continue;
-    const double omega = omegaOf(c, p, q), w = std::max(c.g.star1[e], 0.05);
-    if (up >= 0) system.add(up, up, w), system.addRhs(up, -w * omega + (uq < 0 ? w * c.phase[q] : 0.0));
-    if (uq >= 0) system.add(uq, uq, w), system.addRhs(uq, w * omega + (up < 0 ? w * c.phase[p] : 0.0));
+    omega[i] = omegaOf(c, p, q);
+    const double w = std::max(c.g.star1[e], 0.05);
+    if (up >= 0) system.add(up, up, w), system.addRhs(up, -w * omega[i] + (uq < 0 ? w * c.phase[q] : 0.0));
+    if (uq >= 0) system.add(uq, uq, w), system.addRhs(uq, w * omega[i] + (up < 0 ? w * c.phase[p] : 0.0));
     if (up >= 0 && uq >= 0) system.add(up, uq, -w);
   }
   if (!solveSpdOnce(system.upper(unknowns), system.rhs, phi)) return false;
   // The energy's increase over psi's own steps on the same edges (its breaks' included).
   increase = 0;
-  for (const int32_t e : edges) {
-    const int32_t p = c.t.edgeVertices[2 * e], q = c.t.edgeVertices[2 * e + 1];
+  for (size_t i = 0; i < edges.size(); ++i) {
+    const int32_t e = edges[i], p = c.t.edgeVertices[2 * e], q = c.t.edgeVertices[2 * e + 1];
     const int32_t up = c.unknown[p], uq = c.unknown[q];
     if (up < 0 && uq < 0) continue;
-    const double omega = omegaOf(c, p, q), w = std::max(c.g.star1[e], 0.05);
+    const double w = std::max(c.g.star1[e], 0.05);
     const double step = (uq >= 0 ? phi[uq] : c.phase[q]) - (up >= 0 ? phi[up] : c.phase[p]);
     const double old = psiStep(c, p, q);
-    increase += w * ((step - omega) * (step - omega) - (old - omega) * (old - omega));
+    increase += w * ((step - omega[i]) * (step - omega[i]) - (old - omega[i]) * (old - omega[i]));
   }
   return true;
 }
@@ -324,8 +312,8 @@ bool closeOnDisc(Closer& c, const std::vector<int32_t>& faces, int32_t a, int fa
   for (const int32_t f : faces)
     for (int k = 0; k < 3; ++k) edges.push_back(c.t.edgeOf(f, k));
   std::sort(edges.begin(), edges.end());
-  const int64_t euler = static_cast<int64_t>(vertices.size()) -
-                        (std::unique(edges.begin(), edges.end()) - edges.begin()) +
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const int64_t euler = static_cast<int64_t>(vertices.size()) - static_cast<int64_t>(edges.size()) +
                         static_cast<int64_t>(faces.size());
   int total = 0, breaks = 0;
   for (const int32_t f : faces) {
@@ -336,7 +324,7 @@ bool closeOnDisc(Closer& c, const std::vector<int32_t>& faces, int32_t a, int fa
   int32_t unknowns = 0;
   Eigen::VectorXd phi;
   return clear(euler == 1 && total == 0 && breaks >= 2 && liftRim(c, vertices, unknowns) &&
-               solveDisc(c, faces, unknowns, phi, change.increase) &&
+               solveDisc(c, edges, unknowns, phi, change.increase) &&
                setAndCheck(c, faces, vertices, phi, change));
 }
 

@@ -35,6 +35,11 @@ double advance(const SurfaceMesh& mesh, const StripeOptions& o, int F, int32_t a
   return kTwoPi * nu * 0.5 * (ya + yb).dot(vertexPosition(mesh, b) - vertexPosition(mesh, a));
 }
 
+double liftedStep(std::complex<double> pa, std::complex<double> pb, double omega) {
+  const double turn = std::arg(pb * std::conj(pa)) - omega;
+  return omega + (turn - kTwoPi * std::ceil(turn / kTwoPi - 0.5));
+}
+
 FaceLift liftFace(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam, const EdgeTurns& turns,
                   const StripeOptions& o, const std::vector<double>& psi, int32_t face, int f0) {
   const int F = fam.count;
@@ -46,21 +51,15 @@ FaceLift liftFace(const SurfaceMesh& mesh, const MeshTopology& t, const Families
     l.family[k + 1] = m.family, l.sign[k + 1] = l.sign[k] * m.sign;
   }
   l.fieldSingular = l.family[3] != f0 || l.sign[3] != 1;
-  const auto psiAt = [&psi, F](int32_t v, int f, int sign) {
-    const size_t i = 2 * (static_cast<size_t>(v) * F + f);
-    return std::complex<double>(psi[i], sign * psi[i + 1]);
-  };
-  l.alpha[0] = std::arg(psiAt(l.v[0], l.family[0], l.sign[0]));
+  l.alpha[0] = std::arg(psiAt(psi, F, l.v[0], l.family[0], l.sign[0]));
   for (int k = 0; k < 3; ++k) {
     const int32_t a = l.v[k], b = l.v[(k + 1) % 3];
     const int fb = k < 2 ? l.family[k + 1] : f0, sb = k < 2 ? l.sign[k + 1] : 1;
     const Eigen::Vector3d ya = l.sign[k] * fam.growth[static_cast<size_t>(a) * F + l.family[k]];
     const Eigen::Vector3d yb = sb * fam.growth[static_cast<size_t>(b) * F + fb];
     const double omega = advance(mesh, o, F, a, l.family[k], b, fb, ya, yb);
-    const std::complex<double> pa = psiAt(a, l.family[k], l.sign[k]), pb = psiAt(b, fb, sb);
-    // arg(pb / (e^(i omega) pa)), wrapped to (-pi, pi]: one angle, no sine and cosine of omega.
-    const double turn = std::arg(pb * std::conj(pa)) - omega;
-    l.alpha[k + 1] = l.alpha[k] + omega + (turn - kTwoPi * std::ceil(turn / kTwoPi - 0.5));
+    l.alpha[k + 1] =
+        l.alpha[k] + liftedStep(psiAt(psi, F, a, l.family[k], l.sign[k]), psiAt(psi, F, b, fb, sb), omega);
   }
   l.n = l.fieldSingular ? 0 : static_cast<int>(std::lround((l.alpha[3] - l.alpha[0]) / kTwoPi));
   return l;

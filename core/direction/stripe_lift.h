@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <complex>
 #include <cstdint>
 #include <vector>
 
@@ -72,6 +73,16 @@ double localFrequency(const StripeOptions& o, int F, int32_t v, int f);
 // b) are ya and yb.
 double advance(const SurfaceMesh& mesh, const StripeOptions& o, int F, int32_t a, int fa, int32_t b, int fb,
                const Eigen::Vector3d& ya, const Eigen::Vector3d& yb);
+
+// psi at vertex v, family f, conjugated where sign is -1 (a representative pointing the other way).
+inline std::complex<double> psiAt(const std::vector<double>& psi, int F, int32_t v, int f, int sign) {
+  const size_t i = 2 * (static_cast<size_t>(v) * F + f);
+  return {psi[i], sign * psi[i + 1]};
+}
+
+// The phase's step from pa to pb along an edge the connection advances by omega: omega plus
+// arg(pb / (e^(i omega) pa)) wrapped to (-pi, pi] (one angle, no sine and cosine of omega).
+double liftedStep(std::complex<double> pa, std::complex<double> pb, double omega);
 
 // Face `face`'s corners for family f0 of its first corner, lifted along its edges from psi (2 a family and
 // vertex).
