@@ -522,6 +522,7 @@ class DesignerBinding {
                           {"alignMs", p.alignMs},       {"shift", p.shift},
                           {"shiftRefused", p.shiftRefused}, {"closeMs", p.closeMs},
                           {"breaksClosed", p.breaksClosed}, {"breaksLeft", p.breaksLeft},
+                          {"loopFit", p.loopFit},           {"fitMs", p.fitMs},
                           {"localUpdate", p.localUpdate},   {"localVertices", p.localVertices},
                           {"ms", stripesMs_}}
         .dump();

@@ -937,6 +937,8 @@ t.delete();
   check('stripes: the asked frequency, across the field', worstRate < 1e-4 && worstAngle < 1e-4,
     `rate ${worstRate}, cos ${worstAngle}`);
   const first = JSON.parse(s.stripeStatsJson());
+  // A square has no loop to fit the frequency to (core/direction/stripe_loop_fit.h): the asked one, no time spent.
+  check('stripes: no loop, no fit', first.loopFit === 1 && first.fitMs === 0, JSON.stringify(first));
   // The same field again: nothing changed, so the local update keeps the pattern as it was.
   const kept = s.computeStripes(null, JSON.stringify({ frequency }), null);
   const keptStats = JSON.parse(s.stripeStatsJson());

@@ -19,6 +19,7 @@
 #include "direction/combing.h"
 #include "direction/stripe_breaks.h"
 #include "direction/stripe_lift.h"
+#include "direction/stripe_loop_fit.h"
 #include "direction/stripe_region.h"
 #include "mesh/mesh_geometry.h"
 #include "solver/lane_kernels.h"
@@ -939,6 +940,46 @@ void wholePattern(const MeshTopology& t, const MeshGeometry& g, const Families& 
   out.eigenvalue -= definite;
 }
 
+// Tries the asked frequency's factors round 1 (direction/stripe_loop_fit.h) on the whole pattern: the one
+// whose stripes follow the field best returned, its pattern in out, the factor kept in the workspace for the
+// patterns that follow at this frequency and symmetry. Each candidate is scored as it will be drawn: its
+// breaks closed and its phase turned (on a copy: the pattern kept is closed and turned again, as any other).
+double fitToLoops(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g, const Families& fam,
+                  const StripeOptions& adapted, const StripeOptions& options,
+                  const std::vector<uint8_t>& faceTurns, double definite, StripeWorkspace& w,
+                  StripePattern& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  double best = 1;
+  stripe::FitScore bestScore;
+  // Scored away from the field's singularities, as its breaks are counted (stripe_breaks.h): near them the
+  // stripes' direction and ends are the singularity's.
+  const std::vector<uint8_t> near =
+      stripe::nearSingularities(mesh, t, fam, edgeTurns(mesh, t, fam, adapted, Elements{nullptr, t.numEdges}),
+                                adapted, stripe::kBreakAwayPeriods / options.frequency);
+  for (int i = 0; i <= 2 * stripe::kFitSteps; ++i) {
+    const double factor = 1 + stripe::kFitStep * ((i + 1) / 2) * (i % 2 ? -1 : 1);
+    StripeOptions scaled = adapted;
+    for (double& x : scaled.vertexFrequencyScale) x *= factor;
+    const EdgeTurns turns = edgeTurns(mesh, t, fam, scaled, Elements{nullptr, t.numEdges});
+    StripePattern candidate;
+    candidate.families = fam.count;
+    wholePattern(t, g, fam, turns, options, definite, w, candidate);
+    StripePattern drawn;
+    drawn.psi = candidate.psi;
+    const stripe::BreakClosing closing =
+        options.closeBreaks ? stripe::closeStripeBreaks(mesh, t, g, fam, turns, scaled, drawn.psi)
+                            : stripe::BreakClosing{};
+    if (options.alignPhase) alignPhase(mesh, t, g, fam, turns, scaled, faceTurns, w, drawn);
+    stripe::FitScore score = stripe::fitScore(mesh, t, fam, turns, scaled, drawn.psi, drawn.phaseTurn, near);
+    if (options.closeBreaks) score.breaks = closing.kept ? 0 : closing.left;
+    if (i == 0 || score.betterThan(bestScore)) best = factor, bestScore = score, out = std::move(candidate);
+    checkInterruption(options);
+  }
+  w.loopFit = best, w.fitFrequency = options.frequency, w.fitSymmetry = options.symmetry;
+  out.fitMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return best;
+}
+
 // The pattern made, kept as the next one's start. What it follows: the field everywhere after a whole
 // pattern, the field in the region after a local update (outside it, the field it was made for).
 void keepPattern(const Families& fam, const StripeOptions& options, const StripeRegion* region,
@@ -1043,8 +1084,9 @@ void StripeWorkspace::clear() {
   fieldSingular.clear();
   spacingMean.clear();
   adaptSpacing = false;
-  symmetry = 0;
-  frequency = eigenvalue = 0;
+  symmetry = fitSymmetry = 0;
+  frequency = eigenvalue = fitFrequency = 0;
+  loopFit = 1;
 }
 
 StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topology, const MeshGeometry& g,
@@ -1097,14 +1139,27 @@ StripePattern stripePattern(const SurfaceMesh& mesh, const MeshTopology& topolog
     spacingMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     checkInterruption(options);
   }
-  const EdgeTurns turns = edgeTurns(mesh, topology, fam, adapted, only);
-
   // A shift small against the energy's scale keeps the factor definite where the turns are consistent (then
   // the smallest eigenvalue is 0: a phase exactly following the field).
   const double definite = 1e-8 * std::max(g.star1.cwiseAbs().sum(), 1e-300) / std::max(g.star0.sum(), 1e-300);
   StripePattern out;
   out.families = F;
-  if (onRegion) {
+  // The frequency fitted to the surface's loops once for a frequency and symmetry; later patterns (an edit's)
+  // keep the factor found.
+  const bool fits = options.fitLoops && options.adaptSpacing && F == 1 &&
+                    topology.numVertices <= stripe::kFitMaxVertices && stripe::hasLoops(topology);
+  const bool fitKept = fits && w.fitFrequency == options.frequency && w.fitSymmetry == options.symmetry;
+  const bool fitting = fits && !fitKept && !onRegion;
+  const double fit =
+      fitting   ? fitToLoops(mesh, topology, g, fam, adapted, options, spacing.faceTurns, definite, w, out)
+      : fitKept ? w.loopFit
+                : 1.0;
+  for (double& x : adapted.vertexFrequencyScale) x *= fit;
+  out.loopFit = fit;
+  const EdgeTurns turns = edgeTurns(mesh, topology, fam, adapted, only);
+  if (fitting) {
+    // out holds the fitted frequency's whole pattern.
+  } else if (onRegion) {
     const auto t0 = std::chrono::steady_clock::now();
     out.psi = psiOnRegion(topology, g, fam, turns, w, region, definite,
                           options.adaptSpacing ? &spacing.analysis : nullptr);

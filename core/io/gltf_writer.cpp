@@ -172,7 +172,7 @@ void mergeBuffers(const GltfSource& source, GlbBuilder& builder) {
   }
 }
 
-Eigen::Vector3d at(const std::vector<double>& values, int32_t v) {
+Eigen::Vector3d vectorAt(const std::vector<double>& values, int32_t v) {
   return {values[3 * v], values[3 * v + 1], values[3 * v + 2]};
 }
 
@@ -231,12 +231,12 @@ void addPrimitiveAttributes(const FieldGlbContent& content, const GltfPrimitiveI
   const std::size_t count = vertices.empty() ? instance.vertexCount : vertices.size();
   for (std::size_t i = 0; i < count; ++i) {
     const int32_t v = content.mesh->sourceToWelded.at(firstSource + (vertices.empty() ? i : vertices[i]));
-    const Eigen::Vector3d t = (toLocal * at(content.vertexTangent, v)).normalized();
-    const Eigen::Vector3d u = toLocal * at(content.vertexField, v);
+    const Eigen::Vector3d t = (toLocal * vectorAt(content.vertexTangent, v)).normalized();
+    const Eigen::Vector3d u = toLocal * vectorAt(content.vertexField, v);
     for (int d = 0; d < 3; ++d) tangents.push_back(static_cast<float>(t[d]));
     tangents.push_back(1.0f);
     for (int d = 0; d < 3; ++d) field.push_back(static_cast<float>(u[d]));
-    const Eigen::Vector3d n = (normalToLocal * at(content.vertexNormal, v)).normalized();
+    const Eigen::Vector3d n = (normalToLocal * vectorAt(content.vertexNormal, v)).normalized();
     for (int d = 0; d < 3; ++d) normals.push_back(static_cast<float>(n[d]));
   }
   json& attributes = primitive["attributes"];

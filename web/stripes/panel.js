@@ -99,8 +99,12 @@ export function mountStripesPanel(controller, container, { onError = (e) => cons
       status.textContent = 'The field is zero everywhere: draw a stroke or drop a source for the stripes to follow.';
     else if (s.stats) {
       const t = s.stats;
+      // A frequency fitted to the surface's loops is not the one asked for: say so.
+      const fitted = t.loopFit && t.loopFit !== 1
+        ? ` ${(s.frequency * t.loopFit).toPrecision(3)} per unit, fitted so that whole stripes go round its loops.`
+        : '';
       status.textContent = `${t.families === 2 ? 'Two families' : 'One family'}: ${t.iterations} steps, ` +
-        `${fmt(t.workerMs)} ms in the worker, ${fmt(t.roundTripMs)} ms in all.`;
+        `${fmt(t.workerMs)} ms in the worker, ${fmt(t.roundTripMs)} ms in all.${fitted}`;
     }
   };
   refresh();
