@@ -51,14 +51,8 @@ std::vector<double> helicalField(const SurfaceMesh& m) {
 double degreesOffTheField(const SurfaceMesh& m, const StripePattern& p, const std::vector<double>& field) {
   double sum = 0, area = 0;
   for (int32_t f = 0; f < m.numFaces(); ++f) {
-    Eigen::Vector3d pos[3];
-    facePositions(m, f, pos);
-    const FaceNormalArea na = faceNormalArea(pos);
-    Eigen::Vector3d d = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) d += Eigen::Map<const Eigen::Vector3d>(&field[3 * m.triangles[3 * f + k]]);
-    const Eigen::Vector3d g = phaseGradient(m, p, 0, f).normalized(),
-                          across = na.normal.cross(d).normalized();
-    sum += na.area * std::acos(std::min(1.0, std::abs(g.dot(across)))), area += na.area;
+    const FaceAngle a = angleOffTheField(m, p, field, f);
+    sum += a.area * a.angle, area += a.area;
   }
   return sum / area * 180 / M_PI;
 }

@@ -167,13 +167,8 @@ TEST(StripePattern, BreaksAwayFromSingularitiesAreClosedInPairs) {
   const auto direction = [&](const StripePattern& p) {
     double sum = 0, area = 0, within5 = 0;
     for (int32_t f = 0; f < m.numFaces(); ++f) {
-      Eigen::Vector3d pos[3];
-      facePositions(m, f, pos);
-      const FaceNormalArea na = faceNormalArea(pos);
-      Eigen::Vector3d d = Eigen::Vector3d::Zero();
-      for (int k = 0; k < 3; ++k) d += Eigen::Map<const Eigen::Vector3d>(&field[3 * m.triangles[3 * f + k]]);
-      const double angle = angleBetweenLines(phaseGradient(m, p, 0, f), na.normal.cross(d));
-      sum += na.area * angle, area += na.area, within5 += angle < 5 * M_PI / 180 ? na.area : 0;
+      const FaceAngle a = angleOffTheField(m, p, field, f);
+      sum += a.area * a.angle, area += a.area, within5 += a.angle < 5 * M_PI / 180 ? a.area : 0;
     }
     return std::pair{sum / area, within5 / area};
   };

@@ -67,6 +67,23 @@ inline double worstEdgeDisagreement(const SurfaceMesh& m, const MeshTopology& t,
   return worst;
 }
 
+// Face f's stripes' angle to a vertex field (radians, as lines: the family's phase gradient against the
+// corners' field summed and turned a quarter in the face), and the face's area.
+struct FaceAngle {
+  double angle = 0, area = 0;
+};
+inline FaceAngle angleOffTheField(const SurfaceMesh& m, const StripePattern& p,
+                                  const std::vector<double>& field, int32_t f, int family = 0) {
+  Eigen::Vector3d pos[3];
+  facePositions(m, f, pos);
+  const FaceNormalArea na = faceNormalArea(pos);
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) d += Eigen::Map<const Eigen::Vector3d>(&field[3 * m.triangles[3 * f + k]]);
+  const Eigen::Vector3d g = phaseGradient(m, p, family, f).normalized(),
+                        across = na.normal.cross(d).normalized();
+  return {std::acos(std::min(1.0, std::abs(g.dot(across)))), na.area};
+}
+
 inline std::vector<double> constantField(const SurfaceMesh& m, const Eigen::Vector3d& d) {
   std::vector<double> out;
   for (int32_t v = 0; v < m.numVertices(); ++v) out.insert(out.end(), {d.x(), d.y(), d.z()});
