@@ -57,9 +57,8 @@ FitScore fitScore(const SurfaceMesh& mesh, const MeshTopology& t, const Families
   return score;
 }
 
-std::vector<uint8_t> nearSingularities(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam,
-                                       const EdgeTurns& turns, const StripeOptions& o, double radius) {
-  const std::vector<double> none(2 * static_cast<size_t>(t.numVertices) * fam.count, 1.0);
+std::vector<uint8_t> nearSingularities(const SurfaceMesh& mesh, const MeshTopology& t,
+                                       const std::vector<uint8_t>& turns, double radius) {
   std::vector<Eigen::Vector3d> centroid(t.numFaces);
   std::vector<double> distance(t.numFaces, std::numeric_limits<double>::infinity());
   using Item = std::pair<double, int32_t>;
@@ -68,7 +67,7 @@ std::vector<uint8_t> nearSingularities(const SurfaceMesh& mesh, const MeshTopolo
     Eigen::Vector3d p[3];
     facePositions(mesh, f, p);
     centroid[f] = (p[0] + p[1] + p[2]) / 3.0;
-    if (liftFace(mesh, t, fam, turns, o, none, f, 0).fieldSingular) distance[f] = 0, queue.push({0.0, f});
+    if (turns[f]) distance[f] = 0, queue.push({0.0, f});
   }
   while (!queue.empty()) {
     const auto [d, f] = queue.top();

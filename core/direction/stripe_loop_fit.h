@@ -24,8 +24,8 @@ constexpr int kFitSteps = 5;
 constexpr double kFitStep = 0.01;
 constexpr double kFitGain = 0.1;
 // Meshes with more vertices keep the asked frequency: a fit costs eleven whole patterns (knot2's line field,
-// 5,760 vertices: 0.6 s natively where its pattern takes 0.2 s), about as long as a whole pattern of ten times
-// the vertices.
+// 5,760 vertices: 0.6 s natively where its pattern takes 0.2 s), about as long as a whole pattern of ten
+// times the vertices.
 constexpr int32_t kFitMaxVertices = 12000;
 
 // Whether a stripe pattern can cross a loop of the surface: a handle, or a second boundary loop (a tube).
@@ -51,9 +51,9 @@ FitScore fitScore(const SurfaceMesh& mesh, const MeshTopology& t, const Families
                   const StripeOptions& o, const std::vector<double>& psi, const std::vector<double>& turn,
                   const std::vector<uint8_t>& near);
 
-// Per face: within `radius` (centroid to centroid across edges) of a face round which the field's
-// representatives do not match up, itself included.
-std::vector<uint8_t> nearSingularities(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam,
-                                       const EdgeTurns& turns, const StripeOptions& o, double radius);
+// Per face: within `radius` (centroid to centroid across edges) of a face the field turns round (`turns`:
+// the spacing's faceTurns, its singularities), itself included.
+std::vector<uint8_t> nearSingularities(const SurfaceMesh& mesh, const MeshTopology& t,
+                                       const std::vector<uint8_t>& turns, double radius);
 
 }  // namespace tvf::stripe

@@ -954,8 +954,7 @@ double fitToLoops(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeom
   // Scored away from the field's singularities, as its breaks are counted (stripe_breaks.h): near them the
   // stripes' direction and ends are the singularity's.
   const std::vector<uint8_t> near =
-      stripe::nearSingularities(mesh, t, fam, edgeTurns(mesh, t, fam, adapted, Elements{nullptr, t.numEdges}),
-                                adapted, stripe::kBreakAwayPeriods / options.frequency);
+      stripe::nearSingularities(mesh, t, faceTurns, stripe::kBreakAwayPeriods / options.frequency);
   for (int i = 0; i <= 2 * stripe::kFitSteps; ++i) {
     const double factor = 1 + stripe::kFitStep * ((i + 1) / 2) * (i % 2 ? -1 : 1);
     StripeOptions scaled = adapted;
