@@ -126,6 +126,7 @@ const StripePattern& DesignStripes::compute(const SurfaceMesh& mesh, const MeshT
     along.spacingMs += across.spacingMs;
     along.smoothMs += across.smoothMs;
     along.alignMs += across.alignMs;
+    along.fitMs += across.fitMs;  // each family fitted to the loops on its own (loopFit: the first's)
     along.shiftRefused = along.shiftRefused || across.shiftRefused;
     along.residual = std::max(along.residual, across.residual);
     along.psi.clear();  // each family's psi is its workspace's
