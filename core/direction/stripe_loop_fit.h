@@ -24,8 +24,8 @@ constexpr int kFitSteps = 5;
 constexpr double kFitStep = 0.01;
 constexpr double kFitGain = 0.1;
 // Meshes with more vertices keep the asked frequency: a fit costs eleven whole patterns (knot2's line field,
-// 5,760 vertices: 641 ms natively, 1.0 s in wasm under node; fitted, refined_elephant's, 44,460 vertices, made
-// its export take 41 s against 5.7 s).
+// 5,760 vertices: 641 ms natively, 1.0 s in wasm under node; fitted, refined_elephant's, 44,460 vertices,
+// made its export take 41 s against 5.7 s).
 constexpr int32_t kFitMaxVertices = 12000;
 
 // Whether a stripe pattern can cross a loop of the surface: a handle, or a second boundary loop (a tube).
