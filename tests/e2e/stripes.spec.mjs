@@ -10,7 +10,8 @@
 // field and stripes are drawn in one frame, and no frame is drawn again after theirs. On a sphere's
 // smoothest line field the stripes' own direction, read from the pixels, turns by pi round each +1/2 singularity
 // (one stripe ends there, the others turn round it) and not at all where the field is calm; a cross field's
-// grid turns by pi/2 round each of its eight +1/4 (three of its lines meet there) (stripe-topology.mjs).
+// grid turns by pi/2 round each of its eight +1/4 (three of its lines meet there) (stripe-topology.mjs). On a
+// torus whose field crosses both loops, the frequency is fitted to them, reported and said in the panel.
 import { expect, test } from '@playwright/test';
 import { icosphereOff } from '../icosphere.mjs';
 import { fieldTurnedAt, openDesignerPage, readCanvasGrey } from './helpers.mjs';
@@ -345,6 +346,50 @@ test.describe.serial('stripe patterns in the page', () => {
       expect(beforeWhole, 'frames before the whole pattern').toBeLessThanOrEqual(inTime ? 1 : 2);
     });
     expect(runs.filter((r) => r.stats.fieldFrameWaited > 0).length, 'edits whose frame waited').toBeGreaterThan(0);
+  });
+
+  // On a torus a field at a constant angle to the parallels (the angle at which a meridian crosses 0.3 as many
+  // stripes as a parallel) takes whole numbers of stripes round both loops only at some frequencies: the asked
+  // one puts 20.6 and 6.2 there, and the core fits it (core/direction/stripe_loop_fit.h; the native test
+  // StripeLoopFit.* checks the counts). The page reports the factor and says the frequency drawn.
+  test('a torus: the frequency fitted to its loops is reported and shown', async () => {
+    const [R, r, n, m] = [2, 0.7, 96, 48];
+    const beta = Math.atan(r / (0.3 * Math.sqrt(R * R - r * r)));
+    const v = [], f = [], constraints = [];
+    for (let j = 0; j < m; j++)
+      for (let i = 0; i < n; i++) {
+        const [u, w] = [(2 * Math.PI * i) / n, (2 * Math.PI * j) / m];
+        v.push(`${(R + r * Math.cos(w)) * Math.cos(u)} ${(R + r * Math.cos(w)) * Math.sin(u)} ${r * Math.sin(w)}`);
+      }
+    const id = (i, j) => (j % m) * n + (i % n);
+    for (let j = 0; j < m; j++)
+      for (let i = 0; i < n; i++) f.push(`3 ${id(i, j)} ${id(i + 1, j)} ${id(i + 1, j + 1)}`,
+        `3 ${id(i, j)} ${id(i + 1, j + 1)} ${id(i, j + 1)}`);
+    // Every face's field: cos(beta) along its parallel, sin(beta) along its meridian, at the quad's middle.
+    for (let j = 0; j < m; j++)
+      for (let i = 0; i < n; i++) {
+        const [u, w] = [(2 * Math.PI * (i + 0.5)) / n, (2 * Math.PI * (j + 0.5)) / m];
+        const parallel = [-Math.sin(u), Math.cos(u), 0];
+        const meridian = [-Math.sin(w) * Math.cos(u), -Math.sin(w) * Math.sin(u), Math.cos(w)];
+        const vector = parallel.map((x, k) => Math.cos(beta) * x + Math.sin(beta) * meridian[k]);
+        const face = 2 * (j * n + i);
+        constraints.push({ type: 'vector', face, vector }, { type: 'vector', face: face + 1, vector });
+      }
+    await evaluate((text) => window.tvf.loadModel(new TextEncoder().encode(text), { name: 'torus.off', restore: false }),
+      `OFF\n${v.length} ${f.length} 0\n${v.join('\n')}\n${f.join('\n')}\n`);
+    await evaluate((design) => window.tvf.loadDesign(design, { ignoreFingerprint: true }),
+      { symmetry: 2, constraints });
+    const frequency = 20 / (2 * Math.PI * R * Math.sin(beta) * 0.97);
+    const state = await evaluate((frequency) =>
+      window.tvf.setStripes({ visible: true, frequency, profile: 'stripes' }), frequency);
+    const { loopFit, fitMs } = state.stats;
+    expect(loopFit, JSON.stringify(state.stats)).not.toBe(1);
+    expect(Math.abs(loopFit - 1)).toBeLessThanOrEqual(0.05 + 1e-9);
+    expect(fitMs).toBeGreaterThan(0);
+    const status = () => evaluate(() => document.querySelector('tangent-field-designer').shadowRoot
+      .querySelector('#stripes-status').textContent);
+    await expect.poll(status).toContain(`${(frequency * loopFit).toPrecision(3)} per unit, fitted`);
+    await evaluate(() => window.tvf.setStripes({ visible: false }));
   });
 
   test('a sphere: one stripe ends at each +1/2 of a line field, grid lines meet three to a junction at a +1/4',
