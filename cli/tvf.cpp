@@ -79,7 +79,8 @@ int usage() {
          "grid, bricks or weave (default: stripes, grid for a cross field); --stripe-width W the lines'\n"
          "width as a share of a period, in (0, 1] (default: the profile's own, 1/2 for stripes);\n"
          "--stripes-across turns a vector or line field's stripes across it (a two-family profile's\n"
-         "families swap).\n"
+         "families swap). On a surface with a handle or a tube a vector or line field's frequency is\n"
+         "fitted within 5 % so that whole stripes go round its loops (docs/stripes.md).\n"
          "quad: a quad mesh following the design's cross field (symmetry 4; a closed surface), at an\n"
          "edge length or about N quads (default 5000), as OBJ; --json prints its statistics\n"
          "(docs/quad-meshes.md).\n";
@@ -269,6 +270,9 @@ BakedStripes bakeStripes(const tvf::Designer& designer, const tvf::ExportAtlas& 
   tvf::DesignStripes pattern;
   pattern.compute(designer.mesh(), designer.topology(), designer.geometry(), designer.vertexNormals(),
                   designer.symmetry(), designer.vertexVectors(), stripes, &designer.faceVectors());
+  if (pattern.pattern().loopFit != 1)  // the frequency drawn is not the one asked for: say so
+    std::cerr << "tvf: --stripes: " << stripes.frequency * pattern.pattern().loopFit
+              << " stripes per unit, fitted so that whole stripes go round the surface's loops\n";
   const std::vector<uint8_t> rgba =
       tvf::stripeTextureRgba(designer.mesh(), pattern.pattern(), atlas.cornerUVs, options.size,
                              options.gutterTexels, {}, stripes.profile, stripes.width);
