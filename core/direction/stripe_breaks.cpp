@@ -424,18 +424,6 @@ void readFaces(Closer& c) {
   }
 }
 
-// Per face: within kBreakAwayPeriods of a singular face.
-std::vector<uint8_t> nearSingularities(Closer& c, double period) {
-  std::vector<int32_t> sources;
-  for (int32_t f = 0; f < c.t.numFaces; ++f)
-    if (c.singular[f]) sources.push_back(f);
-  std::vector<uint8_t> near(c.t.numFaces, 0);
-  const std::vector<int32_t> reached = dualBall(c, sources, kBreakAwayPeriods * period);
-  for (const int32_t f : reached) near[f] = 1;
-  resetDistances(c, reached);
-  return near;
-}
-
 }  // namespace
 
 BreakClosing closeStripeBreaks(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g,
@@ -447,7 +435,7 @@ BreakClosing closeStripeBreaks(const SurfaceMesh& mesh, const MeshTopology& t, c
   c.distance.assign(nF, std::numeric_limits<double>::infinity());
   c.parent.assign(nF, -1);
   const double period = 1 / o.frequency;
-  const std::vector<uint8_t> near = nearSingularities(c, period);
+  const std::vector<uint8_t> near = nearSingularities(mesh, t, c.singular, kBreakAwayPeriods * period);
   std::vector<std::pair<int32_t, int>> away;
   for (int s = 0; s < c.F; ++s)
     for (int32_t f = 0; f < nF; ++f)

@@ -3,6 +3,10 @@
 
 #include <cmath>
 #include <complex>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <utility>
 
 #include "common/angles.h"
 #include "mesh/mesh_geometry.h"
@@ -63,6 +67,34 @@ FaceLift liftFace(const SurfaceMesh& mesh, const MeshTopology& t, const Families
   }
   l.n = l.fieldSingular ? 0 : static_cast<int>(std::lround((l.alpha[3] - l.alpha[0]) / kTwoPi));
   return l;
+}
+
+std::vector<uint8_t> nearSingularities(const SurfaceMesh& mesh, const MeshTopology& t,
+                                       const std::vector<uint8_t>& singular, double radius) {
+  std::vector<Eigen::Vector3d> centroid(t.numFaces);
+  std::vector<double> distance(t.numFaces, std::numeric_limits<double>::infinity());
+  using Item = std::pair<double, int32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (int32_t f = 0; f < t.numFaces; ++f) {
+    Eigen::Vector3d p[3];
+    facePositions(mesh, f, p);
+    centroid[f] = (p[0] + p[1] + p[2]) / 3.0;
+    if (singular[f]) distance[f] = 0, queue.push({0.0, f});
+  }
+  while (!queue.empty()) {
+    const auto [d, f] = queue.top();
+    queue.pop();
+    if (d > distance[f]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int32_t h = t.otherFace(t.edgeOf(f, k), f);
+      if (h < 0) continue;
+      const double dh = d + (centroid[h] - centroid[f]).norm();
+      if (dh <= radius && dh < distance[h]) distance[h] = dh, queue.push({dh, h});
+    }
+  }
+  std::vector<uint8_t> near(t.numFaces, 0);
+  for (int32_t f = 0; f < t.numFaces; ++f) near[f] = std::isfinite(distance[f]);
+  return near;
 }
 
 }  // namespace tvf::stripe

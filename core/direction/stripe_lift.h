@@ -89,4 +89,9 @@ double liftedStep(std::complex<double> pa, std::complex<double> pb, double omega
 FaceLift liftFace(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam, const EdgeTurns& turns,
                   const StripeOptions& o, const std::vector<double>& psi, int32_t face, int f0);
 
+// Per face: within `radius` (centroid to centroid across edges) of a singular face (`singular`: the field
+// turns round it), itself included: where a pattern's breaks and direction are the singularity's.
+std::vector<uint8_t> nearSingularities(const SurfaceMesh& mesh, const MeshTopology& t,
+                                       const std::vector<uint8_t>& singular, double radius);
+
 }  // namespace tvf::stripe

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "dec/hodge_star.h"
 #include "direction/stripe_lift.h"
 #include "mesh/mesh_topology.h"
 #include "mesh/surface_mesh.h"
@@ -45,15 +46,10 @@ struct FitScore {
   }
 };
 
-// Faces left out (`near`: nearSingularities) are not scored. breaks: the pattern's breaks there, which the
-// caller may know better (BreakClosing::left).
-FitScore fitScore(const SurfaceMesh& mesh, const MeshTopology& t, const Families& fam, const EdgeTurns& turns,
-                  const StripeOptions& o, const std::vector<double>& psi, const std::vector<double>& turn,
-                  const std::vector<uint8_t>& near);
-
-// Per face: within `radius` (centroid to centroid across edges) of a face the field turns round (`turns`:
-// the spacing's faceTurns, its singularities), itself included.
-std::vector<uint8_t> nearSingularities(const SurfaceMesh& mesh, const MeshTopology& t,
-                                       const std::vector<uint8_t>& turns, double radius);
+// Faces left out (`near`: stripe_lift.h's nearSingularities) are not scored. breaks: the pattern's breaks
+// there, which the caller may know better (BreakClosing::left).
+FitScore fitScore(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeometry& g, const Families& fam,
+                  const EdgeTurns& turns, const StripeOptions& o, const std::vector<double>& psi,
+                  const std::vector<double>& turn, const std::vector<uint8_t>& near);
 
 }  // namespace tvf::stripe

@@ -969,7 +969,8 @@ double fitToLoops(const SurfaceMesh& mesh, const MeshTopology& t, const MeshGeom
         options.closeBreaks ? stripe::closeStripeBreaks(mesh, t, g, fam, turns, scaled, drawn.psi)
                             : stripe::BreakClosing{};
     if (options.alignPhase) alignPhase(mesh, t, g, fam, turns, scaled, faceTurns, w, drawn);
-    stripe::FitScore score = stripe::fitScore(mesh, t, fam, turns, scaled, drawn.psi, drawn.phaseTurn, near);
+    stripe::FitScore score =
+        stripe::fitScore(mesh, t, g, fam, turns, scaled, drawn.psi, drawn.phaseTurn, near);
     if (options.closeBreaks) score.breaks = closing.kept ? 0 : closing.left;
     if (i == 0 || score.betterThan(bestScore)) best = factor, bestScore = score, out = std::move(candidate);
     checkInterruption(options);
